@@ -1,0 +1,36 @@
+# Two commands: `make demo` and `make test`. Both install missing Debian packages first.
+BUILD      ?= build
+BUILD_ASAN ?= build-asan
+JOBS       ?= 2
+
+.PHONY: demo test setup build build-asan clean help
+
+help:
+	@echo "make demo   install what is missing, build, run the main job on the default scene"
+	@echo "make test   install what is missing, build, run every test, then again under ASan+UBSan"
+
+setup:
+	@./setup.sh
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo
+
+build: setup $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j$(JOBS)
+
+$(BUILD_ASAN)/CMakeCache.txt:
+	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DTHX_SANITIZE=ON
+
+build-asan: setup $(BUILD_ASAN)/CMakeCache.txt
+	cmake --build $(BUILD_ASAN) -j$(JOBS)
+
+demo: build
+	./demo.sh $(BUILD)
+
+test: build build-asan
+	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) -LE slow
+	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+		ctest --output-on-failure -j$(JOBS) -LE slow
+
+clean:
+	rm -rf $(BUILD) $(BUILD_ASAN)

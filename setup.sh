@@ -1,0 +1,50 @@
+#!/bin/sh
+# Installs the Debian 12 packages this project needs. Idempotent: does nothing when all are present.
+# Usage: ./setup.sh            (as root, or with sudo available)
+#        ./setup.sh --check    (only report what is missing; exit 1 if anything is)
+set -eu
+
+PACKAGES="
+  g++ make cmake pkg-config
+  libeigen3-dev libpng-dev
+  libopencv-core-dev libopencv-imgproc-dev
+  libyaml-cpp-dev
+  liblcm-dev liblcm-bin libglib2.0-dev
+  googletest libgtest-dev
+"
+
+missing=""
+for p in $PACKAGES; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  case "$status" in
+    *"install ok installed"*) ;;
+    *) missing="$missing $p" ;;
+  esac
+done
+
+if [ -z "$missing" ]; then
+  exit 0
+fi
+
+echo "setup.sh: missing Debian packages:$missing"
+if [ "${1:-}" = "--check" ]; then
+  exit 1
+fi
+
+if [ "$(id -u)" -eq 0 ]; then
+  SUDO=""
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+  SUDO="sudo"
+else
+  echo "setup.sh: not running as root. Install them with:" >&2
+  echo "  sudo apt-get update && sudo apt-get install -y --no-install-recommends$missing" >&2
+  echo "or run: sudo ./setup.sh" >&2
+  exit 1
+fi
+
+export DEBIAN_FRONTEND=noninteractive
+# Fresh machines often have empty package lists; refresh only when something must be installed.
+$SUDO apt-get update -q
+# shellcheck disable=SC2086
+$SUDO apt-get install -y -q --no-install-recommends $missing
+echo "setup.sh: installed:$missing"

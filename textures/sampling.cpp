@@ -1,0 +1,69 @@
+#include "textures/sampling.hpp"
+
+namespace thx::tex {
+
+namespace {
+// Keeps huge-but-finite coordinates from overflowing the integer texel index: wrap by whole
+// periods first; clamp saturates anyway.
+double reduce(double u, Address address) {
+  if (address == Address::Wrap) return u - std::floor(u);
+  return std::fmin(2.0, std::fmax(-1.0, u));
+}
+}  // namespace
+
+TexCoord texelCentre(const TextureMap& map, TexelIndex t) {
+  return {(t.i + 0.5) / map.width(), 1.0 - (t.j + 0.5) / map.height()};
+}
+
+TexelIndex texelOf(const TextureMap& map, TexCoord uv, Address address) {
+  if (!std::isfinite(uv.u) || !std::isfinite(uv.v)) return {0, 0};
+  const double u = reduce(uv.u, address), v = reduce(uv.v, address);
+  const auto i = (long long)std::floor(u * map.width());
+  const auto j = (long long)std::floor((1.0 - v) * map.height());
+  return {resolveIndex(i, map.width(), address), resolveIndex(j, map.height(), address)};
+}
+
+Sample sample(const TextureMap& map, TexCoord uv, const SampleOptions& options) {
+  Sample out;
+  if (!std::isfinite(uv.u) || !std::isfinite(uv.v)) return out;
+  if (options.filter == Filter::Nearest) {
+    const TexelIndex t = texelOf(map, uv, options.address);
+    out.normal = map.normal(t.i, t.j);
+    out.depth = map.depth(t.i, t.j);
+    return out;
+  }
+  const double s = texelS(map, reduce(uv.u, options.address));
+  const double t = texelT(map, reduce(uv.v, options.address));
+  const double s0 = std::floor(s), t0 = std::floor(t);
+  const float fs = float(s - s0), ft = float(t - t0);
+  const int i0 = resolveIndex((long long)s0, map.width(), options.address);
+  const int i1 = resolveIndex((long long)s0 + 1, map.width(), options.address);
+  const int j0 = resolveIndex((long long)t0, map.height(), options.address);
+  const int j1 = resolveIndex((long long)t0 + 1, map.height(), options.address);
+  const float w00 = (1 - fs) * (1 - ft), w10 = fs * (1 - ft), w01 = (1 - fs) * ft, w11 = fs * ft;
+  const Eigen::Vector3f n = w00 * map.normal(i0, j0) + w10 * map.normal(i1, j0) + w01 * map.normal(i0, j1) +
+                            w11 * map.normal(i1, j1);
+  const float len = n.norm();
+  // Four stored normals all have n.z > 0, so their convex combination cannot vanish; the guard
+  // only protects against a future storage change.
+  out.normal = len > 1e-12f ? Eigen::Vector3f(n / len) : Eigen::Vector3f(0.0f, 0.0f, 1.0f);
+  if (map.isRelief()) {
+    out.depth = w00 * map.depth(i0, j0) + w10 * map.depth(i1, j0) + w01 * map.depth(i0, j1) + w11 * map.depth(i1, j1);
+  }
+  return out;
+}
+
+std::vector<TexelIndex> texelsOnSegment(const TextureMap& map, TexCoord a, TexCoord b, Address address,
+                                        std::size_t max_texels) {
+  std::vector<TexelIndex> out;
+  walkTexels(
+      map, a, b, address,
+      [&out](TexelIndex t) {
+        out.push_back(t);
+        return true;
+      },
+      max_texels);
+  return out;
+}
+
+}  // namespace thx::tex
