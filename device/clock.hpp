@@ -1,0 +1,38 @@
+#pragma once
+// Time sources for the servo. The device is the clock: a real device paces the loop with its own
+// ticks; the simulated device paces it with MonotonicClock (real time) or VirtualClock (lock-step,
+// for deterministic tests: sleeping just advances virtual time).
+#include <cstdint>
+
+namespace thx::dev {
+
+class Clock {
+ public:
+  virtual ~Clock() = default;
+  virtual std::int64_t nowNs() = 0;
+  // Returns when nowNs() >= t_ns. Real-time safe: no allocation, no locks.
+  virtual void sleepUntilNs(std::int64_t t_ns) = 0;
+};
+
+// CLOCK_MONOTONIC with clock_nanosleep(TIMER_ABSTIME): absolute deadlines never drift.
+class MonotonicClock final : public Clock {
+ public:
+  std::int64_t nowNs() override;
+  void sleepUntilNs(std::int64_t t_ns) override;
+};
+
+// Lock-step time: sleepUntilNs jumps to the deadline; advance() models compute time in tests.
+class VirtualClock final : public Clock {
+ public:
+  explicit VirtualClock(std::int64_t start_ns = 0) : now_ns_(start_ns) {}
+  std::int64_t nowNs() override { return now_ns_; }
+  void sleepUntilNs(std::int64_t t_ns) override {
+    if (t_ns > now_ns_) now_ns_ = t_ns;
+  }
+  void advance(std::int64_t dt_ns) { now_ns_ += dt_ns; }
+
+ private:
+  std::int64_t now_ns_;
+};
+
+}  // namespace thx::dev

@@ -1,0 +1,43 @@
+#pragma once
+// Pacer: the servo's timing policy, isolated so it can be unit-tested (as ros2_control does).
+//
+// Deadlines sit on a fixed grid t0 + k * period. wait() sleeps until the next grid point.
+// Missed-cycle policy (DESIGN §4 rule 2): if the loop arrives after its deadline has passed by a
+// whole period or more, it REALIGNS to the next grid point in the future (no catch-up burst) and
+// reports how many grid points it skipped; the caller decides what to do with the missed ticks
+// (hold the force with decay, then force off).
+#include <cstdint>
+
+#include "device/clock.hpp"
+
+namespace thx::dev {
+
+struct TickTiming {
+  std::int64_t tick = 0;             // index of this tick on the grid (skipped ticks count)
+  std::int64_t deadline_ns = 0;      // the grid point this tick was scheduled for
+  std::int64_t wake_ns = 0;          // when the loop actually resumed
+  std::int64_t wake_latency_ns = 0;  // wake_ns - deadline_ns (>= 0)
+  std::int64_t missed = 0;           // grid points skipped just before this tick
+};
+
+class Pacer {
+ public:
+  Pacer(Clock& clock, std::int64_t period_ns) : clock_(clock), period_ns_(period_ns) {}
+
+  // The first deadline is one period after now.
+  void start();
+  // Blocks until the next deadline; real-time safe.
+  TickTiming wait();
+
+  std::int64_t periodNs() const { return period_ns_; }
+  std::int64_t totalMissed() const { return total_missed_; }
+
+ private:
+  Clock& clock_;
+  std::int64_t period_ns_;
+  std::int64_t next_deadline_ns_ = 0;
+  std::int64_t next_tick_ = 0;
+  std::int64_t total_missed_ = 0;
+};
+
+}  // namespace thx::dev

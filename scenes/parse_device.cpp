@@ -1,0 +1,88 @@
+// device: type, model, address, stiffness_fraction, damping, sim, script.
+#include "scenes/scene_sections.hpp"
+#include "scenes/vrpn_address.hpp"
+
+namespace thx::scene::detail {
+
+namespace {
+
+DeviceModel parseModel(const Field& field) {
+  std::vector<std::string> names;
+  for (const DeviceModel& m : deviceModels()) names.push_back(m.name);
+  const std::string name = field.text();
+  if (const DeviceModel* m = findDeviceModel(name)) return *m;
+  const std::string guess = closestMatch(name, names);
+  field.fail(guess.empty() ? "unknown device model" : "unknown device model (did you mean '" + guess + "'?)",
+             "one of: " + joinNames(names));
+}
+
+std::string parseAddress(const Field& field) {
+  const std::string text = field.text();
+  std::string problem;
+  if (!parseVrpnAddress(text, &problem))
+    field.fail("malformed VRPN address: " + problem,
+               "DEVICE@HOST[:PORT] or DEVICE@tcp://HOST:PORT, e.g. 'Phantom0@localhost:3883'");
+  return text;
+}
+
+SimDeviceParams parseSim(const Field& field) {
+  field.expectKeys({"integration_hz", "encoder_resolution", "device_mass", "friction", "hand_mass", "hand_stiffness",
+                    "hand_damping"});
+  SimDeviceParams sim;
+  if (auto f = field.find("integration_hz")) {
+    // DESIGN §5: far above the servo rate, or the simulator cannot show instability.
+    sim.integration_hz = static_cast<int>(f->integer(10000, 1000000, "Hz"));
+  }
+  if (auto f = field.find("encoder_resolution")) sim.encoder_resolution_m = f->number(positiveUpTo(1e-3, "m"));
+  if (auto f = field.find("device_mass")) sim.device_mass_kg = f->number(positiveUpTo(10.0, "kg"));
+  if (auto f = field.find("friction")) sim.friction_n = f->number(closedRange(0.0, 10.0, "N"));
+  if (auto f = field.find("hand_mass")) sim.hand_mass_kg = f->number(positiveUpTo(10.0, "kg"));
+  if (auto f = field.find("hand_stiffness")) sim.hand_stiffness_n_per_m = f->number(closedRange(0.0, 1e5, "N/m"));
+  if (auto f = field.find("hand_damping")) sim.hand_damping_ns_per_m = f->number(closedRange(0.0, 1e3, "N·s/m"));
+  return sim;
+}
+
+void rejectForVrpn(const std::optional<Field>& field) {
+  if (field)
+    throw SceneError(field->keyLocation(), field->path(), "applies only to type: sim",
+                     "no '" + field->path() + "' with type: vrpn (a real device is moved by a real hand)");
+}
+
+}  // namespace
+
+Device parseDevice(const std::optional<Field>& field, const Surface& surface) {
+  Device d;
+  d.model = *findDeviceModel("phantom_desktop");
+  if (!field) return d;
+  field->expectKeys({"type", "model", "address", "stiffness_fraction", "damping", "sim", "script"});
+  if (auto t = field->find("type"))
+    d.type = t->choice<DeviceType>({{"sim", DeviceType::Sim}, {"vrpn", DeviceType::Vrpn}});
+  if (auto m = field->find("model")) d.model = parseModel(*m);
+
+  const auto address = field->find("address");
+  if (d.type == DeviceType::Vrpn) {
+    if (!address)
+      field->absent("address").fail("missing required field for type: vrpn",
+                                    "a VRPN device address such as 'Phantom0@localhost:3883'", "");
+    d.address = parseAddress(*address);
+    rejectForVrpn(field->find("sim"));
+    rejectForVrpn(field->find("script"));
+  } else if (address) {
+    address->fail("applies only to type: vrpn", "no address with type: sim (the simulated device is in-process)", "");
+  }
+
+  if (auto f = field->find("stiffness_fraction")) {
+    d.stiffness_fraction = f->number(closedRange(0.0, 1.0, "(fraction of the model's maximum stiffness)"));
+    if (d.stiffness_fraction == 0.0) f->warn("stiffness_fraction 0: the surface renders no force");
+  }
+  if (auto f = field->find("damping"))
+    d.damping_ns_per_m =
+        f->number(closedRange(0.0, d.model.max_damping_ns_per_m, "N·s/m (the maximum of model " + d.model.name + ")"));
+  if (d.type == DeviceType::Sim) {
+    if (auto s = field->find("sim")) d.sim = parseSim(*s);
+    if (auto s = field->find("script")) d.script = parseScript(*s, surface, d.model);
+  }
+  return d;
+}
+
+}  // namespace thx::scene::detail

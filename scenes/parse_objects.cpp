@@ -1,0 +1,100 @@
+// objects: the dynamic bodies physics simulates on the surface.
+#include <algorithm>
+
+#include "scenes/scene_frames.hpp"
+#include "scenes/scene_sections.hpp"
+
+namespace thx::scene::detail {
+
+namespace {
+
+// What each shape is measured by; any other dimension field is a mistake worth reporting.
+std::vector<std::string> dimensionsOf(Shape shape) {
+  switch (shape) {
+    case Shape::Sphere:
+      return {"radius"};
+    case Shape::Box:
+      return {"size"};
+    case Shape::Capsule:
+    case Shape::Cylinder:
+      return {"radius", "length"};
+  }
+  return {};
+}
+
+std::string describeDimensions(Shape shape) {
+  switch (shape) {
+    case Shape::Sphere:
+      return "sphere takes radius";
+    case Shape::Box:
+      return "box takes size: [x, y, z]";
+    case Shape::Capsule:
+      return "capsule takes radius and length (between the cap centres)";
+    case Shape::Cylinder:
+      return "cylinder takes radius and length";
+  }
+  return {};
+}
+
+void parseDimensions(const Field& field, SceneObject& object) {
+  const std::vector<std::string> needed = dimensionsOf(object.shape);
+  for (const char* key : {"radius", "size", "length"}) {
+    const auto f = field.find(key);
+    const bool wanted = std::find(needed.begin(), needed.end(), key) != needed.end();
+    if (f && !wanted)
+      f->fail("does not apply to shape " + std::string(toString(object.shape)), describeDimensions(object.shape), "");
+    if (!wanted) continue;
+    const Field value = field.at(key, describeDimensions(object.shape));
+    if (std::string(key) == "radius") object.radius_m = value.number(positiveUpTo(1.0, "m"));
+    if (std::string(key) == "length") object.length_m = value.number(positiveUpTo(10.0, "m"));
+    if (std::string(key) == "size") object.size_m = value.vector3(positiveUpTo(10.0, "m"), "[x, y, z] edge lengths");
+  }
+}
+
+SceneObject parseObject(const Field& field) {
+  field.expectKeys(
+      {"name", "shape", "radius", "size", "length", "mass", "material", "position", "rpy_deg", "velocity"});
+  if (field.isNull()) field.fail("missing value", "a mapping with name, shape, its dimensions, mass and position");
+  SceneObject object;
+  object.name = field.at("name", "a unique object name").text();
+  object.shape = field.at("shape", "one of: sphere, box, capsule, cylinder")
+                     .choice<Shape>({{"sphere", Shape::Sphere},
+                                     {"box", Shape::Box},
+                                     {"capsule", Shape::Capsule},
+                                     {"cylinder", Shape::Cylinder}});
+  parseDimensions(field, object);
+  object.mass_kg = field.at("mass", "kilograms").number(positiveUpTo(1000.0, "kg"));
+  object.material = *findMaterial("steel");
+  if (auto m = field.find("material")) object.material = parseMaterial(*m);
+  object.pose.position_m = field.at("position", "[x, y, z] in metres").vector3(closedRange(-100.0, 100.0, "m"));
+  if (auto r = field.find("rpy_deg"))
+    object.pose.rpy_deg = r->vector3(closedRange(-360.0, 360.0, "deg"), "[roll, pitch, yaw]");
+  if (auto v = field.find("velocity")) object.velocity_m_per_s = v->vector3(closedRange(-100.0, 100.0, "m/s"));
+  return object;
+}
+
+}  // namespace
+
+std::vector<SceneObject> parseObjects(const std::optional<Field>& field, const Surface& surface) {
+  std::vector<SceneObject> objects;
+  if (!field) return objects;
+  const std::vector<Field> items = field->items();
+  const Eigen::Isometry3d world_to_plane = toIsometry(surface.pose).inverse();
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    SceneObject object = parseObject(items[i]);
+    for (std::size_t j = 0; j < objects.size(); ++j)
+      if (objects[j].name == object.name)
+        items[i].find("name")->fail("duplicate object name (also objects[" + std::to_string(j) + "], line " +
+                                        std::to_string(items[j].find("name")->location().line) + ")",
+                                    "a name no other object uses");
+    const double height = (world_to_plane * object.pose.position_m).z();
+    if (height < 0.0)
+      items[i]
+          .find("position")
+          ->warn("object '" + object.name + "' starts " + formatNumber(-height) + " m below the surface plane");
+    objects.push_back(std::move(object));
+  }
+  return objects;
+}
+
+}  // namespace thx::scene::detail

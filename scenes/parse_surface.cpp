@@ -1,0 +1,90 @@
+// surface: size, pose, texture, representation, max_depth, green, sampling, material, smoothing_sigma.
+#include "scenes/scene_sections.hpp"
+#include "textures/smoothing.hpp"
+
+namespace thx::scene::detail {
+
+namespace {
+
+// Deeper than this is no longer a texture on a plane but geometry.
+constexpr double kMaxReliefDepthM = 0.1;
+
+std::optional<double> parseMaxDepth(const Field& field, const std::optional<tex::Representation>& representation) {
+  const bool relief = representation.value_or(tex::Representation::Relief) == tex::Representation::Relief;
+  const NumberRange range = positiveUpTo(kMaxReliefDepthM, "m");
+  NumberRange any_finite;
+  any_finite.unit = "m";
+  const double depth = field.number(any_finite);
+  if (depth <= 0.0)
+    field.fail(relief ? "a relief surface needs a positive max_depth" : "max_depth must be positive",
+               range.describe() + " (depth into the surface), or leave max_depth out to use the texture's own");
+  if (!range.contains(depth)) field.fail("out of range", range.describe());
+  if (!relief) field.warn("max_depth is ignored for representation: normal (a normal map has no depth)");
+  return depth;
+}
+
+tex::SampleOptions parseSampling(const Field& field) {
+  field.expectKeys({"filter", "address"});
+  tex::SampleOptions options;
+  if (auto f = field.find("filter"))
+    options.filter = f->choice<tex::Filter>({{"nearest", tex::Filter::Nearest}, {"bilinear", tex::Filter::Bilinear}});
+  if (auto a = field.find("address"))
+    options.address = a->choice<tex::Address>({{"wrap", tex::Address::Wrap}, {"clamp", tex::Address::Clamp}});
+  return options;
+}
+
+TextureSource parseTexture(const Field& field, const Surface& surface) {
+  const std::string expected = "{file: PATH} or {generator: KIND, size: N, seed: S, params: {...}}";
+  if (field.isNull()) field.fail("missing value", expected);
+  field.expectKeys({"file", "generator", "size", "seed", "params"});
+  const auto file = field.find("file");
+  const auto generator = field.find("generator");
+  if (file && generator) field.fail("both file and generator given", "exactly one of them", "");
+  if (!file && !generator) field.fail("no texture source", expected, "");
+
+  TextureSource source;
+  source.where = field.location();
+  if (file) {
+    for (const char* key : {"size", "seed", "params"})
+      if (auto extra = field.find(key))
+        extra->fail("applies only to generator textures", "no '" + std::string(key) + "' with file:", "");
+    source.kind = TextureSource::Kind::File;
+    source.file = parseExistingFile(*file, "texture file (PNG)");
+  } else {
+    source.kind = TextureSource::Kind::Generator;
+    source.generator = parseGenerator(field, surface);
+  }
+  return source;
+}
+
+}  // namespace
+
+Surface parseSurface(const Field& field) {
+  if (field.isNull()) field.fail("missing value", "a mapping with at least size and texture");
+  field.expectKeys(
+      {"size", "pose", "texture", "representation", "max_depth", "green", "sampling", "material", "smoothing_sigma"});
+  Surface s;
+  s.size_m = field.at("size", "[x, y] in metres").vector2(positiveUpTo(10.0, "m"));
+  if (auto p = field.find("pose")) s.pose = parsePose(*p);
+  if (auto r = field.find("representation"))
+    s.representation = r->choice<tex::Representation>(
+        {{"normal", tex::Representation::Normal}, {"relief", tex::Representation::Relief}});
+  s.texture = parseTexture(field.at("texture", "{file: PATH} or {generator: KIND, ...}"), s);
+  if (s.texture.kind == TextureSource::Kind::Generator && !s.representation)
+    s.representation = tex::Representation::Relief;  // what generators produce
+  if (auto d = field.find("max_depth")) s.max_depth_m = parseMaxDepth(*d, s.representation);
+  if (auto g = field.find("green")) {
+    s.green = g->choice<tex::GreenConvention>(
+        {{"opengl", tex::GreenConvention::OpenGL}, {"directx", tex::GreenConvention::DirectX}});
+    if (s.texture.kind == TextureSource::Kind::Generator)
+      g->warn("green is ignored for generated textures (it describes how a file stores normals)");
+  }
+  if (auto sm = field.find("sampling")) s.sampling = parseSampling(*sm);
+  s.material = *findMaterial("ceramic");
+  if (auto m = field.find("material")) s.material = parseMaterial(*m);
+  if (auto sigma = field.find("smoothing_sigma"))
+    s.smoothing_sigma_texels = sigma->number(closedRange(0.0, tex::kMaxSmoothingSigma, "texels"));
+  return s;
+}
+
+}  // namespace thx::scene::detail

@@ -1,0 +1,135 @@
+#pragma once
+// A scene as plain data: the textured surface, the haptic device (and the simulated hand's script),
+// the dynamic objects and the update rates. loadScene() (scene_loader.hpp) fills every default,
+// so consumers never look for a missing value. The file format is docs/scenes.md. SI units.
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "scenes/device_models.hpp"
+#include "scenes/materials.hpp"
+#include "scenes/scene_error.hpp"
+#include "textures/generators.hpp"
+#include "textures/sampling.hpp"
+#include "textures/texture_io.hpp"
+#include "textures/texture_map.hpp"
+
+namespace thx::scene {
+
+// Rotation R = Rz(yaw) * Ry(pitch) * Rx(roll), angles in degrees (scene_frames.hpp converts).
+struct Pose {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy_deg = Eigen::Vector3d::Zero();
+};
+
+struct TextureSource {
+  enum class Kind { File, Generator };
+  Kind kind = Kind::Generator;
+  std::string file;                // Kind::File: path, already resolved against the scene's directory
+  tex::GenerateRequest generator;  // Kind::Generator: "extent" is always present in params
+  SourceLocation where;            // of `texture:` in the scene file, for errors found when building it
+};
+
+struct Surface {
+  Eigen::Vector2d size_m{0.2, 0.2};  // the texture spans this rectangle once, centred on the pose
+  Pose pose;
+  TextureSource texture;
+  // Generator textures default to Relief. For a file, nullopt means "whatever the file holds"
+  // (RGB -> normal, RGBA -> relief).
+  std::optional<tex::Representation> representation;
+  std::optional<double> max_depth_m;  // overrides the texture's own maximum depth
+  tex::GreenConvention green = tex::GreenConvention::OpenGL;
+  tex::SampleOptions sampling;  // bilinear + wrap by default
+  Material material;
+  double smoothing_sigma_texels = 0.0;  // 0 = off
+};
+
+enum class DeviceType { Sim, Vrpn };
+
+// The simulated PHANToM and the hand holding it (DESIGN §5: integrated far above the servo rate
+// so that instability stays possible).
+struct SimDeviceParams {
+  int integration_hz = 10000;
+  double encoder_resolution_m = 2.3e-5;
+  double device_mass_kg = 0.045;
+  double friction_n = 0.06;
+  double hand_mass_kg = 0.2;
+  double hand_stiffness_n_per_m = 300.0;
+  double hand_damping_ns_per_m = 3.0;
+};
+
+// Script steps for the simulated hand. Positions are surface-local (x, y) in metres; forces push
+// along the surface's geometric normal, into the surface.
+struct PressStep {
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  double force_n = 0.0;
+  double duration_s = 0.0;
+};
+struct StrokeStep {
+  Eigen::Vector2d from_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d to_m = Eigen::Vector2d::Zero();
+  double speed_m_per_s = 0.0;
+  double force_n = 0.0;
+};
+struct PathFileStep {
+  std::string path;  // resolved against the scene's directory; format in docs/scenes.md
+};
+struct HoldStep {
+  double duration_s = 0.0;
+};
+using ScriptStep = std::variant<PressStep, StrokeStep, PathFileStep, HoldStep>;
+
+struct Device {
+  DeviceType type = DeviceType::Sim;
+  DeviceModel model;                // a copy of the table row (device_models.hpp)
+  std::string address;              // VRPN only, e.g. "Phantom0@localhost:3883"
+  double stiffness_fraction = 0.5;  // of model.max_stiffness_n_per_m
+  double damping_ns_per_m = 0.0;    // virtual damping, at most model.max_damping_ns_per_m
+  SimDeviceParams sim;              // Sim only
+  std::vector<ScriptStep> script;   // Sim only
+
+  double stiffnessNPerM() const { return stiffness_fraction * model.max_stiffness_n_per_m; }
+};
+
+enum class Shape { Sphere, Box, Capsule, Cylinder };
+
+struct SceneObject {
+  std::string name;
+  Shape shape = Shape::Sphere;
+  double radius_m = 0.0;                             // sphere, capsule, cylinder
+  double length_m = 0.0;                             // capsule: between cap centres; cylinder: full height
+  Eigen::Vector3d size_m = Eigen::Vector3d::Zero();  // box: full edge lengths
+  double mass_kg = 0.0;
+  Material material;
+  Pose pose;  // centre of mass; capsule and cylinder axes along the object's local z
+  Eigen::Vector3d velocity_m_per_s = Eigen::Vector3d::Zero();
+};
+
+struct Rates {
+  int servo_hz = 1000;
+  int physics_hz = 1000;
+  int visual_hz = 60;
+  int audio_hz = 44100;
+  int audio_feed_hz = 1000;
+};
+
+struct Scene {
+  int version = 1;
+  std::string name;
+  std::string description;
+  std::string source;    // the file (or in-memory source name) it was read from
+  std::string base_dir;  // relative paths in the scene resolved against this
+  Surface surface;
+  Device device;
+  std::vector<SceneObject> objects;
+  Rates rates;
+  std::vector<std::string> warnings;  // non-fatal issues, each "file:line:col: field: message"
+};
+
+const char* toString(DeviceType type);
+const char* toString(Shape shape);
+
+}  // namespace thx::scene

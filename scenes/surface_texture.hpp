@@ -1,0 +1,26 @@
+#pragma once
+// Builds the surface's texture exactly as the scene describes it: generated or loaded, with the
+// scene's representation, maximum depth and green convention, then smoothed if asked.
+#include <functional>
+
+#include "scenes/scene.hpp"
+#include "textures/smoothing.hpp"
+#include "textures/texture_io.hpp"
+#include "textures/texture_map.hpp"
+
+namespace thx::scene {
+
+struct SurfaceTextureOptions {
+  tex::BadTexelPolicy bad_texels = tex::BadTexelPolicy::Reject;
+  // Gaussian smoothing. thx_scenes cannot smooth by itself: the filter needs OpenCV, which the
+  // real-time server must not link (textures/CMakeLists.txt). Programs linking
+  // thx_texture_filters pass `thx::tex::smoothTexture`; required when smoothing_sigma > 0.
+  // It is called with sigma = smoothing_sigma and the scene's address mode.
+  std::function<tex::TextureMap(const tex::TextureMap&, const tex::SmoothOptions&)> smooth;
+  tex::LoadReport* report = nullptr;  // receives texel counts and warnings (file textures, extent)
+};
+
+// Throws SceneError (located at the scene's `texture:` field) wrapping any texture error.
+tex::TextureMap buildSurfaceTexture(const Scene& scene, const SurfaceTextureOptions& options = {});
+
+}  // namespace thx::scene

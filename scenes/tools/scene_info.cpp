@@ -1,0 +1,146 @@
+// scene-info: load scene files exactly as every program does, report errors and warnings, and
+// (unless --check) build the surface texture and print what the scene describes.
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "scenes/scene_frames.hpp"
+#include "scenes/scene_loader.hpp"
+#include "scenes/surface_texture.hpp"
+#include "textures/smoothing.hpp"
+#include "textures/texture_error.hpp"
+#include "textures/texture_io.hpp"
+#include "textures/texture_stats.hpp"
+
+namespace {
+
+const char* kHelp = R"(usage: scene-info [--check] [--texture-out FILE] SCENE.yaml...
+
+Loads each scene file the way hapticd and the clients will, and prints the first error (with
+file, line, field, value and what was expected) or the warnings. Without --check it also builds
+the scene's surface texture and prints a summary of the surface, device, script, objects and
+rates. Format of scene files: docs/scenes.md.
+
+  --check             only validate (fast; does not build textures)
+  --texture-out FILE  write the built surface texture of the (single) scene as a PNG
+  -h, --help          this text
+
+Exit status: 0 all scenes valid, 1 a scene has an error, 2 bad command line.
+)";
+
+using namespace thx;
+
+double scriptDuration(const scene::Device& device) {
+  double total = 0.0;
+  for (const scene::ScriptStep& step : device.script) {
+    if (const auto* press = std::get_if<scene::PressStep>(&step)) total += press->duration_s;
+    if (const auto* hold = std::get_if<scene::HoldStep>(&step)) total += hold->duration_s;
+    if (const auto* stroke = std::get_if<scene::StrokeStep>(&step)) {
+      total += (stroke->to_m - stroke->from_m).norm() / stroke->speed_m_per_s;
+    }
+  }
+  return total;
+}
+
+void printSummary(const scene::Scene& s, const tex::TextureMap& map, double build_ms) {
+  const scene::Surface& surf = s.surface;
+  std::printf("scene:           %s (%s)\n", s.name.c_str(), s.source.c_str());
+  std::printf("surface:         %.4g x %.4g m at (%.4g, %.4g, %.4g) m, rpy (%.4g, %.4g, %.4g) deg, material %s\n",
+              surf.size_m.x(), surf.size_m.y(), surf.pose.position_m.x(), surf.pose.position_m.y(),
+              surf.pose.position_m.z(), surf.pose.rpy_deg.x(), surf.pose.rpy_deg.y(), surf.pose.rpy_deg.z(),
+              surf.material.name.c_str());
+  if (surf.texture.kind == scene::TextureSource::Kind::Generator) {
+    std::printf("texture:         generator %s, seed %llu (built in %.0f ms)\n", surf.texture.generator.kind.c_str(),
+                (unsigned long long)surf.texture.generator.seed, build_ms);
+  } else {
+    std::printf("texture:         file %s (loaded in %.0f ms)\n", surf.texture.file.c_str(), build_ms);
+  }
+  std::printf("sampling:        %s, %s; smoothing sigma %.3g texels\n",
+              surf.sampling.filter == tex::Filter::Bilinear ? "bilinear" : "nearest",
+              surf.sampling.address == tex::Address::Wrap ? "wrap" : "clamp", surf.smoothing_sigma_texels);
+  const tex::TextureStats stats = tex::computeStats(map);
+  std::printf("%s", tex::formatStats(stats).c_str());
+  std::printf("memory:          %.2f MiB of texels\n", double(map.bytes()) / (1024.0 * 1024.0));
+  const scene::Device& dev = s.device;
+  std::printf("device:          %s %s: peak %.3g N, continuous %.3g N; stiffness %.3g N/m (%.2f of max), damping %.3g N*s/m\n",
+              scene::toString(dev.type), dev.model.name.c_str(), dev.model.peak_force_n, dev.model.continuous_force_n,
+              dev.stiffnessNPerM(), dev.stiffness_fraction, dev.damping_ns_per_m);
+  if (dev.type == scene::DeviceType::Vrpn) {
+    std::printf("address:         %s\n", dev.address.c_str());
+  } else {
+    std::printf("script:          %zu step(s), %.2f s\n", dev.script.size(), scriptDuration(dev));
+  }
+  std::printf("objects:         %zu\n", s.objects.size());
+  for (const scene::SceneObject& o : s.objects) {
+    std::printf("  %-12s %s, %.4g kg, %s\n", o.name.c_str(), scene::toString(o.shape), o.mass_kg,
+                o.material.name.c_str());
+  }
+  std::printf("rates:           servo %d Hz, physics %d Hz, visual %d Hz, audio %d Hz (fed at %d Hz)\n",
+              s.rates.servo_hz, s.rates.physics_hz, s.rates.visual_hz, s.rates.audio_hz, s.rates.audio_feed_hz);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool check_only = false;
+  std::string texture_out;
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelp, stdout);
+      return 0;
+    } else if (a == "--check") {
+      check_only = true;
+    } else if (a == "--texture-out") {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "scene-info: --texture-out needs a file name\n");
+        return 2;
+      }
+      texture_out = argv[++i];
+    } else if (a.rfind("--", 0) == 0) {
+      std::fprintf(stderr, "scene-info: unknown option '%s' (see scene-info --help)\n", a.c_str());
+      return 2;
+    } else {
+      files.push_back(a);
+    }
+  }
+  if (files.empty() || (!texture_out.empty() && files.size() != 1)) {
+    std::fputs(kHelp, stderr);
+    return 2;
+  }
+  int status = 0;
+  for (const std::string& file : files) {
+    try {
+      const scene::Scene s = scene::loadScene(file);
+      for (const std::string& w : s.warnings) std::printf("warning: %s\n", w.c_str());
+      if (check_only) {
+        std::printf("%s: ok: '%s', %zu warning(s)\n", file.c_str(), s.name.c_str(), s.warnings.size());
+        continue;
+      }
+      scene::SurfaceTextureOptions options;
+      options.smooth = tex::smoothTexture;
+      tex::LoadReport report;
+      options.report = &report;
+      const auto t0 = std::chrono::steady_clock::now();
+      const tex::TextureMap map = scene::buildSurfaceTexture(s, options);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      for (const std::string& w : report.warnings) std::printf("warning: %s\n", w.c_str());
+      printSummary(s, map, ms);
+      if (!texture_out.empty()) {
+        tex::saveTexture(texture_out, map);
+        std::printf("wrote %s\n", texture_out.c_str());
+      }
+    } catch (const scene::SceneError& e) {
+      std::printf("error: %s\n", e.what());
+      status = 1;
+    } catch (const tex::TextureError& e) {
+      std::printf("error: %s\n", e.what());
+      status = 1;
+    }
+  }
+  return status;
+}
