@@ -1,0 +1,86 @@
+#pragma once
+// HapticDevice: what the servo loop talks to. Real devices (a PHANToM behind VRPN) and the
+// simulated PHANToM honour the same contract, so the servo cannot tell them apart.
+//
+// Contract (the device is the clock):
+//  - read() blocks until the device's next tick and returns the state sampled at that tick,
+//    with the tick's timing. It is the only blocking call of the servo tick.
+//  - write() hands over this tick's output and returns immediately. A device that renders
+//    forces applies DeviceCommand::force_world_n; a device that renders planes itself (a
+//    PHANToM behind a VRPN server) applies DeviceCommand::planes.
+//  - Neither allocates, locks or logs: both run inside the real-time tick.
+//  - If write() is not called for a tick (the servo missed it), the device holds the last output
+//    with decay for a couple of ticks, then outputs zero (its own watchdog).
+//  - open() and close() run outside the real-time loop and may throw DeviceError.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "device/pacer.hpp"
+
+namespace thx::dev {
+
+class DeviceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// What a device model can do; the servo's stability budget and safety stage start from it.
+struct DeviceSpec {
+  std::string model;
+  double peak_force_n = 0.0;
+  double continuous_force_n = 0.0;
+  double max_stiffness_n_per_m = 0.0;  // stable wall stiffness at 1 kHz (vendor figure)
+  double max_damping_ns_per_m = 0.0;
+  double workspace_radius_m = 0.0;
+  double position_resolution_m = 0.0;
+  double physical_damping_ns_per_m = 0.0;  // b of the passivity bound K <= 2 (b - |B|) / T
+};
+
+struct DeviceState {
+  TickTiming timing;                                  // tick index, deadline, wake-up, missed ticks
+  Eigen::Vector3d p_world = Eigen::Vector3d::Zero();  // m, pen tip
+  Eigen::Quaterniond q_world = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d v_world = Eigen::Vector3d::Zero();  // m/s (device's estimate)
+  Eigen::Vector3d w_world = Eigen::Vector3d::Zero();  // rad/s
+  std::uint32_t buttons = 0;
+  bool valid = true;  // false: the device could not deliver a fresh, trustworthy sample
+};
+
+// A plane proxy as a plane-rendering device understands it: n.x = d (world frame, n unit,
+// outward), with its own spring, damping and friction.
+struct PlaneProxy {
+  Eigen::Vector3d n_world = Eigen::Vector3d::UnitZ();
+  double d_m = 0.0;
+  double k_n_per_m = 0.0;
+  double b_ns_per_m = 0.0;
+  double mu_static = 0.0;
+  double mu_dynamic = 0.0;
+};
+
+inline constexpr int kMaxPlanes = 4;
+
+struct DeviceCommand {
+  Eigen::Vector3d force_world_n = Eigen::Vector3d::Zero();  // force-rendering devices
+  std::array<PlaneProxy, kMaxPlanes> planes{};               // plane-rendering devices
+  int num_planes = 0;
+  bool forces_enabled = false;  // false: output zero whatever the fields say
+};
+
+enum class OutputMode { Force, Planes };
+
+class HapticDevice {
+ public:
+  virtual ~HapticDevice() = default;
+  virtual const DeviceSpec& spec() const = 0;
+  virtual OutputMode outputMode() const = 0;
+  virtual void open() = 0;
+  virtual void close() = 0;
+  virtual DeviceState read() = 0;
+  virtual void write(const DeviceCommand& command) = 0;
+};
+
+}  // namespace thx::dev

@@ -1,0 +1,53 @@
+#pragma once
+// Flight recorder: the last second of ticks, kept by the servo at no cost, dumped to a file by
+// another thread when something goes wrong (DESIGN §4 rule 2; libfranka keeps 50 records).
+//
+// Two preallocated buffers. The servo writes into the active one (a copy per tick). On a fault
+// it swaps in the spare buffer in O(1) and marks the full one frozen with the fault's reason;
+// a non-real-time thread later writes the frozen buffer out (dumpPending) and frees it. A fault
+// that arrives while a dump is still pending is counted but not frozen (the first one explains
+// the most).
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "server/tick_record.hpp"
+
+namespace thx::srv {
+
+class FlightRecorder {
+ public:
+  explicit FlightRecorder(std::size_t capacity = 1000);
+
+  // Servo thread (real-time safe).
+  void record(const TickRecord& r);
+  void freeze(std::uint32_t fault_bits, std::int64_t tick);
+
+  // Any other thread. Writes the frozen buffer as CSV into `directory` (one file per fault) and
+  // returns its path; empty when nothing is pending. Throws std::runtime_error on I/O errors.
+  std::string dumpPending(const std::string& directory);
+
+  std::uint64_t faultsSeen() const { return faults_.load(std::memory_order_relaxed); }
+  std::uint64_t faultsNotFrozen() const { return not_frozen_.load(std::memory_order_relaxed); }
+
+ private:
+  struct Buffer {
+    std::unique_ptr<TickRecord[]> records;
+    std::size_t next = 0;    // where the next record goes
+    std::size_t filled = 0;  // how many are valid
+  };
+  std::size_t capacity_;
+  Buffer buffers_[2];
+  int active_ = 0;
+  std::atomic<bool> frozen_{false};  // buffers_[1 - active_] holds an undumped flight
+  std::uint32_t frozen_fault_ = 0;
+  std::int64_t frozen_tick_ = 0;
+  std::atomic<std::uint64_t> faults_{0};
+  std::atomic<std::uint64_t> not_frozen_{0};
+};
+
+// Human-readable names of TickFault bits, e.g. "missed-ticks+invalid-reading".
+std::string faultName(std::uint32_t fault_bits);
+
+}  // namespace thx::srv

@@ -1,0 +1,347 @@
+// hapticd: the haptic device server. Loads a scene, opens the device, runs the 1 kHz servo on a
+// real-time thread, publishes device and contact state over LCM, and on SIGINT/SIGTERM (or after
+// --duration) ramps the force down and writes its statistics. `hapticd --help` for options.
+#include <lcm/lcm-cpp.hpp>
+#include <malloc.h>
+#include <pthread.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "device/sim_phantom.hpp"
+#include "scenes/scene_frames.hpp"
+#include "scenes/scene_loader.hpp"
+#include "scenes/surface_texture.hpp"
+#include "server/process_memory.hpp"
+#include "server/publisher.hpp"
+#include "server/realtime.hpp"
+#include "server/scene_device.hpp"
+#include "server/servo.hpp"
+#include "server/stability_budget.hpp"
+#include "server/stats_json.hpp"
+#include "textures/texture_error.hpp"
+
+namespace {
+
+const char* kHelp = R"(usage: hapticd --scene FILE [options]
+
+The haptic device server: renders the scene's textured surface to the device at 1 kHz and
+publishes device and contact state over LCM.
+
+  --scene FILE          scene file (docs/scenes.md); e.g. scenes/default.yaml
+  --device sim          the device (default: the scene's; only the simulated PHANToM so far,
+                        VRPN devices arrive with issue 4)
+  --duration S          run S seconds, then ramp down and stop (default for a simulated device:
+                        its script plus 0.5 s; 0 = until SIGINT/SIGTERM)
+  --lockstep            simulated device on a virtual clock: deterministic, runs as fast as it can
+  --stats-json FILE     write statistics (ticks, rate, missed ticks, latencies, memory) as JSON
+  --lcm-url URL         LCM transport (default udpm://239.255.76.67:7667?ttl=0)
+  --no-lcm              do not publish at all
+  --publish-hz HZ       device/contact publication rate (default 1000)
+  --no-crease           crease handling off (one plane per tick, the source paper's method)
+  --no-passivity        passivity controller off (the observer still runs)
+  --stiffness-fraction F  override the scene's stiffness (fraction of the device maximum)
+  --strict-stability    refuse a stiffness above the sampled-wall bound K <= 2(b - |B|)/T
+                        (default: warn; the vendor maximum already assumes a damping hand)
+  --require-rt          fail if SCHED_FIFO or mlockall cannot be had (default: warn and go on)
+  --cpu N               pin the servo thread to CPU N
+  --no-mlock            do not lock memory
+  --flight-dir DIR      where fault flight records go (default: .)
+  --quiet               no progress lines
+  -h, --help            this text
+
+Exit status: 0 clean run, 1 bad input or device failure, 2 bad command line.
+)";
+
+std::atomic<bool> g_stop{false};
+void onSignal(int) { g_stop.store(true); }
+
+struct Options {
+  std::string scene;
+  std::string device = "sim";
+  std::optional<double> duration_s;
+  bool lockstep = false;
+  std::string stats_json;
+  std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";
+  bool no_lcm = false;
+  double publish_hz = 1000.0;
+  bool crease = true;
+  bool passivity = true;
+  std::optional<double> stiffness_fraction;
+  bool strict_stability = false;
+  thx::srv::RealtimeOptions rt;
+  std::string flight_dir = ".";
+  bool quiet = false;
+};
+
+[[noreturn]] void usage(const std::string& message) {
+  std::fprintf(stderr, "hapticd: %s (see hapticd --help)\n", message.c_str());
+  std::exit(2);
+}
+
+double number(const std::string& option, const char* text) {
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (!end || *end != '\0' || !std::isfinite(v)) usage(option + " expects a number, got '" + text + "'");
+  return v;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) usage(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelp, stdout);
+      std::exit(0);
+    } else if (a == "--scene") {
+      o.scene = value();
+    } else if (a == "--device") {
+      o.device = value();
+    } else if (a == "--duration") {
+      o.duration_s = number(a, value());
+      if (*o.duration_s < 0) usage("--duration must be >= 0");
+    } else if (a == "--lockstep") {
+      o.lockstep = true;
+    } else if (a == "--stats-json") {
+      o.stats_json = value();
+    } else if (a == "--lcm-url") {
+      o.lcm_url = value();
+    } else if (a == "--no-lcm") {
+      o.no_lcm = true;
+    } else if (a == "--publish-hz") {
+      o.publish_hz = number(a, value());
+      if (o.publish_hz <= 0) usage("--publish-hz must be > 0");
+    } else if (a == "--no-crease") {
+      o.crease = false;
+    } else if (a == "--no-passivity") {
+      o.passivity = false;
+    } else if (a == "--stiffness-fraction") {
+      o.stiffness_fraction = number(a, value());
+      if (*o.stiffness_fraction <= 0 || *o.stiffness_fraction > 1) usage("--stiffness-fraction must be in (0, 1]");
+    } else if (a == "--strict-stability") {
+      o.strict_stability = true;
+    } else if (a == "--require-rt") {
+      o.rt.require = true;
+    } else if (a == "--cpu") {
+      o.rt.cpu = int(number(a, value()));
+    } else if (a == "--no-mlock") {
+      o.rt.lock_memory = false;
+    } else if (a == "--flight-dir") {
+      o.flight_dir = value();
+    } else if (a == "--quiet") {
+      o.quiet = true;
+    } else {
+      usage("unknown argument '" + a + "'");
+    }
+  }
+  if (o.scene.empty()) usage("--scene FILE is required");
+  if (o.device != "sim") {
+    if (o.device.rfind("vrpn:", 0) == 0) {
+      std::fprintf(stderr, "hapticd: --device %s: VRPN devices are not supported yet (issue 4); use --device sim\n",
+                   o.device.c_str());
+      std::exit(1);
+    }
+    usage("--device: expected 'sim', got '" + o.device + "'");
+  }
+  return o;
+}
+
+int run(const Options& o) {
+  using namespace thx;
+  const scene::Scene sc = scene::loadScene(o.scene);
+  for (const std::string& w : sc.warnings) std::fprintf(stderr, "hapticd: warning: %s\n", w.c_str());
+  if (sc.device.type != scene::DeviceType::Sim) {
+    std::fprintf(stderr, "hapticd: %s: device.type vrpn is not supported yet (issue 4); use a simulated device\n",
+                 o.scene.c_str());
+    return 1;
+  }
+  if (sc.surface.smoothing_sigma_texels > 0.0) {
+    std::fprintf(stderr,
+                 "hapticd: %s: surface.smoothing_sigma = %g: hapticd does not link OpenCV, so it cannot smooth at "
+                 "start-up.\n  Smooth once with `texturetool smooth IN OUT --sigma %g` and point surface.texture.file "
+                 "at OUT.\n",
+                 o.scene.c_str(), sc.surface.smoothing_sigma_texels, sc.surface.smoothing_sigma_texels);
+    return 1;
+  }
+
+  const tex::TextureMap map = scene::buildSurfaceTexture(sc);
+  const bool relief = map.isRelief() && sc.surface.representation.value_or(map.representation()) == tex::Representation::Relief;
+  const tex::TexturedSurface surface(map, scene::planeMapping(sc.surface), sc.surface.sampling, relief);
+
+  dev::SimPhantom device(srv::simConfigFor(sc, o.lockstep), srv::handScriptFor(sc));
+  const dev::DeviceSpec& spec = device.spec();
+  const double period_s = 1.0 / sc.rates.servo_hz;
+
+  srv::RendererConfig rc = srv::rendererConfigFor(sc);
+  if (o.stiffness_fraction) rc.stiffness_n_per_m = *o.stiffness_fraction * spec.max_stiffness_n_per_m;
+  rc.crease_handling = o.crease;
+  srv::StabilityRequest sr;
+  sr.stiffness_fraction = rc.stiffness_n_per_m / spec.max_stiffness_n_per_m;
+  sr.virtual_damping_ns_per_m = rc.damping_ns_per_m;
+  sr.period_s = period_s;
+  sr.policy = o.strict_stability ? srv::BoundPolicy::Strict : srv::BoundPolicy::Warn;
+  const srv::StabilityBudget budget = srv::checkStabilityBudget(spec, sr);
+  for (const std::string& w : budget.warnings) std::fprintf(stderr, "hapticd: warning: %s\n", w.c_str());
+  if (!budget.ok) {
+    for (const std::string& e : budget.errors) std::fprintf(stderr, "hapticd: %s: %s\n", o.scene.c_str(), e.c_str());
+    return 1;
+  }
+
+  srv::ProxyRenderer renderer(surface, rc);
+  srv::PassivityConfig pc = srv::PassivityConfig::fromSpec(spec, period_s, rc.stiffness_n_per_m);
+  pc.enabled = o.passivity;
+  srv::PassivityController passivity(pc);
+  srv::SafetyStage safety(srv::SafetyConfig::fromSpec(spec, period_s));
+  srv::FlightRecorder recorder(std::size_t(sc.rates.servo_hz));  // one second of ticks
+  srv::SpscRing<srv::TickRecord> ring(4096);
+  srv::Servo servo(device, renderer, passivity, safety, recorder, ring, srv::ServoConfig{});
+
+  std::unique_ptr<lcm::LCM> lcm;
+  if (!o.no_lcm) {
+    lcm = std::make_unique<lcm::LCM>(o.lcm_url);
+    if (!lcm->good()) {
+      std::fprintf(stderr,
+                   "hapticd: warning: LCM is not available at '%s' (no multicast route? try `ip route add "
+                   "224.0.0.0/4 dev lo` as root, or --lcm-url); the servo runs without publishing\n",
+                   o.lcm_url.c_str());
+      lcm.reset();
+    }
+  }
+  srv::PublisherOptions po;
+  po.publish_hz = o.publish_hz;
+  po.servo_rate_hz = sc.rates.servo_hz;
+  po.flight_dir = o.flight_dir;
+  po.simulated_device = true;
+  srv::Publisher publisher(ring, servo, recorder, lcm.get(), po);
+
+  const double duration_s = o.duration_s.value_or(device.script().duration() + 0.5);
+  const std::int64_t stop_tick = duration_s > 0 ? std::int64_t(std::llround(duration_s * sc.rates.servo_hz)) : -1;
+
+  struct sigaction sa {};
+  sa.sa_handler = onSignal;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+
+  publisher.start();
+  srv::RealtimeReport rt;
+  std::string servo_error;  // written by the servo thread before it sets servo_done
+  std::atomic<bool> servo_done{false};
+  std::atomic<std::int64_t> ticks_done{0};
+  std::int64_t first_deadline = 0, last_deadline = 0;
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::thread servo_thread([&] {
+    try {
+      rt = srv::makeThreadRealtime(o.rt);
+    } catch (const std::exception& e) {
+      servo_error = e.what();
+      servo_done.store(true);
+      return;
+    }
+    // Open (and so start the device's clock) only now: locking memory above takes milliseconds,
+    // which would otherwise count as missed ticks.
+    try {
+      device.open();
+    } catch (const std::exception& e) {
+      servo_error = std::string("cannot open the device: ") + e.what();
+      servo_done.store(true);
+      return;
+    }
+    bool shutting_down = false;
+    std::int64_t n = 0;
+    while (!servo.finished()) {
+      const srv::TickRecord& r = servo.tick();
+      if (n == 0) first_deadline = r.deadline_ns;
+      last_deadline = r.deadline_ns;
+      ticks_done.store(++n, std::memory_order_relaxed);
+      if (!shutting_down && (g_stop.load(std::memory_order_relaxed) || (stop_tick >= 0 && r.tick >= stop_tick))) {
+        servo.requestShutdown();
+        shutting_down = true;
+      }
+    }
+    servo_done.store(true);
+  });
+  auto last_report = std::chrono::steady_clock::now();
+  while (!servo_done.load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!o.quiet && std::chrono::steady_clock::now() - last_report > std::chrono::seconds(2)) {
+      last_report = std::chrono::steady_clock::now();
+      std::fprintf(stderr, "hapticd: %lld ticks (%.1f s of device time)\n", (long long)ticks_done.load(),
+                   double(ticks_done.load()) * period_s);
+    }
+  }
+  servo_thread.join();
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  publisher.stop();
+  device.close();
+  if (!servo_error.empty()) {
+    std::fprintf(stderr, "hapticd: %s\n", servo_error.c_str());
+    return 1;
+  }
+  for (const std::string& w : rt.warnings) std::fprintf(stderr, "hapticd: warning: %s\n", w.c_str());
+
+  srv::RunSummary summary;
+  summary.scene = o.scene;
+  summary.lockstep = o.lockstep;
+  summary.ticks = servo.counters().ticks;
+  summary.device_time_s = double(last_deadline - first_deadline) * 1e-9 + period_s;
+  summary.wall_time_s = wall_s;
+  summary.nominal_rate_hz = sc.rates.servo_hz;
+  summary.servo = servo.counters();
+  summary.safety = safety.counters();
+  summary.passivity_active_ticks = passivity.activeTicks();
+  summary.passivity_dissipated_j = passivity.dissipatedEnergy();
+  summary.realtime = rt;
+  summary.memory = srv::readProcessMemory();
+  summary.texture_bytes = map.bytes();
+  summary.publisher = publisher.counters();
+  summary.snapshots_dropped = ring.dropped();
+  summary.last_flight_dump = publisher.lastFlightDump();
+  summary.crease = o.crease;
+  summary.passivity = o.passivity;
+  summary.stiffness_n_per_m = rc.stiffness_n_per_m;
+  if (!o.stats_json.empty()) srv::writeStatsJson(o.stats_json, summary, servo.computeHistogram(), servo.wakeHistogram());
+  srv::printSummary(stdout, summary, servo.computeHistogram(), servo.wakeHistogram());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = parse(argc, argv);
+  // Every thread (ours, LCM's GLib thread) gets a 512 KiB stack instead of glibc's 8 MiB default:
+  // under mlockall(MCL_FUTURE) each stack is locked in full, so 8 MiB stacks cost 8 MB of RAM each.
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, 512 * 1024);
+  pthread_setattr_default_np(&attr);
+  pthread_attr_destroy(&attr);
+  // One malloc arena: per-thread arenas reserve 64 MiB of address space each, which mlockall
+  // counts as locked even though it is never touched.
+  mallopt(M_ARENA_MAX, 1);
+  try {
+    return run(options);
+  } catch (const thx::scene::SceneError& e) {
+    std::fprintf(stderr, "hapticd: %s\n", e.what());
+  } catch (const thx::tex::TextureError& e) {
+    std::fprintf(stderr, "hapticd: %s\n", e.what());
+  } catch (const thx::dev::HandScriptError& e) {
+    std::fprintf(stderr, "hapticd: %s\n", e.what());
+  } catch (const thx::dev::DeviceError& e) {
+    std::fprintf(stderr, "hapticd: device: %s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticd: %s\n", e.what());
+  }
+  return 1;
+}

@@ -1,0 +1,127 @@
+#pragma once
+// PassivityController: time-domain passivity observer + controller (Hannaford & Ryu 2002), the
+// last line of stability defence in the force path (renderer -> passivity -> safety -> device).
+//
+// Contract (runs inside the 1 kHz servo tick):
+//  - apply(), recordAppliedForce() and every accessor are real-time safe: no allocation, lock,
+//    logging, exception or system call; constant time; state is plain members.
+//  - Only construction (PassivityConfig::validate) may throw std::invalid_argument.
+//  - The controller's force is always -alpha v with 0 <= alpha <= max_damping_ns_per_m and
+//    |force| <= max_force_n: it only ever removes energy.
+//
+// Sign convention. F = force the device applies to the pen (N, world), v = pen velocity (m/s).
+// F.v is power delivered to the pen; the virtual environment (VE) absorbs P = -F.v. E is the
+// energy the VE has absorbed since reset(): pushing into a spring wall (F along +n, v along -n)
+// raises E by 1/2 K x^2, releasing gives it back. A passive VE keeps E >= 0; E < 0 means the
+// sampled loop has created energy.
+//
+// Observer, aligned with the zero-order hold. The force written at tick j acts over the interval
+// after the device applies it. With a backward-difference velocity v_k = (x_k - x_k-1) / T the
+// exact energy of the interval that ended at tick k is -F_applied . v_k T, where F_applied is the
+// output written at tick k - 1 - output_delay_ticks. Pairing v_k with the force computed at tick k
+// instead (the textbook form) sees a sampled spring as slightly *dissipative* (+1/2 K dx^2 per
+// tick) when in truth the hold makes it generate that much, so it would never catch the
+// instability it is there for. output_delay_ticks = 0 is hapticd's device contract (read ->
+// compute -> write in one tick); 1 suits drivers that apply a write one tick later (CHAI3D's
+// PHANToM wrapper).
+//
+// Controller. Each tick predicts the energy after the new force has acted with the current
+// velocity: W = E_observed + (predicted energy of outputs still in flight) - F_ve.v T. If W < 0 it
+// adds a damper alpha = -W / (T |v|^2), bounded by max_damping_ns_per_m and by max_force_n / |v|
+// (so v = 0 needs no guard: the bound wins and the force is zero), and credits alpha |v|^2 T to
+// the prediction. Predictions are replaced by observations once the interval has happened, so the
+// credit is counted once and errors do not accumulate. One scalar alpha for the 3-D port (total
+// energy, as the design asks) rather than one observer per axis.
+//
+// Reservoir cap. Dissipation (the VE's own damping, the hand) piles up positive E without bound,
+// and a large reservoir lets an oscillation run for a long time before the controller acts. E is
+// therefore capped at max_reservoir_j + |F_ve|^2 / (2 K), K = stored_energy_stiffness_n_per_m: the
+// second term is the energy a spring of stiffness K holds while pushing with F_ve, which the VE is
+// entitled to return, so releasing a press is not damped; the first is the free slack. Default
+// slack 1 mJ: the energy of a 1.4 mm / 1.4 N oscillation on a 1000 N/m wall, or 0.2 m/s of the
+// simulator's 45 g tip mass, the most a sampling oscillation may build before the controller
+// answers. K = 0 (unknown) makes the cap absolute, and then any press storing more than the slack
+// is partly damped on release.
+//
+// No reset on contact loss. A full reset would forgive energy the loop has just created: a pen
+// bouncing on a wall gains energy at each contact, and resetting at each lift-off would let the
+// bounce grow for ever. Forgetting only positive slack at lift-off is sound for a memoryless
+// spring but wrong for a VE that stores energy elsewhere (a dynamic proxy, physics objects); the
+// cap already bounds the slack, so E is left alone. reset() is for (re-)engagement.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+
+#include "device/haptic_device.hpp"
+
+namespace thx::srv {
+
+inline constexpr int kMaxOutputDelayTicks = 3;
+
+struct PassivityConfig {
+  double period_s = 1e-3;
+  double max_damping_ns_per_m = 0.0;  // alpha bound
+  double max_force_n = 0.0;           // |controller force| bound
+  double max_reservoir_j = 1e-3;      // slack above the stored spring energy
+  double stored_energy_stiffness_n_per_m = 0.0;  // rendered K; 0: the VE stores nothing
+  int output_delay_ticks = 0;         // 0..kMaxOutputDelayTicks
+  bool enabled = true;
+
+  // max_damping_ns_per_m = the device's max damping (its recommended limit for stable damping);
+  // max_force_n = the device's continuous force: enough to soak a buzz, small enough that the
+  // controller cannot itself shove the pen. K = the stiffness the renderer uses.
+  static PassivityConfig fromSpec(const dev::DeviceSpec& spec, double period_s,
+                                  double rendered_stiffness_n_per_m);
+  void validate() const;  // throws std::invalid_argument naming field, value and expectation
+};
+
+class PassivityController {
+ public:
+  explicit PassivityController(const PassivityConfig& config);  // validates; may throw
+
+  // force_on_pen_n: the VE's force; pen_velocity_m_per_s: this tick's velocity estimate
+  // (ideally the backward difference of sampled positions). Returns force + controller force.
+  // Non-finite inputs pass through untouched (the safety stage handles them) and are not observed.
+  Eigen::Vector3d apply(const Eigen::Vector3d& force_on_pen_n,
+                        const Eigen::Vector3d& pen_velocity_m_per_s);
+  // Optional, after the safety stage: the force actually written this tick, so the observer
+  // accounts for clamps, ramps and disengagement. Without it apply()'s output is assumed.
+  void recordAppliedForce(const Eigen::Vector3d& applied_force_n);
+
+  void setEnabled(bool enabled) { enabled_ = enabled; }  // the observer always runs
+  bool enabled() const { return enabled_; }
+  void reset();
+
+  double energy() const { return observed_j_ + in_flight_j_; }  // J, incl. predictions
+  double observedEnergy() const { return observed_j_; }         // J, measured intervals only
+  double alpha() const { return alpha_ns_per_m_; }               // N s/m, this tick
+  const Eigen::Vector3d& controllerForce() const { return controller_force_n_; }
+  std::uint64_t activeTicks() const { return active_ticks_; }
+  double dissipatedEnergy() const { return dissipated_j_; }  // J credited by the controller
+  const PassivityConfig& config() const { return config_; }
+
+ private:
+  struct InFlight {
+    Eigen::Vector3d force_n = Eigen::Vector3d::Zero();
+    Eigen::Vector3d velocity_m_per_s = Eigen::Vector3d::Zero();
+    double predicted_j = 0.0;
+  };
+  InFlight& newest();
+  void push(const Eigen::Vector3d& force_n, const Eigen::Vector3d& velocity_m_per_s,
+            double predicted_j);
+  void sumInFlight();
+
+  PassivityConfig config_;
+  bool enabled_ = true;
+  std::array<InFlight, kMaxOutputDelayTicks + 1> in_flight_{};
+  int slots_ = 1;
+  int oldest_ = 0;  // the output due for observation this tick
+  double observed_j_ = 0.0;
+  double in_flight_j_ = 0.0;
+  double alpha_ns_per_m_ = 0.0;
+  Eigen::Vector3d controller_force_n_ = Eigen::Vector3d::Zero();
+  std::uint64_t active_ticks_ = 0;
+  double dissipated_j_ = 0.0;
+};
+
+}  // namespace thx::srv

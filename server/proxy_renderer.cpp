@@ -1,0 +1,205 @@
+#include "server/proxy_renderer.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace thx::srv {
+
+namespace {
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+}
+
+ProxyRenderer::ProxyRenderer(const tex::TexturedSurface& surface, const RendererConfig& config)
+    : surface_(surface), config_(config) {
+  crease_cos_ = std::cos(config.crease_angle_deg * kDegToRad);
+  // Texel centres of two walls meeting at a crease sit about a texel * sin(angle) inside each
+  // other's half-spaces; a thousandth of a texel separates that from coplanar rounding.
+  concave_tolerance_m_ = 1e-3 * surface.texelSize();
+}
+
+void ProxyRenderer::reset() {
+  in_contact_ = false;
+  e_target_prev_.setZero();
+  e_rendered_prev_.setZero();
+  recovery_offset_.setZero();
+  recovery_left_ = 0;
+}
+
+ProxyRenderer::LocalPlanes ProxyRenderer::singlePlaneAt(const tex::SurfacePoint& s, double x, double y) const {
+  LocalPlanes p;
+  p.q[0] = Eigen::Vector3d(x, y, s.height_m);
+  p.h[0].n = s.n_local;
+  p.h[0].d = s.n_local.dot(p.q[0]);
+  p.count = 1;
+  return p;
+}
+
+bool ProxyRenderer::concavePair(const Halfspace& a, const Eigen::Vector3d& qa, const Halfspace& b,
+                                const Eigen::Vector3d& qb) const {
+  // Concave (a valley): each plane's surface point lies inside the other's half-space, so holding
+  // both cuts off no surface. At a ridge the points lie outside and holding both would.
+  return a.n.dot(qb) - a.d > concave_tolerance_m_ && b.n.dot(qa) - b.d > concave_tolerance_m_;
+}
+
+ProxyRenderer::LocalPlanes ProxyRenderer::planesAround(double x, double y) const {
+  long long i = 0, j = 0;
+  surface_.texelContaining(x, y, i, j);
+  const tex::TexelPoint c = surface_.texelPoint(i, j);
+  const Halfspace hc{c.n_local, c.n_local.dot(c.q_local)};
+  LocalPlanes p;
+  p.h[0] = hc;
+  p.q[0] = c.q_local;
+  p.count = 1;
+  static constexpr int kNeighbours[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  for (const auto& nb : kNeighbours) {
+    const tex::TexelPoint t = surface_.texelPoint(i + nb[0], j + nb[1]);
+    if (c.n_local.dot(t.n_local) >= crease_cos_) continue;  // smooth here
+    const Halfspace ht{t.n_local, t.n_local.dot(t.q_local)};
+    if (!concavePair(hc, c.q_local, ht, t.q_local)) continue;  // a ridge: one plane is right
+    bool redundant = false;
+    for (int k = 1; k < p.count; ++k) redundant = redundant || p.h[std::size_t(k)].n.dot(ht.n) >= crease_cos_;
+    if (redundant || p.count == kMaxHalfspaces) continue;
+    p.h[std::size_t(p.count)] = ht;
+    p.q[std::size_t(p.count)] = t.q_local;
+    ++p.count;
+  }
+  if (p.count > 1) return p;
+  // No crease: one plane from the interpolated normal, so smooth textures feel smooth.
+  return singlePlaneAt(surface_.at(x, y), x, y);
+}
+
+bool ProxyRenderer::mergeConcave(LocalPlanes& into, const LocalPlanes& from) const {
+  bool added = false;
+  for (int k = 0; k < from.count && into.count < kMaxHalfspaces; ++k) {
+    const Halfspace& h = from.h[std::size_t(k)];
+    const Eigen::Vector3d& q = from.q[std::size_t(k)];
+    bool accept = true;
+    for (int m = 0; m < into.count && accept; ++m) {
+      const Halfspace& g = into.h[std::size_t(m)];
+      accept = g.n.dot(h.n) < crease_cos_ && concavePair(g, into.q[std::size_t(m)], h, q);
+    }
+    if (!accept) continue;
+    into.h[std::size_t(into.count)] = h;
+    into.q[std::size_t(into.count)] = q;
+    ++into.count;
+    added = true;
+  }
+  return added;
+}
+
+Eigen::Vector3d ProxyRenderer::applyRecovery(bool contact, const Eigen::Vector3d& e_target, bool& recovering) {
+  const bool was_spring = e_rendered_prev_.squaredNorm() > 0.0;
+  if (config_.recovery_ticks > 0 && was_spring) {
+    // A plane change shows up as a jump of the penetration vector that the tip's own motion
+    // cannot explain at haptic speeds (0.2 mm per 1 ms tick = 0.2 m/s by default).
+    const Eigen::Vector3d reference = contact ? e_target_prev_ : Eigen::Vector3d::Zero();
+    if ((e_target - reference).norm() > config_.recovery_jump_m || (!contact && in_contact_)) {
+      recovery_offset_ = e_rendered_prev_ - e_target;  // keep the current penetration ...
+      recovery_left_ = config_.recovery_ticks;         // ... then move to the new one
+    }
+  }
+  Eigen::Vector3d e = e_target;
+  recovering = false;
+  if (recovery_left_ > 0) {
+    e += recovery_offset_ * (double(recovery_left_) / double(config_.recovery_ticks));
+    --recovery_left_;
+    recovering = true;
+  }
+  e_target_prev_ = contact ? e_target : Eigen::Vector3d::Zero();
+  e_rendered_prev_ = e;
+  return e;
+}
+
+RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world) {
+  RenderOutput out;
+  const Eigen::Vector3d t = surface_.toLocal(tip_world);
+  const Eigen::Vector3d v = surface_.directionToLocal(v_world);
+  const tex::SurfacePoint at_tip = surface_.at(t.x(), t.y());
+
+  out.p_proj_world = surface_.toWorld(Eigen::Vector3d(t.x(), t.y(), 0.0));
+  out.uv = at_tip.uv;
+  out.texel = tex::texelOf(surface_.map(), at_tip.uv, surface_.sampling().address);
+  out.n_geom_world = surface_.directionToWorld(Eigen::Vector3d::UnitZ());
+  out.n_sampled_world = surface_.directionToWorld(at_tip.n_local);
+  out.relief_depth_m = -at_tip.height_m;
+  out.v_tangent_world = surface_.directionToWorld(Eigen::Vector3d(v.x(), v.y(), 0.0));
+
+  LocalPlanes planes;
+  Eigen::Vector3d proxy = t;
+  bool contact = false;
+  if (!t.allFinite()) {
+    // Nothing sensible to render from a non-finite tip; the safety stage handles the fault.
+  } else if (!config_.crease_handling) {
+    if (t.z() < at_tip.height_m) {
+      planes = singlePlaneAt(at_tip, t.x(), t.y());
+      const double penetration = planes.h[0].d - planes.h[0].n.dot(t);
+      proxy = t + penetration * planes.h[0].n;
+      contact = true;
+      out.active_mask = 1;
+    }
+  } else {
+    const bool entering = !in_contact_ && t.z() < at_tip.height_m;
+    if (in_contact_ || entering) {
+      const double ax = entering ? t.x() : proxy_local_.x();
+      const double ay = entering ? t.y() : proxy_local_.y();
+      planes = planesAround(ax, ay);
+      Projection p = projectOntoHalfspaces(t, planes.h, planes.count);
+      long long ai = 0, aj = 0;
+      surface_.texelContaining(ax, ay, ai, aj);
+      for (int merge = 0; merge < kMaxMerges && p.solved && !p.inside; ++merge) {
+        long long pi = 0, pj = 0;
+        surface_.texelContaining(p.x.x(), p.x.y(), pi, pj);
+        if (pi == ai && pj == aj) break;
+        ai = pi;
+        aj = pj;
+        if (!mergeConcave(planes, planesAround(p.x.x(), p.x.y()))) break;
+        p = projectOntoHalfspaces(t, planes.h, planes.count);
+      }
+      if (!p.solved) {
+        // Degenerate plane set (should not happen after deduplication): fall back to the centre plane.
+        const double penetration = planes.h[0].d - planes.h[0].n.dot(t);
+        proxy = penetration > 0.0 ? Eigen::Vector3d(t + penetration * planes.h[0].n) : t;
+        contact = penetration > 0.0;
+        out.active_mask = contact ? 1u : 0u;
+      } else if (!p.inside) {
+        proxy = p.x;
+        contact = true;
+        out.active_mask = p.active_mask;
+      }
+    }
+  }
+
+  bool recovering = false;
+  const Eigen::Vector3d e = applyRecovery(contact, contact ? Eigen::Vector3d(proxy - t) : Eigen::Vector3d::Zero(),
+                                          recovering);
+  in_contact_ = contact;
+  proxy_local_ = contact ? proxy : t;
+
+  const double length = e.norm();
+  Eigen::Vector3d f_local = Eigen::Vector3d::Zero();
+  if (length > 0.0) {
+    const Eigen::Vector3d dir = e / length;
+    double magnitude = config_.stiffness_n_per_m * length - config_.damping_ns_per_m * v.dot(dir);
+    if (magnitude < 0.0) magnitude = 0.0;  // a damper must never pull the pen into the surface
+    f_local = magnitude * dir;
+  }
+
+  out.in_contact = length > 0.0;
+  out.recovering = recovering;
+  out.depth_m = length;
+  out.force_world = surface_.directionToWorld(f_local);
+  out.proxy_world = surface_.toWorld(proxy_local_);
+  const Eigen::Isometry3d& T = surface_.mapping().plane_to_world;
+  out.num_planes = planes.count;
+  for (int i = 0; i < planes.count; ++i) {
+    dev::PlaneProxy& pp = out.planes[std::size_t(i)];
+    pp.n_world = T.linear() * planes.h[std::size_t(i)].n;
+    pp.d_m = planes.h[std::size_t(i)].d + pp.n_world.dot(T.translation());
+    pp.k_n_per_m = config_.stiffness_n_per_m;
+    pp.b_ns_per_m = config_.damping_ns_per_m;
+  }
+  out.f_normal_n = planes.count > 0 ? f_local.dot(planes.h[0].n) : f_local.z();
+  return out;
+}
+
+}  // namespace thx::srv

@@ -1,0 +1,95 @@
+#pragma once
+// Haptic rendering of a textured plane by plane proxies (DESIGN §5, Eq. 3). Runs inside the
+// servo tick: no allocation, no locks, no system calls; constant time.
+//
+// Two modes:
+//  - single plane (crease handling off; the source paper's method): project the tip onto the
+//    base plane along the geometric normal, sample n_s there, build the plane through the
+//    surface point (Eq. 3) and push along n_s with a spring-damper. With a relief map, contact
+//    only when the tip is below the relief surface there.
+//  - crease handling on: a god-object proxy. Where the texture is smooth around the proxy, one
+//    plane from the interpolated normal (force shading). Where a 4-neighbour texel's normal
+//    differs sharply AND the two texel planes form a concave crease (each texel centre lies
+//    inside the other's half-space), the texel planes themselves are held, up to four. The proxy
+//    is the point closest to the tip inside all of them (halfspace_projection.hpp). If that
+//    point lands in another texel, that texel's planes are merged in (concave ones only) and the
+//    projection repeated, at most kMaxMerges times, so a deep tip cannot make the proxy leap
+//    over a crease. At a V-valley floor both walls are held at once and the pen rests at the
+//    floor instead of bouncing between two single planes.
+// Both: the recovery rule. If the spring's penetration vector jumps by more than a threshold in
+// one tick (a plane changed under the pen), the previous penetration is kept and the rendered
+// penetration moves to the new one over `recovery_ticks` ticks (VRPN's rule, which stock VRPN
+// servers leave disabled). Contact loss with a large force ramps out the same way.
+#include <Eigen/Core>
+#include <array>
+
+#include "device/haptic_device.hpp"
+#include "server/halfspace_projection.hpp"
+#include "textures/textured_surface.hpp"
+
+namespace thx::srv {
+
+struct RendererConfig {
+  double stiffness_n_per_m = 600.0;
+  double damping_ns_per_m = 0.0;  // along the spring direction only; never pulls the pen in
+  bool crease_handling = true;
+  double crease_angle_deg = 8.0;      // neighbour texels whose normals differ more form a crease
+  int recovery_ticks = 10;            // 0 disables the recovery rule
+  double recovery_jump_m = 2e-4;      // penetration change in one tick that counts as a plane change
+};
+
+struct RenderOutput {
+  bool in_contact = false;   // a spring acts (including a recovery ramp-out)
+  bool recovering = false;   // the recovery ramp is active this tick
+  Eigen::Vector3d force_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d proxy_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d p_proj_world = Eigen::Vector3d::Zero();  // tip projected onto the base plane
+  tex::TexCoord uv;                                         // of p_proj
+  tex::TexelIndex texel;
+  Eigen::Vector3d n_geom_world = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d n_sampled_world = Eigen::Vector3d::UnitZ();  // at p_proj
+  double depth_m = 0.0;          // rendered penetration (spring length)
+  double relief_depth_m = 0.0;   // relief depth at p_proj (0 for normal maps)
+  std::array<dev::PlaneProxy, dev::kMaxPlanes> planes{};  // world frame; [0] = the centre plane
+  int num_planes = 0;
+  unsigned active_mask = 0;       // planes touching the proxy
+  double f_normal_n = 0.0;        // force along planes[0].n_world (> 0 pushes out)
+  Eigen::Vector3d v_tangent_world = Eigen::Vector3d::Zero();
+};
+
+class ProxyRenderer {
+ public:
+  ProxyRenderer(const tex::TexturedSurface& surface, const RendererConfig& config);
+
+  RenderOutput render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world);
+  void reset();  // forget the proxy and any recovery (e.g. after a device fault)
+
+  const RendererConfig& config() const { return config_; }
+
+ private:
+  struct LocalPlanes {
+    std::array<Halfspace, kMaxHalfspaces> h{};
+    std::array<Eigen::Vector3d, kMaxHalfspaces> q{};  // the surface point each plane was built through
+    int count = 0;
+  };
+  static constexpr int kMaxMerges = 3;
+  LocalPlanes planesAround(double x, double y) const;
+  LocalPlanes singlePlaneAt(const tex::SurfacePoint& s, double x, double y) const;
+  bool mergeConcave(LocalPlanes& into, const LocalPlanes& from) const;
+  bool concavePair(const Halfspace& a, const Eigen::Vector3d& qa, const Halfspace& b, const Eigen::Vector3d& qb) const;
+  Eigen::Vector3d applyRecovery(bool contact, const Eigen::Vector3d& e_target, bool& recovering);
+
+  const tex::TexturedSurface& surface_;
+  RendererConfig config_;
+  double crease_cos_ = 1.0;
+  double concave_tolerance_m_ = 0.0;
+
+  bool in_contact_ = false;
+  Eigen::Vector3d proxy_local_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d e_target_prev_ = Eigen::Vector3d::Zero();  // last tick's target penetration vector
+  Eigen::Vector3d e_rendered_prev_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d recovery_offset_ = Eigen::Vector3d::Zero();
+  int recovery_left_ = 0;
+};
+
+}  // namespace thx::srv

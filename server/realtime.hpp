@@ -1,0 +1,29 @@
+#pragma once
+// Making the calling thread real-time: SCHED_FIFO, memory locked, optional CPU pinning.
+// Each step is checked; whether a failure is fatal is the caller's policy (libfranka's
+// RealtimeConfig::kEnforce / kIgnore), so a laptop without privileges still runs, and says so.
+#include <string>
+#include <vector>
+
+namespace thx::srv {
+
+struct RealtimeOptions {
+  bool fifo = true;          // try SCHED_FIFO
+  int priority = 80;         // above ordinary RT work (ros2_control uses 50), below the kernel's own 99
+  bool lock_memory = true;   // mlockall(MCL_CURRENT | MCL_FUTURE): no page faults in the tick
+  int cpu = -1;              // pin to this CPU; -1 = no pinning
+  bool require = false;      // any failure is an error (throw) instead of a warning
+};
+
+struct RealtimeReport {
+  bool fifo = false;
+  bool memory_locked = false;
+  bool pinned = false;
+  std::vector<std::string> warnings;  // what failed and what to do about it
+};
+
+// Applies the options to the calling thread. Throws std::runtime_error when `require` is set
+// and a step failed (the message says which and why).
+RealtimeReport makeThreadRealtime(const RealtimeOptions& options);
+
+}  // namespace thx::srv

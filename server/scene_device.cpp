@@ -1,0 +1,66 @@
+#include "server/scene_device.hpp"
+
+#include <variant>
+
+#include "device/device_specs.hpp"
+#include "scenes/scene_frames.hpp"
+
+namespace thx::srv {
+
+dev::DeviceSpec deviceSpecFor(const scene::Scene& s) {
+  const scene::DeviceModel& m = s.device.model;
+  dev::DeviceSpec spec;
+  spec.model = m.name;
+  spec.peak_force_n = m.peak_force_n;
+  spec.continuous_force_n = m.continuous_force_n;
+  spec.max_stiffness_n_per_m = m.max_stiffness_n_per_m;
+  spec.max_damping_ns_per_m = m.max_damping_ns_per_m;
+  spec.workspace_radius_m = m.workspace_radius_m;
+  spec.position_resolution_m = s.device.sim.encoder_resolution_m;
+  spec.physical_damping_ns_per_m = dev::phantomDesktopSpec().physical_damping_ns_per_m;
+  return spec;
+}
+
+dev::SimPhantomConfig simConfigFor(const scene::Scene& s, bool lockstep) {
+  dev::SimPhantomConfig c;
+  c.spec = deviceSpecFor(s);
+  c.servo_period_ns = std::int64_t(1e9 / s.rates.servo_hz);
+  c.integration_hz = s.device.sim.integration_hz;
+  c.encoder_resolution_m = s.device.sim.encoder_resolution_m;
+  c.device_mass_kg = s.device.sim.device_mass_kg;
+  c.friction_n = s.device.sim.friction_n;
+  c.hand_mass_kg = s.device.sim.hand_mass_kg;
+  c.hand_stiffness_n_per_m = s.device.sim.hand_stiffness_n_per_m;
+  c.hand_damping_ns_per_m = s.device.sim.hand_damping_ns_per_m;
+  c.plane_to_world = scene::planeMapping(s.surface).plane_to_world;
+  c.lockstep = lockstep;
+  return c;
+}
+
+dev::HandScript handScriptFor(const scene::Scene& s) {
+  std::vector<dev::HandStep> steps;
+  steps.reserve(s.device.script.size());
+  for (const scene::ScriptStep& step : s.device.script) {
+    if (const auto* p = std::get_if<scene::PressStep>(&step)) {
+      steps.emplace_back(std::in_place_type<dev::HandPress>, dev::HandPress{p->position_m, p->force_n, p->duration_s});
+    } else if (const auto* st = std::get_if<scene::StrokeStep>(&step)) {
+      steps.emplace_back(std::in_place_type<dev::HandStroke>,
+                         dev::HandStroke{st->from_m, st->to_m, st->speed_m_per_s, st->force_n});
+    } else if (const auto* h = std::get_if<scene::HoldStep>(&step)) {
+      steps.emplace_back(std::in_place_type<dev::HandHold>, dev::HandHold{h->duration_s});
+    } else if (const auto* f = std::get_if<scene::PathFileStep>(&step)) {
+      dev::HandPath path = dev::HandScript::loadPathCsv(f->path);
+      steps.emplace_back(std::in_place_type<dev::HandPath>, std::move(path));
+    }
+  }
+  return dev::HandScript(std::move(steps));
+}
+
+RendererConfig rendererConfigFor(const scene::Scene& s) {
+  RendererConfig c;
+  c.stiffness_n_per_m = s.device.stiffnessNPerM();
+  c.damping_ns_per_m = s.device.damping_ns_per_m;
+  return c;
+}
+
+}  // namespace thx::srv

@@ -1,0 +1,23 @@
+#pragma once
+// From a scene to the server's parts: the device spec, the simulated PHANToM and its hand
+// script, the renderer's configuration. Scenes know nothing of devices and devices nothing of
+// scenes; this is the one place that translates.
+#include "device/hand_script.hpp"
+#include "device/sim_config.hpp"
+#include "scenes/scene.hpp"
+#include "server/proxy_renderer.hpp"
+
+namespace thx::srv {
+
+// The scene's model row, plus what the scene table does not carry: position resolution from the
+// sim parameters, physical damping from the simulator's PHANToM assumption (device_specs.cpp).
+dev::DeviceSpec deviceSpecFor(const scene::Scene& scene);
+
+dev::SimPhantomConfig simConfigFor(const scene::Scene& scene, bool lockstep);
+
+// Reads path files (device/hand_script.hpp); throws dev::HandScriptError naming file and line.
+dev::HandScript handScriptFor(const scene::Scene& scene);
+
+RendererConfig rendererConfigFor(const scene::Scene& scene);
+
+}  // namespace thx::srv

@@ -1,0 +1,145 @@
+#include "server/servo.hpp"
+
+#include <cmath>
+#include <ctime>
+
+namespace thx::srv {
+
+namespace {
+
+// CLOCK_MONOTONIC through the vDSO: no system call, measures real CPU time even in lock-step.
+std::int64_t monotonicNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+void put(double (&dst)[3], const Eigen::Vector3d& v) {
+  dst[0] = v.x();
+  dst[1] = v.y();
+  dst[2] = v.z();
+}
+
+}  // namespace
+
+Servo::Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityController& passivity,
+             SafetyStage& safety, FlightRecorder& recorder, SpscRing<TickRecord>& out, const ServoConfig& config)
+    : device_(device),
+      renderer_(renderer),
+      passivity_(passivity),
+      safety_(safety),
+      recorder_(recorder),
+      out_(out),
+      config_(config) {}
+
+const TickRecord& Servo::tick() {
+  const dev::DeviceState state = device_.read();
+  const std::int64_t t0 = monotonicNs();
+
+  TickRecord& r = record_;
+  r = TickRecord{};
+  r.tick = state.timing.tick;
+  r.deadline_ns = state.timing.deadline_ns;
+  r.wake_latency_ns = state.timing.wake_latency_ns;
+  r.missed = std::int32_t(state.timing.missed);
+  put(r.p_world, state.p_world);
+  put(r.v_world, state.v_world);
+  r.q_world[0] = state.q_world.w();
+  r.q_world[1] = state.q_world.x();
+  r.q_world[2] = state.q_world.y();
+  r.q_world[3] = state.q_world.z();
+  r.buttons = state.buttons;
+
+  std::uint32_t faults = 0;
+  counters_.missed_ticks += std::uint64_t(state.timing.missed);
+  if (state.timing.missed >= config_.max_missed_ticks) faults |= kFaultMissedTicks;
+
+  r.valid = state.valid && state.p_world.allFinite() && state.v_world.allFinite();
+  Eigen::Vector3d f_render = Eigen::Vector3d::Zero();
+  if (r.valid) {
+    invalid_run_ = 0;
+    const RenderOutput out = renderer_.render(state.p_world, state.v_world);
+    f_render = out.force_world;
+    r.in_contact = out.in_contact;
+    r.recovering = out.recovering;
+    r.num_planes = std::int8_t(out.num_planes);
+    r.active_mask = out.active_mask;
+    r.texel_i = out.texel.i;
+    r.texel_j = out.texel.j;
+    r.uv[0] = out.uv.u;
+    r.uv[1] = out.uv.v;
+    put(r.proxy_world, out.proxy_world);
+    put(r.p_proj_world, out.p_proj_world);
+    put(r.n_geom_world, out.n_geom_world);
+    put(r.n_sampled_world, out.n_sampled_world);
+    r.depth_m = out.depth_m;
+    r.relief_depth_m = out.relief_depth_m;
+    r.f_normal_n = out.f_normal_n;
+    put(r.v_tangent_world, out.v_tangent_world);
+    for (int i = 0; i < out.num_planes; ++i) {
+      put(r.plane_n_world[i], out.planes[std::size_t(i)].n_world);
+      r.plane_d_m[i] = out.planes[std::size_t(i)].d_m;
+    }
+  } else {
+    ++counters_.invalid_readings;
+    renderer_.reset();  // the proxy's history means nothing across a bad reading
+    if (++invalid_run_ >= config_.max_invalid_readings) faults |= kFaultInvalidReading;
+  }
+
+  ClientForce fresh;
+  if (client_slot_.readIfNewer(fresh, client_seq_)) {
+    client_force_ = fresh;
+    client_age_ticks_ = 0;
+  } else if (client_age_ticks_ < (1 << 30)) {
+    ++client_age_ticks_;
+  }
+  Eigen::Vector3d f_client = Eigen::Vector3d::Zero();
+  if (client_age_ticks_ <= config_.client_force_timeout_ticks) {
+    f_client = Eigen::Vector3d(client_force_.force_world_n[0], client_force_.force_world_n[1],
+                               client_force_.force_world_n[2]);
+  }
+
+  const Eigen::Vector3d f_env = f_render + f_client;
+  if (!f_env.allFinite()) faults |= kFaultNonFiniteForce;
+  const Eigen::Vector3d f_passive = r.valid ? passivity_.apply(f_env, state.v_world) : f_env;
+  if (faults & (kFaultMissedTicks | kFaultInvalidReading)) {
+    safety_.disengage();
+    passivity_.reset();
+  }
+  const Eigen::Vector3d f_out = safety_.apply(f_passive);
+  passivity_.recordAppliedForce(f_out);
+
+  dev::DeviceCommand command;
+  command.force_world_n = f_out;
+  command.forces_enabled = f_out.squaredNorm() > 0.0;
+  device_.write(command);
+
+  put(r.f_render, f_render);
+  put(r.f_client, f_client);
+  put(r.f_passive, f_passive);
+  put(r.f_out, f_out);
+  r.pc_energy_j = passivity_.energy();
+  r.pc_damping_ns_per_m = passivity_.alpha();
+  r.safety_flags = safety_.flags();
+  r.faults = faults;
+
+  ++counters_.ticks;
+  if (r.in_contact) ++counters_.contact_ticks;
+  const double f_norm = f_out.norm();
+  if (f_norm > counters_.max_force_n) counters_.max_force_n = f_norm;
+
+  const std::int64_t t1 = monotonicNs();
+  r.compute_ns = t1 - t0;
+  compute_hist_.add(r.compute_ns);
+  wake_hist_.add(r.wake_latency_ns);
+
+  recorder_.record(r);
+  if (faults) {
+    ++counters_.faults;
+    recorder_.freeze(faults, r.tick);
+  }
+  out_.push(r);
+  return r;
+}
+
+}  // namespace thx::srv

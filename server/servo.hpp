@@ -1,0 +1,87 @@
+#pragma once
+// The servo tick: hapticd's hard-real-time heart. THIS FILE AND servo.cpp ARE THE REAL-TIME PATH.
+//
+// Contract of tick() (DESIGN §4 rules 1-3):
+//  - One blocking device read, one device write; nothing else blocks. No allocation, no lock, no
+//    logging, no system call except the device's pacing sleep (a test proves "no allocation").
+//  - Data leaves only through the SPSC ring (publisher) and the flight recorder; data enters only
+//    through the latest-value slot (client forces).
+//  - Pipeline: read -> render (texture proxy) + client force -> passivity controller -> safety
+//    stage -> write. Safety is always last and always on.
+//  - Missed-cycle policy: the pacer realigns to the next period (no catch-up burst); while the
+//    servo is away the device holds its last force with decay (its own watchdog); a gap of
+//    max_missed_ticks or more, or max_invalid_readings consecutive invalid readings, disengages
+//    the safety stage (force off, then the small-force engage and ramp) and freezes the flight
+//    recorder for a dump.
+#include <cstdint>
+
+#include "device/haptic_device.hpp"
+#include "server/flight_recorder.hpp"
+#include "server/latency_histogram.hpp"
+#include "server/latest_slot.hpp"
+#include "server/passivity.hpp"
+#include "server/proxy_renderer.hpp"
+#include "server/safety.hpp"
+#include "server/spsc_ring.hpp"
+#include "server/tick_record.hpp"
+
+namespace thx::srv {
+
+struct ServoConfig {
+  int max_missed_ticks = 3;      // a gap this long (ticks) is a fault: force off
+  int max_invalid_readings = 3;  // consecutive invalid device readings before a fault
+  int client_force_timeout_ticks = 50;  // a client force not refreshed for this long is dropped
+};
+
+// What a client (the physics client) asks the servo to add to the rendered force.
+struct ClientForce {
+  double force_world_n[3] = {0, 0, 0};
+};
+
+struct ServoCounters {
+  std::uint64_t ticks = 0;
+  std::uint64_t missed_ticks = 0;
+  std::uint64_t invalid_readings = 0;
+  std::uint64_t faults = 0;
+  std::uint64_t contact_ticks = 0;
+  double max_force_n = 0.0;
+};
+
+class Servo {
+ public:
+  Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityController& passivity, SafetyStage& safety,
+        FlightRecorder& recorder, SpscRing<TickRecord>& out, const ServoConfig& config);
+
+  // One tick. Returns this tick's record (valid until the next call).
+  const TickRecord& tick();
+
+  void requestShutdown() { safety_.requestShutdown(); }
+  bool finished() const { return safety_.shutdownComplete(); }
+
+  LatestSlot<ClientForce>& clientForceSlot() { return client_slot_; }
+  const LatencyHistogram& computeHistogram() const { return compute_hist_; }
+  const LatencyHistogram& wakeHistogram() const { return wake_hist_; }
+  const ServoCounters& counters() const { return counters_; }
+
+ private:
+  dev::HapticDevice& device_;
+  ProxyRenderer& renderer_;
+  PassivityController& passivity_;
+  SafetyStage& safety_;
+  FlightRecorder& recorder_;
+  SpscRing<TickRecord>& out_;
+  ServoConfig config_;
+
+  LatestSlot<ClientForce> client_slot_;
+  std::uint32_t client_seq_ = 0;
+  ClientForce client_force_;
+  int client_age_ticks_ = 1 << 30;
+  int invalid_run_ = 0;
+
+  LatencyHistogram compute_hist_;
+  LatencyHistogram wake_hist_;
+  ServoCounters counters_;
+  TickRecord record_;
+};
+
+}  // namespace thx::srv

@@ -1,0 +1,115 @@
+#include "server/stability_budget.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace thx::srv {
+namespace {
+
+std::string num(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", value);
+  return buf;
+}
+
+[[noreturn]] void reject(const std::string& field, double value, const char* expected) {
+  throw std::invalid_argument("stability budget: " + field + " = " + num(value) + ": expected " +
+                              expected);
+}
+
+void requireNonNegative(const std::string& field, double value, const char* expected) {
+  if (!std::isfinite(value) || value < 0.0) reject(field, value, expected);
+}
+
+void validate(const dev::DeviceSpec& spec, const StabilityRequest& r) {
+  const std::string device = "device '" + spec.model + "' ";
+  if (!std::isfinite(spec.max_stiffness_n_per_m) || spec.max_stiffness_n_per_m <= 0.0) {
+    reject(device + "max_stiffness_n_per_m", spec.max_stiffness_n_per_m,
+           "a finite stiffness > 0 N/m (the vendor maximum the fraction refers to)");
+  }
+  requireNonNegative(device + "physical_damping_ns_per_m", spec.physical_damping_ns_per_m,
+                     "a finite damping >= 0 N s/m");
+  requireNonNegative(device + "max_damping_ns_per_m", spec.max_damping_ns_per_m,
+                     "a finite damping >= 0 N s/m");
+  requireNonNegative("stiffness_fraction", r.stiffness_fraction,
+                     "a finite fraction >= 0 of the device's max stiffness");
+  if (!std::isfinite(r.virtual_damping_ns_per_m)) {
+    reject("virtual_damping_ns_per_m", r.virtual_damping_ns_per_m, "a finite damping in N s/m");
+  }
+  if (!std::isfinite(r.period_s) || r.period_s <= 0.0) {
+    reject("period_s", r.period_s, "a finite servo period > 0 s");
+  }
+}
+
+}  // namespace
+
+StabilityBudget checkStabilityBudget(const dev::DeviceSpec& spec, const StabilityRequest& request) {
+  validate(spec, request);
+  StabilityBudget s;
+  s.stiffness_fraction = request.stiffness_fraction;
+  s.vendor_max_stiffness_n_per_m = spec.max_stiffness_n_per_m;
+  s.stiffness_n_per_m = request.stiffness_fraction * spec.max_stiffness_n_per_m;
+  s.physical_damping_ns_per_m = spec.physical_damping_ns_per_m;
+  s.virtual_damping_ns_per_m = request.virtual_damping_ns_per_m;
+  s.period_s = request.period_s;
+  const double abs_b = std::fabs(request.virtual_damping_ns_per_m);
+  s.bound_n_per_m = 2.0 * (spec.physical_damping_ns_per_m - abs_b) / request.period_s;
+  s.required_physical_damping_ns_per_m = s.stiffness_n_per_m * request.period_s / 2.0 + abs_b;
+  // The bound also needs b > |B| strictly; K = 0 with |B| = b is the marginal case and passes.
+  s.within_bound = s.stiffness_n_per_m <= s.bound_n_per_m;
+
+  const bool strict = request.policy == BoundPolicy::Strict;
+  auto finding = [&](const std::string& text) {
+    (strict ? s.errors : s.warnings).push_back(text);
+  };
+
+  const std::string numbers = " the sampled-wall bound 2(b−|B|)/T = " + num(s.bound_n_per_m) +
+                              " N/m for b = " + num(s.physical_damping_ns_per_m) +
+                              " N·s/m, B = " + num(s.virtual_damping_ns_per_m) +
+                              " N·s/m, T = " + num(request.period_s * 1e3) + " ms";
+  s.message = "stiffness " + num(s.stiffness_n_per_m) + " N/m (" + num(s.stiffness_fraction) +
+              " of " + num(s.vendor_max_stiffness_n_per_m) + ")" +
+              (s.within_bound ? " is within" : " exceeds") + numbers;
+  if (!s.within_bound) {
+    s.message += "; passive only with b ≥ " + num(s.required_physical_damping_ns_per_m) +
+                 " N·s/m (the vendor maximum assumes the hand adds damping; the passivity "
+                 "controller is the remaining guard)";
+    finding(s.message);
+  }
+
+  if (spec.physical_damping_ns_per_m == 0.0) {
+    s.warnings.push_back("device '" + spec.model +
+                         "' has physical damping b = 0 (unknown?): the bound is <= 0 and no "
+                         "stiffness can satisfy it; measure b to make the check meaningful");
+  }
+  if (abs_b > spec.physical_damping_ns_per_m && spec.physical_damping_ns_per_m > 0.0) {
+    s.warnings.push_back("virtual damping |B| = " + num(abs_b) +
+                         " N·s/m exceeds the physical damping b = " +
+                         num(spec.physical_damping_ns_per_m) +
+                         " N·s/m: the sampled damper alone is not passive");
+  }
+  if (request.virtual_damping_ns_per_m < 0.0) {
+    s.warnings.push_back("virtual damping B = " + num(request.virtual_damping_ns_per_m) +
+                         " N·s/m is negative: it injects energy");
+  }
+  if (abs_b > spec.max_damping_ns_per_m) {
+    finding("virtual damping |B| = " + num(abs_b) + " N·s/m exceeds the device maximum " +
+            num(spec.max_damping_ns_per_m) + " N·s/m");
+  }
+  if (request.stiffness_fraction == 0.0) {
+    s.warnings.push_back("stiffness fraction is 0: surfaces render no force");
+  }
+  if (request.stiffness_fraction > 1.0) {
+    finding("stiffness fraction " + num(request.stiffness_fraction) +
+            " is above the device maximum " + num(spec.max_stiffness_n_per_m) + " N/m");
+  }
+  if (request.period_s > 1e-3 * (1.0 + 1e-9)) {
+    s.warnings.push_back("servo period " + num(request.period_s * 1e3) +
+                         " ms is longer than the 1 ms the vendor maximum stiffness is quoted for");
+  }
+  s.ok = s.errors.empty();
+  return s;
+}
+
+}  // namespace thx::srv

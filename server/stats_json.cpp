@@ -1,0 +1,102 @@
+#include "server/stats_json.hpp"
+
+#include <stdexcept>
+
+namespace thx::srv {
+
+namespace {
+
+std::string quantiles(const LatencyHistogram& h) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "{\"p50\": %.3f, \"p99\": %.3f, \"p999\": %.3f, \"max\": %.3f, \"count\": %llu}",
+                h.quantileUs(0.5), h.quantileUs(0.99), h.quantileUs(0.999), double(h.maxNs()) / 1e3,
+                (unsigned long long)h.count());
+  return buf;
+}
+
+std::string escaped(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) continue;
+    out += c;
+  }
+  return out;
+}
+
+double achievedRate(const RunSummary& s) { return s.device_time_s > 0 ? double(s.ticks) / s.device_time_s : 0.0; }
+
+}  // namespace
+
+void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyHistogram& compute,
+                    const LatencyHistogram& wake) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw std::runtime_error("cannot write statistics to " + path);
+  std::fprintf(f, "{\n");
+  std::fprintf(f, "  \"scene\": \"%s\",\n", escaped(s.scene).c_str());
+  std::fprintf(f, "  \"mode\": \"%s\",\n", s.lockstep ? "lockstep" : "realtime");
+  std::fprintf(f, "  \"crease_handling\": %s,\n  \"passivity_control\": %s,\n", s.crease ? "true" : "false",
+               s.passivity ? "true" : "false");
+  std::fprintf(f, "  \"stiffness_n_per_m\": %.6g,\n", s.stiffness_n_per_m);
+  std::fprintf(f, "  \"ticks\": %llu,\n", (unsigned long long)s.ticks);
+  std::fprintf(f, "  \"rate_hz\": %.3f,\n", achievedRate(s));
+  std::fprintf(f, "  \"nominal_rate_hz\": %.3f,\n", s.nominal_rate_hz);
+  std::fprintf(f, "  \"device_time_s\": %.6f,\n  \"wall_time_s\": %.6f,\n", s.device_time_s, s.wall_time_s);
+  std::fprintf(f, "  \"missed_ticks\": %llu,\n", (unsigned long long)s.servo.missed_ticks);
+  std::fprintf(f, "  \"max_force_n\": %.6f,\n", s.servo.max_force_n);
+  std::fprintf(f, "  \"tick_compute_us\": %s,\n", quantiles(compute).c_str());
+  std::fprintf(f, "  \"wake_latency_us\": %s,\n", quantiles(wake).c_str());
+  std::fprintf(f, "  \"rss_bytes\": %lld,\n  \"locked_bytes\": %lld,\n  \"texture_bytes\": %zu,\n",
+               (long long)s.memory.rss_bytes, (long long)s.memory.locked_bytes, s.texture_bytes);
+  std::fprintf(f, "  \"contact_ticks\": %llu,\n  \"faults\": %llu,\n  \"invalid_readings\": %llu,\n",
+               (unsigned long long)s.servo.contact_ticks, (unsigned long long)s.servo.faults,
+               (unsigned long long)s.servo.invalid_readings);
+  std::fprintf(f,
+               "  \"safety\": {\"peak_clamped\": %llu, \"continuous_limited\": %llu, \"rate_limited\": %llu, "
+               "\"disengage_events\": %llu, \"engaging_ticks\": %llu},\n",
+               (unsigned long long)s.safety.peak_clamped, (unsigned long long)s.safety.continuous_limited,
+               (unsigned long long)s.safety.rate_limited, (unsigned long long)s.safety.disengage_events,
+               (unsigned long long)s.safety.engaging);
+  std::fprintf(f, "  \"passivity\": {\"active_ticks\": %llu, \"dissipated_j\": %.6g},\n",
+               (unsigned long long)s.passivity_active_ticks, s.passivity_dissipated_j);
+  std::fprintf(f, "  \"realtime\": {\"sched_fifo\": %s, \"memory_locked\": %s, \"pinned\": %s},\n",
+               s.realtime.fifo ? "true" : "false", s.realtime.memory_locked ? "true" : "false",
+               s.realtime.pinned ? "true" : "false");
+  std::fprintf(f, "  \"published_messages\": %llu,\n  \"publish_errors\": %llu,\n  \"snapshots_dropped\": %llu,\n",
+               (unsigned long long)s.publisher.published, (unsigned long long)s.publisher.publish_errors,
+               (unsigned long long)s.snapshots_dropped);
+  std::fprintf(f, "  \"flight_dumps\": %llu,\n  \"last_flight_dump\": \"%s\"\n}\n",
+               (unsigned long long)s.publisher.flight_dumps, escaped(s.last_flight_dump).c_str());
+  if (std::fclose(f) != 0) throw std::runtime_error("cannot write statistics to " + path);
+}
+
+void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& compute,
+                  const LatencyHistogram& wake) {
+  std::fprintf(out, "hapticd summary (%s, %s)\n", s.scene.c_str(), s.lockstep ? "lock-step" : "real time");
+  std::fprintf(out, "  ticks            %llu in %.3f s of device time (%.1f Hz; %.3f s wall)\n",
+               (unsigned long long)s.ticks, s.device_time_s, achievedRate(s), s.wall_time_s);
+  std::fprintf(out, "  missed ticks     %llu; faults %llu\n", (unsigned long long)s.servo.missed_ticks,
+               (unsigned long long)s.servo.faults);
+  std::fprintf(out, "  tick compute     p50 %.1f us, p99 %.1f us, max %.1f us\n", compute.quantileUs(0.5),
+               compute.quantileUs(0.99), double(compute.maxNs()) / 1e3);
+  if (!s.lockstep) {
+    std::fprintf(out, "  wake latency     p50 %.1f us, p99 %.1f us, max %.1f us\n", wake.quantileUs(0.5),
+                 wake.quantileUs(0.99), double(wake.maxNs()) / 1e3);
+  }
+  std::fprintf(out, "  contact          %llu ticks; max force %.3f N (stiffness %.0f N/m, crease %s, passivity %s)\n",
+               (unsigned long long)s.servo.contact_ticks, s.servo.max_force_n, s.stiffness_n_per_m,
+               s.crease ? "on" : "off", s.passivity ? "on" : "off");
+  std::fprintf(out, "  safety           peak-clamped %llu, rate-limited %llu, continuous-limited %llu ticks\n",
+               (unsigned long long)s.safety.peak_clamped, (unsigned long long)s.safety.rate_limited,
+               (unsigned long long)s.safety.continuous_limited);
+  std::fprintf(out, "  passivity ctrl   active %llu ticks, dissipated %.3g J\n",
+               (unsigned long long)s.passivity_active_ticks, s.passivity_dissipated_j);
+  std::fprintf(out, "  memory           %.1f MB resident, %.1f MB locked (texture %.1f MB)\n",
+               double(s.memory.rss_bytes) / 1e6, double(s.memory.locked_bytes) / 1e6, double(s.texture_bytes) / 1e6);
+  std::fprintf(out, "  real time        SCHED_FIFO %s, mlockall %s\n", s.realtime.fifo ? "yes" : "no",
+               s.realtime.memory_locked ? "yes" : "no");
+  std::fprintf(out, "  published        %llu LCM messages (%llu errors)\n", (unsigned long long)s.publisher.published,
+               (unsigned long long)s.publisher.publish_errors);
+}
+
+}  // namespace thx::srv

@@ -1,0 +1,43 @@
+#pragma once
+// hapticd's end-of-run statistics: the --stats-json file (documented in docs/hapticd.md) and the
+// summary printed to the terminal.
+#include <cstdio>
+#include <string>
+
+#include "server/latency_histogram.hpp"
+#include "server/process_memory.hpp"
+#include "server/publisher.hpp"
+#include "server/realtime.hpp"
+#include "server/safety.hpp"
+#include "server/servo.hpp"
+
+namespace thx::srv {
+
+struct RunSummary {
+  std::string scene;
+  bool lockstep = false;
+  bool crease = true;
+  bool passivity = true;
+  double stiffness_n_per_m = 0.0;
+  std::uint64_t ticks = 0;
+  double device_time_s = 0.0;  // first to last deadline (+ one period): the device's own clock
+  double wall_time_s = 0.0;
+  double nominal_rate_hz = 1000.0;
+  ServoCounters servo;
+  SafetyCounters safety;
+  std::uint64_t passivity_active_ticks = 0;
+  double passivity_dissipated_j = 0.0;
+  RealtimeReport realtime;
+  ProcessMemory memory;
+  std::size_t texture_bytes = 0;
+  PublisherCounters publisher;
+  std::uint64_t snapshots_dropped = 0;
+  std::string last_flight_dump;
+};
+
+// Throws std::runtime_error if the file cannot be written.
+void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyHistogram& compute,
+                    const LatencyHistogram& wake);
+void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& compute, const LatencyHistogram& wake);
+
+}  // namespace thx::srv

@@ -1,0 +1,56 @@
+#pragma once
+// One servo tick as it leaves the real-time thread: to the publisher (LCM), the flight recorder
+// and the analysis tools. Plain data, fixed size, copied by value.
+#include <cstdint>
+
+namespace thx::srv {
+
+enum TickFault : std::uint32_t {
+  kFaultNone = 0,
+  kFaultInvalidReading = 1u << 0,   // the device reported valid = false or non-finite values
+  kFaultMissedTicks = 1u << 1,      // more consecutive missed ticks than the policy allows
+  kFaultNonFiniteForce = 1u << 2,   // rendering produced a non-finite force (safety zeroed it)
+};
+
+struct TickRecord {
+  // timing
+  std::int64_t tick = 0;
+  std::int64_t deadline_ns = 0;
+  std::int64_t wake_latency_ns = 0;
+  std::int64_t compute_ns = 0;
+  std::int32_t missed = 0;
+  // device
+  double p_world[3] = {};
+  double v_world[3] = {};
+  double q_world[4] = {1, 0, 0, 0};  // w, x, y, z
+  std::uint32_t buttons = 0;
+  bool valid = true;
+  // contact (see RenderOutput)
+  bool in_contact = false;
+  bool recovering = false;
+  std::int8_t num_planes = 0;
+  std::uint32_t active_mask = 0;
+  std::int32_t texel_i = 0, texel_j = 0;
+  double uv[2] = {};
+  double proxy_world[3] = {};
+  double p_proj_world[3] = {};
+  double n_geom_world[3] = {0, 0, 1};
+  double n_sampled_world[3] = {0, 0, 1};
+  double depth_m = 0.0;
+  double relief_depth_m = 0.0;
+  double f_normal_n = 0.0;
+  double v_tangent_world[3] = {};
+  double plane_n_world[4][3] = {};
+  double plane_d_m[4] = {};
+  // forces, N, world frame, in pipeline order
+  double f_render[3] = {};   // texture proxy spring
+  double f_client[3] = {};   // from clients (physics: pen-object contact)
+  double f_passive[3] = {};  // after the passivity controller
+  double f_out[3] = {};      // after the safety stage: what the device was told
+  double pc_energy_j = 0.0;
+  double pc_damping_ns_per_m = 0.0;
+  std::uint32_t safety_flags = 0;
+  std::uint32_t faults = 0;  // TickFault bits raised this tick
+};
+
+}  // namespace thx::srv

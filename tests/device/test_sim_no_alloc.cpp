@@ -1,0 +1,68 @@
+// DESIGN §4 rule 1: the simulated device's read() and write() run inside the servo tick, so they
+// must not allocate. This executable replaces the global operator new to count allocations.
+// (Eigen heap use would go through malloc, not operator new; device/ uses fixed-size types only.)
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "device/sim_phantom.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+// The replacements pair malloc with free on purpose; GCC cannot see that new and delete match.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
+
+using namespace thx::dev;
+
+namespace {
+
+long allocationsDuringTicks(OutputMode mode, const SimFaults& faults) {
+  SimPhantomConfig c;
+  c.output_mode = mode;
+  c.faults = faults;
+  const HandScript script({HandPress{{0.0, 0.0}, 1.0, 0.3}, HandStroke{{0.0, 0.0}, {0.02, 0.0}, 0.05, 1.0}});
+  SimPhantom sim(c, script);
+  sim.open();
+  DeviceCommand cmd;
+  cmd.forces_enabled = true;
+  cmd.num_planes = 1;
+  cmd.planes[0].k_n_per_m = 500.0;
+  const long before = g_allocations.load();
+  for (int k = 0; k < 1500; ++k) {
+    const DeviceState s = sim.read();
+    cmd.force_world_n = Eigen::Vector3d(0, 0, 600.0 * std::max(0.0, -s.p_world.z()));
+    if (k % 7 != 3) sim.write(cmd);  // some ticks without a write: the watchdog path too
+  }
+  return g_allocations.load() - before;
+}
+
+}  // namespace
+
+TEST(SimNoAlloc, ReadAndWriteNeverAllocate) {
+  const SimFaults faults{100, 5, 200, 5};
+  EXPECT_EQ(allocationsDuringTicks(OutputMode::Force, faults), 0);
+  EXPECT_EQ(allocationsDuringTicks(OutputMode::Planes, faults), 0);
+}
+
+TEST(SimNoAlloc, TheCounterWorks) {
+  const long before = g_allocations.load();
+  auto* v = new std::vector<int>(100);
+  delete v;
+  EXPECT_GE(g_allocations.load() - before, 2);
+}

@@ -1,0 +1,122 @@
+// The servo tick's policies, driven lock-step by a scripted device: missed ticks, invalid
+// readings, client forces, the safety stage as the last word, shutdown, flight records.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+
+#include "tests/server/servo_fixture.hpp"
+
+using namespace thx;
+using test::ServoRig;
+
+namespace {
+// A press 1 mm below a valley floor, reached from above over 200 ticks.
+void press(std::int64_t tick, dev::DeviceState& s) {
+  const double z = tick < 200 ? 0.002 - (0.002 + test::kRigValleyDepth + 0.001) * double(tick) / 200.0
+                              : -test::kRigValleyDepth - 0.001;
+  s.p_world = Eigen::Vector3d(test::kRigFloorX, 0.0, z);
+}
+}  // namespace
+
+TEST(Servo, PressIntoAValleyEngagesAndRendersUpward) {
+  ServoRig rig(press);
+  rig.run(1500);  // engage after small force, 0.5 s ramp, then hold
+  const Eigen::Vector3d f = rig.device.writes().back();
+  EXPECT_NEAR(f.z(), 1000.0 * 0.001, 0.05);  // 1 mm below the floor, both walls held
+  EXPECT_LT(std::fabs(f.x()), 0.05);
+  EXPECT_EQ(rig.servo->counters().faults, 0u);
+  EXPECT_GT(rig.servo->counters().contact_ticks, 1000u);
+}
+
+TEST(Servo, LongGapDisengagesAndFreezesAFlightRecord) {
+  ServoRig rig([](std::int64_t tick, dev::DeviceState& s) {
+    press(tick, s);
+    if (tick == 1500) s.timing.missed = 5;  // the servo was away for 5 ms
+  });
+  rig.run(1500);
+  EXPECT_GT(rig.device.writes().back().norm(), 0.5);
+  rig.run(1);  // the tick after the gap: 1505, the fault
+  EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
+  EXPECT_EQ(rig.servo->counters().faults, 1u);
+  EXPECT_EQ(rig.servo->counters().missed_ticks, 5u);
+  EXPECT_EQ(rig.safety->state(), srv::SafetyState::Disengaged);
+  // The flight record holds the last second up to and including the fault.
+  const std::string dir = testing::TempDir();
+  const std::string path = rig.recorder.dumpPending(dir);
+  ASSERT_FALSE(path.empty());
+  std::ifstream in(path);
+  int lines = 0;
+  std::string line, last;
+  while (std::getline(in, line)) {
+    ++lines;
+    last = line;
+  }
+  EXPECT_EQ(lines, 2 + 1000);  // comment + header + 1000 ticks
+  EXPECT_EQ(last.rfind("1505,5,", 0), 0u) << last;  // the faulting tick, 5 missed
+  std::filesystem::remove(path);
+  EXPECT_TRUE(rig.recorder.dumpPending(dir).empty());
+  // While pressing, the force stays zero: re-engaging needs a small requested force first.
+  rig.run(100);
+  EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
+}
+
+TEST(Servo, InvalidReadingsTurnTheForceOffAfterThePolicyLimit) {
+  ServoRig rig([](std::int64_t tick, dev::DeviceState& s) {
+    press(tick, s);
+    if (tick >= 1500 && tick < 1502) s.valid = false;                                   // two: tolerated
+    if (tick >= 1700 && tick < 1703) s.p_world.x() = std::numeric_limits<double>::quiet_NaN();  // three: fault
+  });
+  rig.run(1502);
+  EXPECT_EQ(rig.servo->counters().faults, 0u);
+  EXPECT_EQ(rig.servo->counters().invalid_readings, 2u);
+  rig.run(210);
+  EXPECT_EQ(rig.servo->counters().faults, 1u);
+  EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
+  for (const Eigen::Vector3d& f : rig.device.writes()) ASSERT_TRUE(f.allFinite());
+}
+
+TEST(Servo, ClientForcesAreAddedAndExpire) {
+  ServoRig rig([](std::int64_t, dev::DeviceState& s) { s.p_world = Eigen::Vector3d(0, 0, 0.01); });  // free space
+  rig.run(10);  // engage (zero request)
+  srv::ClientForce cf;
+  cf.force_world_n[0] = 0.15;  // below the engage threshold, so it passes the ramp quickly
+  rig.servo->clientForceSlot().write(cf);
+  rig.run(600);  // ramp-in completes; the force has not been refreshed for 600 ticks ...
+  EXPECT_EQ(rig.device.writes().back().norm(), 0.0);  // ... so it expired after 50
+  rig.servo->clientForceSlot().write(cf);
+  rig.run(10);
+  EXPECT_NEAR(rig.device.writes().back().x(), 0.15, 1e-9);
+}
+
+TEST(Servo, OutputNeverExceedsThePeakForce) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> xy(-0.04, 0.04), z(-0.05, 0.005);
+  ServoRig rig([&](std::int64_t tick, dev::DeviceState& s) {
+    s.p_world = tick < 20 ? Eigen::Vector3d(0, 0, 0.01) : Eigen::Vector3d(xy(rng), xy(rng), z(rng));
+    s.v_world = Eigen::Vector3d(xy(rng), xy(rng), xy(rng)) * 100.0;
+  });
+  rig.run(3000);
+  for (const Eigen::Vector3d& f : rig.device.writes()) ASSERT_LE(f.norm(), 7.9 + 1e-9);
+}
+
+TEST(Servo, ShutdownRampsTheForceToZero) {
+  ServoRig rig(press);
+  rig.run(1500);
+  const double before = rig.device.writes().back().norm();
+  EXPECT_GT(before, 0.5);
+  rig.servo->requestShutdown();
+  int ticks = 0;
+  double previous = before;
+  while (!rig.servo->finished() && ticks < 1000) {
+    rig.run(1);
+    ++ticks;
+    EXPECT_LE(rig.device.writes().back().norm(), previous + 1e-9);  // monotone ramp-down
+    previous = rig.device.writes().back().norm();
+  }
+  EXPECT_TRUE(rig.servo->finished());
+  EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
+  EXPECT_NEAR(ticks, 200, 2);  // ramp_out_s = 0.2 s
+}

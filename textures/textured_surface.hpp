@@ -1,0 +1,97 @@
+#pragma once
+// A texture placed on its plane, read as the geometry it stands for: the surface height and the
+// sampled normal at a plane-local point. This is what haptics, physics and sound query.
+//
+//  - normal map: the surface is the plane itself (height 0); only the normal varies.
+//  - relief map: the surface is z = -depth(u, v), with the relief normal.
+// Real-time safe (no allocation): it holds a pointer to a map that must outlive it.
+#include <Eigen/Core>
+#include <cmath>
+
+#include "textures/plane_mapping.hpp"
+#include "textures/sampling.hpp"
+#include "textures/texture_map.hpp"
+
+namespace thx::tex {
+
+// The centre of one texel read as geometry: the surface point there and the texel's own normal
+// (no interpolation). Texel indices here are UNWRAPPED: neighbours of a texel near the seam keep
+// consecutive indices (and centres), the data is read through the map's address mode.
+struct TexelPoint {
+  Eigen::Vector3d q_local = Eigen::Vector3d::Zero();
+  Eigen::Vector3d n_local = Eigen::Vector3d::UnitZ();
+};
+
+struct SurfacePoint {
+  double height_m = 0.0;                               // z of the surface in the plane frame (<= 0)
+  Eigen::Vector3d n_local = Eigen::Vector3d::UnitZ();  // sampled normal, plane frame, unit
+  TexCoord uv;
+};
+
+class TexturedSurface {
+ public:
+  TexturedSurface() = default;
+  // use_relief: read the map's depth as geometry (needs a relief map); false = normal-map reading.
+  TexturedSurface(const TextureMap& map, const PlaneMapping& mapping, const SampleOptions& sampling, bool use_relief)
+      : map_(&map),
+        mapping_(mapping),
+        world_to_plane_(mapping.plane_to_world.inverse()),
+        sampling_(sampling),
+        use_relief_(use_relief && map.isRelief()) {}
+
+  SurfacePoint at(double x_local, double y_local) const {
+    SurfacePoint p;
+    p.uv = mapping_.uvOfLocal({x_local, y_local});
+    const Sample s = sample(*map_, p.uv, sampling_);
+    p.n_local = s.normal.cast<double>().normalized();  // float sums are off by ~1e-8
+    p.height_m = use_relief_ ? -double(s.depth) : 0.0;
+    return p;
+  }
+
+  // Unwrapped index of the texel containing plane-local (x, y). Coordinates beyond +-1e9 texels
+  // are clamped (nothing physical lives there) so the integer conversion stays defined.
+  void texelContaining(double x_local, double y_local, long long& i, long long& j) const {
+    const TexCoord uv = mapping_.uvOfLocal({x_local, y_local});
+    i = toIndex(uv.u * map_->width());
+    j = toIndex((1.0 - uv.v) * map_->height());
+  }
+  TexelPoint texelPoint(long long i, long long j) const {
+    const int ri = resolveIndex(i, map_->width(), sampling_.address);
+    const int rj = resolveIndex(j, map_->height(), sampling_.address);
+    const TexCoord centre{(double(i) + 0.5) / map_->width(), 1.0 - (double(j) + 0.5) / map_->height()};
+    const Eigen::Vector2d xy = mapping_.localOfUv(centre);
+    TexelPoint p;
+    p.n_local = map_->normal(ri, rj).cast<double>().normalized();
+    p.q_local = Eigen::Vector3d(xy.x(), xy.y(), use_relief_ ? -double(map_->depth(ri, rj)) : 0.0);
+    return p;
+  }
+
+  Eigen::Vector3d toLocal(const Eigen::Vector3d& p_world) const { return world_to_plane_ * p_world; }
+  Eigen::Vector3d toWorld(const Eigen::Vector3d& p_local) const { return mapping_.plane_to_world * p_local; }
+  Eigen::Vector3d directionToWorld(const Eigen::Vector3d& d_local) const { return mapping_.plane_to_world.linear() * d_local; }
+  Eigen::Vector3d directionToLocal(const Eigen::Vector3d& d_world) const { return world_to_plane_.linear() * d_world; }
+
+  const TextureMap& map() const { return *map_; }
+  const PlaneMapping& mapping() const { return mapping_; }
+  const SampleOptions& sampling() const { return sampling_; }
+  bool usesRelief() const { return use_relief_; }
+  // The smaller texel side in metres: the natural length scale of the surface's detail.
+  double texelSize() const {
+    const Eigen::Vector2d t = mapping_.texelSize(*map_);
+    return t.minCoeff();
+  }
+
+ private:
+  static long long toIndex(double s) {
+    constexpr double kLimit = 1e9;
+    return (long long)std::floor(std::fmax(-kLimit, std::fmin(kLimit, s)));
+  }
+
+  const TextureMap* map_ = nullptr;
+  PlaneMapping mapping_;
+  Eigen::Isometry3d world_to_plane_ = Eigen::Isometry3d::Identity();
+  SampleOptions sampling_;
+  bool use_relief_ = false;
+};
+
+}  // namespace thx::tex
