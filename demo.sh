@@ -1,7 +1,7 @@
 #!/bin/sh
-# The main job on the default scene. Today (foundation): load and check the default scene, build
-# its surface texture and summarise it, generate the texture gallery and shaded previews.
-# hapticd takes over here when the servo exists (issue 3).
+# The main job on the default scene: hapticd with the simulated PHANToM in real time, a scripted
+# stroke across the bricks and a press, then a press into a steep V-valley; each prints its
+# summary. Then the texture gallery with shaded previews.
 # Usage: ./demo.sh [BUILD_DIR]   (make demo builds first, then calls this)
 set -eu
 BUILD=${1:-build}
@@ -10,9 +10,19 @@ mkdir -p "$OUT"
 TT="$BUILD/textures/texturetool"
 SI="$BUILD/scenes/scene-info"
 
+HD="$BUILD/server/hapticd"
+
 echo "== default scene: scenes/default.yaml"
 "$SI" scenes/default.yaml --texture-out "$OUT/default_surface.png"
 "$TT" preview "$OUT/default_surface.png" "$OUT/default_surface_preview.png"
+
+echo
+echo "== hapticd, real time: stroke across the bricks, then a press (about 8 s)"
+"$HD" --scene scenes/default.yaml --stats-json "$OUT/hapticd_default.json" --flight-dir "$OUT"
+
+echo
+echo "== hapticd, real time: a press into a 60 degree V-valley, crease handling on (about 4 s)"
+"$HD" --scene scenes/vvalley.yaml --stats-json "$OUT/hapticd_vvalley.json" --flight-dir "$OUT"
 
 echo
 echo "== texture gallery (512^2, seed 1) -> $OUT/"
@@ -25,7 +35,4 @@ for kind in bricks vvalley grooves pebbles wood sine dimples tilted; do
 done
 
 echo
-echo "== a steep V-valley scene (the stability case of issue 3)"
-"$SI" scenes/vvalley.yaml | sed -n '1,3p;5,12p'
-echo
-echo "Pictures: $OUT/*_preview.png. The servo demo (hapticd) arrives with issue 3."
+echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png."

@@ -11,6 +11,7 @@ PACKAGES="
   libyaml-cpp-dev
   liblcm-dev liblcm-bin libglib2.0-dev
   googletest libgtest-dev
+  rt-tests
 "
 
 missing=""

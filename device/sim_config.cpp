@@ -48,6 +48,9 @@ void validate(const SimPhantomConfig& c) {
   positive("hand_mass_kg", c.hand_mass_kg, "a mass > 0 kg");
   nonNegative("hand_stiffness_n_per_m", c.hand_stiffness_n_per_m, "a stiffness >= 0 N/m");
   nonNegative("hand_damping_ns_per_m", c.hand_damping_ns_per_m, "a damping >= 0 N·s/m");
+  if (!(c.hand_push_normal_stiffness_fraction >= 0.0 && c.hand_push_normal_stiffness_fraction <= 1.0))
+    fail("hand_push_normal_stiffness_fraction", "out of range", "a fraction in [0, 1]",
+         num(c.hand_push_normal_stiffness_fraction));
   if (!c.plane_to_world.matrix().allFinite() ||
       !(c.plane_to_world.linear().transpose() * c.plane_to_world.linear()).isIdentity(1e-9))
     fail("plane_to_world", "not a rigid transform", "a finite rotation and translation", "a non-orthonormal matrix");

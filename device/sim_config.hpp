@@ -40,6 +40,12 @@ struct SimPhantomConfig {
   double hand_mass_kg = 0.2;  // moves with the pen: the body is m_pen + m_hand
   double hand_stiffness_n_per_m = 300.0;
   double hand_damping_ns_per_m = 3.0;
+  // While the hand pushes, it regulates force rather than depth along the normal (a person
+  // pressing keeps the force, not the position): the spring's normal component drops to this
+  // fraction of hand_stiffness (blended in over the first 0.2 N of push). Without it a stiff
+  // hand spring anchored at the surface would cancel part of the push (a 1 N press gave 0.67 N on
+  // a 600 N/m wall) and hold the pen above the floor of a deep valley.
+  double hand_push_normal_stiffness_fraction = 0.1;
   Eigen::Isometry3d plane_to_world = Eigen::Isometry3d::Identity();  // local z = outward normal
 
   // Device watchdog: with no write() for a device tick the last output is held x decay^n for

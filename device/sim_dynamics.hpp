@@ -30,7 +30,8 @@ class SimDynamics {
   double massKg() const { return mass_kg_; }
   double dtS() const { return dt_s_; }
 
-  // F_hand = k_h (x_target - x) + b_h (v_target - v) + push (the push is along -normal).
+  // F_hand = k_h (x_target - x) + b_h (v_target - v) + push (the push is along -normal); while
+  // pushing, the spring's component along the push is scaled down (SimPhantomConfig).
   Eigen::Vector3d handForce(const SimBodyState& s, const HandTarget& target_world) const;
   // Mechanism: -b v - F_c tanh(|v| / scale) v / |v|.
   Eigen::Vector3d mechanismForce(const Eigen::Vector3d& v_m_per_s) const;
@@ -45,6 +46,7 @@ class SimDynamics {
   double friction_scale_m_per_s_;
   double hand_k_n_per_m_;
   double hand_b_ns_per_m_;
+  double push_normal_fraction_;
 };
 
 }  // namespace thx::dev

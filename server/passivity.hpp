@@ -23,7 +23,10 @@
 // tick) when in truth the hold makes it generate that much, so it would never catch the
 // instability it is there for. output_delay_ticks = 0 is hapticd's device contract (read ->
 // compute -> write in one tick); 1 suits drivers that apply a write one tick later (CHAI3D's
-// PHANToM wrapper).
+// PHANToM wrapper). When unsure, err high: understating the delay lets a sampled-wall
+// oscillation through (tests/server/test_passivity.cpp), overstating it only adds damping of
+// about K T per extra tick while the controller acts. A filtered velocity estimate lags too and
+// counts as delay.
 //
 // Controller. Each tick predicts the energy after the new force has acted with the current
 // velocity: W = E_observed + (predicted energy of outputs still in flight) - F_ve.v T. If W < 0 it

@@ -35,7 +35,8 @@ struct StabilityBudget {
   double virtual_damping_ns_per_m = 0.0;   // B
   double period_s = 0.0;
   double bound_n_per_m = 0.0;  // 2 (b - |B|) / T; <= 0 when |B| >= b
-  double required_physical_damping_ns_per_m = 0.0;  // K T / 2 + |B|: the b that would make K passive
+  // K T / 2 + |B|: the physical damping b that would make K passive.
+  double required_physical_damping_ns_per_m = 0.0;
   bool within_bound = false;
   bool ok = false;  // false only for errors (Strict policy, or settings no policy accepts)
   std::vector<std::string> warnings;

@@ -95,7 +95,7 @@ TEST(SimStability, StiffWallWithoutDampingOscillatesAndGrows) {
   ASSERT_GT(k, 2.0 * c.spec.physical_damping_ns_per_m / 1e-3 * 100.0);  // far beyond 2b/T = 4 N/m
   const WallRun r = pressOnWall(c, k);
   report("K 1000, hand b 0, b 0.002:", r);
-  EXPECT_GT(r.early.peakToPeakM(), 10 * kResolution);  // already oscillating, not noise
+  EXPECT_GT(r.early.peakToPeakM(), 5 * kResolution);  // already oscillating, not noise
   EXPECT_GT(r.late.peakToPeakM(), 5.0 * r.early.peakToPeakM());
   EXPECT_GT(r.late.vRms(), 5.0 * r.early.vRms());
   EXPECT_GT(r.motor_work_1_to_3_s_j, 0.0);  // the sampled wall is active: it pumps energy in

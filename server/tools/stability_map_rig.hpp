@@ -1,0 +1,60 @@
+#pragma once
+// The whole servo pipeline around a simulated PHANToM, wired as hapticd wires it (server/hapticd.cpp):
+// SimPhantom (lock-step) -> Servo { ProxyRenderer -> PassivityController -> SafetyStage } -> SimPhantom.
+// The stability map and its tests drive it one tick at a time and read the simulator's ground truth
+// beside the tick record, so what they measure is what the pen really did, not what the encoders said.
+//
+// Not real-time code: construction allocates (flight recorder, ring). Deterministic: the device runs
+// on its own VirtualClock and nothing reads the wall clock except the servo's latency statistics,
+// which the analysis ignores.
+#include <memory>
+
+#include "device/hand_script.hpp"
+#include "device/sim_phantom.hpp"
+#include "server/flight_recorder.hpp"
+#include "server/passivity.hpp"
+#include "server/proxy_renderer.hpp"
+#include "server/safety.hpp"
+#include "server/servo.hpp"
+#include "server/spsc_ring.hpp"
+#include "textures/textured_surface.hpp"
+
+namespace thx::srv::stab {
+
+struct RigOptions {
+  double stiffness_n_per_m = 1000.0;
+  double damping_ns_per_m = 0.0;  // the renderer's virtual damping B, along the spring
+  bool crease_handling = true;
+  bool passivity = true;
+};
+
+class SimRig {
+ public:
+  // `surface` must outlive the rig. `sim` must be lock-step (the map must not depend on the host's speed).
+  SimRig(const tex::TexturedSurface& surface, const dev::SimPhantomConfig& sim, dev::HandScript script,
+         const RigOptions& options);
+
+  // One servo tick (device read -> render -> passivity -> safety -> device write). The record is
+  // valid until the next call; truth() then describes the same tick.
+  const TickRecord& tick();
+
+  const dev::SimTruth& truth() const { return device_->truth(); }
+  dev::SimPhantom& device() { return *device_; }
+  const ProxyRenderer& renderer() const { return *renderer_; }
+  const PassivityController& passivity() const { return *passivity_; }
+  const SafetyStage& safety() const { return *safety_; }
+  const Servo& servo() const { return *servo_; }
+  double periodS() const { return period_s_; }
+
+ private:
+  double period_s_;
+  std::unique_ptr<dev::SimPhantom> device_;
+  std::unique_ptr<ProxyRenderer> renderer_;
+  std::unique_ptr<PassivityController> passivity_;
+  std::unique_ptr<SafetyStage> safety_;
+  FlightRecorder recorder_;
+  SpscRing<TickRecord> ring_;
+  std::unique_ptr<Servo> servo_;
+};
+
+}  // namespace thx::srv::stab

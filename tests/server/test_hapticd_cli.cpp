@@ -1,0 +1,145 @@
+// hapticd as a user runs it: a separate process, lock-step for determinism, its statistics file,
+// its errors and exit codes, and its shutdown on SIGTERM.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ProcRun {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// The number after "key": in a flat JSON text (the stats file is ours, one key per line).
+double jsonNumber(const std::string& json, const std::string& key) {
+  const std::regex re("\"" + key + "\": (-?[0-9.eE+-]+)");
+  std::smatch m;
+  if (!std::regex_search(json, m, re)) return -1e300;
+  return std::stod(m[1]);
+}
+
+class Hapticd : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("thx_hapticd_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  ProcRun run(const std::string& args) const {
+    const std::string cmd = std::string("cd '") + THX_SOURCE_DIR + "' && '" + THX_HAPTICD + "' " + args + " >'" +
+                            path("out.txt") + "' 2>'" + path("err.txt") + "'";
+    const int raw = std::system(cmd.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(path("out.txt")), slurp(path("err.txt"))};
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(Hapticd, LockstepRunOfTheDefaultSceneWritesItsStatistics) {
+  const ProcRun r = run("--scene scenes/default.yaml --lockstep --no-lcm --quiet --stats-json '" + path("s.json") +
+                    "' --flight-dir '" + path("") + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string json = slurp(path("s.json"));
+  // The script lasts 7.0 s; hapticd adds 0.5 s, then the 0.2 s ramp-down.
+  EXPECT_NEAR(jsonNumber(json, "ticks"), 7700, 400) << json;
+  EXPECT_NEAR(jsonNumber(json, "rate_hz"), 1000.0, 1e-6);
+  EXPECT_EQ(jsonNumber(json, "missed_ticks"), 0);
+  EXPECT_EQ(jsonNumber(json, "faults"), 0);
+  EXPECT_GT(jsonNumber(json, "max_force_n"), 0.3);
+  EXPECT_LE(jsonNumber(json, "max_force_n"), 7.9);
+  EXPECT_GT(jsonNumber(json, "contact_ticks"), 2000);
+  for (const char* key : {"tick_compute_us", "wake_latency_us"}) {
+    EXPECT_NE(json.find(std::string("\"") + key + "\": {\"p50\": "), std::string::npos) << key;
+  }
+  for (const char* key : {"p99", "p999", "max"}) EXPECT_NE(json.find(std::string("\"") + key + "\": "), std::string::npos);
+  EXPECT_GT(jsonNumber(json, "rss_bytes"), 1e6);
+  EXPECT_NE(r.out.find("hapticd summary"), std::string::npos);
+}
+
+TEST_F(Hapticd, SigtermRampsDownAndStillWritesStatistics) {
+  const std::string cmd = std::string("cd '") + THX_SOURCE_DIR + "' && exec '" + THX_HAPTICD +
+                          "' --scene scenes/default.yaml --duration 0 --no-lcm --no-mlock --quiet --stats-json '" +
+                          path("s.json") + "' >'" + path("out.txt") + "' 2>'" + path("err.txt") + "'";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << slurp(path("err.txt"));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << slurp(path("err.txt"));
+  const std::string json = slurp(path("s.json"));
+  EXPECT_GT(jsonNumber(json, "ticks"), 300) << json;
+  EXPECT_NE(slurp(path("out.txt")).find("hapticd summary"), std::string::npos);
+}
+
+TEST_F(Hapticd, BadInputGivesAClearErrorAndExitCode) {
+  ProcRun r = run("--help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("--stats-json"), std::string::npos);
+
+  r = run("--scene scenes/default.yaml --bogus");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("unknown argument '--bogus'"), std::string::npos) << r.err;
+
+  r = run("--lockstep");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--scene FILE is required"), std::string::npos) << r.err;
+
+  r = run("--scene tests/data/bad_scenes/unknown_field_typo.yaml --lockstep --no-lcm");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("unknown_field_typo.yaml:5:3: surface.texure"), std::string::npos) << r.err;
+
+  r = run("--scene does/not/exist.yaml");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("does/not/exist.yaml"), std::string::npos) << r.err;
+
+  r = run("--scene scenes/default.yaml --device vrpn:Phantom0@localhost");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("not supported yet"), std::string::npos) << r.err;
+
+  r = run("--scene scenes/default.yaml --duration -3");
+  EXPECT_EQ(r.status, 2);
+
+  r = run("--scene scenes/default.yaml --stiffness-fraction 0.6 --strict-stability --lockstep --no-lcm");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("bound"), std::string::npos) << r.err;
+}
+
+TEST_F(Hapticd, UnusableLcmUrlIsAWarningAndTheServoRuns) {
+  const ProcRun r = run("--scene scenes/default.yaml --lockstep --quiet --duration 0.5 --lcm-url 'bogus://nowhere' "
+                    "--stats-json '" + path("s.json") + "'");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("LCM is not available at 'bogus://nowhere'"), std::string::npos) << r.err;
+  EXPECT_NEAR(jsonNumber(slurp(path("s.json")), "ticks"), 700, 10);
+}
