@@ -23,6 +23,7 @@
 #include "server/process_memory.hpp"
 #include "server/publisher.hpp"
 #include "server/realtime.hpp"
+#include "server/receiver.hpp"
 #include "server/scene_device.hpp"
 #include "server/servo.hpp"
 #include "server/stability_budget.hpp"
@@ -227,6 +228,8 @@ int run(const Options& o) {
   po.flight_dir = o.flight_dir;
   po.simulated_device = true;
   srv::Publisher publisher(ring, servo, recorder, lcm.get(), po);
+  std::unique_ptr<srv::Receiver> receiver;
+  if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);
 
   const double duration_s = o.duration_s.value_or(device.script().duration() + 0.5);
   const std::int64_t stop_tick = duration_s > 0 ? std::int64_t(std::llround(duration_s * sc.rates.servo_hz)) : -1;
@@ -237,6 +240,7 @@ int run(const Options& o) {
   sigaction(SIGTERM, &sa, nullptr);
 
   publisher.start();
+  if (receiver) receiver->start();
   srv::RealtimeReport rt;
   std::string servo_error;  // written by the servo thread before it sets servo_done
   std::atomic<bool> servo_done{false};
@@ -285,6 +289,7 @@ int run(const Options& o) {
   }
   servo_thread.join();
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  if (receiver) receiver->stop();
   publisher.stop();
   device.close();
   if (!servo_error.empty()) {

@@ -76,6 +76,7 @@ const TickRecord& Servo::tick() {
     r.relief_depth_m = out.relief_depth_m;
     r.f_normal_n = out.f_normal_n;
     put(r.v_tangent_world, out.v_tangent_world);
+    planes_ = out.planes;
     for (int i = 0; i < out.num_planes; ++i) {
       put(r.plane_n_world[i], out.planes[std::size_t(i)].n_world);
       r.plane_d_m[i] = out.planes[std::size_t(i)].d_m;
@@ -99,7 +100,10 @@ const TickRecord& Servo::tick() {
                                client_force_.force_world_n[2]);
   }
 
-  const Eigen::Vector3d f_env = f_render + f_client;
+  // A device that renders planes itself (a PHANToM behind VRPN) gets the planes; only the client
+  // force goes through the force path, or the texture would be rendered twice.
+  const bool device_renders_planes = device_.outputMode() == dev::OutputMode::Planes;
+  const Eigen::Vector3d f_env = device_renders_planes ? f_client : Eigen::Vector3d(f_render + f_client);
   if (!f_env.allFinite()) faults |= kFaultNonFiniteForce;
   const Eigen::Vector3d f_passive = r.valid ? passivity_.apply(f_env, state.v_world) : f_env;
   if (faults & (kFaultMissedTicks | kFaultInvalidReading)) {
@@ -111,7 +115,15 @@ const TickRecord& Servo::tick() {
 
   dev::DeviceCommand command;
   command.force_world_n = f_out;
-  command.forces_enabled = f_out.squaredNorm() > 0.0;
+  if (device_renders_planes) {
+    // Planes only while the safety stage lets forces through (engaged or ramping).
+    const bool allowed = !(safety_.flags() & (kSafetyDisengaged | kSafetyShutDown | kSafetyNonFinite));
+    command.forces_enabled = allowed;
+    command.num_planes = allowed ? int(r.num_planes) : 0;
+    for (int i = 0; i < command.num_planes; ++i) command.planes[std::size_t(i)] = planes_[std::size_t(i)];
+  } else {
+    command.forces_enabled = f_out.squaredNorm() > 0.0;
+  }
   device_.write(command);
 
   put(r.f_render, f_render);

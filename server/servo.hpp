@@ -82,6 +82,7 @@ class Servo {
   LatencyHistogram wake_hist_;
   ServoCounters counters_;
   TickRecord record_;
+  std::array<dev::PlaneProxy, dev::kMaxPlanes> planes_{};
 };
 
 }  // namespace thx::srv

@@ -1,0 +1,49 @@
+#pragma once
+// The receiver thread: what enters hapticd over LCM. Today: client forces (THX_CLIENT_FORCE).
+// Messages are taken untyped and decoded with thx_msgs::try_decode (LCM 1.3.1's typed decoders
+// can crash on corrupt input, docs/messages.md), checked, kept per sender (ClientForceTable), and
+// the sum is written to the servo's latest-value slot: on every accepted message and every 10 ms
+// while any force is live, so the servo's own staleness timeout only fires if this thread stalls.
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+
+#include "server/client_force_table.hpp"
+#include "server/latest_slot.hpp"
+#include "server/servo.hpp"
+
+namespace lcm {
+class LCM;
+class ReceiveBuffer;
+}
+
+namespace thx::srv {
+
+class Receiver {
+ public:
+  Receiver(lcm::LCM& lcm, LatestSlot<ClientForce>& slot, double max_force_n);
+  ~Receiver();
+  void start();
+  void stop();
+  ClientForceCounters counters() const;
+  std::uint64_t undecodable() const { return undecodable_.load(); }
+
+  // Public for LCM's callback; not part of the interface.
+  void onClientForce(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+
+ private:
+  void run();
+  void publishSum(std::int64_t now_ns);
+
+  lcm::LCM& lcm_;
+  LatestSlot<ClientForce>& slot_;
+  ClientForceTable table_;
+  mutable std::mutex table_mutex_;  // counters() from other threads; never the servo
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  std::atomic<std::uint64_t> undecodable_{0};
+  bool was_live_ = false;
+};
+
+}  // namespace thx::srv

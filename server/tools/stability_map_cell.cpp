@@ -1,0 +1,167 @@
+#include "server/tools/stability_map_cell.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "device/sim_dynamics.hpp"
+#include "server/tools/stability_map_rig.hpp"
+#include "textures/textured_surface.hpp"
+
+namespace thx::srv::stab {
+
+namespace {
+
+// The hand as a linear force field around a fixed target: F(x) = F0 + A (x - x_target) at the
+// target's velocity (no damping term). Read from SimDynamics so the potential follows whatever
+// the hand model does (its spring is anisotropic while it pushes).
+struct HandField {
+  Eigen::Vector3d f0 = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+
+  HandField(const dev::SimDynamics& dynamics, const dev::HandTarget& t) : target(t.p_m) {
+    dev::SimBodyState s;
+    s.x_m = t.p_m;
+    s.v_m_per_s = t.v_m_per_s;
+    f0 = dynamics.handForce(s, t);
+    constexpr double kProbeM = 1e-3;  // the field is linear: any step gives the same matrix
+    for (int i = 0; i < 3; ++i) {
+      dev::SimBodyState p = s;
+      p.x_m[i] += kProbeM;
+      a.col(i) = (dynamics.handForce(p, t) - f0) / kProbeM;
+    }
+  }
+  double potential(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d d = x - target;
+    return -f0.dot(d) - 0.5 * d.dot(a * d);
+  }
+};
+
+}  // namespace
+
+std::string Mitigations::name() const {
+  if (crease && passivity && smoothing) return "all";
+  std::string s;
+  const auto add = [&](bool on, const char* n) {
+    if (!on) return;
+    if (!s.empty()) s += "+";
+    s += n;
+  };
+  add(crease, "crease");
+  add(passivity, "passivity");
+  add(smoothing, "smoothing");
+  return s.empty() ? "none" : s;
+}
+
+Mitigations Mitigations::fromIndex(int index) {
+  return Mitigations{(index & 1) != 0, (index & 2) != 0, (index & 4) != 0};
+}
+
+HandParams defaultHand() {
+  const dev::SimPhantomConfig c;
+  return HandParams{"default", c.hand_mass_kg, c.hand_stiffness_n_per_m, c.hand_damping_ns_per_m, c.friction_n};
+}
+
+HandParams lightGripHand() { return HandParams{"light", 0.05, 100.0, 0.5, 0.06}; }
+
+HandParams handByName(const std::string& name) {
+  if (name == "default") return defaultHand();
+  if (name == "light") return lightGripHand();
+  throw std::invalid_argument("hand '" + name + "': expected 'default' or 'light'");
+}
+
+dev::SimPhantomConfig simConfigFor(const HandParams& hand) {
+  dev::SimPhantomConfig c;
+  c.hand_mass_kg = hand.mass_kg;
+  c.hand_stiffness_n_per_m = hand.stiffness_n_per_m;
+  c.hand_damping_ns_per_m = hand.damping_ns_per_m;
+  c.friction_n = hand.friction_n;
+  c.lockstep = true;
+  return c;
+}
+
+CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const CellSetup& setup,
+                        const TraceFn& trace) {
+  if (valley.angle_deg != params.angle_deg || valley.smoothed != params.mitigations.smoothing)
+    throw std::invalid_argument("simulateCell: the valley map does not match the cell");
+  const ValleyGeometry& g = setup.geometry;
+  tex::PlaneMapping mapping;
+  mapping.size_m = {g.extentM(), g.extentM()};
+  const tex::SampleOptions sampling{tex::Filter::Bilinear, tex::Address::Wrap};
+  const tex::TexturedSurface surface(*valley.map, mapping, sampling, params.relief);
+
+  const double floor_x = g.floorXM();
+  const double aim_x = floor_x + setup.aim_offset_m;
+  CellResult result;
+  result.params = params;
+  result.floor_height_m = surface.at(aim_x, 0.0).height_m;
+
+  dev::SimPhantomConfig sim = simConfigFor(setup.hand);
+  sim.plane_to_world = Eigen::Translation3d(0.0, 0.0, result.floor_height_m);  // the hand's frame: the floor
+  dev::HandScriptOptions hand_options;
+  hand_options.hover_height_m = setup.hover_m;
+  dev::HandScript script({dev::HandHold{setup.settle_s}, dev::HandPress{{aim_x, 0.0}, params.push_force_n, setup.duration_s}},
+                         hand_options);
+
+  RigOptions rig_options;
+  result.stiffness_n_per_m = params.stiffness_fraction * sim.spec.max_stiffness_n_per_m;
+  rig_options.stiffness_n_per_m = result.stiffness_n_per_m;
+  rig_options.damping_ns_per_m = setup.virtual_damping_ns_per_m;
+  rig_options.crease_handling = params.mitigations.crease;
+  rig_options.passivity = params.mitigations.passivity;
+  SimRig rig(surface, sim, std::move(script), rig_options);
+  const dev::SimDynamics dynamics(sim);
+
+  const long total_ticks = std::lround(setup.duration_s / rig.periodS());
+  const long window_ticks = std::min(total_ticks - 1, std::lround(setup.window_s / rig.periodS()));
+  const long first_window_tick = total_ticks - window_ticks;
+
+  std::vector<WindowSample> samples;
+  samples.reserve(std::size_t(window_ticks));
+  WindowEnergy energy;
+  double peak_force_run_n = 0.0;
+  double dissipated_at_start_j = 0.0;
+  std::unique_ptr<HandField> hand;
+  const double mass_kg = dynamics.massKg();
+  const auto kinetic = [&](const dev::SimTruth& t) { return 0.5 * mass_kg * t.v_world_m_per_s.squaredNorm(); };
+
+  for (long k = 0; k < total_ticks; ++k) {
+    const TickRecord& r = rig.tick();
+    const dev::SimTruth& truth = rig.truth();
+    if (trace) trace(r, truth);
+    const Eigen::Vector3d f_out(r.f_out[0], r.f_out[1], r.f_out[2]);
+    peak_force_run_n = std::max(peak_force_run_n, f_out.norm());
+    if (k == first_window_tick - 1) {  // the state the window starts from
+      hand = std::make_unique<HandField>(dynamics, truth.hand_target_world);
+      energy.kinetic_start_j = kinetic(truth);
+      energy.hand_potential_start_j = hand->potential(truth.p_world_m);
+      dissipated_at_start_j = rig.passivity().dissipatedEnergy();
+    }
+    if (k < first_window_tick) continue;
+    energy.motor_work_j += truth.motor_work_j;
+    WindowSample w;
+    w.t_s = truth.t_s;
+    w.p_m = surface.toLocal(truth.p_world_m);
+    w.f_out_n = surface.directionToLocal(f_out);
+    w.depth_m = r.depth_m;
+    w.in_contact = r.in_contact;
+    w.recovering = r.recovering;
+    w.peak_clamped = (r.safety_flags & kSafetyPeakClamped) != 0 || truth.motor_saturated;
+    w.continuous_limited = (r.safety_flags & kSafetyContinuousLimited) != 0;
+    w.rate_limited = (r.safety_flags & kSafetyRateLimited) != 0;
+    w.passivity_active = r.pc_damping_ns_per_m > 0.0;
+    samples.push_back(w);
+  }
+  const dev::SimTruth& end = rig.truth();
+  energy.kinetic_end_j = kinetic(end);
+  energy.hand_potential_end_j = hand ? hand->potential(end.p_world_m) : 0.0;
+  energy.passivity_dissipated_j = rig.passivity().dissipatedEnergy() - dissipated_at_start_j;
+
+  result.metrics = measureWindow(samples, energy, aim_x, floor_x, sim.encoder_resolution_m, peak_force_run_n);
+  classify(result.metrics, setup.thresholds, g.period_m);
+  return result;
+}
+
+}  // namespace thx::srv::stab
