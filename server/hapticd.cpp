@@ -55,6 +55,8 @@ publishes device and contact state over LCM.
   --require-rt          fail if SCHED_FIFO or mlockall cannot be had (default: warn and go on)
   --cpu N               pin the servo thread to CPU N
   --no-mlock            do not lock memory
+  --mlock-eager         fault in and lock every mapped page at start (whole shared libraries);
+                        default: lock pages as they are first touched (MCL_ONFAULT)
   --flight-dir DIR      where fault flight records go (default: .)
   --quiet               no progress lines
   -h, --help            this text
@@ -139,6 +141,8 @@ Options parse(int argc, char** argv) {
       o.rt.cpu = int(number(a, value()));
     } else if (a == "--no-mlock") {
       o.rt.lock_memory = false;
+    } else if (a == "--mlock-eager") {
+      o.rt.lock_on_fault = false;
     } else if (a == "--flight-dir") {
       o.flight_dir = value();
     } else if (a == "--quiet") {
@@ -208,7 +212,7 @@ int run(const Options& o) {
   srv::PassivityController passivity(pc);
   srv::SafetyStage safety(srv::SafetyConfig::fromSpec(spec, period_s));
   srv::FlightRecorder recorder(std::size_t(sc.rates.servo_hz));  // one second of ticks
-  srv::SpscRing<srv::TickRecord> ring(4096);
+  srv::SpscRing<srv::TickRecord> ring(1024);  // 1 s of ticks: the publisher drains every 0.5 ms
   srv::Servo servo(device, renderer, passivity, safety, recorder, ring, srv::ServoConfig{});
 
   std::unique_ptr<lcm::LCM> lcm;

@@ -13,7 +13,7 @@ namespace thx::srv {
 RealtimeReport makeThreadRealtime(const RealtimeOptions& options) {
   RealtimeReport report;
   if (options.lock_memory) {
-    if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) {
+    if (mlockall(MCL_CURRENT | MCL_FUTURE | (options.lock_on_fault ? MCL_ONFAULT : 0)) == 0) {
       report.memory_locked = true;
     } else {
       report.warnings.push_back(std::string("mlockall failed (") + std::strerror(errno) +

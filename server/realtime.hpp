@@ -11,6 +11,10 @@ struct RealtimeOptions {
   bool fifo = true;          // try SCHED_FIFO
   int priority = 80;         // above ordinary RT work (ros2_control uses 50), below the kernel's own 99
   bool lock_memory = true;   // mlockall(MCL_CURRENT | MCL_FUTURE): no page faults in the tick
+  // MCL_ONFAULT: lock pages when first touched instead of faulting in every mapped page now
+  // (whole shared libraries included). Cheaper in memory; the first touch of a page still faults
+  // once, so the servo warms up before its first deadline counts.
+  bool lock_on_fault = true;
   int cpu = -1;              // pin to this CPU; -1 = no pinning
   bool require = false;      // any failure is an error (throw) instead of a warning
 };

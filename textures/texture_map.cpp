@@ -34,23 +34,26 @@ TextureMap::TextureMap(int width, int height, Representation representation, dou
     max_depth_m_ = max_depth_m;
     depth_scale_ = float(max_depth_m / 65535.0);
   }
-  texels_.assign(std::size_t(width) * std::size_t(height), Texel{0, 0, 32767, 0});
+  texels_.assign(std::size_t(width) * std::size_t(height), Texel{0, 0, 0});
 }
 
 void TextureMap::setNormal(int i, int j, const Eigen::Vector3f& n) {
   if (!n.allFinite()) throw TextureError("texture", "non-finite normal at " + texelName(i, j), "", "finite values");
   const float len = n.norm();
   if (!(len > 1e-12f)) throw TextureError("texture", "zero-length normal at " + texelName(i, j), "", "|n| > 0");
-  const Eigen::Vector3f u = n / len;
+  Eigen::Vector3f u = n / len;
   if (!(u.z() > 0.0f)) {
     throw TextureError("texture", "normal points into the surface at " + texelName(i, j),
                        "n.z = " + std::to_string(u.z()), "n.z > 0");
   }
+  if (u.z() < kMinNormalZ) {
+    // Only z is implied by x and y: tilt a nearly grazing normal up to the flattest one stored.
+    const float xy = std::sqrt(1.0f - kMinNormalZ * kMinNormalZ) / std::hypot(u.x(), u.y());
+    u = Eigen::Vector3f(u.x() * xy, u.y() * xy, kMinNormalZ);
+  }
   Texel& t = texels_[index(i, j)];
   t.nx = toSnorm16(u.x());
   t.ny = toSnorm16(u.y());
-  t.nz = toSnorm16(u.z());
-  if (t.nz == 0) t.nz = 1;  // keep a grazing normal strictly outward after quantisation
 }
 
 void TextureMap::setDepth(int i, int j, double depth_m) {

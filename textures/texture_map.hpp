@@ -10,9 +10,11 @@
 //  - Depth is measured INTO the surface, in metres, 0 = at the plane, never negative and never
 //    above maxDepth(). The relief surface's height in the plane frame is z = -depth.
 //    A normal map has no depth (all zero, maxDepth() == 0).
-//  - Storage is compact so a 1024^2 relief map costs 8 MiB: normals as snorm16, depth as a
-//    16-bit fraction of maxDepth().
+//  - Storage is compact so a 1024^2 relief map costs 6 MiB: the normal's x and y as snorm16 (z
+//    is implied: every stored normal points out of the surface, so z = sqrt(1 - x^2 - y^2) > 0),
+//    depth as a 16-bit fraction of maxDepth().
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -58,7 +60,9 @@ class TextureMap {
   // Unchecked texel access: the caller resolves wrap/clamp (see sampling.hpp).
   Eigen::Vector3f normal(int i, int j) const {
     const Texel& t = texels_[index(i, j)];
-    return Eigen::Vector3f(t.nx, t.ny, t.nz) * (1.0f / 32767.0f);
+    const float x = float(t.nx) * (1.0f / 32767.0f), y = float(t.ny) * (1.0f / 32767.0f);
+    // setNormal() keeps x^2 + y^2 < 1, so z is real and positive; the max() only guards rounding.
+    return {x, y, std::sqrt(std::fmax(kMinNormalZ * kMinNormalZ, 1.0f - x * x - y * y))};
   }
   float depth(int i, int j) const { return float(texels_[index(i, j)].depth) * depth_scale_; }
   // Raw 16-bit depth fraction (0 = plane, 65535 = maxDepth()).
@@ -74,8 +78,11 @@ class TextureMap {
   std::size_t bytes() const { return texels_.size() * sizeof(Texel); }
 
  private:
+  // The flattest representable grazing normal: z below this is stored as this (about 0.06 deg
+  // above the plane), so a stored normal always points out of the surface.
+  static constexpr float kMinNormalZ = 1e-3f;
   struct Texel {
-    std::int16_t nx, ny, nz;
+    std::int16_t nx, ny;
     std::uint16_t depth;
   };
   std::size_t index(int i, int j) const { return std::size_t(j) * std::size_t(width_) + std::size_t(i); }

@@ -111,6 +111,7 @@ CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const
   rig_options.damping_ns_per_m = setup.virtual_damping_ns_per_m;
   rig_options.crease_handling = params.mitigations.crease;
   rig_options.passivity = params.mitigations.passivity;
+  rig_options.recovery_ticks = setup.recovery_ticks;
   SimRig rig(surface, sim, std::move(script), rig_options);
   const dev::SimDynamics dynamics(sim);
 
@@ -148,7 +149,9 @@ CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const
     w.depth_m = r.depth_m;
     w.in_contact = r.in_contact;
     w.recovering = r.recovering;
-    w.peak_clamped = (r.safety_flags & kSafetyPeakClamped) != 0 || truth.motor_saturated;
+    // 0.1 % below the peak: the safety stage clamps to exactly the peak, the motors clip to it.
+    w.at_peak = truth.motor_saturated || f_out.norm() >= 0.999 * sim.spec.peak_force_n;
+    w.peak_clamped = (r.safety_flags & kSafetyPeakClamped) != 0;
     w.continuous_limited = (r.safety_flags & kSafetyContinuousLimited) != 0;
     w.rate_limited = (r.safety_flags & kSafetyRateLimited) != 0;
     w.passivity_active = r.pc_damping_ns_per_m > 0.0;

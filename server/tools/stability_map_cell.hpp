@@ -16,6 +16,7 @@
 #include <string>
 
 #include "device/sim_phantom.hpp"
+#include "server/proxy_renderer.hpp"
 #include "server/tick_record.hpp"
 #include "server/tools/stability_map_metrics.hpp"
 #include "server/tools/stability_map_valley.hpp"
@@ -50,6 +51,7 @@ struct CellSetup {
   ValleyGeometry geometry;
   HandParams hand = defaultHand();
   double virtual_damping_ns_per_m = 1.0;  // B, as both shipped scenes (default.yaml, vvalley.yaml)
+  int recovery_ticks = RendererConfig{}.recovery_ticks;  // the renderer's recovery rule (0: off)
   double aim_offset_m = 1e-4;             // half a texel, four encoder counts
   double hover_m = 0.005;
   double settle_s = 0.5;

@@ -1,0 +1,181 @@
+#include "server/tools/stability_map_cli.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+namespace thx::srv::stab {
+
+const char* const kHelpText = R"(usage: stability-map [options]
+
+Sweeps the servo pipeline (plane-proxy renderer -> passivity controller -> safety stage) around
+the simulated PHANToM Desktop, lock-step and deterministic, over V-valleys: every combination of
+the axes below. In each cell the simulated hand lowers the pen into the floor of one valley,
+presses and holds; the last second is measured on the simulator's true state and judged stable,
+limit-cycle or unstable (docs/stability.md). Writes OUT_DIR/NAME.json (all cells, all metrics,
+setup, thresholds and this command line), NAME.csv and NAME.png (heatmap).
+
+Axes (comma-separated lists; default: the full map):
+  --angles LIST           valley opening angles, deg, in [10, 170]   (20,40,...,160)
+  --stiffness LIST        stiffness, fraction of the device maximum (0.1,0.25,0.5,0.75,1.0)
+  --forces LIST           hand push force, N                        (0.5,1,2,5)
+  --representations LIST  normal, relief                            (normal,relief)
+  --mitigations LIST      none, crease, passivity, smoothing, parts joined with '+'
+                          (e.g. crease+passivity), or all            (all 8 combinations)
+  --quick                 a small subset for CI (angles 20,60,120; stiffness 0.25,1.0; force
+                          1 N; mitigations none,crease+passivity,all); explicit axes still apply
+
+Setup:
+  --hand NAME             default (scenes/default.yaml) or light (light grip, docs/stability.md)
+  --damping B             renderer virtual damping, N s/m (default 1.0, as the scenes)
+  --recovery-ticks N      renderer recovery ramp, ticks (default 10 = hapticd; 0 = off)
+  --smoothing-sigma S     normal smoothing sigma, texels (default 2)
+  --duration S            simulated seconds per cell (default 3)
+  --window S              measured final window, s (default 1)
+
+Output:
+  --out-dir DIR           default docs/results
+  --name NAME             file names NAME.{json,csv,png} (default stability_map)
+  --no-picture            skip the PNG
+  --trace FILE            per-tick CSV of the cell (the axes must select exactly one cell)
+  --threads N             worker threads (default 2); results do not depend on it
+  --quiet                 no progress on stderr
+  -h, --help              this text
+
+Exit status: 0 done (whatever the verdicts), 1 error while running or writing, 2 bad command line.
+)";
+
+namespace {
+
+double parseNumber(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || !end || *end != '\0' || !std::isfinite(v))
+    throw UsageError{option + ": expected a number, got '" + text + "'"};
+  return v;
+}
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) parts.push_back(part);
+  return parts;
+}
+
+std::vector<double> parseList(const std::string& option, const std::string& text, double lo, double hi,
+                              const char* expected) {
+  std::vector<double> values;
+  for (const std::string& p : split(text)) {
+    const double v = parseNumber(option, p);
+    if (v < lo || v > hi) throw UsageError{option + ": " + p + " is out of range; expected " + expected};
+    values.push_back(v);
+  }
+  if (values.empty()) throw UsageError{option + ": expected a comma-separated list, got '" + text + "'"};
+  return values;
+}
+
+}  // namespace
+
+Mitigations parseMitigations(const std::string& text) {
+  if (text == "none") return Mitigations{};
+  if (text == "all") return Mitigations{true, true, true};
+  Mitigations m;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, '+')) {
+    if (part == "crease") m.crease = true;
+    else if (part == "passivity") m.passivity = true;
+    else if (part == "smoothing") m.smoothing = true;
+    else
+      throw UsageError{"--mitigations: unknown mitigation '" + part + "' in '" + text +
+                       "'; expected none, all, or crease, passivity, smoothing joined with '+'"};
+  }
+  return m;
+}
+
+bool parseCommandLine(int argc, char** argv, CliOptions& o) {
+  o.axes = fullAxes();
+  o.argv.assign(argv, argv + argc);
+  SweepAxes explicit_axes;  // applied after --quick, wherever they appear
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw UsageError{a + " needs a value"};
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelpText, stdout);
+      return false;
+    } else if (a == "--angles") {
+      explicit_axes.angles_deg = parseList(a, value(), 10.0, 170.0, "an opening angle in [10, 170] deg");
+    } else if (a == "--stiffness") {
+      explicit_axes.stiffness_fractions = parseList(a, value(), 1e-3, 10.0, "a fraction in [0.001, 10]");
+    } else if (a == "--forces") {
+      explicit_axes.push_forces_n = parseList(a, value(), 0.0, 50.0, "a force in [0, 50] N");
+    } else if (a == "--representations") {
+      for (const std::string& p : split(value())) {
+        if (p != "normal" && p != "relief")
+          throw UsageError{a + ": expected normal or relief, got '" + p + "'"};
+        explicit_axes.relief.push_back(p == "relief");
+      }
+    } else if (a == "--mitigations") {
+      for (const std::string& p : split(value())) explicit_axes.mitigations.push_back(parseMitigations(p));
+    } else if (a == "--quick") {
+      o.quick = true;
+    } else if (a == "--hand") {
+      const std::string name = value();
+      if (name != "default" && name != "light") throw UsageError{a + ": expected default or light, got '" + name + "'"};
+      o.setup.hand = handByName(name);
+    } else if (a == "--damping") {
+      o.setup.virtual_damping_ns_per_m = parseNumber(a, value());
+      if (o.setup.virtual_damping_ns_per_m < 0) throw UsageError{a + ": expected a damping >= 0 N s/m"};
+    } else if (a == "--recovery-ticks") {
+      const double v = parseNumber(a, value());
+      if (v < 0 || v > 1000 || v != std::floor(v)) throw UsageError{a + ": expected a whole number of ticks in [0, 1000]"};
+      o.setup.recovery_ticks = int(v);
+    } else if (a == "--smoothing-sigma") {
+      o.setup.geometry.smoothing_sigma_texels = parseNumber(a, value());
+      if (o.setup.geometry.smoothing_sigma_texels <= 0 || o.setup.geometry.smoothing_sigma_texels > 64)
+        throw UsageError{a + ": expected a sigma in (0, 64] texels"};
+    } else if (a == "--duration") {
+      o.setup.duration_s = parseNumber(a, value());
+    } else if (a == "--window") {
+      o.setup.window_s = parseNumber(a, value());
+    } else if (a == "--out-dir") {
+      o.out_dir = value();
+    } else if (a == "--name") {
+      o.basename = value();
+      if (o.basename.empty() || o.basename.find('/') != std::string::npos)
+        throw UsageError{a + ": expected a file name without '/'"};
+    } else if (a == "--no-picture") {
+      o.picture = false;
+    } else if (a == "--trace") {
+      o.trace_path = value();
+    } else if (a == "--threads") {
+      const double v = parseNumber(a, value());
+      if (v < 1 || v > 256 || v != std::floor(v)) throw UsageError{a + ": expected a whole number in [1, 256]"};
+      o.threads = int(v);
+    } else if (a == "--quiet") {
+      o.quiet = true;
+    } else {
+      throw UsageError{"unknown argument '" + a + "'"};
+    }
+  }
+  // The press must be in its hold phase for the whole window: hover, descent, push ramp first.
+  const double press_starts_s = o.setup.settle_s + 0.3;
+  if (o.setup.window_s < 0.05 || o.setup.window_s > o.setup.duration_s - press_starts_s)
+    throw UsageError{"--window: expected at least 0.05 s and at most --duration - " +
+                     std::to_string(press_starts_s) + " s (the press must be holding)"};
+  if (o.setup.duration_s > 60) throw UsageError{"--duration: expected at most 60 s per cell"};
+  if (o.quick) o.axes = quickAxes();
+  if (!explicit_axes.angles_deg.empty()) o.axes.angles_deg = explicit_axes.angles_deg;
+  if (!explicit_axes.stiffness_fractions.empty()) o.axes.stiffness_fractions = explicit_axes.stiffness_fractions;
+  if (!explicit_axes.push_forces_n.empty()) o.axes.push_forces_n = explicit_axes.push_forces_n;
+  if (!explicit_axes.relief.empty()) o.axes.relief = explicit_axes.relief;
+  if (!explicit_axes.mitigations.empty()) o.axes.mitigations = explicit_axes.mitigations;
+  return true;
+}
+
+}  // namespace thx::srv::stab

@@ -142,6 +142,7 @@ CellMetrics measureWindow(const std::vector<WindowSample>& s, const WindowEnergy
   m.passivity_dissipated_j = e.passivity_dissipated_j;
 
   m.contact_fraction = fraction(s, &WindowSample::in_contact);
+  m.at_peak_fraction = fraction(s, &WindowSample::at_peak);
   m.peak_clamp_fraction = fraction(s, &WindowSample::peak_clamped);
   m.continuous_limit_fraction = fraction(s, &WindowSample::continuous_limited);
   m.rate_limit_fraction = fraction(s, &WindowSample::rate_limited);
@@ -159,9 +160,9 @@ void classify(CellMetrics& m, const Thresholds& t, double period_m) {
   } else if (m.excursion_m > excursion_limit) {
     m.verdict = Verdict::Unstable;
     m.reason = format("pen %.3g mm from the floor (limit %.3g mm)", m.excursion_m * 1e3, excursion_limit * 1e3);
-  } else if (m.peak_clamp_fraction > 0.0) {
+  } else if (m.at_peak_fraction > 0.0) {
     m.verdict = Verdict::Unstable;
-    m.reason = format("force at the device peak in %.3g%% of the window (max %.3g N)", m.peak_clamp_fraction * 100,
+    m.reason = format("force at the device peak in %.3g%% of the window (max %.3g N)", m.at_peak_fraction * 100,
                       m.peak_force_n);
   } else if (m.lateral_pp_second_m > a_stable && m.lateral_pp_second_m > t.growth_ratio * m.lateral_pp_first_m) {
     m.verdict = Verdict::Unstable;

@@ -42,7 +42,7 @@ struct Thresholds {
   // unstable: the pen leaves its valley floor by more than this fraction of the period (it is
   // thrown up the walls, not buzzing at the crease) ...
   double excursion_period_fraction = 0.25;
-  // ... or the force reaches the device's peak (motor clip or safety peak clamp), or the lateral
+  // ... or the output force reaches the device's peak (motors clip), or the lateral
   // amplitude is still growing: second half of the window > growth_ratio x first half.
   double growth_ratio = 1.5;
 
@@ -76,7 +76,8 @@ struct CellMetrics {
   double injected_power_w = 0.0;      // energy_injected_j / window_s
   // pipeline activity, fraction of window ticks
   double contact_fraction = 0.0;
-  double peak_clamp_fraction = 0.0;        // safety peak clamp or motor saturation
+  double at_peak_fraction = 0.0;           // output at the device's peak force or motors clipped
+  double peak_clamp_fraction = 0.0;        // safety cut the request to the peak
   double continuous_limit_fraction = 0.0;  // safety continuous-force (thermal) limit
   double rate_limit_fraction = 0.0;
   double recovery_fraction = 0.0;          // renderer recovery ramp active
@@ -95,7 +96,8 @@ struct WindowSample {
   double depth_m = 0.0;
   bool in_contact = false;
   bool recovering = false;
-  bool peak_clamped = false;  // safety peak clamp or motor saturation
+  bool at_peak = false;       // the output reached the device's peak force (or the motors clipped)
+  bool peak_clamped = false;  // the safety stage cut the REQUEST to the peak (the output may be lower)
   bool continuous_limited = false;
   bool rate_limited = false;
   bool passivity_active = false;

@@ -21,6 +21,7 @@ SimRig::SimRig(const tex::TexturedSurface& surface, const dev::SimPhantomConfig&
   rc.stiffness_n_per_m = options.stiffness_n_per_m;
   rc.damping_ns_per_m = options.damping_ns_per_m;
   rc.crease_handling = options.crease_handling;
+  rc.recovery_ticks = options.recovery_ticks;
   renderer_ = std::make_unique<ProxyRenderer>(surface, rc);
   PassivityConfig pc = PassivityConfig::fromSpec(device_->spec(), period_s_, options.stiffness_n_per_m);
   pc.enabled = options.passivity;

@@ -25,6 +25,7 @@ struct RigOptions {
   double stiffness_n_per_m = 1000.0;
   double damping_ns_per_m = 0.0;  // the renderer's virtual damping B, along the spring
   bool crease_handling = true;
+  int recovery_ticks = RendererConfig{}.recovery_ticks;
   bool passivity = true;
 };
 

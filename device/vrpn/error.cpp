@@ -1,0 +1,21 @@
+#include "device/vrpn/error.hpp"
+
+namespace thx::vrpn {
+
+std::string_view toString(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::kBadCookie: return "bad cookie";
+    case ErrorCode::kBadLogMode: return "bad log mode";
+    case ErrorCode::kLengthTooSmall: return "length too small";
+    case ErrorCode::kLengthTooLarge: return "length too large";
+    case ErrorCode::kTruncated: return "truncated";
+    case ErrorCode::kBadDescription: return "bad description";
+    case ErrorCode::kIdOutOfRange: return "id out of range";
+    case ErrorCode::kPayloadSize: return "payload size";
+    case ErrorCode::kBadValue: return "bad value";
+    case ErrorCode::kOutputOverflow: return "output overflow";
+  }
+  return "unknown error";
+}
+
+}  // namespace thx::vrpn
