@@ -65,8 +65,10 @@ struct Variant {
 struct Stats {
   std::size_t n = 0, no_contact = 0;
   double sum_e2 = 0, sum_f2 = 0, max_e = 0, max_rel = 0;
+  std::vector<double> rel;  // per probe |error| / |F_exact|
   void add(double err, double f_exact, bool contact) {
     ++n;
+    rel.push_back(err / f_exact);
     no_contact += contact ? 0 : 1;
     sum_e2 += err * err;
     sum_f2 += f_exact * f_exact;
@@ -75,7 +77,19 @@ struct Stats {
   }
   double rms() const { return n ? std::sqrt(sum_e2 / double(n)) : 0.0; }
   double relRms() const { return sum_f2 > 0 ? std::sqrt(sum_e2 / sum_f2) : 0.0; }
+  double medianRel() const {
+    if (rel.empty()) return 0.0;
+    std::vector<double> r = rel;
+    std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
+    return r[r.size() / 2];
+  }
 };
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
 
 struct Result {
   std::string surface;
@@ -113,27 +127,49 @@ Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
   res.texel_m = truth.extent() / size;
   res.v = v;
   res.by_depth.resize(kDepths.size());
-  std::int64_t total_ns = 0;
   const Eigen::Vector3d v_down(0, 0, -kStep * 1000.0), still = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < probes.size(); ++i) {
-    const Eigen::Vector3d& p = probes[i].p;
+  // One press; returns the last force. Times the ticks below the true surface into ns_per_tick.
+  auto press = [&](const Eigen::Vector3d& p, double& ns_per_tick, std::size_t& timed) {
     const double z_true = truth.z(p.x(), p.y());
     renderer.reset();
     double z = kStartAbove;
-    // Above the true surface: not timed.
-    for (; z > z_true && z > p.z(); z -= kStep) renderer.render({p.x(), p.y(), z}, v_down);
+    for (; z > z_true && z > p.z(); z -= kStep) renderer.render({p.x(), p.y(), z}, v_down);  // not timed
     const std::int64_t t0 = nowNs();
     std::size_t ticks = 0;
     for (; z > p.z(); z -= kStep, ++ticks) renderer.render({p.x(), p.y(), z}, v_down);
     srv::RenderOutput out;
     for (int k = 0; k < kHoldTicks; ++k, ++ticks) out = renderer.render(p, still);
-    total_ns += nowNs() - t0;
+    ns_per_tick = double(nowNs() - t0) / double(ticks);
+    timed = ticks;
+    return out;
+  };
+  // Cost: the median over probes of each pass (robust to bursts of other work), best of three
+  // passes (the error pass and two timing passes over the first 1000 probes).
+  std::vector<double> pass_median;
+  std::vector<double> per_probe;
+  per_probe.reserve(probes.size());
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    double ns = 0;
+    std::size_t ticks = 0;
+    const srv::RenderOutput out = press(probes[i].p, ns, ticks);
+    per_probe.push_back(ns);
     res.timed_ticks += ticks;
     const double err = (out.force_world - f_exact[i]).norm(), f = f_exact[i].norm();
     res.all.add(err, f, out.in_contact);
     res.by_depth[probes[i].depth_index].add(err, f, out.in_contact);
   }
-  res.ns_per_tick = double(total_ns) / double(std::max<std::size_t>(1, res.timed_ticks));
+  pass_median.push_back(median(per_probe));
+  for (int pass = 0; pass < 2; ++pass) {
+    per_probe.clear();
+    for (std::size_t i = 0; i < probes.size() && i < 1000; ++i) {
+      double ns = 0;
+      std::size_t ticks = 0;
+      press(probes[i].p, ns, ticks);
+      per_probe.push_back(ns);
+    }
+    pass_median.push_back(median(per_probe));
+  }
+  res.ns_per_tick = *std::min_element(pass_median.begin(), pass_median.end());
   return res;
 }
 
@@ -147,7 +183,7 @@ const char* filterText(const std::string& f) {
 
 int main(int argc, char** argv) {
   std::string json_path, csv_path, png_path, md_path;
-  int probes_per_depth = 1000;
+  int probes_per_depth = 2500;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) {
@@ -230,12 +266,13 @@ int main(int argc, char** argv) {
 
     // ---- CSV: one row per configuration and depth (depth "all" = every probe).
     std::string csv =
-        "surface,size,texel_mm,filter,crease,depth_mm,probes,rms_err_n,max_err_n,rms_force_n,rel_rms,max_rel,"
+        "surface,size,texel_mm,filter,crease,depth_mm,probes,rms_err_n,max_err_n,rms_force_n,rel_rms,median_rel,max_rel,"
         "no_contact,ns_per_tick\n";
     auto csvRow = [&](const Result& r, const std::string& depth, const Stats& s) {
-      csv += bench::fmt("%s,%d,%.4f,%s,%s,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.1f\n", r.surface.c_str(), r.size,
+      csv += bench::fmt("%s,%d,%.4f,%s,%s,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.1f\n", r.surface.c_str(), r.size,
                         r.texel_m * 1e3, r.v.filter.c_str(), r.v.crease ? "on" : "off", depth.c_str(), s.n, s.rms(),
-                        s.max_e, std::sqrt(s.sum_f2 / double(std::max<std::size_t>(1, s.n))), s.relRms(), s.max_rel,
+                        s.max_e, std::sqrt(s.sum_f2 / double(std::max<std::size_t>(1, s.n))), s.relRms(),
+                        s.medianRel(), s.max_rel,
                         s.no_contact, r.ns_per_tick);
     };
     for (const Result& r : results) {
@@ -267,10 +304,12 @@ int main(int argc, char** argv) {
       const Result& r = results[i];
       js += bench::fmt(
           "    {\"surface\": \"%s\", \"size\": %d, \"texel_mm\": %.4f, \"filter\": \"%s\", \"crease\": %s, "
-          "\"probes\": %zu, \"rms_err_n\": %.6g, \"max_err_n\": %.6g, \"rel_rms\": %.6g, \"max_rel\": %.6g, "
+          "\"probes\": %zu, \"rms_err_n\": %.6g, \"max_err_n\": %.6g, \"rel_rms\": %.6g, \"median_rel\": %.6g, "
+          "\"max_rel\": %.6g, "
           "\"no_contact\": %zu, \"ns_per_tick\": %.1f, \"by_depth_rel_rms\": [",
           r.surface.c_str(), r.size, r.texel_m * 1e3, r.v.filter.c_str(), r.v.crease ? "true" : "false", r.all.n,
-          r.all.rms(), r.all.max_e, r.all.relRms(), r.all.max_rel, r.all.no_contact, r.ns_per_tick);
+          r.all.rms(), r.all.max_e, r.all.relRms(), r.all.medianRel(), r.all.max_rel, r.all.no_contact,
+          r.ns_per_tick);
       for (std::size_t d = 0; d < kDepths.size(); ++d) js += bench::fmt("%s%.6g", d ? ", " : "", r.by_depth[d].relRms());
       js += std::string("]}") + (i + 1 < results.size() ? ",\n" : "\n");
     }
@@ -327,20 +366,43 @@ int main(int argc, char** argv) {
           "(%d per row); protocol: reset, descend vertically from %.1f mm above the base plane at %.0f µm/tick, "
           "hold %d ticks, compare the last force with the exact k·(q − p). Errors are |F_rendered − F_exact|; "
           "relative = RMS error / RMS exact force; “no contact” = probes the renderer did not touch at all. "
-          "ns/tick: render() over the ticks below the true surface.\n\n",
+          "ns/tick: render() over the ticks below the true surface (median over probes, best of 3 passes).\n\n",
           kStiffness, probes_per_depth, probes_per_depth * int(kDepths.size()), kStartAbove * 1e3, kStep * 1e6,
           kHoldTicks);
       md += "Truth self-checks: " + checks + "\n";
+      // Compact view first: relative RMS error by size, and the cost.
+      md += "\nRelative RMS force error (median relative error in brackets) by texture size (texel over 0.2 m), and "
+            "render cost (ns/tick, median over the four sizes):\n\n";
+      md += "| surface | filter | crease |";
+      for (int size : kSizes) md += bench::fmt(" %d² (%.2f mm) |", size, 200.0 / size);
+      md += " ns/tick |\n|---|---|---|";
+      for (std::size_t i = 0; i < kSizes.size(); ++i) md += "---|";
+      md += "---|\n";
+      for (const auto& s : surfaces) {
+        for (const Variant& v : variants) {
+          md += "| " + s->name() + " | " + filterText(v.filter) + " | " + (v.crease ? "on" : "off") + " |";
+          std::vector<double> cost;
+          for (int size : kSizes) {
+            for (const Result& r : results) {
+              if (r.surface != s->name() || r.size != size || r.v.filter != v.filter || r.v.crease != v.crease) continue;
+              md += bench::fmt(" %.1f %% (%.1f %%) |", 100.0 * r.all.relRms(), 100.0 * r.all.medianRel());
+              cost.push_back(r.ns_per_tick);
+            }
+          }
+          std::sort(cost.begin(), cost.end());
+          md += bench::fmt(" %.0f |\n", cost.empty() ? 0.0 : (cost[(cost.size() - 1) / 2] + cost[cost.size() / 2]) / 2);
+        }
+      }
       for (const auto& s : surfaces) {
         md += "\n**" + s->description() + "**\n\n";
-        md += "| size (texel) | filter | crease | RMS err (mN) | relative RMS | max err (mN) | max relative | no contact | "
-              "ns/tick |\n";
-        md += "|---|---|---|---|---|---|---|---|---|\n";
+        md += "| size (texel) | filter | crease | RMS err (mN) | relative RMS | median relative | max err (mN) | "
+              "max relative | no contact | ns/tick |\n";
+        md += "|---|---|---|---|---|---|---|---|---|---|\n";
         for (const Result& r : results) {
           if (r.surface != s->name()) continue;
-          md += bench::fmt("| %d² (%.3f mm) | %s | %s | %.1f | %.1f %% | %.0f | %.0f %% | %zu | %.0f |\n", r.size,
-                           r.texel_m * 1e3, filterText(r.v.filter), r.v.crease ? "on" : "off", r.all.rms() * 1e3,
-                           100.0 * r.all.relRms(), r.all.max_e * 1e3, 100.0 * r.all.max_rel, r.all.no_contact,
+          md += bench::fmt("| %d² (%.3f mm) | %s | %s | %.1f | %.1f %% | %.1f %% | %.0f | %.0f %% | %zu | %.0f |\n",
+                           r.size, r.texel_m * 1e3, filterText(r.v.filter), r.v.crease ? "on" : "off",
+                           r.all.rms() * 1e3, 100.0 * r.all.relRms(), 100.0 * r.all.medianRel(), r.all.max_e * 1e3, 100.0 * r.all.max_rel, r.all.no_contact,
                            r.ns_per_tick);
         }
       }

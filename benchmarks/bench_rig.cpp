@@ -35,7 +35,7 @@ ServerRig::ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool re
                      dev::HapticDevice& device)
     : surface(map, scene::planeMapping(sc.surface), sc.surface.sampling, relief) {
   // As hapticd run(): renderer from the scene, passivity and safety from the device spec,
-  // one second of flight recorder, a 4096-slot publication ring.
+  // one second of flight recorder, a 1024-slot (1 s) publication ring.
   const dev::DeviceSpec& spec = device.spec();
   const double period_s = 1.0 / sc.rates.servo_hz;
   srv::RendererConfig rc = srv::rendererConfigFor(sc);
@@ -45,7 +45,7 @@ ServerRig::ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool re
       srv::PassivityConfig::fromSpec(spec, period_s, rc.stiffness_n_per_m));
   safety = std::make_unique<srv::SafetyStage>(srv::SafetyConfig::fromSpec(spec, period_s));
   recorder = std::make_unique<srv::FlightRecorder>(std::size_t(sc.rates.servo_hz));
-  ring = std::make_unique<srv::SpscRing<srv::TickRecord>>(4096);
+  ring = std::make_unique<srv::SpscRing<srv::TickRecord>>(1024);
   servo = std::make_unique<srv::Servo>(device, *renderer, *passivity, *safety, *recorder, *ring, srv::ServoConfig{});
 }
 
@@ -131,6 +131,9 @@ std::string firstLineWith(const char* path, const std::string& key) {
 }  // namespace
 
 std::string machineDescription() {
+  // Cached at the first call (each benchmark calls it when it starts), so the load average
+  // quoted is the one the measurements began under.
+  static const std::string text = [] {
   utsname u{};
   uname(&u);
   std::string cpu = firstLineWith("/proc/cpuinfo", "model name");
@@ -139,8 +142,15 @@ std::string machineDescription() {
   std::getline(cs, clock);
   const bool vm = !firstLineWith("/proc/cpuinfo", "flags").empty() &&
                   firstLineWith("/proc/cpuinfo", "flags").find("hypervisor") != std::string::npos;
-  return fmt("%s, %u CPUs%s, Linux %s (%s), clocksource %s", cpu.c_str(), std::thread::hardware_concurrency(),
-             vm ? " (virtual machine)" : "", u.release, u.version, clock.c_str());
+  std::string load;
+  std::ifstream la("/proc/loadavg");
+  std::getline(la, load);
+  load = load.substr(0, load.find(' ', load.find(' ', load.find(' ') + 1) + 1));
+  return fmt("%s, %u CPUs%s, Linux %s (%s), clocksource %s; load average at start %s", cpu.c_str(),
+             std::thread::hardware_concurrency(), vm ? " (virtual machine)" : "", u.release, u.version, clock.c_str(),
+             load.c_str());
+  }();
+  return text;
 }
 
 std::string isoTimeNow() {

@@ -30,8 +30,12 @@ struct Axis {
   std::vector<double> ticks() const {
     std::vector<double> t;
     if (log) {
+      // Narrow ranges (about a decade) get more mantissas so the axis stays readable.
+      const bool narrow = std::log10(hi / lo) <= 1.3;
+      const std::vector<double> mantissas = narrow ? std::vector<double>{1, 1.5, 2, 3, 4, 5, 7}
+                                                   : std::vector<double>{1, 2, 5};
       for (int e = int(std::floor(std::log10(lo))); e <= int(std::ceil(std::log10(hi))); ++e) {
-        for (double m : {1.0, 2.0, 5.0}) {
+        for (double m : mantissas) {
           const double v = m * std::pow(10.0, e);
           if (v >= lo * 0.999 && v <= hi * 1.001) t.push_back(v);
         }

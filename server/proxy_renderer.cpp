@@ -19,7 +19,8 @@ ProxyRenderer::ProxyRenderer(const tex::TexturedSurface& surface, const Renderer
 
 void ProxyRenderer::reset() {
   in_contact_ = false;
-  e_target_prev_.setZero();
+  prev_planes_ = LocalPlanes{};
+  prev_active_ = LocalPlanes{};
   e_rendered_prev_.setZero();
   recovery_offset_.setZero();
   recovery_left_ = 0;
@@ -87,13 +88,18 @@ bool ProxyRenderer::mergeConcave(LocalPlanes& into, const LocalPlanes& from) con
   return added;
 }
 
-Eigen::Vector3d ProxyRenderer::applyRecovery(bool contact, const Eigen::Vector3d& e_target, bool& recovering) {
-  const bool was_spring = e_rendered_prev_.squaredNorm() > 0.0;
-  if (config_.recovery_ticks > 0 && was_spring) {
-    // A plane change shows up as a jump of the penetration vector that the tip's own motion
-    // cannot explain at haptic speeds (0.2 mm per 1 ms tick = 0.2 m/s by default).
-    const Eigen::Vector3d reference = contact ? e_target_prev_ : Eigen::Vector3d::Zero();
-    if ((e_target - reference).norm() > config_.recovery_jump_m || (!contact && in_contact_)) {
+Eigen::Vector3d ProxyRenderer::applyRecovery(const Eigen::Vector3d& t, bool contact, const Eigen::Vector3d& e_target,
+                                             bool& recovering) {
+  if (config_.recovery_ticks > 0 && e_rendered_prev_.squaredNorm() > 0.0) {
+    // A plane change is what last tick's planes cannot explain: project this tick's tip onto
+    // them and compare. The tip's own motion, however fast (a tap into a wall), moves both alike
+    // and never counts; a flipped normal or a lost contact does.
+    Eigen::Vector3d e_predicted = Eigen::Vector3d::Zero();
+    if (prev_planes_.count > 0) {
+      const Projection p = projectOntoHalfspaces(t, prev_planes_.h, prev_planes_.count);
+      if (p.solved && !p.inside) e_predicted = p.x - t;
+    }
+    if ((e_target - e_predicted).norm() > config_.recovery_jump_m) {
       recovery_offset_ = e_rendered_prev_ - e_target;  // keep the current penetration ...
       recovery_left_ = config_.recovery_ticks;         // ... then move to the new one
     }
@@ -105,8 +111,8 @@ Eigen::Vector3d ProxyRenderer::applyRecovery(bool contact, const Eigen::Vector3d
     --recovery_left_;
     recovering = true;
   }
-  e_target_prev_ = contact ? e_target : Eigen::Vector3d::Zero();
   e_rendered_prev_ = e;
+  (void)contact;
   return e;
 }
 
@@ -143,6 +149,9 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
       const double ax = entering ? t.x() : proxy_local_.x();
       const double ay = entering ? t.y() : proxy_local_.y();
       planes = planesAround(ax, ay);
+      // The planes that held the proxy last tick stay (if still a concave set): without this
+      // memory a deep tip can make the proxy alternate between two plane sets on every tick.
+      if (!entering) mergeConcave(planes, prev_active_);
       Projection p = projectOntoHalfspaces(t, planes.h, planes.count);
       long long ai = 0, aj = 0;
       surface_.texelContaining(ax, ay, ai, aj);
@@ -170,8 +179,16 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
   }
 
   bool recovering = false;
-  const Eigen::Vector3d e = applyRecovery(contact, contact ? Eigen::Vector3d(proxy - t) : Eigen::Vector3d::Zero(),
-                                          recovering);
+  const Eigen::Vector3d e =
+      applyRecovery(t, contact, contact ? Eigen::Vector3d(proxy - t) : Eigen::Vector3d::Zero(), recovering);
+  prev_planes_ = contact ? planes : LocalPlanes{};
+  prev_active_ = LocalPlanes{};
+  for (int i = 0; contact && i < planes.count; ++i) {
+    if (!(out.active_mask & (1u << i))) continue;
+    prev_active_.h[std::size_t(prev_active_.count)] = planes.h[std::size_t(i)];
+    prev_active_.q[std::size_t(prev_active_.count)] = planes.q[std::size_t(i)];
+    ++prev_active_.count;
+  }
   in_contact_ = contact;
   proxy_local_ = contact ? proxy : t;
 

@@ -16,10 +16,11 @@
 //    projection repeated, at most kMaxMerges times, so a deep tip cannot make the proxy leap
 //    over a crease. At a V-valley floor both walls are held at once and the pen rests at the
 //    floor instead of bouncing between two single planes.
-// Both: the recovery rule. If the spring's penetration vector jumps by more than a threshold in
-// one tick (a plane changed under the pen), the previous penetration is kept and the rendered
-// penetration moves to the new one over `recovery_ticks` ticks (VRPN's rule, which stock VRPN
-// servers leave disabled). Contact loss with a large force ramps out the same way.
+// Both: the recovery rule. If this tick's penetration differs by more than a threshold from what
+// last tick's planes give for this tick's tip (a plane changed under the pen; the tip's own
+// motion never counts), the previous penetration is kept and the rendered penetration moves to
+// the new one over `recovery_ticks` ticks (VRPN's rule, which stock VRPN servers leave disabled).
+// Contact loss with a large force ramps out the same way.
 #include <Eigen/Core>
 #include <array>
 
@@ -77,7 +78,8 @@ class ProxyRenderer {
   LocalPlanes singlePlaneAt(const tex::SurfacePoint& s, double x, double y) const;
   bool mergeConcave(LocalPlanes& into, const LocalPlanes& from) const;
   bool concavePair(const Halfspace& a, const Eigen::Vector3d& qa, const Halfspace& b, const Eigen::Vector3d& qb) const;
-  Eigen::Vector3d applyRecovery(bool contact, const Eigen::Vector3d& e_target, bool& recovering);
+  Eigen::Vector3d applyRecovery(const Eigen::Vector3d& tip, bool contact, const Eigen::Vector3d& e_target,
+                                bool& recovering);
 
   const tex::TexturedSurface& surface_;
   RendererConfig config_;
@@ -86,7 +88,8 @@ class ProxyRenderer {
 
   bool in_contact_ = false;
   Eigen::Vector3d proxy_local_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d e_target_prev_ = Eigen::Vector3d::Zero();  // last tick's target penetration vector
+  LocalPlanes prev_planes_;  // last tick's plane set (empty without contact): predicts this tick
+  LocalPlanes prev_active_;  // of those, the ones that held the proxy
   Eigen::Vector3d e_rendered_prev_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d recovery_offset_ = Eigen::Vector3d::Zero();
   int recovery_left_ = 0;

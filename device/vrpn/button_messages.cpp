@@ -30,13 +30,13 @@ void ButtonStates::encode(ByteWriter& w) const {
 
 Result<ButtonStates> ButtonStates::decode(std::span<const std::uint8_t> payload) {
   if (payload.size() < 4)
-    return Error{ErrorCode::kPayloadSize, std::string(kTypeName) + " body is " + std::to_string(payload.size()) +
-                                              " bytes, expected at least 4"};
+    return Error{ErrorCode::kPayloadSize,
+                 std::string(kTypeName) + " body is " + std::to_string(payload.size()) + " bytes, expected at least 4"};
   ByteReader r(payload);
   const std::int32_t n = r.i32();
   if (n < 0 || std::size_t(n) > kMaxButtons)
-    return Error{ErrorCode::kBadValue, std::string(kTypeName) + " count " + std::to_string(n) + " outside 0.." +
-                                           std::to_string(kMaxButtons)};
+    return Error{ErrorCode::kBadValue,
+                 std::string(kTypeName) + " count " + std::to_string(n) + " outside 0.." + std::to_string(kMaxButtons)};
   // Size checked before the count is trusted for an allocation.
   if (auto e = checkSize(kTypeName, payload, 4 + 4 * std::size_t(n))) return *e;
   ButtonStates m;

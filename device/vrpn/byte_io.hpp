@@ -49,8 +49,7 @@ class ByteReader {
     if (remaining() < 4) return fail();
     const std::uint8_t* p = in_.data() + pos_;
     pos_ += 4;
-    return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) |
-           std::uint32_t(p[3]);
+    return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | std::uint32_t(p[3]);
   }
   std::int32_t i32() { return std::bit_cast<std::int32_t>(u32()); }
   float f32() { return std::bit_cast<float>(u32()); }

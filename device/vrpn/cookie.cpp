@@ -31,12 +31,12 @@ Result<PeerCookie> checkCookie(std::span<const std::uint8_t> bytes) {
   peer.version = printable(bytes.first(kVersionString.size()));
   if (!std::equal(kVersionMustMatch.begin(), kVersionMustMatch.end(), bytes.begin(),
                   [](char a, std::uint8_t b) { return std::uint8_t(a) == b; }))
-    return Error{ErrorCode::kBadCookie, "peer version '" + peer.version + "' is not '" +
-                                            std::string(kVersionMustMatch) + "xx'"};
+    return Error{ErrorCode::kBadCookie,
+                 "peer version '" + peer.version + "' is not '" + std::string(kVersionMustMatch) + "xx'"};
   const std::uint8_t mode = bytes[kLogModeOffset];
   if (mode < '0' || mode > '3')
-    return Error{ErrorCode::kBadLogMode, "peer cookie log-mode byte is " + std::to_string(mode) +
-                                             ", not ASCII '0'..'3'"};
+    return Error{ErrorCode::kBadLogMode,
+                 "peer cookie log-mode byte is " + std::to_string(mode) + ", not ASCII '0'..'3'"};
   peer.log_mode = mode - '0';
   peer.minor_differs = !std::equal(kVersionString.begin() + kVersionMustMatch.size(), kVersionString.end(),
                                    bytes.begin() + kVersionMustMatch.size(),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "device/vrpn/system_messages.hpp"
 
@@ -29,7 +30,7 @@ std::int32_t Endpoint::addName(NameMap& map, std::int32_t kind, std::string_view
 }
 
 void Endpoint::feed(std::span<const std::uint8_t> bytes) {
-  if (state_ == State::kDropped) return;
+  if (state_ == State::kDropped || input_finished_) return;
   stats_.bytes_in += bytes.size();
   if (peer_cookie_fill_ < kCookieSize) {
     const std::size_t n = std::min(bytes.size(), kCookieSize - peer_cookie_fill_);
@@ -47,7 +48,12 @@ std::optional<Event> Endpoint::poll() {
     return Dropped{*error_};
   }
   if (state_ == State::kHandshake) {
-    if (peer_cookie_fill_ < kCookieSize) return std::nullopt;
+    if (peer_cookie_fill_ < kCookieSize) {
+      if (!input_finished_) return std::nullopt;
+      fail(Error{ErrorCode::kTruncated,
+                 "peer closed after " + std::to_string(peer_cookie_fill_) + " of 24 cookie bytes"});
+      return poll();
+    }
     Result<PeerCookie> peer = checkCookie(peer_cookie_);
     if (!peer) {
       fail(peer.error());
@@ -61,7 +67,12 @@ std::optional<Event> Endpoint::poll() {
   }
   for (;;) {
     DecodeStep step = frames_.next();
-    if (std::holds_alternative<NeedMore>(step)) return std::nullopt;
+    if (std::holds_alternative<NeedMore>(step)) {
+      if (!input_finished_) return std::nullopt;
+      std::optional<Error> end = frames_.finish();
+      fail(end ? std::move(*end) : Error{ErrorCode::kPeerClosed, "peer closed the connection"});
+      return poll();
+    }
     if (auto* e = std::get_if<Error>(&step)) {
       fail(std::move(*e));
       return poll();
@@ -103,16 +114,6 @@ std::optional<Error> Endpoint::handleSystem(const Frame& frame) {
   if (!defined) return defined.error();
   ++stats_.descriptions_in;
   return std::nullopt;
-}
-
-void Endpoint::finishInput() {
-  if (state_ == State::kDropped) return;
-  if (peer_cookie_fill_ < kCookieSize) {
-    fail(Error{ErrorCode::kTruncated,
-               "peer closed after " + std::to_string(peer_cookie_fill_) + " of 24 cookie bytes"});
-    return;
-  }
-  if (auto e = frames_.finish()) fail(std::move(*e));
 }
 
 void Endpoint::drop(Error error) { fail(std::move(error)); }

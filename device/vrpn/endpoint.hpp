@@ -20,8 +20,8 @@
 //    types skipped"). Sequence words and padding are ignored. The payload (and the name views)
 //    stay valid until the next feed();
 //  - Dropped once, on the first error (bad cookie, malformed frame or description, output
-//    overflow, drop()); afterwards feed()/send() do nothing and poll() returns nothing. The owner
-//    closes this connection only.
+//    overflow, drop()) or at the end of input (finishInput); afterwards feed()/send() do nothing
+//    and poll() returns nothing. The owner closes this connection only.
 // Drain poll() until it returns nothing after every feed(): the input buffer holds what was fed
 // and not yet polled.
 //
@@ -102,8 +102,9 @@ class Endpoint {
 
   void feed(std::span<const std::uint8_t> bytes);
   std::optional<Event> poll();
-  // The peer closed its side: drops with kTruncated if it stopped inside the cookie or a message.
-  void finishInput();
+  // The peer closed its side (no feed() after this): poll() still returns what was fed, then
+  // Dropped with kPeerClosed, or kTruncated if the input stopped inside the cookie or a message.
+  void finishInput() { input_finished_ = true; }
   // The owner's verdict (e.g. a typed body failed to decode): drop with this reason.
   void drop(Error error);
 
@@ -141,6 +142,7 @@ class Endpoint {
   State state_ = State::kHandshake;
   std::optional<Error> error_;
   bool drop_reported_ = false;
+  bool input_finished_ = false;
 
   Cookie peer_cookie_{};
   std::size_t peer_cookie_fill_ = 0;

@@ -13,16 +13,20 @@
 namespace thx::vrpn {
 
 enum class ErrorCode {
-  kBadCookie,         // magic or major version differs from "vrpn: ver. 07."
-  kBadLogMode,        // cookie log-mode digit outside '0'..'3'
-  kLengthTooSmall,    // header length < 24
-  kLengthTooLarge,    // header length > kMaxFrameLength
-  kTruncated,         // input ended inside a cookie or message
-  kBadDescription,    // sender/type description with an inconsistent or oversized body
-  kIdOutOfRange,      // a description defines an id outside [0, kMaxNames)
-  kPayloadSize,       // a typed message body of the wrong size
-  kBadValue,          // a field value the receiver must reject (negative sensor, > 256 buttons)
-  kOutputOverflow,    // the peer stopped reading and our queue for it hit its limit
+  kBadCookie,       // magic or major version differs from "vrpn: ver. 07."
+  kBadLogMode,      // cookie log-mode digit outside '0'..'3'
+  kLengthTooSmall,  // header length < 24
+  kLengthTooLarge,  // header length > kMaxFrameLength
+  kTruncated,       // input ended inside a cookie or message
+  kBadDescription,  // sender/type description with an inconsistent or oversized body
+  kIdOutOfRange,    // a description defines an id outside [0, kMaxNames)
+  kPayloadSize,     // a typed message body of the wrong size
+  kBadValue,        // a field value the receiver must reject (negative sensor, > 256 buttons)
+  kOutputOverflow,  // the peer stopped reading and our queue for it hit its limit
+  kBadAddress,      // a device address we cannot parse or do not support
+  kBadLobRequest,   // a UDP connection request that fails the stock server's checks
+  kSocket,          // a socket call failed (reason carries the call and strerror)
+  kPeerClosed,      // the peer closed the connection cleanly between messages
 };
 
 std::string_view toString(ErrorCode code);

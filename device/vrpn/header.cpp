@@ -6,9 +6,9 @@
 namespace thx::vrpn {
 
 TimeValue wallClockNow() {
-  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(
-                      std::chrono::system_clock::now().time_since_epoch())
-                      .count();
+  const auto us =
+      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count();
   return TimeValue{std::uint32_t(us / 1'000'000), std::uint32_t(us % 1'000'000)};
 }
 
@@ -27,10 +27,11 @@ Result<Header> decodeHeader(std::span<const std::uint8_t> bytes) {
   ByteReader r(bytes.first(kHeaderSize));
   const std::uint32_t length = r.u32();
   if (length < kHeaderSize)
-    return Error{ErrorCode::kLengthTooSmall, "message length " + std::to_string(length) + " is below the 24-byte header"};
+    return Error{ErrorCode::kLengthTooSmall,
+                 "message length " + std::to_string(length) + " is below the 24-byte header"};
   if (length > kMaxFrameLength)
-    return Error{ErrorCode::kLengthTooLarge,
-                 "message length " + std::to_string(length) + " exceeds the limit of " + std::to_string(kMaxFrameLength)};
+    return Error{ErrorCode::kLengthTooLarge, "message length " + std::to_string(length) + " exceeds the limit of " +
+                                                 std::to_string(kMaxFrameLength)};
   Header h;
   h.payload_length = length - std::uint32_t(kHeaderSize);
   h.time.sec = r.u32();

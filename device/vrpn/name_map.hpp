@@ -46,7 +46,7 @@ class NameMap {
  private:
   std::deque<std::string> local_names_;  // deque: views handed out stay valid as it grows
   std::map<std::string, std::int32_t, std::less<>> local_ids_;
-  std::vector<std::string> remote_names_;    // by remote id; "" = undescribed
+  std::vector<std::string> remote_names_;      // by remote id; "" = undescribed
   std::vector<std::int32_t> remote_to_local_;  // cache of the by-name join, kNoId if none
 };
 

@@ -33,7 +33,8 @@ Result<std::string_view> decodeDescription(std::span<const std::uint8_t> payload
   const std::string_view name(reinterpret_cast<const char*>(raw.data()), std::size_t(end - raw.begin()));
   if (name.empty()) return Error{ErrorCode::kBadDescription, "description with an empty name"};
   if (name.size() > kMaxNameLength)
-    return Error{ErrorCode::kBadDescription, "described name is longer than " + std::to_string(kMaxNameLength) + " bytes"};
+    return Error{ErrorCode::kBadDescription,
+                 "described name is longer than " + std::to_string(kMaxNameLength) + " bytes"};
   return name;
 }
 

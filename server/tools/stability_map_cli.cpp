@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "device/hand_script.hpp"
+
 namespace thx::srv::stab {
 
 const char* const kHelpText = R"(usage: stability-map [options]
@@ -31,6 +33,7 @@ Setup:
   --damping B             renderer virtual damping, N s/m (default 1.0, as the scenes)
   --recovery-ticks N      renderer recovery ramp, ticks (default 10 = hapticd; 0 = off)
   --smoothing-sigma S     normal smoothing sigma, texels (default 2)
+  --aim-offset M          where the hand aims, beside the floor line, m (default 1e-4)
   --duration S            simulated seconds per cell (default 3)
   --window S              measured final window, s (default 1)
 
@@ -139,6 +142,10 @@ bool parseCommandLine(int argc, char** argv, CliOptions& o) {
       o.setup.geometry.smoothing_sigma_texels = parseNumber(a, value());
       if (o.setup.geometry.smoothing_sigma_texels <= 0 || o.setup.geometry.smoothing_sigma_texels > 64)
         throw UsageError{a + ": expected a sigma in (0, 64] texels"};
+    } else if (a == "--aim-offset") {
+      o.setup.aim_offset_m = parseNumber(a, value());
+      if (std::fabs(o.setup.aim_offset_m) > o.setup.geometry.period_m / 2)
+        throw UsageError{a + ": expected an offset within half a valley period"};
     } else if (a == "--duration") {
       o.setup.duration_s = parseNumber(a, value());
     } else if (a == "--window") {
@@ -164,7 +171,8 @@ bool parseCommandLine(int argc, char** argv, CliOptions& o) {
     }
   }
   // The press must be in its hold phase for the whole window: hover, descent, push ramp first.
-  const double press_starts_s = o.setup.settle_s + 0.3;
+  const dev::HandScriptOptions hand_script;
+  const double press_starts_s = o.setup.settle_s + hand_script.approach_s + hand_script.force_ramp_s;
   if (o.setup.window_s < 0.05 || o.setup.window_s > o.setup.duration_s - press_starts_s)
     throw UsageError{"--window: expected at least 0.05 s and at most --duration - " +
                      std::to_string(press_starts_s) + " s (the press must be holding)"};

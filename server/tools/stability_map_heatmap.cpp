@@ -28,12 +28,12 @@ const cv::Scalar kGrey(120, 120, 120);
 const cv::Scalar kWhite(255, 255, 255);
 const cv::Scalar kEmpty(225, 225, 225);
 
-// BGR. Colour-blind safe-ish: blue-green, amber, vermilion.
+// BGR: teal, amber, dark red; told apart by lightness too, and every square is lettered.
 cv::Scalar verdictColour(Verdict v) {
   switch (v) {
-    case Verdict::Stable: return cv::Scalar(115, 158, 0);
-    case Verdict::LimitCycle: return cv::Scalar(0, 159, 230);
-    case Verdict::Unstable: return cv::Scalar(0, 94, 213);
+    case Verdict::Stable: return cv::Scalar(115, 150, 0);
+    case Verdict::LimitCycle: return cv::Scalar(0, 165, 235);
+    case Verdict::Unstable: return cv::Scalar(40, 30, 180);
   }
   return kEmpty;
 }
@@ -121,6 +121,7 @@ void writeHeatmap(const std::string& path, const SweepAxes& axes, const std::vec
         centredText(img, fmt("%g", axes.angles_deg[std::size_t(c)]), {gx + c * kSquareW + kSquareW / 2, label_y}, 0.35,
                     kInk);
       centredText(img, "opening angle, deg", {gx + cols * kSquareW / 2, label_y + 13}, 0.33, kGrey);
+      text(img, "K/Kmax", {x0, label_y + 4}, 0.3, kGrey);
     }
   }
 

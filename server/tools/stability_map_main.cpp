@@ -52,16 +52,16 @@ int runTrace(const CliOptions& o, const CellParams& cell) {
   }
   out << "t_s,x_true_m,y_true_m,z_true_m,vx_true_m_per_s,vz_true_m_per_s,x_read_m,z_read_m,fx_out_n,fy_out_n,"
          "fz_out_n,fx_render_n,fz_render_n,depth_m,num_planes,recovering,pc_damping_ns_per_m,pc_energy_j,"
-         "safety_flags,motor_work_j,kinetic_energy_j\n";
+         "safety_flags,motor_work_j,kinetic_energy_j,proxy_x_m,proxy_z_m\n";
   const ValleyMap valley = buildValleyMap(cell.angle_deg, cell.mitigations.smoothing, o.setup.geometry);
   const CellResult r = simulateCell(cell, valley, o.setup, [&](const thx::srv::TickRecord& t, const thx::dev::SimTruth& s) {
     char line[512];
     std::snprintf(line, sizeof line,
-                  "%.4f,%.9g,%.9g,%.9g,%.6g,%.6g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g,%.6g,%u,%.6g,%.6g\n",
+                  "%.4f,%.9g,%.9g,%.9g,%.6g,%.6g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g,%.6g,%u,%.6g,%.6g,%.9g,%.9g\n",
                   s.t_s, s.p_world_m.x(), s.p_world_m.y(), s.p_world_m.z(), s.v_world_m_per_s.x(),
                   s.v_world_m_per_s.z(), t.p_world[0], t.p_world[2], t.f_out[0], t.f_out[1], t.f_out[2], t.f_render[0],
                   t.f_render[2], t.depth_m, int(t.num_planes), int(t.recovering), t.pc_damping_ns_per_m, t.pc_energy_j,
-                  t.safety_flags, s.motor_work_j, s.kinetic_energy_j);
+                  t.safety_flags, s.motor_work_j, s.kinetic_energy_j, t.proxy_world[0], t.proxy_world[2]);
     out << line;
   });
   std::fprintf(stderr, "stability-map: wrote %s: %s (%s)\n", o.trace_path.c_str(), verdictName(r.metrics.verdict),

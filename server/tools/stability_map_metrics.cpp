@@ -12,11 +12,12 @@ struct Detrended {
   double pp = 0.0;
   double rms = 0.0;
   double mean = 0.0;
+  int crossings = 0;  // of the residual through zero, with a dead band of +-band
 };
 
 // Peak-to-peak and RMS of y - (a + b t) over [begin, end), the least-squares line removed.
 template <class Get>
-Detrended detrend(const std::vector<WindowSample>& s, std::size_t begin, std::size_t end, Get get) {
+Detrended detrend(const std::vector<WindowSample>& s, std::size_t begin, std::size_t end, double band, Get get) {
   Detrended d;
   const std::size_t n = end - begin;
   if (n < 2) return d;
@@ -34,11 +35,16 @@ Detrended detrend(const std::vector<WindowSample>& s, std::size_t begin, std::si
   }
   const double slope = stt > 0 ? sty / stt : 0.0;
   double lo = INFINITY, hi = -INFINITY, sq = 0;
+  int side = 0;
   for (std::size_t k = begin; k < end; ++k) {
     const double r = get(s[k]) - ym - slope * (s[k].t_s - tm);
     lo = std::min(lo, r);
     hi = std::max(hi, r);
     sq += r * r;
+    // The dead band keeps quantisation chatter around a resting pen from counting as oscillation.
+    const int now = r > band ? 1 : (r < -band ? -1 : 0);
+    if (now != 0 && side != 0 && now != side) ++d.crossings;
+    if (now != 0) side = now;
   }
   d.pp = hi - lo;
   d.rms = std::sqrt(sq / double(n));
@@ -98,13 +104,17 @@ CellMetrics measureWindow(const std::vector<WindowSample>& s, const WindowEnergy
   const auto x = [](const WindowSample& w) { return w.p_m.x(); };
   const auto z = [](const WindowSample& w) { return w.p_m.z(); };
   const std::size_t half = s.size() / 2;
-  const Detrended lat = detrend(s, 0, s.size(), x);
+  const double band = encoder_resolution_m;
+  const Detrended lat = detrend(s, 0, s.size(), band, x);
+  const Detrended nor = detrend(s, 0, s.size(), band, z);
   m.lateral_pp_m = lat.pp;
   m.lateral_rms_m = lat.rms;
   m.lateral_offset_m = lat.mean - aim_x_m;
-  m.lateral_pp_first_m = detrend(s, 0, half, x).pp;
-  m.lateral_pp_second_m = detrend(s, half, s.size(), x).pp;
-  m.normal_pp_m = detrend(s, 0, s.size(), z).pp;
+  m.lateral_pp_first_m = detrend(s, 0, half, band, x).pp;
+  m.lateral_pp_second_m = detrend(s, half, s.size(), band, x).pp;
+  m.normal_pp_m = nor.pp;
+  m.crossings = lat.crossings;
+  m.normal_crossings = nor.crossings;
 
   double depth_sum = 0, fx_sum = 0, fz_sum = 0;
   for (const WindowSample& w : s) {
@@ -124,15 +134,6 @@ CellMetrics measureWindow(const std::vector<WindowSample>& s, const WindowEnergy
   m.normal_force_mean_n = fz_sum / n;
   m.normal_force_pp_n = peakToPeak(s, [](const WindowSample& w) { return w.f_out_n.z(); });
 
-  // Crossings of the mean with a one-count dead band, so quantisation chatter around a resting
-  // pen does not count as oscillation.
-  int side = 0;
-  for (const WindowSample& w : s) {
-    const double r = w.p_m.x() - lat.mean;
-    const int now = r > encoder_resolution_m ? 1 : (r < -encoder_resolution_m ? -1 : 0);
-    if (now != 0 && side != 0 && now != side) ++m.crossings;
-    if (now != 0) side = now;
-  }
   m.oscillation_hz = m.crossings / 2.0 / m.window_s;
 
   m.motor_work_j = e.motor_work_j;
@@ -153,6 +154,11 @@ CellMetrics measureWindow(const std::vector<WindowSample>& s, const WindowEnergy
 
 void classify(CellMetrics& m, const Thresholds& t, double period_m) {
   const double a_stable = t.stableAmplitudeM();
+  // Oscillation amplitudes: an axis that does not oscillate (too few crossings) is drifting.
+  const bool fed = m.motor_work_j > t.drift_energy_j;
+  const bool lat_osc = fed || m.crossings >= t.min_crossings, nor_osc = fed || m.normal_crossings >= t.min_crossings;
+  const double lat_amp = lat_osc ? m.lateral_pp_m : 0.0, nor_amp = nor_osc ? m.normal_pp_m : 0.0;
+  const double ripple = std::max(m.lateral_force_pp_n, m.normal_force_pp_n);
   const double excursion_limit = t.excursion_period_fraction * period_m;
   if (!m.finite) {
     m.verdict = Verdict::Unstable;
@@ -164,19 +170,20 @@ void classify(CellMetrics& m, const Thresholds& t, double period_m) {
     m.verdict = Verdict::Unstable;
     m.reason = format("force at the device peak in %.3g%% of the window (max %.3g N)", m.at_peak_fraction * 100,
                       m.peak_force_n);
-  } else if (m.lateral_pp_second_m > a_stable && m.lateral_pp_second_m > t.growth_ratio * m.lateral_pp_first_m) {
+  } else if (lat_osc && m.lateral_pp_second_m > a_stable &&
+             m.lateral_pp_second_m > t.growth_ratio * m.lateral_pp_first_m) {
     m.verdict = Verdict::Unstable;
     m.reason = format("lateral amplitude growing: %.3g -> %.3g um p-p", m.lateral_pp_first_m * 1e6,
                       m.lateral_pp_second_m * 1e6);
-  } else if (m.lateral_pp_m <= a_stable && m.normal_pp_m <= a_stable && m.lateral_force_pp_n <= t.buzz_force_pp_n &&
-             m.normal_force_pp_n <= t.buzz_force_pp_n) {
+  } else if (lat_amp <= a_stable && nor_amp <= a_stable && ripple <= t.buzz_force_pp_n) {
     m.verdict = Verdict::Stable;
-    m.reason = format("settled: %.3g um p-p, ripple %.3g N p-p", std::max(m.lateral_pp_m, m.normal_pp_m) * 1e6,
-                      std::max(m.lateral_force_pp_n, m.normal_force_pp_n));
+    m.reason = format("settled: oscillation %.3g um p-p, ripple %.3g N p-p", std::max(lat_amp, nor_amp) * 1e6, ripple);
+    if (!lat_osc && !nor_osc && std::max(m.lateral_pp_m, m.normal_pp_m) > a_stable)
+      m.reason += format(" (drifting %.3g um in the window, %.0f crossings)",
+                         std::max(m.lateral_pp_m, m.normal_pp_m) * 1e6, double(std::max(m.crossings, m.normal_crossings)));
   } else {
     m.verdict = Verdict::LimitCycle;
-    m.reason = format("sustained: %.3g um p-p, ripple %.3g N p-p", std::max(m.lateral_pp_m, m.normal_pp_m) * 1e6,
-                      std::max(m.lateral_force_pp_n, m.normal_force_pp_n));
+    m.reason = format("sustained: oscillation %.3g um p-p, ripple %.3g N p-p", std::max(lat_amp, nor_amp) * 1e6, ripple);
   }
 }
 

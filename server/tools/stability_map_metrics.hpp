@@ -6,9 +6,12 @@
 // safety stage's output, TickRecord::f_out). Axes are plane-local: lateral = x, across the valley;
 // normal = z, along the plane's normal. (The map's surface has the identity pose, so local = world.)
 //
-// Amplitudes are peak-to-peak after removing the least-squares linear trend over the window: a
-// pen still sinking slowly (the safety stage's continuous-force limit lets a hard push through)
-// is drift, not oscillation. Excursion (below) catches a pen that drifts out of its valley.
+// Amplitudes are peak-to-peak after removing the least-squares linear trend over the window, and
+// an axis whose residual crosses its mean fewer than min_crossings times (with a one-count dead
+// band) while the motors do less than drift_energy_j of net work is drifting, not oscillating: a pen still
+// sinking after a hard push (the safety stage's continuous-force limit lets it through) is not a
+// limit cycle. Excursion (below) catches a pen
+// that drifts out of its valley.
 //
 // Energy over the window [t0, t1] (hand target fixed during the hold):
 //   motor_work_j      = sum of SimTruth::motor_work_j (integral of F_motor . dx, per 0.1 ms step)
@@ -17,10 +20,11 @@
 // push, U_hand(x) = -F0 . d - d' A d / 2, d = x - x_target, F0 and A the hand force and its
 // stiffness matrix at the target (read from SimDynamics, so the hand model's anisotropy is
 // honoured). The rest of the body's energy balance is the hand's damping, the mechanism's damping
-// and friction, all dissipative, so energy_injected_j is exactly the energy those had to burn:
-// ~0 for a pen at rest, > 0 for a sustained oscillation, and with a fixed target only the motors
-// can have supplied it. (It is computed, not summed, so the integrator's energy error enters; it
-// is small with the symplectic integrator at 10 kHz.)
+// and friction, all dissipative, so energy_injected_j is exactly the energy those burnt in the
+// window: ~0 for a pen at rest, > 0 for a sustained oscillation. In a periodic steady state it
+// equals motor_work_j, the net energy the rendering loop fed in; while the pen sinks, the hand's
+// push feeds part of it (motor_work_j is then negative: the motors resist). (It is computed, not
+// summed, so the integrator's energy error enters; small with the symplectic integrator at 10 kHz.)
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -45,6 +49,14 @@ struct Thresholds {
   // ... or the output force reaches the device's peak (motors clip), or the lateral
   // amplitude is still growing: second half of the window > growth_ratio x first half.
   double growth_ratio = 1.5;
+  // An axis oscillates when its detrended position crosses the mean at least this often in the
+  // window (two full cycles); otherwise its motion is drift and its amplitude does not count ...
+  int min_crossings = 4;
+  // ... unless the motors did more net work than this in the window: then slow motion is a slow
+  // cycle the loop feeds, not a settling or sinking pen (whose motors resist: negative work). 1 mJ
+  // is the passivity controller's reservoir slack, "the most a sampling oscillation may build
+  // before the controller answers" (server/passivity.hpp).
+  double drift_energy_j = 1e-3;
 
   double stableAmplitudeM() const { return stable_amplitude_counts * encoder_resolution_m; }
 };
@@ -61,7 +73,8 @@ struct CellMetrics {
   double excursion_m = 0.0;           // max |x - floor x| over the window (not detrended)
   double normal_pp_m = 0.0;           // detrended peak-to-peak of z
   double depth_mean_m = 0.0;          // mean rendered penetration (TickRecord::depth_m)
-  int crossings = 0;                  // crossings of the mean x, with a hysteresis of one encoder count
+  int crossings = 0;                  // crossings of the detrended mean x, one-count dead band
+  int normal_crossings = 0;           // the same for z
   double oscillation_hz = 0.0;        // crossings / 2 / window
   // forces (commanded, after safety)
   double lateral_force_pp_n = 0.0;

@@ -1,5 +1,6 @@
 #include "server/tools/stability_map_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <stdexcept>
 
 #include "device/device_specs.hpp"
+#include "server/stability_budget.hpp"
 
 namespace thx::srv::stab {
 
@@ -60,6 +62,7 @@ std::vector<std::pair<const char*, double>> metricFields(const CellMetrics& m) {
           {"normal_pp_m", m.normal_pp_m},
           {"depth_mean_m", m.depth_mean_m},
           {"crossings", double(m.crossings)},
+          {"normal_crossings", double(m.normal_crossings)},
           {"oscillation_hz", m.oscillation_hz},
           {"lateral_force_pp_n", m.lateral_force_pp_n},
           {"lateral_force_rms_n", m.lateral_force_rms_n},
@@ -94,7 +97,22 @@ void writeAtomically(const std::string& path, const std::string& text) {
   if (ec) throw std::runtime_error(path + ": cannot rename " + tmp + ": " + ec.message());
 }
 
-std::string setupJson(const CellSetup& s) {
+// The configuration-time check hapticd runs (K <= 2 (b - |B|) / T), at the stiffest cell swept.
+std::string budgetJson(const CellSetup& s, double stiffness_fraction) {
+  const dev::SimPhantomConfig sim = simConfigFor(s.hand);
+  StabilityRequest r;
+  r.stiffness_fraction = stiffness_fraction;
+  r.virtual_damping_ns_per_m = s.virtual_damping_ns_per_m;
+  r.period_s = double(sim.servo_period_ns) * 1e-9;
+  const StabilityBudget b = checkStabilityBudget(sim.spec, r);
+  std::ostringstream o;
+  o << "{\"stiffness_fraction\": " << num(stiffness_fraction) << ", \"bound_n_per_m\": " << num(b.bound_n_per_m)
+    << ", \"required_physical_damping_ns_per_m\": " << num(b.required_physical_damping_ns_per_m)
+    << ", \"within_bound\": " << (b.within_bound ? "true" : "false") << ", \"message\": " << quoted(b.message) << "}";
+  return o.str();
+}
+
+std::string setupJson(const CellSetup& s, double max_stiffness_fraction) {
   const dev::SimPhantomConfig sim = simConfigFor(s.hand);
   const ValleyGeometry& g = s.geometry;
   std::ostringstream o;
@@ -120,6 +138,7 @@ std::string setupJson(const CellSetup& s) {
     << "},\n"
     << "    \"renderer\": {\"virtual_damping_ns_per_m\": " << num(s.virtual_damping_ns_per_m)
     << ", \"recovery_ticks\": " << s.recovery_ticks << "},\n"
+    << "    \"stability_budget\": " << budgetJson(s, max_stiffness_fraction) << ",\n"
     << "    \"script\": {\"aim_offset_m\": " << num(s.aim_offset_m) << ", \"hover_m\": " << num(s.hover_m)
     << ", \"settle_s\": " << num(s.settle_s) << ", \"duration_s\": " << num(s.duration_s)
     << ", \"window_s\": " << num(s.window_s) << "}\n  }";
@@ -130,9 +149,12 @@ std::string thresholdsJson(const Thresholds& t, double period_m) {
   std::ostringstream o;
   o << "{\"stable_amplitude_m\": " << num(t.stableAmplitudeM()) << ", \"buzz_force_pp_n\": " << num(t.buzz_force_pp_n)
     << ", \"unstable_excursion_m\": " << num(t.excursion_period_fraction * period_m)
-    << ", \"growth_ratio\": " << num(t.growth_ratio)
+    << ", \"growth_ratio\": " << num(t.growth_ratio) << ", \"min_crossings\": " << t.min_crossings
+    << ", \"drift_energy_j\": " << num(t.drift_energy_j)
     << ", \"rules\": \"unstable: non-finite, excursion, force at device peak, or lateral amplitude growing; "
-       "stable: amplitudes <= stable_amplitude_m and force ripple <= buzz_force_pp_n; else limit-cycle\"}";
+       "stable: oscillation amplitudes <= stable_amplitude_m and force ripple <= buzz_force_pp_n (an axis with fewer "
+       "than min_crossings mean crossings and at most drift_energy_j of motor work is drift, amplitude 0); else "
+       "limit-cycle\"}";
   return o.str();
 }
 
@@ -191,7 +213,9 @@ void writeJson(const std::string& path, const CliOptions& options, const std::ve
     << "  \"command_line\": " << quoted(commandLine(options.argv)) << ",\n"
     << "  \"argv\": " << list(options.argv, quoted) << ",\n"
     << "  \"deterministic\": \"lock-step virtual clock; results do not depend on --threads\",\n"
-    << "  \"setup\": " << setupJson(options.setup) << ",\n"
+    << "  \"setup\": "
+    << setupJson(options.setup, *std::max_element(a.stiffness_fractions.begin(), a.stiffness_fractions.end()))
+    << ",\n"
     << "  \"thresholds\": " << thresholdsJson(options.setup.thresholds, options.setup.geometry.period_m) << ",\n"
     << "  \"axes\": {\"angles_deg\": " << list(a.angles_deg, num)
     << ", \"stiffness_fractions\": " << list(a.stiffness_fractions, num)

@@ -1,0 +1,120 @@
+#!/usr/bin/env bash
+# Runs the benchmarks and regenerates their results: docs/results/bench_*.{json,csv,png} and the
+# tables in docs/benchmarks.md (between the <!-- BEGIN bench_X --> / <!-- END bench_X --> markers).
+#
+# Usage: benchmarks/run.sh [BUILD_DIR] [PART...]
+#   BUILD_DIR  a configured and built tree (default: build); build it first with
+#              cmake -S . -B BUILD_DIR -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build BUILD_DIR -j2 --target benchmarks
+#   PART       any of: render force_error memory latency (default: all four, in that order)
+#
+# Needs: the built benchmarks and hapticd; cyclictest (Debian rt-tests, in setup.sh) for latency;
+# root or CAP_SYS_NICE + CAP_IPC_LOCK for SCHED_FIFO and mlockall (without them the latency and
+# memory tables say so). Takes about 2.5 minutes. Timing on a shared machine is noisy: compare
+# ratios within one run.
+set -uo pipefail
+
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUILD=${1:-build}
+[ $# -gt 0 ] && shift
+case "$BUILD" in /*) ;; *) BUILD="$ROOT/$BUILD" ;; esac
+PARTS=("$@")
+[ ${#PARTS[@]} -eq 0 ] && PARTS=(render force_error memory latency)
+
+RESULTS="$ROOT/docs/results"
+DOC="$ROOT/docs/benchmarks.md"
+WORK="$BUILD/benchmarks/run"  # logs, scratch files and the table fragments
+BIN="$BUILD/benchmarks"
+HAPTICD="$BUILD/server/hapticd"
+mkdir -p "$RESULTS" "$WORK"
+
+say() { printf '[run.sh %s] %s\n' "$(date +%H:%M:%S)" "$*"; }
+failed=()
+
+need() {
+  if [ ! -x "$1" ]; then
+    say "missing $1: build it first (cmake --build $BUILD -j2 --target benchmarks)"
+    return 1
+  fi
+}
+
+# Replaces the lines between <!-- BEGIN name --> and <!-- END name --> in docs/benchmarks.md.
+splice() {
+  local name=$1 fragment=$2
+  if ! grep -q "^<!-- BEGIN $name -->$" "$DOC"; then
+    say "warning: no '<!-- BEGIN $name -->' marker in $DOC; table not updated"
+    return 0
+  fi
+  awk -v name="$name" -v frag="$fragment" '
+    $0 == "<!-- BEGIN " name " -->" { print; while ((getline line < frag) > 0) print line; skip = 1; next }
+    $0 == "<!-- END " name " -->" { skip = 0 }
+    !skip { print }
+  ' "$DOC" > "$DOC.tmp" && mv "$DOC.tmp" "$DOC"
+  say "updated the $name table in docs/benchmarks.md"
+}
+
+run_render() {
+  if [ ! -x "$BIN/bench_render" ]; then
+    say "bench_render was not built (Google Benchmark missing? Debian: libbenchmark-dev); skipping part 1"
+    return 1
+  fi
+  say "part 1: per-tick cost (Google Benchmark, about 60 s)"
+  "$BIN/bench_render" --benchmark_out="$RESULTS/bench_render.json" --benchmark_out_format=json \
+    --benchmark_counters_tabular=true --csv "$RESULTS/bench_render.csv" --md "$WORK/bench_render.md" || return 1
+  splice bench_render "$WORK/bench_render.md"
+}
+
+run_force_error() {
+  need "$BIN/bench_force_error" || return 1
+  say "part 2: force error against the exact height-field contact (about 60 s)"
+  "$BIN/bench_force_error" --json "$RESULTS/bench_force_error.json" --csv "$RESULTS/bench_force_error.csv" \
+    --png "$RESULTS/bench_force_error.png" --md "$WORK/bench_force_error.md" || return 1
+  splice bench_force_error "$WORK/bench_force_error.md"
+}
+
+run_memory() {
+  need "$BIN/bench_memory" && need "$HAPTICD" || return 1
+  say "part 3: hapticd memory with a 1024² relief map (about 15 s)"
+  "$BIN/bench_memory" --hapticd "$HAPTICD" --scene "$ROOT/benchmarks/scenes/relief1024.yaml" \
+    --baseline-scene "$ROOT/scenes/default.yaml" --workdir "$WORK" \
+    --json "$RESULTS/bench_memory.json" --csv "$RESULTS/bench_memory.csv" --md "$WORK/bench_memory.md" || return 1
+  splice bench_memory "$WORK/bench_memory.md"
+}
+
+run_latency() {
+  need "$BIN/bench_latency" && need "$HAPTICD" || return 1
+  local ct
+  ct=$(command -v cyclictest || true)
+  if [ -z "$ct" ]; then
+    say "cyclictest not found: install rt-tests (./setup.sh); skipping part 4"
+    return 1
+  fi
+  say "part 4: wake-up latency, hapticd beside cyclictest (5 runs of 10 s)"
+  # The latency tool writes its fragment even when a run fails (the table then says why).
+  "$BIN/bench_latency" --hapticd "$HAPTICD" --scene "$ROOT/scenes/default.yaml" --seconds 10 --cyclictest "$ct" \
+    --workdir "$WORK" --json "$RESULTS/bench_latency.json" --csv "$RESULTS/bench_latency.csv" \
+    --md "$WORK/bench_latency.md"
+  local rc=$?
+  [ -s "$WORK/bench_latency.md" ] && splice bench_latency "$WORK/bench_latency.md"
+  return $rc
+}
+
+for part in "${PARTS[@]}"; do
+  case "$part" in
+    render | force_error | memory | latency)
+      if ! "run_$part"; then
+        say "part '$part' FAILED (logs in $WORK)"
+        failed+=("$part")
+      fi
+      ;;
+    *)
+      say "unknown part '$part' (expected: render force_error memory latency)"
+      exit 2
+      ;;
+  esac
+done
+
+if [ ${#failed[@]} -gt 0 ]; then
+  say "done with failures: ${failed[*]}"
+  exit 1
+fi
+say "done: results in docs/results/, tables in docs/benchmarks.md"

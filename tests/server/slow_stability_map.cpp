@@ -1,0 +1,41 @@
+// The stability map's headline at full device stiffness (docs/stability.md), over every opening
+// angle, push force and representation of the documented map: without mitigations steep valleys
+// are unstable; with crease handling (alone or with the passivity controller) no cell is. Label
+// `slow` (ctest -L slow): 192 cells, a second optimised, much longer under the sanitizers.
+#include <gtest/gtest.h>
+
+#include "server/tools/stability_map_sweep.hpp"
+
+using namespace thx::srv::stab;
+
+namespace {
+
+std::vector<CellResult> fullStiffnessRow(const char* mitigations) {
+  SweepAxes axes = fullAxes();
+  axes.stiffness_fractions = {1.0};
+  axes.mitigations.clear();
+  const std::string m = mitigations;
+  axes.mitigations.push_back(Mitigations{m.find("crease") != std::string::npos,
+                                         m.find("passivity") != std::string::npos, false});
+  return runSweep(enumerateCells(axes), CellSetup{}, 2);
+}
+
+}  // namespace
+
+TEST(StabilityMapSlow, WithoutMitigationsSteepValleysAreUnstableAtFullStiffness) {
+  for (const CellResult& r : fullStiffnessRow("none")) {
+    if (r.params.angle_deg > 60 || r.params.push_force_n != 1.0) continue;
+    EXPECT_EQ(r.metrics.verdict, Verdict::Unstable)
+        << r.params.angle_deg << " deg " << (r.params.relief ? "relief" : "normal") << ": " << r.metrics.reason;
+  }
+}
+
+TEST(StabilityMapSlow, CreaseHandlingLeavesNoUnstableCellAtFullStiffness) {
+  for (const char* m : {"crease", "crease+passivity"}) {
+    for (const CellResult& r : fullStiffnessRow(m)) {
+      EXPECT_NE(r.metrics.verdict, Verdict::Unstable)
+          << m << ": " << r.params.angle_deg << " deg " << r.params.push_force_n << " N "
+          << (r.params.relief ? "relief" : "normal") << ": " << r.metrics.reason;
+    }
+  }
+}
