@@ -148,7 +148,7 @@ void registerServo(const Fixture& fx) {
     for (auto _ : state) {
       const srv::TickRecord& r = rig.servo->tick();
       benchmark::DoNotOptimize(&r);
-      if ((++k & 1023) == 0) {
+      if ((++k & 511) == 0) {
         state.PauseTiming();
         rig.drain();
         state.ResumeTiming();
@@ -180,7 +180,7 @@ void registerServo(const Fixture& fx) {
     for (auto _ : state) {
       const srv::TickRecord& r = rig.servo->tick();
       benchmark::DoNotOptimize(&r);
-      if ((++k & 1023) == 0) {
+      if ((++k & 511) == 0) {
         state.PauseTiming();
         rig.drain();
         state.ResumeTiming();

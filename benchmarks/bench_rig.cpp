@@ -83,7 +83,7 @@ Recording recordRun(const scene::Scene& sc, const tex::TextureMap& map, bool rel
   for (std::size_t k = 0; k < ticks; ++k) {
     const srv::TickRecord& r = rig.servo->tick();
     rec.in_contact.push_back(r.in_contact ? 1 : 0);
-    if ((k & 1023) == 1023) rig.drain();
+    if ((k & 511) == 511) rig.drain();
   }
   tap.close();
   rec.states = std::move(tap.states);

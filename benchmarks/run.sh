@@ -59,7 +59,7 @@ run_render() {
   fi
   say "part 1: per-tick cost (Google Benchmark, about 60 s)"
   "$BIN/bench_render" --benchmark_out="$RESULTS/bench_render.json" --benchmark_out_format=json \
-    --benchmark_counters_tabular=true --csv "$RESULTS/bench_render.csv" --md "$WORK/bench_render.md" || return 1
+    --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true --csv "$RESULTS/bench_render.csv" --md "$WORK/bench_render.md" || return 1
   splice bench_render "$WORK/bench_render.md"
 }
 

@@ -99,7 +99,7 @@ Eigen::Vector3d ProxyRenderer::applyRecovery(const Eigen::Vector3d& t, bool cont
       const Projection p = projectOntoHalfspaces(t, prev_planes_.h, prev_planes_.count);
       if (p.solved && !p.inside) e_predicted = p.x - t;
     }
-    if ((e_target - e_predicted).norm() > config_.recovery_jump_m) {
+    if (config_.stiffness_n_per_m * (e_target - e_predicted).norm() > config_.recovery_jump_n) {
       recovery_offset_ = e_rendered_prev_ - e_target;  // keep the current penetration ...
       recovery_left_ = config_.recovery_ticks;         // ... then move to the new one
     }

@@ -36,7 +36,10 @@ struct RendererConfig {
   bool crease_handling = true;
   double crease_angle_deg = 8.0;      // neighbour texels whose normals differ more form a crease
   int recovery_ticks = 10;            // 0 disables the recovery rule
-  double recovery_jump_m = 2e-4;      // penetration change in one tick that counts as a plane change
+  // A plane change is a jump of the spring force (k x the unexplained penetration change) above
+  // this: a force threshold, so a deep press on a soft surface, whose long penetration vector
+  // swings with every small normal change, does not count every tick as a plane change.
+  double recovery_jump_n = 0.2;
 };
 
 struct RenderOutput {

@@ -1,5 +1,6 @@
 #include "server/tools/stability_map_sweep.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <map>

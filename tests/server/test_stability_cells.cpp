@@ -347,12 +347,12 @@ TEST(StabilityHardCases, NonFiniteReadingsZeroTheForceAndDisengage) {
 
 // ---- a renderer bug the map exposed (docs/stability.md, "Bugs found") ---------------------------
 
-// DISABLED until server/proxy_renderer.cpp is fixed: applyRecovery() re-arms the recovery ramp on
-// every tick whose target penetration moved by more than recovery_jump_m (0.2 mm), so a tip
-// entering a wall faster than 0.2 m/s keeps the PREVIOUS tick's penetration for as long as it
-// keeps moving: the spring is frozen and a firm press pops through. Expected: a plain wall
-// (no plane change at all) renders K x depth whatever the approach speed.
-TEST(RendererRecovery, DISABLED_FastPressIntoAFlatWallIsNotFrozen) {
+// Bug A of docs/stability.md (fixed): applyRecovery() used to re-arm the recovery ramp on every
+// tick whose target penetration moved by more than 0.2 mm, so a tip entering a wall faster than
+// 0.2 m/s kept the PREVIOUS tick's penetration for as long as it kept moving: the spring froze and
+// a firm press popped through. A plain wall (no plane change at all) renders K x depth whatever
+// the approach speed.
+TEST(RendererRecovery, FastPressIntoAFlatWallIsNotFrozen) {
   tex::GenerateRequest g;
   g.kind = "tilted";
   g.size = 64;
