@@ -10,7 +10,7 @@ PACKAGES="
   libopencv-core-dev libopencv-imgproc-dev
   libyaml-cpp-dev
   liblcm-dev liblcm-bin libglib2.0-dev
-  googletest libgtest-dev
+  googletest libgtest-dev libbenchmark-dev
   rt-tests
 "
 

@@ -354,7 +354,7 @@ int main(int argc, char** argv) {
       }
       bench::writePlotPng(png_path, panels,
                           "Points labelled by texture size (texels per side over 0.2 m). Regenerate: "
-                          "benchmarks/run.sh (bench_force_error). k = 600 N/m.");
+                          "benchmarks/run.sh BUILD_DIR force_error. k = 600 N/m; errors of the renderer as built.");
     }
 
     // ---- Markdown

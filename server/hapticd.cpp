@@ -238,11 +238,6 @@ int run(const Options& o) {
   const double duration_s = o.duration_s.value_or(device.script().duration() + 0.5);
   const std::int64_t stop_tick = duration_s > 0 ? std::int64_t(std::llround(duration_s * sc.rates.servo_hz)) : -1;
 
-  struct sigaction sa {};
-  sa.sa_handler = onSignal;
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-
   publisher.start();
   if (receiver) receiver->start();
   srv::RealtimeReport rt;
@@ -330,6 +325,12 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // First of all: a SIGINT/SIGTERM during start-up (loading a large texture takes a while) must
+  // also end in an orderly shutdown with statistics, not in the default action.
+  struct sigaction sa {};
+  sa.sa_handler = onSignal;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
   const Options options = parse(argc, argv);
   // Every thread (ours, LCM's GLib thread) gets a 512 KiB stack instead of glibc's 8 MiB default:
   // under mlockall(MCL_FUTURE) each stack is locked in full, so 8 MiB stacks cost 8 MB of RAM each.
