@@ -3,30 +3,15 @@
 // (Eigen heap use would go through malloc, not operator new; device/ uses fixed-size types only.)
 #include <gtest/gtest.h>
 
+#include "tests/support/allocation_counter.hpp"
+
 #include <atomic>
 #include <cstdlib>
 #include <new>
 
 #include "device/sim_phantom.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
 
-// The replacements pair malloc with free on purpose; GCC cannot see that new and delete match.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 using namespace thx::dev;
 
@@ -43,13 +28,13 @@ long allocationsDuringTicks(OutputMode mode, const SimFaults& faults) {
   cmd.forces_enabled = true;
   cmd.num_planes = 1;
   cmd.planes[0].k_n_per_m = 500.0;
-  const long before = g_allocations.load();
+  const long before = thx::test::g_allocations.load();
   for (int k = 0; k < 1500; ++k) {
     const DeviceState s = sim.read();
     cmd.force_world_n = Eigen::Vector3d(0, 0, 600.0 * std::max(0.0, -s.p_world.z()));
     if (k % 7 != 3) sim.write(cmd);  // some ticks without a write: the watchdog path too
   }
-  return g_allocations.load() - before;
+  return thx::test::g_allocations.load() - before;
 }
 
 }  // namespace
@@ -61,8 +46,8 @@ TEST(SimNoAlloc, ReadAndWriteNeverAllocate) {
 }
 
 TEST(SimNoAlloc, TheCounterWorks) {
-  const long before = g_allocations.load();
+  const long before = thx::test::g_allocations.load();
   auto* v = new std::vector<int>(100);
   delete v;
-  EXPECT_GE(g_allocations.load() - before, 2);
+  EXPECT_GE(thx::test::g_allocations.load() - before, 2);
 }

@@ -4,6 +4,8 @@
 // reservoir cap; no allocation in the tick.
 #include <gtest/gtest.h>
 
+#include "tests/support/allocation_counter.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -20,22 +22,7 @@ using srv::PassivityConfig;
 using srv::PassivityController;
 using Eigen::Vector3d;
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
 
-// GCC cannot see that this new and delete are a matched pair once it inlines them (it warns
-// under the sanitizer build); they are.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 namespace {
 
@@ -383,14 +370,14 @@ TEST(Passivity, ApplyDoesNotAllocate) {
   PassivityConfig c = PassivityConfig::fromSpec(desktop(), kT, 1000.0);
   c.output_delay_ticks = 2;
   PassivityController pc(c);
-  const long before = g_allocations.load();
+  const long before = thx::test::g_allocations.load();
   for (int n = 0; n < 5000; ++n) {
     const double s = std::sin(n * 0.01);
     pc.apply(z(2.0 * s), z(0.1 * std::cos(n * 0.013)));
     pc.recordAppliedForce(z(1.9 * s));
   }
-  EXPECT_EQ(g_allocations.load(), before);
+  EXPECT_EQ(thx::test::g_allocations.load(), before);
   void* volatile probe = ::operator new(16);  // the counter does count
   ::operator delete(probe);
-  EXPECT_EQ(g_allocations.load(), before + 1);
+  EXPECT_EQ(thx::test::g_allocations.load(), before + 1);
 }

@@ -3,6 +3,8 @@
 // disengage; a seeded fuzz for the peak bound; no allocation in the tick.
 #include <gtest/gtest.h>
 
+#include "tests/support/allocation_counter.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -20,23 +22,7 @@ using srv::SafetyStage;
 using srv::SafetyState;
 using Eigen::Vector3d;
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
 
-// Counts every allocation in this test program; the stage must not make any per tick.
-// GCC cannot see that this new and delete are a matched pair once it inlines them (it warns
-// under the sanitizer build); they are.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 namespace {
 
@@ -474,14 +460,14 @@ TEST(Safety, FuzzOutputIsFiniteWithinPeakAndRateLimited) {
 
 TEST(Safety, ApplyDoesNotAllocate) {
   SafetyStage s(SafetyConfig::fromSpec(desktop(), kT));
-  const long before = g_allocations.load();
+  const long before = thx::test::g_allocations.load();
   for (int k = 0; k < 3000; ++k) {
     s.apply(Vector3d(k < 10 ? 0.0 : 9.0, 1.0, k % 97 == 0 ? kNaN : 0.0));
     if (k == 2000) s.requestShutdown();
     if (k == 1500) s.disengage();
   }
-  EXPECT_EQ(g_allocations.load(), before);
+  EXPECT_EQ(thx::test::g_allocations.load(), before);
   void* volatile probe = ::operator new(16);  // the counter does count
   ::operator delete(probe);
-  EXPECT_EQ(g_allocations.load(), before + 1);
+  EXPECT_EQ(thx::test::g_allocations.load(), before + 1);
 }

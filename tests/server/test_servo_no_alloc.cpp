@@ -1,33 +1,11 @@
 // DESIGN §4 rule 1: nothing in the servo tick allocates. Every operator new in this binary is
-// counted while `counting` is set; a full tick pipeline (render with crease handling, passivity,
-// safety, flight recorder, ring) runs 5000 ticks of presses and strokes across V-valleys.
+// counted (tests/support/allocation_counter.hpp); a full tick pipeline (render with crease
+// handling, passivity, safety, flight recorder, ring) runs 5000 ticks of presses and strokes
+// across V-valleys, with client forces and a fault.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 #include "tests/server/servo_fixture.hpp"
-
-// The replacement operators pair new with malloc and delete with free, which is correct; g++
-// cannot see that across the replacement and warns.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-namespace {
-std::atomic<bool> counting{false};
-std::atomic<long> allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#include "tests/support/allocation_counter.hpp"
 
 using namespace thx;
 
@@ -44,7 +22,7 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
   rig.run(10);  // let lazily initialised runtime pieces settle outside the measurement
   srv::ClientForce cf;
   cf.force_world_n[2] = 0.1;
-  counting = true;
+  const long before = test::g_allocations.load();
   for (int k = 0; k < 5000; ++k) {
     if (k % 10 == 0) rig.servo->clientForceSlot().write(cf);
     rig.servo->tick();
@@ -52,8 +30,7 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
     while (rig.ring.pop(r)) {
     }
   }
-  counting = false;
-  EXPECT_EQ(allocations.load(), 0);
+  EXPECT_EQ(test::g_allocations.load() - before, 0);
   EXPECT_GT(rig.servo->counters().contact_ticks, 2000u);
   EXPECT_EQ(rig.servo->counters().faults, 1u);
 }
