@@ -48,6 +48,7 @@ void PassivityConfig::validate() const {
   requireNonNegative("max_damping_ns_per_m", max_damping_ns_per_m, "a finite number >= 0 N s/m");
   requireNonNegative("max_force_n", max_force_n, "a finite number >= 0 N");
   requireNonNegative("max_reservoir_j", max_reservoir_j, "a finite energy >= 0 J");
+  requireNonNegative("velocity_deadband_m_per_s", velocity_deadband_m_per_s, "a finite speed >= 0 m/s");
   requireNonNegative("stored_energy_stiffness_n_per_m", stored_energy_stiffness_n_per_m,
                      "a finite stiffness >= 0 N/m (0: the environment stores no energy)");
   if (output_delay_ticks < 0 || output_delay_ticks > kMaxOutputDelayTicks) {
@@ -95,8 +96,14 @@ void PassivityController::sumInFlight() {
 }
 
 Eigen::Vector3d PassivityController::apply(const Eigen::Vector3d& force_on_pen_n,
-                                           const Eigen::Vector3d& pen_velocity_m_per_s) {
+                                           const Eigen::Vector3d& velocity_reading_m_per_s) {
   const double t = config_.period_s;
+  // Quantisation dead band (header): a reading that toggled by one encoder count is not motion the
+  // loop can be blamed for.
+  Eigen::Vector3d pen_velocity_m_per_s = velocity_reading_m_per_s;
+  for (int k = 0; k < 3; ++k) {
+    if (std::fabs(pen_velocity_m_per_s[k]) <= config_.velocity_deadband_m_per_s) pen_velocity_m_per_s[k] = 0.0;
+  }
   const InFlight& due = in_flight_[static_cast<std::size_t>(oldest_)];
   const double still_in_flight_j = in_flight_j_ - due.predicted_j;
   alpha_ns_per_m_ = 0.0;
@@ -149,6 +156,14 @@ void PassivityController::recordAppliedForce(const Eigen::Vector3d& applied_forc
   slot.force_n = applied;
   slot.predicted_j = predicted_j;
   sumInFlight();
+}
+
+double quantisationDeadband(const dev::DeviceSpec& spec, double period_s) {
+  if (!std::isfinite(spec.position_resolution_m) || !(spec.position_resolution_m > 0.0) || !(period_s > 0.0)) {
+    return 0.0;
+  }
+  // One count per period, plus a hair so a one-count step is inside the band despite rounding.
+  return 1.001 * spec.position_resolution_m / period_s;
 }
 
 }  // namespace thx::srv

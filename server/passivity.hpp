@@ -46,6 +46,16 @@
 // answers. K = 0 (unknown) makes the cap absolute, and then any press storing more than the slack
 // is partly damped on release.
 //
+// Quantisation dead band. A pen at rest on an encoder count boundary toggles its reading by one
+// count; the finite-difference velocity toggles by +-q/T and the observer books K q^2 / 2 of
+// "generated" energy per toggle (real for the quantised path, 0.3 um of true motion). Unchecked,
+// the controller sat at its bound and turned the toggling into a 0.3 N, 250 Hz ripple on a pen
+// at rest (docs/stability.md, bug B). Velocity components within one count per period are
+// therefore treated as zero, for observing and for damping; a real oscillation moves more. The
+// band also hides slow real motion (< one count per tick) from the observer, where a sampled
+// wall generates least (K dx^2 / 2 per tick), so it is opt-in: hapticd sets it from the device's
+// resolution (quantisationDeadband), fromSpec() leaves it off.
+//
 // No reset on contact loss. A full reset would forgive energy the loop has just created: a pen
 // bouncing on a wall gains energy at each contact, and resetting at each lift-off would let the
 // bounce grow for ever. Forgetting only positive slack at lift-off is sound for a memoryless
@@ -68,6 +78,7 @@ struct PassivityConfig {
   double max_reservoir_j = 1e-3;      // slack above the stored spring energy
   double stored_energy_stiffness_n_per_m = 0.0;  // rendered K; 0: the VE stores nothing
   int output_delay_ticks = 0;         // 0..kMaxOutputDelayTicks
+  double velocity_deadband_m_per_s = 0.0;  // per axis; 0 = off; quantisationDeadband() for hapticd
   bool enabled = true;
 
   // max_damping_ns_per_m = the device's max damping (its recommended limit for stable damping);
@@ -77,6 +88,9 @@ struct PassivityConfig {
                                   double rendered_stiffness_n_per_m);
   void validate() const;  // throws std::invalid_argument naming field, value and expectation
 };
+
+// One encoder count per period for this device, for PassivityConfig::velocity_deadband_m_per_s.
+double quantisationDeadband(const dev::DeviceSpec& spec, double period_s);
 
 class PassivityController {
  public:

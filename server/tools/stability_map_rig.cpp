@@ -25,6 +25,7 @@ SimRig::SimRig(const tex::TexturedSurface& surface, const dev::SimPhantomConfig&
   renderer_ = std::make_unique<ProxyRenderer>(surface, rc);
   PassivityConfig pc = PassivityConfig::fromSpec(device_->spec(), period_s_, options.stiffness_n_per_m);
   pc.enabled = options.passivity;
+  pc.velocity_deadband_m_per_s = quantisationDeadband(device_->spec(), period_s_);  // as hapticd
   passivity_ = std::make_unique<PassivityController>(pc);
   safety_ = std::make_unique<SafetyStage>(SafetyConfig::fromSpec(device_->spec(), period_s_));
   servo_ = std::make_unique<Servo>(*device_, *renderer_, *passivity_, *safety_, recorder_, ring_, ServoConfig{});

@@ -381,3 +381,26 @@ TEST(Passivity, ApplyDoesNotAllocate) {
   ::operator delete(probe);
   EXPECT_EQ(thx::test::g_allocations.load(), before + 1);
 }
+
+// Bug B of docs/stability.md: a pen at rest on an encoder count boundary toggles its reading by
+// one count; without the dead band the observer books that as generated energy and the controller
+// ends up damping a pen at rest; with it, nothing happens.
+TEST(Passivity, QuantisationDeadbandIgnoresOneCountToggles) {
+  const dev::DeviceSpec spec = desktop();
+  const double q = spec.position_resolution_m, k = 1000.0;
+  auto run = [&](double deadband) {
+    PassivityConfig c = PassivityConfig::fromSpec(spec, kT, k);
+    c.velocity_deadband_m_per_s = deadband;
+    PassivityController pc(c);
+    double depth = 0.002;
+    for (int tick = 0; tick < 5000; ++tick) {
+      const double step = (tick % 2 == 0) ? q : -q;  // the reading toggles between two counts
+      depth += step;
+      pc.apply(Vector3d(0, 0, k * depth), Vector3d(0, 0, -step / kT));
+    }
+    return pc.activeTicks();
+  };
+  EXPECT_GT(run(0.0), 0u);
+  EXPECT_EQ(run(srv::quantisationDeadband(spec, kT)), 0u);
+  EXPECT_NEAR(srv::quantisationDeadband(spec, kT), 1.001 * q / kT, 1e-12);
+}
