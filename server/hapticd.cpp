@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "device/sim_phantom.hpp"
+#include "device/vrpn/vrpn_client_device.hpp"
 #include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
@@ -38,8 +39,8 @@ The haptic device server: renders the scene's textured surface to the device at 
 publishes device and contact state over LCM.
 
   --scene FILE          scene file (docs/scenes.md); e.g. scenes/default.yaml
-  --device sim          the device (default: the scene's; only the simulated PHANToM so far,
-                        VRPN devices arrive with issue 4)
+  --device DEV          sim, or vrpn:NAME@tcp://HOST:PORT for a PHANToM behind a VRPN server
+                        (docs/vrpn.md); default: the scene's device
   --duration S          run S seconds, then ramp down and stop (default for a simulated device:
                         its script plus 0.5 s; 0 = until SIGINT/SIGTERM)
   --lockstep            simulated device on a virtual clock: deterministic, runs as fast as it can
@@ -69,7 +70,7 @@ void onSignal(int) { g_stop.store(true); }
 
 struct Options {
   std::string scene;
-  std::string device = "sim";
+  std::string device;  // empty: the scene's
   std::optional<double> duration_s;
   bool lockstep = false;
   std::string stats_json;
@@ -152,14 +153,10 @@ Options parse(int argc, char** argv) {
     }
   }
   if (o.scene.empty()) usage("--scene FILE is required");
-  if (o.device != "sim") {
-    if (o.device.rfind("vrpn:", 0) == 0) {
-      std::fprintf(stderr, "hapticd: --device %s: VRPN devices are not supported yet (issue 4); use --device sim\n",
-                   o.device.c_str());
-      std::exit(1);
-    }
-    usage("--device: expected 'sim', got '" + o.device + "'");
+  if (!o.device.empty() && o.device != "sim" && o.device.rfind("vrpn:", 0) != 0) {
+    usage("--device: expected 'sim' or 'vrpn:NAME@tcp://HOST:PORT', got '" + o.device + "'");
   }
+  if (o.device.rfind("vrpn:", 0) == 0 && o.lockstep) usage("--lockstep needs the simulated device");
   return o;
 }
 
@@ -167,9 +164,14 @@ int run(const Options& o) {
   using namespace thx;
   const scene::Scene sc = scene::loadScene(o.scene);
   for (const std::string& w : sc.warnings) std::fprintf(stderr, "hapticd: warning: %s\n", w.c_str());
-  if (sc.device.type != scene::DeviceType::Sim) {
-    std::fprintf(stderr, "hapticd: %s: device.type vrpn is not supported yet (issue 4); use a simulated device\n",
-                 o.scene.c_str());
+  std::string vrpn_address;
+  if (o.device.rfind("vrpn:", 0) == 0) {
+    vrpn_address = o.device.substr(5);
+  } else if (o.device.empty() && sc.device.type == scene::DeviceType::Vrpn) {
+    vrpn_address = sc.device.address;
+  }
+  if (!vrpn_address.empty() && o.lockstep) {
+    std::fprintf(stderr, "hapticd: %s: --lockstep needs the simulated device, the scene's is VRPN\n", o.scene.c_str());
     return 1;
   }
   if (sc.surface.smoothing_sigma_texels > 0.0) {
@@ -185,9 +187,20 @@ int run(const Options& o) {
   const bool relief = map.isRelief() && sc.surface.representation.value_or(map.representation()) == tex::Representation::Relief;
   const tex::TexturedSurface surface(map, scene::planeMapping(sc.surface), sc.surface.sampling, relief);
 
-  dev::SimPhantom device(srv::simConfigFor(sc, o.lockstep), srv::handScriptFor(sc));
-  const dev::DeviceSpec& spec = device.spec();
   const double period_s = 1.0 / sc.rates.servo_hz;
+  std::unique_ptr<dev::HapticDevice> device_owner;
+  dev::SimPhantom* sim = nullptr;
+  if (vrpn_address.empty()) {
+    auto s_dev = std::make_unique<dev::SimPhantom>(srv::simConfigFor(sc, o.lockstep), srv::handScriptFor(sc));
+    sim = s_dev.get();
+    device_owner = std::move(s_dev);
+  } else {
+    vrpn::VrpnClientOptions vo;
+    vo.period_ns = std::int64_t(std::llround(period_s * 1e9));
+    device_owner = std::make_unique<vrpn::VrpnClientDevice>(vrpn_address, srv::deviceSpecFor(sc), vo);
+  }
+  dev::HapticDevice& device = *device_owner;
+  const dev::DeviceSpec& spec = device.spec();
 
   srv::RendererConfig rc = srv::rendererConfigFor(sc);
   if (o.stiffness_fraction) rc.stiffness_n_per_m = *o.stiffness_fraction * spec.max_stiffness_n_per_m;
@@ -231,12 +244,13 @@ int run(const Options& o) {
   po.publish_hz = o.publish_hz;
   po.servo_rate_hz = sc.rates.servo_hz;
   po.flight_dir = o.flight_dir;
-  po.simulated_device = true;
+  po.simulated_device = sim != nullptr;
   srv::Publisher publisher(ring, servo, recorder, lcm.get(), po);
   std::unique_ptr<srv::Receiver> receiver;
   if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);
 
-  const double duration_s = o.duration_s.value_or(device.script().duration() + 0.5);
+  // A simulated device runs its script; a real one runs until told to stop.
+  const double duration_s = o.duration_s.value_or(sim ? sim->script().duration() + 0.5 : 0.0);
   const std::int64_t stop_tick = duration_s > 0 ? std::int64_t(std::llround(duration_s * sc.rates.servo_hz)) : -1;
 
   publisher.start();
