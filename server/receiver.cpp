@@ -18,7 +18,7 @@ std::int64_t monotonicNs() {
 constexpr std::int64_t kDefaultTimeoutNs = 50'000'000;  // 50 ms: a few physics steps
 }  // namespace
 
-Receiver::Receiver(lcm::LCM& lcm, LatestSlot<ClientForce>& slot, double max_force_n)
+Receiver::Receiver(lcm::LCM& lcm, dev::LatestSlot<ClientForce>& slot, double max_force_n)
     : lcm_(lcm), slot_(slot), table_(max_force_n, kDefaultTimeoutNs) {
   lcm_.subscribe(thx_msgs::kChannelClientForce, &Receiver::onClientForce, this);
 }

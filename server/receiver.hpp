@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "server/client_force_table.hpp"
-#include "server/latest_slot.hpp"
+#include "device/latest_slot.hpp"
 #include "server/servo.hpp"
 
 namespace lcm {
@@ -22,7 +22,7 @@ namespace thx::srv {
 
 class Receiver {
  public:
-  Receiver(lcm::LCM& lcm, LatestSlot<ClientForce>& slot, double max_force_n);
+  Receiver(lcm::LCM& lcm, dev::LatestSlot<ClientForce>& slot, double max_force_n);
   ~Receiver();
   void start();
   void stop();
@@ -37,7 +37,7 @@ class Receiver {
   void publishSum(std::int64_t now_ns);
 
   lcm::LCM& lcm_;
-  LatestSlot<ClientForce>& slot_;
+  dev::LatestSlot<ClientForce>& slot_;
   ClientForceTable table_;
   mutable std::mutex table_mutex_;  // counters() from other threads; never the servo
   std::thread thread_;

@@ -18,7 +18,7 @@
 #include "device/haptic_device.hpp"
 #include "server/flight_recorder.hpp"
 #include "server/latency_histogram.hpp"
-#include "server/latest_slot.hpp"
+#include "device/latest_slot.hpp"
 #include "server/passivity.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/safety.hpp"
@@ -58,7 +58,7 @@ class Servo {
   void requestShutdown() { safety_.requestShutdown(); }
   bool finished() const { return safety_.shutdownComplete(); }
 
-  LatestSlot<ClientForce>& clientForceSlot() { return client_slot_; }
+  dev::LatestSlot<ClientForce>& clientForceSlot() { return client_slot_; }
   const LatencyHistogram& computeHistogram() const { return compute_hist_; }
   const LatencyHistogram& wakeHistogram() const { return wake_hist_; }
   const ServoCounters& counters() const { return counters_; }
@@ -72,7 +72,7 @@ class Servo {
   SpscRing<TickRecord>& out_;
   ServoConfig config_;
 
-  LatestSlot<ClientForce> client_slot_;
+  dev::LatestSlot<ClientForce> client_slot_;
   std::uint32_t client_seq_ = 0;
   ClientForce client_force_;
   int client_age_ticks_ = 1 << 30;

@@ -47,7 +47,7 @@
 #include "device/pacer.hpp"
 #include "device/vrpn/addressing.hpp"
 #include "device/vrpn/force_messages.hpp"
-#include "device/vrpn/latest_value.hpp"
+#include "device/latest_slot.hpp"
 
 namespace thx::vrpn {
 
@@ -142,8 +142,8 @@ class VrpnClientDevice final : public dev::HapticDevice {
   dev::MonotonicClock monotonic_;  // staleness and command stamps
   dev::Pacer pacer_;
 
-  LatestValue<Sample> sample_slot_;
-  LatestValue<Command> command_slot_;
+  dev::LatestSlot<Sample> sample_slot_;
+  dev::LatestSlot<Command> command_slot_;
   Sample last_sample_{};
   std::uint32_t sample_seq_ = 0;
 

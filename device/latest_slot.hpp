@@ -1,18 +1,22 @@
 #pragma once
-// Latest-value slot (a seqlock): how commands enter the servo thread. One writer (a receiver
-// thread) overwrites; the servo reads the newest complete value without ever waiting. A read
-// that races a write retries a bounded number of times and otherwise keeps the previous value.
+// LatestSlot: a single-writer, any-reader latest-value slot (a seqlock): how plain data enters the
+// servo thread (client forces from hapticd's receiver, VRPN reports from the device's I/O thread).
+// The writer never waits; a reader never waits either: a read that races a write retries a
+// bounded number of times and otherwise reports failure, leaving `out` untouched (the caller
+// keeps its previous value). No allocation, no locks.
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <type_traits>
 
-namespace thx::srv {
+namespace thx::dev {
 
 template <class T>
 class LatestSlot {
   static_assert(std::is_trivially_copyable_v<T>, "values cross threads by copy");
 
  public:
+  // One writer thread only.
   void write(const T& value) {
     const std::uint32_t s = seq_.load(std::memory_order_relaxed);
     seq_.store(s + 1, std::memory_order_relaxed);  // odd: write in progress
@@ -21,10 +25,9 @@ class LatestSlot {
     seq_.store(s + 2, std::memory_order_release);
   }
 
-  // Real-time safe. Returns true and fills `out` if a complete value newer than `last_seq` was
-  // read; false leaves `out` untouched (nothing new, or the writer kept interfering).
+  // True and `out` filled with the newest complete value if one newer than `last_seq` was read.
   bool readIfNewer(T& out, std::uint32_t& last_seq) const {
-    for (int attempt = 0; attempt < 4; ++attempt) {
+    for (int attempt = 0; attempt < 8; ++attempt) {
       const std::uint32_t before = seq_.load(std::memory_order_acquire);
       if (before & 1u) continue;
       if (before == last_seq) return false;
@@ -39,6 +42,9 @@ class LatestSlot {
     }
     return false;
   }
+
+  // Sequence of the last completed write (0: never written).
+  std::uint32_t sequence() const { return seq_.load(std::memory_order_acquire) & ~1u; }
 
  private:
   // Word-wise relaxed atomic copies keep the racing reads defined behaviour.
@@ -58,4 +64,4 @@ class LatestSlot {
   std::atomic<std::uint64_t> data_[kWords] = {};
 };
 
-}  // namespace thx::srv
+}  // namespace thx::dev
