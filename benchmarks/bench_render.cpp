@@ -128,6 +128,23 @@ void registerRender(const Fixture& fx, bool relief, bool crease) {
   })->Repetitions(5)->ReportAggregatesOnly(true)->Unit(benchmark::kNanosecond)->MinTime(0.3)->ComputeStatistics("min", minOf);
 }
 
+// Times Servo::tick; drains the publication ring outside the timing, as the publisher would.
+void timeServoTicks(benchmark::State& state, bench::ServerRig& rig) {
+  std::int64_t k = 0;
+  for (auto _ : state) {
+    const srv::TickRecord& r = rig.servo->tick();
+    benchmark::DoNotOptimize(&r);
+    if ((++k & 511) == 0) {
+      state.PauseTiming();
+      rig.drain();
+      state.ResumeTiming();
+    }
+  }
+  const srv::LatencyHistogram& h = rig.servo->computeHistogram();
+  state.counters["compute_p50_ns"] = h.quantileUs(0.5) * 1e3;
+  state.counters["compute_p99_ns"] = h.quantileUs(0.99) * 1e3;
+}
+
 void registerServo(const Fixture& fx) {
   const bool relief = true, crease = true;  // hapticd's defaults for these scenes
   auto rec = std::make_shared<bench::Recording>(bench::recordRun(fx.st.scene, *fx.st.map, relief, crease));
@@ -144,19 +161,7 @@ void registerServo(const Fixture& fx) {
     dev::SimPhantom device(srv::simConfigFor(f->st.scene, true), srv::handScriptFor(f->st.scene));
     bench::ServerRig rig(f->st.scene, *f->st.map, true, true, device);
     device.open();
-    std::int64_t k = 0;
-    for (auto _ : state) {
-      const srv::TickRecord& r = rig.servo->tick();
-      benchmark::DoNotOptimize(&r);
-      if ((++k & 511) == 0) {
-        state.PauseTiming();
-        rig.drain();
-        state.ResumeTiming();
-      }
-    }
-    const srv::LatencyHistogram& h = rig.servo->computeHistogram();
-    state.counters["compute_p50_ns"] = h.quantileUs(0.5) * 1e3;
-    state.counters["compute_p99_ns"] = h.quantileUs(0.99) * 1e3;
+    timeServoTicks(state, rig);
   })->Iterations(std::int64_t(n))->Repetitions(kReps)->ReportAggregatesOnly(true)->Unit(benchmark::kNanosecond)->ComputeStatistics("min", minOf);
 
   meta("device");
@@ -176,19 +181,7 @@ void registerServo(const Fixture& fx) {
   benchmark::RegisterBenchmark((base + "server").c_str(), [f, rec](benchmark::State& state) {
     bench::ReplayDevice device(srv::deviceSpecFor(f->st.scene), rec->states);
     bench::ServerRig rig(f->st.scene, *f->st.map, true, true, device);
-    std::int64_t k = 0;
-    for (auto _ : state) {
-      const srv::TickRecord& r = rig.servo->tick();
-      benchmark::DoNotOptimize(&r);
-      if ((++k & 511) == 0) {
-        state.PauseTiming();
-        rig.drain();
-        state.ResumeTiming();
-      }
-    }
-    const srv::LatencyHistogram& h = rig.servo->computeHistogram();
-    state.counters["compute_p50_ns"] = h.quantileUs(0.5) * 1e3;
-    state.counters["compute_p99_ns"] = h.quantileUs(0.99) * 1e3;
+    timeServoTicks(state, rig);
   })->Iterations(std::int64_t(n))->Repetitions(kReps)->ReportAggregatesOnly(true)->Unit(benchmark::kNanosecond)->ComputeStatistics("min", minOf);
 
   meta("render");

@@ -41,9 +41,8 @@ ServerRig::ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool re
   srv::RendererConfig rc = srv::rendererConfigFor(sc);
   rc.crease_handling = crease;
   renderer = std::make_unique<srv::ProxyRenderer>(surface, rc);
-  srv::PassivityConfig pc = srv::PassivityConfig::fromSpec(spec, period_s, rc.stiffness_n_per_m);
-  pc.velocity_deadband_m_per_s = srv::quantisationDeadband(spec, period_s);  // as hapticd
-  passivity = std::make_unique<srv::PassivityController>(pc);
+  passivity = std::make_unique<srv::PassivityController>(
+      srv::servoPassivityConfig(spec, period_s, rc.stiffness_n_per_m, true));
   safety = std::make_unique<srv::SafetyStage>(srv::SafetyConfig::fromSpec(spec, period_s));
   recorder = std::make_unique<srv::FlightRecorder>(std::size_t(sc.rates.servo_hz));
   ring = std::make_unique<srv::SpscRing<srv::TickRecord>>(1024);

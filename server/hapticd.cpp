@@ -220,10 +220,7 @@ int run(const Options& o) {
   }
 
   srv::ProxyRenderer renderer(surface, rc);
-  srv::PassivityConfig pc = srv::PassivityConfig::fromSpec(spec, period_s, rc.stiffness_n_per_m);
-  pc.enabled = o.passivity;
-  pc.velocity_deadband_m_per_s = srv::quantisationDeadband(spec, period_s);
-  srv::PassivityController passivity(pc);
+  srv::PassivityController passivity(srv::servoPassivityConfig(spec, period_s, rc.stiffness_n_per_m, o.passivity));
   srv::SafetyStage safety(srv::SafetyConfig::fromSpec(spec, period_s));
   srv::FlightRecorder recorder(std::size_t(sc.rates.servo_hz));  // one second of ticks
   srv::SpscRing<srv::TickRecord> ring(1024);  // 1 s of ticks: the publisher drains every 0.5 ms

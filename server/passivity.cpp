@@ -166,4 +166,12 @@ double quantisationDeadband(const dev::DeviceSpec& spec, double period_s) {
   return 1.001 * spec.position_resolution_m / period_s;
 }
 
+PassivityConfig servoPassivityConfig(const dev::DeviceSpec& spec, double period_s,
+                                     double rendered_stiffness_n_per_m, bool enabled) {
+  PassivityConfig c = PassivityConfig::fromSpec(spec, period_s, rendered_stiffness_n_per_m);
+  c.enabled = enabled;
+  c.velocity_deadband_m_per_s = quantisationDeadband(spec, period_s);
+  return c;
+}
+
 }  // namespace thx::srv

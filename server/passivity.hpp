@@ -92,6 +92,11 @@ struct PassivityConfig {
 // One encoder count per period for this device, for PassivityConfig::velocity_deadband_m_per_s.
 double quantisationDeadband(const dev::DeviceSpec& spec, double period_s);
 
+// The configuration hapticd runs (and the tools that reproduce it): fromSpec() plus the
+// quantisation dead band, with the controller on or off.
+PassivityConfig servoPassivityConfig(const dev::DeviceSpec& spec, double period_s,
+                                     double rendered_stiffness_n_per_m, bool enabled);
+
 class PassivityController {
  public:
   explicit PassivityController(const PassivityConfig& config);  // validates; may throw

@@ -88,7 +88,7 @@ bool ProxyRenderer::mergeConcave(LocalPlanes& into, const LocalPlanes& from) con
   return added;
 }
 
-Eigen::Vector3d ProxyRenderer::applyRecovery(const Eigen::Vector3d& t, bool contact, const Eigen::Vector3d& e_target,
+Eigen::Vector3d ProxyRenderer::applyRecovery(const Eigen::Vector3d& t, const Eigen::Vector3d& e_target,
                                              bool& recovering) {
   if (config_.recovery_ticks > 0 && e_rendered_prev_.squaredNorm() > 0.0) {
     // A plane change is what last tick's planes cannot explain: project this tick's tip onto
@@ -112,7 +112,6 @@ Eigen::Vector3d ProxyRenderer::applyRecovery(const Eigen::Vector3d& t, bool cont
     recovering = true;
   }
   e_rendered_prev_ = e;
-  (void)contact;
   return e;
 }
 
@@ -180,7 +179,7 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
 
   bool recovering = false;
   const Eigen::Vector3d e =
-      applyRecovery(t, contact, contact ? Eigen::Vector3d(proxy - t) : Eigen::Vector3d::Zero(), recovering);
+      applyRecovery(t, contact ? Eigen::Vector3d(proxy - t) : Eigen::Vector3d::Zero(), recovering);
   prev_planes_ = contact ? planes : LocalPlanes{};
   prev_active_ = LocalPlanes{};
   for (int i = 0; contact && i < planes.count; ++i) {

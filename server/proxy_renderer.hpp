@@ -81,8 +81,7 @@ class ProxyRenderer {
   LocalPlanes singlePlaneAt(const tex::SurfacePoint& s, double x, double y) const;
   bool mergeConcave(LocalPlanes& into, const LocalPlanes& from) const;
   bool concavePair(const Halfspace& a, const Eigen::Vector3d& qa, const Halfspace& b, const Eigen::Vector3d& qb) const;
-  Eigen::Vector3d applyRecovery(const Eigen::Vector3d& tip, bool contact, const Eigen::Vector3d& e_target,
-                                bool& recovering);
+  Eigen::Vector3d applyRecovery(const Eigen::Vector3d& tip, const Eigen::Vector3d& e_target, bool& recovering);
 
   const tex::TexturedSurface& surface_;
   RendererConfig config_;

@@ -56,9 +56,10 @@ const TickRecord& Servo::tick() {
 
   r.valid = state.valid && state.p_world.allFinite() && state.v_world.allFinite();
   Eigen::Vector3d f_render = Eigen::Vector3d::Zero();
+  RenderOutput out;  // no planes unless rendered
   if (r.valid) {
     invalid_run_ = 0;
-    const RenderOutput out = renderer_.render(state.p_world, state.v_world);
+    out = renderer_.render(state.p_world, state.v_world);
     f_render = out.force_world;
     r.in_contact = out.in_contact;
     r.recovering = out.recovering;
@@ -76,7 +77,6 @@ const TickRecord& Servo::tick() {
     r.relief_depth_m = out.relief_depth_m;
     r.f_normal_n = out.f_normal_n;
     put(r.v_tangent_world, out.v_tangent_world);
-    planes_ = out.planes;
     for (int i = 0; i < out.num_planes; ++i) {
       put(r.plane_n_world[i], out.planes[std::size_t(i)].n_world);
       r.plane_d_m[i] = out.planes[std::size_t(i)].d_m;
@@ -119,8 +119,8 @@ const TickRecord& Servo::tick() {
     // Planes only while the safety stage lets forces through (engaged or ramping).
     const bool allowed = !(safety_.flags() & (kSafetyDisengaged | kSafetyShutDown | kSafetyNonFinite));
     command.forces_enabled = allowed;
-    command.num_planes = allowed ? int(r.num_planes) : 0;
-    for (int i = 0; i < command.num_planes; ++i) command.planes[std::size_t(i)] = planes_[std::size_t(i)];
+    command.num_planes = allowed ? out.num_planes : 0;
+    command.planes = out.planes;
   } else {
     command.forces_enabled = f_out.squaredNorm() > 0.0;
   }

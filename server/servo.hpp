@@ -82,7 +82,6 @@ class Servo {
   LatencyHistogram wake_hist_;
   ServoCounters counters_;
   TickRecord record_;
-  std::array<dev::PlaneProxy, dev::kMaxPlanes> planes_{};
 };
 
 }  // namespace thx::srv

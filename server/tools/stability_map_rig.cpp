@@ -23,10 +23,8 @@ SimRig::SimRig(const tex::TexturedSurface& surface, const dev::SimPhantomConfig&
   rc.crease_handling = options.crease_handling;
   rc.recovery_ticks = options.recovery_ticks;
   renderer_ = std::make_unique<ProxyRenderer>(surface, rc);
-  PassivityConfig pc = PassivityConfig::fromSpec(device_->spec(), period_s_, options.stiffness_n_per_m);
-  pc.enabled = options.passivity;
-  pc.velocity_deadband_m_per_s = quantisationDeadband(device_->spec(), period_s_);  // as hapticd
-  passivity_ = std::make_unique<PassivityController>(pc);
+  passivity_ = std::make_unique<PassivityController>(
+      servoPassivityConfig(device_->spec(), period_s_, options.stiffness_n_per_m, options.passivity));
   safety_ = std::make_unique<SafetyStage>(SafetyConfig::fromSpec(device_->spec(), period_s_));
   servo_ = std::make_unique<Servo>(*device_, *renderer_, *passivity_, *safety_, recorder_, ring_, ServoConfig{});
   device_->open();

@@ -5,6 +5,7 @@
 #include <functional>
 #include <vector>
 
+#include "device/device_specs.hpp"
 #include "device/haptic_device.hpp"
 
 namespace thx::test {
@@ -13,14 +14,8 @@ class FakeDevice final : public dev::HapticDevice {
  public:
   using Script = std::function<void(std::int64_t tick, dev::DeviceState& state)>;
 
-  explicit FakeDevice(Script script, std::size_t reserve_writes = 100000) : script_(std::move(script)) {
-    spec_.model = "fake";
-    spec_.peak_force_n = 7.9;
-    spec_.continuous_force_n = 1.19;
-    spec_.max_stiffness_n_per_m = 1000.0;
-    spec_.max_damping_ns_per_m = 5.0;
-    spec_.workspace_radius_m = 0.1;
-    spec_.position_resolution_m = 2.3e-5;
+  explicit FakeDevice(Script script, std::size_t reserve_writes = 100000)
+      : script_(std::move(script)), spec_(dev::phantomDesktopSpec()) {
     writes_.reserve(reserve_writes);
   }
 

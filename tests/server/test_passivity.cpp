@@ -15,6 +15,7 @@
 #include <random>
 #include <string>
 
+#include "device/device_specs.hpp"
 #include "server/passivity.hpp"
 
 using namespace thx;
@@ -29,18 +30,7 @@ namespace {
 constexpr double kT = 1e-3;
 constexpr double kPi = 3.14159265358979323846;
 
-dev::DeviceSpec desktop() {
-  dev::DeviceSpec s;
-  s.model = "phantom_desktop";
-  s.peak_force_n = 7.9;
-  s.continuous_force_n = 1.185;
-  s.max_stiffness_n_per_m = 1000.0;
-  s.max_damping_ns_per_m = 5.0;
-  s.workspace_radius_m = 0.10;
-  s.position_resolution_m = 2.3e-5;
-  s.physical_damping_ns_per_m = 0.005;
-  return s;
-}
+dev::DeviceSpec desktop() { return dev::phantomDesktopSpec(); }
 
 Vector3d z(double value) { return Vector3d(0.0, 0.0, value); }
 

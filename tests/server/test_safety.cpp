@@ -14,6 +14,7 @@
 #include <random>
 #include <string>
 
+#include "device/device_specs.hpp"
 #include "server/safety.hpp"
 
 using namespace thx;
@@ -31,18 +32,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // PHANToM Desktop as in device/device_specs.cpp (written out so these numbers are the test's own).
-dev::DeviceSpec desktop() {
-  dev::DeviceSpec s;
-  s.model = "phantom_desktop";
-  s.peak_force_n = 7.9;
-  s.continuous_force_n = 1.185;
-  s.max_stiffness_n_per_m = 1000.0;
-  s.max_damping_ns_per_m = 5.0;
-  s.workspace_radius_m = 0.10;
-  s.position_resolution_m = 2.3e-5;
-  s.physical_damping_ns_per_m = 0.005;
-  return s;
-}
+dev::DeviceSpec desktop() { return dev::phantomDesktopSpec(); }
 
 // Desktop limits with every rule but the one under test out of the way.
 SafetyConfig isolated() {

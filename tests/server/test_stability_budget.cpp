@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "device/device_specs.hpp"
 #include "server/stability_budget.hpp"
 
 using namespace thx;
@@ -16,18 +17,7 @@ namespace {
 
 // PHANToM Desktop: CHAI3D's 1000 N/m and 5 N s/m; b = 5 mN s/m is the project's assumed
 // mechanism damping (device/device_specs.cpp), not a measurement.
-dev::DeviceSpec desktop() {
-  dev::DeviceSpec s;
-  s.model = "phantom_desktop";
-  s.peak_force_n = 7.9;
-  s.continuous_force_n = 1.185;
-  s.max_stiffness_n_per_m = 1000.0;
-  s.max_damping_ns_per_m = 5.0;
-  s.workspace_radius_m = 0.10;
-  s.position_resolution_m = 2.3e-5;
-  s.physical_damping_ns_per_m = 0.005;
-  return s;
-}
+dev::DeviceSpec desktop() { return dev::phantomDesktopSpec(); }
 
 StabilityRequest request(double fraction, double damping = 0.0,
                          BoundPolicy policy = BoundPolicy::Warn) {
