@@ -10,6 +10,7 @@ PACKAGES="
   libopencv-core-dev libopencv-imgproc-dev
   libyaml-cpp-dev
   liblcm-dev liblcm-bin libglib2.0-dev
+  libbullet-dev
   googletest libgtest-dev libbenchmark-dev
   rt-tests
 "

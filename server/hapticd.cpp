@@ -2,11 +2,13 @@
 // real-time thread, publishes device and contact state over LCM, and on SIGINT/SIGTERM (or after
 // --duration) ramps the force down and writes its statistics. `hapticd --help` for options.
 #include <lcm/lcm-cpp.hpp>
+#include <arpa/inet.h>
 #include <malloc.h>
 #include <pthread.h>
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -29,6 +31,7 @@
 #include "server/servo.hpp"
 #include "server/stability_budget.hpp"
 #include "server/stats_json.hpp"
+#include "server/vrpn_server.hpp"
 #include "textures/texture_error.hpp"
 
 namespace {
@@ -59,6 +62,12 @@ publishes device and contact state over LCM.
   --mlock-eager         fault in and lock every mapped page at start (whole shared libraries);
                         default: lock pages as they are first touched (MCL_ONFAULT)
   --flight-dir DIR      where fault flight records go (default: .)
+  --vrpn-listen [ADDR:]PORT  serve the device to VRPN apps as a PHANToM on TCP+UDP PORT at ADDR
+                        (default address 127.0.0.1; 0.0.0.0 for every interface; docs/vrpn.md)
+  --vrpn-name NAME      the served device's VRPN name (default Phantom0)
+  --vrpn-report-hz HZ   tracker/force report rate per VRPN client until it sends set_update_rate
+                        (default: the servo rate)
+  --vrpn-max-clients N  VRPN clients served at once (default 16)
   --quiet               no progress lines
   -h, --help            this text
 
@@ -84,7 +93,33 @@ struct Options {
   thx::srv::RealtimeOptions rt;
   std::string flight_dir = ".";
   bool quiet = false;
+  std::string vrpn_listen;  // [ADDR:]PORT; empty: no VRPN server
+  std::string vrpn_name = "Phantom0";
+  std::optional<double> vrpn_report_hz;
+  int vrpn_max_clients = 16;
 };
+
+struct ListenAddress {
+  std::string ip = "127.0.0.1";
+  std::uint16_t port = 0;
+};
+
+// "[ADDR:]PORT": loopback unless an address is given (the server listens only where told).
+std::optional<ListenAddress> parseListenAddress(const std::string& text) {
+  ListenAddress a;
+  std::string port = text;
+  if (const std::size_t colon = text.rfind(':'); colon != std::string::npos) {
+    a.ip = text.substr(0, colon);
+    port = text.substr(colon + 1);
+    in_addr probe{};
+    if (::inet_pton(AF_INET, a.ip.c_str(), &probe) != 1) return std::nullopt;
+  }
+  if (port.empty() || port.size() > 5 || port.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+  const long p = std::stol(port);
+  if (p < 1 || p > 65535) return std::nullopt;
+  a.port = std::uint16_t(p);
+  return a;
+}
 
 [[noreturn]] void usage(const std::string& message) {
   std::fprintf(stderr, "hapticd: %s (see hapticd --help)\n", message.c_str());
@@ -146,6 +181,19 @@ Options parse(int argc, char** argv) {
       o.rt.lock_on_fault = false;
     } else if (a == "--flight-dir") {
       o.flight_dir = value();
+    } else if (a == "--vrpn-listen") {
+      o.vrpn_listen = value();
+    } else if (a == "--vrpn-name") {
+      o.vrpn_name = value();
+      if (o.vrpn_name.empty() || o.vrpn_name.size() > 95 || o.vrpn_name.find('@') != std::string::npos)
+        usage("--vrpn-name: expected 1..95 characters without '@', got '" + o.vrpn_name + "'");
+    } else if (a == "--vrpn-report-hz") {
+      o.vrpn_report_hz = number(a, value());
+      if (*o.vrpn_report_hz <= 0) usage("--vrpn-report-hz must be > 0");
+    } else if (a == "--vrpn-max-clients") {
+      const double n = number(a, value());
+      if (n < 1 || n > 256 || n != std::floor(n)) usage("--vrpn-max-clients: expected an integer 1..256");
+      o.vrpn_max_clients = int(n);
     } else if (a == "--quiet") {
       o.quiet = true;
     } else {
@@ -157,6 +205,8 @@ Options parse(int argc, char** argv) {
     usage("--device: expected 'sim' or 'vrpn:NAME@tcp://HOST:PORT', got '" + o.device + "'");
   }
   if (o.device.rfind("vrpn:", 0) == 0 && o.lockstep) usage("--lockstep needs the simulated device");
+  if (!o.vrpn_listen.empty() && !parseListenAddress(o.vrpn_listen))
+    usage("--vrpn-listen: expected [ADDR:]PORT with an IPv4 ADDR and PORT 1..65535, got '" + o.vrpn_listen + "'");
   return o;
 }
 
@@ -246,6 +296,29 @@ int run(const Options& o) {
   std::unique_ptr<srv::Receiver> receiver;
   if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);
 
+  // VRPN apps: effects they command are rendered in the servo; reports come from its snapshots.
+  srv::ExternalEffectRenderer external_effects(period_s);
+  std::unique_ptr<srv::VrpnServer> vrpn_server;
+  if (!o.vrpn_listen.empty()) {
+    const ListenAddress la = *parseListenAddress(o.vrpn_listen);
+    srv::VrpnServerOptions vso;
+    vso.listen_ip = la.ip;
+    vso.port = la.port;
+    vso.device_name = o.vrpn_name;
+    vso.max_report_hz = sc.rates.servo_hz;
+    vso.report_hz = o.vrpn_report_hz.value_or(sc.rates.servo_hz);
+    vso.max_clients = o.vrpn_max_clients;
+    vso.limits.max_stiffness_n_per_m = spec.max_stiffness_n_per_m;
+    vso.limits.peak_force_n = spec.peak_force_n;
+    vso.limits.servo_rate_hz = sc.rates.servo_hz;
+    servo.attachExternalEffects(&external_effects);
+    vrpn_server = std::make_unique<srv::VrpnServer>(servo.snapshotSlot(), &external_effects, vso);
+    vrpn_server->start();  // throws with the address and reason if it cannot bind
+    if (!o.quiet)
+      std::fprintf(stderr, "hapticd: serving %s to VRPN apps at %s:%u (TCP and UDP)\n", o.vrpn_name.c_str(),
+                   la.ip.c_str(), unsigned(vrpn_server->port()));
+  }
+
   // A simulated device runs its script; a real one runs until told to stop.
   const double duration_s = o.duration_s.value_or(sim ? sim->script().duration() + 0.5 : 0.0);
   const std::int64_t stop_tick = duration_s > 0 ? std::int64_t(std::llround(duration_s * sc.rates.servo_hz)) : -1;
@@ -300,6 +373,14 @@ int run(const Options& o) {
   }
   servo_thread.join();
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  if (vrpn_server) {
+    vrpn_server->stop();
+    const srv::VrpnServerStatus vs = vrpn_server->status();
+    if (!o.quiet)
+      std::fprintf(stderr, "hapticd: vrpn: %llu clients served, %llu dropped, %llu refused, %llu force commands (%llu refused)\n",
+                   (unsigned long long)vs.accepted, (unsigned long long)vs.drops, (unsigned long long)vs.refused,
+                   (unsigned long long)vs.commands, (unsigned long long)vs.refused_commands);
+  }
   if (receiver) receiver->stop();
   publisher.stop();
   device.close();

@@ -1,5 +1,6 @@
 #include "server/servo.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 
@@ -84,7 +85,10 @@ const TickRecord& Servo::tick() {
   } else {
     ++counters_.invalid_readings;
     renderer_.reset();  // the proxy's history means nothing across a bad reading
-    if (++invalid_run_ >= config_.max_invalid_readings) faults |= kFaultInvalidReading;
+    // One fault per episode: a device that stays invalid (an unreachable VRPN server) would
+    // otherwise fault, and dump a flight record, on every tick. The force stays off meanwhile:
+    // nothing is rendered for an invalid reading (f_env below).
+    if (++invalid_run_ == config_.max_invalid_readings) faults |= kFaultInvalidReading;
   }
 
   ClientForce fresh;
@@ -100,13 +104,27 @@ const TickRecord& Servo::tick() {
                                client_force_.force_world_n[2]);
   }
 
+  Eigen::Vector3d f_external = Eigen::Vector3d::Zero();
+  Eigen::Vector3d scp = r.valid ? Eigen::Vector3d(out.in_contact ? out.proxy_world : state.p_world)
+                                : Eigen::Vector3d::Zero();
+  if (external_) {
+    const ExternalOutput ext = external_->render(state.p_world, state.v_world, r.valid);
+    f_external = ext.force_world;
+    if (ext.in_contact && !out.in_contact) scp = ext.scp_world;
+  }
+
   // A device that renders planes itself (a PHANToM behind VRPN) gets the planes; only the client
   // force goes through the force path, or the texture would be rendered twice.
   const bool device_renders_planes = device_.outputMode() == dev::OutputMode::Planes;
-  const Eigen::Vector3d f_env = device_renders_planes ? f_client : Eigen::Vector3d(f_render + f_client);
+  // Nothing acts on a pen whose position we do not know, not even a client force.
+  const Eigen::Vector3d f_env = !r.valid               ? Eigen::Vector3d::Zero()
+                                : device_renders_planes ? Eigen::Vector3d(f_client + f_external)
+                                                        : Eigen::Vector3d(f_render + f_client + f_external);
   if (!f_env.allFinite()) faults |= kFaultNonFiniteForce;
   const Eigen::Vector3d f_passive = r.valid ? passivity_.apply(f_env, state.v_world) : f_env;
-  if (faults & (kFaultMissedTicks | kFaultInvalidReading)) {
+  // Held disengaged for as long as the readings stay invalid: the zero requests of those ticks
+  // must not count as the "small request" that re-engages the force.
+  if ((faults & (kFaultMissedTicks | kFaultInvalidReading)) || invalid_run_ >= config_.max_invalid_readings) {
     safety_.disengage();
     passivity_.reset();
   }
@@ -128,6 +146,7 @@ const TickRecord& Servo::tick() {
 
   put(r.f_render, f_render);
   put(r.f_client, f_client);
+  put(r.f_external, f_external);
   put(r.f_passive, f_passive);
   put(r.f_out, f_out);
   r.pc_energy_j = passivity_.energy();
@@ -144,6 +163,21 @@ const TickRecord& Servo::tick() {
   r.compute_ns = t1 - t0;
   compute_hist_.add(r.compute_ns);
   wake_hist_.add(r.wake_latency_ns);
+
+  DeviceSnapshot snap;
+  snap.tick = r.tick;
+  snap.deadline_ns = r.deadline_ns;
+  std::copy(r.p_world, r.p_world + 3, snap.p_world);
+  std::copy(r.v_world, r.v_world + 3, snap.v_world);
+  snap.q_world[0] = state.q_world.x();
+  snap.q_world[1] = state.q_world.y();
+  snap.q_world[2] = state.q_world.z();
+  snap.q_world[3] = state.q_world.w();
+  put(snap.f_out, f_out);
+  put(snap.scp_world, scp);
+  snap.buttons = r.buttons;
+  snap.valid = r.valid;
+  snapshot_slot_.write(snap);
 
   recorder_.record(r);
   if (faults) {

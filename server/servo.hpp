@@ -4,10 +4,11 @@
 // Contract of tick() (DESIGN §4 rules 1-3):
 //  - One blocking device read, one device write; nothing else blocks. No allocation, no lock, no
 //    logging, no system call except the device's pacing sleep (a test proves "no allocation").
-//  - Data leaves only through the SPSC ring (publisher) and the flight recorder; data enters only
-//    through the latest-value slot (client forces).
-//  - Pipeline: read -> render (texture proxy) + client force -> passivity controller -> safety
-//    stage -> write. Safety is always last and always on.
+//  - Data leaves only through the SPSC ring (publisher), the flight recorder and the device
+//    snapshot slot (the VRPN server's reports); data enters only through latest-value slots
+//    (client forces; external effects, see external_effects.hpp).
+//  - Pipeline: read -> render (texture proxy) + client force + external effects (VRPN apps) ->
+//    passivity controller -> safety stage -> write. Safety is always last and always on.
 //  - Missed-cycle policy: the pacer realigns to the next period (no catch-up burst); while the
 //    servo is away the device holds its last force with decay (its own watchdog); a gap of
 //    max_missed_ticks or more, or max_invalid_readings consecutive invalid readings, disengages
@@ -19,6 +20,7 @@
 #include "server/flight_recorder.hpp"
 #include "server/latency_histogram.hpp"
 #include "device/latest_slot.hpp"
+#include "server/external_effects.hpp"
 #include "server/passivity.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/safety.hpp"
@@ -36,6 +38,19 @@ struct ServoConfig {
 // What a client (the physics client) asks the servo to add to the rendered force.
 struct ClientForce {
   double force_world_n[3] = {0, 0, 0};
+};
+
+// The newest tick's device state for slower readers (the VRPN server's reports). Plain data.
+struct DeviceSnapshot {
+  std::int64_t tick = 0;
+  std::int64_t deadline_ns = 0;
+  double p_world[3] = {};
+  double q_world[4] = {0, 0, 0, 1};  // x, y, z, w (VRPN's order)
+  double v_world[3] = {};
+  double f_out[3] = {};
+  double scp_world[3] = {};  // surface contact point: the proxy in contact, else the tip
+  std::uint32_t buttons = 0;
+  bool valid = false;
 };
 
 struct ServoCounters {
@@ -59,6 +74,9 @@ class Servo {
   bool finished() const { return safety_.shutdownComplete(); }
 
   dev::LatestSlot<ClientForce>& clientForceSlot() { return client_slot_; }
+  // Optional (before the first tick): effects commanded by VRPN apps, added to the force.
+  void attachExternalEffects(ExternalEffectRenderer* effects) { external_ = effects; }
+  const dev::LatestSlot<DeviceSnapshot>& snapshotSlot() const { return snapshot_slot_; }
   const LatencyHistogram& computeHistogram() const { return compute_hist_; }
   const LatencyHistogram& wakeHistogram() const { return wake_hist_; }
   const ServoCounters& counters() const { return counters_; }
@@ -73,6 +91,8 @@ class Servo {
   ServoConfig config_;
 
   dev::LatestSlot<ClientForce> client_slot_;
+  ExternalEffectRenderer* external_ = nullptr;
+  dev::LatestSlot<DeviceSnapshot> snapshot_slot_;
   std::uint32_t client_seq_ = 0;
   ClientForce client_force_;
   int client_age_ticks_ = 1 << 30;

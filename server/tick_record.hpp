@@ -45,6 +45,7 @@ struct TickRecord {
   // forces, N, world frame, in pipeline order
   double f_render[3] = {};   // texture proxy spring
   double f_client[3] = {};   // from clients (physics: pen-object contact)
+  double f_external[3] = {}; // effects commanded by VRPN apps (planes, fields, buzz)
   double f_passive[3] = {};  // after the passivity controller
   double f_out[3] = {};      // after the safety stage: what the device was told
   double pc_energy_j = 0.0;

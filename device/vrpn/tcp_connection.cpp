@@ -74,6 +74,15 @@ Result<UniqueFd> acceptTcp(int listen_fd) {
   }
 }
 
+std::string peerName(int fd) {
+  sockaddr_in addr{};
+  socklen_t len = sizeof addr;
+  if (::getpeername(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0 || addr.sin_family != AF_INET) return "?";
+  char ip[INET_ADDRSTRLEN] = {};
+  ::inet_ntop(AF_INET, &addr.sin_addr, ip, sizeof ip);
+  return std::string(ip) + ":" + std::to_string(ntohs(addr.sin_port));
+}
+
 Result<UniqueFd> connectTcp(std::string_view host, std::uint16_t port) {
   addrinfo hints{};
   hints.ai_family = AF_INET;

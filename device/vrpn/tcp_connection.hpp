@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "device/vrpn/endpoint.hpp"
@@ -57,6 +58,8 @@ Result<UniqueFd> acceptTcp(int listen_fd);
 // Starts a non-blocking connect to host:port; the connection completes in the background.
 Result<UniqueFd> connectTcp(std::string_view host, std::uint16_t port);
 std::uint16_t localPort(int fd);
+// "ip:port" of the connected peer (for log lines), or "?" when unknown.
+std::string peerName(int fd);
 
 class TcpConnection {
  public:

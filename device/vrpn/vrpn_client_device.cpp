@@ -5,6 +5,9 @@
 #include <time.h>
 
 #include <algorithm>
+#include <functional>
+#include <string>
+#include <vector>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -14,6 +17,7 @@
 #include "device/vrpn/button_messages.hpp"
 #include "device/vrpn/tcp_connection.hpp"
 #include "device/vrpn/tracker_messages.hpp"
+#include "device/vrpn/udp_socket.hpp"
 
 namespace thx::vrpn {
 
@@ -40,6 +44,64 @@ void omegaFrom(const std::array<double, 4>& q, double dt, double out[3]) {
   if (angle > std::numbers::pi) angle -= 2.0 * std::numbers::pi;  // the short way round
   for (int i = 0; i < 3; ++i) out[i] = q[std::size_t(i)] / s * angle / dt;
 }
+
+// Mode A (reference §1): listen on an ephemeral TCP port at the local address that routes to the
+// server, send the server "ip port" by UDP, and wait for it to connect back; re-send every
+// `resend_ns` (2 s) until it does. step() waits at most poll_ms and returns the accepted socket.
+class LobConnector {
+ public:
+  LobConnector(std::string host, std::uint16_t port, std::int64_t resend_ns, std::function<void()> on_attempt)
+      : host_(std::move(host)), port_(port), resend_ns_(resend_ns), on_attempt_(std::move(on_attempt)) {}
+
+  std::optional<UniqueFd> step(std::int64_t now, int poll_ms) {
+    if (!listen_) {
+      if (now < retry_ns_) {
+        sleepNs(std::min<std::int64_t>(retry_ns_ - now, std::int64_t(poll_ms) * 1'000'000));
+        return std::nullopt;
+      }
+      Result<std::string> ip = localAddressTowards(host_, port_);
+      Result<UniqueFd> l = ip ? listenTcp(*ip, 0, 1) : Result<UniqueFd>(ip.error());
+      if (!l) return fail(now, l.error().reason);
+      listen_ = std::move(l).value();
+      request_ = encodeLobRequest(*ip, localPort(listen_.get()));
+      next_send_ns_ = now;
+    }
+    if (now >= next_send_ns_) {
+      on_attempt_();
+      Result<bool> sent = sendDatagram(host_, port_, request_);
+      if (!sent) return fail(now, "UDP connection request to " + host_ + ":" + std::to_string(port_) + ": " +
+                                      sent.error().reason);
+      next_send_ns_ = now + resend_ns_;
+    }
+    pollfd pfd{listen_.get(), POLLIN, 0};
+    ::poll(&pfd, 1, poll_ms);
+    Result<UniqueFd> fd = acceptTcp(listen_.get());
+    if (!fd) return fail(now, fd.error().reason);
+    if (!*fd) return std::nullopt;
+    listen_.reset();  // a fresh listener (and request) for the next connection
+    error_.clear();
+    return std::move(fd).value();
+  }
+  const std::string& lastError() const { return error_; }
+
+ private:
+  std::optional<UniqueFd> fail(std::int64_t now, std::string why) {
+    error_ = std::move(why);
+    listen_.reset();
+    retry_ns_ = now + resend_ns_;
+    return std::nullopt;
+  }
+
+  std::string host_;
+  std::uint16_t port_;
+  std::int64_t resend_ns_;
+  std::function<void()> on_attempt_;
+  UniqueFd listen_;
+  std::vector<std::uint8_t> request_;
+  std::int64_t next_send_ns_ = 0;
+  std::int64_t retry_ns_ = 0;
+  std::string error_;
+};
 
 }  // namespace
 
@@ -73,9 +135,6 @@ void VrpnClientDevice::open() {
   if (io_thread_.joinable()) return;
   Result<DeviceAddress> a = parseDeviceAddress(address_text_);
   if (!a) throw dev::DeviceError("vrpn: " + a.error().reason);
-  if (a->mode != ConnectMode::kTcp)
-    throw dev::DeviceError("vrpn: only the direct TCP form Name@tcp://host:port is supported, not '" +
-                           address_text_ + "'");
   address_ = *a;
   {
     std::lock_guard lock(status_mutex_);
@@ -151,6 +210,10 @@ void VrpnClientDevice::ioMain() {
   const int poll_ms = int(std::max<std::int64_t>(1, std::int64_t(options_.io_poll_interval.count()) / 1'000'000));
 
   std::unique_ptr<TcpConnection> conn;
+  LobConnector lobber(address_.host, address_.port, reconnect_ns, [this] {
+    std::lock_guard lock(status_mutex_);
+    ++status_.connect_attempts;
+  });
   std::int32_t sender = kNoId;
   bool handshaken = false;
   std::int64_t attempt_ns = 0;
@@ -275,17 +338,27 @@ void VrpnClientDevice::ioMain() {
         sleepNs(std::min<std::int64_t>(next_attempt_ns - now, std::int64_t(poll_ms) * 1'000'000));
         continue;
       }
-      {
-        std::lock_guard lock(status_mutex_);
-        ++status_.connect_attempts;
+      std::optional<UniqueFd> fd;
+      if (address_.mode == ConnectMode::kTcp) {
+        {
+          std::lock_guard lock(status_mutex_);
+          ++status_.connect_attempts;
+        }
+        Result<UniqueFd> c = connectTcp(address_.host, address_.port);
+        if (!c) {
+          setError(c.error().reason);
+          next_attempt_ns = now + reconnect_ns;
+          continue;
+        }
+        fd = std::move(c).value();
+      } else {
+        fd = lobber.step(now, poll_ms);
+        if (!fd) {
+          if (!lobber.lastError().empty()) setError(lobber.lastError());
+          continue;
+        }
       }
-      Result<UniqueFd> fd = connectTcp(address_.host, address_.port);
-      if (!fd) {
-        setError(fd.error().reason);
-        next_attempt_ns = now + reconnect_ns;
-        continue;
-      }
-      conn = std::make_unique<TcpConnection>(std::move(fd).value());
+      conn = std::make_unique<TcpConnection>(std::move(*fd));
       Endpoint& ep = conn->endpoint();
       sender = ep.addSender(address_.device);
       for (std::string_view n : {TrackerPosQuat::kTypeName, TrackerVelocity::kTypeName, ButtonChange::kTypeName,

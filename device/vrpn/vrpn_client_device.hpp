@@ -1,7 +1,8 @@
 #pragma once
 // VrpnClientDevice: a PHANToM served by a stock VRPN server (vrpn_Phantom), as a HapticDevice in
 // OutputMode::Planes (issue 4). Address "Phantom0@tcp://host:port" (direct TCP, reference §1 mode
-// B; the UDP-lob form is refused for now).
+// B) or "Phantom0@host[:port]" (mode A: a UDP request, then the server connects back to an
+// ephemeral TCP listener of ours; the request is re-sent every reconnect_interval until it does).
 //
 // Threads:
 //  - A background I/O thread owns the TcpConnection + Endpoint. It connects, retries every
@@ -95,7 +96,7 @@ ForcePlane toForcePlane(const dev::PlaneProxy& plane, const dev::DeviceSpec& spe
 
 class VrpnClientDevice final : public dev::HapticDevice {
  public:
-  // `address`: "Name@tcp://host:port" (or tcp:host:port). Parsed in open().
+  // `address`: "Name@tcp://host:port" (or tcp:host:port), or "Name@host[:port]". Parsed in open().
   VrpnClientDevice(std::string address, dev::DeviceSpec spec, VrpnClientOptions options = {});
   ~VrpnClientDevice() override;
   VrpnClientDevice(const VrpnClientDevice&) = delete;

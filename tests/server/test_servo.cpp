@@ -78,6 +78,24 @@ TEST(Servo, InvalidReadingsTurnTheForceOffAfterThePolicyLimit) {
   for (const Eigen::Vector3d& f : rig.device.writes()) ASSERT_TRUE(f.allFinite());
 }
 
+TEST(Servo, ADeviceThatStaysInvalidFaultsOnceAndGetsNoForce) {
+  ServoRig rig([](std::int64_t tick, dev::DeviceState& s) {
+    press(tick, s);
+    if (tick >= 1500) s.valid = false;  // e.g. the VRPN server went away for good
+  });
+  rig.run(1500);
+  srv::ClientForce cf;
+  cf.force_world_n[0] = 0.1;
+  for (int k = 0; k < 500; ++k) {
+    rig.servo->clientForceSlot().write(cf);  // a client keeps pushing
+    rig.run(1);
+  }
+  EXPECT_EQ(rig.servo->counters().faults, 1u);  // one flight record, not one per tick
+  EXPECT_EQ(rig.servo->counters().invalid_readings, 500u);
+  for (std::size_t i = rig.device.writes().size() - 490; i < rig.device.writes().size(); ++i)
+    ASSERT_EQ(rig.device.writes()[i].norm(), 0.0) << i;
+}
+
 TEST(Servo, ClientForcesAreAddedAndExpire) {
   ServoRig rig([](std::int64_t, dev::DeviceState& s) { s.p_world = Eigen::Vector3d(0, 0, 0.01); });  // free space
   rig.run(10);  // engage (zero request)

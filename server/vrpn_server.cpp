@@ -1,0 +1,377 @@
+#include "server/vrpn_server.hpp"
+
+#include <poll.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "device/clock.hpp"
+#include "device/vrpn/addressing.hpp"
+#include "device/vrpn/base_messages.hpp"
+#include "device/vrpn/button_messages.hpp"
+#include "device/vrpn/force_messages.hpp"
+#include "device/vrpn/tcp_connection.hpp"
+#include "device/vrpn/tracker_messages.hpp"
+#include "device/vrpn/udp_socket.hpp"
+
+namespace thx::srv {
+
+using namespace thx::vrpn;
+
+namespace {
+
+struct Client {
+  std::unique_ptr<TcpConnection> conn;
+  std::string peer;  // for log lines
+  std::int32_t sender = kNoId;
+  bool connected = false;
+  std::int64_t opened_ns = 0;
+  double rate_hz = 0.0;
+  std::int64_t next_report_ns = 0;
+  std::uint32_t buttons_sent = 0;
+};
+
+std::string describe(const Error& e) { return std::string(toString(e.code)) + ": " + e.reason; }
+
+}  // namespace
+
+struct VrpnServer::Impl {
+  UniqueFd listen_fd;
+  UniqueFd udp_fd;
+  std::vector<Client> clients;
+  ExternalEffects effects;
+  bool effects_touched = false;  // something was commanded since the last reset
+  DeviceSnapshot snap;
+  std::uint32_t snap_seq = 0;
+};
+
+VrpnServer::VrpnServer(const dev::LatestSlot<DeviceSnapshot>& snapshots, ExternalEffectRenderer* effects,
+                       VrpnServerOptions options)
+    : snapshots_(snapshots), effects_(effects), options_(std::move(options)) {}
+
+VrpnServer::~VrpnServer() { stop(); }
+
+void VrpnServer::start() {
+  if (thread_.joinable()) return;
+  auto impl = std::make_unique<Impl>();
+  const std::string where = options_.listen_ip + ":" + std::to_string(options_.port);
+  Result<UniqueFd> l = listenTcp(options_.listen_ip, options_.port);
+  if (!l) throw std::runtime_error("--vrpn-listen " + where + ": cannot listen on TCP: " + l.error().reason);
+  impl->listen_fd = std::move(l).value();
+  bound_port_ = localPort(impl->listen_fd.get());
+  // The UDP request socket shares the TCP port number (reference §1).
+  Result<UniqueFd> u = bindUdp(options_.listen_ip, bound_port_);
+  if (!u) throw std::runtime_error("--vrpn-listen " + where + ": cannot bind UDP: " + u.error().reason);
+  impl->udp_fd = std::move(u).value();
+  impl_ = std::move(impl);
+  {
+    std::lock_guard lock(status_mutex_);
+    status_ = VrpnServerStatus{};
+    status_.running = true;
+  }
+  stop_.store(false);
+  thread_ = std::thread([this] { run(); });
+}
+
+void VrpnServer::stop() {
+  if (!thread_.joinable()) return;
+  stop_.store(true);
+  thread_.join();
+  std::lock_guard lock(status_mutex_);
+  status_.running = false;
+  status_.clients = 0;
+}
+
+VrpnServerStatus VrpnServer::status() const {
+  std::lock_guard lock(status_mutex_);
+  return status_;
+}
+
+void VrpnServer::run() {
+  Impl& s = *impl_;
+  dev::MonotonicClock clock;
+  const std::int64_t handshake_ns = std::int64_t(options_.handshake_timeout.count());
+  const double default_rate = std::clamp(options_.report_hz, 1.0, options_.max_report_hz);
+
+  auto log = [&](const std::string& line) {
+    if (options_.log) std::fprintf(stderr, "hapticd: vrpn: %s\n", line.c_str());
+  };
+  auto bump = [&](auto member, std::uint64_t n = 1) {
+    std::lock_guard lock(status_mutex_);
+    status_.*member += n;
+  };
+  auto setError = [&](std::string text) {
+    log(text);
+    std::lock_guard lock(status_mutex_);
+    status_.last_error = std::move(text);
+  };
+
+  auto addClient = [&](UniqueFd fd, std::string peer) {
+    if (int(s.clients.size()) >= options_.max_clients) {
+      bump(&VrpnServerStatus::refused);
+      setError("refused " + peer + ": already " + std::to_string(options_.max_clients) +
+               " clients (--vrpn-max-clients)");
+      return;  // fd closes here
+    }
+    Client c;
+    c.conn = std::make_unique<TcpConnection>(std::move(fd));
+    Endpoint& ep = c.conn->endpoint();
+    c.sender = ep.addSender(options_.device_name);
+    for (std::string_view n :
+         {Ping::kTypeName, Pong::kTypeName, TextMessage::kTypeName, TrackerPosQuat::kTypeName,
+          TrackerVelocity::kTypeName, TrackerUpdateRate::kTypeName, TrackerResetOrigin::kTypeName,
+          ButtonChange::kTypeName, ButtonStates::kTypeName, ForcePlane::kTypeName, ForcePlane2::kTypeName,
+          ForceField::kTypeName, ForceCustomEffect::kTypeName, ForceReport::kTypeName, ForceScp::kTypeName,
+          ForceError::kTypeName})
+      ep.addType(n);
+    c.peer = std::move(peer);
+    c.opened_ns = clock.nowNs();
+    c.rate_hz = default_rate;
+    s.clients.push_back(std::move(c));
+    bump(&VrpnServerStatus::accepted);
+  };
+
+  auto writeEffects = [&] {
+    if (effects_) effects_->commandSlot().write(s.effects);
+    s.effects_touched = true;
+  };
+
+  auto sendText = [&](Client& c, TextMessage::Severity severity, std::string text) {
+    TextMessage t;
+    t.severity = severity;
+    t.text = std::move(text);
+    if (t.text.size() > 1000) t.text.resize(1000);
+    c.conn->endpoint().sendMessage(c.sender, t);
+  };
+
+  auto buttonStates = [&] {
+    ButtonStates b;
+    for (int i = 0; i < options_.num_buttons; ++i) b.states.push_back((s.snap.buttons >> i) & 1u);
+    return b;
+  };
+
+  // A force command's verdict: refusals get Force_Error 0 plus the reason; clamps a warning.
+  auto answer = [&](Client& c, const CommandVerdict& v) {
+    bump(&VrpnServerStatus::commands);
+    if (!v.problem.empty()) {
+      bump(&VrpnServerStatus::refused_commands);
+      c.conn->endpoint().sendMessage(c.sender, ForceError{0});
+      sendText(c, TextMessage::kError, "hapticd: " + v.problem);
+      return;
+    }
+    if (!v.note.empty()) sendText(c, TextMessage::kWarning, "hapticd: " + v.note);
+    if (v.applied) writeEffects();
+  };
+
+  auto handle = [&](Client& c, const UserMessage& m) {
+    Endpoint& ep = c.conn->endpoint();
+    const std::string_view t = m.type_name;
+    if (t == Ping::kTypeName) {
+      ep.sendMessage(c.sender, Pong{});
+      ep.sendMessage(c.sender, buttonStates());
+    } else if (t == TrackerUpdateRate::kTypeName) {
+      Result<TrackerUpdateRate> r = TrackerUpdateRate::decode(m.payload);
+      if (!r) return ep.drop(r.error());
+      if (!std::isfinite(r->hz) || r->hz <= 0.0) {
+        sendText(c, TextMessage::kError,
+                 "hapticd: set_update_rate " + std::to_string(r->hz) + " Hz refused: expected a rate > 0");
+        return;
+      }
+      c.rate_hz = std::clamp(r->hz, 1.0, options_.max_report_hz);
+      if (c.rate_hz != r->hz)
+        sendText(c, TextMessage::kWarning,
+                 "hapticd: set_update_rate " + std::to_string(r->hz) + " Hz clamped to " +
+                     std::to_string(c.rate_hz) + " Hz");
+      c.next_report_ns = clock.nowNs();
+    } else if (t == TrackerResetOrigin::kTypeName) {
+      sendText(c, TextMessage::kWarning, "hapticd: Reset_Origin is not supported by this device; ignored");
+    } else if (t == ForcePlane::kTypeName || t == ForcePlane2::kTypeName || t == ForceField::kTypeName ||
+               t == ForceCustomEffect::kTypeName) {
+      if (!effects_) {
+        ep.sendMessage(c.sender, ForceError{3});
+        sendText(c, TextMessage::kError, "hapticd: this server renders no force effects");
+        return;
+      }
+      if (t == ForcePlane::kTypeName) {
+        Result<ForcePlane> r = ForcePlane::decode(m.payload);
+        if (!r) return ep.drop(r.error());
+        answer(c, applyPlane(s.effects, *r, options_.limits));
+      } else if (t == ForcePlane2::kTypeName) {
+        Result<ForcePlane2> r = ForcePlane2::decode(m.payload);
+        if (!r) return ep.drop(r.error());
+        answer(c, applyPlane2(s.effects, *r, options_.limits));
+      } else if (t == ForceField::kTypeName) {
+        Result<ForceField> r = ForceField::decode(m.payload);
+        if (!r) return ep.drop(r.error());
+        answer(c, applyField(s.effects, *r, options_.limits));
+      } else {
+        Result<ForceCustomEffect> r = ForceCustomEffect::decode(m.payload);
+        if (!r) return ep.drop(r.error());
+        answer(c, applyCustomEffect(s.effects, *r, options_.limits));
+      }
+    }
+    // Our own report types coming back from a client are ignored, like a stock server does.
+  };
+
+  auto sendReports = [&](Client& c) {
+    Endpoint& ep = c.conn->endpoint();
+    const DeviceSnapshot& d = s.snap;
+    TrackerPosQuat pq;
+    TrackerVelocity vel;
+    ForceReport force;
+    ForceScp scp;
+    for (int i = 0; i < 3; ++i) {
+      pq.pos[std::size_t(i)] = d.p_world[i];
+      vel.vel[std::size_t(i)] = d.v_world[i];
+      force.force[std::size_t(i)] = d.f_out[i];
+      scp.pos[std::size_t(i)] = d.scp_world[i];
+    }
+    for (int i = 0; i < 4; ++i) pq.quat[std::size_t(i)] = d.q_world[i];
+    vel.vel_quat_dt = 1.0 / c.rate_hz;
+    ep.sendMessage(c.sender, pq);
+    ep.sendMessage(c.sender, vel);
+    ep.sendMessage(c.sender, force);
+    ep.sendMessage(c.sender, scp);
+    bump(&VrpnServerStatus::reports);
+  };
+
+  auto sendButtonEdges = [&](Client& c) {
+    const std::uint32_t now_buttons = s.snap.buttons;
+    for (int i = 0; i < options_.num_buttons && i < 32; ++i) {
+      const std::uint32_t bit = 1u << i;
+      if ((now_buttons ^ c.buttons_sent) & bit)
+        c.conn->endpoint().sendMessage(c.sender, ButtonChange{i, (now_buttons & bit) ? 1 : 0});
+    }
+    c.buttons_sent = now_buttons;
+  };
+
+  std::vector<pollfd> fds;
+  while (!stop_.load(std::memory_order_relaxed)) {
+    // Wait for input, or for the next report that is due.
+    std::int64_t now = clock.nowNs();
+    std::int64_t wait_ns = 10'000'000;
+    for (const Client& c : s.clients)
+      if (c.connected) wait_ns = std::min(wait_ns, std::max<std::int64_t>(0, c.next_report_ns - now));
+    fds.clear();
+    fds.push_back({s.listen_fd.get(), POLLIN, 0});
+    fds.push_back({s.udp_fd.get(), POLLIN, 0});
+    for (const Client& c : s.clients)
+      fds.push_back({c.conn->fd(), short(POLLIN | (c.conn->wantsWrite() ? POLLOUT : 0)), 0});
+    timespec ts{time_t(wait_ns / 1'000'000'000), long(wait_ns % 1'000'000'000)};
+    ::ppoll(fds.data(), nfds_t(fds.size()), &ts, nullptr);
+
+    if (fds[0].revents & POLLIN) {
+      for (;;) {
+        Result<UniqueFd> fd = acceptTcp(s.listen_fd.get());
+        if (!fd) {
+          setError("accept failed: " + fd.error().reason);
+          break;
+        }
+        if (!*fd) break;
+        const std::string peer = peerName(fd->get());
+        addClient(std::move(fd).value(), peer + " (TCP)");
+      }
+    }
+    if (fds[1].revents & POLLIN) {
+      // Answer each distinct request once per round: a waiting client re-sends every 2 s.
+      std::vector<std::pair<std::string, std::uint16_t>> answered;
+      while (std::optional<Datagram> d = receiveDatagram(s.udp_fd.get())) {
+        bump(&VrpnServerStatus::lob_requests);
+        Result<LobRequest> req = d->oversized ? Result<LobRequest>(Error{ErrorCode::kBadLobRequest,
+                                                                         "datagram longer than 256 bytes"})
+                                              : parseLobRequest(d->bytes);
+        if (!req) {
+          bump(&VrpnServerStatus::bad_lob_requests);
+          setError("ignored a UDP connection request from " + d->source_ip + ": " + req.error().reason);
+          continue;
+        }
+        const std::pair<std::string, std::uint16_t> key{d->source_ip, req->port};
+        if (std::find(answered.begin(), answered.end(), key) != answered.end()) continue;
+        answered.push_back(key);
+        Result<UniqueFd> fd = connectTcp(d->source_ip, req->port);
+        if (!fd) {
+          setError("cannot connect back to " + d->source_ip + ":" + std::to_string(req->port) + ": " +
+                   fd.error().reason);
+          continue;
+        }
+        addClient(std::move(fd).value(), d->source_ip + ":" + std::to_string(req->port) + " (UDP request)");
+      }
+    }
+
+    snapshots_.readIfNewer(s.snap, s.snap_seq);
+    now = clock.nowNs();
+    for (Client& c : s.clients) {
+      c.conn->pump();
+      while (std::optional<Event> ev = c.conn->endpoint().poll()) {
+        if (const auto* con = std::get_if<Connected>(&*ev)) {
+          c.connected = true;
+          c.next_report_ns = now;
+          c.buttons_sent = s.snap.buttons;
+          c.conn->endpoint().sendMessage(c.sender, buttonStates());
+          log("client connected: " + c.peer + (con->peer.minor_differs ? " (different VRPN minor version)" : ""));
+        } else if (const auto* m = std::get_if<UserMessage>(&*ev)) {
+          handle(c, *m);
+        }
+      }
+      if (!c.conn->open()) continue;
+      if (!c.connected && now - c.opened_ns > handshake_ns) {
+        c.conn->close(Error{ErrorCode::kSocket, "no VRPN handshake within the timeout"});
+        continue;
+      }
+      if (c.connected) {
+        sendButtonEdges(c);
+        if (now >= c.next_report_ns) {
+          sendReports(c);
+          const std::int64_t period = std::int64_t(1e9 / c.rate_hz);
+          c.next_report_ns += period;
+          if (c.next_report_ns < now) c.next_report_ns = now + period;  // fell behind: no burst
+        }
+      }
+      if (c.conn->wantsWrite()) c.conn->pump();
+    }
+
+    // Forget closed clients; the last one out resets every effect (reference §9).
+    const std::size_t before = s.clients.size();
+    for (Client& c : s.clients) {
+      if (c.conn->open()) continue;
+      while (c.conn->endpoint().poll()) {
+      }
+      const std::optional<Error>& why = c.conn->closeReason();
+      const bool clean = why && why->code == ErrorCode::kPeerClosed;
+      if (!clean) bump(&VrpnServerStatus::drops);
+      log("client " + c.peer + (clean ? " disconnected" : " dropped: " + (why ? describe(*why) : "closed")));
+      if (!clean && why) {
+        std::lock_guard lock(status_mutex_);
+        status_.last_error = c.peer + ": " + describe(*why);
+      }
+    }
+    std::erase_if(s.clients, [](const Client& c) { return !c.conn->open(); });
+    if (s.clients.size() != before) {
+      if (s.clients.empty() && s.effects_touched) {
+        resetEffects(s.effects);
+        writeEffects();
+        s.effects_touched = false;
+        bump(&VrpnServerStatus::effect_resets);
+        log("last client gone: all force effects reset");
+      }
+    }
+    std::lock_guard lock(status_mutex_);
+    status_.clients = int(s.clients.size());
+  }
+
+  // Shutting down: tell the servo nothing is commanded any more.
+  if (s.effects_touched) {
+    resetEffects(s.effects);
+    if (effects_) effects_->commandSlot().write(s.effects);
+  }
+  for (Client& c : s.clients) c.conn->close(Error{ErrorCode::kPeerClosed, "server shutting down"});
+  s.clients.clear();
+}
+
+}  // namespace thx::srv

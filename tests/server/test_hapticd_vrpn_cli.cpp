@@ -1,0 +1,187 @@
+// hapticd --vrpn-listen as a user runs it: a separate process serving its simulated PHANToM, a
+// VRPN client in this process (thx_vrpn), and the command-line errors.
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+#include "device/vrpn/base_messages.hpp"
+#include "device/vrpn/force_messages.hpp"
+#include "device/vrpn/tcp_connection.hpp"
+#include "device/vrpn/tracker_messages.hpp"
+#include "device/vrpn/vrpn_client_device.hpp"
+#include "device/device_specs.hpp"
+
+namespace fs = std::filesystem;
+using namespace thx::vrpn;
+using namespace std::chrono_literals;
+
+namespace {
+
+struct ProcRun {
+  int status = -1;
+  std::string err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+class HapticdVrpn : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("thx_hapticd_vrpn_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  ProcRun run(const std::string& args) const {
+    const fs::path err = dir_ / "err.txt";
+    const std::string cmd = std::string("cd '") + THX_SOURCE_DIR + "' && '" + THX_HAPTICD + "' " + args +
+                            " >/dev/null 2>'" + err.string() + "'";
+    const int raw = std::system(cmd.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(err)};
+  }
+  fs::path dir_;
+};
+
+// A port nobody listens on right now (bind to 0, read it, close).
+std::uint16_t freePort() {
+  Result<UniqueFd> l = listenTcp("127.0.0.1", 0);
+  EXPECT_TRUE(l);
+  return localPort(l->get());
+}
+
+}  // namespace
+
+TEST_F(HapticdVrpn, BadListenAddressIsAUsageError) {
+  for (const char* bad : {"x", "127.0.0.1:", "localhost:3883", "70000", "1.2.3:99"}) {
+    const ProcRun r = run(std::string("--scene scenes/default.yaml --no-lcm --vrpn-listen '") + bad + "'");
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("--vrpn-listen"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(bad), std::string::npos) << r.err;
+  }
+  const ProcRun r = run("--scene scenes/default.yaml --no-lcm --vrpn-listen 3883 --vrpn-name 'a@b'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--vrpn-name"), std::string::npos) << r.err;
+}
+
+TEST_F(HapticdVrpn, APortInUseIsAClearErrorNotACrash) {
+  Result<UniqueFd> taken = listenTcp("127.0.0.1", 0);
+  ASSERT_TRUE(taken);
+  const std::string port = std::to_string(localPort(taken->get()));
+  const ProcRun r = run("--scene scenes/default.yaml --no-lcm --no-mlock --lockstep --vrpn-listen " + port);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("--vrpn-listen 127.0.0.1:" + port), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("cannot listen"), std::string::npos) << r.err;
+}
+
+TEST_F(HapticdVrpn, ServesItsSimulatedPhantomToAVrpnClient) {
+  const std::uint16_t port = freePort();
+  ProcRun server;
+  std::thread proc([&] {
+    server = run("--scene scenes/default.yaml --device sim --duration 3 --no-lcm --no-mlock --vrpn-listen " +
+                 std::to_string(port));
+  });
+  // Connect (retrying while hapticd starts), then read reports while the scripted hand moves.
+  std::unique_ptr<TcpConnection> conn;
+  std::int32_t sender = kNoId;
+  bool connected = false;
+  int reports = 0;
+  double x_min = 1e9, x_max = -1e9;
+  const auto until = std::chrono::steady_clock::now() + 2500ms;
+  while (std::chrono::steady_clock::now() < until && reports < 1500) {
+    if (!conn || !conn->open()) {
+      Result<UniqueFd> fd = connectTcp("127.0.0.1", port);
+      if (!fd) {
+        std::this_thread::sleep_for(20ms);
+        continue;
+      }
+      conn = std::make_unique<TcpConnection>(std::move(fd).value());
+      sender = conn->endpoint().addSender("Phantom0");
+      conn->endpoint().addType(TrackerPosQuat::kTypeName);
+    }
+    pollfd p{conn->fd(), short(POLLIN | (conn->wantsWrite() ? POLLOUT : 0)), 0};
+    ::poll(&p, 1, 5);
+    conn->pump();
+    while (std::optional<Event> ev = conn->endpoint().poll()) {
+      if (std::holds_alternative<Connected>(*ev)) {
+        connected = true;
+        conn->endpoint().sendMessage(sender, Ping{});
+      } else if (const auto* m = std::get_if<UserMessage>(&*ev); m && m->type_name == TrackerPosQuat::kTypeName) {
+        Result<TrackerPosQuat> r = TrackerPosQuat::decode(m->payload);
+        ASSERT_TRUE(r);
+        ++reports;
+        x_min = std::min(x_min, r->pos[0]);
+        x_max = std::max(x_max, r->pos[0]);
+      }
+    }
+  }
+  if (conn) conn->close(Error{ErrorCode::kPeerClosed, "test done"});
+  proc.join();
+  EXPECT_TRUE(connected);
+  EXPECT_GT(reports, 100);
+  EXPECT_GT(x_max - x_min, 1e-3) << "the scripted stroke moves the pen";
+  EXPECT_EQ(server.status, 0) << server.err;
+  EXPECT_NE(server.err.find("1 clients served"), std::string::npos) << server.err;
+}
+
+// Our client device against hapticd's server over the UDP request form, the simulated PHANToM
+// behind it: the client reads the moving pen and its plane commands reach the server.
+TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
+  const std::uint16_t port = freePort();
+  ProcRun server;
+  std::thread proc([&] {
+    server = run("--scene scenes/default.yaml --device sim --duration 3 --no-lcm --no-mlock --vrpn-listen " +
+                 std::to_string(port));
+  });
+  VrpnClientOptions o;
+  o.reconnect_interval = 100ms;
+  o.staleness = 200ms;
+  o.command_timeout = 0ns;
+  VrpnClientDevice client("Phantom0@127.0.0.1:" + std::to_string(port), thx::dev::phantomDesktopSpec(), o);
+  client.open();
+  int valid = 0;
+  double z_min = 1e9, z_max = -1e9;
+  const auto until = std::chrono::steady_clock::now() + 2500ms;
+  thx::dev::DeviceCommand cmd;
+  cmd.forces_enabled = true;
+  cmd.num_planes = 1;
+  cmd.planes[0].k_n_per_m = 100.0;
+  while (std::chrono::steady_clock::now() < until) {
+    const thx::dev::DeviceState s = client.read();  // paced at 1 ms
+    if (!s.valid) continue;
+    ++valid;
+    z_min = std::min(z_min, s.p_world.z());
+    z_max = std::max(z_max, s.p_world.z());
+    cmd.planes[0].d_m = -0.01 + 1e-6 * (valid % 100);  // a plane that changes, far below the pen
+    client.write(cmd);
+  }
+  const VrpnClientStatus st = client.status();
+  client.close();
+  proc.join();
+  EXPECT_GT(valid, 100) << st.last_error;
+  EXPECT_GT(z_max - z_min, 1e-4) << "the scripted hand presses and strokes";
+  EXPECT_GT(st.planes_sent, 10u);
+  EXPECT_EQ(server.status, 0) << server.err;
+  EXPECT_NE(server.err.find("1 clients served"), std::string::npos) << server.err;
+  // "hapticd: vrpn: 1 clients served, 0 dropped, 0 refused, N force commands (0 refused)"
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(server.err, m, std::regex("([0-9]+) force commands \\(([0-9]+) refused\\)")))
+      << server.err;
+  EXPECT_GE(std::stoi(m[1]), 10);
+  EXPECT_EQ(std::stoi(m[2]), 0);
+}

@@ -1,0 +1,535 @@
+// hapticd's VRPN server (server/vrpn_server.hpp) on 127.0.0.1 with the real servo pipeline behind
+// it, driven by our VrpnClientDevice over both connection forms and by raw protocol clients that
+// misbehave. The device is a pen held still by the test (paced at 1 ms on the monotonic clock),
+// far above the texture, so every force it feels comes from VRPN effects. Waits poll with a
+// generous deadline; nothing asserts on timing except "eventually" and ordering of rates.
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <sys/socket.h>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "device/clock.hpp"
+#include "device/device_specs.hpp"
+#include "device/pacer.hpp"
+#include "device/vrpn/base_messages.hpp"
+#include "device/vrpn/button_messages.hpp"
+#include "device/vrpn/force_messages.hpp"
+#include "device/vrpn/tcp_connection.hpp"
+#include "device/vrpn/tracker_messages.hpp"
+#include "device/vrpn/udp_socket.hpp"
+#include "device/vrpn/vrpn_client_device.hpp"
+#include "server/vrpn_server.hpp"
+#include "textures/generators.hpp"
+
+using namespace thx;
+using namespace thx::vrpn;
+using namespace std::chrono_literals;
+
+namespace {
+
+constexpr auto kDeadline = std::chrono::seconds(20);
+
+template <class Pred>
+bool eventually(Pred pred, std::chrono::milliseconds step = 5ms) {
+  const auto until = std::chrono::steady_clock::now() + kDeadline;
+  while (std::chrono::steady_clock::now() < until) {
+    if (pred()) return true;
+    std::this_thread::sleep_for(step);
+  }
+  return pred();
+}
+
+// A pen the test holds at a settable position; keeps what the servo last wrote.
+class HeldPen final : public dev::HapticDevice {
+ public:
+  HeldPen() : spec_(dev::phantomDesktopSpec()), pacer_(clock_, 1'000'000) {}
+  const dev::DeviceSpec& spec() const override { return spec_; }
+  dev::OutputMode outputMode() const override { return dev::OutputMode::Force; }
+  void open() override { pacer_.start(); }
+  void close() override {}
+  dev::DeviceState read() override {
+    dev::DeviceState s;
+    s.timing = pacer_.wait();
+    std::lock_guard lock(mutex_);
+    s.p_world = pos_;
+    s.buttons = buttons_;
+    s.valid = true;
+    return s;
+  }
+  void write(const dev::DeviceCommand& c) override {
+    std::lock_guard lock(mutex_);
+    force_ = c.forces_enabled ? c.force_world_n : Eigen::Vector3d::Zero();
+  }
+  void hold(const Eigen::Vector3d& p) {
+    std::lock_guard lock(mutex_);
+    pos_ = p;
+  }
+  void setButtons(std::uint32_t b) {
+    std::lock_guard lock(mutex_);
+    buttons_ = b;
+  }
+  Eigen::Vector3d force() {
+    std::lock_guard lock(mutex_);
+    return force_;
+  }
+
+ private:
+  dev::DeviceSpec spec_;
+  dev::MonotonicClock clock_;
+  dev::Pacer pacer_;
+  std::mutex mutex_;
+  Eigen::Vector3d pos_{0.0, 0.0, 0.05};  // 5 cm above the textured plane z = 0
+  Eigen::Vector3d force_ = Eigen::Vector3d::Zero();
+  std::uint32_t buttons_ = 0;
+};
+
+// The servo pipeline as hapticd wires it, ticking on its own thread, with a VRPN server.
+struct ServedRig {
+  explicit ServedRig(srv::VrpnServerOptions options = {}, std::uint16_t port = 0) {
+    tex::GenerateRequest g;
+    g.kind = "sine";
+    g.size = 64;
+    map = std::make_unique<tex::TextureMap>(tex::generate(g));
+    tex::PlaneMapping m;
+    m.size_m = {0.1, 0.1};
+    surface = std::make_unique<tex::TexturedSurface>(*map, m, tex::SampleOptions{}, false);
+    srv::RendererConfig rc;
+    rc.stiffness_n_per_m = 500.0;
+    renderer = std::make_unique<srv::ProxyRenderer>(*surface, rc);
+    passivity = std::make_unique<srv::PassivityController>(srv::PassivityConfig::fromSpec(pen.spec(), 1e-3, 500.0));
+    safety = std::make_unique<srv::SafetyStage>(srv::SafetyConfig::fromSpec(pen.spec(), 1e-3));
+    servo = std::make_unique<srv::Servo>(pen, *renderer, *passivity, *safety, recorder, ring, srv::ServoConfig{});
+    servo->attachExternalEffects(&effects);
+    options.port = port;
+    options.log = false;
+    options.limits.max_stiffness_n_per_m = pen.spec().max_stiffness_n_per_m;
+    options.limits.peak_force_n = pen.spec().peak_force_n;
+    server = std::make_unique<srv::VrpnServer>(servo->snapshotSlot(), &effects, options);
+    server->start();
+    pen.open();
+    thread = std::thread([this] {
+      srv::TickRecord r;
+      while (!stop.load()) {
+        const srv::TickRecord& t = servo->tick();
+        max_missed = std::max<std::int64_t>(max_missed, t.missed);
+        ticks.store(t.tick);
+        while (ring.pop(r)) {
+        }
+      }
+    });
+  }
+  ~ServedRig() {
+    stop.store(true);
+    thread.join();
+    server->stop();
+  }
+  std::uint16_t port() const { return server->port(); }
+  std::string tcpAddress() const { return "Phantom0@tcp://127.0.0.1:" + std::to_string(port()); }
+  std::string lobAddress() const { return "Phantom0@127.0.0.1:" + std::to_string(port()); }
+
+  HeldPen pen;
+  std::unique_ptr<tex::TextureMap> map;
+  std::unique_ptr<tex::TexturedSurface> surface;
+  std::unique_ptr<srv::ProxyRenderer> renderer;
+  std::unique_ptr<srv::PassivityController> passivity;
+  std::unique_ptr<srv::SafetyStage> safety;
+  srv::FlightRecorder recorder{1000};
+  srv::SpscRing<srv::TickRecord> ring{4096};
+  std::unique_ptr<srv::Servo> servo;
+  srv::ExternalEffectRenderer effects{1e-3};
+  std::unique_ptr<srv::VrpnServer> server;
+  std::atomic<bool> stop{false};
+  std::atomic<std::int64_t> ticks{0};
+  std::int64_t max_missed = 0;  // written by the servo thread, read after join
+  std::thread thread;
+};
+
+vrpn::VrpnClientOptions fastClient() {
+  vrpn::VrpnClientOptions o;
+  o.reconnect_interval = 100ms;
+  o.staleness = 200ms;  // sanitizer builds on a busy VM: we test the data, not the latency
+  o.command_timeout = 0ns;
+  return o;
+}
+
+// A raw protocol client: the test controls every byte and reads what the server sends.
+struct RawClient {
+  explicit RawClient(std::uint16_t port) {
+    Result<UniqueFd> fd = connectTcp("127.0.0.1", port);
+    EXPECT_TRUE(fd) << fd.error().reason;
+    conn = std::make_unique<TcpConnection>(std::move(fd).value());
+    sender = conn->endpoint().addSender("Phantom0");
+    // Registered before the handshake, so the server's messages of these types are delivered.
+    for (std::string_view t : {Ping::kTypeName, Pong::kTypeName, TrackerPosQuat::kTypeName, ButtonStates::kTypeName,
+                               ButtonChange::kTypeName, ForceError::kTypeName, TextMessage::kTypeName,
+                               ForceReport::kTypeName})
+      conn->endpoint().addType(t);
+  }
+  // Pumps for `d`, collecting messages by type name.
+  void pumpFor(std::chrono::milliseconds d) {
+    const auto until = std::chrono::steady_clock::now() + d;
+    do {  // at least one round, so pumpFor(0ms) still writes and reads
+      if (!conn->open()) break;
+      pollfd p{conn->fd(), short(POLLIN | (conn->wantsWrite() ? POLLOUT : 0)), 0};
+      ::poll(&p, 1, d.count() > 0 ? 2 : 0);
+      conn->pump();
+      drain();
+    } while (std::chrono::steady_clock::now() < until);
+    drain();
+  }
+  void drain() {
+    while (std::optional<Event> ev = conn->endpoint().poll()) {
+      if (std::holds_alternative<Connected>(*ev)) connected = true;
+      if (const auto* m = std::get_if<UserMessage>(&*ev)) {
+        if (m->type_name == TrackerPosQuat::kTypeName) {
+          ++pos_quats;
+          if (auto r = TrackerPosQuat::decode(m->payload)) last_pos = *r;
+        } else if (m->type_name == ButtonStates::kTypeName) {
+          ++button_states;
+        } else if (m->type_name == ButtonChange::kTypeName) {
+          if (auto r = ButtonChange::decode(m->payload)) changes.push_back(*r);
+        } else if (m->type_name == ForceError::kTypeName) {
+          if (auto r = ForceError::decode(m->payload)) force_errors.push_back(r->code);
+        } else if (m->type_name == TextMessage::kTypeName) {
+          if (auto r = TextMessage::decode(m->payload)) texts.push_back(r->text);
+        } else if (m->type_name == Pong::kTypeName) {
+          ++pongs;
+        } else if (m->type_name == ForceReport::kTypeName) {
+          if (auto r = ForceReport::decode(m->payload)) last_force = *r;
+        }
+      }
+    }
+  }
+  bool waitConnected() {
+    for (int i = 0; i < 2000 && !connected && conn->open(); ++i) pumpFor(5ms);
+    return connected;
+  }
+  template <class M>
+  void send(const M& m) {
+    conn->endpoint().sendMessage(sender, m);
+  }
+
+  std::unique_ptr<TcpConnection> conn;
+  std::int32_t sender;
+  bool connected = false;
+  int pos_quats = 0, button_states = 0, pongs = 0;
+  TrackerPosQuat last_pos;
+  ForceReport last_force;
+  std::vector<ButtonChange> changes;
+  std::vector<std::int32_t> force_errors;
+  std::vector<std::string> texts;
+};
+
+// Handshake done and pinged (like a stock Remote's first mainloop).
+void registered(RawClient& c) {
+  if (c.waitConnected()) c.send(Ping{});
+}
+
+ForcePlane ceilingAbove(const Eigen::Vector3d& pen, double depth_m, float kspring) {
+  // A floor plane 'depth' above the pen: the pen is that deep inside it, pushed up.
+  ForcePlane p;
+  p.plane = {0.0f, 0.0f, 1.0f, float(-(pen.z() + depth_m))};
+  p.kspring = kspring;
+  p.kdamp = 0.0f;
+  p.fstat = 0.0f;
+  p.fdyn = 0.0f;
+  p.n_rec_cycles = 1;
+  return p;
+}
+
+}  // namespace
+
+TEST(VrpnServerLoopback, OurClientReadsTheServedDeviceOverDirectTcp) {
+  ServedRig rig;
+  rig.pen.hold(Eigen::Vector3d(0.01, -0.02, 0.05));
+  VrpnClientDevice client(rig.tcpAddress(), dev::phantomDesktopSpec(), fastClient());
+  client.open();
+  // Reports sent before hold() carry the old position: wait for the new one.
+  ASSERT_TRUE(eventually([&] {
+    const dev::DeviceState s = client.read();
+    return s.valid && s.p_world.x() == 0.01;
+  })) << client.status().last_error;
+  const dev::DeviceState s = client.read();
+  EXPECT_NEAR(s.p_world.x(), 0.01, 1e-12);
+  EXPECT_NEAR(s.p_world.y(), -0.02, 1e-12);
+  EXPECT_NEAR(s.p_world.z(), 0.05, 1e-12);
+  client.close();
+}
+
+TEST(VrpnServerLoopback, OurClientConnectsByUdpRequestAndTheServerConnectsBack) {
+  ServedRig rig;
+  rig.pen.hold(Eigen::Vector3d(-0.03, 0.0, 0.04));
+  VrpnClientDevice client(rig.lobAddress(), dev::phantomDesktopSpec(), fastClient());
+  client.open();
+  ASSERT_TRUE(eventually([&] {
+    const dev::DeviceState s = client.read();
+    return s.valid && s.p_world.x() == -0.03;
+  })) << client.status().last_error;
+  EXPECT_GE(rig.server->status().lob_requests, 1u);
+  client.close();
+}
+
+TEST(VrpnServerLoopback, APlaneSentByOurClientIsFeltByTheServedDevice) {
+  for (bool lob : {false, true}) {
+    SCOPED_TRACE(lob ? "UDP request form" : "direct TCP form");
+    ServedRig rig;
+    const Eigen::Vector3d pen(0.0, 0.0, 0.05);
+    rig.pen.hold(pen);
+    VrpnClientDevice client(lob ? rig.lobAddress() : rig.tcpAddress(), dev::phantomDesktopSpec(), fastClient());
+    client.open();
+    ASSERT_TRUE(eventually([&] { return client.status().connected; })) << client.status().last_error;
+    // The client device sends planes[0] as a Plane message: 100 N/m, pen 1 mm inside -> 0.1 N up
+    // (below the safety stage's 0.2 N engage threshold, so a missed-tick fault on a loaded
+    // machine only delays the force, see safety.hpp).
+    dev::DeviceCommand cmd;
+    cmd.forces_enabled = true;
+    cmd.num_planes = 1;
+    cmd.planes[0].n_world = Eigen::Vector3d::UnitZ();
+    cmd.planes[0].d_m = pen.z() + 0.001;
+    cmd.planes[0].k_n_per_m = 100.0;
+    client.write(cmd);
+    EXPECT_TRUE(eventually([&] { return std::abs(rig.pen.force().z() - 0.1) < 1e-3; }))
+        << "force felt: " << rig.pen.force().transpose();
+    EXPECT_NEAR(rig.pen.force().x(), 0.0, 1e-6);
+    // Stop surface: the force goes away.
+    cmd.num_planes = 0;
+    client.write(cmd);
+    EXPECT_TRUE(eventually([&] { return rig.pen.force().norm() < 1e-6; }));
+    client.close();
+  }
+}
+
+TEST(VrpnServerLoopback, ButtonStatesOnConnectAndPingAndChangeOnEdges) {
+  ServedRig rig;
+  rig.pen.setButtons(0b10);
+  RawClient c(rig.port());
+  registered(c);
+  ASSERT_TRUE(c.waitConnected());
+  ASSERT_TRUE(eventually([&] {
+    c.pumpFor(5ms);
+    return c.button_states >= 2 && c.pongs >= 1;  // one on connect, one in reply to the ping
+  }));
+  rig.pen.setButtons(0b01);
+  ASSERT_TRUE(eventually([&] {
+    c.pumpFor(5ms);
+    return c.changes.size() >= 2;
+  }));
+  // Button 0 went down, button 1 went up.
+  bool b0_down = false, b1_up = false;
+  for (const ButtonChange& ch : c.changes) {
+    b0_down = b0_down || (ch.button == 0 && ch.state == 1);
+    b1_up = b1_up || (ch.button == 1 && ch.state == 0);
+  }
+  EXPECT_TRUE(b0_down);
+  EXPECT_TRUE(b1_up);
+}
+
+TEST(VrpnServerLoopback, SetUpdateRateIsPerClient) {
+  ServedRig rig;
+  RawClient fast(rig.port()), slow(rig.port());
+  registered(fast);
+  registered(slow);
+  ASSERT_TRUE(fast.waitConnected());
+  ASSERT_TRUE(slow.waitConnected());
+  slow.send(TrackerUpdateRate{50.0});
+  slow.pumpFor(50ms);
+  fast.pos_quats = slow.pos_quats = 0;
+  for (int i = 0; i < 100; ++i) {
+    fast.pumpFor(2ms);
+    slow.pumpFor(2ms);
+  }
+  // ~400 ms: fast ~1000 Hz, slow 50 Hz. Loose bounds: a loaded VM delays, it does not invent.
+  EXPECT_GT(fast.pos_quats, 3 * slow.pos_quats) << fast.pos_quats << " vs " << slow.pos_quats;
+  EXPECT_GT(slow.pos_quats, 0);
+  EXPECT_LE(slow.pos_quats, 40);
+  // A nonsense rate is refused with a text message, and reports keep coming.
+  slow.send(TrackerUpdateRate{-5.0});
+  ASSERT_TRUE(eventually([&] {
+    slow.pumpFor(5ms);
+    return !slow.texts.empty();
+  }));
+  EXPECT_NE(slow.texts.back().find("refused"), std::string::npos) << slow.texts.back();
+}
+
+TEST(VrpnServerLoopback, SeveralClientsShareEffectsAndTheLastOneOutResetsThem) {
+  ServedRig rig;
+  const Eigen::Vector3d pen(0.0, 0.0, 0.05);
+  rig.pen.hold(pen);
+  std::vector<std::unique_ptr<RawClient>> clients;
+  for (int i = 0; i < 4; ++i) {
+    clients.push_back(std::make_unique<RawClient>(rig.port()));
+    registered(*clients.back());
+  }
+  for (auto& c : clients) ASSERT_TRUE(c->waitConnected());
+  // Client 0 sets plane 0; client 1 sets plane 1 (same geometry): the forces add.
+  clients[0]->send(ceilingAbove(pen, 0.001, 0.05f));
+  ForcePlane p1 = ceilingAbove(pen, 0.001, 0.05f);
+  p1.plane_index = 1;
+  clients[1]->send(p1);
+  for (auto& c : clients) c->pumpFor(5ms);
+  const double k = 0.05 * rig.pen.spec().max_stiffness_n_per_m;
+  EXPECT_TRUE(eventually([&] {
+    for (auto& c : clients) c->pumpFor(1ms);
+    return std::abs(rig.pen.force().z() - 2 * k * 0.001) < 1e-3;
+  })) << rig.pen.force().transpose();
+  // Every client sees the force in its reports.
+  for (auto& c : clients) {
+    ASSERT_TRUE(eventually([&] {
+      c->pumpFor(5ms);
+      return std::abs(c->last_force.force[2] - 2 * k * 0.001) < 1e-3;
+    }));
+  }
+  // Client 0 leaving does not remove its plane while others are connected.
+  clients[0].reset();
+  for (int i = 0; i < 20; ++i)
+    for (std::size_t j = 1; j < clients.size(); ++j) clients[j]->pumpFor(2ms);
+  EXPECT_TRUE(eventually([&] { return std::abs(rig.pen.force().z() - 2 * k * 0.001) < 1e-3; }));
+  clients.clear();  // the last ones leave
+  EXPECT_TRUE(eventually([&] { return rig.pen.force().norm() < 1e-6; })) << rig.pen.force().transpose();
+  EXPECT_TRUE(eventually([&] { return rig.server->status().effect_resets >= 1; }));
+}
+
+TEST(VrpnServerLoopback, RefusedCommandsGetForceErrorAndAReason) {
+  ServedRig rig;
+  RawClient c(rig.port());
+  registered(c);
+  ASSERT_TRUE(c.waitConnected());
+  ForcePlane bad = ceilingAbove(Eigen::Vector3d(0, 0, 0.05), 0.002, 0.5f);
+  bad.plane_index = 9;
+  c.send(bad);
+  ForceCustomEffect odd;
+  odd.effect_id = 42;
+  c.send(odd);
+  ASSERT_TRUE(eventually([&] {
+    c.pumpFor(5ms);
+    return c.force_errors.size() >= 2 && c.texts.size() >= 2;
+  }));
+  EXPECT_EQ(c.force_errors[0], 0);
+  EXPECT_NE(c.texts[0].find("plane_index = 9"), std::string::npos) << c.texts[0];
+  EXPECT_NE(c.texts[1].find("effect_id = 42"), std::string::npos) << c.texts[1];
+  EXPECT_TRUE(c.conn->open());  // refused, not dropped
+  EXPECT_EQ(rig.pen.force().norm(), 0.0);
+}
+
+TEST(VrpnServerLoopback, OurClientReconnectsAfterTheServerRestarts) {
+  auto rig = std::make_unique<ServedRig>();
+  const std::uint16_t port = rig->port();
+  VrpnClientDevice client(rig->tcpAddress(), dev::phantomDesktopSpec(), fastClient());
+  client.open();
+  ASSERT_TRUE(eventually([&] { return client.read().valid; }));
+  rig.reset();  // server (and servo) gone
+  ASSERT_TRUE(eventually([&] { return !client.read().valid; }));
+  ServedRig again({}, port);  // a new server on the same port
+  EXPECT_TRUE(eventually([&] { return client.read().valid; })) << client.status().last_error;
+  EXPECT_GE(client.status().connects, 2u);
+  client.close();
+}
+
+TEST(VrpnServerLoopback, MaxClientsRefusesTheNextOne) {
+  srv::VrpnServerOptions o;
+  o.max_clients = 2;
+  ServedRig rig(o);
+  RawClient a(rig.port()), b(rig.port());
+  registered(a);
+  registered(b);
+  ASSERT_TRUE(a.waitConnected());
+  ASSERT_TRUE(b.waitConnected());
+  RawClient c(rig.port());
+  EXPECT_FALSE(c.waitConnected());
+  EXPECT_TRUE(eventually([&] { return rig.server->status().refused >= 1; }));
+  a.pumpFor(20ms);
+  EXPECT_TRUE(a.conn->open());
+}
+
+// Every kind of bad input at once, while a well-behaved client watches and the servo ticks.
+TEST(VrpnServerLoopback, MalformedInputDropsOnlyTheOffenderWhileTheServoKeepsTime) {
+  ServedRig rig;
+  const Eigen::Vector3d pen(0.0, 0.0, 0.05);
+  rig.pen.hold(pen);
+  RawClient good(rig.port());
+  registered(good);
+  ASSERT_TRUE(good.waitConnected());
+  good.send(ceilingAbove(pen, 0.001, 0.1f));  // 0.1 N: below the safety engage threshold
+  const double k = 0.1 * rig.pen.spec().max_stiffness_n_per_m;
+  ASSERT_TRUE(eventually([&] {
+    good.pumpFor(2ms);
+    return std::abs(rig.pen.force().z() - k * 0.001) < 1e-3;
+  }));
+  const std::int64_t ticks_before = rig.ticks.load();
+  const std::uint64_t drops_before = rig.server->status().drops;
+
+  auto rawSocket = [&](const std::vector<std::uint8_t>& bytes, bool close_after) {
+    Result<UniqueFd> fd = connectTcp("127.0.0.1", rig.port());
+    EXPECT_TRUE(fd);
+    pollfd p{fd->get(), POLLOUT, 0};
+    ::poll(&p, 1, 1000);
+    ::send(fd->get(), bytes.data(), bytes.size(), MSG_NOSIGNAL);
+    if (close_after) return UniqueFd{};
+    return std::move(fd).value();
+  };
+  const Cookie ours = makeCookie(0);
+  const std::vector<std::uint8_t> cookie(ours.begin(), ours.end());
+  // 1. garbage instead of a cookie
+  std::vector<std::uint8_t> garbage(64, 0xAB);
+  UniqueFd g1 = rawSocket(garbage, false);
+  // 2. a good cookie, then a header whose length word is 1 GB
+  std::vector<std::uint8_t> huge = cookie;
+  huge.insert(huge.end(), {0x40, 0x00, 0x00, 0x00});
+  huge.resize(huge.size() + 20, 0);
+  UniqueFd g2 = rawSocket(huge, false);
+  // 3. a good cookie and half a header, then close
+  std::vector<std::uint8_t> truncated = cookie;
+  truncated.insert(truncated.end(), {0x00, 0x00, 0x00, 0x30, 0x00});
+  rawSocket(truncated, true);
+  // 4. a Plane with a 12-byte body (must be 40): a protocol client, so names are described
+  RawClient wrong_size(rig.port());
+  ASSERT_TRUE(wrong_size.waitConnected());
+  const std::int32_t plane_type = wrong_size.conn->endpoint().addType(ForcePlane::kTypeName);
+  const std::uint8_t twelve[12] = {};
+  wrong_size.conn->endpoint().send(wrong_size.sender, plane_type, twelve);
+  // 5. NaN plane: refused (Force_Error), link kept
+  RawClient nan_client(rig.port());
+  registered(nan_client);
+  ASSERT_TRUE(nan_client.waitConnected());
+  ForcePlane nan_plane = ceilingAbove(pen, 0.002, 0.5f);
+  nan_plane.plane[2] = std::numeric_limits<float>::quiet_NaN();
+  nan_client.send(nan_plane);
+  // 6. UDP requests: garbage, a port below 1024, oversized
+  sendDatagram("127.0.0.1", rig.port(), std::vector<std::uint8_t>{'x', 'y', 'z', 0});
+  sendDatagram("127.0.0.1", rig.port(), encodeLobRequest("127.0.0.1", 80));
+  sendDatagram("127.0.0.1", rig.port(), std::vector<std::uint8_t>(1000, '1'));
+  // 7. a client that never reads (its reports pile up in the kernel, then in its queue)
+  Result<UniqueFd> mute = connectTcp("127.0.0.1", rig.port());
+  ASSERT_TRUE(mute);
+  ::send(mute->get(), cookie.data(), cookie.size(), MSG_NOSIGNAL);
+
+  for (int i = 0; i < 300; ++i) {
+    good.pumpFor(2ms);
+    wrong_size.pumpFor(0ms);
+    nan_client.pumpFor(0ms);
+  }
+  EXPECT_TRUE(good.conn->open());
+  const int reports_before = good.pos_quats;
+  good.pumpFor(100ms);
+  EXPECT_GT(good.pos_quats, reports_before);  // still served
+  EXPECT_FALSE(wrong_size.conn->open());
+  EXPECT_TRUE(nan_client.conn->open());
+  EXPECT_FALSE(nan_client.force_errors.empty());
+  // The good client's plane still holds (a missed-tick fault on a loaded machine only ramps it
+  // back in), and nothing non-finite reached the device.
+  EXPECT_TRUE(eventually([&] {
+    good.pumpFor(2ms);
+    return std::abs(rig.pen.force().z() - k * 0.001) < 1e-3;
+  })) << rig.pen.force().transpose();
+  EXPECT_TRUE(rig.pen.force().allFinite());
+  const srv::VrpnServerStatus st = rig.server->status();
+  EXPECT_GE(st.drops - drops_before, 3u);  // garbage cookie, huge length, wrong-size body (+ truncated)
+  EXPECT_GE(st.bad_lob_requests, 3u);
+  // The servo kept ticking at 1 kHz through all of it (ticks are paced on the monotonic clock).
+  EXPECT_GT(rig.ticks.load() - ticks_before, 300);
+}
