@@ -2,9 +2,19 @@
 // Time sources for the servo. The device is the clock: a real device paces the loop with its own
 // ticks; the simulated device paces it with MonotonicClock (real time) or VirtualClock (lock-step,
 // for deterministic tests: sleeping just advances virtual time).
+#include <time.h>
+
 #include <cstdint>
 
 namespace thx::dev {
+
+// CLOCK_MONOTONIC in ns through the vDSO (no system call): for timestamps and measurements in
+// any thread, the servo's included.
+inline std::int64_t monotonicNowNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
 
 class Clock {
  public:

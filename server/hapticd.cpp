@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "device/replay_device.hpp"
 #include "device/sim_phantom.hpp"
 #include "device/vrpn/vrpn_client_device.hpp"
 #include "scenes/scene_frames.hpp"
@@ -30,6 +31,7 @@
 #include "server/scene_device.hpp"
 #include "server/servo.hpp"
 #include "server/stability_budget.hpp"
+#include "server/session_log.hpp"
 #include "server/stats_json.hpp"
 #include "server/vrpn_server.hpp"
 #include "textures/texture_error.hpp"
@@ -42,15 +44,23 @@ The haptic device server: renders the scene's textured surface to the device at 
 publishes device and contact state over LCM.
 
   --scene FILE          scene file (docs/scenes.md); e.g. scenes/default.yaml
-  --device DEV          sim, or vrpn:NAME@tcp://HOST:PORT for a PHANToM behind a VRPN server
+  --device DEV          sim; vrpn:NAME@HOST[:PORT] or vrpn:NAME@tcp://HOST:PORT for a PHANToM
+                        behind a VRPN server; replay:FILE to play a recorded session's pen
+                        trajectory back (--record)
                         (docs/vrpn.md); default: the scene's device
   --duration S          run S seconds, then ramp down and stop (default for a simulated device:
                         its script plus 0.5 s; 0 = until SIGINT/SIGTERM)
-  --lockstep            simulated device on a virtual clock: deterministic, runs as fast as it can
+  --lockstep            simulated or replayed device on a virtual clock: deterministic, runs as
+                        fast as it can (and no tick is dropped on the way to --record)
+  --record FILE         write every tick's device and contact state to FILE, a standard LCM log
+                        (lcm-logplayer plays it; --device replay:FILE renders it again)
   --stats-json FILE     write statistics (ticks, rate, missed ticks, latencies, memory) as JSON
   --lcm-url URL         LCM transport (default udpm://239.255.76.67:7667?ttl=0)
   --no-lcm              do not publish at all
-  --publish-hz HZ       device/contact publication rate (default 1000)
+  --max-clients N       clients served at once (default 32); more are refused (docs/clients.md)
+  --max-rate HZ         highest rate granted to one subscription (default: the servo rate)
+  --max-bandwidth MB/S  total bandwidth of all subscriptions (default 8 MB/s); more is refused
+  --heartbeat-timeout S forget a client after S seconds without a heartbeat (default 2)
   --no-crease           crease handling off (one plane per tick, the source paper's method)
   --no-passivity        passivity controller off (the observer still runs)
   --stiffness-fraction F  override the scene's stiffness (fraction of the device maximum)
@@ -83,9 +93,11 @@ struct Options {
   std::optional<double> duration_s;
   bool lockstep = false;
   std::string stats_json;
+  std::string record;  // --record FILE
   std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";
   bool no_lcm = false;
-  double publish_hz = 1000.0;
+  thx::srv::SubscriptionLimits limits;  // --max-clients, --max-rate, --max-bandwidth, --heartbeat-timeout
+  bool max_rate_given = false;
   bool crease = true;
   bool passivity = true;
   std::optional<double> stiffness_fraction;
@@ -151,6 +163,8 @@ Options parse(int argc, char** argv) {
     } else if (a == "--duration") {
       o.duration_s = number(a, value());
       if (*o.duration_s < 0) usage("--duration must be >= 0");
+    } else if (a == "--record") {
+      o.record = value();
     } else if (a == "--lockstep") {
       o.lockstep = true;
     } else if (a == "--stats-json") {
@@ -159,9 +173,21 @@ Options parse(int argc, char** argv) {
       o.lcm_url = value();
     } else if (a == "--no-lcm") {
       o.no_lcm = true;
-    } else if (a == "--publish-hz") {
-      o.publish_hz = number(a, value());
-      if (o.publish_hz <= 0) usage("--publish-hz must be > 0");
+    } else if (a == "--max-clients") {
+      const double n = number(a, value());
+      if (n < 1 || n != std::floor(n)) usage("--max-clients must be a whole number >= 1");
+      o.limits.max_clients = int(n);
+    } else if (a == "--max-rate") {
+      o.limits.max_rate_hz = number(a, value());
+      o.max_rate_given = true;
+      if (o.limits.max_rate_hz <= 0) usage("--max-rate must be > 0");
+    } else if (a == "--max-bandwidth") {
+      o.limits.max_bandwidth_bytes_per_s = number(a, value()) * 1e6;
+      if (o.limits.max_bandwidth_bytes_per_s <= 0) usage("--max-bandwidth must be > 0");
+    } else if (a == "--heartbeat-timeout") {
+      const double t = number(a, value());
+      if (t < 0.05 || t > 3600) usage("--heartbeat-timeout must be in [0.05, 3600] s");
+      o.limits.heartbeat_timeout_ns = std::int64_t(std::llround(t * 1e9));
     } else if (a == "--no-crease") {
       o.crease = false;
     } else if (a == "--no-passivity") {
@@ -201,10 +227,13 @@ Options parse(int argc, char** argv) {
     }
   }
   if (o.scene.empty()) usage("--scene FILE is required");
-  if (!o.device.empty() && o.device != "sim" && o.device.rfind("vrpn:", 0) != 0) {
-    usage("--device: expected 'sim' or 'vrpn:NAME@tcp://HOST:PORT', got '" + o.device + "'");
+  if (!o.device.empty() && o.device != "sim" && o.device.rfind("vrpn:", 0) != 0 &&
+      o.device.rfind("replay:", 0) != 0) {
+    usage("--device: expected 'sim', 'vrpn:NAME@HOST[:PORT]', 'vrpn:NAME@tcp://HOST:PORT' or 'replay:FILE', got '" +
+          o.device + "'");
   }
-  if (o.device.rfind("vrpn:", 0) == 0 && o.lockstep) usage("--lockstep needs the simulated device");
+  if (o.device == "replay:") usage("--device replay:FILE needs a file");
+  if (o.device.rfind("vrpn:", 0) == 0 && o.lockstep) usage("--lockstep needs the simulated or a replayed device");
   if (!o.vrpn_listen.empty() && !parseListenAddress(o.vrpn_listen))
     usage("--vrpn-listen: expected [ADDR:]PORT with an IPv4 ADDR and PORT 1..65535, got '" + o.vrpn_listen + "'");
   return o;
@@ -240,7 +269,19 @@ int run(const Options& o) {
   const double period_s = 1.0 / sc.rates.servo_hz;
   std::unique_ptr<dev::HapticDevice> device_owner;
   dev::SimPhantom* sim = nullptr;
-  if (vrpn_address.empty()) {
+  dev::ReplayDevice* replay = nullptr;
+  if (o.device.rfind("replay:", 0) == 0) {
+    dev::ReplayOptions ro;
+    ro.period_ns = std::int64_t(std::llround(period_s * 1e9));
+    ro.lockstep = o.lockstep;
+    auto r_dev = std::make_unique<dev::ReplayDevice>(srv::loadSessionTrajectory(o.device.substr(7)),
+                                                     srv::deviceSpecFor(sc), ro);
+    replay = r_dev.get();
+    if (!o.quiet)
+      std::fprintf(stderr, "hapticd: replaying %zu ticks (%.2f s) from %s\n", replay->size(), replay->durationS(),
+                   o.device.substr(7).c_str());
+    device_owner = std::move(r_dev);
+  } else if (vrpn_address.empty()) {
     auto s_dev = std::make_unique<dev::SimPhantom>(srv::simConfigFor(sc, o.lockstep), srv::handScriptFor(sc));
     sim = s_dev.get();
     device_owner = std::move(s_dev);
@@ -288,10 +329,18 @@ int run(const Options& o) {
     }
   }
   srv::PublisherOptions po;
-  po.publish_hz = o.publish_hz;
+  po.limits = o.limits;
+  if (!o.max_rate_given) po.limits.max_rate_hz = sc.rates.servo_hz;
+  po.device_name = vrpn_address.empty() ? "sim" : vrpn_address;
+  po.log_subscriptions = !o.quiet;
   po.servo_rate_hz = sc.rates.servo_hz;
   po.flight_dir = o.flight_dir;
-  po.simulated_device = sim != nullptr;
+  po.simulated_device = sim != nullptr || replay != nullptr;
+  std::unique_ptr<srv::SessionRecorder> session;
+  if (!o.record.empty()) {
+    session = std::make_unique<srv::SessionRecorder>(o.record, po.simulated_device);  // throws with the path
+    po.session = session.get();
+  }
   srv::Publisher publisher(ring, servo, recorder, lcm.get(), po);
   std::unique_ptr<srv::Receiver> receiver;
   if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);
@@ -320,7 +369,9 @@ int run(const Options& o) {
   }
 
   // A simulated device runs its script; a real one runs until told to stop.
-  const double duration_s = o.duration_s.value_or(sim ? sim->script().duration() + 0.5 : 0.0);
+  // A replay runs to the end of its recording.
+  const double duration_s =
+      o.duration_s.value_or(sim ? sim->script().duration() + 0.5 : replay ? replay->durationS() : 0.0);
   const std::int64_t stop_tick = duration_s > 0 ? std::int64_t(std::llround(duration_s * sc.rates.servo_hz)) : -1;
 
   publisher.start();
@@ -351,6 +402,9 @@ int run(const Options& o) {
     bool shutting_down = false;
     std::int64_t n = 0;
     while (!servo.finished()) {
+      // Lock-step is not real time: rather than drop ticks the publisher (and --record) has not
+      // taken yet, wait for it.
+      while (o.lockstep && ring.size() + 2 >= ring.capacity()) std::this_thread::yield();
       const srv::TickRecord& r = servo.tick();
       if (n == 0) first_deadline = r.deadline_ns;
       last_deadline = r.deadline_ns;
@@ -384,6 +438,14 @@ int run(const Options& o) {
   if (receiver) receiver->stop();
   publisher.stop();
   device.close();
+  if (session) {
+    if (!o.quiet)
+      std::fprintf(stderr, "hapticd: recorded %llu ticks to %s\n", (unsigned long long)session->ticks(),
+                   session->path().c_str());
+    if (ring.dropped() > 0)
+      std::fprintf(stderr, "hapticd: warning: %s misses %llu ticks the publisher could not keep up with\n",
+                   session->path().c_str(), (unsigned long long)ring.dropped());
+  }
   if (!servo_error.empty()) {
     std::fprintf(stderr, "hapticd: %s\n", servo_error.c_str());
     return 1;

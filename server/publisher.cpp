@@ -1,50 +1,110 @@
 #include "server/publisher.hpp"
 
-#include <lcm/lcm-cpp.hpp>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <thx_msgs/contact_t.hpp>
-#include <thx_msgs/device_state_t.hpp>
-#include <thx_msgs/servo_stats_t.hpp>
+#include <lcm/lcm-cpp.hpp>
+#include <random>
+#include <thx_msgs/protocol.hpp>
 
 #include "server/process_memory.hpp"
 #include "server/safety.hpp"
+#include "server/session_log.hpp"
+#include "server/tick_messages.hpp"
 
 namespace thx::srv {
 
 namespace {
 
-std::int64_t monotonicNs() {
+std::int64_t clockNs(clockid_t id) {
   timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
+  clock_gettime(id, &ts);
   return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
+std::int64_t monotonicNs() { return clockNs(CLOCK_MONOTONIC); }
 
-template <std::size_t N>
-void copy(double (&dst)[N], const double (&src)[N]) {
-  for (std::size_t k = 0; k < N; ++k) dst[k] = src[k];
+// hello_t.server_instance: random and non-zero, so a restarted server is always told apart.
+std::int64_t drawServerInstance() {
+  std::random_device rd;
+  std::seed_seq seed{rd(), rd(), rd(), unsigned(clockNs(CLOCK_REALTIME)), unsigned(::getpid())};
+  std::mt19937_64 gen(seed);
+  std::int64_t id = 0;
+  while (id == 0) id = std::int64_t(gen() >> 1);  // positive: reads the same in every language
+  return id;
 }
 
-constexpr char kDeviceStateChannel[] = "THX_DEVICE_STATE";
-constexpr char kContactChannel[] = "THX_CONTACT";
-constexpr char kServoStatsChannel[] = "THX_SERVO_STATS";
+std::string hostName() {
+  char buf[256] = {};
+  if (gethostname(buf, sizeof buf - 1) != 0) return "unknown";
+  return buf;
+}
+
+const char* kindName(const std::string& stream, bool batch) { return batch ? "CONTACT (batched)" : stream.c_str(); }
 
 }  // namespace
 
+// Encodes into the publisher's reusable buffer and publishes raw bytes (docs/messages.md §7.4.5).
+class Publisher::LcmSink : public MessageSink {
+ public:
+  explicit LcmSink(Publisher& p) : p_(p) {}
+  void send(const std::string& ch, const thx_msgs::device_state_t& m) override { put(ch, m); }
+  void send(const std::string& ch, const thx_msgs::contact_t& m) override { put(ch, m); }
+  void send(const std::string& ch, const thx_msgs::contact_batch_t& m) override {
+    if (thx_msgs::batch_count_consistent(m)) put(ch, m);
+  }
+  void send(const std::string& ch, const thx_msgs::servo_stats_t& m) override { put(ch, m); }
+
+  template <class M>
+  void put(const std::string& channel, const M& m) {
+    if (!p_.lcm_) return;
+    const int size = m.getEncodedSize();
+    if (p_.encode_buffer_.size() < std::size_t(size)) p_.encode_buffer_.resize(std::size_t(size));
+    if (m.encode(p_.encode_buffer_.data(), 0, size) != size ||
+        p_.lcm_->publish(channel, p_.encode_buffer_.data(), unsigned(size)) != 0) {
+      p_.publish_errors_.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    p_.published_.fetch_add(1, std::memory_order_relaxed);
+    p_.published_bytes_.fetch_add(std::uint64_t(size), std::memory_order_relaxed);
+  }
+
+ private:
+  Publisher& p_;
+};
+
 Publisher::Publisher(SpscRing<TickRecord>& ring, const Servo& servo, FlightRecorder& recorder, lcm::LCM* lcm,
                      const PublisherOptions& options)
-    : ring_(ring), servo_(servo), recorder_(recorder), lcm_(lcm), options_(options) {
-  const double ratio = options.servo_rate_hz / std::fmax(1e-9, options.publish_hz);
-  decimation_ = std::max<std::int64_t>(1, std::llround(ratio));
+    : ring_(ring),
+      servo_(servo),
+      recorder_(recorder),
+      lcm_(lcm),
+      options_(options),
+      server_instance_(drawServerInstance()),
+      table_([&] {
+        SubscriptionLimits l = options.limits;
+        l.servo_rate_hz = options.servo_rate_hz;
+        l.server_instance = server_instance_;
+        return l;
+      }()) {
+  server_name_ = "hapticd@" + hostName();
+  if (server_name_.size() >= thx_msgs::kMaxTextLength) server_name_.resize(thx_msgs::kMaxTextLength - 1);
+  if (options_.device_name.size() >= thx_msgs::kMaxTextLength) options_.device_name.resize(thx_msgs::kMaxTextLength - 1);
+  encode_buffer_.resize(thx_msgs::kLcmShortMessageMaxSize);  // the largest batch we send
+  if (lcm_) inbox_.attach(*lcm_);
 }
 
-Publisher::~Publisher() { stop(); }
+Publisher::~Publisher() {
+  stop();
+  inbox_.detach();
+}
 
 void Publisher::start() {
-  last_stats_ns_ = monotonicNs();
+  start_ns_ = monotonicNs();
+  start_unix_us_ = clockNs(CLOCK_REALTIME) / 1000;
+  last_stats_ns_ = start_ns_;
   thread_ = std::thread([this] { run(); });
 }
 
@@ -55,7 +115,20 @@ void Publisher::stop() {
 }
 
 PublisherCounters Publisher::counters() const {
-  return {records_.load(), published_.load(), publish_errors_.load(), flight_dumps_.load()};
+  PublisherCounters c;
+  c.records = records_.load();
+  c.published = published_.load();
+  c.publish_errors = publish_errors_.load();
+  c.flight_dumps = flight_dumps_.load();
+  c.published_bytes = published_bytes_.load();
+  c.hellos = hellos_.load();
+  c.requests = requests_.load();
+  c.refused = refused_.load();
+  c.expired_clients = expired_.load();
+  c.control_undecodable = inbox_.undecodable();
+  c.clients = clients_.load();
+  c.subscriptions = subscriptions_.load();
+  return c;
 }
 
 std::string Publisher::lastFlightDump() const {
@@ -70,76 +143,75 @@ void Publisher::run() {
   TickRecord r;
   for (;;) {
     const bool stopping = stop_.load();
-    while (ring_.pop(r)) {
-      records_.fetch_add(1, std::memory_order_relaxed);
-      ++ticks_seen_;
-      missed_seen_ += std::uint64_t(r.missed);
-      const double f = std::sqrt(r.f_out[0] * r.f_out[0] + r.f_out[1] * r.f_out[1] + r.f_out[2] * r.f_out[2]);
-      if (f > window_max_force_n_) window_max_force_n_ = f;
-      if (r.tick % decimation_ == 0) publishRecord(r);
-    }
+    std::int64_t now = monotonicNs();
+    if (lcm_ && now - last_hello_ns_ >= options_.hello_period_ns) publishHello(now);
+    applyControl(now);
+    while (ring_.pop(r)) handleRecord(r, now);
     dumpFlight();
-    const std::int64_t now = monotonicNs();
+    now = monotonicNs();
     if (now - last_stats_ns_ >= 1'000'000'000) publishStats(now);
-    if (stopping) break;
+    clients_.store(table_.numClients(), std::memory_order_relaxed);
+    subscriptions_.store(table_.numSubscriptions(), std::memory_order_relaxed);
+    if (stopping) {
+      LcmSink sink(*this);
+      table_.flushBatches(now / 1000, sink);
+      break;
+    }
     std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
 }
 
-void Publisher::publishRecord(const TickRecord& r) {
-  if (!lcm_) return;
+void Publisher::applyControl(std::int64_t now_ns) {
+  inbox_.take(control_);
+  LcmSink sink(*this);
+  for (const auto& hb : control_.heartbeats) table_.heartbeat(hb.msg, hb.received_ns);
+  for (const auto& req : control_.requests) {
+    thx_msgs::subscribe_reply_t reply = table_.handleRequest(req.msg, req.received_ns);
+    reply.utime = now_ns / 1000;
+    requests_.fetch_add(1, std::memory_order_relaxed);
+    if (!reply.accepted) refused_.fetch_add(1, std::memory_order_relaxed);
+    sink.put(thx_msgs::kChannelSubscribeReply, reply);
+    if (!options_.log_subscriptions) continue;
+    const bool sub = req.msg.action == thx_msgs::subscribe_request_t::ACTION_SUBSCRIBE;
+    if (!reply.accepted) {
+      std::fprintf(stderr, "hapticd: refused %s of client %s: %s\n", sub ? "a subscription" : "a request",
+                   reply.client_id.c_str(), reply.reason.c_str());
+    } else if (sub) {
+      std::fprintf(stderr, "hapticd: client %s: %s at %g Hz on %s%s%s\n", reply.client_id.c_str(),
+                   kindName(reply.stream, reply.batch), reply.rate_hz, reply.channel.c_str(),
+                   reply.reason.empty() ? "" : "; ", reply.reason.c_str());
+    } else {
+      std::fprintf(stderr, "hapticd: client %s: %s unsubscribed\n", reply.client_id.c_str(), reply.stream.c_str());
+    }
+  }
+  for (const std::string& id : table_.expire(now_ns)) {
+    expired_.fetch_add(1, std::memory_order_relaxed);
+    if (options_.log_subscriptions) {
+      std::fprintf(stderr, "hapticd: client %s forgotten: no heartbeat for %.3g s\n", id.c_str(),
+                   double(options_.limits.heartbeat_timeout_ns) * 1e-9);
+    }
+  }
+}
+
+void Publisher::handleRecord(const TickRecord& r, std::int64_t now_ns) {
+  records_.fetch_add(1, std::memory_order_relaxed);
+  if (SessionRecorder* s = options_.session; s && s->ok()) {
+    s->record(r);
+    if (!s->ok()) std::fprintf(stderr, "hapticd: warning: %s\n", s->error().c_str());
+  }
+  ++ticks_seen_;
+  missed_seen_ += std::uint64_t(r.missed);
+  if (r.missed > window_max_missed_) window_max_missed_ = r.missed;
+  if (r.safety_flags & kSafetyClampMask) ++window_clamped_;
+  const double f = std::sqrt(r.f_out[0] * r.f_out[0] + r.f_out[1] * r.f_out[1] + r.f_out[2] * r.f_out[2]);
+  if (f > window_max_force_n_) window_max_force_n_ = f;
+  if (!lcm_ || !table_.wantsTicks()) return;  // compute a stream only while someone subscribes
   thx_msgs::device_state_t d{};
-  d.utime = r.deadline_ns / 1000;
-  d.tick = r.tick;
-  copy(d.p_world, r.p_world);
-  copy(d.q_world, r.q_world);
-  copy(d.v_world, r.v_world);
-  d.buttons = std::int32_t(r.buttons);
-  copy(d.f_cmd_world, r.f_out);
-  std::int32_t flags = 0;
-  if (!(r.safety_flags & (kSafetyDisengaged | kSafetyShutDown))) flags |= thx_msgs::device_state_t::FLAG_ENGAGED;
-  if (r.safety_flags & (kSafetyEngaging | kSafetyRampingOut)) flags |= thx_msgs::device_state_t::FLAG_RAMPING;
-  if (r.safety_flags & kSafetyClampMask) flags |= thx_msgs::device_state_t::FLAG_SAFETY_CLAMP;
-  if (r.in_contact) flags |= thx_msgs::device_state_t::FLAG_IN_CONTACT;
-  if (r.missed > 0) flags |= thx_msgs::device_state_t::FLAG_MISSED_TICK;
-  if (r.f_client[0] != 0.0 || r.f_client[1] != 0.0 || r.f_client[2] != 0.0) {
-    flags |= thx_msgs::device_state_t::FLAG_CLIENT_FORCE;
-  }
-  if (options_.simulated_device) flags |= thx_msgs::device_state_t::FLAG_SIMULATED;
-  if (r.faults) flags |= thx_msgs::device_state_t::FLAG_FAULT;
-  d.flags = flags;
-  using D = thx_msgs::device_state_t;
-  d.fault_code = std::int32_t{D::FAULT_NONE};
-  if (r.faults & kFaultInvalidReading) d.fault_code = std::int32_t{D::FAULT_DEVICE_REPORTED};
-  if (r.faults & kFaultNonFiniteForce) d.fault_code = std::int32_t{D::FAULT_NONFINITE_FORCE};
-  if (r.faults & kFaultMissedTicks) d.fault_code = std::int32_t{D::FAULT_MISSED_TICKS};
-
   thx_msgs::contact_t c{};
-  c.utime = d.utime;
-  c.tick = r.tick;
-  c.in_contact = r.in_contact;
-  c.num_planes = r.num_planes;
-  c.surface_id = 0;
-  c.texel_i = r.texel_i;
-  c.texel_j = r.texel_j;
-  copy(c.p_proj_world, r.p_proj_world);
-  copy(c.uv, r.uv);
-  copy(c.n_geom_world, r.n_geom_world);
-  copy(c.n_sampled_world, r.n_sampled_world);
-  c.depth = r.depth_m;
-  c.relief_depth = r.relief_depth_m;
-  for (int i = 0; i < 4; ++i) {
-    copy(c.plane_n_world[i], r.plane_n_world[i]);
-    c.plane_d[i] = r.plane_d_m[i];
-  }
-  c.f_normal = r.f_normal_n;
-  for (int k = 0; k < 3; ++k) c.f_normal_world[k] = r.f_normal_n * r.plane_n_world[0][k];
-  copy(c.v_tangent_world, r.v_tangent_world);
-
-  const int a = lcm_->publish(kDeviceStateChannel, &d);
-  const int b = lcm_->publish(kContactChannel, &c);
-  published_.fetch_add(2, std::memory_order_relaxed);
-  if (a != 0 || b != 0) publish_errors_.fetch_add(1, std::memory_order_relaxed);
+  toDeviceState(r, options_.simulated_device, d);
+  toContact(r, c);
+  LcmSink sink(*this);
+  table_.onTick(d, c, now_ns / 1000, sink);
 }
 
 void Publisher::publishStats(std::int64_t now_ns) {
@@ -152,6 +224,8 @@ void Publisher::publishStats(std::int64_t now_ns) {
     s.missed_ticks = std::int64_t(missed);
     s.window_ticks = std::int64_t(ticks - last_stats_ticks_);
     s.window_missed_ticks = std::int64_t(missed - last_stats_missed_);
+    s.window_max_consecutive_missed = window_max_missed_;
+    s.window_clamped_ticks = window_clamped_;
     s.window_s = window_s;
     s.rate_nominal_hz = options_.servo_rate_hz;
     s.rate_hz = window_s > 0 ? double(s.window_ticks) / window_s : 0.0;
@@ -168,12 +242,32 @@ void Publisher::publishStats(std::int64_t now_ns) {
     s.f_max = window_max_force_n_;
     s.snapshots_dropped = std::int64_t(ring_.dropped());
     s.rss_bytes = readProcessMemory().rss_bytes;
-    if (lcm_->publish(kServoStatsChannel, &s) != 0) publish_errors_.fetch_add(1, std::memory_order_relaxed);
+    LcmSink sink(*this);
+    table_.onStats(s, sink);
   }
   last_stats_ns_ = now_ns;
   last_stats_ticks_ = ticks;
   last_stats_missed_ = missed;
   window_max_force_n_ = 0.0;
+  window_max_missed_ = 0;
+  window_clamped_ = 0;
+}
+
+void Publisher::publishHello(std::int64_t now_ns) {
+  thx_msgs::hello_t h{};
+  h.utime = now_ns / 1000;
+  h.seq = ++hello_seq_;
+  h.server_instance = server_instance_;
+  h.start_utime = start_ns_ / 1000;
+  h.start_unix_us = start_unix_us_;
+  h.protocol_version = thx_msgs::hello_t::PROTOCOL_VERSION;
+  h.servo_rate_hz = options_.servo_rate_hz;
+  h.server_name = server_name_;
+  h.device = options_.device_name;
+  LcmSink sink(*this);
+  sink.put(thx_msgs::kChannelHello, h);
+  hellos_.fetch_add(1, std::memory_order_relaxed);
+  last_hello_ns_ = now_ns;
 }
 
 void Publisher::dumpFlight() {

@@ -1,17 +1,24 @@
 #pragma once
 // The publisher thread: everything that leaves hapticd over LCM, and the flight-record dumps.
-// It drains the servo's tick ring (the servo never waits for it), encodes device and contact
-// state, publishes them, publishes servo statistics once per second, and writes frozen flight
-// records to files. Per-client subscriptions and rates arrive with issue 5; until then it
-// broadcasts on THX_DEVICE_STATE, THX_CONTACT and THX_SERVO_STATS at `publish_hz`.
+// It drains the servo's tick ring (the servo never waits for it), applies subscription requests
+// and heartbeats (queued by the receiver thread, server/subscription_inbox.hpp) to its
+// SubscriptionTable, publishes each subscribed stream to its client on the client's own channel
+// at the client's rate (docs/clients.md), answers requests on THX_SUBSCRIBE_REPLY, announces the
+// server on THX_HELLO once per second, closes a SERVO_STATS window once per second, and writes
+// frozen flight records to files. Nothing is encoded for a stream nobody subscribes to.
+//
+// There is no broadcast: every data message goes to a subscriber's channel.
 #include <atomic>
 #include <cstdint>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "server/flight_recorder.hpp"
 #include "server/servo.hpp"
 #include "server/spsc_ring.hpp"
+#include "server/subscription_inbox.hpp"
+#include "server/subscriptions.hpp"
 #include "server/tick_record.hpp"
 
 namespace lcm {
@@ -20,37 +27,59 @@ class LCM;
 
 namespace thx::srv {
 
+class SessionRecorder;
+
 struct PublisherOptions {
-  double publish_hz = 1000.0;   // device and contact state; <= the servo rate
   double servo_rate_hz = 1000.0;
   std::string flight_dir = ".";
   bool simulated_device = false;
+  std::string device_name = "sim";  // hello_t.device
+  bool log_subscriptions = false;    // one stderr line per subscription change, refusal, expiry
+  // Client limits. servo_rate_hz and server_instance are set by the publisher.
+  SubscriptionLimits limits;
+  std::int64_t hello_period_ns = 1'000'000'000;
+  // Every tick that comes out of the ring is also written here (hapticd --record); not owned.
+  SessionRecorder* session = nullptr;
 };
 
 struct PublisherCounters {
   std::uint64_t records = 0;
-  std::uint64_t published = 0;
+  std::uint64_t published = 0;  // every LCM message sent (streams, replies, hellos)
   std::uint64_t publish_errors = 0;
   std::uint64_t flight_dumps = 0;
+  std::uint64_t published_bytes = 0;
+  std::uint64_t hellos = 0;
+  std::uint64_t requests = 0;
+  std::uint64_t refused = 0;
+  std::uint64_t expired_clients = 0;
+  std::uint64_t control_undecodable = 0;  // THX_SUBSCRIBE / THX_HEARTBEAT bytes try_decode refused
+  int clients = 0;                        // now
+  int subscriptions = 0;                  // now
 };
 
 class Publisher {
  public:
   // lcm may be null (no transport): records are still drained and flight records still dumped.
+  // With lcm, the publisher subscribes to THX_SUBSCRIBE and THX_HEARTBEAT on it; whoever calls
+  // lcm->handle() (hapticd's receiver thread) delivers them.
   Publisher(SpscRing<TickRecord>& ring, const Servo& servo, FlightRecorder& recorder, lcm::LCM* lcm,
             const PublisherOptions& options);
   ~Publisher();
 
   void start();
-  void stop();  // drains what is left, then joins
+  void stop();  // drains what is left, flushes batches, then joins
 
   PublisherCounters counters() const;
   std::string lastFlightDump() const;
+  std::int64_t serverInstance() const { return server_instance_; }
 
  private:
+  class LcmSink;
   void run();
-  void publishRecord(const TickRecord& r);
+  void applyControl(std::int64_t now_ns);
+  void handleRecord(const TickRecord& r, std::int64_t now_ns);
   void publishStats(std::int64_t now_ns);
+  void publishHello(std::int64_t now_ns);
   void dumpFlight();
 
   SpscRing<TickRecord>& ring_;
@@ -58,16 +87,28 @@ class Publisher {
   FlightRecorder& recorder_;
   lcm::LCM* lcm_;
   PublisherOptions options_;
+  std::int64_t server_instance_ = 0;
+  std::int64_t start_ns_ = 0, start_unix_us_ = 0;
+  std::string server_name_;
+  SubscriptionTable table_;
+  SubscriptionInbox inbox_;
+  ControlMessages control_;                  // reused every loop
+  std::vector<std::uint8_t> encode_buffer_;  // reused for every message
   std::thread thread_;
   std::atomic<bool> stop_{false};
-  std::int64_t decimation_ = 1;
   std::int64_t last_stats_ns_ = 0;
+  std::int64_t last_hello_ns_ = 0;
+  std::int64_t hello_seq_ = 0;
   std::uint64_t ticks_seen_ = 0;   // counted from the records: the servo's own counters are
   std::uint64_t missed_seen_ = 0;  // not shared across threads
   std::uint64_t last_stats_ticks_ = 0;
   std::uint64_t last_stats_missed_ = 0;
   double window_max_force_n_ = 0.0;
-  std::atomic<std::uint64_t> records_{0}, published_{0}, publish_errors_{0}, flight_dumps_{0};
+  std::int32_t window_max_missed_ = 0;
+  std::int32_t window_clamped_ = 0;
+  std::atomic<std::uint64_t> records_{0}, published_{0}, publish_errors_{0}, flight_dumps_{0}, published_bytes_{0},
+      hellos_{0}, requests_{0}, refused_{0}, expired_{0};
+  std::atomic<int> clients_{0}, subscriptions_{0};
   mutable std::atomic<bool> dump_lock_{false};
   std::string last_dump_;
 };

@@ -2,19 +2,16 @@
 
 #include <poll.h>
 
-#include <ctime>
 #include <lcm/lcm-cpp.hpp>
 #include <thx_msgs/client_force_t.hpp>
 #include <thx_msgs/protocol.hpp>
 
+#include "device/clock.hpp"
+
 namespace thx::srv {
 
 namespace {
-std::int64_t monotonicNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
+std::int64_t monotonicNs() { return dev::monotonicNowNs(); }
 constexpr std::int64_t kDefaultTimeoutNs = 50'000'000;  // 50 ms: a few physics steps
 }  // namespace
 

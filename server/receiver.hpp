@@ -1,5 +1,8 @@
 #pragma once
-// The receiver thread: what enters hapticd over LCM. Today: client forces (THX_CLIENT_FORCE).
+// The receiver thread: what enters hapticd over LCM. It is the only thread that calls
+// lcm.handle(), so every LCM callback runs here: client forces (THX_CLIENT_FORCE, below) and the
+// publisher's SubscriptionInbox (THX_SUBSCRIBE, THX_HEARTBEAT: decoded and queued for the
+// publisher thread, server/subscription_inbox.hpp).
 // Messages are taken untyped and decoded with thx_msgs::try_decode (LCM 1.3.1's typed decoders
 // can crash on corrupt input, docs/messages.md), checked, kept per sender (ClientForceTable), and
 // the sum is written to the servo's latest-value slot: on every accepted message and every 10 ms

@@ -2,18 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
+
+#include "device/clock.hpp"
 
 namespace thx::srv {
 
 namespace {
 
-// CLOCK_MONOTONIC through the vDSO: no system call, measures real CPU time even in lock-step.
-std::int64_t monotonicNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
+// Real CPU time even in lock-step (the device's clock may be virtual).
+std::int64_t monotonicNs() { return dev::monotonicNowNs(); }
 
 void put(double (&dst)[3], const Eigen::Vector3d& v) {
   dst[0] = v.x();

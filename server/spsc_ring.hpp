@@ -45,6 +45,10 @@ class SpscRing {
   }
 
   std::size_t capacity() const { return mask_ + 1; }
+  // Records waiting (exact from either side; approximate from a third thread).
+  std::size_t size() const {
+    return std::size_t(head_.load(std::memory_order_acquire) - tail_.load(std::memory_order_acquire));
+  }
   std::uint64_t dropped() const { return dropped_.load(std::memory_order_relaxed); }
 
  private:

@@ -132,7 +132,7 @@ TEST_F(Hapticd, BadInputGivesAClearErrorAndExitCode) {
 
   r = run("--scene scenes/default.yaml --device joystick");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("expected 'sim' or 'vrpn:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("expected 'sim', 'vrpn:"), std::string::npos) << r.err;
 
   r = run("--scene scenes/default.yaml --duration -3");
   EXPECT_EQ(r.status, 2);

@@ -1,0 +1,326 @@
+#include "thx_client/client.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <lcm/lcm-cpp.hpp>
+#include <stdexcept>
+#include <thx_msgs/protocol.hpp>
+
+namespace thx::client {
+
+namespace {
+using Req = thx_msgs::subscribe_request_t;
+constexpr std::int64_t kMaxResendNs = 2'000'000'000;
+}  // namespace
+
+std::int64_t monotonicNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+const char* toString(SubscriptionState s) {
+  switch (s) {
+    case SubscriptionState::Pending: return "pending";
+    case SubscriptionState::Active: return "active";
+    case SubscriptionState::Refused: return "refused";
+  }
+  return "?";
+}
+
+Client::Client(lcm::LCM& lcm, ClientOptions options)
+    : lcm_(lcm), options_(std::move(options)), clock_(options_.clock ? options_.clock : Clock(monotonicNs)) {
+  if (!thx_msgs::is_valid_client_id(options_.client_id)) {
+    throw std::invalid_argument("client_id '" + options_.client_id + "': expected 1 to 32 characters of [A-Za-z0-9_-]");
+  }
+  if (options_.heartbeat_ns > 0) heartbeat_period_ns_ = options_.heartbeat_ns;
+  // Untyped subscriptions + try_decode everywhere: a corrupt datagram must not take us down.
+  hello_sub_ = lcm_.subscribe(thx_msgs::kChannelHello, &Client::onHelloBytes, this);
+  reply_sub_ = lcm_.subscribe(thx_msgs::kChannelSubscribeReply, &Client::onReplyBytes, this);
+  // Every client sees every reply on the bus: keep room for a burst of them.
+  if (reply_sub_) reply_sub_->setQueueCapacity(256);
+}
+
+Client::Client(lcm::LCM& lcm, std::string client_id) : Client(lcm, [&] {
+  ClientOptions o;
+  o.client_id = std::move(client_id);
+  return o;
+}()) {}
+
+Client::~Client() {
+  for (auto& [stream, e] : entries_) {
+    if (e.status.state == SubscriptionState::Active) sendRequest(e, Req::ACTION_UNSUBSCRIBE);
+    stopListening(e);
+  }
+  if (hello_sub_) lcm_.unsubscribe(hello_sub_);
+  if (reply_sub_) lcm_.unsubscribe(reply_sub_);
+}
+
+void Client::subscribe(std::string_view stream, double rate_hz, bool batch) {
+  if (!thx_msgs::is_known_stream(stream)) {
+    throw std::invalid_argument("stream '" + std::string(stream) + "': expected DEVICE_STATE, CONTACT or SERVO_STATS");
+  }
+  if (batch && !thx_msgs::stream_supports_batch(stream)) {
+    throw std::invalid_argument("stream '" + std::string(stream) + "': only CONTACT can be batched");
+  }
+  if (!std::isfinite(rate_hz) || rate_hz <= 0.0) {
+    throw std::invalid_argument("rate " + std::to_string(rate_hz) + " Hz: expected a finite number > 0");
+  }
+  auto it = entries_.find(stream);
+  if (it == entries_.end()) it = entries_.emplace(std::string(stream), Entry{}).first;
+  Entry& e = it->second;
+  e.status.stream = std::string(stream);
+  e.status.requested_hz = rate_hz;
+  e.status.batch = batch;
+  requestAgain(e);
+  e.params_seq = seq_ + 1;  // replies to older requests describe older parameters
+  if (next_heartbeat_ns_ == 0) next_heartbeat_ns_ = clock_();
+}
+
+void Client::unsubscribe(std::string_view stream) {
+  auto it = entries_.find(stream);
+  if (it == entries_.end()) return;
+  sendRequest(it->second, Req::ACTION_UNSUBSCRIBE);
+  stopListening(it->second);
+  entries_.erase(it);
+}
+
+void Client::requestAgain(Entry& e) {
+  e.status.state = SubscriptionState::Pending;
+  e.attempts = 0;
+  e.next_send_ns = clock_();  // at the next service()
+}
+
+int Client::poll(int timeout_ms) {
+  int handled = 0;
+  int r = lcm_.handleTimeout(std::max(0, timeout_ms));
+  while (r > 0) {
+    ++handled;
+    r = lcm_.handleTimeout(0);
+  }
+  service();
+  return r < 0 ? r : handled;
+}
+
+void Client::spinFor(std::int64_t duration_ns) {
+  const std::int64_t end = clock_() + duration_ns;
+  for (std::int64_t now = clock_(); now < end; now = clock_()) {
+    poll(int(std::clamp<std::int64_t>((end - now) / 1'000'000, 0, 10)));
+  }
+}
+
+void Client::service() {
+  const std::int64_t now = clock_();
+  if (entries_.empty()) return;
+  // A granted stream fell silent: the server forgot us (our heartbeats were lost, or we were
+  // paused past its timeout) or went away. Hellos may still arrive, so the test is per stream:
+  // no data for max(silence_ns, 3 periods) means ask again (a live server keeps an identical
+  // subscription as it is, so asking is harmless).
+  for (auto& [stream, e] : entries_) {
+    if (e.status.state != SubscriptionState::Active || e.status.granted_hz <= 0.0) continue;
+    const auto limit = std::max<std::int64_t>(options_.silence_ns, std::int64_t(3e9 / e.status.granted_hz));
+    if (now - e.last_data_ns <= limit) continue;
+    ++counters_.reconnects;
+    requestAgain(e);
+  }
+  for (auto& [stream, e] : entries_) {
+    if (e.status.state != SubscriptionState::Pending || now < e.next_send_ns) continue;
+    sendRequest(e, Req::ACTION_SUBSCRIBE);
+    const std::int64_t backoff = std::min<std::int64_t>(kMaxResendNs, options_.resend_ns << std::min(e.attempts, 4));
+    e.next_send_ns = now + backoff;
+    ++e.attempts;
+  }
+  if (now >= next_heartbeat_ns_) {
+    sendHeartbeat();
+    next_heartbeat_ns_ = now + heartbeat_period_ns_;
+  }
+}
+
+void Client::sendRequest(Entry& e, std::int32_t action) {
+  Req r{};
+  r.utime = clock_() / 1000;
+  r.seq = ++seq_;
+  r.client_id = options_.client_id;
+  r.stream = e.status.stream;
+  r.action = action;
+  r.rate_hz = e.status.requested_hz;
+  r.batch = e.status.batch;
+  lcm_.publish(thx_msgs::kChannelSubscribe, &r);
+  ++counters_.requests_sent;
+}
+
+void Client::sendHeartbeat() {
+  thx_msgs::heartbeat_t h{};
+  h.utime = clock_() / 1000;
+  h.seq = ++heartbeat_seq_;
+  h.server_instance = server_instance_;
+  h.client_id = options_.client_id;
+  lcm_.publish(thx_msgs::kChannelHeartbeat, &h);
+  ++counters_.heartbeats_sent;
+}
+
+void Client::serverChanged(std::int64_t instance) {
+  const bool restart = server_instance_ != 0 && instance != server_instance_;
+  server_instance_ = instance;
+  if (!restart) return;
+  ++counters_.reconnects;
+  for (auto& [stream, e] : entries_) requestAgain(e);
+}
+
+void Client::onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  thx_msgs::hello_t h;
+  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, h) < 0) {
+    ++counters_.undecodable;
+    return;
+  }
+  ++counters_.hellos;
+  const bool first = server_instance_ == 0;
+  serverChanged(h.server_instance);
+  if (first) {
+    for (auto& [stream, e] : entries_) {
+      if (e.status.state == SubscriptionState::Pending) e.next_send_ns = clock_();  // the server is up: ask now
+    }
+  }
+  std::lock_guard<std::mutex> lock(latest_mutex_);
+  latest_hello_ = std::move(h);
+}
+
+void Client::onReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  thx_msgs::subscribe_reply_t r;
+  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, r) < 0) {
+    ++counters_.undecodable;
+    return;
+  }
+  if (r.client_id != options_.client_id) return;  // another client's answer
+  ++counters_.replies;
+  if (r.action != Req::ACTION_SUBSCRIBE) return;
+  auto it = entries_.find(r.stream);
+  if (it == entries_.end() || r.request_seq < it->second.params_seq) return;  // stale
+  if (r.server_instance != server_instance_) serverChanged(r.server_instance);
+  Entry& e = it->second;
+  if (r.accepted) {
+    if (e.status.state != SubscriptionState::Active) e.last_data_ns = clock_();  // the silence clock starts
+    e.status.state = SubscriptionState::Active;
+    e.status.granted_hz = r.rate_hz;
+    e.status.reason = r.reason;
+    listen(e, r.channel);
+    if (options_.heartbeat_ns <= 0 && r.heartbeat_timeout_us > 0) {
+      heartbeat_period_ns_ = std::max<std::int64_t>(10'000'000, r.heartbeat_timeout_us * 1000 / 4);
+      next_heartbeat_ns_ = std::min(next_heartbeat_ns_, clock_() + heartbeat_period_ns_);
+    }
+  } else {
+    e.status.state = SubscriptionState::Refused;
+    e.status.granted_hz = 0.0;
+    e.status.reason = r.reason;
+    stopListening(e);
+  }
+  if (on_status_) on_status_(e.status);
+}
+
+void Client::listen(Entry& e, const std::string& channel) {
+  if (e.data_sub && e.status.channel == channel) return;
+  stopListening(e);
+  // Channel names are used as LCM regexes; the server's are plain [A-Za-z0-9_.-].
+  e.status.channel = channel;
+  e.data_sub = lcm_.subscribe(channel, &Client::onDataBytes, this);
+  if (e.data_sub) e.data_sub->setQueueCapacity(int(options_.data_queue_capacity));
+}
+
+void Client::stopListening(Entry& e) {
+  if (e.data_sub) lcm_.unsubscribe(e.data_sub);
+  e.data_sub = nullptr;
+  e.status.channel.clear();
+}
+
+void Client::onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+  Entry* e = nullptr;
+  for (auto& [stream, candidate] : entries_) {
+    if (candidate.data_sub && candidate.status.channel == channel) e = &candidate;
+  }
+  if (!e) return;
+  const std::int64_t now = clock_();
+  const std::string stream = e->status.stream;
+  // Counted before the callback runs: a callback may unsubscribe, which destroys *e.
+  auto count = [&] {
+    e->last_data_ns = now;
+    ++e->status.messages;
+  };
+  if (stream == thx_msgs::kStreamDeviceState) {
+    thx_msgs::device_state_t m;
+    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) return void(++counters_.undecodable);
+    {
+      std::lock_guard<std::mutex> lock(latest_mutex_);
+      latest_state_ = m;
+    }
+    count();
+    if (on_state_) on_state_(m, now);
+  } else if (stream == thx_msgs::kStreamContact && e->status.batch) {
+    thx_msgs::contact_batch_t m;
+    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) return void(++counters_.undecodable);
+    if (m.server_instance != server_instance_) serverChanged(m.server_instance);
+    if (!m.samples.empty()) {
+      std::lock_guard<std::mutex> lock(latest_mutex_);
+      latest_contact_ = m.samples.back();
+    }
+    count();
+    if (on_batch_) on_batch_(m, now);
+  } else if (stream == thx_msgs::kStreamContact) {
+    thx_msgs::contact_t m;
+    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) return void(++counters_.undecodable);
+    {
+      std::lock_guard<std::mutex> lock(latest_mutex_);
+      latest_contact_ = m;
+    }
+    count();
+    if (on_contact_) on_contact_(m, now);
+  } else {
+    thx_msgs::servo_stats_t m;
+    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) return void(++counters_.undecodable);
+    {
+      std::lock_guard<std::mutex> lock(latest_mutex_);
+      latest_stats_ = m;
+    }
+    count();
+    if (on_stats_) on_stats_(m, now);
+  }
+}
+
+std::optional<thx_msgs::device_state_t> Client::latestDeviceState() const {
+  std::lock_guard<std::mutex> lock(latest_mutex_);
+  return latest_state_;
+}
+std::optional<thx_msgs::contact_t> Client::latestContact() const {
+  std::lock_guard<std::mutex> lock(latest_mutex_);
+  return latest_contact_;
+}
+std::optional<thx_msgs::servo_stats_t> Client::latestServoStats() const {
+  std::lock_guard<std::mutex> lock(latest_mutex_);
+  return latest_stats_;
+}
+std::optional<thx_msgs::hello_t> Client::latestHello() const {
+  std::lock_guard<std::mutex> lock(latest_mutex_);
+  return latest_hello_;
+}
+
+std::vector<StreamStatus> Client::status() const {
+  std::vector<StreamStatus> out;
+  for (const auto& [stream, e] : entries_) out.push_back(e.status);
+  return out;
+}
+
+std::optional<StreamStatus> Client::status(std::string_view stream) const {
+  auto it = entries_.find(stream);
+  if (it == entries_.end()) return std::nullopt;
+  return it->second.status;
+}
+
+bool Client::allActive() const {
+  if (entries_.empty()) return false;
+  for (const auto& [stream, e] : entries_) {
+    if (e.status.state != SubscriptionState::Active) return false;
+  }
+  return true;
+}
+
+}  // namespace thx::client

@@ -1,0 +1,168 @@
+#pragma once
+// thx_client: what every client of hapticd uses to get its streams (docs/clients.md).
+//
+//   lcm::LCM lcm("udpm://239.255.76.67:7667?ttl=0");
+//   thx::client::Client c(lcm, "visual");
+//   c.subscribe("DEVICE_STATE", 60.0);
+//   for (;;) { c.poll(5); if (auto s = c.latestDeviceState()) draw(*s); }
+//
+// The client asks for its streams on THX_SUBSCRIBE, resends unanswered requests, listens on the
+// channels the server's replies name, sends heartbeats at a quarter of the server's timeout, and
+// re-subscribes by itself when the server restarts (a new server_instance in a hello, reply or
+// batch) or a granted stream falls silent (the server forgot us, or went away). Everything from the network is decoded with thx_msgs::try_decode.
+//
+// Threads: poll()/service()/subscribe()/unsubscribe()/status() belong to one thread (callbacks
+// run in it, inside poll()). latest*() may be called from any thread.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <thx_msgs/contact_batch_t.hpp>
+#include <thx_msgs/contact_t.hpp>
+#include <thx_msgs/device_state_t.hpp>
+#include <thx_msgs/hello_t.hpp>
+#include <thx_msgs/servo_stats_t.hpp>
+
+namespace lcm {
+class LCM;
+class ReceiveBuffer;
+class Subscription;
+}  // namespace lcm
+
+namespace thx::client {
+
+// CLOCK_MONOTONIC in ns: the clock hapticd stamps its ticks with (same host).
+std::int64_t monotonicNs();
+using Clock = std::function<std::int64_t()>;
+
+enum class SubscriptionState { Pending, Active, Refused };
+const char* toString(SubscriptionState s);
+
+struct StreamStatus {
+  std::string stream;
+  bool batch = false;
+  double requested_hz = 0.0;
+  SubscriptionState state = SubscriptionState::Pending;
+  double granted_hz = 0.0;   // from the reply
+  std::string channel;       // from the reply
+  std::string reason;        // refusal, or what the server adjusted
+  std::uint64_t messages = 0;
+};
+
+struct ClientOptions {
+  std::string client_id;                     // 1-32 of [A-Za-z0-9_-], unique among running clients
+  Clock clock;                               // default: monotonicNs (tests pass a fake clock)
+  std::int64_t resend_ns = 200'000'000;      // resend an unanswered request after this, doubling up to 2 s
+  std::int64_t silence_ns = 3'000'000'000;   // a granted stream without data this long (at least
+                                             // 3 periods): ask for it again
+  std::int64_t heartbeat_ns = 0;             // 0: a quarter of the server's heartbeat timeout
+  unsigned data_queue_capacity = 64;         // LCM queue per data channel (LCM's default is 30)
+};
+
+struct ClientCounters {
+  std::uint64_t requests_sent = 0;
+  std::uint64_t heartbeats_sent = 0;
+  std::uint64_t replies = 0;
+  std::uint64_t hellos = 0;
+  std::uint64_t undecodable = 0;  // bytes on our channels that try_decode refused
+  std::uint64_t reconnects = 0;   // server restarts or silences that made us re-subscribe
+};
+
+class Client {
+ public:
+  // Throws std::invalid_argument when options.client_id breaks the protocol's rules.
+  Client(lcm::LCM& lcm, ClientOptions options);
+  Client(lcm::LCM& lcm, std::string client_id);  // default options
+  ~Client();  // unsubscribes politely (the server would forget us after its timeout anyway)
+  Client(const Client&) = delete;
+  Client& operator=(const Client&) = delete;
+
+  // Asks for a stream ("DEVICE_STATE", "CONTACT", "SERVO_STATS") at rate_hz; batch only for
+  // CONTACT. Asking again for the same stream replaces the request. The request goes out at the
+  // next poll()/service(). Throws std::invalid_argument on an unknown stream or a bad rate.
+  void subscribe(std::string_view stream, double rate_hz, bool batch = false);
+  void unsubscribe(std::string_view stream);
+
+  // Waits up to timeout_ms for traffic, handles everything queued (callbacks run here), then
+  // does the timed work (service()). Returns the number of LCM messages handled, < 0 on error.
+  int poll(int timeout_ms);
+  // poll() until duration_ns has passed on the client's clock.
+  void spinFor(std::int64_t duration_ns);
+  // Heartbeats, resends and silence detection only.
+  void service();
+
+  // Callbacks, with the receipt time on the client's clock (ns).
+  void onDeviceState(std::function<void(const thx_msgs::device_state_t&, std::int64_t)> f) { on_state_ = std::move(f); }
+  void onContact(std::function<void(const thx_msgs::contact_t&, std::int64_t)> f) { on_contact_ = std::move(f); }
+  void onContactBatch(std::function<void(const thx_msgs::contact_batch_t&, std::int64_t)> f) { on_batch_ = std::move(f); }
+  void onServoStats(std::function<void(const thx_msgs::servo_stats_t&, std::int64_t)> f) { on_stats_ = std::move(f); }
+  // A reply changed a stream's status (granted, refused).
+  void onStatus(std::function<void(const StreamStatus&)> f) { on_status_ = std::move(f); }
+
+  // Latest values; any thread. latestContact() also covers batches (their newest sample).
+  std::optional<thx_msgs::device_state_t> latestDeviceState() const;
+  std::optional<thx_msgs::contact_t> latestContact() const;
+  std::optional<thx_msgs::servo_stats_t> latestServoStats() const;
+  std::optional<thx_msgs::hello_t> latestHello() const;
+
+  std::vector<StreamStatus> status() const;
+  std::optional<StreamStatus> status(std::string_view stream) const;
+  bool allActive() const;  // every requested stream granted
+  std::int64_t serverInstance() const { return server_instance_; }
+  const ClientCounters& counters() const { return counters_; }
+  const std::string& clientId() const { return options_.client_id; }
+
+  // Public for LCM's callbacks; not part of the interface.
+  void onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void onReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+
+ private:
+  struct Entry {
+    StreamStatus status;
+    std::int64_t params_seq = 0;   // first request seq with the current parameters
+    std::int64_t next_send_ns = 0;
+    int attempts = 0;
+    std::int64_t last_data_ns = 0;  // last message on the data channel (or the grant)
+    lcm::Subscription* data_sub = nullptr;
+  };
+
+  void sendRequest(Entry& e, std::int32_t action);
+  void sendHeartbeat();
+  void serverChanged(std::int64_t instance);  // a restart: every stream is asked for again
+  void requestAgain(Entry& e);
+  void listen(Entry& e, const std::string& channel);
+  void stopListening(Entry& e);
+
+  lcm::LCM& lcm_;
+  ClientOptions options_;
+  Clock clock_;
+  std::map<std::string, Entry, std::less<>> entries_;  // by stream
+  lcm::Subscription* hello_sub_ = nullptr;
+  lcm::Subscription* reply_sub_ = nullptr;
+  std::int64_t server_instance_ = 0;
+  std::int64_t seq_ = 0, heartbeat_seq_ = 0;
+  std::int64_t next_heartbeat_ns_ = 0;
+  std::int64_t heartbeat_period_ns_ = 500'000'000;
+  ClientCounters counters_;
+
+  std::function<void(const thx_msgs::device_state_t&, std::int64_t)> on_state_;
+  std::function<void(const thx_msgs::contact_t&, std::int64_t)> on_contact_;
+  std::function<void(const thx_msgs::contact_batch_t&, std::int64_t)> on_batch_;
+  std::function<void(const thx_msgs::servo_stats_t&, std::int64_t)> on_stats_;
+  std::function<void(const StreamStatus&)> on_status_;
+
+  mutable std::mutex latest_mutex_;
+  std::optional<thx_msgs::device_state_t> latest_state_;
+  std::optional<thx_msgs::contact_t> latest_contact_;
+  std::optional<thx_msgs::servo_stats_t> latest_stats_;
+  std::optional<thx_msgs::hello_t> latest_hello_;
+};
+
+}  // namespace thx::client

@@ -1,0 +1,59 @@
+#pragma once
+// Delivery statistics of one stream as a client sees it: messages, achieved rate, latency from
+// the server's tick time to receipt, gaps and duplicates (probe-client's report, docs/clients.md).
+//
+// Latency compares the server's utime (CLOCK_MONOTONIC µs at the tick) with the receipt time on
+// the client's CLOCK_MONOTONIC: meaningful on the same host only, and not in lock-step runs.
+// Gaps: latest-value streams carry no sequence number, so a gap is an interval between two
+// messages' server times longer than 1.5 periods of the granted rate (the server's intervals
+// are whole ticks, within one tick of the period); batches are checked exactly by seq and
+// next_tick.
+#include <cstdint>
+#include <vector>
+
+#include <thx_msgs/contact_batch_t.hpp>
+
+namespace thx::client {
+
+struct StreamReport {
+  std::uint64_t messages = 0;
+  std::uint64_t duplicates = 0;       // a message not newer than the previous one
+  std::uint64_t gaps = 0;             // places where one or more messages were missing
+  std::uint64_t missing = 0;          // messages missing in those gaps (estimated for latest-value streams)
+  std::uint64_t samples = 0;          // batches: samples received
+  std::uint64_t samples_missing = 0;  // batches: samples lost in transit (lost batches)
+  std::uint64_t samples_dropped = 0;  // batches: samples the server dropped itself (num_dropped)
+  std::uint64_t samples_out_of_order = 0;  // batches: samples whose ticks are not consecutive
+  std::uint64_t restarts = 0;         // server restarts seen (sequences and ticks start again)
+  double span_s = 0.0;                // first to last receipt
+  double achieved_rate_hz = 0.0;      // (messages - 1) / span
+  double sample_rate_hz = 0.0;        // batches: samples after the first batch / span
+  double latency_p50_us = 0.0, latency_p99_us = 0.0, latency_max_us = 0.0;
+};
+
+class StreamMonitor {
+ public:
+  explicit StreamMonitor(double granted_rate_hz) : rate_hz_(granted_rate_hz) {}
+  // A latest-value message: its tick (ordering), server time and receipt time.
+  void onMessage(std::int64_t tick, std::int64_t server_utime_us, std::int64_t received_ns);
+  // A batch; its latency is that of its newest sample. A new server_instance is a restart.
+  void onBatch(const thx_msgs::contact_batch_t& b, std::int64_t received_ns);
+  // The server restarted (a new server_instance): ticks and sequences start again, so the next
+  // message is compared with nothing.
+  void serverRestarted();
+  StreamReport report() const;
+
+ private:
+  void received(std::int64_t server_utime_us, std::int64_t received_ns);
+
+  double rate_hz_;
+  StreamReport r_;
+  std::vector<double> latencies_us_;
+  std::int64_t first_ns_ = 0, last_ns_ = 0;
+  std::int64_t last_tick_ = 0, last_utime_us_ = 0;
+  std::int64_t last_seq_ = 0, last_next_tick_ = 0, last_instance_ = 0;
+  std::uint64_t first_samples_ = 0;
+  bool any_ = false;
+};
+
+}  // namespace thx::client

@@ -1,0 +1,123 @@
+#include "server/session_log.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+#include <time.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include <thx_msgs/protocol.hpp>
+
+#include "server/tick_messages.hpp"
+
+namespace thx::srv {
+
+namespace {
+
+std::int64_t realtimeUs() {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  return std::int64_t(ts.tv_sec) * 1'000'000 + ts.tv_nsec / 1000;
+}
+
+template <class M>
+void encodeInto(const M& m, std::vector<std::uint8_t>& out) {
+  out.resize(std::size_t(m.getEncodedSize()));
+  m.encode(out.data(), 0, int(out.size()));
+}
+
+template <class Fn>
+void forEachEvent(const std::string& path, const std::string& channel, Fn fn) {
+  lcm::LogFile log(path, "r");
+  if (!log.good()) throw std::runtime_error(path + ": cannot open as an LCM log file");
+  long n = 0;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    ++n;
+    if (e->channel == channel) fn(*e, n);
+  }
+}
+
+bool finite(const double* v, int n) {
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+}  // namespace
+
+SessionRecorder::SessionRecorder(const std::string& path, bool simulated_device)
+    : path_(path), simulated_(simulated_device), log_(std::make_unique<lcm::LogFile>(path, "w")) {
+  if (!log_->good()) throw std::runtime_error("--record " + path + ": cannot create the log file");
+}
+
+SessionRecorder::~SessionRecorder() = default;
+
+bool SessionRecorder::write(const char* channel, std::int64_t utime, const std::vector<std::uint8_t>& bytes) {
+  lcm::LogEvent e{};
+  e.timestamp = utime + unix_offset_us_;
+  e.channel = channel;
+  e.datalen = std::int32_t(bytes.size());
+  e.data = const_cast<std::uint8_t*>(bytes.data());  // LogFile only reads it
+  if (log_->writeEvent(&e) != 0) {
+    error_ = path_ + ": writing the session log failed (disk full?); recording stopped";
+    return false;
+  }
+  return true;
+}
+
+void SessionRecorder::record(const TickRecord& r) {
+  if (!ok()) return;
+  thx_msgs::device_state_t d;
+  toDeviceState(r, simulated_, d);
+  if (!have_offset_) {
+    unix_offset_us_ = realtimeUs() - d.utime;
+    have_offset_ = true;
+  }
+  encodeInto(d, buffer_);
+  if (!write(kSessionDeviceChannel, d.utime, buffer_)) return;
+  thx_msgs::contact_t c;
+  toContact(r, c);
+  encodeInto(c, buffer_);
+  if (!write(kSessionContactChannel, c.utime, buffer_)) return;
+  ++ticks_;
+  if (ticks_ % 1000 == 0) std::fflush(log_->getFilePtr());  // a crash loses at most a second
+}
+
+std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path) {
+  std::vector<dev::ReplaySample> out;
+  forEachEvent(path, kSessionDeviceChannel, [&](const lcm::LogEvent& e, long n) {
+    thx_msgs::device_state_t d;
+    const std::string where = path + ": event " + std::to_string(n) + " (" + e.channel + ")";
+    if (thx_msgs::try_decode(e.data, std::size_t(e.datalen), d) < 0)
+      throw std::runtime_error(where + ": does not decode as device_state_t (wrong type or corrupt)");
+    if (!finite(d.p_world, 3) || !finite(d.q_world, 4) || !finite(d.v_world, 3) || !finite(d.w_world, 3))
+      throw std::runtime_error(where + ": tick " + std::to_string(d.tick) + " holds a non-finite value");
+    if (!out.empty() && d.tick <= out.back().tick)
+      throw std::runtime_error(where + ": tick " + std::to_string(d.tick) + " after tick " +
+                               std::to_string(out.back().tick) + "; expected increasing ticks");
+    dev::ReplaySample s;
+    s.tick = d.tick;
+    s.p_world = Eigen::Vector3d(d.p_world[0], d.p_world[1], d.p_world[2]);
+    s.q_world = Eigen::Quaterniond(d.q_world[0], d.q_world[1], d.q_world[2], d.q_world[3]);
+    s.v_world = Eigen::Vector3d(d.v_world[0], d.v_world[1], d.v_world[2]);
+    s.w_world = Eigen::Vector3d(d.w_world[0], d.w_world[1], d.w_world[2]);
+    s.buttons = std::uint32_t(d.buttons);
+    out.push_back(s);
+  });
+  if (out.empty()) throw std::runtime_error(path + ": no " + kSessionDeviceChannel + " events; not a session log?");
+  return out;
+}
+
+std::vector<thx_msgs::contact_t> loadSessionContacts(const std::string& path) {
+  std::vector<thx_msgs::contact_t> out;
+  forEachEvent(path, kSessionContactChannel, [&](const lcm::LogEvent& e, long n) {
+    thx_msgs::contact_t c;
+    if (thx_msgs::try_decode(e.data, std::size_t(e.datalen), c) < 0)
+      throw std::runtime_error(path + ": event " + std::to_string(n) + " (" + e.channel +
+                               "): does not decode as contact_t");
+    out.push_back(c);
+  });
+  return out;
+}
+
+}  // namespace thx::srv

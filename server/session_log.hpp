@@ -1,0 +1,67 @@
+#pragma once
+// Sessions as standard LCM log files: the format lcm-logger writes and lcm-logplayer plays
+// (lcm::LogFile), so the usual LCM tools read them. Used by hapticd's publisher thread
+// (`--record FILE`) and by the replay device (`--device replay:FILE`); never by the servo.
+//
+// A session log holds, for every servo tick, one event on THX_DEVICE_STATE (device_state_t) and
+// one on THX_CONTACT (contact_t), in tick order. Event timestamps are microseconds since the Unix
+// epoch (CLOCK_REALTIME at recording start + the tick's offset from the first tick), as
+// lcm-logger writes them, so lcm-logplayer replays the session at its original pace.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <thx_msgs/contact_t.hpp>
+
+#include "device/replay_device.hpp"
+#include "server/tick_record.hpp"
+
+namespace lcm {
+class LogFile;
+}
+
+namespace thx::srv {
+
+inline constexpr char kSessionDeviceChannel[] = "THX_DEVICE_STATE";
+inline constexpr char kSessionContactChannel[] = "THX_CONTACT";
+
+class SessionRecorder {
+ public:
+  // Creates (truncates) the log. Throws std::runtime_error naming the path if it cannot.
+  SessionRecorder(const std::string& path, bool simulated_device);
+  ~SessionRecorder();
+  SessionRecorder(const SessionRecorder&) = delete;
+  SessionRecorder& operator=(const SessionRecorder&) = delete;
+
+  // Appends one tick. After a write error (disk full) recording stops; ok() turns false and
+  // error() says why. Never throws.
+  void record(const TickRecord& r);
+
+  bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }
+  std::uint64_t ticks() const { return ticks_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  bool write(const char* channel, std::int64_t utime, const std::vector<std::uint8_t>& bytes);
+
+  std::string path_;
+  bool simulated_;
+  std::unique_ptr<lcm::LogFile> log_;
+  std::int64_t unix_offset_us_ = 0;
+  bool have_offset_ = false;
+  std::uint64_t ticks_ = 0;
+  std::string error_;
+  std::vector<std::uint8_t> buffer_;
+};
+
+// The pen trajectory of a session log (its THX_DEVICE_STATE events), for the replay device.
+// Throws std::runtime_error naming the file, the event number and the problem: unreadable file,
+// no device states, an event that does not decode, a non-finite value, ticks not increasing.
+std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path);
+
+// Every THX_CONTACT event of a session log, in order (to compare sessions). Throws like above.
+std::vector<thx_msgs::contact_t> loadSessionContacts(const std::string& path);
+
+}  // namespace thx::srv

@@ -1,0 +1,75 @@
+#pragma once
+// Subscription requests and heartbeats on their way from LCM to the publisher thread.
+//
+// LCM dispatches callbacks in whichever thread calls handle(): in hapticd that is the receiver
+// thread (the only one that may). The callbacks here decode untrusted bytes with
+// thx_msgs::try_decode, stamp the receive time and queue the message; the publisher thread takes
+// the queue (one short mutex, never held by the servo) and applies it to its SubscriptionTable,
+// which therefore has a single owner and needs no locking of its own.
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <thx_msgs/heartbeat_t.hpp>
+#include <thx_msgs/subscribe_request_t.hpp>
+
+namespace lcm {
+class LCM;
+class ReceiveBuffer;
+class Subscription;
+}  // namespace lcm
+
+namespace thx::srv {
+
+struct ControlMessages {
+  struct Request {
+    thx_msgs::subscribe_request_t msg;
+    std::int64_t received_ns = 0;
+  };
+  struct Heartbeat {
+    thx_msgs::heartbeat_t msg;
+    std::int64_t received_ns = 0;
+  };
+  std::vector<Request> requests;
+  std::vector<Heartbeat> heartbeats;
+};
+
+class SubscriptionInbox {
+ public:
+  // Bounds the queue if the publisher stalls or a client floods: beyond it, messages are dropped
+  // and counted (a client resends unanswered requests).
+  static constexpr std::size_t kMaxQueued = 4096;
+
+  SubscriptionInbox() = default;
+  ~SubscriptionInbox();
+  SubscriptionInbox(const SubscriptionInbox&) = delete;
+  SubscriptionInbox& operator=(const SubscriptionInbox&) = delete;
+
+  // Subscribes to THX_SUBSCRIBE and THX_HEARTBEAT on `lcm`; detach() (or the destructor) undoes it.
+  void attach(lcm::LCM& lcm);
+  void detach();
+
+  // Moves everything queued into `out` (whose old contents are cleared). Publisher thread.
+  void take(ControlMessages& out);
+
+  std::uint64_t undecodable() const { return undecodable_.load(); }
+  std::uint64_t overflowed() const { return overflowed_.load(); }
+
+  // Public for LCM's callbacks (and for tests that feed bytes directly).
+  void onRequest(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void onHeartbeat(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void push(const thx_msgs::subscribe_request_t& m, std::int64_t received_ns);
+  void push(const thx_msgs::heartbeat_t& m, std::int64_t received_ns);
+
+ private:
+  lcm::LCM* lcm_ = nullptr;
+  lcm::Subscription* request_sub_ = nullptr;
+  lcm::Subscription* heartbeat_sub_ = nullptr;
+  std::mutex mutex_;
+  ControlMessages queued_;
+  std::atomic<std::uint64_t> undecodable_{0}, overflowed_{0};
+};
+
+}  // namespace thx::srv

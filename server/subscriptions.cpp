@@ -1,0 +1,297 @@
+#include "server/subscriptions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <thx_msgs/protocol.hpp>
+
+namespace thx::srv {
+
+namespace {
+
+using Req = thx_msgs::subscribe_request_t;
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// A peer's string made safe to quote in a reason: printable ASCII, at most 40 characters.
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (std::size_t i = 0; i < s.size() && i < 40; ++i) out += (s[i] >= 32 && s[i] < 127) ? s[i] : '?';
+  if (s.size() > 40) out += "...";
+  return out + "'";
+}
+
+std::size_t encodedSize(StreamKind kind) {
+  switch (kind) {
+    case StreamKind::DeviceState: return std::size_t(thx_msgs::device_state_t{}.getEncodedSize());
+    case StreamKind::Contact: return std::size_t(thx_msgs::contact_t{}.getEncodedSize());
+    case StreamKind::ContactBatch: return thx_msgs::kBatchHeaderBytes;
+    case StreamKind::ServoStats: return std::size_t(thx_msgs::servo_stats_t{}.getEncodedSize());
+  }
+  return 0;
+}
+
+}  // namespace
+
+double streamBandwidth(StreamKind kind, double rate_hz, double servo_rate_hz, std::size_t channel_length) {
+  // LCM 1.3.1 udpm short message: 8-byte header (magic, sequence), channel, NUL, payload.
+  const double per_message = double(encodedSize(kind) + channel_length + 1 + 8);
+  double bytes = rate_hz * per_message;
+  if (kind == StreamKind::ContactBatch) bytes += servo_rate_hz * double(thx_msgs::contact_sample_encoded_size());
+  return bytes;
+}
+
+SubscriptionTable::SubscriptionTable(const SubscriptionLimits& limits) : limits_(limits) {}
+
+thx_msgs::subscribe_reply_t SubscriptionTable::refuse(thx_msgs::subscribe_reply_t reply, std::string reason) {
+  ++counters_.refused;
+  reply.accepted = false;
+  reply.reason = std::move(reason);
+  reply.rate_hz = 0.0;
+  reply.batch = false;
+  reply.channel.clear();
+  return reply;
+}
+
+thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std::int64_t now_ns) {
+  ++counters_.requests;
+  thx_msgs::subscribe_reply_t reply{};
+  reply.server_instance = limits_.server_instance;
+  reply.request_seq = req.seq;
+  reply.client_id = thx_msgs::is_valid_client_id(req.client_id) ? req.client_id : quoted(req.client_id);
+  reply.stream = thx_msgs::is_known_stream(req.stream) ? req.stream : quoted(req.stream);
+  reply.action = req.action;
+  reply.heartbeat_timeout_us = limits_.heartbeat_timeout_ns / 1000;
+
+  if (!thx_msgs::is_valid_client_id(req.client_id)) {
+    return refuse(reply, "invalid client_id " + quoted(req.client_id) + ": expected 1 to 32 characters of [A-Za-z0-9_-]");
+  }
+  if (req.action != Req::ACTION_SUBSCRIBE && req.action != Req::ACTION_UNSUBSCRIBE) {
+    return refuse(reply, "unknown action " + std::to_string(req.action) + ": expected 1 (subscribe) or 2 (unsubscribe)");
+  }
+  if (!thx_msgs::is_known_stream(req.stream)) {
+    return refuse(reply, "unknown stream " + quoted(req.stream) + ": expected DEVICE_STATE, CONTACT or SERVO_STATS");
+  }
+  auto client_it = clients_.find(req.client_id);
+
+  if (req.action == Req::ACTION_UNSUBSCRIBE) {
+    if (client_it != clients_.end()) {
+      client_it->second.subs.erase(req.stream);
+      client_it->second.last_seen_ns = now_ns;
+      if (client_it->second.subs.empty()) clients_.erase(client_it);
+      recount();
+    }
+    reply.accepted = true;  // unsubscribing what is not there is already done
+    return reply;
+  }
+
+  const bool batch = req.batch != 0;
+  if (batch && !thx_msgs::stream_supports_batch(req.stream)) {
+    return refuse(reply, "batching is only available for CONTACT, not " + req.stream);
+  }
+  if (!std::isfinite(req.rate_hz) || req.rate_hz <= 0.0) {
+    return refuse(reply, "rate_hz must be a finite number > 0, got " + num(req.rate_hz));
+  }
+  StreamKind kind = StreamKind::DeviceState;
+  if (req.stream == thx_msgs::kStreamContact) kind = batch ? StreamKind::ContactBatch : StreamKind::Contact;
+  if (req.stream == thx_msgs::kStreamServoStats) kind = StreamKind::ServoStats;
+  const std::string channel = thx_msgs::stream_channel(req.stream, batch, req.client_id);
+
+  // The granted rate: as asked, within [floor, cap].
+  double cap = std::min(limits_.servo_rate_hz, limits_.max_rate_hz);
+  std::string cap_why = limits_.max_rate_hz < limits_.servo_rate_hz ? "the server's maximum rate (hapticd --max-rate)"
+                                                                     : "the servo rate";
+  if (kind == StreamKind::ServoStats && 1.0 / limits_.stats_window_s < cap) {
+    cap = 1.0 / limits_.stats_window_s;
+    cap_why = "one SERVO_STATS window per " + num(limits_.stats_window_s) + " s";
+  }
+  double rate = req.rate_hz;
+  std::string adjusted;
+  std::size_t max_samples = 0;
+  if (rate > cap) {
+    rate = cap;
+    adjusted = "asked " + num(req.rate_hz) + " Hz, granted " + num(rate) + " Hz: " + cap_why;
+  }
+  if (kind == StreamKind::ContactBatch) {
+    // Keep every batch within one UDP datagram (a lost fragment would lose the whole batch).
+    max_samples = thx_msgs::max_unfragmented_batch_samples(channel.size());
+    const double floor = limits_.servo_rate_hz / double(max_samples);
+    if (rate < floor) {
+      rate = floor;
+      adjusted = "asked " + num(req.rate_hz) + " Hz, granted " + num(rate) + " Hz: a batch holds at most " +
+                 std::to_string(max_samples) + " samples (one UDP datagram)";
+    }
+  }
+
+  const bool new_client = client_it == clients_.end();
+  if (new_client && int(clients_.size()) >= limits_.max_clients) {
+    return refuse(reply, "too many clients: " + std::to_string(clients_.size()) + " connected, the limit is " +
+                             std::to_string(limits_.max_clients) + " (hapticd --max-clients)");
+  }
+  const double need = streamBandwidth(kind, rate, limits_.servo_rate_hz, channel.size());
+  double in_use = bandwidth();
+  Subscription* old = nullptr;
+  if (!new_client) {
+    auto s = client_it->second.subs.find(req.stream);
+    if (s != client_it->second.subs.end()) {
+      old = &s->second;
+      in_use -= old->bytes_per_s;  // a replacement frees what it replaces
+    }
+  }
+  if (in_use + need > limits_.max_bandwidth_bytes_per_s) {
+    return refuse(reply, "bandwidth limit: this subscription needs " + num(need / 1e3) + " kB/s, " +
+                             num(in_use / 1e3) + " of " + num(limits_.max_bandwidth_bytes_per_s / 1e3) +
+                             " kB/s are in use (hapticd --max-bandwidth)");
+  }
+
+  Client& client = clients_[req.client_id];
+  client.last_seen_ns = now_ns;
+  // A resend of the same subscription (a lost reply) keeps its schedule and batch sequence.
+  const bool same = old && old->kind == kind && old->rate_hz == rate && old->channel == channel;
+  if (!same) {
+    Subscription s;
+    s.kind = kind;
+    s.channel = channel;
+    s.rate_hz = rate;
+    s.period = kind == StreamKind::ServoStats ? 1.0 / (rate * limits_.stats_window_s) : limits_.servo_rate_hz / rate;
+    s.bytes_per_s = need;
+    if (kind == StreamKind::ContactBatch) {
+      s.max_samples = max_samples;
+      s.batch.server_instance = limits_.server_instance;
+      s.batch.samples.reserve(max_samples);  // allocated once, reused for every batch
+    }
+    client.subs[req.stream] = std::move(s);
+  }
+  recount();
+
+  reply.accepted = true;
+  reply.reason = adjusted;
+  reply.rate_hz = rate;
+  reply.batch = batch;
+  reply.channel = channel;
+  return reply;
+}
+
+bool SubscriptionTable::heartbeat(const thx_msgs::heartbeat_t& hb, std::int64_t now_ns) {
+  auto it = clients_.find(hb.client_id);
+  if (it == clients_.end()) {
+    ++counters_.unknown_heartbeats;
+    return false;
+  }
+  ++counters_.heartbeats;
+  it->second.last_seen_ns = std::max(it->second.last_seen_ns, now_ns);
+  return true;
+}
+
+std::vector<std::string> SubscriptionTable::expire(std::int64_t now_ns) {
+  std::vector<std::string> gone;
+  for (auto it = clients_.begin(); it != clients_.end();) {
+    if (now_ns - it->second.last_seen_ns > limits_.heartbeat_timeout_ns) {
+      gone.push_back(it->first);
+      it = clients_.erase(it);
+      ++counters_.expired_clients;
+    } else {
+      ++it;
+    }
+  }
+  if (!gone.empty()) recount();
+  return gone;
+}
+
+bool SubscriptionTable::due(Subscription& s, double index) {
+  if (s.next_due < 0.0) {
+    s.next_due = index + s.period;
+    // Latest-value streams start at once; a batch first collects a period's worth of samples.
+    return s.kind != StreamKind::ContactBatch;
+  }
+  if (index + 1e-9 < s.next_due) return false;
+  s.next_due += s.period;
+  if (s.next_due <= index) s.next_due = index + s.period;  // far behind (a gap): no burst
+  return true;
+}
+
+void SubscriptionTable::sendBatch(Subscription& s, std::int64_t now_us, MessageSink& sink) {
+  thx_msgs::contact_batch_t& b = s.batch;
+  b.utime = now_us;
+  ++b.seq;
+  b.next_tick = s.next_tick;
+  b.num_samples = std::int32_t(b.samples.size());
+  sink.send(s.channel, b);
+  b.samples.clear();  // keeps its capacity
+  b.num_dropped = 0;
+}
+
+void SubscriptionTable::onTick(const thx_msgs::device_state_t& state, const thx_msgs::contact_t& contact,
+                               std::int64_t now_us, MessageSink& sink) {
+  const std::int64_t tick = state.tick;
+  for (auto& [id, client] : clients_) {
+    for (auto& [stream, s] : client.subs) {
+      switch (s.kind) {
+        case StreamKind::DeviceState:
+          if (due(s, double(tick))) sink.send(s.channel, state);
+          break;
+        case StreamKind::Contact:
+          if (due(s, double(tick))) sink.send(s.channel, contact);
+          break;
+        case StreamKind::ContactBatch: {
+          if (s.next_tick >= 0 && tick < s.next_tick) break;  // not newer: never sent twice
+          if (s.next_tick >= 0 && tick > s.next_tick) s.batch.num_dropped += std::int32_t(tick - s.next_tick);
+          s.batch.samples.push_back(contact);
+          s.next_tick = tick + 1;
+          ++counters_.batch_samples;
+          const bool on_time = due(s, double(tick));
+          if (on_time || s.batch.samples.size() >= s.max_samples) sendBatch(s, now_us, sink);
+          break;
+        }
+        case StreamKind::ServoStats:
+          break;
+      }
+    }
+  }
+}
+
+void SubscriptionTable::onStats(thx_msgs::servo_stats_t stats, MessageSink& sink) {
+  stats.num_clients = numClients();
+  stats.num_subscriptions = numSubscriptions();
+  const double window = double(stats_windows_++);
+  for (auto& [id, client] : clients_) {
+    for (auto& [stream, s] : client.subs) {
+      if (s.kind == StreamKind::ServoStats && due(s, window)) sink.send(s.channel, stats);
+    }
+  }
+}
+
+void SubscriptionTable::flushBatches(std::int64_t now_us, MessageSink& sink) {
+  for (auto& [id, client] : clients_) {
+    for (auto& [stream, s] : client.subs) {
+      if (s.kind == StreamKind::ContactBatch && !s.batch.samples.empty()) sendBatch(s, now_us, sink);
+    }
+  }
+}
+
+int SubscriptionTable::numSubscriptions() const {
+  int n = 0;
+  for (const auto& [id, client] : clients_) n += int(client.subs.size());
+  return n;
+}
+
+double SubscriptionTable::bandwidth() const {
+  double total = 0.0;
+  for (const auto& [id, client] : clients_) {
+    for (const auto& [stream, s] : client.subs) total += s.bytes_per_s;
+  }
+  return total;
+}
+
+void SubscriptionTable::recount() {
+  tick_subscriptions_ = 0;
+  for (const auto& [id, client] : clients_) {
+    for (const auto& [stream, s] : client.subs) tick_subscriptions_ += s.kind != StreamKind::ServoStats;
+  }
+}
+
+}  // namespace thx::srv

@@ -1,0 +1,121 @@
+#pragma once
+// Per-client subscriptions of hapticd (docs/clients.md, protocol in docs/messages.md §4): which
+// client gets which stream, on which channel, at which rate, and when. Pure bookkeeping: no LCM,
+// no threads, no clock of its own. Time comes in as arguments (ns on any monotonic clock, used
+// only for heartbeats), and rates are scheduled on the servo's tick count, so tests drive it
+// deterministically. The publisher thread owns one table; nothing here runs on the servo.
+//
+// Rates are granted as asked (within the limits) and met on average: a subscription at R Hz is
+// sent the latest tick whenever the tick count passes its next due point, which advances by
+// servo_rate / R ticks (a fraction), so 60 Hz of 1 kHz alternates 17- and 16-tick intervals.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <thx_msgs/contact_batch_t.hpp>
+#include <thx_msgs/contact_t.hpp>
+#include <thx_msgs/device_state_t.hpp>
+#include <thx_msgs/heartbeat_t.hpp>
+#include <thx_msgs/servo_stats_t.hpp>
+#include <thx_msgs/subscribe_reply_t.hpp>
+#include <thx_msgs/subscribe_request_t.hpp>
+
+namespace thx::srv {
+
+struct SubscriptionLimits {
+  double servo_rate_hz = 1000.0;
+  double max_rate_hz = 1000.0;              // per subscription; higher asks are granted this
+  int max_clients = 32;                     // clients with at least one subscription
+  double max_bandwidth_bytes_per_s = 8e6;   // sum of the estimates below over all subscriptions
+  std::int64_t heartbeat_timeout_ns = 2'000'000'000;
+  double stats_window_s = 1.0;              // SERVO_STATS is computed per window: at most 1/window Hz
+  std::int64_t server_instance = 1;         // echoed in replies and batches
+};
+
+enum class StreamKind { DeviceState, Contact, ContactBatch, ServoStats };
+
+// Where the messages go. The publisher encodes and publishes; tests record.
+class MessageSink {
+ public:
+  virtual ~MessageSink() = default;
+  virtual void send(const std::string& channel, const thx_msgs::device_state_t& m) = 0;
+  virtual void send(const std::string& channel, const thx_msgs::contact_t& m) = 0;
+  virtual void send(const std::string& channel, const thx_msgs::contact_batch_t& m) = 0;
+  virtual void send(const std::string& channel, const thx_msgs::servo_stats_t& m) = 0;
+};
+
+struct SubscriptionCounters {
+  std::uint64_t requests = 0;
+  std::uint64_t refused = 0;
+  std::uint64_t heartbeats = 0;
+  std::uint64_t unknown_heartbeats = 0;  // from a client with no subscription (e.g. after a restart)
+  std::uint64_t expired_clients = 0;
+  std::uint64_t batch_samples = 0;
+};
+
+// Bytes per second one subscription puts on the wire (LCM payload + channel + LCM's 8-byte
+// header; IP/UDP headers not counted). Used for the bandwidth limit.
+double streamBandwidth(StreamKind kind, double rate_hz, double servo_rate_hz, std::size_t channel_length);
+
+class SubscriptionTable {
+ public:
+  explicit SubscriptionTable(const SubscriptionLimits& limits);
+
+  // Applies a request and returns the reply to publish (utime left 0 for the caller).
+  // Refusals change nothing. A request also counts as a sign of life of its client.
+  thx_msgs::subscribe_reply_t handleRequest(const thx_msgs::subscribe_request_t& req, std::int64_t now_ns);
+  // Returns false when the client is unknown (no subscriptions); the heartbeat is then ignored.
+  bool heartbeat(const thx_msgs::heartbeat_t& hb, std::int64_t now_ns);
+  // Forgets clients silent for longer than the heartbeat timeout; returns their ids.
+  std::vector<std::string> expire(std::int64_t now_ns);
+
+  // True when some subscription needs per-tick data (DEVICE_STATE, CONTACT, CONTACT batch):
+  // the publisher builds the tick's messages only then.
+  bool wantsTicks() const { return tick_subscriptions_ > 0; }
+  // One servo tick, in tick order. `tick` gaps (ring overflow) count as dropped samples in
+  // batches. Sends what is due to `sink`.
+  void onTick(const thx_msgs::device_state_t& state, const thx_msgs::contact_t& contact, std::int64_t now_us,
+              MessageSink& sink);
+  // One closed SERVO_STATS window. num_clients/num_subscriptions are filled in here.
+  void onStats(thx_msgs::servo_stats_t stats, MessageSink& sink);
+  // Sends every batch's remaining samples (at shutdown).
+  void flushBatches(std::int64_t now_us, MessageSink& sink);
+
+  int numClients() const { return int(clients_.size()); }
+  int numSubscriptions() const;
+  double bandwidth() const;  // bytes/s, current total estimate
+  const SubscriptionCounters& counters() const { return counters_; }
+  const SubscriptionLimits& limits() const { return limits_; }
+
+ private:
+  struct Subscription {
+    StreamKind kind = StreamKind::DeviceState;
+    std::string channel;
+    double rate_hz = 0.0;
+    double period = 1.0;     // ticks (stats: windows) between messages
+    double next_due = -1.0;  // < 0: send at the first opportunity
+    double bytes_per_s = 0.0;
+    // batches only
+    thx_msgs::contact_batch_t batch{};  // value-initialised: lcm-gen structs have no member initialisers
+    std::size_t max_samples = 0;
+    std::int64_t next_tick = -1;  // tick expected next; -1 before the first
+  };
+  struct Client {
+    std::int64_t last_seen_ns = 0;
+    std::map<std::string, Subscription> subs;  // by stream name
+  };
+
+  thx_msgs::subscribe_reply_t refuse(thx_msgs::subscribe_reply_t reply, std::string reason);
+  bool due(Subscription& s, double index);
+  void sendBatch(Subscription& s, std::int64_t now_us, MessageSink& sink);
+  void recount();
+
+  SubscriptionLimits limits_;
+  std::map<std::string, Client> clients_;
+  int tick_subscriptions_ = 0;
+  std::int64_t stats_windows_ = 0;
+  SubscriptionCounters counters_;
+};
+
+}  // namespace thx::srv
