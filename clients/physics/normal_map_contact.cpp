@@ -1,0 +1,86 @@
+#include "clients/physics/normal_map_contact.hpp"
+
+#include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "clients/physics/bullet_convert.hpp"
+
+namespace thx::phys {
+
+Eigen::Vector3d clampedSampledNormal(const tex::TexturedSurface& surface, double x_local, double y_local,
+                                     double max_tilt_deg) {
+  Eigen::Vector3d n = surface.at(x_local, y_local).n_local;
+  const double max_tilt = std::clamp(max_tilt_deg, 0.0, 90.0) * std::numbers::pi / 180.0;
+  const double min_z = std::cos(max_tilt);
+  if (n.z() >= min_z) return n;
+  const double lateral = std::hypot(n.x(), n.y());
+  if (lateral <= 0.0) return Eigen::Vector3d::UnitZ();
+  const double s = std::sin(max_tilt) / lateral;
+  return {n.x() * s, n.y() * s, min_z};
+}
+
+namespace {
+
+// Velocity of `body` at world point p (zero for a body that is not a rigid body).
+Eigen::Vector3d velocityAt(const btCollisionObject& body, const Eigen::Vector3d& p) {
+  const btRigidBody* rb = btRigidBody::upcast(&body);
+  if (!rb) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d c = toEigen(rb->getCenterOfMassPosition());
+  return toEigen(rb->getLinearVelocity()) + toEigen(rb->getAngularVelocity()).cross(p - c);
+}
+
+// The distance that makes Bullet's solver demand v·n >= r (setupContactConstraint: a positive
+// distance d allows approach at d / dt, a negative one asks for separation at erp |d| / dt).
+double distanceForBias(double r, const StepContext& step) {
+  if (r <= 0.0) return -r * step.dt_s;
+  // Keep it above the split-impulse threshold: deeper "penetrations" are corrected in position
+  // only and would not produce the velocity we ask for.
+  return std::max(-r * step.dt_s / step.erp, 0.99 * step.split_penetration_threshold);
+}
+
+}  // namespace
+
+void applyNormalMap(btManifoldPoint& point, bool plane_is_b, const Eigen::Isometry3d& plane_to_world,
+                    const tex::TexturedSurface& surface, const btCollisionObject& other,
+                    const NormalMapOptions& options, const StepContext& step) {
+  // Sample where the contact lies on the plane (the plane-side point).
+  const btVector3& on_plane = plane_is_b ? point.m_positionWorldOnB : point.m_positionWorldOnA;
+  const Eigen::Vector3d p_local = plane_to_world.inverse() * toEigen(on_plane);
+  const Eigen::Vector3d n_local = clampedSampledNormal(surface, p_local.x(), p_local.y(), options.max_tilt_deg);
+  const Eigen::Vector3d n_world = plane_to_world.linear() * n_local;
+
+  // m_normalWorldOnB points from B towards A: the plane's normal if the plane is B, else reversed.
+  point.m_normalWorldOnB = toBt(plane_is_b ? n_world : Eigen::Vector3d(-n_world));
+
+  const Eigen::Vector3d n_geometric = plane_to_world.linear().col(2);
+  const btCollisionShape* shape = other.getCollisionShape();
+  const bool sphere = shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE;
+  const Eigen::Vector3d on_object = toEigen(plane_is_b ? point.m_positionWorldOnA : point.m_positionWorldOnB);
+  // For a sphere the solver's normal row sees only the centre's velocity (the lever arm is along
+  // n_s); for other shapes the contact point's.
+  const Eigen::Vector3d v_ref =
+      sphere ? velocityAt(other, toEigen(other.getWorldTransform().getOrigin())) : velocityAt(other, on_object);
+  if (sphere) {
+    const double r = double(static_cast<const btSphereShape*>(shape)->getRadius());
+    const Eigen::Vector3d c = toEigen(other.getWorldTransform().getOrigin());
+    const btVector3 q = toBt(Eigen::Vector3d(c - r * n_world));
+    // The solver takes lever arms from the world positions; the local points are left alone so
+    // Bullet's own matching of cached points (by local point on A) keeps working next step.
+    point.m_positionWorldOnA = q;
+    point.m_positionWorldOnB = q;
+  }
+  if (options.hold_height) {
+    const double d_g = double(point.m_distance1);  // Bullet's gap along the plane's own normal
+    const double b_g = d_g < 0.0 ? -step.erp * d_g / step.dt_s : -d_g / step.dt_s;
+    const Eigen::Vector3d v_t = v_ref - v_ref.dot(n_geometric) * n_geometric;
+    const double required = b_g * n_world.dot(n_geometric) + v_t.dot(n_world);
+    point.m_distance1 = static_cast<btScalar>(distanceForBias(required, step));
+  }
+}
+
+}  // namespace thx::phys

@@ -1,0 +1,113 @@
+#include "clients/physics/physics_world.hpp"
+
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
+
+#include <algorithm>
+
+#include "clients/physics/bullet_convert.hpp"
+#include "clients/physics/relief_collision.hpp"
+#include "clients/physics/relief_plane_shape.hpp"
+
+namespace thx::phys {
+
+namespace {
+btScalar narrow(double v) { return static_cast<btScalar>(v); }
+}  // namespace
+
+PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
+  configuration_ = std::make_unique<btDefaultCollisionConfiguration>();
+  // Several points per step for a box on the plain / normal-mapped plane, so it rests on its
+  // face at once instead of collecting one point per step.
+  configuration_->setPlaneConvexMultipointIterations(3, 3);
+  dispatcher_ = std::make_unique<btCollisionDispatcher>(configuration_.get());
+  registerReliefCollision(*dispatcher_);
+  broadphase_ = std::make_unique<btDbvtBroadphase>();
+  solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+  world_ = std::make_unique<TexturedWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(), configuration_.get());
+  world_->setGravity(toBt(options.gravity_m_per_s2));
+  world_->getSolverInfo().m_numIterations = options.solver_iterations;
+}
+
+PhysicsWorld::~PhysicsWorld() {
+  // Bodies leave the world before the world (and its dispatcher) go.
+  for (auto& body : bodies_) world_->removeRigidBody(body.get());
+}
+
+btRigidBody& PhysicsWorld::addBody(std::unique_ptr<btCollisionShape> shape, double mass_kg,
+                                   const Eigen::Isometry3d& pose, const BodyMaterial& material) {
+  btVector3 inertia(0, 0, 0);
+  if (mass_kg > 0.0) shape->calculateLocalInertia(narrow(mass_kg), inertia);
+  btRigidBody::btRigidBodyConstructionInfo info(narrow(mass_kg), nullptr, shape.get(), inertia);
+  info.m_startWorldTransform = toBt(pose);
+  info.m_friction = narrow(material.friction);
+  info.m_restitution = narrow(material.restitution);
+  info.m_rollingFriction = narrow(material.rolling_friction);
+  auto body = std::make_unique<btRigidBody>(info);
+  // Haptic scenes: a resting object must still answer a push from the pen at once.
+  body->setActivationState(DISABLE_DEACTIVATION);
+  world_->addRigidBody(body.get());
+  shapes_.push_back(std::move(shape));
+  bodies_.push_back(std::move(body));
+  return *bodies_.back();
+}
+
+btRigidBody& PhysicsWorld::addPlainPlane(const Eigen::Isometry3d& plane_to_world, const BodyMaterial& material) {
+  return addBody(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), btScalar(0)), 0.0, plane_to_world, material);
+}
+
+btRigidBody& PhysicsWorld::addNormalMapPlane(const tex::TexturedSurface& surface, const BodyMaterial& material,
+                                             const NormalMapOptions& options) {
+  btRigidBody& body = addPlainPlane(surface.mapping().plane_to_world, material);
+  world_->addNormalMapPlane(&body, &surface, options);
+  return body;
+}
+
+btRigidBody& PhysicsWorld::addReliefPlane(const tex::TexturedSurface& surface, const BodyMaterial& material) {
+  return addBody(std::make_unique<ReliefPlaneShape>(surface), 0.0, surface.mapping().plane_to_world, material);
+}
+
+btRigidBody& PhysicsWorld::addStaticShape(std::unique_ptr<btCollisionShape> shape, const Eigen::Isometry3d& pose,
+                                          const BodyMaterial& material) {
+  return addBody(std::move(shape), 0.0, pose, material);
+}
+
+btRigidBody& PhysicsWorld::addSphere(double radius_m, double mass_kg, const Eigen::Isometry3d& pose,
+                                     const BodyMaterial& material) {
+  return addBody(std::make_unique<btSphereShape>(narrow(radius_m)), mass_kg, pose, material);
+}
+
+btRigidBody& PhysicsWorld::addBox(const Eigen::Vector3d& half_extents_m, double mass_kg,
+                                  const Eigen::Isometry3d& pose, const BodyMaterial& material) {
+  auto shape = std::make_unique<btBoxShape>(toBt(half_extents_m));
+  shape->setMargin(narrow(std::min(options_.convex_margin_m, 0.5 * half_extents_m.minCoeff())));
+  return addBody(std::move(shape), mass_kg, pose, material);
+}
+
+btRigidBody& PhysicsWorld::addCapsule(double radius_m, double half_length_m, double mass_kg,
+                                      const Eigen::Isometry3d& pose, const BodyMaterial& material) {
+  return addBody(std::make_unique<btCapsuleShapeZ>(narrow(radius_m), narrow(2.0 * half_length_m)), mass_kg, pose,
+                 material);
+}
+
+btRigidBody& PhysicsWorld::addCylinder(double radius_m, double half_length_m, double mass_kg,
+                                       const Eigen::Isometry3d& pose, const BodyMaterial& material) {
+  auto shape = std::make_unique<btCylinderShapeZ>(btVector3(narrow(radius_m), narrow(radius_m), narrow(half_length_m)));
+  shape->setMargin(narrow(std::min(options_.convex_margin_m, 0.5 * std::min(radius_m, half_length_m))));
+  return addBody(std::move(shape), mass_kg, pose, material);
+}
+
+void PhysicsWorld::step(double dt_s) { world_->stepSimulation(narrow(dt_s), 0, narrow(dt_s)); }
+
+Eigen::Vector3d positionOf(const btRigidBody& body) { return toEigen(body.getWorldTransform().getOrigin()); }
+Eigen::Vector3d velocityOf(const btRigidBody& body) { return toEigen(body.getLinearVelocity()); }
+Eigen::Vector3d angularVelocityOf(const btRigidBody& body) { return toEigen(body.getAngularVelocity()); }
+void setVelocity(btRigidBody& body, const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
+  body.setLinearVelocity(toBt(v));
+  body.setAngularVelocity(toBt(w));
+}
+
+}  // namespace thx::phys

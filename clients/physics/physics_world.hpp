@@ -1,0 +1,91 @@
+#pragma once
+// Everything a Bullet simulation on a textured plane needs, owned in one place: collision
+// configuration, dispatcher (with the relief algorithms registered), broadphase, solver, the
+// TexturedWorld, and the shapes and bodies added through it. Defaults suit haptic scale
+// (cm objects, mm texels): no deactivation, 0.5 mm convex margins, multi-point plane contacts.
+// SI units throughout. Not real-time code: adding bodies allocates.
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
+#include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
+#include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+#include <vector>
+
+#include "clients/physics/normal_map_contact.hpp"
+#include "clients/physics/textured_world.hpp"
+#include "textures/textured_surface.hpp"
+
+namespace thx::phys {
+
+struct WorldOptions {
+  Eigen::Vector3d gravity_m_per_s2{0.0, 0.0, -9.81};
+  int solver_iterations = 10;
+  // Convex margin for boxes, capsules' and cylinders' GJK (Bullet's 4 cm default is far too big
+  // at haptic scale; shared reference §5).
+  double convex_margin_m = 0.5e-3;
+};
+
+struct BodyMaterial {
+  double friction = 0.5;
+  double restitution = 0.0;
+  double rolling_friction = 0.0;
+};
+
+class PhysicsWorld {
+ public:
+  explicit PhysicsWorld(const WorldOptions& options = {});
+  ~PhysicsWorld();
+  PhysicsWorld(const PhysicsWorld&) = delete;
+  PhysicsWorld& operator=(const PhysicsWorld&) = delete;
+
+  TexturedWorld& world() { return *world_; }
+  const WorldOptions& options() const { return options_; }
+
+  // Static planes at the surface's plane frame (mapping.plane_to_world). The surface and its map
+  // must outlive this world.
+  btRigidBody& addPlainPlane(const Eigen::Isometry3d& plane_to_world, const BodyMaterial& material);
+  btRigidBody& addNormalMapPlane(const tex::TexturedSurface& surface, const BodyMaterial& material,
+                                 const NormalMapOptions& options = {});
+  btRigidBody& addReliefPlane(const tex::TexturedSurface& surface, const BodyMaterial& material);
+  // Any static collision shape (heightfield, mesh ...), for comparisons; the world owns it.
+  btRigidBody& addStaticShape(std::unique_ptr<btCollisionShape> shape, const Eigen::Isometry3d& pose,
+                              const BodyMaterial& material);
+
+  // Dynamic bodies; pose = centre of mass. Capsule and cylinder axes lie along the body's local z;
+  // half_length: capsule = half the distance between cap centres, cylinder = half its height.
+  btRigidBody& addSphere(double radius_m, double mass_kg, const Eigen::Isometry3d& pose, const BodyMaterial& material);
+  btRigidBody& addBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
+                      const BodyMaterial& material);
+  btRigidBody& addCapsule(double radius_m, double half_length_m, double mass_kg, const Eigen::Isometry3d& pose,
+                          const BodyMaterial& material);
+  btRigidBody& addCylinder(double radius_m, double half_length_m, double mass_kg, const Eigen::Isometry3d& pose,
+                           const BodyMaterial& material);
+
+  // Exactly one internal step of dt_s (no Bullet sub-stepping or interpolation).
+  void step(double dt_s);
+
+ private:
+  btRigidBody& addBody(std::unique_ptr<btCollisionShape> shape, double mass_kg, const Eigen::Isometry3d& pose,
+                       const BodyMaterial& material);
+
+  WorldOptions options_;
+  std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btDbvtBroadphase> broadphase_;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<TexturedWorld> world_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+};
+
+// Helpers for reading state back in SI / Eigen.
+Eigen::Vector3d positionOf(const btRigidBody& body);
+Eigen::Vector3d velocityOf(const btRigidBody& body);
+Eigen::Vector3d angularVelocityOf(const btRigidBody& body);
+void setVelocity(btRigidBody& body, const Eigen::Vector3d& v_m_per_s, const Eigen::Vector3d& w_rad_per_s);
+
+}  // namespace thx::phys

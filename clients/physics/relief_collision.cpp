@@ -1,0 +1,129 @@
+#include "clients/physics/relief_collision.hpp"
+
+#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+
+#include <vector>
+
+#include "clients/physics/bullet_convert.hpp"
+#include "clients/physics/contact_selection.hpp"
+#include "clients/physics/relief_plane_shape.hpp"
+#include "clients/physics/relief_raster.hpp"
+
+namespace thx::phys {
+
+std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen::Isometry3d& pose) {
+  switch (shape.getShapeType()) {
+    case SPHERE_SHAPE_PROXYTYPE:
+      return Underside::sphere(pose, double(static_cast<const btSphereShape&>(shape).getRadius()));
+    case BOX_SHAPE_PROXYTYPE:
+      // With margin: Bullet's box shrinks its core by the margin, the full box is what collides.
+      return Underside::box(pose, toEigen(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin()));
+    case CAPSULE_SHAPE_PROXYTYPE: {
+      const auto& c = static_cast<const btCapsuleShape&>(shape);
+      return Underside::capsule(pose, double(c.getRadius()), double(c.getHalfHeight()), c.getUpAxis());
+    }
+    case CYLINDER_SHAPE_PROXYTYPE: {
+      const auto& c = static_cast<const btCylinderShape&>(shape);
+      const int axis = c.getUpAxis();
+      return Underside::cylinder(pose, double(c.getRadius()), double(c.getHalfExtentsWithMargin()[axis]), axis);
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+ReliefCollisionAlgorithm::ReliefCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* body0,
+                                                   const btCollisionObjectWrapper* body1, bool swapped)
+    : btActivatingCollisionAlgorithm(ci, body0, body1), manifold_(ci.m_manifold), swapped_(swapped) {
+  if (!manifold_) {
+    const btCollisionObjectWrapper* object = swapped ? body1 : body0;
+    const btCollisionObjectWrapper* relief = swapped ? body0 : body1;
+    manifold_ = m_dispatcher->getNewManifold(object->getCollisionObject(), relief->getCollisionObject());
+    own_manifold_ = true;
+  }
+}
+
+ReliefCollisionAlgorithm::~ReliefCollisionAlgorithm() {
+  if (own_manifold_ && manifold_) m_dispatcher->releaseManifold(manifold_);
+}
+
+void ReliefCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
+  if (manifold_ && own_manifold_) manifolds.push_back(manifold_);
+}
+
+void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                                const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
+                                                btManifoldResult* result) {
+  if (!manifold_) return;
+  const btCollisionObjectWrapper* object = swapped_ ? body1 : body0;
+  const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
+  result->setPersistentManifold(manifold_);
+  manifold_->clearManifold();
+
+  const auto& plane = static_cast<const ReliefPlaneShape&>(*relief->getCollisionShape());
+  const Eigen::Isometry3d world_from_plane = toEigen(relief->getWorldTransform());
+  const Eigen::Isometry3d world_from_object = toEigen(object->getWorldTransform());
+  const std::optional<Underside> underside =
+      undersideOf(*object->getCollisionShape(), world_from_plane.inverse() * world_from_object);
+  if (!underside) return;
+
+  const double threshold = double(manifold_->getContactBreakingThreshold());
+  // Reused between steps so a resting object costs no allocation per step.
+  thread_local std::vector<ReliefCandidate> candidates;
+  candidates.clear();
+  rasterizeRelief(plane.surface(), *underside, threshold, candidates);
+  std::array<std::size_t, kMaxReliefContacts> chosen{};
+  const std::size_t n = selectReliefContacts(candidates, chosen);
+  // Round objects roll on their deepest contact: locate it within its texel (relief_raster.hpp).
+  if (n > 0 && underside->kind != Underside::Kind::Box)
+    candidates[chosen[0]] = refineDeepest(plane.surface(), *underside, candidates[chosen[0]]);
+
+  // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
+  // within the breaking threshold of the new one. The chosen points come deepest first, so a
+  // later point that close is skipped instead: the deeper one must win. (For a sphere every
+  // point with the same normal maps to the same q = c - r n, see contactOnObject.)
+  std::array<Eigen::Vector3d, kMaxReliefContacts> added;
+  std::size_t added_count = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const ReliefCandidate& c = candidates[chosen[k]];
+    const Eigen::Vector3d n_world = world_from_plane.linear() * c.n_local;
+    const Eigen::Vector3d lowest = c.p_surface + c.depth * Eigen::Vector3d::UnitZ();  // plane frame
+    const Eigen::Vector3d q = contactOnObject(*underside, lowest, c.n_local);
+    // Signed distance of the contact point from the texel's tangent plane, along its normal:
+    // for a box this is depth * n_z, for a round part the gap of the round surface itself (a
+    // fringe texel of a capsule's end cap then reports the cap's real gap, not the fringe's).
+    const double distance = (q - c.p_surface).dot(c.n_local);
+    const Eigen::Vector3d on_object = world_from_plane * q;
+    bool duplicate = false;
+    for (std::size_t a = 0; a < added_count; ++a)
+      duplicate = duplicate || (added[a] - on_object).squaredNorm() < threshold * threshold;
+    if (duplicate) continue;
+    added[added_count++] = on_object;
+    const Eigen::Vector3d on_relief = on_object - distance * n_world;
+    result->addContactPoint(toBt(n_world), toBt(on_relief), static_cast<btScalar>(distance));
+  }
+}
+
+btCollisionAlgorithm* ReliefCollisionAlgorithm::CreateFunc::CreateCollisionAlgorithm(
+    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
+    const btCollisionObjectWrapper* body1) {
+  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(int(sizeof(ReliefCollisionAlgorithm)));
+  return new (memory) ReliefCollisionAlgorithm(ci, body0, body1, m_swapped);
+}
+
+void registerReliefCollision(btCollisionDispatcher& dispatcher) {
+  static ReliefCollisionAlgorithm::CreateFunc direct(false);
+  static ReliefCollisionAlgorithm::CreateFunc swapped(true);
+  for (int type : {SPHERE_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE}) {
+    dispatcher.registerCollisionCreateFunc(type, CUSTOM_CONCAVE_SHAPE_TYPE, &direct);
+    dispatcher.registerCollisionCreateFunc(CUSTOM_CONCAVE_SHAPE_TYPE, type, &swapped);
+  }
+}
+
+}  // namespace thx::phys

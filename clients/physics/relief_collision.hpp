@@ -1,0 +1,62 @@
+#pragma once
+// Bullet collision algorithm for (sphere | box | capsule | cylinder) against a ReliefPlaneShape.
+//
+// Each step it rasterises the object's underside over its footprint texels (relief_raster.hpp),
+// picks at most 4 contacts (contact_selection.hpp) and reports them with the relief normals
+// there. Its manifold is cleared at the start of every step: cached points fixed to a rolling
+// ball's surface rotate behind the centre and inject energy (shared reference §4), and the
+// rasteriser finds every contact afresh anyway.
+//
+// Contact convention (the manifold is always (object, relief), whatever order the dispatcher
+// hands the pair in): normal = relief normal in world frame, pointing from the relief to the
+// object; distance = the signed gap between the contact point on the object and the texel's
+// tangent plane, along n (so the solver's correction along n removes exactly the overlap); the
+// point on the object is where its surface faces -n (underside.hpp, contactOnObject): q = c - r n
+// for a sphere (Eq. 2), the axis point for a capsule or a cylinder's side, the lowest point above
+// the texel for a box or a cylinder's end face.
+#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
+#include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+
+#include <optional>
+
+#include "clients/physics/underside.hpp"
+
+namespace thx::phys {
+
+class ReliefCollisionAlgorithm : public btActivatingCollisionAlgorithm {
+ public:
+  ReliefCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
+                           const btCollisionObjectWrapper* body1, bool swapped);
+  ~ReliefCollisionAlgorithm() override;
+
+  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                        const btDispatcherInfo& info, btManifoldResult* result) override;
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return btScalar(1);  // no continuous collision: discrete contacts only
+  }
+  void getAllContactManifolds(btManifoldArray& manifolds) override;
+
+  struct CreateFunc : btCollisionAlgorithmCreateFunc {
+    explicit CreateFunc(bool swapped) { m_swapped = swapped; }
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* body0,
+                                                   const btCollisionObjectWrapper* body1) override;
+  };
+
+ private:
+  // Small on purpose: Bullet allocates algorithms from a pool sized for its own ones.
+  btPersistentManifold* manifold_ = nullptr;
+  bool own_manifold_ = false;
+  bool swapped_ = false;  // true: body0 is the relief plane, body1 the object
+};
+
+// The shapes the relief algorithm understands, seen from the plane; nullopt for any other shape.
+std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen::Isometry3d& plane_from_object);
+
+// Registers the algorithm for sphere, box, capsule and cylinder against CUSTOM_CONCAVE_SHAPE_TYPE,
+// in both orders. The create functions are static: they outlive any dispatcher.
+void registerReliefCollision(btCollisionDispatcher& dispatcher);
+
+}  // namespace thx::phys

@@ -1,0 +1,100 @@
+#include "clients/physics/relief_raster.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace thx::phys {
+
+namespace {
+
+// The part of the footprint that can touch the relief at all: the relief lies in
+// [-maxDepth, 0], so only where the object reaches below z = threshold can a texel be a
+// candidate. For a sphere that is a disc much smaller than the ball (at rest: radius
+// sqrt(2 r (maxDepth + threshold))); other shapes keep their bounding box.
+Eigen::AlignedBox2d touchingFootprint(const Underside& shape, const Eigen::AlignedBox3d& bounds, double threshold_m) {
+  Eigen::AlignedBox2d box(bounds.min().head<2>(), bounds.max().head<2>());
+  if (shape.kind == Underside::Kind::Sphere) {
+    const Eigen::Vector3d c = shape.plane_from_object.translation();
+    const double above = c.z() - threshold_m;  // centre's height above the touching level
+    if (above > 0.0) {
+      const double rho = std::sqrt(std::max(0.0, shape.radius * shape.radius - above * above));
+      box = Eigen::AlignedBox2d(c.head<2>() - Eigen::Vector2d::Constant(rho), c.head<2>() + Eigen::Vector2d::Constant(rho));
+    }
+  }
+  return box;
+}
+
+}  // namespace
+
+RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
+                            std::vector<ReliefCandidate>& out) {
+  RasterStats stats;
+  const Eigen::AlignedBox3d bounds = planeBounds(shape);
+  // The relief never rises above the plane (z <= 0): an object whose bottom is higher than the
+  // threshold cannot touch it, whatever the texture holds.
+  if (bounds.min().z() > threshold_m) return stats;
+  const Eigen::AlignedBox2d foot = touchingFootprint(shape, bounds, threshold_m);
+
+  long long ia = 0, ja = 0, ib = 0, jb = 0;
+  surface.texelContaining(foot.min().x(), foot.min().y(), ia, ja);
+  surface.texelContaining(foot.max().x(), foot.max().y(), ib, jb);
+  const long long i0 = std::min(ia, ib), i1 = std::max(ia, ib);
+  const long long j0 = std::min(ja, jb), j1 = std::max(ja, jb);
+  const long long count = (i1 - i0 + 1) * (j1 - j0 + 1);
+  if (count > kMaxFootprintTexels)
+    stats.stride = (long long)std::ceil(std::sqrt(double(count) / double(kMaxFootprintTexels)));
+
+  // Texel centres step linearly with the (unwrapped) index: read the first one from the surface
+  // (one place for the mapping convention), then step by the texel size; +i is +x, +j is -y.
+  const tex::TextureMap& map = surface.map();
+  const tex::Address address = surface.sampling().address;
+  const Eigen::Vector2d texel = surface.mapping().texelSize(map);
+  const Eigen::Vector3d first = surface.texelPoint(i0, j0).q_local;
+  const bool relief = surface.usesRelief();
+  for (long long j = j0; j <= j1; j += stats.stride) {
+    const double y = first.y() - double(j - j0) * texel.y();
+    const int rj = tex::resolveIndex(j, map.height(), address);
+    for (long long i = i0; i <= i1; i += stats.stride) {
+      ++stats.texels_visited;
+      const double x = first.x() + double(i - i0) * texel.x();
+      const std::optional<double> z = lowestZ(shape, x, y);
+      if (!z) continue;
+      const int ri = tex::resolveIndex(i, map.width(), address);
+      const double height = relief ? -double(map.depth(ri, rj)) : 0.0;
+      const double depth = *z - height;
+      if (depth < threshold_m)
+        out.push_back({Eigen::Vector3d(x, y, height), map.normal(ri, rj).cast<double>().normalized(), depth, i, j});
+    }
+  }
+  return stats;
+}
+
+ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c) {
+  const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map());
+  // Depth at a neighbouring texel centre (di, dj texels away); NaN where the object is absent.
+  auto depthAt = [&](int di, int dj) {
+    const tex::TexelPoint t = surface.texelPoint(c.i + di, c.j + dj);
+    const std::optional<double> z = lowestZ(shape, t.q_local.x(), t.q_local.y());
+    return z ? *z - t.q_local.z() : std::nan("");
+  };
+  // Vertex of the parabola through (-1, m), (0, d0), (1, p), kept inside the texel.
+  auto vertex = [&](double m, double p) {
+    const double curvature = m + p - 2.0 * c.depth;
+    if (!(curvature > 0.0)) return 0.0;  // flat, concave or a neighbour missing: stay put
+    return std::clamp(0.5 * (m - p) / curvature, -0.5, 0.5);
+  };
+  const double ox = vertex(depthAt(-1, 0), depthAt(1, 0));
+  const double oj = vertex(depthAt(0, -1), depthAt(0, 1));  // +j is -y
+  if (ox == 0.0 && oj == 0.0) return c;
+  const double x = c.p_surface.x() + ox * texel.x(), y = c.p_surface.y() - oj * texel.y();
+  const std::optional<double> z = lowestZ(shape, x, y);
+  if (!z) return c;
+  const tex::SurfacePoint s = surface.at(x, y);
+  ReliefCandidate r = c;
+  r.p_surface = Eigen::Vector3d(x, y, s.height_m);
+  r.n_local = s.n_local;
+  r.depth = *z - s.height_m;
+  return r;
+}
+
+}  // namespace thx::phys

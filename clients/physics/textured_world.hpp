@@ -1,0 +1,48 @@
+#pragma once
+// A btDiscreteDynamicsWorld that knows about textured planes.
+//
+// Normal-map mode lives here: performDiscreteCollisionDetection() runs Bullet's own collision
+// detection, then rewrites every manifold point touching a registered normal-mapped plane
+// (normal_map_contact.hpp) before the solver runs. Doing it here rather than in
+// gContactAddedCallback reaches every point on every step, including points Bullet keeps from
+// earlier steps, and sees world positions after refreshContactPoints (shared reference §2-3).
+//
+// Relief mode needs nothing from the world beyond the collision algorithms registered on its
+// dispatcher (relief_collision.hpp); PhysicsWorld wires both.
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
+
+#include <vector>
+
+#include "clients/physics/normal_map_contact.hpp"
+#include "textures/textured_surface.hpp"
+
+namespace thx::phys {
+
+class TexturedWorld : public btDiscreteDynamicsWorld {
+ public:
+  TexturedWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, btConstraintSolver* solver,
+                btCollisionConfiguration* configuration)
+      : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, configuration) {}
+
+  // `plane` is a static body whose frame is the surface's plane frame (its shape is normally a
+  // btStaticPlaneShape with normal +z). The surface (and its map) must outlive the registration.
+  void addNormalMapPlane(const btCollisionObject* plane, const tex::TexturedSurface* surface,
+                         const NormalMapOptions& options = {});
+  void removeNormalMapPlane(const btCollisionObject* plane);
+
+  void performDiscreteCollisionDetection() override;
+
+  // Contact points rewritten by the last step (for tests and statistics).
+  long long rewrittenPoints() const { return rewritten_; }
+
+ private:
+  struct NormalMapPlane {
+    const btCollisionObject* body;
+    const tex::TexturedSurface* surface;
+    NormalMapOptions options;
+  };
+  std::vector<NormalMapPlane> planes_;
+  long long rewritten_ = 0;
+};
+
+}  // namespace thx::phys
