@@ -1,7 +1,7 @@
 #!/bin/sh
 # The main job on the default scene: hapticd with the simulated PHANToM in real time, a scripted
 # stroke across the bricks and a press, then a press into a steep V-valley; each prints its
-# summary. Then the texture gallery with shaded previews.
+# summary. Then physics-client next to hapticd: the pen pushes a ball into grooves. Then the texture gallery with shaded previews.
 # Usage: ./demo.sh [BUILD_DIR]   (make demo builds first, then calls this)
 set -eu
 BUILD=${1:-build}
@@ -25,11 +25,24 @@ echo "== hapticd, real time: a press into a 60 degree V-valley, crease handling 
 "$HD" --scene scenes/vvalley.yaml --stats-json "$OUT/hapticd_vvalley.json" --flight-dir "$OUT"
 
 echo
+echo "== physics: hapticd + physics-client, the simulated pen pushes a ball into grooves (about 6 s)"
+PC="$BUILD/clients/physics_client/physics-client"
+URL="udpm://239.255.76.67:7667?ttl=0"
+"$PC" --scene scenes/pen_pushes_ball.yaml --duration 5.5 --lcm-url "$URL" --json "$OUT/physics_push.json" \
+  --quiet > "$OUT/physics_push.txt" 2>&1 &
+PC_PID=$!
+sleep 0.5
+"$HD" --scene scenes/pen_pushes_ball.yaml --lcm-url "$URL" --quiet --stats-json "$OUT/hapticd_push.json" \
+  --flight-dir "$OUT" > /dev/null
+wait "$PC_PID" || echo "physics-client failed (see $OUT/physics_push.txt)"
+cat "$OUT/physics_push.txt"
+
+echo
 echo "== texture gallery (512^2, seed 1) -> $OUT/"
 n=0
-for kind in bricks vvalley grooves pebbles wood sine dimples tilted; do
+for kind in bricks vvalley grooves pebbles wood sine dimples tilted zigzag; do
   n=$((n + 1))
-  printf '[%d/8] %-8s ' "$n" "$kind"
+  printf "[%d/9] %-8s " "$n" "$kind"
   "$TT" generate "$kind" --size 512 --out "$OUT/$kind.png" | head -n 1
   "$TT" preview "$OUT/$kind.png" "$OUT/${kind}_preview.png" > /dev/null
 done

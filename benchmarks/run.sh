@@ -5,11 +5,11 @@
 # Usage: benchmarks/run.sh [BUILD_DIR] [PART...]
 #   BUILD_DIR  a configured and built tree (default: build); build it first with
 #              cmake -S . -B BUILD_DIR -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build BUILD_DIR -j2 --target benchmarks
-#   PART       any of: render force_error memory latency (default: all four, in that order)
+#   PART       any of: render force_error memory latency clients physics (default: all six, in that order)
 #
 # Needs: the built benchmarks and hapticd; cyclictest (Debian rt-tests, in setup.sh) for latency;
 # root or CAP_SYS_NICE + CAP_IPC_LOCK for SCHED_FIFO and mlockall (without them the latency and
-# memory tables say so). Takes about 2.5 minutes. Timing on a shared machine is noisy: compare
+# memory tables say so). Takes about 6 minutes (clients: 2 minutes, physics: 1.5). Timing on a shared machine is noisy: compare
 # ratios within one run.
 set -uo pipefail
 
@@ -18,7 +18,7 @@ BUILD=${1:-build}
 [ $# -gt 0 ] && shift
 case "$BUILD" in /*) ;; *) BUILD="$ROOT/$BUILD" ;; esac
 PARTS=("$@")
-[ ${#PARTS[@]} -eq 0 ] && PARTS=(render force_error memory latency)
+[ ${#PARTS[@]} -eq 0 ] && PARTS=(render force_error memory latency clients physics)
 
 RESULTS="$ROOT/docs/results"
 DOC="$ROOT/docs/benchmarks.md"
@@ -98,16 +98,35 @@ run_latency() {
   return $rc
 }
 
+run_clients() {
+  need "$BIN/bench_clients" && need "$HAPTICD" && need "$BUILD/clients/probe/probe-client" || return 1
+  say "part 5: 16 clients against hapticd (60 s), and hapticd alone before and after (30 s each)"
+  "$BIN/bench_clients" --hapticd "$HAPTICD" --probe "$BUILD/clients/probe/probe-client" \
+    --scene "$ROOT/scenes/default.yaml" --seconds 60 --baseline-seconds 30 --workdir "$WORK" \
+    --json "$RESULTS/bench_clients.json" --csv "$RESULTS/bench_clients.csv" --md "$WORK/bench_clients.md"
+  local rc=$?
+  [ -s "$WORK/bench_clients.md" ] && splice bench_clients "$WORK/bench_clients.md"
+  return $rc
+}
+
+run_physics() {
+  need "$BIN/bench_physics" || return 1
+  say "part 6: physics, time per step / memory / outcome error of five ground representations (about 1.5 min)"
+  "$BIN/bench_physics" --json "$RESULTS/bench_physics.json" --csv "$RESULTS/bench_physics.csv" \
+    --png "$RESULTS/bench_physics.png" --md "$WORK/bench_physics.md" || return 1
+  splice bench_physics "$WORK/bench_physics.md"
+}
+
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency)
+    render | force_error | memory | latency | clients | physics)
       if ! "run_$part"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency)"
+      say "unknown part '$part' (expected: render force_error memory latency clients physics)"
       exit 2
       ;;
   esac

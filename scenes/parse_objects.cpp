@@ -52,8 +52,8 @@ void parseDimensions(const Field& field, SceneObject& object) {
 }
 
 SceneObject parseObject(const Field& field) {
-  field.expectKeys(
-      {"name", "shape", "radius", "size", "length", "mass", "material", "position", "rpy_deg", "velocity"});
+  field.expectKeys({"name", "shape", "radius", "size", "length", "mass", "material", "position", "rpy_deg", "velocity",
+                    "angular_velocity", "fixed"});
   if (field.isNull()) field.fail("missing value", "a mapping with name, shape, its dimensions, mass and position");
   SceneObject object;
   object.name = field.at("name", "a unique object name").text();
@@ -63,13 +63,24 @@ SceneObject parseObject(const Field& field) {
                                      {"capsule", Shape::Capsule},
                                      {"cylinder", Shape::Cylinder}});
   parseDimensions(field, object);
-  object.mass_kg = field.at("mass", "kilograms").number(positiveUpTo(1000.0, "kg"));
+  if (auto f = field.find("fixed")) object.fixed = f->choice<bool>({{"false", false}, {"true", true}});
+  if (object.fixed) {
+    // A fixed obstacle never moves: a mass or a velocity would mean nothing.
+    for (const char* key : {"mass", "velocity", "angular_velocity"})
+      if (auto f = field.find(key))
+        f->fail("does not apply to a fixed object", "no " + std::string(key) + " with fixed: true", "");
+  } else {
+    object.mass_kg = field.at("mass", "kilograms (or fixed: true for a static obstacle)")
+                         .number(positiveUpTo(1000.0, "kg"));
+  }
   object.material = *findMaterial("steel");
   if (auto m = field.find("material")) object.material = parseMaterial(*m);
   object.pose.position_m = field.at("position", "[x, y, z] in metres").vector3(closedRange(-100.0, 100.0, "m"));
   if (auto r = field.find("rpy_deg"))
     object.pose.rpy_deg = r->vector3(closedRange(-360.0, 360.0, "deg"), "[roll, pitch, yaw]");
   if (auto v = field.find("velocity")) object.velocity_m_per_s = v->vector3(closedRange(-100.0, 100.0, "m/s"));
+  if (auto w = field.find("angular_velocity"))
+    object.angular_velocity_rad_per_s = w->vector3(closedRange(-1000.0, 1000.0, "rad/s"));
   return object;
 }
 

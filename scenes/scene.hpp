@@ -106,6 +106,8 @@ struct SceneObject {
   Material material;
   Pose pose;  // centre of mass; capsule and cylinder axes along the object's local z
   Eigen::Vector3d velocity_m_per_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity_rad_per_s = Eigen::Vector3d::Zero();  // world frame
+  bool fixed = false;  // a static obstacle (walls, bumpers): never moves, mass_kg = 0
 };
 
 struct Rates {

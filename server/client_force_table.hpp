@@ -37,6 +37,7 @@ class ClientForceTable {
   Eigen::Vector3d sum(std::int64_t now_ns);
   int liveEntries() const;
   const ClientForceCounters& counters() const { return counters_; }
+  double maxForceN() const { return max_force_n_; }
 
  private:
   struct Entry {

@@ -64,7 +64,12 @@ class Publisher::LcmSink : public MessageSink {
     if (p_.encode_buffer_.size() < std::size_t(size)) p_.encode_buffer_.resize(std::size_t(size));
     if (m.encode(p_.encode_buffer_.data(), 0, size) != size ||
         p_.lcm_->publish(channel, p_.encode_buffer_.data(), unsigned(size)) != 0) {
-      p_.publish_errors_.fetch_add(1, std::memory_order_relaxed);
+      // Say so once (e.g. a tcpq:// server that is down); --stats-json counts the rest.
+      if (p_.publish_errors_.fetch_add(1, std::memory_order_relaxed) == 0)
+        std::fprintf(stderr,
+                     "hapticd: warning: LCM publish failed on %s: the LCM transport is unreachable or refused the "
+                     "message; clients get nothing until it recovers, the servo runs on (publish_errors counts them)\n",
+                     channel.c_str());
       return;
     }
     p_.published_.fetch_add(1, std::memory_order_relaxed);

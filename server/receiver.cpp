@@ -1,6 +1,10 @@
 #include "server/receiver.hpp"
 
 #include <poll.h>
+#include <sys/select.h>
+
+#include <chrono>
+#include <cstdio>
 
 #include <lcm/lcm-cpp.hpp>
 #include <thx_msgs/client_force_t.hpp>
@@ -37,17 +41,38 @@ ClientForceCounters Receiver::counters() const {
 
 void Receiver::onClientForce(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   thx_msgs::client_force_t m;
-  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) {
+  const std::int64_t now = monotonicNs();
+  if (const std::string problem = decodeUntrusted(rbuf->data, rbuf->data_size, m); !problem.empty()) {
     undecodable_.fetch_add(1);
+    problems_.report(thx_msgs::kChannelClientForce, problem, now);
     return;
   }
-  const std::int64_t now = monotonicNs();
   bool accepted = false;
+  ClientForceCounters before, after;
   {
     std::lock_guard<std::mutex> lock(table_mutex_);
+    before = table_.counters();
     accepted = table_.accept(m, now);
+    after = table_.counters();
   }
-  if (accepted) publishSum(now);
+  if (accepted) {
+    publishSum(now);
+    return;
+  }
+  // Refusals a sender should hear about (a stale seq is ordinary reordering: counted only).
+  char buf[256];
+  if (after.bad_ids != before.bad_ids) {
+    std::snprintf(buf, sizeof buf, "client_force_t with an invalid client_id or source (1 to 32 of [A-Za-z0-9_-], source also '.')");
+  } else if (after.bad_values != before.bad_values) {
+    std::snprintf(buf, sizeof buf, "client_force_t from %s/%s: force (%g, %g, %g) N is not finite or above the device's peak %g N",
+                  m.client_id.c_str(), m.source.c_str(), m.f_world[0], m.f_world[1], m.f_world[2], table_.maxForceN());
+  } else if (after.table_full != before.table_full) {
+    std::snprintf(buf, sizeof buf, "client_force_t from %s/%s: already %d senders, the most the server keeps",
+                  m.client_id.c_str(), m.source.c_str(), ClientForceTable::kMaxEntries);
+  } else {
+    return;
+  }
+  problems_.report(thx_msgs::kChannelClientForce, buf, now);
 }
 
 void Receiver::publishSum(std::int64_t now_ns) {
@@ -68,11 +93,17 @@ void Receiver::publishSum(std::int64_t now_ns) {
 }
 
 void Receiver::run() {
-  const int fd = lcm_.getFileno();
   while (!stop_.load()) {
-    pollfd p{fd, POLLIN, 0};
-    if (poll(&p, 1, 10) > 0) {
-      while (lcm_.handleTimeout(0) > 0) {
+    // Asked every time: with tcpq:// the descriptor changes on every reconnect and is -1 while the
+    // server is unreachable, and handleTimeout() would FD_SET(-1) (a glibc abort).
+    const int fd = lcm_.getFileno();
+    if (fd < 0 || fd >= FD_SETSIZE) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    } else {
+      pollfd p{fd, POLLIN, 0};
+      if (poll(&p, 1, 10) > 0 && (p.revents & POLLIN)) {
+        while (lcm_.getFileno() >= 0 && lcm_.handleTimeout(0) > 0) {
+        }
       }
     }
     publishSum(monotonicNs());

@@ -15,6 +15,7 @@
 #include "server/client_force_table.hpp"
 #include "device/latest_slot.hpp"
 #include "server/servo.hpp"
+#include "server/untrusted_input.hpp"
 
 namespace lcm {
 class LCM;
@@ -47,6 +48,7 @@ class Receiver {
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> undecodable_{0};
   bool was_live_ = false;
+  InputProblemLog problems_;  // undecodable or refused client forces, on stderr (rate-limited)
 };
 
 }  // namespace thx::srv

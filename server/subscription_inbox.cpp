@@ -42,8 +42,9 @@ void SubscriptionInbox::take(ControlMessages& out) {
 
 void SubscriptionInbox::onRequest(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   thx_msgs::subscribe_request_t m;
-  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) {
+  if (const std::string problem = decodeUntrusted(rbuf->data, rbuf->data_size, m); !problem.empty()) {
     undecodable_.fetch_add(1);
+    problems_.report(thx_msgs::kChannelSubscribe, problem, monotonicNs());
     return;
   }
   push(m, monotonicNs());
@@ -51,8 +52,9 @@ void SubscriptionInbox::onRequest(const lcm::ReceiveBuffer* rbuf, const std::str
 
 void SubscriptionInbox::onHeartbeat(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   thx_msgs::heartbeat_t m;
-  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) {
+  if (const std::string problem = decodeUntrusted(rbuf->data, rbuf->data_size, m); !problem.empty()) {
     undecodable_.fetch_add(1);
+    problems_.report(thx_msgs::kChannelHeartbeat, problem, monotonicNs());
     return;
   }
   push(m, monotonicNs());

@@ -5,7 +5,8 @@
 // thread (the only one that may). The callbacks here decode untrusted bytes with
 // thx_msgs::try_decode, stamp the receive time and queue the message; the publisher thread takes
 // the queue (one short mutex, never held by the servo) and applies it to its SubscriptionTable,
-// which therefore has a single owner and needs no locking of its own.
+// which therefore has a single owner and needs no locking of its own. Bytes that do not decode
+// to one whole message are dropped, counted and logged (rate-limited) with what is wrong.
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -14,6 +15,8 @@
 
 #include <thx_msgs/heartbeat_t.hpp>
 #include <thx_msgs/subscribe_request_t.hpp>
+
+#include "server/untrusted_input.hpp"
 
 namespace lcm {
 class LCM;
@@ -70,6 +73,7 @@ class SubscriptionInbox {
   std::mutex mutex_;
   ControlMessages queued_;
   std::atomic<std::uint64_t> undecodable_{0}, overflowed_{0};
+  InputProblemLog problems_;  // stderr lines naming what was wrong with undecodable bytes
 };
 
 }  // namespace thx::srv

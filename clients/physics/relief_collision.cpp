@@ -7,6 +7,7 @@
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "clients/physics/bullet_convert.hpp"
@@ -98,7 +99,15 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     // Signed distance of the contact point from the texel's tangent plane, along its normal:
     // for a box this is depth * n_z, for a round part the gap of the round surface itself (a
     // fringe texel of a capsule's end cap then reports the cap's real gap, not the fringe's).
-    const double distance = (q - c.p_surface).dot(c.n_local);
+    // On a CONVEX relief (a bump) the tangent plane of a texel away from the point of contact
+    // lies above the relief and cuts into a round object cresting it, by about
+    // (R + r) s^2 / (2 R^2) at distance s (R: the relief's curvature radius): measured 55 µm of
+    // lift and +1.4 % energy for a 1 cm ball cresting a 1 mm bump, its escape speed 4 % low.
+    // The relief's own height under the contact point (bilinear, one sample) is not fooled by
+    // the curvature; the vertical gap there, projected on n, is used when it is the larger.
+    // Flat reliefs give the same value both ways, concave spots keep the tangent-plane gap.
+    const double gap_below_q = q.z() - plane.surface().at(q.x(), q.y()).height_m;
+    const double distance = std::max((q - c.p_surface).dot(c.n_local), gap_below_q * c.n_local.z());
     const Eigen::Vector3d on_object = world_from_plane * q;
     bool duplicate = false;
     for (std::size_t a = 0; a < added_count; ++a)

@@ -83,8 +83,7 @@ INSTANTIATE_TEST_SUITE_P(InsertionOrder, TiltedNormalMap, ::testing::Values(true
                          [](const auto& p) { return p.param ? "PlaneFirst" : "BallFirst"; });
 
 // A box changes only its normals (no Eq. 2): frictionless it slides at g tanθ.
-// (With Coulomb friction the virtual-slope answer g (tanθ - μ) / (1 + μ tanθ) is NOT met yet:
-// measured 0.648 vs 0.736 m/s^2 at θ = 10°, μ = 0.1; open, see docs/physics.md.)
+// (With Coulomb friction: g (tanθ - μ) / (1 + μ tanθ), in test_box_friction.cpp.)
 TEST(TiltedNormalMapBox, FrictionlessBoxSlidesAtGTanTheta) {
   const double angle = 10.0, th = std::tan(deg(angle));
   SurfaceHolder s = holdSurface(tiltedMap(angle, 64, 0.2), 0.2, false);

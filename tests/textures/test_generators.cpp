@@ -17,7 +17,7 @@ using namespace thx::tex;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-const char* const kKinds[] = {"bricks", "vvalley", "grooves", "pebbles", "wood", "sine", "dimples", "tilted"};
+const char* const kKinds[] = {"bricks", "vvalley", "grooves", "pebbles", "wood", "sine", "dimples", "tilted", "zigzag"};
 
 TextureMap make(const std::string& kind, int size, std::map<std::string, double> params = {}, std::uint64_t seed = 1) {
   GenerateRequest r;
@@ -168,7 +168,7 @@ TEST(Generators, NormalsAgreeWithTheirOwnDepth) {
   };
   const Case cases[] = {{"bricks", 0.9, 0.1},  {"vvalley", 0.75, 0.99}, {"grooves", 0.85, 0.4},
                         {"pebbles", 0.9, 0.2}, {"wood", 1.0, 0.5},      {"sine", 1.0, 0.9},
-                        {"dimples", 0.9, 0.2}, {"tilted", 1.0, 0.99}};
+                        {"dimples", 0.9, 0.2}, {"tilted", 1.0, 0.99},   {"zigzag", 0.95, 0.3}};
   const int n = 256;
   const double extent = 0.025, texel = extent / n;
   for (const Case& k : cases) {

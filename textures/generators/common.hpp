@@ -47,6 +47,7 @@ GeneratorEntry woodGenerator();
 GeneratorEntry sineGenerator();
 GeneratorEntry dimplesGenerator();
 GeneratorEntry tiltedGenerator();
+GeneratorEntry zigzagGenerator();
 
 std::string formatNumber(double v);
 

@@ -16,6 +16,9 @@
 #include "thx_msgs/device_state_t.hpp"
 #include "thx_msgs/heartbeat_t.hpp"
 #include "thx_msgs/hello_t.hpp"
+#include "thx_msgs/physics_contacts_t.hpp"
+#include "thx_msgs/physics_impact_t.hpp"
+#include "thx_msgs/physics_poses_t.hpp"
 #include "thx_msgs/servo_stats_t.hpp"
 #include "thx_msgs/subscribe_reply_t.hpp"
 #include "thx_msgs/subscribe_request_t.hpp"
@@ -28,6 +31,11 @@ inline constexpr char kChannelSubscribe[] = "THX_SUBSCRIBE";             // subs
 inline constexpr char kChannelSubscribeReply[] = "THX_SUBSCRIBE_REPLY";  // subscribe_reply_t
 inline constexpr char kChannelHeartbeat[] = "THX_HEARTBEAT";             // heartbeat_t
 inline constexpr char kChannelClientForce[] = "THX_CLIENT_FORCE";        // client_force_t
+// Published by physics-client for the audio and visual clients (docs/messages.md §9). Fixed-size
+// types without strings or variable arrays: the generated decode() is safe as is (try_decode too).
+inline constexpr char kChannelPhysicsPoses[] = "THX_PHYSICS_POSES";        // physics_poses_t
+inline constexpr char kChannelPhysicsImpact[] = "THX_PHYSICS_IMPACT";      // physics_impact_t
+inline constexpr char kChannelPhysicsContacts[] = "THX_PHYSICS_CONTACTS";  // physics_contacts_t
 
 // ---- Streams (subscribe_request_t.stream) -----------------------------------------------------
 inline constexpr std::string_view kStreamDeviceState = "DEVICE_STATE";  // device_state_t

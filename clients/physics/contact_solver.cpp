@@ -1,0 +1,37 @@
+#include "clients/physics/contact_solver.hpp"
+
+namespace thx::phys {
+
+btScalar ContactSolver::solveGroup(btCollisionObject** bodies, int num_bodies, btPersistentManifold** manifolds,
+                                   int num_manifolds, btTypedConstraint** constraints, int num_constraints,
+                                   const btContactSolverInfo& info, btIDebugDraw* debug_draw,
+                                   btDispatcher* dispatcher) {
+  released_ = 0;
+  return btSequentialImpulseConstraintSolver::solveGroup(bodies, num_bodies, manifolds, num_manifolds, constraints,
+                                                         num_constraints, info, debug_draw, dispatcher);
+}
+
+btScalar ContactSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int num_bodies,
+                                             btPersistentManifold** manifolds, int num_manifolds,
+                                             btTypedConstraint** constraints, int num_constraints,
+                                             const btContactSolverInfo& info, btIDebugDraw* debug_draw) {
+  const btScalar residual = btSequentialImpulseConstraintSolver::solveSingleIteration(
+      iteration, bodies, num_bodies, manifolds, num_manifolds, constraints, num_constraints, info, debug_draw);
+  // Bullet solves contact and friction rows only in the first m_numIterations iterations.
+  if (iteration >= info.m_numIterations) return residual;
+  const int count = m_tmpSolverContactFrictionConstraintPool.size();
+  for (int k = 0; k < count; ++k) {
+    btSolverConstraint& friction = m_tmpSolverContactFrictionConstraintPool[k];
+    if (friction.m_appliedImpulse == btScalar(0)) continue;
+    const btSolverConstraint& normal = m_tmpSolverContactConstraintPool[friction.m_frictionIndex];
+    if (normal.m_appliedImpulse > btScalar(0)) continue;  // Bullet clamped this one itself
+    friction.m_lowerLimit = btScalar(0);
+    friction.m_upperLimit = btScalar(0);
+    m_resolveSingleConstraintRowGeneric(m_tmpSolverBodyPool[friction.m_solverBodyIdA],
+                                        m_tmpSolverBodyPool[friction.m_solverBodyIdB], friction);
+    ++released_;
+  }
+  return residual;
+}
+
+}  // namespace thx::phys

@@ -1,0 +1,134 @@
+#include "clients/physics_client/driver.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+namespace thx::physclient {
+
+Driver::Driver(PhysicsScene& scene, EventSink& sink, const DriverOptions& options)
+    : scene_(scene), sink_(sink), options_(options) {
+  for (const BodyState& b : scene_.bodies()) {
+    ObjectSummary o;
+    o.name = scene_.scene().objects[std::size_t(b.id)].name;
+    o.start_world = o.end_world = b.p_world;
+    summary_.objects.push_back(o);
+  }
+}
+
+void Driver::step(const std::optional<Eigen::Vector3d>& tip_world, std::int64_t ref_tick) {
+  if (tip_world) scene_.setPenTip(*tip_world);
+  if (ref_tick >= 0) last_ref_tick_ = ref_tick;
+  scene_.step(dt());
+  const double t = scene_.simTime();
+  summary_.steps = scene_.steps();
+  summary_.sim_time_s = t;
+
+  const PenForce& f = scene_.penForce();
+  const double sent = f.sent_world.norm(), raw = f.raw_world.norm();
+  summary_.max_force_raw_n = std::max(summary_.max_force_raw_n, raw);
+  summary_.max_force_sent_n = std::max(summary_.max_force_sent_n, sent);
+  if (f.in_contact) {
+    ++summary_.pen_contact_steps;
+    force_sum_ += sent;
+    summary_.mean_force_in_contact_n = force_sum_ / double(summary_.pen_contact_steps);
+  }
+  if (f.clamped) ++summary_.clamped_steps;
+  const bool nonzero = sent > 0.0;
+  if (nonzero) ++summary_.force_steps;
+  if (nonzero || force_was_nonzero_) sink_.force(scene_, f, last_ref_tick_);
+  force_was_nonzero_ = nonzero;
+
+  const std::vector<Impact>& im = scene_.impacts();
+  if (!im.empty()) {
+    summary_.impacts += std::int64_t(im.size());
+    for (const Impact& i : im) summary_.pen_impacts += (i.body_a == kBodyPen || i.body_b == kBodyPen);
+    sink_.impacts(scene_, im);
+  }
+
+  for (std::size_t i = 0; i < summary_.objects.size(); ++i) {
+    const BodyState b = scene_.body(int(i));
+    summary_.objects[i].end_world = b.p_world;
+    summary_.objects[i].max_speed_m_per_s = std::max(summary_.objects[i].max_speed_m_per_s, b.v_world.norm());
+  }
+
+  const double eps = 0.25 * dt();
+  if (options_.pose_hz > 0 && t + eps >= next_pose_t_) {
+    sink_.poses(scene_, last_ref_tick_, f.sent_world);
+    ++summary_.pose_reports;
+    next_pose_t_ = std::max(next_pose_t_ + 1.0 / options_.pose_hz, t - eps);
+  }
+  if (options_.contact_hz > 0 && t + eps >= next_contact_t_) {
+    flush();
+    next_contact_t_ = std::max(next_contact_t_ + 1.0 / options_.contact_hz, t - eps);
+  }
+}
+
+void Driver::flush() {
+  const double t = scene_.simTime();
+  std::vector<LastingContact> c = scene_.takeContacts();
+  if (!c.empty()) {
+    sink_.contacts(scene_, c, t - last_contact_t_);
+    ++summary_.contact_reports;
+  }
+  last_contact_t_ = t;
+}
+
+namespace {
+std::string vec(const Eigen::Vector3d& v) {
+  char b[128];
+  std::snprintf(b, sizeof b, "[%.9g, %.9g, %.9g]", v.x(), v.y(), v.z());
+  return b;
+}
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) continue;
+    out += c;
+  }
+  return out + "\"";
+}
+}  // namespace
+
+void writeSummaryJson(const std::string& path, const std::string& scene_file, const RunSummary& s) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot write the summary");
+  char b[512];
+  out << "{\n  \"scene\": " << quoted(scene_file) << ",\n";
+  std::snprintf(b, sizeof b,
+                "  \"steps\": %lld,\n  \"sim_time_s\": %.9g,\n  \"pen_contact_steps\": %lld,\n  \"force_steps\": %lld,\n"
+                "  \"clamped_steps\": %lld,\n  \"max_force_raw_n\": %.9g,\n  \"max_force_sent_n\": %.9g,\n"
+                "  \"mean_force_in_contact_n\": %.9g,\n  \"impacts\": %lld,\n  \"pen_impacts\": %lld,\n"
+                "  \"contact_reports\": %lld,\n  \"pose_reports\": %lld,\n",
+                (long long)s.steps, s.sim_time_s, (long long)s.pen_contact_steps, (long long)s.force_steps,
+                (long long)s.clamped_steps, s.max_force_raw_n, s.max_force_sent_n, s.mean_force_in_contact_n,
+                (long long)s.impacts, (long long)s.pen_impacts, (long long)s.contact_reports, (long long)s.pose_reports);
+  out << b << "  \"objects\": [";
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    const ObjectSummary& o = s.objects[i];
+    out << (i ? ",\n" : "\n") << "    {\"name\": " << quoted(o.name) << ", \"start_world\": " << vec(o.start_world)
+        << ", \"end_world\": " << vec(o.end_world) << ", \"displacement_m\": " << (o.end_world - o.start_world).norm()
+        << ", \"max_speed_m_per_s\": " << o.max_speed_m_per_s << "}";
+  }
+  out << "\n  ]\n}\n";
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+void printSummary(std::FILE* out, const RunSummary& s) {
+  std::fprintf(out, "physics-client: %lld steps, %.3f s simulated\n", (long long)s.steps, s.sim_time_s);
+  std::fprintf(out, "  pen: in contact %lld steps, force sent %lld steps, max |f| %.4f N (raw %.4f N), mean in contact %.4f N, clamped %lld steps\n",
+               (long long)s.pen_contact_steps, (long long)s.force_steps, s.max_force_sent_n, s.max_force_raw_n,
+               s.mean_force_in_contact_n, (long long)s.clamped_steps);
+  std::fprintf(out, "  events: %lld impacts (%lld with the pen), %lld contact reports, %lld pose reports\n",
+               (long long)s.impacts, (long long)s.pen_impacts, (long long)s.contact_reports, (long long)s.pose_reports);
+  for (const ObjectSummary& o : s.objects) {
+    const Eigen::Vector3d d = o.end_world - o.start_world;
+    std::fprintf(out, "  %-12s moved %.1f mm (%+.1f, %+.1f, %+.1f) mm to (%+.4f, %+.4f, %+.4f) m, max speed %.3f m/s\n",
+                 o.name.c_str(), d.norm() * 1e3, d.x() * 1e3, d.y() * 1e3, d.z() * 1e3, o.end_world.x(), o.end_world.y(),
+                 o.end_world.z(), o.max_speed_m_per_s);
+  }
+}
+
+}  // namespace thx::physclient

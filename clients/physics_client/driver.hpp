@@ -1,0 +1,79 @@
+#pragma once
+// Steps a PhysicsScene at a fixed rate and hands what it produces to a sink on the sink's own
+// schedule: the pen force every step (while non-zero, then one release), impacts when they
+// happen, object poses at pose_hz, lasting contacts at contact_hz. The same driver runs behind
+// LCM (physics_client.cpp) and offline in tests. No LCM here.
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "clients/physics_client/physics_scene.hpp"
+
+namespace thx::physclient {
+
+class EventSink {
+ public:
+  virtual ~EventSink() = default;
+  virtual void force(const PhysicsScene&, const PenForce&, std::int64_t /*ref_tick*/) {}
+  virtual void impacts(const PhysicsScene&, const std::vector<Impact>&) {}
+  virtual void poses(const PhysicsScene&, std::int64_t /*ref_tick*/, const Eigen::Vector3d& /*pen_force_sent*/) {}
+  virtual void contacts(const PhysicsScene&, const std::vector<LastingContact>&, double /*window_s*/) {}
+};
+
+struct DriverOptions {
+  double rate_hz = 1000.0;     // physics steps per simulated second
+  double pose_hz = 60.0;       // object poses
+  double contact_hz = 1000.0;  // lasting contacts (<= rate_hz)
+};
+
+struct ObjectSummary {
+  std::string name;
+  Eigen::Vector3d start_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end_world = Eigen::Vector3d::Zero();
+  double max_speed_m_per_s = 0.0;
+};
+
+struct RunSummary {
+  std::int64_t steps = 0;
+  double sim_time_s = 0.0;
+  std::int64_t pen_contact_steps = 0;   // steps with the pen touching an object
+  std::int64_t force_steps = 0;         // steps with a non-zero force sent
+  std::int64_t clamped_steps = 0;
+  double max_force_raw_n = 0.0;         // largest |contact force on the pen|
+  double max_force_sent_n = 0.0;        // largest |client force| (after scale and clamp)
+  double mean_force_in_contact_n = 0.0; // mean |sent| over the pen-contact steps
+  std::int64_t impacts = 0;
+  std::int64_t pen_impacts = 0;
+  std::int64_t contact_reports = 0;     // lasting-contact batches handed to the sink
+  std::int64_t pose_reports = 0;
+  std::vector<ObjectSummary> objects;
+};
+
+class Driver {
+ public:
+  Driver(PhysicsScene& scene, EventSink& sink, const DriverOptions& options);
+  double dt() const { return 1.0 / options_.rate_hz; }
+  // One step with the pen at `tip_world` (nullopt: the pen stays where it was, or parked).
+  void step(const std::optional<Eigen::Vector3d>& tip_world, std::int64_t ref_tick = -1);
+  // Hands the contacts accumulated since the last report to the sink now.
+  void flush();
+  const RunSummary& summary() const { return summary_; }
+
+ private:
+  PhysicsScene& scene_;
+  EventSink& sink_;
+  DriverOptions options_;
+  RunSummary summary_;
+  double force_sum_ = 0.0;
+  bool force_was_nonzero_ = false;
+  double next_pose_t_ = 0.0, next_contact_t_ = 0.0, last_contact_t_ = 0.0;
+  std::int64_t last_ref_tick_ = -1;
+};
+
+// Writes the summary as JSON (throws std::runtime_error naming the file if it cannot).
+void writeSummaryJson(const std::string& path, const std::string& scene_file, const RunSummary& s);
+void printSummary(std::FILE* out, const RunSummary& s);
+
+}  // namespace thx::physclient

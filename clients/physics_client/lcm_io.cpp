@@ -1,0 +1,181 @@
+#include "clients/physics_client/lcm_io.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "thx_msgs/protocol.hpp"
+
+namespace thx::physclient {
+
+namespace {
+void put3(double (&dst)[3], const Eigen::Vector3d& v) {
+  for (int k = 0; k < 3; ++k) dst[k] = v[k];
+}
+std::int32_t clampInt(long long v) {
+  return std::int32_t(std::clamp<long long>(v, INT32_MIN, INT32_MAX));
+}
+}  // namespace
+
+std::int64_t monotonicUs() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return std::int64_t(ts.tv_sec) * 1'000'000 + ts.tv_nsec / 1000;
+}
+
+thx_msgs::physics_poses_t makePoses(const PhysicsScene& scene, std::int64_t ref_tick, const Eigen::Vector3d& pen_force,
+                                    std::int64_t seq, std::int64_t utime) {
+  thx_msgs::physics_poses_t m{};
+  m.utime = utime;
+  m.seq = seq;
+  m.step = scene.steps();
+  m.sim_time = scene.simTime();
+  m.ref_tick = ref_tick;
+  const std::vector<BodyState> bodies = scene.bodies();
+  const std::size_t n = std::min<std::size_t>(bodies.size(), thx_msgs::physics_poses_t::MAX_BODIES);
+  m.num_bodies = std::int32_t(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyState& b = bodies[i];
+    put3(m.p_world[i], b.p_world);
+    m.q_world[i][0] = b.q_world.w();
+    m.q_world[i][1] = b.q_world.x();
+    m.q_world[i][2] = b.q_world.y();
+    m.q_world[i][3] = b.q_world.z();
+    put3(m.v_world[i], b.v_world);
+    put3(m.w_world[i], b.w_world);
+  }
+  put3(m.pen_p_world, scene.penTip());
+  put3(m.pen_f_world, pen_force);
+  return m;
+}
+
+thx_msgs::physics_impact_t makeImpact(const Impact& i, std::int64_t seq, std::int64_t utime) {
+  thx_msgs::physics_impact_t m{};
+  m.utime = utime;
+  m.seq = seq;
+  m.step = i.step;
+  m.sim_time = i.sim_time_s;
+  m.body_a = i.body_a;
+  m.body_b = i.body_b;
+  m.impulse = i.impulse_ns;
+  m.v_approach = i.v_approach_m_per_s;
+  put3(m.p_world, i.p_world);
+  put3(m.n_world, i.n_world);
+  m.on_surface = i.on_surface ? 1 : 0;
+  m.texel_i = i.on_surface ? clampInt(i.texel_i) : 0;
+  m.texel_j = i.on_surface ? clampInt(i.texel_j) : 0;
+  return m;
+}
+
+thx_msgs::physics_contacts_t makeContacts(const PhysicsScene& scene, const std::vector<LastingContact>& contacts,
+                                          double window_s, std::int64_t seq, std::int64_t utime) {
+  using M = thx_msgs::physics_contacts_t;
+  M m{};
+  m.utime = utime;
+  m.seq = seq;
+  m.step = scene.steps();
+  m.sim_time = scene.simTime();
+  m.window = window_s;
+  const std::size_t n = std::min<std::size_t>(contacts.size(), M::MAX_CONTACTS);
+  m.num_contacts = std::int32_t(n);
+  m.num_dropped = std::int32_t(contacts.size() - n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const LastingContact& c = contacts[k];
+    m.body_a[k] = c.body_a;
+    m.body_b[k] = c.body_b;
+    put3(m.p_world[k], c.p_world);
+    put3(m.n_world[k], c.n_world);
+    put3(m.v_slip_world[k], c.v_slip_world);
+    put3(m.v_world[k], c.v_world);
+    // Mean over the whole window (a pair touching in part of it had zero force the rest).
+    m.f_normal[k] = window_s > 0 ? c.impulse_sum_ns / window_s : c.meanNormalForceN();
+    const std::size_t path = std::min<std::size_t>(c.path.size(), M::MAX_PATH);
+    m.num_texels[k] = std::int32_t(path);
+    m.texels_dropped[k] = clampInt((long long)(c.path.size() - path) + c.path_dropped);
+    for (std::size_t t = 0; t < path; ++t) {
+      m.texel_i[k][t] = clampInt(c.path[t].i);
+      m.texel_j[k][t] = clampInt(c.path[t].j);
+    }
+  }
+  return m;
+}
+
+LcmSink::LcmSink(lcm::LCM& lcm, LcmSinkOptions options) : lcm_(lcm), options_(std::move(options)) {}
+
+void LcmSink::sendForce(const Eigen::Vector3d& f, const Eigen::Vector3d& p, std::int64_t ref_tick) {
+  if (!options_.send_force) return;
+  thx_msgs::client_force_t m{};
+  m.utime = monotonicUs();
+  m.seq = ++force_seq_;
+  m.ref_tick = ref_tick;
+  m.timeout_us = options_.force_timeout_us;
+  m.client_id = options_.client_id;
+  m.source = options_.source;
+  put3(m.f_world, f);
+  put3(m.p_world, p);
+  if (lcm_.publish(thx_msgs::kChannelClientForce, &m) != 0) ++counters_.publish_errors;
+  ++counters_.forces;
+}
+
+void LcmSink::force(const PhysicsScene& scene, const PenForce& f, std::int64_t ref_tick) {
+  sendForce(f.sent_world, scene.penTip(), ref_tick);
+}
+
+void LcmSink::release(const Eigen::Vector3d& p_world) { sendForce(Eigen::Vector3d::Zero(), p_world, -1); }
+
+void LcmSink::impacts(const PhysicsScene&, const std::vector<Impact>& impacts) {
+  for (const Impact& i : impacts) {
+    const thx_msgs::physics_impact_t m = makeImpact(i, ++impact_seq_, monotonicUs());
+    if (lcm_.publish(thx_msgs::kChannelPhysicsImpact, &m) != 0) ++counters_.publish_errors;
+    ++counters_.impacts;
+  }
+}
+
+void LcmSink::poses(const PhysicsScene& scene, std::int64_t ref_tick, const Eigen::Vector3d& pen_force) {
+  const thx_msgs::physics_poses_t m = makePoses(scene, ref_tick, pen_force, ++pose_seq_, monotonicUs());
+  if (lcm_.publish(thx_msgs::kChannelPhysicsPoses, &m) != 0) ++counters_.publish_errors;
+  ++counters_.poses;
+}
+
+void LcmSink::contacts(const PhysicsScene& scene, const std::vector<LastingContact>& c, double window_s) {
+  const thx_msgs::physics_contacts_t m = makeContacts(scene, c, window_s, ++contact_seq_, monotonicUs());
+  if (lcm_.publish(thx_msgs::kChannelPhysicsContacts, &m) != 0) ++counters_.publish_errors;
+  ++counters_.contacts;
+}
+
+std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz) {
+  lcm::LogFile log(path, "r");
+  if (!log.good()) throw PenPathError(path + ": cannot open the session log; expected an LCM log from `hapticd --record`");
+  std::vector<PenSample> out;
+  std::int64_t first_tick = 0;
+  long long event_no = 0;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    ++event_no;
+    if (e->channel != "THX_DEVICE_STATE") continue;
+    thx_msgs::device_state_t s;
+    if (e->datalen < 0 || thx_msgs::try_decode(e->data, std::size_t(e->datalen), s) < 0)
+      throw PenPathError(path + ": event " + std::to_string(event_no) +
+                         ": THX_DEVICE_STATE does not decode; expected a device_state_t");
+    const Eigen::Vector3d p(s.p_world[0], s.p_world[1], s.p_world[2]);
+    if (!p.allFinite())
+      throw PenPathError(path + ": event " + std::to_string(event_no) + ": p_world is not finite");
+    if (out.empty()) first_tick = s.tick;
+    if (!out.empty() && s.tick <= out.back().tick)
+      throw PenPathError(path + ": event " + std::to_string(event_no) + ": tick " + std::to_string(s.tick) +
+                         " does not increase; expected ticks after " + std::to_string(out.back().tick));
+    PenSample ps;
+    ps.tick = s.tick;
+    ps.t_s = double(s.tick - first_tick) / servo_hz;
+    ps.p_world = p;
+    out.push_back(ps);
+  }
+  if (out.size() < 2)
+    throw PenPathError(path + ": " + std::to_string(out.size()) +
+                       " device states; expected a session log with at least 2 THX_DEVICE_STATE events");
+  return out;
+}
+
+}  // namespace thx::physclient

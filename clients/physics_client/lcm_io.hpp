@@ -1,0 +1,68 @@
+#pragma once
+// The physics client's LCM side: its events as thx_msgs messages (physics_poses_t,
+// physics_impact_t, physics_contacts_t, client_force_t), an EventSink that publishes them, and
+// the reader of a recorded hapticd session (LCM log) as a pen path.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <thx_msgs/client_force_t.hpp>
+#include <thx_msgs/physics_contacts_t.hpp>
+#include <thx_msgs/physics_impact_t.hpp>
+#include <thx_msgs/physics_poses_t.hpp>
+
+#include "clients/physics_client/driver.hpp"
+#include "clients/physics_client/pen_path.hpp"
+
+namespace lcm {
+class LCM;
+}
+
+namespace thx::physclient {
+
+std::int64_t monotonicUs();
+
+thx_msgs::physics_poses_t makePoses(const PhysicsScene& scene, std::int64_t ref_tick, const Eigen::Vector3d& pen_force,
+                                    std::int64_t seq, std::int64_t utime);
+thx_msgs::physics_impact_t makeImpact(const Impact& impact, std::int64_t seq, std::int64_t utime);
+// Up to MAX_CONTACTS entries (the rest counted in num_dropped); paths truncated to MAX_PATH.
+thx_msgs::physics_contacts_t makeContacts(const PhysicsScene& scene, const std::vector<LastingContact>& contacts,
+                                          double window_s, std::int64_t seq, std::int64_t utime);
+
+struct LcmSinkOptions {
+  std::string client_id = "physics";
+  std::string source = "physics";
+  std::int64_t force_timeout_us = 50'000;  // hapticd drops our force this long after the last message
+  bool send_force = true;                  // false: offline runs publish events only
+};
+
+struct LcmSinkCounters {
+  std::uint64_t forces = 0, poses = 0, impacts = 0, contacts = 0, publish_errors = 0;
+};
+
+// Publishes every event; `lcm` must outlive the sink.
+class LcmSink final : public EventSink {
+ public:
+  LcmSink(lcm::LCM& lcm, LcmSinkOptions options);
+  void force(const PhysicsScene&, const PenForce& f, std::int64_t ref_tick) override;
+  void impacts(const PhysicsScene&, const std::vector<Impact>& impacts) override;
+  void poses(const PhysicsScene& scene, std::int64_t ref_tick, const Eigen::Vector3d& pen_force) override;
+  void contacts(const PhysicsScene& scene, const std::vector<LastingContact>& c, double window_s) override;
+  // A zero force (release), e.g. at exit.
+  void release(const Eigen::Vector3d& p_world);
+  const LcmSinkCounters& counters() const { return counters_; }
+
+ private:
+  void sendForce(const Eigen::Vector3d& f, const Eigen::Vector3d& p, std::int64_t ref_tick);
+  lcm::LCM& lcm_;
+  LcmSinkOptions options_;
+  LcmSinkCounters counters_;
+  std::int64_t force_seq_ = 0, pose_seq_ = 0, impact_seq_ = 0, contact_seq_ = 0;
+};
+
+// The pen of a recorded hapticd session (`hapticd --record FILE`): its THX_DEVICE_STATE events,
+// decoded with try_decode, t = (tick - first tick) / servo_hz. Throws PenPathError naming the
+// file, the event and the problem.
+std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz);
+
+}  // namespace thx::physclient

@@ -1,0 +1,146 @@
+#include "clients/physics_client/options.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "thx_msgs/protocol.hpp"
+
+namespace thx::physclient {
+
+const char* const kHelp = R"(usage: physics-client --scene FILE [options]
+
+Simulates the scene's objects with Bullet on its textured plane (normal or relief, as the scene
+says), with the pen as a kinematic body following hapticd's device. The pen's contacts become a
+force sent back to hapticd (client_force_t); object poses and contact events are published for
+the audio and visual clients (docs/physics.md, docs/messages.md).
+
+  --scene FILE           scene file (docs/scenes.md), e.g. scenes/marble_bricks.yaml
+  --rate HZ              physics steps per second (default: the scene's rates.physics_hz)
+  --duration S           stop after S seconds of simulated time (default: online until SIGINT;
+                         offline the pen path's length plus 1 s)
+  --pose-rate HZ         physics_poses_t rate (default: the scene's rates.visual_hz)
+  --contact-rate HZ      physics_contacts_t rate (default: the scene's rates.audio_feed_hz, at most --rate)
+  --state-rate HZ        DEVICE_STATE subscription rate (default: --rate)
+
+Pen (the device's tip; default: hapticd over LCM):
+  --replay-log FILE      deterministic, no network: the pen of a recorded hapticd session
+                         (`hapticd --record FILE`), stepped in lock-step with its ticks
+  --pen-csv FILE         deterministic, no network: tip positions, rows `t_s, x_m, y_m, z_m` (world)
+  --pen-script           deterministic, no network: the scene's hand script, followed kinematically
+                         on the surface
+  --no-pen               deterministic, no network, no pen (objects only); needs --duration
+  --pen-shape S          capsule (default; stands on the tip along the plane's normal) | sphere | none
+  --pen-radius M         default 0.004
+  --pen-length M         capsule, between cap centres (default 0.04)
+  --force-scale F        client force = F x contact force on the pen (default 1)
+  --max-force N          clamp of |client force| (default 2; hapticd refuses above its peak force)
+  --no-friction-force    send only the normal part of the pen's contact force
+  --impact-speed M/S     slowest first touch reported as an impact (default 0.005)
+
+LCM:
+  --lcm-url URL          default udpm://239.255.76.67:7667?ttl=0; offline runs publish only when given
+  --no-lcm               offline only: publish nothing
+  --client-id ID         1-32 of [A-Za-z0-9_-] (default physics)
+  --connect-timeout S    wait this long for the first device state (default 10)
+
+  --json FILE            write a run summary (steps, forces, impacts, object displacements)
+  --quiet                no progress lines
+  -h, --help             this text
+)";
+
+namespace {
+
+double number(const std::string& option, const std::string& value, double min, double max, bool min_open,
+              const std::string& unit) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  char bounds[64];
+  std::snprintf(bounds, sizeof bounds, "%s%g, %g]", min_open ? "(" : "[", min, max);
+  const std::string range = bounds + (unit.empty() ? std::string() : " " + unit);
+  if (value.empty() || end == nullptr || *end != '\0' || !std::isfinite(v) || v > max || v < min ||
+      (min_open && v == min))
+    throw UsageError(option + ": expected a number in " + range + ", got '" + value + "'");
+  return v;
+}
+
+}  // namespace
+
+Options parseOptions(const std::vector<std::string>& args) {
+  Options o;
+  int sources = 0;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw UsageError(a + ": missing value");
+      return args[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      o.help = true;
+    } else if (a == "--scene") {
+      o.scene = value();
+    } else if (a == "--rate") {
+      o.rate_hz = number(a, value(), 10, 10000, false, "Hz");
+    } else if (a == "--duration") {
+      o.duration_s = number(a, value(), 0, 1e6, true, "s");
+    } else if (a == "--pose-rate") {
+      o.pose_hz = number(a, value(), 0, 10000, true, "Hz");
+    } else if (a == "--contact-rate") {
+      o.contact_hz = number(a, value(), 0, 10000, true, "Hz");
+    } else if (a == "--state-rate") {
+      o.state_hz = number(a, value(), 0, 10000, true, "Hz");
+    } else if (a == "--replay-log") {
+      o.pen_source = PenSource::ReplayLog, o.pen_file = value(), ++sources;
+    } else if (a == "--pen-csv") {
+      o.pen_source = PenSource::Csv, o.pen_file = value(), ++sources;
+    } else if (a == "--pen-script") {
+      o.pen_source = PenSource::Script, ++sources;
+    } else if (a == "--no-pen") {
+      o.pen_source = PenSource::None, ++sources;
+    } else if (a == "--pen-shape") {
+      const std::string v = value();
+      if (v == "capsule") o.pen.shape = PenShape::Capsule;
+      else if (v == "sphere") o.pen.shape = PenShape::Sphere;
+      else if (v == "none") o.pen.shape = PenShape::None;
+      else throw UsageError(a + ": expected capsule, sphere or none, got '" + v + "'");
+    } else if (a == "--pen-radius") {
+      o.pen.radius_m = number(a, value(), 0, 0.1, true, "m");
+    } else if (a == "--pen-length") {
+      o.pen.length_m = number(a, value(), 0, 1, true, "m");
+    } else if (a == "--force-scale") {
+      o.pen.force_scale = number(a, value(), 0, 100, false, "");
+    } else if (a == "--max-force") {
+      o.pen.max_force_n = number(a, value(), 0, 100, false, "N");
+    } else if (a == "--no-friction-force") {
+      o.pen.friction = false;
+    } else if (a == "--impact-speed") {
+      o.impact_min_speed = number(a, value(), 0, 100, false, "m/s");
+    } else if (a == "--lcm-url") {
+      o.lcm_url = value();
+    } else if (a == "--no-lcm") {
+      o.no_lcm = true;
+    } else if (a == "--client-id") {
+      o.client_id = value();
+      if (!thx_msgs::is_valid_client_id(o.client_id))
+        throw UsageError(a + ": expected 1 to 32 characters of [A-Za-z0-9_-], got '" + o.client_id + "'");
+    } else if (a == "--connect-timeout") {
+      o.connect_timeout_s = number(a, value(), 0, 3600, true, "s");
+    } else if (a == "--json") {
+      o.json = value();
+    } else if (a == "--quiet") {
+      o.quiet = true;
+    } else {
+      throw UsageError("unknown option '" + a + "'");
+    }
+  }
+  if (o.help) return o;
+  if (o.scene.empty()) throw UsageError("--scene FILE is required");
+  if (sources > 1) throw UsageError("--replay-log, --pen-csv, --pen-script and --no-pen exclude each other");
+  if (o.no_lcm && !o.offline())
+    throw UsageError("--no-lcm needs an offline pen (--replay-log, --pen-csv, --pen-script or --no-pen)");
+  if (o.no_lcm && o.lcm_url) throw UsageError("--no-lcm and --lcm-url exclude each other");
+  if (o.pen_source == PenSource::None && !o.duration_s) throw UsageError("--no-pen needs --duration S");
+  return o;
+}
+
+}  // namespace thx::physclient

@@ -1,0 +1,42 @@
+#pragma once
+// physics-client's command line (kHelp is the --help text). parseOptions() throws UsageError with
+// a message naming the option, the value and what was expected.
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "clients/physics_client/physics_scene.hpp"
+
+namespace thx::physclient {
+
+extern const char* const kHelp;
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+enum class PenSource { Hapticd, ReplayLog, Csv, Script, None };
+
+struct Options {
+  bool help = false;
+  std::string scene;
+  std::optional<double> rate_hz, pose_hz, contact_hz, state_hz;  // default: from the scene
+  std::optional<double> duration_s;
+  PenSource pen_source = PenSource::Hapticd;
+  std::string pen_file;  // --replay-log / --pen-csv
+  std::optional<std::string> lcm_url;
+  bool no_lcm = false;
+  std::string client_id = "physics";
+  PenOptions pen;
+  double impact_min_speed = 0.005;
+  double connect_timeout_s = 10.0;
+  std::string json;
+  bool quiet = false;
+
+  bool offline() const { return pen_source != PenSource::Hapticd; }
+};
+
+Options parseOptions(const std::vector<std::string>& args);
+
+}  // namespace thx::physclient

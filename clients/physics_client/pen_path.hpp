@@ -1,0 +1,52 @@
+#pragma once
+// Pen trajectories for deterministic runs without hapticd:
+//  - a CSV file of world-frame tip positions (`t_s, x_m, y_m, z_m`);
+//  - the scene's own hand script followed kinematically (the tip on the surface along the
+//    script's presses and strokes; an approximation of what hapticd's simulated hand does);
+//  - a recorded hapticd session (LCM log, lcm_io.hpp), converted to these samples.
+// Linear interpolation between samples; before the first and after the last the end is held.
+#include <Eigen/Core>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "clients/physics_client/physics_scene.hpp"
+
+namespace thx::physclient {
+
+struct PenSample {
+  double t_s = 0.0;
+  Eigen::Vector3d p_world = Eigen::Vector3d::Zero();
+  std::int64_t tick = -1;  // device tick when the sample came from hapticd
+};
+
+// Throws PenPathError with "FILE:LINE: FIELD: problem; expected ..., got '...'".
+struct PenPathError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// `#` comments and blank lines skipped; an optional header `t_s, x_m, y_m, z_m`; times >= 0 and
+// strictly increasing; at least 2 rows; every value finite.
+std::vector<PenSample> loadPenCsv(const std::string& path);
+std::vector<PenSample> parsePenCsv(const std::string& text, const std::string& source);
+
+// The scene's hand script (press, stroke, hold) as a kinematic tip path on the surface, sampled
+// every dt_s. path_file steps are not supported (PenPathError). Empty script: empty path.
+std::vector<PenSample> penPathFromScript(const PhysicsScene& scene, double dt_s);
+
+class PenPath {
+ public:
+  explicit PenPath(std::vector<PenSample> samples);  // non-empty, increasing times
+  Eigen::Vector3d at(double t_s) const;
+  std::int64_t tickAt(double t_s) const;  // tick of the sample at or before t (-1 if none)
+  double duration() const { return samples_.back().t_s; }
+  std::size_t size() const { return samples_.size(); }
+
+ private:
+  std::size_t indexAt(double t_s) const;
+  std::vector<PenSample> samples_;
+  mutable std::size_t hint_ = 0;
+};
+
+}  // namespace thx::physclient

@@ -1,0 +1,303 @@
+#include "clients/physics_client/physics_scene.hpp"
+
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "clients/physics/bullet_convert.hpp"
+#include "scenes/scene_frames.hpp"
+#include "scenes/surface_texture.hpp"
+#include "textures/smoothing.hpp"
+
+namespace thx::physclient {
+
+namespace {
+
+tex::TextureMap buildTexture(const scene::Scene& scene) {
+  scene::SurfaceTextureOptions options;
+  options.smooth = tex::smoothTexture;
+  return scene::buildSurfaceTexture(scene, options);
+}
+
+phys::BodyMaterial materialOf(const scene::Material& m) {
+  phys::BodyMaterial b;
+  b.friction = m.friction;
+  b.restitution = m.restitution;
+  return b;
+}
+
+// A manifold point counts as touching when it is closed (or the solver pushed through it).
+constexpr double kTouchDistance_m = 1e-5;
+
+// Ordering of a pair: the surface is always b, then the pen; otherwise the lower index is a.
+bool aIsFirst(int id0, int id1) {
+  if (id0 == kBodySurface) return false;
+  if (id1 == kBodySurface) return true;
+  if (id0 == kBodyPen) return false;
+  if (id1 == kBodyPen) return true;
+  return id0 < id1;
+}
+
+}  // namespace
+
+PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
+    : scene_(scene),
+      options_(options),
+      map_(buildTexture(scene)),
+      surface_(map_, scene::planeMapping(scene.surface), scene.surface.sampling, map_.isRelief()) {
+  world_ = std::make_unique<phys::PhysicsWorld>(options.world);
+  const phys::BodyMaterial plane_material = materialOf(scene.surface.material);
+  plane_ = surface_.usesRelief() ? &world_->addReliefPlane(surface_, plane_material)
+                                 : &world_->addNormalMapPlane(surface_, plane_material);
+  plane_->setUserIndex(kBodySurface);
+
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const scene::SceneObject& o = scene.objects[i];
+    const Eigen::Isometry3d pose = scene::toIsometry(o.pose);
+    const double mass = o.fixed ? 0.0 : o.mass_kg;
+    const phys::BodyMaterial material = materialOf(o.material);
+    btRigidBody* body = nullptr;
+    switch (o.shape) {
+      case scene::Shape::Sphere:
+        body = &world_->addSphere(o.radius_m, mass, pose, material);
+        break;
+      case scene::Shape::Box:
+        body = &world_->addBox(0.5 * o.size_m, mass, pose, material);
+        break;
+      case scene::Shape::Capsule:
+        body = &world_->addCapsule(o.radius_m, 0.5 * o.length_m, mass, pose, material);
+        break;
+      case scene::Shape::Cylinder:
+        body = &world_->addCylinder(o.radius_m, 0.5 * o.length_m, mass, pose, material);
+        break;
+    }
+    body->setUserIndex(int(i));
+    if (!o.fixed) phys::setVelocity(*body, o.velocity_m_per_s, o.angular_velocity_rad_per_s);
+    objects_.push_back(body);
+  }
+  v_before_.resize(objects_.size(), Eigen::Vector3d::Zero());
+
+  const PenOptions& pen = options_.pen;
+  if (pen.shape != PenShape::None) {
+    // Parked 10 m above the plane until the first pose arrives. Added with mass 0 (so Bullet files
+    // it with the static bodies: it never collides with the plane or the fixed obstacles), then
+    // made kinematic so its velocity comes from its moves.
+    Eigen::Isometry3d parked = surface_.mapping().plane_to_world;
+    parked.translation() += 10.0 * surface_.mapping().geometricNormalWorld();
+    phys::BodyMaterial pen_material;
+    pen_material.friction = 0.5;
+    pen_material.restitution = 0.0;
+    pen_ = pen.shape == PenShape::Sphere ? &world_->addSphere(pen.radius_m, 0.0, parked, pen_material)
+                                         : &world_->addCapsule(pen.radius_m, 0.5 * pen.length_m, 0.0, parked, pen_material);
+    pen_->setCollisionFlags(pen_->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    pen_->setActivationState(DISABLE_DEACTIVATION);
+    pen_->setUserIndex(kBodyPen);
+  }
+}
+
+PhysicsScene::~PhysicsScene() = default;
+
+int PhysicsScene::idOf(const btCollisionObject* o) const { return o->getUserIndex(); }
+
+Eigen::Vector3d PhysicsScene::penCentreFor(const Eigen::Vector3d& tip) const {
+  const Eigen::Vector3d n = surface_.mapping().geometricNormalWorld();
+  const PenOptions& pen = options_.pen;
+  const double up = pen.shape == PenShape::Capsule ? pen.radius_m + 0.5 * pen.length_m : pen.radius_m;
+  return tip + up * n;
+}
+
+void PhysicsScene::setPenTip(const Eigen::Vector3d& tip_world) {
+  if (!tip_world.allFinite()) return;  // keep the last good pose
+  pen_tip_ = tip_world;
+  pen_set_ = true;
+}
+
+void PhysicsScene::placePen(double /*dt_s*/) {
+  if (pen_ == nullptr || !pen_set_) return;
+  Eigen::Isometry3d pose = surface_.mapping().plane_to_world;  // capsule axis = the plane's normal
+  pose.translation() = penCentreFor(pen_tip_);
+  const btTransform t = phys::toBt(pose);
+  const Eigen::Vector3d old = phys::toEigen(pen_->getWorldTransform().getOrigin());
+  pen_->setWorldTransform(t);
+  // A teleport gets no velocity (Bullet derives a kinematic body's velocity from the move since
+  // the previous step: interpolation transform -> world transform).
+  if (!pen_placed_ || (old - pose.translation()).norm() > options_.pen.teleport_m) pen_->setInterpolationWorldTransform(t);
+  pen_placed_ = true;
+}
+
+void PhysicsScene::step(double dt_s) {
+  placePen(dt_s);
+  for (std::size_t i = 0; i < objects_.size(); ++i) v_before_[i] = phys::velocityOf(*objects_[i]);
+  world_->step(dt_s);
+  ++steps_;
+  sim_time_ = double(steps_) * dt_s;
+  collectContacts(dt_s);
+}
+
+void PhysicsScene::collectContacts(double dt_s) {
+  impacts_.clear();
+  pen_force_ = PenForce{};
+  Eigen::Vector3d pen_force = Eigen::Vector3d::Zero();
+  std::set<PairKey> touching_now;
+  btDispatcher* dispatcher = world_->world().getDispatcher();
+  const Eigen::Vector3d v_pen = pen_ ? phys::velocityOf(*pen_) : Eigen::Vector3d::Zero();
+
+  const int manifolds = dispatcher->getNumManifolds();
+  for (int m = 0; m < manifolds; ++m) {
+    const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+    const btCollisionObject* o0 = manifold->getBody0();
+    const btCollisionObject* o1 = manifold->getBody1();
+    const int id0 = idOf(o0), id1 = idOf(o1);
+    const bool a_first = aIsFirst(id0, id1);
+    const btCollisionObject* oa = a_first ? o0 : o1;
+    const btCollisionObject* ob = a_first ? o1 : o0;
+    const int ida = a_first ? id0 : id1, idb = a_first ? id1 : id0;
+    // Bullet's normal points from body1 towards body0; ours from b towards a.
+    const double sign = a_first ? 1.0 : -1.0;
+
+    int points = 0;
+    double impulse = 0.0;
+    Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+    for (int k = 0; k < manifold->getNumContacts(); ++k) {
+      const btManifoldPoint& pt = manifold->getContactPoint(k);
+      if (double(pt.getDistance()) > kTouchDistance_m && pt.getAppliedImpulse() <= 0) continue;
+      ++points;
+      const Eigen::Vector3d n_bt = phys::toEigen(pt.m_normalWorldOnB);
+      impulse += double(pt.getAppliedImpulse());
+      n += sign * n_bt;
+      p += 0.5 * (phys::toEigen(pt.getPositionWorldOnA()) + phys::toEigen(pt.getPositionWorldOnB()));
+      if (ida == kBodyPen || idb == kBodyPen) {
+        // Impulse on body0 = +n_bt j + d1 j1 + d2 j2 (Bullet's solver convention); body1 gets the opposite.
+        Eigen::Vector3d j_on_0 = n_bt * double(pt.getAppliedImpulse());
+        if (options_.pen.friction)
+          j_on_0 += phys::toEigen(pt.m_lateralFrictionDir1) * double(pt.m_appliedImpulseLateral1) +
+                    phys::toEigen(pt.m_lateralFrictionDir2) * double(pt.m_appliedImpulseLateral2);
+        const bool pen_is_0 = id0 == kBodyPen;
+        pen_force += (pen_is_0 ? j_on_0 : Eigen::Vector3d(-j_on_0)) / dt_s;
+      }
+    }
+    if (points == 0) continue;
+    p /= double(points);
+    if (n.norm() > 0) n.normalize();
+    if (ida == kBodyPen || idb == kBodyPen) pen_force_.in_contact = true;
+
+    const PairKey key{oa, ob};
+    touching_now.insert(key);
+
+    // Velocities at the contact point.
+    const auto* ra = btRigidBody::upcast(oa);
+    const auto* rb = btRigidBody::upcast(ob);
+    auto pointVelocity = [&](const btRigidBody* r, int id) -> Eigen::Vector3d {
+      if (r == nullptr || id == kBodySurface) return Eigen::Vector3d::Zero();
+      if (id == kBodyPen) return v_pen;
+      const Eigen::Vector3d c = phys::positionOf(*r);
+      return phys::velocityOf(*r) + phys::angularVelocityOf(*r).cross(p - c);
+    };
+    const Eigen::Vector3d rel = pointVelocity(ra, ida) - pointVelocity(rb, idb);
+    const Eigen::Vector3d slip = rel - rel.dot(n) * n;
+
+    const bool on_surface = idb == kBodySurface;
+    Texel texel;
+    if (on_surface) {
+      const Eigen::Vector3d local = surface_.toLocal(p);
+      surface_.texelContaining(local.x(), local.y(), texel.i, texel.j);
+    }
+
+    const bool new_touch = touching_since_.find(key) == touching_since_.end();
+    if (new_touch) {
+      auto before = [&](int id) -> Eigen::Vector3d {
+        if (id >= 0 && std::size_t(id) < v_before_.size()) return v_before_[std::size_t(id)];
+        if (id == kBodyPen) return v_pen;
+        return Eigen::Vector3d::Zero();
+      };
+      const double v_approach = -(before(ida) - before(idb)).dot(n);
+      if (v_approach >= options_.impact_min_speed_m_per_s) {
+        Impact im;
+        im.step = steps_;
+        im.sim_time_s = sim_time_;
+        im.body_a = ida;
+        im.body_b = idb;
+        im.impulse_ns = impulse;
+        im.v_approach_m_per_s = v_approach;
+        im.p_world = p;
+        im.n_world = n;
+        im.on_surface = on_surface;
+        im.texel_i = texel.i;
+        im.texel_j = texel.j;
+        impacts_.push_back(im);
+      }
+    }
+
+    LastingContact& c = contacts_[key];
+    c.body_a = ida;
+    c.body_b = idb;
+    c.p_world = p;
+    c.n_world = n;
+    c.v_slip_world = slip;
+    c.v_world = (ra && ida >= 0) ? phys::velocityOf(*ra) : (ida == kBodyPen ? v_pen : Eigen::Vector3d::Zero());
+    c.impulse_sum_ns += impulse;
+    c.window_s += dt_s;
+    if (on_surface) {
+      auto last = last_texel_.find(key);
+      if (last == last_texel_.end() || last->second.i != texel.i || last->second.j != texel.j) {
+        if (c.path.size() < LastingContact::kMaxPath)
+          c.path.push_back(texel);
+        else
+          ++c.path_dropped;
+        last_texel_[key] = texel;
+      }
+    }
+  }
+
+  // Pairs that stopped touching forget their texel, so a new touch starts a new path.
+  for (auto it = last_texel_.begin(); it != last_texel_.end();)
+    it = touching_now.count(it->first) ? std::next(it) : last_texel_.erase(it);
+  touching_since_.clear();
+  for (const PairKey& k : touching_now) touching_since_[k] = steps_;
+
+  pen_force_.raw_world = pen_force;
+  Eigen::Vector3d sent = options_.pen.force_scale * pen_force;
+  const double norm = sent.norm();
+  if (!std::isfinite(norm)) {
+    sent.setZero();
+    pen_force_.clamped = true;
+  } else if (norm > options_.pen.max_force_n) {
+    sent *= options_.pen.max_force_n / norm;
+    pen_force_.clamped = true;
+  }
+  pen_force_.sent_world = sent;
+}
+
+std::vector<LastingContact> PhysicsScene::takeContacts() {
+  std::vector<LastingContact> out;
+  out.reserve(contacts_.size());
+  for (auto& [key, c] : contacts_) out.push_back(std::move(c));
+  contacts_.clear();
+  return out;
+}
+
+BodyState PhysicsScene::body(int id) const {
+  BodyState s;
+  s.id = id;
+  const btRigidBody& b = *objects_.at(std::size_t(id));
+  const btTransform& t = b.getWorldTransform();
+  s.p_world = phys::toEigen(t.getOrigin());
+  const btQuaternion q = t.getRotation();
+  s.q_world = Eigen::Quaterniond(double(q.w()), double(q.x()), double(q.y()), double(q.z()));
+  s.v_world = phys::velocityOf(b);
+  s.w_world = phys::angularVelocityOf(b);
+  return s;
+}
+
+std::vector<BodyState> PhysicsScene::bodies() const {
+  std::vector<BodyState> out;
+  out.reserve(objects_.size());
+  for (std::size_t i = 0; i < objects_.size(); ++i) out.push_back(body(int(i)));
+  return out;
+}
+
+}  // namespace thx::physclient

@@ -1,0 +1,156 @@
+#pragma once
+// The physics client's simulation, free of LCM so tests run it directly: a scene's textured
+// plane (normal or relief, as the scene says), its objects (dynamic bodies and fixed obstacles)
+// and the pen, a kinematic body following the device's tip. Each step reports
+//  - the force the pen's contacts put on the pen (scaled, translational, clamped): what goes
+//    back to hapticd as client_force_t;
+//  - impacts (pairs that start touching with an approach speed) and lasting contacts (per
+//    touching pair: point, normal, slip velocity, normal force, the texels entered).
+// Body ids: i >= 0 = scene.objects[i]; kBodySurface = the plane; kBodyPen = the pen.
+// SI units, world frame. Not real-time code (construction allocates; a step allocates only when
+// a new pair starts touching).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "clients/physics/physics_world.hpp"
+#include "scenes/scene.hpp"
+#include "textures/textured_surface.hpp"
+
+class btRigidBody;
+class btCollisionObject;
+
+namespace thx::physclient {
+
+inline constexpr int kBodySurface = -1;
+inline constexpr int kBodyPen = -2;
+
+enum class PenShape { None, Sphere, Capsule };
+
+struct PenOptions {
+  PenShape shape = PenShape::Capsule;
+  double radius_m = 0.004;   // sphere radius, or the capsule's
+  double length_m = 0.04;    // capsule: between the cap centres; the capsule stands on the tip
+                             // along the surface's geometric normal (3-DOF device: no pen axis)
+  double force_scale = 1.0;  // client force = scale x contact force on the pen
+  double max_force_n = 2.0;  // |client force| clamp (hapticd refuses above its peak force)
+  bool friction = true;      // include the contacts' friction impulses, not only the normal ones
+  // A pen pose that jumps farther than this in one step is a teleport (first pose, reconnect):
+  // no velocity is derived from it, so it cannot fling objects.
+  double teleport_m = 0.02;
+};
+
+struct SimOptions {
+  PenOptions pen;
+  double impact_min_speed_m_per_s = 0.005;  // slower first touches are lasting contacts only
+  phys::WorldOptions world;
+};
+
+struct BodyState {
+  int id = 0;
+  Eigen::Vector3d p_world = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond q_world = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d v_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d w_world = Eigen::Vector3d::Zero();
+};
+
+struct Impact {
+  std::int64_t step = 0;
+  double sim_time_s = 0.0;
+  int body_a = 0, body_b = 0;  // body_b is the surface when the surface is involved
+  double impulse_ns = 0.0;     // normal impulse of the impact step
+  double v_approach_m_per_s = 0.0;
+  Eigen::Vector3d p_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d n_world = Eigen::Vector3d::UnitZ();  // from b towards a
+  bool on_surface = false;
+  long long texel_i = 0, texel_j = 0;  // unwrapped, when on_surface
+};
+
+struct Texel {
+  long long i = 0, j = 0;
+};
+
+// One touching pair, accumulated since the last takeContacts().
+struct LastingContact {
+  int body_a = 0, body_b = 0;
+  Eigen::Vector3d p_world = Eigen::Vector3d::Zero();  // at the last step
+  Eigen::Vector3d n_world = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d v_slip_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v_world = Eigen::Vector3d::Zero();  // of a's centre
+  double impulse_sum_ns = 0.0;                        // normal impulses over the window
+  double window_s = 0.0;                              // time this pair touched in the window
+  std::vector<Texel> path;                            // texels entered, in order (surface contacts)
+  static constexpr std::size_t kMaxPath = 4096;       // longer paths drop their tail (counted)
+  long long path_dropped = 0;
+  double meanNormalForceN() const { return window_s > 0 ? impulse_sum_ns / window_s : 0.0; }
+};
+
+struct PenForce {
+  Eigen::Vector3d raw_world = Eigen::Vector3d::Zero();  // contact force on the pen (N), unscaled
+  Eigen::Vector3d sent_world = Eigen::Vector3d::Zero(); // scaled and clamped
+  bool clamped = false;
+  bool in_contact = false;
+};
+
+class PhysicsScene {
+ public:
+  // Builds the texture as the scene says (throws scene::SceneError / tex::TextureError).
+  explicit PhysicsScene(const scene::Scene& scene, const SimOptions& options = {});
+  ~PhysicsScene();
+  PhysicsScene(const PhysicsScene&) = delete;
+  PhysicsScene& operator=(const PhysicsScene&) = delete;
+
+  // The pen tip for the next step (world frame). Before the first call the pen is parked far
+  // above the plane and touches nothing.
+  void setPenTip(const Eigen::Vector3d& tip_world);
+  // One physics step of dt_s; afterwards penForce(), impacts() and the contacts are current.
+  void step(double dt_s);
+
+  const PenForce& penForce() const { return pen_force_; }
+  const std::vector<Impact>& impacts() const { return impacts_; }  // this step's
+  // Lasting contacts since the previous call (pairs touching in at least one step of it).
+  std::vector<LastingContact> takeContacts();
+  std::vector<BodyState> bodies() const;  // one per scene object, in scene order
+  BodyState body(int id) const;
+  Eigen::Vector3d penTip() const { return pen_tip_; }
+
+  std::int64_t steps() const { return steps_; }
+  double simTime() const { return sim_time_; }
+  const tex::TexturedSurface& surface() const { return surface_; }
+  const scene::Scene& scene() const { return scene_; }
+  phys::PhysicsWorld& world() { return *world_; }
+
+ private:
+  using PairKey = std::pair<const btCollisionObject*, const btCollisionObject*>;
+  void placePen(double dt_s);
+  void collectContacts(double dt_s);
+  int idOf(const btCollisionObject* o) const;
+  Eigen::Vector3d penCentreFor(const Eigen::Vector3d& tip) const;
+
+  scene::Scene scene_;
+  SimOptions options_;
+  tex::TextureMap map_;
+  tex::TexturedSurface surface_;
+  std::unique_ptr<phys::PhysicsWorld> world_;
+  btRigidBody* plane_ = nullptr;
+  btRigidBody* pen_ = nullptr;
+  std::vector<btRigidBody*> objects_;
+  std::vector<Eigen::Vector3d> v_before_;  // linear velocities before the step, per object
+
+  Eigen::Vector3d pen_tip_ = Eigen::Vector3d::Zero();
+  bool pen_set_ = false, pen_placed_ = false;
+  PenForce pen_force_;
+  std::vector<Impact> impacts_;
+  std::map<PairKey, LastingContact> contacts_;        // accumulating since takeContacts()
+  std::map<PairKey, Texel> last_texel_;               // per touching surface pair
+  std::map<PairKey, std::int64_t> touching_since_;    // pairs touching in the previous step
+  std::int64_t steps_ = 0;
+  double sim_time_ = 0.0;
+};
+
+}  // namespace thx::physclient

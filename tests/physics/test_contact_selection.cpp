@@ -1,0 +1,124 @@
+// contact_selection.*: which <= 4 rasterised relief contacts go into Bullet's manifold.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "clients/physics/contact_selection.hpp"
+
+namespace thx::phys {
+namespace {
+
+ReliefCandidate at(double x, double y, double depth) {
+  ReliefCandidate c;
+  c.p_surface = Eigen::Vector3d(x, y, 0.0);
+  c.depth = depth;
+  return c;
+}
+
+std::vector<std::size_t> select(const std::vector<ReliefCandidate>& c) {
+  std::array<std::size_t, kMaxReliefContacts> chosen{};
+  const std::size_t n = selectReliefContacts(c, chosen);
+  EXPECT_LE(n, kMaxReliefContacts);
+  return {chosen.begin(), chosen.begin() + long(n)};
+}
+
+std::set<std::pair<long, long>> positionsMm(const std::vector<ReliefCandidate>& c, const std::vector<std::size_t>& idx) {
+  std::set<std::pair<long, long>> s;
+  for (std::size_t k : idx) s.insert({std::lround(c[k].p_surface.x() * 1e3), std::lround(c[k].p_surface.y() * 1e3)});
+  return s;
+}
+
+TEST(ContactSelection, NoCandidatesNoContacts) { EXPECT_TRUE(select({}).empty()); }
+
+TEST(ContactSelection, OneCandidate) {
+  const std::vector<std::size_t> s = select({at(0.001, 0.002, -1e-4)});
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0], 0u);
+}
+
+TEST(ContactSelection, TheDeepestComesFirst) {
+  const std::vector<ReliefCandidate> c = {at(0, 0, -1e-5), at(0.003, 0, -2e-4), at(0.001, 0.002, -5e-5),
+                                          at(-0.002, 0.001, 1e-6)};
+  const std::vector<std::size_t> s = select(c);
+  ASSERT_FALSE(s.empty());
+  EXPECT_EQ(s[0], 1u);
+}
+
+TEST(ContactSelection, CoincidentCandidatesGiveOnePoint) {
+  const std::vector<std::size_t> s = select({at(0.001, 0.001, -1e-5), at(0.001, 0.001, -3e-5), at(0.001, 0.001, 0.0)});
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0], 1u);
+}
+
+TEST(ContactSelection, CollinearCandidatesGiveTheDeepestAndTheFarthest) {
+  // A cylinder lying along x: one line of texels. The deepest (middle) and the farthest end.
+  std::vector<ReliefCandidate> c;
+  for (int i = -5; i <= 5; ++i) c.push_back(at(0.001 * i, 0.002, i == 1 ? -2e-5 : -1e-5));
+  const std::vector<std::size_t> s = select(c);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0], 6u);                       // x = 1 mm, the deepest
+  EXPECT_NEAR(c[s[1]].p_surface.x(), -0.005, 1e-12);  // the far end from it
+}
+
+TEST(ContactSelection, AFlatBoxGetsItsFourCorners) {
+  // A box resting flat: a grid of equally deep texels over its footprint (7 x 5, 1 mm apart),
+  // one slightly deeper inside so the first pick is not a corner.
+  std::vector<ReliefCandidate> c;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 7; ++i) c.push_back(at(0.001 * i, 0.001 * j, (i == 3 && j == 2) ? -1.1e-4 : -1e-4));
+  const std::vector<std::size_t> s = select(c);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_EQ(c[s[0]].depth, -1.1e-4) << "the deepest first";
+  // The remaining three together with the first span as much as possible: three corners of the
+  // grid, and the convex hull of the four is the largest the grid allows with the centre point.
+  const std::set<std::pair<long, long>> corners = {{0, 0}, {6, 0}, {0, 4}, {6, 4}};
+  std::size_t on_corners = 0;
+  for (std::size_t k = 1; k < 4; ++k)
+    on_corners += corners.count({std::lround(c[s[k]].p_surface.x() * 1e3), std::lround(c[s[k]].p_surface.y() * 1e3)});
+  EXPECT_EQ(on_corners, 3u) << "three more corners";
+  EXPECT_EQ(positionsMm(c, s).size(), 4u) << "four distinct points";
+}
+
+TEST(ContactSelection, AFlatBoxWithoutADeeperPointGetsExactlyItsCorners) {
+  std::vector<ReliefCandidate> c;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 7; ++i) c.push_back(at(0.001 * i, 0.001 * j, -1e-4));
+  const std::vector<std::size_t> s = select(c);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_EQ(positionsMm(c, s), (std::set<std::pair<long, long>>{{0, 0}, {6, 0}, {0, 4}, {6, 4}}));
+}
+
+TEST(ContactSelection, ThreePointsThatSpanATriangleStayThree) {
+  // Candidates on a triangle's vertices and edges only: no fourth point adds area.
+  const std::vector<ReliefCandidate> c = {at(0, 0, -1e-4), at(0.004, 0, -1e-5), at(0, 0.004, -1e-5),
+                                          at(0.002, 0, -1e-5), at(0, 0.002, -1e-5), at(0.002, 0.002, -1e-5)};
+  const std::vector<std::size_t> s = select(c);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(positionsMm(c, s), (std::set<std::pair<long, long>>{{0, 0}, {4, 0}, {0, 4}}));
+}
+
+TEST(ContactSelection, ChosenIndicesAreDistinctAndValid) {
+  std::vector<ReliefCandidate> c;
+  unsigned state = 12345u;
+  auto next = [&] { state = state * 1103515245u + 12345u; return double((state >> 8) & 0xffff) / 65535.0; };
+  for (int trial = 0; trial < 50; ++trial) {
+    c.clear();
+    const int n = 1 + trial % 20;
+    for (int k = 0; k < n; ++k) c.push_back(at(0.01 * next(), 0.01 * next(), -1e-4 * next()));
+    const std::vector<std::size_t> s = select(c);
+    ASSERT_FALSE(s.empty());
+    EXPECT_EQ(std::set<std::size_t>(s.begin(), s.end()).size(), s.size()) << "no index twice, trial " << trial;
+    for (std::size_t k : s) EXPECT_LT(k, c.size());
+    const auto deepest = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.depth < b.depth; });
+    EXPECT_EQ(s[0], std::size_t(deepest - c.begin()));
+    if (n >= 4) {
+      EXPECT_EQ(s.size(), 4u) << "random points in general position give four";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace thx::phys
