@@ -1,7 +1,8 @@
 #!/bin/sh
 # The main job on the default scene: hapticd with the simulated PHANToM in real time, a scripted
 # stroke across the bricks and a press, then a press into a steep V-valley; each prints its
-# summary. Then physics-client next to hapticd: the pen pushes a ball into grooves. Then the texture gallery with shaded previews.
+# summary. Then physics-client next to hapticd: the pen pushes a ball into another dimple. Then the
+# texture gallery with shaded previews.
 # Usage: ./demo.sh [BUILD_DIR]   (make demo builds first, then calls this)
 set -eu
 BUILD=${1:-build}
@@ -25,14 +26,14 @@ echo "== hapticd, real time: a press into a 60 degree V-valley, crease handling 
 "$HD" --scene scenes/vvalley.yaml --stats-json "$OUT/hapticd_vvalley.json" --flight-dir "$OUT"
 
 echo
-echo "== physics: hapticd + physics-client, the simulated pen pushes a ball into grooves (about 6 s)"
+echo "== physics: hapticd + physics-client, the simulated pen pushes a ball out of its dimple into another (about 6 s)"
 PC="$BUILD/clients/physics_client/physics-client"
 URL="udpm://239.255.76.67:7667?ttl=0"
-"$PC" --scene scenes/pen_pushes_ball.yaml --duration 5.5 --lcm-url "$URL" --json "$OUT/physics_push.json" \
+"$PC" --scene scenes/pen_pushes_ball_dimples.yaml --duration 5.5 --lcm-url "$URL" --json "$OUT/physics_push.json" \
   --quiet > "$OUT/physics_push.txt" 2>&1 &
 PC_PID=$!
 sleep 0.5
-"$HD" --scene scenes/pen_pushes_ball.yaml --lcm-url "$URL" --quiet --stats-json "$OUT/hapticd_push.json" \
+"$HD" --scene scenes/pen_pushes_ball_dimples.yaml --lcm-url "$URL" --quiet --stats-json "$OUT/hapticd_push.json" \
   --flight-dir "$OUT" > /dev/null
 wait "$PC_PID" || echo "physics-client failed (see $OUT/physics_push.txt)"
 cat "$OUT/physics_push.txt"
