@@ -361,7 +361,7 @@ int run(const Options& o) {
     vso.limits.peak_force_n = spec.peak_force_n;
     vso.limits.servo_rate_hz = sc.rates.servo_hz;
     servo.attachExternalEffects(&external_effects);
-    vrpn_server = std::make_unique<srv::VrpnServer>(servo.snapshotSlot(), &external_effects, vso);
+    vrpn_server = std::make_unique<srv::VrpnServer>(servo.publishSnapshots(), &external_effects, vso);
     vrpn_server->start();  // throws with the address and reason if it cannot bind
     if (!o.quiet)
       std::fprintf(stderr, "hapticd: serving %s to VRPN apps at %s:%u (TCP and UDP)\n", o.vrpn_name.c_str(),

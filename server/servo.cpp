@@ -101,14 +101,9 @@ const TickRecord& Servo::tick() {
                                client_force_.force_world_n[2]);
   }
 
-  Eigen::Vector3d f_external = Eigen::Vector3d::Zero();
-  Eigen::Vector3d scp = r.valid ? Eigen::Vector3d(out.in_contact ? out.proxy_world : state.p_world)
-                                : Eigen::Vector3d::Zero();
-  if (external_) {
-    const ExternalOutput ext = external_->render(state.p_world, state.v_world, r.valid);
-    f_external = ext.force_world;
-    if (ext.in_contact && !out.in_contact) scp = ext.scp_world;
-  }
+  ExternalOutput ext;
+  if (external_) ext = external_->render(state.p_world, state.v_world, r.valid);
+  const Eigen::Vector3d& f_external = ext.force_world;
 
   // A device that renders planes itself (a PHANToM behind VRPN) gets the planes; only the client
   // force goes through the force path, or the texture would be rendered twice.
@@ -161,6 +156,21 @@ const TickRecord& Servo::tick() {
   compute_hist_.add(r.compute_ns);
   wake_hist_.add(r.wake_latency_ns);
 
+  if (snapshots_) writeSnapshot(r, state, out, ext, f_out);
+
+  recorder_.record(r);
+  if (faults) {
+    ++counters_.faults;
+    recorder_.freeze(faults, r.tick);
+  }
+  out_.push(r);
+  return r;
+}
+
+// The surface contact point is the texture proxy in contact, else an external plane's contact
+// point, else the tip (reference §9: a stock PHANToM reports the tip when free).
+void Servo::writeSnapshot(const TickRecord& r, const dev::DeviceState& state, const RenderOutput& out,
+                          const ExternalOutput& ext, const Eigen::Vector3d& f_out) {
   DeviceSnapshot snap;
   snap.tick = r.tick;
   snap.deadline_ns = r.deadline_ns;
@@ -171,18 +181,14 @@ const TickRecord& Servo::tick() {
   snap.q_world[2] = state.q_world.z();
   snap.q_world[3] = state.q_world.w();
   put(snap.f_out, f_out);
+  const Eigen::Vector3d scp = !r.valid          ? Eigen::Vector3d(Eigen::Vector3d::Zero())
+                              : out.in_contact  ? out.proxy_world
+                              : ext.in_contact  ? ext.scp_world
+                                                : state.p_world;
   put(snap.scp_world, scp);
   snap.buttons = r.buttons;
   snap.valid = r.valid;
   snapshot_slot_.write(snap);
-
-  recorder_.record(r);
-  if (faults) {
-    ++counters_.faults;
-    recorder_.freeze(faults, r.tick);
-  }
-  out_.push(r);
-  return r;
 }
 
 }  // namespace thx::srv

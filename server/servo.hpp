@@ -76,12 +76,20 @@ class Servo {
   dev::LatestSlot<ClientForce>& clientForceSlot() { return client_slot_; }
   // Optional (before the first tick): effects commanded by VRPN apps, added to the force.
   void attachExternalEffects(ExternalEffectRenderer* effects) { external_ = effects; }
-  const dev::LatestSlot<DeviceSnapshot>& snapshotSlot() const { return snapshot_slot_; }
+  // Optional (before the first tick): from then on every tick also writes a DeviceSnapshot here
+  // for a slower reader (the VRPN server). Without a reader nothing is written.
+  const dev::LatestSlot<DeviceSnapshot>& publishSnapshots() {
+    snapshots_ = true;
+    return snapshot_slot_;
+  }
   const LatencyHistogram& computeHistogram() const { return compute_hist_; }
   const LatencyHistogram& wakeHistogram() const { return wake_hist_; }
   const ServoCounters& counters() const { return counters_; }
 
  private:
+  void writeSnapshot(const TickRecord& r, const dev::DeviceState& state, const RenderOutput& out,
+                     const ExternalOutput& ext, const Eigen::Vector3d& f_out);
+
   dev::HapticDevice& device_;
   ProxyRenderer& renderer_;
   PassivityController& passivity_;
@@ -93,6 +101,7 @@ class Servo {
   dev::LatestSlot<ClientForce> client_slot_;
   ExternalEffectRenderer* external_ = nullptr;
   dev::LatestSlot<DeviceSnapshot> snapshot_slot_;
+  bool snapshots_ = false;
   std::uint32_t client_seq_ = 0;
   ClientForce client_force_;
   int client_age_ticks_ = 1 << 30;

@@ -17,7 +17,6 @@
 #include "clients/physics_client/options.hpp"
 #include "clients/physics_client/pen_path.hpp"
 #include "scenes/scene_loader.hpp"
-#include "textures/texture_error.hpp"
 #include "thx_client/client.hpp"
 
 namespace {
@@ -227,11 +226,7 @@ int main(int argc, char** argv) {
   }
   try {
     return run(o);
-  } catch (const thx::scene::SceneError& e) {
-    std::fprintf(stderr, "physics-client: %s\n", e.what());
-  } catch (const thx::tex::TextureError& e) {
-    std::fprintf(stderr, "physics-client: %s\n", e.what());
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // scene, texture and file errors all name their source
     std::fprintf(stderr, "physics-client: %s\n", e.what());
   }
   return 1;

@@ -12,21 +12,14 @@
 #include <sstream>
 #include <thread>
 
+#include "tests/server/hapticd_process.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct ProcRun {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using thx::test::ProcRun;
+using thx::test::slurp;
 
 // The number after "key": in a flat JSON text (the stats file is ours, one key per line).
 double jsonNumber(const std::string& json, const std::string& key) {
@@ -36,28 +29,7 @@ double jsonNumber(const std::string& json, const std::string& key) {
   return std::stod(m[1]);
 }
 
-class Hapticd : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("thx_hapticd_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  ProcRun run(const std::string& args) const {
-    const std::string cmd = std::string("cd '") + THX_SOURCE_DIR + "' && '" + THX_HAPTICD + "' " + args + " >'" +
-                            path("out.txt") + "' 2>'" + path("err.txt") + "'";
-    const int raw = std::system(cmd.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(path("out.txt")), slurp(path("err.txt"))};
-  }
-
-  fs::path dir_;
-};
+using Hapticd = thx::test::HapticdProcessTest;
 
 }  // namespace
 

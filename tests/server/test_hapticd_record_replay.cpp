@@ -11,37 +11,23 @@
 #include <sstream>
 
 #include "server/session_log.hpp"
+#include "tests/server/hapticd_process.hpp"
 
 namespace fs = std::filesystem;
 using thx_msgs::contact_t;
 
 namespace {
 
-class HapticdRecordReplay : public ::testing::Test {
+// hapticd without LCM or memory locking, flight records in the scratch directory. Exit status;
+// stderr in err_.
+class HapticdRecordReplay : public thx::test::HapticdProcessTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("thx_record_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  // Exit status; stderr in err_.
   int run(const std::string& args) {
-    const std::string cmd = std::string("cd '") + THX_SOURCE_DIR + "' && '" + THX_HAPTICD + "' " + args +
-                            " --no-lcm --no-mlock --flight-dir '" + dir_.string() + "' >/dev/null 2>'" +
-                            path("err.txt") + "'";
-    const int raw = std::system(cmd.c_str());
-    std::ifstream f(path("err.txt"));
-    std::stringstream s;
-    s << f.rdbuf();
-    err_ = s.str();
-    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    const thx::test::ProcRun r =
+        HapticdProcessTest::run(args + " --no-lcm --no-mlock --flight-dir '" + dir_.string() + "'");
+    err_ = r.err;
+    return r.status;
   }
-  fs::path dir_;
   std::string err_;
 };
 

@@ -18,6 +18,7 @@
 #include "device/vrpn/tracker_messages.hpp"
 #include "device/vrpn/vrpn_client_device.hpp"
 #include "device/device_specs.hpp"
+#include "tests/server/hapticd_process.hpp"
 
 namespace fs = std::filesystem;
 using namespace thx::vrpn;
@@ -25,38 +26,8 @@ using namespace std::chrono_literals;
 
 namespace {
 
-struct ProcRun {
-  int status = -1;
-  std::string err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-class HapticdVrpn : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("thx_hapticd_vrpn_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  ProcRun run(const std::string& args) const {
-    const fs::path err = dir_ / "err.txt";
-    const std::string cmd = std::string("cd '") + THX_SOURCE_DIR + "' && '" + THX_HAPTICD + "' " + args +
-                            " >/dev/null 2>'" + err.string() + "'";
-    const int raw = std::system(cmd.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(err)};
-  }
-  fs::path dir_;
-};
+using thx::test::ProcRun;
+using HapticdVrpn = thx::test::HapticdProcessTest;
 
 // A port nobody listens on right now (bind to 0, read it, close).
 std::uint16_t freePort() {

@@ -19,6 +19,10 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
     s.v_world = Eigen::Vector3d(0.04 * std::cos((t - 2.0) * 2.0), 0.001, 0.0);
     if (tick == 3000) s.timing.missed = 4;  // a fault: flight recorder freeze on the path too
   });
+  // Everything optional on the tick is on: VRPN effects (none commanded) and the snapshot slot.
+  srv::ExternalEffectRenderer effects(1e-3);
+  rig.servo->attachExternalEffects(&effects);
+  rig.servo->publishSnapshots();
   rig.run(10);  // let lazily initialised runtime pieces settle outside the measurement
   srv::ClientForce cf;
   cf.force_world_n[2] = 0.1;

@@ -109,7 +109,7 @@ struct ServedRig {
     options.log = false;
     options.limits.max_stiffness_n_per_m = pen.spec().max_stiffness_n_per_m;
     options.limits.peak_force_n = pen.spec().peak_force_n;
-    server = std::make_unique<srv::VrpnServer>(servo->snapshotSlot(), &effects, options);
+    server = std::make_unique<srv::VrpnServer>(servo->publishSnapshots(), &effects, options);
     server->start();
     pen.open();
     thread = std::thread([this] {
