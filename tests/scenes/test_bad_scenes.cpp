@@ -20,6 +20,9 @@ struct BadScene {
   std::vector<std::string> contains;  // substrings of what()
 };
 
+// gtest prints a parameter without a printer as its raw bytes, into every ctest line.
+void PrintTo(const BadScene& s, std::ostream* os) { *os << s.file; }
+
 const std::string kDir = std::string(THX_TEST_DATA_DIR) + "/bad_scenes/";
 
 const std::vector<BadScene>& corpus() {
