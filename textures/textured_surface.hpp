@@ -4,6 +4,9 @@
 //
 //  - normal map: the surface is the plane itself (height 0); only the normal varies.
 //  - relief map: the surface is z = -depth(u, v), with the relief normal.
+// Beyond a clamped map's border the edge texels continue: a normal map's virtual slope goes on,
+// but a relief's clamped depth is flat there, so its normal is the plane's (the edge texel's
+// tilted normal over a flat continuation would push objects outward forever, gaining energy).
 // Real-time safe (no allocation): it holds a pointer to a map that must outlive it.
 #include <Eigen/Core>
 #include <cmath>
@@ -43,7 +46,8 @@ class TexturedSurface {
     SurfacePoint p;
     p.uv = mapping_.uvOfLocal({x_local, y_local});
     const Sample s = sample(*map_, p.uv, sampling_);
-    p.n_local = s.normal.cast<double>().normalized();  // float sums are off by ~1e-8
+    p.n_local = flatBeyondClampedEdge(p.uv.u, p.uv.v) ? Eigen::Vector3d::UnitZ()
+                                                      : s.normal.cast<double>().normalized();  // float sums are off by ~1e-8
     p.height_m = use_relief_ ? -double(s.depth) : 0.0;
     return p;
   }
@@ -61,7 +65,8 @@ class TexturedSurface {
     const TexCoord centre{(double(i) + 0.5) / map_->width(), 1.0 - (double(j) + 0.5) / map_->height()};
     const Eigen::Vector2d xy = mapping_.localOfUv(centre);
     TexelPoint p;
-    p.n_local = map_->normal(ri, rj).cast<double>().normalized();
+    const bool flat = use_relief_ && sampling_.address == Address::Clamp && (ri != i || rj != j);
+    p.n_local = flat ? Eigen::Vector3d::UnitZ() : map_->normal(ri, rj).cast<double>().normalized();
     p.q_local = Eigen::Vector3d(xy.x(), xy.y(), use_relief_ ? -double(map_->depth(ri, rj)) : 0.0);
     return p;
   }
@@ -82,6 +87,9 @@ class TexturedSurface {
   }
 
  private:
+  bool flatBeyondClampedEdge(double u, double v) const {
+    return use_relief_ && sampling_.address == Address::Clamp && (u < 0.0 || u > 1.0 || v < 0.0 || v > 1.0);
+  }
   static long long toIndex(double s) {
     constexpr double kLimit = 1e9;
     return (long long)std::floor(std::fmax(-kLimit, std::fmin(kLimit, s)));
