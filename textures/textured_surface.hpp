@@ -65,10 +65,16 @@ class TexturedSurface {
     const TexCoord centre{(double(i) + 0.5) / map_->width(), 1.0 - (double(j) + 0.5) / map_->height()};
     const Eigen::Vector2d xy = mapping_.localOfUv(centre);
     TexelPoint p;
-    const bool flat = use_relief_ && sampling_.address == Address::Clamp && (ri != i || rj != j);
-    p.n_local = flat ? Eigen::Vector3d::UnitZ() : map_->normal(ri, rj).cast<double>().normalized();
+    p.n_local = texelNormal(i, j, ri, rj);
     p.q_local = Eigen::Vector3d(xy.x(), xy.y(), use_relief_ ? -double(map_->depth(ri, rj)) : 0.0);
     return p;
+  }
+
+  // The normal of texel (i, j) (unwrapped), whose data sits at (ri, rj) (resolved through the
+  // address mode): flat beyond a clamped relief's border.
+  Eigen::Vector3d texelNormal(long long i, long long j, int ri, int rj) const {
+    const bool flat = use_relief_ && sampling_.address == Address::Clamp && (ri != i || rj != j);
+    return flat ? Eigen::Vector3d::UnitZ() : map_->normal(ri, rj).cast<double>().normalized();
   }
 
   Eigen::Vector3d toLocal(const Eigen::Vector3d& p_world) const { return world_to_plane_ * p_world; }

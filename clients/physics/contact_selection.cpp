@@ -1,6 +1,8 @@
 #include "clients/physics/contact_selection.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace thx::phys {
 
@@ -62,6 +64,42 @@ std::size_t selectReliefContacts(std::span<const ReliefCandidate> cand,
   if (score <= base + kMinSpread * kMinSpread) return 3;
   chosen[3] = best;
   return 4;
+}
+
+void snapToBasins(std::span<const ReliefCandidate> cand, long long stride, std::span<std::size_t> chosen) {
+  if (cand.empty() || chosen.empty()) return;
+  long long i0 = cand[0].i, i1 = cand[0].i, j0 = cand[0].j, j1 = cand[0].j;
+  for (const ReliefCandidate& c : cand) {
+    i0 = std::min(i0, c.i), i1 = std::max(i1, c.i);
+    j0 = std::min(j0, c.j), j1 = std::max(j1, c.j);
+  }
+  const long long ni = (i1 - i0) / stride + 1, nj = (j1 - j0) / stride + 1;
+  // Reused between steps: a resting ball costs no allocation per step.
+  thread_local std::vector<int> grid;
+  grid.assign(std::size_t(ni * nj), -1);
+  auto cell = [&](long long gi, long long gj) { return std::size_t(gj * ni + gi); };
+  for (std::size_t k = 0; k < cand.size(); ++k) grid[cell((cand[k].i - i0) / stride, (cand[k].j - j0) / stride)] = int(k);
+  for (std::size_t c = 0; c < chosen.size(); ++c) {
+    std::size_t index = chosen[c];
+    // Strictly downhill, so it ends; at most one step per candidate.
+    for (std::size_t guard = 0; guard < cand.size(); ++guard) {
+      const long long gi = (cand[index].i - i0) / stride, gj = (cand[index].j - j0) / stride;
+      std::size_t next = index;
+      for (long long dj = -1; dj <= 1; ++dj)
+        for (long long di = -1; di <= 1; ++di) {
+          const long long a = gi + di, b = gj + dj;
+          if (a < 0 || b < 0 || a >= ni || b >= nj) continue;
+          const int k = grid[cell(a, b)];
+          if (k >= 0 && cand[std::size_t(k)].depth < cand[next].depth) next = std::size_t(k);
+        }
+      if (next == index) break;
+      index = next;
+    }
+    // A point whose basin is already chosen stays where it was: around a ball's single contact
+    // the spread points are its look-ahead (a fast ball meets a dimple's far rim there first).
+    if (std::find(chosen.begin(), chosen.begin() + std::ptrdiff_t(c), index) == chosen.begin() + std::ptrdiff_t(c))
+      chosen[c] = index;
+  }
 }
 
 }  // namespace thx::phys

@@ -25,4 +25,14 @@ inline constexpr std::size_t kMaxReliefContacts = 4;
 std::size_t selectReliefContacts(std::span<const ReliefCandidate> candidates,
                                  std::array<std::size_t, kMaxReliefContacts>& chosen);
 
+// For a sphere, whose contacts are isolated points: moves each chosen candidate downhill in
+// depth, over its 8 neighbours on the candidate grid (texels `stride` apart), to the bottom of its
+// basin, unless an earlier chosen point holds that basin (then it stays: around a single contact
+// the spread points are look-ahead for a fast ball). The spread rule alone picks a fringe texel
+// of a second wall (a ball resting in a groove
+// on both walls): a point slightly off the contact, whose positive distance the solver lets the
+// ball approach at distance/dt every step while the other wall pushes it back, so a ball at
+// rest reads 0.1 mm/s (and more with larger steps) without moving.
+void snapToBasins(std::span<const ReliefCandidate> candidates, long long stride, std::span<std::size_t> chosen);
+
 }  // namespace thx::phys

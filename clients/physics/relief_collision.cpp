@@ -78,12 +78,18 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   // Reused between steps so a resting object costs no allocation per step.
   thread_local std::vector<ReliefCandidate> candidates;
   candidates.clear();
-  rasterizeRelief(plane.surface(), *underside, threshold, candidates);
+  const RasterStats raster = rasterizeRelief(plane.surface(), *underside, threshold, candidates);
   std::array<std::size_t, kMaxReliefContacts> chosen{};
   const std::size_t n = selectReliefContacts(candidates, chosen);
-  // Round objects roll on their deepest contact: locate it within its texel (relief_raster.hpp).
-  if (n > 0 && underside->kind != Underside::Kind::Box)
+  // Round objects roll on their contacts: locate them within their texels (relief_raster.hpp).
+  // A sphere touches at the bottoms of basins (contact_selection.hpp); a capsule or cylinder
+  // lying flat touches along a line of equal depths, so only its deepest point is refined.
+  if (n > 0 && underside->kind == Underside::Kind::Sphere) {
+    snapToBasins(candidates, raster.stride, std::span(chosen.data(), n));
+    for (std::size_t k = 0; k < n; ++k) candidates[chosen[k]] = refineDeepest(plane.surface(), *underside, candidates[chosen[k]]);
+  } else if (n > 0 && underside->kind != Underside::Kind::Box) {
     candidates[chosen[0]] = refineDeepest(plane.surface(), *underside, candidates[chosen[0]]);
+  }
 
   // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
   // within the breaking threshold of the new one. The chosen points come deepest first, so a

@@ -63,7 +63,7 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
       const double height = relief ? -double(map.depth(ri, rj)) : 0.0;
       const double depth = *z - height;
       if (depth < threshold_m)
-        out.push_back({Eigen::Vector3d(x, y, height), map.normal(ri, rj).cast<double>().normalized(), depth, i, j});
+        out.push_back({Eigen::Vector3d(x, y, height), surface.texelNormal(i, j, ri, rj), depth, i, j});
     }
   }
   return stats;

@@ -1,6 +1,6 @@
 // A ball at rest stays at rest: drift below 0.1 mm/s over 10 s simulated (DESIGN §6, issue 6),
-// on flat textures in both representations and at the bottom of a dimple (a textured, stable
-// spot), at 1 kHz and at 60 Hz.
+// on flat textures in both representations, at the bottom of a dimple (a textured, stable spot)
+// and on the two walls of a groove, at 1 kHz and at 60 Hz.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -71,6 +71,48 @@ TEST_P(RestDrift, DimpleBottomRelief) {
   // within the sanitizer build's time budget.
   const SurfaceHolder s = holdSurface(heightMap(128, 0.1, dimple), 0.1, true);
   expectAtRest(restFor(s, true, kRadius - s.map->maxDepth(), GetParam()), "dimple bottom, relief");
+}
+
+// Rounded U grooves along y (12.5 mm period, 8 mm wide, 1.5 mm deep), as in
+// scenes/pen_pushes_ball.yaml: a 6 mm ball is wider than the groove's floor and rests on its
+// two walls, two contacts pushing against each other.
+double uGroove(double x, double) {
+  const double pitch = 0.0125, half_width = 0.004, dep = 1.5e-3;
+  const double dx = x - std::round(x / pitch) * pitch;
+  return std::fabs(dx) < half_width ? -dep * std::cos(0.5 * kPi * dx / half_width) : 0.0;
+}
+
+TEST_P(RestDrift, GrooveWallsRelief) {
+  const SurfaceHolder s = holdSurface(heightMap(256, 0.1, uGroove), 0.1, true);
+  // Where the ball touches both walls: lowest centre height over the groove's cross-section.
+  const double r = 0.006;
+  double z_rest = -1.0;
+  for (int k = -400; k <= 400; ++k) {
+    const double x = 0.005 * k / 400.0;
+    z_rest = std::max(z_rest, uGroove(x, 0) + std::sqrt(r * r - x * x));
+  }
+  PhysicsWorld w;
+  w.addReliefPlane(s.surface, {1.0, 0.0, 0.0});
+  btRigidBody& ball = w.addSphere(r, 0.0009, at(0, 0, z_rest), {0.5, 0.0, 0.0});
+  double max_speed = 0.0;
+  const int steps = int(std::lround(10.0 / GetParam()));
+  for (int k = 1; k <= steps; ++k) {
+    w.step(GetParam());
+    if (double(k) * GetParam() > 0.05) max_speed = std::max(max_speed, velocityOf(ball).head<2>().norm());
+  }
+  Drift d{max_speed, positionOf(ball).head<2>().norm(), std::fabs(positionOf(ball).z() - z_rest)};
+  std::printf("[measured] groove walls: rests at z %.6f m (analytic %.6f)\n", positionOf(ball).z(), z_rest);
+  if (GetParam() < 0.01) {
+    expectAtRest(d, "groove walls, relief");
+  } else {
+    // At 60 Hz the ball stops ~2 µm off the groove's centre, one wall 1 µm apart: Bullet lets it
+    // approach that wall at distance/dt while split impulse pushes it out of the other, so it
+    // reads ~0.2 mm/s without moving (docs/physics.md, known gaps). The drift itself is checked.
+    std::printf("[measured] groove walls, relief, 60 Hz: velocity reading %.3g m/s, displacement %.3g m over 10 s\n",
+                d.max_speed, d.displacement);
+    EXPECT_LT(d.displacement, 1e-5);
+    EXPECT_LT(d.z_error, 1e-5);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(TimeStep, RestDrift, ::testing::Values(1e-3, 1.0 / 60.0),
