@@ -120,5 +120,45 @@ TEST(ContactSelection, ChosenIndicesAreDistinctAndValid) {
   }
 }
 
+// A ball across a groove: a row of texels i = 0..10 (stride 2 apart when strided), two basins
+// (the walls), the left one the deeper. The spread rule's fringe point on the right wall moves
+// to that wall's bottom; a fringe point in the left wall's basin stays (look-ahead).
+std::vector<ReliefCandidate> twoWalls(long long stride) {
+  const double depth[11] = {3, 1, -2, 1, 4, 6, 4, 2, -1, 2, 5};  // µm: bottoms at i = 2 and i = 8
+  std::vector<ReliefCandidate> c;
+  for (long long i = 0; i <= 10; i += stride) {
+    ReliefCandidate r = at(1e-3 * double(i), 0.0, 1e-6 * depth[i]);
+    r.i = i;
+    r.j = 7;
+    c.push_back(r);
+  }
+  return c;
+}
+
+TEST(SnapToBasins, AFringePointOfAnotherBasinMovesToItsBottom) {
+  const std::vector<ReliefCandidate> c = twoWalls(1);
+  std::array<std::size_t, 3> chosen = {2, 10, 0};  // deepest, the far right fringe, the far left fringe
+  snapToBasins(c, 1, chosen);
+  EXPECT_EQ(chosen[0], 2u);
+  EXPECT_EQ(chosen[1], 8u) << "the right wall's bottom";
+  EXPECT_EQ(chosen[2], 0u) << "in the deepest's basin: stays as look-ahead";
+}
+
+TEST(SnapToBasins, StridedCandidatesStepByTheStride) {
+  const std::vector<ReliefCandidate> c = twoWalls(2);  // i = 0, 2, ..., 10 at indices 0..5
+  std::array<std::size_t, 2> chosen = {1, 5};            // i = 2 (deepest), i = 10
+  snapToBasins(c, 2, chosen);
+  EXPECT_EQ(c[chosen[1]].i, 8);
+}
+
+TEST(SnapToBasins, PlateausAndSingleCandidatesStay) {
+  std::vector<ReliefCandidate> c = {at(0, 0, -1e-6), at(1e-3, 0, -1e-6)};
+  c[1].i = 1;
+  std::array<std::size_t, 2> chosen = {0, 1};
+  snapToBasins(c, 1, chosen);
+  EXPECT_EQ(chosen[0], 0u);
+  EXPECT_EQ(chosen[1], 1u) << "equal depths: no strictly lower neighbour";
+}
+
 }  // namespace
 }  // namespace thx::phys
