@@ -148,6 +148,7 @@ const TickRecord& Servo::tick() {
 
   ++counters_.ticks;
   if (r.in_contact) ++counters_.contact_ticks;
+  if (r.valid && f_client.squaredNorm() > 0.0) ++counters_.client_force_ticks;
   const double f_norm = f_out.norm();
   if (f_norm > counters_.max_force_n) counters_.max_force_n = f_norm;
 

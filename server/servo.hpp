@@ -59,6 +59,7 @@ struct ServoCounters {
   std::uint64_t invalid_readings = 0;
   std::uint64_t faults = 0;
   std::uint64_t contact_ticks = 0;
+  std::uint64_t client_force_ticks = 0;  // a client's force (e.g. physics-client's pen contact) was non-zero
   double max_force_n = 0.0;
 };
 

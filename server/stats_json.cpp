@@ -48,8 +48,9 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
   std::fprintf(f, "  \"wake_latency_us\": %s,\n", quantiles(wake).c_str());
   std::fprintf(f, "  \"rss_bytes\": %lld,\n  \"locked_bytes\": %lld,\n  \"texture_bytes\": %zu,\n",
                (long long)s.memory.rss_bytes, (long long)s.memory.locked_bytes, s.texture_bytes);
-  std::fprintf(f, "  \"contact_ticks\": %llu,\n  \"faults\": %llu,\n  \"invalid_readings\": %llu,\n",
-               (unsigned long long)s.servo.contact_ticks, (unsigned long long)s.servo.faults,
+  std::fprintf(f, "  \"contact_ticks\": %llu,\n  \"client_force_ticks\": %llu,\n  \"faults\": %llu,\n  \"invalid_readings\": %llu,\n",
+               (unsigned long long)s.servo.contact_ticks, (unsigned long long)s.servo.client_force_ticks,
+               (unsigned long long)s.servo.faults,
                (unsigned long long)s.servo.invalid_readings);
   std::fprintf(f,
                "  \"safety\": {\"peak_clamped\": %llu, \"continuous_limited\": %llu, \"rate_limited\": %llu, "

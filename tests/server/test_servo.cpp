@@ -92,6 +92,7 @@ TEST(Servo, ADeviceThatStaysInvalidFaultsOnceAndGetsNoForce) {
   }
   EXPECT_EQ(rig.servo->counters().faults, 1u);  // one flight record, not one per tick
   EXPECT_EQ(rig.servo->counters().invalid_readings, 500u);
+  EXPECT_EQ(rig.servo->counters().client_force_ticks, 0u) << "never applied to a pen we cannot locate";
   for (std::size_t i = rig.device.writes().size() - 490; i < rig.device.writes().size(); ++i)
     ASSERT_EQ(rig.device.writes()[i].norm(), 0.0) << i;
 }
@@ -107,6 +108,7 @@ TEST(Servo, ClientForcesAreAddedAndExpire) {
   rig.servo->clientForceSlot().write(cf);
   rig.run(10);
   EXPECT_NEAR(rig.device.writes().back().x(), 0.15, 1e-9);
+  EXPECT_EQ(rig.servo->counters().client_force_ticks, 51u + 10u);  // the fresh tick + 50, then 10
 }
 
 TEST(Servo, OutputNeverExceedsThePeakForce) {
