@@ -78,6 +78,8 @@ publishes device and contact state over LCM.
   --vrpn-report-hz HZ   tracker/force report rate per VRPN client until it sends set_update_rate
                         (default: the servo rate)
   --vrpn-max-clients N  VRPN clients served at once (default 16)
+  --vrpn-plane2         render VRPN Plane2 surface effects (texture, buzz, adhesion); default:
+                        ignore them, as a stock HDAPI PHANToM does (docs/vrpn.md)
   --quiet               no progress lines
   -h, --help            this text
 
@@ -109,6 +111,7 @@ struct Options {
   std::string vrpn_name = "Phantom0";
   std::optional<double> vrpn_report_hz;
   int vrpn_max_clients = 16;
+  bool vrpn_plane2 = false;
 };
 
 struct ListenAddress {
@@ -220,6 +223,8 @@ Options parse(int argc, char** argv) {
       const double n = number(a, value());
       if (n < 1 || n > 256 || n != std::floor(n)) usage("--vrpn-max-clients: expected an integer 1..256");
       o.vrpn_max_clients = int(n);
+    } else if (a == "--vrpn-plane2") {
+      o.vrpn_plane2 = true;
     } else if (a == "--quiet") {
       o.quiet = true;
     } else {
@@ -288,6 +293,7 @@ int run(const Options& o) {
   } else {
     vrpn::VrpnClientOptions vo;
     vo.period_ns = std::int64_t(std::llround(period_s * 1e9));
+    vo.request_rate_hz = sc.rates.servo_hz;  // a fresh pose every tick
     device_owner = std::make_unique<vrpn::VrpnClientDevice>(vrpn_address, srv::deviceSpecFor(sc), vo);
   }
   dev::HapticDevice& device = *device_owner;
@@ -357,6 +363,10 @@ int run(const Options& o) {
     vso.max_report_hz = sc.rates.servo_hz;
     vso.report_hz = o.vrpn_report_hz.value_or(sc.rates.servo_hz);
     vso.max_clients = o.vrpn_max_clients;
+    vso.render_plane2 = o.vrpn_plane2;
+    const double ws = spec.workspace_radius_m;  // a sphere about the device origin
+    vso.workspace_min = {-ws, -ws, -ws};
+    vso.workspace_max = {ws, ws, ws};
     vso.limits.max_stiffness_n_per_m = spec.max_stiffness_n_per_m;
     vso.limits.peak_force_n = spec.peak_force_n;
     vso.limits.servo_rate_hz = sc.rates.servo_hz;
@@ -431,9 +441,12 @@ int run(const Options& o) {
     vrpn_server->stop();
     const srv::VrpnServerStatus vs = vrpn_server->status();
     if (!o.quiet)
-      std::fprintf(stderr, "hapticd: vrpn: %llu clients served, %llu dropped, %llu refused, %llu force commands (%llu refused)\n",
+      std::fprintf(stderr,
+                   "hapticd: vrpn: %llu clients served, %llu dropped, %llu refused, %llu force commands (%llu "
+                   "refused), %llu reports skipped for slow readers, %llu Plane2 ignored\n",
                    (unsigned long long)vs.accepted, (unsigned long long)vs.drops, (unsigned long long)vs.refused,
-                   (unsigned long long)vs.commands, (unsigned long long)vs.refused_commands);
+                   (unsigned long long)vs.commands, (unsigned long long)vs.refused_commands,
+                   (unsigned long long)vs.reports_skipped, (unsigned long long)vs.plane2_ignored);
   }
   if (receiver) receiver->stop();
   publisher.stop();

@@ -18,6 +18,7 @@
 #include "device/vrpn/force_messages.hpp"
 #include "device/vrpn/tcp_connection.hpp"
 #include "device/vrpn/tracker_messages.hpp"
+#include "device/vrpn/tracker_transform_messages.hpp"
 #include "device/vrpn/udp_socket.hpp"
 
 namespace thx::srv {
@@ -35,9 +36,23 @@ struct Client {
   double rate_hz = 0.0;
   std::int64_t next_report_ns = 0;
   std::uint32_t buttons_sent = 0;
+  bool told_plane2_ignored = false;
 };
 
 std::string describe(const Error& e) { return std::string(toString(e.code)) + ": " + e.reason; }
+
+// A snapshot worth reporting: the servo had a valid reading and everything a report carries is
+// finite. Before the first valid reading the snapshot is the default (position 0, identity).
+bool reportable(const DeviceSnapshot& d) {
+  if (!d.valid) return false;
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(d.p_world[i]) || !std::isfinite(d.v_world[i]) || !std::isfinite(d.f_out[i]) ||
+        !std::isfinite(d.scp_world[i]))
+      return false;
+  for (double q : d.q_world)
+    if (!std::isfinite(q)) return false;
+  return true;
+}
 
 }  // namespace
 
@@ -49,6 +64,8 @@ struct VrpnServer::Impl {
   bool effects_touched = false;  // something was commanded since the last reset
   DeviceSnapshot snap;
   std::uint32_t snap_seq = 0;
+  bool snap_reportable = false;
+  std::uint32_t buttons = 0;  // from the newest valid snapshot
 };
 
 VrpnServer::VrpnServer(const dev::LatestSlot<DeviceSnapshot>& snapshots, ExternalEffectRenderer* effects,
@@ -119,6 +136,7 @@ void VrpnServer::run() {
                " clients (--vrpn-max-clients)");
       return;  // fd closes here
     }
+    if (options_.socket_send_buffer_bytes > 0) capSendBuffer(fd.get(), options_.socket_send_buffer_bytes);
     Client c;
     c.conn = std::make_unique<TcpConnection>(std::move(fd));
     Endpoint& ep = c.conn->endpoint();
@@ -126,9 +144,11 @@ void VrpnServer::run() {
     for (std::string_view n :
          {Ping::kTypeName, Pong::kTypeName, TextMessage::kTypeName, TrackerPosQuat::kTypeName,
           TrackerVelocity::kTypeName, TrackerUpdateRate::kTypeName, TrackerResetOrigin::kTypeName,
-          ButtonChange::kTypeName, ButtonStates::kTypeName, ForcePlane::kTypeName, ForcePlane2::kTypeName,
-          ForceField::kTypeName, ForceCustomEffect::kTypeName, ForceReport::kTypeName, ForceScp::kTypeName,
-          ForceError::kTypeName})
+          TrackerRequestToRoom::kTypeName, TrackerRequestUnitToSensor::kTypeName,
+          TrackerRequestWorkspace::kTypeName, TrackerToRoom::kTypeName, TrackerUnitToSensor::kTypeName,
+          TrackerWorkspace::kTypeName, ButtonChange::kTypeName, ButtonStates::kTypeName, ForcePlane::kTypeName,
+          ForcePlane2::kTypeName, ForceField::kTypeName, ForceCustomEffect::kTypeName, ForceReport::kTypeName,
+          ForceScp::kTypeName, ForceError::kTypeName})
       ep.addType(n);
     c.peer = std::move(peer);
     c.opened_ns = clock.nowNs();
@@ -152,7 +172,7 @@ void VrpnServer::run() {
 
   auto buttonStates = [&] {
     ButtonStates b;
-    for (int i = 0; i < options_.num_buttons; ++i) b.states.push_back((s.snap.buttons >> i) & 1u);
+    for (int i = 0; i < options_.num_buttons; ++i) b.states.push_back((s.buttons >> i) & 1u);
     return b;
   };
 
@@ -191,6 +211,23 @@ void VrpnServer::run() {
       c.next_report_ns = clock.nowNs();
     } else if (t == TrackerResetOrigin::kTypeName) {
       sendText(c, TextMessage::kWarning, "hapticd: Reset_Origin is not supported by this device; ignored");
+    } else if (t == TrackerRequestToRoom::kTypeName) {
+      // Reports are already in the device frame: the tracker-to-room transform is the identity.
+      Result<TrackerRequestToRoom> r = TrackerRequestToRoom::decode(m.payload);
+      if (!r) return ep.drop(r.error());
+      ep.sendMessage(c.sender, TrackerToRoom{});
+      bump(&VrpnServerStatus::tracker_requests);
+    } else if (t == TrackerRequestUnitToSensor::kTypeName) {
+      // One sensor, the stylus, and the reports are of that sensor itself: the identity.
+      Result<TrackerRequestUnitToSensor> r = TrackerRequestUnitToSensor::decode(m.payload);
+      if (!r) return ep.drop(r.error());
+      ep.sendMessage(c.sender, TrackerUnitToSensor{});
+      bump(&VrpnServerStatus::tracker_requests);
+    } else if (t == TrackerRequestWorkspace::kTypeName) {
+      Result<TrackerRequestWorkspace> r = TrackerRequestWorkspace::decode(m.payload);
+      if (!r) return ep.drop(r.error());
+      ep.sendMessage(c.sender, TrackerWorkspace{options_.workspace_min, options_.workspace_max});
+      bump(&VrpnServerStatus::tracker_requests);
     } else if (t == ForcePlane::kTypeName || t == ForcePlane2::kTypeName || t == ForceField::kTypeName ||
                t == ForceCustomEffect::kTypeName) {
       if (!effects_) {
@@ -205,6 +242,17 @@ void VrpnServer::run() {
       } else if (t == ForcePlane2::kTypeName) {
         Result<ForcePlane2> r = ForcePlane2::decode(m.payload);
         if (!r) return ep.drop(r.error());
+        if (!options_.render_plane2) {
+          // As a stock HDAPI PHANToM (reference §9): sample clients send placeholder Plane2
+          // values with every report, which must not add forces the app never meant.
+          bump(&VrpnServerStatus::plane2_ignored);
+          if (!c.told_plane2_ignored)
+            sendText(c, TextMessage::kWarning,
+                     "hapticd: Plane2 (surface texture, buzz, adhesion) is ignored, as by a stock HDAPI "
+                     "PHANToM; start hapticd with --vrpn-plane2 to render it");
+          c.told_plane2_ignored = true;
+          return;
+        }
         answer(c, applyPlane2(s.effects, *r, options_.limits));
       } else if (t == ForceField::kTypeName) {
         Result<ForceField> r = ForceField::decode(m.payload);
@@ -242,7 +290,7 @@ void VrpnServer::run() {
   };
 
   auto sendButtonEdges = [&](Client& c) {
-    const std::uint32_t now_buttons = s.snap.buttons;
+    const std::uint32_t now_buttons = s.buttons;
     for (int i = 0; i < options_.num_buttons && i < 32; ++i) {
       const std::uint32_t bit = 1u << i;
       if ((now_buttons ^ c.buttons_sent) & bit)
@@ -304,15 +352,19 @@ void VrpnServer::run() {
       }
     }
 
-    snapshots_.readIfNewer(s.snap, s.snap_seq);
+    if (snapshots_.readIfNewer(s.snap, s.snap_seq)) {
+      s.snap_reportable = reportable(s.snap);
+      if (s.snap_reportable) s.buttons = s.snap.buttons;  // an invalid reading's buttons mean nothing
+    }
     now = clock.nowNs();
+    std::size_t backlog = 0;
     for (Client& c : s.clients) {
       c.conn->pump();
       while (std::optional<Event> ev = c.conn->endpoint().poll()) {
         if (const auto* con = std::get_if<Connected>(&*ev)) {
           c.connected = true;
           c.next_report_ns = now;
-          c.buttons_sent = s.snap.buttons;
+          c.buttons_sent = s.buttons;
           c.conn->endpoint().sendMessage(c.sender, buttonStates());
           log("client connected: " + c.peer + (con->peer.minor_differs ? " (different VRPN minor version)" : ""));
         } else if (const auto* m = std::get_if<UserMessage>(&*ev)) {
@@ -327,17 +379,25 @@ void VrpnServer::run() {
       if (c.connected) {
         sendButtonEdges(c);
         if (now >= c.next_report_ns) {
-          sendReports(c);
+          // Nothing to report without a valid reading. A client that is behind skips reports
+          // (the next one carries the newer state anyway) rather than growing its queue to the
+          // bound and being dropped.
+          if (s.snap_reportable) {
+            if (c.conn->endpoint().pendingOutput().size() > options_.report_backlog_bytes)
+              bump(&VrpnServerStatus::reports_skipped);
+            else
+              sendReports(c);
+          }
           const std::int64_t period = std::int64_t(1e9 / c.rate_hz);
           c.next_report_ns += period;
           if (c.next_report_ns < now) c.next_report_ns = now + period;  // fell behind: no burst
         }
       }
       if (c.conn->wantsWrite()) c.conn->pump();
+      backlog = std::max(backlog, c.conn->endpoint().pendingOutput().size());
     }
 
     // Forget closed clients; the last one out resets every effect (reference §9).
-    const std::size_t before = s.clients.size();
     for (Client& c : s.clients) {
       if (c.conn->open()) continue;
       while (c.conn->endpoint().poll()) {
@@ -352,17 +412,21 @@ void VrpnServer::run() {
       }
     }
     std::erase_if(s.clients, [](const Client& c) { return !c.conn->open(); });
-    if (s.clients.size() != before) {
-      if (s.clients.empty() && s.effects_touched) {
-        resetEffects(s.effects);
-        writeEffects();
-        s.effects_touched = false;
-        bump(&VrpnServerStatus::effect_resets);
-        log("last client gone: all force effects reset");
-      }
+    // Only a handshaken client can command effects, so only those keep them alive: a socket
+    // stuck in the handshake (or a port scanner) must not hold a plane after the app left.
+    const int handshaken =
+        int(std::count_if(s.clients.begin(), s.clients.end(), [](const Client& c) { return c.connected; }));
+    if (handshaken == 0 && s.effects_touched) {
+      resetEffects(s.effects);
+      writeEffects();
+      s.effects_touched = false;
+      bump(&VrpnServerStatus::effect_resets);
+      log("last client gone: all force effects reset");
     }
     std::lock_guard lock(status_mutex_);
     status_.clients = int(s.clients.size());
+    status_.handshaken_clients = handshaken;
+    status_.max_backlog_bytes = std::max(status_.max_backlog_bytes, backlog);
   }
 
   // Shutting down: tell the servo nothing is commanded any more.

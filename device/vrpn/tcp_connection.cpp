@@ -83,6 +83,8 @@ std::string peerName(int fd) {
   return std::string(ip) + ":" + std::to_string(ntohs(addr.sin_port));
 }
 
+void capSendBuffer(int fd, int bytes) { ::setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &bytes, sizeof bytes); }
+
 Result<UniqueFd> connectTcp(std::string_view host, std::uint16_t port) {
   addrinfo hints{};
   hints.ai_family = AF_INET;

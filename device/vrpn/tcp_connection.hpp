@@ -60,6 +60,11 @@ Result<UniqueFd> connectTcp(std::string_view host, std::uint16_t port);
 std::uint16_t localPort(int fd);
 // "ip:port" of the connected peer (for log lines), or "?" when unknown.
 std::string peerName(int fd);
+// Caps the kernel's send buffer for `fd` (SO_SNDBUF; Linux doubles the value and stops
+// autotuning it). Best effort. A server streaming reports uses it so that a slow reader's
+// backlog builds up in the server's queue, where reports can be skipped, instead of in megabytes
+// of kernel buffer that it would read seconds late.
+void capSendBuffer(int fd, int bytes);
 
 class TcpConnection {
  public:

@@ -5,6 +5,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 
 #include "device/vrpn/base_messages.hpp"
 #include "device/vrpn/button_messages.hpp"
+#include "device/vrpn/report_interval.hpp"
 #include "device/vrpn/tcp_connection.hpp"
 #include "device/vrpn/tracker_messages.hpp"
 #include "device/vrpn/udp_socket.hpp"
@@ -140,6 +142,7 @@ void VrpnClientDevice::open() {
     std::lock_guard lock(status_mutex_);
     status_ = VrpnClientStatus{};
     status_.running = true;
+    status_.fresh_for_ns = std::int64_t(options_.staleness.count());
   }
   Command initial{};
   initial.plane = stopSurface(ForcePlane{});
@@ -176,7 +179,7 @@ dev::DeviceState VrpnClientDevice::read() {
   s.q_world = q_ok ? q : Eigen::Quaterniond::Identity();
   s.buttons = m.buttons;
   s.valid = m.connected && m.has_pose && q_ok && s.p_world.allFinite() && s.v_world.allFinite() &&
-            now - m.pose_ns <= std::int64_t(options_.staleness.count());
+            now - m.pose_ns <= m.fresh_for_ns;
   return s;
 }
 
@@ -219,8 +222,11 @@ void VrpnClientDevice::ioMain() {
   std::int64_t attempt_ns = 0;
   std::int64_t next_attempt_ns = 0;
 
+  const std::int64_t staleness_ns = std::int64_t(options_.staleness.count());
+  ReportInterval intervals;
   Sample sample{};
   sample.quat[3] = 1.0;
+  sample.fresh_for_ns = staleness_ns;
   auto publish = [&] { sample_slot_.write(sample); };
   publish();
 
@@ -275,6 +281,34 @@ void VrpnClientDevice::ioMain() {
     }
   };
 
+  // Status, and the one-time warning when the server reports slower than staleness allows.
+  auto noteReportRate = [&](const ReportInterval& ri) {
+    const std::int64_t median = ri.medianNs();
+    const double hz = median > 0 ? 1e9 / double(median) : 0.0;
+    // Only a full window: the first reports may still come at the old rate, before the server
+    // has handled our set_update_rate.
+    const bool slow = ri.full() && sample.fresh_for_ns > staleness_ns;
+    bool warn = false;
+    {
+      std::lock_guard lock(status_mutex_);
+      status_.observed_report_hz = hz;
+      status_.fresh_for_ns = sample.fresh_for_ns;
+      warn = slow && !status_.slow_server_warned;
+      if (warn) status_.slow_server_warned = true;
+    }
+    if (warn && options_.log_warnings) {
+      char asked[64] = "no rate was asked for";
+      if (options_.request_rate_hz > 0.0)
+        std::snprintf(asked, sizeof asked, "%g Hz was asked for with set_update_rate", options_.request_rate_hz);
+      std::fprintf(stderr,
+                   "vrpn: warning: %s sends tracker reports at %.1f Hz (%s). A pose now counts as fresh for "
+                   "%.1f ms instead of %.1f ms, so the forces are stepped at %.1f Hz. Raise the server's report "
+                   "rate (vrpn.cfg: vrpn_Phantom %s 0 %.1f ...).\n",
+                   address_text_.c_str(), hz, asked, double(sample.fresh_for_ns) / 1e6, double(staleness_ns) / 1e6,
+                   hz, address_.device.c_str(), options_.request_rate_hz > 0.0 ? options_.request_rate_hz : 1000.0);
+    }
+  };
+
   auto handleMessage = [&](const UserMessage& m) {
     if (m.sender != sender) return;
     Endpoint& ep = conn->endpoint();
@@ -287,7 +321,10 @@ void VrpnClientDevice::ioMain() {
       for (int i = 0; i < 4; ++i) sample.quat[i] = r->quat[std::size_t(i)];
       sample.pose_ns = clock.nowNs();
       sample.has_pose = true;
+      intervals.add(sample.pose_ns);
+      sample.fresh_for_ns = intervals.freshForNs(staleness_ns);
       publish();
+      noteReportRate(intervals);
       std::lock_guard lock(status_mutex_);
       ++status_.pos_reports;
     } else if (t == TrackerVelocity::kTypeName) {
@@ -364,7 +401,7 @@ void VrpnClientDevice::ioMain() {
       for (std::string_view n : {TrackerPosQuat::kTypeName, TrackerVelocity::kTypeName, ButtonChange::kTypeName,
                                  ButtonStates::kTypeName, Ping::kTypeName, Pong::kTypeName, ForcePlane::kTypeName,
                                  ForceField::kTypeName, ForceReport::kTypeName, ForceScp::kTypeName,
-                                 ForceError::kTypeName})
+                                 ForceError::kTypeName, TrackerUpdateRate::kTypeName})
         ep.addType(n);
       handshaken = false;
       attempt_ns = now;
@@ -382,13 +419,19 @@ void VrpnClientDevice::ioMain() {
         sample.connected = true;
         sample.has_pose = false;
         ++sample.connection;
+        intervals.reset();  // a new server (or a restarted one) may report at another rate
+        sample.fresh_for_ns = staleness_ns;
         publish();
         sent_plane.reset();
         sent_field = ForceField{};  // a fresh server link starts with no field
         conn->endpoint().sendMessage(sender, Ping{});
+        // A stock server keeps its vrpn.cfg rate (often 60 Hz) unless asked (reference §7, §9).
+        const bool asked = options_.request_rate_hz > 0.0 &&
+                           conn->endpoint().sendMessage(sender, TrackerUpdateRate{options_.request_rate_hz});
         std::lock_guard lock(status_mutex_);
         ++status_.connects;
         status_.connected = true;
+        if (asked) ++status_.rate_requests;
       } else if (const auto* m = std::get_if<UserMessage>(&*ev)) {
         handleMessage(*m);
       }

@@ -7,7 +7,9 @@
 // Threads:
 //  - A background I/O thread owns the TcpConnection + Endpoint. It connects, retries every
 //    reconnect_interval (2 s, reference §1/§10) after a failure or a drop, pings on each connect
-//    (so the server sends Button States, §6), and decodes `vrpn_Tracker Pos_Quat` / `Velocity`
+//    (so the server sends Button States, §6), asks for request_rate_hz reports with
+//    `vrpn_Tracker set_update_rate` on each connect (a stock vrpn_Phantom otherwise keeps its
+//    vrpn.cfg rate, often 60 Hz, §9), and decodes `vrpn_Tracker Pos_Quat` / `Velocity`
 //    (sensor 0) and `vrpn_Button Change` / `States` from our sender name into a latest-value slot.
 //    ForceDevice Force/SCP/Force_Error are counted for diagnostics. A message that fails to
 //    decode drops the link (reference §4), which then reconnects.
@@ -15,8 +17,12 @@
 //    Pacer (the servo period on the given Clock) and then returns the newest state.
 //
 // read(): valid = false while disconnected, before the first Pos_Quat of a connection, or when
-// the newest Pos_Quat is older than `staleness` (default 5 ms, measured on CLOCK_MONOTONIC at
-// arrival, whatever clock paces read()). Buttons: bit i = button i (first 32).
+// the newest Pos_Quat is older than max(`staleness`, 1.5 x the server's observed report
+// interval) (report_interval.hpp; staleness default 5 ms; measured on CLOCK_MONOTONIC at
+// arrival, whatever clock paces read()). A server that keeps reporting slower than that allows
+// (it ignored set_update_rate) stays usable, with forces stepped at its rate; the I/O thread
+// then prints one warning on stderr naming the observed rate (log_warnings). Buttons: bit i =
+// button i (first 32).
 //
 // write() stores the command in a slot; the I/O thread turns it into wire messages:
 //  - planes[0] -> `vrpn_ForceDevice Plane` (toForcePlane below); num_planes == 0 or
@@ -63,6 +69,10 @@ struct VrpnClientOptions {
   std::chrono::nanoseconds io_poll_interval{std::chrono::milliseconds(1)};  // I/O thread wake-up
   std::int32_t n_rec_cycles = 1;  // sent as is; stock vrpn_Phantom ignores it (reference §9)
   float field_radius_m = 100.0f;
+  // Report rate asked for with set_update_rate on every connect: the servo rate, so each tick
+  // sees a fresh pose. <= 0: never ask (the server's own rate).
+  double request_rate_hz = 1000.0;
+  bool log_warnings = true;  // the slow-server warning on stderr
 };
 
 struct VrpnClientStatus {
@@ -81,6 +91,10 @@ struct VrpnClientStatus {
   std::uint64_t stops_sent = 0;
   std::uint64_t fields_sent = 0;
   std::uint64_t watchdog_stops = 0;
+  std::uint64_t rate_requests = 0;    // set_update_rate messages sent
+  double observed_report_hz = 0.0;    // from the median Pos_Quat interval; 0 until measured
+  std::int64_t fresh_for_ns = 0;      // how old a pose may be and still be valid, now
+  bool slow_server_warned = false;    // the one-time warning was given
   std::string last_error;  // empty if none so far
 };
 
@@ -121,6 +135,7 @@ class VrpnClientDevice final : public dev::HapticDevice {
     std::uint32_t buttons;
     std::uint32_t connection;  // increments on every connect / drop
     std::int64_t pose_ns;      // CLOCK_MONOTONIC arrival time of the newest Pos_Quat
+    std::int64_t fresh_for_ns;  // the pose is valid until pose_ns + this
     bool connected;
     bool has_pose;  // a Pos_Quat arrived on this connection
   };

@@ -156,3 +156,59 @@ TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
   EXPECT_GE(std::stoi(m[1]), 10);
   EXPECT_EQ(std::stoi(m[2]), 0);
 }
+
+// --vrpn-plane2: without it hapticd ignores Plane2 like a stock HDAPI PHANToM (reference §9; the
+// sample clients send placeholder values with every report); with it Plane2 is a force command.
+TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
+  const ProcRun help = run("--help");
+  EXPECT_NE(help.out.find("--vrpn-plane2"), std::string::npos) << help.out;
+  for (const bool flag : {false, true}) {
+    SCOPED_TRACE(flag ? "--vrpn-plane2" : "default");
+    const std::uint16_t port = freePort();
+    ProcRun server;
+    std::thread proc([&] {
+      server = run("--scene scenes/default.yaml --device sim --duration 2 --no-lcm --no-mlock --vrpn-listen " +
+                   std::to_string(port) + (flag ? " --vrpn-plane2" : ""));
+    });
+    // Connect (retrying while hapticd starts), send 3 placeholder Plane2s, then keep reading
+    // until hapticd ends and closes the link: closing first with reports unread would reset the
+    // connection, and the server could lose the Plane2s still in its receive buffer.
+    std::unique_ptr<TcpConnection> conn;
+    bool sent = false;
+    const auto until = std::chrono::steady_clock::now() + 10s;
+    while (std::chrono::steady_clock::now() < until && !(sent && !conn->open())) {
+      if (!sent && (!conn || !conn->open())) {
+        Result<UniqueFd> fd = connectTcp("127.0.0.1", port);
+        if (!fd) {
+          std::this_thread::sleep_for(20ms);
+          continue;
+        }
+        conn = std::make_unique<TcpConnection>(std::move(fd).value());
+        conn->endpoint().addSender("Phantom0");
+      }
+      pollfd p{conn->fd(), short(POLLIN | (conn->wantsWrite() ? POLLOUT : 0)), 0};
+      ::poll(&p, 1, 5);
+      conn->pump();
+      while (std::optional<Event> ev = conn->endpoint().poll()) {
+        if (std::holds_alternative<Connected>(*ev)) {
+          const std::int32_t sender = conn->endpoint().senderId("Phantom0");
+          for (int i = 0; i < 3; ++i)
+            conn->endpoint().sendMessage(sender, ForcePlane2{0.0001f, 0.0001f, 0.0001f, 0.0001f, 0.0001f, 0.0001f});
+          sent = true;
+        }
+      }
+    }
+    proc.join();
+    ASSERT_TRUE(sent);
+    EXPECT_EQ(server.status, 0) << server.err;
+    // "..., N force commands (0 refused), M reports skipped for slow readers, K Plane2 ignored"
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(
+        server.err, m,
+        std::regex("([0-9]+) force commands \\([0-9]+ refused\\), [0-9]+ reports skipped for slow readers, "
+                   "([0-9]+) Plane2 ignored")))
+        << server.err;
+    EXPECT_EQ(std::stoi(m[1]), flag ? 3 : 0);
+    EXPECT_EQ(std::stoi(m[2]), flag ? 0 : 3);
+  }
+}

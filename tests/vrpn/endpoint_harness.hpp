@@ -8,6 +8,7 @@
 #include <tuple>
 #include <vector>
 
+#include "tests/vrpn/message_body.hpp"
 #include "device/vrpn/endpoint.hpp"
 #include "device/vrpn/system_messages.hpp"
 
@@ -37,13 +38,7 @@ inline Bytes description(std::int32_t kind, std::int32_t id, std::string_view na
 inline Bytes senderDesc(std::int32_t id, std::string_view name) { return description(kSenderDescription, id, name); }
 inline Bytes typeDesc(std::int32_t id, std::string_view name) { return description(kTypeDescription, id, name); }
 
-template <class M>
-Bytes body(const M& m) {
-  Bytes out;
-  ByteWriter w(out);
-  m.encode(w);
-  return out;
-}
+using thx::vrpn::test::body;
 
 inline std::string hexOf(std::span<const std::uint8_t> b) {
   std::string s;

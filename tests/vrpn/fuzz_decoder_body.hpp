@@ -24,6 +24,7 @@
 #include "device/vrpn/button_messages.hpp"
 #include "device/vrpn/force_messages.hpp"
 #include "device/vrpn/tracker_messages.hpp"
+#include "device/vrpn/tracker_transform_messages.hpp"
 #include "tests/vrpn/endpoint_harness.hpp"
 
 namespace thx::vrpn::fuzz {
@@ -60,6 +61,12 @@ inline constexpr TypedChecker kCheckers[] = {
     {TrackerVelocity::kTypeName, &roundTrip<TrackerVelocity>},
     {TrackerUpdateRate::kTypeName, &roundTrip<TrackerUpdateRate>},
     {TrackerResetOrigin::kTypeName, &roundTrip<TrackerResetOrigin>},
+    {TrackerToRoom::kTypeName, &roundTrip<TrackerToRoom>},
+    {TrackerUnitToSensor::kTypeName, &roundTrip<TrackerUnitToSensor>},
+    {TrackerWorkspace::kTypeName, &roundTrip<TrackerWorkspace>},
+    {TrackerRequestToRoom::kTypeName, &roundTrip<TrackerRequestToRoom>},
+    {TrackerRequestUnitToSensor::kTypeName, &roundTrip<TrackerRequestUnitToSensor>},
+    {TrackerRequestWorkspace::kTypeName, &roundTrip<TrackerRequestWorkspace>},
     {ButtonChange::kTypeName, &roundTrip<ButtonChange>},
     {ButtonStates::kTypeName, &roundTrip<ButtonStates>},
     {ForcePlane::kTypeName, &roundTrip<ForcePlane>},

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <regex>
 #include <thread>
 #include <vector>
 
@@ -29,8 +30,9 @@ namespace {
 
 constexpr auto kSafetyDeadline = std::chrono::seconds(20);
 
-// A PHANToM-like VRPN server: streams Pos_Quat + Velocity for "Phantom0" every ~1 ms while
-// streaming is on, answers pings with Pong + Button States, records Plane and Force_Field.
+// A PHANToM-like VRPN server: streams Pos_Quat + Velocity for "Phantom0" every ~1 ms (or the
+// set report period) while streaming is on, answers pings with Pong + Button States, records
+// Plane, Force_Field and set_update_rate (which it does not obey: a server stuck at its rate).
 class FakeServer {
  public:
   explicit FakeServer(std::uint16_t port = 0) { start(port); }
@@ -60,6 +62,11 @@ class FakeServer {
     vel_ = v;
   }
   void setStreaming(bool on) { streaming_ = on; }
+  void setReportPeriod(std::chrono::nanoseconds p) { report_period_ns_ = p.count(); }
+  std::vector<double> rateRequests() {
+    std::lock_guard lock(mutex_);
+    return rate_requests_;
+  }
   void sendButtonChange(std::int32_t button, std::int32_t state) {
     std::lock_guard lock(mutex_);
     actions_.push_back(ButtonChange{button, state});
@@ -99,7 +106,8 @@ class FakeServer {
         Served s;
         s.conn = std::make_unique<TcpConnection>(std::move(a).value());
         s.sender = s.conn->endpoint().addSender("Phantom0");
-        for (auto n : {Ping::kTypeName, ForcePlane::kTypeName, ForceField::kTypeName}) s.conn->endpoint().addType(n);
+        for (auto n : {Ping::kTypeName, ForcePlane::kTypeName, ForceField::kTypeName, TrackerUpdateRate::kTypeName})
+          s.conn->endpoint().addType(n);
         conns_.push_back(std::move(s));
         ++accepted_;
       }
@@ -114,7 +122,7 @@ class FakeServer {
         vel = vel_;
       }
       const auto now = std::chrono::steady_clock::now();
-      const bool report = streaming_ && now - last_report >= 1ms;
+      const bool report = streaming_ && now - last_report >= std::chrono::nanoseconds(report_period_ns_.load());
       if (report) last_report = now;
       for (Served& s : conns_) {
         // Drain events even after a close: the last pump may have read messages and then EOF.
@@ -136,6 +144,12 @@ class FakeServer {
               EXPECT_TRUE(p);
               std::lock_guard lock(mutex_);
               if (p) planes_.push_back(*p);
+            } else if (m->type_name == TrackerUpdateRate::kTypeName) {
+              Result<TrackerUpdateRate> r = TrackerUpdateRate::decode(m->payload);
+              EXPECT_TRUE(r);
+              EXPECT_EQ(m->sender_name, "Phantom0");
+              std::lock_guard lock(mutex_);
+              if (r) rate_requests_.push_back(r->hz);
             } else if (m->type_name == ForceField::kTypeName) {
               Result<ForceField> f = ForceField::decode(m->payload);
               EXPECT_TRUE(f);
@@ -162,6 +176,7 @@ class FakeServer {
   std::atomic<bool> streaming_{true};
   std::atomic<int> pings_{0};
   std::atomic<int> accepted_{0};
+  std::atomic<std::int64_t> report_period_ns_{1'000'000};
   std::vector<Served> conns_;  // server thread only (and stop() after the join)
   std::mutex mutex_;
   TrackerPosQuat pose_;
@@ -169,6 +184,7 @@ class FakeServer {
   std::deque<ButtonChange> actions_;
   std::vector<ForcePlane> planes_;
   std::vector<ForceField> fields_;
+  std::vector<double> rate_requests_;
   std::string last_error_;
 };
 
@@ -228,6 +244,7 @@ TEST(VrpnClientDevice, RefusesBadAddresses) {
   EXPECT_EQ(log_file.outputMode(), dev::OutputMode::Planes);
   EXPECT_EQ(VrpnClientOptions{}.staleness, 5ms);
   EXPECT_EQ(VrpnClientOptions{}.reconnect_interval, 2s);
+  EXPECT_EQ(VrpnClientOptions{}.request_rate_hz, 1000.0);
 }
 
 TEST(VrpnClientDevice, PlaneMappingFollowsThePhantomConventions) {
@@ -463,4 +480,92 @@ TEST(VrpnClientDevice, ReadIsInvalidBeforeAnyConnection) {
   for (int i = 0; i < 20; ++i) EXPECT_FALSE(d.read().valid);
   ASSERT_TRUE(waitFor([&] { return !d.status().last_error.empty(); }));
   EXPECT_FALSE(d.status().connected);
+}
+
+TEST(VrpnClientDevice, AsksTheServerForItsRateOnEveryConnect) {
+  auto server = std::make_unique<FakeServer>();
+  const std::uint16_t port = server->port();
+  VrpnClientDevice d(addressFor(port), dev::phantomDesktopSpec(), testOptions());
+  d.open();
+  // set_update_rate, 8-byte f64, from our sender "Phantom0": the default is the 1 kHz servo rate.
+  ASSERT_TRUE(waitFor([&] { return !server->rateRequests().empty(); }));
+  EXPECT_EQ(server->rateRequests(), std::vector<double>{1000.0});
+  EXPECT_EQ(d.status().rate_requests, 1u);
+
+  // After a reconnect the new link (perhaps a restarted server) is asked again.
+  server->stop();
+  ASSERT_TRUE(waitFor([&] { return !d.status().connected; }));
+  server->start(port);
+  ASSERT_TRUE(waitFor([&] { return server->rateRequests().size() == 2u; }));
+  EXPECT_EQ(server->rateRequests().back(), 1000.0);
+  EXPECT_EQ(d.status().connects, 2u);
+  EXPECT_EQ(d.status().rate_requests, 2u);
+  d.close();
+
+  // The rate is an option (hapticd passes its servo rate); <= 0 asks for nothing.
+  FakeServer other;
+  VrpnClientOptions o = testOptions();
+  o.request_rate_hz = 500.0;
+  VrpnClientDevice d500(addressFor(other.port()), dev::phantomDesktopSpec(), o);
+  d500.open();
+  ASSERT_TRUE(waitFor([&] { return !other.rateRequests().empty(); }));
+  EXPECT_EQ(other.rateRequests(), std::vector<double>{500.0});
+  d500.close();
+
+  FakeServer quiet;
+  o.request_rate_hz = 0.0;
+  VrpnClientDevice d0(addressFor(quiet.port()), dev::phantomDesktopSpec(), o);
+  d0.open();
+  ASSERT_TRUE(readUntil(d0, [](const dev::DeviceState& x) { return x.valid; }));
+  // The surface sent on connect follows where the request would be: once it arrived, nothing did.
+  ASSERT_TRUE(waitFor([&] { return !quiet.planes().empty(); }));
+  EXPECT_TRUE(quiet.rateRequests().empty());
+  EXPECT_EQ(d0.status().rate_requests, 0u);
+}
+
+// A stock vrpn_Phantom configured at 60 Hz that ignores set_update_rate: with a fixed 5 ms
+// staleness ~70 % of reads would be invalid and the safety stage would turn the force off.
+TEST(VrpnClientDevice, AServerReportingSlowerThanAskedStaysValidWithOneWarning) {
+  FakeServer server;
+  server.setReportPeriod(std::chrono::microseconds(16'667));  // 60 Hz
+  VrpnClientOptions o = testOptions();
+  o.staleness = 5ms;  // the default: the point of this test
+  VrpnClientDevice d(addressFor(server.port()), dev::phantomDesktopSpec(), o);
+  testing::internal::CaptureStderr();
+  d.open();
+  // The estimate needs a full window of intervals (15 at 60 Hz: a quarter of a second).
+  const bool warned = waitFor([&] { return d.status().slow_server_warned; });
+  int valid = 0;
+  const int reads = 1000;  // one second of 1 kHz reads
+  for (int i = 0; i < reads; ++i)
+    if (d.read().valid) ++valid;
+  const VrpnClientStatus st = d.status();
+  d.close();
+  const std::string err = testing::internal::GetCapturedStderr();
+  ASSERT_TRUE(warned) << err;
+  EXPECT_GE(valid, reads * 9 / 10) << "observed " << st.observed_report_hz << " Hz, fresh for " << st.fresh_for_ns;
+  EXPECT_GT(st.observed_report_hz, 45.0);
+  EXPECT_LT(st.observed_report_hz, 65.0);
+  EXPECT_GE(st.fresh_for_ns, 20'000'000);  // 1.5 x ~17 ms
+  // One clear warning naming the observed rate and the stepped forces, and only one.
+  const std::string tag = "vrpn: warning:";
+  const std::size_t first = err.find(tag);
+  ASSERT_NE(first, std::string::npos) << err;
+  EXPECT_EQ(err.find(tag, first + 1), std::string::npos) << err;
+  EXPECT_NE(err.find("1000 Hz was asked for"), std::string::npos) << err;
+  EXPECT_NE(err.find("stepped"), std::string::npos) << err;
+  EXPECT_TRUE(std::regex_search(err, std::regex("reports at (4[5-9]|5[0-9]|6[0-4])\\.[0-9] Hz"))) << err;
+}
+
+TEST(VrpnClientDevice, AServerAtTheAskedRateGivesNoWarning) {
+  FakeServer server;  // ~1 kHz
+  VrpnClientOptions o = testOptions();
+  o.staleness = 20ms;  // above 1.5 x 1 ms even on a loaded machine
+  VrpnClientDevice d(addressFor(server.port()), dev::phantomDesktopSpec(), o);
+  d.open();
+  ASSERT_TRUE(waitFor([&] { return d.status().pos_reports > 200u; }));
+  const VrpnClientStatus st = d.status();
+  EXPECT_FALSE(st.slow_server_warned);
+  EXPECT_EQ(st.fresh_for_ns, 20'000'000);
+  EXPECT_GT(st.observed_report_hz, 100.0);
 }

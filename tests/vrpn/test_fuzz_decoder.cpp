@@ -42,6 +42,12 @@ Bytes everyMessageType() {
   e.sendMessage(trk, TrackerVelocity{});
   e.sendMessage(dev, TrackerUpdateRate{1000.0});
   e.sendMessage(dev, TrackerResetOrigin{});
+  e.sendMessage(dev, TrackerRequestToRoom{});
+  e.sendMessage(dev, TrackerRequestUnitToSensor{});
+  e.sendMessage(dev, TrackerRequestWorkspace{});
+  e.sendMessage(trk, TrackerToRoom{});
+  e.sendMessage(trk, TrackerUnitToSensor{});
+  e.sendMessage(trk, TrackerWorkspace{{-0.1, -0.1, -0.1}, {0.1, 0.1, 0.1}});
   e.sendMessage(dev, ButtonChange{0, 1});
   e.sendMessage(dev, ButtonStates{{1, 0}});
   e.sendMessage(dev, ForcePlane{});
@@ -164,7 +170,7 @@ TEST(FuzzDecoder, EveryMessageTypeSeedIsDeliveredWhole) {
   const Bytes s = everyMessageType();
   const fuzz::Run run = fuzz::runEndpoint(std::span(s).subspan(1), 0);
   ASSERT_FALSE(run.failure);
-  ASSERT_EQ(run.events.size(), 1u + 16u + 1u);  // connected, 16 messages, the end of input
+  ASSERT_EQ(run.events.size(), 1u + 22u + 1u);  // connected, 22 messages, the end of input
   EXPECT_EQ(run.events.back(), "dropped peer closed");
 }
 

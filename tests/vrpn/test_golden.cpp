@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "tests/vrpn/message_body.hpp"
 #include "device/vrpn/base_messages.hpp"
 #include "device/vrpn/button_messages.hpp"
 #include "device/vrpn/cookie.hpp"
@@ -46,13 +47,7 @@ Bytes frame(const Header& h, const Bytes& payload) {
   return out;
 }
 
-template <class M>
-Bytes body(const M& m) {
-  Bytes out;
-  ByteWriter w(out);
-  m.encode(w);
-  return out;
-}
+using thx::vrpn::test::body;
 
 Header header(std::uint32_t sec, std::uint32_t usec, std::int32_t sender, std::int32_t type, std::uint32_t seq,
               std::uint32_t payload_length) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "tests/vrpn/message_body.hpp"
 #include "device/vrpn/base_messages.hpp"
 #include "device/vrpn/button_messages.hpp"
 #include "device/vrpn/force_messages.hpp"
@@ -19,17 +20,11 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-template <class M>
-Bytes encoded(const M& m) {
-  Bytes out;
-  ByteWriter w(out);
-  m.encode(w);
-  return out;
-}
+using thx::vrpn::test::body;
 
 template <class M>
 void expectRoundTrip(const M& m, std::size_t size) {
-  const Bytes b = encoded(m);
+  const Bytes b = body(m);
   EXPECT_EQ(b.size(), size) << M::kTypeName;
   Result<M> back = M::decode(b);
   ASSERT_TRUE(back) << back.error().reason;
@@ -75,7 +70,7 @@ TEST(TrackerMessages, PosQuatRepeatsSensorInPadAndIgnoresItOnInput) {
   m.sensor = 3;
   m.pos = {0.1, -0.2, 0.3};
   m.quat = {0.0, 0.0, std::sqrt(0.5), std::sqrt(0.5)};
-  Bytes b = encoded(m);
+  Bytes b = body(m);
   EXPECT_EQ(Bytes(b.begin(), b.begin() + 8), hex("00 00 00 03 00 00 00 03"));
   expectRoundTrip(m, 64);
   b[7] = 99;  // pad word
@@ -85,10 +80,10 @@ TEST(TrackerMessages, PosQuatRepeatsSensorInPadAndIgnoresItOnInput) {
 TEST(TrackerMessages, NegativeSensorIsRejected) {
   TrackerPosQuat p;
   p.sensor = -1;
-  EXPECT_EQ(TrackerPosQuat::decode(encoded(p)).error().code, ErrorCode::kBadValue);
+  EXPECT_EQ(TrackerPosQuat::decode(body(p)).error().code, ErrorCode::kBadValue);
   TrackerVelocity v;
   v.sensor = -5;
-  EXPECT_EQ(TrackerVelocity::decode(encoded(v)).error().code, ErrorCode::kBadValue);
+  EXPECT_EQ(TrackerVelocity::decode(body(v)).error().code, ErrorCode::kBadValue);
 }
 
 TEST(TrackerMessages, VelocityLayout) {
@@ -97,7 +92,7 @@ TEST(TrackerMessages, VelocityLayout) {
   m.vel = {1.0, 2.0, 3.0};
   m.vel_quat = {0.0, 0.0, 0.0, 1.0};
   m.vel_quat_dt = 0.5;
-  const Bytes b = encoded(m);
+  const Bytes b = body(m);
   ASSERT_EQ(b.size(), 72u);
   EXPECT_EQ(Bytes(b.begin() + 8, b.begin() + 16), hex("3f f0 00 00 00 00 00 00"));   // vel x = 1
   EXPECT_EQ(Bytes(b.begin() + 56, b.begin() + 64), hex("3f f0 00 00 00 00 00 00"));  // quat w = 1
@@ -111,11 +106,11 @@ TEST(TrackerMessages, ExactSizes) {
   expectOnlySize<TrackerUpdateRate>(8);
   expectOnlySize<TrackerResetOrigin>(0);
   expectRoundTrip(TrackerUpdateRate{1000.0}, 8);
-  EXPECT_EQ(encoded(TrackerUpdateRate{1000.0}), hex("40 8f 40 00 00 00 00 00"));
+  EXPECT_EQ(body(TrackerUpdateRate{1000.0}), hex("40 8f 40 00 00 00 00 00"));
 }
 
 TEST(ButtonMessages, ChangeLayoutAndSize) {
-  EXPECT_EQ(encoded(ButtonChange{1, 1}), hex("00 00 00 01 00 00 00 01"));
+  EXPECT_EQ(body(ButtonChange{1, 1}), hex("00 00 00 01 00 00 00 01"));
   expectRoundTrip(ButtonChange{0, 1}, 8);
   expectOnlySize<ButtonChange>(8);
 }
@@ -140,7 +135,7 @@ TEST(ButtonMessages, AtMost256Buttons) {
   EXPECT_EQ(ButtonStates::decode(hex("7f ff ff ff")).error().code, ErrorCode::kBadValue);
   // encode() never sends more than the limit.
   many.states.assign(kMaxButtons + 10, 0);
-  EXPECT_EQ(encoded(many).size(), 4 + 4 * kMaxButtons);
+  EXPECT_EQ(body(many).size(), 4 + 4 * kMaxButtons);
 }
 
 TEST(ForceMessages, PlaneDefaultsAndStopSurface) {
@@ -164,7 +159,7 @@ TEST(ForceMessages, PlaneDefaultsAndStopSurface) {
 
 TEST(ForceMessages, Plane2Layout) {
   ForcePlane2 m{1.0f, 2.0f, 0.0f, 0.0f, 0.0f, 0.5f};
-  EXPECT_EQ(encoded(m), hex("3f 80 00 00 40 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 3f 00 00 00"));
+  EXPECT_EQ(body(m), hex("3f 80 00 00 40 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 3f 00 00 00"));
   expectRoundTrip(m, 24);
   expectOnlySize<ForcePlane2>(24);
 }
@@ -175,7 +170,7 @@ TEST(ForceMessages, ForceFieldLayoutIsRowMajor) {
   f.force = {0.0f, 2.0f, 0.0f};
   f.jacobian = {{{-1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, 0.0f}}};
   f.radius = 100.0f;
-  const Bytes b = encoded(f);
+  const Bytes b = body(f);
   ASSERT_EQ(b.size(), 64u);
   EXPECT_EQ(Bytes(b.begin(), b.begin() + 4), hex("3f 80 00 00"));        // origin x
   EXPECT_EQ(Bytes(b.begin() + 16, b.begin() + 20), hex("40 00 00 00"));  // force y
@@ -188,10 +183,10 @@ TEST(ForceMessages, ForceFieldLayoutIsRowMajor) {
 
 TEST(ForceMessages, CustomEffect) {
   ForceCustomEffect buzz{0, {0.5f, 100.0f, 0.25f}};
-  EXPECT_EQ(encoded(buzz), hex("00 00 00 00 00 00 00 03 3f 00 00 00 42 c8 00 00 3e 80 00 00"));
+  EXPECT_EQ(body(buzz), hex("00 00 00 00 00 00 00 03 3f 00 00 00 42 c8 00 00 3e 80 00 00"));
   expectRoundTrip(buzz, 20);
   const ForceCustomEffect stop{ForceCustomEffect::kStopEffect, {}};
-  EXPECT_EQ(encoded(stop), hex("ff ff ff ff 00 00 00 00"));
+  EXPECT_EQ(body(stop), hex("ff ff ff ff 00 00 00 00"));
   expectRoundTrip(stop, 8);
 }
 
@@ -221,12 +216,12 @@ TEST(ForceMessages, NonFiniteValuesPassThroughBitExact) {
   // The codec does not judge values; the renderer must (a NaN plane must not reach a motor).
   ForcePlane p;
   p.plane = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 0.0f, -0.0f};
-  const Bytes b = encoded(p);
+  const Bytes b = body(p);
   Result<ForcePlane> back = ForcePlane::decode(b);
   ASSERT_TRUE(back);
   EXPECT_TRUE(std::isnan(back->plane[0]));
   EXPECT_TRUE(std::isinf(back->plane[1]));
-  EXPECT_EQ(encoded(*back), b);
+  EXPECT_EQ(body(*back), b);
 }
 
 TEST(BaseMessages, PingPongAreEmpty) {
@@ -236,7 +231,7 @@ TEST(BaseMessages, PingPongAreEmpty) {
 
 TEST(BaseMessages, TextIsSentAsTheFullBuffer) {
   const TextMessage t{TextMessage::kWarning, 3, "plane ignored"};
-  const Bytes b = encoded(t);
+  const Bytes b = body(t);
   ASSERT_EQ(b.size(), 8u + 1024u);
   EXPECT_EQ(Bytes(b.begin(), b.begin() + 8), hex("00 00 00 01 00 00 00 03"));
   EXPECT_EQ(std::string(b.begin() + 8, b.begin() + 21), "plane ignored");
@@ -246,7 +241,7 @@ TEST(BaseMessages, TextIsSentAsTheFullBuffer) {
 
 TEST(BaseMessages, TextIsCutToTheBuffer) {
   const TextMessage t{TextMessage::kError, 0, std::string(2000, 'x')};
-  Result<TextMessage> back = TextMessage::decode(encoded(t));
+  Result<TextMessage> back = TextMessage::decode(body(t));
   ASSERT_TRUE(back);
   EXPECT_EQ(back->text.size(), 1023u);
 }

@@ -1,0 +1,262 @@
+#pragma once
+// The VRPN server test rig shared by test_server_loopback.cpp and test_server_interop.cpp:
+// hapticd's VRPN server (server/vrpn_server.hpp) on 127.0.0.1 with the real servo pipeline
+// behind it, a pen held by the test (HeldPen, paced at 1 ms on the monotonic clock, far above
+// the texture, so every force it feels comes from VRPN effects), and a raw protocol client whose
+// every byte the test controls (RawClient). Header-only, for tests only.
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <sys/socket.h>
+
+#include <atomic>
+#include <chrono>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "device/clock.hpp"
+#include "device/device_specs.hpp"
+#include "device/pacer.hpp"
+#include "device/vrpn/base_messages.hpp"
+#include "device/vrpn/button_messages.hpp"
+#include "device/vrpn/force_messages.hpp"
+#include "device/vrpn/tcp_connection.hpp"
+#include "device/vrpn/tracker_messages.hpp"
+#include "device/vrpn/tracker_transform_messages.hpp"
+#include "device/vrpn/udp_socket.hpp"
+#include "device/vrpn/vrpn_client_device.hpp"
+#include "server/vrpn_server.hpp"
+#include "tests/vrpn/transcripts.hpp"
+#include "textures/generators.hpp"
+
+namespace thx::vrpn::test {
+
+using namespace std::chrono_literals;
+
+inline constexpr auto kDeadline = std::chrono::seconds(20);
+
+template <class Pred>
+bool eventually(Pred pred, std::chrono::milliseconds step = 5ms) {
+  const auto until = std::chrono::steady_clock::now() + kDeadline;
+  while (std::chrono::steady_clock::now() < until) {
+    if (pred()) return true;
+    std::this_thread::sleep_for(step);
+  }
+  return pred();
+}
+
+// A pen the test holds at a settable position; keeps what the servo last wrote.
+class HeldPen final : public dev::HapticDevice {
+ public:
+  HeldPen() : spec_(dev::phantomDesktopSpec()), pacer_(clock_, 1'000'000) {}
+  const dev::DeviceSpec& spec() const override { return spec_; }
+  dev::OutputMode outputMode() const override { return dev::OutputMode::Force; }
+  void open() override { pacer_.start(); }
+  void close() override {}
+  dev::DeviceState read() override {
+    dev::DeviceState s;
+    s.timing = pacer_.wait();
+    std::lock_guard lock(mutex_);
+    s.p_world = pos_;
+    s.buttons = buttons_;
+    s.valid = valid_;
+    return s;
+  }
+  void write(const dev::DeviceCommand& c) override {
+    std::lock_guard lock(mutex_);
+    force_ = c.forces_enabled ? c.force_world_n : Eigen::Vector3d::Zero();
+  }
+  void hold(const Eigen::Vector3d& p) {
+    std::lock_guard lock(mutex_);
+    pos_ = p;
+  }
+  void setButtons(std::uint32_t b) {
+    std::lock_guard lock(mutex_);
+    buttons_ = b;
+  }
+  // An invalid reading, like a VRPN device before its first pose or a glitching encoder.
+  void setValid(bool v) {
+    std::lock_guard lock(mutex_);
+    valid_ = v;
+  }
+  Eigen::Vector3d force() {
+    std::lock_guard lock(mutex_);
+    return force_;
+  }
+
+ private:
+  dev::DeviceSpec spec_;
+  dev::MonotonicClock clock_;
+  dev::Pacer pacer_;
+  std::mutex mutex_;
+  Eigen::Vector3d pos_{0.0, 0.0, 0.05};  // 5 cm above the textured plane z = 0
+  Eigen::Vector3d force_ = Eigen::Vector3d::Zero();
+  std::uint32_t buttons_ = 0;
+  bool valid_ = true;
+};
+
+// The servo pipeline as hapticd wires it, ticking on its own thread, with a VRPN server.
+struct ServedRig {
+  explicit ServedRig(srv::VrpnServerOptions options = {}, std::uint16_t port = 0, bool pen_valid = true) {
+    pen.setValid(pen_valid);
+    tex::GenerateRequest g;
+    g.kind = "sine";
+    g.size = 64;
+    map = std::make_unique<tex::TextureMap>(tex::generate(g));
+    tex::PlaneMapping m;
+    m.size_m = {0.1, 0.1};
+    surface = std::make_unique<tex::TexturedSurface>(*map, m, tex::SampleOptions{}, false);
+    srv::RendererConfig rc;
+    rc.stiffness_n_per_m = 500.0;
+    renderer = std::make_unique<srv::ProxyRenderer>(*surface, rc);
+    passivity = std::make_unique<srv::PassivityController>(srv::PassivityConfig::fromSpec(pen.spec(), 1e-3, 500.0));
+    safety = std::make_unique<srv::SafetyStage>(srv::SafetyConfig::fromSpec(pen.spec(), 1e-3));
+    servo = std::make_unique<srv::Servo>(pen, *renderer, *passivity, *safety, recorder, ring, srv::ServoConfig{});
+    servo->attachExternalEffects(&effects);
+    options.port = port;
+    options.log = false;
+    options.limits.max_stiffness_n_per_m = pen.spec().max_stiffness_n_per_m;
+    options.limits.peak_force_n = pen.spec().peak_force_n;
+    server = std::make_unique<srv::VrpnServer>(servo->publishSnapshots(), &effects, options);
+    server->start();
+    pen.open();
+    thread = std::thread([this] {
+      srv::TickRecord r;
+      while (!stop.load()) {
+        const srv::TickRecord& t = servo->tick();
+        max_missed = std::max<std::int64_t>(max_missed, t.missed);
+        ticks.store(t.tick);
+        while (ring.pop(r)) {
+        }
+      }
+    });
+  }
+  ~ServedRig() {
+    stop.store(true);
+    thread.join();
+    server->stop();
+  }
+  std::uint16_t port() const { return server->port(); }
+  std::string tcpAddress() const { return "Phantom0@tcp://127.0.0.1:" + std::to_string(port()); }
+  std::string lobAddress() const { return "Phantom0@127.0.0.1:" + std::to_string(port()); }
+
+  HeldPen pen;
+  std::unique_ptr<tex::TextureMap> map;
+  std::unique_ptr<tex::TexturedSurface> surface;
+  std::unique_ptr<srv::ProxyRenderer> renderer;
+  std::unique_ptr<srv::PassivityController> passivity;
+  std::unique_ptr<srv::SafetyStage> safety;
+  srv::FlightRecorder recorder{1000};
+  srv::SpscRing<srv::TickRecord> ring{4096};
+  std::unique_ptr<srv::Servo> servo;
+  srv::ExternalEffectRenderer effects{1e-3};
+  std::unique_ptr<srv::VrpnServer> server;
+  std::atomic<bool> stop{false};
+  std::atomic<std::int64_t> ticks{0};
+  std::int64_t max_missed = 0;  // written by the servo thread, read after join
+  std::thread thread;
+};
+
+inline vrpn::VrpnClientOptions fastClient() {
+  vrpn::VrpnClientOptions o;
+  o.reconnect_interval = 100ms;
+  o.staleness = 200ms;  // sanitizer builds on a busy VM: we test the data, not the latency
+  o.command_timeout = 0ns;
+  return o;
+}
+
+// A raw protocol client: the test controls every byte and reads what the server sends.
+struct RawClient {
+  explicit RawClient(std::uint16_t port) {
+    Result<UniqueFd> fd = connectTcp("127.0.0.1", port);
+    EXPECT_TRUE(fd) << fd.error().reason;
+    conn = std::make_unique<TcpConnection>(std::move(fd).value());
+    sender = conn->endpoint().addSender("Phantom0");
+    // Registered before the handshake, so the server's messages of these types are delivered.
+    for (std::string_view t : {Ping::kTypeName, Pong::kTypeName, TrackerPosQuat::kTypeName, ButtonStates::kTypeName,
+                               ButtonChange::kTypeName, ForceError::kTypeName, TextMessage::kTypeName,
+                               ForceReport::kTypeName, TrackerVelocity::kTypeName, ForceScp::kTypeName,
+                               TrackerToRoom::kTypeName, TrackerUnitToSensor::kTypeName, TrackerWorkspace::kTypeName})
+      conn->endpoint().addType(t);
+  }
+  // Pumps for `d`, collecting messages by type name.
+  void pumpFor(std::chrono::milliseconds d) {
+    const auto until = std::chrono::steady_clock::now() + d;
+    do {  // at least one round, so pumpFor(0ms) still writes and reads
+      if (!conn->open()) break;
+      pollfd p{conn->fd(), short(POLLIN | (conn->wantsWrite() ? POLLOUT : 0)), 0};
+      ::poll(&p, 1, d.count() > 0 ? 2 : 0);
+      conn->pump();
+      drain();
+    } while (std::chrono::steady_clock::now() < until);
+    drain();
+  }
+  void drain() {
+    while (std::optional<Event> ev = conn->endpoint().poll()) {
+      if (std::holds_alternative<Connected>(*ev)) connected = true;
+      if (const auto* m = std::get_if<UserMessage>(&*ev)) {
+        const std::string type(m->type_name);
+        ++counts[type];
+        last_payload[type].assign(m->payload.begin(), m->payload.end());
+        if (m->type_name == TrackerPosQuat::kTypeName) {
+          ++pos_quats;
+          if (auto r = TrackerPosQuat::decode(m->payload)) last_pos = *r;
+        } else if (m->type_name == ButtonStates::kTypeName) {
+          ++button_states;
+        } else if (m->type_name == ButtonChange::kTypeName) {
+          if (auto r = ButtonChange::decode(m->payload)) changes.push_back(*r);
+        } else if (m->type_name == ForceError::kTypeName) {
+          if (auto r = ForceError::decode(m->payload)) force_errors.push_back(r->code);
+        } else if (m->type_name == TextMessage::kTypeName) {
+          if (auto r = TextMessage::decode(m->payload)) texts.push_back(r->text);
+        } else if (m->type_name == Pong::kTypeName) {
+          ++pongs;
+        } else if (m->type_name == ForceReport::kTypeName) {
+          if (auto r = ForceReport::decode(m->payload)) last_force = *r;
+        }
+      }
+    }
+  }
+  bool waitConnected() {
+    for (int i = 0; i < 2000 && !connected && conn->open(); ++i) pumpFor(5ms);
+    return connected;
+  }
+  template <class M>
+  void send(const M& m) {
+    conn->endpoint().sendMessage(sender, m);
+  }
+
+  std::unique_ptr<TcpConnection> conn;
+  std::int32_t sender;
+  bool connected = false;
+  int pos_quats = 0, button_states = 0, pongs = 0;
+  TrackerPosQuat last_pos;
+  ForceReport last_force;
+  std::vector<ButtonChange> changes;
+  std::vector<std::int32_t> force_errors;
+  std::vector<std::string> texts;
+  std::map<std::string, int> counts;  // every message, by type name
+  std::map<std::string, std::vector<std::uint8_t>> last_payload;
+};
+
+// Handshake done and pinged (like a stock Remote's first mainloop).
+inline void registered(RawClient& c) {
+  if (c.waitConnected()) c.send(Ping{});
+}
+
+inline ForcePlane ceilingAbove(const Eigen::Vector3d& pen, double depth_m, float kspring) {
+  // A floor plane 'depth' above the pen: the pen is that deep inside it, pushed up.
+  ForcePlane p;
+  p.plane = {0.0f, 0.0f, 1.0f, float(-(pen.z() + depth_m))};
+  p.kspring = kspring;
+  p.kdamp = 0.0f;
+  p.fstat = 0.0f;
+  p.fdyn = 0.0f;
+  p.n_rec_cycles = 1;
+  return p;
+}
+
+}  // namespace thx::vrpn::test
