@@ -12,7 +12,9 @@ Driver::Driver(PhysicsScene& scene, EventSink& sink, const DriverOptions& option
   for (const BodyState& b : scene_.bodies()) {
     ObjectSummary o;
     o.name = scene_.scene().objects[std::size_t(b.id)].name;
+    o.fixed = scene_.scene().objects[std::size_t(b.id)].fixed;
     o.start_world = o.end_world = b.p_world;
+    o.end_local = scene_.surface().toLocal(b.p_world);
     summary_.objects.push_back(o);
   }
 }
@@ -50,6 +52,8 @@ void Driver::step(const std::optional<Eigen::Vector3d>& tip_world, std::int64_t 
   for (std::size_t i = 0; i < summary_.objects.size(); ++i) {
     const BodyState b = scene_.body(int(i));
     summary_.objects[i].end_world = b.p_world;
+    summary_.objects[i].end_local = scene_.surface().toLocal(b.p_world);
+    summary_.objects[i].end_speed_m_per_s = b.v_world.norm();
     summary_.objects[i].max_speed_m_per_s = std::max(summary_.objects[i].max_speed_m_per_s, b.v_world.norm());
   }
 
@@ -68,11 +72,24 @@ void Driver::step(const std::optional<Eigen::Vector3d>& tip_world, std::int64_t 
 void Driver::flush() {
   const double t = scene_.simTime();
   std::vector<LastingContact> c = scene_.takeContacts();
+  for (const LastingContact& lc : c) {
+    if (lc.body_a < 0 || lc.body_b < 0) continue;  // the plane or the pen
+    noteTouch(lc.body_a, lc.body_b, t);
+    noteTouch(lc.body_b, lc.body_a, t);
+  }
   if (!c.empty()) {
     sink_.contacts(scene_, c, t - last_contact_t_);
     ++summary_.contact_reports;
   }
   last_contact_t_ = t;
+}
+
+void Driver::noteTouch(int id, int other, double t) {
+  std::vector<Touch>& touched = summary_.objects.at(std::size_t(id)).touched;
+  const std::string& name = summary_.objects.at(std::size_t(other)).name;
+  for (const Touch& k : touched)
+    if (k.name == name) return;
+  touched.push_back({name, t});
 }
 
 namespace {
@@ -109,8 +126,13 @@ void writeSummaryJson(const std::string& path, const std::string& scene_file, co
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const ObjectSummary& o = s.objects[i];
     out << (i ? ",\n" : "\n") << "    {\"name\": " << quoted(o.name) << ", \"start_world\": " << vec(o.start_world)
-        << ", \"end_world\": " << vec(o.end_world) << ", \"displacement_m\": " << (o.end_world - o.start_world).norm()
-        << ", \"max_speed_m_per_s\": " << o.max_speed_m_per_s << "}";
+        << ", \"end_world\": " << vec(o.end_world) << ", \"end_surface_local\": " << vec(o.end_local)
+        << ", \"displacement_m\": " << (o.end_world - o.start_world).norm()
+        << ", \"max_speed_m_per_s\": " << o.max_speed_m_per_s << ", \"end_speed_m_per_s\": " << o.end_speed_m_per_s
+        << ", \"touched\": [";
+    for (std::size_t k = 0; k < o.touched.size(); ++k)
+      out << (k ? ", " : "") << "{\"name\": " << quoted(o.touched[k].name) << ", \"first_s\": " << o.touched[k].first_s << "}";
+    out << "]}";
   }
   out << "\n  ]\n}\n";
   if (!out) throw std::runtime_error(path + ": write failed");
@@ -124,10 +146,20 @@ void printSummary(std::FILE* out, const RunSummary& s) {
   std::fprintf(out, "  events: %lld impacts (%lld with the pen), %lld contact reports, %lld pose reports\n",
                (long long)s.impacts, (long long)s.pen_impacts, (long long)s.contact_reports, (long long)s.pose_reports);
   for (const ObjectSummary& o : s.objects) {
+    if (o.fixed) {  // obstacles never move: only what touched them
+      if (o.touched.empty()) continue;
+      std::fprintf(out, "  %-12s (fixed) touched by", o.name.c_str());
+      for (const Touch& k : o.touched) std::fprintf(out, " %s (%.3f s)", k.name.c_str(), k.first_s);
+      std::fputc('\n', out);
+      continue;
+    }
     const Eigen::Vector3d d = o.end_world - o.start_world;
-    std::fprintf(out, "  %-12s moved %.1f mm (%+.1f, %+.1f, %+.1f) mm to (%+.4f, %+.4f, %+.4f) m, max speed %.3f m/s\n",
+    std::fprintf(out,
+                 "  %-12s moved %.1f mm (%+.1f, %+.1f, %+.1f) mm to (%+.4f, %+.4f, %+.4f) m, on the surface (%+.4f, %+.4f) m "
+                 "h %+.2f mm; max speed %.3f m/s, end %.2g m/s\n",
                  o.name.c_str(), d.norm() * 1e3, d.x() * 1e3, d.y() * 1e3, d.z() * 1e3, o.end_world.x(), o.end_world.y(),
-                 o.end_world.z(), o.max_speed_m_per_s);
+                 o.end_world.z(), o.end_local.x(), o.end_local.y(), o.end_local.z() * 1e3, o.max_speed_m_per_s,
+                 o.end_speed_m_per_s);
   }
 }
 

@@ -28,11 +28,21 @@ struct DriverOptions {
   double contact_hz = 1000.0;  // lasting contacts (<= rate_hz)
 };
 
+// Another object this one touched, and when first (to the contact report's resolution).
+struct Touch {
+  std::string name;
+  double first_s = 0.0;
+};
+
 struct ObjectSummary {
   std::string name;
+  bool fixed = false;
   Eigen::Vector3d start_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d end_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end_local = Eigen::Vector3d::Zero();  // surface frame: x, y along the plane, h above it
   double max_speed_m_per_s = 0.0;
+  double end_speed_m_per_s = 0.0;
+  std::vector<Touch> touched;  // other scene objects (not the plane, not the pen), in order of first touch
 };
 
 struct RunSummary {
@@ -66,6 +76,7 @@ class Driver {
   EventSink& sink_;
   DriverOptions options_;
   RunSummary summary_;
+  void noteTouch(int id, int other, double t);
   double force_sum_ = 0.0;
   bool force_was_nonzero_ = false;
   double next_pose_t_ = 0.0, next_contact_t_ = 0.0, last_contact_t_ = 0.0;

@@ -44,7 +44,11 @@ LCM:
   --client-id ID         1-32 of [A-Za-z0-9_-] (default physics)
   --connect-timeout S    wait this long for the first device state (default 10)
 
-  --json FILE            write a run summary (steps, forces, impacts, object displacements)
+  --json FILE            write a run summary (steps, forces, impacts; per object: displacement, end
+                         position in the world and on the surface, speeds, objects it touched)
+  --poses-csv FILE       write every moving object's pose at the pose rate: `t_s, object, x_m, y_m,
+                         z_m, x_local_m, y_local_m, h_local_m, speed_m_per_s, spin_rad_per_s`
+                         (world, then the surface's frame: along the plane and height above it)
   --quiet                no progress lines
   -h, --help             this text
 )";
@@ -127,6 +131,8 @@ Options parseOptions(const std::vector<std::string>& args) {
       o.connect_timeout_s = number(a, value(), 0, 3600, true, "s");
     } else if (a == "--json") {
       o.json = value();
+    } else if (a == "--poses-csv") {
+      o.poses_csv = value();
     } else if (a == "--quiet") {
       o.quiet = true;
     } else {

@@ -32,6 +32,7 @@ struct Options {
   double impact_min_speed = 0.005;
   double connect_timeout_s = 10.0;
   std::string json;
+  std::string poses_csv;  // --poses-csv FILE
   bool quiet = false;
 
   bool offline() const { return pen_source != PenSource::Hapticd; }

@@ -16,6 +16,7 @@
 #include "clients/physics_client/lcm_io.hpp"
 #include "clients/physics_client/options.hpp"
 #include "clients/physics_client/pen_path.hpp"
+#include "clients/physics_client/pose_csv.hpp"
 #include "scenes/scene_loader.hpp"
 #include "thx_client/client.hpp"
 
@@ -83,6 +84,13 @@ int runOffline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
     default:
       break;
   }
+  std::unique_ptr<PoseCsvSink> csv;
+  std::unique_ptr<TeeSink> tee;
+  if (!o.poses_csv.empty()) {
+    csv = std::make_unique<PoseCsvSink>(o.poses_csv);
+    tee = std::make_unique<TeeSink>(*sink, *csv);
+    sink = tee.get();
+  }
   const double duration = o.duration_s.value_or(path ? path->duration() + 1.0 : 0.0);
   const auto steps = std::int64_t(std::llround(duration * d.rate_hz));
   if (!o.quiet)
@@ -118,7 +126,11 @@ int runOnline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
   client.subscribe("DEVICE_STATE", o.state_hz.value_or(d.rate_hz));
   LcmSinkOptions so;
   so.client_id = o.client_id;
-  LcmSink sink(lcm, so);
+  LcmSink lcm_sink(lcm, so);
+  std::unique_ptr<PoseCsvSink> csv;
+  if (!o.poses_csv.empty()) csv = std::make_unique<PoseCsvSink>(o.poses_csv);
+  NullSink null_sink;
+  TeeSink sink(lcm_sink, csv ? static_cast<EventSink&>(*csv) : null_sink);
 
   // What hapticd reports back: ticks where it applied a client force.
   long long states = 0, client_force_ticks = 0;
@@ -176,12 +188,12 @@ int runOnline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
     last_tick = tick;
     driver.step(tip, tick);
   }
-  sink.release(scene.penTip());
+  lcm_sink.release(scene.penTip());
   driver.flush();
   printSummary(stdout, driver.summary());
   std::printf("  hapticd: %lld device states received, %lld with FLAG_CLIENT_FORCE (max |f_cmd| then %.4f N); "
               "%llu forces sent; %lld steps reused a pose, %lld realigned\n",
-              states, client_force_ticks, max_cmd_with_client, (unsigned long long)sink.counters().forces,
+              states, client_force_ticks, max_cmd_with_client, (unsigned long long)lcm_sink.counters().forces,
               (long long)stale_steps, late);
   if (!o.json.empty()) writeSummaryJson(o.json, o.scene, driver.summary());
   return 0;

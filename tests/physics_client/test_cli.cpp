@@ -1,8 +1,16 @@
 // physics-client's options and pen-path files: clear errors naming the option or FILE:LINE.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "clients/physics_client/driver.hpp"
 #include "clients/physics_client/options.hpp"
 #include "clients/physics_client/pen_path.hpp"
+#include "clients/physics_client/pose_csv.hpp"
+#include "scenes/scene_loader.hpp"
 
 namespace {
 
@@ -35,6 +43,8 @@ TEST(PhysicsClientCli, Options) {
   EXPECT_EQ(o.pen.max_force_n, 1.5);
   EXPECT_EQ(o.pen.shape, PenShape::Sphere);
   EXPECT_TRUE(parseOptions({"--help"}).help);
+  EXPECT_EQ(parseOptions({"--scene", "s", "--no-pen", "--duration", "1", "--poses-csv", "p.csv"}).poses_csv, "p.csv");
+  EXPECT_NE(usageError({"--scene", "s", "--poses-csv"}).find("--poses-csv: missing value"), std::string::npos);
 
   EXPECT_NE(usageError({}).find("--scene FILE is required"), std::string::npos);
   EXPECT_NE(usageError({"--scene", "s", "--rate", "abc"}).find("--rate: expected a number"), std::string::npos);
@@ -68,6 +78,42 @@ TEST(PhysicsClientCli, PenCsv) {
     FAIL();
   } catch (const PenPathError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/p.csv: cannot open"), std::string::npos);
+  }
+}
+
+// --poses-csv: a header, then one row per moving object per pose report, in the world and on the
+// surface (fixed obstacles are left out); an unwritable file is an error naming it.
+TEST(PhysicsClientCli, PosesCsv) {
+  thx::scene::Scene scene = thx::scene::loadScene(std::string(THX_SOURCE_DIR) + "/scenes/zigzag_street.yaml");
+  scene.surface.texture.generator.size = 64;
+  PhysicsScene sim(scene, SimOptions{});
+  const std::string file = (std::filesystem::temp_directory_path() / "thx_pc_poses.csv").string();
+  std::int64_t reports = 0;
+  {
+    PoseCsvSink csv(file);
+    DriverOptions d;
+    d.pose_hz = 100.0;
+    Driver driver(sim, csv, d);
+    for (int k = 0; k < 100; ++k) driver.step(std::nullopt);
+    reports = driver.summary().pose_reports;  // the first step, then every 10 ms: 11
+  }
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "t_s, object, x_m, y_m, z_m, x_local_m, y_local_m, h_local_m, speed_m_per_s, spin_rad_per_s");
+  int rows = 0, kerb = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    kerb += line.find(", kerb,") != std::string::npos;
+  }
+  EXPECT_EQ(reports, 11);
+  EXPECT_EQ(rows, 3 * reports);  // the three balls each time
+  EXPECT_EQ(kerb, 0);
+  try {
+    PoseCsvSink bad("/nonexistent/p.csv");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/p.csv: cannot write the poses"), std::string::npos);
   }
 }
 

@@ -1,0 +1,273 @@
+// Each shipped physics scene does what its comment and description say. Run the way
+// `physics-client --scene S --no-pen` runs them (the client's own core: PhysicsScene + Driver
+// stepped in lock-step without a pen, default options, full-size textures but see kSanitized, no
+// network); the object tracks are sampled at 100 Hz through an EventSink, touches come from the
+// run summary.
+// The numbers the scenes quote are printed as [measured] lines; the assertions keep margins.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "clients/physics_client/driver.hpp"
+#include "clients/physics_client/physics_scene.hpp"
+#include "scenes/scene_loader.hpp"
+
+namespace {
+
+using namespace thx::physclient;
+const std::string kScenes = std::string(THX_SOURCE_DIR) + "/scenes/";
+
+struct Sample {
+  double t = 0.0;
+  Eigen::Vector3d local = Eigen::Vector3d::Zero();  // surface frame: x, y along the plane, z = h above it
+  double speed = 0.0;
+};
+using Track = std::vector<Sample>;
+
+// Records every moving object's surface-frame position at the driver's pose rate.
+class TrackSink final : public EventSink {
+ public:
+  void poses(const PhysicsScene& s, std::int64_t, const Eigen::Vector3d&) override {
+    for (const BodyState& b : s.bodies()) {
+      const thx::scene::SceneObject& o = s.scene().objects[std::size_t(b.id)];
+      if (!o.fixed) tracks[o.name].push_back({s.simTime(), s.surface().toLocal(b.p_world), b.v_world.norm()});
+    }
+  }
+  std::map<std::string, Track> tracks;
+};
+
+struct SceneRun {
+  thx::scene::Scene scene;
+  RunSummary summary;
+  std::map<std::string, Track> tracks;
+  const ObjectSummary& object(const std::string& name) const {
+    for (const ObjectSummary& o : summary.objects)
+      if (o.name == name) return o;
+    throw std::runtime_error("no object " + name);
+  }
+  std::vector<std::string> touched(const std::string& name) const {
+    std::vector<std::string> out;
+    for (const Touch& t : object(name).touched) out.push_back(t.name);
+    return out;
+  }
+};
+
+// Under AddressSanitizer (the Debug ASan+UBSan build) rasterising a box on the relief runs
+// ~300x slower than in RelWithDebInfo: 140 s for the letter blocks at full size.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+// texture_size > 0 replaces the generated texture's size (same pattern, coarser texels).
+SceneRun runScene(const std::string& file, double seconds, int texture_size = 0) {
+  SceneRun r;
+  r.scene = thx::scene::loadScene(kScenes + file);
+  if (texture_size > 0) r.scene.surface.texture.generator.size = texture_size;
+  PhysicsScene sim(r.scene, SimOptions{});
+  TrackSink sink;
+  DriverOptions d;
+  d.rate_hz = r.scene.rates.physics_hz;
+  d.pose_hz = 100.0;
+  d.contact_hz = std::min(d.rate_hz, double(r.scene.rates.audio_feed_hz));
+  Driver driver(sim, sink, d);
+  const auto steps = std::int64_t(std::llround(seconds * d.rate_hz));
+  for (std::int64_t k = 0; k < steps; ++k) driver.step(std::nullopt);
+  driver.flush();
+  r.summary = driver.summary();
+  r.tracks = std::move(sink.tracks);
+  return r;
+}
+
+double param(const thx::scene::Scene& s, const std::string& name) { return s.surface.texture.generator.params.at(name); }
+
+// Largest |x|, |y| of a track in the surface frame: the texture spans +-size/2.
+double reach(const Track& tr) {
+  double m = 0.0;
+  for (const Sample& s : tr) m = std::max({m, std::fabs(s.local.x()), std::fabs(s.local.y())});
+  return m;
+}
+
+// How far the object moved over the samples at or after t0.
+double wanderAfter(const Track& tr, double t0) {
+  const Sample& last = tr.back();
+  double m = 0.0;
+  for (const Sample& s : tr)
+    if (s.t >= t0) m = std::max(m, (s.local - last.local).head<2>().norm());
+  return m;
+}
+
+// The marble rolls off its brick into the bed joint at y = -0.02 and stays: the brick beyond is
+// higher than its energy can lift it, the rims take the rest.
+TEST(ShippedSceneOutcome, MarbleSettlesInTheBedJointAndStays) {
+  const SceneRun r = runScene("marble_bricks.yaml", 2.0);
+  const Track& m = r.tracks.at("marble");
+  const Sample start = m.front(), end = m.back();
+  const double joint_y = -0.02, half_mortar = 0.5 * param(r.scene, "mortar");
+  double fastest_late = 0.0;
+  for (const Sample& s : m)
+    if (s.t >= 1.0) fastest_late = std::max(fastest_late, s.speed);
+  std::printf("[measured] marble ends at (%.4f, %.4f) m, %.2f mm from the joint's centre line, %.3f mm below its "
+              "starting face; after 1 s it moves %.1f um and reads up to %.2g m/s (%.2g at the end)\n",
+              end.local.x(), end.local.y(), (end.local.y() - joint_y) * 1e3, (start.local.z() - end.local.z()) * 1e3,
+              wanderAfter(m, 1.0) * 1e6, fastest_late, end.speed);
+  EXPECT_NEAR(end.local.y(), joint_y, half_mortar);       // in the joint named in the scene ...
+  EXPECT_NEAR(end.local.x(), start.local.x(), 1e-3);      // ... straight ahead of where it started
+  EXPECT_LT(end.local.z(), start.local.z() - 1e-4);       // sunk into it
+  EXPECT_LT(wanderAfter(m, 1.0), 1e-4);                   // and staying there
+  // At rest: far below the 5.3 cm/s it would need to climb the 0.2 mm step out (sqrt(10/7 g h)).
+  // Not ~0: since e06ba16 the relief contacts of a ball resting on a joint's two walls flicker
+  // and it reads a 1-10 mm/s rattle in place (docs/physics.md, known gaps; the strict check is
+  // MarbleAtRestReadsNoSpeed below).
+  EXPECT_LT(fastest_late, 0.02);
+  EXPECT_LT(reach(m), 0.1 - 0.006);
+}
+
+// What a resting marble should read, and read before e06ba16 (7.4e-7 m/s). Enable once the
+// flicker of its far-wall contact is fixed (docs/physics.md, known gaps).
+TEST(ShippedSceneOutcome, DISABLED_MarbleAtRestReadsNoSpeed) {
+  const SceneRun r = runScene("marble_bricks.yaml", 2.0);
+  for (const Sample& s : r.tracks.at("marble")) {
+    if (s.t < 1.0) continue;
+    EXPECT_LT(s.speed, 1e-4) << "at " << s.t << " s";
+  }
+}
+
+// The dimple ball passes over dimples (through the middle of at least one other than the last)
+// and ends trapped in one: near its centre, below the plane, no longer moving.
+TEST(ShippedSceneOutcome, DimpleBallCrossesDimplesAndIsCaughtInOne) {
+  const SceneRun r = runScene("dimple_ball.yaml", 2.0);
+  const Track& b = r.tracks.at("ball");
+  const double spacing = param(r.scene, "spacing"), rim = param(r.scene, "radius"), depth = param(r.scene, "depth");
+  const double half = 0.5 * param(r.scene, "extent"), radius = r.scene.objects[0].radius_m;
+  // Dimple centres sit at (k + 1/2) spacing from the texture's corner (dimples generator).
+  auto centre = [&](double v) { return (std::floor((v + half) / spacing) + 0.5) * spacing - half; };
+  // The dimples whose middle (within half the rim radius) the ball's centre went through, in order.
+  std::vector<std::pair<double, double>> through;
+  for (const Sample& s : b) {
+    const double cx = centre(s.local.x()), cy = centre(s.local.y());
+    if (std::hypot(s.local.x() - cx, s.local.y() - cy) > 0.5 * rim) continue;
+    if (through.empty() || through.back() != std::make_pair(cx, cy)) through.emplace_back(cx, cy);
+  }
+  const Sample end = b.back();
+  const double ex = centre(end.local.x()), ey = centre(end.local.y());
+  const double off = std::hypot(end.local.x() - ex, end.local.y() - ey);
+  const std::set<std::pair<double, double>> crossed(through.begin(), through.end() - (through.empty() ? 0 : 1));
+  std::printf("[measured] ball went through the middle of %zu dimples, ends in the one at (%.3f, %.3f) m, %.3f mm from "
+              "its centre, %.2f mm down; moved %.1f um after 1 s (speed read %.2g m/s)\n",
+              through.size(), ex, ey, off * 1e3, (radius - end.local.z()) * 1e3, wanderAfter(b, 1.0) * 1e6, end.speed);
+  ASSERT_FALSE(through.empty());
+  EXPECT_EQ(through.back(), std::make_pair(ex, ey));  // the last dimple it entered is where it ends
+  EXPECT_GE(crossed.size() - crossed.count({ex, ey}), 1u);  // after crossing at least one other
+  EXPECT_LT(off, 0.5e-3);                                   // at the dimple's centre ...
+  EXPECT_LT(end.local.z(), radius - 0.5 * depth);           // ... down in it (2 mm at the bottom)
+  EXPECT_LT(wanderAfter(b, 1.0), 1e-4);                     // and staying there
+  EXPECT_LT(reach(b), half - radius);
+}
+
+// The letter blocks slide down the slope, past the posts (each touches one), and end against the
+// fence at its foot, never leaving the texture. Sanitized builds run the same pebbles on 128²
+// texels instead of 512² (the claims hold at 512², 256² and 128²: measured when it was tuned).
+TEST(ShippedSceneOutcome, LetterBlocksSlidePastThePostsAndStayOnTheTexture) {
+  const SceneRun r = runScene("letter_blocks.yaml", 1.2, kSanitized ? 128 : 0);
+  const double half = 0.5 * r.scene.surface.size_m.x();
+  // The posts' and the fence's surface-local x.
+  double last_post_x = -half, fence_x = half;
+  for (const ObjectSummary& o : r.summary.objects) {
+    if (!o.fixed) continue;
+    if (o.name.rfind("post", 0) == 0) last_post_x = std::max(last_post_x, o.end_local.x());
+    if (o.name == "fence") fence_x = o.end_local.x();
+  }
+  const double post_reach = 0.5 * std::sqrt(2.0) * 0.01;  // a 1 cm square post turned 45°
+  int past = 0;
+  for (const char* name : {"A", "B", "C"}) {
+    const Track& t = r.tracks.at(name);
+    const Sample end = t.back();
+    std::vector<std::string> posts;
+    for (const std::string& n : r.touched(name))
+      if (n.rfind("post", 0) == 0) posts.push_back(n);
+    const bool beyond = end.local.x() - 0.01 > last_post_x + post_reach;  // its back edge beyond the last row
+    past += beyond;
+    std::printf("[measured] block %s ends at (%.4f, %.4f) m (%.1f mm before the fence), speed %.2g m/s, touched %zu "
+                "post(s), max |x|,|y| %.4f m\n",
+                name, end.local.x(), end.local.y(), (fence_x - 0.0025 - 0.01 - end.local.x()) * 1e3, end.speed, posts.size(),
+                reach(t));
+    EXPECT_FALSE(posts.empty()) << name << ": the posts stand in every block's way";
+    EXPECT_TRUE(beyond) << name << " did not get past the posts";
+    EXPECT_LT(reach(t), half - 0.01) << name << " left the texture";
+    // Against the fence's face: a 2 cm block, yawed or not, reaches at most 1.4 cm (its half diagonal) from it.
+    EXPECT_GT(end.local.x(), fence_x - 0.0025 - 0.5 * std::sqrt(2.0) * 0.02 - 1e-3) << name << " is not down at the fence";
+    EXPECT_LT(end.speed, 0.02);
+  }
+  EXPECT_GE(past, 1);
+}
+
+// The pinball leaves the lane, runs into bumpers and comes to rest in the closed drain.
+TEST(ShippedSceneOutcome, PinballHitsBumpersAndEndsInTheDrain) {
+  const SceneRun r = runScene("pinball.yaml", 3.5);
+  const Track& b = r.tracks.at("ball");
+  std::vector<std::string> bumpers;
+  for (const std::string& n : r.touched("ball"))
+    if (n.rfind("bumper", 0) == 0) bumpers.push_back(n);
+  std::string list;
+  for (const Touch& t : r.object("ball").touched) {
+    char line[64];
+    std::snprintf(line, sizeof line, " %s %.2f s", t.name.c_str(), t.first_s);
+    list += line;
+  }
+  const Sample end = b.back();
+  std::printf("[measured] ball touched%s; ends at (%.4f, %.4f) m, speed %.2g m/s, max |x|,|y| %.4f m\n", list.c_str(),
+              end.local.x(), end.local.y(), end.speed, reach(b));
+  EXPECT_GE(bumpers.size(), 2u);
+  EXPECT_NE(std::find(bumpers.begin(), bumpers.end(), "bumper1"), bumpers.end());
+  EXPECT_LT(reach(b), 0.0975 - 0.0025 - 0.008 + 1e-3);  // inside the rails all along (1 mm for impacts)
+  EXPECT_GT(end.local.x(), 0.08);                       // in the drain, against the bottom rail
+  EXPECT_LT(std::fabs(end.local.y()), 0.02);
+  EXPECT_LT(end.speed, 1e-3);
+}
+
+// The zig-zag balls roll down the street inside its channel and stop at the kerb.
+TEST(ShippedSceneOutcome, ZigzagBallsStayInTheChannelAndRollDownTheStreet) {
+  const SceneRun r = runScene("zigzag_street.yaml", 5.0);
+  const double period = param(r.scene, "period"), amplitude = param(r.scene, "amplitude"),
+               width = param(r.scene, "width"), a = param(r.scene, "sharpness");
+  // The street's centre line (zigzag generator, plane coordinates centred on the texture).
+  auto centreLine = [&](double x) { return amplitude * std::asin(a * std::sin(2 * std::numbers::pi * x / period)) / std::asin(a); };
+  for (const char* name : {"ball1", "ball2", "ball3"}) {
+    const Track& t = r.tracks.at(name);
+    const double radius = 0.004;
+    double off = 0.0, highest_bottom = -1.0;
+    for (const Sample& s : t) {
+      if (s.t < 0.05) continue;  // dropping the 0.2 mm onto the floor
+      off = std::max(off, std::fabs(s.local.y() - centreLine(s.local.x())));
+      highest_bottom = std::max(highest_bottom, s.local.z() - radius);
+    }
+    const double progress = t.back().local.x() - t.front().local.x();
+    std::printf("[measured] %s rolls %.1f mm down the street to x = %.4f m, at most %.1f mm off the centre line, its "
+                "bottom at most %.2f mm below the plane; end speed %.2g m/s\n",
+                name, progress * 1e3, t.back().local.x(), off * 1e3, -highest_bottom * 1e3, t.back().speed);
+    EXPECT_LT(off, 0.5 * width - 0.003) << name << " left the channel";
+    EXPECT_LT(highest_bottom, -0.5e-3) << name << " climbed out of the channel";
+    EXPECT_GT(progress, 0.12) << name << " did not roll down the street";
+    // Lined up at the kerb (its face at x = 0.086): at most two balls' diameters behind it.
+    EXPECT_GT(t.back().local.x(), 0.086 - 0.004 - 2 * 0.008 - 1e-3) << name << " is not down at the kerb";
+    EXPECT_LT(reach(t), 0.1 - radius) << name << " left the texture";
+  }
+}
+
+}  // namespace
