@@ -85,8 +85,10 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   // A sphere touches at the bottoms of basins (contact_selection.hpp); a capsule or cylinder
   // lying flat touches along a line of equal depths, so only its deepest point is refined.
   if (n > 0 && underside->kind == Underside::Kind::Sphere) {
+    const std::array<std::size_t, kMaxReliefContacts> spread = chosen;
     snapToBasins(candidates, raster.stride, std::span(chosen.data(), n));
-    for (std::size_t k = 0; k < n; ++k) candidates[chosen[k]] = refineDeepest(plane.surface(), *underside, candidates[chosen[k]]);
+    for (std::size_t k = 0; k < n; ++k)
+      if (k == 0 || chosen[k] != spread[k]) candidates[chosen[k]] = refineDeepest(plane.surface(), *underside, candidates[chosen[k]]);
   } else if (n > 0 && underside->kind != Underside::Kind::Box) {
     candidates[chosen[0]] = refineDeepest(plane.surface(), *underside, candidates[chosen[0]]);
   }
