@@ -105,9 +105,8 @@ TEST_P(RestDrift, GrooveWallsRelief) {
   if (GetParam() < 0.01) {
     expectAtRest(d, "groove walls, relief");
   } else {
-    // At 60 Hz the ball stops ~2 µm off the groove's centre, one wall 1 µm apart: Bullet lets it
-    // approach that wall at distance/dt while split impulse pushes it out of the other, so it
-    // reads ~0.2 mm/s without moving (docs/physics.md, known gaps). The drift itself is checked.
+    // At 60 Hz the ball rattles between the walls in a two-step cycle, ±1.9 µm, reading
+    // ~0.2 mm/s (docs/physics.md, known gaps); it does not drift, which is checked.
     std::printf("[measured] groove walls, relief, 60 Hz: velocity reading %.3g m/s, displacement %.3g m over 10 s\n",
                 d.max_speed, d.displacement);
     EXPECT_LT(d.displacement, 1e-5);
