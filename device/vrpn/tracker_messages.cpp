@@ -3,27 +3,9 @@
 #include <string>
 
 #include "device/vrpn/payload_size.hpp"
+#include "device/vrpn/tracker_fields.hpp"
 
 namespace thx::vrpn {
-
-namespace {
-
-std::optional<Error> checkSensor(std::string_view type_name, std::int32_t sensor) {
-  if (sensor >= 0) return std::nullopt;
-  return Error{ErrorCode::kBadValue, std::string(type_name) + " with negative sensor " + std::to_string(sensor)};
-}
-
-template <std::size_t N>
-void putAll(ByteWriter& w, const std::array<double, N>& v) {
-  for (double x : v) w.f64(x);
-}
-
-template <std::size_t N>
-void getAll(ByteReader& r, std::array<double, N>& v) {
-  for (double& x : v) x = r.f64();
-}
-
-}  // namespace
 
 void TrackerPosQuat::encode(ByteWriter& w) const {
   w.i32(sensor);

@@ -3,20 +3,11 @@
 #include <string>
 
 #include "device/vrpn/payload_size.hpp"
+#include "device/vrpn/tracker_fields.hpp"
 
 namespace thx::vrpn {
 
 namespace {
-
-template <std::size_t N>
-void putAll(ByteWriter& w, const std::array<double, N>& v) {
-  for (double x : v) w.f64(x);
-}
-
-template <std::size_t N>
-void getAll(ByteReader& r, std::array<double, N>& v) {
-  for (double& x : v) x = r.f64();
-}
 
 template <class Request>
 Result<Request> decodeEmpty(std::span<const std::uint8_t> payload) {
@@ -55,8 +46,7 @@ Result<TrackerUnitToSensor> TrackerUnitToSensor::decode(std::span<const std::uin
   r.skip(4);
   getAll(r, m.pos);
   getAll(r, m.quat);
-  if (m.sensor < 0)
-    return Error{ErrorCode::kBadValue, std::string(kTypeName) + " with negative sensor " + std::to_string(m.sensor)};
+  if (auto e = checkSensor(kTypeName, m.sensor)) return *e;
   return m;
 }
 
