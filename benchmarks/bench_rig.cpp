@@ -45,7 +45,7 @@ ServerRig::ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool re
       srv::servoPassivityConfig(spec, period_s, rc.stiffness_n_per_m, true));
   safety = std::make_unique<srv::SafetyStage>(srv::SafetyConfig::fromSpec(spec, period_s));
   recorder = std::make_unique<srv::FlightRecorder>(std::size_t(sc.rates.servo_hz));
-  ring = std::make_unique<srv::SpscRing<srv::TickRecord>>(1024);
+  ring = std::make_unique<rt::SpscRing<srv::TickRecord>>(1024);
   servo = std::make_unique<srv::Servo>(device, *renderer, *passivity, *safety, *recorder, *ring, srv::ServoConfig{});
 }
 

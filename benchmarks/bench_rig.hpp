@@ -15,7 +15,7 @@
 #include "server/proxy_renderer.hpp"
 #include "server/safety.hpp"
 #include "server/servo.hpp"
-#include "server/spsc_ring.hpp"
+#include "rt/spsc_ring.hpp"
 #include "server/tick_record.hpp"
 #include "textures/textured_surface.hpp"
 
@@ -46,7 +46,7 @@ class ServerRig {
   std::unique_ptr<srv::PassivityController> passivity;
   std::unique_ptr<srv::SafetyStage> safety;
   std::unique_ptr<srv::FlightRecorder> recorder;
-  std::unique_ptr<srv::SpscRing<srv::TickRecord>> ring;
+  std::unique_ptr<rt::SpscRing<srv::TickRecord>> ring;
   std::unique_ptr<srv::Servo> servo;
 };
 

@@ -19,7 +19,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "device/pacer.hpp"
+#include "rt/pacer.hpp"
 
 namespace thx::dev {
 
@@ -41,7 +41,7 @@ struct DeviceSpec {
 };
 
 struct DeviceState {
-  TickTiming timing;                                  // tick index, deadline, wake-up, missed ticks
+  rt::TickTiming timing;                                  // tick index, deadline, wake-up, missed ticks
   Eigen::Vector3d p_world = Eigen::Vector3d::Zero();  // m, pen tip
   Eigen::Quaterniond q_world = Eigen::Quaterniond::Identity();
   Eigen::Vector3d v_world = Eigen::Vector3d::Zero();  // m/s (device's estimate)

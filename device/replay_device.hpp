@@ -16,9 +16,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 #include "device/haptic_device.hpp"
-#include "device/pacer.hpp"
+#include "rt/pacer.hpp"
 
 namespace thx::dev {
 
@@ -58,9 +58,9 @@ class ReplayDevice final : public HapticDevice {
   std::vector<ReplaySample> samples_;
   DeviceSpec spec_;
   ReplayOptions options_;
-  MonotonicClock monotonic_;
-  VirtualClock virtual_;
-  Pacer pacer_;
+  rt::MonotonicClock monotonic_;
+  rt::VirtualClock virtual_;
+  rt::Pacer pacer_;
   std::size_t next_ = 0;
   std::uint64_t writes_ = 0;
 };

@@ -10,10 +10,10 @@ namespace thx::dev {
 
 namespace {
 
-std::unique_ptr<Clock> makeClock(bool lockstep, Clock* injected) {
+std::unique_ptr<rt::Clock> makeClock(bool lockstep, rt::Clock* injected) {
   if (injected) return nullptr;
-  if (lockstep) return std::make_unique<VirtualClock>();
-  return std::make_unique<MonotonicClock>();
+  if (lockstep) return std::make_unique<rt::VirtualClock>();
+  return std::make_unique<rt::MonotonicClock>();
 }
 
 const SimPhantomConfig& validated(const SimPhantomConfig& c) {
@@ -27,7 +27,7 @@ bool inWindow(std::int64_t tick, std::int64_t from, std::int64_t count) {
 
 }  // namespace
 
-SimPhantom::SimPhantom(SimPhantomConfig config, HandScript script, Clock* clock)
+SimPhantom::SimPhantom(SimPhantomConfig config, HandScript script, rt::Clock* clock)
     : config_(validated(config)),
       script_(std::move(script)),
       owned_clock_(makeClock(config_.lockstep, clock)),

@@ -25,10 +25,10 @@
 #include <cstdint>
 #include <memory>
 
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 #include "device/hand_script.hpp"
 #include "device/haptic_device.hpp"
-#include "device/pacer.hpp"
+#include "rt/pacer.hpp"
 #include "device/sim_config.hpp"
 #include "device/sim_dynamics.hpp"
 
@@ -59,7 +59,7 @@ class SimPhantom final : public HapticDevice {
  public:
   // Throws DeviceError if the config is invalid (validate()). Without a clock it owns one:
   // VirtualClock when config.lockstep, MonotonicClock otherwise. An injected clock must outlive it.
-  explicit SimPhantom(SimPhantomConfig config, HandScript script = HandScript(), Clock* clock = nullptr);
+  explicit SimPhantom(SimPhantomConfig config, HandScript script = HandScript(), rt::Clock* clock = nullptr);
   SimPhantom(const SimPhantom&) = delete;
   SimPhantom& operator=(const SimPhantom&) = delete;
 
@@ -77,7 +77,7 @@ class SimPhantom final : public HapticDevice {
   const SimTruth& truth() const { return truth_; }
   const SimPhantomConfig& config() const { return config_; }
   const HandScript& script() const { return script_; }
-  Clock& clock() { return *clock_; }
+  rt::Clock& clock() { return *clock_; }
   int stepsPerTick() const { return steps_per_tick_; }
   void setFaults(const SimFaults& faults) { config_.faults = faults; }
 
@@ -89,9 +89,9 @@ class SimPhantom final : public HapticDevice {
 
   SimPhantomConfig config_;
   HandScript script_;
-  std::unique_ptr<Clock> owned_clock_;
-  Clock* clock_;
-  Pacer pacer_;
+  std::unique_ptr<rt::Clock> owned_clock_;
+  rt::Clock* clock_;
+  rt::Pacer pacer_;
   SimDynamics dynamics_;
   int steps_per_tick_;
   double period_s_;

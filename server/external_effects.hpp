@@ -31,7 +31,7 @@
 #include <array>
 #include <cstdint>
 
-#include "device/latest_slot.hpp"
+#include "rt/latest_slot.hpp"
 
 namespace thx::srv {
 
@@ -95,7 +95,7 @@ class ExternalEffectRenderer {
   explicit ExternalEffectRenderer(double period_s);
 
   // The I/O thread's side (one writer).
-  dev::LatestSlot<ExternalEffects>& commandSlot() { return slot_; }
+  rt::LatestSlot<ExternalEffects>& commandSlot() { return slot_; }
 
   // One tick. `valid` = the device reading is good; otherwise nothing is rendered and every
   // contact history (stick points, adhesion, recovery) is forgotten.
@@ -120,7 +120,7 @@ class ExternalEffectRenderer {
 
   double period_s_;
   std::int64_t tick_ = 0;
-  dev::LatestSlot<ExternalEffects> slot_;
+  rt::LatestSlot<ExternalEffects> slot_;
   std::uint32_t slot_seq_ = 0;
   ExternalEffects effects_;
   std::array<PlaneState, kMaxExternalPlanes> state_{};

@@ -320,7 +320,7 @@ int run(const Options& o) {
   srv::PassivityController passivity(srv::servoPassivityConfig(spec, period_s, rc.stiffness_n_per_m, o.passivity));
   srv::SafetyStage safety(srv::SafetyConfig::fromSpec(spec, period_s));
   srv::FlightRecorder recorder(std::size_t(sc.rates.servo_hz));  // one second of ticks
-  srv::SpscRing<srv::TickRecord> ring(1024);  // 1 s of ticks: the publisher drains every 0.5 ms
+  rt::SpscRing<srv::TickRecord> ring(1024);  // 1 s of ticks: the publisher drains every 0.5 ms
   srv::Servo servo(device, renderer, passivity, safety, recorder, ring, srv::ServoConfig{});
 
   std::unique_ptr<lcm::LCM> lcm;

@@ -80,7 +80,7 @@ class Publisher::LcmSink : public MessageSink {
   Publisher& p_;
 };
 
-Publisher::Publisher(SpscRing<TickRecord>& ring, const Servo& servo, FlightRecorder& recorder, lcm::LCM* lcm,
+Publisher::Publisher(rt::SpscRing<TickRecord>& ring, const Servo& servo, FlightRecorder& recorder, lcm::LCM* lcm,
                      const PublisherOptions& options)
     : ring_(ring),
       servo_(servo),

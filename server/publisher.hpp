@@ -16,7 +16,7 @@
 
 #include "server/flight_recorder.hpp"
 #include "server/servo.hpp"
-#include "server/spsc_ring.hpp"
+#include "rt/spsc_ring.hpp"
 #include "server/subscription_inbox.hpp"
 #include "server/subscriptions.hpp"
 #include "server/tick_record.hpp"
@@ -62,7 +62,7 @@ class Publisher {
   // lcm may be null (no transport): records are still drained and flight records still dumped.
   // With lcm, the publisher subscribes to THX_SUBSCRIBE and THX_HEARTBEAT on it; whoever calls
   // lcm->handle() (hapticd's receiver thread) delivers them.
-  Publisher(SpscRing<TickRecord>& ring, const Servo& servo, FlightRecorder& recorder, lcm::LCM* lcm,
+  Publisher(rt::SpscRing<TickRecord>& ring, const Servo& servo, FlightRecorder& recorder, lcm::LCM* lcm,
             const PublisherOptions& options);
   ~Publisher();
 
@@ -82,7 +82,7 @@ class Publisher {
   void publishHello(std::int64_t now_ns);
   void dumpFlight();
 
-  SpscRing<TickRecord>& ring_;
+  rt::SpscRing<TickRecord>& ring_;
   const Servo& servo_;
   FlightRecorder& recorder_;
   lcm::LCM* lcm_;

@@ -10,16 +10,16 @@
 #include <thx_msgs/client_force_t.hpp>
 #include <thx_msgs/protocol.hpp>
 
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 
 namespace thx::srv {
 
 namespace {
-std::int64_t monotonicNs() { return dev::monotonicNowNs(); }
+std::int64_t monotonicNs() { return rt::monotonicNowNs(); }
 constexpr std::int64_t kDefaultTimeoutNs = 50'000'000;  // 50 ms: a few physics steps
 }  // namespace
 
-Receiver::Receiver(lcm::LCM& lcm, dev::LatestSlot<ClientForce>& slot, double max_force_n)
+Receiver::Receiver(lcm::LCM& lcm, rt::LatestSlot<ClientForce>& slot, double max_force_n)
     : lcm_(lcm), slot_(slot), table_(max_force_n, kDefaultTimeoutNs) {
   lcm_.subscribe(thx_msgs::kChannelClientForce, &Receiver::onClientForce, this);
 }

@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "server/client_force_table.hpp"
-#include "device/latest_slot.hpp"
+#include "rt/latest_slot.hpp"
 #include "server/servo.hpp"
 #include "server/untrusted_input.hpp"
 
@@ -26,7 +26,7 @@ namespace thx::srv {
 
 class Receiver {
  public:
-  Receiver(lcm::LCM& lcm, dev::LatestSlot<ClientForce>& slot, double max_force_n);
+  Receiver(lcm::LCM& lcm, rt::LatestSlot<ClientForce>& slot, double max_force_n);
   ~Receiver();
   void start();
   void stop();
@@ -41,7 +41,7 @@ class Receiver {
   void publishSum(std::int64_t now_ns);
 
   lcm::LCM& lcm_;
-  dev::LatestSlot<ClientForce>& slot_;
+  rt::LatestSlot<ClientForce>& slot_;
   ClientForceTable table_;
   mutable std::mutex table_mutex_;  // counters() from other threads; never the servo
   std::thread thread_;

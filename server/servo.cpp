@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 
 namespace thx::srv {
 
 namespace {
 
 // Real CPU time even in lock-step (the device's clock may be virtual).
-std::int64_t monotonicNs() { return dev::monotonicNowNs(); }
+std::int64_t monotonicNs() { return rt::monotonicNowNs(); }
 
 void put(double (&dst)[3], const Eigen::Vector3d& v) {
   dst[0] = v.x();
@@ -21,7 +21,7 @@ void put(double (&dst)[3], const Eigen::Vector3d& v) {
 }  // namespace
 
 Servo::Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityController& passivity,
-             SafetyStage& safety, FlightRecorder& recorder, SpscRing<TickRecord>& out, const ServoConfig& config)
+             SafetyStage& safety, FlightRecorder& recorder, rt::SpscRing<TickRecord>& out, const ServoConfig& config)
     : device_(device),
       renderer_(renderer),
       passivity_(passivity),

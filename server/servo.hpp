@@ -19,12 +19,12 @@
 #include "device/haptic_device.hpp"
 #include "server/flight_recorder.hpp"
 #include "server/latency_histogram.hpp"
-#include "device/latest_slot.hpp"
+#include "rt/latest_slot.hpp"
 #include "server/external_effects.hpp"
 #include "server/passivity.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/safety.hpp"
-#include "server/spsc_ring.hpp"
+#include "rt/spsc_ring.hpp"
 #include "server/tick_record.hpp"
 
 namespace thx::srv {
@@ -66,7 +66,7 @@ struct ServoCounters {
 class Servo {
  public:
   Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityController& passivity, SafetyStage& safety,
-        FlightRecorder& recorder, SpscRing<TickRecord>& out, const ServoConfig& config);
+        FlightRecorder& recorder, rt::SpscRing<TickRecord>& out, const ServoConfig& config);
 
   // One tick. Returns this tick's record (valid until the next call).
   const TickRecord& tick();
@@ -74,12 +74,12 @@ class Servo {
   void requestShutdown() { safety_.requestShutdown(); }
   bool finished() const { return safety_.shutdownComplete(); }
 
-  dev::LatestSlot<ClientForce>& clientForceSlot() { return client_slot_; }
+  rt::LatestSlot<ClientForce>& clientForceSlot() { return client_slot_; }
   // Optional (before the first tick): effects commanded by VRPN apps, added to the force.
   void attachExternalEffects(ExternalEffectRenderer* effects) { external_ = effects; }
   // Optional (before the first tick): from then on every tick also writes a DeviceSnapshot here
   // for a slower reader (the VRPN server). Without a reader nothing is written.
-  const dev::LatestSlot<DeviceSnapshot>& publishSnapshots() {
+  const rt::LatestSlot<DeviceSnapshot>& publishSnapshots() {
     snapshots_ = true;
     return snapshot_slot_;
   }
@@ -96,12 +96,12 @@ class Servo {
   PassivityController& passivity_;
   SafetyStage& safety_;
   FlightRecorder& recorder_;
-  SpscRing<TickRecord>& out_;
+  rt::SpscRing<TickRecord>& out_;
   ServoConfig config_;
 
-  dev::LatestSlot<ClientForce> client_slot_;
+  rt::LatestSlot<ClientForce> client_slot_;
   ExternalEffectRenderer* external_ = nullptr;
-  dev::LatestSlot<DeviceSnapshot> snapshot_slot_;
+  rt::LatestSlot<DeviceSnapshot> snapshot_slot_;
   bool snapshots_ = false;
   std::uint32_t client_seq_ = 0;
   ClientForce client_force_;

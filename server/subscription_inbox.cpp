@@ -3,12 +3,12 @@
 #include <lcm/lcm-cpp.hpp>
 #include <thx_msgs/protocol.hpp>
 
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 
 namespace thx::srv {
 
 namespace {
-std::int64_t monotonicNs() { return dev::monotonicNowNs(); }
+std::int64_t monotonicNs() { return rt::monotonicNowNs(); }
 }  // namespace
 
 SubscriptionInbox::~SubscriptionInbox() { detach(); }

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 #include "device/vrpn/addressing.hpp"
 #include "device/vrpn/base_messages.hpp"
 #include "device/vrpn/button_messages.hpp"
@@ -68,7 +68,7 @@ struct VrpnServer::Impl {
   std::uint32_t buttons = 0;  // from the newest valid snapshot
 };
 
-VrpnServer::VrpnServer(const dev::LatestSlot<DeviceSnapshot>& snapshots, ExternalEffectRenderer* effects,
+VrpnServer::VrpnServer(const rt::LatestSlot<DeviceSnapshot>& snapshots, ExternalEffectRenderer* effects,
                        VrpnServerOptions options)
     : snapshots_(snapshots), effects_(effects), options_(std::move(options)) {}
 
@@ -112,7 +112,7 @@ VrpnServerStatus VrpnServer::status() const {
 
 void VrpnServer::run() {
   Impl& s = *impl_;
-  dev::MonotonicClock clock;
+  rt::MonotonicClock clock;
   const std::int64_t handshake_ns = std::int64_t(options_.handshake_timeout.count());
   const double default_rate = std::clamp(options_.report_hz, 1.0, options_.max_report_hz);
 

@@ -54,7 +54,7 @@
 #include <string>
 #include <thread>
 
-#include "device/latest_slot.hpp"
+#include "rt/latest_slot.hpp"
 #include "server/external_effects.hpp"
 #include "server/servo.hpp"
 #include "server/vrpn_effect_commands.hpp"
@@ -109,7 +109,7 @@ struct VrpnServerStatus {
 class VrpnServer {
  public:
   // `effects` may be null: force commands are then refused with Force_Error 3.
-  VrpnServer(const dev::LatestSlot<DeviceSnapshot>& snapshots, ExternalEffectRenderer* effects,
+  VrpnServer(const rt::LatestSlot<DeviceSnapshot>& snapshots, ExternalEffectRenderer* effects,
              VrpnServerOptions options);
   ~VrpnServer();
   VrpnServer(const VrpnServer&) = delete;
@@ -127,7 +127,7 @@ class VrpnServer {
   struct Impl;
   void run();
 
-  const dev::LatestSlot<DeviceSnapshot>& snapshots_;
+  const rt::LatestSlot<DeviceSnapshot>& snapshots_;
   ExternalEffectRenderer* effects_;
   VrpnServerOptions options_;
   std::uint16_t bound_port_ = 0;

@@ -205,7 +205,7 @@ VrpnClientStatus VrpnClientDevice::status() const {
 }
 
 void VrpnClientDevice::ioMain() {
-  dev::MonotonicClock clock;
+  rt::MonotonicClock clock;
   const std::int64_t reconnect_ns = std::int64_t(options_.reconnect_interval.count());
   const std::int64_t handshake_ns = std::int64_t(options_.handshake_timeout.count());
   const std::int64_t min_send_ns = std::int64_t(options_.min_send_interval.count());

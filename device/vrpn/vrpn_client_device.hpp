@@ -49,18 +49,18 @@
 #include <string>
 #include <thread>
 
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 #include "device/haptic_device.hpp"
-#include "device/pacer.hpp"
+#include "rt/pacer.hpp"
 #include "device/vrpn/addressing.hpp"
 #include "device/vrpn/force_messages.hpp"
-#include "device/latest_slot.hpp"
+#include "rt/latest_slot.hpp"
 
 namespace thx::vrpn {
 
 struct VrpnClientOptions {
   std::int64_t period_ns = 1'000'000;  // servo period read() paces at
-  dev::Clock* clock = nullptr;         // paces read(); nullptr = an internal MonotonicClock
+  rt::Clock* clock = nullptr;         // paces read(); nullptr = an internal MonotonicClock
   std::chrono::nanoseconds staleness{std::chrono::milliseconds(5)};
   std::chrono::nanoseconds reconnect_interval{std::chrono::seconds(2)};
   std::chrono::nanoseconds handshake_timeout{std::chrono::seconds(5)};
@@ -154,12 +154,12 @@ class VrpnClientDevice final : public dev::HapticDevice {
   dev::DeviceSpec spec_;
   VrpnClientOptions options_;
 
-  dev::MonotonicClock own_clock_;
-  dev::MonotonicClock monotonic_;  // staleness and command stamps
-  dev::Pacer pacer_;
+  rt::MonotonicClock own_clock_;
+  rt::MonotonicClock monotonic_;  // staleness and command stamps
+  rt::Pacer pacer_;
 
-  dev::LatestSlot<Sample> sample_slot_;
-  dev::LatestSlot<Command> command_slot_;
+  rt::LatestSlot<Sample> sample_slot_;
+  rt::LatestSlot<Command> command_slot_;
   Sample last_sample_{};
   std::uint32_t sample_seq_ = 0;
 

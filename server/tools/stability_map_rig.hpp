@@ -16,7 +16,7 @@
 #include "server/proxy_renderer.hpp"
 #include "server/safety.hpp"
 #include "server/servo.hpp"
-#include "server/spsc_ring.hpp"
+#include "rt/spsc_ring.hpp"
 #include "textures/textured_surface.hpp"
 
 namespace thx::srv::stab {
@@ -54,7 +54,7 @@ class SimRig {
   std::unique_ptr<PassivityController> passivity_;
   std::unique_ptr<SafetyStage> safety_;
   FlightRecorder recorder_;
-  SpscRing<TickRecord> ring_;
+  rt::SpscRing<TickRecord> ring_;
   std::unique_ptr<Servo> servo_;
 };
 

@@ -231,7 +231,7 @@ TEST(SimPhantom, WatchdogDecaysTheLastForceWhenWritesStop) {
 }
 
 TEST(SimPhantom, MissedTicksIntegrateTheElapsedTimeUnderTheWatchdog) {
-  VirtualClock clock;
+  thx::rt::VirtualClock clock;
   const SimPhantomConfig c = freeMassConfig();
   SimPhantom sim(c, HandScript(), &clock);
   sim.open();

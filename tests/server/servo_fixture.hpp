@@ -44,7 +44,7 @@ struct ServoRig {
   std::unique_ptr<srv::PassivityController> passivity;
   std::unique_ptr<srv::SafetyStage> safety;
   srv::FlightRecorder recorder{1000};
-  srv::SpscRing<srv::TickRecord> ring{4096};
+  rt::SpscRing<srv::TickRecord> ring{4096};
   std::unique_ptr<srv::Servo> servo;
 };
 

@@ -63,7 +63,7 @@ TEST(ClientForceTable, RefusesBadInputAndBoundsItself) {
 TEST(Receiver, ForcesOverLcmReachTheServoSlotAndGarbageIsCounted) {
   lcm::LCM lcm("memq://");
   ASSERT_TRUE(lcm.good());
-  dev::LatestSlot<srv::ClientForce> slot;
+  rt::LatestSlot<srv::ClientForce> slot;
   srv::Receiver receiver(lcm, slot, 7.9);
   receiver.start();
   const std::string garbage = "definitely not a client_force_t";

@@ -17,9 +17,9 @@
 #include <thread>
 #include <vector>
 
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 #include "device/device_specs.hpp"
-#include "device/pacer.hpp"
+#include "rt/pacer.hpp"
 #include "device/vrpn/base_messages.hpp"
 #include "device/vrpn/button_messages.hpp"
 #include "device/vrpn/force_messages.hpp"
@@ -89,8 +89,8 @@ class HeldPen final : public dev::HapticDevice {
 
  private:
   dev::DeviceSpec spec_;
-  dev::MonotonicClock clock_;
-  dev::Pacer pacer_;
+  rt::MonotonicClock clock_;
+  rt::Pacer pacer_;
   std::mutex mutex_;
   Eigen::Vector3d pos_{0.0, 0.0, 0.05};  // 5 cm above the textured plane z = 0
   Eigen::Vector3d force_ = Eigen::Vector3d::Zero();
@@ -150,7 +150,7 @@ struct ServedRig {
   std::unique_ptr<srv::PassivityController> passivity;
   std::unique_ptr<srv::SafetyStage> safety;
   srv::FlightRecorder recorder{1000};
-  srv::SpscRing<srv::TickRecord> ring{4096};
+  rt::SpscRing<srv::TickRecord> ring{4096};
   std::unique_ptr<srv::Servo> servo;
   srv::ExternalEffectRenderer effects{1e-3};
   std::unique_ptr<srv::VrpnServer> server;

@@ -453,7 +453,7 @@ TEST(VrpnClientDevice, CloseStopsTheSurface) {
 }
 
 TEST(VrpnClientDevice, ReadPacesOnTheGivenClock) {
-  dev::VirtualClock clock(1'000'000'000);
+  rt::VirtualClock clock(1'000'000'000);
   VrpnClientOptions o = testOptions();
   o.clock = &clock;
   o.period_ns = 250'000;

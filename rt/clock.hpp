@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-namespace thx::dev {
+namespace thx::rt {
 
 // CLOCK_MONOTONIC in ns through the vDSO (no system call): for timestamps and measurements in
 // any thread, the servo's included.
@@ -45,4 +45,4 @@ class VirtualClock final : public Clock {
   std::int64_t now_ns_;
 };
 
-}  // namespace thx::dev
+}  // namespace thx::rt

@@ -8,7 +8,7 @@
 #include <memory>
 #include <type_traits>
 
-namespace thx::srv {
+namespace thx::rt {
 
 template <class T>
 class SpscRing {
@@ -59,4 +59,4 @@ class SpscRing {
   alignas(64) std::atomic<std::uint64_t> dropped_{0};
 };
 
-}  // namespace thx::srv
+}  // namespace thx::rt

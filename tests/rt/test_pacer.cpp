@@ -2,9 +2,9 @@
 // overruns (no catch-up burst), missed-tick accounting.
 #include <gtest/gtest.h>
 
-#include "device/pacer.hpp"
+#include "rt/pacer.hpp"
 
-using namespace thx::dev;
+using namespace thx::rt;
 
 namespace {
 constexpr std::int64_t kPeriod = 1'000'000;  // 1 ms

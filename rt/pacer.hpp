@@ -8,9 +8,9 @@
 // (hold the force with decay, then force off).
 #include <cstdint>
 
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 
-namespace thx::dev {
+namespace thx::rt {
 
 struct TickTiming {
   std::int64_t tick = 0;             // index of this tick on the grid (skipped ticks count)
@@ -40,4 +40,4 @@ class Pacer {
   std::int64_t total_missed_ = 0;
 };
 
-}  // namespace thx::dev
+}  // namespace thx::rt

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <type_traits>
 
-namespace thx::dev {
+namespace thx::rt {
 
 template <class T>
 class LatestSlot {
@@ -64,4 +64,4 @@ class LatestSlot {
   std::atomic<std::uint64_t> data_[kWords] = {};
 };
 
-}  // namespace thx::dev
+}  // namespace thx::rt

@@ -1,15 +1,11 @@
-#include "device/clock.hpp"
+#include "rt/clock.hpp"
 
 #include <cerrno>
 #include <ctime>
 
-namespace thx::dev {
+namespace thx::rt {
 
-std::int64_t MonotonicClock::nowNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
+std::int64_t MonotonicClock::nowNs() { return monotonicNowNs(); }
 
 void MonotonicClock::sleepUntilNs(std::int64_t t_ns) {
   timespec ts{};
@@ -20,4 +16,4 @@ void MonotonicClock::sleepUntilNs(std::int64_t t_ns) {
   }
 }
 
-}  // namespace thx::dev
+}  // namespace thx::rt

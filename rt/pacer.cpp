@@ -1,6 +1,6 @@
-#include "device/pacer.hpp"
+#include "rt/pacer.hpp"
 
-namespace thx::dev {
+namespace thx::rt {
 
 void Pacer::start() {
   next_deadline_ns_ = clock_.nowNs() + period_ns_;
@@ -31,4 +31,4 @@ TickTiming Pacer::wait() {
   return t;
 }
 
-}  // namespace thx::dev
+}  // namespace thx::rt
