@@ -28,12 +28,11 @@ echo "== hapticd, real time: a press into a 60 degree V-valley, crease handling 
 echo
 echo "== physics: hapticd + physics-client, the simulated pen pushes a ball out of its dimple into another (about 6 s)"
 PC="$BUILD/clients/physics_client/physics-client"
-URL="udpm://239.255.76.67:7667?ttl=0"
-"$PC" --scene scenes/pen_pushes_ball_dimples.yaml --duration 5.5 --lcm-url "$URL" --json "$OUT/physics_push.json" \
+"$PC" --scene scenes/pen_pushes_ball_dimples.yaml --duration 5.5 --json "$OUT/physics_push.json" \
   --quiet > "$OUT/physics_push.txt" 2>&1 &
 PC_PID=$!
 sleep 0.5
-"$HD" --scene scenes/pen_pushes_ball_dimples.yaml --lcm-url "$URL" --quiet --stats-json "$OUT/hapticd_push.json" \
+"$HD" --scene scenes/pen_pushes_ball_dimples.yaml --quiet --stats-json "$OUT/hapticd_push.json" \
   --flight-dir "$OUT" > /dev/null
 wait "$PC_PID" || echo "physics-client failed (see $OUT/physics_push.txt)"
 cat "$OUT/physics_push.txt"

@@ -32,14 +32,16 @@
 #include <variant>
 #include <vector>
 
+#include "base/error.hpp"
+
 namespace thx::dev {
 
 // A bad script step or path file. The message names the file, line and field when there is one:
 //   FILE:LINE: FIELD: problem; expected WHAT, got 'VALUE'
-class HandScriptError : public std::runtime_error {
+class HandScriptError : public thx::Error {
  public:
   HandScriptError(const std::string& message, std::string file = {}, int line = 0, std::string field = {})
-      : std::runtime_error(message), file_(std::move(file)), line_(line), field_(std::move(field)) {}
+      : thx::Error(Kind::Config, message), file_(std::move(file)), line_(line), field_(std::move(field)) {}
   const std::string& file() const { return file_; }
   int line() const { return line_; }  // 1-based, 0 when not about a line
   const std::string& field() const { return field_; }

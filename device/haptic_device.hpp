@@ -19,13 +19,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/error.hpp"
 #include "rt/pacer.hpp"
 
 namespace thx::dev {
 
-class DeviceError : public std::runtime_error {
+// A device that cannot be opened or used (an unreachable VRPN server, a bad replay file).
+class DeviceError : public thx::Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit DeviceError(const std::string& what) : thx::Error(Kind::Io, what) {}
 };
 
 // What a device model can do; the servo's stability budget and safety stage start from it.

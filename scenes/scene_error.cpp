@@ -25,7 +25,7 @@ std::string format(const SourceLocation& where, const std::string& field, const 
 
 SceneError::SceneError(SourceLocation where, std::string field, std::string problem, std::string expected,
                        std::string value)
-    : std::runtime_error(format(where, field, problem, expected, value)),
+    : thx::Error(Kind::Config, format(where, field, problem, expected, value)),
       where_(std::move(where)),
       field_(std::move(field)),
       problem_(std::move(problem)),

@@ -4,8 +4,9 @@
 // what was expected, so a user can fix the scene without reading code:
 //
 //   scenes/x.yaml:7:12: surface.size[1]: wrong type; expected a number in (0, 10] m, got 'abc'
-#include <stdexcept>
 #include <string>
+
+#include "base/error.hpp"
 
 namespace thx::scene {
 
@@ -20,7 +21,7 @@ struct SourceLocation {
 // "file:line:column" (or just "file" when the line is unknown).
 std::string toString(const SourceLocation& where);
 
-class SceneError : public std::runtime_error {
+class SceneError : public thx::Error {
  public:
   SceneError(SourceLocation where, std::string field, std::string problem, std::string expected = {},
              std::string value = {});

@@ -2,6 +2,7 @@
 // real-time thread, publishes device and contact state over LCM, and on SIGINT/SIGTERM (or after
 // --duration) ramps the force down and writes its statistics. `hapticd --help` for options.
 #include <lcm/lcm-cpp.hpp>
+#include <thx_msgs/protocol.hpp>
 #include <arpa/inet.h>
 #include <malloc.h>
 #include <pthread.h>
@@ -55,7 +56,7 @@ publishes device and contact state over LCM.
   --record FILE         write every tick's device and contact state to FILE, a standard LCM log
                         (lcm-logplayer plays it; --device replay:FILE renders it again)
   --stats-json FILE     write statistics (ticks, rate, missed ticks, latencies, memory) as JSON
-  --lcm-url URL         LCM transport (default udpm://239.255.76.67:7667?ttl=0)
+  --lcm-url URL         LCM transport (default )" THX_DEFAULT_LCM_URL R"()
   --no-lcm              do not publish at all
   --max-clients N       clients served at once (default 32); more are refused (docs/clients.md)
   --max-rate HZ         highest rate granted to one subscription (default: the servo rate)
@@ -96,7 +97,7 @@ struct Options {
   bool lockstep = false;
   std::string stats_json;
   std::string record;  // --record FILE
-  std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";
+  std::string lcm_url = thx_msgs::kDefaultLcmUrl;
   bool no_lcm = false;
   thx::srv::SubscriptionLimits limits;  // --max-clients, --max-rate, --max-bandwidth, --heartbeat-timeout
   bool max_rate_given = false;
@@ -480,6 +481,7 @@ int run(const Options& o) {
   summary.memory = srv::readProcessMemory();
   summary.texture_bytes = map.bytes();
   summary.publisher = publisher.counters();
+  if (receiver) summary.client_forces_accepted = receiver->counters().accepted;
   summary.snapshots_dropped = ring.dropped();
   summary.last_flight_dump = publisher.lastFlightDump();
   summary.crease = o.crease;

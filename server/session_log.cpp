@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <thx_msgs/log_reader.hpp>
 #include <thx_msgs/protocol.hpp>
 
 #include "server/tick_messages.hpp"
@@ -24,17 +25,6 @@ template <class M>
 void encodeInto(const M& m, std::vector<std::uint8_t>& out) {
   out.resize(std::size_t(m.getEncodedSize()));
   m.encode(out.data(), 0, int(out.size()));
-}
-
-template <class Fn>
-void forEachEvent(const std::string& path, const std::string& channel, Fn fn) {
-  lcm::LogFile log(path, "r");
-  if (!log.good()) throw std::runtime_error(path + ": cannot open as an LCM log file");
-  long n = 0;
-  while (const lcm::LogEvent* e = log.readNextEvent()) {
-    ++n;
-    if (e->channel == channel) fn(*e, n);
-  }
 }
 
 bool finite(const double* v, int n) {
@@ -85,11 +75,9 @@ void SessionRecorder::record(const TickRecord& r) {
 
 std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path) {
   std::vector<dev::ReplaySample> out;
-  forEachEvent(path, kSessionDeviceChannel, [&](const lcm::LogEvent& e, long n) {
-    thx_msgs::device_state_t d;
-    const std::string where = path + ": event " + std::to_string(n) + " (" + e.channel + ")";
-    if (thx_msgs::try_decode(e.data, std::size_t(e.datalen), d) < 0)
-      throw std::runtime_error(where + ": does not decode as device_state_t (wrong type or corrupt)");
+  thx_msgs::forEachLogMessage<thx_msgs::device_state_t>(path, kSessionDeviceChannel, [&](const thx_msgs::device_state_t& d,
+                                                                                          const thx_msgs::LogPosition& at) {
+    const std::string where = at.where();
     if (!finite(d.p_world, 3) || !finite(d.q_world, 4) || !finite(d.v_world, 3) || !finite(d.w_world, 3))
       throw std::runtime_error(where + ": tick " + std::to_string(d.tick) + " holds a non-finite value");
     if (!out.empty() && d.tick <= out.back().tick)
@@ -110,13 +98,8 @@ std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path) {
 
 std::vector<thx_msgs::contact_t> loadSessionContacts(const std::string& path) {
   std::vector<thx_msgs::contact_t> out;
-  forEachEvent(path, kSessionContactChannel, [&](const lcm::LogEvent& e, long n) {
-    thx_msgs::contact_t c;
-    if (thx_msgs::try_decode(e.data, std::size_t(e.datalen), c) < 0)
-      throw std::runtime_error(path + ": event " + std::to_string(n) + " (" + e.channel +
-                               "): does not decode as contact_t");
-    out.push_back(c);
-  });
+  thx_msgs::forEachLogMessage<thx_msgs::contact_t>(
+      path, kSessionContactChannel, [&](const thx_msgs::contact_t& c, const thx_msgs::LogPosition&) { out.push_back(c); });
   return out;
 }
 

@@ -1,4 +1,5 @@
 #include "server/stats_json.hpp"
+#include "base/json_text.hpp"
 
 #include <stdexcept>
 
@@ -14,16 +15,6 @@ std::string quantiles(const LatencyHistogram& h) {
   return buf;
 }
 
-std::string escaped(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) continue;
-    out += c;
-  }
-  return out;
-}
-
 double achievedRate(const RunSummary& s) { return s.device_time_s > 0 ? double(s.ticks) / s.device_time_s : 0.0; }
 
 }  // namespace
@@ -33,7 +24,7 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) throw std::runtime_error("cannot write statistics to " + path);
   std::fprintf(f, "{\n");
-  std::fprintf(f, "  \"scene\": \"%s\",\n", escaped(s.scene).c_str());
+  std::fprintf(f, "  \"scene\": \"%s\",\n", json::escaped(s.scene).c_str());
   std::fprintf(f, "  \"mode\": \"%s\",\n", s.lockstep ? "lockstep" : "realtime");
   std::fprintf(f, "  \"crease_handling\": %s,\n  \"passivity_control\": %s,\n", s.crease ? "true" : "false",
                s.passivity ? "true" : "false");
@@ -48,6 +39,7 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
   std::fprintf(f, "  \"wake_latency_us\": %s,\n", quantiles(wake).c_str());
   std::fprintf(f, "  \"rss_bytes\": %lld,\n  \"locked_bytes\": %lld,\n  \"texture_bytes\": %zu,\n",
                (long long)s.memory.rss_bytes, (long long)s.memory.locked_bytes, s.texture_bytes);
+  std::fprintf(f, "  \"client_forces_accepted\": %llu,\n", (unsigned long long)s.client_forces_accepted);
   std::fprintf(f, "  \"contact_ticks\": %llu,\n  \"client_force_ticks\": %llu,\n  \"faults\": %llu,\n  \"invalid_readings\": %llu,\n",
                (unsigned long long)s.servo.contact_ticks, (unsigned long long)s.servo.client_force_ticks,
                (unsigned long long)s.servo.faults,
@@ -67,7 +59,7 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
                (unsigned long long)s.publisher.published, (unsigned long long)s.publisher.publish_errors,
                (unsigned long long)s.snapshots_dropped);
   std::fprintf(f, "  \"flight_dumps\": %llu,\n  \"last_flight_dump\": \"%s\"\n}\n",
-               (unsigned long long)s.publisher.flight_dumps, escaped(s.last_flight_dump).c_str());
+               (unsigned long long)s.publisher.flight_dumps, json::escaped(s.last_flight_dump).c_str());
   if (std::fclose(f) != 0) throw std::runtime_error("cannot write statistics to " + path);
 }
 

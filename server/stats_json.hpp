@@ -31,6 +31,7 @@ struct RunSummary {
   ProcessMemory memory;
   std::size_t texture_bytes = 0;
   PublisherCounters publisher;
+  std::uint64_t client_forces_accepted = 0;  // client_force_t messages the receiver took
   std::uint64_t snapshots_dropped = 0;
   std::string last_flight_dump;
 };

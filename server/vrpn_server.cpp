@@ -39,7 +39,7 @@ struct Client {
   bool told_plane2_ignored = false;
 };
 
-std::string describe(const Error& e) { return std::string(toString(e.code)) + ": " + e.reason; }
+std::string describe(const vrpn::Error& e) { return std::string(toString(e.code)) + ": " + e.reason; }
 
 // A snapshot worth reporting: the servo had a valid reading and everything a report carries is
 // finite. Before the first valid reading the snapshot is the default (position 0, identity).
@@ -331,7 +331,7 @@ void VrpnServer::run() {
       std::vector<std::pair<std::string, std::uint16_t>> answered;
       while (std::optional<Datagram> d = receiveDatagram(s.udp_fd.get())) {
         bump(&VrpnServerStatus::lob_requests);
-        Result<LobRequest> req = d->oversized ? Result<LobRequest>(Error{ErrorCode::kBadLobRequest,
+        Result<LobRequest> req = d->oversized ? Result<LobRequest>(vrpn::Error{ErrorCode::kBadLobRequest,
                                                                          "datagram longer than 256 bytes"})
                                               : parseLobRequest(d->bytes);
         if (!req) {
@@ -373,7 +373,7 @@ void VrpnServer::run() {
       }
       if (!c.conn->open()) continue;
       if (!c.connected && now - c.opened_ns > handshake_ns) {
-        c.conn->close(Error{ErrorCode::kSocket, "no VRPN handshake within the timeout"});
+        c.conn->close(vrpn::Error{ErrorCode::kSocket, "no VRPN handshake within the timeout"});
         continue;
       }
       if (c.connected) {
@@ -402,7 +402,7 @@ void VrpnServer::run() {
       if (c.conn->open()) continue;
       while (c.conn->endpoint().poll()) {
       }
-      const std::optional<Error>& why = c.conn->closeReason();
+      const std::optional<vrpn::Error>& why = c.conn->closeReason();
       const bool clean = why && why->code == ErrorCode::kPeerClosed;
       if (!clean) bump(&VrpnServerStatus::drops);
       log("client " + c.peer + (clean ? " disconnected" : " dropped: " + (why ? describe(*why) : "closed")));
@@ -434,7 +434,7 @@ void VrpnServer::run() {
     resetEffects(s.effects);
     if (effects_) effects_->commandSlot().write(s.effects);
   }
-  for (Client& c : s.clients) c.conn->close(Error{ErrorCode::kPeerClosed, "server shutting down"});
+  for (Client& c : s.clients) c.conn->close(vrpn::Error{ErrorCode::kPeerClosed, "server shutting down"});
   s.clients.clear();
 }
 

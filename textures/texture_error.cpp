@@ -13,7 +13,7 @@ std::string format(const std::string& source, const std::string& problem, const 
 }  // namespace
 
 TextureError::TextureError(std::string source, std::string problem, std::string value, std::string expected)
-    : std::runtime_error(format(source, problem, value, expected)),
+    : thx::Error(Kind::Config, format(source, problem, value, expected)),
       source_(std::move(source)),
       problem_(std::move(problem)),
       value_(std::move(value)),

@@ -2,12 +2,13 @@
 // One error type for every texture problem. The message always names the file (or the in-memory
 // source), the problem, the offending value and what was expected, so a user can fix the input
 // without reading code.
-#include <stdexcept>
 #include <string>
+
+#include "base/error.hpp"
 
 namespace thx::tex {
 
-class TextureError : public std::runtime_error {
+class TextureError : public thx::Error {
  public:
   TextureError(std::string source, std::string problem, std::string value, std::string expected);
 

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "base/json_text.hpp"
+
 namespace thx::physclient {
 
 Driver::Driver(PhysicsScene& scene, EventSink& sink, const DriverOptions& options)
@@ -98,20 +100,12 @@ std::string vec(const Eigen::Vector3d& v) {
   std::snprintf(b, sizeof b, "[%.9g, %.9g, %.9g]", v.x(), v.y(), v.z());
   return b;
 }
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) continue;
-    out += c;
-  }
-  return out + "\"";
-}
+using json::quoted;
 }  // namespace
 
 void writeSummaryJson(const std::string& path, const std::string& scene_file, const RunSummary& s) {
   std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot write the summary");
+  if (!out) throw thx::Error(thx::Error::Kind::Io, path + ": cannot write the summary");
   char b[512];
   out << "{\n  \"scene\": " << quoted(scene_file) << ",\n";
   std::snprintf(b, sizeof b,
@@ -134,8 +128,19 @@ void writeSummaryJson(const std::string& path, const std::string& scene_file, co
       out << (k ? ", " : "") << "{\"name\": " << quoted(o.touched[k].name) << ", \"first_s\": " << o.touched[k].first_s << "}";
     out << "]}";
   }
-  out << "\n  ]\n}\n";
-  if (!out) throw std::runtime_error(path + ": write failed");
+  out << "\n  ]";
+  if (s.hapticd.online) {
+    std::snprintf(b, sizeof b,
+                  ",\n  \"hapticd\": {\"device_states\": %lld, \"client_force_states\": %lld, "
+                  "\"max_cmd_with_client_force_n\": %.9g, \"forces_sent\": %lld, \"stale_steps\": %lld, "
+                  "\"missed_steps\": %lld}",
+                  (long long)s.hapticd.device_states, (long long)s.hapticd.client_force_states,
+                  s.hapticd.max_cmd_with_client_force_n, (long long)s.hapticd.forces_sent,
+                  (long long)s.hapticd.stale_steps, (long long)s.hapticd.missed_steps);
+    out << b;
+  }
+  out << "\n}\n";
+  if (!out) throw thx::Error(thx::Error::Kind::Io, path + ": write failed");
 }
 
 void printSummary(std::FILE* out, const RunSummary& s) {
@@ -145,6 +150,13 @@ void printSummary(std::FILE* out, const RunSummary& s) {
                s.mean_force_in_contact_n, (long long)s.clamped_steps);
   std::fprintf(out, "  events: %lld impacts (%lld with the pen), %lld contact reports, %lld pose reports\n",
                (long long)s.impacts, (long long)s.pen_impacts, (long long)s.contact_reports, (long long)s.pose_reports);
+  if (s.hapticd.online)
+    std::fprintf(out,
+                 "  hapticd: %lld device states received, %lld with FLAG_CLIENT_FORCE (max |f_cmd| then %.4f N); "
+                 "%lld forces sent; %lld steps reused a pose, %lld grid points missed\n",
+                 (long long)s.hapticd.device_states, (long long)s.hapticd.client_force_states,
+                 s.hapticd.max_cmd_with_client_force_n, (long long)s.hapticd.forces_sent,
+                 (long long)s.hapticd.stale_steps, (long long)s.hapticd.missed_steps);
   for (const ObjectSummary& o : s.objects) {
     if (o.fixed) {  // obstacles never move: only what touched them
       if (o.touched.empty()) continue;

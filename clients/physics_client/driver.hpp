@@ -59,6 +59,16 @@ struct RunSummary {
   std::int64_t contact_reports = 0;     // lasting-contact batches handed to the sink
   std::int64_t pose_reports = 0;
   std::vector<ObjectSummary> objects;
+  // Online runs only: what came from and went to hapticd (filled by physics-client's main).
+  struct HapticdLink {
+    bool online = false;
+    std::int64_t device_states = 0;        // DEVICE_STATE messages received
+    std::int64_t client_force_states = 0;  // of them, with FLAG_CLIENT_FORCE (hapticd applied a client force)
+    double max_cmd_with_client_force_n = 0.0;
+    std::int64_t forces_sent = 0;          // client_force_t messages sent (the release at exit included)
+    std::int64_t stale_steps = 0;          // steps that reused the previous device state
+    std::int64_t missed_steps = 0;         // grid points skipped after overruns (the pacer realigned)
+  } hapticd;
 };
 
 class Driver {

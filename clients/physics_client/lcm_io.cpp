@@ -1,6 +1,7 @@
 #include "clients/physics_client/lcm_io.hpp"
 
 #include <lcm/lcm-cpp.hpp>
+#include <thx_msgs/log_reader.hpp>
 #include <time.h>
 
 #include <algorithm>
@@ -147,30 +148,25 @@ void LcmSink::contacts(const PhysicsScene& scene, const std::vector<LastingConta
 }
 
 std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz) {
-  lcm::LogFile log(path, "r");
-  if (!log.good()) throw PenPathError(path + ": cannot open the session log; expected an LCM log from `hapticd --record`");
   std::vector<PenSample> out;
   std::int64_t first_tick = 0;
-  long long event_no = 0;
-  while (const lcm::LogEvent* e = log.readNextEvent()) {
-    ++event_no;
-    if (e->channel != "THX_DEVICE_STATE") continue;
-    thx_msgs::device_state_t s;
-    if (e->datalen < 0 || thx_msgs::try_decode(e->data, std::size_t(e->datalen), s) < 0)
-      throw PenPathError(path + ": event " + std::to_string(event_no) +
-                         ": THX_DEVICE_STATE does not decode; expected a device_state_t");
-    const Eigen::Vector3d p(s.p_world[0], s.p_world[1], s.p_world[2]);
-    if (!p.allFinite())
-      throw PenPathError(path + ": event " + std::to_string(event_no) + ": p_world is not finite");
-    if (out.empty()) first_tick = s.tick;
-    if (!out.empty() && s.tick <= out.back().tick)
-      throw PenPathError(path + ": event " + std::to_string(event_no) + ": tick " + std::to_string(s.tick) +
-                         " does not increase; expected ticks after " + std::to_string(out.back().tick));
-    PenSample ps;
-    ps.tick = s.tick;
-    ps.t_s = double(s.tick - first_tick) / servo_hz;
-    ps.p_world = p;
-    out.push_back(ps);
+  try {
+    thx_msgs::forEachLogMessage<thx_msgs::device_state_t>(path, "THX_DEVICE_STATE", [&](const thx_msgs::device_state_t& s,
+                                                                                       const thx_msgs::LogPosition& at) {
+      const Eigen::Vector3d p(s.p_world[0], s.p_world[1], s.p_world[2]);
+      if (!p.allFinite()) throw PenPathError(at.where() + ": p_world is not finite");
+      if (out.empty()) first_tick = s.tick;
+      if (!out.empty() && s.tick <= out.back().tick)
+        throw PenPathError(at.where() + ": tick " + std::to_string(s.tick) + " does not increase; expected ticks after " +
+                           std::to_string(out.back().tick));
+      PenSample ps;
+      ps.tick = s.tick;
+      ps.t_s = double(s.tick - first_tick) / servo_hz;
+      ps.p_world = p;
+      out.push_back(ps);
+    });
+  } catch (const thx_msgs::LogError& e) {
+    throw PenPathError(std::string(e.what()) + "; expected an LCM log from `hapticd --record`");
   }
   if (out.size() < 2)
     throw PenPathError(path + ": " + std::to_string(out.size()) +

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "base/cli_number.hpp"
 #include "thx_msgs/protocol.hpp"
 
 namespace thx::physclient {
@@ -39,7 +40,7 @@ Pen (the device's tip; default: hapticd over LCM):
   --impact-speed M/S     slowest first touch reported as an impact (default 0.005)
 
 LCM:
-  --lcm-url URL          default udpm://239.255.76.67:7667?ttl=0; offline runs publish only when given
+  --lcm-url URL          default )" THX_DEFAULT_LCM_URL R"(; offline runs publish only when given
   --no-lcm               offline only: publish nothing
   --client-id ID         1-32 of [A-Za-z0-9_-] (default physics)
   --connect-timeout S    wait this long for the first device state (default 10)
@@ -53,22 +54,6 @@ LCM:
   -h, --help             this text
 )";
 
-namespace {
-
-double number(const std::string& option, const std::string& value, double min, double max, bool min_open,
-              const std::string& unit) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  char bounds[64];
-  std::snprintf(bounds, sizeof bounds, "%s%g, %g]", min_open ? "(" : "[", min, max);
-  const std::string range = bounds + (unit.empty() ? std::string() : " " + unit);
-  if (value.empty() || end == nullptr || *end != '\0' || !std::isfinite(v) || v > max || v < min ||
-      (min_open && v == min))
-    throw UsageError(option + ": expected a number in " + range + ", got '" + value + "'");
-  return v;
-}
-
-}  // namespace
 
 Options parseOptions(const std::vector<std::string>& args) {
   Options o;
@@ -84,15 +69,15 @@ Options parseOptions(const std::vector<std::string>& args) {
     } else if (a == "--scene") {
       o.scene = value();
     } else if (a == "--rate") {
-      o.rate_hz = number(a, value(), 10, 10000, false, "Hz");
+      o.rate_hz = cli::parseNumber(a, value(), {10, 10000, false, "Hz"});
     } else if (a == "--duration") {
-      o.duration_s = number(a, value(), 0, 1e6, true, "s");
+      o.duration_s = cli::parseNumber(a, value(), {0, 1e6, true, "s"});
     } else if (a == "--pose-rate") {
-      o.pose_hz = number(a, value(), 0, 10000, true, "Hz");
+      o.pose_hz = cli::parseNumber(a, value(), {0, 10000, true, "Hz"});
     } else if (a == "--contact-rate") {
-      o.contact_hz = number(a, value(), 0, 10000, true, "Hz");
+      o.contact_hz = cli::parseNumber(a, value(), {0, 10000, true, "Hz"});
     } else if (a == "--state-rate") {
-      o.state_hz = number(a, value(), 0, 10000, true, "Hz");
+      o.state_hz = cli::parseNumber(a, value(), {0, 10000, true, "Hz"});
     } else if (a == "--replay-log") {
       o.pen_source = PenSource::ReplayLog, o.pen_file = value(), ++sources;
     } else if (a == "--pen-csv") {
@@ -108,17 +93,17 @@ Options parseOptions(const std::vector<std::string>& args) {
       else if (v == "none") o.pen.shape = PenShape::None;
       else throw UsageError(a + ": expected capsule, sphere or none, got '" + v + "'");
     } else if (a == "--pen-radius") {
-      o.pen.radius_m = number(a, value(), 0, 0.1, true, "m");
+      o.pen.radius_m = cli::parseNumber(a, value(), {0, 0.1, true, "m"});
     } else if (a == "--pen-length") {
-      o.pen.length_m = number(a, value(), 0, 1, true, "m");
+      o.pen.length_m = cli::parseNumber(a, value(), {0, 1, true, "m"});
     } else if (a == "--force-scale") {
-      o.pen.force_scale = number(a, value(), 0, 100, false, "");
+      o.pen.force_scale = cli::parseNumber(a, value(), {0, 100, false, ""});
     } else if (a == "--max-force") {
-      o.pen.max_force_n = number(a, value(), 0, 100, false, "N");
+      o.pen.max_force_n = cli::parseNumber(a, value(), {0, 100, false, "N"});
     } else if (a == "--no-friction-force") {
       o.pen.friction = false;
     } else if (a == "--impact-speed") {
-      o.impact_min_speed = number(a, value(), 0, 100, false, "m/s");
+      o.impact_min_speed = cli::parseNumber(a, value(), {0, 100, false, "m/s"});
     } else if (a == "--lcm-url") {
       o.lcm_url = value();
     } else if (a == "--no-lcm") {
@@ -128,7 +113,7 @@ Options parseOptions(const std::vector<std::string>& args) {
       if (!thx_msgs::is_valid_client_id(o.client_id))
         throw UsageError(a + ": expected 1 to 32 characters of [A-Za-z0-9_-], got '" + o.client_id + "'");
     } else if (a == "--connect-timeout") {
-      o.connect_timeout_s = number(a, value(), 0, 3600, true, "s");
+      o.connect_timeout_s = cli::parseNumber(a, value(), {0, 3600, true, "s"});
     } else if (a == "--json") {
       o.json = value();
     } else if (a == "--poses-csv") {

@@ -6,15 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "base/error.hpp"
 #include "clients/physics_client/physics_scene.hpp"
 
 namespace thx::physclient {
 
 extern const char* const kHelp;
 
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using thx::UsageError;
 
 enum class PenSource { Hapticd, ReplayLog, Csv, Script, None };
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "base/error.hpp"
 #include "clients/physics_client/physics_scene.hpp"
 
 namespace thx::physclient {
@@ -22,8 +23,8 @@ struct PenSample {
 };
 
 // Throws PenPathError with "FILE:LINE: FIELD: problem; expected ..., got '...'".
-struct PenPathError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct PenPathError : thx::Error {
+  explicit PenPathError(const std::string& what) : thx::Error(Kind::Config, what) {}
 };
 
 // `#` comments and blank lines skipped; an optional header `t_s, x_m, y_m, z_m`; times >= 0 and

@@ -1,36 +1,22 @@
 // probe-client: subscribes to one hapticd stream and reports how it arrives (docs/clients.md).
 // `probe-client --help` for options.
-#include <csignal>
 #include <cstdio>
-#include <lcm/lcm-cpp.hpp>
 #include <optional>
-#include <stdexcept>
 
 #include "probe_options.hpp"
 #include "probe_report.hpp"
-#include "thx_client/client.hpp"
+#include "thx_client/app.hpp"
 #include "thx_client/stream_monitor.hpp"
 
 namespace {
 
-volatile std::sig_atomic_t g_stop = 0;
-void onSignal(int) { g_stop = 1; }
-
 using namespace thx::client;
 
-ProbeResult probe(const ProbeOptions& o) {
-  ProbeResult result;
-  result.options = o;
-  result.status.stream = o.stream;
-  result.status.batch = o.batch;
-  result.status.requested_hz = o.rate_hz;
-  lcm::LCM lcm(o.lcm_url);
-  if (!lcm.good()) {
-    result.error = "LCM is not available at '" + o.lcm_url +
-                   "' (no multicast route? try `ip route add 224.0.0.0/4 dev lo` as root, or --lcm-url)";
-    return result;
-  }
-  Client client(lcm, o.client_id);
+// Receives until the stream is refused, no data came within the connect timeout, the duration
+// since the first message has passed, or a stop signal arrives.
+void receive(const ProbeOptions& o, ProbeResult& result) {
+  ClientApp app(o.client_id, o.lcm_url, o.connect_timeout_s);
+  Client& client = app.client();
   std::optional<StreamMonitor> monitor;
   std::int64_t first_ns = 0, instance = 0;
   auto seen = [&](std::int64_t now) {
@@ -59,25 +45,31 @@ ProbeResult probe(const ProbeOptions& o) {
   });
   client.subscribe(o.stream, o.rate_hz, o.batch);
 
-  const std::int64_t start = monotonicNs();
-  const auto connect_ns = std::int64_t(o.connect_timeout_s * 1e9);
-  const auto duration_ns = std::int64_t(o.duration_s * 1e9);
-  while (!g_stop) {
-    const std::int64_t now = monotonicNs();
+  auto refused = [&] {
     const auto st = client.status(o.stream);
-    if (st && st->state == SubscriptionState::Refused) break;
-    if (first_ns == 0 && now - start > connect_ns) break;
-    if (first_ns != 0 && now - first_ns >= duration_ns) break;
-    if (client.poll(5) < 0) {
-      result.error = "LCM receive failed";
-      break;
-    }
-  }
+    return st && st->state == SubscriptionState::Refused;
+  };
+  if (app.pollUntil([&] { return first_ns != 0 || refused(); }, o.connect_timeout_s) && !refused())
+    app.pollUntil([&] { return refused() || monotonicNs() - first_ns >= std::int64_t(o.duration_s * 1e9); }, 1e9);
+
   if (auto st = client.status(o.stream)) result.status = *st;
   if (monitor) result.report = monitor->report();
   result.server_instance = client.serverInstance();
   result.reconnects = client.counters().reconnects;
-  if (!result.error.empty()) return result;
+}
+
+ProbeResult probe(const ProbeOptions& o) {
+  ProbeResult result;
+  result.options = o;
+  result.status.stream = o.stream;
+  result.status.batch = o.batch;
+  result.status.requested_hz = o.rate_hz;
+  try {
+    receive(o, result);
+  } catch (const thx::Error& e) {  // no LCM: still a report that says so
+    result.error = e.what();
+    return result;
+  }
   if (result.status.state == SubscriptionState::Refused) {
     result.error = "refused: " + result.status.reason;
   } else if (result.report.messages == 0) {
@@ -91,12 +83,9 @@ ProbeResult probe(const ProbeOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const ProbeOptions o = parseProbeOptions(argc, argv);
-  struct sigaction sa {};
-  sa.sa_handler = onSignal;
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
   try {
+    const ProbeOptions o = parseProbeOptions(std::vector<std::string>(argv + 1, argv + argc));
+    if (o.help) return std::fputs(kProbeHelp, stdout), 0;
     const ProbeResult r = probe(o);
     writeProbeJson(o.json, r);
     if (!o.quiet && o.json != "-") printProbeSummary(stdout, r);
@@ -105,8 +94,8 @@ int main(int argc, char** argv) {
       return 1;
     }
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "probe-client: %s\n", e.what());
-    return 1;
+  } catch (const thx::Error& e) {
+    std::fprintf(stderr, "probe-client: %s%s\n", e.what(), e.kind() == thx::Error::Kind::Usage ? " (see --help)" : "");
+    return thx::exitStatus(e);
   }
 }

@@ -2,10 +2,9 @@
 
 #include <unistd.h>
 
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <thx_msgs/protocol.hpp>
+
+#include "base/cli_number.hpp"
 
 namespace thx::client {
 
@@ -21,7 +20,7 @@ server runs in real time (not --lockstep).
   --duration S          how long to receive, counted from the first message
   --json FILE           write the report as JSON ('-' for stdout)
   --batch               CONTACT only: every tick's sample, batched (contact_batch_t)
-  --lcm-url URL         LCM transport (default udpm://239.255.76.67:7667?ttl=0)
+  --lcm-url URL         LCM transport (default )" THX_DEFAULT_LCM_URL R"()
   --client-id ID        1-32 of [A-Za-z0-9_-] (default probe-<pid>)
   --connect-timeout S   give up when no data has arrived after S seconds (default 10)
   --quiet               no summary on stdout
@@ -30,39 +29,26 @@ server runs in real time (not --lockstep).
 Exit status: 0 data received, 1 refused / nothing received / LCM unavailable, 2 bad command line.
 )";
 
-namespace {
-[[noreturn]] void usage(const std::string& message) {
-  std::fprintf(stderr, "probe-client: %s (see probe-client --help)\n", message.c_str());
-  std::exit(2);
-}
-
-double number(const std::string& option, const char* text) {
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (!end || end == text || *end != '\0' || !std::isfinite(v)) usage(option + " expects a number, got '" + text + "'");
-  return v;
-}
-}  // namespace
-
-ProbeOptions parseProbeOptions(int argc, char** argv) {
+ProbeOptions parseProbeOptions(const std::vector<std::string>& args) {
+  using cli::parseNumber;
   ProbeOptions o;
   bool have_rate = false, have_duration = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) usage(a + " needs a value");
-      return argv[++i];
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+      return args[++i];
     };
     if (a == "-h" || a == "--help") {
-      std::fputs(kProbeHelp, stdout);
-      std::exit(0);
+      o.help = true;
+      return o;
     } else if (a == "--stream") {
       o.stream = value();
     } else if (a == "--rate") {
-      o.rate_hz = number(a, value());
+      o.rate_hz = parseNumber(a, value(), {0, 1e6, true, "Hz"});
       have_rate = true;
     } else if (a == "--duration") {
-      o.duration_s = number(a, value());
+      o.duration_s = parseNumber(a, value(), {0, 1e6, true, "s"});
       have_duration = true;
     } else if (a == "--json") {
       o.json = value();
@@ -73,28 +59,23 @@ ProbeOptions parseProbeOptions(int argc, char** argv) {
     } else if (a == "--client-id") {
       o.client_id = value();
     } else if (a == "--connect-timeout") {
-      o.connect_timeout_s = number(a, value());
+      o.connect_timeout_s = parseNumber(a, value(), {0, 3600, true, "s"});
     } else if (a == "--quiet") {
       o.quiet = true;
     } else {
-      usage("unknown argument '" + a + "'");
+      throw UsageError("unknown argument '" + a + "'");
     }
   }
-  if (o.stream.empty()) usage("--stream NAME is required");
-  if (!thx_msgs::is_known_stream(o.stream)) {
-    usage("--stream: expected DEVICE_STATE, CONTACT or SERVO_STATS, got '" + o.stream + "'");
-  }
-  if (o.batch && !thx_msgs::stream_supports_batch(o.stream)) usage("--batch works with --stream CONTACT only");
-  if (!have_rate) usage("--rate HZ is required");
-  if (o.rate_hz <= 0) usage("--rate must be > 0");
-  if (!have_duration) usage("--duration S is required");
-  if (o.duration_s <= 0) usage("--duration must be > 0");
-  if (o.json.empty()) usage("--json FILE is required");
-  if (o.connect_timeout_s <= 0) usage("--connect-timeout must be > 0");
+  if (o.stream.empty()) throw UsageError("--stream NAME is required");
+  if (!thx_msgs::is_known_stream(o.stream))
+    throw UsageError("--stream: expected DEVICE_STATE, CONTACT or SERVO_STATS, got '" + o.stream + "'");
+  if (o.batch && !thx_msgs::stream_supports_batch(o.stream)) throw UsageError("--batch works with --stream CONTACT only");
+  if (!have_rate) throw UsageError("--rate HZ is required");
+  if (!have_duration) throw UsageError("--duration S is required");
+  if (o.json.empty()) throw UsageError("--json FILE is required");
   if (o.client_id.empty()) o.client_id = "probe-" + std::to_string(::getpid());
-  if (!thx_msgs::is_valid_client_id(o.client_id)) {
-    usage("--client-id: expected 1-32 characters of [A-Za-z0-9_-], got '" + o.client_id + "'");
-  }
+  if (!thx_msgs::is_valid_client_id(o.client_id))
+    throw UsageError("--client-id: expected 1-32 characters of [A-Za-z0-9_-], got '" + o.client_id + "'");
   return o;
 }
 

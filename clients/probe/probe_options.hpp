@@ -1,6 +1,10 @@
 #pragma once
 // probe-client's command line.
 #include <string>
+#include <vector>
+
+#include "base/error.hpp"
+#include "thx_msgs/protocol.hpp"
 
 namespace thx::client {
 
@@ -10,16 +14,16 @@ struct ProbeOptions {
   double duration_s = 0.0;
   std::string json;
   bool batch = false;
-  std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";
+  std::string lcm_url = thx_msgs::kDefaultLcmUrl;
   std::string client_id;            // default: probe-<pid>
   double connect_timeout_s = 10.0;  // until the subscription is granted and data flows
   bool quiet = false;
+  bool help = false;  // -h / --help: print kProbeHelp
 };
 
 extern const char* const kProbeHelp;
 
-// Parses argv. On --help prints the help and exits 0; on a bad command line prints
-// "probe-client: <what>" and exits 2.
-ProbeOptions parseProbeOptions(int argc, char** argv);
+// Parses the arguments after the program name; throws thx::UsageError naming the option.
+ProbeOptions parseProbeOptions(const std::vector<std::string>& args);
 
 }  // namespace thx::client

@@ -1,27 +1,19 @@
 #include "probe_report.hpp"
 
+#include "base/json_text.hpp"
+
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
 
 namespace thx::client {
 
-namespace {
-std::string escaped(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 32) continue;
-    out += c;
-  }
-  return out;
-}
-}  // namespace
+using json::escaped;
 
 void writeProbeJson(const std::string& path, const ProbeResult& r) {
   const bool to_stdout = path == "-";
   std::FILE* f = to_stdout ? stdout : std::fopen(path.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  if (!f) throw thx::Error(thx::Error::Kind::Io, "cannot write " + path + ": " + std::strerror(errno));
   const StreamReport& s = r.report;
   std::fprintf(f,
                "{\n"
@@ -48,8 +40,8 @@ void writeProbeJson(const std::string& path, const ProbeResult& r) {
                (unsigned long long)s.samples_out_of_order, (long long)r.server_instance,
                (unsigned long long)r.reconnects, (unsigned long long)s.restarts, escaped(r.error).c_str());
   const bool failed = std::ferror(f) != 0;
-  if (!to_stdout && std::fclose(f) != 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-  if (failed) throw std::runtime_error("cannot write " + path);
+  if (!to_stdout && std::fclose(f) != 0) throw thx::Error(thx::Error::Kind::Io, "cannot write " + path + ": " + std::strerror(errno));
+  if (failed) throw thx::Error(thx::Error::Kind::Io, "cannot write " + path);
 }
 
 void printProbeSummary(std::FILE* out, const ProbeResult& r) {

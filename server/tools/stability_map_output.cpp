@@ -11,6 +11,7 @@
 
 #include "device/device_specs.hpp"
 #include "server/stability_budget.hpp"
+#include "base/json_text.hpp"
 
 namespace thx::srv::stab {
 
@@ -24,23 +25,6 @@ std::string num(double v) {
 }
 
 std::string csvNum(double v) { return std::isfinite(v) ? num(v) : "nan"; }
-
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 template <class T, class F>
 std::string list(const std::vector<T>& v, F f) {
@@ -108,7 +92,7 @@ std::string budgetJson(const CellSetup& s, double stiffness_fraction) {
   std::ostringstream o;
   o << "{\"stiffness_fraction\": " << num(stiffness_fraction) << ", \"bound_n_per_m\": " << num(b.bound_n_per_m)
     << ", \"required_physical_damping_ns_per_m\": " << num(b.required_physical_damping_ns_per_m)
-    << ", \"within_bound\": " << (b.within_bound ? "true" : "false") << ", \"message\": " << quoted(b.message) << "}";
+    << ", \"within_bound\": " << (b.within_bound ? "true" : "false") << ", \"message\": " << json::quoted(b.message) << "}";
   return o.str();
 }
 
@@ -123,11 +107,11 @@ std::string setupJson(const CellSetup& s, double max_stiffness_fraction) {
     << ", \"floor_x_m\": " << num(g.floorXM())
     << ", \"sampling\": \"bilinear, wrap\", \"smoothing_sigma_texels\": " << num(g.smoothing_sigma_texels)
     << ", \"smoothing_domain\": \"gradient\"},\n"
-    << "    \"hand\": {\"name\": " << quoted(s.hand.name) << ", \"mass_kg\": " << num(s.hand.mass_kg)
+    << "    \"hand\": {\"name\": " << json::quoted(s.hand.name) << ", \"mass_kg\": " << num(s.hand.mass_kg)
     << ", \"stiffness_n_per_m\": " << num(s.hand.stiffness_n_per_m)
     << ", \"damping_ns_per_m\": " << num(s.hand.damping_ns_per_m) << ", \"friction_n\": " << num(s.hand.friction_n)
     << ", \"push_normal_stiffness_fraction\": " << num(sim.hand_push_normal_stiffness_fraction) << "},\n"
-    << "    \"device\": {\"model\": " << quoted(sim.spec.model) << ", \"peak_force_n\": " << num(sim.spec.peak_force_n)
+    << "    \"device\": {\"model\": " << json::quoted(sim.spec.model) << ", \"peak_force_n\": " << num(sim.spec.peak_force_n)
     << ", \"continuous_force_n\": " << num(sim.spec.continuous_force_n)
     << ", \"max_stiffness_n_per_m\": " << num(sim.spec.max_stiffness_n_per_m)
     << ", \"max_damping_ns_per_m\": " << num(sim.spec.max_damping_ns_per_m)
@@ -178,9 +162,9 @@ std::string summaryJson(const CliOptions& options, const std::vector<CellResult>
         unstable_at_max.push_back(buf);
       }
     }
-    o << (first ? "\n" : ",\n") << "    {\"mitigations\": " << quoted(m.name()) << ", \"stable\": " << counts[0]
+    o << (first ? "\n" : ",\n") << "    {\"mitigations\": " << json::quoted(m.name()) << ", \"stable\": " << counts[0]
       << ", \"limit_cycle\": " << counts[1] << ", \"unstable\": " << counts[2]
-      << ", \"unstable_at_max_stiffness\": " << list(unstable_at_max, quoted) << "}";
+      << ", \"unstable_at_max_stiffness\": " << list(unstable_at_max, [](const std::string& s) { return json::quoted(s); }) << "}";
     first = false;
   }
   o << "\n  ]";
@@ -210,8 +194,8 @@ void writeJson(const std::string& path, const CliOptions& options, const std::ve
   const SweepAxes& a = options.axes;
   std::ostringstream o;
   o << "{\n  \"tool\": \"stability-map\",\n"
-    << "  \"command_line\": " << quoted(commandLine(options.argv)) << ",\n"
-    << "  \"argv\": " << list(options.argv, quoted) << ",\n"
+    << "  \"command_line\": " << json::quoted(commandLine(options.argv)) << ",\n"
+    << "  \"argv\": " << list(options.argv, [](const std::string& s) { return json::quoted(s); }) << ",\n"
     << "  \"deterministic\": \"lock-step virtual clock; results do not depend on --threads\",\n"
     << "  \"setup\": "
     << setupJson(options.setup, *std::max_element(a.stiffness_fractions.begin(), a.stiffness_fractions.end()))
@@ -220,8 +204,8 @@ void writeJson(const std::string& path, const CliOptions& options, const std::ve
     << "  \"axes\": {\"angles_deg\": " << list(a.angles_deg, num)
     << ", \"stiffness_fractions\": " << list(a.stiffness_fractions, num)
     << ", \"push_forces_n\": " << list(a.push_forces_n, num)
-    << ", \"representations\": " << list(a.relief, [](bool r) { return quoted(representation(r)); })
-    << ", \"mitigations\": " << list(a.mitigations, [](const Mitigations& m) { return quoted(m.name()); }) << "},\n"
+    << ", \"representations\": " << list(a.relief, [](bool r) { return json::quoted(representation(r)); })
+    << ", \"mitigations\": " << list(a.mitigations, [](const Mitigations& m) { return json::quoted(m.name()); }) << "},\n"
     << "  \"summary\": " << summaryJson(options, results) << ",\n"
     << "  \"cells\": [";
   for (std::size_t i = 0; i < results.size(); ++i) {
@@ -231,13 +215,13 @@ void writeJson(const std::string& path, const CliOptions& options, const std::ve
       << ", \"wall_angle_deg\": " << num(90.0 - p.angle_deg / 2.0)
       << ", \"stiffness_fraction\": " << num(p.stiffness_fraction)
       << ", \"stiffness_n_per_m\": " << num(r.stiffness_n_per_m) << ", \"push_force_n\": " << num(p.push_force_n)
-      << ", \"representation\": " << quoted(representation(p.relief))
-      << ", \"mitigations\": " << quoted(p.mitigations.name()) << ", \"crease\": " << (p.mitigations.crease ? "true" : "false")
+      << ", \"representation\": " << json::quoted(representation(p.relief))
+      << ", \"mitigations\": " << json::quoted(p.mitigations.name()) << ", \"crease\": " << (p.mitigations.crease ? "true" : "false")
       << ", \"passivity\": " << (p.mitigations.passivity ? "true" : "false")
       << ", \"smoothing\": " << (p.mitigations.smoothing ? "true" : "false")
-      << ", \"floor_height_m\": " << num(r.floor_height_m) << ", \"verdict\": " << quoted(verdictName(r.metrics.verdict))
-      << ", \"reason\": " << quoted(r.metrics.reason) << ", \"finite\": " << (r.metrics.finite ? "true" : "false");
-    for (const auto& [name, value] : metricFields(r.metrics)) o << ", " << quoted(name) << ": " << num(value);
+      << ", \"floor_height_m\": " << num(r.floor_height_m) << ", \"verdict\": " << json::quoted(verdictName(r.metrics.verdict))
+      << ", \"reason\": " << json::quoted(r.metrics.reason) << ", \"finite\": " << (r.metrics.finite ? "true" : "false");
+    for (const auto& [name, value] : metricFields(r.metrics)) o << ", " << json::quoted(name) << ": " << num(value);
     o << "}";
   }
   o << "\n  ]\n}\n";

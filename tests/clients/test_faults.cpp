@@ -2,9 +2,10 @@
 // udpm (ttl=0, a port of each test's own): a client SIGKILLed, a client that stops reading,
 // malformed / oversized / foreign bytes on the three client -> server channels, an unreachable
 // LCM URL, and no multicast route at all (a fresh network namespace). Each checks that hapticd
-// says what is wrong on stderr, that the other clients lose nothing, and that the servo kept
-// time with its force safe (--stats-json) and hapticd exits 0. Counts have wide margins and no
-// timing is asserted beyond "kept its rate" (the sanitizer build runs on a loaded 2-core VM).
+// says what is wrong on stderr, that the other clients' streams keep flowing (granted, arriving,
+// nothing twice, samples in order), that the servo ran with its force safe (--stats-json) and
+// hapticd exits 0. No count that depends on the scheduler is asserted (how many messages arrive,
+// how punctually the servo ticks): those are bench_clients' and bench_latency's tables.
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -74,18 +75,10 @@ TEST_F(HapticdFaults, KilledClientIsForgottenAndOthersLoseNothing) {
   EXPECT_TRUE(serverLogHas("hapticd: client victim forgotten: no heartbeat for 0.5 s", 10)) << serverLog();
 
   EXPECT_EQ(finishProbe(steady, 60), 0) << slurp(path("steady.err"));
-  const std::string j = probeJson("steady");
-  SCOPED_TRACE("steady: " + j);
-  EXPECT_EQ(jsonField(j, "state"), "active");
-  EXPECT_GE(jsonNumber(j, "messages"), 250);  // 301 in 3 s
-  EXPECT_GE(jsonNumber(j, "samples"), 2500);
-  EXPECT_EQ(jsonNumber(j, "missing"), 0);
-  EXPECT_EQ(jsonNumber(j, "samples_missing"), 0);
-  EXPECT_EQ(jsonNumber(j, "duplicates"), 0);
-  EXPECT_EQ(jsonNumber(j, "reconnects"), 0);
+  expectStreamFlowed(probeJson("steady"));
 
   EXPECT_EQ(stopServer(), 0) << serverLog();
-  expectServoKeptTime(3.0);
+  expectServoRanSafely();
   EXPECT_EQ(serverLog().find("client steady forgotten"), std::string::npos) << serverLog();
 }
 
@@ -115,17 +108,9 @@ TEST_F(HapticdFaults, ClientThatStopsReadingBlocksNothing) {
   finishProbe(stalled, 5);
 
   EXPECT_EQ(stopServer(), 0) << serverLog();
-  expectServoKeptTime(3.0);
-  EXPECT_EQ(jsonNumber(slurp(path("s.json")), "publish_errors"), 0);
-  for (const char* name : {"steady", "fast"}) {
-    const std::string j = probeJson(name);
-    SCOPED_TRACE(std::string(name) + ": " + j);
-    EXPECT_EQ(jsonField(j, "state"), "active");
-    expectNothingLost(j);
-    EXPECT_EQ(jsonNumber(j, "duplicates"), 0);
-    EXPECT_GE(jsonNumber(j, "messages"), std::string(name) == "fast" ? 2500 : 250);
-  }
-  EXPECT_EQ(jsonNumber(probeJson("steady"), "samples_missing"), 0);
+  expectServoRanSafely();
+  EXPECT_EQ(jsonNumber(slurp(path("s.json")), "publish_errors"), 0);  // a stalled reader is no send error
+  for (const char* name : {"steady", "fast"}) expectStreamFlowed(probeJson(name));
 }
 
 // Garbage on THX_SUBSCRIBE, THX_HEARTBEAT and THX_CLIENT_FORCE: too short, another type's
@@ -228,17 +213,9 @@ TEST_F(HapticdFaults, MalformedOversizedAndForeignMessagesAreNamedAndIgnored) {
   const pid_t after = startProbe("after", {"--stream", "DEVICE_STATE", "--rate", "250", "--duration", "1"});
   EXPECT_EQ(finishProbe(after, 60), 0) << slurp(path("after.err"));
   EXPECT_EQ(finishProbe(before, 60), 0) << slurp(path("before.err"));
-  for (const char* name : {"before", "after"}) {
-    const std::string j = probeJson(name);
-    SCOPED_TRACE(std::string(name) + ": " + j);
-    EXPECT_EQ(jsonField(j, "state"), "active");
-    EXPECT_EQ(jsonNumber(j, "duplicates"), 0);
-    EXPECT_GE(jsonNumber(j, "messages"), 200);
-  }
-  EXPECT_EQ(jsonNumber(probeJson("before"), "samples_missing"), 0);
+  for (const char* name : {"before", "after"}) expectStreamFlowed(probeJson(name));
 
   EXPECT_EQ(stopServer(), 0) << serverLog();
-  for (const char* name : {"before", "after"}) expectNothingLost(probeJson(name));
   const std::string log = serverLog();
   SCOPED_TRACE("hapticd stderr:\n" + log);
   EXPECT_NE(log.find("expected a subscribe_request_t, 0x"), std::string::npos);  // names both fingerprints
@@ -251,7 +228,7 @@ TEST_F(HapticdFaults, MalformedOversizedAndForeignMessagesAreNamedAndIgnored) {
             std::string::npos);
   EXPECT_NE(log.find("client_force_t from fuzz/test: force (0, 0, nan) N"), std::string::npos);
   EXPECT_NE(log.find("client_force_t with an invalid client_id or source"), std::string::npos);
-  expectServoKeptTime(3.0);
+  expectServoRanSafely();
 }
 
 // An LCM URL hapticd cannot use: a udpm address that is not a multicast group (LCM refuses it at
@@ -269,7 +246,7 @@ TEST_F(HapticdFaults, UnreachableLcmUrlWarnsAndTheServoRunsOn) {
     const pid_t p = spawn(hapticdArgs({"--duration", "1.5", "--lcm-url", c.url}), path("hd.out"), path("hd.err"));
     EXPECT_EQ(reap(p, 30), 0) << serverLog();
     EXPECT_NE(serverLog().find(c.expected), std::string::npos) << serverLog();
-    expectServoKeptTime(1.5);
+    expectServoRanSafely();
   }
 }
 
@@ -304,12 +281,12 @@ TEST_F(HapticdFaults, NoMulticastRouteInAFreshNetworkNamespace) {
                              "' (no multicast route? try `ip route add 224.0.0.0/4 dev lo` as root"),
             std::string::npos)
       << serverLog();
-  expectServoKeptTime(1.5);
+  expectServoRanSafely();
   EXPECT_NE(out.find("probe=1"), std::string::npos);
   EXPECT_NE(slurp(path("p1.err")).find("probe-client: LCM is not available at '" + url_ + "'"), std::string::npos)
       << slurp(path("p1.err"));
   // The suggested route makes it work.
   EXPECT_NE(out.find("probe2=0"), std::string::npos) << slurp(path("p2.err"));
-  EXPECT_GE(jsonNumber(slurp(path("p2.json")), "messages"), 50);
+  EXPECT_GT(jsonNumber(slurp(path("p2.json")), "messages"), 0);
   EXPECT_NE(out.find("hapticd2=0"), std::string::npos) << slurp(path("hd2.err"));
 }

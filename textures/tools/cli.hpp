@@ -9,14 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "base/error.hpp"
 #include "textures/sampling.hpp"
 #include "textures/texture_io.hpp"
 
 namespace thx::tex::cli {
 
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using thx::UsageError;
 
 struct OptionSpec {
   std::string name;  // with the leading "--"

@@ -14,12 +14,6 @@ using Req = thx_msgs::subscribe_request_t;
 constexpr std::int64_t kMaxResendNs = 2'000'000'000;
 }  // namespace
 
-std::int64_t monotonicNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
 const char* toString(SubscriptionState s) {
   switch (s) {
     case SubscriptionState::Pending: return "pending";
@@ -170,10 +164,8 @@ void Client::serverChanged(std::int64_t instance) {
 
 void Client::onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   thx_msgs::hello_t h;
-  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, h) < 0) {
-    ++counters_.undecodable;
-    return;
-  }
+  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, h) < 0)
+    return undecodable(thx_msgs::kChannelHello, "hello_t", rbuf->data_size);
   ++counters_.hellos;
   const bool first = server_instance_ == 0;
   serverChanged(h.server_instance);
@@ -182,16 +174,13 @@ void Client::onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
       if (e.status.state == SubscriptionState::Pending) e.next_send_ns = clock_();  // the server is up: ask now
     }
   }
-  std::lock_guard<std::mutex> lock(latest_mutex_);
-  latest_hello_ = std::move(h);
+  hello_.deliver(h, clock_());
 }
 
 void Client::onReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   thx_msgs::subscribe_reply_t r;
-  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, r) < 0) {
-    ++counters_.undecodable;
-    return;
-  }
+  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, r) < 0)
+    return undecodable(thx_msgs::kChannelSubscribeReply, "subscribe_reply_t", rbuf->data_size);
   if (r.client_id != options_.client_id) return;  // another client's answer
   ++counters_.replies;
   if (r.action != Req::ACTION_SUBSCRIBE) return;
@@ -241,66 +230,50 @@ void Client::onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& chan
   if (!e) return;
   const std::int64_t now = clock_();
   const std::string stream = e->status.stream;
+  // Decodes into `m` (false and reported when the bytes do not decode as `type`).
+  auto decode = [&](auto& m, const char* type) {
+    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) >= 0) return true;
+    undecodable(channel, type, rbuf->data_size);
+    return false;
+  };
   // Counted before the callback runs: a callback may unsubscribe, which destroys *e.
-  auto count = [&] {
+  auto deliver = [&](auto& value, const auto& m) {
     e->last_data_ns = now;
     ++e->status.messages;
+    value.deliver(m, now);
   };
   if (stream == thx_msgs::kStreamDeviceState) {
     thx_msgs::device_state_t m;
-    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) return void(++counters_.undecodable);
-    {
-      std::lock_guard<std::mutex> lock(latest_mutex_);
-      latest_state_ = m;
-    }
-    count();
-    if (on_state_) on_state_(m, now);
+    if (decode(m, "device_state_t")) deliver(state_, m);
   } else if (stream == thx_msgs::kStreamContact && e->status.batch) {
     thx_msgs::contact_batch_t m;
-    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) return void(++counters_.undecodable);
+    if (!decode(m, "contact_batch_t")) return;
     if (m.server_instance != server_instance_) serverChanged(m.server_instance);
-    if (!m.samples.empty()) {
-      std::lock_guard<std::mutex> lock(latest_mutex_);
-      latest_contact_ = m.samples.back();
-    }
-    count();
-    if (on_batch_) on_batch_(m, now);
+    newest_contact_from_batch_ = true;
+    deliver(batch_, m);
   } else if (stream == thx_msgs::kStreamContact) {
     thx_msgs::contact_t m;
-    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) return void(++counters_.undecodable);
-    {
-      std::lock_guard<std::mutex> lock(latest_mutex_);
-      latest_contact_ = m;
-    }
-    count();
-    if (on_contact_) on_contact_(m, now);
+    if (!decode(m, "contact_t")) return;
+    newest_contact_from_batch_ = false;
+    deliver(contact_, m);
   } else {
     thx_msgs::servo_stats_t m;
-    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) < 0) return void(++counters_.undecodable);
-    {
-      std::lock_guard<std::mutex> lock(latest_mutex_);
-      latest_stats_ = m;
-    }
-    count();
-    if (on_stats_) on_stats_(m, now);
+    if (decode(m, "servo_stats_t")) deliver(stats_, m);
   }
 }
 
-std::optional<thx_msgs::device_state_t> Client::latestDeviceState() const {
-  std::lock_guard<std::mutex> lock(latest_mutex_);
-  return latest_state_;
+void Client::undecodable(const std::string& channel, const char* type, std::size_t bytes) {
+  ++counters_.undecodable;
+  if (on_error_) on_error_(DecodeError{channel, type, bytes});
 }
+
 std::optional<thx_msgs::contact_t> Client::latestContact() const {
-  std::lock_guard<std::mutex> lock(latest_mutex_);
-  return latest_contact_;
-}
-std::optional<thx_msgs::servo_stats_t> Client::latestServoStats() const {
-  std::lock_guard<std::mutex> lock(latest_mutex_);
-  return latest_stats_;
-}
-std::optional<thx_msgs::hello_t> Client::latestHello() const {
-  std::lock_guard<std::mutex> lock(latest_mutex_);
-  return latest_hello_;
+  if (newest_contact_from_batch_) {
+    auto b = batch_.latest();
+    if (b && !b->samples.empty()) return b->samples.back();
+    return std::nullopt;
+  }
+  return contact_.latest();
 }
 
 std::vector<StreamStatus> Client::status() const {

@@ -1,7 +1,7 @@
 #pragma once
 // thx_client: what every client of hapticd uses to get its streams (docs/clients.md).
 //
-//   lcm::LCM lcm("udpm://239.255.76.67:7667?ttl=0");
+//   lcm::LCM lcm(thx_msgs::kDefaultLcmUrl);
 //   thx::client::Client c(lcm, "visual");
 //   c.subscribe("DEVICE_STATE", 60.0);
 //   for (;;) { c.poll(5); if (auto s = c.latestDeviceState()) draw(*s); }
@@ -9,10 +9,14 @@
 // The client asks for its streams on THX_SUBSCRIBE, resends unanswered requests, listens on the
 // channels the server's replies name, sends heartbeats at a quarter of the server's timeout, and
 // re-subscribes by itself when the server restarts (a new server_instance in a hello, reply or
-// batch) or a granted stream falls silent (the server forgot us, or went away). Everything from the network is decoded with thx_msgs::try_decode.
+// batch) or a granted stream falls silent (the server forgot us, or went away). Everything from
+// the network is decoded with thx_msgs::try_decode; what does not decode goes to onError().
+// Most programs use it through ClientApp (thx_client/app.hpp), which adds signals, the server's
+// hello and a paced loop.
 //
 // Threads: poll()/service()/subscribe()/unsubscribe()/status() belong to one thread (callbacks
 // run in it, inside poll()). latest*() may be called from any thread.
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -29,6 +33,10 @@
 #include <thx_msgs/hello_t.hpp>
 #include <thx_msgs/servo_stats_t.hpp>
 
+#include "rt/clock.hpp"
+#include "thx_client/decode_error.hpp"
+#include "thx_client/latest_value.hpp"
+
 namespace lcm {
 class LCM;
 class ReceiveBuffer;
@@ -38,7 +46,7 @@ class Subscription;
 namespace thx::client {
 
 // CLOCK_MONOTONIC in ns: the clock hapticd stamps its ticks with (same host).
-std::int64_t monotonicNs();
+inline std::int64_t monotonicNs() { return rt::monotonicNowNs(); }
 using Clock = std::function<std::int64_t()>;
 
 enum class SubscriptionState { Pending, Active, Refused };
@@ -98,18 +106,22 @@ class Client {
   void service();
 
   // Callbacks, with the receipt time on the client's clock (ns).
-  void onDeviceState(std::function<void(const thx_msgs::device_state_t&, std::int64_t)> f) { on_state_ = std::move(f); }
-  void onContact(std::function<void(const thx_msgs::contact_t&, std::int64_t)> f) { on_contact_ = std::move(f); }
-  void onContactBatch(std::function<void(const thx_msgs::contact_batch_t&, std::int64_t)> f) { on_batch_ = std::move(f); }
-  void onServoStats(std::function<void(const thx_msgs::servo_stats_t&, std::int64_t)> f) { on_stats_ = std::move(f); }
+  void onDeviceState(LatestValue<thx_msgs::device_state_t>::Callback f) { state_.onMessage(std::move(f)); }
+  void onContact(LatestValue<thx_msgs::contact_t>::Callback f) { contact_.onMessage(std::move(f)); }
+  void onContactBatch(LatestValue<thx_msgs::contact_batch_t>::Callback f) { batch_.onMessage(std::move(f)); }
+  void onServoStats(LatestValue<thx_msgs::servo_stats_t>::Callback f) { stats_.onMessage(std::move(f)); }
+  void onHello(LatestValue<thx_msgs::hello_t>::Callback f) { hello_.onMessage(std::move(f)); }
+  // Bytes on one of our channels that do not decode (also counted in counters().undecodable).
+  void onError(DecodeErrorHandler f) { on_error_ = std::move(f); }
   // A reply changed a stream's status (granted, refused).
   void onStatus(std::function<void(const StreamStatus&)> f) { on_status_ = std::move(f); }
 
   // Latest values; any thread. latestContact() also covers batches (their newest sample).
-  std::optional<thx_msgs::device_state_t> latestDeviceState() const;
+  std::optional<thx_msgs::device_state_t> latestDeviceState() const { return state_.latest(); }
   std::optional<thx_msgs::contact_t> latestContact() const;
-  std::optional<thx_msgs::servo_stats_t> latestServoStats() const;
-  std::optional<thx_msgs::hello_t> latestHello() const;
+  std::optional<thx_msgs::contact_batch_t> latestContactBatch() const { return batch_.latest(); }
+  std::optional<thx_msgs::servo_stats_t> latestServoStats() const { return stats_.latest(); }
+  std::optional<thx_msgs::hello_t> latestHello() const { return hello_.latest(); }
 
   std::vector<StreamStatus> status() const;
   std::optional<StreamStatus> status(std::string_view stream) const;
@@ -139,6 +151,7 @@ class Client {
   void requestAgain(Entry& e);
   void listen(Entry& e, const std::string& channel);
   void stopListening(Entry& e);
+  void undecodable(const std::string& channel, const char* type, std::size_t bytes);
 
   lcm::LCM& lcm_;
   ClientOptions options_;
@@ -152,17 +165,14 @@ class Client {
   std::int64_t heartbeat_period_ns_ = 500'000'000;
   ClientCounters counters_;
 
-  std::function<void(const thx_msgs::device_state_t&, std::int64_t)> on_state_;
-  std::function<void(const thx_msgs::contact_t&, std::int64_t)> on_contact_;
-  std::function<void(const thx_msgs::contact_batch_t&, std::int64_t)> on_batch_;
-  std::function<void(const thx_msgs::servo_stats_t&, std::int64_t)> on_stats_;
+  LatestValue<thx_msgs::device_state_t> state_;
+  LatestValue<thx_msgs::contact_t> contact_;
+  LatestValue<thx_msgs::contact_batch_t> batch_;
+  LatestValue<thx_msgs::servo_stats_t> stats_;
+  LatestValue<thx_msgs::hello_t> hello_;
   std::function<void(const StreamStatus&)> on_status_;
-
-  mutable std::mutex latest_mutex_;
-  std::optional<thx_msgs::device_state_t> latest_state_;
-  std::optional<thx_msgs::contact_t> latest_contact_;
-  std::optional<thx_msgs::servo_stats_t> latest_stats_;
-  std::optional<thx_msgs::hello_t> latest_hello_;
+  DecodeErrorHandler on_error_;
+  std::atomic<bool> newest_contact_from_batch_{false};  // which of contact_/batch_ holds the newest sample
 };
 
 }  // namespace thx::client

@@ -23,7 +23,13 @@
 #include "thx_msgs/subscribe_reply_t.hpp"
 #include "thx_msgs/subscribe_request_t.hpp"
 
+// The default LCM URL of every program (server, clients, tools): UDP multicast on this host only
+// (ttl=0). A macro as well, so help texts can quote it as a literal.
+#define THX_DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
+
 namespace thx_msgs {
+
+inline constexpr char kDefaultLcmUrl[] = THX_DEFAULT_LCM_URL;
 
 // ---- Fixed channels -------------------------------------------------------------------------
 inline constexpr char kChannelHello[] = "THX_HELLO";                     // hello_t, server -> all
