@@ -2,7 +2,15 @@
 # Installs the Debian 12 packages this project needs. Idempotent: does nothing when all are present.
 # Usage: ./setup.sh            (as root, or with sudo available)
 #        ./setup.sh --check    (only report what is missing; exit 1 if anything is)
+#        ./setup.sh [--check] PACKAGE...   (the same for these packages instead of the project's;
+#                               messages/lcm-spy.sh uses it for the Java ones)
 set -eu
+
+CHECK=""
+if [ "${1:-}" = "--check" ]; then
+  CHECK=1
+  shift
+fi
 
 PACKAGES="
   g++ make cmake pkg-config
@@ -14,6 +22,9 @@ PACKAGES="
   googletest libgtest-dev libbenchmark-dev
   rt-tests
 "
+if [ $# -gt 0 ]; then
+  PACKAGES="$*"
+fi
 
 missing=""
 for p in $PACKAGES; do
@@ -29,7 +40,7 @@ if [ -z "$missing" ]; then
 fi
 
 echo "setup.sh: missing Debian packages:$missing"
-if [ "${1:-}" = "--check" ]; then
+if [ -n "$CHECK" ]; then
   exit 1
 fi
 
