@@ -40,6 +40,7 @@ std::string faultName(std::uint32_t bits) {
   add(kFaultInvalidReading, "invalid-reading");
   add(kFaultMissedTicks, "missed-ticks");
   add(kFaultNonFiniteForce, "non-finite-force");
+  add(kFaultForceBudget, "force-budget");
   return name.empty() ? "none" : name;
 }
 

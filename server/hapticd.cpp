@@ -348,6 +348,7 @@ int run(const Options& o) {
     session = std::make_unique<srv::SessionRecorder>(o.record, po.simulated_device);  // throws with the path
     po.session = session.get();
   }
+  po.fault_reset = &servo.faultResetSlot();
   srv::Publisher publisher(ring, servo, recorder, lcm.get(), po);
   std::unique_ptr<srv::Receiver> receiver;
   if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);

@@ -93,7 +93,8 @@ Publisher::Publisher(rt::SpscRing<TickRecord>& ring, const Servo& servo, FlightR
         l.servo_rate_hz = options.servo_rate_hz;
         l.server_instance = server_instance_;
         return l;
-      }()) {
+      }()),
+      commands_(options.fault_reset, server_instance_) {
   server_name_ = "hapticd@" + hostName();
   if (server_name_.size() >= thx_msgs::kMaxTextLength) server_name_.resize(thx_msgs::kMaxTextLength - 1);
   if (options_.device_name.size() >= thx_msgs::kMaxTextLength) options_.device_name.resize(thx_msgs::kMaxTextLength - 1);
@@ -131,6 +132,7 @@ PublisherCounters Publisher::counters() const {
   c.refused = refused_.load();
   c.expired_clients = expired_.load();
   c.control_undecodable = inbox_.undecodable();
+  c.commands = commands_answered_.load();
   c.clients = clients_.load();
   c.subscriptions = subscriptions_.load();
   return c;
@@ -189,6 +191,17 @@ void Publisher::applyControl(std::int64_t now_ns) {
       std::fprintf(stderr, "hapticd: client %s: %s unsubscribed\n", reply.client_id.c_str(), reply.stream.c_str());
     }
   }
+  for (const auto& cmd : control_.commands) {
+    if (auto refused = commands_.handle(cmd.msg)) {
+      refused->utime = now_ns / 1000;
+      sink.put(thx_msgs::kChannelCommandReply, *refused);
+      commands_answered_.fetch_add(1, std::memory_order_relaxed);
+      if (options_.log_subscriptions) {
+        std::fprintf(stderr, "hapticd: refused a command of client %s: %s\n", refused->client_id.c_str(),
+                     refused->reason.c_str());
+      }
+    }
+  }
   for (const std::string& id : table_.expire(now_ns)) {
     expired_.fetch_add(1, std::memory_order_relaxed);
     if (options_.log_subscriptions) {
@@ -208,6 +221,12 @@ void Publisher::handleRecord(const TickRecord& r, std::int64_t now_ns) {
   missed_seen_ += std::uint64_t(r.missed);
   if (r.missed > window_max_missed_) window_max_missed_ = r.missed;
   if (r.safety_flags & kSafetyClampMask) ++window_clamped_;
+  if (r.faults) {
+    ++fault_ticks_seen_;
+    ++window_fault_ticks_;
+    window_fault_mask_ |= wireFaultMask(r.faults);
+  }
+  answerCommands(r, now_ns);
   const double f = std::sqrt(r.f_out[0] * r.f_out[0] + r.f_out[1] * r.f_out[1] + r.f_out[2] * r.f_out[2]);
   if (f > window_max_force_n_) window_max_force_n_ = f;
   if (!lcm_ || !table_.wantsTicks()) return;  // compute a stream only while someone subscribes
@@ -217,6 +236,23 @@ void Publisher::handleRecord(const TickRecord& r, std::int64_t now_ns) {
   toContact(r, c);
   LcmSink sink(*this);
   table_.onTick(d, c, now_ns / 1000, sink);
+}
+
+// A fault reset is answered by the first record that shows the servo applied it.
+void Publisher::answerCommands(const TickRecord& r, std::int64_t now_ns) {
+  if (commands_.pending() == 0) return;
+  command_replies_.clear();
+  commands_.onRecord(r, command_replies_);
+  LcmSink sink(*this);
+  for (thx_msgs::server_command_reply_t& reply : command_replies_) {
+    reply.utime = now_ns / 1000;
+    sink.put(thx_msgs::kChannelCommandReply, reply);
+    commands_answered_.fetch_add(1, std::memory_order_relaxed);
+    if (options_.log_subscriptions) {
+      std::fprintf(stderr, "hapticd: client %s reset the latched fault at tick %lld\n", reply.client_id.c_str(),
+                   (long long)reply.tick);
+    }
+  }
 }
 
 void Publisher::publishStats(std::int64_t now_ns) {
@@ -247,6 +283,9 @@ void Publisher::publishStats(std::int64_t now_ns) {
     s.f_max = window_max_force_n_;
     s.snapshots_dropped = std::int64_t(ring_.dropped());
     s.rss_bytes = readProcessMemory().rss_bytes;
+    s.fault_ticks = std::int64_t(fault_ticks_seen_);
+    s.window_fault_ticks = window_fault_ticks_;
+    s.window_fault_mask = window_fault_mask_;
     LcmSink sink(*this);
     table_.onStats(s, sink);
   }
@@ -256,6 +295,8 @@ void Publisher::publishStats(std::int64_t now_ns) {
   window_max_force_n_ = 0.0;
   window_max_missed_ = 0;
   window_clamped_ = 0;
+  window_fault_ticks_ = 0;
+  window_fault_mask_ = 0;
 }
 
 void Publisher::publishHello(std::int64_t now_ns) {

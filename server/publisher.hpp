@@ -3,7 +3,8 @@
 // It drains the servo's tick ring (the servo never waits for it), applies subscription requests
 // and heartbeats (queued by the receiver thread, server/subscription_inbox.hpp) to its
 // SubscriptionTable, publishes each subscribed stream to its client on the client's own channel
-// at the client's rate (docs/clients.md), answers requests on THX_SUBSCRIBE_REPLY, announces the
+// at the client's rate (docs/clients.md), answers requests on THX_SUBSCRIBE_REPLY and commands on
+// THX_COMMAND_REPLY (server/server_commands.hpp), announces the
 // server on THX_HELLO once per second, closes a SERVO_STATS window once per second, and writes
 // frozen flight records to files. Nothing is encoded for a stream nobody subscribes to.
 //
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "server/flight_recorder.hpp"
+#include "server/server_commands.hpp"
 #include "server/servo.hpp"
 #include "rt/spsc_ring.hpp"
 #include "server/subscription_inbox.hpp"
@@ -40,6 +42,9 @@ struct PublisherOptions {
   std::int64_t hello_period_ns = 1'000'000'000;
   // Every tick that comes out of the ring is also written here (hapticd --record); not owned.
   SessionRecorder* session = nullptr;
+  // The servo's Servo::faultResetSlot(), written only by the publisher thread (client fault
+  // resets); null: resets are refused. Not owned.
+  rt::LatestSlot<FaultReset>* fault_reset = nullptr;
 };
 
 struct PublisherCounters {
@@ -52,7 +57,8 @@ struct PublisherCounters {
   std::uint64_t requests = 0;
   std::uint64_t refused = 0;
   std::uint64_t expired_clients = 0;
-  std::uint64_t control_undecodable = 0;  // THX_SUBSCRIBE / THX_HEARTBEAT bytes try_decode refused
+  std::uint64_t control_undecodable = 0;  // THX_SUBSCRIBE / THX_HEARTBEAT / THX_COMMAND bytes try_decode refused
+  std::uint64_t commands = 0;             // server_command_t answered (accepted or refused)
   int clients = 0;                        // now
   int subscriptions = 0;                  // now
 };
@@ -60,7 +66,7 @@ struct PublisherCounters {
 class Publisher {
  public:
   // lcm may be null (no transport): records are still drained and flight records still dumped.
-  // With lcm, the publisher subscribes to THX_SUBSCRIBE and THX_HEARTBEAT on it; whoever calls
+  // With lcm, the publisher subscribes to THX_SUBSCRIBE, THX_HEARTBEAT and THX_COMMAND on it; whoever calls
   // lcm->handle() (hapticd's receiver thread) delivers them.
   Publisher(rt::SpscRing<TickRecord>& ring, const Servo& servo, FlightRecorder& recorder, lcm::LCM* lcm,
             const PublisherOptions& options);
@@ -78,6 +84,7 @@ class Publisher {
   void run();
   void applyControl(std::int64_t now_ns);
   void handleRecord(const TickRecord& r, std::int64_t now_ns);
+  void answerCommands(const TickRecord& r, std::int64_t now_ns);
   void publishStats(std::int64_t now_ns);
   void publishHello(std::int64_t now_ns);
   void dumpFlight();
@@ -92,6 +99,8 @@ class Publisher {
   std::string server_name_;
   SubscriptionTable table_;
   SubscriptionInbox inbox_;
+  ServerCommands commands_;
+  std::vector<thx_msgs::server_command_reply_t> command_replies_;  // reused
   ControlMessages control_;                  // reused every loop
   std::vector<std::uint8_t> encode_buffer_;  // reused for every message
   std::thread thread_;
@@ -106,6 +115,10 @@ class Publisher {
   double window_max_force_n_ = 0.0;
   std::int32_t window_max_missed_ = 0;
   std::int32_t window_clamped_ = 0;
+  std::uint64_t fault_ticks_seen_ = 0;
+  std::int32_t window_fault_ticks_ = 0;
+  std::int32_t window_fault_mask_ = 0;
+  std::atomic<std::uint64_t> commands_answered_{0};
   std::atomic<std::uint64_t> records_{0}, published_{0}, publish_errors_{0}, flight_dumps_{0}, published_bytes_{0},
       hellos_{0}, requests_{0}, refused_{0}, expired_{0};
   std::atomic<int> clients_{0}, subscriptions_{0};

@@ -1,7 +1,7 @@
 #pragma once
 // The receiver thread: what enters hapticd over LCM. It is the only thread that calls
 // lcm.handle(), so every LCM callback runs here: client forces (THX_CLIENT_FORCE, below) and the
-// publisher's SubscriptionInbox (THX_SUBSCRIBE, THX_HEARTBEAT: decoded and queued for the
+// publisher's SubscriptionInbox (THX_SUBSCRIBE, THX_HEARTBEAT, THX_COMMAND: decoded and queued for the
 // publisher thread, server/subscription_inbox.hpp).
 // Messages are taken untyped and decoded with thx_msgs::try_decode (LCM 1.3.1's typed decoders
 // can crash on corrupt input, docs/messages.md), checked, kept per sender (ClientForceTable), and

@@ -268,6 +268,7 @@ Eigen::Vector3d SafetyStage::finish(const Eigen::Vector3d& output_n) {
   mean_square_force_n2_ += ema_weight_ * (output_n.squaredNorm() - mean_square_force_n2_);
   if (!continuous_limit_active_ && mean_square_force_n2_ > continuous_n2) {
     continuous_limit_active_ = true;
+    flags_ |= kSafetyBudgetExhausted;
   } else if (continuous_limit_active_ &&
              mean_square_force_n2_ <= config_.continuous_release_fraction * continuous_n2) {
     continuous_limit_active_ = false;

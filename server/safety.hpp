@@ -77,6 +77,8 @@ enum SafetyFlag : std::uint32_t {
   kSafetyRateLimited = 1u << 5,        // step cut to the rate limit
   kSafetyRampingOut = 1u << 6,         // shutdown ramp running
   kSafetyShutDown = 1u << 7,           // shutdown complete, output zero
+  kSafetyBudgetExhausted = 1u << 8,    // this tick the thermal average crossed the budget: the
+                                       // continuous limit acts from the next tick (a fault)
 };
 // The bits meaning "the stage changed a force it was allowed to render" (messages:
 // FLAG_SAFETY_CLAMP).

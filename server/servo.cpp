@@ -48,6 +48,12 @@ const TickRecord& Servo::tick() {
   r.q_world[3] = state.q_world.z();
   r.buttons = state.buttons;
 
+  FaultReset reset;
+  if (reset_slot_.readIfNewer(reset, reset_seq_)) {
+    fault_latched_ = 0;
+    resets_applied_ = reset.seq;
+  }
+
   std::uint32_t faults = 0;
   counters_.missed_ticks += std::uint64_t(state.timing.missed);
   if (state.timing.missed >= config_.max_missed_ticks) faults |= kFaultMissedTicks;
@@ -121,6 +127,8 @@ const TickRecord& Servo::tick() {
     passivity_.reset();
   }
   const Eigen::Vector3d f_out = safety_.apply(f_passive);
+  // Not a reason to disengage: the safety stage's answer is the continuous limit itself.
+  if (safety_.flags() & kSafetyBudgetExhausted) faults |= kFaultForceBudget;
   passivity_.recordAppliedForce(f_out);
 
   dev::DeviceCommand command;
@@ -145,6 +153,8 @@ const TickRecord& Servo::tick() {
   r.pc_damping_ns_per_m = passivity_.alpha();
   r.safety_flags = safety_.flags();
   r.faults = faults;
+  r.fault_latched = latchFaults(faults);
+  r.fault_resets = resets_applied_;
 
   ++counters_.ticks;
   if (r.in_contact) ++counters_.contact_ticks;
@@ -166,6 +176,20 @@ const TickRecord& Servo::tick() {
   }
   out_.push(r);
   return r;
+}
+
+// Keeps the first fault since the last reset. Of several raised in one tick, the one the tick met
+// first: the gap before the reading, the reading, the force, the budget after the safety stage.
+std::uint32_t Servo::latchFaults(std::uint32_t faults) {
+  if (fault_latched_ == 0) {
+    for (std::uint32_t bit : {kFaultMissedTicks, kFaultInvalidReading, kFaultNonFiniteForce, kFaultForceBudget}) {
+      if (faults & bit) {
+        fault_latched_ = bit;
+        break;
+      }
+    }
+  }
+  return fault_latched_;
 }
 
 // The surface contact point is the texture proxy in contact, else an external plane's contact

@@ -6,7 +6,7 @@
 //    logging, no system call except the device's pacing sleep (a test proves "no allocation").
 //  - Data leaves only through the SPSC ring (publisher), the flight recorder and the device
 //    snapshot slot (the VRPN server's reports); data enters only through latest-value slots
-//    (client forces; external effects, see external_effects.hpp).
+//    (client forces; fault resets; external effects, see external_effects.hpp).
 //  - Pipeline: read -> render (texture proxy) + client force + external effects (VRPN apps) ->
 //    passivity controller -> safety stage -> write. Safety is always last and always on.
 //  - Missed-cycle policy: the pacer realigns to the next period (no catch-up burst); while the
@@ -14,6 +14,8 @@
 //    max_missed_ticks or more, or max_invalid_readings consecutive invalid readings, disengages
 //    the safety stage (force off, then the small-force engage and ramp) and freezes the flight
 //    recorder for a dump.
+//  - Faults latch: every record carries the first fault since the last reset (server start, or a
+//    client's reset through faultResetSlot(), applied at the start of the next tick).
 #include <cstdint>
 
 #include "device/haptic_device.hpp"
@@ -38,6 +40,13 @@ struct ServoConfig {
 // What a client (the physics client) asks the servo to add to the rendered force.
 struct ClientForce {
   double force_world_n[3] = {0, 0, 0};
+};
+
+// A client's request to clear the latched fault (server_command_t ACTION_RESET_FAULTS), numbered
+// by its one writer (the publisher thread); the servo echoes the last number it applied in
+// TickRecord::fault_resets, which is how the writer knows the reset happened.
+struct FaultReset {
+  std::uint32_t seq = 0;
 };
 
 // The newest tick's device state for slower readers (the VRPN server's reports). Plain data.
@@ -75,6 +84,7 @@ class Servo {
   bool finished() const { return safety_.shutdownComplete(); }
 
   rt::LatestSlot<ClientForce>& clientForceSlot() { return client_slot_; }
+  rt::LatestSlot<FaultReset>& faultResetSlot() { return reset_slot_; }
   // Optional (before the first tick): effects commanded by VRPN apps, added to the force.
   void attachExternalEffects(ExternalEffectRenderer* effects) { external_ = effects; }
   // Optional (before the first tick): from then on every tick also writes a DeviceSnapshot here
@@ -88,6 +98,7 @@ class Servo {
   const ServoCounters& counters() const { return counters_; }
 
  private:
+  std::uint32_t latchFaults(std::uint32_t faults);
   void writeSnapshot(const TickRecord& r, const dev::DeviceState& state, const RenderOutput& out,
                      const ExternalOutput& ext, const Eigen::Vector3d& f_out);
 
@@ -107,6 +118,10 @@ class Servo {
   ClientForce client_force_;
   int client_age_ticks_ = 1 << 30;
   int invalid_run_ = 0;
+  rt::LatestSlot<FaultReset> reset_slot_;
+  std::uint32_t reset_seq_ = 0;      // LatestSlot's sequence of the last reset read
+  std::uint32_t resets_applied_ = 0;  // FaultReset::seq of that reset
+  std::uint32_t fault_latched_ = 0;   // TickFault bit, 0: none since the last reset
 
   LatencyHistogram compute_hist_;
   LatencyHistogram wake_hist_;

@@ -19,63 +19,72 @@ void SubscriptionInbox::attach(lcm::LCM& lcm) {
   // Untyped: the bytes come from any process on the bus (docs/messages.md §7.3).
   request_sub_ = lcm.subscribe(thx_msgs::kChannelSubscribe, &SubscriptionInbox::onRequest, this);
   heartbeat_sub_ = lcm.subscribe(thx_msgs::kChannelHeartbeat, &SubscriptionInbox::onHeartbeat, this);
+  command_sub_ = lcm.subscribe(thx_msgs::kChannelCommand, &SubscriptionInbox::onCommand, this);
   // A burst of clients (all re-subscribing after a restart) must not be cut at LCM's default 30.
-  if (request_sub_) request_sub_->setQueueCapacity(512);
-  if (heartbeat_sub_) heartbeat_sub_->setQueueCapacity(512);
+  for (lcm::Subscription* sub : {request_sub_, heartbeat_sub_, command_sub_}) {
+    if (sub) sub->setQueueCapacity(512);
+  }
 }
 
 void SubscriptionInbox::detach() {
   if (!lcm_) return;
-  if (request_sub_) lcm_->unsubscribe(request_sub_);
-  if (heartbeat_sub_) lcm_->unsubscribe(heartbeat_sub_);
-  request_sub_ = heartbeat_sub_ = nullptr;
+  for (lcm::Subscription* sub : {request_sub_, heartbeat_sub_, command_sub_}) {
+    if (sub) lcm_->unsubscribe(sub);
+  }
+  request_sub_ = heartbeat_sub_ = command_sub_ = nullptr;
   lcm_ = nullptr;
 }
 
 void SubscriptionInbox::take(ControlMessages& out) {
   out.requests.clear();
   out.heartbeats.clear();
+  out.commands.clear();
   std::lock_guard<std::mutex> lock(mutex_);
   std::swap(out.requests, queued_.requests);
   std::swap(out.heartbeats, queued_.heartbeats);
+  std::swap(out.commands, queued_.commands);
+}
+
+// Decodes one message of type T, or counts and reports why the bytes are not one.
+template <class T>
+void SubscriptionInbox::receive(const lcm::ReceiveBuffer* rbuf, const char* channel) {
+  T m;
+  if (const std::string problem = decodeUntrusted(rbuf->data, rbuf->data_size, m); !problem.empty()) {
+    undecodable_.fetch_add(1);
+    problems_.report(channel, problem, monotonicNs());
+    return;
+  }
+  push(m, monotonicNs());
 }
 
 void SubscriptionInbox::onRequest(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  thx_msgs::subscribe_request_t m;
-  if (const std::string problem = decodeUntrusted(rbuf->data, rbuf->data_size, m); !problem.empty()) {
-    undecodable_.fetch_add(1);
-    problems_.report(thx_msgs::kChannelSubscribe, problem, monotonicNs());
-    return;
-  }
-  push(m, monotonicNs());
+  receive<thx_msgs::subscribe_request_t>(rbuf, thx_msgs::kChannelSubscribe);
+}
+void SubscriptionInbox::onHeartbeat(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  receive<thx_msgs::heartbeat_t>(rbuf, thx_msgs::kChannelHeartbeat);
+}
+void SubscriptionInbox::onCommand(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  receive<thx_msgs::server_command_t>(rbuf, thx_msgs::kChannelCommand);
 }
 
-void SubscriptionInbox::onHeartbeat(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  thx_msgs::heartbeat_t m;
-  if (const std::string problem = decodeUntrusted(rbuf->data, rbuf->data_size, m); !problem.empty()) {
-    undecodable_.fetch_add(1);
-    problems_.report(thx_msgs::kChannelHeartbeat, problem, monotonicNs());
+template <class Queue, class T>
+void SubscriptionInbox::enqueue(Queue& queue, const T& m, std::int64_t received_ns) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (queue.size() >= kMaxQueued) {
+    overflowed_.fetch_add(1);
     return;
   }
-  push(m, monotonicNs());
+  queue.push_back({m, received_ns});
 }
 
 void SubscriptionInbox::push(const thx_msgs::subscribe_request_t& m, std::int64_t received_ns) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (queued_.requests.size() >= kMaxQueued) {
-    overflowed_.fetch_add(1);
-    return;
-  }
-  queued_.requests.push_back({m, received_ns});
+  enqueue(queued_.requests, m, received_ns);
 }
-
 void SubscriptionInbox::push(const thx_msgs::heartbeat_t& m, std::int64_t received_ns) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (queued_.heartbeats.size() >= kMaxQueued) {
-    overflowed_.fetch_add(1);
-    return;
-  }
-  queued_.heartbeats.push_back({m, received_ns});
+  enqueue(queued_.heartbeats, m, received_ns);
+}
+void SubscriptionInbox::push(const thx_msgs::server_command_t& m, std::int64_t received_ns) {
+  enqueue(queued_.commands, m, received_ns);
 }
 
 }  // namespace thx::srv

@@ -1,5 +1,5 @@
 #pragma once
-// Subscription requests and heartbeats on their way from LCM to the publisher thread.
+// Subscription requests, heartbeats and commands on their way from LCM to the publisher thread.
 //
 // LCM dispatches callbacks in whichever thread calls handle(): in hapticd that is the receiver
 // thread (the only one that may). The callbacks here decode untrusted bytes with
@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <thx_msgs/heartbeat_t.hpp>
+#include <thx_msgs/server_command_t.hpp>
 #include <thx_msgs/subscribe_request_t.hpp>
 
 #include "server/untrusted_input.hpp"
@@ -35,8 +36,13 @@ struct ControlMessages {
     thx_msgs::heartbeat_t msg;
     std::int64_t received_ns = 0;
   };
+  struct Command {
+    thx_msgs::server_command_t msg;
+    std::int64_t received_ns = 0;
+  };
   std::vector<Request> requests;
   std::vector<Heartbeat> heartbeats;
+  std::vector<Command> commands;
 };
 
 class SubscriptionInbox {
@@ -50,7 +56,7 @@ class SubscriptionInbox {
   SubscriptionInbox(const SubscriptionInbox&) = delete;
   SubscriptionInbox& operator=(const SubscriptionInbox&) = delete;
 
-  // Subscribes to THX_SUBSCRIBE and THX_HEARTBEAT on `lcm`; detach() (or the destructor) undoes it.
+  // Subscribes to THX_SUBSCRIBE, THX_HEARTBEAT and THX_COMMAND on `lcm`; detach() (or the destructor) undoes it.
   void attach(lcm::LCM& lcm);
   void detach();
 
@@ -63,13 +69,21 @@ class SubscriptionInbox {
   // Public for LCM's callbacks (and for tests that feed bytes directly).
   void onRequest(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void onHeartbeat(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void onCommand(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void push(const thx_msgs::subscribe_request_t& m, std::int64_t received_ns);
   void push(const thx_msgs::heartbeat_t& m, std::int64_t received_ns);
+  void push(const thx_msgs::server_command_t& m, std::int64_t received_ns);
 
  private:
+  template <class T>
+  void receive(const lcm::ReceiveBuffer* rbuf, const char* channel);
+  template <class Queue, class T>
+  void enqueue(Queue& queue, const T& m, std::int64_t received_ns);
+
   lcm::LCM* lcm_ = nullptr;
   lcm::Subscription* request_sub_ = nullptr;
   lcm::Subscription* heartbeat_sub_ = nullptr;
+  lcm::Subscription* command_sub_ = nullptr;
   std::mutex mutex_;
   ControlMessages queued_;
   std::atomic<std::uint64_t> undecodable_{0}, overflowed_{0};

@@ -225,6 +225,18 @@ void SubscriptionTable::sendBatch(Subscription& s, std::int64_t now_us, MessageS
   b.num_dropped = 0;
 }
 
+void SubscriptionTable::sendDeviceState(Subscription& s, const thx_msgs::device_state_t& state, MessageSink& sink) {
+  s.flags_seen |= state.flags_seen;
+  s.fault_mask |= state.fault_mask;
+  if (!due(s, double(state.tick))) return;
+  thx_msgs::device_state_t out = state;  // fixed size: a copy, no allocation
+  out.flags_seen = s.flags_seen;
+  out.fault_mask = s.fault_mask;
+  sink.send(s.channel, out);
+  s.flags_seen = 0;
+  s.fault_mask = 0;
+}
+
 void SubscriptionTable::onTick(const thx_msgs::device_state_t& state, const thx_msgs::contact_t& contact,
                                std::int64_t now_us, MessageSink& sink) {
   const std::int64_t tick = state.tick;
@@ -232,7 +244,7 @@ void SubscriptionTable::onTick(const thx_msgs::device_state_t& state, const thx_
     for (auto& [stream, s] : client.subs) {
       switch (s.kind) {
         case StreamKind::DeviceState:
-          if (due(s, double(tick))) sink.send(s.channel, state);
+          sendDeviceState(s, state, sink);
           break;
         case StreamKind::Contact:
           if (due(s, double(tick))) sink.send(s.channel, contact);

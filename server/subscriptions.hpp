@@ -8,6 +8,9 @@
 // Rates are granted as asked (within the limits) and met on average: a subscription at R Hz is
 // sent the latest tick whenever the tick count passes its next due point, which advances by
 // servo_rate / R ticks (a fraction), so 60 Hz of 1 kHz alternates 17- and 16-tick intervals.
+// A DEVICE_STATE message also carries what the ticks it skipped saw: its flags_seen and
+// fault_mask are OR-ed over every tick since the previous message to that subscriber, so a
+// one-tick fault reaches a 60 Hz client.
 #include <cstdint>
 #include <map>
 #include <string>
@@ -96,6 +99,9 @@ class SubscriptionTable {
     double period = 1.0;     // ticks (stats: windows) between messages
     double next_due = -1.0;  // < 0: send at the first opportunity
     double bytes_per_s = 0.0;
+    // DEVICE_STATE only: flags_seen and fault_mask of the ticks since the last message
+    std::int32_t flags_seen = 0;
+    std::int32_t fault_mask = 0;
     // batches only
     thx_msgs::contact_batch_t batch{};  // value-initialised: lcm-gen structs have no member initialisers
     std::size_t max_samples = 0;
@@ -108,6 +114,7 @@ class SubscriptionTable {
 
   thx_msgs::subscribe_reply_t refuse(thx_msgs::subscribe_reply_t reply, std::string reason);
   bool due(Subscription& s, double index);
+  void sendDeviceState(Subscription& s, const thx_msgs::device_state_t& state, MessageSink& sink);
   void sendBatch(Subscription& s, std::int64_t now_us, MessageSink& sink);
   void recount();
 

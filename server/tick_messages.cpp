@@ -11,6 +11,25 @@ void copy(double (&dst)[N], const double (&src)[N]) {
 }
 }  // namespace
 
+std::int32_t wireFaultCode(std::uint32_t tick_fault) {
+  using D = thx_msgs::device_state_t;
+  switch (tick_fault) {
+    case kFaultInvalidReading: return D::FAULT_DEVICE_IO;
+    case kFaultMissedTicks: return D::FAULT_MISSED_TICKS;
+    case kFaultNonFiniteForce: return D::FAULT_NONFINITE_FORCE;
+    case kFaultForceBudget: return D::FAULT_FORCE_BUDGET;
+    default: return D::FAULT_NONE;
+  }
+}
+
+std::int32_t wireFaultMask(std::uint32_t tick_faults) {
+  std::int32_t mask = 0;
+  for (std::uint32_t bit = 1; bit != 0 && bit <= tick_faults; bit <<= 1) {
+    if (tick_faults & bit) mask |= std::int32_t{1} << wireFaultCode(bit);
+  }
+  return mask & ~std::int32_t{1};  // an unknown bit maps to FAULT_NONE: no bit for it
+}
+
 void toDeviceState(const TickRecord& r, bool simulated, thx_msgs::device_state_t& d) {
   using D = thx_msgs::device_state_t;
   d.utime = r.deadline_ns / 1000;
@@ -32,10 +51,9 @@ void toDeviceState(const TickRecord& r, bool simulated, thx_msgs::device_state_t
   if (simulated) flags |= D::FLAG_SIMULATED;
   if (r.faults) flags |= D::FLAG_FAULT;
   d.flags = flags;
-  d.fault_code = std::int32_t{D::FAULT_NONE};
-  if (r.faults & kFaultInvalidReading) d.fault_code = std::int32_t{D::FAULT_DEVICE_REPORTED};
-  if (r.faults & kFaultNonFiniteForce) d.fault_code = std::int32_t{D::FAULT_NONFINITE_FORCE};
-  if (r.faults & kFaultMissedTicks) d.fault_code = std::int32_t{D::FAULT_MISSED_TICKS};
+  d.flags_seen = flags;
+  d.fault_code = wireFaultCode(r.fault_latched);
+  d.fault_mask = wireFaultMask(r.faults);
 }
 
 void toContact(const TickRecord& r, thx_msgs::contact_t& c) {

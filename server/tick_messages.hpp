@@ -8,7 +8,13 @@
 
 namespace thx::srv {
 
-// `simulated` sets FLAG_SIMULATED. utime is the tick's deadline in µs (CLOCK_MONOTONIC in real
+// device_state_t.FAULT_* of one TickFault bit (FAULT_NONE for 0), and the fault_mask bits
+// (1 << FAULT_*) of a set of TickFault bits.
+std::int32_t wireFaultCode(std::uint32_t tick_fault);
+std::int32_t wireFaultMask(std::uint32_t tick_faults);
+
+// One tick: flags_seen = flags and fault_mask = this tick's faults; a decimated subscription ORs
+// them over the ticks it skips (server/subscriptions.cpp). `simulated` sets FLAG_SIMULATED. utime is the tick's deadline in µs (CLOCK_MONOTONIC in real
 // time, the virtual clock in lock-step).
 void toDeviceState(const TickRecord& r, bool simulated, thx_msgs::device_state_t& out);
 void toContact(const TickRecord& r, thx_msgs::contact_t& out);

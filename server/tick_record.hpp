@@ -10,6 +10,7 @@ enum TickFault : std::uint32_t {
   kFaultInvalidReading = 1u << 0,   // the device reported valid = false or non-finite values
   kFaultMissedTicks = 1u << 1,      // more consecutive missed ticks than the policy allows
   kFaultNonFiniteForce = 1u << 2,   // rendering produced a non-finite force (safety zeroed it)
+  kFaultForceBudget = 1u << 3,      // the safety stage's continuous-force budget ran out (|F| limited)
 };
 
 struct TickRecord {
@@ -52,6 +53,8 @@ struct TickRecord {
   double pc_damping_ns_per_m = 0.0;
   std::uint32_t safety_flags = 0;
   std::uint32_t faults = 0;  // TickFault bits raised this tick
+  std::uint32_t fault_latched = 0;  // one TickFault bit: the first fault since the last reset (0: none)
+  std::uint32_t fault_resets = 0;   // FaultReset::seq of the last reset the servo applied (0: none yet)
 };
 
 }  // namespace thx::srv

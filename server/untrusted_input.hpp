@@ -1,5 +1,5 @@
 #pragma once
-// Bytes from clients (THX_SUBSCRIBE, THX_HEARTBEAT, THX_CLIENT_FORCE): decode them safely, say
+// Bytes from clients (THX_SUBSCRIBE, THX_HEARTBEAT, THX_COMMAND, THX_CLIENT_FORCE): decode them safely, say
 // what is wrong with the ones that do not decode, and log that on stderr without flooding it.
 //
 // Used by the receiver thread's LCM callbacks (server/receiver.*, server/subscription_inbox.*),

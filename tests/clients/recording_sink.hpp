@@ -13,10 +13,14 @@ struct RecordingSink : srv::MessageSink {
     std::int64_t tick = -1;  // device state / contact
   };
   std::vector<Sent> states, contacts;
+  std::vector<thx_msgs::device_state_t> state_msgs;  // every device state sent, whole
   std::vector<std::pair<std::string, thx_msgs::contact_batch_t>> batches;
   std::vector<std::pair<std::string, thx_msgs::servo_stats_t>> stats;
 
-  void send(const std::string& ch, const thx_msgs::device_state_t& m) override { states.push_back({ch, m.tick}); }
+  void send(const std::string& ch, const thx_msgs::device_state_t& m) override {
+    states.push_back({ch, m.tick});
+    state_msgs.push_back(m);
+  }
   void send(const std::string& ch, const thx_msgs::contact_t& m) override { contacts.push_back({ch, m.tick}); }
   void send(const std::string& ch, const thx_msgs::contact_batch_t& m) override { batches.emplace_back(ch, m); }
   void send(const std::string& ch, const thx_msgs::servo_stats_t& m) override { stats.emplace_back(ch, m); }

@@ -41,6 +41,8 @@ inline thx_msgs::device_state_t make_device_state(int k) {
   using D = thx_msgs::device_state_t;
   m.flags = std::int32_t{D::FLAG_ENGAGED} | D::FLAG_SAFETY_CLAMP | D::FLAG_FAULT;
   m.fault_code = thx_msgs::device_state_t::FAULT_FORCE_BUDGET;
+  m.fault_mask = (1 << D::FAULT_FORCE_BUDGET) | (1 << D::FAULT_MISSED_TICKS) | (k << 8);
+  m.flags_seen = std::int32_t{D::FLAG_MISSED_TICK} | D::FLAG_FAULT | (k << 12);
   return m;
 }
 inline void expect_eq(const thx_msgs::device_state_t& a, const thx_msgs::device_state_t& b) {
@@ -55,6 +57,8 @@ inline void expect_eq(const thx_msgs::device_state_t& a, const thx_msgs::device_
   expect_array_eq(a.tau_cmd_world, b.tau_cmd_world, "tau_cmd_world");
   EXPECT_EQ(a.flags, b.flags);
   EXPECT_EQ(a.fault_code, b.fault_code);
+  EXPECT_EQ(a.fault_mask, b.fault_mask);
+  EXPECT_EQ(a.flags_seen, b.flags_seen);
 }
 
 inline thx_msgs::contact_t make_contact(int k) {
@@ -151,6 +155,9 @@ inline thx_msgs::servo_stats_t make_servo_stats(int k) {
   m.rss_bytes = ival(k, 22);
   m.num_clients = 3 + k;
   m.num_subscriptions = 5 + k;
+  m.fault_ticks = ival(k, 30);
+  m.window_fault_ticks = 7 + k;
+  m.window_fault_mask = 0x1a + (k << 8);
   return m;
 }
 inline void expect_eq(const thx_msgs::servo_stats_t& a, const thx_msgs::servo_stats_t& b) {
@@ -177,6 +184,9 @@ inline void expect_eq(const thx_msgs::servo_stats_t& a, const thx_msgs::servo_st
   EXPECT_EQ(a.rss_bytes, b.rss_bytes);
   EXPECT_EQ(a.num_clients, b.num_clients);
   EXPECT_EQ(a.num_subscriptions, b.num_subscriptions);
+  EXPECT_EQ(a.fault_ticks, b.fault_ticks);
+  EXPECT_EQ(a.window_fault_ticks, b.window_fault_ticks);
+  EXPECT_EQ(a.window_fault_mask, b.window_fault_mask);
 }
 
 inline thx_msgs::subscribe_request_t make_subscribe_request(int k) {
@@ -294,6 +304,49 @@ inline void expect_eq(const thx_msgs::client_force_t& a, const thx_msgs::client_
   expect_array_eq(a.f_world, b.f_world, "f_world");
   expect_array_eq(a.tau_world, b.tau_world, "tau_world");
   expect_array_eq(a.p_world, b.p_world, "p_world");
+}
+
+inline thx_msgs::server_command_t make_server_command(int k) {
+  thx_msgs::server_command_t m{};
+  m.utime = ival(k, 1);
+  m.seq = 41 + k;
+  m.client_id = "study" + std::to_string(k);
+  m.action = thx_msgs::server_command_t::ACTION_RESET_FAULTS + 100 * k;
+  m.argument = "scenes/bricks" + std::to_string(k) + ".yaml";  // a later ACTION_LOAD_SCENE's operand
+  return m;
+}
+// EXPECT_EQ on each listed member (scalars and strings), in order.
+template <class T, class... M>
+void expect_members_eq(const T& a, const T& b, M T::*... members) {
+  int index = 0;
+  auto check = [&](auto member) { EXPECT_EQ(a.*member, b.*member) << T::getTypeName() << " member #" << index++; };
+  (check(members), ...);
+}
+
+inline void expect_eq(const thx_msgs::server_command_t& a, const thx_msgs::server_command_t& b) {
+  using C = thx_msgs::server_command_t;
+  expect_members_eq(a, b, &C::utime, &C::seq, &C::client_id, &C::action, &C::argument);
+}
+
+// The answer to make_server_command(k): done for even k, refused for odd k.
+inline thx_msgs::server_command_reply_t make_server_command_reply(int k) {
+  const thx_msgs::server_command_t cmd = make_server_command(k);
+  const bool done = k % 2 == 0;
+  thx_msgs::server_command_reply_t m{};
+  m.utime = ival(k, 1);
+  m.server_instance = ival(k, 2);
+  m.request_seq = cmd.seq;
+  m.client_id = cmd.client_id;
+  m.action = cmd.action;
+  m.accepted = done;
+  m.reason = done ? "" : "unknown action " + std::to_string(cmd.action);
+  m.tick = done ? ival(k, 8) : -1;
+  return m;
+}
+inline void expect_eq(const thx_msgs::server_command_reply_t& a, const thx_msgs::server_command_reply_t& b) {
+  using R = thx_msgs::server_command_reply_t;
+  expect_members_eq(a, b, &R::utime, &R::server_instance, &R::request_seq, &R::client_id, &R::action, &R::accepted,
+                    &R::reason, &R::tick);
 }
 
 // Encode into an exactly sized buffer; checks encode() returns getEncodedSize().

@@ -81,12 +81,12 @@ TEST(MessagesProtocol, BatchCountConsistency) {
 
 TEST(MessagesProtocol, Constants) {
   EXPECT_EQ(thx_msgs::contact_t::MAX_PLANES, 4);
-  EXPECT_EQ(thx_msgs::hello_t::PROTOCOL_VERSION, 1);
+  EXPECT_EQ(thx_msgs::hello_t::PROTOCOL_VERSION, 2);
   // Flags are distinct single bits.
   using D = thx_msgs::device_state_t;
   const std::int32_t flags[] = {D::FLAG_ENGAGED,  D::FLAG_RAMPING,       D::FLAG_SAFETY_CLAMP,
-                                D::FLAG_IN_CONTACT, D::FLAG_MISSED_TICK, D::FLAG_HOLDING_FORCE,
-                                D::FLAG_CLIENT_FORCE, D::FLAG_SIMULATED, D::FLAG_FAULT};
+                                D::FLAG_IN_CONTACT, D::FLAG_MISSED_TICK, D::FLAG_CLIENT_FORCE,
+                                D::FLAG_SIMULATED,  D::FLAG_FAULT};
   std::int32_t all = 0;
   for (std::int32_t f : flags) {
     EXPECT_EQ(f & (f - 1), 0) << f;

@@ -76,6 +76,8 @@ TEST(MessagesPubSub, EveryTypeOverMemq) {
   check_pubsub(make_heartbeat(2), thx_msgs::kChannelHeartbeat);
   check_pubsub(make_hello(2), thx_msgs::kChannelHello);
   check_pubsub(make_client_force(2), thx_msgs::kChannelClientForce);
+  check_pubsub(make_server_command(2), thx_msgs::kChannelCommand);
+  check_pubsub(make_server_command_reply(2), thx_msgs::kChannelCommandReply);
 }
 
 TEST(MessagesPubSub, EmptyBatch) {

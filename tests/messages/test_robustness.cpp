@@ -42,7 +42,8 @@ Example example(const T& m) {
 std::vector<Example> all_examples() {
   return {example(make_device_state(1)),    example(make_contact(1)),          example(make_contact_batch(1, 3)),
           example(make_servo_stats(1)),     example(make_subscribe_request(1)), example(make_subscribe_reply(1)),
-          example(make_heartbeat(1)),       example(make_hello(1)),            example(make_client_force(1))};
+          example(make_heartbeat(1)),       example(make_hello(1)),            example(make_client_force(1)),
+          example(make_server_command(1)),  example(make_server_command_reply(1))};
 }
 
 void put_i32(std::vector<std::uint8_t>& b, std::size_t offset, std::int32_t v) {
@@ -66,11 +67,12 @@ TEST(MessagesFingerprint, AllTypesDiffer) {
 TEST(MessagesFingerprint, PinnedValues) {
   const auto ex = all_examples();
   const std::vector<std::pair<std::string, std::uint64_t>> pinned = {
-      {"device_state_t", 0x367d82b4e9cbc164ULL},      {"contact_t", 0xc0d33e7ae2da9a8dULL},
-      {"contact_batch_t", 0x29213e4bbca549a1ULL},     {"servo_stats_t", 0x69eee59f2f2aeadaULL},
+      {"device_state_t", 0x916eef9d70658d17ULL},      {"contact_t", 0xc0d33e7ae2da9a8dULL},
+      {"contact_batch_t", 0x29213e4bbca549a1ULL},     {"servo_stats_t", 0x67d05989421b7eefULL},
       {"subscribe_request_t", 0x5ca4f42b58b94e48ULL}, {"subscribe_reply_t", 0x2c7a05f087dbc2eeULL},
       {"heartbeat_t", 0xc14aeafbbe46aeb3ULL},         {"hello_t", 0xa6cddb3a631c26feULL},
-      {"client_force_t", 0x94723ad59593d546ULL}};
+      {"client_force_t", 0x94723ad59593d546ULL},      {"server_command_t", 0x110ed9ef106c0d74ULL},
+      {"server_command_reply_t", 0xd86c7c73472596b0ULL}};
   ASSERT_EQ(pinned.size(), ex.size());
   for (std::size_t i = 0; i < ex.size(); ++i) {
     EXPECT_EQ(pinned[i].first, ex[i].name);
@@ -173,6 +175,11 @@ TEST(MessagesDecode, CorruptStringLengthsFailWithoutThrowing) {
   check_every_string_length_guarded(make_heartbeat(1));
   check_every_string_length_guarded(make_hello(1));
   check_every_string_length_guarded(make_client_force(1));
+  check_every_string_length_guarded(make_server_command(1));
+  check_every_string_length_guarded(make_server_command_reply(1));
+  thx_msgs::server_command_t reset = make_server_command(1);
+  reset.argument.clear();  // ACTION_RESET_FAULTS: no operand
+  check_every_string_length_guarded(reset);
   // Empty strings are valid (length 1: just the NUL).
   thx_msgs::subscribe_reply_t refused = make_subscribe_reply(1);
   refused.channel.clear();

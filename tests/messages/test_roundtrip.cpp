@@ -73,6 +73,11 @@ TEST(MessagesRoundTrip, ClientForce) {
   for (int k = 0; k < 3; ++k) check_round_trip(make_client_force(k));
 }
 
+TEST(MessagesRoundTrip, ServerCommand) {
+  for (int k = 0; k < 3; ++k) check_round_trip(make_server_command(k));
+  for (int k = 0; k < 3; ++k) check_round_trip(make_server_command_reply(k));
+}
+
 // Edge values survive bit-exactly: extremes of the integer types, infinities, -0, denormals.
 TEST(MessagesRoundTrip, ExtremeValues) {
   thx_msgs::device_state_t m = make_device_state(0);
@@ -121,9 +126,9 @@ TEST(MessagesRoundTrip, DecodedDoublesAreNotStale) {
 
 // The numbers in docs/messages.md. A change here is a wire change: update the doc too.
 TEST(MessagesEncodedSize, FixedSizeTypes) {
-  EXPECT_EQ(thx_msgs::device_state_t{}.getEncodedSize(), 188);
+  EXPECT_EQ(thx_msgs::device_state_t{}.getEncodedSize(), 196);
   EXPECT_EQ(thx_msgs::contact_t{}.getEncodedSize(), 326);
-  EXPECT_EQ(thx_msgs::servo_stats_t{}.getEncodedSize(), 176);
+  EXPECT_EQ(thx_msgs::servo_stats_t{}.getEncodedSize(), 192);
   EXPECT_EQ(thx_msgs::contact_sample_encoded_size(), 318);  // inside a batch: no fingerprint
 }
 
@@ -163,4 +168,8 @@ TEST(MessagesEncodedSize, StringTypes) {
   EXPECT_EQ(hello.getEncodedSize(), 60 + strings({&hello.server_name, &hello.device}));
   const auto cf = make_client_force(0);
   EXPECT_EQ(cf.getEncodedSize(), 112 + strings({&cf.client_id, &cf.source}));
+  const auto cmd = make_server_command(0);
+  EXPECT_EQ(cmd.getEncodedSize(), 28 + strings({&cmd.client_id, &cmd.argument}));
+  const auto ack = make_server_command_reply(0);
+  EXPECT_EQ(ack.getEncodedSize(), 45 + strings({&ack.client_id, &ack.reason}));
 }

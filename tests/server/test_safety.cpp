@@ -277,6 +277,8 @@ TEST(Safety, ContinuousBudgetEngagesAndReleasesOnTheEmaSchedule) {
   const Vector3d request(0.0, 0.0, f);
   for (int n = 1; n <= crossing; ++n) {
     ASSERT_EQ(s.apply(request), request) << "peaks are allowed while the budget lasts, tick " << n;
+    // The budget runs out on the crossing tick only: the servo's FAULT_FORCE_BUDGET.
+    ASSERT_EQ(bool(s.flags() & srv::kSafetyBudgetExhausted), n == crossing) << n;
   }
   EXPECT_TRUE(s.continuousLimitActive());
   EXPECT_NEAR(s.meanSquareForceN2(), e, 1e-12 * e);
@@ -286,6 +288,7 @@ TEST(Safety, ContinuousBudgetEngagesAndReleasesOnTheEmaSchedule) {
     const Vector3d out = s.apply(request);
     ASSERT_NEAR(out.z(), fc, 1e-12);
     ASSERT_TRUE(s.flags() & srv::kSafetyContinuousLimited);
+    ASSERT_FALSE(s.flags() & srv::kSafetyBudgetExhausted) << "once per episode";
     e = q * e + (1.0 - q) * fc * fc;
   }
   EXPECT_TRUE(s.continuousLimitActive());

@@ -1,7 +1,7 @@
 // DESIGN §4 rule 1: nothing in the servo tick allocates. Every operator new in this binary is
 // counted (tests/support/allocation_counter.hpp); a full tick pipeline (render with crease
 // handling, passivity, safety, flight recorder, ring) runs 5000 ticks of presses and strokes
-// across V-valleys, with client forces and a fault.
+// across V-valleys, with client forces, a fault and a client's fault reset.
 #include <gtest/gtest.h>
 
 #include "tests/server/servo_fixture.hpp"
@@ -29,6 +29,7 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
   const long before = test::g_allocations.load();
   for (int k = 0; k < 5000; ++k) {
     if (k % 10 == 0) rig.servo->clientForceSlot().write(cf);
+    if (k == 4000) rig.servo->faultResetSlot().write(srv::FaultReset{1});  // a client's reset
     rig.servo->tick();
     srv::TickRecord r;
     while (rig.ring.pop(r)) {
@@ -36,5 +37,8 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
   }
   EXPECT_EQ(test::g_allocations.load() - before, 0);
   EXPECT_GT(rig.servo->counters().contact_ticks, 2000u);
-  EXPECT_EQ(rig.servo->counters().faults, 1u);
+  // Two faults on the path: the 4-tick gap, and the continuous-force budget running out in the
+  // long press (the safety stage limits the force from then on).
+  EXPECT_EQ(rig.servo->counters().faults, 2u);
+  EXPECT_GT(rig.safety->counters().continuous_limited, 0u);
 }

@@ -19,6 +19,8 @@
 #include "thx_msgs/physics_contacts_t.hpp"
 #include "thx_msgs/physics_impact_t.hpp"
 #include "thx_msgs/physics_poses_t.hpp"
+#include "thx_msgs/server_command_reply_t.hpp"
+#include "thx_msgs/server_command_t.hpp"
 #include "thx_msgs/servo_stats_t.hpp"
 #include "thx_msgs/subscribe_reply_t.hpp"
 #include "thx_msgs/subscribe_request_t.hpp"
@@ -37,6 +39,8 @@ inline constexpr char kChannelSubscribe[] = "THX_SUBSCRIBE";             // subs
 inline constexpr char kChannelSubscribeReply[] = "THX_SUBSCRIBE_REPLY";  // subscribe_reply_t
 inline constexpr char kChannelHeartbeat[] = "THX_HEARTBEAT";             // heartbeat_t
 inline constexpr char kChannelClientForce[] = "THX_CLIENT_FORCE";        // client_force_t
+inline constexpr char kChannelCommand[] = "THX_COMMAND";                 // server_command_t
+inline constexpr char kChannelCommandReply[] = "THX_COMMAND_REPLY";      // server_command_reply_t
 // Published by physics-client for the audio and visual clients (docs/messages.md §9). Fixed-size
 // types without strings or variable arrays: the generated decode() is safe as is (try_decode too).
 inline constexpr char kChannelPhysicsPoses[] = "THX_PHYSICS_POSES";        // physics_poses_t
@@ -161,6 +165,18 @@ struct string_layout<hello_t> {
   // utime seq server_instance start_utime start_unix_us protocol_version servo_rate_hz |
   // server_name | device
   static constexpr int segments[] = {52, kString, kString};
+};
+template <>
+struct string_layout<server_command_t> {
+  static constexpr bool has_strings = true;
+  // utime seq | client_id | action | argument
+  static constexpr int segments[] = {16, kString, 4, kString};
+};
+template <>
+struct string_layout<server_command_reply_t> {
+  static constexpr bool has_strings = true;
+  // utime server_instance request_seq | client_id | action accepted | reason | tick
+  static constexpr int segments[] = {24, kString, 5, kString, 8};
 };
 template <>
 struct string_layout<client_force_t> {
