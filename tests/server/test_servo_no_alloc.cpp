@@ -21,20 +21,17 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
   });
   // Everything optional on the tick is on: VRPN effects (none commanded) and the snapshot slot.
   srv::ExternalEffectRenderer effects(1e-3);
-  rig.servo->attachExternalEffects(&effects);
-  rig.servo->publishSnapshots();
+  rig.servo().attachExternalEffects(&effects);
+  rig.servo().publishSnapshots();
   rig.run(10);  // let lazily initialised runtime pieces settle outside the measurement
   srv::ClientForce cf;
   cf.force_world_n[2] = 0.1;
   const long before = test::g_allocations.load();
   for (int k = 0; k < 5000; ++k) {
-    if (k % 10 == 0) rig.servo->clientForceSlot().write(cf);
-    rig.servo->tick();
-    srv::TickRecord r;
-    while (rig.ring.pop(r)) {
-    }
+    if (k % 10 == 0) rig.servo().clientForceSlot().write(cf);
+    rig.tickAndDrain();
   }
   EXPECT_EQ(test::g_allocations.load() - before, 0);
-  EXPECT_GT(rig.servo->counters().contact_ticks, 2000u);
-  EXPECT_EQ(rig.servo->counters().faults, 1u);
+  EXPECT_GT(rig.servo().counters().contact_ticks, 2000u);
+  EXPECT_EQ(rig.servo().counters().faults, 1u);
 }
