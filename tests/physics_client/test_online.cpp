@@ -6,7 +6,7 @@
 // Skipped when udpm is not available (no multicast route).
 #include <string>
 
-#include "../clients/hapticd_harness.hpp"
+#include "tests/support/hapticd_harness.hpp"
 
 namespace {
 
