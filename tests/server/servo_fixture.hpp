@@ -6,41 +6,29 @@
 
 #include "server/servo_rig.hpp"
 #include "tests/server/fake_device.hpp"
-#include "textures/generators.hpp"
+#include "tests/support/servo_inputs.hpp"
 
 namespace thx::test {
 
 // What the servo rig is built on; a base so that it exists before the rig.
 struct ServoRigInputs {
-  explicit ServoRigInputs(FakeDevice::Script script) : device(std::move(script)) {
+  explicit ServoRigInputs(FakeDevice::Script script)
+      : device(std::move(script)), texture(vvalley(), /*relief=*/true) {}
+  static tex::GenerateRequest vvalley() {
     tex::GenerateRequest g;
     g.kind = "vvalley";
     g.size = 256;
     g.params = {{"angle_deg", 60.0}, {"period", 0.004}, {"extent", 0.1}};
-    map = std::make_unique<tex::TextureMap>(tex::generate(g));
-    tex::PlaneMapping m;
-    m.size_m = {0.1, 0.1};
-    surface = std::make_unique<tex::TexturedSurface>(*map, m, tex::SampleOptions{}, true);
-  }
-  static srv::ServoRigConfig wiring(bool crease) {
-    srv::ServoRigConfig c;
-    c.renderer.stiffness_n_per_m = 1000.0;
-    c.renderer.crease_handling = crease;
-    c.period_s = 1e-3;
-    c.quantisation_deadband = false;
-    c.flight_record_ticks = 1000;
-    c.ring_records = 4096;
-    return c;
+    return g;
   }
 
   FakeDevice device;
-  std::unique_ptr<tex::TextureMap> map;
-  std::unique_ptr<tex::TexturedSurface> surface;
+  GeneratedSurface texture;
 };
 
 struct ServoRig : ServoRigInputs, srv::ServoRig {
   explicit ServoRig(FakeDevice::Script script, bool crease = true)
-      : ServoRigInputs(std::move(script)), srv::ServoRig(device, *surface, wiring(crease)) {}
+      : ServoRigInputs(std::move(script)), srv::ServoRig(device, *texture.surface, unitTestWiring(1000.0, crease)) {}
 
   // Runs n ticks, draining the ring as a publisher would.
   void run(int n) {

@@ -29,6 +29,7 @@
 #include "device/vrpn/udp_socket.hpp"
 #include "device/vrpn/vrpn_client_device.hpp"
 #include "server/servo_rig.hpp"
+#include "tests/support/servo_inputs.hpp"
 #include "server/vrpn_server.hpp"
 #include "tests/vrpn/transcripts.hpp"
 #include "textures/generators.hpp"
@@ -102,36 +103,23 @@ class HeldPen final : public dev::HapticDevice {
 // What the served rig's servo is built on: the pen and a sine normal map (a base, so that it
 // exists before the servo).
 struct ServedRigInputs {
-  explicit ServedRigInputs(bool pen_valid) {
-    pen.setValid(pen_valid);
+  explicit ServedRigInputs(bool pen_valid) : texture(sine(), /*relief=*/false) { pen.setValid(pen_valid); }
+  static tex::GenerateRequest sine() {
     tex::GenerateRequest g;
     g.kind = "sine";
     g.size = 64;
-    map = std::make_unique<tex::TextureMap>(tex::generate(g));
-    tex::PlaneMapping m;
-    m.size_m = {0.1, 0.1};
-    surface = std::make_unique<tex::TexturedSurface>(*map, m, tex::SampleOptions{}, false);
-  }
-  static srv::ServoRigConfig wiring() {
-    srv::ServoRigConfig c;
-    c.renderer.stiffness_n_per_m = 500.0;
-    c.period_s = 1e-3;
-    c.quantisation_deadband = false;
-    c.flight_record_ticks = 1000;
-    c.ring_records = 4096;
-    return c;
+    return g;
   }
 
   HeldPen pen;
-  std::unique_ptr<tex::TextureMap> map;
-  std::unique_ptr<tex::TexturedSurface> surface;
+  ::thx::test::GeneratedSurface texture;
 };
 
 // The servo pipeline as hapticd wires it (server/servo_rig.hpp), ticking on its own thread, with
 // a VRPN server.
 struct ServedRig : ServedRigInputs, srv::ServoRig {
   explicit ServedRig(srv::VrpnServerOptions options = {}, std::uint16_t port = 0, bool pen_valid = true)
-      : ServedRigInputs(pen_valid), srv::ServoRig(pen, *surface, wiring()) {
+      : ServedRigInputs(pen_valid), srv::ServoRig(pen, *texture.surface, ::thx::test::unitTestWiring(500.0)) {
     servo().attachExternalEffects(&effects);
     options.port = port;
     options.log = false;
