@@ -82,7 +82,7 @@ Options parse(int argc, char** argv) {
 }
 
 double num(const std::string& text, const std::string& object, const std::string& key) {
-  return bench::jsonNumber(text, object, key).value_or(NAN);
+  return test::jsonNumber(text, object, key).value_or(NAN);
 }
 
 std::vector<std::string> hapticdArgv(const Options& o, const std::string& url, const std::string& stats,
@@ -98,7 +98,7 @@ ServoResult readServo(const std::string& phase, const std::string& command, int 
   r.phase = phase;
   r.command = command;
   r.exit_status = status;
-  const std::string s = bench::readFile(path);
+  const std::string s = test::slurp(path);
   r.ticks = num(s, "", "ticks");
   r.missed = num(s, "", "missed_ticks");
   r.rate_hz = num(s, "", "rate_hz");
@@ -108,7 +108,7 @@ ServoResult readServo(const std::string& phase, const std::string& command, int 
   r.p999 = num(s, "tick_compute_us", "p999");
   r.max = num(s, "tick_compute_us", "max");
   r.wake_p99 = num(s, "wake_latency_us", "p99");
-  r.fifo = bench::jsonBool(s, "realtime", "sched_fifo").value_or(false);
+  r.fifo = test::jsonBool(s, "realtime", "sched_fifo").value_or(false);
   return r;
 }
 
@@ -117,8 +117,8 @@ ServoResult baseline(const Options& o, const std::string& url, const std::string
   const auto argv = hapticdArgv(o, url, stats, o.baseline_seconds);
   std::fprintf(stderr, "bench_clients: %s: hapticd alone for %g s\n", phase.c_str(), o.baseline_seconds);
   const pid_t p = bench::spawn(argv, o.workdir + "/bench_clients_" + phase + ".log");
-  const int status = bench::waitFor(p);
-  return readServo(phase, bench::commandLine(argv), status, stats);
+  const int status = test::waitExit(p);
+  return readServo(phase, test::commandLine(argv), status, stats);
 }
 
 std::string csvRow(const ClientResult& c) {
@@ -161,8 +161,8 @@ int main(int argc, char** argv) {
   }
   for (std::size_t k = 0; k < clients.size(); ++k) {
     ClientResult& c = clients[k];
-    c.exit_status = bench::waitFor(pids[k]);
-    const std::string j = bench::readFile(o.workdir + "/bench_clients_" + c.name + ".json");
+    c.exit_status = test::waitExit(pids[k]);
+    const std::string j = test::slurp(o.workdir + "/bench_clients_" + c.name + ".json");
     c.granted = num(j, "", "granted_rate_hz");
     c.messages = num(j, "", "messages");
     c.achieved = num(j, "", "achieved_rate_hz");
@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
     c.lat_max = num(j, "latency_us", "max");
   }
   kill(server, SIGTERM);
-  servo.push_back(readServo("load", bench::commandLine(hargv), bench::waitFor(server), stats));
+  servo.push_back(readServo("load", test::commandLine(hargv), test::waitExit(server), stats));
   servo.push_back(baseline(o, url, "after"));
 
   const double base_p99 = 0.5 * (servo[0].p99 + servo[2].p99);
@@ -232,7 +232,7 @@ int main(int argc, char** argv) {
                    c.achieved, c.rate_error, c.missing, c.duplicates, c.samples, c.samples_missing, c.lat_p50,
                    c.lat_p99, c.lat_max, c.exit_status, k + 1 < clients.size() ? "," : "");
     }
-    std::fprintf(f, "  ],\n  \"load_command\": \"%s\"\n}\n", bench::commandLine(hargv).c_str());
+    std::fprintf(f, "  ],\n  \"load_command\": \"%s\"\n}\n", test::commandLine(hargv).c_str());
     std::fclose(f);
   }
   if (!o.md.empty()) {

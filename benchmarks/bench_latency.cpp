@@ -81,19 +81,19 @@ bool parseCyclictestHistogram(const std::string& text, Latency& l) {
 }
 
 bool parseHapticdStats(const std::string& js, Latency& l) {
-  const auto p50 = bench::jsonNumber(js, "wake_latency_us", "p50");
+  const auto p50 = test::jsonNumber(js, "wake_latency_us", "p50");
   if (!p50) return false;
   l.p50_us = *p50;
-  l.p99_us = bench::jsonNumber(js, "wake_latency_us", "p99").value_or(0);
-  l.p999_us = bench::jsonNumber(js, "wake_latency_us", "p999").value_or(0);
-  l.max_us = bench::jsonNumber(js, "wake_latency_us", "max").value_or(0);
-  l.count = std::uint64_t(bench::jsonNumber(js, "wake_latency_us", "count").value_or(0));
-  l.fifo = bench::jsonBool(js, "realtime", "sched_fifo").value_or(false);
-  const double missed = bench::jsonNumber(js, "", "missed_ticks").value_or(0);
+  l.p99_us = test::jsonNumber(js, "wake_latency_us", "p99").value_or(0);
+  l.p999_us = test::jsonNumber(js, "wake_latency_us", "p999").value_or(0);
+  l.max_us = test::jsonNumber(js, "wake_latency_us", "max").value_or(0);
+  l.count = std::uint64_t(test::jsonNumber(js, "wake_latency_us", "count").value_or(0));
+  l.fifo = test::jsonBool(js, "realtime", "sched_fifo").value_or(false);
+  const double missed = test::jsonNumber(js, "", "missed_ticks").value_or(0);
   l.note = bench::fmt("missed ticks %.0f; tick compute p50 %.1f us, p99 %.1f us; memory locked: %s", missed,
-                      bench::jsonNumber(js, "tick_compute_us", "p50").value_or(0),
-                      bench::jsonNumber(js, "tick_compute_us", "p99").value_or(0),
-                      bench::jsonBool(js, "realtime", "memory_locked").value_or(false) ? "yes" : "no");
+                      test::jsonNumber(js, "tick_compute_us", "p50").value_or(0),
+                      test::jsonNumber(js, "tick_compute_us", "p99").value_or(0),
+                      test::jsonBool(js, "realtime", "memory_locked").value_or(false) ? "yes" : "no");
   return true;
 }
 
@@ -133,7 +133,7 @@ Job startHapticd(const std::string& exe, const std::string& scene, int seconds, 
 bool sawFifo(pid_t pid, std::optional<int>& ended) {
   for (int i = 0; i < 40; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if ((ended = bench::poll(pid))) return false;
+    if ((ended = test::pollExit(pid))) return false;
     for (const auto& [tid, policy] : bench::threadPolicies(pid)) {
       if (policy == 1) return true;
     }
@@ -145,11 +145,11 @@ Latency finishCyclictest(const Job& j, const std::string& run, bool fifo, std::o
   Latency l;
   l.source = "cyclictest";
   l.run = run;
-  l.command = bench::commandLine(j.argv);
-  const int st = status ? *status : bench::waitFor(j.pid);
+  l.command = test::commandLine(j.argv);
+  const int st = status ? *status : test::waitExit(j.pid);
   l.fifo = fifo;
-  l.ok = st == 0 && parseCyclictestHistogram(bench::readFile(j.out), l);
-  const std::string log = bench::readFile(j.log);
+  l.ok = st == 0 && parseCyclictestHistogram(test::slurp(j.out), l);
+  const std::string log = test::slurp(j.log);
   if (!l.ok) l.note = bench::fmt("cyclictest failed (exit %d): %s", st, log.substr(0, 300).c_str());
   if (!fifo) l.note += (l.note.empty() ? "" : "; ") + std::string("cyclictest did NOT get SCHED_FIFO");
   return l;
@@ -159,9 +159,9 @@ Latency finishHapticd(const Job& j, const std::string& run) {
   Latency l;
   l.source = "hapticd";
   l.run = run;
-  l.command = bench::commandLine(j.argv);
-  const int st = bench::waitFor(j.pid);
-  l.ok = st == 0 && parseHapticdStats(bench::readFile(j.out), l);
+  l.command = test::commandLine(j.argv);
+  const int st = test::waitExit(j.pid);
+  l.ok = st == 0 && parseHapticdStats(test::slurp(j.out), l);
   if (!l.ok) l.note = bench::fmt("hapticd failed (exit %d), see %s", st, j.log.c_str());
   return l;
 }

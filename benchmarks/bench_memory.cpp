@@ -121,7 +121,7 @@ Run launch(const std::vector<std::string>& argv, const std::string& log, double 
   const auto t0 = std::chrono::steady_clock::now();
   std::int64_t best_rss = -1;
   for (;;) {
-    if (auto st = bench::poll(pid)) {
+    if (auto st = test::pollExit(pid)) {
       r.exit_status = *st;
       break;
     }
@@ -154,19 +154,19 @@ Outcome runOne(const std::string& hapticd, const Variant& v, const std::string& 
   std::vector<std::string> argv{hapticd, "--scene", v.scene, "--lockstep", "--quiet", "--stats-json", stats,
                                 "--flight-dir", workdir};
   argv.insert(argv.end(), v.flags.begin(), v.flags.end());
-  o.command = bench::commandLine(argv);
+  o.command = test::commandLine(argv);
   std::fprintf(stderr, "bench_memory: %s\n", o.command.c_str());
   const Run lock = launch(argv, workdir + "/mem_" + v.name + ".log", -1.0);
-  const std::string js = bench::readFile(stats);
+  const std::string js = test::slurp(stats);
   if (lock.exit_status != 0 || js.empty()) {
     throw std::runtime_error("hapticd failed (exit " + std::to_string(lock.exit_status) + "), see " + workdir +
                              "/mem_" + v.name + ".log");
   }
   o.exit_status = lock.exit_status;
-  o.rss = std::int64_t(bench::jsonNumber(js, "", "rss_bytes").value_or(-1));
-  o.locked = std::int64_t(bench::jsonNumber(js, "", "locked_bytes").value_or(-1));
-  o.texture = std::int64_t(bench::jsonNumber(js, "", "texture_bytes").value_or(-1));
-  o.mlock = bench::jsonBool(js, "realtime", "memory_locked").value_or(false);
+  o.rss = std::int64_t(test::jsonNumber(js, "", "rss_bytes").value_or(-1));
+  o.locked = std::int64_t(test::jsonNumber(js, "", "locked_bytes").value_or(-1));
+  o.texture = std::int64_t(test::jsonNumber(js, "", "texture_bytes").value_or(-1));
+  o.mlock = test::jsonBool(js, "realtime", "memory_locked").value_or(false);
 
   // 2. What that memory is: the same flags in real time for 2 s (lock-step finishes too fast to
   //    watch), /proc/<pid>/smaps sampled from 0.8 s on.
@@ -174,14 +174,14 @@ Outcome runOne(const std::string& hapticd, const Variant& v, const std::string& 
   std::vector<std::string> argv_rt{hapticd, "--scene", v.scene, "--duration", "2", "--quiet", "--stats-json",
                                    stats_rt, "--flight-dir", workdir};
   argv_rt.insert(argv_rt.end(), v.flags.begin(), v.flags.end());
-  o.command_rt = bench::commandLine(argv_rt);
+  o.command_rt = test::commandLine(argv_rt);
   std::fprintf(stderr, "bench_memory: %s (sampling /proc/<pid>/smaps)\n", o.command_rt.c_str());
   const Run rt = launch(argv_rt, workdir + "/mem_" + v.name + "_rt.log", 0.8);
   if (rt.exit_status != 0 || rt.maps.empty()) {
     throw std::runtime_error("hapticd (real time) failed or could not be sampled, see " + workdir + "/mem_" + v.name +
                              "_rt.log");
   }
-  o.rss_rt = std::int64_t(bench::jsonNumber(bench::readFile(stats_rt), "", "rss_bytes").value_or(-1));
+  o.rss_rt = std::int64_t(test::jsonNumber(test::slurp(stats_rt), "", "rss_bytes").value_or(-1));
   o.threads = rt.threads;
   o.hwm = rt.hwm;
   o.b = classify(rt.maps, binary, o.texture);

@@ -100,7 +100,7 @@ void registerRender(const Fixture& fx, bool relief, bool crease) {
   benchmark::RegisterBenchmark(name.c_str(), [f, path, relief, crease](benchmark::State& state) {
     bench::ReplayDevice dummy(srv::deviceSpecFor(f->st.scene), *path);
     bench::ServerRig rig(f->st.scene, *f->st.map, relief, crease, dummy);
-    srv::ProxyRenderer& r = *rig.renderer;
+    srv::ProxyRenderer& r = rig.renderer();
     const std::vector<dev::DeviceState>& p = *path;
     std::size_t k = 0;
     for (auto _ : state) {
@@ -132,7 +132,7 @@ void registerRender(const Fixture& fx, bool relief, bool crease) {
 void timeServoTicks(benchmark::State& state, bench::ServerRig& rig) {
   std::int64_t k = 0;
   for (auto _ : state) {
-    const srv::TickRecord& r = rig.servo->tick();
+    const srv::TickRecord& r = rig.servo().tick();
     benchmark::DoNotOptimize(&r);
     if ((++k & 511) == 0) {
       state.PauseTiming();
@@ -140,7 +140,7 @@ void timeServoTicks(benchmark::State& state, bench::ServerRig& rig) {
       state.ResumeTiming();
     }
   }
-  const srv::LatencyHistogram& h = rig.servo->computeHistogram();
+  const srv::LatencyHistogram& h = rig.servo().computeHistogram();
   state.counters["compute_p50_ns"] = h.quantileUs(0.5) * 1e3;
   state.counters["compute_p99_ns"] = h.quantileUs(0.99) * 1e3;
 }
@@ -188,7 +188,7 @@ void registerServo(const Fixture& fx) {
   benchmark::RegisterBenchmark((base + "render").c_str(), [f, rec](benchmark::State& state) {
     bench::ReplayDevice dummy(srv::deviceSpecFor(f->st.scene), rec->states);
     bench::ServerRig rig(f->st.scene, *f->st.map, true, true, dummy);
-    srv::ProxyRenderer& r = *rig.renderer;
+    srv::ProxyRenderer& r = rig.renderer();
     const std::vector<dev::DeviceState>& p = rec->states;
     std::size_t k = 0;
     for (auto _ : state) {

@@ -31,36 +31,20 @@ SceneTexture loadSceneTexture(const std::string& scene_path, int size_override) 
   return st;
 }
 
+SceneSurface::SceneSurface(const scene::Scene& sc, const tex::TextureMap& map, bool relief)
+    : surface(map, scene::planeMapping(sc.surface), sc.surface.sampling, relief) {}
+
+namespace {
+srv::ServoRigConfig hapticdWiring(const scene::Scene& sc, bool crease) {
+  srv::ServoRigConfig c = srv::servoRigConfigFor(sc);
+  c.renderer.crease_handling = crease;
+  return c;
+}
+}  // namespace
+
 ServerRig::ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool relief, bool crease,
                      dev::HapticDevice& device)
-    : surface(map, scene::planeMapping(sc.surface), sc.surface.sampling, relief) {
-  // As hapticd run(): renderer from the scene, passivity and safety from the device spec,
-  // one second of flight recorder, a 1024-slot (1 s) publication ring.
-  const dev::DeviceSpec& spec = device.spec();
-  const double period_s = 1.0 / sc.rates.servo_hz;
-  srv::RendererConfig rc = srv::rendererConfigFor(sc);
-  rc.crease_handling = crease;
-  renderer = std::make_unique<srv::ProxyRenderer>(surface, rc);
-  passivity = std::make_unique<srv::PassivityController>(
-      srv::servoPassivityConfig(spec, period_s, rc.stiffness_n_per_m, true));
-  safety = std::make_unique<srv::SafetyStage>(srv::SafetyConfig::fromSpec(spec, period_s));
-  recorder = std::make_unique<srv::FlightRecorder>(std::size_t(sc.rates.servo_hz));
-  ring = std::make_unique<rt::SpscRing<srv::TickRecord>>(1024);
-  servo = std::make_unique<srv::Servo>(device, *renderer, *passivity, *safety, *recorder, *ring, srv::ServoConfig{});
-}
-
-void ServerRig::reset() {
-  renderer->reset();
-  passivity->reset();
-  safety->reset();
-  drain();
-}
-
-void ServerRig::drain() {
-  srv::TickRecord r;
-  while (ring->pop(r)) {
-  }
-}
+    : SceneSurface(sc, map, relief), srv::ServoRig(device, surface, hapticdWiring(sc, crease)) {}
 
 double Recording::contactFraction() const {
   if (in_contact.empty()) return 0.0;
@@ -81,7 +65,7 @@ Recording recordRun(const scene::Scene& sc, const tex::TextureMap& map, bool rel
   rec.in_contact.reserve(ticks);
   tap.open();
   for (std::size_t k = 0; k < ticks; ++k) {
-    const srv::TickRecord& r = rig.servo->tick();
+    const srv::TickRecord& r = rig.tick();
     rec.in_contact.push_back(r.in_contact ? 1 : 0);
     if ((k & 511) == 511) rig.drain();
   }

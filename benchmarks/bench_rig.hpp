@@ -10,12 +10,7 @@
 #include "device/haptic_device.hpp"
 #include "device/sim_phantom.hpp"
 #include "scenes/scene.hpp"
-#include "server/flight_recorder.hpp"
-#include "server/passivity.hpp"
-#include "server/proxy_renderer.hpp"
-#include "server/safety.hpp"
-#include "server/servo.hpp"
-#include "rt/spsc_ring.hpp"
+#include "server/servo_rig.hpp"
 #include "server/tick_record.hpp"
 #include "textures/textured_surface.hpp"
 
@@ -31,23 +26,17 @@ struct SceneTexture {
 };
 SceneTexture loadSceneTexture(const std::string& scene_path, int size_override = 0);
 
-// hapticd's server parts for one scene. `relief` false reads the map as a normal map.
-class ServerRig {
- public:
-  ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool relief, bool crease, dev::HapticDevice& device);
-
-  // Back to the state right after construction (device not touched).
-  void reset();
-  // Empties the publication ring as hapticd's publisher thread would.
-  void drain();
-
+// The scene's surface over `map`; `relief` false reads the map as a normal map. A base of
+// ServerRig, so that it exists before the servo.
+struct SceneSurface {
+  SceneSurface(const scene::Scene& sc, const tex::TextureMap& map, bool relief);
   tex::TexturedSurface surface;
-  std::unique_ptr<srv::ProxyRenderer> renderer;
-  std::unique_ptr<srv::PassivityController> passivity;
-  std::unique_ptr<srv::SafetyStage> safety;
-  std::unique_ptr<srv::FlightRecorder> recorder;
-  std::unique_ptr<rt::SpscRing<srv::TickRecord>> ring;
-  std::unique_ptr<srv::Servo> servo;
+};
+
+// hapticd's server parts for one scene, wired by srv::ServoRig with hapticd's configuration
+// (srv::servoRigConfigFor), crease handling as asked. reset() and drain() are srv::ServoRig's.
+struct ServerRig : SceneSurface, srv::ServoRig {
+  ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool relief, bool crease, dev::HapticDevice& device);
 };
 
 // Forwards to a device and records every reading and command (preallocated by reserve()).

@@ -1,6 +1,7 @@
 #pragma once
-// Process helpers for the memory and latency benchmarks: start a program, watch it through
-// /proc, read back the small JSON files hapticd writes. Linux only.
+// Process helpers for the memory, latency and client benchmarks: watch a program through /proc.
+// Starting, waiting for and reading back programs is the tests' (tests/support/process.hpp,
+// tests/support/flat_json.hpp, included here). Linux only.
 #include <sys/types.h>
 
 #include <cstdint>
@@ -9,17 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/flat_json.hpp"
+#include "tests/support/process.hpp"
+
 namespace thx::bench {
 
 // Starts argv[0] (looked up in PATH if it has no '/') with stdout and stderr appended to
 // log_path. Throws std::runtime_error if fork fails; an exec failure shows as exit status 127.
-pid_t spawn(const std::vector<std::string>& argv, const std::string& log_path);
-// Non-blocking: the exit status if the child has ended (then it is reaped), else nullopt.
-std::optional<int> poll(pid_t pid);
-int waitFor(pid_t pid);  // blocking; the exit status (128 + signal if killed)
-std::string commandLine(const std::vector<std::string>& argv);
-
-std::string readFile(const std::string& path);  // "" if unreadable
+inline pid_t spawn(const std::vector<std::string>& argv, const std::string& log_path) {
+  return test::spawnIn("", argv, log_path, log_path, /*append=*/true);
+}
 
 // /proc/<pid>/smaps, one entry per mapping (sizes in bytes).
 struct Mapping {
@@ -34,10 +34,5 @@ std::int64_t statusField(pid_t pid, const std::string& key);
 std::map<int, int> threadPolicies(pid_t pid);
 // Thread names (comm) by tid.
 std::map<int, std::string> threadNames(pid_t pid);
-
-// Minimal reader for the flat JSON hapticd writes: the number after "key": inside the object
-// that follows "object": (or at top level when object is empty). nullopt if absent.
-std::optional<double> jsonNumber(const std::string& text, const std::string& object, const std::string& key);
-std::optional<bool> jsonBool(const std::string& text, const std::string& object, const std::string& key);
 
 }  // namespace thx::bench

@@ -30,7 +30,7 @@
 #include "server/realtime.hpp"
 #include "server/receiver.hpp"
 #include "server/scene_device.hpp"
-#include "server/servo.hpp"
+#include "server/servo_rig.hpp"
 #include "server/stability_budget.hpp"
 #include "server/session_log.hpp"
 #include "server/stats_json.hpp"
@@ -300,9 +300,11 @@ int run(const Options& o) {
   dev::HapticDevice& device = *device_owner;
   const dev::DeviceSpec& spec = device.spec();
 
-  srv::RendererConfig rc = srv::rendererConfigFor(sc);
+  srv::ServoRigConfig wiring = srv::servoRigConfigFor(sc);
+  srv::RendererConfig& rc = wiring.renderer;
   if (o.stiffness_fraction) rc.stiffness_n_per_m = *o.stiffness_fraction * spec.max_stiffness_n_per_m;
   rc.crease_handling = o.crease;
+  wiring.passivity = o.passivity;
   srv::StabilityRequest sr;
   sr.stiffness_fraction = rc.stiffness_n_per_m / spec.max_stiffness_n_per_m;
   sr.virtual_damping_ns_per_m = rc.damping_ns_per_m;
@@ -317,12 +319,9 @@ int run(const Options& o) {
     return 1;
   }
 
-  srv::ProxyRenderer renderer(surface, rc);
-  srv::PassivityController passivity(srv::servoPassivityConfig(spec, period_s, rc.stiffness_n_per_m, o.passivity));
-  srv::SafetyStage safety(srv::SafetyConfig::fromSpec(spec, period_s));
-  srv::FlightRecorder recorder(std::size_t(sc.rates.servo_hz));  // one second of ticks
-  rt::SpscRing<srv::TickRecord> ring(1024);  // 1 s of ticks: the publisher drains every 0.5 ms
-  srv::Servo servo(device, renderer, passivity, safety, recorder, ring, srv::ServoConfig{});
+  srv::ServoRig rig(device, surface, wiring);
+  srv::Servo& servo = rig.servo();
+  rt::SpscRing<srv::TickRecord>& ring = rig.ring();
 
   std::unique_ptr<lcm::LCM> lcm;
   if (!o.no_lcm) {
@@ -349,7 +348,7 @@ int run(const Options& o) {
     po.session = session.get();
   }
   po.fault_reset = &servo.faultResetSlot();
-  srv::Publisher publisher(ring, servo, recorder, lcm.get(), po);
+  srv::Publisher publisher(ring, servo, rig.recorder(), lcm.get(), po);
   std::unique_ptr<srv::Receiver> receiver;
   if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);
 
@@ -475,9 +474,9 @@ int run(const Options& o) {
   summary.wall_time_s = wall_s;
   summary.nominal_rate_hz = sc.rates.servo_hz;
   summary.servo = servo.counters();
-  summary.safety = safety.counters();
-  summary.passivity_active_ticks = passivity.activeTicks();
-  summary.passivity_dissipated_j = passivity.dissipatedEnergy();
+  summary.safety = rig.safety().counters();
+  summary.passivity_active_ticks = rig.passivity().activeTicks();
+  summary.passivity_dissipated_j = rig.passivity().dissipatedEnergy();
   summary.realtime = rt;
   summary.memory = srv::readProcessMemory();
   summary.texture_bytes = map.bytes();

@@ -6,6 +6,7 @@
 #include "device/sim_config.hpp"
 #include "scenes/scene.hpp"
 #include "server/proxy_renderer.hpp"
+#include "server/servo_rig.hpp"
 
 namespace thx::srv {
 
@@ -19,5 +20,10 @@ dev::SimPhantomConfig simConfigFor(const scene::Scene& scene, bool lockstep);
 dev::HandScript handScriptFor(const scene::Scene& scene);
 
 RendererConfig rendererConfigFor(const scene::Scene& scene);
+
+// hapticd's servo wiring for the scene (server/servo_rig.hpp): its renderer, its servo period,
+// the passivity controller on with the quantisation dead band, one second of flight record, a
+// 1024-record (1 s) tick ring.
+ServoRigConfig servoRigConfigFor(const scene::Scene& scene);
 
 }  // namespace thx::srv

@@ -4,19 +4,14 @@
 // The stability map and its tests drive it one tick at a time and read the simulator's ground truth
 // beside the tick record, so what they measure is what the pen really did, not what the encoders said.
 //
-// Not real-time code: construction allocates (flight recorder, ring). Deterministic: the device runs
+// Not real-time code: construction allocates (server/servo_rig.hpp). Deterministic: the device runs
 // on its own VirtualClock and nothing reads the wall clock except the servo's latency statistics,
 // which the analysis ignores.
 #include <memory>
 
 #include "device/hand_script.hpp"
 #include "device/sim_phantom.hpp"
-#include "server/flight_recorder.hpp"
-#include "server/passivity.hpp"
-#include "server/proxy_renderer.hpp"
-#include "server/safety.hpp"
-#include "server/servo.hpp"
-#include "rt/spsc_ring.hpp"
+#include "server/servo_rig.hpp"
 #include "textures/textured_surface.hpp"
 
 namespace thx::srv::stab {
@@ -41,21 +36,16 @@ class SimRig {
 
   const dev::SimTruth& truth() const { return device_->truth(); }
   dev::SimPhantom& device() { return *device_; }
-  const ProxyRenderer& renderer() const { return *renderer_; }
-  const PassivityController& passivity() const { return *passivity_; }
-  const SafetyStage& safety() const { return *safety_; }
-  const Servo& servo() const { return *servo_; }
+  const ProxyRenderer& renderer() const { return rig_->renderer(); }
+  const PassivityController& passivity() const { return rig_->passivity(); }
+  const SafetyStage& safety() const { return rig_->safety(); }
+  const Servo& servo() const { return rig_->servo(); }
   double periodS() const { return period_s_; }
 
  private:
   double period_s_;
   std::unique_ptr<dev::SimPhantom> device_;
-  std::unique_ptr<ProxyRenderer> renderer_;
-  std::unique_ptr<PassivityController> passivity_;
-  std::unique_ptr<SafetyStage> safety_;
-  FlightRecorder recorder_;
-  rt::SpscRing<TickRecord> ring_;
-  std::unique_ptr<Servo> servo_;
+  std::unique_ptr<ServoRig> rig_;
 };
 
 }  // namespace thx::srv::stab

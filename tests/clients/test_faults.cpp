@@ -14,7 +14,7 @@
 #include <random>
 #include <thx_msgs/protocol.hpp>
 
-#include "hapticd_harness.hpp"
+#include "tests/support/hapticd_harness.hpp"
 
 namespace {
 

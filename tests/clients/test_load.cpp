@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "hapticd_harness.hpp"
+#include "tests/support/hapticd_harness.hpp"
 
 namespace {
 

@@ -3,20 +3,11 @@
 // deliver every tick (the bandwidth refusal is covered by test_subscriptions). Counts are checked with wide margins (no timing assertions: the
 // sanitizer build runs slowly); the measured rates are in docs/clients.md. Skipped when udpm is
 // not available (no multicast route).
-#include <sys/wait.h>
-
-#include <cstdlib>
-
-#include "hapticd_harness.hpp"
+#include "tests/support/hapticd_harness.hpp"
 
 namespace {
 
 using namespace thx::test;
-
-int shell(const std::string& cmd) {
-  const int raw = std::system(cmd.c_str());
-  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-}
 
 class ProbeLoopback : public HapticdProcessTest {};
 
@@ -68,10 +59,10 @@ TEST_F(ProbeLoopback, LimitsRatesAndBatchesEndToEnd) {
 
 TEST(ProbeClientCli, HelpAndBadCommandLines) {
   const std::string p = std::string("'") + THX_PROBE + "' ";
-  EXPECT_EQ(shell(p + "--help >/dev/null"), 0);
-  EXPECT_EQ(shell(p + "--stream DEVICE_STATE --rate 10 --duration 1 2>/dev/null"), 2);           // no --json
-  EXPECT_EQ(shell(p + "--stream FORCES --rate 10 --duration 1 --json x 2>/dev/null"), 2);        // unknown stream
-  EXPECT_EQ(shell(p + "--stream DEVICE_STATE --batch --rate 10 --duration 1 --json x 2>/dev/null"), 2);
-  EXPECT_EQ(shell(p + "--stream CONTACT --rate -1 --duration 1 --json x 2>/dev/null"), 2);
-  EXPECT_EQ(shell(p + "--stream CONTACT --rate 10 --duration 1 --json x --client-id 'a b' 2>/dev/null"), 2);
+  EXPECT_EQ(shellStatus(p + "--help >/dev/null"), 0);
+  EXPECT_EQ(shellStatus(p + "--stream DEVICE_STATE --rate 10 --duration 1 2>/dev/null"), 2);           // no --json
+  EXPECT_EQ(shellStatus(p + "--stream FORCES --rate 10 --duration 1 --json x 2>/dev/null"), 2);        // unknown stream
+  EXPECT_EQ(shellStatus(p + "--stream DEVICE_STATE --batch --rate 10 --duration 1 --json x 2>/dev/null"), 2);
+  EXPECT_EQ(shellStatus(p + "--stream CONTACT --rate -1 --duration 1 --json x 2>/dev/null"), 2);
+  EXPECT_EQ(shellStatus(p + "--stream CONTACT --rate 10 --duration 1 --json x --client-id 'a b' 2>/dev/null"), 2);
 }

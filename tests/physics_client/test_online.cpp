@@ -10,7 +10,7 @@
 // not available (no multicast route).
 #include <string>
 
-#include "../clients/hapticd_harness.hpp"
+#include "tests/support/hapticd_harness.hpp"
 
 namespace {
 

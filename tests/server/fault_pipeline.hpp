@@ -21,9 +21,9 @@ struct FaultPipeline {
 
   // One servo tick, and everything the publisher does with its record.
   void step() {
-    rig.servo->tick();
+    rig.servo().tick();
     srv::TickRecord r;
-    while (rig.ring.pop(r)) {
+    while (rig.ring().pop(r)) {
       ticks.push_back(r);
       thx_msgs::device_state_t d{};
       thx_msgs::contact_t c{};
@@ -52,7 +52,7 @@ struct FaultPipeline {
   ServoRig rig;
   srv::SubscriptionTable table{srv::SubscriptionLimits{}};
   RecordingSink sink;
-  srv::ServerCommands commands{&rig.servo->faultResetSlot(), 42};
+  srv::ServerCommands commands{&rig.servo().faultResetSlot(), 42};
   std::vector<thx_msgs::server_command_reply_t> replies;
   std::vector<srv::TickRecord> ticks;
 };

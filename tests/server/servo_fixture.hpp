@@ -1,51 +1,39 @@
 #pragma once
-// Everything a servo needs, wired as hapticd wires it, around a V-valley relief map.
+// A servo wired as hapticd wires it (server/servo_rig.hpp) around a V-valley relief map, driven by
+// a scripted FakeDevice. The passivity controller runs without hapticd's quantisation dead band
+// (the fake device's positions are exact).
 #include <memory>
 
-#include "server/servo.hpp"
+#include "server/servo_rig.hpp"
 #include "tests/server/fake_device.hpp"
-#include "textures/generators.hpp"
+#include "tests/support/servo_inputs.hpp"
 
 namespace thx::test {
 
-struct ServoRig {
-  explicit ServoRig(FakeDevice::Script script, bool crease = true) : device(std::move(script)) {
+// What the servo rig is built on; a base so that it exists before the rig.
+struct ServoRigInputs {
+  explicit ServoRigInputs(FakeDevice::Script script)
+      : device(std::move(script)), texture(vvalley(), /*relief=*/true) {}
+  static tex::GenerateRequest vvalley() {
     tex::GenerateRequest g;
     g.kind = "vvalley";
     g.size = 256;
     g.params = {{"angle_deg", 60.0}, {"period", 0.004}, {"extent", 0.1}};
-    map = std::make_unique<tex::TextureMap>(tex::generate(g));
-    tex::PlaneMapping m;
-    m.size_m = {0.1, 0.1};
-    surface = std::make_unique<tex::TexturedSurface>(*map, m, tex::SampleOptions{}, true);
-    srv::RendererConfig rc;
-    rc.stiffness_n_per_m = 1000.0;
-    rc.crease_handling = crease;
-    renderer = std::make_unique<srv::ProxyRenderer>(*surface, rc);
-    passivity = std::make_unique<srv::PassivityController>(srv::PassivityConfig::fromSpec(device.spec(), 1e-3, 1000.0));
-    safety = std::make_unique<srv::SafetyStage>(srv::SafetyConfig::fromSpec(device.spec(), 1e-3));
-    servo = std::make_unique<srv::Servo>(device, *renderer, *passivity, *safety, recorder, ring, srv::ServoConfig{});
-  }
-
-  // Runs n ticks, draining the ring as a publisher would.
-  void run(int n) {
-    srv::TickRecord r;
-    for (int k = 0; k < n; ++k) {
-      servo->tick();
-      while (ring.pop(r)) {
-      }
-    }
+    return g;
   }
 
   FakeDevice device;
-  std::unique_ptr<tex::TextureMap> map;
-  std::unique_ptr<tex::TexturedSurface> surface;
-  std::unique_ptr<srv::ProxyRenderer> renderer;
-  std::unique_ptr<srv::PassivityController> passivity;
-  std::unique_ptr<srv::SafetyStage> safety;
-  srv::FlightRecorder recorder{1000};
-  rt::SpscRing<srv::TickRecord> ring{4096};
-  std::unique_ptr<srv::Servo> servo;
+  GeneratedSurface texture;
+};
+
+struct ServoRig : ServoRigInputs, srv::ServoRig {
+  explicit ServoRig(FakeDevice::Script script, bool crease = true)
+      : ServoRigInputs(std::move(script)), srv::ServoRig(device, *texture.surface, unitTestWiring(1000.0, crease)) {}
+
+  // Runs n ticks, draining the ring as a publisher would.
+  void run(int n) {
+    for (int k = 0; k < n; ++k) tickAndDrain();
+  }
 };
 
 // Valley floors of the rig's map (extent 0.1 m, period 4 mm): x = k * 4 mm; depth 3.46 mm.

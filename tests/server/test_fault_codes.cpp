@@ -43,10 +43,10 @@ struct FaultCodes : ::testing::Test {
     nan.force_world_n[1] = std::numeric_limits<double>::quiet_NaN();
     for (int k = 0; k < 2600; ++k) {
       const std::int64_t next = p->ticks.empty() ? 0 : p->ticks.back().tick + 1;
-      if (next == kClientForceAt) p->rig.servo->clientForceSlot().write(small);
-      if (next == kClientForceAt + 20) p->rig.servo->clientForceSlot().write(none);
-      if (next == kNanForceAt) p->rig.servo->clientForceSlot().write(nan);
-      if (next == kNanForceAt + 1) p->rig.servo->clientForceSlot().write(none);  // one tick only
+      if (next == kClientForceAt) p->rig.servo().clientForceSlot().write(small);
+      if (next == kClientForceAt + 20) p->rig.servo().clientForceSlot().write(none);
+      if (next == kNanForceAt) p->rig.servo().clientForceSlot().write(nan);
+      if (next == kNanForceAt + 1) p->rig.servo().clientForceSlot().write(none);  // one tick only
       p->step();
     }
   }

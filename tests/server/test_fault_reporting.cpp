@@ -101,9 +101,9 @@ TEST(FaultReporting, ResetsAreAnsweredEvenWhenRecordsAreLostAndBadCommandsAreRef
   // Two resets before the servo runs: it reads only the newest, which covers both.
   EXPECT_FALSE(p.commands.handle(test::resetCommand(1)).has_value());
   EXPECT_FALSE(p.commands.handle(test::resetCommand(2)).has_value());
-  p.rig.servo->tick();
+  p.rig.servo().tick();
   srv::TickRecord lost;
-  ASSERT_TRUE(p.rig.ring.pop(lost));  // this record never reaches the publisher
+  ASSERT_TRUE(p.rig.ring().pop(lost));  // this record never reaches the publisher
   EXPECT_TRUE(p.replies.empty());
   p.step();  // a later record shows the resets applied
   ASSERT_EQ(p.replies.size(), 2u);

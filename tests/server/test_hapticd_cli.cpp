@@ -2,32 +2,18 @@
 // its errors and exit codes, and its shutdown on SIGTERM.
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <regex>
-#include <sstream>
 #include <thread>
 
-#include "tests/server/hapticd_process.hpp"
+#include "tests/support/hapticd_harness.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-using thx::test::ProcRun;
-using thx::test::slurp;
-
-// The number after "key": in a flat JSON text (the stats file is ours, one key per line).
-double jsonNumber(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\": (-?[0-9.eE+-]+)");
-  std::smatch m;
-  if (!std::regex_search(json, m, re)) return -1e300;
-  return std::stod(m[1]);
-}
+using namespace thx::test;
 
 using Hapticd = thx::test::HapticdProcessTest;
 
@@ -55,23 +41,15 @@ TEST_F(Hapticd, LockstepRunOfTheDefaultSceneWritesItsStatistics) {
 }
 
 TEST_F(Hapticd, SigtermRampsDownAndStillWritesStatistics) {
-  const std::string cmd = std::string("cd '") + THX_SOURCE_DIR + "' && exec '" + THX_HAPTICD +
-                          "' --scene scenes/default.yaml --duration 0 --no-lcm --no-mlock --quiet --stats-json '" +
-                          path("s.json") + "' --flight-dir '" + path("") + "' >'" + path("out.txt") + "' 2>'" + path("err.txt") + "'";
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  const pid_t pid = spawn({THX_HAPTICD, "--scene", "scenes/default.yaml", "--duration", "0", "--no-lcm", "--no-mlock",
+                           "--quiet", "--stats-json", path("s.json"), "--flight-dir", path("")},
+                          path("out.txt"), path("err.txt"));
+  ASSERT_GT(pid, 0);
   // Under the sanitizers start-up alone can take most of a second; a signal at any point of it
   // must still end in an orderly shutdown.
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   kill(pid, SIGTERM);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status)) << slurp(path("err.txt"));
-  EXPECT_EQ(WEXITSTATUS(status), 0) << slurp(path("err.txt"));
+  ASSERT_EQ(reap(pid, 60), 0) << slurp(path("err.txt"));
   const std::string json = slurp(path("s.json"));
   EXPECT_GE(jsonNumber(json, "ticks"), 1) << json;
   EXPECT_NE(slurp(path("out.txt")).find("hapticd summary"), std::string::npos);

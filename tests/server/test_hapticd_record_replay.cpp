@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "server/session_log.hpp"
-#include "tests/server/hapticd_process.hpp"
+#include "tests/support/hapticd_harness.hpp"
 
 namespace fs = std::filesystem;
 using thx_msgs::contact_t;

@@ -18,7 +18,7 @@
 #include "device/vrpn/tracker_messages.hpp"
 #include "device/vrpn/vrpn_client_device.hpp"
 #include "device/device_specs.hpp"
-#include "tests/server/hapticd_process.hpp"
+#include "tests/support/hapticd_harness.hpp"
 
 namespace fs = std::filesystem;
 using namespace thx::vrpn;

@@ -27,8 +27,8 @@ TEST(Servo, PressIntoAValleyEngagesAndRendersUpward) {
   const Eigen::Vector3d f = rig.device.writes().back();
   EXPECT_NEAR(f.z(), 1000.0 * 0.001, 0.05);  // 1 mm below the floor, both walls held
   EXPECT_LT(std::fabs(f.x()), 0.05);
-  EXPECT_EQ(rig.servo->counters().faults, 0u);
-  EXPECT_GT(rig.servo->counters().contact_ticks, 1000u);
+  EXPECT_EQ(rig.servo().counters().faults, 0u);
+  EXPECT_GT(rig.servo().counters().contact_ticks, 1000u);
 }
 
 TEST(Servo, LongGapDisengagesAndFreezesAFlightRecord) {
@@ -40,12 +40,12 @@ TEST(Servo, LongGapDisengagesAndFreezesAFlightRecord) {
   EXPECT_GT(rig.device.writes().back().norm(), 0.5);
   rig.run(1);  // the tick after the gap: 1505, the fault
   EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
-  EXPECT_EQ(rig.servo->counters().faults, 1u);
-  EXPECT_EQ(rig.servo->counters().missed_ticks, 5u);
-  EXPECT_EQ(rig.safety->state(), srv::SafetyState::Disengaged);
+  EXPECT_EQ(rig.servo().counters().faults, 1u);
+  EXPECT_EQ(rig.servo().counters().missed_ticks, 5u);
+  EXPECT_EQ(rig.safety().state(), srv::SafetyState::Disengaged);
   // The flight record holds the last second up to and including the fault.
   const std::string dir = testing::TempDir();
-  const std::string path = rig.recorder.dumpPending(dir);
+  const std::string path = rig.recorder().dumpPending(dir);
   ASSERT_FALSE(path.empty());
   std::ifstream in(path);
   int lines = 0;
@@ -57,7 +57,7 @@ TEST(Servo, LongGapDisengagesAndFreezesAFlightRecord) {
   EXPECT_EQ(lines, 2 + 1000);  // comment + header + 1000 ticks
   EXPECT_EQ(last.rfind("1505,5,", 0), 0u) << last;  // the faulting tick, 5 missed
   std::filesystem::remove(path);
-  EXPECT_TRUE(rig.recorder.dumpPending(dir).empty());
+  EXPECT_TRUE(rig.recorder().dumpPending(dir).empty());
   // While pressing, the force stays zero: re-engaging needs a small requested force first.
   rig.run(100);
   EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
@@ -70,10 +70,10 @@ TEST(Servo, InvalidReadingsTurnTheForceOffAfterThePolicyLimit) {
     if (tick >= 1700 && tick < 1703) s.p_world.x() = std::numeric_limits<double>::quiet_NaN();  // three: fault
   });
   rig.run(1502);
-  EXPECT_EQ(rig.servo->counters().faults, 0u);
-  EXPECT_EQ(rig.servo->counters().invalid_readings, 2u);
+  EXPECT_EQ(rig.servo().counters().faults, 0u);
+  EXPECT_EQ(rig.servo().counters().invalid_readings, 2u);
   rig.run(210);
-  EXPECT_EQ(rig.servo->counters().faults, 1u);
+  EXPECT_EQ(rig.servo().counters().faults, 1u);
   EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
   for (const Eigen::Vector3d& f : rig.device.writes()) ASSERT_TRUE(f.allFinite());
 }
@@ -87,12 +87,12 @@ TEST(Servo, ADeviceThatStaysInvalidFaultsOnceAndGetsNoForce) {
   srv::ClientForce cf;
   cf.force_world_n[0] = 0.1;
   for (int k = 0; k < 500; ++k) {
-    rig.servo->clientForceSlot().write(cf);  // a client keeps pushing
+    rig.servo().clientForceSlot().write(cf);  // a client keeps pushing
     rig.run(1);
   }
-  EXPECT_EQ(rig.servo->counters().faults, 1u);  // one flight record, not one per tick
-  EXPECT_EQ(rig.servo->counters().invalid_readings, 500u);
-  EXPECT_EQ(rig.servo->counters().client_force_ticks, 0u) << "never applied to a pen we cannot locate";
+  EXPECT_EQ(rig.servo().counters().faults, 1u);  // one flight record, not one per tick
+  EXPECT_EQ(rig.servo().counters().invalid_readings, 500u);
+  EXPECT_EQ(rig.servo().counters().client_force_ticks, 0u) << "never applied to a pen we cannot locate";
   for (std::size_t i = rig.device.writes().size() - 490; i < rig.device.writes().size(); ++i)
     ASSERT_EQ(rig.device.writes()[i].norm(), 0.0) << i;
 }
@@ -102,13 +102,13 @@ TEST(Servo, ClientForcesAreAddedAndExpire) {
   rig.run(10);  // engage (zero request)
   srv::ClientForce cf;
   cf.force_world_n[0] = 0.15;  // below the engage threshold, so it passes the ramp quickly
-  rig.servo->clientForceSlot().write(cf);
+  rig.servo().clientForceSlot().write(cf);
   rig.run(600);  // ramp-in completes; the force has not been refreshed for 600 ticks ...
   EXPECT_EQ(rig.device.writes().back().norm(), 0.0);  // ... so it expired after 50
-  rig.servo->clientForceSlot().write(cf);
+  rig.servo().clientForceSlot().write(cf);
   rig.run(10);
   EXPECT_NEAR(rig.device.writes().back().x(), 0.15, 1e-9);
-  EXPECT_EQ(rig.servo->counters().client_force_ticks, 51u + 10u);  // the fresh tick + 50, then 10
+  EXPECT_EQ(rig.servo().counters().client_force_ticks, 51u + 10u);  // the fresh tick + 50, then 10
 }
 
 TEST(Servo, OutputNeverExceedsThePeakForce) {
@@ -127,16 +127,16 @@ TEST(Servo, ShutdownRampsTheForceToZero) {
   rig.run(1500);
   const double before = rig.device.writes().back().norm();
   EXPECT_GT(before, 0.5);
-  rig.servo->requestShutdown();
+  rig.servo().requestShutdown();
   int ticks = 0;
   double previous = before;
-  while (!rig.servo->finished() && ticks < 1000) {
+  while (!rig.servo().finished() && ticks < 1000) {
     rig.run(1);
     ++ticks;
     EXPECT_LE(rig.device.writes().back().norm(), previous + 1e-9);  // monotone ramp-down
     previous = rig.device.writes().back().norm();
   }
-  EXPECT_TRUE(rig.servo->finished());
+  EXPECT_TRUE(rig.servo().finished());
   EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
   EXPECT_NEAR(ticks, 200, 2);  // ramp_out_s = 0.2 s
 }

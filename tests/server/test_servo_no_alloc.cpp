@@ -21,24 +21,21 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
   });
   // Everything optional on the tick is on: VRPN effects (none commanded) and the snapshot slot.
   srv::ExternalEffectRenderer effects(1e-3);
-  rig.servo->attachExternalEffects(&effects);
-  rig.servo->publishSnapshots();
+  rig.servo().attachExternalEffects(&effects);
+  rig.servo().publishSnapshots();
   rig.run(10);  // let lazily initialised runtime pieces settle outside the measurement
   srv::ClientForce cf;
   cf.force_world_n[2] = 0.1;
   const long before = test::g_allocations.load();
   for (int k = 0; k < 5000; ++k) {
-    if (k % 10 == 0) rig.servo->clientForceSlot().write(cf);
-    if (k == 4000) rig.servo->faultResetSlot().write(srv::FaultReset{1});  // a client's reset
-    rig.servo->tick();
-    srv::TickRecord r;
-    while (rig.ring.pop(r)) {
-    }
+    if (k % 10 == 0) rig.servo().clientForceSlot().write(cf);
+    if (k == 4000) rig.servo().faultResetSlot().write(srv::FaultReset{1});  // a client's reset
+    rig.tickAndDrain();
   }
   EXPECT_EQ(test::g_allocations.load() - before, 0);
-  EXPECT_GT(rig.servo->counters().contact_ticks, 2000u);
+  EXPECT_GT(rig.servo().counters().contact_ticks, 2000u);
   // Two faults on the path: the 4-tick gap, and the continuous-force budget running out in the
   // long press (the safety stage limits the force from then on).
-  EXPECT_EQ(rig.servo->counters().faults, 2u);
-  EXPECT_GT(rig.safety->counters().continuous_limited, 0u);
+  EXPECT_EQ(rig.servo().counters().faults, 2u);
+  EXPECT_GT(rig.safety().counters().continuous_limited, 0u);
 }

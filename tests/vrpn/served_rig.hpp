@@ -28,6 +28,8 @@
 #include "device/vrpn/tracker_transform_messages.hpp"
 #include "device/vrpn/udp_socket.hpp"
 #include "device/vrpn/vrpn_client_device.hpp"
+#include "server/servo_rig.hpp"
+#include "tests/support/servo_inputs.hpp"
 #include "server/vrpn_server.hpp"
 #include "tests/vrpn/transcripts.hpp"
 #include "textures/generators.hpp"
@@ -98,39 +100,39 @@ class HeldPen final : public dev::HapticDevice {
   bool valid_ = true;
 };
 
-// The servo pipeline as hapticd wires it, ticking on its own thread, with a VRPN server.
-struct ServedRig {
-  explicit ServedRig(srv::VrpnServerOptions options = {}, std::uint16_t port = 0, bool pen_valid = true) {
-    pen.setValid(pen_valid);
+// What the served rig's servo is built on: the pen and a sine normal map (a base, so that it
+// exists before the servo).
+struct ServedRigInputs {
+  explicit ServedRigInputs(bool pen_valid) : texture(sine(), /*relief=*/false) { pen.setValid(pen_valid); }
+  static tex::GenerateRequest sine() {
     tex::GenerateRequest g;
     g.kind = "sine";
     g.size = 64;
-    map = std::make_unique<tex::TextureMap>(tex::generate(g));
-    tex::PlaneMapping m;
-    m.size_m = {0.1, 0.1};
-    surface = std::make_unique<tex::TexturedSurface>(*map, m, tex::SampleOptions{}, false);
-    srv::RendererConfig rc;
-    rc.stiffness_n_per_m = 500.0;
-    renderer = std::make_unique<srv::ProxyRenderer>(*surface, rc);
-    passivity = std::make_unique<srv::PassivityController>(srv::PassivityConfig::fromSpec(pen.spec(), 1e-3, 500.0));
-    safety = std::make_unique<srv::SafetyStage>(srv::SafetyConfig::fromSpec(pen.spec(), 1e-3));
-    servo = std::make_unique<srv::Servo>(pen, *renderer, *passivity, *safety, recorder, ring, srv::ServoConfig{});
-    servo->attachExternalEffects(&effects);
+    return g;
+  }
+
+  HeldPen pen;
+  ::thx::test::GeneratedSurface texture;
+};
+
+// The servo pipeline as hapticd wires it (server/servo_rig.hpp), ticking on its own thread, with
+// a VRPN server.
+struct ServedRig : ServedRigInputs, srv::ServoRig {
+  explicit ServedRig(srv::VrpnServerOptions options = {}, std::uint16_t port = 0, bool pen_valid = true)
+      : ServedRigInputs(pen_valid), srv::ServoRig(pen, *texture.surface, ::thx::test::unitTestWiring(500.0)) {
+    servo().attachExternalEffects(&effects);
     options.port = port;
     options.log = false;
     options.limits.max_stiffness_n_per_m = pen.spec().max_stiffness_n_per_m;
     options.limits.peak_force_n = pen.spec().peak_force_n;
-    server = std::make_unique<srv::VrpnServer>(servo->publishSnapshots(), &effects, options);
+    server = std::make_unique<srv::VrpnServer>(servo().publishSnapshots(), &effects, options);
     server->start();
     pen.open();
     thread = std::thread([this] {
-      srv::TickRecord r;
       while (!stop.load()) {
-        const srv::TickRecord& t = servo->tick();
+        const srv::TickRecord& t = tickAndDrain();
         max_missed = std::max<std::int64_t>(max_missed, t.missed);
         ticks.store(t.tick);
-        while (ring.pop(r)) {
-        }
       }
     });
   }
@@ -143,15 +145,6 @@ struct ServedRig {
   std::string tcpAddress() const { return "Phantom0@tcp://127.0.0.1:" + std::to_string(port()); }
   std::string lobAddress() const { return "Phantom0@127.0.0.1:" + std::to_string(port()); }
 
-  HeldPen pen;
-  std::unique_ptr<tex::TextureMap> map;
-  std::unique_ptr<tex::TexturedSurface> surface;
-  std::unique_ptr<srv::ProxyRenderer> renderer;
-  std::unique_ptr<srv::PassivityController> passivity;
-  std::unique_ptr<srv::SafetyStage> safety;
-  srv::FlightRecorder recorder{1000};
-  rt::SpscRing<srv::TickRecord> ring{4096};
-  std::unique_ptr<srv::Servo> servo;
   srv::ExternalEffectRenderer effects{1e-3};
   std::unique_ptr<srv::VrpnServer> server;
   std::atomic<bool> stop{false};

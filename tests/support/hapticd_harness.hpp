@@ -1,106 +1,51 @@
 #pragma once
-// hapticd and its clients as processes, for the load and fault tests (test_load.cpp,
-// test_faults.cpp): start them with their output in a scratch directory, signal and reap them,
-// read the JSON they write, and check that the servo kept time with its force safe.
-// Needs THX_HAPTICD, THX_PROBE and THX_SOURCE_DIR (compile definitions).
-#include <fcntl.h>
+// The one gtest fixture for tests that run hapticd (and its clients) as processes, as a user
+// would: from the source directory, output in a scratch directory of the test's own, a udpm URL
+// on a port of the test's own (ttl=0: nothing leaves the host). run() runs hapticd to completion;
+// startServer()/stopServer() keep it running beside probe-clients (startProbe()) or other
+// children (spawn(), reaped at the end); expectServoRanSafely() and friends read its statistics.
+// Needs THX_HAPTICD, THX_PROBE and THX_SOURCE_DIR (tests/CMakeLists.txt: thx_test_runs_hapticd).
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <cstdlib>
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <functional>
 #include <lcm/lcm-cpp.hpp>
-#include <regex>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
+
+#include "tests/support/flat_json.hpp"
+#include "tests/support/process.hpp"
 
 namespace thx::test {
 
 namespace fs = std::filesystem;
 
-inline std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-// The value after "key": in a flat JSON text (hapticd's --stats-json, probe-client's --json);
-// strings without their quotes. "<missing KEY>" when absent.
-inline std::string jsonField(const std::string& json, const std::string& key) {
-  const std::regex text("\"" + key + "\": \"([^\"]*)\"");
-  const std::regex number("\"" + key + "\": ([^,}\n]*)");
-  std::smatch m;
-  if (std::regex_search(json, m, text) || std::regex_search(json, m, number)) return m[1].str();
-  return "<missing " + key + ">";
-}
-inline double jsonNumber(const std::string& json, const std::string& key) {
-  try {
-    return std::stod(jsonField(json, key));
-  } catch (...) {
-    return NAN;
-  }
-}
-
-// fork + exec argv (argv[0] a path) in `cwd`, with stdout and stderr to files.
+// spawnIn() from the source directory (scene paths in tests are relative to it).
 inline pid_t spawn(const std::vector<std::string>& argv, const std::string& out, const std::string& err,
                    const std::string& cwd = THX_SOURCE_DIR) {
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid != 0) return pid;
-  if (chdir(cwd.c_str()) != 0) _exit(126);
-  const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (o < 0 || e < 0) _exit(126);
-  dup2(o, 1);
-  dup2(e, 2);
-  execv(args[0], args.data());
-  _exit(127);
+  return spawnIn(cwd, argv, out, err);
 }
 
-// Waits up to timeout_s for pid; returns its exit status (128 + signal if killed), or -1 after
-// killing it when it did not end in time.
-inline int reap(pid_t pid, double timeout_s) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > end) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
+// A finished run of hapticd (HapticdProcessTest::run).
+struct ProcRun {
+  int status = -1;  // exit status; -1 if the process did not exit normally
+  std::string out, err;
+};
 
-inline bool waitUntil(const std::function<bool()>& done, double timeout_s) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return true;
-}
-
-// A scratch directory, a udpm URL on a port of this test's own (ttl=0: nothing leaves the host),
-// hapticd as a child process, probe-clients.
 class HapticdProcessTest : public ::testing::Test {
  protected:
   void SetUp() override {
     static int counter = 0;
     const int n = counter++;
-    dir_ = fs::temp_directory_path() / ("thx_hd_" + std::to_string(::getpid()) + "_" + std::to_string(n));
+    const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(t->test_suite_name()) + "_" + t->name();
+    std::replace(name.begin(), name.end(), '/', '_');  // parameterised tests
+    dir_ = fs::temp_directory_path() / ("thx_" + name + "_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
     // recv_buf_size: every socket on the bus receives every stream (~4,700 datagrams/s in the load
     // test, 100 kB datagrams in the fault test); the kernel's default UDP buffer (rmem_default,
@@ -124,12 +69,20 @@ class HapticdProcessTest : public ::testing::Test {
     if (!HasFailure() && !std::getenv("THX_KEEP_TEST_DIR")) fs::remove_all(dir_, ec);
   }
 
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  // Runs `hapticd ARGS` (shell words) to completion; stdout and stderr go to out.txt / err.txt in
+  // the scratch directory and come back in the result.
+  ProcRun run(const std::string& args) const {
+    const int status = shellStatus(std::string("cd '") + THX_SOURCE_DIR + "' && '" + THX_HAPTICD + "' " + args +
+                                   " >'" + path("out.txt") + "' 2>'" + path("err.txt") + "'");
+    return {status, slurp(path("out.txt")), slurp(path("err.txt"))};
+  }
+
   bool udpmAvailable() const {
     lcm::LCM check(url_);
     return check.good();
   }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   std::vector<std::string> hapticdArgs(const std::vector<std::string>& extra) const {
     std::vector<std::string> a = {THX_HAPTICD,  "--scene",      "scenes/default.yaml", "--no-mlock",

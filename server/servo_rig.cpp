@@ -1,0 +1,41 @@
+#include "server/servo_rig.hpp"
+
+namespace thx::srv {
+
+namespace {
+PassivityConfig passivityFor(const dev::DeviceSpec& spec, const ServoRigConfig& c) {
+  PassivityConfig p = servoPassivityConfig(spec, c.period_s, c.renderer.stiffness_n_per_m, c.passivity);
+  if (!c.quantisation_deadband) p.velocity_deadband_m_per_s = 0.0;  // PassivityConfig::fromSpec()'s
+  return p;
+}
+}  // namespace
+
+ServoRig::ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surface, const ServoRigConfig& config)
+    : config_(config),
+      renderer_(surface, config.renderer),
+      passivity_(passivityFor(device.spec(), config)),
+      safety_(SafetyConfig::fromSpec(device.spec(), config.period_s)),
+      recorder_(config.flight_record_ticks),
+      ring_(config.ring_records),
+      servo_(device, renderer_, passivity_, safety_, recorder_, ring_, config.servo) {}
+
+const TickRecord& ServoRig::tickAndDrain() {
+  const TickRecord& r = servo_.tick();
+  drain();
+  return r;
+}
+
+void ServoRig::drain() {
+  TickRecord r;
+  while (ring_.pop(r)) {
+  }
+}
+
+void ServoRig::reset() {
+  renderer_.reset();
+  passivity_.reset();
+  safety_.reset();
+  drain();
+}
+
+}  // namespace thx::srv
