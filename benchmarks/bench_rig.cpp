@@ -9,9 +9,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
-#include "scenes/surface_texture.hpp"
 #include "server/scene_device.hpp"
 
 namespace thx::bench {
@@ -27,13 +25,13 @@ SceneTexture loadSceneTexture(const std::string& scene_path, int size_override) 
     }
     st.scene.surface.texture.generator.size = size_override;
   }
-  st.map = std::make_unique<tex::TextureMap>(scene::buildSurfaceTexture(st.scene));
+  st.surface = scene::buildSceneSurface(st.scene);
   return st;
 }
 
 ServerRig::ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool relief, bool crease,
                      dev::HapticDevice& device)
-    : surface(map, scene::planeMapping(sc.surface), sc.surface.sampling, relief) {
+    : surface(scene::placeOnScenePlane(sc, map, relief)) {
   // As hapticd run(): renderer from the scene, passivity and safety from the device spec,
   // one second of flight recorder, a 1024-slot (1 s) publication ring.
   const dev::DeviceSpec& spec = device.spec();

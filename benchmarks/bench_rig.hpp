@@ -10,6 +10,7 @@
 #include "device/haptic_device.hpp"
 #include "device/sim_phantom.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/scene_surface.hpp"
 #include "server/flight_recorder.hpp"
 #include "server/passivity.hpp"
 #include "server/proxy_renderer.hpp"
@@ -24,10 +25,11 @@ namespace thx::bench {
 // The source tree (scenes/ and benchmarks/scenes/ live there).
 std::string sourceDir();
 
-// A scene with its texture, optionally at another size than the file says.
+// A scene with its surface (scene::buildSceneSurface), optionally at another size than the file says.
 struct SceneTexture {
   scene::Scene scene;
-  std::unique_ptr<tex::TextureMap> map;
+  scene::SceneSurface surface;
+  const tex::TextureMap& map() const { return *surface.map; }
 };
 SceneTexture loadSceneTexture(const std::string& scene_path, int size_override = 0);
 
