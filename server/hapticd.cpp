@@ -479,7 +479,7 @@ int run(const Options& o) {
   summary.passivity_dissipated_j = passivity.dissipatedEnergy();
   summary.realtime = rt;
   summary.memory = srv::readProcessMemory();
-  summary.texture_bytes = map.bytes();
+  summary.texture_bytes = scene_surface.map->bytes();
   summary.publisher = publisher.counters();
   summary.snapshots_dropped = ring.dropped();
   summary.last_flight_dump = publisher.lastFlightDump();

@@ -20,6 +20,14 @@ const SceneIdentity kDefault{"default", 0xfedcba9876543210ULL};
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+// The check's verdict and every part its message must hold.
+void expectCheck(const SceneCheck& c, SceneVerdict verdict, const std::vector<std::string>& parts) {
+  SCOPED_TRACE(c.message);
+  EXPECT_EQ(c.verdict, verdict);
+  EXPECT_EQ(c.ok(), verdict != SceneVerdict::Differs);
+  for (const std::string& part : parts) EXPECT_TRUE(has(c.message, part)) << "missing: " << part;
+}
+
 thx_msgs::hello_t helloFor(const SceneIdentity& s) {
   thx_msgs::hello_t h{};
   h.server_name = "hapticd@lab1";
@@ -43,41 +51,24 @@ TEST(SceneCheck, FingerprintSurvivesTheSignedWireField) {
 }
 
 TEST(SceneCheck, AnotherSceneIsAnErrorNamingBoth) {
-  const SceneCheck c = checkScene(helloFor(kDefault), kBricks, false);
-  EXPECT_EQ(c.verdict, SceneVerdict::Differs);
-  EXPECT_FALSE(c.ok());
-  SCOPED_TRACE(c.message);
-  EXPECT_TRUE(has(c.message, "scene mismatch"));
-  EXPECT_TRUE(has(c.message, "hapticd@lab1 runs scene 'default' (texture fingerprint 0xfedcba9876543210)"));
-  EXPECT_TRUE(has(c.message, "this client scene 'marble_bricks' (texture fingerprint 0x1234abcd5678ef01)"));
-  EXPECT_TRUE(has(c.message, "--scene default"));
-  EXPECT_TRUE(has(c.message, "--allow-different-scene"));
+  expectCheck(checkScene(helloFor(kDefault), kBricks, false), SceneVerdict::Differs,
+              {"scene mismatch", "hapticd@lab1 runs scene 'default' (texture fingerprint 0xfedcba9876543210)",
+               "this client scene 'marble_bricks' (texture fingerprint 0x1234abcd5678ef01)", "--scene default",
+               "--allow-different-scene"});
 }
 
 TEST(SceneCheck, SameNameAnotherTextureIsAnError) {
   const SceneIdentity edited{"marble_bricks", kBricks.texture_fingerprint ^ 1};
-  const SceneCheck c = checkScene(helloFor(edited), kBricks, false);
-  EXPECT_EQ(c.verdict, SceneVerdict::Differs);
-  SCOPED_TRACE(c.message);
-  EXPECT_TRUE(has(c.message, "texture mismatch"));
-  EXPECT_TRUE(has(c.message, "0x1234abcd5678ef00"));
-  EXPECT_TRUE(has(c.message, "0x1234abcd5678ef01"));
-  EXPECT_TRUE(has(c.message, "differ"));
+  expectCheck(checkScene(helloFor(edited), kBricks, false), SceneVerdict::Differs,
+              {"texture mismatch", "0x1234abcd5678ef00", "0x1234abcd5678ef01", "differ"});
   // The same texture under another name is another scene (objects, materials, script may differ).
   EXPECT_EQ(checkScene(SceneIdentity{"copy", kBricks.texture_fingerprint}, kBricks, false).verdict,
             SceneVerdict::Differs);
 }
 
 TEST(SceneCheck, AllowedDifferenceIsAWarning) {
-  const SceneCheck c = checkScene(helloFor(kDefault), kBricks, true);
-  EXPECT_EQ(c.verdict, SceneVerdict::DiffersAllowed);
-  EXPECT_TRUE(c.ok());
-  SCOPED_TRACE(c.message);
-  EXPECT_TRUE(has(c.message, "'default'"));
-  EXPECT_TRUE(has(c.message, "'marble_bricks'"));
-  EXPECT_TRUE(has(c.message, "0xfedcba9876543210"));
-  EXPECT_TRUE(has(c.message, "0x1234abcd5678ef01"));
-  EXPECT_TRUE(has(c.message, "allowed"));
+  expectCheck(checkScene(helloFor(kDefault), kBricks, true), SceneVerdict::DiffersAllowed,
+              {"'default'", "'marble_bricks'", "0xfedcba9876543210", "0x1234abcd5678ef01", "allowed"});
   EXPECT_EQ(checkScene(helloFor(kBricks), kBricks, true).verdict, SceneVerdict::Same);
 }
 
