@@ -50,7 +50,7 @@ PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
   world_ = std::make_unique<phys::PhysicsWorld>(options.world);
   const phys::BodyMaterial plane_material = materialOf(scene.surface.material);
   plane_ = surface().usesRelief() ? &world_->addReliefPlane(surface(), plane_material)
-                                 : &world_->addNormalMapPlane(surface(), plane_material);
+                                  : &world_->addNormalMapPlane(surface(), plane_material);
   plane_->setUserIndex(kBodySurface);
 
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
