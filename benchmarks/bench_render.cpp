@@ -83,7 +83,7 @@ const char* kSceneFile(const std::string& texture) {
 }
 
 void registerRender(const Fixture& fx, bool relief, bool crease) {
-  auto rec = std::make_shared<bench::Recording>(bench::recordRun(fx.st.scene, *fx.st.map, relief, crease));
+  auto rec = std::make_shared<bench::Recording>(bench::recordRun(fx.st.scene, fx.st.map(), relief, crease));
   // The contact window of the path (with the free-space ticks just around it).
   const std::size_t a = rec->first_contact, b = rec->last_contact;
   if (b < a) throw std::runtime_error("render benchmark: the scripted path never touched the surface");
@@ -99,7 +99,7 @@ void registerRender(const Fixture& fx, bool relief, bool crease) {
   const Fixture* f = &fx;
   benchmark::RegisterBenchmark(name.c_str(), [f, path, relief, crease](benchmark::State& state) {
     bench::ReplayDevice dummy(srv::deviceSpecFor(f->st.scene), *path);
-    bench::ServerRig rig(f->st.scene, *f->st.map, relief, crease, dummy);
+    bench::ServerRig rig(f->st.scene, f->st.map(), relief, crease, dummy);
     srv::ProxyRenderer& r = rig.renderer();
     const std::vector<dev::DeviceState>& p = *path;
     std::size_t k = 0;
@@ -147,7 +147,7 @@ void timeServoTicks(benchmark::State& state, bench::ServerRig& rig) {
 
 void registerServo(const Fixture& fx) {
   const bool relief = true, crease = true;  // hapticd's defaults for these scenes
-  auto rec = std::make_shared<bench::Recording>(bench::recordRun(fx.st.scene, *fx.st.map, relief, crease));
+  auto rec = std::make_shared<bench::Recording>(bench::recordRun(fx.st.scene, fx.st.map(), relief, crease));
   const std::size_t n = rec->states.size();
   const std::string base = "servo/" + fx.texture + "/" + std::to_string(fx.size) + "/relief/crease/";
   const Fixture* f = &fx;
@@ -159,7 +159,7 @@ void registerServo(const Fixture& fx) {
   meta("full");
   benchmark::RegisterBenchmark((base + "full").c_str(), [f](benchmark::State& state) {
     dev::SimPhantom device(srv::simConfigFor(f->st.scene, true), srv::handScriptFor(f->st.scene));
-    bench::ServerRig rig(f->st.scene, *f->st.map, true, true, device);
+    bench::ServerRig rig(f->st.scene, f->st.map(), true, true, device);
     device.open();
     timeServoTicks(state, rig);
   })->Iterations(std::int64_t(n))->Repetitions(kReps)->ReportAggregatesOnly(true)->Unit(benchmark::kNanosecond)->ComputeStatistics("min", minOf);
@@ -180,14 +180,14 @@ void registerServo(const Fixture& fx) {
   meta("server");
   benchmark::RegisterBenchmark((base + "server").c_str(), [f, rec](benchmark::State& state) {
     bench::ReplayDevice device(srv::deviceSpecFor(f->st.scene), rec->states);
-    bench::ServerRig rig(f->st.scene, *f->st.map, true, true, device);
+    bench::ServerRig rig(f->st.scene, f->st.map(), true, true, device);
     timeServoTicks(state, rig);
   })->Iterations(std::int64_t(n))->Repetitions(kReps)->ReportAggregatesOnly(true)->Unit(benchmark::kNanosecond)->ComputeStatistics("min", minOf);
 
   meta("render");
   benchmark::RegisterBenchmark((base + "render").c_str(), [f, rec](benchmark::State& state) {
     bench::ReplayDevice dummy(srv::deviceSpecFor(f->st.scene), rec->states);
-    bench::ServerRig rig(f->st.scene, *f->st.map, true, true, dummy);
+    bench::ServerRig rig(f->st.scene, f->st.map(), true, true, dummy);
     srv::ProxyRenderer& r = rig.renderer();
     const std::vector<dev::DeviceState>& p = rec->states;
     std::size_t k = 0;

@@ -9,9 +9,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
-#include "scenes/surface_texture.hpp"
 #include "server/scene_device.hpp"
 
 namespace thx::bench {
@@ -27,12 +25,12 @@ SceneTexture loadSceneTexture(const std::string& scene_path, int size_override) 
     }
     st.scene.surface.texture.generator.size = size_override;
   }
-  st.map = std::make_unique<tex::TextureMap>(scene::buildSurfaceTexture(st.scene));
+  st.surface = scene::buildSceneSurface(st.scene);
   return st;
 }
 
-SceneSurface::SceneSurface(const scene::Scene& sc, const tex::TextureMap& map, bool relief)
-    : surface(map, scene::planeMapping(sc.surface), sc.surface.sampling, relief) {}
+PlacedSurface::PlacedSurface(const scene::Scene& sc, const tex::TextureMap& map, bool relief)
+    : surface(scene::placeOnScenePlane(sc, map, relief)) {}
 
 namespace {
 srv::ServoRigConfig hapticdWiring(const scene::Scene& sc, bool crease) {
@@ -44,7 +42,7 @@ srv::ServoRigConfig hapticdWiring(const scene::Scene& sc, bool crease) {
 
 ServerRig::ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool relief, bool crease,
                      dev::HapticDevice& device)
-    : SceneSurface(sc, map, relief), srv::ServoRig(device, surface, hapticdWiring(sc, crease)) {}
+    : PlacedSurface(sc, map, relief), srv::ServoRig(device, surface, hapticdWiring(sc, crease)) {}
 
 double Recording::contactFraction() const {
   if (in_contact.empty()) return 0.0;

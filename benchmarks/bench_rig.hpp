@@ -10,6 +10,7 @@
 #include "device/haptic_device.hpp"
 #include "device/sim_phantom.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/scene_surface.hpp"
 #include "server/servo_rig.hpp"
 #include "server/tick_record.hpp"
 #include "textures/textured_surface.hpp"
@@ -19,23 +20,24 @@ namespace thx::bench {
 // The source tree (scenes/ and benchmarks/scenes/ live there).
 std::string sourceDir();
 
-// A scene with its texture, optionally at another size than the file says.
+// A scene with its surface (scene::buildSceneSurface), optionally at another size than the file says.
 struct SceneTexture {
   scene::Scene scene;
-  std::unique_ptr<tex::TextureMap> map;
+  scene::SceneSurface surface;
+  const tex::TextureMap& map() const { return *surface.map; }
 };
 SceneTexture loadSceneTexture(const std::string& scene_path, int size_override = 0);
 
 // The scene's surface over `map`; `relief` false reads the map as a normal map. A base of
 // ServerRig, so that it exists before the servo.
-struct SceneSurface {
-  SceneSurface(const scene::Scene& sc, const tex::TextureMap& map, bool relief);
+struct PlacedSurface {
+  PlacedSurface(const scene::Scene& sc, const tex::TextureMap& map, bool relief);
   tex::TexturedSurface surface;
 };
 
 // hapticd's server parts for one scene, wired by srv::ServoRig with hapticd's configuration
 // (srv::servoRigConfigFor), crease handling as asked. reset() and drain() are srv::ServoRig's.
-struct ServerRig : SceneSurface, srv::ServoRig {
+struct ServerRig : PlacedSurface, srv::ServoRig {
   ServerRig(const scene::Scene& sc, const tex::TextureMap& map, bool relief, bool crease, dev::HapticDevice& device);
 };
 

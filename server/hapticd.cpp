@@ -24,7 +24,7 @@
 #include "device/vrpn/vrpn_client_device.hpp"
 #include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
-#include "scenes/surface_texture.hpp"
+#include "scenes/scene_surface.hpp"
 #include "server/process_memory.hpp"
 #include "server/publisher.hpp"
 #include "server/realtime.hpp"
@@ -268,9 +268,8 @@ int run(const Options& o) {
     return 1;
   }
 
-  const tex::TextureMap map = scene::buildSurfaceTexture(sc);
-  const bool relief = map.isRelief() && sc.surface.representation.value_or(map.representation()) == tex::Representation::Relief;
-  const tex::TexturedSurface surface(map, scene::planeMapping(sc.surface), sc.surface.sampling, relief);
+  const scene::SceneSurface scene_surface = scene::buildSceneSurface(sc);
+  const tex::TexturedSurface& surface = scene_surface.surface;
 
   const double period_s = 1.0 / sc.rates.servo_hz;
   std::unique_ptr<dev::HapticDevice> device_owner;
@@ -338,6 +337,8 @@ int run(const Options& o) {
   po.limits = o.limits;
   if (!o.max_rate_given) po.limits.max_rate_hz = sc.rates.servo_hz;
   po.device_name = vrpn_address.empty() ? "sim" : vrpn_address;
+  po.scene_name = scene_surface.scene_name;
+  po.texture_fingerprint = scene_surface.fingerprint;
   po.log_subscriptions = !o.quiet;
   po.servo_rate_hz = sc.rates.servo_hz;
   po.flight_dir = o.flight_dir;
@@ -479,7 +480,7 @@ int run(const Options& o) {
   summary.passivity_dissipated_j = rig.passivity().dissipatedEnergy();
   summary.realtime = rt;
   summary.memory = srv::readProcessMemory();
-  summary.texture_bytes = map.bytes();
+  summary.texture_bytes = scene_surface.map->bytes();
   summary.publisher = publisher.counters();
   if (receiver) summary.client_forces_accepted = receiver->counters().accepted;
   summary.snapshots_dropped = ring.dropped();

@@ -310,6 +310,8 @@ void Publisher::publishHello(std::int64_t now_ns) {
   h.servo_rate_hz = options_.servo_rate_hz;
   h.server_name = server_name_;
   h.device = options_.device_name;
+  h.scene_name = options_.scene_name;
+  h.texture_fingerprint = static_cast<std::int64_t>(options_.texture_fingerprint);  // the same 64 bits
   LcmSink sink(*this);
   sink.put(thx_msgs::kChannelHello, h);
   hellos_.fetch_add(1, std::memory_order_relaxed);

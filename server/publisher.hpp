@@ -36,6 +36,8 @@ struct PublisherOptions {
   std::string flight_dir = ".";
   bool simulated_device = false;
   std::string device_name = "sim";  // hello_t.device
+  std::string scene_name;           // hello_t.scene_name (scene::sceneName)
+  std::uint64_t texture_fingerprint = 0;  // hello_t.texture_fingerprint (scene::SceneSurface)
   bool log_subscriptions = false;    // one stderr line per subscription change, refusal, expiry
   // Client limits. servo_rate_hz and server_instance are set by the publisher.
   SubscriptionLimits limits;

@@ -64,6 +64,9 @@ class TextureMap {
     // setNormal() keeps x^2 + y^2 < 1, so z is real and positive; the max() only guards rounding.
     return {x, y, std::sqrt(std::fmax(kMinNormalZ * kMinNormalZ, 1.0f - x * x - y * y))};
   }
+  // Raw stored normal x and y (snorm16: component = code / 32767), for exact comparisons and hashing.
+  std::int16_t normalCodeX(int i, int j) const { return texels_[index(i, j)].nx; }
+  std::int16_t normalCodeY(int i, int j) const { return texels_[index(i, j)].ny; }
   float depth(int i, int j) const { return float(texels_[index(i, j)].depth) * depth_scale_; }
   // Raw 16-bit depth fraction (0 = plane, 65535 = maxDepth()).
   std::uint16_t depthCode(int i, int j) const { return texels_[index(i, j)].depth; }

@@ -9,14 +9,18 @@
 
 namespace thx::physclient {
 
-const char* const kHelp = R"(usage: physics-client --scene FILE [options]
+const char* const kHelp = R"(usage: physics-client --scene FILE|NAME [options]
 
 Simulates the scene's objects with Bullet on its textured plane (normal or relief, as the scene
 says), with the pen as a kinematic body following hapticd's device. The pen's contacts become a
 force sent back to hapticd (client_force_t); object poses and contact events are published for
 the audio and visual clients (docs/physics.md, docs/messages.md).
 
-  --scene FILE           scene file (docs/scenes.md), e.g. scenes/marble_bricks.yaml
+  --scene FILE|NAME      scene file (docs/scenes.md), e.g. scenes/marble_bricks.yaml, or a scene name
+                         (marble_bricks) found in --scenes-dir
+  --scenes-dir DIR       where scene names are looked up (default scenes)
+  --allow-different-scene  online: run even when hapticd announces another scene or texture
+                         (a warning instead of an error)
   --rate HZ              physics steps per second (default: the scene's rates.physics_hz)
   --duration S           stop after S seconds of simulated time (default: online until SIGINT;
                          offline the pen path's length plus 1 s)
@@ -68,6 +72,10 @@ Options parseOptions(const std::vector<std::string>& args) {
       o.help = true;
     } else if (a == "--scene") {
       o.scene = value();
+    } else if (a == "--scenes-dir") {
+      o.scenes_dir = value();
+    } else if (a == "--allow-different-scene") {
+      o.allow_different_scene = true;
     } else if (a == "--rate") {
       o.rate_hz = cli::parseNumber(a, value(), {10, 10000, false, "Hz"});
     } else if (a == "--duration") {
@@ -125,7 +133,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     }
   }
   if (o.help) return o;
-  if (o.scene.empty()) throw UsageError("--scene FILE is required");
+  if (o.scene.empty()) throw UsageError("--scene FILE|NAME is required");
   if (sources > 1) throw UsageError("--replay-log, --pen-csv, --pen-script and --no-pen exclude each other");
   if (o.no_lcm && !o.offline())
     throw UsageError("--no-lcm needs an offline pen (--replay-log, --pen-csv, --pen-script or --no-pen)");

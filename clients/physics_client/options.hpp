@@ -19,7 +19,9 @@ enum class PenSource { Hapticd, ReplayLog, Csv, Script, None };
 
 struct Options {
   bool help = false;
-  std::string scene;
+  std::string scene;               // a file, or a scene name looked up in scenes_dir
+  std::string scenes_dir = "scenes";
+  bool allow_different_scene = false;
   std::optional<double> rate_hz, pose_hz, contact_hz, state_hz;  // default: from the scene
   std::optional<double> duration_s;
   PenSource pen_source = PenSource::Hapticd;

@@ -85,7 +85,13 @@ int runOffline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
 }
 
 int runOnline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
-  thx::client::ClientApp app(o.client_id, o.lcm_url.value_or(thx_msgs::kDefaultLcmUrl), o.connect_timeout_s);
+  thx::client::AppOptions ao;
+  ao.client_id = o.client_id;
+  ao.lcm_url = o.lcm_url.value_or(thx_msgs::kDefaultLcmUrl);
+  ao.connect_timeout_s = o.connect_timeout_s;
+  ao.scene = thx::client::SceneIdentity{scene.sceneSurface().scene_name, scene.sceneSurface().fingerprint};
+  ao.allow_different_scene = o.allow_different_scene;
+  thx::client::ClientApp app(ao);
   thx::client::Client& client = app.client();
   client.subscribe("DEVICE_STATE", o.state_hz.value_or(d.rate_hz));
   LcmSinkOptions so;
@@ -106,7 +112,8 @@ int runOnline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
         std::max(link.max_cmd_with_client_force_n, Eigen::Vector3d(s.f_cmd_world[0], s.f_cmd_world[1], s.f_cmd_world[2]).norm());
   });
 
-  if (!o.quiet) std::fprintf(stderr, "physics-client: waiting for hapticd's DEVICE_STATE on %s\n", app.options().lcm_url.c_str());
+  if (!o.quiet) std::fprintf(stderr, "physics-client: waiting for hapticd on %s\n", app.options().lcm_url.c_str());
+  if (!app.waitForServer()) return 0;  // the same scene, or an error naming both; nullopt: stopped
   if (!app.pollUntil([&] { return client.latestDeviceState().has_value(); }, o.connect_timeout_s)) {
     if (app.stopRequested()) return 0;
     throw thx::Error(thx::Error::Kind::Io, "no DEVICE_STATE from hapticd within " + std::to_string(o.connect_timeout_s) +
@@ -144,7 +151,7 @@ int runOnline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
 }
 
 int run(const Options& o) {
-  thx::scene::Scene scene_data = thx::scene::loadScene(o.scene);
+  thx::scene::Scene scene_data = thx::scene::loadScene(thx::client::resolveSceneArgument(o.scene, o.scenes_dir));
   for (const std::string& w : scene_data.warnings) std::fprintf(stderr, "physics-client: warning: %s\n", w.c_str());
   SimOptions so;
   so.pen = o.pen;

@@ -10,17 +10,16 @@
 
 #include "clients/physics/bullet_convert.hpp"
 #include "scenes/scene_frames.hpp"
-#include "scenes/surface_texture.hpp"
 #include "textures/smoothing.hpp"
 
 namespace thx::physclient {
 
 namespace {
 
-tex::TextureMap buildTexture(const scene::Scene& scene) {
+scene::SceneSurface buildSurface(const scene::Scene& scene) {
   scene::SurfaceTextureOptions options;
   options.smooth = tex::smoothTexture;
-  return scene::buildSurfaceTexture(scene, options);
+  return scene::buildSceneSurface(scene, options);
 }
 
 phys::BodyMaterial materialOf(const scene::Material& m) {
@@ -47,12 +46,11 @@ bool aIsFirst(int id0, int id1) {
 PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
     : scene_(scene),
       options_(options),
-      map_(buildTexture(scene)),
-      surface_(map_, scene::planeMapping(scene.surface), scene.surface.sampling, map_.isRelief()) {
+      scene_surface_(buildSurface(scene)) {
   world_ = std::make_unique<phys::PhysicsWorld>(options.world);
   const phys::BodyMaterial plane_material = materialOf(scene.surface.material);
-  plane_ = surface_.usesRelief() ? &world_->addReliefPlane(surface_, plane_material)
-                                 : &world_->addNormalMapPlane(surface_, plane_material);
+  plane_ = surface().usesRelief() ? &world_->addReliefPlane(surface(), plane_material)
+                                  : &world_->addNormalMapPlane(surface(), plane_material);
   plane_->setUserIndex(kBodySurface);
 
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -86,8 +84,8 @@ PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
     // Parked 10 m above the plane until the first pose arrives. Added with mass 0 (so Bullet files
     // it with the static bodies: it never collides with the plane or the fixed obstacles), then
     // made kinematic so its velocity comes from its moves.
-    Eigen::Isometry3d parked = surface_.mapping().plane_to_world;
-    parked.translation() += 10.0 * surface_.mapping().geometricNormalWorld();
+    Eigen::Isometry3d parked = surface().mapping().plane_to_world;
+    parked.translation() += 10.0 * surface().mapping().geometricNormalWorld();
     phys::BodyMaterial pen_material;
     pen_material.friction = 0.5;
     pen_material.restitution = 0.0;
@@ -104,7 +102,7 @@ PhysicsScene::~PhysicsScene() = default;
 int PhysicsScene::idOf(const btCollisionObject* o) const { return o->getUserIndex(); }
 
 Eigen::Vector3d PhysicsScene::penCentreFor(const Eigen::Vector3d& tip) const {
-  const Eigen::Vector3d n = surface_.mapping().geometricNormalWorld();
+  const Eigen::Vector3d n = surface().mapping().geometricNormalWorld();
   const PenOptions& pen = options_.pen;
   const double up = pen.shape == PenShape::Capsule ? pen.radius_m + 0.5 * pen.length_m : pen.radius_m;
   return tip + up * n;
@@ -118,7 +116,7 @@ void PhysicsScene::setPenTip(const Eigen::Vector3d& tip_world) {
 
 void PhysicsScene::placePen(double /*dt_s*/) {
   if (pen_ == nullptr || !pen_set_) return;
-  Eigen::Isometry3d pose = surface_.mapping().plane_to_world;  // capsule axis = the plane's normal
+  Eigen::Isometry3d pose = surface().mapping().plane_to_world;  // capsule axis = the plane's normal
   pose.translation() = penCentreFor(pen_tip_);
   const btTransform t = phys::toBt(pose);
   const Eigen::Vector3d old = phys::toEigen(pen_->getWorldTransform().getOrigin());
@@ -203,8 +201,8 @@ void PhysicsScene::collectContacts(double dt_s) {
     const bool on_surface = idb == kBodySurface;
     Texel texel;
     if (on_surface) {
-      const Eigen::Vector3d local = surface_.toLocal(p);
-      surface_.texelContaining(local.x(), local.y(), texel.i, texel.j);
+      const Eigen::Vector3d local = surface().toLocal(p);
+      surface().texelContaining(local.x(), local.y(), texel.i, texel.j);
     }
 
     const bool new_touch = touching_since_.find(key) == touching_since_.end();

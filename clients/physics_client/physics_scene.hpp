@@ -20,6 +20,7 @@
 
 #include "clients/physics/physics_world.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/scene_surface.hpp"
 #include "textures/textured_surface.hpp"
 
 class btRigidBody;
@@ -99,7 +100,8 @@ struct PenForce {
 
 class PhysicsScene {
  public:
-  // Builds the texture as the scene says (throws scene::SceneError / tex::TextureError).
+  // Builds the scene's surface with scene::buildSceneSurface, smoothing included (throws
+  // scene::SceneError / tex::TextureError).
   explicit PhysicsScene(const scene::Scene& scene, const SimOptions& options = {});
   ~PhysicsScene();
   PhysicsScene(const PhysicsScene&) = delete;
@@ -121,7 +123,9 @@ class PhysicsScene {
 
   std::int64_t steps() const { return steps_; }
   double simTime() const { return sim_time_; }
-  const tex::TexturedSurface& surface() const { return surface_; }
+  const tex::TexturedSurface& surface() const { return scene_surface_.surface; }
+  // The surface with its scene name and fingerprint, to compare with hapticd's hello_t.
+  const scene::SceneSurface& sceneSurface() const { return scene_surface_; }
   const scene::Scene& scene() const { return scene_; }
   phys::PhysicsWorld& world() { return *world_; }
 
@@ -134,8 +138,7 @@ class PhysicsScene {
 
   scene::Scene scene_;
   SimOptions options_;
-  tex::TextureMap map_;
-  tex::TexturedSurface surface_;
+  scene::SceneSurface scene_surface_;
   std::unique_ptr<phys::PhysicsWorld> world_;
   btRigidBody* plane_ = nullptr;
   btRigidBody* pen_ = nullptr;

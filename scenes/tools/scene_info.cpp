@@ -7,9 +7,9 @@
 #include <variant>
 #include <vector>
 
-#include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
-#include "scenes/surface_texture.hpp"
+#include "scenes/scene_surface.hpp"
+#include "textures/texture_fingerprint.hpp"
 #include "textures/smoothing.hpp"
 #include "textures/texture_error.hpp"
 #include "textures/texture_io.hpp"
@@ -45,9 +45,10 @@ double scriptDuration(const scene::Device& device) {
   return total;
 }
 
-void printSummary(const scene::Scene& s, const tex::TextureMap& map, double build_ms) {
+void printSummary(const scene::Scene& s, const scene::SceneSurface& built, double build_ms) {
   const scene::Surface& surf = s.surface;
-  std::printf("scene:           %s (%s)\n", s.name.c_str(), s.source.c_str());
+  const tex::TextureMap& map = *built.map;
+  std::printf("scene:           %s: %s (%s)\n", built.scene_name.c_str(), s.name.c_str(), s.source.c_str());
   std::printf("surface:         %.4g x %.4g m at (%.4g, %.4g, %.4g) m, rpy (%.4g, %.4g, %.4g) deg, material %s\n",
               surf.size_m.x(), surf.size_m.y(), surf.pose.position_m.x(), surf.pose.position_m.y(),
               surf.pose.position_m.z(), surf.pose.rpy_deg.x(), surf.pose.rpy_deg.y(), surf.pose.rpy_deg.z(),
@@ -64,6 +65,8 @@ void printSummary(const scene::Scene& s, const tex::TextureMap& map, double buil
   const tex::TextureStats stats = tex::computeStats(map);
   std::printf("%s", tex::formatStats(stats).c_str());
   std::printf("memory:          %.2f MiB of texels\n", double(map.bytes()) / (1024.0 * 1024.0));
+  std::printf("fingerprint:     %s (hello_t.texture_fingerprint; docs/scenes.md)\n",
+              tex::formatFingerprint(built.fingerprint).c_str());
   const scene::Device& dev = s.device;
   std::printf("device:          %s %s: peak %.3g N, continuous %.3g N; stiffness %.3g N/m (%.2f of max), damping %.3g N*s/m\n",
               scene::toString(dev.type), dev.model.name.c_str(), dev.model.peak_force_n, dev.model.continuous_force_n,
@@ -126,12 +129,12 @@ int main(int argc, char** argv) {
       tex::LoadReport report;
       options.report = &report;
       const auto t0 = std::chrono::steady_clock::now();
-      const tex::TextureMap map = scene::buildSurfaceTexture(s, options);
+      const scene::SceneSurface built = scene::buildSceneSurface(s, options);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       for (const std::string& w : report.warnings) std::printf("warning: %s\n", w.c_str());
-      printSummary(s, map, ms);
+      printSummary(s, built, ms);
       if (!texture_out.empty()) {
-        tex::saveTexture(texture_out, map);
+        tex::saveTexture(texture_out, *built.map);
         std::printf("wrote %s\n", texture_out.c_str());
       }
     } catch (const scene::SceneError& e) {

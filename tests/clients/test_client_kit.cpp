@@ -11,6 +11,7 @@
 
 #include "thx_client/app.hpp"
 #include "thx_client/stop_signal.hpp"
+#include "thx_client/scene_check.hpp"
 #include "thx_client/subscriber.hpp"
 
 using namespace thx::client;
@@ -152,4 +153,29 @@ TEST_F(ClientKit, SigtermStopsTheLoopsAndTheWaits) {
   EXPECT_EQ(app.runPaced(1000.0, [](const thx::rt::TickTiming&) { return true; }).steps, 0);
   EXPECT_FALSE(app.waitForServer());  // returns at once instead of waiting 30 s
   EXPECT_FALSE(app.pollUntil([] { return false; }, 30.0));
+}
+
+TEST_F(ClientKit, WaitForServerStopsAClientOnAnotherSceneUnlessToldToDiffer) {
+  thx_msgs::hello_t h{};
+  h.seq = 1;
+  h.server_instance = 7;
+  h.scene_name = "vvalley";
+  h.texture_fingerprint = 0x1234;
+  for (const bool allow : {false, true}) {
+    AppOptions o;
+    o.client_id = "kit";
+    o.lcm_url = "memq://";
+    o.scene = SceneIdentity{"marble_bricks", 0x5678};
+    o.allow_different_scene = allow;
+    ClientApp app(o);
+    app.lcm().publish(thx_msgs::kChannelHello, &h);
+    if (!allow) {
+      const std::string e = errorOf([&] { app.waitForServer(); });
+      EXPECT_NE(e.find("vvalley"), std::string::npos) << e;
+      EXPECT_NE(e.find("marble_bricks"), std::string::npos) << e;
+      EXPECT_NE(e.find("--allow-different-scene"), std::string::npos) << e;
+    } else {
+      EXPECT_TRUE(app.waitForServer());  // a warning on stderr, and on it goes
+    }
+  }
 }

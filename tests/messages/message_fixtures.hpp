@@ -267,6 +267,8 @@ inline thx_msgs::hello_t make_hello(int k) {
   m.servo_rate_hz = val(k, 7);
   m.server_name = "hapticd@host" + std::to_string(k);
   m.device = "Phantom0@localhost";
+  m.scene_name = "marble_bricks" + std::to_string(k);
+  m.texture_fingerprint = static_cast<std::int64_t>(0xcbf29ce484222325ULL) + ival(k, 8);  // negative too
   return m;
 }
 inline void expect_eq(const thx_msgs::hello_t& a, const thx_msgs::hello_t& b) {
@@ -279,6 +281,8 @@ inline void expect_eq(const thx_msgs::hello_t& a, const thx_msgs::hello_t& b) {
   EXPECT_EQ(a.servo_rate_hz, b.servo_rate_hz);
   EXPECT_EQ(a.server_name, b.server_name);
   EXPECT_EQ(a.device, b.device);
+  EXPECT_EQ(a.scene_name, b.scene_name);
+  EXPECT_EQ(a.texture_fingerprint, b.texture_fingerprint);
 }
 
 inline thx_msgs::client_force_t make_client_force(int k) {

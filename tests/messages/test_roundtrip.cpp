@@ -165,7 +165,7 @@ TEST(MessagesEncodedSize, StringTypes) {
   const auto hb = make_heartbeat(0);
   EXPECT_EQ(hb.getEncodedSize(), 32 + strings({&hb.client_id}));
   const auto hello = make_hello(0);
-  EXPECT_EQ(hello.getEncodedSize(), 60 + strings({&hello.server_name, &hello.device}));
+  EXPECT_EQ(hello.getEncodedSize(), 68 + strings({&hello.server_name, &hello.device, &hello.scene_name}));
   const auto cf = make_client_force(0);
   EXPECT_EQ(cf.getEncodedSize(), 112 + strings({&cf.client_id, &cf.source}));
   const auto cmd = make_server_command(0);

@@ -46,7 +46,7 @@ TEST(PhysicsClientCli, Options) {
   EXPECT_EQ(parseOptions({"--scene", "s", "--no-pen", "--duration", "1", "--poses-csv", "p.csv"}).poses_csv, "p.csv");
   EXPECT_NE(usageError({"--scene", "s", "--poses-csv"}).find("--poses-csv: missing value"), std::string::npos);
 
-  EXPECT_NE(usageError({}).find("--scene FILE is required"), std::string::npos);
+  EXPECT_NE(usageError({}).find("--scene FILE|NAME is required"), std::string::npos);
   EXPECT_NE(usageError({"--scene", "s", "--rate", "abc"}).find("--rate: expected a number"), std::string::npos);
   EXPECT_NE(usageError({"--scene", "s", "--rate", "nan"}).find("got 'nan'"), std::string::npos);
   EXPECT_NE(usageError({"--scene", "s", "--max-force", "-1"}).find("--max-force"), std::string::npos);

@@ -121,6 +121,10 @@ TEST(PhysicsClientPush, EveryShippedSceneRuns) {
     scene.surface.texture.generator.size = std::min(full, 256);
     SimOptions so;
     PhysicsScene sim(scene, so);
+    // The physics client feels the surface hapticd renders: built by the one function, same fingerprint.
+    EXPECT_EQ(sim.sceneSurface().fingerprint, thx::scene::buildSceneSurface(scene).fingerprint) << entry.path();
+    EXPECT_EQ(sim.sceneSurface().scene_name, entry.path().stem().string());
+    EXPECT_EQ(&sim.surface(), &sim.sceneSurface().surface);
     NullSink sink;
     Driver driver(sim, sink, DriverOptions{});
     for (int k = 0; k < 500; ++k) driver.step(std::nullopt);

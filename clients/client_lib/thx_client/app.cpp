@@ -1,6 +1,7 @@
 #include "thx_client/app.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 
 #include "thx_client/stop_signal.hpp"
@@ -52,8 +53,15 @@ bool ClientApp::pollUntil(const std::function<bool()>& done, double timeout_s) {
 }
 
 std::optional<thx_msgs::hello_t> ClientApp::waitForServer() {
-  if (pollUntil([&] { return client_->latestHello().has_value(); }, options_.connect_timeout_s))
-    return client_->latestHello();
+  if (pollUntil([&] { return client_->latestHello().has_value(); }, options_.connect_timeout_s)) {
+    const auto hello = client_->latestHello();
+    if (options_.scene) {
+      const SceneCheck check = checkScene(*hello, *options_.scene, options_.allow_different_scene);
+      if (!check.ok()) throw thx::Error(thx::Error::Kind::Config, check.message);
+      if (!check.message.empty()) std::fprintf(stderr, "warning: %s\n", check.message.c_str());
+    }
+    return hello;
+  }
   if (stopRequested()) return std::nullopt;
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%g", options_.connect_timeout_s);

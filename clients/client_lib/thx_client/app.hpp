@@ -17,11 +17,13 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "base/error.hpp"
 #include "rt/pacer.hpp"
 #include "thx_client/client.hpp"
+#include "thx_client/scene_check.hpp"
 #include "thx_msgs/protocol.hpp"
 
 namespace lcm {
@@ -39,6 +41,10 @@ struct AppOptions {
   std::string lcm_url = thx_msgs::kDefaultLcmUrl;
   double connect_timeout_s = 10.0;       // waitForServer() gives up after this
   ClientOptions client;                  // resend, silence, heartbeat (client_id set from above)
+  // The scene this client loaded: waitForServer() compares it with the server's hello and throws
+  // when they differ (unless allow_different_scene: then a warning on stderr). Unset: no check.
+  std::optional<SceneIdentity> scene;
+  bool allow_different_scene = false;
 };
 
 struct LoopStats {
@@ -60,7 +66,8 @@ class ClientApp {
   bool stopRequested() const;
 
   // Polls until hapticd's hello arrives and returns it. Throws thx::Error (Io) naming the URL
-  // after connect_timeout_s; returns nullopt when a stop signal came first.
+  // after connect_timeout_s, or (Config) naming both scenes and both fingerprints when the
+  // server runs another scene than options().scene; returns nullopt when a stop signal came first.
   std::optional<thx_msgs::hello_t> waitForServer();
   // Polls until done() holds (true), the timeout passes or a stop signal arrives (false).
   bool pollUntil(const std::function<bool()>& done, double timeout_s);

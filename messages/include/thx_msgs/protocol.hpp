@@ -163,8 +163,8 @@ template <>
 struct string_layout<hello_t> {
   static constexpr bool has_strings = true;
   // utime seq server_instance start_utime start_unix_us protocol_version servo_rate_hz |
-  // server_name | device
-  static constexpr int segments[] = {52, kString, kString};
+  // server_name | device | scene_name | texture_fingerprint
+  static constexpr int segments[] = {52, kString, kString, kString, 8};
 };
 template <>
 struct string_layout<server_command_t> {
