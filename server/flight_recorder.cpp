@@ -1,5 +1,7 @@
 #include "server/flight_recorder.hpp"
 
+#include "base/error.hpp"
+
 #include <cstdio>
 #include <stdexcept>
 
@@ -51,7 +53,7 @@ std::string FlightRecorder::dumpPending(const std::string& directory) {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) {
     frozen_.store(false, std::memory_order_release);  // report once, then keep recording
-    throw std::runtime_error("cannot write flight record " + path + ": check --flight-dir");
+    throw thx::Error(thx::Error::Kind::Io, "cannot write flight record " + path + ": check --flight-dir");
   }
   std::fprintf(f, "# flight record: %zu ticks before fault '%s' at tick %lld\n", b.filled,
                faultName(frozen_fault_).c_str(), (long long)frozen_tick_);
@@ -74,7 +76,7 @@ std::string FlightRecorder::dumpPending(const std::string& directory) {
   }
   const bool ok = std::fclose(f) == 0;
   frozen_.store(false, std::memory_order_release);
-  if (!ok) throw std::runtime_error("cannot write flight record " + path);
+  if (!ok) throw thx::Error(thx::Error::Kind::Io, "cannot write flight record " + path);
   return path;
 }
 

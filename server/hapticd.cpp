@@ -515,15 +515,7 @@ int main(int argc, char** argv) {
   mallopt(M_ARENA_MAX, 1);
   try {
     return run(options);
-  } catch (const thx::scene::SceneError& e) {
-    std::fprintf(stderr, "hapticd: %s\n", e.what());
-  } catch (const thx::tex::TextureError& e) {
-    std::fprintf(stderr, "hapticd: %s\n", e.what());
-  } catch (const thx::dev::HandScriptError& e) {
-    std::fprintf(stderr, "hapticd: %s\n", e.what());
-  } catch (const thx::dev::DeviceError& e) {
-    std::fprintf(stderr, "hapticd: device: %s\n", e.what());
-  } catch (const std::exception& e) {
+  } catch (const thx::Error& e) {  // scene, texture, hand script, device, files: each names its source
     std::fprintf(stderr, "hapticd: %s\n", e.what());
   }
   return 1;

@@ -1,5 +1,7 @@
 #include "server/passivity.hpp"
 
+#include "base/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,7 +18,7 @@ std::string num(double value) {
 }
 
 [[noreturn]] void reject(const char* field, double value, const char* expected) {
-  throw std::invalid_argument(std::string("passivity config: ") + field + " = " + num(value) +
+  throw thx::Error(thx::Error::Kind::Config, std::string("passivity config: ") + field + " = " + num(value) +
                               ": expected " + expected);
 }
 
@@ -35,8 +37,8 @@ PassivityConfig PassivityConfig::fromSpec(const dev::DeviceSpec& spec, double pe
   c.stored_energy_stiffness_n_per_m = rendered_stiffness_n_per_m;
   try {
     c.validate();
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("device model '" + spec.model + "': " + e.what());
+  } catch (const thx::Error& e) {
+    throw thx::Error(thx::Error::Kind::Config, "device model '" + spec.model + "': " + e.what());
   }
   return c;
 }

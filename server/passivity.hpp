@@ -5,7 +5,7 @@
 // Contract (runs inside the 1 kHz servo tick):
 //  - apply(), recordAppliedForce() and every accessor are real-time safe: no allocation, lock,
 //    logging, exception or system call; constant time; state is plain members.
-//  - Only construction (PassivityConfig::validate) may throw std::invalid_argument.
+//  - Only construction (PassivityConfig::validate) may throw (thx::Error, a configuration error).
 //  - The controller's force is always -alpha v with 0 <= alpha <= max_damping_ns_per_m and
 //    |force| <= max_force_n: it only ever removes energy.
 //
@@ -86,7 +86,7 @@ struct PassivityConfig {
   // controller cannot itself shove the pen. K = the stiffness the renderer uses.
   static PassivityConfig fromSpec(const dev::DeviceSpec& spec, double period_s,
                                   double rendered_stiffness_n_per_m);
-  void validate() const;  // throws std::invalid_argument naming field, value and expectation
+  void validate() const;  // throws thx::Error naming field, value and expectation
 };
 
 // One encoder count per period for this device, for PassivityConfig::velocity_deadband_m_per_s.

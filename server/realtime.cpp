@@ -1,5 +1,7 @@
 #include "server/realtime.hpp"
 
+#include "base/error.hpp"
+
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
@@ -45,7 +47,7 @@ RealtimeReport makeThreadRealtime(const RealtimeOptions& options) {
     }
   }
   if (options.require && !report.warnings.empty()) {
-    throw std::runtime_error("real-time setup failed (--require-rt): " + report.warnings.front());
+    throw thx::Error(thx::Error::Kind::Io, "real-time setup failed (--require-rt): " + report.warnings.front());
   }
   return report;
 }

@@ -1,5 +1,7 @@
 #include "server/safety.hpp"
 
+#include "base/error.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -15,7 +17,7 @@ std::string num(double value) {
 }
 
 [[noreturn]] void reject(const char* field, double value, const std::string& expected) {
-  throw std::invalid_argument(std::string("safety config: ") + field + " = " + num(value) +
+  throw thx::Error(thx::Error::Kind::Config, std::string("safety config: ") + field + " = " + num(value) +
                               ": expected " + expected);
 }
 
@@ -77,8 +79,8 @@ SafetyConfig SafetyConfig::fromSpec(const dev::DeviceSpec& spec, double period_s
   }
   try {
     c.validate();
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("device model '" + spec.model + "': " + e.what());
+  } catch (const thx::Error& e) {
+    throw thx::Error(thx::Error::Kind::Config, "device model '" + spec.model + "': " + e.what());
   }
   return c;
 }

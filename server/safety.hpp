@@ -4,7 +4,7 @@
 // Contract (runs inside the 1 kHz servo tick):
 //  - apply(), disengage(), requestShutdown() and every accessor are real-time safe: no
 //    allocation, lock, logging, exception or system call; constant time; state is plain members.
-//  - Only construction (SafetyConfig::validate) may throw std::invalid_argument.
+//  - Only construction (SafetyConfig::validate) may throw (thx::Error, a configuration error).
 //  - Whatever apply() receives (NaN, inf, 1e308), its output is finite and |F| <= peak force.
 //
 // Per tick, in this order:
@@ -60,7 +60,7 @@ struct SafetyConfig {
   // 2.5x that (5000 N/s, 5 N per 1 ms tick) never touches rendering, yet spreads a fault's jump to
   // full peak over two ticks. A spec without a stiffness falls back to 5000 N/s.
   static SafetyConfig fromSpec(const dev::DeviceSpec& spec, double period_s);
-  // Throws std::invalid_argument naming the field, its value and what was expected.
+  // Throws thx::Error naming the field, its value and what was expected.
   void validate() const;
 };
 

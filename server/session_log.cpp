@@ -9,6 +9,7 @@
 #include <thx_msgs/log_reader.hpp>
 #include <thx_msgs/protocol.hpp>
 
+#include "base/error.hpp"
 #include "server/tick_messages.hpp"
 
 namespace thx::srv {
@@ -37,7 +38,7 @@ bool finite(const double* v, int n) {
 
 SessionRecorder::SessionRecorder(const std::string& path, bool simulated_device)
     : path_(path), simulated_(simulated_device), log_(std::make_unique<lcm::LogFile>(path, "w")) {
-  if (!log_->good()) throw std::runtime_error("--record " + path + ": cannot create the log file");
+  if (!log_->good()) throw thx::Error(thx::Error::Kind::Io, "--record " + path + ": cannot create the log file");
 }
 
 SessionRecorder::~SessionRecorder() = default;
@@ -79,9 +80,9 @@ std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path) {
                                                                                           const thx_msgs::LogPosition& at) {
     const std::string where = at.where();
     if (!finite(d.p_world, 3) || !finite(d.q_world, 4) || !finite(d.v_world, 3) || !finite(d.w_world, 3))
-      throw std::runtime_error(where + ": tick " + std::to_string(d.tick) + " holds a non-finite value");
+      throw thx::Error(thx::Error::Kind::Config, where + ": tick " + std::to_string(d.tick) + " holds a non-finite value");
     if (!out.empty() && d.tick <= out.back().tick)
-      throw std::runtime_error(where + ": tick " + std::to_string(d.tick) + " after tick " +
+      throw thx::Error(thx::Error::Kind::Config, where + ": tick " + std::to_string(d.tick) + " after tick " +
                                std::to_string(out.back().tick) + "; expected increasing ticks");
     dev::ReplaySample s;
     s.tick = d.tick;
@@ -92,7 +93,7 @@ std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path) {
     s.buttons = std::uint32_t(d.buttons);
     out.push_back(s);
   });
-  if (out.empty()) throw std::runtime_error(path + ": no " + kSessionDeviceChannel + " events; not a session log?");
+  if (out.empty()) throw thx::Error(thx::Error::Kind::Io, path + ": no " + kSessionDeviceChannel + " events; not a session log?");
   return out;
 }
 

@@ -1,5 +1,7 @@
 #include "server/stability_budget.hpp"
 
+#include "base/error.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -14,7 +16,7 @@ std::string num(double value) {
 }
 
 [[noreturn]] void reject(const std::string& field, double value, const char* expected) {
-  throw std::invalid_argument("stability budget: " + field + " = " + num(value) + ": expected " +
+  throw thx::Error(thx::Error::Kind::Config, "stability budget: " + field + " = " + num(value) + ": expected " +
                               expected);
 }
 

@@ -5,7 +5,7 @@
 //     K <= 2 (b - |B|) / T     (b: device physical damping, B: virtual damping, T: period).
 //
 // Contract: configuration time only (allocates strings); never called from the servo tick.
-// Malformed input (non-finite, negative, zero period) throws std::invalid_argument naming the
+// Malformed input (non-finite, negative, zero period) throws thx::Error naming the
 // field, value and expectation. Exceeding the bound is a *finding*, not malformed input: with the
 // small physical damping of a real device the bound sits far below the vendor maxima (the vendor
 // figure counts on the user's hand adding damping; a Desktop needs b >= 0.5 N s/m for 1000 N/m),

@@ -1,4 +1,5 @@
 #include "server/stats_json.hpp"
+#include "base/error.hpp"
 #include "base/json_text.hpp"
 
 #include <stdexcept>
@@ -22,7 +23,7 @@ double achievedRate(const RunSummary& s) { return s.device_time_s > 0 ? double(s
 void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyHistogram& compute,
                     const LatencyHistogram& wake) {
   std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write statistics to " + path);
+  if (!f) throw thx::Error(thx::Error::Kind::Io, "cannot write statistics to " + path);
   std::fprintf(f, "{\n");
   std::fprintf(f, "  \"scene\": \"%s\",\n", json::escaped(s.scene).c_str());
   std::fprintf(f, "  \"mode\": \"%s\",\n", s.lockstep ? "lockstep" : "realtime");
@@ -60,7 +61,7 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
                (unsigned long long)s.snapshots_dropped);
   std::fprintf(f, "  \"flight_dumps\": %llu,\n  \"last_flight_dump\": \"%s\"\n}\n",
                (unsigned long long)s.publisher.flight_dumps, json::escaped(s.last_flight_dump).c_str());
-  if (std::fclose(f) != 0) throw std::runtime_error("cannot write statistics to " + path);
+  if (std::fclose(f) != 0) throw thx::Error(thx::Error::Kind::Io, "cannot write statistics to " + path);
 }
 
 void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& compute,

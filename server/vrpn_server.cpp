@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/error.hpp"
 #include "rt/clock.hpp"
 #include "device/vrpn/addressing.hpp"
 #include "device/vrpn/base_messages.hpp"
@@ -79,12 +80,12 @@ void VrpnServer::start() {
   auto impl = std::make_unique<Impl>();
   const std::string where = options_.listen_ip + ":" + std::to_string(options_.port);
   Result<UniqueFd> l = listenTcp(options_.listen_ip, options_.port);
-  if (!l) throw std::runtime_error("--vrpn-listen " + where + ": cannot listen on TCP: " + l.error().reason);
+  if (!l) throw thx::Error(thx::Error::Kind::Io, "--vrpn-listen " + where + ": cannot listen on TCP: " + l.error().reason);
   impl->listen_fd = std::move(l).value();
   bound_port_ = localPort(impl->listen_fd.get());
   // The UDP request socket shares the TCP port number (reference §1).
   Result<UniqueFd> u = bindUdp(options_.listen_ip, bound_port_);
-  if (!u) throw std::runtime_error("--vrpn-listen " + where + ": cannot bind UDP: " + u.error().reason);
+  if (!u) throw thx::Error(thx::Error::Kind::Io, "--vrpn-listen " + where + ": cannot bind UDP: " + u.error().reason);
   impl->udp_fd = std::move(u).value();
   impl_ = std::move(impl);
   {

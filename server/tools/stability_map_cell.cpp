@@ -1,5 +1,7 @@
 #include "server/tools/stability_map_cell.hpp"
 
+#include "base/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -70,7 +72,7 @@ HandParams lightGripHand() { return HandParams{"light", 0.05, 100.0, 0.5, 0.06};
 HandParams handByName(const std::string& name) {
   if (name == "default") return defaultHand();
   if (name == "light") return lightGripHand();
-  throw std::invalid_argument("hand '" + name + "': expected 'default' or 'light'");
+  throw thx::Error(thx::Error::Kind::Config, "hand '" + name + "': expected 'default' or 'light'");
 }
 
 dev::SimPhantomConfig simConfigFor(const HandParams& hand) {
@@ -86,7 +88,7 @@ dev::SimPhantomConfig simConfigFor(const HandParams& hand) {
 CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const CellSetup& setup,
                         const TraceFn& trace) {
   if (valley.angle_deg != params.angle_deg || valley.smoothed != params.mitigations.smoothing)
-    throw std::invalid_argument("simulateCell: the valley map does not match the cell");
+    throw thx::Error(thx::Error::Kind::Config, "simulateCell: the valley map does not match the cell");
   const ValleyGeometry& g = setup.geometry;
   tex::PlaneMapping mapping;
   mapping.size_m = {g.extentM(), g.extentM()};

@@ -104,7 +104,7 @@ WallRun runWall(const WallSetup& w) {
 std::string rejection(const PassivityConfig& c) {
   try {
     PassivityController pc(c);
-  } catch (const std::invalid_argument& e) {
+  } catch (const thx::Error& e) {
     return e.what();
   }
   return "";
@@ -124,7 +124,7 @@ TEST(PassivityConfig, FromSpecAndValidation) {
   try {
     PassivityConfig::fromSpec(desktop(), kT, -1.0);
     FAIL() << "expected a rejection";
-  } catch (const std::invalid_argument& e) {
+  } catch (const thx::Error& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("phantom_desktop"), std::string::npos) << what;
     EXPECT_NE(what.find("stored_energy_stiffness_n_per_m = -1"), std::string::npos) << what;

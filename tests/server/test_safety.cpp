@@ -54,7 +54,7 @@ double smoothstep(double p) { return p * p * (3.0 - 2.0 * p); }
 std::string rejection(const SafetyConfig& c) {
   try {
     SafetyStage stage(c);
-  } catch (const std::invalid_argument& e) {
+  } catch (const thx::Error& e) {
     return e.what();
   }
   return "";
@@ -85,7 +85,7 @@ TEST(SafetyConfig, RejectsBadFieldsNamingFieldValueAndExpectation) {
   try {
     SafetyConfig::fromSpec(spec, kT);
     FAIL() << "expected a rejection";
-  } catch (const std::invalid_argument& e) {
+  } catch (const thx::Error& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("phantom_desktop"), std::string::npos) << what;
     EXPECT_NE(what.find("continuous_force_n = 0"), std::string::npos) << what;

@@ -36,7 +36,7 @@ bool contains(const std::string& text, const std::string& part) {
 std::string rejection(const dev::DeviceSpec& spec, const StabilityRequest& r) {
   try {
     srv::checkStabilityBudget(spec, r);
-  } catch (const std::invalid_argument& e) {
+  } catch (const thx::Error& e) {
     return e.what();
   }
   return "";

@@ -398,6 +398,6 @@ TEST(StabilityBudgetAtMapStiffness, FullStiffnessIsBeyondTheBoundAndStrictRefuse
 
 TEST(StabilityCells, MismatchedValleyMapIsRefused) {
   const ValleyMap v = buildValleyMap(40.0, false, ValleyGeometry{});
-  EXPECT_THROW(simulateCell(cell(60, 1.0, 1.0, true, "none"), v, CellSetup{}), std::invalid_argument);
-  EXPECT_THROW(simulateCell(cell(40, 1.0, 1.0, true, "smoothing"), v, CellSetup{}), std::invalid_argument);
+  EXPECT_THROW(simulateCell(cell(60, 1.0, 1.0, true, "none"), v, CellSetup{}), thx::Error);
+  EXPECT_THROW(simulateCell(cell(40, 1.0, 1.0, true, "smoothing"), v, CellSetup{}), thx::Error);
 }
