@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "rt/clock.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/exact_surfaces.hpp"
 #include "benchmarks/plot.hpp"
@@ -39,11 +40,7 @@ constexpr double kSmoothSigma = 1.0;  // texels
 const std::vector<int> kSizes{128, 256, 512, 1024};
 const std::vector<double> kDepths{0.25e-3, 0.5e-3, 1e-3, 2e-3};
 
-std::int64_t nowNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
+std::int64_t nowNs() { return rt::monotonicNowNs(); }
 
 // Deterministic uniform numbers (splitmix64), independent of the standard library.
 struct Rng {

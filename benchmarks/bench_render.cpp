@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "rt/clock.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "server/scene_device.hpp"
 
@@ -35,11 +36,7 @@ namespace {
 
 using namespace thx;
 
-std::int64_t nowNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
+std::int64_t nowNs() { return rt::monotonicNowNs(); }
 
 // Median cost of one nowNs() pair, subtracted from per-tick timings.
 double timerOverheadNs() {

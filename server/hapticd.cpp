@@ -2,6 +2,7 @@
 // real-time thread, publishes device and contact state over LCM, and on SIGINT/SIGTERM (or after
 // --duration) ramps the force down and writes its statistics. `hapticd --help` for options.
 #include <lcm/lcm-cpp.hpp>
+#include <thx_msgs/lcm_open.hpp>
 #include <thx_msgs/protocol.hpp>
 #include <arpa/inet.h>
 #include <malloc.h>
@@ -24,6 +25,7 @@
 #include "device/vrpn/vrpn_client_device.hpp"
 #include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
+#include "base/cli_number.hpp"
 #include "scenes/scene_surface.hpp"
 #include "server/process_memory.hpp"
 #include "server/publisher.hpp"
@@ -143,10 +145,11 @@ std::optional<ListenAddress> parseListenAddress(const std::string& text) {
 }
 
 double number(const std::string& option, const char* text) {
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (!end || *end != '\0' || !std::isfinite(v)) usage(option + " expects a number, got '" + text + "'");
-  return v;
+  try {
+    return thx::cli::parseNumber(option, text);
+  } catch (const thx::UsageError& e) {
+    usage(e.what());
+  }
 }
 
 Options parse(int argc, char** argv) {
@@ -324,13 +327,10 @@ int run(const Options& o) {
 
   std::unique_ptr<lcm::LCM> lcm;
   if (!o.no_lcm) {
-    lcm = std::make_unique<lcm::LCM>(o.lcm_url);
-    if (!lcm->good()) {
-      std::fprintf(stderr,
-                   "hapticd: warning: LCM is not available at '%s' (no multicast route? try `ip route add "
-                   "224.0.0.0/4 dev lo` as root, or --lcm-url); the servo runs without publishing\n",
-                   o.lcm_url.c_str());
-      lcm.reset();
+    try {
+      lcm = thx_msgs::openLcm(o.lcm_url);
+    } catch (const thx::Error& e) {  // the haptics do not need the network: warn and go on
+      std::fprintf(stderr, "hapticd: warning: %s; the servo runs without publishing\n", e.what());
     }
   }
   srv::PublisherOptions po;

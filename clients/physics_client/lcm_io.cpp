@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "rt/clock.hpp"
 #include "thx_msgs/protocol.hpp"
 
 namespace thx::physclient {
@@ -21,11 +22,7 @@ std::int32_t clampInt(long long v) {
 }
 }  // namespace
 
-std::int64_t monotonicUs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000 + ts.tv_nsec / 1000;
-}
+std::int64_t monotonicUs() { return rt::monotonicNowNs() / 1000; }
 
 thx_msgs::physics_poses_t makePoses(const PhysicsScene& scene, std::int64_t ref_tick, const Eigen::Vector3d& pen_force,
                                     std::int64_t seq, std::int64_t utime) {

@@ -62,7 +62,7 @@ int urlPort(const std::string& url) {
 
 }  // namespace
 
-TEST_F(HapticdFaults, KilledClientIsForgottenAndOthersLoseNothing) {
+TEST_F(HapticdFaults, KilledClientIsForgottenAndOthersAreStillServed) {
   if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
   startServer({"--heartbeat-timeout", "0.5"});
   const pid_t victim = startProbe("victim", {"--stream", "DEVICE_STATE", "--rate", "1000", "--duration", "30"});

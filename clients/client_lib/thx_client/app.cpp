@@ -5,21 +5,14 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "thx_client/stop_signal.hpp"
+#include "thx_msgs/lcm_open.hpp"
 
 namespace thx::client {
 
-std::unique_ptr<lcm::LCM> openLcm(const std::string& url) {
-  auto lcm = std::make_unique<lcm::LCM>(url);
-  if (lcm->good()) return lcm;
-  std::string hint = " (check --lcm-url)";
-  if (url.rfind("udpm://", 0) == 0)
-    hint = " (no multicast route? try `ip route add 224.0.0.0/4 dev lo` as root, or --lcm-url)";
-  throw thx::Error(thx::Error::Kind::Io, "LCM is not available at '" + url + "'" + hint);
-}
 
 ClientApp::ClientApp(AppOptions options) : options_(std::move(options)) {
   installStopSignals();
-  lcm_ = openLcm(options_.lcm_url);
+  lcm_ = thx_msgs::openLcm(options_.lcm_url);
   ClientOptions co = options_.client;
   co.client_id = options_.client_id;
   client_ = std::make_unique<Client>(*lcm_, std::move(co));

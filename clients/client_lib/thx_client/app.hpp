@@ -24,6 +24,7 @@
 #include "rt/pacer.hpp"
 #include "thx_client/client.hpp"
 #include "thx_client/scene_check.hpp"
+#include "thx_msgs/lcm_open.hpp"
 #include "thx_msgs/protocol.hpp"
 
 namespace lcm {
@@ -32,9 +33,7 @@ class LCM;
 
 namespace thx::client {
 
-// Opens LCM at `url`; throws thx::Error (Io) naming the URL and, for udpm, the missing multicast
-// route it usually means.
-std::unique_ptr<lcm::LCM> openLcm(const std::string& url);
+using thx_msgs::openLcm;  // thx_msgs/lcm_open.hpp: an unusable URL is a thx::Error naming it and the fix
 
 struct AppOptions {
   std::string client_id;                 // protocol rules: 1-32 of [A-Za-z0-9_-]
