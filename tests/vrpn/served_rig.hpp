@@ -50,6 +50,25 @@ bool eventually(Pred pred, std::chrono::milliseconds step = 5ms) {
   return pred();
 }
 
+// Device time that never falls behind: each tick's deadline comes one period after the last and
+// is waited for in real time (so the servo ticks at about 1 kHz on a quiet machine), but a late
+// wake-up moves device time only to the deadline, never past it. On a loaded machine the servo
+// ticks more slowly instead of missing ticks: a missed-tick fault ramps the force down and in
+// again, which made tests that wait for a commanded force fail by chance (three did, in the
+// sanitizer tree with both cores busy). What these tests check is the protocol, not the timing.
+class NeverLateClock final : public rt::Clock {
+ public:
+  std::int64_t nowNs() override { return now_ns_; }
+  void sleepUntilNs(std::int64_t t_ns) override {
+    if (t_ns <= now_ns_) return;
+    std::this_thread::sleep_for(std::chrono::nanoseconds(t_ns - now_ns_));
+    now_ns_ = t_ns;
+  }
+
+ private:
+  std::int64_t now_ns_ = rt::monotonicNowNs();
+};
+
 // A pen the test holds at a settable position; keeps what the servo last wrote.
 class HeldPen final : public dev::HapticDevice {
  public:
@@ -91,7 +110,7 @@ class HeldPen final : public dev::HapticDevice {
 
  private:
   dev::DeviceSpec spec_;
-  rt::MonotonicClock clock_;
+  NeverLateClock clock_;
   rt::Pacer pacer_;
   std::mutex mutex_;
   Eigen::Vector3d pos_{0.0, 0.0, 0.05};  // 5 cm above the textured plane z = 0
