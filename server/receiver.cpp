@@ -108,6 +108,10 @@ void Receiver::run() {
     }
     publishSum(monotonicNs());
   }
+  // What arrived before the stop is still taken (and counted): a client's last message, such as
+  // the release a physics client sends on its way out, is not lost to the moment of shutdown.
+  while (lcm_.getFileno() >= 0 && lcm_.getFileno() < FD_SETSIZE && lcm_.handleTimeout(0) > 0) {
+  }
 }
 
 }  // namespace thx::srv

@@ -40,7 +40,9 @@ bool ClientApp::pollUntil(const std::function<bool()>& done, double timeout_s) {
   const std::int64_t give_up = rt::monotonicNowNs() + std::int64_t(timeout_s * 1e9);
   while (!done()) {
     if (stopRequested() || rt::monotonicNowNs() > give_up) return false;
-    if (client_->poll(20) < 0) throw thx::Error(thx::Error::Kind::Io, "LCM receive failed on " + options_.lcm_url);
+    // A stop signal interrupts LCM's wait (no SA_RESTART) and makes poll() fail: that is a stop.
+    if (client_->poll(20) < 0 && !stopRequested())
+      throw thx::Error(thx::Error::Kind::Io, "LCM receive failed on " + options_.lcm_url);
   }
   return true;
 }

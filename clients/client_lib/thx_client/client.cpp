@@ -5,6 +5,7 @@
 #include <ctime>
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
+#include <type_traits>
 #include <thx_msgs/protocol.hpp>
 
 namespace thx::client {
@@ -165,7 +166,7 @@ void Client::serverChanged(std::int64_t instance) {
 void Client::onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   thx_msgs::hello_t h;
   if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, h) < 0)
-    return undecodable(thx_msgs::kChannelHello, "hello_t", rbuf->data_size);
+    return undecodable(thx_msgs::kChannelHello, thx_msgs::hello_t::getTypeName(), rbuf->data_size);
   ++counters_.hellos;
   const bool first = server_instance_ == 0;
   serverChanged(h.server_instance);
@@ -180,7 +181,7 @@ void Client::onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
 void Client::onReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   thx_msgs::subscribe_reply_t r;
   if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, r) < 0)
-    return undecodable(thx_msgs::kChannelSubscribeReply, "subscribe_reply_t", rbuf->data_size);
+    return undecodable(thx_msgs::kChannelSubscribeReply, thx_msgs::subscribe_reply_t::getTypeName(), rbuf->data_size);
   if (r.client_id != options_.client_id) return;  // another client's answer
   ++counters_.replies;
   if (r.action != Req::ACTION_SUBSCRIBE) return;
@@ -231,9 +232,9 @@ void Client::onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& chan
   const std::int64_t now = clock_();
   const std::string stream = e->status.stream;
   // Decodes into `m` (false and reported when the bytes do not decode as `type`).
-  auto decode = [&](auto& m, const char* type) {
+  auto decode = [&](auto& m) {
     if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) >= 0) return true;
-    undecodable(channel, type, rbuf->data_size);
+    undecodable(channel, std::decay_t<decltype(m)>::getTypeName(), rbuf->data_size);
     return false;
   };
   // Counted before the callback runs: a callback may unsubscribe, which destroys *e.
@@ -244,21 +245,21 @@ void Client::onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& chan
   };
   if (stream == thx_msgs::kStreamDeviceState) {
     thx_msgs::device_state_t m;
-    if (decode(m, "device_state_t")) deliver(state_, m);
+    if (decode(m)) deliver(state_, m);
   } else if (stream == thx_msgs::kStreamContact && e->status.batch) {
     thx_msgs::contact_batch_t m;
-    if (!decode(m, "contact_batch_t")) return;
+    if (!decode(m)) return;
     if (m.server_instance != server_instance_) serverChanged(m.server_instance);
     newest_contact_from_batch_ = true;
     deliver(batch_, m);
   } else if (stream == thx_msgs::kStreamContact) {
     thx_msgs::contact_t m;
-    if (!decode(m, "contact_t")) return;
+    if (!decode(m)) return;
     newest_contact_from_batch_ = false;
     deliver(contact_, m);
   } else {
     thx_msgs::servo_stats_t m;
-    if (decode(m, "servo_stats_t")) deliver(stats_, m);
+    if (decode(m)) deliver(stats_, m);
   }
 }
 
