@@ -14,6 +14,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,7 +32,9 @@
 #include "server/publisher.hpp"
 #include "server/realtime.hpp"
 #include "server/receiver.hpp"
+#include "server/prepared_scene.hpp"
 #include "server/scene_device.hpp"
+#include "server/scene_switcher.hpp"
 #include "server/servo_rig.hpp"
 #include "server/stability_budget.hpp"
 #include "server/session_log.hpp"
@@ -47,6 +50,8 @@ The haptic device server: renders the scene's textured surface to the device at 
 publishes device and contact state over LCM.
 
   --scene FILE          scene file (docs/scenes.md); e.g. scenes/default.yaml
+  --scenes-dir DIR      where a client's scene switch (server_command_t ACTION_LOAD_SCENE, by
+                        name) finds NAME.yaml (default: the folder of --scene; docs/hapticd.md)
   --device DEV          sim; vrpn:NAME@HOST[:PORT] or vrpn:NAME@tcp://HOST:PORT for a PHANToM
                         behind a VRPN server; replay:FILE to play a recorded session's pen
                         trajectory back (--record)
@@ -94,6 +99,7 @@ void onSignal(int) { g_stop.store(true); }
 
 struct Options {
   std::string scene;
+  std::string scenes_dir;  // empty: the folder of `scene`
   std::string device;  // empty: the scene's
   std::optional<double> duration_s;
   bool lockstep = false;
@@ -165,6 +171,8 @@ Options parse(int argc, char** argv) {
       std::exit(0);
     } else if (a == "--scene") {
       o.scene = value();
+    } else if (a == "--scenes-dir") {
+      o.scenes_dir = value();
     } else if (a == "--device") {
       o.device = value();
     } else if (a == "--duration") {
@@ -262,18 +270,6 @@ int run(const Options& o) {
     std::fprintf(stderr, "hapticd: %s: --lockstep needs the simulated device, the scene's is VRPN\n", o.scene.c_str());
     return 1;
   }
-  if (sc.surface.smoothing_sigma_texels > 0.0) {
-    std::fprintf(stderr,
-                 "hapticd: %s: surface.smoothing_sigma = %g: hapticd does not link OpenCV, so it cannot smooth at "
-                 "start-up.\n  Smooth once with `texturetool smooth IN OUT --sigma %g` and point surface.texture.file "
-                 "at OUT.\n",
-                 o.scene.c_str(), sc.surface.smoothing_sigma_texels, sc.surface.smoothing_sigma_texels);
-    return 1;
-  }
-
-  const scene::SceneSurface scene_surface = scene::buildSceneSurface(sc);
-  const tex::TexturedSurface& surface = scene_surface.surface;
-
   const double period_s = 1.0 / sc.rates.servo_hz;
   std::unique_ptr<dev::HapticDevice> device_owner;
   dev::SimPhantom* sim = nullptr;
@@ -302,26 +298,22 @@ int run(const Options& o) {
   dev::HapticDevice& device = *device_owner;
   const dev::DeviceSpec& spec = device.spec();
 
-  srv::ServoRigConfig wiring = srv::servoRigConfigFor(sc);
-  srv::RendererConfig& rc = wiring.renderer;
-  if (o.stiffness_fraction) rc.stiffness_n_per_m = *o.stiffness_fraction * spec.max_stiffness_n_per_m;
-  rc.crease_handling = o.crease;
-  wiring.passivity = o.passivity;
-  srv::StabilityRequest sr;
-  sr.stiffness_fraction = rc.stiffness_n_per_m / spec.max_stiffness_n_per_m;
-  sr.virtual_damping_ns_per_m = rc.damping_ns_per_m;
-  sr.period_s = period_s;
-  sr.policy = o.strict_stability ? srv::BoundPolicy::Strict : srv::BoundPolicy::Warn;
-  const srv::StabilityBudget budget = srv::checkStabilityBudget(spec, sr);
+  srv::ScenePolicy policy;
+  policy.stiffness_fraction = o.stiffness_fraction;
+  policy.crease = o.crease;
+  policy.passivity = o.passivity;
+  policy.strict_stability = o.strict_stability;
+  std::unique_ptr<srv::PreparedScene> first = srv::prepareScene(sc, o.scene, spec, policy);
   // Above the bound is the normal case with a real device (its vendor maximum counts on the hand's
-  // damping), so it is a note, not a warning; --strict-stability makes it an error.
-  if (!o.quiet && !budget.within_bound) std::fprintf(stderr, "hapticd: note: %s\n", budget.message.c_str());
-  if (!budget.ok) {
-    for (const std::string& e : budget.errors) std::fprintf(stderr, "hapticd: %s: %s\n", o.scene.c_str(), e.c_str());
-    return 1;
-  }
+  // damping), so it is a note, not a warning; --strict-stability makes it an error (thrown above).
+  if (!o.quiet && !first->budget.within_bound) std::fprintf(stderr, "hapticd: note: %s\n", first->budget.message.c_str());
+  const srv::ServoRigConfig wiring = first->wiring;
+  const scene::SceneSurface& scene_surface = first->surface;
+  const std::size_t texture_bytes = scene_surface.map->bytes();
+  const std::string first_scene_name = scene_surface.scene_name;
+  const std::uint64_t first_fingerprint = scene_surface.fingerprint;
 
-  srv::ServoRig rig(device, surface, wiring);
+  srv::ServoRig rig(device, scene_surface.surface, wiring);
   srv::Servo& servo = rig.servo();
   rt::SpscRing<srv::TickRecord>& ring = rig.ring();
 
@@ -337,8 +329,8 @@ int run(const Options& o) {
   po.limits = o.limits;
   if (!o.max_rate_given) po.limits.max_rate_hz = sc.rates.servo_hz;
   po.device_name = vrpn_address.empty() ? "sim" : vrpn_address;
-  po.scene_name = scene_surface.scene_name;
-  po.texture_fingerprint = scene_surface.fingerprint;
+  po.scene_name = first_scene_name;
+  po.texture_fingerprint = first_fingerprint;
   po.log_subscriptions = !o.quiet;
   po.servo_rate_hz = sc.rates.servo_hz;
   po.flight_dir = o.flight_dir;
@@ -349,6 +341,15 @@ int run(const Options& o) {
     po.session = session.get();
   }
   po.fault_reset = &servo.faultResetSlot();
+  // Owns every scene the servo renders from here on, the first one too; destroyed after the servo
+  // thread has ended (declared after the rig, before the publisher that uses it).
+  srv::SceneSwitcherOptions sso;
+  sso.scenes_dir = o.scenes_dir.empty() ? std::filesystem::path(o.scene).parent_path().string() : o.scenes_dir;
+  if (sso.scenes_dir.empty()) sso.scenes_dir = ".";
+  sso.policy = policy;
+  sso.quiet = o.quiet;
+  srv::SceneSwitcher switcher(servo.surfaceSwap(), sc, spec, std::move(first), sso);
+  po.scene_loads = &switcher;
   srv::Publisher publisher(ring, servo, rig.recorder(), lcm.get(), po);
   std::unique_ptr<srv::Receiver> receiver;
   if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);
@@ -480,14 +481,14 @@ int run(const Options& o) {
   summary.passivity_dissipated_j = rig.passivity().dissipatedEnergy();
   summary.realtime = rt;
   summary.memory = srv::readProcessMemory();
-  summary.texture_bytes = scene_surface.map->bytes();
+  summary.texture_bytes = texture_bytes;  // the first scene's
   summary.publisher = publisher.counters();
   if (receiver) summary.client_forces_accepted = receiver->counters().accepted;
   summary.snapshots_dropped = ring.dropped();
   summary.last_flight_dump = publisher.lastFlightDump();
   summary.crease = o.crease;
   summary.passivity = o.passivity;
-  summary.stiffness_n_per_m = rc.stiffness_n_per_m;
+  summary.stiffness_n_per_m = wiring.renderer.stiffness_n_per_m;  // the first scene's
   if (!o.stats_json.empty()) srv::writeStatsJson(o.stats_json, summary, servo.computeHistogram(), servo.wakeHistogram());
   srv::printSummary(stdout, summary, servo.computeHistogram(), servo.wakeHistogram());
   return 0;

@@ -1,5 +1,6 @@
 #include "server/passivity.hpp"
 
+#include "base/number_text.hpp"
 #include "base/error.hpp"
 
 #include <algorithm>
@@ -11,14 +12,8 @@
 namespace thx::srv {
 namespace {
 
-std::string num(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", value);
-  return buf;
-}
-
 [[noreturn]] void reject(const char* field, double value, const char* expected) {
-  throw thx::Error(thx::Error::Kind::Config, std::string("passivity config: ") + field + " = " + num(value) +
+  throw thx::Error(thx::Error::Kind::Config, std::string("passivity config: ") + field + " = " + numberText(value) +
                               ": expected " + expected);
 }
 

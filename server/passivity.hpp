@@ -111,6 +111,9 @@ class PassivityController {
   void recordAppliedForce(const Eigen::Vector3d& applied_force_n);
 
   void setEnabled(bool enabled) { enabled_ = enabled; }  // the observer always runs
+  // A scene switch renders another stiffness: the reservoir cap's K from then on. Real-time safe;
+  // the caller has checked it (finite, >= 0; PassivityConfig::validate) off the servo thread.
+  void setStoredEnergyStiffness(double k_n_per_m) { config_.stored_energy_stiffness_n_per_m = k_n_per_m; }
   bool enabled() const { return enabled_; }
   void reset();
 

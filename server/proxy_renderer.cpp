@@ -10,11 +10,22 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 }
 
 ProxyRenderer::ProxyRenderer(const tex::TexturedSurface& surface, const RendererConfig& config)
-    : surface_(surface), config_(config) {
-  crease_cos_ = std::cos(config.crease_angle_deg * kDegToRad);
+    : surface_(&surface), config_(config) {
+  derive();
+}
+
+void ProxyRenderer::retarget(const tex::TexturedSurface& surface, const RendererConfig& config) {
+  surface_ = &surface;
+  config_ = config;
+  derive();
+  reset();
+}
+
+void ProxyRenderer::derive() {
+  crease_cos_ = std::cos(config_.crease_angle_deg * kDegToRad);
   // Texel centres of two walls meeting at a crease sit about a texel * sin(angle) inside each
   // other's half-spaces; a thousandth of a texel separates that from coplanar rounding.
-  concave_tolerance_m_ = 1e-3 * surface.texelSize();
+  concave_tolerance_m_ = 1e-3 * surface_->texelSize();
 }
 
 void ProxyRenderer::reset() {
@@ -44,8 +55,8 @@ bool ProxyRenderer::concavePair(const Halfspace& a, const Eigen::Vector3d& qa, c
 
 ProxyRenderer::LocalPlanes ProxyRenderer::planesAround(double x, double y) const {
   long long i = 0, j = 0;
-  surface_.texelContaining(x, y, i, j);
-  const tex::TexelPoint c = surface_.texelPoint(i, j);
+  surface_->texelContaining(x, y, i, j);
+  const tex::TexelPoint c = surface_->texelPoint(i, j);
   const Halfspace hc{c.n_local, c.n_local.dot(c.q_local)};
   LocalPlanes p;
   p.h[0] = hc;
@@ -53,7 +64,7 @@ ProxyRenderer::LocalPlanes ProxyRenderer::planesAround(double x, double y) const
   p.count = 1;
   static constexpr int kNeighbours[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   for (const auto& nb : kNeighbours) {
-    const tex::TexelPoint t = surface_.texelPoint(i + nb[0], j + nb[1]);
+    const tex::TexelPoint t = surface_->texelPoint(i + nb[0], j + nb[1]);
     if (c.n_local.dot(t.n_local) >= crease_cos_) continue;  // smooth here
     const Halfspace ht{t.n_local, t.n_local.dot(t.q_local)};
     if (!concavePair(hc, c.q_local, ht, t.q_local)) continue;  // a ridge: one plane is right
@@ -66,7 +77,7 @@ ProxyRenderer::LocalPlanes ProxyRenderer::planesAround(double x, double y) const
   }
   if (p.count > 1) return p;
   // No crease: one plane from the interpolated normal, so smooth textures feel smooth.
-  return singlePlaneAt(surface_.at(x, y), x, y);
+  return singlePlaneAt(surface_->at(x, y), x, y);
 }
 
 bool ProxyRenderer::mergeConcave(LocalPlanes& into, const LocalPlanes& from) const {
@@ -117,17 +128,17 @@ Eigen::Vector3d ProxyRenderer::applyRecovery(const Eigen::Vector3d& t, const Eig
 
 RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world) {
   RenderOutput out;
-  const Eigen::Vector3d t = surface_.toLocal(tip_world);
-  const Eigen::Vector3d v = surface_.directionToLocal(v_world);
-  const tex::SurfacePoint at_tip = surface_.at(t.x(), t.y());
+  const Eigen::Vector3d t = surface_->toLocal(tip_world);
+  const Eigen::Vector3d v = surface_->directionToLocal(v_world);
+  const tex::SurfacePoint at_tip = surface_->at(t.x(), t.y());
 
-  out.p_proj_world = surface_.toWorld(Eigen::Vector3d(t.x(), t.y(), 0.0));
+  out.p_proj_world = surface_->toWorld(Eigen::Vector3d(t.x(), t.y(), 0.0));
   out.uv = at_tip.uv;
-  out.texel = tex::texelOf(surface_.map(), at_tip.uv, surface_.sampling().address);
-  out.n_geom_world = surface_.directionToWorld(Eigen::Vector3d::UnitZ());
-  out.n_sampled_world = surface_.directionToWorld(at_tip.n_local);
+  out.texel = tex::texelOf(surface_->map(), at_tip.uv, surface_->sampling().address);
+  out.n_geom_world = surface_->directionToWorld(Eigen::Vector3d::UnitZ());
+  out.n_sampled_world = surface_->directionToWorld(at_tip.n_local);
   out.relief_depth_m = -at_tip.height_m;
-  out.v_tangent_world = surface_.directionToWorld(Eigen::Vector3d(v.x(), v.y(), 0.0));
+  out.v_tangent_world = surface_->directionToWorld(Eigen::Vector3d(v.x(), v.y(), 0.0));
 
   LocalPlanes planes;
   Eigen::Vector3d proxy = t;
@@ -153,10 +164,10 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
       if (!entering) mergeConcave(planes, prev_active_);
       Projection p = projectOntoHalfspaces(t, planes.h, planes.count);
       long long ai = 0, aj = 0;
-      surface_.texelContaining(ax, ay, ai, aj);
+      surface_->texelContaining(ax, ay, ai, aj);
       for (int merge = 0; merge < kMaxMerges && p.solved && !p.inside; ++merge) {
         long long pi = 0, pj = 0;
-        surface_.texelContaining(p.x.x(), p.x.y(), pi, pj);
+        surface_->texelContaining(p.x.x(), p.x.y(), pi, pj);
         if (pi == ai && pj == aj) break;
         ai = pi;
         aj = pj;
@@ -203,9 +214,9 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
   out.in_contact = length > 0.0;
   out.recovering = recovering;
   out.depth_m = length;
-  out.force_world = surface_.directionToWorld(f_local);
-  out.proxy_world = surface_.toWorld(proxy_local_);
-  const Eigen::Isometry3d& T = surface_.mapping().plane_to_world;
+  out.force_world = surface_->directionToWorld(f_local);
+  out.proxy_world = surface_->toWorld(proxy_local_);
+  const Eigen::Isometry3d& T = surface_->mapping().plane_to_world;
   out.num_planes = planes.count;
   for (int i = 0; i < planes.count; ++i) {
     dev::PlaneProxy& pp = out.planes[std::size_t(i)];

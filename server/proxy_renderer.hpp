@@ -67,8 +67,13 @@ class ProxyRenderer {
 
   RenderOutput render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world);
   void reset();  // forget the proxy and any recovery (e.g. after a device fault)
+  // Another surface and configuration from the next render() on (a scene switch; the servo does
+  // it at a tick boundary with the force ramped to zero), then reset(). Real-time safe; the
+  // surface must outlive its use as with the constructor's.
+  void retarget(const tex::TexturedSurface& surface, const RendererConfig& config);
 
   const RendererConfig& config() const { return config_; }
+  const tex::TexturedSurface& surface() const { return *surface_; }
 
  private:
   struct LocalPlanes {
@@ -82,8 +87,9 @@ class ProxyRenderer {
   bool mergeConcave(LocalPlanes& into, const LocalPlanes& from) const;
   bool concavePair(const Halfspace& a, const Eigen::Vector3d& qa, const Halfspace& b, const Eigen::Vector3d& qb) const;
   Eigen::Vector3d applyRecovery(const Eigen::Vector3d& tip, const Eigen::Vector3d& e_target, bool& recovering);
+  void derive();  // crease_cos_, concave_tolerance_m_ from the surface and the configuration
 
-  const tex::TexturedSurface& surface_;
+  const tex::TexturedSurface* surface_;
   RendererConfig config_;
   double crease_cos_ = 1.0;
   double concave_tolerance_m_ = 0.0;

@@ -94,8 +94,10 @@ Publisher::Publisher(rt::SpscRing<TickRecord>& ring, const Servo& servo, FlightR
         l.server_instance = server_instance_;
         return l;
       }()),
-      commands_(options.fault_reset, server_instance_) {
+      commands_(options.fault_reset, server_instance_, options.scene_loads) {
   server_name_ = "hapticd@" + hostName();
+  scene_name_ = options_.scene_name;
+  texture_fingerprint_ = options_.texture_fingerprint;
   if (server_name_.size() >= thx_msgs::kMaxTextLength) server_name_.resize(thx_msgs::kMaxTextLength - 1);
   if (options_.device_name.size() >= thx_msgs::kMaxTextLength) options_.device_name.resize(thx_msgs::kMaxTextLength - 1);
   encode_buffer_.resize(thx_msgs::kLcmShortMessageMaxSize);  // the largest batch we send
@@ -153,6 +155,7 @@ void Publisher::run() {
     std::int64_t now = monotonicNs();
     if (lcm_ && now - last_hello_ns_ >= options_.hello_period_ns) publishHello(now);
     applyControl(now);
+    answerLoads(now);
     while (ring_.pop(r)) handleRecord(r, now);
     dumpFlight();
     now = monotonicNs();
@@ -238,17 +241,42 @@ void Publisher::handleRecord(const TickRecord& r, std::int64_t now_ns) {
   table_.onTick(d, c, now_ns / 1000, sink);
 }
 
-// A fault reset is answered by the first record that shows the servo applied it.
+// A fault reset or a scene switch is answered by the first record that shows the servo applied
+// it; a new scene is announced at once.
 void Publisher::answerCommands(const TickRecord& r, std::int64_t now_ns) {
   if (commands_.pending() == 0) return;
   command_replies_.clear();
   commands_.onRecord(r, command_replies_);
+  sendReplies(now_ns);
+  if (std::optional<ServerCommands::SceneChange> change = commands_.takeSceneChange()) {
+    scene_name_ = std::move(change->scene_name);
+    if (scene_name_.size() >= thx_msgs::kMaxTextLength) scene_name_.resize(thx_msgs::kMaxTextLength - 1);
+    texture_fingerprint_ = change->fingerprint;
+    if (lcm_) publishHello(now_ns);
+  }
+}
+
+// A scene load that failed is answered as soon as the loader knows.
+void Publisher::answerLoads(std::int64_t now_ns) {
+  if (commands_.pending() == 0) return;
+  command_replies_.clear();
+  commands_.pollLoads(command_replies_);
+  sendReplies(now_ns);
+}
+
+void Publisher::sendReplies(std::int64_t now_ns) {
   LcmSink sink(*this);
   for (thx_msgs::server_command_reply_t& reply : command_replies_) {
     reply.utime = now_ns / 1000;
     sink.put(thx_msgs::kChannelCommandReply, reply);
     commands_answered_.fetch_add(1, std::memory_order_relaxed);
-    if (options_.log_subscriptions) {
+    if (!options_.log_subscriptions) continue;
+    if (!reply.accepted) {
+      std::fprintf(stderr, "hapticd: refused a command of client %s: %s\n", reply.client_id.c_str(), reply.reason.c_str());
+    } else if (reply.action == thx_msgs::server_command_t::ACTION_LOAD_SCENE) {
+      std::fprintf(stderr, "hapticd: client %s switched the scene; the servo renders it from tick %lld\n",
+                   reply.client_id.c_str(), (long long)reply.tick);
+    } else {
       std::fprintf(stderr, "hapticd: client %s reset the latched fault at tick %lld\n", reply.client_id.c_str(),
                    (long long)reply.tick);
     }
@@ -310,8 +338,8 @@ void Publisher::publishHello(std::int64_t now_ns) {
   h.servo_rate_hz = options_.servo_rate_hz;
   h.server_name = server_name_;
   h.device = options_.device_name;
-  h.scene_name = options_.scene_name;
-  h.texture_fingerprint = static_cast<std::int64_t>(options_.texture_fingerprint);  // the same 64 bits
+  h.scene_name = scene_name_;
+  h.texture_fingerprint = static_cast<std::int64_t>(texture_fingerprint_);  // the same 64 bits
   LcmSink sink(*this);
   sink.put(thx_msgs::kChannelHello, h);
   hellos_.fetch_add(1, std::memory_order_relaxed);

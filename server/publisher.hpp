@@ -5,7 +5,7 @@
 // SubscriptionTable, publishes each subscribed stream to its client on the client's own channel
 // at the client's rate (docs/clients.md), answers requests on THX_SUBSCRIBE_REPLY and commands on
 // THX_COMMAND_REPLY (server/server_commands.hpp), announces the
-// server on THX_HELLO once per second, closes a SERVO_STATS window once per second, and writes
+// server on THX_HELLO once per second and at once when a client switched the scene, closes a SERVO_STATS window once per second, and writes
 // frozen flight records to files. Nothing is encoded for a stream nobody subscribes to.
 //
 // There is no broadcast: every data message goes to a subscriber's channel.
@@ -47,6 +47,9 @@ struct PublisherOptions {
   // The servo's Servo::faultResetSlot(), written only by the publisher thread (client fault
   // resets); null: resets are refused. Not owned.
   rt::LatestSlot<FaultReset>* fault_reset = nullptr;
+  // Loads scenes for client switches (server/scene_switcher.hpp), used only by the publisher
+  // thread; null: switches are refused. Not owned.
+  SceneLoads* scene_loads = nullptr;
 };
 
 struct PublisherCounters {
@@ -87,6 +90,8 @@ class Publisher {
   void applyControl(std::int64_t now_ns);
   void handleRecord(const TickRecord& r, std::int64_t now_ns);
   void answerCommands(const TickRecord& r, std::int64_t now_ns);
+  void answerLoads(std::int64_t now_ns);
+  void sendReplies(std::int64_t now_ns);  // command_replies_
   void publishStats(std::int64_t now_ns);
   void publishHello(std::int64_t now_ns);
   void dumpFlight();
@@ -99,6 +104,8 @@ class Publisher {
   std::int64_t server_instance_ = 0;
   std::int64_t start_ns_ = 0, start_unix_us_ = 0;
   std::string server_name_;
+  std::string scene_name_;               // hello_t: the scene the servo renders now
+  std::uint64_t texture_fingerprint_ = 0;
   SubscriptionTable table_;
   SubscriptionInbox inbox_;
   ServerCommands commands_;

@@ -1,5 +1,6 @@
 #include "server/safety.hpp"
 
+#include "base/number_text.hpp"
 #include "base/error.hpp"
 
 #include <cmath>
@@ -10,14 +11,8 @@
 namespace thx::srv {
 namespace {
 
-std::string num(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", value);
-  return buf;
-}
-
 [[noreturn]] void reject(const char* field, double value, const std::string& expected) {
-  throw thx::Error(thx::Error::Kind::Config, std::string("safety config: ") + field + " = " + num(value) +
+  throw thx::Error(thx::Error::Kind::Config, std::string("safety config: ") + field + " = " + numberText(value) +
                               ": expected " + expected);
 }
 
@@ -93,7 +88,7 @@ void SafetyConfig::validate() const {
   if (!std::isfinite(continuous_force_n) || continuous_force_n <= 0.0 ||
       continuous_force_n > peak_force_n) {
     reject("continuous_force_n", continuous_force_n,
-           "a number in (0, peak_force_n = " + num(peak_force_n) + "] N");
+           "a number in (0, peak_force_n = " + numberText(peak_force_n) + "] N");
   }
   requirePositive("thermal_time_constant_s", thermal_time_constant_s, "s");
   if (!std::isfinite(continuous_release_fraction) || continuous_release_fraction <= 0.0 ||
@@ -105,7 +100,7 @@ void SafetyConfig::validate() const {
   if (!std::isfinite(engage_threshold_n) || engage_threshold_n <= 0.0 ||
       engage_threshold_n > peak_force_n) {
     reject("engage_threshold_n", engage_threshold_n,
-           "a force in (0, peak_force_n = " + num(peak_force_n) + "] N");
+           "a force in (0, peak_force_n = " + numberText(peak_force_n) + "] N");
   }
   if (engage_ticks < 1 || engage_ticks > 100000) {
     reject("engage_ticks", engage_ticks, "a tick count in [1, 100000]");

@@ -3,7 +3,11 @@
 // thread. Each command is checked; a refusal is answered at once. ACTION_RESET_FAULTS is handed
 // to the servo through its latest-value slot (never a lock) and answered only when a tick record
 // shows the servo applied it, so an accepted reply means the latch was cleared, and says at which
-// tick. Pure bookkeeping: no LCM, no clock, so tests drive it with tick records.
+// tick. ACTION_LOAD_SCENE goes to the scene loader (scene_loads.hpp): a load that fails is
+// refused with the loader's message; one that succeeds is answered when a tick record shows the
+// servo rendering it (TickRecord::scene_swaps), and the new scene is then announced
+// (takeSceneChange). One scene switch at a time. Pure bookkeeping: no LCM, no clock, no
+// thread, so tests drive it with tick records and a fake loader.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,6 +17,7 @@
 #include <thx_msgs/server_command_t.hpp>
 
 #include "rt/latest_slot.hpp"
+#include "server/scene_loads.hpp"
 #include "server/servo.hpp"
 #include "server/tick_record.hpp"
 
@@ -24,23 +29,45 @@ class ServerCommands {
   static constexpr std::size_t kMaxPending = 256;
 
   // reset_slot: the servo's (Servo::faultResetSlot()); this object must be its only writer.
-  // Null: resets are refused (a server without a servo to reset).
-  ServerCommands(rt::LatestSlot<FaultReset>* reset_slot, std::int64_t server_instance);
+  // Null: resets are refused (a server without a servo to reset). scenes: null refuses switches.
+  ServerCommands(rt::LatestSlot<FaultReset>* reset_slot, std::int64_t server_instance, SceneLoads* scenes = nullptr);
 
   // The reply to send now (a refusal), or nothing when the answer waits for the servo.
   std::optional<thx_msgs::server_command_reply_t> handle(const thx_msgs::server_command_t& cmd);
+  // Appends to `done` the replies of the scene loads that failed since the last call.
+  void pollLoads(std::vector<thx_msgs::server_command_reply_t>& done);
   // Appends to `done` the replies of the commands this record shows applied.
   void onRecord(const TickRecord& r, std::vector<thx_msgs::server_command_reply_t>& done);
-  std::size_t pending() const { return pending_.size(); }
+  std::size_t pending() const { return pending_.size() + (load_ ? 1 : 0); }
+
+  // The scene the servo switched to, once per switch, after the record that shows it.
+  struct SceneChange {
+    std::string scene_name;
+    std::uint64_t fingerprint = 0;
+    std::int64_t tick = 0;  // first tick on the new surface
+  };
+  std::optional<SceneChange> takeSceneChange();
 
  private:
   struct Pending {
     thx_msgs::server_command_reply_t reply;
     std::uint32_t reset_seq = 0;
   };
+  struct PendingLoad {
+    thx_msgs::server_command_reply_t reply;
+    std::string scene_name;
+    std::optional<SceneLoads::Outcome> loaded;  // set once the loader handed it to the servo
+  };
   thx_msgs::server_command_reply_t refuse(thx_msgs::server_command_reply_t reply, std::string reason);
+  std::optional<thx_msgs::server_command_reply_t> resetFaults(thx_msgs::server_command_reply_t reply,
+                                                               const thx_msgs::server_command_t& cmd);
+  std::optional<thx_msgs::server_command_reply_t> loadScene(thx_msgs::server_command_reply_t reply,
+                                                             const thx_msgs::server_command_t& cmd);
 
   rt::LatestSlot<FaultReset>* reset_slot_;
+  SceneLoads* scenes_;
+  std::optional<PendingLoad> load_;
+  std::optional<SceneChange> scene_change_;
   std::int64_t server_instance_;
   std::uint32_t reset_seq_ = 0;
   std::vector<Pending> pending_;

@@ -54,6 +54,8 @@ const TickRecord& Servo::tick() {
     resets_applied_ = reset.seq;
   }
 
+  const double scene_gain = stepSceneSwitch();
+
   std::uint32_t faults = 0;
   counters_.missed_ticks += std::uint64_t(state.timing.missed);
   if (state.timing.missed >= config_.max_missed_ticks) faults |= kFaultMissedTicks;
@@ -107,6 +109,10 @@ const TickRecord& Servo::tick() {
                                client_force_.force_world_n[2]);
   }
 
+  // The scene's forces ramp through a switch; VRPN apps' effects belong to no scene.
+  f_render *= scene_gain;
+  f_client *= scene_gain;
+
   ExternalOutput ext;
   if (external_) ext = external_->render(state.p_world, state.v_world, r.valid);
   const Eigen::Vector3d& f_external = ext.force_world;
@@ -139,6 +145,10 @@ const TickRecord& Servo::tick() {
     command.forces_enabled = allowed;
     command.num_planes = allowed ? out.num_planes : 0;
     command.planes = out.planes;
+    for (dev::PlaneProxy& plane : command.planes) {
+      plane.k_n_per_m *= scene_gain;
+      plane.b_ns_per_m *= scene_gain;
+    }
   } else {
     command.forces_enabled = f_out.squaredNorm() > 0.0;
   }
@@ -155,6 +165,8 @@ const TickRecord& Servo::tick() {
   r.faults = faults;
   r.fault_latched = latchFaults(faults);
   r.fault_resets = resets_applied_;
+  r.scene_swaps = scene_swaps_;
+  r.scene_gain = scene_gain;
 
   ++counters_.ticks;
   if (r.in_contact) ++counters_.contact_ticks;
@@ -176,6 +188,38 @@ const TickRecord& Servo::tick() {
   }
   out_.push(r);
   return r;
+}
+
+// None -> (a swap offered) RampDown: gain 1 - s(k/N), k = 1..N-1 -> at k = N the renderer takes
+// the new surface with gain 0, the passivity observer forgets the old spring's energy, the
+// handoff is completed -> RampUp: gain s(k/N), k = 1..N -> None. s is smoothstep.
+double Servo::stepSceneSwitch() {
+  const int n = std::max(1, config_.scene_ramp_ticks);
+  auto smooth = [n](int k) {
+    const double p = double(k) / double(n);
+    return p * p * (3.0 - 2.0 * p);
+  };
+  if (switch_phase_ == SwitchPhase::None) {
+    swap_next_ = surface_swap_.take();
+    if (swap_next_ == nullptr) return 1.0;
+    switch_phase_ = SwitchPhase::RampDown;
+    switch_tick_ = 0;
+  }
+  ++switch_tick_;
+  if (switch_phase_ == SwitchPhase::RampDown) {
+    if (switch_tick_ < n) return 1.0 - smooth(switch_tick_);
+    renderer_.retarget(*swap_next_->surface, swap_next_->renderer);
+    passivity_.setStoredEnergyStiffness(swap_next_->stored_energy_stiffness_n_per_m);
+    passivity_.reset();
+    swap_next_ = nullptr;
+    surface_swap_.complete();
+    ++scene_swaps_;
+    switch_phase_ = SwitchPhase::RampUp;
+    switch_tick_ = 0;
+    return 0.0;
+  }
+  if (switch_tick_ >= n) switch_phase_ = SwitchPhase::None;
+  return smooth(switch_tick_);
 }
 
 // Keeps the first fault since the last reset. Of several raised in one tick, the one the tick met

@@ -16,11 +16,17 @@
 //    recorder for a dump.
 //  - Faults latch: every record carries the first fault since the last reset (server start, or a
 //    client's reset through faultResetSlot(), applied at the start of the next tick).
+//  - Scene switches: a SurfaceSwap offered through surfaceSwap() (built off this thread, owned by
+//    its builder, server/scene_switcher.hpp) is taken at a tick boundary; the scene's force (the
+//    texture's and the clients') ramps down over scene_ramp_ticks, the renderer is retargeted at
+//    zero force, the force ramps up again. Taking, retargeting and completing the handoff neither
+//    allocate nor free: the builder frees the old surface once the handoff says it is done.
 #include <cstdint>
 
 #include "device/haptic_device.hpp"
 #include "server/flight_recorder.hpp"
 #include "server/latency_histogram.hpp"
+#include "rt/handoff.hpp"
 #include "rt/latest_slot.hpp"
 #include "server/external_effects.hpp"
 #include "server/passivity.hpp"
@@ -35,6 +41,19 @@ struct ServoConfig {
   int max_missed_ticks = 3;      // a gap this long (ticks) is a fault: force off
   int max_invalid_readings = 3;  // consecutive invalid device readings before a fault
   int client_force_timeout_ticks = 50;  // a client force not refreshed for this long is dropped
+  // A scene switch ramps the scene's force down over this many ticks, swaps, and ramps it up over
+  // as many (smoothstep both ways, so the force rate has no step either): 0.2 s at 1 kHz, the
+  // safety stage's shutdown ramp.
+  int scene_ramp_ticks = 200;
+};
+
+// Another scene's surface for the renderer, prepared off the servo thread (server/scene_switcher.hpp)
+// and kept alive by its builder until Servo::surfaceSwap() reports the swap done and the next
+// swap is done with it in turn. Plain data and a pointer: the servo copies, never owns.
+struct SurfaceSwap {
+  const tex::TexturedSurface* surface = nullptr;
+  RendererConfig renderer;
+  double stored_energy_stiffness_n_per_m = 0.0;  // the passivity observer's K (the renderer's)
 };
 
 // What a client (the physics client) asks the servo to add to the rendered force.
@@ -85,6 +104,8 @@ class Servo {
 
   rt::LatestSlot<ClientForce>& clientForceSlot() { return client_slot_; }
   rt::LatestSlot<FaultReset>& faultResetSlot() { return reset_slot_; }
+  // The one way a new scene reaches the servo (see the contract above); one swap in flight.
+  rt::Handoff<const SurfaceSwap>& surfaceSwap() { return surface_swap_; }
   // Optional (before the first tick): effects commanded by VRPN apps, added to the force.
   void attachExternalEffects(ExternalEffectRenderer* effects) { external_ = effects; }
   // Optional (before the first tick): from then on every tick also writes a DeviceSnapshot here
@@ -99,6 +120,7 @@ class Servo {
 
  private:
   std::uint32_t latchFaults(std::uint32_t faults);
+  double stepSceneSwitch();  // this tick's scene gain; swaps the renderer at zero force
   void writeSnapshot(const TickRecord& r, const dev::DeviceState& state, const RenderOutput& out,
                      const ExternalOutput& ext, const Eigen::Vector3d& f_out);
 
@@ -122,6 +144,12 @@ class Servo {
   std::uint32_t reset_seq_ = 0;      // LatestSlot's sequence of the last reset read
   std::uint32_t resets_applied_ = 0;  // FaultReset::seq of that reset
   std::uint32_t fault_latched_ = 0;   // TickFault bit, 0: none since the last reset
+  enum class SwitchPhase { None, RampDown, RampUp };
+  rt::Handoff<const SurfaceSwap> surface_swap_;
+  const SurfaceSwap* swap_next_ = nullptr;  // taken, waiting for the ramp down
+  SwitchPhase switch_phase_ = SwitchPhase::None;
+  int switch_tick_ = 0;
+  std::uint32_t scene_swaps_ = 0;
 
   LatencyHistogram compute_hist_;
   LatencyHistogram wake_hist_;

@@ -1,5 +1,6 @@
 #include "server/stability_budget.hpp"
 
+#include "base/number_text.hpp"
 #include "base/error.hpp"
 
 #include <cmath>
@@ -9,14 +10,8 @@
 namespace thx::srv {
 namespace {
 
-std::string num(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", value);
-  return buf;
-}
-
 [[noreturn]] void reject(const std::string& field, double value, const char* expected) {
-  throw thx::Error(thx::Error::Kind::Config, "stability budget: " + field + " = " + num(value) + ": expected " +
+  throw thx::Error(thx::Error::Kind::Config, "stability budget: " + field + " = " + numberText(value) + ": expected " +
                               expected);
 }
 
@@ -66,15 +61,15 @@ StabilityBudget checkStabilityBudget(const dev::DeviceSpec& spec, const Stabilit
     (strict ? s.errors : s.warnings).push_back(text);
   };
 
-  const std::string numbers = " the sampled-wall bound 2(b−|B|)/T = " + num(s.bound_n_per_m) +
-                              " N/m for b = " + num(s.physical_damping_ns_per_m) +
-                              " N·s/m, B = " + num(s.virtual_damping_ns_per_m) +
-                              " N·s/m, T = " + num(request.period_s * 1e3) + " ms";
-  s.message = "stiffness " + num(s.stiffness_n_per_m) + " N/m (" + num(s.stiffness_fraction) +
-              " of " + num(s.vendor_max_stiffness_n_per_m) + ")" +
+  const std::string numbers = " the sampled-wall bound 2(b−|B|)/T = " + numberText(s.bound_n_per_m) +
+                              " N/m for b = " + numberText(s.physical_damping_ns_per_m) +
+                              " N·s/m, B = " + numberText(s.virtual_damping_ns_per_m) +
+                              " N·s/m, T = " + numberText(request.period_s * 1e3) + " ms";
+  s.message = "stiffness " + numberText(s.stiffness_n_per_m) + " N/m (" + numberText(s.stiffness_fraction) +
+              " of " + numberText(s.vendor_max_stiffness_n_per_m) + ")" +
               (s.within_bound ? " is within" : " exceeds") + numbers;
   if (!s.within_bound) {
-    s.message += "; passive only with b ≥ " + num(s.required_physical_damping_ns_per_m) +
+    s.message += "; passive only with b ≥ " + numberText(s.required_physical_damping_ns_per_m) +
                  " N·s/m (the vendor maximum assumes the hand adds damping; the passivity "
                  "controller is the remaining guard)";
     finding(s.message);
@@ -86,28 +81,28 @@ StabilityBudget checkStabilityBudget(const dev::DeviceSpec& spec, const Stabilit
                          "stiffness can satisfy it; measure b to make the check meaningful");
   }
   if (abs_b > spec.physical_damping_ns_per_m && spec.physical_damping_ns_per_m > 0.0) {
-    s.warnings.push_back("virtual damping |B| = " + num(abs_b) +
+    s.warnings.push_back("virtual damping |B| = " + numberText(abs_b) +
                          " N·s/m exceeds the physical damping b = " +
-                         num(spec.physical_damping_ns_per_m) +
+                         numberText(spec.physical_damping_ns_per_m) +
                          " N·s/m: the sampled damper alone is not passive");
   }
   if (request.virtual_damping_ns_per_m < 0.0) {
-    s.warnings.push_back("virtual damping B = " + num(request.virtual_damping_ns_per_m) +
+    s.warnings.push_back("virtual damping B = " + numberText(request.virtual_damping_ns_per_m) +
                          " N·s/m is negative: it injects energy");
   }
   if (abs_b > spec.max_damping_ns_per_m) {
-    finding("virtual damping |B| = " + num(abs_b) + " N·s/m exceeds the device maximum " +
-            num(spec.max_damping_ns_per_m) + " N·s/m");
+    finding("virtual damping |B| = " + numberText(abs_b) + " N·s/m exceeds the device maximum " +
+            numberText(spec.max_damping_ns_per_m) + " N·s/m");
   }
   if (request.stiffness_fraction == 0.0) {
     s.warnings.push_back("stiffness fraction is 0: surfaces render no force");
   }
   if (request.stiffness_fraction > 1.0) {
-    finding("stiffness fraction " + num(request.stiffness_fraction) +
-            " is above the device maximum " + num(spec.max_stiffness_n_per_m) + " N/m");
+    finding("stiffness fraction " + numberText(request.stiffness_fraction) +
+            " is above the device maximum " + numberText(spec.max_stiffness_n_per_m) + " N/m");
   }
   if (request.period_s > 1e-3 * (1.0 + 1e-9)) {
-    s.warnings.push_back("servo period " + num(request.period_s * 1e3) +
+    s.warnings.push_back("servo period " + numberText(request.period_s * 1e3) +
                          " ms is longer than the 1 ms the vendor maximum stiffness is quoted for");
   }
   s.ok = s.errors.empty();

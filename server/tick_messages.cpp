@@ -50,6 +50,7 @@ void toDeviceState(const TickRecord& r, bool simulated, thx_msgs::device_state_t
   if (r.f_client[0] != 0.0 || r.f_client[1] != 0.0 || r.f_client[2] != 0.0) flags |= D::FLAG_CLIENT_FORCE;
   if (simulated) flags |= D::FLAG_SIMULATED;
   if (r.faults) flags |= D::FLAG_FAULT;
+  if (r.scene_gain < 1.0) flags |= D::FLAG_SCENE_SWITCHING;
   d.flags = flags;
   d.flags_seen = flags;
   d.fault_code = wireFaultCode(r.fault_latched);

@@ -55,6 +55,10 @@ struct TickRecord {
   std::uint32_t faults = 0;  // TickFault bits raised this tick
   std::uint32_t fault_latched = 0;  // one TickFault bit: the first fault since the last reset (0: none)
   std::uint32_t fault_resets = 0;   // FaultReset::seq of the last reset the servo applied (0: none yet)
+  // scene switches (Servo::surfaceSwap)
+  std::uint32_t scene_swaps = 0;  // swaps applied since start; this tick is the first on the new
+                                  // surface when it is one more than the last tick's
+  double scene_gain = 1.0;        // the switch ramp on the scene's force (1: no switch under way)
 };
 
 }  // namespace thx::srv

@@ -1,7 +1,8 @@
 // Every FLAG_* bit and FAULT_* code of device_state_t is raised where it happens and reaches a
 // 60 Hz DEVICE_STATE subscriber (docs/messages.md §5.1). One scripted session, in lock-step: a
 // hover (engage, ramp), a deep press (contact, peak clamp, the continuous-force budget running
-// out), a one-tick gap, a client force, a NaN client force, invalid readings, a long gap.
+// out), a one-tick gap, a client force, a NaN client force, invalid readings, a long gap, a
+// scene switch.
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -22,6 +23,7 @@ constexpr std::int64_t kClientForceAt = 1700;
 constexpr std::int64_t kNanForceAt = 1900;
 constexpr std::int64_t kInvalidFrom = 2000;  // 3 invalid readings: FAULT_DEVICE_IO at 2002
 constexpr std::int64_t kLongGapAt = 2200;    // 4 missed: FAULT_MISSED_TICKS on tick 2204
+constexpr std::int64_t kSwitchAt = 2300;     // a scene switch: 200 ticks down, 200 up
 
 void session(std::int64_t tick, dev::DeviceState& s) {
   test::hover(tick, s);
@@ -38,15 +40,19 @@ void session(std::int64_t tick, dev::DeviceState& s) {
 struct FaultCodes : ::testing::Test {
   static void SetUpTestSuite() {
     p = new test::FaultPipeline(session, 60.0);
+    static srv::SurfaceSwap same_surface;  // a switch to the surface it renders: only the ramps show
+    same_surface.surface = &p->rig.renderer().surface();
+    same_surface.renderer = p->rig.renderer().config();
     srv::ClientForce none, small, nan;
     small.force_world_n[0] = 0.1;
     nan.force_world_n[1] = std::numeric_limits<double>::quiet_NaN();
-    for (int k = 0; k < 2600; ++k) {
+    for (int k = 0; k < 2800; ++k) {
       const std::int64_t next = p->ticks.empty() ? 0 : p->ticks.back().tick + 1;
       if (next == kClientForceAt) p->rig.servo().clientForceSlot().write(small);
       if (next == kClientForceAt + 20) p->rig.servo().clientForceSlot().write(none);
       if (next == kNanForceAt) p->rig.servo().clientForceSlot().write(nan);
       if (next == kNanForceAt + 1) p->rig.servo().clientForceSlot().write(none);  // one tick only
+      if (next == kSwitchAt) p->rig.servo().surfaceSwap().offer(&same_surface);
       p->step();
     }
   }
@@ -79,7 +85,7 @@ TEST_F(FaultCodes, EveryFlagIsRaisedAndReachesA60HzSubscriber) {
   for (const D& m : p->sink.state_msgs) seen |= m.flags_seen;
   const std::int32_t flags[] = {D::FLAG_ENGAGED,      D::FLAG_RAMPING,       D::FLAG_SAFETY_CLAMP,
                                 D::FLAG_IN_CONTACT,   D::FLAG_MISSED_TICK,   D::FLAG_CLIENT_FORCE,
-                                D::FLAG_SIMULATED,    D::FLAG_FAULT};
+                                D::FLAG_SIMULATED,    D::FLAG_FAULT,         D::FLAG_SCENE_SWITCHING};
   for (std::int32_t flag : flags) {
     EXPECT_TRUE(seen & flag) << "flag " << flag;
   }
@@ -91,6 +97,9 @@ TEST_F(FaultCodes, EveryFlagIsRaisedAndReachesA60HzSubscriber) {
   EXPECT_TRUE(flagsSeen(kShortGapAt + 1, kShortGapAt + 1) & D::FLAG_MISSED_TICK);
   EXPECT_TRUE(flagsSeen(kClientForceAt, kClientForceAt + 20) & D::FLAG_CLIENT_FORCE);
   EXPECT_FALSE(flagsSeen(kClientForceAt + 60, kNanForceAt - 20) & D::FLAG_CLIENT_FORCE);
+  EXPECT_FALSE(flagsSeen(0, kSwitchAt - 20) & D::FLAG_SCENE_SWITCHING);
+  EXPECT_TRUE(flagsSeen(kSwitchAt, kSwitchAt + 20) & D::FLAG_SCENE_SWITCHING);
+  EXPECT_TRUE(flagsSeen(kSwitchAt + 380, kSwitchAt + 380) & D::FLAG_SCENE_SWITCHING);  // still ramping up
 }
 
 TEST_F(FaultCodes, EveryFaultIsRaisedWhereItHappensAndReachesA60HzSubscriber) {

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "base/error.hpp"
+#include "scenes/scene_lookup.hpp"
 #include "thx_msgs/hello_t.hpp"
 
 namespace thx::client {
@@ -47,25 +48,11 @@ SceneCheck checkScene(const thx_msgs::hello_t& hello, const SceneIdentity& mine,
 SceneCheck checkScene(const SceneIdentity& server, const SceneIdentity& mine, bool allow_different_scene,
                       const std::string& server_label = "hapticd");
 
-// ---- Finding a scene file -------------------------------------------------------------------
+// ---- Finding a scene file: scenes/scene_lookup.hpp, here for clients ----------------------------
 
-class SceneLookupError : public thx::Error {
- public:
-  explicit SceneLookupError(const std::string& what) : thx::Error(Kind::Config, what) {}
-};
-
-// A scene name is 1..100 characters of [A-Za-z0-9_.-], not starting with '.': a file stem, never
-// a path (a name from the network cannot reach outside the scenes folder).
-bool isValidSceneName(const std::string& name);
-
-// The file of scene NAME in `scenes_dir`: scenes_dir/NAME.yaml. Throws SceneLookupError when the
-// name is invalid, the folder does not exist, or holds no such file; the message names the
-// scene, the folder and the scenes the folder does hold. Use it for hello_t.scene_name.
-std::string resolveSceneName(const std::string& name, const std::string& scenes_dir);
-
-// What a user gave to --scene: a path (it contains '/' or ends in .yaml or .yml) must name an
-// existing file and is returned as is; anything else is a scene name, resolved in scenes_dir
-// (--scenes-dir) by resolveSceneName. Throws SceneLookupError.
-std::string resolveSceneArgument(const std::string& scene_or_path, const std::string& scenes_dir);
+using scene::isValidSceneName;
+using scene::resolveSceneArgument;
+using scene::resolveSceneName;  // use it for hello_t.scene_name
+using scene::SceneLookupError;
 
 }  // namespace thx::client

@@ -1,0 +1,74 @@
+#include "server/prepared_scene.hpp"
+
+#include "base/number_text.hpp"
+#include "scenes/scene_loader.hpp"
+#include "server/passivity.hpp"
+#include "server/scene_device.hpp"
+
+namespace thx::srv {
+
+namespace {
+
+thx::Error configError(const std::string& path, const std::string& what) {
+  return thx::Error(thx::Error::Kind::Config, path + ": " + what);
+}
+
+}  // namespace
+
+std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::string& path,
+                                            const dev::DeviceSpec& spec, const ScenePolicy& policy) {
+  if (sc.surface.smoothing_sigma_texels > 0.0) {
+    const std::string sigma = numberText(sc.surface.smoothing_sigma_texels);
+    throw configError(path, "surface.smoothing_sigma = " + sigma +
+                                ": hapticd does not link OpenCV, so it cannot smooth at start-up.\n  Smooth once with "
+                                "`texturetool smooth IN OUT --sigma " +
+                                sigma + "` and point surface.texture.file at OUT.");
+  }
+  auto p = std::make_unique<PreparedScene>();
+  p->path = path;
+  p->warnings = sc.warnings;
+  p->surface = scene::buildSceneSurface(sc);
+  p->wiring = servoRigConfigFor(sc);
+  RendererConfig& rc = p->wiring.renderer;
+  if (policy.stiffness_fraction) rc.stiffness_n_per_m = *policy.stiffness_fraction * spec.max_stiffness_n_per_m;
+  rc.crease_handling = policy.crease;
+  p->wiring.passivity = policy.passivity;
+
+  StabilityRequest sr;
+  sr.stiffness_fraction = rc.stiffness_n_per_m / spec.max_stiffness_n_per_m;
+  sr.virtual_damping_ns_per_m = rc.damping_ns_per_m;
+  sr.period_s = p->wiring.period_s;
+  sr.policy = policy.strict_stability ? BoundPolicy::Strict : BoundPolicy::Warn;
+  p->budget = checkStabilityBudget(spec, sr);
+  if (!p->budget.ok) {
+    std::string all;
+    for (const std::string& e : p->budget.errors) all += (all.empty() ? "" : "; ") + e;
+    throw configError(path, all);
+  }
+  // The servo's passivity observer takes the renderer's stiffness as its K: checked here, off
+  // the servo thread, as the controller's constructor would.
+  servoPassivityConfig(spec, p->wiring.period_s, rc.stiffness_n_per_m, policy.passivity).validate();
+
+  p->swap.surface = &p->surface.surface;
+  p->swap.renderer = rc;
+  p->swap.stored_energy_stiffness_n_per_m = rc.stiffness_n_per_m;
+  return p;
+}
+
+std::unique_ptr<PreparedScene> prepareSwitch(const std::string& path, const scene::Scene& running,
+                                             const dev::DeviceSpec& spec, const ScenePolicy& policy) {
+  const scene::Scene sc = scene::loadScene(path);
+  if (sc.device.model.name != running.device.model.name) {
+    throw configError(path, "device.model '" + sc.device.model.name + "' differs from the running device's '" +
+                                running.device.model.name +
+                                "': a scene switch keeps the device; restart hapticd with this scene to change it");
+  }
+  if (sc.rates.servo_hz != running.rates.servo_hz) {
+    throw configError(path, "rates.servo_hz = " + numberText(sc.rates.servo_hz) + " differs from the running servo's " +
+                                numberText(running.rates.servo_hz) +
+                                " Hz: a scene switch keeps the servo rate; restart hapticd with this scene to change it");
+  }
+  return prepareScene(sc, path, spec, policy);
+}
+
+}  // namespace thx::srv

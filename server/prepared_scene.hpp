@@ -1,0 +1,50 @@
+#pragma once
+// A scene made ready for the servo, off the servo thread: loaded, checked against the running
+// device and the command line's policy, its surface built, its renderer configured, its
+// stability budget checked. hapticd prepares its first scene here and every scene a client
+// switches to (server/scene_switcher.hpp), so a switched-to scene is held to exactly the checks
+// of a scene given at start. Configuration time only: allocates, reads files, throws.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "device/haptic_device.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/scene_surface.hpp"
+#include "server/servo.hpp"
+#include "server/servo_rig.hpp"
+#include "server/stability_budget.hpp"
+
+namespace thx::srv {
+
+// What hapticd's command line fixes for every scene it runs.
+struct ScenePolicy {
+  std::optional<double> stiffness_fraction;  // --stiffness-fraction: overrides the scene's
+  bool crease = true;                        // --no-crease
+  bool passivity = true;                     // --no-passivity
+  bool strict_stability = false;             // --strict-stability
+};
+
+struct PreparedScene {
+  std::string path;                   // the scene file
+  scene::SceneSurface surface;        // owned: the servo renders surface.surface
+  ServoRigConfig wiring;              // servoRigConfigFor() with the policy applied
+  StabilityBudget budget;             // ok (a failing budget throws); its message is a note
+  std::vector<std::string> warnings;  // the loader's
+  SurfaceSwap swap;                   // points into `surface`: a PreparedScene never moves
+};
+
+// Builds the scene `scene` (loaded from `path`) for a device with `spec`. Throws thx::Error
+// naming the scene file: the texture's errors, a smoothing the server cannot do, a stability
+// budget the policy refuses.
+std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& scene, const std::string& path,
+                                            const dev::DeviceSpec& spec, const ScenePolicy& policy);
+
+// A scene to switch to while `running` runs on its device: loads `path` (scene errors carry
+// file:line), refuses what a switch cannot change (the device model, the servo rate: they need a
+// restart), then prepareScene(). Throws thx::Error.
+std::unique_ptr<PreparedScene> prepareSwitch(const std::string& path, const scene::Scene& running,
+                                             const dev::DeviceSpec& spec, const ScenePolicy& policy);
+
+}  // namespace thx::srv

@@ -1,0 +1,122 @@
+#include "server/scene_switcher.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+
+#include "scenes/scene_lookup.hpp"
+
+namespace thx::srv {
+
+namespace {
+// While a swap is in the servo's hands the worker looks every millisecond whether it is done (the
+// servo cannot signal: it never makes a system call other than the device's).
+constexpr auto kReclaimPoll = std::chrono::milliseconds(1);
+}  // namespace
+
+SceneSwitcher::SceneSwitcher(rt::Handoff<const SurfaceSwap>& handoff, scene::Scene running, const dev::DeviceSpec& spec,
+                             std::unique_ptr<PreparedScene> first, SceneSwitcherOptions options)
+    : handoff_(handoff),
+      running_(std::move(running)),
+      spec_(spec),
+      options_(std::move(options)),
+      current_(std::move(first)) {
+  worker_ = std::thread([this] { work(); });
+}
+
+SceneSwitcher::~SceneSwitcher() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  worker_.join();
+}
+
+std::optional<std::string> SceneSwitcher::begin(const std::string& name) {
+  if (!scene::isValidSceneName(name)) {
+    return "invalid scene name '" + name +
+           "': expected 1 to 100 characters of [A-Za-z0-9_.-], not starting with '.' (a scene file's name without "
+           ".yaml)";
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (loading_ || job_) return "a scene switch is already under way; ask again once it is answered";
+    job_ = name;
+    outcome_.reset();
+  }
+  wake_.notify_all();
+  return std::nullopt;
+}
+
+std::optional<SceneLoads::Outcome> SceneSwitcher::poll() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::optional<Outcome> o = std::move(outcome_);
+  outcome_.reset();
+  return o;
+}
+
+std::uint32_t SceneSwitcher::switchesOffered() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return offers_;
+}
+
+void SceneSwitcher::work() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    if (offered_) {
+      wake_.wait_for(lock, kReclaimPoll);
+      reclaim(lock);
+    } else {
+      wake_.wait(lock, [this] { return stop_ || job_.has_value(); });
+    }
+    if (stop_) return;
+    if (!job_ || offered_) continue;  // the previous swap first
+    const std::string name = std::move(*job_);
+    job_.reset();
+    loading_ = true;
+    lock.unlock();
+    load(name);
+    lock.lock();
+    loading_ = false;
+  }
+}
+
+// Runs without the lock: loading a large texture takes a while and must not hold up poll().
+void SceneSwitcher::load(const std::string& name) {
+  Outcome outcome;
+  std::unique_ptr<PreparedScene> next;
+  try {
+    const std::string path = scene::resolveSceneName(name, options_.scenes_dir);
+    if (!options_.quiet) std::fprintf(stderr, "hapticd: loading scene '%s' (%s)\n", name.c_str(), path.c_str());
+    next = prepareSwitch(path, running_, spec_, options_.policy);
+  } catch (const thx::Error& e) {
+    outcome.error = e.what();
+  } catch (const std::exception& e) {  // e.g. out of memory for a huge texture: still only a refusal
+    outcome.error = "scene '" + name + "': " + e.what();
+  }
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (next) {
+    for (const std::string& w : next->warnings) std::fprintf(stderr, "hapticd: warning: %s\n", w.c_str());
+    if (!options_.quiet && !next->budget.within_bound)
+      std::fprintf(stderr, "hapticd: note: %s\n", next->budget.message.c_str());
+    outcome.ok = true;
+    outcome.scene_name = next->surface.scene_name;
+    outcome.fingerprint = next->surface.fingerprint;
+    offered_ = std::move(next);
+    handoff_.offer(&offered_->swap);  // Idle: the last swap was reclaimed before this job began
+    outcome.swap = ++offers_;
+  }
+  outcome_ = std::move(outcome);
+}
+
+void SceneSwitcher::reclaim(std::unique_lock<std::mutex>& lock) {
+  if (!offered_ || !handoff_.reclaim()) return;
+  std::unique_ptr<PreparedScene> old = std::move(current_);
+  current_ = std::move(offered_);
+  lock.unlock();
+  old.reset();  // the servo renders current_ now; the old surface's memory goes back here
+  lock.lock();
+}
+
+}  // namespace thx::srv

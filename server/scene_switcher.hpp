@@ -1,0 +1,72 @@
+#pragma once
+// SceneSwitcher: hapticd's scene loads for a switch while the servo runs. A request (a client's
+// server_command_t ACTION_LOAD_SCENE, through the publisher thread) names a scene; a worker
+// thread of its own resolves the name in the scenes folder, loads and checks the scene exactly as
+// a scene given at start (prepared_scene.hpp) and offers it to the servo through its handoff
+// (Servo::surfaceSwap). The servo ramps the force down, retargets its renderer at a tick
+// boundary, ramps it up and completes the handoff; only then does the worker free the old scene.
+// A scene that fails any check is refused with the loader's message and nothing changes: the old
+// scene keeps running. One switch at a time: a request while one is loading is refused.
+//
+// Owns every scene the servo renders (the first one too), so it must outlive the servo's ticks.
+// Threads: begin()/poll() from one thread (the publisher); the worker loads; the servo touches
+// only the handoff.
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "rt/handoff.hpp"
+#include "scenes/scene.hpp"
+#include "server/prepared_scene.hpp"
+#include "server/scene_loads.hpp"
+
+namespace thx::srv {
+
+struct SceneSwitcherOptions {
+  std::string scenes_dir;  // where a scene's name is looked up: scenes_dir/NAME.yaml
+  ScenePolicy policy;      // the command line's, as for the first scene
+  bool quiet = false;      // no progress lines on stderr
+};
+
+class SceneSwitcher final : public SceneLoads {
+ public:
+  // `running`: the scene the server started with (its device model and servo rate stay);
+  // `first`: its prepared surface, which the servo renders now.
+  SceneSwitcher(rt::Handoff<const SurfaceSwap>& handoff, scene::Scene running, const dev::DeviceSpec& spec,
+                std::unique_ptr<PreparedScene> first, SceneSwitcherOptions options);
+  ~SceneSwitcher() override;  // stops the worker; frees every scene (the servo must be stopped)
+  SceneSwitcher(const SceneSwitcher&) = delete;
+  SceneSwitcher& operator=(const SceneSwitcher&) = delete;
+
+  std::optional<std::string> begin(const std::string& name) override;
+  std::optional<Outcome> poll() override;
+
+  std::uint32_t switchesOffered() const;  // scenes handed to the servo so far
+
+ private:
+  void work();
+  void load(const std::string& name);
+  void reclaim(std::unique_lock<std::mutex>& lock);  // frees the scene the servo has replaced
+
+  rt::Handoff<const SurfaceSwap>& handoff_;
+  const scene::Scene running_;
+  const dev::DeviceSpec spec_;
+  const SceneSwitcherOptions options_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::unique_ptr<PreparedScene> current_;  // the scene the servo renders (or rendered until its swap)
+  std::unique_ptr<PreparedScene> offered_;  // handed to the servo, not yet known to be in use
+  std::optional<std::string> job_;          // a name waiting for the worker
+  bool loading_ = false;                    // the worker is on a job
+  std::optional<Outcome> outcome_;          // of the last job, until polled
+  std::uint32_t offers_ = 0;
+  bool stop_ = false;
+  std::thread worker_;
+};
+
+}  // namespace thx::srv

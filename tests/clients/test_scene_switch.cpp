@@ -1,0 +1,105 @@
+// A client switches hapticd's scene while it runs (server_command_t ACTION_LOAD_SCENE): the reply
+// comes when the servo renders the new scene, the next hello names it with the fingerprint a
+// client computes from its own copy, a broken scene is refused with the loader's file:line error
+// and the old scene keeps running, and hapticd ends cleanly with a safe force. hapticd as a
+// process over udpm (skipped without a multicast route); the client is raw LCM, as any
+// language's would be.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <optional>
+
+#include "scenes/scene_loader.hpp"
+#include "scenes/scene_surface.hpp"
+#include "tests/support/hapticd_harness.hpp"
+#include "thx_msgs/protocol.hpp"
+
+namespace {
+
+using namespace thx;
+namespace fs = std::filesystem;
+using Cmd = thx_msgs::server_command_t;
+
+struct Inbox {
+  void onHello(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    thx_msgs::hello_t h;
+    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, h) > 0) hello = h;
+  }
+  void onReply(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    thx_msgs::server_command_reply_t r;
+    if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, r) > 0 && r.client_id == "runner") reply = r;
+  }
+  std::optional<thx_msgs::hello_t> hello;
+  std::optional<thx_msgs::server_command_reply_t> reply;
+};
+
+class SceneSwitch : public test::HapticdProcessTest {
+ protected:
+  bool waitFor(lcm::LCM& lcm, const std::function<bool()>& done, double timeout_s) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (!done() && std::chrono::steady_clock::now() < end) lcm.handleTimeout(50);
+    return done();
+  }
+  std::optional<thx_msgs::server_command_reply_t> loadScene(lcm::LCM& lcm, Inbox& inbox, const std::string& name) {
+    Cmd c{};
+    c.seq = ++seq_;
+    c.client_id = "runner";
+    c.action = Cmd::ACTION_LOAD_SCENE;
+    c.argument = name;
+    inbox.reply.reset();
+    lcm.publish(thx_msgs::kChannelCommand, &c);
+    waitFor(lcm, [&] { return inbox.reply && inbox.reply->request_seq == seq_; }, 60);
+    return inbox.reply;
+  }
+  std::int64_t seq_ = 0;
+};
+
+TEST_F(SceneSwitch, AClientSwitchesTheSceneAndABrokenOneIsRefusedWhileTheOldOneRuns) {
+  if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
+  // The server's scenes folder: the shipped V-valleys and a scene with an error on line 3.
+  const fs::path scenes = dir_ / "scenes";
+  fs::create_directories(scenes);
+  fs::copy_file(fs::path(THX_SOURCE_DIR) / "scenes/vvalley.yaml", scenes / "vvalley.yaml");
+  std::ofstream(scenes / "broken.yaml") << "version: 1\nname: broken\nsurface: [1, 2]\n";
+
+  lcm::LCM lcm(url_);
+  Inbox inbox;
+  lcm.subscribe(thx_msgs::kChannelHello, &Inbox::onHello, &inbox);
+  lcm.subscribe(thx_msgs::kChannelCommandReply, &Inbox::onReply, &inbox);
+  startServer({"--scene", "scenes/default.yaml", "--scenes-dir", scenes.string()});
+  ASSERT_TRUE(waitFor(lcm, [&] { return inbox.hello.has_value(); }, 30)) << serverLog();
+  EXPECT_EQ(inbox.hello->scene_name, "default");
+  EXPECT_EQ(inbox.hello->protocol_version, 3);
+  const std::int64_t instance = inbox.hello->server_instance;
+
+  const auto good = loadScene(lcm, inbox, "vvalley");
+  ASSERT_TRUE(good) << "no reply within 60 s; hapticd said:\n" << serverLog();
+  EXPECT_TRUE(good->accepted) << good->reason;
+  EXPECT_GT(good->tick, 0);
+  EXPECT_EQ(good->server_instance, instance);
+  // The hello that follows names the new scene; the fingerprint is what a client computes from
+  // its own copy of the file.
+  ASSERT_TRUE(waitFor(lcm, [&] { return inbox.hello->scene_name == "vvalley"; }, 10)) << serverLog();
+  const scene::SceneSurface mine = scene::buildSceneSurface(scene::loadScene((scenes / "vvalley.yaml").string()));
+  EXPECT_EQ(static_cast<std::uint64_t>(inbox.hello->texture_fingerprint), mine.fingerprint);
+  EXPECT_EQ(inbox.hello->server_instance, instance);  // the same server: no restart
+
+  const auto bad = loadScene(lcm, inbox, "broken");
+  ASSERT_TRUE(bad) << serverLog();
+  EXPECT_FALSE(bad->accepted);
+  EXPECT_EQ(bad->tick, -1);
+  EXPECT_NE(bad->reason.find("broken.yaml:3:"), std::string::npos) << bad->reason;
+  // The old scene keeps running: the next hellos still name it.
+  const std::int64_t seq_after = inbox.hello->seq;
+  ASSERT_TRUE(waitFor(lcm, [&] { return inbox.hello->seq > seq_after; }, 10)) << serverLog();
+  EXPECT_EQ(inbox.hello->scene_name, "vvalley");
+
+  EXPECT_EQ(stopServer(), 0) << serverLog();
+  expectServoRanSafely();
+  EXPECT_NE(serverLog().find("client runner switched the scene"), std::string::npos) << serverLog();
+}
+
+}  // namespace

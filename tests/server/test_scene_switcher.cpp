@@ -1,0 +1,260 @@
+// Scene switches while the servo runs (server/scene_switcher.hpp, server/server_commands.hpp):
+// a client's ACTION_LOAD_SCENE is loaded and checked off the servo thread, answered when the
+// servo renders it and announced; a bad scene is refused with the loader's file:line error while
+// the old scene keeps running; what a switch cannot change is refused; the servo thread neither
+// allocates nor frees during a switch. The servo runs lock-step on a scripted device in the test's
+// thread; only the loader's own thread runs beside it, and nothing here depends on its timing.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "scenes/scene_loader.hpp"
+#include "scenes/scene_surface.hpp"
+#include "server/prepared_scene.hpp"
+#include "server/scene_switcher.hpp"
+#include "server/server_commands.hpp"
+#include "server/servo_rig.hpp"
+#include "tests/server/fake_device.hpp"
+#include "tests/support/allocation_counter.hpp"
+
+using namespace thx;
+namespace fs = std::filesystem;
+using Cmd = thx_msgs::server_command_t;
+using Reply = thx_msgs::server_command_reply_t;
+
+namespace {
+
+std::string sceneText(const std::string& generator, const std::string& params, const std::string& representation,
+                      const std::string& device_lines) {
+  return "version: 1\nname: test scene\nsurface:\n  size: [0.2, 0.2]\n  texture:\n    generator: " + generator +
+         "\n    size: 128\n    params: " + params + "\n  representation: " + representation + "\ndevice:\n" +
+         device_lines;
+}
+
+const char* kDesktop = "  type: sim\n  model: phantom_desktop\n  stiffness_fraction: 0.4\n";
+
+// A scenes folder of the test's own: the running scene, one to switch to, and bad ones.
+struct ScenesFolder {
+  ScenesFolder() {
+    static int n = 0;
+    dir = fs::temp_directory_path() / ("thx_scene_switcher_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
+    fs::create_directories(dir);
+    write("flat", sceneText("tilted", "{extent: 0.2, angle_deg: 0, direction_deg: 0}", "normal", kDesktop));
+    write("valley", sceneText("vvalley", "{extent: 0.2, angle_deg: 60, period: 0.004}", "relief",
+                              "  type: sim\n  model: phantom_desktop\n  stiffness_fraction: 0.6\n"));
+    // Line 13, column 23: the stiffness fraction.
+    write("broken", sceneText("tilted", "{extent: 0.2, angle_deg: 0, direction_deg: 0}", "normal",
+                              "  type: sim\n  model: phantom_desktop\n  stiffness_fraction: 7\n"));
+    write("omni", sceneText("tilted", "{extent: 0.2, angle_deg: 0, direction_deg: 0}", "normal",
+                            "  type: sim\n  model: phantom_omni\n  stiffness_fraction: 0.4\n"));
+    write("fast_servo", sceneText("tilted", "{extent: 0.2, angle_deg: 0, direction_deg: 0}", "normal", kDesktop) +
+                            "rates:\n  servo_hz: 2000\n");
+  }
+  ~ScenesFolder() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  void write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir / (name + ".yaml")) << text;
+  }
+  std::string path(const std::string& name) const { return (dir / (name + ".yaml")).string(); }
+  fs::path dir;
+};
+
+void hover(std::int64_t, dev::DeviceState& s) {
+  s.p_world = Eigen::Vector3d(0.0, 0.0, 0.01);
+  s.v_world.setZero();
+}
+
+// hapticd's parts for a switch, wired as hapticd wires them: the servo on the first scene's
+// surface, the switcher owning every scene, the command handler between them.
+struct SwitchingServer {
+  explicit SwitchingServer(const ScenesFolder& folder)
+      : device(hover),
+        running(scene::loadScene(folder.path("flat"))),
+        first_owner(srv::prepareScene(running, folder.path("flat"), device.spec(), srv::ScenePolicy{})),
+        first(first_owner.get()),
+        rig(device, first->surface.surface, first->wiring),
+        switcher(rig.servo().surfaceSwap(), running, device.spec(), std::move(first_owner), options(folder)),
+        commands(&rig.servo().faultResetSlot(), 42, &switcher) {}
+  static srv::SceneSwitcherOptions options(const ScenesFolder& folder) {
+    srv::SceneSwitcherOptions o;
+    o.scenes_dir = folder.dir.string();
+    o.quiet = true;
+    return o;
+  }
+
+  std::optional<Reply> send(const std::string& argument, std::int32_t action = Cmd::ACTION_LOAD_SCENE) {
+    Cmd c{};
+    c.seq = ++seq;
+    c.client_id = "runner";
+    c.action = action;
+    c.argument = argument;
+    return commands.handle(c);
+  }
+
+  // Ticks the servo (lock-step) and feeds the command handler as hapticd's publisher does, until
+  // a reply comes or 30 s of wall time pass (a loader that never answers). Counts the servo
+  // thread's own allocations and frees inside tick() only.
+  std::optional<Reply> tickUntilAnswered() {
+    std::vector<Reply> done;
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (done.empty() && std::chrono::steady_clock::now() < give_up) {
+      commands.pollLoads(done);
+      const long a0 = test::t_allocations, f0 = test::t_frees;
+      const srv::TickRecord& r = rig.tick();
+      servo_allocations += test::t_allocations - a0;
+      servo_frees += test::t_frees - f0;
+      last = r;
+      rig.drain();
+      commands.onRecord(last, done);
+      if (last.scene_gain < 1.0) ++switching_ticks;
+      if (done.empty() && rig.servo().surfaceSwap().state() == rt::Handoff<const srv::SurfaceSwap>::State::Idle)
+        std::this_thread::sleep_for(std::chrono::microseconds(200));  // the loader is loading
+    }
+    if (done.empty()) return std::nullopt;
+    return done.front();
+  }
+  void ticks(int n) {
+    for (int k = 0; k < n; ++k) last = rig.tickAndDrain();
+  }
+
+  test::FakeDevice device;
+  scene::Scene running;
+  std::unique_ptr<srv::PreparedScene> first_owner;
+  const srv::PreparedScene* first;
+  srv::ServoRig rig;
+  srv::SceneSwitcher switcher;
+  srv::ServerCommands commands;
+  std::int64_t seq = 0;
+  srv::TickRecord last;
+  long servo_allocations = 0, servo_frees = 0;
+  int switching_ticks = 0;
+};
+
+}  // namespace
+
+TEST(SceneSwitcher, AGoodSceneIsAnsweredWhenTheServoRendersItAndThenAnnounced) {
+  ScenesFolder folder;
+  SwitchingServer server(folder);
+  server.ticks(10);
+  const tex::TexturedSurface* before = &server.rig.renderer().surface();
+  ASSERT_FALSE(server.send("valley").has_value());  // answered later
+  const std::optional<Reply> reply = server.tickUntilAnswered();
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_TRUE(reply->accepted) << reply->reason;
+  EXPECT_EQ(reply->action, Cmd::ACTION_LOAD_SCENE);
+  EXPECT_EQ(reply->client_id, "runner");
+  EXPECT_EQ(reply->request_seq, 1);
+  EXPECT_EQ(reply->server_instance, 42);
+  // Answered by the record of the first tick on the new surface, at the bottom of the ramp.
+  EXPECT_EQ(server.last.scene_swaps, 1u);
+  EXPECT_EQ(reply->tick, server.last.tick);
+  EXPECT_EQ(server.last.scene_gain, 0.0);
+  EXPECT_EQ(server.switching_ticks, 200);  // the 200-tick ramp down, the swap tick included
+  EXPECT_NE(&server.rig.renderer().surface(), before);
+  EXPECT_DOUBLE_EQ(server.rig.renderer().config().stiffness_n_per_m, 600.0);  // valley: 0.6 x 1000 N/m
+
+  // The announcement carries what a client on another host computes from its own copy.
+  const std::optional<srv::ServerCommands::SceneChange> change = server.commands.takeSceneChange();
+  ASSERT_TRUE(change.has_value());
+  EXPECT_EQ(change->scene_name, "valley");
+  EXPECT_EQ(change->tick, reply->tick);
+  const scene::SceneSurface valley = scene::buildSceneSurface(scene::loadScene(folder.path("valley")));
+  EXPECT_EQ(change->fingerprint, valley.fingerprint);
+  EXPECT_NE(change->fingerprint, server.first->surface.fingerprint);
+  EXPECT_FALSE(server.commands.takeSceneChange().has_value());  // once
+
+  // The servo thread took, swapped and completed without allocating or freeing; the loader
+  // frees the flat scene on its own thread.
+  EXPECT_EQ(server.servo_allocations, 0);
+  EXPECT_EQ(server.servo_frees, 0);
+  server.ticks(300);
+  EXPECT_EQ(server.last.scene_gain, 1.0);  // ramped up again
+  EXPECT_EQ(server.switcher.switchesOffered(), 1u);
+}
+
+TEST(SceneSwitcher, ABrokenSceneIsRefusedWithTheLoadersFileAndLineAndTheOldSceneKeepsRunning) {
+  ScenesFolder folder;
+  SwitchingServer server(folder);
+  const tex::TexturedSurface* before = &server.rig.renderer().surface();
+  ASSERT_FALSE(server.send("broken").has_value());
+  const std::optional<Reply> reply = server.tickUntilAnswered();
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_FALSE(reply->accepted);
+  EXPECT_EQ(reply->tick, -1);
+  EXPECT_NE(reply->reason.find("broken.yaml:13:"), std::string::npos) << reply->reason;
+  EXPECT_NE(reply->reason.find("stiffness_fraction"), std::string::npos) << reply->reason;
+  // Nothing changed: no ramp, no swap, the same surface, no announcement.
+  server.ticks(500);
+  EXPECT_EQ(server.switching_ticks, 0);
+  EXPECT_EQ(server.last.scene_swaps, 0u);
+  EXPECT_EQ(server.last.scene_gain, 1.0);
+  EXPECT_EQ(&server.rig.renderer().surface(), before);
+  EXPECT_FALSE(server.commands.takeSceneChange().has_value());
+  EXPECT_EQ(server.commands.pending(), 0u);
+  // And the next good scene still goes through.
+  ASSERT_FALSE(server.send("valley").has_value());
+  const std::optional<Reply> good = server.tickUntilAnswered();
+  ASSERT_TRUE(good.has_value());
+  EXPECT_TRUE(good->accepted) << good->reason;
+}
+
+TEST(SceneSwitcher, WhatASwitchCannotChangeIsRefusedAndNamed) {
+  ScenesFolder folder;
+  SwitchingServer server(folder);
+  struct Case {
+    std::string scene, expect;
+  };
+  for (const Case& c : {Case{"omni", "device.model 'phantom_omni' differs from the running device's 'phantom_desktop'"},
+                        Case{"fast_servo", "rates.servo_hz = 2000 differs from the running servo's 1000 Hz"},
+                        Case{"nosuch", "no file"}}) {
+    SCOPED_TRACE(c.scene);
+    ASSERT_FALSE(server.send(c.scene).has_value());
+    const std::optional<Reply> reply = server.tickUntilAnswered();
+    ASSERT_TRUE(reply.has_value());
+    EXPECT_FALSE(reply->accepted);
+    EXPECT_NE(reply->reason.find(c.expect), std::string::npos) << reply->reason;
+    EXPECT_NE(reply->reason.find(c.scene), std::string::npos) << reply->reason;
+  }
+  EXPECT_EQ(server.last.scene_swaps, 0u);
+}
+
+TEST(SceneSwitcher, BadArgumentsAndASecondSwitchAreRefusedAtOnce) {
+  ScenesFolder folder;
+  SwitchingServer server(folder);
+  for (const std::string& bad : std::vector<std::string>{"", "../flat", "/etc/passwd", ".hidden", std::string(300, 'a')}) {
+    SCOPED_TRACE(bad);
+    const std::optional<Reply> reply = server.send(bad);
+    ASSERT_TRUE(reply.has_value());
+    EXPECT_FALSE(reply->accepted);
+    EXPECT_LT(reply->reason.size(), 200u);  // a long argument is not echoed
+  }
+  ASSERT_FALSE(server.send("valley").has_value());
+  const std::optional<Reply> second = server.send("flat");
+  ASSERT_TRUE(second.has_value());
+  EXPECT_FALSE(second->accepted);
+  EXPECT_NE(second->reason.find("a switch to scene 'valley' is under way"), std::string::npos) << second->reason;
+  const std::optional<Reply> first = server.tickUntilAnswered();
+  ASSERT_TRUE(first.has_value());
+  EXPECT_TRUE(first->accepted) << first->reason;
+  EXPECT_EQ(first->request_seq, 1 + 5);  // the five refusals took seqs 1..5
+}
+
+TEST(SceneSwitcher, AServerWithoutALoaderRefusesSwitches) {
+  srv::ServerCommands no_loader(nullptr, 1);
+  Cmd c{};
+  c.seq = 1;
+  c.client_id = "runner";
+  c.action = Cmd::ACTION_LOAD_SCENE;
+  c.argument = "valley";
+  const std::optional<Reply> reply = no_loader.handle(c);
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_FALSE(reply->accepted);
+  EXPECT_EQ(reply->reason, "this server cannot switch scenes");
+}
