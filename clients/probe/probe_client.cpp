@@ -1,5 +1,7 @@
 // probe-client: subscribes to one hapticd stream and reports how it arrives (docs/clients.md).
 // `probe-client --help` for options.
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <optional>
 
@@ -12,15 +14,27 @@ namespace {
 
 using namespace thx::client;
 
+// user + system CPU time of this process, in seconds.
+double cpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 // Receives until the stream is refused, no data came within the connect timeout, the duration
 // since the first message has passed, or a stop signal arrives.
 void receive(const ProbeOptions& o, ProbeResult& result) {
   ClientApp app(o.client_id, o.lcm_url, o.connect_timeout_s);
   Client& client = app.client();
   std::optional<StreamMonitor> monitor;
-  std::int64_t first_ns = 0, instance = 0;
+  std::int64_t first_ns = 0, instance = 0, asked_ns = 0;
+  double first_cpu = 0.0;
   auto seen = [&](std::int64_t now) {
-    if (first_ns == 0) first_ns = now;
+    if (first_ns == 0) {
+      first_ns = now;
+      first_cpu = cpuSeconds();
+      result.first_message_s = 1e-9 * double(now - asked_ns);
+    }
     if (!monitor) return false;
     // Ticks restart with the server: compare nothing across a restart.
     if (instance != 0 && client.serverInstance() != instance) monitor->serverRestarted();
@@ -28,6 +42,8 @@ void receive(const ProbeOptions& o, ProbeResult& result) {
     return true;
   };
   client.onStatus([&](const StreamStatus& s) {
+    if (s.state != SubscriptionState::Pending && result.admission_s < 0)
+      result.admission_s = 1e-9 * double(monotonicNs() - asked_ns);
     if (s.state == SubscriptionState::Active && !monitor) monitor.emplace(s.granted_hz);
   });
   client.onDeviceState([&](const thx_msgs::device_state_t& m, std::int64_t now) {
@@ -43,6 +59,7 @@ void receive(const ProbeOptions& o, ProbeResult& result) {
   client.onServoStats([&](const thx_msgs::servo_stats_t& m, std::int64_t now) {
     if (seen(now)) monitor->onMessage(m.ticks, m.utime, now);
   });
+  asked_ns = monotonicNs();
   client.subscribe(o.stream, o.rate_hz, o.batch);
 
   auto refused = [&] {
@@ -52,6 +69,11 @@ void receive(const ProbeOptions& o, ProbeResult& result) {
   if (app.pollUntil([&] { return first_ns != 0 || refused(); }, o.connect_timeout_s) && !refused())
     app.pollUntil([&] { return refused() || monotonicNs() - first_ns >= std::int64_t(o.duration_s * 1e9); }, 1e9);
 
+  if (first_ns != 0) {
+    result.cpu_window_s = cpuSeconds() - first_cpu;
+    result.window_wall_s = 1e-9 * double(monotonicNs() - first_ns);
+  }
+  result.cpu_total_s = cpuSeconds();
   if (auto st = client.status(o.stream)) result.status = *st;
   if (monitor) result.report = monitor->report();
   result.server_instance = client.serverInstance();

@@ -27,6 +27,8 @@ void writeProbeJson(const std::string& path, const ProbeResult& r) {
                "  \"samples\": %llu,\n  \"sample_rate_hz\": %.3f,\n  \"samples_missing\": %llu,\n"
                "  \"samples_dropped_by_server\": %llu,\n  \"samples_out_of_order\": %llu,\n"
                "  \"server_instance\": %lld,\n  \"reconnects\": %llu,\n  \"server_restarts\": %llu,\n"
+               "  \"admission_s\": %.6f,\n  \"first_message_s\": %.6f,\n"
+               "  \"cpu_window_s\": %.6f,\n  \"window_wall_s\": %.6f,\n  \"cpu_total_s\": %.6f,\n"
                "  \"error\": \"%s\"\n"
                "}\n",
                r.options.stream.c_str(), r.options.batch ? "true" : "false", r.options.client_id.c_str(),
@@ -38,7 +40,8 @@ void writeProbeJson(const std::string& path, const ProbeResult& r) {
                (unsigned long long)s.duplicates, (unsigned long long)s.samples, s.sample_rate_hz,
                (unsigned long long)s.samples_missing, (unsigned long long)s.samples_dropped,
                (unsigned long long)s.samples_out_of_order, (long long)r.server_instance,
-               (unsigned long long)r.reconnects, (unsigned long long)s.restarts, escaped(r.error).c_str());
+               (unsigned long long)r.reconnects, (unsigned long long)s.restarts, r.admission_s, r.first_message_s,
+               r.cpu_window_s, r.window_wall_s, r.cpu_total_s, escaped(r.error).c_str());
   const bool failed = std::ferror(f) != 0;
   if (!to_stdout && std::fclose(f) != 0) throw thx::Error(thx::Error::Kind::Io, "cannot write " + path + ": " + std::strerror(errno));
   if (failed) throw thx::Error(thx::Error::Kind::Io, "cannot write " + path);
