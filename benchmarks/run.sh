@@ -7,6 +7,13 @@
 #              cmake -S . -B BUILD_DIR -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build BUILD_DIR -j2 --target benchmarks
 #   PART       any of: render force_error memory latency clients physics (default: all six, in that order)
 #
+# The clients part can also sweep the number of clients (issue 17): set THX_CLIENTS_SWEEP to the
+# counts (e.g. 1,2,4,8,16,32,64), optionally THX_CLIENTS_WORKLOADS (default "mixed half": 1/4 resp.
+# 1/2 of the clients batched CONTACT at 1 kHz, the rest DEVICE_STATE at 60 Hz),
+# THX_CLIENTS_SWEEP_SECONDS (10 per point) and THX_CLIENTS_HAPTICD_ARGS (extra hapticd options,
+# e.g. "--data-port-base 7900"). Writes docs/results/bench_clients_scale_WORKLOAD.{json,csv} and
+# splices the bench_clients_scale_WORKLOAD table if docs/benchmarks.md has its markers.
+#
 # Needs: the built benchmarks and hapticd; cyclictest (Debian rt-tests, in setup.sh) for latency;
 # root or CAP_SYS_NICE + CAP_IPC_LOCK for SCHED_FIFO and mlockall (without them the latency and
 # memory tables say so). Takes about 6 minutes (clients: 2 minutes, physics: 1.5). Timing on a shared machine is noisy: compare
@@ -106,6 +113,20 @@ run_clients() {
     --json "$RESULTS/bench_clients.json" --csv "$RESULTS/bench_clients.csv" --md "$WORK/bench_clients.md"
   local rc=$?
   [ -s "$WORK/bench_clients.md" ] && splice bench_clients "$WORK/bench_clients.md"
+  if [ -n "${THX_CLIENTS_SWEEP:-}" ]; then
+    local w extra=()
+    read -r -a hargs <<< "${THX_CLIENTS_HAPTICD_ARGS:-}"
+    for a in "${hargs[@]}"; do extra+=(--hapticd-arg "$a"); done
+    for w in ${THX_CLIENTS_WORKLOADS:-mixed half}; do
+      say "part 5b: client sweep $THX_CLIENTS_SWEEP, workload $w (${THX_CLIENTS_SWEEP_SECONDS:-10} s per point)"
+      "$BIN/bench_clients" --hapticd "$HAPTICD" --probe "$BUILD/clients/probe/probe-client" \
+        --scene "$ROOT/scenes/default.yaml" --seconds "${THX_CLIENTS_SWEEP_SECONDS:-10}" --baseline-seconds 10 \
+        --workdir "$WORK" --clients-list "$THX_CLIENTS_SWEEP" --workload "$w" "${extra[@]}" \
+        --json "$RESULTS/bench_clients_scale_$w.json" --csv "$RESULTS/bench_clients_scale_$w.csv" \
+        --md "$WORK/bench_clients_scale_$w.md" >/dev/null || rc=1
+      [ -s "$WORK/bench_clients_scale_$w.md" ] && splice "bench_clients_scale_$w" "$WORK/bench_clients_scale_$w.md"
+    done
+  fi
   return $rc
 }
 
