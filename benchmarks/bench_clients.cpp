@@ -510,8 +510,10 @@ int runSweep(const Options& o, const std::string& url) {
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  std::string url = "udpm://239.255.76.67:" + std::to_string(o.port) + "?ttl=0";
-  if (!o.url_options.empty()) url += "&" + o.url_options;
+  // --url-options is appended to the query; ttl=0 unless it names a ttl itself.
+  std::string url = "udpm://239.255.76.67:" + std::to_string(o.port) + "?";
+  if (o.url_options.find("ttl=") == std::string::npos) url += "ttl=0";
+  if (!o.url_options.empty()) url += (url.back() == '?' ? "" : "&") + o.url_options;
   if (!o.clients_list.empty()) return runSweep(o, url);
   std::vector<ServoResult> servo;
   servo.push_back(baseline(o, url, "before"));
