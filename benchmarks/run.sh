@@ -7,16 +7,19 @@
 #              cmake -S . -B BUILD_DIR -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build BUILD_DIR -j2 --target benchmarks
 #   PART       any of: render force_error memory latency clients physics (default: all six, in that order)
 #
-# The clients part can also sweep the number of clients (issue 17): set THX_CLIENTS_SWEEP to the
-# counts (e.g. 1,2,4,8,16,32,64), optionally THX_CLIENTS_WORKLOADS (default "mixed half": 1/4 resp.
-# 1/2 of the clients batched CONTACT at 1 kHz, the rest DEVICE_STATE at 60 Hz),
-# THX_CLIENTS_SWEEP_SECONDS (10 per point) and THX_CLIENTS_HAPTICD_ARGS (extra hapticd options,
-# e.g. "--data-port-base 7900"). Writes docs/results/bench_clients_scale_WORKLOAD.{json,csv} and
-# splices the bench_clients_scale_WORKLOAD table if docs/benchmarks.md has its markers.
+# The clients part also sweeps the number of clients (issue 17): 1, 2, 4, 8, 16, 32, 64 clients
+# (THX_CLIENTS_SWEEP), for the workloads "mixed" (1/4 of the clients batched CONTACT at 1 kHz, the
+# rest DEVICE_STATE at 60 Hz: 16 + 48 at 64) and "half" (1/2 and 1/2: 16 + 16 at 32)
+# (THX_CLIENTS_WORKLOADS), THX_CLIENTS_SWEEP_SECONDS (20) per point, with hapticd's per-client data
+# ports and control port (the default); and "mixed" once more with everything on the one shared
+# port (--data-ports off --control-port off) for comparison (THX_CLIENTS_COMPARE_SHARED=0 skips it).
+# Writes docs/results/bench_clients_scale_{WORKLOAD,mixed_shared}.{json,csv}, the plot
+# docs/results/bench_clients_scale.png, and splices the bench_clients_scale_* tables.
+# THX_CLIENTS_SWEEP=none runs only the 16-client benchmark.
 #
 # Needs: the built benchmarks and hapticd; cyclictest (Debian rt-tests, in setup.sh) for latency;
 # root or CAP_SYS_NICE + CAP_IPC_LOCK for SCHED_FIFO and mlockall (without them the latency and
-# memory tables say so). Takes about 6 minutes (clients: 2 minutes, physics: 1.5). Timing on a shared machine is noisy: compare
+# memory tables say so). Takes about 17 minutes (clients: 13 minutes with its sweeps, physics: 1.5). Timing on a shared machine is noisy: compare
 # ratios within one run.
 set -uo pipefail
 
@@ -113,20 +116,33 @@ run_clients() {
     --json "$RESULTS/bench_clients.json" --csv "$RESULTS/bench_clients.csv" --md "$WORK/bench_clients.md"
   local rc=$?
   [ -s "$WORK/bench_clients.md" ] && splice bench_clients "$WORK/bench_clients.md"
-  if [ -n "${THX_CLIENTS_SWEEP:-}" ]; then
-    local w extra=()
-    read -r -a hargs <<< "${THX_CLIENTS_HAPTICD_ARGS:-}"
-    for a in "${hargs[@]}"; do extra+=(--hapticd-arg "$a"); done
-    for w in ${THX_CLIENTS_WORKLOADS:-mixed half}; do
-      say "part 5b: client sweep $THX_CLIENTS_SWEEP, workload $w (${THX_CLIENTS_SWEEP_SECONDS:-10} s per point)"
-      "$BIN/bench_clients" --hapticd "$HAPTICD" --probe "$BUILD/clients/probe/probe-client" \
-        --scene "$ROOT/scenes/default.yaml" --seconds "${THX_CLIENTS_SWEEP_SECONDS:-10}" --baseline-seconds 10 \
-        --workdir "$WORK" --clients-list "$THX_CLIENTS_SWEEP" --workload "$w" "${extra[@]}" \
-        --json "$RESULTS/bench_clients_scale_$w.json" --csv "$RESULTS/bench_clients_scale_$w.csv" \
-        --md "$WORK/bench_clients_scale_$w.md" >/dev/null || rc=1
-      [ -s "$WORK/bench_clients_scale_$w.md" ] && splice "bench_clients_scale_$w" "$WORK/bench_clients_scale_$w.md"
-    done
+  local sweep=${THX_CLIENTS_SWEEP:-1,2,4,8,16,32,64} secs=${THX_CLIENTS_SWEEP_SECONDS:-20}
+  [ "$sweep" = none ] && return $rc
+  need "$BIN/bench_clients_plot" || return 1
+  # One sweep: its name, workload, and extra hapticd options; bus ports 7950 (+ 66 for control and
+  # data ports) apart from part 5's 7841.
+  sweep_one() {
+    local name=$1 w=$2 extra=()
+    shift 2
+    for a in "$@"; do extra+=(--hapticd-arg "$a"); done
+    say "part 5b: client sweep $sweep, $name ($secs s per point; about $((7 * (secs + 5) / 60 + 1)) minutes)"
+    "$BIN/bench_clients" --hapticd "$HAPTICD" --probe "$BUILD/clients/probe/probe-client" \
+      --scene "$ROOT/scenes/default.yaml" --seconds "$secs" --baseline-seconds 10 --port 7950 \
+      --workdir "$WORK" --clients-list "$sweep" --workload "$w" "${extra[@]}" \
+      --json "$RESULTS/bench_clients_scale_$name.json" --csv "$RESULTS/bench_clients_scale_$name.csv" \
+      --md "$WORK/bench_clients_scale_$name.md" >/dev/null || rc=1
+    [ -s "$WORK/bench_clients_scale_$name.md" ] && splice "bench_clients_scale_$name" "$WORK/bench_clients_scale_$name.md"
+  }
+  local w plots=()
+  for w in ${THX_CLIENTS_WORKLOADS:-mixed half}; do
+    sweep_one "$w" "$w"
+    plots+=("$w, own ports=$RESULTS/bench_clients_scale_$w.csv")
+  done
+  if [ "${THX_CLIENTS_COMPARE_SHARED:-1}" != 0 ]; then
+    sweep_one mixed_shared mixed --data-ports off --control-port off
+    plots+=("mixed, one shared port=$RESULTS/bench_clients_scale_mixed_shared.csv")
   fi
+  "$BIN/bench_clients_plot" --png "$RESULTS/bench_clients_scale.png" "${plots[@]}" || rc=1
   return $rc
 }
 

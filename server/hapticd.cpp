@@ -38,6 +38,7 @@
 #include "server/servo_rig.hpp"
 #include "server/stability_budget.hpp"
 #include "server/session_log.hpp"
+#include "server/port_plan.hpp"
 #include "server/stats_json.hpp"
 #include "server/vrpn_server.hpp"
 #include "textures/texture_error.hpp"
@@ -65,6 +66,12 @@ publishes device and contact state over LCM.
   --stats-json FILE     write statistics (ticks, rate, missed ticks, latencies, memory) as JSON
   --lcm-url URL         LCM transport (default )" THX_DEFAULT_LCM_URL R"()
   --no-lcm              do not publish at all
+  --control-port P|off  the udpm port clients send requests, heartbeats, commands and forces to,
+                        which only hapticd listens on (default: the --lcm-url port + 1; off: the
+                        bus). Named in the hello (docs/clients.md §6)
+  --data-ports A-B|off  each client's streams on a udpm port of its own from A..B, recycled when
+                        it leaves (default: the --lcm-url port + 2 .. + 1 + --max-clients; off:
+                        every stream on the bus). A new client with every port held is refused
   --max-clients N       clients served at once (default 32); more are refused (docs/clients.md)
   --max-rate HZ         highest rate granted to one subscription (default: the servo rate)
   --max-bandwidth MB/S  total bandwidth of all subscriptions (default 8 MB/s); more is refused
@@ -107,6 +114,8 @@ struct Options {
   std::string record;  // --record FILE
   std::string lcm_url = thx_msgs::kDefaultLcmUrl;
   bool no_lcm = false;
+  std::string control_port, data_ports;  // --control-port, --data-ports as given ("" = default)
+  thx::srv::PortPlan ports;               // from them, --lcm-url and --max-clients
   thx::srv::SubscriptionLimits limits;  // --max-clients, --max-rate, --max-bandwidth, --heartbeat-timeout
   bool max_rate_given = false;
   bool crease = true;
@@ -188,6 +197,10 @@ Options parse(int argc, char** argv) {
       o.lcm_url = value();
     } else if (a == "--no-lcm") {
       o.no_lcm = true;
+    } else if (a == "--control-port") {
+      o.control_port = value();
+    } else if (a == "--data-ports") {
+      o.data_ports = value();
     } else if (a == "--max-clients") {
       const double n = number(a, value());
       if (n < 1 || n != std::floor(n)) usage("--max-clients must be a whole number >= 1");
@@ -253,6 +266,11 @@ Options parse(int argc, char** argv) {
   if (o.device.rfind("vrpn:", 0) == 0 && o.lockstep) usage("--lockstep needs the simulated or a replayed device");
   if (!o.vrpn_listen.empty() && !parseListenAddress(o.vrpn_listen))
     usage("--vrpn-listen: expected [ADDR:]PORT with an IPv4 ADDR and PORT 1..65535, got '" + o.vrpn_listen + "'");
+  try {  // checked here, before a scene is loaded
+    o.ports = thx::srv::planPorts(o.lcm_url, o.limits.max_clients, o.control_port, o.data_ports);
+  } catch (const thx::UsageError& e) {
+    usage(e.what());
+  }
   return o;
 }
 
@@ -317,12 +335,20 @@ int run(const Options& o) {
   srv::Servo& servo = rig.servo();
   rt::SpscRing<srv::TickRecord>& ring = rig.ring();
 
-  std::unique_ptr<lcm::LCM> lcm;
+  std::unique_ptr<lcm::LCM> lcm, control_lcm;
+  const srv::PortPlan& ports = o.ports;
   if (!o.no_lcm) {
     try {
       lcm = thx_msgs::openLcm(o.lcm_url);
     } catch (const thx::Error& e) {  // the haptics do not need the network: warn and go on
       std::fprintf(stderr, "hapticd: warning: %s; the servo runs without publishing\n", e.what());
+    }
+  }
+  if (lcm && ports.control_port > 0) {
+    try {
+      control_lcm = thx_msgs::openLcm(ports.controlUrl());
+    } catch (const thx::Error& e) {  // clients then keep sending to the bus, which still works
+      std::fprintf(stderr, "hapticd: warning: %s; clients send to the bus instead\n", e.what());
     }
   }
   srv::PublisherOptions po;
@@ -350,9 +376,19 @@ int run(const Options& o) {
   sso.quiet = o.quiet;
   srv::SceneSwitcher switcher(servo.surfaceSwap(), sc, spec, std::move(first), sso);
   po.scene_loads = &switcher;
+  if (ports.data_first > 0) {
+    po.data_bus = ports.bus;
+    po.data_port_first = ports.data_first;
+    po.data_port_last = ports.data_last;
+  }
+  if (control_lcm) {
+    po.control_url = ports.controlUrl();
+    po.control_lcm = control_lcm.get();
+  }
   srv::Publisher publisher(ring, servo, rig.recorder(), lcm.get(), po);
   std::unique_ptr<srv::Receiver> receiver;
   if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);
+  if (receiver && control_lcm) receiver->listenAlsoOn(*control_lcm);
 
   // VRPN apps: effects they command are rendered in the servo; reports come from its snapshots.
   srv::ExternalEffectRenderer external_effects(period_s);

@@ -56,14 +56,22 @@ class Publisher::LcmSink : public MessageSink {
     if (thx_msgs::batch_count_consistent(m)) put(ch, m);
   }
   void send(const std::string& ch, const thx_msgs::servo_stats_t& m) override { put(ch, m); }
+  void sendTo(int port, const std::string& ch, const thx_msgs::device_state_t& m) override { put(ch, m, port); }
+  void sendTo(int port, const std::string& ch, const thx_msgs::contact_t& m) override { put(ch, m, port); }
+  void sendTo(int port, const std::string& ch, const thx_msgs::contact_batch_t& m) override {
+    if (thx_msgs::batch_count_consistent(m)) put(ch, m, port);
+  }
+  void sendTo(int port, const std::string& ch, const thx_msgs::servo_stats_t& m) override { put(ch, m, port); }
 
+  // data_port 0: the bus; otherwise the client's own port.
   template <class M>
-  void put(const std::string& channel, const M& m) {
+  void put(const std::string& channel, const M& m, int data_port = 0) {
     if (!p_.lcm_) return;
+    lcm::LCM* target = p_.dataLcm(data_port);
     const int size = m.getEncodedSize();
     if (p_.encode_buffer_.size() < std::size_t(size)) p_.encode_buffer_.resize(std::size_t(size));
-    if (m.encode(p_.encode_buffer_.data(), 0, size) != size ||
-        p_.lcm_->publish(channel, p_.encode_buffer_.data(), unsigned(size)) != 0) {
+    if (!target || m.encode(p_.encode_buffer_.data(), 0, size) != size ||
+        target->publish(channel, p_.encode_buffer_.data(), unsigned(size)) != 0) {
       // Say so once (e.g. a tcpq:// server that is down); --stats-json counts the rest.
       if (p_.publish_errors_.fetch_add(1, std::memory_order_relaxed) == 0)
         std::fprintf(stderr,
@@ -102,6 +110,28 @@ Publisher::Publisher(rt::SpscRing<TickRecord>& ring, const Servo& servo, FlightR
   if (options_.device_name.size() >= thx_msgs::kMaxTextLength) options_.device_name.resize(thx_msgs::kMaxTextLength - 1);
   encode_buffer_.resize(thx_msgs::kLcmShortMessageMaxSize);  // the largest batch we send
   if (lcm_) inbox_.attach(*lcm_);
+  if (lcm_ && options_.control_lcm) inbox_.attach(*options_.control_lcm);
+  if (lcm_ && options_.data_bus && options_.data_port_first > 0) {
+    ports_ = std::make_unique<DataPorts>(*options_.data_bus, options_.data_port_first, options_.data_port_last);
+    table_.useDataPorts(ports_.get());
+  }
+}
+
+lcm::LCM* Publisher::dataLcm(int port) {
+  if (port == 0) return lcm_;
+  auto it = data_lcms_.find(port);
+  if (it != data_lcms_.end()) return it->second.get();
+  // Never subscribed nor handled, so LCM opens no receive socket for it: hapticd does not wake
+  // for its own data (docs/clients.md §6). Opened once, kept for the port's next client.
+  auto l = std::make_unique<lcm::LCM>(ports_->url(port));
+  if (!l->good()) {
+    std::fprintf(stderr, "hapticd: warning: cannot open the data port %s: its client gets no stream\n",
+                 ports_->url(port).c_str());
+    l.reset();
+  } else {
+    data_ports_open_.fetch_add(1, std::memory_order_relaxed);
+  }
+  return data_lcms_.emplace(port, std::move(l)).first->second.get();
 }
 
 Publisher::~Publisher() {
@@ -137,6 +167,7 @@ PublisherCounters Publisher::counters() const {
   c.commands = commands_answered_.load();
   c.clients = clients_.load();
   c.subscriptions = subscriptions_.load();
+  c.data_ports_open = data_ports_open_.load();
   return c;
 }
 
@@ -187,9 +218,10 @@ void Publisher::applyControl(std::int64_t now_ns) {
       std::fprintf(stderr, "hapticd: refused %s of client %s: %s\n", sub ? "a subscription" : "a request",
                    reply.client_id.c_str(), reply.reason.c_str());
     } else if (sub) {
-      std::fprintf(stderr, "hapticd: client %s: %s at %g Hz on %s%s%s\n", reply.client_id.c_str(),
+      std::fprintf(stderr, "hapticd: client %s: %s at %g Hz on %s%s%s%s%s\n", reply.client_id.c_str(),
                    kindName(reply.stream, reply.batch), reply.rate_hz, reply.channel.c_str(),
-                   reply.reason.empty() ? "" : "; ", reply.reason.c_str());
+                   reply.data_url.empty() ? "" : " at ", reply.data_url.c_str(), reply.reason.empty() ? "" : "; ",
+                   reply.reason.c_str());
     } else {
       std::fprintf(stderr, "hapticd: client %s: %s unsubscribed\n", reply.client_id.c_str(), reply.stream.c_str());
     }
@@ -340,6 +372,7 @@ void Publisher::publishHello(std::int64_t now_ns) {
   h.device = options_.device_name;
   h.scene_name = scene_name_;
   h.texture_fingerprint = static_cast<std::int64_t>(texture_fingerprint_);  // the same 64 bits
+  h.control_url = options_.control_url;
   LcmSink sink(*this);
   sink.put(thx_msgs::kChannelHello, h);
   hellos_.fetch_add(1, std::memory_order_relaxed);

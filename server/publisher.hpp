@@ -11,6 +11,9 @@
 // There is no broadcast: every data message goes to a subscriber's channel.
 #include <atomic>
 #include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -22,6 +25,7 @@
 #include "server/subscription_inbox.hpp"
 #include "server/subscriptions.hpp"
 #include "server/tick_record.hpp"
+#include "server/udpm_url.hpp"
 
 namespace lcm {
 class LCM;
@@ -50,6 +54,17 @@ struct PublisherOptions {
   // Loads scenes for client switches (server/scene_switcher.hpp), used only by the publisher
   // thread; null: switches are refused. Not owned.
   SceneLoads* scene_loads = nullptr;
+  // Each client's streams on a udpm port of its own (issue 17, docs/clients.md §6): ports
+  // data_port_first..data_port_last on data_bus's group and query (hapticd --data-ports), named in
+  // subscribe_reply_t.data_url and published through send-only LCMs, one per port, opened on first
+  // use and kept. Unset: every stream on the bus LCM, data_url "".
+  std::optional<UdpmUrl> data_bus;
+  int data_port_first = 0, data_port_last = 0;
+  // hello_t.control_url: where clients send requests, heartbeats, commands and forces
+  // (hapticd --control-port); "" = the bus. The publisher's inbox also listens on control_lcm,
+  // hapticd's LCM on that URL (handled by the receiver thread). Not owned; may be null.
+  std::string control_url;
+  lcm::LCM* control_lcm = nullptr;
 };
 
 struct PublisherCounters {
@@ -66,6 +81,7 @@ struct PublisherCounters {
   std::uint64_t commands = 0;             // server_command_t answered (accepted or refused)
   int clients = 0;                        // now
   int subscriptions = 0;                  // now
+  int data_ports_open = 0;                // send-only LCMs opened for data ports so far
 };
 
 class Publisher {
@@ -95,6 +111,7 @@ class Publisher {
   void publishStats(std::int64_t now_ns);
   void publishHello(std::int64_t now_ns);
   void dumpFlight();
+  lcm::LCM* dataLcm(int port);  // port 0: lcm_; else the port's send-only LCM (null if it cannot open)
 
   rt::SpscRing<TickRecord>& ring_;
   const Servo& servo_;
@@ -106,6 +123,9 @@ class Publisher {
   std::string server_name_;
   std::string scene_name_;               // hello_t: the scene the servo renders now
   std::uint64_t texture_fingerprint_ = 0;
+  std::unique_ptr<DataPorts> ports_;                  // null: streams on the bus
+  std::map<int, std::unique_ptr<lcm::LCM>> data_lcms_;  // by port; publish only, never subscribed
+  std::atomic<int> data_ports_open_{0};
   SubscriptionTable table_;
   SubscriptionInbox inbox_;
   ServerCommands commands_;

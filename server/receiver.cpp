@@ -20,8 +20,13 @@ constexpr std::int64_t kDefaultTimeoutNs = 50'000'000;  // 50 ms: a few physics 
 }  // namespace
 
 Receiver::Receiver(lcm::LCM& lcm, rt::LatestSlot<ClientForce>& slot, double max_force_n)
-    : lcm_(lcm), slot_(slot), table_(max_force_n, kDefaultTimeoutNs) {
+    : lcm_(lcm), lcms_{&lcm}, slot_(slot), table_(max_force_n, kDefaultTimeoutNs) {
   lcm_.subscribe(thx_msgs::kChannelClientForce, &Receiver::onClientForce, this);
+}
+
+void Receiver::listenAlsoOn(lcm::LCM& control) {
+  control.subscribe(thx_msgs::kChannelClientForce, &Receiver::onClientForce, this);
+  lcms_.push_back(&control);
 }
 
 Receiver::~Receiver() { stop(); }
@@ -92,26 +97,33 @@ void Receiver::publishSum(std::int64_t now_ns) {
   was_live_ = live > 0;
 }
 
+// Asks for each descriptor every time: with tcpq:// it changes on every reconnect and is -1 while
+// the server is unreachable, and handleTimeout() would FD_SET(-1) (a glibc abort).
+void Receiver::drain() {
+  for (lcm::LCM* l : lcms_) {
+    while (l->getFileno() >= 0 && l->getFileno() < FD_SETSIZE && l->handleTimeout(0) > 0) {
+    }
+  }
+}
+
 void Receiver::run() {
+  std::vector<pollfd> fds;
   while (!stop_.load()) {
-    // Asked every time: with tcpq:// the descriptor changes on every reconnect and is -1 while the
-    // server is unreachable, and handleTimeout() would FD_SET(-1) (a glibc abort).
-    const int fd = lcm_.getFileno();
-    if (fd < 0 || fd >= FD_SETSIZE) {
+    fds.clear();
+    for (lcm::LCM* l : lcms_) {
+      const int fd = l->getFileno();
+      if (fd >= 0 && fd < FD_SETSIZE) fds.push_back(pollfd{fd, POLLIN, 0});
+    }
+    if (fds.empty()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    } else {
-      pollfd p{fd, POLLIN, 0};
-      if (poll(&p, 1, 10) > 0 && (p.revents & POLLIN)) {
-        while (lcm_.getFileno() >= 0 && lcm_.handleTimeout(0) > 0) {
-        }
-      }
+    } else if (poll(fds.data(), nfds_t(fds.size()), 10) > 0) {
+      drain();
     }
     publishSum(monotonicNs());
   }
   // What arrived before the stop is still taken (and counted): a client's last message, such as
   // the release a physics client sends on its way out, is not lost to the moment of shutdown.
-  while (lcm_.getFileno() >= 0 && lcm_.getFileno() < FD_SETSIZE && lcm_.handleTimeout(0) > 0) {
-  }
+  drain();
 }
 
 }  // namespace thx::srv

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 #include "server/client_force_table.hpp"
 #include "rt/latest_slot.hpp"
@@ -28,6 +29,9 @@ class Receiver {
  public:
   Receiver(lcm::LCM& lcm, rt::LatestSlot<ClientForce>& slot, double max_force_n);
   ~Receiver();
+  // Also takes client forces from, and handles, `control` (hapticd's control URL, which only it
+  // listens on: docs/clients.md §6). Before start().
+  void listenAlsoOn(lcm::LCM& control);
   void start();
   void stop();
   ClientForceCounters counters() const;
@@ -39,8 +43,10 @@ class Receiver {
  private:
   void run();
   void publishSum(std::int64_t now_ns);
+  void drain();  // handles whatever is queued on every LCM, without waiting
 
   lcm::LCM& lcm_;
+  std::vector<lcm::LCM*> lcms_;  // lcm_ first, then listenAlsoOn()'s
   rt::LatestSlot<ClientForce>& slot_;
   ClientForceTable table_;
   mutable std::mutex table_mutex_;  // counters() from other threads; never the servo

@@ -14,25 +14,29 @@ std::int64_t monotonicNs() { return rt::monotonicNowNs(); }
 SubscriptionInbox::~SubscriptionInbox() { detach(); }
 
 void SubscriptionInbox::attach(lcm::LCM& lcm) {
-  detach();
-  lcm_ = &lcm;
+  for (const Attached& a : attached_) {
+    if (a.lcm == &lcm) return;
+  }
+  Attached a;
+  a.lcm = &lcm;
   // Untyped: the bytes come from any process on the bus (docs/messages.md §7.3).
-  request_sub_ = lcm.subscribe(thx_msgs::kChannelSubscribe, &SubscriptionInbox::onRequest, this);
-  heartbeat_sub_ = lcm.subscribe(thx_msgs::kChannelHeartbeat, &SubscriptionInbox::onHeartbeat, this);
-  command_sub_ = lcm.subscribe(thx_msgs::kChannelCommand, &SubscriptionInbox::onCommand, this);
+  a.subs[0] = lcm.subscribe(thx_msgs::kChannelSubscribe, &SubscriptionInbox::onRequest, this);
+  a.subs[1] = lcm.subscribe(thx_msgs::kChannelHeartbeat, &SubscriptionInbox::onHeartbeat, this);
+  a.subs[2] = lcm.subscribe(thx_msgs::kChannelCommand, &SubscriptionInbox::onCommand, this);
   // A burst of clients (all re-subscribing after a restart) must not be cut at LCM's default 30.
-  for (lcm::Subscription* sub : {request_sub_, heartbeat_sub_, command_sub_}) {
+  for (lcm::Subscription* sub : a.subs) {
     if (sub) sub->setQueueCapacity(512);
   }
+  attached_.push_back(a);
 }
 
 void SubscriptionInbox::detach() {
-  if (!lcm_) return;
-  for (lcm::Subscription* sub : {request_sub_, heartbeat_sub_, command_sub_}) {
-    if (sub) lcm_->unsubscribe(sub);
+  for (Attached& a : attached_) {
+    for (lcm::Subscription* sub : a.subs) {
+      if (sub) a.lcm->unsubscribe(sub);
+    }
   }
-  request_sub_ = heartbeat_sub_ = command_sub_ = nullptr;
-  lcm_ = nullptr;
+  attached_.clear();
 }
 
 void SubscriptionInbox::take(ControlMessages& out) {

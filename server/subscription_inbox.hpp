@@ -56,7 +56,10 @@ class SubscriptionInbox {
   SubscriptionInbox(const SubscriptionInbox&) = delete;
   SubscriptionInbox& operator=(const SubscriptionInbox&) = delete;
 
-  // Subscribes to THX_SUBSCRIBE, THX_HEARTBEAT and THX_COMMAND on `lcm`; detach() (or the destructor) undoes it.
+  // Subscribes to THX_SUBSCRIBE, THX_HEARTBEAT and THX_COMMAND on `lcm`; detach() (or the
+  // destructor) undoes it. Called again with another LCM, it listens on both: hapticd's control
+  // URL (what clients send to once they have a hello) and the bus (a first request before any
+  // hello, and senders that only know the bus).
   void attach(lcm::LCM& lcm);
   void detach();
 
@@ -80,10 +83,11 @@ class SubscriptionInbox {
   template <class Queue, class T>
   void enqueue(Queue& queue, const T& m, std::int64_t received_ns);
 
-  lcm::LCM* lcm_ = nullptr;
-  lcm::Subscription* request_sub_ = nullptr;
-  lcm::Subscription* heartbeat_sub_ = nullptr;
-  lcm::Subscription* command_sub_ = nullptr;
+  struct Attached {
+    lcm::LCM* lcm = nullptr;
+    lcm::Subscription* subs[3] = {nullptr, nullptr, nullptr};  // request, heartbeat, command
+  };
+  std::vector<Attached> attached_;
   std::mutex mutex_;
   ControlMessages queued_;
   std::atomic<std::uint64_t> undecodable_{0}, overflowed_{0};

@@ -82,7 +82,7 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
     if (client_it != clients_.end()) {
       client_it->second.subs.erase(req.stream);
       client_it->second.last_seen_ns = now_ns;
-      if (client_it->second.subs.empty()) clients_.erase(client_it);
+      if (client_it->second.subs.empty()) forget(client_it);
       recount();
     }
     reply.accepted = true;  // unsubscribing what is not there is already done
@@ -148,8 +148,15 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
                              " kB/s are in use (hapticd --max-bandwidth)");
   }
 
+  int data_port = new_client ? 0 : client_it->second.data_port;
+  if (new_client && ports_) {
+    const std::optional<int> port = ports_->acquire(req.client_id);
+    if (!port) return refuse(reply, ports_->exhaustedReason());
+    data_port = *port;
+  }
   Client& client = clients_[req.client_id];
   client.last_seen_ns = now_ns;
+  client.data_port = data_port;
   // A resend of the same subscription (a lost reply) keeps its schedule and batch sequence.
   const bool same = old && old->kind == kind && old->rate_hz == rate && old->channel == channel;
   if (!same) {
@@ -159,6 +166,7 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
     s.rate_hz = rate;
     s.period = kind == StreamKind::ServoStats ? 1.0 / (rate * limits_.stats_window_s) : limits_.servo_rate_hz / rate;
     s.bytes_per_s = need;
+    s.data_port = data_port;
     if (kind == StreamKind::ContactBatch) {
       s.max_samples = max_samples;
       s.batch.server_instance = limits_.server_instance;
@@ -173,7 +181,13 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
   reply.rate_hz = rate;
   reply.batch = batch;
   reply.channel = channel;
+  if (ports_) reply.data_url = ports_->url(data_port);
   return reply;
+}
+
+void SubscriptionTable::forget(std::map<std::string, Client>::iterator it) {
+  if (ports_) ports_->release(it->first);
+  clients_.erase(it);
 }
 
 bool SubscriptionTable::heartbeat(const thx_msgs::heartbeat_t& hb, std::int64_t now_ns) {
@@ -192,7 +206,9 @@ std::vector<std::string> SubscriptionTable::expire(std::int64_t now_ns) {
   for (auto it = clients_.begin(); it != clients_.end();) {
     if (now_ns - it->second.last_seen_ns > limits_.heartbeat_timeout_ns) {
       gone.push_back(it->first);
-      it = clients_.erase(it);
+      const auto next = std::next(it);
+      forget(it);
+      it = next;
       ++counters_.expired_clients;
     } else {
       ++it;
@@ -220,7 +236,7 @@ void SubscriptionTable::sendBatch(Subscription& s, std::int64_t now_us, MessageS
   ++b.seq;
   b.next_tick = s.next_tick;
   b.num_samples = std::int32_t(b.samples.size());
-  sink.send(s.channel, b);
+  sink.sendTo(s.data_port, s.channel, b);
   b.samples.clear();  // keeps its capacity
   b.num_dropped = 0;
 }
@@ -232,7 +248,7 @@ void SubscriptionTable::sendDeviceState(Subscription& s, const thx_msgs::device_
   thx_msgs::device_state_t out = state;  // fixed size: a copy, no allocation
   out.flags_seen = s.flags_seen;
   out.fault_mask = s.fault_mask;
-  sink.send(s.channel, out);
+  sink.sendTo(s.data_port, s.channel, out);
   s.flags_seen = 0;
   s.fault_mask = 0;
 }
@@ -247,7 +263,7 @@ void SubscriptionTable::onTick(const thx_msgs::device_state_t& state, const thx_
           sendDeviceState(s, state, sink);
           break;
         case StreamKind::Contact:
-          if (due(s, double(tick))) sink.send(s.channel, contact);
+          if (due(s, double(tick))) sink.sendTo(s.data_port, s.channel, contact);
           break;
         case StreamKind::ContactBatch: {
           if (s.next_tick >= 0 && tick < s.next_tick) break;  // not newer: never sent twice
@@ -272,7 +288,7 @@ void SubscriptionTable::onStats(thx_msgs::servo_stats_t stats, MessageSink& sink
   const double window = double(stats_windows_++);
   for (auto& [id, client] : clients_) {
     for (auto& [stream, s] : client.subs) {
-      if (s.kind == StreamKind::ServoStats && due(s, window)) sink.send(s.channel, stats);
+      if (s.kind == StreamKind::ServoStats && due(s, window)) sink.sendTo(s.data_port, s.channel, stats);
     }
   }
 }

@@ -24,6 +24,8 @@
 #include <thx_msgs/subscribe_reply_t.hpp>
 #include <thx_msgs/subscribe_request_t.hpp>
 
+#include "server/data_ports.hpp"
+
 namespace thx::srv {
 
 struct SubscriptionLimits {
@@ -46,6 +48,24 @@ class MessageSink {
   virtual void send(const std::string& channel, const thx_msgs::contact_t& m) = 0;
   virtual void send(const std::string& channel, const thx_msgs::contact_batch_t& m) = 0;
   virtual void send(const std::string& channel, const thx_msgs::servo_stats_t& m) = 0;
+  // The table sends through these: `data_port` is the client's own udpm port (DataPorts), 0 for
+  // the bus. A sink that has no ports (tests) keeps the default, which ignores it.
+  virtual void sendTo(int data_port, const std::string& channel, const thx_msgs::device_state_t& m) {
+    (void)data_port;
+    send(channel, m);
+  }
+  virtual void sendTo(int data_port, const std::string& channel, const thx_msgs::contact_t& m) {
+    (void)data_port;
+    send(channel, m);
+  }
+  virtual void sendTo(int data_port, const std::string& channel, const thx_msgs::contact_batch_t& m) {
+    (void)data_port;
+    send(channel, m);
+  }
+  virtual void sendTo(int data_port, const std::string& channel, const thx_msgs::servo_stats_t& m) {
+    (void)data_port;
+    send(channel, m);
+  }
 };
 
 struct SubscriptionCounters {
@@ -64,6 +84,11 @@ double streamBandwidth(StreamKind kind, double rate_hz, double servo_rate_hz, st
 class SubscriptionTable {
  public:
   explicit SubscriptionTable(const SubscriptionLimits& limits);
+  // From now on each client gets a data port of its own from `ports` with its first grant (a
+  // new client is refused when none is free), named in the reply's data_url, and gives it back
+  // when it leaves or expires. Without (the default, or null): every stream on the bus, data_url "".
+  // Not owned; call before the first request.
+  void useDataPorts(DataPorts* ports) { ports_ = ports; }
 
   // Applies a request and returns the reply to publish (utime left 0 for the caller).
   // Refusals change nothing. A request also counts as a sign of life of its client.
@@ -106,11 +131,14 @@ class SubscriptionTable {
     thx_msgs::contact_batch_t batch{};  // value-initialised: lcm-gen structs have no member initialisers
     std::size_t max_samples = 0;
     std::int64_t next_tick = -1;  // tick expected next; -1 before the first
+    int data_port = 0;            // the client's (DataPorts); 0: the bus
   };
   struct Client {
     std::int64_t last_seen_ns = 0;
+    int data_port = 0;                         // DataPorts; 0: the bus
     std::map<std::string, Subscription> subs;  // by stream name
   };
+  void forget(std::map<std::string, Client>::iterator it);  // erases, and frees its data port
 
   thx_msgs::subscribe_reply_t refuse(thx_msgs::subscribe_reply_t reply, std::string reason);
   bool due(Subscription& s, double index);
@@ -119,6 +147,7 @@ class SubscriptionTable {
   void recount();
 
   SubscriptionLimits limits_;
+  DataPorts* ports_ = nullptr;
   std::map<std::string, Client> clients_;
   int tick_subscriptions_ = 0;
   std::int64_t stats_windows_ = 0;

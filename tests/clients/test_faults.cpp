@@ -98,9 +98,15 @@ TEST_F(HapticdFaults, ClientThatStopsReadingBlocksNothing) {
   EXPECT_EQ(finishProbe(b, 60), 0) << slurp(path("fast.err"));
   // The stalled socket holds megabytes (or overflowed, and the kernel dropped): it stopped reading
   // while the server went on sending.
-  const UdpQueues q = udpQueues(urlPort(url_));
+  // Its streams come on a data port of its own (docs/clients.md §6), named in hapticd's log line.
+  const std::string grant = "client stalled: DEVICE_STATE at 1000 Hz on THX_DEVICE_STATE.stalled at ";
+  const std::string log = serverLog();
+  const std::size_t at = log.find(grant);
+  ASSERT_NE(at, std::string::npos) << log;
+  const std::string data_url = log.substr(at + grant.size(), log.find('\n', at) - at - grant.size());
+  const UdpQueues q = udpQueues(urlPort(data_url));
   EXPECT_TRUE(q.max_rx_queue > 1'000'000 || q.drops > 0)
-      << "port " << urlPort(url_) << ": rx_queue " << q.max_rx_queue << " B, drops " << q.drops;
+      << data_url << ": rx_queue " << q.max_rx_queue << " B, drops " << q.drops;
   // Still subscribed (never forgotten) the whole time.
   EXPECT_EQ(serverLog().find("client stalled forgotten"), std::string::npos) << serverLog();
   kill(stalled, SIGKILL);

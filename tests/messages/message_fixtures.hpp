@@ -224,6 +224,7 @@ inline thx_msgs::subscribe_reply_t make_subscribe_reply(int k) {
   m.batch = 1;
   m.channel = thx_msgs::stream_channel(thx_msgs::kStreamContact, true, m.client_id);
   m.heartbeat_timeout_us = 500000 + k;
+  m.data_url = "udpm://239.255.76.67:" + std::to_string(7669 + k) + "?ttl=1";
   return m;
 }
 inline void expect_eq(const thx_msgs::subscribe_reply_t& a, const thx_msgs::subscribe_reply_t& b) {
@@ -239,6 +240,7 @@ inline void expect_eq(const thx_msgs::subscribe_reply_t& a, const thx_msgs::subs
   EXPECT_EQ(a.batch, b.batch);
   EXPECT_EQ(a.channel, b.channel);
   EXPECT_EQ(a.heartbeat_timeout_us, b.heartbeat_timeout_us);
+  EXPECT_EQ(a.data_url, b.data_url);
 }
 
 inline thx_msgs::heartbeat_t make_heartbeat(int k) {
@@ -269,6 +271,7 @@ inline thx_msgs::hello_t make_hello(int k) {
   m.device = "Phantom0@localhost";
   m.scene_name = "marble_bricks" + std::to_string(k);
   m.texture_fingerprint = static_cast<std::int64_t>(0xcbf29ce484222325ULL) + ival(k, 8);  // negative too
+  m.control_url = "udpm://239.255.76.67:" + std::to_string(7668 + k) + "?ttl=0";
   return m;
 }
 inline void expect_eq(const thx_msgs::hello_t& a, const thx_msgs::hello_t& b) {
@@ -283,6 +286,7 @@ inline void expect_eq(const thx_msgs::hello_t& a, const thx_msgs::hello_t& b) {
   EXPECT_EQ(a.device, b.device);
   EXPECT_EQ(a.scene_name, b.scene_name);
   EXPECT_EQ(a.texture_fingerprint, b.texture_fingerprint);
+  EXPECT_EQ(a.control_url, b.control_url);
 }
 
 inline thx_msgs::client_force_t make_client_force(int k) {

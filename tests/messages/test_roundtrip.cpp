@@ -161,11 +161,11 @@ TEST(MessagesEncodedSize, StringTypes) {
   const auto req = make_subscribe_request(0);
   EXPECT_EQ(req.getEncodedSize(), 37 + strings({&req.client_id, &req.stream}));
   const auto rep = make_subscribe_reply(0);
-  EXPECT_EQ(rep.getEncodedSize(), 54 + strings({&rep.client_id, &rep.stream, &rep.reason, &rep.channel}));
+  EXPECT_EQ(rep.getEncodedSize(), 54 + strings({&rep.client_id, &rep.stream, &rep.reason, &rep.channel, &rep.data_url}));
   const auto hb = make_heartbeat(0);
   EXPECT_EQ(hb.getEncodedSize(), 32 + strings({&hb.client_id}));
   const auto hello = make_hello(0);
-  EXPECT_EQ(hello.getEncodedSize(), 68 + strings({&hello.server_name, &hello.device, &hello.scene_name}));
+  EXPECT_EQ(hello.getEncodedSize(), 68 + strings({&hello.server_name, &hello.device, &hello.scene_name, &hello.control_url}));
   const auto cf = make_client_force(0);
   EXPECT_EQ(cf.getEncodedSize(), 112 + strings({&cf.client_id, &cf.source}));
   const auto cmd = make_server_command(0);

@@ -51,8 +51,10 @@ class HapticdProcessTest : public ::testing::Test {
     // test, 100 kB datagrams in the fault test); the kernel's default UDP buffer (rmem_default,
     // ~208 kB, ~40 ms of the load) overflows whenever a client is descheduled that long on two
     // busy cores. LCM asks for more only when the URL says so (capped by net.core.rmem_max).
-    url_ = "udpm://239.255.76.67:" + std::to_string(30000 + (::getpid() % 2000) * 8 + n % 8) +
-           "?ttl=0&recv_buf_size=4194304";
+    // hapticd takes the ports after the bus for its control port (+1) and its clients' data ports
+    // (+2 .. +1 + --max-clients, docs/clients.md §6): each test gets a block of 40 ports.
+    const int block = ((::getpid() % 562) * 2 + n % 2);  // 0..1123
+    url_ = "udpm://239.255.76.67:" + std::to_string(20000 + block * 40) + "?ttl=0&recv_buf_size=4194304";
   }
   void TearDown() override {
     for (pid_t p : children_) {

@@ -1,5 +1,7 @@
 #include "thx_client/client.hpp"
 
+#include <poll.h>
+
 #include <algorithm>
 #include <cmath>
 #include <ctime>
@@ -89,6 +91,16 @@ void Client::requestAgain(Entry& e) {
 
 int Client::poll(int timeout_ms) {
   int handled = 0;
+  if (data_.lcm()) {  // two LCMs (issue 17): wait on both, then handle what either has
+    pollfd fds[2] = {{lcm_.getFileno(), POLLIN, 0}, {data_.lcm()->getFileno(), POLLIN, 0}};
+    if (::poll(fds, 2, std::max(0, timeout_ms)) < 0) return -1;  // EINTR: a stop signal
+    int r = lcm_.handleTimeout(0);
+    while (r > 0) ++handled, r = lcm_.handleTimeout(0);
+    const int d = r < 0 ? 0 : data_.drain();
+    service();
+    if (r < 0 || d < 0) return r < 0 ? r : d;
+    return handled + d;
+  }
   int r = lcm_.handleTimeout(std::max(0, timeout_ms));
   while (r > 0) {
     ++handled;
@@ -141,7 +153,7 @@ void Client::sendRequest(Entry& e, std::int32_t action) {
   r.action = action;
   r.rate_hz = e.status.requested_hz;
   r.batch = e.status.batch;
-  lcm_.publish(thx_msgs::kChannelSubscribe, &r);
+  control_.publish(thx_msgs::kChannelSubscribe, r);
   ++counters_.requests_sent;
 }
 
@@ -151,7 +163,7 @@ void Client::sendHeartbeat() {
   h.seq = ++heartbeat_seq_;
   h.server_instance = server_instance_;
   h.client_id = options_.client_id;
-  lcm_.publish(thx_msgs::kChannelHeartbeat, &h);
+  control_.publish(thx_msgs::kChannelHeartbeat, h);
   ++counters_.heartbeats_sent;
 }
 
@@ -168,6 +180,7 @@ void Client::onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, h) < 0)
     return undecodable(thx_msgs::kChannelHello, thx_msgs::hello_t::getTypeName(), rbuf->data_size);
   ++counters_.hellos;
+  if (std::string problem = control_.use(h.control_url); !problem.empty()) linkProblem(std::move(problem));
   const bool first = server_instance_ == 0;
   serverChanged(h.server_instance);
   if (first) {
@@ -194,7 +207,7 @@ void Client::onReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     e.status.state = SubscriptionState::Active;
     e.status.granted_hz = r.rate_hz;
     e.status.reason = r.reason;
-    listen(e, r.channel);
+    listen(e, r.channel, r.data_url);
     if (options_.heartbeat_ns <= 0 && r.heartbeat_timeout_us > 0) {
       heartbeat_period_ns_ = std::max<std::int64_t>(10'000'000, r.heartbeat_timeout_us * 1000 / 4);
       next_heartbeat_ns_ = std::min(next_heartbeat_ns_, clock_() + heartbeat_period_ns_);
@@ -208,18 +221,40 @@ void Client::onReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   if (on_status_) on_status_(e.status);
 }
 
-void Client::listen(Entry& e, const std::string& channel) {
-  if (e.data_sub && e.status.channel == channel) return;
+void Client::listen(Entry& e, const std::string& channel, const std::string& data_url) {
+  lcm::LCM* target = dataLcmFor(e, data_url);
+  if (e.data_sub && e.status.channel == channel && e.data_lcm == target) return;
   stopListening(e);
   // Channel names are used as LCM regexes; the server's are plain [A-Za-z0-9_.-].
   e.status.channel = channel;
-  e.data_sub = lcm_.subscribe(channel, &Client::onDataBytes, this);
+  e.status.data_url = data_url;
+  e.data_lcm = target;
+  e.data_sub = target->subscribe(channel, &Client::onDataBytes, this);
   if (e.data_sub) e.data_sub->setQueueCapacity(int(options_.data_queue_capacity));
 }
 
+// The LCM a reply's data_url names: the bus for "", else DataLink's. A new URL (the server
+// restarted, or gave us another port) closes the old one; the streams that were on it are asked
+// for again, and their replies name the new one.
+lcm::LCM* Client::dataLcmFor(Entry& e, const std::string& data_url) {
+  if (data_url.empty()) return &lcm_;
+  if (data_url == data_.url() && data_.lcm()) return data_.lcm();
+  for (auto& [stream, other] : entries_) {
+    if (!other.data_lcm || other.data_lcm == &lcm_) continue;
+    stopListening(other);
+    if (&other != &e && other.status.state == SubscriptionState::Active) requestAgain(other);
+  }
+  if (std::string problem = data_.open(data_url); !problem.empty()) {
+    linkProblem(std::move(problem));
+    return &lcm_;  // nothing will arrive: the silence check asks again later
+  }
+  return data_.lcm();
+}
+
 void Client::stopListening(Entry& e) {
-  if (e.data_sub) lcm_.unsubscribe(e.data_sub);
+  if (e.data_sub && e.data_lcm) e.data_lcm->unsubscribe(e.data_sub);
   e.data_sub = nullptr;
+  e.data_lcm = nullptr;
   e.status.channel.clear();
 }
 
@@ -261,6 +296,11 @@ void Client::onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& chan
     thx_msgs::servo_stats_t m;
     if (decode(m)) deliver(stats_, m);
   }
+}
+
+void Client::linkProblem(std::string problem) {
+  ++counters_.link_errors;
+  last_link_error_ = std::move(problem);
 }
 
 void Client::undecodable(const std::string& channel, const char* type, std::size_t bytes) {

@@ -34,6 +34,8 @@
 #include <thx_msgs/servo_stats_t.hpp>
 
 #include "rt/clock.hpp"
+#include "thx_client/control_link.hpp"
+#include "thx_client/data_link.hpp"
 #include "thx_client/decode_error.hpp"
 #include "thx_client/latest_value.hpp"
 
@@ -59,6 +61,7 @@ struct StreamStatus {
   SubscriptionState state = SubscriptionState::Pending;
   double granted_hz = 0.0;   // from the reply
   std::string channel;       // from the reply
+  std::string data_url;      // from the reply: the LCM URL the channel is on ("" = the bus)
   std::string reason;        // refusal, or what the server adjusted
   std::uint64_t messages = 0;
 };
@@ -80,6 +83,7 @@ struct ClientCounters {
   std::uint64_t hellos = 0;
   std::uint64_t undecodable = 0;  // bytes on our channels that try_decode refused
   std::uint64_t reconnects = 0;   // server restarts or silences that made us re-subscribe
+  std::uint64_t link_errors = 0;  // a control or data URL the server named that could not be opened
 };
 
 class Client {
@@ -129,6 +133,18 @@ class Client {
   std::int64_t serverInstance() const { return server_instance_; }
   const ClientCounters& counters() const { return counters_; }
   const std::string& clientId() const { return options_.client_id; }
+  // Sends a message meant for the server alone (THX_COMMAND, THX_CLIENT_FORCE) where it sends its
+  // requests and heartbeats: the hello's control URL, which no other client listens on, else the
+  // bus. LCM's result (0 = sent).
+  template <class M>
+  int sendToServer(const std::string& channel, const M& m) {
+    return control_.publish(channel, m);
+  }
+  // The URL requests and heartbeats go to now ("" = the bus), and this client's data URL.
+  const std::string& controlUrl() const { return control_.url(); }
+  const std::string& dataUrl() const { return data_.url(); }
+  // Why the last control or data URL could not be opened ("" if none failed).
+  const std::string& lastLinkError() const { return last_link_error_; }
 
   // Public for LCM's callbacks; not part of the interface.
   void onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
@@ -143,17 +159,22 @@ class Client {
     int attempts = 0;
     std::int64_t last_data_ns = 0;  // last message on the data channel (or the grant)
     lcm::Subscription* data_sub = nullptr;
+    lcm::LCM* data_lcm = nullptr;  // the LCM data_sub belongs to: lcm_ or data_'s
   };
 
   void sendRequest(Entry& e, std::int32_t action);
   void sendHeartbeat();
   void serverChanged(std::int64_t instance);  // a restart: every stream is asked for again
   void requestAgain(Entry& e);
-  void listen(Entry& e, const std::string& channel);
+  void listen(Entry& e, const std::string& channel, const std::string& data_url);
+  lcm::LCM* dataLcmFor(Entry& e, const std::string& data_url);
   void stopListening(Entry& e);
   void undecodable(const std::string& channel, const char* type, std::size_t bytes);
+  void linkProblem(std::string problem);
 
   lcm::LCM& lcm_;
+  ControlLink control_{lcm_};  // requests and heartbeats (issue 17)
+  DataLink data_;              // this client's own data port, when the server names one
   ClientOptions options_;
   Clock clock_;
   std::map<std::string, Entry, std::less<>> entries_;  // by stream
@@ -164,6 +185,7 @@ class Client {
   std::int64_t next_heartbeat_ns_ = 0;
   std::int64_t heartbeat_period_ns_ = 500'000'000;
   ClientCounters counters_;
+  std::string last_link_error_;
 
   LatestValue<thx_msgs::device_state_t> state_;
   LatestValue<thx_msgs::contact_t> contact_;

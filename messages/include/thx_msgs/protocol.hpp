@@ -150,8 +150,8 @@ template <>
 struct string_layout<subscribe_reply_t> {
   static constexpr bool has_strings = true;
   // utime server_instance request_seq | client_id | stream | action accepted | reason |
-  // rate_hz batch | channel | heartbeat_timeout_us
-  static constexpr int segments[] = {24, kString, kString, 5, kString, 9, kString, 8};
+  // rate_hz batch | channel | heartbeat_timeout_us | data_url
+  static constexpr int segments[] = {24, kString, kString, 5, kString, 9, kString, 8, kString};
 };
 template <>
 struct string_layout<heartbeat_t> {
@@ -163,8 +163,8 @@ template <>
 struct string_layout<hello_t> {
   static constexpr bool has_strings = true;
   // utime seq server_instance start_utime start_unix_us protocol_version servo_rate_hz |
-  // server_name | device | scene_name | texture_fingerprint
-  static constexpr int segments[] = {52, kString, kString, kString, 8};
+  // server_name | device | scene_name | texture_fingerprint | control_url
+  static constexpr int segments[] = {52, kString, kString, kString, 8, kString};
 };
 template <>
 struct string_layout<server_command_t> {

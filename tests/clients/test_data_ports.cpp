@@ -1,0 +1,250 @@
+// Each client's streams on a udpm port of its own, requests and heartbeats to a control port
+// only hapticd listens on (issue 17, docs/clients.md §6). Deterministic: the port bookkeeping and
+// the table with a fake clock; the kernel's delivery by port (a socket bound to one port gets none
+// of another port's datagrams, whatever the group); LCM 1.3.1 opening no receive socket for an
+// instance that only publishes; and hapticd as a process handing out, recycling and refusing
+// ports, checked by what it replies, never by how many messages arrive.
+#include <dirent.h>
+#include <poll.h>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <lcm/lcm-cpp.hpp>
+#include <thread>
+
+#include "base/error.hpp"
+#include "server/data_ports.hpp"
+#include "server/port_plan.hpp"
+#include "server/subscriptions.hpp"
+#include "tests/clients/recording_sink.hpp"
+#include "tests/support/hapticd_harness.hpp"
+
+namespace {
+
+using namespace thx::test;
+using thx::srv::DataPorts;
+using thx::srv::UdpmUrl;
+
+UdpmUrl bus() { return *thx::srv::parseUdpmUrl("udpm://239.255.76.67:7667?ttl=1"); }
+
+TEST(UdpmUrl, PartsAndOtherPorts) {
+  const auto u = thx::srv::parseUdpmUrl("udpm://239.255.76.67:7821?ttl=0&recv_buf_size=4194304");
+  ASSERT_TRUE(u);
+  EXPECT_EQ(u->group, "239.255.76.67");
+  EXPECT_EQ(u->port, 7821);
+  EXPECT_EQ(u->withPort(7900), "udpm://239.255.76.67:7900?ttl=0&recv_buf_size=4194304");
+  EXPECT_EQ(thx::srv::parseUdpmUrl("udpm://")->withPort(7668), "udpm://239.255.76.67:7668");  // LCM's defaults
+  EXPECT_FALSE(thx::srv::parseUdpmUrl("memq://"));
+  EXPECT_FALSE(thx::srv::parseUdpmUrl("tcpq://127.0.0.1:7700"));
+  EXPECT_FALSE(thx::srv::parseUdpmUrl("udpm://239.255.76.67:99999"));
+  EXPECT_FALSE(thx::srv::parseUdpmUrl("udpm://239.255.76.67:7a"));
+}
+
+TEST(DataPorts, DistinctPortsRecycledOldestFirstAndARefusalWhenAllAreHeld) {
+  DataPorts ports(bus(), 7669, 7671);
+  EXPECT_EQ(ports.acquire("a"), 7669);
+  EXPECT_EQ(ports.acquire("b"), 7670);
+  EXPECT_EQ(ports.acquire("a"), 7669);  // a client keeps its port
+  EXPECT_EQ(ports.acquire("c"), 7671);
+  EXPECT_EQ(ports.acquire("d"), std::nullopt);
+  EXPECT_EQ(ports.exhaustedReason(),
+            "no data port free: all 3 ports 7669-7671 are held by clients (hapticd --data-ports)");
+  ports.release("b");
+  ports.release("a");
+  EXPECT_EQ(ports.held(), 1);
+  EXPECT_EQ(ports.acquire("d"), 7670);  // released first, taken first
+  EXPECT_EQ(ports.acquire("e"), 7669);
+  EXPECT_EQ(ports.url(7669), "udpm://239.255.76.67:7669?ttl=1");  // the bus's group and ttl
+  ports.release("nobody");                                        // harmless
+  EXPECT_THROW(DataPorts(bus(), 7700, 7699), std::invalid_argument);
+  EXPECT_THROW(DataPorts(bus(), 0, 10), std::invalid_argument);
+}
+
+// The table hands ports out with the first grant, names them in data_url, and takes them back
+// when a client leaves or expires; a client beyond the ports is refused and leaves nothing behind.
+TEST(DataPorts, TableGrantsRecyclesAndRefuses) {
+  thx::srv::SubscriptionLimits limits;
+  limits.heartbeat_timeout_ns = 1'000'000'000;
+  thx::srv::SubscriptionTable table(limits);
+  DataPorts ports(bus(), 7669, 7670);
+  table.useDataPorts(&ports);
+  const auto a = table.handleRequest(request("a", "DEVICE_STATE", 60), 0);
+  const auto a2 = table.handleRequest(request("a", "CONTACT", 100, true, 2), 0);
+  const auto b = table.handleRequest(request("b", "DEVICE_STATE", 60), 0);
+  ASSERT_TRUE(a.accepted && a2.accepted && b.accepted);
+  EXPECT_EQ(a.data_url, "udpm://239.255.76.67:7669?ttl=1");
+  EXPECT_EQ(a2.data_url, a.data_url);  // one port per client, all its streams
+  EXPECT_EQ(b.data_url, "udpm://239.255.76.67:7670?ttl=1");
+
+  const auto c = table.handleRequest(request("c", "DEVICE_STATE", 60), 0);
+  EXPECT_FALSE(c.accepted);
+  EXPECT_EQ(c.reason, "no data port free: all 2 ports 7669-7670 are held by clients (hapticd --data-ports)");
+  EXPECT_EQ(c.data_url, "");
+  EXPECT_EQ(table.numClients(), 2);
+
+  // a leaves (its last stream unsubscribed): its port is c's now.
+  auto unsub = request("a", "DEVICE_STATE", 0, false, 3);
+  unsub.action = thx_msgs::subscribe_request_t::ACTION_UNSUBSCRIBE;
+  table.handleRequest(unsub, 0);
+  EXPECT_EQ(ports.portOf("a"), 7669);  // CONTACT still subscribed
+  unsub.stream = "CONTACT";
+  unsub.seq = 4;
+  table.handleRequest(unsub, 0);
+  EXPECT_EQ(ports.portOf("a"), std::nullopt);
+  EXPECT_EQ(table.handleRequest(request("c", "DEVICE_STATE", 60, false, 2), 0).data_url,
+            "udpm://239.255.76.67:7669?ttl=1");
+
+  // b expires: its port is free for d.
+  table.heartbeat([] {
+    thx_msgs::heartbeat_t h{};
+    h.client_id = "c";
+    return h;
+  }(), 1'500'000'000);
+  EXPECT_EQ(table.expire(1'500'000'000), std::vector<std::string>{"b"});
+  EXPECT_EQ(table.handleRequest(request("d", "DEVICE_STATE", 60), 1'500'000'000).data_url,
+            "udpm://239.255.76.67:7670?ttl=1");
+
+  // Every stream of a client is sent to its port.
+  struct PortSink : RecordingSink {
+    using RecordingSink::sendTo;
+    std::vector<int> ports_seen;
+    void sendTo(int port, const std::string& ch, const thx_msgs::device_state_t& m) override {
+      ports_seen.push_back(port);
+      send(ch, m);
+    }
+  } sink;
+  runTicks(table, sink, 0, 20);
+  ASSERT_FALSE(sink.ports_seen.empty());
+  for (std::size_t k = 0; k < sink.states.size(); ++k) {
+    EXPECT_EQ(sink.ports_seen[k], sink.states[k].channel == "THX_DEVICE_STATE.c" ? 7669 : 7670);
+  }
+}
+
+TEST(PortPlan, DefaultsOffAndErrorsThatNameTheValue) {
+  const auto p = thx::srv::planPorts("udpm://239.255.76.67:7667?ttl=1", 32, "", "");
+  EXPECT_EQ(p.control_port, 7668);
+  EXPECT_EQ(p.controlUrl(), "udpm://239.255.76.67:7668?ttl=1");
+  EXPECT_EQ(p.data_first, 7669);
+  EXPECT_EQ(p.data_last, 7700);
+  const auto off = thx::srv::planPorts("udpm://239.255.76.67:7667?ttl=1", 32, "off", "off");
+  EXPECT_EQ(off.control_port, 0);
+  EXPECT_EQ(off.data_first, 0);
+  const auto memq = thx::srv::planPorts("memq://", 32, "", "");
+  EXPECT_FALSE(memq.bus);
+  EXPECT_EQ(memq.controlUrl(), "");
+  auto error = [](const std::string& control, const std::string& data) {
+    try {
+      thx::srv::planPorts("udpm://239.255.76.67:7667?ttl=0", 32, control, data);
+    } catch (const thx::UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error("", "7660-7670"),
+            "--data-ports 7660-7670: holds the bus port 7667 of --lcm-url; expected a range apart from it");
+  EXPECT_EQ(error("", "7668-7670"),
+            "--data-ports 7668-7670: holds the control port 7668; expected a range apart from it (or another "
+            "--control-port)");
+  EXPECT_EQ(error("", "7800-7700"),
+            "--data-ports 7800-7700: expected FIRST-LAST (ports 1..65535, FIRST <= LAST), one port, or 'off'");
+  EXPECT_EQ(error("x", ""), "--control-port x: expected a port 1..65535 or 'off'");
+  EXPECT_EQ(error("7667", ""), "--control-port 7667: is the bus port of --lcm-url; expected another port");
+  EXPECT_THROW(thx::srv::planPorts("tcpq://127.0.0.1:7700", 32, "", "7800-7810"), thx::UsageError);
+}
+
+// Sockets this process holds (entries of /proc/self/fd that are sockets).
+int openSockets() {
+  int n = 0;
+  DIR* d = opendir("/proc/self/fd");
+  if (!d) return -1;
+  while (dirent* e = readdir(d)) {
+    struct stat st {};
+    if (fstatat(dirfd(d), e->d_name, &st, 0) == 0 && S_ISSOCK(st.st_mode)) ++n;
+  }
+  closedir(d);
+  return n;
+}
+
+class DataPortsLoopback : public HapticdProcessTest {
+ protected:
+  int basePort() const { return std::atoi(url_.c_str() + url_.rfind(':') + 1); }
+  std::string portUrl(int port) const { return thx::srv::parseUdpmUrl(url_)->withPort(port); }
+};
+
+// What hapticd's data LCMs and a client's control LCM rely on: an LCM that only publishes has its
+// send socket and no receive socket (no receive thread waking for the port's traffic). Subscribing
+// adds the receive socket.
+TEST_F(DataPortsLoopback, AnLcmThatOnlyPublishesOpensNoReceiveSocket) {
+  if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
+  const int before = openSockets();
+  lcm::LCM sender(portUrl(basePort() + 30));
+  ASSERT_TRUE(sender.good());
+  const char bytes[8] = {};
+  for (int k = 0; k < 10; ++k) sender.publish("THX_TEST", bytes, sizeof bytes);
+  EXPECT_EQ(openSockets(), before + 1);  // the send socket only
+  lcm::LCM receiver(portUrl(basePort() + 31));
+  receiver.subscribeFunction("THX_TEST", +[](const lcm::ReceiveBuffer*, const std::string&, void*) {}, (void*)nullptr);
+  EXPECT_EQ(openSockets(), before + 3);  // its send socket and, subscribed, its receive socket
+}
+
+// The kernel delivers a datagram only to sockets bound to its port: a process listening on
+// another client's port (same group, even subscribed to every channel) receives none of it.
+TEST_F(DataPortsLoopback, AClientOnAnotherPortReceivesNoneOfTheDatagrams) {
+  if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
+  struct Count {
+    int n = 0;
+    void on(const lcm::ReceiveBuffer*, const std::string&) { ++n; }
+  } mine, other;
+  lcm::LCM own(portUrl(basePort() + 32)), elsewhere(portUrl(basePort() + 33)), sender(portUrl(basePort() + 32));
+  ASSERT_TRUE(own.good() && elsewhere.good() && sender.good());
+  own.subscribe(".*", &Count::on, &mine)->setQueueCapacity(1000);  // LCM's default 30 would cut the burst
+  elsewhere.subscribe(".*", &Count::on, &other)->setQueueCapacity(1000);
+  const char bytes[64] = {};
+  constexpr int kSent = 50;
+  for (int k = 0; k < kSent; ++k) sender.publish("THX_DEVICE_STATE.mine", bytes, sizeof bytes);
+  // They reach the port they were sent to (ttl=0 loopback, a few kB)...
+  for (int waited = 0; mine.n < kSent && waited < 200; ++waited) own.handleTimeout(10);
+  EXPECT_GT(mine.n, 0);
+  // ...and by then the other port's socket has had every chance to see one: it holds nothing.
+  pollfd p{elsewhere.getFileno(), POLLIN, 0};
+  EXPECT_EQ(poll(&p, 1, 100), 0);
+  EXPECT_EQ(elsewhere.handleTimeout(0), 0);
+  EXPECT_EQ(other.n, 0);
+}
+
+// hapticd as a process with two data ports: two clients get distinct ports (named in the log and
+// replies), a third is refused naming the range, and once the first has left its port is the
+// third's. Ordered by the server's log lines, so no timing is asserted.
+TEST_F(DataPortsLoopback, HapticdHandsOutRecyclesAndRefusesPorts) {
+  if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
+  const int p = basePort();
+  const std::string range = std::to_string(p + 2) + "-" + std::to_string(p + 3);
+  startServer({"--data-ports", range});
+  const pid_t a = startProbe("a", {"--stream", "DEVICE_STATE", "--rate", "100", "--duration", "1"});
+  ASSERT_TRUE(serverLogHas("client a: DEVICE_STATE at 100 Hz on THX_DEVICE_STATE.a at ", 30)) << serverLog();
+  const pid_t b = startProbe("b", {"--stream", "DEVICE_STATE", "--rate", "100", "--duration", "30"});
+  ASSERT_TRUE(serverLogHas("client b: DEVICE_STATE at 100 Hz on THX_DEVICE_STATE.b at ", 30)) << serverLog();
+  const std::string log = serverLog();
+  const std::string a_url = portUrl(p + 2), b_url = portUrl(p + 3);
+  EXPECT_NE(log.find("on THX_DEVICE_STATE.a at " + a_url), std::string::npos) << log;
+  EXPECT_NE(log.find("on THX_DEVICE_STATE.b at " + b_url), std::string::npos) << log;
+  // c while a and b hold both ports: refused with the reason (probe-client exits 1).
+  const pid_t c = startProbe("c", {"--stream", "DEVICE_STATE", "--rate", "100", "--duration", "1"});
+  EXPECT_EQ(finishProbe(c, 60), 1) << slurp(path("c.err"));
+  EXPECT_EQ(jsonField(probeJson("c"), "state"), "refused");
+  EXPECT_EQ(jsonField(probeJson("c"), "reason"),
+            "no data port free: all 2 ports " + range + " are held by clients (hapticd --data-ports)");
+  // a finishes and unsubscribes; the next client gets its port.
+  EXPECT_EQ(finishProbe(a, 60), 0) << slurp(path("a.err"));
+  ASSERT_TRUE(serverLogHas("client a: DEVICE_STATE unsubscribed", 30)) << serverLog();
+  const pid_t d = startProbe("d", {"--stream", "DEVICE_STATE", "--rate", "100", "--duration", "1"});
+  EXPECT_EQ(finishProbe(d, 60), 0) << slurp(path("d.err"));
+  EXPECT_NE(serverLog().find("on THX_DEVICE_STATE.d at " + a_url), std::string::npos) << serverLog();
+  expectStreamFlowed(probeJson("a"));
+  expectStreamFlowed(probeJson("d"));
+  kill(b, SIGTERM);
+  finishProbe(b, 30);
+  EXPECT_EQ(stopServer(), 0) << serverLog();
+}
+
+}  // namespace
