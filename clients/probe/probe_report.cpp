@@ -21,7 +21,7 @@ void writeProbeJson(const std::string& path, const ProbeResult& r) {
                "  \"requested_rate_hz\": %.6g,\n  \"granted_rate_hz\": %.6g,\n  \"state\": \"%s\",\n"
                "  \"reason\": \"%s\",\n  \"channel\": \"%s\",\n  \"duration_s\": %.6g,\n"
                "  \"messages\": %llu,\n  \"span_s\": %.6f,\n  \"achieved_rate_hz\": %.6f,\n"
-               "  \"rate_error\": %.6f,\n"
+               "  \"rate_error\": %.6f,\n  \"steady_rate_error\": %.6f,\n"
                "  \"latency_us\": {\"p50\": %.1f, \"p99\": %.1f, \"max\": %.1f},\n"
                "  \"gaps\": %llu,\n  \"missing\": %llu,\n  \"duplicates\": %llu,\n"
                "  \"samples\": %llu,\n  \"sample_rate_hz\": %.3f,\n  \"samples_missing\": %llu,\n"
@@ -35,7 +35,9 @@ void writeProbeJson(const std::string& path, const ProbeResult& r) {
                r.options.rate_hz, r.status.granted_hz, toString(r.status.state), escaped(r.status.reason).c_str(),
                r.status.channel.c_str(), r.options.duration_s, (unsigned long long)s.messages, s.span_s,
                s.achieved_rate_hz,
-               r.status.granted_hz > 0 ? s.achieved_rate_hz / r.status.granted_hz - 1.0 : 0.0, s.latency_p50_us,
+               r.status.granted_hz > 0 ? s.achieved_rate_hz / r.status.granted_hz - 1.0 : 0.0,
+               r.status.granted_hz > 0 && s.steady_rate_hz > 0 ? s.steady_rate_hz / r.status.granted_hz - 1.0 : 0.0,
+               s.latency_p50_us,
                s.latency_p99_us, s.latency_max_us, (unsigned long long)s.gaps, (unsigned long long)s.missing,
                (unsigned long long)s.duplicates, (unsigned long long)s.samples, s.sample_rate_hz,
                (unsigned long long)s.samples_missing, (unsigned long long)s.samples_dropped,

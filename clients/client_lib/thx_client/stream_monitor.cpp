@@ -9,6 +9,10 @@ void StreamMonitor::received(std::int64_t server_utime_us, std::int64_t received
   if (r_.messages == 0) first_ns_ = received_ns;
   last_ns_ = received_ns;
   ++r_.messages;
+  if (received_ns - first_ns_ >= kSettleNs) {
+    if (steady_messages_ == 0) first_steady_ns_ = received_ns;
+    ++steady_messages_;
+  }
   latencies_us_.push_back(double(received_ns) / 1e3 - double(server_utime_us));
 }
 
@@ -70,6 +74,9 @@ StreamReport StreamMonitor::report() const {
   if (out.messages > 1 && out.span_s > 0) {
     out.achieved_rate_hz = double(out.messages - 1) / out.span_s;
     out.sample_rate_hz = double(out.samples - first_samples_) / out.span_s;  // samples after the first receipt
+  }
+  if (steady_messages_ > 1 && last_ns_ > first_steady_ns_) {
+    out.steady_rate_hz = double(steady_messages_ - 1) / (double(last_ns_ - first_steady_ns_) * 1e-9);
   }
   if (!latencies_us_.empty()) {
     std::vector<double> l = latencies_us_;

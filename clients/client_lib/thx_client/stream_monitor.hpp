@@ -27,12 +27,18 @@ struct StreamReport {
   std::uint64_t restarts = 0;         // server restarts seen (sequences and ticks start again)
   double span_s = 0.0;                // first to last receipt
   double achieved_rate_hz = 0.0;      // (messages - 1) / span
+  // The same over the messages received from kSettleNs after the first one on: without the
+  // start-up backlog (a client started beside 63 others waits for the CPU, its first messages
+  // queue in its socket and then arrive in a burst, which shortens `span` and raises the rate
+  // by backlog / span). 0 when fewer than two messages came after the settling time.
+  double steady_rate_hz = 0.0;
   double sample_rate_hz = 0.0;        // batches: samples after the first batch / span
   double latency_p50_us = 0.0, latency_p99_us = 0.0, latency_max_us = 0.0;
 };
 
 class StreamMonitor {
  public:
+  static constexpr std::int64_t kSettleNs = 2'000'000'000;
   explicit StreamMonitor(double granted_rate_hz) : rate_hz_(granted_rate_hz) {}
   // A latest-value message: its tick (ordering), server time and receipt time.
   void onMessage(std::int64_t tick, std::int64_t server_utime_us, std::int64_t received_ns);
@@ -50,6 +56,8 @@ class StreamMonitor {
   StreamReport r_;
   std::vector<double> latencies_us_;
   std::int64_t first_ns_ = 0, last_ns_ = 0;
+  std::int64_t first_steady_ns_ = 0;
+  std::uint64_t steady_messages_ = 0;  // received from first_ns_ + kSettleNs on
   std::int64_t last_tick_ = 0, last_utime_us_ = 0;
   std::int64_t last_seq_ = 0, last_next_tick_ = 0, last_instance_ = 0;
   std::uint64_t first_samples_ = 0;
