@@ -136,11 +136,11 @@ run_clients() {
   local w plots=()
   for w in ${THX_CLIENTS_WORKLOADS:-mixed half}; do
     sweep_one "$w" "$w"
-    plots+=("$w, own ports=$RESULTS/bench_clients_scale_$w.csv")
+    plots+=("$w=$RESULTS/bench_clients_scale_$w.csv")
   done
   if [ "${THX_CLIENTS_COMPARE_SHARED:-1}" != 0 ]; then
     sweep_one mixed_shared mixed --data-ports off --control-port off
-    plots+=("mixed, one shared port=$RESULTS/bench_clients_scale_mixed_shared.csv")
+    plots+=("mixed shared port=$RESULTS/bench_clients_scale_mixed_shared.csv")
   fi
   "$BIN/bench_clients_plot" --png "$RESULTS/bench_clients_scale.png" "${plots[@]}" || rc=1
   return $rc

@@ -72,6 +72,9 @@ publishes device and contact state over LCM.
   --data-ports A-B|off  each client's streams on a udpm port of its own from A..B, recycled when
                         it leaves (default: the --lcm-url port + 2 .. + 1 + --max-clients; off:
                         every stream on the bus). A new client with every port held is refused
+  --io-priority P       SCHED_FIFO priority of the publisher and receiver threads, below the
+                        servo's 80 (default 40; 0: normal scheduling), so busy clients on the
+                        same cores cannot stall every client's streams (docs/clients.md §6)
   --max-clients N       clients served at once (default 32); more are refused (docs/clients.md)
   --max-rate HZ         highest rate granted to one subscription (default: the servo rate)
   --max-bandwidth MB/S  total bandwidth of all subscriptions (default 8 MB/s); more is refused
@@ -116,6 +119,7 @@ struct Options {
   bool no_lcm = false;
   std::string control_port, data_ports;  // --control-port, --data-ports as given ("" = default)
   thx::srv::PortPlan ports;               // from them, --lcm-url and --max-clients
+  int io_priority = 40;                   // --io-priority
   thx::srv::SubscriptionLimits limits;  // --max-clients, --max-rate, --max-bandwidth, --heartbeat-timeout
   bool max_rate_given = false;
   bool crease = true;
@@ -201,6 +205,10 @@ Options parse(int argc, char** argv) {
       o.control_port = value();
     } else if (a == "--data-ports") {
       o.data_ports = value();
+    } else if (a == "--io-priority") {
+      const double n = number(a, value());
+      if (n < 0 || n > 79 || n != std::floor(n)) usage("--io-priority: expected a whole number 0..79 (below the servo's 80), got " + std::string(argv[i]));
+      o.io_priority = int(n);
     } else if (a == "--max-clients") {
       const double n = number(a, value());
       if (n < 1 || n != std::floor(n)) usage("--max-clients must be a whole number >= 1");
@@ -381,6 +389,7 @@ int run(const Options& o) {
     po.data_port_first = ports.data_first;
     po.data_port_last = ports.data_last;
   }
+  po.fifo_priority = o.io_priority;
   if (control_lcm) {
     po.control_url = ports.controlUrl();
     po.control_lcm = control_lcm.get();
@@ -389,6 +398,7 @@ int run(const Options& o) {
   std::unique_ptr<srv::Receiver> receiver;
   if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);
   if (receiver && control_lcm) receiver->listenAlsoOn(*control_lcm);
+  if (receiver) receiver->setFifoPriority(o.io_priority);
 
   // VRPN apps: effects they command are rendered in the servo; reports come from its snapshots.
   srv::ExternalEffectRenderer external_effects(period_s);

@@ -11,6 +11,7 @@
 #include <thx_msgs/protocol.hpp>
 
 #include "server/process_memory.hpp"
+#include "server/realtime.hpp"
 #include "server/safety.hpp"
 #include "server/session_log.hpp"
 #include "server/tick_messages.hpp"
@@ -168,6 +169,7 @@ PublisherCounters Publisher::counters() const {
   c.clients = clients_.load();
   c.subscriptions = subscriptions_.load();
   c.data_ports_open = data_ports_open_.load();
+  c.fifo = fifo_.load();
   return c;
 }
 
@@ -180,6 +182,12 @@ std::string Publisher::lastFlightDump() const {
 }
 
 void Publisher::run() {
+  if (options_.fifo_priority > 0) {
+    RealtimeOptions rt;
+    rt.priority = options_.fifo_priority;
+    rt.lock_memory = false;  // the servo's mlockall covers the process
+    fifo_ = makeThreadRealtime(rt).fifo;
+  }
   TickRecord r;
   for (;;) {
     const bool stopping = stop_.load();

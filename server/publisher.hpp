@@ -65,6 +65,11 @@ struct PublisherOptions {
   // hapticd's LCM on that URL (handled by the receiver thread). Not owned; may be null.
   std::string control_url;
   lcm::LCM* control_lcm = nullptr;
+  // > 0: the publisher thread asks for SCHED_FIFO at this priority (below the servo's 80; hapticd
+  // --io-priority). Every client's streams pass through this one thread: descheduled behind 64
+  // clients and other work on two cores it stalled for ~0.4 s, and every client lost the same
+  // ticks (issue 17). Refused without the privilege; the thread then runs as before.
+  int fifo_priority = 0;
 };
 
 struct PublisherCounters {
@@ -82,6 +87,7 @@ struct PublisherCounters {
   int clients = 0;                        // now
   int subscriptions = 0;                  // now
   int data_ports_open = 0;                // send-only LCMs opened for data ports so far
+  bool fifo = false;                      // the publisher thread runs SCHED_FIFO (fifo_priority)
 };
 
 class Publisher {
@@ -126,6 +132,7 @@ class Publisher {
   std::unique_ptr<DataPorts> ports_;                  // null: streams on the bus
   std::map<int, std::unique_ptr<lcm::LCM>> data_lcms_;  // by port; publish only, never subscribed
   std::atomic<int> data_ports_open_{0};
+  std::atomic<bool> fifo_{false};  // the thread got SCHED_FIFO (fifo_priority)
   SubscriptionTable table_;
   SubscriptionInbox inbox_;
   ServerCommands commands_;

@@ -11,6 +11,7 @@
 #include <thx_msgs/protocol.hpp>
 
 #include "rt/clock.hpp"
+#include "server/realtime.hpp"
 
 namespace thx::srv {
 
@@ -107,6 +108,12 @@ void Receiver::drain() {
 }
 
 void Receiver::run() {
+  if (fifo_priority_ > 0) {
+    RealtimeOptions rt;
+    rt.priority = fifo_priority_;
+    rt.lock_memory = false;
+    makeThreadRealtime(rt);  // refused without the privilege: runs as before
+  }
   std::vector<pollfd> fds;
   while (!stop_.load()) {
     fds.clear();

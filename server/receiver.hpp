@@ -32,6 +32,9 @@ class Receiver {
   // Also takes client forces from, and handles, `control` (hapticd's control URL, which only it
   // listens on: docs/clients.md §6). Before start().
   void listenAlsoOn(lcm::LCM& control);
+  // > 0: the thread asks for SCHED_FIFO at this priority (like the publisher's; heartbeats must
+  // not wait behind busy clients past the timeout). Before start().
+  void setFifoPriority(int priority) { fifo_priority_ = priority; }
   void start();
   void stop();
   ClientForceCounters counters() const;
@@ -47,6 +50,7 @@ class Receiver {
 
   lcm::LCM& lcm_;
   std::vector<lcm::LCM*> lcms_;  // lcm_ first, then listenAlsoOn()'s
+  int fifo_priority_ = 0;
   rt::LatestSlot<ClientForce>& slot_;
   ClientForceTable table_;
   mutable std::mutex table_mutex_;  // counters() from other threads; never the servo

@@ -59,6 +59,8 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
   std::fprintf(f, "  \"published_messages\": %llu,\n  \"publish_errors\": %llu,\n  \"snapshots_dropped\": %llu,\n",
                (unsigned long long)s.publisher.published, (unsigned long long)s.publisher.publish_errors,
                (unsigned long long)s.snapshots_dropped);
+  std::fprintf(f, "  \"publisher_fifo\": %s,\n  \"data_ports_open\": %d,\n", s.publisher.fifo ? "true" : "false",
+               s.publisher.data_ports_open);
   std::fprintf(f, "  \"flight_dumps\": %llu,\n  \"last_flight_dump\": \"%s\"\n}\n",
                (unsigned long long)s.publisher.flight_dumps, json::escaped(s.last_flight_dump).c_str());
   if (std::fclose(f) != 0) throw thx::Error(thx::Error::Kind::Io, "cannot write statistics to " + path);

@@ -9,10 +9,14 @@
 #include <sys/stat.h>
 
 #include <chrono>
+#include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <thread>
 
+#include <thx_msgs/protocol.hpp>
+
 #include "base/error.hpp"
+#include "thx_client/client.hpp"
 #include "server/data_ports.hpp"
 #include "server/port_plan.hpp"
 #include "server/subscriptions.hpp"
@@ -210,6 +214,93 @@ TEST_F(DataPortsLoopback, AClientOnAnotherPortReceivesNoneOfTheDatagrams) {
   EXPECT_EQ(poll(&p, 1, 100), 0);
   EXPECT_EQ(elsewhere.handleTimeout(0), 0);
   EXPECT_EQ(other.n, 0);
+}
+
+// The kit's side, against a hand-made server over udpm (no hapticd): requests go to the bus until
+// a hello names a control URL, then to that; the stream is received on the URL the reply names;
+// after a restart that names another data URL the kit listens there instead. Each step waits for
+// the message it needs (up to 10 s); nothing counts arrivals.
+TEST_F(DataPortsLoopback, TheKitSendsToTheControlUrlAndListensOnTheDataUrlTheServerNames) {
+  if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
+  const int p = basePort();
+  lcm::LCM bus(url_), control(portUrl(p + 1)), data1(portUrl(p + 2)), data2(portUrl(p + 3));
+  ASSERT_TRUE(bus.good() && control.good() && data1.good() && data2.good());
+  struct Requests {
+    std::vector<thx_msgs::subscribe_request_t> got;
+    void on(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+      thx_msgs::subscribe_request_t r;
+      if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, r) > 0) got.push_back(r);
+    }
+  } on_bus, on_control;
+  lcm::LCM server_bus(url_);  // the server's own socket on the bus
+  server_bus.subscribe(thx_msgs::kChannelSubscribe, &Requests::on, &on_bus);
+  control.subscribe(thx_msgs::kChannelSubscribe, &Requests::on, &on_control);
+
+  thx::client::Client client(bus, "kit");
+  client.subscribe("DEVICE_STATE", 100);
+  auto until = [&](const std::function<bool()>& done) {
+    for (int k = 0; k < 1000 && !done(); ++k) {
+      client.poll(1);
+      server_bus.handleTimeout(0);
+      control.handleTimeout(0);
+    }
+    return done();
+  };
+  // Before any hello: the request comes on the bus.
+  ASSERT_TRUE(until([&] { return !on_bus.got.empty(); }));
+  auto hello = [&](std::int64_t instance) {
+    thx_msgs::hello_t h{};
+    h.server_instance = instance;
+    h.protocol_version = thx_msgs::hello_t::PROTOCOL_VERSION;
+    h.control_url = portUrl(p + 1);
+    server_bus.publish(thx_msgs::kChannelHello, &h);
+  };
+  auto reply = [&](const thx_msgs::subscribe_request_t& r, std::int64_t instance, int data_port) {
+    thx_msgs::subscribe_reply_t a{};
+    a.server_instance = instance;
+    a.request_seq = r.seq;
+    a.client_id = r.client_id;
+    a.stream = r.stream;
+    a.action = r.action;
+    a.accepted = 1;
+    a.rate_hz = 100;
+    a.channel = "THX_DEVICE_STATE.kit";
+    a.heartbeat_timeout_us = 2'000'000;
+    a.data_url = portUrl(data_port);
+    server_bus.publish(thx_msgs::kChannelSubscribeReply, &a);
+  };
+  auto stateOn = [&](lcm::LCM& l, std::int64_t tick) {
+    thx_msgs::device_state_t d{};
+    d.tick = tick;
+    l.publish("THX_DEVICE_STATE.kit", &d);
+  };
+  // The hello names the control URL: the request, sent again at once now that the server is
+  // known to be up, goes there, not to the bus.
+  hello(11);
+  ASSERT_TRUE(until([&] { return !on_control.got.empty(); }));
+  EXPECT_EQ(client.controlUrl(), portUrl(p + 1));
+  const std::size_t on_bus_before = on_bus.got.size();
+  reply(on_control.got.back(), 11, p + 2);
+  ASSERT_TRUE(until([&] { return client.allActive(); }));
+  EXPECT_EQ(client.dataUrl(), portUrl(p + 2));
+  EXPECT_EQ(client.status("DEVICE_STATE")->data_url, portUrl(p + 2));
+  // Data on the bus or another port does not reach it; data on its port does.
+  stateOn(bus, 1);
+  stateOn(data2, 2);
+  stateOn(data1, 3);
+  ASSERT_TRUE(until([&] { return client.latestDeviceState().has_value(); }));
+  EXPECT_EQ(client.latestDeviceState()->tick, 3);
+  EXPECT_EQ(on_bus.got.size(), on_bus_before);  // nothing more on the bus once the control URL is known
+
+  // A restarted server (new instance) gives it another port: the kit moves there.
+  const std::size_t asked = on_control.got.size();
+  hello(22);
+  ASSERT_TRUE(until([&] { return on_control.got.size() > asked; }));
+  reply(on_control.got.back(), 22, p + 3);
+  ASSERT_TRUE(until([&] { return client.dataUrl() == portUrl(p + 3); }));
+  stateOn(data2, 40);
+  ASSERT_TRUE(until([&] { return client.latestDeviceState()->tick == 40; }));
+  EXPECT_EQ(client.counters().link_errors, 0u);
 }
 
 // hapticd as a process with two data ports: two clients get distinct ports (named in the log and

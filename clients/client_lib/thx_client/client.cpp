@@ -230,7 +230,11 @@ void Client::listen(Entry& e, const std::string& channel, const std::string& dat
   e.status.data_url = data_url;
   e.data_lcm = target;
   e.data_sub = target->subscribe(channel, &Client::onDataBytes, this);
-  if (e.data_sub) e.data_sub->setQueueCapacity(int(options_.data_queue_capacity));
+  // A batch stream must lose nothing: after a stall of the server's publisher (or of this
+  // process) its batches come in a burst, so it may queue one second of them (issue 17: bursts
+  // of ~400 overflowed 64 at 64 clients on two busy cores).
+  const double burst = e.status.batch ? e.status.granted_hz : 0.0;
+  if (e.data_sub) e.data_sub->setQueueCapacity(int(std::max<double>(options_.data_queue_capacity, burst)));
 }
 
 // The LCM a reply's data_url names: the bus for "", else DataLink's. A new URL (the server

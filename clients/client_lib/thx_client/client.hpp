@@ -73,7 +73,8 @@ struct ClientOptions {
   std::int64_t silence_ns = 3'000'000'000;   // a granted stream without data this long (at least
                                              // 3 periods): ask for it again
   std::int64_t heartbeat_ns = 0;             // 0: a quarter of the server's heartbeat timeout
-  unsigned data_queue_capacity = 64;         // LCM queue per data channel (LCM's default is 30)
+  unsigned data_queue_capacity = 64;         // LCM queue per data channel (LCM's default is 30);
+                                             // a batch stream's is at least 1 s of its batches
 };
 
 struct ClientCounters {
