@@ -19,6 +19,7 @@ namespace thx::client {
 struct SceneIdentity {
   std::string name;                       // the scene file's stem, e.g. "marble_bricks"
   std::uint64_t texture_fingerprint = 0;  // scene::SceneSurface::fingerprint
+  bool operator==(const SceneIdentity&) const = default;
 };
 
 // The server's scene, from its hello.
@@ -57,11 +58,17 @@ class SceneLookupError : public thx::Error {
 // A scene name is 1..100 characters of [A-Za-z0-9_.-], not starting with '.': a file stem, never
 // a path (a name from the network cannot reach outside the scenes folder).
 bool isValidSceneName(const std::string& name);
+// Throws SceneLookupError naming the name and the rules when !isValidSceneName(name).
+void requireValidSceneName(const std::string& name);
 
 // The file of scene NAME in `scenes_dir`: scenes_dir/NAME.yaml. Throws SceneLookupError when the
 // name is invalid, the folder does not exist, or holds no such file; the message names the
 // scene, the folder and the scenes the folder does hold. Use it for hello_t.scene_name.
 std::string resolveSceneName(const std::string& name, const std::string& scenes_dir);
+
+// Whether a --scene argument names a file (it contains '/' or ends in .yaml or .yml) rather than a
+// scene name.
+bool isScenePath(const std::string& scene_or_path);
 
 // What a user gave to --scene: a path (it contains '/' or ends in .yaml or .yml) must name an
 // existing file and is returned as is; anything else is a scene name, resolved in scenes_dir
