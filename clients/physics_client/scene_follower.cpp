@@ -51,8 +51,8 @@ bool SceneFollower::follow(const client::SceneIdentity& server, const std::strin
     throw thx::Error(thx::Error::Kind::Config,
                      server_label + " switched to scene '" + server.name + "', which this client cannot load from its " +
                          "scenes folder '" + scenes_dir_ + "': " + e.what() + "; " + server_label +
-                         " found it in its own scenes folder, so the two folders differ (give this client the same "
-                         "scene files, or name the folder with --scenes-dir DIR)");
+                         " found it in its own scenes folder, so the two folders differ: give this client the same "
+                         "scene files");
   }
   // The same check as at the start (ClientApp::waitForServer), without --allow-different-scene:
   // a client that allows a difference keeps its own scene and never gets here.

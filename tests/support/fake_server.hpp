@@ -104,6 +104,7 @@ class FakeServer : public srv::MessageSink {
   // Servo ticks first .. first+n-1 (1 ms apart), through the subscription table to every subscriber.
   void ticks(std::int64_t first, std::int64_t n) {
     thx_msgs::device_state_t d{};
+    for (int k = 0; k < 3; ++k) d.p_world[k] = pen_world[k];
     thx_msgs::contact_t c{};
     for (std::int64_t k = first; k < first + n; ++k) {
       d.tick = c.tick = k;
@@ -122,6 +123,8 @@ class FakeServer : public srv::MessageSink {
   int requests = 0, heartbeats = 0;
   std::int64_t last_heartbeat_instance = -1;
   bool mute = false;  // receive but do not answer
+  // Where ticks() puts the pen (device_state_t.p_world), m.
+  double pen_world[3] = {0, 0, 0};
   // The scene hello() announces.
   std::string scene_name = "default";
   std::uint64_t texture_fingerprint = 0x1111;
