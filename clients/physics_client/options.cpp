@@ -18,18 +18,18 @@ says), with the pen as a kinematic body following hapticd's device. The pen's co
 force sent back to hapticd (client_force_t); object poses and contact events are published for
 the audio and visual clients (docs/physics.md, docs/messages.md).
 
+Online it follows hapticd's scene: when a client switches hapticd to scene NAME (server_command_t
+ACTION_LOAD_SCENE), it releases its pen force, loads NAME.yaml from the scenes folder, checks its
+texture fingerprint against hapticd's (a mismatch stops it, as at the start), and goes on in the
+new scene at that scene's rates (unless set below). A scene it cannot find or load there stops it
+too: hapticd found the file in its own folder, so the two folders differ.
+
   --scene FILE|NAME      scene file (docs/scenes.md), e.g. scenes/marble_bricks.yaml, or a scene name
                          (marble_bricks) found in --scenes-dir
   --scenes-dir DIR       where scene names are looked up: --scene NAME, and online the scenes hapticd
                          switches to (default: the folder of --scene FILE, or scenes for a NAME)
   --allow-different-scene  online: run even when hapticd announces another scene or texture
                          (a warning instead of an error), and keep this scene when hapticd switches
-
-Online, physics-client follows hapticd's scene: when another client switches hapticd to scene
-NAME (server_command_t ACTION_LOAD_SCENE), it releases its pen force, loads NAME.yaml from the
-scenes folder, checks its texture fingerprint against hapticd's (a mismatch stops it, as at the
-start) and goes on in the new scene. A scene it cannot find or load there stops it too: hapticd
-found the file in its own folder, so the two folders differ.
   --rate HZ              physics steps per second (default: the scene's rates.physics_hz)
   --duration S           stop after S seconds of simulated time (default: online until SIGINT;
                          offline the pen path's length plus 1 s)
