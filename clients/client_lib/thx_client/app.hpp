@@ -91,7 +91,7 @@ class ClientApp {
   // Clears the servo's latched fault (ACTION_RESET_FAULTS).
   std::optional<thx_msgs::server_command_reply_t> resetFaults(double timeout_s = 2.0);
   // Switches hapticd to scene NAME (ACTION_LOAD_SCENE; hapticd finds NAME.yaml in its scenes folder,
-  // ramps its force down, loads, ramps up). A name that is not one (isValidSceneName) throws
+  // loads it, ramps its force down, swaps, ramps it up). A name that is not one (isValidSceneName) throws
   // SceneLookupError before anything is sent. Every client, this one too, then sees the change in
   // the hellos (Client::sceneChanges()). The timeout covers loading the scene's texture.
   std::optional<thx_msgs::server_command_reply_t> loadScene(const std::string& name, double timeout_s = 10.0);
