@@ -5,6 +5,8 @@
 // One process, no network; the only clock is the timeout's, and no assertion depends on timing.
 #include <gtest/gtest.h>
 
+#include "tests/support/error_text.hpp"
+
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <thx_msgs/protocol.hpp>
@@ -23,14 +25,7 @@ using Cmd = thx_msgs::server_command_t;
 
 namespace {
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const thx::Error& e) {
-    return e.what();
-  }
-  return "<no thx::Error>";
-}
+using thx::test::errorOf;
 
 class Commands : public ::testing::Test {
  protected:

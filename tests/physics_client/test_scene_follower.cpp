@@ -4,6 +4,8 @@
 // the folder lacks or that does not load stops with the scene, the folder and why; another texture
 // under the same name is the start's mismatch error (thx_client checkScene). Deterministic.
 #include <gtest/gtest.h>
+
+#include "tests/support/error_text.hpp"
 #include <unistd.h>
 
 #include <filesystem>
@@ -24,14 +26,7 @@ struct CountingSink final : EventSink {
   void poses(const PhysicsScene&, std::int64_t, const Eigen::Vector3d&) override { ++pose_reports; }
 };
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const thx::Error& e) {
-    return e.what();
-  }
-  return "<no thx::Error>";
-}
+using thx::test::errorOf;
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
