@@ -40,11 +40,15 @@ bool isValidSceneName(const std::string& name) {
   });
 }
 
-std::string resolveSceneName(const std::string& name, const std::string& scenes_dir) {
+void requireValidSceneName(const std::string& name) {
   if (!isValidSceneName(name))
     throw SceneLookupError("invalid scene name '" + name +
                            "': expected 1 to 100 characters of [A-Za-z0-9_.-], not starting with '.' (a scene "
                            "file's name without .yaml)");
+}
+
+std::string resolveSceneName(const std::string& name, const std::string& scenes_dir) {
+  requireValidSceneName(name);
   const fs::path dir = scenes_dir.empty() ? fs::path(".") : fs::path(scenes_dir);
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
@@ -58,10 +62,13 @@ std::string resolveSceneName(const std::string& name, const std::string& scenes_
   return file.string();
 }
 
+bool isScenePath(const std::string& scene_or_path) {
+  return scene_or_path.find('/') != std::string::npos || endsWith(scene_or_path, ".yaml") ||
+         endsWith(scene_or_path, ".yml");
+}
+
 std::string resolveSceneArgument(const std::string& scene_or_path, const std::string& scenes_dir) {
-  const bool is_path = scene_or_path.find('/') != std::string::npos || endsWith(scene_or_path, ".yaml") ||
-                       endsWith(scene_or_path, ".yml");
-  if (!is_path) return resolveSceneName(scene_or_path, scenes_dir);
+  if (!isScenePath(scene_or_path)) return resolveSceneName(scene_or_path, scenes_dir);
   std::error_code ec;
   if (!fs::is_regular_file(scene_or_path, ec))
     throw SceneLookupError("scene file '" + scene_or_path + "' does not exist");

@@ -17,11 +17,17 @@ class SceneLookupError : public thx::Error {
 // A scene name is 1..100 characters of [A-Za-z0-9_.-], not starting with '.': a file stem, never
 // a path (a name from the network cannot reach outside the scenes folder).
 bool isValidSceneName(const std::string& name);
+// Throws SceneLookupError naming the name and the rules when !isValidSceneName(name).
+void requireValidSceneName(const std::string& name);
 
 // The file of scene NAME in `scenes_dir`: scenes_dir/NAME.yaml. Throws SceneLookupError when the
 // name is invalid, the folder does not exist, or holds no such file; the message names the
 // scene, the folder and the scenes the folder does hold.
 std::string resolveSceneName(const std::string& name, const std::string& scenes_dir);
+
+// Whether a --scene argument names a file (it contains '/' or ends in .yaml or .yml) rather than a
+// scene name.
+bool isScenePath(const std::string& scene_or_path);
 
 // What a user gave to --scene: a path (it contains '/' or ends in .yaml or .yml) must name an
 // existing file and is returned as is; anything else is a scene name, resolved in scenes_dir

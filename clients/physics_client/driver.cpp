@@ -1,5 +1,6 @@
 #include "clients/physics_client/driver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -11,6 +12,7 @@ namespace thx::physclient {
 
 Driver::Driver(PhysicsScene& scene, EventSink& sink, const DriverOptions& options)
     : scene_(scene), sink_(sink), options_(options) {
+  summary_.scene_name = scene_.sceneSurface().scene_name;
   for (const BodyState& b : scene_.bodies()) {
     ObjectSummary o;
     o.name = scene_.scene().objects[std::size_t(b.id)].name;
@@ -94,6 +96,26 @@ void Driver::noteTouch(int id, int other, double t) {
   touched.push_back({name, t});
 }
 
+RunSummary continuedRun(const RunSummary& earlier, RunSummary current) {
+  const double contact_steps = double(earlier.pen_contact_steps + current.pen_contact_steps);
+  if (contact_steps > 0)
+    current.mean_force_in_contact_n = (earlier.mean_force_in_contact_n * double(earlier.pen_contact_steps) +
+                                       current.mean_force_in_contact_n * double(current.pen_contact_steps)) /
+                                      contact_steps;
+  current.steps += earlier.steps;
+  current.sim_time_s += earlier.sim_time_s;
+  current.pen_contact_steps += earlier.pen_contact_steps;
+  current.force_steps += earlier.force_steps;
+  current.clamped_steps += earlier.clamped_steps;
+  current.max_force_raw_n = std::max(current.max_force_raw_n, earlier.max_force_raw_n);
+  current.max_force_sent_n = std::max(current.max_force_sent_n, earlier.max_force_sent_n);
+  current.impacts += earlier.impacts;
+  current.pen_impacts += earlier.pen_impacts;
+  current.contact_reports += earlier.contact_reports;
+  current.pose_reports += earlier.pose_reports;
+  return current;
+}
+
 namespace {
 std::string vec(const Eigen::Vector3d& v) {
   char b[128];
@@ -107,7 +129,8 @@ void writeSummaryJson(const std::string& path, const std::string& scene_file, co
   std::ofstream out(path);
   if (!out) throw thx::Error(thx::Error::Kind::Io, path + ": cannot write the summary");
   char b[512];
-  out << "{\n  \"scene\": " << quoted(scene_file) << ",\n";
+  out << "{\n  \"scene\": " << quoted(scene_file) << ",\n  \"scene_name\": " << quoted(s.scene_name)
+      << ",\n  \"scene_switches\": " << s.scene_switches << ",\n";
   std::snprintf(b, sizeof b,
                 "  \"steps\": %lld,\n  \"sim_time_s\": %.9g,\n  \"pen_contact_steps\": %lld,\n  \"force_steps\": %lld,\n"
                 "  \"clamped_steps\": %lld,\n  \"max_force_raw_n\": %.9g,\n  \"max_force_sent_n\": %.9g,\n"
@@ -144,7 +167,8 @@ void writeSummaryJson(const std::string& path, const std::string& scene_file, co
 }
 
 void printSummary(std::FILE* out, const RunSummary& s) {
-  std::fprintf(out, "physics-client: %lld steps, %.3f s simulated\n", (long long)s.steps, s.sim_time_s);
+  std::fprintf(out, "physics-client: %lld steps, %.3f s simulated; scene '%s', %lld scene switches followed\n",
+               (long long)s.steps, s.sim_time_s, s.scene_name.c_str(), (long long)s.scene_switches);
   std::fprintf(out, "  pen: in contact %lld steps, force sent %lld steps, max |f| %.4f N (raw %.4f N), mean in contact %.4f N, clamped %lld steps\n",
                (long long)s.pen_contact_steps, (long long)s.force_steps, s.max_force_sent_n, s.max_force_raw_n,
                s.mean_force_in_contact_n, (long long)s.clamped_steps);

@@ -46,6 +46,8 @@ struct ObjectSummary {
 };
 
 struct RunSummary {
+  std::string scene_name;               // the scene simulated (at the end, after switches)
+  std::int64_t scene_switches = 0;      // online: hapticd's scene switches followed (a rebuild each)
   std::int64_t steps = 0;
   double sim_time_s = 0.0;
   std::int64_t pen_contact_steps = 0;   // steps with the pen touching an object
@@ -92,6 +94,11 @@ class Driver {
   double next_pose_t_ = 0.0, next_contact_t_ = 0.0, last_contact_t_ = 0.0;
   std::int64_t last_ref_tick_ = -1;
 };
+
+// A run that went on in `current` after `earlier` (the scenes before a followed switch): counts
+// and times added, maxima kept, the mean force weighted by contact steps; objects, scene name and
+// the hapticd link are current's.
+RunSummary continuedRun(const RunSummary& earlier, RunSummary current);
 
 // Writes the summary as JSON (throws std::runtime_error naming the file if it cannot).
 void writeSummaryJson(const std::string& path, const std::string& scene_file, const RunSummary& s);

@@ -3,8 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "base/cli_number.hpp"
+#include "thx_client/scene_check.hpp"
 #include "thx_msgs/protocol.hpp"
 
 namespace thx::physclient {
@@ -16,11 +18,18 @@ says), with the pen as a kinematic body following hapticd's device. The pen's co
 force sent back to hapticd (client_force_t); object poses and contact events are published for
 the audio and visual clients (docs/physics.md, docs/messages.md).
 
+Online it follows hapticd's scene: when a client switches hapticd to scene NAME (server_command_t
+ACTION_LOAD_SCENE), it releases its pen force, loads NAME.yaml from the scenes folder, checks its
+texture fingerprint against hapticd's (a mismatch stops it, as at the start), and goes on in the
+new scene at that scene's rates (unless set below). A scene it cannot find or load there stops it
+too: hapticd found the file in its own folder, so the two folders differ.
+
   --scene FILE|NAME      scene file (docs/scenes.md), e.g. scenes/marble_bricks.yaml, or a scene name
                          (marble_bricks) found in --scenes-dir
-  --scenes-dir DIR       where scene names are looked up (default scenes)
+  --scenes-dir DIR       where scene names are looked up: --scene NAME, and online the scenes hapticd
+                         switches to (default: the folder of --scene FILE, or scenes for a NAME)
   --allow-different-scene  online: run even when hapticd announces another scene or texture
-                         (a warning instead of an error)
+                         (a warning instead of an error), and keep this scene when hapticd switches
   --rate HZ              physics steps per second (default: the scene's rates.physics_hz)
   --duration S           stop after S seconds of simulated time (default: online until SIGINT;
                          offline the pen path's length plus 1 s)
@@ -49,15 +58,25 @@ LCM:
   --client-id ID         1-32 of [A-Za-z0-9_-] (default physics)
   --connect-timeout S    wait this long for the first device state (default 10)
 
-  --json FILE            write a run summary (steps, forces, impacts; per object: displacement, end
-                         position in the world and on the surface, speeds, objects it touched)
+  --json FILE            write a run summary (steps, forces, impacts over the whole run; the current
+                         scene's name and the scene switches followed; per object of the current
+                         scene: displacement, end position in the world and on the surface,
+                         speeds, objects it touched)
   --poses-csv FILE       write every moving object's pose at the pose rate: `t_s, object, x_m, y_m,
                          z_m, x_local_m, y_local_m, h_local_m, speed_m_per_s, spin_rad_per_s`
-                         (world, then the surface's frame: along the plane and height above it)
-  --quiet                no progress lines
+                         (world, then the surface's frame: along the plane and height above it;
+                         after a followed scene switch t_s starts again at 0 with the new objects)
+  --quiet                no progress lines (and no line per scene switch)
   -h, --help             this text
 )";
 
+
+std::string Options::scenesDir() const {
+  if (scenes_dir) return *scenes_dir;
+  if (!client::isScenePath(scene)) return "scenes";
+  const std::string parent = std::filesystem::path(scene).parent_path().string();
+  return parent.empty() ? "." : parent;
+}
 
 Options parseOptions(const std::vector<std::string>& args) {
   Options o;

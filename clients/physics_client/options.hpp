@@ -20,7 +20,7 @@ enum class PenSource { Hapticd, ReplayLog, Csv, Script, None };
 struct Options {
   bool help = false;
   std::string scene;               // a file, or a scene name looked up in scenes_dir
-  std::string scenes_dir = "scenes";
+  std::optional<std::string> scenes_dir;  // --scenes-dir; scenesDir() gives the folder used
   bool allow_different_scene = false;
   std::optional<double> rate_hz, pose_hz, contact_hz, state_hz;  // default: from the scene
   std::optional<double> duration_s;
@@ -37,6 +37,10 @@ struct Options {
   bool quiet = false;
 
   bool offline() const { return pen_source != PenSource::Hapticd; }
+  // Where scene names are found (the --scene NAME, and the scenes hapticd switches to): --scenes-dir;
+  // without it the folder of the --scene file when that is a path (its neighbours are the scenes
+  // the server's folder holds too), else "scenes".
+  std::string scenesDir() const;
 };
 
 Options parseOptions(const std::vector<std::string>& args);

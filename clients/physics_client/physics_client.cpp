@@ -13,7 +13,7 @@
 #include "clients/physics_client/options.hpp"
 #include "clients/physics_client/pen_path.hpp"
 #include "clients/physics_client/pose_csv.hpp"
-#include "scenes/scene_loader.hpp"
+#include "clients/physics_client/scene_follower.hpp"
 #include "thx_client/app.hpp"
 #include "thx_client/stop_signal.hpp"
 
@@ -23,7 +23,9 @@ using namespace thx::physclient;
 
 class NullSink final : public EventSink {};
 
-int runOffline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
+int runOffline(const Options& o, SceneFollower& sim) {
+  PhysicsScene& scene = sim.physics();
+  const DriverOptions& d = sim.rates();
   std::unique_ptr<lcm::LCM> lcm;
   std::unique_ptr<LcmSink> lcm_sink;
   NullSink null_sink;
@@ -70,7 +72,8 @@ int runOffline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
   if (!o.quiet)
     std::fprintf(stderr, "physics-client: offline, %lld steps of %.3g ms (%.2f s), pen: %s\n", (long long)steps, dt * 1e3,
                  duration, path ? (std::to_string(path->size()) + " samples").c_str() : "none");
-  Driver driver(scene, *sink, d);
+  sim.start(*sink);
+  Driver& driver = sim.driver();
   for (std::int64_t k = 0; k < steps && !thx::client::stopRequested(); ++k) {
     const double t = double(k) * dt;  // the pen pose the device had at the start of the step
     if (path)
@@ -79,21 +82,22 @@ int runOffline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
       driver.step(std::nullopt);
   }
   driver.flush();
-  printSummary(stdout, driver.summary());
-  if (!o.json.empty()) writeSummaryJson(o.json, o.scene, driver.summary());
+  printSummary(stdout, sim.summary());
+  if (!o.json.empty()) writeSummaryJson(o.json, o.scene, sim.summary());
   return 0;
 }
 
-int runOnline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
+int runOnline(const Options& o, SceneFollower& sim) {
   thx::client::AppOptions ao;
   ao.client_id = o.client_id;
   ao.lcm_url = o.lcm_url.value_or(thx_msgs::kDefaultLcmUrl);
   ao.connect_timeout_s = o.connect_timeout_s;
-  ao.scene = thx::client::SceneIdentity{scene.sceneSurface().scene_name, scene.sceneSurface().fingerprint};
+  ao.scene = sim.identity();
   ao.allow_different_scene = o.allow_different_scene;
   thx::client::ClientApp app(ao);
   thx::client::Client& client = app.client();
-  client.subscribe("DEVICE_STATE", o.state_hz.value_or(d.rate_hz));
+  double state_hz = o.state_hz.value_or(sim.rates().rate_hz);
+  client.subscribe("DEVICE_STATE", state_hz);
   LcmSinkOptions so;
   so.client_id = o.client_id;
   LcmSink lcm_sink(app.lcm(), so);
@@ -113,37 +117,71 @@ int runOnline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
   });
 
   if (!o.quiet) std::fprintf(stderr, "physics-client: waiting for hapticd on %s\n", app.options().lcm_url.c_str());
-  if (!app.waitForServer()) return 0;  // the same scene, or an error naming both; nullopt: stopped
+  const auto hello = app.waitForServer();  // the same scene, or an error naming both
+  if (!hello) return 0;                    // stopped
+  const std::string server = hello->server_name.empty() ? std::string("hapticd") : hello->server_name;
   if (!app.pollUntil([&] { return client.latestDeviceState().has_value(); }, o.connect_timeout_s)) {
     if (app.stopRequested()) return 0;
     throw thx::Error(thx::Error::Kind::Io, "no DEVICE_STATE from hapticd within " + std::to_string(o.connect_timeout_s) +
                                                " s on " + app.options().lcm_url +
                                                " (is hapticd running with LCM? --connect-timeout S)");
   }
-  if (!o.quiet) std::fprintf(stderr, "physics-client: connected; stepping at %g Hz\n", d.rate_hz);
+  if (!o.quiet) std::fprintf(stderr, "physics-client: connected; stepping at %g Hz\n", sim.rates().rate_hz);
 
-  Driver driver(scene, sink, d);
+  sim.start(sink);
+  // waitForServer checked the scene of the newest hello: changes after it are switches to follow.
+  std::uint64_t scene_changes_seen = client.sceneChanges();
+  bool said_keeping = false;
   std::int64_t last_tick = -1;
-  const thx::client::LoopStats loop = app.runPaced(
-      d.rate_hz,
-      [&](const thx::rt::TickTiming&) {
-        const auto s = client.latestDeviceState();
-        // Device states arrive in bursts; extrapolating the newest one by its age (same host, same
-        // CLOCK_MONOTONIC; at most 20 ms) keeps the pen's motion, and so its velocity, smooth.
-        const double age_s = std::clamp(double(thx::rt::monotonicNowNs() / 1000 - s->utime) * 1e-6, 0.0, 0.02);
-        const Eigen::Vector3d tip = Eigen::Vector3d(s->p_world[0], s->p_world[1], s->p_world[2]) +
-                                    age_s * Eigen::Vector3d(s->v_world[0], s->v_world[1], s->v_world[2]);
-        if (s->tick == last_tick) ++link.stale_steps;
-        last_tick = s->tick;
-        driver.step(tip, s->tick);
-        return true;
-      },
-      o.duration_s ? std::llround(*o.duration_s * d.rate_hz) : -1);
-  lcm_sink.release(scene.penTip());
-  driver.flush();
-  RunSummary summary = driver.summary();
+  for (;;) {
+    // A switch ends the paced loop at a step boundary; the next scene gets a loop of its own rate.
+    std::int64_t max_steps = -1;
+    if (o.duration_s) {
+      max_steps = std::llround((*o.duration_s - sim.summary().sim_time_s) * sim.rates().rate_hz);
+      if (max_steps <= 0) break;
+    }
+    bool switch_due = false;
+    const thx::client::LoopStats loop = app.runPaced(
+        sim.rates().rate_hz,
+        [&](const thx::rt::TickTiming&) {
+          if (client.sceneChanges() != scene_changes_seen) {
+            scene_changes_seen = client.sceneChanges();
+            if (!o.allow_different_scene) {
+              switch_due = true;
+              return false;  // ends this loop before the step: the switch happens between steps
+            }
+            if (!said_keeping && !o.quiet)  // it differs on purpose: once is enough
+              std::fprintf(stderr, "physics-client: %s switched to scene '%s'; keeping scene '%s' (--allow-different-scene)\n",
+                           server.c_str(), client.serverScene()->name.c_str(), sim.identity().name.c_str());
+            said_keeping = true;
+          }
+          const auto s = client.latestDeviceState();
+          // Device states arrive in bursts; extrapolating the newest one by its age (same host, same
+          // CLOCK_MONOTONIC; at most 20 ms) keeps the pen's motion, and so its velocity, smooth.
+          const double age_s = std::clamp(double(thx::rt::monotonicNowNs() / 1000 - s->utime) * 1e-6, 0.0, 0.02);
+          const Eigen::Vector3d tip = Eigen::Vector3d(s->p_world[0], s->p_world[1], s->p_world[2]) +
+                                      age_s * Eigen::Vector3d(s->v_world[0], s->v_world[1], s->v_world[2]);
+          if (s->tick == last_tick) ++link.stale_steps;
+          last_tick = s->tick;
+          sim.driver().step(tip, s->tick);
+          return true;
+        },
+        max_steps);
+    link.missed_steps += loop.missed;
+    if (!switch_due) break;  // --duration reached, or a stop signal
+    // The pen force belongs to the old scene: let go of the pen before anything else.
+    lcm_sink.release(sim.physics().penTip());
+    if (!sim.follow(*client.serverScene(), server)) continue;  // back on this scene already
+    if (!o.state_hz && sim.rates().rate_hz != state_hz) client.subscribe("DEVICE_STATE", state_hz = sim.rates().rate_hz);
+    if (!o.quiet)
+      std::fprintf(stderr, "physics-client: %s switched to scene '%s': following with %s (%zu objects, %g Hz; switch %d)\n",
+                   server.c_str(), sim.identity().name.c_str(), sim.file().c_str(), sim.physics().scene().objects.size(),
+                   sim.rates().rate_hz, sim.switches());
+  }
+  lcm_sink.release(sim.physics().penTip());
+  sim.driver().flush();
+  RunSummary summary = sim.summary();
   link.forces_sent = std::int64_t(lcm_sink.counters().forces);
-  link.missed_steps = loop.missed;
   summary.hapticd = link;
   printSummary(stdout, summary);
   if (!o.json.empty()) writeSummaryJson(o.json, o.scene, summary);
@@ -151,22 +189,14 @@ int runOnline(const Options& o, PhysicsScene& scene, const DriverOptions& d) {
 }
 
 int run(const Options& o) {
-  thx::scene::Scene scene_data = thx::scene::loadScene(thx::client::resolveSceneArgument(o.scene, o.scenes_dir));
-  for (const std::string& w : scene_data.warnings) std::fprintf(stderr, "physics-client: warning: %s\n", w.c_str());
-  SimOptions so;
-  so.pen = o.pen;
-  so.impact_min_speed_m_per_s = o.impact_min_speed;
-  PhysicsScene scene(scene_data, so);
-  DriverOptions d;
-  d.rate_hz = o.rate_hz.value_or(scene_data.rates.physics_hz);
-  d.pose_hz = o.pose_hz.value_or(scene_data.rates.visual_hz);
-  d.contact_hz = std::min(d.rate_hz, o.contact_hz.value_or(scene_data.rates.audio_feed_hz));
+  SceneFollower sim(o);
+  const PhysicsScene& scene = sim.physics();
   if (!o.quiet)
     std::fprintf(stderr, "physics-client: %s: %zu objects on a %s plane (%dx%d texels), pen %s\n", o.scene.c_str(),
-                 scene_data.objects.size(), scene.surface().usesRelief() ? "relief" : "normal-mapped",
+                 scene.scene().objects.size(), scene.surface().usesRelief() ? "relief" : "normal-mapped",
                  scene.surface().map().width(), scene.surface().map().height(),
                  o.pen.shape == PenShape::None ? "off" : o.pen.shape == PenShape::Sphere ? "sphere" : "capsule");
-  return o.offline() ? runOffline(o, scene, d) : runOnline(o, scene, d);
+  return o.offline() ? runOffline(o, sim) : runOnline(o, sim);
 }
 
 }  // namespace

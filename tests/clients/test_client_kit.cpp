@@ -4,6 +4,8 @@
 // instance publishes to its own subscribers): no network, outcomes independent of timing.
 #include <gtest/gtest.h>
 
+#include "tests/support/error_text.hpp"
+
 #include <csignal>
 #include <lcm/lcm-cpp.hpp>
 #include <thx_msgs/protocol.hpp>
@@ -30,14 +32,7 @@ void publishGarbage(lcm::LCM& lcm, const std::string& channel) {
   lcm.publish(channel, junk, sizeof junk);
 }
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const thx::Error& e) {
-    return e.what();
-  }
-  return "<no thx::Error>";
-}
+using thx::test::errorOf;
 
 class ClientKit : public ::testing::Test {
  protected:

@@ -20,6 +20,7 @@
 namespace {
 
 using namespace thx;
+using namespace thx::test;
 namespace fs = std::filesystem;
 using Cmd = thx_msgs::server_command_t;
 
@@ -100,6 +101,45 @@ TEST_F(SceneSwitch, AClientSwitchesTheSceneAndABrokenOneIsRefusedWhileTheOldOneR
   EXPECT_EQ(stopServer(), 0) << serverLog();
   expectServoRanSafely();
   EXPECT_NE(serverLog().find("client runner switched the scene"), std::string::npos) << serverLog();
+}
+
+// As a user runs it: hapticd, a physics-client on the same scene, and hapticctl switching the
+// scene. The physics client follows (it loads the new scene from its own folder and says so);
+// hapticctl prints the tick hapticd answered with, and a refusal with hapticd's reason.
+TEST_F(SceneSwitch, HapticctlSwitchesTheSceneAndThePhysicsClientFollows) {
+  if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
+  startServer({"--scene", "scenes/pen_pushes_ball.yaml"});
+  const pid_t physics = spawn({THX_PHYSICS_CLIENT, "--scene", "scenes/pen_pushes_ball.yaml", "--lcm-url", url_,
+                               "--duration", "4", "--connect-timeout", "60", "--json", path("pc.json")},
+                              path("pc.out"), path("pc.err"));
+  children_.push_back(physics);
+  ASSERT_TRUE(waitUntil([&] { return slurp(path("pc.err")).find("connected") != std::string::npos; }, 60))
+      << slurp(path("pc.err")) << serverLog();
+
+  const int refused = shellStatus(std::string("'") + THX_HAPTICCTL + "' --lcm-url '" + url_ +
+                                  "' --timeout 60 load-scene nosuch >'" + path("ctl1.out") + "' 2>'" +
+                                  path("ctl1.err") + "'");
+  EXPECT_EQ(refused, 1);
+  EXPECT_NE(slurp(path("ctl1.err")).find("refused to load scene 'nosuch': scene 'nosuch' not found"),
+            std::string::npos)
+      << slurp(path("ctl1.err"));
+
+  const int switched = shellStatus(std::string("'") + THX_HAPTICCTL + "' --lcm-url '" + url_ +
+                                   "' --timeout 60 load-scene pinball >'" + path("ctl2.out") + "' 2>'" +
+                                   path("ctl2.err") + "'");
+  EXPECT_EQ(switched, 0) << slurp(path("ctl2.err"));
+  EXPECT_NE(slurp(path("ctl2.out")).find("scene 'pinball' rendered from tick "), std::string::npos)
+      << slurp(path("ctl2.out"));
+
+  EXPECT_EQ(reap(physics, 180), 0) << slurp(path("pc.err"));
+  std::erase(children_, physics);
+  const std::string err = slurp(path("pc.err"));
+  EXPECT_NE(err.find("switched to scene 'pinball': following with scenes/pinball.yaml"), std::string::npos) << err;
+  const std::string json = slurp(path("pc.json"));
+  EXPECT_EQ(test::jsonField(json, "scene_name"), "pinball") << json;
+  EXPECT_EQ(test::jsonNumber(json, "scene_switches"), 1) << json;
+  EXPECT_EQ(stopServer(), 0) << serverLog();
+  expectServoRanSafely();
 }
 
 }  // namespace

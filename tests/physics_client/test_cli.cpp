@@ -118,3 +118,14 @@ TEST(PhysicsClientCli, PosesCsv) {
 }
 
 }  // namespace
+
+// Scene names (--scene NAME, and the scenes hapticd switches to) are found in --scenes-dir; without
+// it, beside the --scene file, or in scenes/ for a name.
+TEST(PhysicsClientCli, ScenesDirDefaultsToTheSceneFilesFolder) {
+  EXPECT_EQ(parseOptions({"--scene", "lab/scenes/vvalley.yaml"}).scenesDir(), "lab/scenes");
+  EXPECT_EQ(parseOptions({"--scene", "/srv/scenes/vvalley.yaml"}).scenesDir(), "/srv/scenes");
+  EXPECT_EQ(parseOptions({"--scene", "vvalley.yaml"}).scenesDir(), ".");
+  EXPECT_EQ(parseOptions({"--scene", "vvalley"}).scenesDir(), "scenes");
+  EXPECT_EQ(parseOptions({"--scene", "lab/vvalley.yaml", "--scenes-dir", "other"}).scenesDir(), "other");
+  EXPECT_EQ(parseOptions({"--scene", "vvalley", "--scenes-dir", "other"}).scenesDir(), "other");
+}

@@ -80,4 +80,41 @@ LoopStats ClientApp::runPaced(double rate_hz, const std::function<bool(const rt:
   return stats;
 }
 
+std::optional<thx_msgs::server_command_reply_t> ClientApp::command(std::int32_t action, const std::string& argument,
+                                                                 double timeout_s) {
+  const std::string what = describeCommand(action, argument);
+  if (const std::string problem = commandArgumentProblem(action, argument); !problem.empty())
+    throw thx::Error(thx::Error::Kind::Config, "cannot send '" + what + "': " + problem);
+  const auto hello = client_->latestHello();
+  const std::string server = hello && !hello->server_name.empty() ? hello->server_name : std::string("hapticd");
+  // An older server ignores what it does not know: say so now instead of after the timeout.
+  if (hello && hello->protocol_version < protocolVersionFor(action))
+    throw thx::Error(thx::Error::Kind::Config, "cannot send '" + what + "': " + server + " speaks protocol version " +
+                                                   std::to_string(hello->protocol_version) + ", this command needs " +
+                                                   std::to_string(protocolVersionFor(action)) + " (a newer hapticd)");
+  const std::int64_t seq = client_->sendCommand(action, argument);
+  std::optional<thx_msgs::server_command_reply_t> reply;
+  if (!pollUntil([&] { return (reply = client_->takeCommandReply(seq)).has_value(); }, timeout_s)) {
+    if (stopRequested()) return std::nullopt;
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g", timeout_s);
+    throw thx::Error(thx::Error::Kind::Io, "no reply from " + server + " to '" + what + "' within " + seconds +
+                                               " s on " + options_.lcm_url +
+                                               " (is hapticd running? the command may still take effect)");
+  }
+  if (!reply->accepted)
+    throw CommandRefused(*reply, server + " refused to " + what + ": " +
+                                     (reply->reason.empty() ? std::string("no reason given") : reply->reason));
+  return reply;
+}
+
+std::optional<thx_msgs::server_command_reply_t> ClientApp::resetFaults(double timeout_s) {
+  return command(thx_msgs::server_command_t::ACTION_RESET_FAULTS, "", timeout_s);
+}
+
+std::optional<thx_msgs::server_command_reply_t> ClientApp::loadScene(const std::string& name, double timeout_s) {
+  requireValidSceneName(name);  // SceneLookupError, as a --scene NAME would be
+  return command(thx_msgs::server_command_t::ACTION_LOAD_SCENE, name, timeout_s);
+}
+
 }  // namespace thx::client

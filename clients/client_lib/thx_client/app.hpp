@@ -14,6 +14,9 @@
 //
 // Errors a user can fix (no LCM, no server) are thx::Error; main catches them once. The loop and
 // the waits end early when SIGINT/SIGTERM arrives (stopRequested()).
+//
+// Server commands wait for their reply: app.loadScene("vvalley") returns the accepted reply (its
+// tick: the first servo tick on the new scene) or throws CommandRefused with hapticd's reason.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -23,6 +26,7 @@
 #include "base/error.hpp"
 #include "rt/pacer.hpp"
 #include "thx_client/client.hpp"
+#include "thx_client/commands.hpp"
 #include "thx_client/scene_check.hpp"
 #include "thx_msgs/lcm_open.hpp"
 #include "thx_msgs/protocol.hpp"
@@ -74,6 +78,23 @@ class ClientApp {
   // step returns false, max_steps steps ran (< 0: no limit) or a stop signal arrives.
   LoopStats runPaced(double rate_hz, const std::function<bool(const rt::TickTiming&)>& step,
                      std::int64_t max_steps = -1);
+
+  // Sends a server command (Client::sendCommand) and polls until its reply. Returns the accepted
+  // reply (reply.tick: the first servo tick it took effect on); nullopt when a stop signal came
+  // first. Throws, each a thx::Error naming the command:
+  //  - CommandRefused with the server's reason (nothing changed on the server);
+  //  - Io when no reply came within timeout_s (the command may still take effect: it is not resent);
+  //  - Config when the argument cannot go out (commandArgumentProblem), or the server's last hello
+  //    shows a protocol_version older than the command's (protocolVersionFor), before sending.
+  std::optional<thx_msgs::server_command_reply_t> command(std::int32_t action, const std::string& argument,
+                                                          double timeout_s);
+  // Clears the servo's latched fault (ACTION_RESET_FAULTS).
+  std::optional<thx_msgs::server_command_reply_t> resetFaults(double timeout_s = 2.0);
+  // Switches hapticd to scene NAME (ACTION_LOAD_SCENE; hapticd finds NAME.yaml in its scenes folder,
+  // loads it, ramps its force down, swaps, ramps it up). A name that is not one (isValidSceneName) throws
+  // SceneLookupError before anything is sent. Every client, this one too, then sees the change in
+  // the hellos (Client::sceneChanges()). The timeout covers loading the scene's texture.
+  std::optional<thx_msgs::server_command_reply_t> loadScene(const std::string& name, double timeout_s = 10.0);
 
  private:
   AppOptions options_;

@@ -10,11 +10,14 @@
 #include <type_traits>
 #include <thx_msgs/protocol.hpp>
 
+#include "thx_client/commands.hpp"
+
 namespace thx::client {
 
 namespace {
 using Req = thx_msgs::subscribe_request_t;
 constexpr std::int64_t kMaxResendNs = 2'000'000'000;
+constexpr std::size_t kKeptCommands = 64;
 }  // namespace
 
 const char* toString(SubscriptionState s) {
@@ -37,6 +40,8 @@ Client::Client(lcm::LCM& lcm, ClientOptions options)
   reply_sub_ = lcm_.subscribe(thx_msgs::kChannelSubscribeReply, &Client::onReplyBytes, this);
   // Every client sees every reply on the bus: keep room for a burst of them.
   if (reply_sub_) reply_sub_->setQueueCapacity(256);
+  command_reply_sub_ = lcm_.subscribe(thx_msgs::kChannelCommandReply, &Client::onCommandReplyBytes, this);
+  if (command_reply_sub_) command_reply_sub_->setQueueCapacity(256);
 }
 
 Client::Client(lcm::LCM& lcm, std::string client_id) : Client(lcm, [&] {
@@ -52,6 +57,7 @@ Client::~Client() {
   }
   if (hello_sub_) lcm_.unsubscribe(hello_sub_);
   if (reply_sub_) lcm_.unsubscribe(reply_sub_);
+  if (command_reply_sub_) lcm_.unsubscribe(command_reply_sub_);
 }
 
 void Client::subscribe(std::string_view stream, double rate_hz, bool batch) {
@@ -189,6 +195,66 @@ void Client::onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     }
   }
   hello_.deliver(h, clock_());
+  trackScene(h);
+}
+
+void Client::trackScene(const thx_msgs::hello_t& h) {
+  const bool same_instance = server_scene_ && h.server_instance == scene_instance_;
+  // LCM keeps one sender's order on one channel, but a hello queued before a switch and handled
+  // after the switch's hello must not switch back.
+  if (same_instance && h.seq <= scene_hello_seq_) return;
+  const std::optional<SceneIdentity> before = server_scene_;
+  server_scene_ = sceneOf(h);
+  scene_instance_ = h.server_instance;
+  scene_hello_seq_ = h.seq;
+  if (!before || *before == *server_scene_) return;
+  ++scene_changes_;
+  if (on_scene_change_) {
+    SceneChange c;
+    c.from = *before;
+    c.to = *server_scene_;
+    c.server_instance = h.server_instance;
+    c.restart = !same_instance;
+    on_scene_change_(c);
+  }
+}
+
+std::int64_t Client::sendCommand(std::int32_t action, std::string_view argument) {
+  if (const std::string problem = commandArgumentProblem(action, argument); !problem.empty())
+    throw std::invalid_argument(problem);
+  thx_msgs::server_command_t c{};
+  c.utime = clock_() / 1000;
+  c.seq = ++command_seq_;
+  c.client_id = options_.client_id;
+  c.action = action;
+  c.argument = std::string(argument);
+  commands_.emplace(c.seq, std::nullopt);
+  while (commands_.size() > kKeptCommands) commands_.erase(commands_.begin());  // the oldest
+  control_.publish(thx_msgs::kChannelCommand, c);  // to the control URL, like requests (issue 17)
+  ++counters_.commands_sent;
+  return c.seq;
+}
+
+std::optional<thx_msgs::server_command_reply_t> Client::takeCommandReply(std::int64_t seq) {
+  auto it = commands_.find(seq);
+  if (it == commands_.end() || !it->second) return std::nullopt;
+  std::optional<thx_msgs::server_command_reply_t> reply = std::move(it->second);
+  commands_.erase(it);
+  return reply;
+}
+
+void Client::onCommandReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  thx_msgs::server_command_reply_t r;
+  if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, r) < 0)
+    return undecodable(thx_msgs::kChannelCommandReply, thx_msgs::server_command_reply_t::getTypeName(),
+                       rbuf->data_size);
+  if (r.client_id != options_.client_id) return;  // another client's answer
+  // Only commands we sent and still wait for: not a second reply, not another process's with our id.
+  auto it = commands_.find(r.request_seq);
+  if (it == commands_.end() || it->second) return;
+  ++counters_.command_replies;
+  it->second = r;
+  if (on_command_reply_) on_command_reply_(r);
 }
 
 void Client::onReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {

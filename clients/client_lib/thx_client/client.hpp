@@ -14,8 +14,13 @@
 // Most programs use it through ClientApp (thx_client/app.hpp), which adds signals, the server's
 // hello and a paced loop.
 //
-// Threads: poll()/service()/subscribe()/unsubscribe()/status() belong to one thread (callbacks
-// run in it, inside poll()). latest*() may be called from any thread.
+// It also sends server commands (sendCommand: reset faults, load a scene) and keeps their replies,
+// and follows the server's scene in its hellos: serverScene(), and sceneChanges() /
+// onSceneChange() when it changes (another client loaded a scene, or the server restarted on
+// another one).
+//
+// Threads: poll()/service()/subscribe()/unsubscribe()/status()/sendCommand()/serverScene() belong
+// to one thread (callbacks run in it, inside poll()). latest*() may be called from any thread.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -31,6 +36,7 @@
 #include <thx_msgs/contact_t.hpp>
 #include <thx_msgs/device_state_t.hpp>
 #include <thx_msgs/hello_t.hpp>
+#include <thx_msgs/server_command_reply_t.hpp>
 #include <thx_msgs/servo_stats_t.hpp>
 
 #include "rt/clock.hpp"
@@ -38,6 +44,7 @@
 #include "thx_client/data_link.hpp"
 #include "thx_client/decode_error.hpp"
 #include "thx_client/latest_value.hpp"
+#include "thx_client/scene_check.hpp"
 
 namespace lcm {
 class LCM;
@@ -85,6 +92,17 @@ struct ClientCounters {
   std::uint64_t undecodable = 0;  // bytes on our channels that try_decode refused
   std::uint64_t reconnects = 0;   // server restarts or silences that made us re-subscribe
   std::uint64_t link_errors = 0;  // a control or data URL the server named that could not be opened
+  std::uint64_t commands_sent = 0;
+  std::uint64_t command_replies = 0;  // replies to commands we sent and were still waiting for
+};
+
+// The server's scene changed (serverScene() went from `from` to `to`).
+struct SceneChange {
+  SceneIdentity from;
+  SceneIdentity to;
+  std::int64_t server_instance = 0;  // of the hello that announced `to`
+  bool restart = false;              // true: a new server_instance (hapticd restarted on another scene);
+                                     // false: a switch within one instance (ACTION_LOAD_SCENE)
 };
 
 class Client {
@@ -132,6 +150,31 @@ class Client {
   std::optional<StreamStatus> status(std::string_view stream) const;
   bool allActive() const;  // every requested stream granted
   std::int64_t serverInstance() const { return server_instance_; }
+
+  // ---- Server commands (THX_COMMAND, answered on THX_COMMAND_REPLY) ----
+  // Sends server_command_t{action, argument} now and returns its seq (the reply's request_seq;
+  // 1, 2, ... per Client). Never resent: a command need not be idempotent (a second load ramps the
+  // force down and up again), so a lost command or reply is the caller's timeout. Throws
+  // std::invalid_argument when the argument cannot go out (commandArgumentProblem: too long, or
+  // not a scene name for ACTION_LOAD_SCENE). ClientApp::command() sends and waits.
+  std::int64_t sendCommand(std::int32_t action, std::string_view argument = {});
+  // The reply to command `seq` once it arrived, handed over once (then forgotten). The replies of
+  // the 64 newest commands are kept; older ones are dropped.
+  std::optional<thx_msgs::server_command_reply_t> takeCommandReply(std::int64_t seq);
+  // Runs for each reply to a command of ours (in poll()), before takeCommandReply sees it.
+  void onCommandReply(std::function<void(const thx_msgs::server_command_reply_t&)> f) { on_command_reply_ = std::move(f); }
+
+  // ---- The server's scene (from its hellos) ----
+  // The scene the newest hello names (nullopt before the first hello).
+  const std::optional<SceneIdentity>& serverScene() const { return server_scene_; }
+  // How many times the server's scene changed since this Client started: +1 for each hello whose
+  // scene differs from the previous hello's, within one server instance (a switch) or across a
+  // restart. Not for the first hello, not for a restart on the same scene; a hello older than the
+  // newest (by seq, within an instance) is not looked at. Poll it at a step boundary: a value that
+  // moved means "rebuild on serverScene()" (several switches between two polls count each).
+  std::uint64_t sceneChanges() const { return scene_changes_; }
+  // Runs in poll() on each such change, after the hello's own callback.
+  void onSceneChange(std::function<void(const SceneChange&)> f) { on_scene_change_ = std::move(f); }
   const ClientCounters& counters() const { return counters_; }
   const std::string& clientId() const { return options_.client_id; }
   // Sends a message meant for the server alone (THX_COMMAND, THX_CLIENT_FORCE) where it sends its
@@ -151,6 +194,7 @@ class Client {
   void onHelloBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void onReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void onCommandReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
 
  private:
   struct Entry {
@@ -172,6 +216,7 @@ class Client {
   void stopListening(Entry& e);
   void undecodable(const std::string& channel, const char* type, std::size_t bytes);
   void linkProblem(std::string problem);
+  void trackScene(const thx_msgs::hello_t& h);
 
   lcm::LCM& lcm_;
   ControlLink control_{lcm_};  // requests and heartbeats (issue 17)
@@ -181,12 +226,21 @@ class Client {
   std::map<std::string, Entry, std::less<>> entries_;  // by stream
   lcm::Subscription* hello_sub_ = nullptr;
   lcm::Subscription* reply_sub_ = nullptr;
+  lcm::Subscription* command_reply_sub_ = nullptr;
   std::int64_t server_instance_ = 0;
   std::int64_t seq_ = 0, heartbeat_seq_ = 0;
   std::int64_t next_heartbeat_ns_ = 0;
   std::int64_t heartbeat_period_ns_ = 500'000'000;
   ClientCounters counters_;
   std::string last_link_error_;
+  // Commands by seq: nullopt while waiting, then the reply until taken.
+  std::map<std::int64_t, std::optional<thx_msgs::server_command_reply_t>> commands_;
+  std::int64_t command_seq_ = 0;
+  std::function<void(const thx_msgs::server_command_reply_t&)> on_command_reply_;
+  std::optional<SceneIdentity> server_scene_;
+  std::int64_t scene_instance_ = 0, scene_hello_seq_ = 0;  // the hello server_scene_ came from
+  std::uint64_t scene_changes_ = 0;
+  std::function<void(const SceneChange&)> on_scene_change_;
 
   LatestValue<thx_msgs::device_state_t> state_;
   LatestValue<thx_msgs::contact_t> contact_;

@@ -20,6 +20,7 @@ namespace thx::client {
 struct SceneIdentity {
   std::string name;                       // the scene file's stem, e.g. "marble_bricks"
   std::uint64_t texture_fingerprint = 0;  // scene::SceneSurface::fingerprint
+  bool operator==(const SceneIdentity&) const = default;
 };
 
 // The server's scene, from its hello.
@@ -50,7 +51,9 @@ SceneCheck checkScene(const SceneIdentity& server, const SceneIdentity& mine, bo
 
 // ---- Finding a scene file: scenes/scene_lookup.hpp, here for clients ----------------------------
 
+using scene::isScenePath;
 using scene::isValidSceneName;
+using scene::requireValidSceneName;
 using scene::resolveSceneArgument;
 using scene::resolveSceneName;  // use it for hello_t.scene_name
 using scene::SceneLookupError;
