@@ -114,7 +114,9 @@ void LcmSink::sendForce(const Eigen::Vector3d& f, const Eigen::Vector3d& p, std:
   m.source = options_.source;
   put3(m.f_world, f);
   put3(m.p_world, p);
-  if (lcm_.publish(thx_msgs::kChannelClientForce, &m) != 0) ++counters_.publish_errors;
+  const int rc = options_.server ? options_.server->sendToServer(thx_msgs::kChannelClientForce, m)
+                                 : lcm_.publish(thx_msgs::kChannelClientForce, &m);
+  if (rc != 0) ++counters_.publish_errors;
   ++counters_.forces;
 }
 

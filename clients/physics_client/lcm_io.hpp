@@ -13,6 +13,7 @@
 
 #include "clients/physics_client/driver.hpp"
 #include "clients/physics_client/pen_path.hpp"
+#include "thx_client/client.hpp"
 
 namespace lcm {
 class LCM;
@@ -34,6 +35,10 @@ struct LcmSinkOptions {
   std::string source = "physics";
   std::int64_t force_timeout_us = 50'000;  // hapticd drops our force this long after the last message
   bool send_force = true;                  // false: offline runs publish events only
+  // Online: forces go where the kit sends requests (the server's control port, which no other
+  // client listens on: a 1 kHz force on the bus would wake every client; docs/clients.md §6).
+  // Null: on the sink's own LCM (offline, tests). Not owned.
+  thx::client::Client* server = nullptr;
 };
 
 struct LcmSinkCounters {

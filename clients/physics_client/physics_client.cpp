@@ -100,6 +100,7 @@ int runOnline(const Options& o, SceneFollower& sim) {
   client.subscribe("DEVICE_STATE", state_hz);
   LcmSinkOptions so;
   so.client_id = o.client_id;
+  so.server = &client;
   LcmSink lcm_sink(app.lcm(), so);
   std::unique_ptr<PoseCsvSink> csv;
   if (!o.poses_csv.empty()) csv = std::make_unique<PoseCsvSink>(o.poses_csv);
