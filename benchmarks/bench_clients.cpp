@@ -32,6 +32,7 @@
 #include <thread>
 #include <vector>
 
+#include "benchmarks/bench_help.hpp"
 #include "benchmarks/proc_tools.hpp"
 
 namespace {
@@ -513,6 +514,15 @@ int runSweep(const Options& o, const std::string& url) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  thx::bench::exitOnHelp(argc, argv, R"(usage: bench_clients --hapticd PATH --probe PATH --scene FILE [--seconds S] [--baseline-seconds S]
+                     [--port N] [--workdir DIR] [--json F] [--csv F] [--md F]
+       sweep: ... --clients-list 1,2,4,...,64 [--workload mixed|half|state60|batch1k]
+                  [--url-options K=V&...] [--hapticd-arg ARG]...
+
+hapticd under client load (docs/benchmarks.md parts 5 and 5b): probe-clients against a real-time
+hapticd, each client's rate, delivery, latency and CPU, the servo's compute p99 against hapticd
+alone. Measures, never asserts. benchmarks/run.sh BUILD_DIR clients runs it as the docs show.
+)");
   const Options o = parse(argc, argv);
   // --url-options is appended to the query; ttl=0 unless it names a ttl itself.
   std::string url = "udpm://239.255.76.67:" + std::to_string(o.port) + "?";

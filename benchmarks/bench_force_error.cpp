@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "rt/clock.hpp"
+#include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/exact_surfaces.hpp"
 #include "benchmarks/plot.hpp"
@@ -179,6 +180,11 @@ const char* filterText(const std::string& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  thx::bench::exitOnHelp(argc, argv, R"(usage: bench_force_error [--probes N] [--json F] [--csv F] [--png F] [--md F]
+
+Force error of the texture renderers against exact surfaces (docs/benchmarks.md part 2).
+benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
+)");
   std::string json_path, csv_path, png_path, md_path;
   int probes_per_depth = 2500;
   for (int i = 1; i < argc; ++i) {

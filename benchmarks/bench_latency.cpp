@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/proc_tools.hpp"
 
@@ -171,6 +172,12 @@ std::string us(double v, bool integer) { return integer ? bench::fmt("%.0f", v) 
 }  // namespace
 
 int main(int argc, char** argv) {
+  thx::bench::exitOnHelp(argc, argv, R"(usage: bench_latency --hapticd PATH [--scene FILE] [--seconds S] [--cyclictest PATH] [--workdir DIR]
+                     [--json F] [--csv F] [--md F]
+
+Wake-up latency: cyclictest and hapticd's servo in real time (docs/benchmarks.md part 4).
+benchmarks/run.sh BUILD_DIR latency runs it as the docs show.
+)");
   std::string hapticd, scene = bench::sourceDir() + "/scenes/default.yaml", cyclictest = "cyclictest",
                        workdir = ".", json_path, csv_path, md_path;
   int seconds = 10;

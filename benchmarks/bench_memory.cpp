@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/proc_tools.hpp"
 #include "server/tick_record.hpp"
@@ -193,6 +194,12 @@ std::string mb(std::int64_t b) { return bench::fmt("%.2f", double(b) / kMB); }
 }  // namespace
 
 int main(int argc, char** argv) {
+  thx::bench::exitOnHelp(argc, argv, R"(usage: bench_memory --hapticd PATH [--scene FILE] [--baseline-scene FILE] [--workdir DIR]
+                    [--json F] [--csv F] [--md F]
+
+hapticd's resident and locked memory, and what it is made of (docs/benchmarks.md part 3).
+benchmarks/run.sh BUILD_DIR memory runs it as the docs show.
+)");
   std::string hapticd, scene = bench::sourceDir() + "/benchmarks/scenes/relief1024.yaml",
                        baseline = bench::sourceDir() + "/scenes/default.yaml", workdir = ".", json_path, csv_path,
                        md_path;

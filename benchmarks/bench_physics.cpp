@@ -33,6 +33,7 @@
 #include <thread>
 #include <vector>
 
+#include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_physics_grounds.hpp"
 #include "benchmarks/plot.hpp"
 #include "clients/physics/bullet_convert.hpp"
@@ -742,6 +743,11 @@ void plot(const Results& r, const std::vector<int>& sizes, const std::string& pa
 }
 
 int run(int argc, char** argv) {
+  thx::bench::exitOnHelp(argc, argv, R"(usage: bench_physics [--sizes 64,128,...] [--reps N] [--json F] [--csv F] [--md F] [--png F]
+
+Cost and error of the same surface in five physics representations (docs/benchmarks.md part 6).
+benchmarks/run.sh BUILD_DIR physics runs it as the docs show.
+)");
   std::vector<int> sizes = {64, 128, 256, 512, 1024};
   std::string json_path, csv_path, md_path, png_path;
   for (int i = 1; i < argc; ++i) {
