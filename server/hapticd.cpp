@@ -389,7 +389,10 @@ int run(const Options& o) {
     po.data_port_first = ports.data_first;
     po.data_port_last = ports.data_last;
   }
-  po.fifo_priority = o.io_priority;
+  // Lock-step is not real time, and its servo waits (yielding) for the publisher to drain the ring:
+  // a SCHED_FIFO publisher below a spinning SCHED_FIFO servo would never run. Ordinary threads there.
+  const int io_priority = o.lockstep ? 0 : o.io_priority;
+  po.fifo_priority = io_priority;
   if (control_lcm) {
     po.control_url = ports.controlUrl();
     po.control_lcm = control_lcm.get();
@@ -398,7 +401,7 @@ int run(const Options& o) {
   std::unique_ptr<srv::Receiver> receiver;
   if (lcm) receiver = std::make_unique<srv::Receiver>(*lcm, servo.clientForceSlot(), spec.peak_force_n);
   if (receiver && control_lcm) receiver->listenAlsoOn(*control_lcm);
-  if (receiver) receiver->setFifoPriority(o.io_priority);
+  if (receiver) receiver->setFifoPriority(io_priority);
 
   // VRPN apps: effects they command are rendered in the servo; reports come from its snapshots.
   srv::ExternalEffectRenderer external_effects(period_s);
