@@ -465,8 +465,11 @@ int run(const Options& o) {
     std::int64_t n = 0;
     while (!servo.finished()) {
       // Lock-step is not real time: rather than drop ticks the publisher (and --record) has not
-      // taken yet, wait for it.
-      while (o.lockstep && ring.size() + 2 >= ring.capacity()) std::this_thread::yield();
+      // taken yet, wait for it. It sleeps, not yields: a yielding SCHED_FIFO thread gives its core
+      // only to threads of its own priority or higher, so with two lock-step runs on the two cores
+      // neither publisher (an ordinary thread under --lockstep) got a core; they livelocked.
+      while (o.lockstep && ring.size() + 2 >= ring.capacity())
+        std::this_thread::sleep_for(std::chrono::microseconds(100));
       const srv::TickRecord& r = servo.tick();
       if (n == 0) first_deadline = r.deadline_ns;
       last_deadline = r.deadline_ns;
