@@ -11,7 +11,8 @@
 //  (normal (0,0,1), depth 0) so a bad device reading cannot cause undefined behaviour.
 //
 // Real-time safe: no allocation, no locks, no system calls (except texelsOnSegment, which
-// returns a vector; the servo uses the visitor form).
+// returns a vector). Callers of the walk: the physics client's texel paths (walkCells); the
+// servo does not walk texels.
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
@@ -62,6 +63,15 @@ inline float sampleDepth(const TextureMap& map, TexCoord uv, const SampleOptions
   return sample(map, uv, options).depth;
 }
 
+// Every cell of the UNWRAPPED texel grid the segment a->b crosses, in order from a (column
+// floor(u W), row floor((1 - v) H): TexturedSurface::texelContaining's indices, no wrap/clamp).
+// `visit(long long i, long long j, double t_enter)` gets the segment parameter in [0, 1] at which
+// the segment enters the cell (0 for the first); it returns false to stop. The traversal steps
+// one axis at a time, so it yields exactly 1 + |di| + |dj| cells. Returns the cells visited.
+// This is the walk a moving contact uses to report every texel it crosses between two steps.
+template <class Visit>
+std::size_t walkCells(const TextureMap& map, TexCoord a, TexCoord b, Visit&& visit);
+
 // Every texel the segment a->b crosses, in order from a, each listed once per visit
 // (Amanatides-Woo traversal on the unwrapped grid, then wrap/clamp; consecutive repeats that
 // clamping creates are merged). A segment inside one texel yields that texel. The traversal
@@ -79,15 +89,8 @@ std::vector<TexelIndex> texelsOnSegment(const TextureMap& map, TexCoord a, TexCo
 // ---------------------------------------------------------------------------------------------
 
 template <class Visit>
-std::size_t walkTexels(const TextureMap& map, TexCoord a, TexCoord b, Address address, Visit&& visit,
-                       std::size_t max_texels) {
+std::size_t walkCells(const TextureMap& map, TexCoord a, TexCoord b, Visit&& visit) {
   if (!std::isfinite(a.u) || !std::isfinite(a.v) || !std::isfinite(b.u) || !std::isfinite(b.v)) return 0;
-  // Wrap: shift both ends by whole periods so the integer cells stay small.
-  if (address == Address::Wrap) {
-    const double du = std::floor(a.u), dv = std::floor(a.v);
-    a.u -= du; b.u -= du;
-    a.v -= dv; b.v -= dv;
-  }
   // Cell space: x = column coordinate, y = row coordinate; cell = floor.
   const double x0 = a.u * map.width(), y0 = (1.0 - a.v) * map.height();
   const double x1 = b.u * map.width(), y1 = (1.0 - b.v) * map.height();
@@ -107,28 +110,47 @@ std::size_t walkTexels(const TextureMap& map, TexCoord a, TexCoord b, Address ad
   const double t_delta_y = step_y != 0 ? 1.0 / std::fabs(dy) : kInf;
   const long long total = (ex - cx) * step_x + (ey - cy) * step_y;  // steps still to take
 
+  double t_enter = 0.0;
   std::size_t visited = 0;
-  TexelIndex last{-1, -1};
   for (long long k = 0; k <= total; ++k) {
-    const TexelIndex cell{resolveIndex(cx, map.width(), address), resolveIndex(cy, map.height(), address)};
-    if (!(cell == last)) {
-      if (visited >= max_texels) return visited;
-      ++visited;
-      if (!visit(cell)) return visited;
-      last = cell;
-    }
+    ++visited;
+    if (!visit(cx, cy, std::fmin(1.0, std::fmax(0.0, t_enter)))) return visited;
     if (k == total) break;
     // Step the axis whose grid line comes first; the remaining-step budget decides ties and
     // guards against rounding so we finish exactly on the end cell.
     const bool x_left = cx != ex, y_left = cy != ey;
     if (x_left && (!y_left || t_max_x < t_max_y)) {
       cx += step_x;
+      t_enter = t_max_x;
       t_max_x += t_delta_x;
     } else {
       cy += step_y;
+      t_enter = t_max_y;
       t_max_y += t_delta_y;
     }
   }
+  return visited;
+}
+
+template <class Visit>
+std::size_t walkTexels(const TextureMap& map, TexCoord a, TexCoord b, Address address, Visit&& visit,
+                       std::size_t max_texels) {
+  // Wrap: shift both ends by whole periods so the integer cells stay small.
+  if (address == Address::Wrap && std::isfinite(a.u) && std::isfinite(a.v)) {
+    const double du = std::floor(a.u), dv = std::floor(a.v);
+    a.u -= du; b.u -= du;
+    a.v -= dv; b.v -= dv;
+  }
+  std::size_t visited = 0;
+  TexelIndex last{-1, -1};
+  walkCells(map, a, b, [&](long long i, long long j, double) {
+    const TexelIndex cell{resolveIndex(i, map.width(), address), resolveIndex(j, map.height(), address)};
+    if (cell == last) return true;  // clamping repeats the edge texel: merged
+    if (visited >= max_texels) return false;
+    ++visited;
+    last = cell;
+    return bool(visit(cell));
+  });
   return visited;
 }
 

@@ -77,6 +77,7 @@ thx_msgs::physics_contacts_t makeContacts(const PhysicsScene& scene, const std::
   m.step = scene.steps();
   m.sim_time = scene.simTime();
   m.window = window_s;
+  put3(m.n_geometric_world, scene.surface().mapping().geometricNormalWorld());
   const std::size_t n = std::min<std::size_t>(contacts.size(), M::MAX_CONTACTS);
   m.num_contacts = std::int32_t(n);
   m.num_dropped = std::int32_t(contacts.size() - n);
@@ -84,20 +85,27 @@ thx_msgs::physics_contacts_t makeContacts(const PhysicsScene& scene, const std::
     const LastingContact& c = contacts[k];
     m.body_a[k] = c.body_a;
     m.body_b[k] = c.body_b;
+    m.mass_a[k] = c.mass_a_kg;
     put3(m.p_world[k], c.p_world);
     put3(m.n_world[k], c.n_world);
     put3(m.v_slip_world[k], c.v_slip_world);
     put3(m.v_world[k], c.v_world);
     // Mean over the whole window (a pair touching in part of it had zero force the rest).
     m.f_normal[k] = window_s > 0 ? c.impulse_sum_ns / window_s : c.meanNormalForceN();
-    const std::size_t path = std::min<std::size_t>(c.path.size(), M::MAX_PATH);
-    m.num_texels[k] = std::int32_t(path);
-    m.texels_dropped[k] = clampInt((long long)(c.path.size() - path) + c.path_dropped);
-    for (std::size_t t = 0; t < path; ++t) {
-      m.texel_i[k][t] = clampInt(c.path[t].i);
-      m.texel_j[k][t] = clampInt(c.path[t].j);
+    m.path_start[k] = std::int32_t(m.path.size());
+    m.num_texels[k] = std::int32_t(c.path.size());
+    m.texels_dropped[k] = clampInt(c.path_dropped);
+    for (const Texel& t : c.path) {
+      thx_msgs::physics_texel_t e{};
+      e.i = clampInt(t.i);
+      e.j = clampInt(t.j);
+      e.t = t.t_s;
+      put3(e.n_world, t.n_world);
+      put3(e.v_world, t.v_world);
+      m.path.push_back(e);
     }
   }
+  m.num_path = std::int32_t(m.path.size());
   return m;
 }
 

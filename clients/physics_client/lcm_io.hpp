@@ -26,7 +26,7 @@ std::int64_t monotonicUs();
 thx_msgs::physics_poses_t makePoses(const PhysicsScene& scene, std::int64_t ref_tick, const Eigen::Vector3d& pen_force,
                                     std::int64_t seq, std::int64_t utime);
 thx_msgs::physics_impact_t makeImpact(const Impact& impact, std::int64_t seq, std::int64_t utime);
-// Up to MAX_CONTACTS entries (the rest counted in num_dropped); paths truncated to MAX_PATH.
+// Up to MAX_CONTACTS entries (the rest counted in num_dropped), each with its whole texel path.
 thx_msgs::physics_contacts_t makeContacts(const PhysicsScene& scene, const std::vector<LastingContact>& contacts,
                                           double window_s, std::int64_t seq, std::int64_t utime);
 

@@ -232,6 +232,7 @@ void PhysicsScene::collectContacts(double dt_s) {
 
     LastingContact& c = contacts_[key];
     c.body_a = ida;
+    c.mass_a_kg = ida >= 0 && !scene_.objects[std::size_t(ida)].fixed ? scene_.objects[std::size_t(ida)].mass_kg : 0.0;
     c.body_b = idb;
     c.p_world = p;
     c.n_world = n;
@@ -239,21 +240,12 @@ void PhysicsScene::collectContacts(double dt_s) {
     c.v_world = (ra && ida >= 0) ? phys::velocityOf(*ra) : (ida == kBodyPen ? v_pen : Eigen::Vector3d::Zero());
     c.impulse_sum_ns += impulse;
     c.window_s += dt_s;
-    if (on_surface) {
-      auto last = last_texel_.find(key);
-      if (last == last_texel_.end() || last->second.i != texel.i || last->second.j != texel.j) {
-        if (c.path.size() < LastingContact::kMaxPath)
-          c.path.push_back(texel);
-        else
-          ++c.path_dropped;
-        last_texel_[key] = texel;
-      }
-    }
+    if (on_surface) extendPath(key, oa, dt_s, c);
   }
 
-  // Pairs that stopped touching forget their texel, so a new touch starts a new path.
-  for (auto it = last_texel_.begin(); it != last_texel_.end();)
-    it = touching_now.count(it->first) ? std::next(it) : last_texel_.erase(it);
+  // Pairs that stopped touching forget their path, so a new touch starts a new one.
+  for (auto it = last_path_point_.begin(); it != last_path_point_.end();)
+    it = touching_now.count(it->first) ? std::next(it) : last_path_point_.erase(it);
   touching_since_.clear();
   for (const PairKey& k : touching_now) touching_since_[k] = steps_;
 
@@ -268,6 +260,40 @@ void PhysicsScene::collectContacts(double dt_s) {
     pen_force_.clamped = true;
   }
   pen_force_.sent_world = sent;
+}
+
+void PhysicsScene::extendPath(const PairKey& key, const btCollisionObject* a, double dt_s, LastingContact& c) {
+  const tex::TexturedSurface& s = surface();
+  // The point under a's centre of mass: it moves with the body, not with the sampled normal
+  // (docs/physics.md, "Texel paths").
+  const Eigen::Vector3d centre = s.toLocal(phys::toEigen(a->getWorldTransform().getOrigin()));
+  const tex::TexCoord uv = s.mapping().uvOfLocal({centre.x(), centre.y()});
+  auto add = [&](long long i, long long j, double t_s, const Eigen::Vector3d& v_world) {
+    if (c.path.size() >= LastingContact::kMaxPath) return ++c.path_dropped, void();
+    const int ri = tex::resolveIndex(i, s.map().width(), s.sampling().address);
+    const int rj = tex::resolveIndex(j, s.map().height(), s.sampling().address);
+    c.path.push_back({i, j, t_s, s.directionToWorld(s.texelNormal(i, j, ri, rj)), v_world});
+  };
+  const Eigen::Vector2d xy(centre.x(), centre.y());
+  const auto last = last_path_point_.find(key);
+  if (last == last_path_point_.end()) {  // a new touch: the texel it starts on
+    long long i = 0, j = 0;
+    s.texelContaining(xy.x(), xy.y(), i, j);
+    const btRigidBody* body = btRigidBody::upcast(a);
+    const Eigen::Vector3d v_local = s.directionToLocal(body ? phys::velocityOf(*body) : Eigen::Vector3d::Zero());
+    add(i, j, sim_time_, s.directionToWorld({v_local.x(), v_local.y(), 0.0}));
+  } else {
+    const Eigen::Vector2d v_xy = (xy - last->second.xy_local) / dt_s;
+    const Eigen::Vector3d v_world = s.directionToWorld({v_xy.x(), v_xy.y(), 0.0});
+    const double t0 = sim_time_ - dt_s;
+    bool first = true;  // the walk starts in the texel the path entered at an earlier step
+    tex::walkCells(s.map(), last->second.uv, uv, [&](long long i, long long j, double t_enter) {
+      if (!first) add(i, j, t0 + t_enter * dt_s, v_world);
+      first = false;
+      return true;
+    });
+  }
+  last_path_point_[key] = {xy, uv};
 }
 
 std::vector<LastingContact> PhysicsScene::takeContacts() {

@@ -72,20 +72,26 @@ struct Impact {
   long long texel_i = 0, texel_j = 0;  // unwrapped, when on_surface
 };
 
+// One texel a surface contact's path crossed: what the paper's Eq. 5 needs at each new texel.
+// The path follows the point under a's centre of mass on the plane (docs/physics.md, "Texel paths").
 struct Texel {
-  long long i = 0, j = 0;
+  long long i = 0, j = 0;                              // unwrapped (TexturedSurface::texelContaining)
+  double t_s = 0.0;                                    // simulated time the path entered it
+  Eigen::Vector3d n_world = Eigen::Vector3d::UnitZ();  // the texel's own normal (nearest, not bilinear)
+  Eigen::Vector3d v_world = Eigen::Vector3d::Zero();   // path velocity along the plane in that step
 };
 
 // One touching pair, accumulated since the last takeContacts().
 struct LastingContact {
   int body_a = 0, body_b = 0;
+  double mass_a_kg = 0.0;                             // 0 for a fixed obstacle or the pen
   Eigen::Vector3d p_world = Eigen::Vector3d::Zero();  // at the last step
   Eigen::Vector3d n_world = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d v_slip_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d v_world = Eigen::Vector3d::Zero();  // of a's centre
   double impulse_sum_ns = 0.0;                        // normal impulses over the window
   double window_s = 0.0;                              // time this pair touched in the window
-  std::vector<Texel> path;                            // texels entered, in order (surface contacts)
+  std::vector<Texel> path;                            // every texel crossed, in order (surface contacts)
   static constexpr std::size_t kMaxPath = 4096;       // longer paths drop their tail (counted)
   long long path_dropped = 0;
   double meanNormalForceN() const { return window_s > 0 ? impulse_sum_ns / window_s : 0.0; }
@@ -133,6 +139,8 @@ class PhysicsScene {
   using PairKey = std::pair<const btCollisionObject*, const btCollisionObject*>;
   void placePen(double dt_s);
   void collectContacts(double dt_s);
+  // Appends to `c` every texel the path of a (on the surface) entered in this step.
+  void extendPath(const PairKey& key, const btCollisionObject* a, double dt_s, LastingContact& c);
   int idOf(const btCollisionObject* o) const;
   Eigen::Vector3d penCentreFor(const Eigen::Vector3d& tip) const;
 
@@ -150,7 +158,11 @@ class PhysicsScene {
   PenForce pen_force_;
   std::vector<Impact> impacts_;
   std::map<PairKey, LastingContact> contacts_;        // accumulating since takeContacts()
-  std::map<PairKey, Texel> last_texel_;               // per touching surface pair
+  struct PathPoint {
+    Eigen::Vector2d xy_local = Eigen::Vector2d::Zero();
+    tex::TexCoord uv;
+  };
+  std::map<PairKey, PathPoint> last_path_point_;     // per touching surface pair: its path point a step ago
   std::map<PairKey, std::int64_t> touching_since_;    // pairs touching in the previous step
   std::int64_t steps_ = 0;
   double sim_time_ = 0.0;

@@ -88,6 +88,7 @@ TEST(PhysicsClientEvents, PublishedAndDecodable) {
       with_path += c.num_texels[k] > 0;
       texels += c.num_texels[k];
       EXPECT_EQ(c.texels_dropped[k], 0);
+      EXPECT_NEAR(c.mass_a[k], 0.0071, 1e-4);
       max_f = std::max(max_f, c.f_normal[k]);
     }
   }
@@ -111,20 +112,26 @@ TEST(PhysicsClientEvents, PublishedAndDecodable) {
   EXPECT_TRUE(released);
 }
 
-TEST(PhysicsClientEvents, ContactsMessageBoundsItsArrays) {
+TEST(PhysicsClientEvents, ContactsMessageBoundsPairsButNotPaths) {
   const thx::scene::Scene scene = thx::scene::loadScene(std::string(THX_SOURCE_DIR) + "/scenes/pen_pushes_ball.yaml");
   PhysicsScene sim(scene, SimOptions{});
   std::vector<LastingContact> many(12);
-  for (auto& c : many) {
-    c.body_b = kBodySurface;
-    c.path.resize(40);
-    c.impulse_sum_ns = 0.01;
+  for (std::size_t k = 0; k < many.size(); ++k) {
+    many[k].body_b = kBodySurface;
+    many[k].path.resize(40);
+    for (std::size_t t = 0; t < 40; ++t) many[k].path[t].i = (long long)(100 * k + t);
+    many[k].impulse_sum_ns = 0.01;
   }
   const thx_msgs::physics_contacts_t m = makeContacts(sim, many, 0.01, 1, 0);
   EXPECT_EQ(m.num_contacts, 8);
   EXPECT_EQ(m.num_dropped, 4);
-  EXPECT_EQ(m.num_texels[0], 16);
-  EXPECT_EQ(m.texels_dropped[0], 24);
+  ASSERT_EQ(m.num_path, 8 * 40);
+  for (int k = 0; k < 8; ++k) {
+    EXPECT_EQ(m.num_texels[k], 40);
+    EXPECT_EQ(m.path_start[k], 40 * k);
+    EXPECT_EQ(m.texels_dropped[k], 0);
+    EXPECT_EQ(m.path[std::size_t(m.path_start[k] + 39)].i, 100 * k + 39);
+  }
   EXPECT_DOUBLE_EQ(m.f_normal[0], 1.0);
 }
 

@@ -1,9 +1,11 @@
 // The texel walk lists every texel a segment crosses, in order (sound needs all of them).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "textures/sampling.hpp"
 
@@ -97,4 +99,53 @@ TEST(TexelWalk, DegenerateAndInvalidSegments) {
   int seen = 0;
   walkTexels(map, {0.0, 0.5}, {1.0, 0.5}, Address::Wrap, [&](TexelIndex) { return ++seen < 3; });
   EXPECT_EQ(seen, 3);
+}
+
+TEST(TexelWalk, UnwrappedCellsCarryTheirEntryParameter) {
+  // From the centre of column 0 to the centre of column 10 (row 3): column k is entered where the
+  // segment crosses x = k, at t = (k - 0.5) / 10; the cells are not wrapped (columns 8, 9, 10 of
+  // an 8-texel map stay 8, 9, 10).
+  const TextureMap map(8, 8, Representation::Normal);
+  const double v = 1.0 - 3.5 / 8;
+  std::vector<long long> columns;
+  std::vector<double> entries;
+  const std::size_t n = walkCells(map, {0.5 / 8, v}, {10.5 / 8, v}, [&](long long i, long long j, double t) {
+    EXPECT_EQ(j, 3);
+    columns.push_back(i);
+    entries.push_back(t);
+    return true;
+  });
+  ASSERT_EQ(n, 11u);
+  for (long long k = 0; k <= 10; ++k) {
+    EXPECT_EQ(columns[std::size_t(k)], k);
+    EXPECT_NEAR(entries[std::size_t(k)], k == 0 ? 0.0 : (double(k) - 0.5) / 10.0, 1e-12);
+  }
+}
+
+TEST(TexelWalk, UnwrappedDiagonalEntriesIncreaseAndMatchTheGridLines) {
+  // Each entry parameter puts the point of the segment on the grid line it crossed.
+  const TextureMap map(64, 64, Representation::Normal);
+  const TexCoord a{0.1234, 0.8765}, b{-0.377, 0.0431};
+  double last = -1.0;
+  long long pi = 0, pj = 0;
+  bool first = true;
+  walkCells(map, a, b, [&](long long i, long long j, double t) {
+    EXPECT_GE(t, last);
+    last = t;
+    if (!first) {
+      const double x = (a.u + t * (b.u - a.u)) * 64, y = (1.0 - (a.v + t * (b.v - a.v))) * 64;
+      if (i != pi) {
+        EXPECT_NEAR(x, double(std::max(i, pi)), 1e-9);
+      }
+      if (j != pj) {
+        EXPECT_NEAR(y, double(std::max(j, pj)), 1e-9);
+      }
+      EXPECT_EQ(std::abs(i - pi) + std::abs(j - pj), 1);
+    }
+    first = false;
+    pi = i;
+    pj = j;
+    return true;
+  });
+  EXPECT_LT(pi, 0);  // went past the left edge without wrapping
 }

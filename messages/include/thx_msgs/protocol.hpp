@@ -19,6 +19,7 @@
 #include "thx_msgs/physics_contacts_t.hpp"
 #include "thx_msgs/physics_impact_t.hpp"
 #include "thx_msgs/physics_poses_t.hpp"
+#include "thx_msgs/physics_texel_t.hpp"
 #include "thx_msgs/server_command_reply_t.hpp"
 #include "thx_msgs/server_command_t.hpp"
 #include "thx_msgs/servo_stats_t.hpp"
@@ -41,8 +42,9 @@ inline constexpr char kChannelHeartbeat[] = "THX_HEARTBEAT";             // hear
 inline constexpr char kChannelClientForce[] = "THX_CLIENT_FORCE";        // client_force_t
 inline constexpr char kChannelCommand[] = "THX_COMMAND";                 // server_command_t
 inline constexpr char kChannelCommandReply[] = "THX_COMMAND_REPLY";      // server_command_reply_t
-// Published by physics-client for the audio and visual clients (docs/messages.md §9). Fixed-size
-// types without strings or variable arrays: the generated decode() is safe as is (try_decode too).
+// Published by physics-client for the audio and visual clients (docs/messages.md §9). Poses and
+// impacts are fixed-size; physics_contacts_t has one variable array (its texel path): decode it
+// with try_decode, which checks the count first.
 inline constexpr char kChannelPhysicsPoses[] = "THX_PHYSICS_POSES";        // physics_poses_t
 inline constexpr char kChannelPhysicsImpact[] = "THX_PHYSICS_IMPACT";      // physics_impact_t
 inline constexpr char kChannelPhysicsContacts[] = "THX_PHYSICS_CONTACTS";  // physics_contacts_t
@@ -231,6 +233,30 @@ inline std::size_t max_unfragmented_batch_samples(std::size_t channel_length = k
   return (kLcmShortMessageMaxSize - overhead) / static_cast<std::size_t>(contact_sample_encoded_size());
 }
 
+// physics_contacts_t ends in its variable texel path: the count `num_path` sits just before it, at
+// a fixed offset (every field before it is fixed-size), and each texel is a fixed-size
+// physics_texel_t. Both are read from the generated code, not counted by hand.
+inline std::size_t physics_path_count_offset() noexcept {
+  return static_cast<std::size_t>(physics_contacts_t{}.getEncodedSize()) - 4;
+}
+inline std::size_t physics_texel_encoded_size() noexcept {
+  return static_cast<std::size_t>(physics_texel_t{}._getEncodedSizeNoHash());
+}
+// Encoded size of a physics_contacts_t whose path holds n texels (fingerprint included).
+inline std::size_t physics_contacts_encoded_size(std::size_t n) noexcept {
+  return physics_path_count_offset() + 4 + n * physics_texel_encoded_size();
+}
+
+namespace detail {
+// A variable array's count checked against the bytes after it before decode() resizes a vector.
+inline bool count_fits(const void* data, std::size_t size, std::size_t count_offset, std::size_t element_size) noexcept {
+  if (size < count_offset + 4) return false;
+  const std::uint32_t count = read_be32(static_cast<const std::uint8_t*>(data) + count_offset);
+  if (count > 0x7fffffffu) return false;  // negative int32
+  return count <= (size - count_offset - 4) / element_size;
+}
+}  // namespace detail
+
 // Decodes `size` bytes at `data` into `out`. Returns the number of bytes decoded (> 0), or -1
 // on a short or corrupt buffer or a wrong fingerprint. Never throws, never reads outside
 // [data, data + size), never allocates more than the buffer can describe. `out` is unspecified
@@ -243,11 +269,10 @@ int try_decode(const void* data, std::size_t size, T& out) noexcept {
   }
   if constexpr (std::is_same_v<T, contact_batch_t>) {
     // Check the sample count against the bytes present before decode() resizes the vector.
-    if (size < kBatchHeaderBytes) return -1;
-    const std::uint32_t count = detail::read_be32(static_cast<const std::uint8_t*>(data) + kBatchCountOffset);
-    if (count > 0x7fffffffu) return -1;  // negative int32
-    const std::size_t room = (size - kBatchHeaderBytes) / static_cast<std::size_t>(contact_sample_encoded_size());
-    if (count > room) return -1;
+    if (!detail::count_fits(data, size, kBatchCountOffset, static_cast<std::size_t>(contact_sample_encoded_size()))) return -1;
+  }
+  if constexpr (std::is_same_v<T, physics_contacts_t>) {
+    if (!detail::count_fits(data, size, physics_path_count_offset(), physics_texel_encoded_size())) return -1;
   }
   try {
     const int n = out.decode(data, 0, static_cast<int>(size));
@@ -261,6 +286,10 @@ int try_decode(const void* data, std::size_t size, T& out) noexcept {
 // getEncodedSize()/publish(), or they read past the vector.
 inline bool batch_count_consistent(const contact_batch_t& b) noexcept {
   return b.num_samples >= 0 && static_cast<std::size_t>(b.num_samples) == b.samples.size();
+}
+// The same rule for physics_contacts_t's texel path.
+inline bool path_count_consistent(const physics_contacts_t& m) noexcept {
+  return m.num_path >= 0 && static_cast<std::size_t>(m.num_path) == m.path.size();
 }
 
 }  // namespace thx_msgs
