@@ -66,6 +66,9 @@ LCM:
                          z_m, x_local_m, y_local_m, h_local_m, speed_m_per_s, spin_rad_per_s`
                          (world, then the surface's frame: along the plane and height above it;
                          after a followed scene switch t_s starts again at 0 with the new objects)
+  --record FILE          offline: write the poses, impacts and contacts to an LCM log on the pen
+                         session's clock; with --replay-log the log is that session plus the
+                         physics streams, interleaved by time (the same bytes on every run)
   --quiet                no progress lines (and no line per scene switch)
   -h, --help             this text
 )";
@@ -145,6 +148,8 @@ Options parseOptions(const std::vector<std::string>& args) {
       o.json = value();
     } else if (a == "--poses-csv") {
       o.poses_csv = value();
+    } else if (a == "--record") {
+      o.record = value();
     } else if (a == "--quiet") {
       o.quiet = true;
     } else {
@@ -158,6 +163,9 @@ Options parseOptions(const std::vector<std::string>& args) {
     throw UsageError("--no-lcm needs an offline pen (--replay-log, --pen-csv, --pen-script or --no-pen)");
   if (o.no_lcm && o.lcm_url) throw UsageError("--no-lcm and --lcm-url exclude each other");
   if (o.pen_source == PenSource::None && !o.duration_s) throw UsageError("--no-pen needs --duration S");
+  if (!o.record.empty() && !o.offline())
+    throw UsageError("--record needs an offline pen (--replay-log, --pen-csv, --pen-script or --no-pen): online "
+                     "runs step in real time and would not replay the same");
   return o;
 }
 

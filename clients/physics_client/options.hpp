@@ -34,6 +34,7 @@ struct Options {
   double connect_timeout_s = 10.0;
   std::string json;
   std::string poses_csv;  // --poses-csv FILE
+  std::string record;     // --record FILE (offline runs)
   bool quiet = false;
 
   bool offline() const { return pen_source != PenSource::Hapticd; }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "clients/physics_client/pen_path.hpp"
 #include "clients/physics_client/pose_csv.hpp"
 #include "clients/physics_client/scene_follower.hpp"
+#include "clients/physics_client/session_record.hpp"
 #include "thx_client/app.hpp"
 #include "thx_client/stop_signal.hpp"
 
@@ -67,6 +69,15 @@ int runOffline(const Options& o, SceneFollower& sim) {
     tee = std::make_unique<TeeSink>(*sink, *csv);
     sink = tee.get();
   }
+  std::unique_ptr<RecordSink> record;
+  std::unique_ptr<TeeSink> record_tee;
+  if (!o.record.empty()) {
+    if (!std::ofstream(o.record))  // before the run, not after it
+      throw thx::Error(thx::Error::Kind::Io, "--record " + o.record + ": cannot create the log file");
+    record = std::make_unique<RecordSink>(o.pen_source == PenSource::ReplayLog ? sessionClockOf(o.pen_file) : SessionClock{});
+    record_tee = std::make_unique<TeeSink>(*sink, *record);
+    sink = record_tee.get();
+  }
   const double duration = o.duration_s.value_or(path ? path->duration() + 1.0 : 0.0);
   const auto steps = std::int64_t(std::llround(duration * d.rate_hz));
   if (!o.quiet)
@@ -82,6 +93,10 @@ int runOffline(const Options& o, SceneFollower& sim) {
       driver.step(std::nullopt);
   }
   driver.flush();
+  if (record) {
+    writeCombinedLog(o.pen_source == PenSource::ReplayLog ? o.pen_file : std::string(), record->events(), o.record);
+    if (!o.quiet) std::fprintf(stderr, "physics-client: recorded %zu physics events to %s\n", record->events().size(), o.record.c_str());
+  }
   printSummary(stdout, sim.summary());
   if (!o.json.empty()) writeSummaryJson(o.json, o.scene, sim.summary());
   return 0;
