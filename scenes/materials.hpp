@@ -20,6 +20,10 @@ struct Material {
   double friction = 0.0;
   double restitution = 0.0;
   std::string source;  // where the elastic and damping values come from
+  // Bullet's rolling friction, a length: the rolling-resistance torque is at most this times the
+  // normal force. Bullet combines a pair as delta_a * mu_b + delta_b * mu_a. 0 in the table (a
+  // scene sets it: `material: {name: steel, rolling_friction: 1e-4}`).
+  double rolling_friction_m = 0.0;
 };
 
 const std::vector<Material>& materials();

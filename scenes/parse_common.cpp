@@ -14,7 +14,8 @@ Pose parsePose(const Field& field) {
   return pose;
 }
 
-Material parseMaterial(const Field& field) {
+namespace {
+Material namedMaterial(const Field& field) {
   std::vector<std::string> names;
   for (const Material& m : materials()) names.push_back(m.name);
   const std::string name = field.text();
@@ -22,6 +23,16 @@ Material parseMaterial(const Field& field) {
   const std::string guess = closestMatch(name, names);
   field.fail(guess.empty() ? "unknown material" : "unknown material (did you mean '" + guess + "'?)",
              "one of: " + joinNames(names));
+}
+}  // namespace
+
+Material parseMaterial(const Field& field) {
+  if (!field.isMapping()) return namedMaterial(field);
+  // The table's material with the scene's own rolling friction.
+  field.expectKeys({"name", "rolling_friction"});
+  Material m = namedMaterial(field.at("name", "a material name (materials table)"));
+  if (auto r = field.find("rolling_friction")) m.rolling_friction_m = r->number(closedRange(0.0, 0.01, "m"));
+  return m;
 }
 
 std::string parseExistingFile(const Field& field, const std::string& what) {

@@ -55,6 +55,7 @@ class Field {
   const std::string& path() const { return path_; }
   const ParseContext& context() const { return *context_; }
   bool isNull() const { return node_.IsNull(); }
+  bool isMapping() const { return node_.IsMap(); }
   // Where the value is; for a null value, where its key is (yaml-cpp marks an empty value at the
   // next token, often on the following line).
   SourceLocation location() const;

@@ -26,6 +26,7 @@ phys::BodyMaterial materialOf(const scene::Material& m) {
   phys::BodyMaterial b;
   b.friction = m.friction;
   b.restitution = m.restitution;
+  b.rolling_friction = m.rolling_friction_m;
   return b;
 }
 
