@@ -1,5 +1,5 @@
 #pragma once
-// Sampling a TextureMap: the one convention every modality uses (DESIGN §4 rule 4).
+// Sampling a TextureMap: the one convention every modality uses (docs/design.md §4 rule 4).
 //
 //  (u, v) in [0, 1)^2: u grows to the image right (+x), v grows to the image TOP (+y).
 //  Texel (i, j) covers u in [i/W, (i+1)/W) and v in (1-(j+1)/H, 1-j/H]; its centre is at
