@@ -99,6 +99,7 @@ publishes device and contact state over LCM.
   --vrpn-plane2         render VRPN Plane2 surface effects (texture, buzz, adhesion); default:
                         ignore them, as a stock HDAPI PHANToM does (docs/vrpn.md)
   --quiet               no progress lines
+  --verbose             also print the stability-budget check in words (docs/hapticd.md)
   -h, --help            this text
 
 Exit status: 0 clean run, 1 bad input or device failure, 2 bad command line.
@@ -129,6 +130,7 @@ struct Options {
   thx::srv::RealtimeOptions rt;
   std::string flight_dir = ".";
   bool quiet = false;
+  bool verbose = false;  // --verbose: the stability budget's findings, explained
   std::string vrpn_listen;  // [ADDR:]PORT; empty: no VRPN server
   std::string vrpn_name = "Phantom0";
   std::optional<double> vrpn_report_hz;
@@ -260,6 +262,8 @@ Options parse(int argc, char** argv) {
       o.vrpn_plane2 = true;
     } else if (a == "--quiet") {
       o.quiet = true;
+    } else if (a == "--verbose") {
+      o.verbose = true;
     } else {
       usage("unknown argument '" + a + "'");
     }
@@ -331,8 +335,11 @@ int run(const Options& o) {
   policy.strict_stability = o.strict_stability;
   std::unique_ptr<srv::PreparedScene> first = srv::prepareScene(sc, o.scene, spec, policy);
   // Above the bound is the normal case with a real device (its vendor maximum counts on the hand's
-  // damping), so it is a note, not a warning; --strict-stability makes it an error (thrown above).
-  if (!o.quiet && !first->budget.within_bound) std::fprintf(stderr, "hapticd: note: %s\n", first->budget.message.c_str());
+  // damping): said in words with --verbose only; --strict-stability makes it an error (thrown above).
+  if (o.verbose) {
+    for (const std::string& line : srv::budgetReport(first->budget))
+      std::fprintf(stderr, "hapticd: stability budget: %s\n", line.c_str());
+  }
   const srv::ServoRigConfig wiring = first->wiring;
   const scene::SceneSurface& scene_surface = first->surface;
   const std::size_t texture_bytes = scene_surface.map->bytes();
@@ -382,6 +389,7 @@ int run(const Options& o) {
   if (sso.scenes_dir.empty()) sso.scenes_dir = ".";
   sso.policy = policy;
   sso.quiet = o.quiet;
+  sso.verbose = o.verbose;
   srv::SceneSwitcher switcher(servo.surfaceSwap(), sc, spec, std::move(first), sso);
   po.scene_loads = &switcher;
   if (ports.data_first > 0) {
