@@ -89,7 +89,12 @@ publishes device and contact state over LCM.
   --no-mlock            do not lock memory
   --mlock-eager         fault in and lock every mapped page at start (whole shared libraries);
                         default: lock pages as they are first touched (MCL_ONFAULT)
-  --flight-dir DIR      where fault flight records go (default: .)
+  --flight-dir DIR      where fault flight records go (default: ., the working folder; one CSV
+                        of the last second of ticks per written fault, flight-tick<N>-<fault>.csv)
+  --flight-max N        write at most N flight records per run (default 20; 0: none); later
+                        faults are counted in the statistics, not written
+  --flight-interval S   write a flight record only S seconds of device time or more after the
+                        fault of the last one written (default 10; 0: no rate cap)
   --vrpn-listen [ADDR:]PORT  serve the device to VRPN apps as a PHANToM on TCP+UDP PORT at ADDR
                         (default address 127.0.0.1; 0.0.0.0 for every interface; docs/vrpn.md)
   --vrpn-name NAME      the served device's VRPN name (default Phantom0)
@@ -129,6 +134,7 @@ struct Options {
   bool strict_stability = false;
   thx::srv::RealtimeOptions rt;
   std::string flight_dir = ".";
+  thx::srv::FlightDumpLimits flight_limits;  // --flight-max, --flight-interval
   bool quiet = false;
   bool verbose = false;  // --verbose: the stability budget's findings, explained
   std::string vrpn_listen;  // [ADDR:]PORT; empty: no VRPN server
@@ -245,6 +251,15 @@ Options parse(int argc, char** argv) {
       o.rt.lock_on_fault = false;
     } else if (a == "--flight-dir") {
       o.flight_dir = value();
+      if (o.flight_dir.empty()) usage("--flight-dir: expected a folder, got ''");
+    } else if (a == "--flight-max") {
+      const double n = number(a, value());
+      if (n < 0 || n > 1e6 || n != std::floor(n)) usage("--flight-max: expected an integer 0..1000000");
+      o.flight_limits.max_files = std::uint64_t(n);
+    } else if (a == "--flight-interval") {
+      o.flight_limits.min_interval_s = number(a, value());
+      if (o.flight_limits.min_interval_s < 0 || o.flight_limits.min_interval_s > 86400)
+        usage("--flight-interval: expected seconds in [0, 86400]");
     } else if (a == "--vrpn-listen") {
       o.vrpn_listen = value();
     } else if (a == "--vrpn-name") {
@@ -375,6 +390,7 @@ int run(const Options& o) {
   po.log_subscriptions = !o.quiet;
   po.servo_rate_hz = sc.rates.servo_hz;
   po.flight_dir = o.flight_dir;
+  po.flight_limits = o.flight_limits;
   po.simulated_device = sim != nullptr || replay != nullptr;
   std::unique_ptr<srv::SessionRecorder> session;
   if (!o.record.empty()) {
@@ -545,6 +561,7 @@ int run(const Options& o) {
   summary.publisher = publisher.counters();
   if (receiver) summary.client_forces_accepted = receiver->counters().accepted;
   summary.snapshots_dropped = ring.dropped();
+  summary.flight_dir = o.flight_dir;
   summary.last_flight_dump = publisher.lastFlightDump();
   summary.crease = o.crease;
   summary.passivity = o.passivity;

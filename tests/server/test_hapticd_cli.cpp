@@ -123,6 +123,23 @@ TEST_F(Hapticd, EveryShippedSceneStartsInLockstepWithoutAWarning) {
   EXPECT_NE(v.err.find("docs/hapticd.md#stability-budget"), std::string::npos) << v.err;
 }
 
+// Flight records: the caps are options with clear errors.
+TEST_F(Hapticd, FlightRecordCapsRejectBadValues) {
+  ProcRun r = run("--scene scenes/default.yaml --lockstep --no-lcm --flight-max -1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--flight-max: expected an integer 0..1000000"), std::string::npos) << r.err;
+  r = run("--scene scenes/default.yaml --lockstep --no-lcm --flight-interval x");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--flight-interval"), std::string::npos) << r.err;
+  r = run("--scene scenes/default.yaml --lockstep --no-lcm --no-mlock --duration 0.2 --flight-max 3 --flight-dir '" +
+          path("") + "' --stats-json '" + path("s.json") + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string json = slurp(path("s.json"));
+  EXPECT_NE(json.find("\"flight_dir\": \"" + path("") + "\""), std::string::npos) << json;
+  EXPECT_EQ(jsonNumber(json, "flight_dumps_over_count"), 0);
+  EXPECT_EQ(jsonNumber(json, "flight_dumps_over_rate"), 0);
+}
+
 TEST_F(Hapticd, UnusableLcmUrlIsAWarningAndTheServoRuns) {
   const ProcRun r = run("--scene scenes/default.yaml --lockstep --quiet --duration 0.5 --lcm-url 'bogus://nowhere' "
                     "--stats-json '" + path("s.json") + "' --flight-dir '" + path("") + "'");
