@@ -17,13 +17,6 @@ thx::Error configError(const std::string& path, const std::string& what) {
 
 std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::string& path,
                                             const dev::DeviceSpec& spec, const ScenePolicy& policy) {
-  if (sc.surface.smoothing_sigma_texels > 0.0) {
-    const std::string sigma = numberText(sc.surface.smoothing_sigma_texels);
-    throw configError(path, "surface.smoothing_sigma = " + sigma +
-                                ": hapticd does not link OpenCV, so it cannot smooth at start-up.\n  Smooth once with "
-                                "`texturetool smooth IN OUT --sigma " +
-                                sigma + "` and point surface.texture.file at OUT.");
-  }
   auto p = std::make_unique<PreparedScene>();
   p->path = path;
   p->warnings = sc.warnings;
