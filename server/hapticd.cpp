@@ -36,6 +36,7 @@
 #include "server/scene_device.hpp"
 #include "server/scene_switcher.hpp"
 #include "server/servo_rig.hpp"
+#include "server/paper_loop.hpp"
 #include "server/stability_budget.hpp"
 #include "server/session_log.hpp"
 #include "server/port_plan.hpp"
@@ -79,7 +80,12 @@ publishes device and contact state over LCM.
   --max-rate HZ         highest rate granted to one subscription (default: the servo rate)
   --max-bandwidth MB/S  total bandwidth of all subscriptions (default 8 MB/s); more is refused
   --heartbeat-timeout S forget a client after S seconds without a heartbeat (default 2)
-  --no-crease           crease handling off (one plane per tick, the source paper's method)
+  --no-crease           crease handling off (one plane, re-planned every tick; the recovery
+                        rule and the passivity controller stay)
+  --paper-loop          the source paper's own loop: one plane per graphics frame (--plane-rate),
+                        rendered at the servo rate; no crease handling, recovery rule or
+                        passivity controller; the safety stage stays (docs/stability.md)
+  --plane-rate HZ       planes per second in --paper-loop (default 100, at most the servo rate)
   --no-passivity        passivity controller off (the observer still runs)
   --stiffness-fraction F  override the scene's stiffness (fraction of the device maximum)
   --strict-stability    refuse a stiffness above the sampled-wall bound K <= 2(b - |B|)/T
@@ -132,6 +138,8 @@ struct Options {
   bool passivity = true;
   std::optional<double> stiffness_fraction;
   bool strict_stability = false;
+  bool paper_loop = false;                                 // --paper-loop
+  std::optional<double> plane_rate_hz;                     // --plane-rate
   thx::srv::RealtimeOptions rt;
   std::string flight_dir = ".";
   thx::srv::FlightDumpLimits flight_limits;  // --flight-max, --flight-interval
@@ -236,6 +244,11 @@ Options parse(int argc, char** argv) {
       o.crease = false;
     } else if (a == "--no-passivity") {
       o.passivity = false;
+    } else if (a == "--paper-loop") {
+      o.paper_loop = true;
+    } else if (a == "--plane-rate") {
+      o.plane_rate_hz = number(a, value());
+      if (*o.plane_rate_hz <= 0) usage("--plane-rate: expected a rate > 0 Hz");
     } else if (a == "--stiffness-fraction") {
       o.stiffness_fraction = number(a, value());
       if (*o.stiffness_fraction <= 0 || *o.stiffness_fraction > 1) usage("--stiffness-fraction must be in (0, 1]");
@@ -291,6 +304,7 @@ Options parse(int argc, char** argv) {
   }
   if (o.device == "replay:") usage("--device replay:FILE needs a file");
   if (o.device.rfind("vrpn:", 0) == 0 && o.lockstep) usage("--lockstep needs the simulated or a replayed device");
+  if (o.plane_rate_hz && !o.paper_loop) usage("--plane-rate applies to --paper-loop only");
   if (!o.vrpn_listen.empty() && !parseListenAddress(o.vrpn_listen))
     usage("--vrpn-listen: expected [ADDR:]PORT with an IPv4 ADDR and PORT 1..65535, got '" + o.vrpn_listen + "'");
   try {  // checked here, before a scene is loaded
@@ -348,6 +362,7 @@ int run(const Options& o) {
   policy.crease = o.crease;
   policy.passivity = o.passivity;
   policy.strict_stability = o.strict_stability;
+  if (o.paper_loop) policy.paper_loop_plane_hz = o.plane_rate_hz.value_or(srv::kPaperPlaneRateHz);
   std::unique_ptr<srv::PreparedScene> first = srv::prepareScene(sc, o.scene, spec, policy);
   // Above the bound is the normal case with a real device (its vendor maximum counts on the hand's
   // damping): said in words with --verbose only; --strict-stability makes it an error (thrown above).
@@ -563,8 +578,8 @@ int run(const Options& o) {
   summary.snapshots_dropped = ring.dropped();
   summary.flight_dir = o.flight_dir;
   summary.last_flight_dump = publisher.lastFlightDump();
-  summary.crease = o.crease;
-  summary.passivity = o.passivity;
+  summary.crease = wiring.renderer.crease_handling;
+  summary.passivity = wiring.passivity;
   summary.stiffness_n_per_m = wiring.renderer.stiffness_n_per_m;  // the first scene's
   if (!o.stats_json.empty()) srv::writeStatsJson(o.stats_json, summary, servo.computeHistogram(), servo.wakeHistogram());
   srv::printSummary(stdout, summary, servo.computeHistogram(), servo.wakeHistogram());

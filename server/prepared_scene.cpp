@@ -2,6 +2,7 @@
 
 #include "base/number_text.hpp"
 #include "scenes/scene_loader.hpp"
+#include "server/paper_loop.hpp"
 #include "server/passivity.hpp"
 #include "server/scene_device.hpp"
 
@@ -26,6 +27,7 @@ std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::s
   if (policy.stiffness_fraction) rc.stiffness_n_per_m = *policy.stiffness_fraction * spec.max_stiffness_n_per_m;
   rc.crease_handling = policy.crease;
   p->wiring.passivity = policy.passivity;
+  if (policy.paper_loop_plane_hz) applyPaperLoop(p->wiring, *policy.paper_loop_plane_hz);
 
   StabilityRequest sr;
   sr.stiffness_fraction = rc.stiffness_n_per_m / spec.max_stiffness_n_per_m;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 #include <vector>
 
@@ -121,6 +122,38 @@ TEST_F(Hapticd, EveryShippedSceneStartsInLockstepWithoutAWarning) {
   EXPECT_NE(v.err.find("no stiffness at all meets it"), std::string::npos) << v.err;
   EXPECT_NE(v.err.find("the passivity controller"), std::string::npos) << v.err;
   EXPECT_NE(v.err.find("docs/hapticd.md#stability-budget"), std::string::npos) << v.err;
+}
+
+// Issue 12: hapticd smooths a scene's texture at load time (textures/smoothing.hpp, no OpenCV)
+// instead of refusing it, and runs the source paper's loop as a named mode.
+TEST_F(Hapticd, RunsASmoothedSceneAndThePapersLoop) {
+  std::string scene = slurp(std::string(THX_SOURCE_DIR) + "/scenes/vvalley.yaml");
+  const std::string sampling = "  sampling: {filter: bilinear, address: wrap}\n";
+  ASSERT_NE(scene.find(sampling), std::string::npos);
+  scene.replace(scene.find(sampling), sampling.size(), sampling + "  smoothing_sigma: 2\n");
+  {
+    std::ofstream out(path("smoothed.yaml"));
+    out << scene;
+  }
+  const std::string common = " --lockstep --no-lcm --no-mlock --duration 1 --flight-dir '" + path("") +
+                             "' --stats-json '" + path("s.json") + "'";
+  ProcRun r = run("--scene '" + path("smoothed.yaml") + "'" + common);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_GT(jsonNumber(slurp(path("s.json")), "contact_ticks"), 100);
+
+  r = run("--scene scenes/vvalley.yaml --paper-loop --plane-rate 50" + common);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("crease off, passivity off"), std::string::npos) << r.out;
+  EXPECT_GT(jsonNumber(slurp(path("s.json")), "contact_ticks"), 100);
+
+  r = run("--scene scenes/vvalley.yaml --paper-loop --plane-rate 5000" + common);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("plane rate 5000 Hz: expected a rate > 0 and at most the servo rate 1000 Hz"), std::string::npos)
+      << r.err;
+  r = run("--scene scenes/vvalley.yaml --plane-rate 50" + common);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--plane-rate applies to --paper-loop only"), std::string::npos) << r.err;
 }
 
 // Flight records: the caps are options with clear errors.
