@@ -64,10 +64,6 @@ tex::TextureMap loadSurface(const Surface& surface, const SurfaceTextureOptions&
 tex::TextureMap buildSurfaceTexture(const Scene& scene, const SurfaceTextureOptions& options) {
   const Surface& surface = scene.surface;
   const SourceLocation& where = surface.texture.where;
-  if (surface.smoothing_sigma_texels > 0.0 && !options.smooth)
-    throw SceneError(where, "surface.smoothing_sigma", "smoothing requested but this program has no smoothing filter",
-                     "a program linking thx_texture_filters, or smoothing_sigma: 0",
-                     formatNumber(surface.smoothing_sigma_texels));
   try {
     tex::TextureMap map = surface.texture.kind == TextureSource::Kind::Generator ? generateSurface(surface)
                                                                                  : loadSurface(surface, options);
@@ -75,7 +71,7 @@ tex::TextureMap buildSurfaceTexture(const Scene& scene, const SurfaceTextureOpti
       tex::SmoothOptions smooth;
       smooth.sigma_texels = surface.smoothing_sigma_texels;
       smooth.address = surface.sampling.address;
-      map = options.smooth(map, smooth);
+      map = options.smooth ? options.smooth(map, smooth) : tex::smoothTexture(map, smooth);
     }
     return map;
   } catch (const tex::TextureError& e) {

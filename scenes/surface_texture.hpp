@@ -12,10 +12,9 @@ namespace thx::scene {
 
 struct SurfaceTextureOptions {
   tex::BadTexelPolicy bad_texels = tex::BadTexelPolicy::Reject;
-  // Gaussian smoothing. thx_scenes cannot smooth by itself: the filter needs OpenCV, which the
-  // real-time server must not link (textures/CMakeLists.txt). Programs linking
-  // thx_texture_filters pass `thx::tex::smoothTexture`; required when smoothing_sigma > 0.
-  // It is called with sigma = smoothing_sigma and the scene's address mode.
+  // Gaussian smoothing when smoothing_sigma > 0, called with sigma = smoothing_sigma and the
+  // scene's address mode. Unset: `thx::tex::smoothTexture` (dependency-free, so hapticd smooths
+  // too); a test may pass another.
   std::function<tex::TextureMap(const tex::TextureMap&, const tex::SmoothOptions&)> smooth;
   tex::LoadReport* report = nullptr;  // receives texel counts and warnings (file textures, extent)
 };

@@ -46,6 +46,13 @@ std::string faultName(std::uint32_t bits) {
   return name.empty() ? "none" : name;
 }
 
+std::optional<std::int64_t> FlightRecorder::pendingTick() const {
+  if (!frozen_.load(std::memory_order_acquire)) return std::nullopt;
+  return frozen_tick_;
+}
+
+void FlightRecorder::discardPending() { frozen_.store(false, std::memory_order_release); }
+
 std::string FlightRecorder::dumpPending(const std::string& directory) {
   if (!frozen_.load(std::memory_order_acquire)) return {};
   const Buffer& b = buffers_[1 - active_];

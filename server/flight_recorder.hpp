@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "server/tick_record.hpp"
@@ -27,6 +28,10 @@ class FlightRecorder {
   // Any other thread. Writes the frozen buffer as CSV into `directory` (one file per fault) and
   // returns its path; empty when nothing is pending. Throws std::runtime_error on I/O errors.
   std::string dumpPending(const std::string& directory);
+  // Any other thread: the tick of the pending flight's fault (none pending: nullopt), and
+  // dropping it unwritten (server/flight_dump_limits.hpp) so the next fault can be frozen.
+  std::optional<std::int64_t> pendingTick() const;
+  void discardPending();
 
   std::uint64_t faultsSeen() const { return faults_.load(std::memory_order_relaxed); }
   std::uint64_t faultsNotFrozen() const { return not_frozen_.load(std::memory_order_relaxed); }

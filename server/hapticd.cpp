@@ -36,6 +36,7 @@
 #include "server/scene_device.hpp"
 #include "server/scene_switcher.hpp"
 #include "server/servo_rig.hpp"
+#include "server/paper_loop.hpp"
 #include "server/stability_budget.hpp"
 #include "server/session_log.hpp"
 #include "server/port_plan.hpp"
@@ -79,7 +80,12 @@ publishes device and contact state over LCM.
   --max-rate HZ         highest rate granted to one subscription (default: the servo rate)
   --max-bandwidth MB/S  total bandwidth of all subscriptions (default 8 MB/s); more is refused
   --heartbeat-timeout S forget a client after S seconds without a heartbeat (default 2)
-  --no-crease           crease handling off (one plane per tick, the source paper's method)
+  --no-crease           crease handling off (one plane, re-planned every tick; the recovery
+                        rule and the passivity controller stay)
+  --paper-loop          the source paper's own loop: one plane per graphics frame (--plane-rate),
+                        rendered at the servo rate; no crease handling, recovery rule or
+                        passivity controller; the safety stage stays (docs/stability.md)
+  --plane-rate HZ       planes per second in --paper-loop (default 100, at most the servo rate)
   --no-passivity        passivity controller off (the observer still runs)
   --stiffness-fraction F  override the scene's stiffness (fraction of the device maximum)
   --strict-stability    refuse a stiffness above the sampled-wall bound K <= 2(b - |B|)/T
@@ -89,7 +95,12 @@ publishes device and contact state over LCM.
   --no-mlock            do not lock memory
   --mlock-eager         fault in and lock every mapped page at start (whole shared libraries);
                         default: lock pages as they are first touched (MCL_ONFAULT)
-  --flight-dir DIR      where fault flight records go (default: .)
+  --flight-dir DIR      where fault flight records go (default: ., the working folder; one CSV
+                        of the last second of ticks per written fault, flight-tick<N>-<fault>.csv)
+  --flight-max N        write at most N flight records per run (default 20; 0: none); later
+                        faults are counted in the statistics, not written
+  --flight-interval S   write a flight record only S seconds of device time or more after the
+                        fault of the last one written (default 10; 0: no rate cap)
   --vrpn-listen [ADDR:]PORT  serve the device to VRPN apps as a PHANToM on TCP+UDP PORT at ADDR
                         (default address 127.0.0.1; 0.0.0.0 for every interface; docs/vrpn.md)
   --vrpn-name NAME      the served device's VRPN name (default Phantom0)
@@ -99,6 +110,7 @@ publishes device and contact state over LCM.
   --vrpn-plane2         render VRPN Plane2 surface effects (texture, buzz, adhesion); default:
                         ignore them, as a stock HDAPI PHANToM does (docs/vrpn.md)
   --quiet               no progress lines
+  --verbose             also print the stability-budget check in words (docs/hapticd.md)
   -h, --help            this text
 
 Exit status: 0 clean run, 1 bad input or device failure, 2 bad command line.
@@ -126,9 +138,13 @@ struct Options {
   bool passivity = true;
   std::optional<double> stiffness_fraction;
   bool strict_stability = false;
+  bool paper_loop = false;                                 // --paper-loop
+  std::optional<double> plane_rate_hz;                     // --plane-rate
   thx::srv::RealtimeOptions rt;
   std::string flight_dir = ".";
+  thx::srv::FlightDumpLimits flight_limits;  // --flight-max, --flight-interval
   bool quiet = false;
+  bool verbose = false;  // --verbose: the stability budget's findings, explained
   std::string vrpn_listen;  // [ADDR:]PORT; empty: no VRPN server
   std::string vrpn_name = "Phantom0";
   std::optional<double> vrpn_report_hz;
@@ -228,6 +244,11 @@ Options parse(int argc, char** argv) {
       o.crease = false;
     } else if (a == "--no-passivity") {
       o.passivity = false;
+    } else if (a == "--paper-loop") {
+      o.paper_loop = true;
+    } else if (a == "--plane-rate") {
+      o.plane_rate_hz = number(a, value());
+      if (*o.plane_rate_hz <= 0) usage("--plane-rate: expected a rate > 0 Hz");
     } else if (a == "--stiffness-fraction") {
       o.stiffness_fraction = number(a, value());
       if (*o.stiffness_fraction <= 0 || *o.stiffness_fraction > 1) usage("--stiffness-fraction must be in (0, 1]");
@@ -243,6 +264,15 @@ Options parse(int argc, char** argv) {
       o.rt.lock_on_fault = false;
     } else if (a == "--flight-dir") {
       o.flight_dir = value();
+      if (o.flight_dir.empty()) usage("--flight-dir: expected a folder, got ''");
+    } else if (a == "--flight-max") {
+      const double n = number(a, value());
+      if (n < 0 || n > 1e6 || n != std::floor(n)) usage("--flight-max: expected an integer 0..1000000");
+      o.flight_limits.max_files = std::uint64_t(n);
+    } else if (a == "--flight-interval") {
+      o.flight_limits.min_interval_s = number(a, value());
+      if (o.flight_limits.min_interval_s < 0 || o.flight_limits.min_interval_s > 86400)
+        usage("--flight-interval: expected seconds in [0, 86400]");
     } else if (a == "--vrpn-listen") {
       o.vrpn_listen = value();
     } else if (a == "--vrpn-name") {
@@ -260,6 +290,8 @@ Options parse(int argc, char** argv) {
       o.vrpn_plane2 = true;
     } else if (a == "--quiet") {
       o.quiet = true;
+    } else if (a == "--verbose") {
+      o.verbose = true;
     } else {
       usage("unknown argument '" + a + "'");
     }
@@ -272,6 +304,7 @@ Options parse(int argc, char** argv) {
   }
   if (o.device == "replay:") usage("--device replay:FILE needs a file");
   if (o.device.rfind("vrpn:", 0) == 0 && o.lockstep) usage("--lockstep needs the simulated or a replayed device");
+  if (o.plane_rate_hz && !o.paper_loop) usage("--plane-rate applies to --paper-loop only");
   if (!o.vrpn_listen.empty() && !parseListenAddress(o.vrpn_listen))
     usage("--vrpn-listen: expected [ADDR:]PORT with an IPv4 ADDR and PORT 1..65535, got '" + o.vrpn_listen + "'");
   try {  // checked here, before a scene is loaded
@@ -329,10 +362,14 @@ int run(const Options& o) {
   policy.crease = o.crease;
   policy.passivity = o.passivity;
   policy.strict_stability = o.strict_stability;
+  if (o.paper_loop) policy.paper_loop_plane_hz = o.plane_rate_hz.value_or(srv::kPaperPlaneRateHz);
   std::unique_ptr<srv::PreparedScene> first = srv::prepareScene(sc, o.scene, spec, policy);
   // Above the bound is the normal case with a real device (its vendor maximum counts on the hand's
-  // damping), so it is a note, not a warning; --strict-stability makes it an error (thrown above).
-  if (!o.quiet && !first->budget.within_bound) std::fprintf(stderr, "hapticd: note: %s\n", first->budget.message.c_str());
+  // damping): said in words with --verbose only; --strict-stability makes it an error (thrown above).
+  if (o.verbose) {
+    for (const std::string& line : srv::budgetReport(first->budget))
+      std::fprintf(stderr, "hapticd: stability budget: %s\n", line.c_str());
+  }
   const srv::ServoRigConfig wiring = first->wiring;
   const scene::SceneSurface& scene_surface = first->surface;
   const std::size_t texture_bytes = scene_surface.map->bytes();
@@ -368,6 +405,7 @@ int run(const Options& o) {
   po.log_subscriptions = !o.quiet;
   po.servo_rate_hz = sc.rates.servo_hz;
   po.flight_dir = o.flight_dir;
+  po.flight_limits = o.flight_limits;
   po.simulated_device = sim != nullptr || replay != nullptr;
   std::unique_ptr<srv::SessionRecorder> session;
   if (!o.record.empty()) {
@@ -382,6 +420,7 @@ int run(const Options& o) {
   if (sso.scenes_dir.empty()) sso.scenes_dir = ".";
   sso.policy = policy;
   sso.quiet = o.quiet;
+  sso.verbose = o.verbose;
   srv::SceneSwitcher switcher(servo.surfaceSwap(), sc, spec, std::move(first), sso);
   po.scene_loads = &switcher;
   if (ports.data_first > 0) {
@@ -537,9 +576,10 @@ int run(const Options& o) {
   summary.publisher = publisher.counters();
   if (receiver) summary.client_forces_accepted = receiver->counters().accepted;
   summary.snapshots_dropped = ring.dropped();
+  summary.flight_dir = o.flight_dir;
   summary.last_flight_dump = publisher.lastFlightDump();
-  summary.crease = o.crease;
-  summary.passivity = o.passivity;
+  summary.crease = wiring.renderer.crease_handling;
+  summary.passivity = wiring.passivity;
   summary.stiffness_n_per_m = wiring.renderer.stiffness_n_per_m;  // the first scene's
   if (!o.stats_json.empty()) srv::writeStatsJson(o.stats_json, summary, servo.computeHistogram(), servo.wakeHistogram());
   srv::printSummary(stdout, summary, servo.computeHistogram(), servo.wakeHistogram());

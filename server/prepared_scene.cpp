@@ -2,6 +2,7 @@
 
 #include "base/number_text.hpp"
 #include "scenes/scene_loader.hpp"
+#include "server/paper_loop.hpp"
 #include "server/passivity.hpp"
 #include "server/scene_device.hpp"
 
@@ -17,13 +18,6 @@ thx::Error configError(const std::string& path, const std::string& what) {
 
 std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::string& path,
                                             const dev::DeviceSpec& spec, const ScenePolicy& policy) {
-  if (sc.surface.smoothing_sigma_texels > 0.0) {
-    const std::string sigma = numberText(sc.surface.smoothing_sigma_texels);
-    throw configError(path, "surface.smoothing_sigma = " + sigma +
-                                ": hapticd does not link OpenCV, so it cannot smooth at start-up.\n  Smooth once with "
-                                "`texturetool smooth IN OUT --sigma " +
-                                sigma + "` and point surface.texture.file at OUT.");
-  }
   auto p = std::make_unique<PreparedScene>();
   p->path = path;
   p->warnings = sc.warnings;
@@ -33,6 +27,7 @@ std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::s
   if (policy.stiffness_fraction) rc.stiffness_n_per_m = *policy.stiffness_fraction * spec.max_stiffness_n_per_m;
   rc.crease_handling = policy.crease;
   p->wiring.passivity = policy.passivity;
+  if (policy.paper_loop_plane_hz) applyPaperLoop(p->wiring, *policy.paper_loop_plane_hz);
 
   StabilityRequest sr;
   sr.stiffness_fraction = rc.stiffness_n_per_m / spec.max_stiffness_n_per_m;

@@ -24,6 +24,9 @@ struct ScenePolicy {
   bool crease = true;                        // --no-crease
   bool passivity = true;                     // --no-passivity
   bool strict_stability = false;             // --strict-stability
+  // --paper-loop [--plane-rate HZ]: the source paper's loop (server/paper_loop.hpp) with one
+  // plane per this many hertz; overrides crease and passivity.
+  std::optional<double> paper_loop_plane_hz;
 };
 
 struct PreparedScene {

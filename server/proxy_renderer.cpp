@@ -35,6 +35,8 @@ void ProxyRenderer::reset() {
   e_rendered_prev_.setZero();
   recovery_offset_.setZero();
   recovery_left_ = 0;
+  held_plane_ = LocalPlanes{};
+  held_ticks_left_ = 0;
 }
 
 ProxyRenderer::LocalPlanes ProxyRenderer::singlePlaneAt(const tex::SurfacePoint& s, double x, double y) const {
@@ -145,6 +147,21 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
   bool contact = false;
   if (!t.allFinite()) {
     // Nothing sensible to render from a non-finite tip; the safety stage handles the fault.
+  } else if (!config_.crease_handling && config_.plane_hold_ticks > 1) {
+    // The paper's loop: a new plane through the surface point under the tip once per frame,
+    // whether or not the tip touches; in between, the tip meets that plane wherever it goes.
+    if (held_ticks_left_ <= 0) {
+      held_plane_ = singlePlaneAt(at_tip, t.x(), t.y());
+      held_ticks_left_ = config_.plane_hold_ticks;
+    }
+    --held_ticks_left_;
+    const double penetration = held_plane_.h[0].d - held_plane_.h[0].n.dot(t);
+    if (penetration > 0.0) {
+      planes = held_plane_;
+      proxy = t + penetration * planes.h[0].n;
+      contact = true;
+      out.active_mask = 1;
+    }
   } else if (!config_.crease_handling) {
     if (t.z() < at_tip.height_m) {
       planes = singlePlaneAt(at_tip, t.x(), t.y());

@@ -40,6 +40,10 @@ struct RendererConfig {
   // this: a force threshold, so a deep press on a soft surface, whose long penetration vector
   // swings with every small normal change, does not count every tick as a plane change.
   double recovery_jump_n = 0.2;
+  // The source paper's loop (its §4.3; server/paper_loop.hpp): the single plane is computed once
+  // per graphics frame and the device renders that plane at the servo rate, so a plane is held for
+  // this many ticks. 1: a new plane every tick. Only without crease handling.
+  int plane_hold_ticks = 1;
 };
 
 struct RenderOutput {
@@ -101,6 +105,8 @@ class ProxyRenderer {
   Eigen::Vector3d e_rendered_prev_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d recovery_offset_ = Eigen::Vector3d::Zero();
   int recovery_left_ = 0;
+  LocalPlanes held_plane_;  // the paper's loop: this frame's plane ...
+  int held_ticks_left_ = 0;  // ... for this many more ticks
 };
 
 }  // namespace thx::srv

@@ -94,6 +94,7 @@ Publisher::Publisher(rt::SpscRing<TickRecord>& ring, const Servo& servo, FlightR
     : ring_(ring),
       servo_(servo),
       recorder_(recorder),
+      flight_gate_(options.flight_limits, 1.0 / options.servo_rate_hz),
       lcm_(lcm),
       options_(options),
       server_instance_(drawServerInstance()),
@@ -159,6 +160,8 @@ PublisherCounters Publisher::counters() const {
   c.published = published_.load();
   c.publish_errors = publish_errors_.load();
   c.flight_dumps = flight_dumps_.load();
+  c.flight_dumps_over_count = flight_over_count_.load();
+  c.flight_dumps_over_rate = flight_over_rate_.load();
   c.published_bytes = published_bytes_.load();
   c.hellos = hellos_.load();
   c.requests = requests_.load();
@@ -389,14 +392,21 @@ void Publisher::publishHello(std::int64_t now_ns) {
 
 void Publisher::dumpFlight() {
   try {
-    const std::string path = recorder_.dumpPending(options_.flight_dir);
-    if (path.empty()) return;
+    const FlightDump d = dumpWithinLimits(recorder_, flight_gate_, options_.flight_dir);
+    if (d.outcome == FlightDumpOutcome::OverRate) flight_over_rate_.fetch_add(1);
+    if (d.outcome == FlightDumpOutcome::OverCount && flight_over_count_.fetch_add(1) == 0) {
+      std::fprintf(stderr,
+                   "hapticd: fault: %llu flight records written to %s, the most one run writes (--flight-max); "
+                   "further faults are counted, not written\n",
+                   (unsigned long long)flight_gate_.limits().max_files, options_.flight_dir.c_str());
+    }
+    if (d.outcome != FlightDumpOutcome::Written) return;
     flight_dumps_.fetch_add(1);
     while (dump_lock_.exchange(true)) {
     }
-    last_dump_ = path;
+    last_dump_ = d.path;
     dump_lock_.store(false);
-    std::fprintf(stderr, "hapticd: fault: flight record written to %s\n", path.c_str());
+    std::fprintf(stderr, "hapticd: fault: flight record written to %s\n", d.path.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hapticd: %s\n", e.what());
   }

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "server/flight_dump_limits.hpp"
 #include "server/flight_recorder.hpp"
 #include "server/server_commands.hpp"
 #include "server/servo.hpp"
@@ -38,6 +39,7 @@ class SessionRecorder;
 struct PublisherOptions {
   double servo_rate_hz = 1000.0;
   std::string flight_dir = ".";
+  FlightDumpLimits flight_limits;  // --flight-max, --flight-interval (server/flight_dump_limits.hpp)
   bool simulated_device = false;
   std::string device_name = "sim";  // hello_t.device
   std::string scene_name;           // hello_t.scene_name (scene::sceneName)
@@ -77,6 +79,8 @@ struct PublisherCounters {
   std::uint64_t published = 0;  // every LCM message sent (streams, replies, hellos)
   std::uint64_t publish_errors = 0;
   std::uint64_t flight_dumps = 0;
+  std::uint64_t flight_dumps_over_count = 0;  // faults not written: the file cap was reached
+  std::uint64_t flight_dumps_over_rate = 0;   // faults not written: too soon after the last file
   std::uint64_t published_bytes = 0;
   std::uint64_t hellos = 0;
   std::uint64_t requests = 0;
@@ -122,6 +126,7 @@ class Publisher {
   rt::SpscRing<TickRecord>& ring_;
   const Servo& servo_;
   FlightRecorder& recorder_;
+  FlightDumpGate flight_gate_;  // publisher thread only
   lcm::LCM* lcm_;
   PublisherOptions options_;
   std::int64_t server_instance_ = 0;
@@ -158,6 +163,7 @@ class Publisher {
   std::atomic<std::uint64_t> records_{0}, published_{0}, publish_errors_{0}, flight_dumps_{0}, published_bytes_{0},
       hellos_{0}, requests_{0}, refused_{0}, expired_{0};
   std::atomic<int> clients_{0}, subscriptions_{0};
+  std::atomic<std::uint64_t> flight_over_count_{0}, flight_over_rate_{0};
   mutable std::atomic<bool> dump_lock_{false};
   std::string last_dump_;
 };

@@ -98,8 +98,10 @@ void SceneSwitcher::load(const std::string& name) {
   std::unique_lock<std::mutex> lock(mutex_);
   if (next) {
     for (const std::string& w : next->warnings) std::fprintf(stderr, "hapticd: warning: %s\n", w.c_str());
-    if (!options_.quiet && !next->budget.within_bound)
-      std::fprintf(stderr, "hapticd: note: %s\n", next->budget.message.c_str());
+    if (options_.verbose) {
+      for (const std::string& line : budgetReport(next->budget))
+        std::fprintf(stderr, "hapticd: stability budget: %s\n", line.c_str());
+    }
     outcome.ok = true;
     outcome.scene_name = next->surface.scene_name;
     outcome.fingerprint = next->surface.fingerprint;

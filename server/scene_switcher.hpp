@@ -30,6 +30,7 @@ struct SceneSwitcherOptions {
   std::string scenes_dir;  // where a scene's name is looked up: scenes_dir/NAME.yaml
   ScenePolicy policy;      // the command line's, as for the first scene
   bool quiet = false;      // no progress lines on stderr
+  bool verbose = false;    // the stability budget's findings, explained (hapticd --verbose)
 };
 
 class SceneSwitcher final : public SceneLoads {

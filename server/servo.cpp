@@ -245,10 +245,10 @@ void Servo::writeSnapshot(const TickRecord& r, const dev::DeviceState& state, co
   snap.deadline_ns = r.deadline_ns;
   std::copy(r.p_world, r.p_world + 3, snap.p_world);
   std::copy(r.v_world, r.v_world + 3, snap.v_world);
-  snap.q_world[0] = state.q_world.x();
-  snap.q_world[1] = state.q_world.y();
-  snap.q_world[2] = state.q_world.z();
-  snap.q_world[3] = state.q_world.w();
+  snap.q_world_xyzw[0] = state.q_world.x();
+  snap.q_world_xyzw[1] = state.q_world.y();
+  snap.q_world_xyzw[2] = state.q_world.z();
+  snap.q_world_xyzw[3] = state.q_world.w();
   put(snap.f_out, f_out);
   const Eigen::Vector3d scp = !r.valid          ? Eigen::Vector3d(Eigen::Vector3d::Zero())
                               : out.in_contact  ? out.proxy_world

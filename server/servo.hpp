@@ -73,7 +73,7 @@ struct DeviceSnapshot {
   std::int64_t tick = 0;
   std::int64_t deadline_ns = 0;
   double p_world[3] = {};
-  double q_world[4] = {0, 0, 0, 1};  // x, y, z, w (VRPN's order)
+  double q_world_xyzw[4] = {0, 0, 0, 1};  // VRPN's order (TickRecord::q_world is w, x, y, z)
   double v_world[3] = {};
   double f_out[3] = {};
   double scp_world[3] = {};  // surface contact point: the proxy in contact, else the tip

@@ -39,6 +39,26 @@ void validate(const dev::DeviceSpec& spec, const StabilityRequest& r) {
   }
 }
 
+// The finding in words a user can act on: why the bound cannot be met with this device's own
+// damping, and what keeps the wall passive instead.
+std::string explain(const dev::DeviceSpec& spec, const StabilityBudget& s) {
+  const std::string why =
+      s.bound_n_per_m <= 0.0
+          ? "its mechanism's own damping b = " + numberText(s.physical_damping_ns_per_m) +
+                " N·s/m is smaller than the rendered damping |B| = " + numberText(std::fabs(s.virtual_damping_ns_per_m)) +
+                " N·s/m, so the bound is negative and no stiffness at all meets it"
+          : "its mechanism's own damping b = " + numberText(s.physical_damping_ns_per_m) +
+                " N·s/m passes only stiffness up to " + numberText(s.bound_n_per_m) + " N/m";
+  return "what this means: the check asks the device alone, with nobody holding it, to absorb the energy a "
+         "wall sampled every " + numberText(s.period_s * 1e3) + " ms can create. For the " + spec.model + " " + why +
+         ". Like every vendor maximum (" + numberText(s.vendor_max_stiffness_n_per_m) +
+         " N/m here), this stiffness counts on the hand holding the stylus: it needs " +
+         numberText(s.required_physical_damping_ns_per_m) +
+         " N·s/m of damping in all, which any grip adds. The hand's damping and the passivity controller "
+         "(on unless --no-passivity) are what keep the wall passive; the check is not a fault and needs no "
+         "action. --strict-stability refuses such a scene. More: docs/hapticd.md#stability-budget";
+}
+
 }  // namespace
 
 StabilityBudget checkStabilityBudget(const dev::DeviceSpec& spec, const StabilityRequest& request) {
@@ -73,6 +93,7 @@ StabilityBudget checkStabilityBudget(const dev::DeviceSpec& spec, const Stabilit
                  " N·s/m (the vendor maximum assumes the hand adds damping; the passivity "
                  "controller is the remaining guard)";
     finding(s.message);
+    s.explanation = explain(spec, s);
   }
 
   if (spec.physical_damping_ns_per_m == 0.0) {
@@ -107,6 +128,15 @@ StabilityBudget checkStabilityBudget(const dev::DeviceSpec& spec, const Stabilit
   }
   s.ok = s.errors.empty();
   return s;
+}
+
+std::vector<std::string> budgetReport(const StabilityBudget& budget) {
+  std::vector<std::string> lines{budget.message};
+  if (!budget.explanation.empty()) lines.push_back(budget.explanation);
+  for (const std::string& w : budget.warnings) {
+    if (w != budget.message) lines.push_back(w);
+  }
+  return lines;
 }
 
 }  // namespace thx::srv

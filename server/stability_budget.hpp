@@ -10,7 +10,9 @@
 // small physical damping of a real device the bound sits far below the vendor maxima (the vendor
 // figure counts on the user's hand adding damping; a Desktop needs b >= 0.5 N s/m for 1000 N/m),
 // so by default it is a warning and the passivity controller carries the risk; BoundPolicy::Strict
-// makes it an error. The policy is the caller's, not hard-coded here.
+// makes it an error. The policy is the caller's, not hard-coded here. A shipped scene always
+// exceeds it (b = 0.005 N s/m is below any useful virtual damping), so callers print the finding
+// only when asked (hapticd --verbose), with `explanation`, never on every run.
 #include <string>
 #include <vector>
 
@@ -42,8 +44,15 @@ struct StabilityBudget {
   std::vector<std::string> warnings;
   std::vector<std::string> errors;
   std::string message;  // the bound check in words, with its numbers
+  // What the check means for this device, in plain words, with where to read more; set when the
+  // stiffness exceeds the bound (hapticd --verbose prints it beside `message`).
+  std::string explanation;
 };
 
 StabilityBudget checkStabilityBudget(const dev::DeviceSpec& spec, const StabilityRequest& request);
+
+// Everything the check found, one line each (the message, its explanation, the other warnings);
+// what hapticd --verbose prints at start and on each scene switch.
+std::vector<std::string> budgetReport(const StabilityBudget& budget);
 
 }  // namespace thx::srv

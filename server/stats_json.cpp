@@ -61,8 +61,12 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
                (unsigned long long)s.snapshots_dropped);
   std::fprintf(f, "  \"publisher_fifo\": %s,\n  \"data_ports_open\": %d,\n", s.publisher.fifo ? "true" : "false",
                s.publisher.data_ports_open);
-  std::fprintf(f, "  \"flight_dumps\": %llu,\n  \"last_flight_dump\": \"%s\"\n}\n",
-               (unsigned long long)s.publisher.flight_dumps, json::escaped(s.last_flight_dump).c_str());
+  std::fprintf(f, "  \"flight_dir\": \"%s\",\n  \"flight_dumps\": %llu,\n", json::escaped(s.flight_dir).c_str(),
+               (unsigned long long)s.publisher.flight_dumps);
+  std::fprintf(f, "  \"flight_dumps_over_count\": %llu,\n  \"flight_dumps_over_rate\": %llu,\n",
+               (unsigned long long)s.publisher.flight_dumps_over_count,
+               (unsigned long long)s.publisher.flight_dumps_over_rate);
+  std::fprintf(f, "  \"last_flight_dump\": \"%s\"\n}\n", json::escaped(s.last_flight_dump).c_str());
   if (std::fclose(f) != 0) throw thx::Error(thx::Error::Kind::Io, "cannot write statistics to " + path);
 }
 
@@ -93,6 +97,14 @@ void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& c
                s.realtime.memory_locked ? "yes" : "no");
   std::fprintf(out, "  published        %llu LCM messages (%llu errors)\n", (unsigned long long)s.publisher.published,
                (unsigned long long)s.publisher.publish_errors);
+  const std::uint64_t unwritten = s.publisher.flight_dumps_over_count + s.publisher.flight_dumps_over_rate;
+  if (s.publisher.flight_dumps > 0 || unwritten > 0) {
+    std::fprintf(out, "  flight records   %llu written to %s; %llu faults not written (%llu over --flight-max, %llu "
+                 "within --flight-interval)\n",
+                 (unsigned long long)s.publisher.flight_dumps, s.flight_dir.c_str(), (unsigned long long)unwritten,
+                 (unsigned long long)s.publisher.flight_dumps_over_count,
+                 (unsigned long long)s.publisher.flight_dumps_over_rate);
+  }
 }
 
 }  // namespace thx::srv

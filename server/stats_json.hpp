@@ -33,6 +33,7 @@ struct RunSummary {
   PublisherCounters publisher;
   std::uint64_t client_forces_accepted = 0;  // client_force_t messages the receiver took
   std::uint64_t snapshots_dropped = 0;
+  std::string flight_dir;  // --flight-dir
   std::string last_flight_dump;
 };
 

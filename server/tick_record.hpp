@@ -23,7 +23,7 @@ struct TickRecord {
   // device
   double p_world[3] = {};
   double v_world[3] = {};
-  double q_world[4] = {1, 0, 0, 0};  // w, x, y, z
+  double q_world[4] = {1, 0, 0, 0};  // w, x, y, z (device_state_t's order; DeviceSnapshot::q_world_xyzw is VRPN's)
   std::uint32_t buttons = 0;
   bool valid = true;
   // contact (see RenderOutput)

@@ -50,7 +50,7 @@ bool reportable(const DeviceSnapshot& d) {
     if (!std::isfinite(d.p_world[i]) || !std::isfinite(d.v_world[i]) || !std::isfinite(d.f_out[i]) ||
         !std::isfinite(d.scp_world[i]))
       return false;
-  for (double q : d.q_world)
+  for (double q : d.q_world_xyzw)
     if (!std::isfinite(q)) return false;
   return true;
 }
@@ -281,7 +281,7 @@ void VrpnServer::run() {
       force.force[std::size_t(i)] = d.f_out[i];
       scp.pos[std::size_t(i)] = d.scp_world[i];
     }
-    for (int i = 0; i < 4; ++i) pq.quat[std::size_t(i)] = d.q_world[i];
+    for (int i = 0; i < 4; ++i) pq.quat[std::size_t(i)] = d.q_world_xyzw[i];
     vel.vel_quat_dt = 1.0 / c.rate_hz;
     ep.sendMessage(c.sender, pq);
     ep.sendMessage(c.sender, vel);

@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "textures/texture_error.hpp"
 
@@ -18,15 +17,44 @@ std::string fmt(double v) {
   return buf;
 }
 
-// Pads by the kernel radius with the address mode's border, filters, crops back. Filtering the
-// padded image (rather than passing a border type to the filter) is what makes BORDER_WRAP
-// possible: OpenCV's filters do not accept it directly.
-cv::Mat blur(const cv::Mat& image, const cv::Mat& kernel, int radius, Address address) {
-  const int border = address == Address::Wrap ? cv::BORDER_WRAP : cv::BORDER_REPLICATE;
-  cv::Mat padded, filtered;
-  cv::copyMakeBorder(image, padded, radius, radius, radius, radius, border);
-  cv::sepFilter2D(padded, filtered, CV_64F, kernel, kernel, cv::Point(-1, -1), 0.0, cv::BORDER_CONSTANT);
-  return filtered(cv::Rect(radius, radius, image.cols, image.rows)).clone();
+// One channel of the map, row-major, in double.
+using Channel = std::vector<double>;
+
+// The texel a filter tap reads at index i of n: Wrap tiles the map (a tiling map stays seamless),
+// Clamp repeats the edge texel.
+int tapIndex(int i, int n, Address address) {
+  if (address == Address::Wrap) return ((i % n) + n) % n;
+  return std::clamp(i, 0, n - 1);
+}
+
+// The normalised Gaussian of 2 radius + 1 taps.
+std::vector<double> gaussianKernel(int radius, double sigma) {
+  std::vector<double> k(std::size_t(2 * radius + 1));
+  double sum = 0.0;
+  for (int t = -radius; t <= radius; ++t) sum += k[std::size_t(t + radius)] = std::exp(-0.5 * t * t / (sigma * sigma));
+  for (double& v : k) v /= sum;
+  return k;
+}
+
+// Separable blur: along x, then along y, each tap through the address mode's border.
+Channel blur(const Channel& in, int w, int h, const std::vector<double>& kernel, Address address) {
+  const int radius = int(kernel.size() / 2);
+  Channel rows(in.size()), out(in.size());
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      double acc = 0.0;
+      for (int t = -radius; t <= radius; ++t)
+        acc += kernel[std::size_t(t + radius)] * in[std::size_t(j) * std::size_t(w) + std::size_t(tapIndex(i + t, w, address))];
+      rows[std::size_t(j) * std::size_t(w) + std::size_t(i)] = acc;
+    }
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      double acc = 0.0;
+      for (int t = -radius; t <= radius; ++t)
+        acc += kernel[std::size_t(t + radius)] * rows[std::size_t(tapIndex(j + t, h, address)) * std::size_t(w) + std::size_t(i)];
+      out[std::size_t(j) * std::size_t(w) + std::size_t(i)] = acc;
+    }
+  return out;
 }
 
 }  // namespace
@@ -46,22 +74,23 @@ TextureMap smoothTexture(const TextureMap& map, const SmoothOptions& options) {
   if (options.sigma_texels == 0.0) return map;
 
   const int w = map.width(), h = map.height();
-  cv::Mat sx(h, w, CV_64F), sy(h, w, CV_64F), depth(h, w, CV_64F);
+  const std::size_t texels = std::size_t(w) * std::size_t(h);
+  Channel sx(texels), sy(texels), depth(texels);
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
+      const std::size_t at = std::size_t(j) * std::size_t(w) + std::size_t(i);
       const Eigen::Vector3f n = map.normal(i, j);
       const double nz = std::max(double(n.z()), 1e-9);  // stored normals have nz > 0; guard anyway
-      sx.at<double>(j, i) = std::clamp(-double(n.x()) / nz, -options.max_slope, options.max_slope);
-      sy.at<double>(j, i) = std::clamp(-double(n.y()) / nz, -options.max_slope, options.max_slope);
-      depth.at<double>(j, i) = map.depth(i, j);
+      sx[at] = std::clamp(-double(n.x()) / nz, -options.max_slope, options.max_slope);
+      sy[at] = std::clamp(-double(n.y()) / nz, -options.max_slope, options.max_slope);
+      depth[at] = map.depth(i, j);
     }
   }
 
-  const int radius = int(std::ceil(4.0 * options.sigma_texels));
-  const cv::Mat kernel = cv::getGaussianKernel(2 * radius + 1, options.sigma_texels, CV_64F);
-  sx = blur(sx, kernel, radius, options.address);
-  sy = blur(sy, kernel, radius, options.address);
-  if (map.isRelief()) depth = blur(depth, kernel, radius, options.address);
+  const std::vector<double> kernel = gaussianKernel(int(std::ceil(4.0 * options.sigma_texels)), options.sigma_texels);
+  sx = blur(sx, w, h, kernel, options.address);
+  sy = blur(sy, w, h, kernel, options.address);
+  if (map.isRelief()) depth = blur(depth, w, h, kernel, options.address);
 
   TextureMap out(w, h, map.representation(), map.maxDepth());
   out.meta() = map.meta();
@@ -70,8 +99,9 @@ TextureMap smoothTexture(const TextureMap& map, const SmoothOptions& options) {
                        (options.address == Address::Wrap ? " address=wrap" : " address=clamp");
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
-      out.setNormal(i, j, Eigen::Vector3f(float(-sx.at<double>(j, i)), float(-sy.at<double>(j, i)), 1.0f));
-      if (map.isRelief()) out.setDepth(i, j, depth.at<double>(j, i));
+      const std::size_t at = std::size_t(j) * std::size_t(w) + std::size_t(i);
+      out.setNormal(i, j, Eigen::Vector3f(float(-sx[at]), float(-sy[at]), 1.0f));
+      if (map.isRelief()) out.setDepth(i, j, depth[at]);
     }
   }
   return out;

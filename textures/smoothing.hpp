@@ -1,6 +1,7 @@
 #pragma once
-// Gaussian smoothing of a normal or relief map (OpenCV core + imgproc; library
-// thx_texture_filters, never linked by the real-time server).
+// Gaussian smoothing of a normal or relief map. Plain C++ in thx_textures (no OpenCV), so hapticd
+// smooths a scene's texture at load time with the very code the tools and the stability map use:
+// every program feels the same smoothed texels.
 //
 // Smoothing happens in the gradient domain. Each normal becomes the slope pair it encodes,
 //   (sx, sy) = (-nx / nz, -ny / nz)   (= dh/dx, dh/dy of the surface, dimensionless),
@@ -12,9 +13,10 @@
 // than the largest). Slopes are clamped to |s| <= max_slope first: a grazing normal (nz -> 0)
 // encodes an unbounded slope that would otherwise swamp its neighbourhood.
 //
-// Borders: Address::Wrap pads with cv::BORDER_WRAP (a tiling map stays seamless), Address::Clamp
-// with cv::BORDER_REPLICATE; the image is padded by the kernel radius, blurred and cropped.
-// Kernel radius ceil(4 sigma) texels; sigma = 0 returns the map unchanged.
+// Borders: Address::Wrap reads taps across the edge from the other side (a tiling map stays
+// seamless), Address::Clamp repeats the edge texel. Separable: along x, then along y.
+// Kernel radius ceil(4 sigma) texels; sigma = 0 returns the map unchanged. Cost: O(texels x
+// radius), about 2 x 17 multiply-adds per texel and channel at sigma = 2.
 // maxDepth() is kept (a blurred depth stays inside the input's range) and so is the metadata;
 // meta.params gains "smoothed sigma=<sigma> address=<wrap|clamp>".
 #include "textures/sampling.hpp"

@@ -1,5 +1,7 @@
 #include "server/tools/stability_map_cell.hpp"
 
+#include "server/paper_loop.hpp"
+
 #include "base/error.hpp"
 
 #include <algorithm>
@@ -45,6 +47,7 @@ struct HandField {
 }  // namespace
 
 std::string Mitigations::name() const {
+  if (paper_loop) return smoothing ? "paper+smoothing" : "paper";
   if (crease && passivity && smoothing) return "all";
   std::string s;
   const auto add = [&](bool on, const char* n) {
@@ -59,7 +62,7 @@ std::string Mitigations::name() const {
 }
 
 Mitigations Mitigations::fromIndex(int index) {
-  return Mitigations{(index & 1) != 0, (index & 2) != 0, (index & 4) != 0};
+  return Mitigations{(index & 1) != 0, (index & 2) != 0, (index & 4) != 0, (index & 8) != 0};
 }
 
 HandParams defaultHand() {
@@ -115,6 +118,12 @@ CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const
   rig_options.crease_handling = params.mitigations.crease;
   rig_options.passivity = params.mitigations.passivity;
   rig_options.recovery_ticks = setup.recovery_ticks;
+  if (params.mitigations.paper_loop) {
+    rig_options.crease_handling = false;
+    rig_options.passivity = false;
+    rig_options.recovery_ticks = 0;
+    rig_options.plane_hold_ticks = planeHoldTicks(1e9 / double(sim.servo_period_ns), setup.plane_rate_hz);
+  }
   SimRig rig(surface, sim, std::move(script), rig_options);
   const dev::SimDynamics dynamics(sim);
 
@@ -166,6 +175,9 @@ CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const
   energy.passivity_dissipated_j = rig.passivity().dissipatedEnergy() - dissipated_at_start_j;
 
   result.metrics = measureWindow(samples, energy, aim_x, floor_x, sim.encoder_resolution_m, peak_force_run_n);
+  result.metrics.held_depth_m = params.push_force_n / result.stiffness_n_per_m;
+  result.metrics.push_force_n = params.push_force_n;
+  result.metrics.continuous_force_n = sim.spec.continuous_force_n;
   classify(result.metrics, setup.thresholds, g.period_m);
   return result;
 }

@@ -27,10 +27,15 @@ struct Mitigations {
   bool crease = false;     // RendererConfig::crease_handling
   bool passivity = false;  // PassivityConfig::enabled (the observer always runs)
   bool smoothing = false;  // smoothTexture, ValleyGeometry::smoothing_sigma_texels
+  // The source paper's loop (server/paper_loop.hpp): one plane per frame, held between frames,
+  // no recovery rule; the baseline. Only with smoothing (the paper's own mitigation), never with
+  // crease or passivity.
+  bool paper_loop = false;
 
-  // "none", "crease", "passivity", "smoothing", "crease+passivity", ..., "all"
+  // "none", "crease", "passivity", "smoothing", "crease+passivity", ..., "all"; "paper",
+  // "paper+smoothing"
   std::string name() const;
-  int index() const { return (crease ? 1 : 0) | (passivity ? 2 : 0) | (smoothing ? 4 : 0); }
+  int index() const { return (crease ? 1 : 0) | (passivity ? 2 : 0) | (smoothing ? 4 : 0) | (paper_loop ? 8 : 0); }
   static Mitigations fromIndex(int index);
 };
 
@@ -52,6 +57,7 @@ struct CellSetup {
   HandParams hand = defaultHand();
   double virtual_damping_ns_per_m = 1.0;  // B, as both shipped scenes (default.yaml, vvalley.yaml)
   int recovery_ticks = RendererConfig{}.recovery_ticks;  // the renderer's recovery rule (0: off)
+  double plane_rate_hz = 100.0;           // the paper's loop: planes per second (--plane-rate)
   double aim_offset_m = 1e-4;             // half a texel, four encoder counts
   double hover_m = 0.005;
   double settle_s = 0.5;

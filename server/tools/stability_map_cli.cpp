@@ -15,23 +15,31 @@ Sweeps the servo pipeline (plane-proxy renderer -> passivity controller -> safet
 the simulated PHANToM Desktop, lock-step and deterministic, over V-valleys: every combination of
 the axes below. In each cell the simulated hand lowers the pen into the floor of one valley,
 presses and holds; the last second is measured on the simulator's true state and judged stable,
-limit-cycle or unstable (docs/stability.md). Writes OUT_DIR/NAME.json (all cells, all metrics,
+limit-cycle, unstable, or cannot-hold (the continuous-force budget held the force below the push
+and the pen sank through the floor: the valley was not tested; docs/stability.md). Writes OUT_DIR/NAME.json (all cells, all metrics,
 setup, thresholds and this command line), NAME.csv and NAME.png (heatmap).
 
 Axes (comma-separated lists; default: the full map):
   --angles LIST           valley opening angles, deg, in [10, 170]   (20,40,...,160)
   --stiffness LIST        stiffness, fraction of the device maximum (0.1,0.25,0.5,0.75,1.0)
-  --forces LIST           hand push force, N                        (0.5,1,2,5)
+  --forces LIST           hand push force, N          (0.5,1,1.5,2,2.25,2.5,3,5)
   --representations LIST  normal, relief                            (normal,relief)
-  --mitigations LIST      none, crease, passivity, smoothing, parts joined with '+'
-                          (e.g. crease+passivity), or all            (all 8 combinations)
+  --mitigations LIST      paper (the source paper's loop: one plane per frame, held between
+                          frames, no recovery rule, no passivity controller; the baseline),
+                          paper+smoothing (its own mitigation), none (this server's pipeline
+                          with every mitigation off), crease, passivity, smoothing, parts joined
+                          with '+' (e.g. crease+passivity), or all   (paper, paper+smoothing
+                          and all 8 combinations)
   --quick                 a small subset for CI (angles 20,60,120; stiffness 0.25,1.0; force
-                          1 N; mitigations none,crease+passivity,all); explicit axes still apply
+                          1 N; mitigations paper,none,crease+passivity,all); explicit axes
+                          still apply
 
 Setup:
   --hand NAME             default (scenes/default.yaml) or light (light grip, docs/stability.md)
   --damping B             renderer virtual damping, N s/m (default 1.0, as the scenes)
-  --recovery-ticks N      renderer recovery ramp, ticks (default 10 = hapticd; 0 = off)
+  --recovery-ticks N      renderer recovery ramp, ticks (default 10 = hapticd; 0 = off; the
+                          paper's loop has none)
+  --plane-rate HZ         planes per second in the paper's loop (default 100)
   --smoothing-sigma S     normal smoothing sigma, texels (default 2)
   --aim-offset M          where the hand aims, beside the floor line, m (default 1e-4)
   --duration S            simulated seconds per cell (default 3)
@@ -84,16 +92,21 @@ std::vector<double> parseList(const std::string& option, const std::string& text
 Mitigations parseMitigations(const std::string& text) {
   if (text == "none") return Mitigations{};
   if (text == "all") return Mitigations{true, true, true};
+  if (text == "paper") return Mitigations{.paper_loop = true};
+  if (text == "paper+smoothing") return Mitigations{.smoothing = true, .paper_loop = true};
   Mitigations m;
   std::stringstream in(text);
   std::string part;
   while (std::getline(in, part, '+')) {
+    if (part == "paper")
+      throw UsageError{"--mitigations: 'paper' combines only with smoothing ('paper+smoothing'), got '" + text + "'"};
     if (part == "crease") m.crease = true;
     else if (part == "passivity") m.passivity = true;
     else if (part == "smoothing") m.smoothing = true;
     else
       throw UsageError{"--mitigations: unknown mitigation '" + part + "' in '" + text +
-                       "'; expected none, all, or crease, passivity, smoothing joined with '+'"};
+                       "'; expected none, all, paper, paper+smoothing, or crease, passivity, smoothing joined "
+                       "with '+'"};
   }
   return m;
 }
@@ -138,6 +151,10 @@ bool parseCommandLine(int argc, char** argv, CliOptions& o) {
       const double v = parseNumber(a, value());
       if (v < 0 || v > 1000 || v != std::floor(v)) throw UsageError{a + ": expected a whole number of ticks in [0, 1000]"};
       o.setup.recovery_ticks = int(v);
+    } else if (a == "--plane-rate") {
+      o.setup.plane_rate_hz = parseNumber(a, value());
+      if (o.setup.plane_rate_hz <= 0 || o.setup.plane_rate_hz > 1000)
+        throw UsageError{a + ": expected a rate in (0, 1000] Hz (at most the servo rate)"};
     } else if (a == "--smoothing-sigma") {
       o.setup.geometry.smoothing_sigma_texels = parseNumber(a, value());
       if (o.setup.geometry.smoothing_sigma_texels <= 0 || o.setup.geometry.smoothing_sigma_texels > 64)

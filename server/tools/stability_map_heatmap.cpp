@@ -34,11 +34,20 @@ cv::Scalar verdictColour(Verdict v) {
     case Verdict::Stable: return cv::Scalar(115, 150, 0);
     case Verdict::LimitCycle: return cv::Scalar(0, 165, 235);
     case Verdict::Unstable: return cv::Scalar(40, 30, 180);
+    case Verdict::CannotHold: return cv::Scalar(170, 170, 170);
   }
   return kEmpty;
 }
 
-char verdictLetter(Verdict v) { return v == Verdict::Stable ? 'S' : (v == Verdict::LimitCycle ? 'L' : 'U'); }
+char verdictLetter(Verdict v) {
+  switch (v) {
+    case Verdict::Stable: return 'S';
+    case Verdict::LimitCycle: return 'L';
+    case Verdict::Unstable: return 'U';
+    case Verdict::CannotHold: return 'H';
+  }
+  return '?';
+}
 
 void text(cv::Mat& img, const std::string& s, cv::Point at, double scale, const cv::Scalar& colour, int thickness = 1) {
   cv::putText(img, s, at, kFont, scale, colour, thickness, cv::LINE_AA);
@@ -72,13 +81,13 @@ void writeHeatmap(const std::string& path, const SweepAxes& axes, const std::vec
     std::string& l = letters[key];
     if (l.empty()) l.assign(forces.size(), '.');
     const auto at = std::find(forces.begin(), forces.end(), r.params.push_force_n);
-    // Lower case: the thermal (continuous-force) limit held the force down in the window, so the
-    // surface yielded to the push; the verdict is about oscillation only.
+    // Lower case: the thermal (continuous-force) limit acted in the window, yet the cell still
+    // tests the valley (not cannot-hold); the verdict is about oscillation only.
     const char letter = verdictLetter(r.metrics.verdict);
-    if (at != forces.end())
-      l[std::size_t(at - forces.begin())] = r.metrics.continuous_limit_fraction > 0.0 ? char(letter - 'A' + 'a') : letter;
+    const bool limited = r.metrics.continuous_limit_fraction > 0.0 && r.metrics.verdict != Verdict::CannotHold;
+    if (at != forces.end()) l[std::size_t(at - forces.begin())] = limited ? char(letter - 'A' + 'a') : letter;
     const auto w = worst.find(key);
-    if (w == worst.end() || int(r.metrics.verdict) > int(w->second)) worst[key] = r.metrics.verdict;
+    if (w == worst.end() || severity(r.metrics.verdict) > severity(w->second)) worst[key] = r.metrics.verdict;
   }
 
   std::vector<double> stiffness = axes.stiffness_fractions;
@@ -94,7 +103,7 @@ void writeHeatmap(const std::string& path, const SweepAxes& axes, const std::vec
        kInk, 1);
   text(img, subtitle, {kMargin, 44}, 0.4, kGrey);
 
-  const double letter_scale = forces.size() > 4 ? 0.3 : 0.38;
+  const double letter_scale = forces.size() > 6 ? 0.25 : (forces.size() > 4 ? 0.3 : 0.38);
   for (int mi = 0; mi < n_mit; ++mi) {
     for (int ri = 0; ri < n_repr; ++ri) {
       const Mitigations& m = axes.mitigations[std::size_t(mi)];
@@ -127,7 +136,7 @@ void writeHeatmap(const std::string& path, const SweepAxes& axes, const std::vec
 
   // Legend.
   const int ly = height - kFooter + 14;
-  const Verdict verdicts[] = {Verdict::Stable, Verdict::LimitCycle, Verdict::Unstable};
+  const Verdict verdicts[] = {Verdict::Stable, Verdict::LimitCycle, Verdict::Unstable, Verdict::CannotHold};
   int lx = kMargin;
   for (const Verdict v : verdicts) {
     cv::rectangle(img, cv::Rect(lx, ly, 18, 12), verdictColour(v), cv::FILLED);
@@ -136,9 +145,9 @@ void writeHeatmap(const std::string& path, const SweepAxes& axes, const std::vec
   }
   std::string forces_text = "letters: verdict at push force ";
   for (std::size_t i = 0; i < forces.size(); ++i) forces_text += (i ? ", " : "") + fmt("%g", forces[i]);
-  forces_text += " N (S stable, L limit-cycle, U unstable); colour: the worst of them.";
+  forces_text += " N (S stable, L limit-cycle, U unstable, H cannot hold the push); colour: the worst of them.";
   text(img, forces_text, {kMargin, ly + 30}, 0.38, kInk);
-  text(img, "lower case: the continuous-force (thermal) limit held the force down, so the surface yielded to the push.",
+  text(img, "H: the continuous-force limit held the force below the push and the pen sank; lower case: it acted, the cell still counts.",
        {kMargin, ly + 46}, 0.38, kInk);
   text(img, "rows: stiffness as a fraction of the device maximum (1000 N/m); docs/stability.md explains the verdicts.",
        {kMargin, ly + 62}, 0.38, kInk);

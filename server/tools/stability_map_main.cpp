@@ -103,11 +103,13 @@ int run(const CliOptions& o) {
     writeHeatmap(base + ".png", o.axes, results, subtitle);
   }
 
-  int counts[3] = {0, 0, 0};
+  int counts[kVerdicts] = {};
   for (const CellResult& r : results) ++counts[int(r.metrics.verdict)];
   if (!o.quiet)
-    std::fprintf(stderr, "stability-map: %zu cells: %d stable, %d limit-cycle, %d unstable; wrote %s.{json,csv%s}\n",
-                 results.size(), counts[0], counts[1], counts[2], base.c_str(), o.picture ? ",png" : "");
+    std::fprintf(stderr,
+                 "stability-map: %zu cells: %d stable, %d limit-cycle, %d unstable, %d cannot-hold; wrote "
+                 "%s.{json,csv%s}\n",
+                 results.size(), counts[0], counts[1], counts[2], counts[3], base.c_str(), o.picture ? ",png" : "");
   return 0;
 }
 

@@ -69,9 +69,9 @@ double fraction(const std::vector<WindowSample>& s, bool WindowSample::*flag) {
   return double(n) / double(s.size());
 }
 
-std::string format(const char* fmt, double a, double b) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, fmt, a, b);
+std::string format(const char* fmt, double a, double b, double c = 0.0) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c);
   return buf;
 }
 
@@ -82,8 +82,19 @@ const char* verdictName(Verdict v) {
     case Verdict::Stable: return "stable";
     case Verdict::LimitCycle: return "limit-cycle";
     case Verdict::Unstable: return "unstable";
+    case Verdict::CannotHold: return "cannot-hold";
   }
   return "?";
+}
+
+int severity(Verdict v) {
+  switch (v) {
+    case Verdict::CannotHold: return 0;
+    case Verdict::Stable: return 1;
+    case Verdict::LimitCycle: return 2;
+    case Verdict::Unstable: return 3;
+  }
+  return 3;
 }
 
 CellMetrics measureWindow(const std::vector<WindowSample>& s, const WindowEnergy& e, double aim_x_m,
@@ -160,9 +171,17 @@ void classify(CellMetrics& m, const Thresholds& t, double period_m) {
   const double lat_amp = lat_osc ? m.lateral_pp_m : 0.0, nor_amp = nor_osc ? m.normal_pp_m : 0.0;
   const double ripple = std::max(m.lateral_force_pp_n, m.normal_force_pp_n);
   const double excursion_limit = t.excursion_period_fraction * period_m;
+  const double sink_limit = m.held_depth_m + t.sink_period_fraction * period_m;
   if (!m.finite) {
     m.verdict = Verdict::Unstable;
     m.reason = "non-finite state or force";
+  } else if (m.continuous_limit_fraction > 0.0 &&
+             (m.push_force_n > m.continuous_force_n || m.depth_mean_m > sink_limit)) {
+    m.verdict = Verdict::CannotHold;
+    m.reason = format("cannot hold the push: continuous-force limit in %.3g%% of the window, pen %.3g mm deep "
+                      "(the push is held at %.3g mm)",
+                      m.continuous_limit_fraction * 100, m.depth_mean_m * 1e3, m.held_depth_m * 1e3);
+    m.reason += format(", push %.3g N above the continuous %.3g N", m.push_force_n, m.continuous_force_n);
   } else if (m.excursion_m > excursion_limit) {
     m.verdict = Verdict::Unstable;
     m.reason = format("pen %.3g mm from the floor (limit %.3g mm)", m.excursion_m * 1e3, excursion_limit * 1e3);

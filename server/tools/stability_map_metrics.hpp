@@ -33,8 +33,14 @@
 
 namespace thx::srv::stab {
 
-enum class Verdict { Stable = 0, LimitCycle = 1, Unstable = 2 };
-const char* verdictName(Verdict v);  // "stable", "limit-cycle", "unstable"
+// CannotHold: the device could not hold the push. The safety stage's continuous-force (thermal)
+// budget held the force below what the hand pushes with and the pen sank through the floor, so
+// the cell says nothing about the valley (issue 12); the map's claims count only the other three.
+enum class Verdict { Stable = 0, LimitCycle = 1, Unstable = 2, CannotHold = 3 };
+constexpr int kVerdicts = 4;
+const char* verdictName(Verdict v);  // "stable", "limit-cycle", "unstable", "cannot-hold"
+// Unstable > limit-cycle > stable > cannot-hold: which verdict a square of several forces shows.
+int severity(Verdict v);
 
 // The verdict's thresholds; docs/stability.md justifies the numbers.
 struct Thresholds {
@@ -57,6 +63,12 @@ struct Thresholds {
   // is the passivity controller's reservoir slack, "the most a sampling oscillation may build
   // before the controller answers" (server/passivity.hpp).
   double drift_energy_j = 1e-3;
+  // cannot-hold: the continuous-force limit acted in the window and either the push exceeds the
+  // device's continuous force (the limit steps the force down from the push: it cannot be held),
+  // or the mean penetration exceeds the depth at which the spring holds the push (push / k) by
+  // more than this fraction of the period; the excursion limit's 1 mm: that far through the
+  // floor the pen rests on no valley.
+  double sink_period_fraction = 0.25;
 
   double stableAmplitudeM() const { return stable_amplitude_counts * encoder_resolution_m; }
 };
@@ -73,6 +85,9 @@ struct CellMetrics {
   double excursion_m = 0.0;           // max |x - floor x| over the window (not detrended)
   double normal_pp_m = 0.0;           // detrended peak-to-peak of z
   double depth_mean_m = 0.0;          // mean rendered penetration (TickRecord::depth_m)
+  double held_depth_m = 0.0;          // push / k: where the spring alone would hold the push
+  double push_force_n = 0.0;          // the hand's push
+  double continuous_force_n = 0.0;    // the device's continuous force (the safety stage's budget)
   int crossings = 0;                  // crossings of the detrended mean x, one-count dead band
   int normal_crossings = 0;           // the same for z
   double oscillation_hz = 0.0;        // crossings / 2 / window
@@ -128,8 +143,10 @@ struct WindowEnergy {
 CellMetrics measureWindow(const std::vector<WindowSample>& samples, const WindowEnergy& energy, double aim_x_m,
                           double floor_x_m, double encoder_resolution_m, double peak_force_run_n);
 
-// Applies the rules in order: non-finite, excursion, peak force, growth -> unstable; small
-// amplitude and ripple -> stable; otherwise limit-cycle. Sets verdict and reason.
+// Applies the rules in order: non-finite -> unstable; held down and sunk -> cannot-hold;
+// excursion, peak force, growth -> unstable; small amplitude and ripple -> stable; otherwise
+// limit-cycle. Sets verdict and reason. m.held_depth_m, push_force_n and continuous_force_n must
+// be set.
 void classify(CellMetrics& m, const Thresholds& t, double period_m);
 
 }  // namespace thx::srv::stab

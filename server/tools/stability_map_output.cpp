@@ -135,7 +135,10 @@ std::string thresholdsJson(const Thresholds& t, double period_m) {
     << ", \"unstable_excursion_m\": " << num(t.excursion_period_fraction * period_m)
     << ", \"growth_ratio\": " << num(t.growth_ratio) << ", \"min_crossings\": " << t.min_crossings
     << ", \"drift_energy_j\": " << num(t.drift_energy_j)
-    << ", \"rules\": \"unstable: non-finite, excursion, force at device peak, or lateral amplitude growing; "
+    << ", \"cannot_hold_sink_m\": " << num(t.sink_period_fraction * period_m)
+    << ", \"rules\": \"unstable: non-finite; cannot-hold: the continuous-force limit acted in the window and the "
+       "push exceeds the device's continuous force or the mean depth exceeds push / k by more than cannot_hold_sink_m "
+       "(the valley is not tested); unstable: excursion, force at device peak, or lateral amplitude growing; "
        "stable: oscillation amplitudes <= stable_amplitude_m and force ripple <= buzz_force_pp_n (an axis with fewer "
        "than min_crossings mean crossings and at most drift_energy_j of motor work is drift, amplitude 0); else "
        "limit-cycle\"}";
@@ -150,7 +153,7 @@ std::string summaryJson(const CliOptions& options, const std::vector<CellResult>
   o << "[";
   bool first = true;
   for (const Mitigations& m : options.axes.mitigations) {
-    int counts[3] = {0, 0, 0};
+    int counts[kVerdicts] = {};
     std::vector<std::string> unstable_at_max;
     for (const CellResult& r : results) {
       if (r.params.mitigations.index() != m.index()) continue;
@@ -163,7 +166,7 @@ std::string summaryJson(const CliOptions& options, const std::vector<CellResult>
       }
     }
     o << (first ? "\n" : ",\n") << "    {\"mitigations\": " << json::quoted(m.name()) << ", \"stable\": " << counts[0]
-      << ", \"limit_cycle\": " << counts[1] << ", \"unstable\": " << counts[2]
+      << ", \"limit_cycle\": " << counts[1] << ", \"unstable\": " << counts[2] << ", \"cannot_hold\": " << counts[3]
       << ", \"unstable_at_max_stiffness\": " << list(unstable_at_max, [](const std::string& s) { return json::quoted(s); }) << "}";
     first = false;
   }

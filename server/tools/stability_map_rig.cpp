@@ -22,6 +22,7 @@ SimRig::SimRig(const tex::TexturedSurface& surface, const dev::SimPhantomConfig&
   c.renderer.damping_ns_per_m = options.damping_ns_per_m;
   c.renderer.crease_handling = options.crease_handling;
   c.renderer.recovery_ticks = options.recovery_ticks;
+  c.renderer.plane_hold_ticks = options.plane_hold_ticks;
   c.period_s = period_s_;
   c.passivity = options.passivity;
   c.quantisation_deadband = true;  // as hapticd

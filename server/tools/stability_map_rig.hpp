@@ -22,6 +22,7 @@ struct RigOptions {
   bool crease_handling = true;
   int recovery_ticks = RendererConfig{}.recovery_ticks;
   bool passivity = true;
+  int plane_hold_ticks = 1;  // RendererConfig::plane_hold_ticks (the paper's loop)
 };
 
 class SimRig {

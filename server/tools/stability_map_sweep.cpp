@@ -13,8 +13,9 @@ namespace thx::srv::stab {
 
 namespace {
 
+// The paper's loop first (the baseline), then its mitigation, then this server's eight.
 std::vector<Mitigations> allMitigations() {
-  std::vector<Mitigations> m;
+  std::vector<Mitigations> m = {Mitigations::fromIndex(8), Mitigations::fromIndex(8 | 4)};
   for (int i = 0; i < 8; ++i) m.push_back(Mitigations::fromIndex(i));
   return m;
 }
@@ -22,13 +23,15 @@ std::vector<Mitigations> allMitigations() {
 }  // namespace
 
 SweepAxes fullAxes() {
-  return SweepAxes{{20, 40, 60, 80, 100, 120, 140, 160}, {0.1, 0.25, 0.5, 0.75, 1.0}, {0.5, 1, 2, 5},
+  return SweepAxes{{20, 40, 60, 80, 100, 120, 140, 160}, {0.1, 0.25, 0.5, 0.75, 1.0},
+                   {0.5, 1, 1.5, 2, 2.25, 2.5, 3, 5},  // 1.5-3 N: where the continuous-force budget starts to bind
                    {false, true}, allMitigations()};
 }
 
 SweepAxes quickAxes() {
   return SweepAxes{{20, 60, 120}, {0.25, 1.0}, {1.0}, {false, true},
-                   {Mitigations::fromIndex(0), Mitigations::fromIndex(3), Mitigations::fromIndex(7)}};
+                   {Mitigations::fromIndex(8), Mitigations::fromIndex(0), Mitigations::fromIndex(3),
+                    Mitigations::fromIndex(7)}};
 }
 
 std::vector<CellParams> enumerateCells(const SweepAxes& a) {

@@ -161,6 +161,35 @@ TEST(ProxyRenderer, RecoveryRuleRampsAPlaneChangeInsteadOfStepping) {
   EXPECT_LT(largest_step, total / ticks * 1.01 + 1e-9);  // in equal steps over the ramp
 }
 
+// The paper's loop (server/paper_loop.hpp): the plane of a frame is held for plane_hold_ticks,
+// so a tip stepping across the floor keeps the old wall's normal until the next frame, and then
+// the force steps at once (no recovery rule).
+TEST(ProxyRenderer, PaperLoopHoldsOnePlanePerFrame) {
+  const tex::TextureMap map = generated("vvalley", {{"angle_deg", 60.0}, {"period", 0.004}});
+  const tex::TexturedSurface surface(map, mapping(), {}, true);
+  RendererConfig c = config(false);
+  c.plane_hold_ticks = 10;
+  ProxyRenderer r(surface, c);
+  const double z = -kValleyDepth - 0.001;
+  const srv::RenderOutput left = r.render({kFloorX - 0.0003, 0.0, z}, Eigen::Vector3d::Zero());  // frame 1
+  ASSERT_TRUE(left.in_contact);
+  EXPECT_GT(left.force_world.x(), 0.5);  // the left wall pushes right
+  for (int k = 1; k < 10; ++k) {         // across the floor within the frame: the same plane
+    const srv::RenderOutput out = r.render({kFloorX + 0.0003, 0.0, z}, Eigen::Vector3d::Zero());
+    ASSERT_TRUE(out.in_contact) << k;
+    EXPECT_NEAR(out.planes[0].n_world.x(), left.planes[0].n_world.x(), 1e-12) << k;
+    EXPECT_GT(out.force_world.x(), 0.0) << k;  // still the left wall pushing, less deep across the floor
+    EXPECT_NEAR(out.force_world.normalized().dot(left.force_world.normalized()), 1.0, 1e-12) << k;
+    EXPECT_FALSE(out.recovering);
+  }
+  const srv::RenderOutput next = r.render({kFloorX + 0.0003, 0.0, z}, Eigen::Vector3d::Zero());  // frame 2
+  EXPECT_LT(next.force_world.x(), -0.5);  // the right wall's plane, at once
+  // Every tick re-plans with plane_hold_ticks = 1, as before.
+  ProxyRenderer every(surface, config(false));
+  every.render({kFloorX - 0.0003, 0.0, z}, Eigen::Vector3d::Zero());
+  EXPECT_LT(every.render({kFloorX + 0.0003, 0.0, z}, Eigen::Vector3d::Zero()).force_world.x(), -0.5);
+}
+
 TEST(ProxyRenderer, PlanesAreReportedInTheWorldFrame) {
   const tex::TextureMap map = generated("sine", {}, 128);
   tex::PlaneMapping m = mapping();

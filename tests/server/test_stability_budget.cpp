@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "device/device_specs.hpp"
 #include "server/stability_budget.hpp"
@@ -60,6 +61,25 @@ TEST(StabilityBudget, DesktopAtSixTenthsExceedsTheBoundAndWarnsByDefault) {
                                   "2(b−|B|)/T = 10 N/m for b = 0.005 N·s/m, B = 0 N·s/m, T = 1 ms"))
       << s.message;
   EXPECT_TRUE(contains(s.message, "b ≥ 0.3 N·s/m")) << s.message;
+  // In plain words: b alone passes 10 N/m; the hand and the passivity controller carry the rest.
+  EXPECT_TRUE(contains(s.explanation, "passes only stiffness up to 10 N/m")) << s.explanation;
+  EXPECT_TRUE(contains(s.explanation, "hand's damping and the passivity controller")) << s.explanation;
+  const std::vector<std::string> report = srv::budgetReport(s);
+  ASSERT_EQ(report.size(), 2u);  // the message and its explanation; the warning is the message
+  EXPECT_EQ(report[1], s.explanation);
+}
+
+TEST(StabilityBudget, ShippedDampingMakesTheBoundNegativeAndTheExplanationSaysSo) {
+  // Every shipped scene: 0.6 of the Desktop's 1000 N/m with B = 1 N s/m against b = 0.005 N s/m.
+  const StabilityBudget s = srv::checkStabilityBudget(desktop(), request(0.6, 1.0));
+  EXPECT_NEAR(s.bound_n_per_m, -1990.0, 1e-9);
+  EXPECT_NEAR(s.required_physical_damping_ns_per_m, 1.3, 1e-12);
+  EXPECT_TRUE(contains(s.explanation, "b = 0.005 N·s/m is smaller than the rendered damping |B| = 1 N·s/m"))
+      << s.explanation;
+  EXPECT_TRUE(contains(s.explanation, "no stiffness at all meets it")) << s.explanation;
+  EXPECT_TRUE(contains(s.explanation, "it needs 1.3 N·s/m of damping in all")) << s.explanation;
+  // Within the bound there is nothing to explain.
+  EXPECT_TRUE(srv::checkStabilityBudget(desktop(), request(0.008)).explanation.empty());
 }
 
 TEST(StabilityBudget, StrictPolicyMakesTheSameFindingAnError) {
