@@ -42,30 +42,27 @@ std::vector<QuadraturePoint> collapsedCubeRule() {
   return rule;
 }
 
-// Shape functions and their reference derivatives (columns: d/dxi, d/deta, d/dzeta).
-void shapeFunctions(ElementOrder order, const Eigen::Vector3d& xi, Eigen::VectorXd& n, Eigen::MatrixXd& dn) {
+// Shape functions and their reference derivatives (rows: nodes; columns: d/dxi, d/deta, d/dzeta).
+template <int NN>
+void shapeFunctions(const Eigen::Vector3d& xi, Eigen::Matrix<double, NN, 1>& n, Eigen::Matrix<double, NN, 3>& dn) {
   const std::array<double, 4> l{1.0 - xi.sum(), xi.x(), xi.y(), xi.z()};
   // dL_a/dxi_c
   auto dl = [](int a, int c) { return a == 0 ? -1.0 : (a - 1 == c ? 1.0 : 0.0); };
-  if (order == ElementOrder::Linear) {
-    n.resize(4);
-    dn.resize(4, 3);
+  if constexpr (NN == 4) {
     for (int a = 0; a < 4; ++a) {
       n[a] = l[a];
       for (int c = 0; c < 3; ++c) dn(a, c) = dl(a, c);
     }
-    return;
-  }
-  n.resize(10);
-  dn.resize(10, 3);
-  for (int a = 0; a < 4; ++a) {
-    n[a] = l[a] * (2.0 * l[a] - 1.0);
-    for (int c = 0; c < 3; ++c) dn(a, c) = (4.0 * l[a] - 1.0) * dl(a, c);
-  }
-  for (int e = 0; e < 6; ++e) {
-    const int a = kTet10Edges[e][0], b = kTet10Edges[e][1];
-    n[4 + e] = 4.0 * l[a] * l[b];
-    for (int c = 0; c < 3; ++c) dn(4 + e, c) = 4.0 * (l[b] * dl(a, c) + l[a] * dl(b, c));
+  } else {
+    for (int a = 0; a < 4; ++a) {
+      n[a] = l[a] * (2.0 * l[a] - 1.0);
+      for (int c = 0; c < 3; ++c) dn(a, c) = (4.0 * l[a] - 1.0) * dl(a, c);
+    }
+    for (int e = 0; e < 6; ++e) {
+      const int a = kTet10Edges[e][0], b = kTet10Edges[e][1];
+      n[4 + e] = 4.0 * l[a] * l[b];
+      for (int c = 0; c < 3; ++c) dn(4 + e, c) = 4.0 * (l[b] * dl(a, c) + l[a] * dl(b, c));
+    }
   }
 }
 
@@ -80,36 +77,35 @@ void shapeFunctions(ElementOrder order, const Eigen::Vector3d& xi, Eigen::Vector
                    "): expected a positive volume");
 }
 
-}  // namespace
-
-ElementMatrices elementMatrices(const TetMesh& mesh, std::size_t index, const Eigen::Matrix<double, 6, 6>& elasticity,
-                                double density_kg_per_m3) {
+// Fixed-size matrices throughout: no allocation per quadrature point, which keeps assembly fast
+// in the unoptimised sanitizer build too.
+template <int NN>
+ElementMatrices elementMatricesOf(const TetMesh& mesh, std::size_t index, const Eigen::Matrix<double, 6, 6>& elasticity,
+                                  double density_kg_per_m3) {
   static const std::vector<QuadraturePoint> kCentroid = centroidRule(), kFour = fourPointRule(),
                                             kCollapsed = collapsedCubeRule();
-  const bool linear = mesh.order == ElementOrder::Linear;
-  const int nn = mesh.nodesPerTet();
-  Eigen::MatrixXd x(3, nn);
-  for (int a = 0; a < nn; ++a) x.col(a) = mesh.nodes[mesh.tets[index][a]];
+  constexpr bool kLinear = NN == 4;
+  Eigen::Matrix<double, 3, NN> x;
+  for (int a = 0; a < NN; ++a) x.col(a) = mesh.nodes[std::size_t(mesh.tets[index][std::size_t(a)])];
   // A determinant below this fraction of the corner tet's scale counts as degenerate.
   const Eigen::Vector3d e1 = x.col(1) - x.col(0), e2 = x.col(2) - x.col(0), e3 = x.col(3) - x.col(0);
-  const double scale = e1.norm() * e2.norm() * e3.norm();
-  const double min_det = 1e-10 * scale;
+  const double min_det = 1e-10 * e1.norm() * e2.norm() * e3.norm();
 
-  ElementMatrices out;
-  out.stiffness = Eigen::MatrixXd::Zero(3 * nn, 3 * nn);
-  out.mass = Eigen::MatrixXd::Zero(3 * nn, 3 * nn);
-  Eigen::VectorXd n;
-  Eigen::MatrixXd dn;
-  Eigen::MatrixXd b(6, 3 * nn);
+  Eigen::Matrix<double, 3 * NN, 3 * NN> k = Eigen::Matrix<double, 3 * NN, 3 * NN>::Zero();
+  Eigen::Matrix<double, NN, NN> scalar_mass = Eigen::Matrix<double, NN, NN>::Zero();
+  Eigen::Matrix<double, NN, 1> n;
+  Eigen::Matrix<double, NN, 3> dn;
+  Eigen::Matrix<double, 6, 3 * NN> b;
+  double volume = 0.0;
 
-  for (const QuadraturePoint& q : linear ? kCentroid : kFour) {
-    shapeFunctions(mesh.order, q.xi, n, dn);
+  for (const QuadraturePoint& q : kLinear ? kCentroid : kFour) {
+    shapeFunctions<NN>(q.xi, n, dn);
     const Eigen::Matrix3d jac = x * dn;  // d x / d xi
     const double det = jac.determinant();
     if (!(det > min_det)) degenerate(mesh, index, det);
-    const Eigen::MatrixXd g = dn * jac.inverse();  // nn x 3: d N / d x
+    const Eigen::Matrix<double, NN, 3> g = dn * jac.inverse();  // d N / d x
     b.setZero();
-    for (int a = 0; a < nn; ++a) {
+    for (int a = 0; a < NN; ++a) {
       b(0, 3 * a) = g(a, 0);
       b(1, 3 * a + 1) = g(a, 1);
       b(2, 3 * a + 2) = g(a, 2);
@@ -117,20 +113,32 @@ ElementMatrices elementMatrices(const TetMesh& mesh, std::size_t index, const Ei
       b(4, 3 * a) = g(a, 2), b(4, 3 * a + 2) = g(a, 0);
       b(5, 3 * a) = g(a, 1), b(5, 3 * a + 1) = g(a, 0);
     }
-    out.stiffness.noalias() += (q.weight * det) * (b.transpose() * (elasticity * b));
+    const Eigen::Matrix<double, 6, 3 * NN> db = (q.weight * det) * (elasticity * b);
+    k.noalias() += b.transpose() * db;
   }
-  Eigen::MatrixXd scalar_mass = Eigen::MatrixXd::Zero(nn, nn);
-  for (const QuadraturePoint& q : linear ? kFour : kCollapsed) {
-    shapeFunctions(mesh.order, q.xi, n, dn);
+  for (const QuadraturePoint& q : kLinear ? kFour : kCollapsed) {
+    shapeFunctions<NN>(q.xi, n, dn);
     const double det = (x * dn).determinant();
     if (!(det > min_det)) degenerate(mesh, index, det);
     scalar_mass.noalias() += (q.weight * det * density_kg_per_m3) * (n * n.transpose());
-    out.volume_m3 += q.weight * det;
+    volume += q.weight * det;
   }
-  for (int a = 0; a < nn; ++a)
-    for (int bb = 0; bb < nn; ++bb)
-      for (int c = 0; c < 3; ++c) out.mass(3 * a + c, 3 * bb + c) = scalar_mass(a, bb);
+  ElementMatrices out;
+  out.stiffness = k;
+  out.mass = Eigen::MatrixXd::Zero(3 * NN, 3 * NN);
+  for (int a = 0; a < NN; ++a)
+    for (int c2 = 0; c2 < NN; ++c2)
+      for (int c = 0; c < 3; ++c) out.mass(3 * a + c, 3 * c2 + c) = scalar_mass(a, c2);
+  out.volume_m3 = volume;
   return out;
+}
+
+}  // namespace
+
+ElementMatrices elementMatrices(const TetMesh& mesh, std::size_t index, const Eigen::Matrix<double, 6, 6>& elasticity,
+                                double density_kg_per_m3) {
+  return mesh.order == ElementOrder::Linear ? elementMatricesOf<4>(mesh, index, elasticity, density_kg_per_m3)
+                                            : elementMatricesOf<10>(mesh, index, elasticity, density_kg_per_m3);
 }
 
 }  // namespace thx::audio

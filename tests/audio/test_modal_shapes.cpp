@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include "clients/audio/modal_analysis.hpp"
 #include "tests/audio/modal_fixtures.hpp"
@@ -15,25 +14,10 @@ namespace {
 using test::relativeError;
 using test::steel;
 
-// Free-free square plate, Leissa's lambda for nu = 0.29 (modes 1-8).
-constexpr double kPlateLambda[8] = {13.557, 19.706, 24.221, 34.967, 34.967, 61.137, 61.137, 63.959};
-
-double kirchhoffHz(double lambda, double a, double h, const ElasticMaterial& m) {
-  const double d = m.youngs_modulus_pa * h * h * h / (12 * (1 - m.poisson_ratio * m.poisson_ratio));
-  return lambda / (2 * std::numbers::pi * a * a) * std::sqrt(d / (m.density_kg_per_m3 * h));
-}
-
+// The 12 x 12 plate resolves modes 1-7 within 1.5 % (mode 8: +3.5 %); all 8 on finer meshes in
+// test_modal_shapes_slow.cpp.
 TEST(ModalShapes, PlateWithinOneAndAHalfPercentOfKirchhoff) {
-  const double a = 0.3, h = 0.005;
-  ModalSettings settings;
-  settings.elastic_modes = 8;
-  const ModalSolution s = analyse(slabMesh("plate", a, a, h, {16, 16, 1}, ElementOrder::Quadratic, false), steel(), settings);
-  for (int k = 0; k < 8; ++k) {
-    const double ref = kirchhoffHz(kPlateLambda[k], a, h, steel());
-    std::printf("plate mode %d: %.1f Hz (Kirchhoff %.1f, %+.2f %%)\n", k + 1, s.frequencyHz(k), ref,
-                100 * (s.frequencyHz(k) / ref - 1));
-    EXPECT_LT(relativeError(s.frequencyHz(k), ref), 0.015) << "mode " << k + 1;
-  }
+  test::expectPlateNearKirchhoff(12, 7);
 }
 
 // Lamb: omega a / c_s = 2.5011 (T2) and 2.6450 (S2, nu = 0.29), each 5-fold.
