@@ -19,6 +19,7 @@ PACKAGES="
   libyaml-cpp-dev
   liblcm-dev liblcm-bin libglib2.0-dev
   libbullet-dev
+  libarpack2-dev libsndfile1-dev
   googletest libgtest-dev libbenchmark-dev
   rt-tests
 "

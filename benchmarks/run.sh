@@ -5,7 +5,8 @@
 # Usage: benchmarks/run.sh [BUILD_DIR] [PART...]
 #   BUILD_DIR  a configured and built tree (default: build); build it first with
 #              cmake -S . -B BUILD_DIR -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build BUILD_DIR -j2 --target benchmarks
-#   PART       any of: render force_error memory latency clients physics (default: all six, in that order)
+#   PART       any of: render force_error memory latency clients physics (default: all six, in that order),
+#              or audio (FEM modal analysis, about 2 min; its table goes to docs/audio.md)
 #
 # The clients part also sweeps the number of clients (issue 17): 1, 2, 4, 8, 16, 32, 64 clients
 # (THX_CLIENTS_SWEEP), for the workloads "mixed" (1/4 of the clients batched CONTACT at 1 kHz, the
@@ -47,9 +48,10 @@ need() {
   fi
 }
 
-# Replaces the lines between <!-- BEGIN name --> and <!-- END name --> in docs/benchmarks.md.
+# Replaces the lines between <!-- BEGIN name --> and <!-- END name --> in docs/benchmarks.md
+# (or in the document given third).
 splice() {
-  local name=$1 fragment=$2
+  local name=$1 fragment=$2 DOC=${3:-$DOC}
   if ! grep -q "^<!-- BEGIN $name -->$" "$DOC"; then
     say "warning: no '<!-- BEGIN $name -->' marker in $DOC; table not updated"
     return 0
@@ -59,7 +61,7 @@ splice() {
     $0 == "<!-- END " name " -->" { skip = 0 }
     !skip { print }
   ' "$DOC" > "$DOC.tmp" && mv "$DOC.tmp" "$DOC"
-  say "updated the $name table in docs/benchmarks.md"
+  say "updated the $name table in ${DOC#"$ROOT"/}"
 }
 
 run_render() {
@@ -154,16 +156,24 @@ run_physics() {
   splice bench_physics "$WORK/bench_physics.md"
 }
 
+run_audio() {
+  need "$BIN/bench_audio_fem" || return 1
+  say "part 7: audio, FEM modal analysis error / DOF / time / peak memory, Tet4 and Tet10 (about 2 min)"
+  "$BIN/bench_audio_fem" --json "$RESULTS/bench_audio_fem.json" --csv "$RESULTS/bench_audio_fem.csv" \
+    --md "$WORK/bench_audio_fem.md" || return 1
+  splice bench_audio_fem "$WORK/bench_audio_fem.md" "$ROOT/docs/audio.md"
+}
+
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | physics)
+    render | force_error | memory | latency | clients | physics | audio)
       if ! "run_$part"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients physics)"
+      say "unknown part '$part' (expected: render force_error memory latency clients physics audio)"
       exit 2
       ;;
   esac

@@ -1,0 +1,44 @@
+#pragma once
+// From an object's FEM modes to the modes worth synthesising: Rayleigh damping (Eq. 4,
+// C = alpha M + beta K, so d = (alpha + beta omega^2) / 2 and omega_d = omega sqrt(1 - xi^2)),
+// the audible band, the psychoacoustic merge of modes closer than the frequency-discrimination
+// threshold (Raghuvanshi & Lin 2006; sound-anchors.md §5) and truncation to a mode budget.
+#include <Eigen/Core>
+#include <vector>
+
+#include "clients/audio/elastic_material.hpp"
+#include "clients/audio/modal_analysis.hpp"
+
+namespace thx::audio {
+
+struct AudibleOptions {
+  double min_hz = 20.0;
+  double max_hz = 16000.0;        // also always below the Nyquist frequency
+  double sample_rate_hz = 44100.0;
+  bool merge = true;
+  // Two modes are indistinguishable when their frequencies differ by less than
+  // max(merge_abs_hz, merge_rel * f) (pure-tone difference limens, sound-anchors.md §5).
+  double merge_abs_hz = 2.0;
+  double merge_rel = 0.003;
+  int max_modes = 0;  // keep at most this many (the lowest) after merging; 0 = all
+};
+
+struct AudibleModes {
+  std::vector<double> frequency_hz;  // damped frequency omega_d / 2 pi, ascending
+  std::vector<double> decay_per_s;   // d: the envelope is exp(-d t)
+  std::vector<double> damping_ratio; // xi = d / omega
+  std::vector<int> members;          // FEM modes merged into this one (1 = not merged)
+  // Mesh DOFs x modes: the sum of the members' M-orthonormal shapes, so the modal impulse of a
+  // force J at a node is shapes.row(dof) * J, the sum of the members' own.
+  Eigen::MatrixXd shapes;
+  int dropped_overdamped = 0, dropped_out_of_band = 0, merged_away = 0, truncated = 0;
+
+  std::size_t size() const { return frequency_hz.size(); }
+};
+
+// The discrimination threshold at frequency f.
+double mergeThresholdHz(const AudibleOptions& options, double f_hz);
+
+AudibleModes audibleModes(const ModalSolution& solution, const ElasticMaterial& material, const AudibleOptions& options);
+
+}  // namespace thx::audio

@@ -1,0 +1,154 @@
+// audio-client, offline only (this step): the pen scraping a scene's surface, rendered from a
+// recorded hapticd session to a WAV file (kHelp below).
+#include <sndfile.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <thx_msgs/contact_t.hpp>
+
+#include "base/cli_number.hpp"
+#include "base/error.hpp"
+#include "clients/audio/modal_options.hpp"
+#include "clients/audio/scrape_synthesis.hpp"
+#include "scenes/scene_loader.hpp"
+#include "scenes/surface_texture.hpp"
+#include "textures/smoothing.hpp"
+#include "thx_msgs/log_reader.hpp"
+
+namespace {
+
+using namespace thx::audio;
+
+const char* const kHelp = R"(usage: audio-client --scene FILE --replay-log FILE --wav FILE [options]
+
+Offline and deterministic: the pen scraping the scene's surface, from a session hapticd recorded
+(`hapticd --record FILE`: one contact_t per servo tick on THX_CONTACT). At every texel the pen tip
+enters, Eq. 5 gives a meso impulse (the pen's mass, the texel's own normal); it strikes the
+surface slab's modes (modal analysis of the scene's surface material, cached like
+modal-analyze's) at the nearest node of the slab's top face. The sum of the modal displacements
+is written as a 32-bit float WAV, normalised to a peak of 0.5 (-6 dBFS); a flat map is silent.
+Not yet: live audio, the physics client's impacts and rolling, micro-level roughness.
+
+  --scene FILE           the scene hapticd ran (docs/scenes.md)
+  --replay-log FILE      hapticd's --record log
+  --wav FILE             output
+  --slab-thickness M     the surface slab's thickness (default 0.01)
+  --slab-cells N         Tet10 cells per side of the slab, 1 through its thickness (default 16)
+  --clamp-edges          hold the slab at its four sides (default: free)
+  --modes N              elastic modes computed (default 40)
+  --pen-mass KG          the mass in Eq. 5 (default: the simulated device's mass)
+  --sample-rate HZ       default 44100
+  --tail S               ring-out after the last tick (default 0.5)
+  --cache-dir DIR        modal cache (default as modal-analyze); --no-cache: none
+  -h, --help             this text
+)";
+
+struct Options {
+  std::string scene, log, wav;
+  double thickness = 0.01, sample_rate = 44100, tail = 0.5;
+  int cells = 16, modes = 40;
+  bool clamp = false, no_cache = false;
+  std::optional<double> pen_mass;
+  std::optional<std::string> cache_dir;
+};
+
+Options parse(const std::vector<std::string>& args) {
+  Options o;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw thx::UsageError(a + ": missing value");
+      return args[++i];
+    };
+    if (a == "--scene") o.scene = value();
+    else if (a == "--replay-log") o.log = value();
+    else if (a == "--wav") o.wav = value();
+    else if (a == "--slab-thickness") o.thickness = thx::cli::parseNumber(a, value(), {0, 1, true, "m"});
+    else if (a == "--slab-cells") o.cells = int(thx::cli::parseInteger(a, value(), 1, 200));
+    else if (a == "--clamp-edges") o.clamp = true;
+    else if (a == "--modes") o.modes = int(thx::cli::parseInteger(a, value(), 1, 2000));
+    else if (a == "--pen-mass") o.pen_mass = thx::cli::parseNumber(a, value(), {0, 100, true, "kg"});
+    else if (a == "--sample-rate") o.sample_rate = thx::cli::parseNumber(a, value(), {8000, 384000, false, "Hz"});
+    else if (a == "--tail") o.tail = thx::cli::parseNumber(a, value(), {0, 60, false, "s"});
+    else if (a == "--cache-dir") o.cache_dir = value();
+    else if (a == "--no-cache") o.no_cache = true;
+    else throw thx::UsageError("unknown option '" + a + "'");
+  }
+  if (o.scene.empty()) throw thx::UsageError("--scene: missing");
+  if (o.log.empty()) throw thx::UsageError("--replay-log: missing (live audio is not implemented yet)");
+  if (o.wav.empty()) throw thx::UsageError("--wav: missing");
+  return o;
+}
+
+void writeWav(const std::string& path, const std::vector<float>& samples, int rate) {
+  SF_INFO info{};
+  info.samplerate = rate;
+  info.channels = 1;
+  info.format = SF_FORMAT_WAV | SF_FORMAT_FLOAT;
+  SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
+  if (!f) throw thx::Error(thx::Error::Kind::Io, path + ": cannot be written: " + sf_strerror(nullptr));
+  const sf_count_t n = sf_writef_float(f, samples.data(), sf_count_t(samples.size()));
+  sf_close(f);
+  if (n != sf_count_t(samples.size())) throw thx::Error(thx::Error::Kind::Io, path + ": write failed");
+}
+
+int run(const Options& o) {
+  const thx::scene::Scene scene = thx::scene::loadScene(o.scene);
+  thx::scene::SurfaceTextureOptions to;
+  to.smooth = thx::tex::smoothTexture;
+  const thx::tex::TextureMap map = thx::scene::buildSurfaceTexture(scene, to);
+
+  std::vector<ScrapeSample> path;
+  thx_msgs::forEachLogMessage<thx_msgs::contact_t>(o.log, "THX_CONTACT", [&](const thx_msgs::contact_t& c, const auto&) {
+    path.push_back({c.tick, c.in_contact != 0, {c.uv[0], c.uv[1]}});
+  });
+  if (path.empty()) throw thx::Error(thx::Error::Kind::Io, o.log + ": no THX_CONTACT events (not a hapticd --record log?)");
+
+  ElasticMaterial material = fromSceneMaterial(scene.surface.material);
+  const TetMesh slab = slabMesh("surface (" + scene.surface.material.name + ")", scene.surface.size_m.x(),
+                                scene.surface.size_m.y(), o.thickness, {o.cells, o.cells, 1}, ElementOrder::Quadratic,
+                                o.clamp);
+  ModalSettings ms;
+  ms.elastic_modes = o.modes;
+  AnalysisOptions ao;
+  if (!o.no_cache) ao.cache_dir = o.cache_dir ? *o.cache_dir : defaultModalCacheDir();
+  ao.progress = [](const std::string& line) { std::fprintf(stderr, "audio-client: %s\n", line.c_str()); };
+  AudibleOptions audible;
+  audible.sample_rate_hz = o.sample_rate;
+  const AudibleModes modes = audibleModes(analyse(slab, material, ms, ao), material, audible);
+
+  ScrapeOptions so;
+  so.sample_rate_hz = o.sample_rate;
+  so.servo_hz = scene.rates.servo_hz;
+  so.pen_mass_kg = o.pen_mass ? *o.pen_mass : scene.device.sim.device_mass_kg;
+  so.surface_size_m = scene.surface.size_m;
+  so.tail_s = o.tail;
+  const ScrapeRender r = renderScrape(map, slab, modes, path, so);
+  writeWav(o.wav, r.samples, int(o.sample_rate));
+  std::printf("audio-client: %s: %zu ticks, %zu meso impulses, %zu modes, %.2f s -> %s\n", o.log.c_str(), path.size(),
+              r.impulses, modes.size(), double(r.samples.size()) / o.sample_rate, o.wav.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  for (const std::string& a : args)
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelp, stdout);
+      return 0;
+    }
+  try {
+    return run(parse(args));
+  } catch (const thx::Error& e) {
+    std::fprintf(stderr, "audio-client: %s\n", e.what());
+    if (e.kind() == thx::Error::Kind::Usage) std::fprintf(stderr, "(audio-client --help lists the options)\n");
+    return thx::exitStatus(e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "audio-client: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,56 @@
+#pragma once
+// A bank of damped modal resonators, the exact impulse-invariant two-pole recurrence per mode
+// (sound-anchors.md §4): with R = exp(-d/fs), theta = omega_d/fs,
+//   y[n+1] = 2R cos(theta) y[n] - R^2 y[n-1] + (R sin(theta) / omega_d) g[n]
+// equals the closed form (g/omega_d) e^{-d t} sin(omega_d t) of a modal impulse g (N s per unit
+// modal mass, i.e. u_i . J with M-orthonormal shapes) at the sample times, so it has no
+// frequency warping and no decay error at any frequency below Nyquist.
+//
+// Structure of arrays (coefficients and states in separate contiguous arrays), samples outer and
+// modes inner, so the inner loop runs over independent modes and vectorises. Real-time safe after
+// construction: setModes (up to the capacity), strike and render never allocate or lock.
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace thx::audio {
+
+class ResonatorBank {
+ public:
+  // Allocates room for `capacity` modes. sample_rate_hz > 0.
+  ResonatorBank(double sample_rate_hz, std::size_t capacity);
+
+  // Replaces the modes (damped frequency in Hz, decay d in 1/s, so the envelope is e^{-d t}) and
+  // silences them. Returns false (and changes nothing) if there are more than the capacity, the
+  // spans differ in length, or a frequency is not in (0, Nyquist) or a decay is negative.
+  bool setModes(std::span<const double> frequency_hz, std::span<const double> decay_per_s);
+
+  // Adds a modal impulse to every mode (modal_impulse.size() must equal size(); extra values are
+  // ignored, missing ones count as 0). It acts at the first sample the next render() produces.
+  void strike(std::span<const double> modal_impulse);
+  void strikeMode(std::size_t mode, double modal_impulse);
+
+  // Writes the next out.size() samples of the sum of the modal displacements q_i (a contact
+  // microphone's view, sound-anchors.md §4).
+  void render(std::span<double> out);
+  void render(std::span<float> out);
+
+  void silence();
+  std::size_t size() const { return count_; }
+  std::size_t capacity() const { return a1_.size(); }
+  double sampleRate() const { return sample_rate_hz_; }
+
+ private:
+  template <class Sample>
+  void renderImpl(std::span<Sample> out);
+
+  double sample_rate_hz_;
+  std::size_t count_ = 0;
+  // Per mode: y[n+1] = a1 y[n] + a2 y[n-1] + b g[n].
+  std::vector<double> a1_, a2_, b_;
+  std::vector<double> y_, y_prev_;  // y[n] (the next sample out) and y[n-1]
+  std::vector<double> pending_;     // impulses struck since the last render
+  bool any_pending_ = false;
+};
+
+}  // namespace thx::audio
