@@ -1,0 +1,81 @@
+// visual-client: the scene as the eye sees it (kHelp in options.cpp; docs/visual.md).
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "clients/visual/frame_renderer.hpp"
+#include "clients/visual/headless_context.hpp"
+#include "clients/visual/image_writer.hpp"
+#include "clients/visual/options.hpp"
+#include "clients/visual/scene_objects.hpp"
+#include "scenes/scene_loader.hpp"
+#include "scenes/scene_surface.hpp"
+#include "textures/smoothing.hpp"
+
+namespace {
+
+using namespace thx;
+using namespace thx::visual;
+
+int run(const Options& o) {
+  const scene::Scene scene = scene::loadScene(o.scene);
+  scene::SurfaceTextureOptions texture_options;
+  texture_options.smooth = &tex::smoothTexture;
+  const scene::SceneSurface surface = scene::buildSceneSurface(scene, texture_options);
+
+  CameraPlacement placement = o.camera;
+  if (!o.distance_given) placement.distance_m = 1.25 * scene.surface.size_m.maxCoeff();
+
+  std::vector<ObjectInstance> objects;
+  if (!o.no_objects) objects = objectsAtRest(scene);
+  if (!o.no_pen) {
+    const Eigen::Vector2d xy = o.pen_xy ? *o.pen_xy : penRestPosition(scene);
+    const std::vector<ObjectInstance> pen = penAt(surface.surface, tipOnSurface(surface.surface, xy));
+    objects.insert(objects.end(), pen.begin(), pen.end());
+  }
+
+  HeadlessContext context;
+  if (!o.quiet) std::fprintf(stderr, "visual-client: %s\n", context.description().c_str());
+  FrameRenderer renderer(surface.surface, o.render, o.width, o.height);
+
+  if (!o.screenshot.empty()) {
+    renderer.render(Camera(placement, surface.surface.mapping().plane_to_world, o.width, o.height), objects);
+    writeImage(o.screenshot, renderer.framebuffer().readColour());
+    if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %s (%s)\n", o.screenshot.c_str(), modeName(o.render).c_str());
+    return 0;
+  }
+  std::filesystem::create_directories(o.out_dir);
+  for (int f = 0; f < o.frames; ++f) {
+    CameraPlacement p = placement;
+    p.azimuth_deg += f * o.orbit_deg_per_frame;
+    renderer.render(Camera(p, surface.surface.mapping().plane_to_world, o.width, o.height), objects);
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.%s", f, o.frame_format.c_str());
+    writeImage((std::filesystem::path(o.out_dir) / name).string(), renderer.framebuffer().readColour());
+  }
+  if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %d frames to %s\n", o.frames, o.out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
+    if (o.help) {
+      std::fputs(kHelp, stdout);
+      return 0;
+    }
+    return run(o);
+  } catch (const thx::UsageError& e) {
+    std::fprintf(stderr, "visual-client: %s (see --help)\n", e.what());
+    return 2;
+  } catch (const thx::Error& e) {
+    std::fprintf(stderr, "visual-client: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "visual-client: %s\n", e.what());
+    return 1;
+  }
+}
