@@ -5,7 +5,7 @@
 # Usage: benchmarks/run.sh [BUILD_DIR] [PART...]
 #   BUILD_DIR  a configured and built tree (default: build); build it first with
 #              cmake -S . -B BUILD_DIR -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build BUILD_DIR -j2 --target benchmarks
-#   PART       any of: render force_error memory latency clients physics (default: all six, in that order)
+#   PART       any of: render force_error memory latency clients physics visual (default: all seven, in that order)
 #
 # The clients part also sweeps the number of clients (issue 17): 1, 2, 4, 8, 16, 32, 64 clients
 # (THX_CLIENTS_SWEEP), for the workloads "mixed" (1/4 of the clients batched CONTACT at 1 kHz, the
@@ -28,7 +28,7 @@ BUILD=${1:-build}
 [ $# -gt 0 ] && shift
 case "$BUILD" in /*) ;; *) BUILD="$ROOT/$BUILD" ;; esac
 PARTS=("$@")
-[ ${#PARTS[@]} -eq 0 ] && PARTS=(render force_error memory latency clients physics)
+[ ${#PARTS[@]} -eq 0 ] && PARTS=(render force_error memory latency clients physics visual)
 
 RESULTS="$ROOT/docs/results"
 DOC="$ROOT/docs/benchmarks.md"
@@ -47,9 +47,10 @@ need() {
   fi
 }
 
-# Replaces the lines between <!-- BEGIN name --> and <!-- END name --> in docs/benchmarks.md.
+# Replaces the lines between <!-- BEGIN name --> and <!-- END name --> in docs/benchmarks.md
+# (or in the document given as a third argument).
 splice() {
-  local name=$1 fragment=$2
+  local name=$1 fragment=$2 DOC=${3:-$DOC}
   if ! grep -q "^<!-- BEGIN $name -->$" "$DOC"; then
     say "warning: no '<!-- BEGIN $name -->' marker in $DOC; table not updated"
     return 0
@@ -59,7 +60,7 @@ splice() {
     $0 == "<!-- END " name " -->" { skip = 0 }
     !skip { print }
   ' "$DOC" > "$DOC.tmp" && mv "$DOC.tmp" "$DOC"
-  say "updated the $name table in docs/benchmarks.md"
+  say "updated the $name table in ${DOC#"$ROOT"/}"
 }
 
 run_render() {
@@ -154,16 +155,24 @@ run_physics() {
   splice bench_physics "$WORK/bench_physics.md"
 }
 
+run_visual() {
+  need "$BIN/bench_visual" || return 1
+  say "part 7: visual client, frame time against image error (normal / relief / mesh, about 3 min)"
+  (cd "$ROOT" && "$BIN/bench_visual" --json "$RESULTS/bench_visual.json" --csv "$RESULTS/bench_visual.csv" \
+    --md "$WORK/bench_visual.md") || return 1
+  splice bench_visual "$WORK/bench_visual.md" "$ROOT/docs/visual.md"
+}
+
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | physics)
+    render | force_error | memory | latency | clients | physics | visual)
       if ! "run_$part"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients physics)"
+      say "unknown part '$part' (expected: render force_error memory latency clients physics visual)"
       exit 2
       ;;
   esac

@@ -31,7 +31,7 @@ void writePpm(const std::string& path, const Rgba8Image& image) {
     throw Error(Error::Kind::Io, path + ": write failed (" + std::strerror(errno) + ")");
 }
 
-void writePng(const std::string& path, const Rgba8Image& image) {
+void writePng(const std::string& path, const Rgba8Image& image, int level) {
   File f = openForWriting(path);
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -44,8 +44,9 @@ void writePng(const std::string& path, const Rgba8Image& image) {
     throw Error(Error::Kind::Io, path + ": libpng failed while writing");
   }
   png_init_io(png, f.get());
-  png_set_compression_level(png, 1);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
+  png_set_compression_level(png, level);
+  // Row filters pay off only when the file is kept small on purpose.
+  if (level <= 1) png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
   png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8, PNG_COLOR_TYPE_RGB_ALPHA,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
@@ -57,9 +58,9 @@ void writePng(const std::string& path, const Rgba8Image& image) {
 
 }  // namespace
 
-void writeImage(const std::string& path, const Rgba8Image& image) {
+void writeImage(const std::string& path, const Rgba8Image& image, int png_level) {
   const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext == ".png") writePng(path, image);
+  if (ext == ".png") writePng(path, image, png_level);
   else if (ext == ".ppm") writePpm(path, image);
   else throw UsageError(path + ": unknown image type '" + ext + "'; expected .png or .ppm");
 }

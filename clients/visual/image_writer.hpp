@@ -9,6 +9,7 @@ namespace thx::visual {
 
 // Throws thx::Error (Io) naming the file and the reason; an extension other than .png/.ppm is a
 // UsageError naming the file and what is expected.
-void writeImage(const std::string& path, const Rgba8Image& image);
+// png_level: zlib level 0..9 (9 for pictures kept in git).
+void writeImage(const std::string& path, const Rgba8Image& image, int png_level = 1);
 
 }  // namespace thx::visual

@@ -17,6 +17,7 @@ Output:
   --orbit DEG            azimuth step per frame with --frames (default 360 / N)
   --format png|ppm       frame files with --frames (default png)
   --size WxH             pixels (default 640x360)
+  --png-level L          zlib level 0..9 (default 1: fast; 9 for pictures kept in git)
 
 Surface:
   --mode M               normal | relief | mesh:N (default relief)
@@ -88,6 +89,7 @@ Options parseOptions(const std::vector<std::string>& args) {
       if (o.frame_format != "png" && o.frame_format != "ppm")
         throw UsageError(a + ": expected png or ppm, got '" + o.frame_format + "'");
     } else if (a == "--size") parseSize(a, value(), o);
+    else if (a == "--png-level") o.png_level = int(cli::parseInteger(a, value(), 0, 9));
     else if (a == "--mode") parseMode(a, value(), o.render);
     else if (a == "--linear-steps") o.render.steps.linear = int(cli::parseInteger(a, value(), 1, 1024));
     else if (a == "--binary-steps") o.render.steps.binary = int(cli::parseInteger(a, value(), 0, 32));

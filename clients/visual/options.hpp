@@ -20,6 +20,7 @@ struct Options {
   int frames = 0;          // --frames N (with --out DIR)
   std::string out_dir;
   std::string frame_format = "png";
+  int png_level = 1;
   int width = 640, height = 360;
   RenderSettings render;
   CameraPlacement camera;

@@ -41,7 +41,7 @@ int run(const Options& o) {
 
   if (!o.screenshot.empty()) {
     renderer.render(Camera(placement, surface.surface.mapping().plane_to_world, o.width, o.height), objects);
-    writeImage(o.screenshot, renderer.framebuffer().readColour());
+    writeImage(o.screenshot, renderer.framebuffer().readColour(), o.png_level);
     if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %s (%s)\n", o.screenshot.c_str(), modeName(o.render).c_str());
     return 0;
   }
@@ -52,7 +52,7 @@ int run(const Options& o) {
     renderer.render(Camera(p, surface.surface.mapping().plane_to_world, o.width, o.height), objects);
     char name[32];
     std::snprintf(name, sizeof name, "frame_%04d.%s", f, o.frame_format.c_str());
-    writeImage((std::filesystem::path(o.out_dir) / name).string(), renderer.framebuffer().readColour());
+    writeImage((std::filesystem::path(o.out_dir) / name).string(), renderer.framebuffer().readColour(), o.png_level);
   }
   if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %d frames to %s\n", o.frames, o.out_dir.c_str());
   return 0;

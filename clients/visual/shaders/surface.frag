@@ -103,7 +103,9 @@ float lightReaches(vec3 hit) {
   if (u_shadow_steps <= 0 || hit.z >= 0.0 || u_light_local.z <= 0.0) return 1.0;
   vec2 xy_per_rise = u_light_local.xy / u_light_local.z;
   float depth = -hit.z;
-  float bias = u_max_depth * 1e-3;
+  // The hit lies up to one final search interval below the true surface: without this margin a
+  // coarse search shadows its own hit (acne).
+  float bias = u_max_depth * (1e-3 + 1.0 / (float(u_linear_steps) * exp2(float(u_binary_steps))));
   for (int k = 1; k <= u_shadow_steps; ++k) {
     float d = depth * (1.0 - float(k) / float(u_shadow_steps + 1));
     if (depthAt(hit.xy + xy_per_rise * (depth - d)) < d - bias) return 0.0;
