@@ -73,6 +73,17 @@ Rgba8Image Framebuffer::readColour() const {
   return image;
 }
 
+Rgba8Image readWindowBackBuffer(int width, int height) {
+  Rgba8Image image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4)};
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+  checkGl("readWindowBackBuffer");
+  flipRows(image.rgba, width, height);
+  return image;
+}
+
 FloatImage Framebuffer::readHits() const {
   FloatImage image{width_, height_, std::vector<float>(std::size_t(width_) * height_ * 4)};
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);

@@ -41,4 +41,8 @@ class Framebuffer {
   GLuint fbo_ = 0, colour_ = 0, hit_ = 0, depth_ = 0;
 };
 
+// The window's back buffer (the default framebuffer), top row first: what the window presenter
+// is about to show.
+Rgba8Image readWindowBackBuffer(int width, int height);
+
 }  // namespace thx::visual

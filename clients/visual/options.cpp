@@ -4,17 +4,21 @@
 
 namespace thx::visual {
 
-const char* const kHelp = R"(usage: visual-client --scene FILE (--screenshot FILE | --frames N --out DIR) [options]
+const char* const kHelp = R"(usage: visual-client --scene FILE (--screenshot FILE | --frames N --out DIR | --window) [options]
 
-Draws a scene at rest, headless (EGL, no display needed): the textured plane from the scene's own
+Draws a scene at rest, headless (EGL, no display needed) or in a window: the textured plane from the scene's own
 texture through the textures library (the map, plane mapping and sampling hapticd and the physics
 client use), the scene's objects at their poses in the file, and the pen resting on the surface.
-Not yet: a window, live subscription to hapticd and the physics client, --replay-log (docs/visual.md).
+Not yet: live subscription to hapticd and the physics client, --replay-log (docs/visual.md).
 
 Output:
   --screenshot FILE      one frame, .png (libpng, compression level 1) or .ppm
   --frames N --out DIR   N numbered frames DIR/frame_0000.png ..., the camera orbiting the target
   --orbit DEG            azimuth step per frame with --frames (default 360 / N)
+  --window               a window (needs an X display, e.g. xvfb-run -a); keys: N/R/M mode,
+                         S shadows, arrows camera, +/- distance, Esc/Q close
+  --window-frames N      close the window after N drawn frames
+  --window-screenshot F  with --window-frames: save the window's last frame (read from the window)
   --format png|ppm       frame files with --frames (default png)
   --size WxH             pixels (default 640x360)
   --png-level L          zlib level 0..9 (default 1: fast; 9 for pictures kept in git)
@@ -108,12 +112,17 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (a == "--no-pen") o.no_pen = true;
     else if (a == "--no-objects") o.no_objects = true;
     else if (a == "--quiet") o.quiet = true;
+    else if (a == "--window") o.window = true;
+    else if (a == "--window-screenshot") o.window_screenshot = value(), o.window = true;
+    else if (a == "--window-frames") o.window_frames = int(cli::parseInteger(a, value(), 1, 1000000)), o.window = true;
     else throw UsageError("unknown option '" + a + "'");
   }
   if (o.help) return o;
   if (o.scene.empty()) throw UsageError("--scene FILE is required");
-  if (o.screenshot.empty() == (o.frames == 0))
-    throw UsageError("give exactly one of --screenshot FILE and --frames N --out DIR");
+  if (int(!o.screenshot.empty()) + int(o.frames > 0) + int(o.window) != 1)
+    throw UsageError("give exactly one of --screenshot FILE, --frames N --out DIR and --window");
+  if (!o.window_screenshot.empty() && o.window_frames == 0)
+    throw UsageError("--window-screenshot FILE needs --window-frames N");
   if (o.frames > 0 && o.out_dir.empty()) throw UsageError("--frames N needs --out DIR");
   if (o.frames == 0 && !o.out_dir.empty()) throw UsageError("--out DIR needs --frames N");
   if (o.pen_xy && o.no_pen) throw UsageError("--pen and --no-pen exclude each other");

@@ -31,6 +31,9 @@ struct Options {
   bool no_pen = false;
   bool no_objects = false;
   bool quiet = false;
+  bool window = false;   // --window
+  int window_frames = 0;  // --window-frames N
+  std::string window_screenshot;  // --window-screenshot FILE
 };
 
 Options parseOptions(const std::vector<std::string>& args);

@@ -9,6 +9,7 @@
 #include "clients/visual/image_writer.hpp"
 #include "clients/visual/options.hpp"
 #include "clients/visual/scene_objects.hpp"
+#include "clients/visual/window_presenter.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_surface.hpp"
 #include "textures/smoothing.hpp"
@@ -35,6 +36,12 @@ int run(const Options& o) {
     objects.insert(objects.end(), pen.begin(), pen.end());
   }
 
+  if (o.window) {
+    const int drawn = runWindow(surface.surface, o.render, placement, objects,
+                                {o.width, o.height, o.window_frames, o.quiet, o.window_screenshot});
+    if (!o.quiet) std::fprintf(stderr, "visual-client: window closed after %d frames\n", drawn);
+    return 0;
+  }
   HeadlessContext context;
   if (!o.quiet) std::fprintf(stderr, "visual-client: %s\n", context.description().c_str());
   FrameRenderer renderer(surface.surface, o.render, o.width, o.height);
