@@ -62,26 +62,24 @@ void Framebuffer::bind() const {
   glViewport(0, 0, width_, height_);
 }
 
-Rgba8Image Framebuffer::readColour() const {
-  Rgba8Image image{width_, height_, std::vector<std::uint8_t>(std::size_t(width_) * height_ * 4)};
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-  glReadBuffer(GL_COLOR_ATTACHMENT0);
+// One RGBA8 read of `buffer` in framebuffer `fbo` (0 = the window's), flipped to image order.
+static Rgba8Image readRgba8(GLuint fbo, GLenum buffer, int width, int height, const char* where) {
+  Rgba8Image image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4)};
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  glReadBuffer(buffer);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
-  checkGl("Framebuffer::readColour");
-  flipRows(image.rgba, width_, height_);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+  checkGl(where);
+  flipRows(image.rgba, width, height);
   return image;
 }
 
+Rgba8Image Framebuffer::readColour() const {
+  return readRgba8(fbo_, GL_COLOR_ATTACHMENT0, width_, height_, "Framebuffer::readColour");
+}
+
 Rgba8Image readWindowBackBuffer(int width, int height) {
-  Rgba8Image image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4)};
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-  glReadBuffer(GL_BACK);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
-  checkGl("readWindowBackBuffer");
-  flipRows(image.rgba, width, height);
-  return image;
+  return readRgba8(0, GL_BACK, width, height, "readWindowBackBuffer");
 }
 
 FloatImage Framebuffer::readHits() const {

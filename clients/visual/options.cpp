@@ -4,17 +4,21 @@
 
 namespace thx::visual {
 
-const char* const kHelp = R"(usage: visual-client --scene FILE (--screenshot FILE | --frames N --out DIR | --window) [options]
+const char* const kHelp = R"(usage: visual-client --scene FILE (--screenshot FILE | --frames N --out DIR | --replay-log FILE --out DIR | --window) [options]
 
 Draws a scene at rest, headless (EGL, no display needed) or in a window: the textured plane from the scene's own
 texture through the textures library (the map, plane mapping and sampling hapticd and the physics
 client use), the scene's objects at their poses in the file, and the pen resting on the surface.
-Not yet: live subscription to hapticd and the physics client, --replay-log (docs/visual.md).
+Not yet: live subscription to hapticd and the physics client (docs/visual.md).
 
 Output:
   --screenshot FILE      one frame, .png (libpng, compression level 1) or .ppm
   --frames N --out DIR   N numbered frames DIR/frame_0000.png ..., the camera orbiting the target
   --orbit DEG            azimuth step per frame with --frames (default 360 / N)
+  --replay-log FILE      a recorded hapticd session (`hapticd --record FILE`) frame by frame into
+                         --out DIR: one frame per 1/--rate s of recorded time, the pen where the
+                         recording put it, objects at rest; deterministic (--frames N: at most N)
+  --rate HZ              --replay-log frames per recorded second (default 30)
   --window               a window (needs an X display, e.g. xvfb-run -a); keys: N/R/M mode,
                          S shadows, arrows camera, +/- distance, Esc/Q close
   --window-frames N      close the window after N drawn frames
@@ -113,20 +117,24 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (a == "--no-objects") o.no_objects = true;
     else if (a == "--quiet") o.quiet = true;
     else if (a == "--window") o.window = true;
+    else if (a == "--replay-log") o.replay_log = value();
+    else if (a == "--rate") o.replay_rate_hz = cli::parseNumber(a, value(), {0, 1000, true, "Hz"});
     else if (a == "--window-screenshot") o.window_screenshot = value(), o.window = true;
     else if (a == "--window-frames") o.window_frames = int(cli::parseInteger(a, value(), 1, 1000000)), o.window = true;
     else throw UsageError("unknown option '" + a + "'");
   }
   if (o.help) return o;
   if (o.scene.empty()) throw UsageError("--scene FILE is required");
-  if (int(!o.screenshot.empty()) + int(o.frames > 0) + int(o.window) != 1)
-    throw UsageError("give exactly one of --screenshot FILE, --frames N --out DIR and --window");
+  const bool replay = !o.replay_log.empty();
+  if (int(!o.screenshot.empty()) + int(o.frames > 0 && !replay) + int(replay) + int(o.window) != 1)
+    throw UsageError("give exactly one of --screenshot FILE, --frames N --out DIR, --replay-log FILE --out DIR and --window");
+  if (replay && o.out_dir.empty()) throw UsageError("--replay-log FILE needs --out DIR");
   if (!o.window_screenshot.empty() && o.window_frames == 0)
     throw UsageError("--window-screenshot FILE needs --window-frames N");
   if (o.frames > 0 && o.out_dir.empty()) throw UsageError("--frames N needs --out DIR");
-  if (o.frames == 0 && !o.out_dir.empty()) throw UsageError("--out DIR needs --frames N");
+  if (o.frames == 0 && !replay && !o.out_dir.empty()) throw UsageError("--out DIR needs --frames N or --replay-log FILE");
   if (o.pen_xy && o.no_pen) throw UsageError("--pen and --no-pen exclude each other");
-  if (!o.orbit_given && o.frames > 0) o.orbit_deg_per_frame = 360.0 / o.frames;
+  if (!o.orbit_given && o.frames > 0 && !replay) o.orbit_deg_per_frame = 360.0 / o.frames;
   return o;
 }
 

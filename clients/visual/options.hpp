@@ -31,6 +31,8 @@ struct Options {
   bool no_pen = false;
   bool no_objects = false;
   bool quiet = false;
+  std::string replay_log;  // --replay-log FILE (with --out DIR)
+  double replay_rate_hz = 30.0;
   bool window = false;   // --window
   int window_frames = 0;  // --window-frames N
   std::string window_screenshot;  // --window-screenshot FILE

@@ -8,6 +8,7 @@
 #include "clients/visual/headless_context.hpp"
 #include "clients/visual/image_writer.hpp"
 #include "clients/visual/options.hpp"
+#include "clients/visual/replay_frames.hpp"
 #include "clients/visual/scene_objects.hpp"
 #include "clients/visual/window_presenter.hpp"
 #include "scenes/scene_loader.hpp"
@@ -18,6 +19,36 @@ namespace {
 
 using namespace thx;
 using namespace thx::visual;
+
+std::string framePath(const Options& o, int f) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", f, o.frame_format.c_str());
+  return (std::filesystem::path(o.out_dir) / name).string();
+}
+
+// A recorded session frame by frame: the pen where the recording put it, objects at rest.
+int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
+           const CameraPlacement& placement, const std::vector<ObjectInstance>& at_rest) {
+  std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz);
+  if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
+  HeadlessContext context;
+  FrameRenderer renderer(surface, o.render, o.width, o.height);
+  const Camera camera(placement, surface.mapping().plane_to_world, o.width, o.height);
+  std::filesystem::create_directories(o.out_dir);
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    std::vector<ObjectInstance> objects = at_rest;
+    if (!o.no_pen) {
+      const std::vector<ObjectInstance> pen = penAt(surface, surface.toLocal(frames[f].tip_world));
+      objects.insert(objects.end(), pen.begin(), pen.end());
+    }
+    renderer.render(camera, objects);
+    writeImage(framePath(o, int(f)), renderer.framebuffer().readColour(), o.png_level);
+  }
+  if (!o.quiet)
+    std::fprintf(stderr, "visual-client: wrote %zu frames of %s to %s\n", frames.size(), o.replay_log.c_str(),
+                 o.out_dir.c_str());
+  return 0;
+}
 
 int run(const Options& o) {
   const scene::Scene scene = scene::loadScene(o.scene);
@@ -30,6 +61,7 @@ int run(const Options& o) {
 
   std::vector<ObjectInstance> objects;
   if (!o.no_objects) objects = objectsAtRest(scene);
+  if (!o.replay_log.empty()) return replay(o, scene, surface.surface, placement, objects);
   if (!o.no_pen) {
     const Eigen::Vector2d xy = o.pen_xy ? *o.pen_xy : penRestPosition(scene);
     const std::vector<ObjectInstance> pen = penAt(surface.surface, tipOnSurface(surface.surface, xy));
@@ -57,9 +89,7 @@ int run(const Options& o) {
     CameraPlacement p = placement;
     p.azimuth_deg += f * o.orbit_deg_per_frame;
     renderer.render(Camera(p, surface.surface.mapping().plane_to_world, o.width, o.height), objects);
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%04d.%s", f, o.frame_format.c_str());
-    writeImage((std::filesystem::path(o.out_dir) / name).string(), renderer.framebuffer().readColour(), o.png_level);
+    writeImage(framePath(o, f), renderer.framebuffer().readColour(), o.png_level);
   }
   if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %d frames to %s\n", o.frames, o.out_dir.c_str());
   return 0;

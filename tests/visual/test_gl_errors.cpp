@@ -72,7 +72,7 @@ TEST(VisualGlErrors, CommandLineMistakesNameOptionAndValue) {
             "--mode: expected normal, relief or mesh:N, got 'bump'");
   EXPECT_NE(parse({"--scene", "s.yaml", "--screenshot", "x.png", "--mode", "mesh:0"}).find("--mode mesh:N"),
             std::string::npos);
-  EXPECT_EQ(parse({"--scene", "s.yaml"}), "give exactly one of --screenshot FILE, --frames N --out DIR and --window");
+  EXPECT_EQ(parse({"--scene", "s.yaml"}), "give exactly one of --screenshot FILE, --frames N --out DIR, --replay-log FILE --out DIR and --window");
   EXPECT_EQ(parse({"--scene", "s.yaml", "--frames", "3"}), "--frames N needs --out DIR");
   EXPECT_EQ(parse({"--scene", "s.yaml", "--screenshot", "x.png", "--size", "640"}),
             "--size: expected WxH in pixels, e.g. 640x360, got '640'");
