@@ -22,6 +22,7 @@ PACKAGES="
   libarpack2-dev libsndfile1-dev
   googletest libgtest-dev libbenchmark-dev
   rt-tests
+  libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb
 "
 if [ $# -gt 0 ]; then
   PACKAGES="$*"

@@ -5,7 +5,7 @@
 # Usage: benchmarks/run.sh [BUILD_DIR] [PART...]
 #   BUILD_DIR  a configured and built tree (default: build); build it first with
 #              cmake -S . -B BUILD_DIR -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build BUILD_DIR -j2 --target benchmarks
-#   PART       any of: render force_error memory latency clients physics (default: all six, in that order),
+#   PART       any of: render force_error memory latency clients physics visual (default: all seven, in that order),
 #              or audio (FEM modal analysis, about 2 min; its table goes to docs/audio.md)
 #
 # The clients part also sweeps the number of clients (issue 17): 1, 2, 4, 8, 16, 32, 64 clients
@@ -29,7 +29,7 @@ BUILD=${1:-build}
 [ $# -gt 0 ] && shift
 case "$BUILD" in /*) ;; *) BUILD="$ROOT/$BUILD" ;; esac
 PARTS=("$@")
-[ ${#PARTS[@]} -eq 0 ] && PARTS=(render force_error memory latency clients physics)
+[ ${#PARTS[@]} -eq 0 ] && PARTS=(render force_error memory latency clients physics visual)
 
 RESULTS="$ROOT/docs/results"
 DOC="$ROOT/docs/benchmarks.md"
@@ -49,7 +49,7 @@ need() {
 }
 
 # Replaces the lines between <!-- BEGIN name --> and <!-- END name --> in docs/benchmarks.md
-# (or in the document given third).
+# (or in the document given as a third argument).
 splice() {
   local name=$1 fragment=$2 DOC=${3:-$DOC}
   if ! grep -q "^<!-- BEGIN $name -->$" "$DOC"; then
@@ -164,16 +164,24 @@ run_audio() {
   splice bench_audio_fem "$WORK/bench_audio_fem.md" "$ROOT/docs/audio.md"
 }
 
+run_visual() {
+  need "$BIN/bench_visual" || return 1
+  say "part 8: visual client, frame time against image error (normal / relief / mesh, about 3 min)"
+  (cd "$ROOT" && "$BIN/bench_visual" --json "$RESULTS/bench_visual.json" --csv "$RESULTS/bench_visual.csv" \
+    --md "$WORK/bench_visual.md") || return 1
+  splice bench_visual "$WORK/bench_visual.md" "$ROOT/docs/visual.md"
+}
+
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | physics | audio)
+    render | force_error | memory | latency | clients | physics | visual | audio)
       if ! "run_$part"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients physics audio)"
+      say "unknown part '$part' (expected: render force_error memory latency clients physics visual audio)"
       exit 2
       ;;
   esac

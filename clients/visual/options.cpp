@@ -1,0 +1,141 @@
+#include "clients/visual/options.hpp"
+
+#include "base/cli_number.hpp"
+
+namespace thx::visual {
+
+const char* const kHelp = R"(usage: visual-client --scene FILE (--screenshot FILE | --frames N --out DIR | --replay-log FILE --out DIR | --window) [options]
+
+Draws a scene at rest, headless (EGL, no display needed) or in a window: the textured plane from the scene's own
+texture through the textures library (the map, plane mapping and sampling hapticd and the physics
+client use), the scene's objects at their poses in the file, and the pen resting on the surface.
+Not yet: live subscription to hapticd and the physics client (docs/visual.md).
+
+Output:
+  --screenshot FILE      one frame, .png (libpng, compression level 1) or .ppm
+  --frames N --out DIR   N numbered frames DIR/frame_0000.png ..., the camera orbiting the target
+  --orbit DEG            azimuth step per frame with --frames (default 360 / N)
+  --replay-log FILE      a recorded hapticd session (`hapticd --record FILE`) frame by frame into
+                         --out DIR: one frame per 1/--rate s of recorded time, the pen where the
+                         recording put it, objects at rest; deterministic (--frames N: at most N)
+  --rate HZ              --replay-log frames per recorded second (default 30)
+  --window               a window (needs an X display, e.g. xvfb-run -a); keys: N/R/M mode,
+                         S shadows, arrows camera, +/- distance, Esc/Q close
+  --window-frames N      close the window after N drawn frames
+  --window-screenshot F  with --window-frames: save the window's last frame (read from the window)
+  --format png|ppm       frame files with --frames (default png)
+  --size WxH             pixels (default 640x360)
+  --png-level L          zlib level 0..9 (default 1: fast; 9 for pictures kept in git)
+
+Surface:
+  --mode M               normal | relief | mesh:N (default relief)
+                           normal: normal mapping (the sampled normal at the plane's point)
+                           relief: relief mapping, a linear then binary search along the per-pixel
+                                   view ray in the tangent frame, self-shadowing, corrected depth
+                           mesh:N: N x N quads displaced by the relief, per-vertex normals
+  --linear-steps N       relief: linear search samples (default 16, 1..1024)
+  --binary-steps N       relief: binary refinement halvings (default 6, 0..32)
+  --shadow-steps N       relief: samples towards the light (default 8, 0..1024)
+  --no-shadows           relief: no self-shadowing (same as --shadow-steps 0)
+
+Camera and light (angles in the plane's frame):
+  --elevation DEG        camera above the plane (default 35, 1..90)
+  --azimuth DEG          camera around the plane's normal (default -90: looking towards +y)
+  --distance M           from the target (default 1.25 x the plane's larger side)
+  --target X,Y           surface-local point looked at (default 0,0)
+  --fov DEG              vertical field of view (default 40)
+  --light-elevation DEG  (default 50)    --light-azimuth DEG (default -135)
+  --ambient A            (default 0.15)  --specular S (default 0.15)
+
+Objects:
+  --pen X,Y              the pen's tip at surface-local X,Y, on the surface (default: where the
+                         scene's hand script starts, else 0,0)
+  --no-pen               no pen
+  --no-objects           no scene objects
+
+  --quiet                no progress lines
+  -h, --help             this text
+
+Environment: LP_NUM_THREADS sets llvmpipe's rendering threads (default one per CPU; beside a
+running hapticd on a small machine, 1 keeps a core for the servo: docs/visual.md).
+)";
+
+namespace {
+
+Eigen::Vector2d parsePair(const std::string& option, const std::string& text, const char* unit) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos)
+    throw UsageError(option + ": expected two numbers X,Y in " + unit + ", got '" + text + "'");
+  return {cli::parseNumber(option, text.substr(0, comma)), cli::parseNumber(option, text.substr(comma + 1))};
+}
+
+void parseSize(const std::string& option, const std::string& text, Options& o) {
+  const std::size_t x = text.find('x');
+  if (x == std::string::npos) throw UsageError(option + ": expected WxH in pixels, e.g. 640x360, got '" + text + "'");
+  o.width = int(cli::parseInteger(option + " width", text.substr(0, x), 16, 8192));
+  o.height = int(cli::parseInteger(option + " height", text.substr(x + 1), 16, 8192));
+}
+
+}  // namespace
+
+Options parseOptions(const std::vector<std::string>& args) {
+  Options o;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw UsageError(a + ": missing value");
+      return args[++i];
+    };
+    if (a == "-h" || a == "--help") o.help = true;
+    else if (a == "--scene") o.scene = value();
+    else if (a == "--screenshot") o.screenshot = value();
+    else if (a == "--frames") o.frames = int(cli::parseInteger(a, value(), 1, 100000));
+    else if (a == "--out") o.out_dir = value();
+    else if (a == "--orbit") o.orbit_deg_per_frame = cli::parseNumber(a, value(), {-360, 360, false, "deg"}), o.orbit_given = true;
+    else if (a == "--format") {
+      o.frame_format = value();
+      if (o.frame_format != "png" && o.frame_format != "ppm")
+        throw UsageError(a + ": expected png or ppm, got '" + o.frame_format + "'");
+    } else if (a == "--size") parseSize(a, value(), o);
+    else if (a == "--png-level") o.png_level = int(cli::parseInteger(a, value(), 0, 9));
+    else if (a == "--mode") parseMode(a, value(), o.render);
+    else if (a == "--linear-steps") o.render.steps.linear = int(cli::parseInteger(a, value(), 1, 1024));
+    else if (a == "--binary-steps") o.render.steps.binary = int(cli::parseInteger(a, value(), 0, 32));
+    else if (a == "--shadow-steps") o.render.steps.shadow = int(cli::parseInteger(a, value(), 0, 1024));
+    else if (a == "--no-shadows") o.render.steps.shadow = 0;
+    else if (a == "--elevation") o.camera.elevation_deg = cli::parseNumber(a, value(), {1, 90, false, "deg"});
+    else if (a == "--azimuth") o.camera.azimuth_deg = cli::parseNumber(a, value(), {-360, 360, false, "deg"});
+    else if (a == "--distance") o.camera.distance_m = cli::parseNumber(a, value(), {0, 100, true, "m"}), o.distance_given = true;
+    else if (a == "--target") o.camera.target_local = parsePair(a, value(), "m");
+    else if (a == "--fov") o.camera.fov_y_deg = cli::parseNumber(a, value(), {1, 150, false, "deg"});
+    else if (a == "--light-elevation") o.render.light.elevation_deg = cli::parseNumber(a, value(), {0, 90, true, "deg"});
+    else if (a == "--light-azimuth") o.render.light.azimuth_deg = cli::parseNumber(a, value(), {-360, 360, false, "deg"});
+    else if (a == "--ambient") o.render.light.ambient = cli::parseNumber(a, value(), {0, 1, false, ""});
+    else if (a == "--specular") o.render.light.specular = cli::parseNumber(a, value(), {0, 10, false, ""});
+    else if (a == "--pen") o.pen_xy = parsePair(a, value(), "m");
+    else if (a == "--no-pen") o.no_pen = true;
+    else if (a == "--no-objects") o.no_objects = true;
+    else if (a == "--quiet") o.quiet = true;
+    else if (a == "--window") o.window = true;
+    else if (a == "--replay-log") o.replay_log = value();
+    else if (a == "--rate") o.replay_rate_hz = cli::parseNumber(a, value(), {0, 1000, true, "Hz"});
+    else if (a == "--window-screenshot") o.window_screenshot = value(), o.window = true;
+    else if (a == "--window-frames") o.window_frames = int(cli::parseInteger(a, value(), 1, 1000000)), o.window = true;
+    else throw UsageError("unknown option '" + a + "'");
+  }
+  if (o.help) return o;
+  if (o.scene.empty()) throw UsageError("--scene FILE is required");
+  const bool replay = !o.replay_log.empty();
+  if (int(!o.screenshot.empty()) + int(o.frames > 0 && !replay) + int(replay) + int(o.window) != 1)
+    throw UsageError("give exactly one of --screenshot FILE, --frames N --out DIR, --replay-log FILE --out DIR and --window");
+  if (replay && o.out_dir.empty()) throw UsageError("--replay-log FILE needs --out DIR");
+  if (!o.window_screenshot.empty() && o.window_frames == 0)
+    throw UsageError("--window-screenshot FILE needs --window-frames N");
+  if (o.frames > 0 && o.out_dir.empty()) throw UsageError("--frames N needs --out DIR");
+  if (o.frames == 0 && !replay && !o.out_dir.empty()) throw UsageError("--out DIR needs --frames N or --replay-log FILE");
+  if (o.pen_xy && o.no_pen) throw UsageError("--pen and --no-pen exclude each other");
+  if (!o.orbit_given && o.frames > 0 && !replay) o.orbit_deg_per_frame = 360.0 / o.frames;
+  return o;
+}
+
+}  // namespace thx::visual

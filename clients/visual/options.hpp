@@ -1,0 +1,43 @@
+#pragma once
+// visual-client's command line (kHelp is the --help text). parseOptions() throws UsageError
+// naming the option, the value and what was expected.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/error.hpp"
+#include "clients/visual/camera.hpp"
+#include "clients/visual/render_settings.hpp"
+
+namespace thx::visual {
+
+extern const char* const kHelp;
+
+struct Options {
+  bool help = false;
+  std::string scene;
+  std::string screenshot;  // --screenshot FILE
+  int frames = 0;          // --frames N (with --out DIR)
+  std::string out_dir;
+  std::string frame_format = "png";
+  int png_level = 1;
+  int width = 640, height = 360;
+  RenderSettings render;
+  CameraPlacement camera;
+  bool distance_given = false;
+  double orbit_deg_per_frame = 0.0;  // --orbit; default 360 / N
+  bool orbit_given = false;
+  std::optional<Eigen::Vector2d> pen_xy;  // --pen X,Y
+  bool no_pen = false;
+  bool no_objects = false;
+  bool quiet = false;
+  std::string replay_log;  // --replay-log FILE (with --out DIR)
+  double replay_rate_hz = 30.0;
+  bool window = false;   // --window
+  int window_frames = 0;  // --window-frames N
+  std::string window_screenshot;  // --window-screenshot FILE
+};
+
+Options parseOptions(const std::vector<std::string>& args);
+
+}  // namespace thx::visual

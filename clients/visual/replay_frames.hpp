@@ -1,0 +1,23 @@
+#pragma once
+// A recorded hapticd session (`hapticd --record FILE`, an LCM log: server/session_log.hpp) as
+// frames: one every 1/rate_hz of recorded time (tick time = (tick - first tick) / servo_hz), each
+// with the pen where the latest device state at or before it put it. Deterministic: the frames
+// depend on the log alone, never on how fast they are drawn.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace thx::visual {
+
+struct ReplayFrame {
+  std::int64_t tick = 0;  // the device state's servo tick
+  double t_s = 0.0;       // the frame's time from the first recorded tick
+  Eigen::Vector3d tip_world = Eigen::Vector3d::Zero();
+};
+
+// Throws thx::Error (Config) naming the file and event: not an LCM log, no THX_DEVICE_STATE
+// events, an event that does not decode, a non-finite position, ticks that do not increase.
+std::vector<ReplayFrame> replayFrames(const std::string& log_path, double servo_hz, double rate_hz);
+
+}  // namespace thx::visual

@@ -1,0 +1,81 @@
+#include "clients/visual/scene_objects.hpp"
+
+#include "scenes/scene_frames.hpp"
+
+namespace thx::visual {
+namespace {
+
+constexpr double kPenTipRadius = 0.0015;  // m: big enough to see at the default camera distance
+constexpr double kPenShaftRadius = 0.004;
+constexpr double kPenShaftLength = 0.05;
+
+Eigen::Vector3f albedoOf(const scene::Material& m) {
+  if (m.name == "glass") return {0.55f, 0.75f, 0.85f};
+  if (m.name == "steel" || m.name == "aluminium" || m.name == "iron" || m.name == "tin") return {0.7f, 0.7f, 0.72f};
+  if (m.name == "wood") return {0.65f, 0.45f, 0.25f};
+  if (m.name == "plastic" || m.name == "polycarbonate") return {0.2f, 0.45f, 0.8f};
+  return {0.8f, 0.6f, 0.3f};
+}
+
+ObjectInstance instance(UnitShape shape, const Eigen::Isometry3d& pose, const Eigen::Vector3d& scale,
+                        const Eigen::Vector3f& albedo) {
+  ObjectInstance o;
+  o.shape = shape;
+  o.model = Eigen::Affine3d(pose.matrix()) * Eigen::Scaling(scale);
+  o.albedo = albedo;
+  return o;
+}
+
+}  // namespace
+
+std::vector<ObjectInstance> objectsAtRest(const scene::Scene& scene) {
+  std::vector<ObjectInstance> out;
+  for (const scene::SceneObject& o : scene.objects) {
+    const Eigen::Isometry3d pose = scene::toIsometry(o.pose);
+    const Eigen::Vector3f albedo = albedoOf(o.material);
+    switch (o.shape) {
+      case scene::Shape::Sphere:
+        out.push_back(instance(UnitShape::Sphere, pose, Eigen::Vector3d::Constant(o.radius_m), albedo));
+        break;
+      case scene::Shape::Box: out.push_back(instance(UnitShape::Box, pose, o.size_m, albedo)); break;
+      case scene::Shape::Cylinder:
+        out.push_back(instance(UnitShape::Cylinder, pose, {o.radius_m, o.radius_m, o.length_m}, albedo));
+        break;
+      case scene::Shape::Capsule: {
+        out.push_back(instance(UnitShape::Cylinder, pose, {o.radius_m, o.radius_m, o.length_m}, albedo));
+        for (double end : {-0.5, 0.5}) {
+          Eigen::Isometry3d cap = pose;
+          cap.translate(Eigen::Vector3d(0, 0, end * o.length_m));
+          out.push_back(instance(UnitShape::Sphere, cap, Eigen::Vector3d::Constant(o.radius_m), albedo));
+        }
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+Eigen::Vector2d penRestPosition(const scene::Scene& scene) {
+  for (const scene::ScriptStep& step : scene.device.script) {
+    if (const auto* press = std::get_if<scene::PressStep>(&step)) return press->position_m;
+    if (const auto* stroke = std::get_if<scene::StrokeStep>(&step)) return stroke->from_m;
+  }
+  return Eigen::Vector2d::Zero();
+}
+
+Eigen::Vector3d tipOnSurface(const tex::TexturedSurface& surface, const Eigen::Vector2d& xy_local) {
+  return {xy_local.x(), xy_local.y(), surface.at(xy_local.x(), xy_local.y()).height_m};
+}
+
+std::vector<ObjectInstance> penAt(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local) {
+  const Eigen::Isometry3d& plane = surface.mapping().plane_to_world;
+  Eigen::Isometry3d tip = plane;
+  tip.translate(tip_local);
+  Eigen::Isometry3d shaft = tip;
+  shaft.translate(Eigen::Vector3d(0, 0, kPenTipRadius + kPenShaftLength / 2));
+  return {instance(UnitShape::Sphere, tip, Eigen::Vector3d::Constant(kPenTipRadius), {0.85f, 0.15f, 0.1f}),
+          instance(UnitShape::Cylinder, shaft, {kPenShaftRadius, kPenShaftRadius, kPenShaftLength},
+                   {0.25f, 0.25f, 0.3f})};
+}
+
+}  // namespace thx::visual

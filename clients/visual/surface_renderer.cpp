@@ -1,0 +1,52 @@
+#include "clients/visual/surface_renderer.hpp"
+
+#include "clients/visual/gl_error.hpp"
+#include "clients/visual/shader_sources.hpp"
+
+namespace thx::visual {
+
+SurfaceRenderer::SurfaceRenderer(const tex::TexturedSurface& surface, const RenderSettings& settings)
+    : surface_(surface), settings_(settings) {
+  std::vector<std::string> defines;
+  if (settings.mode == SurfaceMode::Relief) defines.push_back("MODE_RELIEF");
+  if (settings.mode == SurfaceMode::Mesh) defines.push_back("MODE_MESH");
+  program_ = std::make_unique<ShaderProgram>(embeddedShader("surface.vert"),
+                                             withDefines(embeddedShader("surface.frag"), defines));
+  texture_ = std::make_unique<SurfaceTexture>(surface.map());
+  mesh_ = std::make_unique<GpuMesh>(settings.mode == SurfaceMode::Mesh ? displacedGrid(surface, settings.mesh_n)
+                                                                       : planeQuad(surface.mapping().size_m));
+}
+
+void SurfaceRenderer::draw(const Camera& camera) const {
+  const tex::PlaneMapping& mapping = surface_.mapping();
+  const tex::TextureMap& map = surface_.map();
+  const Eigen::Matrix4f plane_to_clip = (camera.viewProjection() * mapping.plane_to_world.matrix()).cast<float>();
+  const Eigen::Vector3f eye_local = mapping.toLocal(camera.eyeWorld()).cast<float>();
+  const Eigen::Vector3f light_local = lightDirectionLocal(settings_.light).cast<float>();
+  const bool wrap = surface_.sampling().address == tex::Address::Wrap;
+
+  program_->use();
+  texture_->bind(GL_TEXTURE0);
+  const ShaderProgram& p = *program_;
+  glUniform1i(p.uniform("u_texels"), 0);
+  glUniform2i(p.uniform("u_texels_size"), map.width(), map.height());
+  glUniform2f(p.uniform("u_plane_size"), float(mapping.size_m.x()), float(mapping.size_m.y()));
+  glUniform1i(p.uniform("u_wrap"), wrap);
+  glUniform1i(p.uniform("u_bilinear"), surface_.sampling().filter == tex::Filter::Bilinear);
+  glUniform1i(p.uniform("u_flat_beyond_edge"), surface_.usesRelief() && !wrap);
+  glUniformMatrix4fv(p.uniform("u_plane_to_clip"), 1, GL_FALSE, plane_to_clip.data());
+  glUniform3fv(p.uniform("u_camera_local"), 1, eye_local.data());
+  glUniform3fv(p.uniform("u_light_local"), 1, light_local.data());
+  glUniform3fv(p.uniform("u_albedo"), 1, settings_.plane_albedo.data());
+  glUniform1f(p.uniform("u_ambient"), float(settings_.light.ambient));
+  glUniform1f(p.uniform("u_specular"), float(settings_.light.specular));
+  // A normal map read as relief has no depth: the search then stops on the plane at once.
+  glUniform1f(p.uniform("u_max_depth"), surface_.usesRelief() ? float(map.maxDepth()) : 0.0f);
+  glUniform1i(p.uniform("u_linear_steps"), settings_.steps.linear);
+  glUniform1i(p.uniform("u_binary_steps"), settings_.steps.binary);
+  glUniform1i(p.uniform("u_shadow_steps"), settings_.steps.shadow);
+  mesh_->draw();
+  checkGl("SurfaceRenderer::draw");
+}
+
+}  // namespace thx::visual

@@ -1,0 +1,118 @@
+// visual-client: the scene as the eye sees it (kHelp in options.cpp; docs/visual.md).
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "clients/visual/frame_renderer.hpp"
+#include "clients/visual/headless_context.hpp"
+#include "clients/visual/image_writer.hpp"
+#include "clients/visual/options.hpp"
+#include "clients/visual/replay_frames.hpp"
+#include "clients/visual/scene_objects.hpp"
+#include "clients/visual/window_presenter.hpp"
+#include "scenes/scene_loader.hpp"
+#include "scenes/scene_surface.hpp"
+#include "textures/smoothing.hpp"
+
+namespace {
+
+using namespace thx;
+using namespace thx::visual;
+
+std::string framePath(const Options& o, int f) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", f, o.frame_format.c_str());
+  return (std::filesystem::path(o.out_dir) / name).string();
+}
+
+// A recorded session frame by frame: the pen where the recording put it, objects at rest.
+int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
+           const CameraPlacement& placement, const std::vector<ObjectInstance>& at_rest) {
+  std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz);
+  if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
+  HeadlessContext context;
+  FrameRenderer renderer(surface, o.render, o.width, o.height);
+  const Camera camera(placement, surface.mapping().plane_to_world, o.width, o.height);
+  std::filesystem::create_directories(o.out_dir);
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    std::vector<ObjectInstance> objects = at_rest;
+    if (!o.no_pen) {
+      const std::vector<ObjectInstance> pen = penAt(surface, surface.toLocal(frames[f].tip_world));
+      objects.insert(objects.end(), pen.begin(), pen.end());
+    }
+    renderer.render(camera, objects);
+    writeImage(framePath(o, int(f)), renderer.framebuffer().readColour(), o.png_level);
+  }
+  if (!o.quiet)
+    std::fprintf(stderr, "visual-client: wrote %zu frames of %s to %s\n", frames.size(), o.replay_log.c_str(),
+                 o.out_dir.c_str());
+  return 0;
+}
+
+int run(const Options& o) {
+  const scene::Scene scene = scene::loadScene(o.scene);
+  scene::SurfaceTextureOptions texture_options;
+  texture_options.smooth = &tex::smoothTexture;
+  const scene::SceneSurface surface = scene::buildSceneSurface(scene, texture_options);
+
+  CameraPlacement placement = o.camera;
+  if (!o.distance_given) placement.distance_m = 1.25 * scene.surface.size_m.maxCoeff();
+
+  std::vector<ObjectInstance> objects;
+  if (!o.no_objects) objects = objectsAtRest(scene);
+  if (!o.replay_log.empty()) return replay(o, scene, surface.surface, placement, objects);
+  if (!o.no_pen) {
+    const Eigen::Vector2d xy = o.pen_xy ? *o.pen_xy : penRestPosition(scene);
+    const std::vector<ObjectInstance> pen = penAt(surface.surface, tipOnSurface(surface.surface, xy));
+    objects.insert(objects.end(), pen.begin(), pen.end());
+  }
+
+  if (o.window) {
+    const int drawn = runWindow(surface.surface, o.render, placement, objects,
+                                {o.width, o.height, o.window_frames, o.quiet, o.window_screenshot});
+    if (!o.quiet) std::fprintf(stderr, "visual-client: window closed after %d frames\n", drawn);
+    return 0;
+  }
+  HeadlessContext context;
+  if (!o.quiet) std::fprintf(stderr, "visual-client: %s\n", context.description().c_str());
+  FrameRenderer renderer(surface.surface, o.render, o.width, o.height);
+
+  if (!o.screenshot.empty()) {
+    renderer.render(Camera(placement, surface.surface.mapping().plane_to_world, o.width, o.height), objects);
+    writeImage(o.screenshot, renderer.framebuffer().readColour(), o.png_level);
+    if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %s (%s)\n", o.screenshot.c_str(), modeName(o.render).c_str());
+    return 0;
+  }
+  std::filesystem::create_directories(o.out_dir);
+  for (int f = 0; f < o.frames; ++f) {
+    CameraPlacement p = placement;
+    p.azimuth_deg += f * o.orbit_deg_per_frame;
+    renderer.render(Camera(p, surface.surface.mapping().plane_to_world, o.width, o.height), objects);
+    writeImage(framePath(o, f), renderer.framebuffer().readColour(), o.png_level);
+  }
+  if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %d frames to %s\n", o.frames, o.out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
+    if (o.help) {
+      std::fputs(kHelp, stdout);
+      return 0;
+    }
+    return run(o);
+  } catch (const thx::UsageError& e) {
+    std::fprintf(stderr, "visual-client: %s (see --help)\n", e.what());
+    return 2;
+  } catch (const thx::Error& e) {
+    std::fprintf(stderr, "visual-client: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "visual-client: %s\n", e.what());
+    return 1;
+  }
+}

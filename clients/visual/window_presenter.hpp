@@ -1,0 +1,29 @@
+#pragma once
+// The second presenter: a GLFW window (a real X server or Xvfb) showing the framebuffer the one
+// render path fills (blit, then swap). Keys: N / R / M switch normal / relief / mesh, S toggles
+// self-shadowing, arrows turn the camera (azimuth, elevation), + / - move it nearer / farther,
+// Esc or Q closes. A frame is drawn only when something changed.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "clients/visual/camera.hpp"
+#include "clients/visual/object_renderer.hpp"
+#include "clients/visual/render_settings.hpp"
+#include "textures/textured_surface.hpp"
+
+namespace thx::visual {
+
+struct WindowOptions {
+  int width = 640, height = 360;
+  int max_frames = 0;  // > 0: close after this many drawn frames (tests, scripted runs under Xvfb)
+  bool quiet = false;
+  std::string screenshot;  // with max_frames: the window's last frame, read back from the window
+};
+
+// Throws GlError when there is no display ("DISPLAY is not set: run under xvfb-run ...") or
+// GLFW cannot create a 3.3 core context. Returns the number of frames drawn.
+int runWindow(const tex::TexturedSurface& surface, RenderSettings settings, CameraPlacement camera,
+              const std::vector<ObjectInstance>& objects, const WindowOptions& options);
+
+}  // namespace thx::visual
