@@ -7,6 +7,8 @@
 #include "base/error.hpp"
 #include "clients/audio/audible_modes.hpp"
 #include "clients/audio/modal_options.hpp"
+#include "clients/audio/scene_bodies.hpp"
+#include "scenes/scene_loader.hpp"
 
 namespace {
 
@@ -48,6 +50,39 @@ int run(const ModalOptions& o) {
   return 0;
 }
 
+// One line per body of the scene: what it is, how many modes it has in the band, the lowest ones.
+int runScene(const ModalOptions& o) {
+  const thx::scene::Scene scene = thx::scene::loadScene(o.scene);
+  SceneMeshOptions mo;
+  mo.slab_thickness_m = o.slab_thickness;
+  mo.slab_cells = o.slab_cells;
+  AnalysisOptions ao;
+  ao.cache_dir = o.cache_dir;
+  if (!o.quiet) ao.progress = [](const std::string& line) { std::fprintf(stderr, "modal-analyze: %s\n", line.c_str()); };
+  double total_s = 0;
+  std::printf("# %s: %s\n", o.scene.c_str(), scene.name.c_str());
+  std::printf("%-12s %-10s %7s %7s %9s %8s  %s\n", "body", "material", "DOFs", "audible", "time_s", "source",
+              "lowest audible frequencies (Hz)");
+  for (const SceneBody& b : sceneBodies(scene, mo)) {
+    const ModalSolution s = analyse(b.mesh, b.material, o.settings, ao);
+    const AudibleModes modes = audibleModes(s, b.material, o.audible);
+    total_s += s.total_s;
+    std::string lowest;
+    for (std::size_t k = 0; k < std::min<std::size_t>(modes.size(), 6); ++k) {
+      char f[32];
+      std::snprintf(f, sizeof f, "%s%.1f", k ? ", " : "", modes.frequency_hz[k]);
+      lowest += f;
+    }
+    if (modes.size() == 0)
+      lowest = "none (lowest elastic mode " + std::to_string(long(std::lround(s.frequencyHz(0)))) + " Hz)";
+    std::printf("%-12s %-10s %7d %7zu %9.3f %8s  %s%s%s\n", b.mesh.name.c_str(), b.material.name.c_str(), s.mesh_dofs,
+                modes.size(), s.total_s, s.from_cache ? "cache" : "solved", lowest.c_str(), b.note.empty() ? "" : "; ",
+                b.note.c_str());
+  }
+  std::printf("# total %.3f s\n", total_s);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -57,7 +92,7 @@ int main(int argc, char** argv) {
       std::fputs(kModalHelp, stdout);
       return 0;
     }
-    return run(o);
+    return o.scene.empty() ? run(o) : runScene(o);
   } catch (const thx::Error& e) {
     std::fprintf(stderr, "modal-analyze: %s\n", e.what());
     if (e.kind() == thx::Error::Kind::Usage) std::fprintf(stderr, "(modal-analyze --help lists the options)\n");

@@ -9,12 +9,20 @@
 namespace thx::audio {
 
 const char* const kModalHelp = R"(usage: modal-analyze --shape SHAPE [dimensions] [options]
+       modal-analyze --scene FILE [options]
 
 Offline modal analysis of one object: a structured tetrahedral mesh, linear elasticity with
 consistent mass, K x = lambda M x solved by ARPACK in shift-invert mode (negative shift, sparse
 LDLT of K - sigma M), the 6 rigid-body modes of a free body dropped, Rayleigh damping from the
 material, the audible band, the psychoacoustic merge of close modes and truncation. Prints one
 line per audible mode; results are cached (docs/audio.md), so a second run is fast.
+
+Scene:
+  --scene FILE           analyse a scene's surface slab and each moving object (Tet10, the scene's
+                         materials; fixed obstacles skipped, a capsule as a cylinder of its overall
+                         length); prints one summary line per body
+  --slab-thickness M     the surface slab's thickness (default 0.01; scenes do not give it yet)
+  --slab-cells N         slab cells per side, 1 through the thickness (default 16)
 
 Shape (SI units):
   --shape S              box | slab | sphere | cylinder
@@ -97,6 +105,12 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
     };
     if (a == "-h" || a == "--help") {
       o.help = true;
+    } else if (a == "--scene") {
+      o.scene = value();
+    } else if (a == "--slab-thickness") {
+      o.slab_thickness = cli::parseNumber(a, value(), length);
+    } else if (a == "--slab-cells") {
+      o.slab_cells = int(cli::parseInteger(a, value(), 1, 400));
     } else if (a == "--shape") {
       const std::string v = value();
       if (v == "box") o.shape = ShapeKind::Box;
@@ -176,7 +190,8 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
     }
   }
   if (o.help) return o;
-  if (!shape_given) throw UsageError("--shape: missing (box, slab, sphere or cylinder)");
+  if (!o.scene.empty() && shape_given) throw UsageError("--scene and --shape: give one of them");
+  if (o.scene.empty() && !shape_given) throw UsageError("--shape: missing (box, slab, sphere or cylinder), or --scene FILE");
   const scene::Material* m = scene::findMaterial(material);
   if (!m) {
     std::string names;
@@ -191,6 +206,8 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
   if (alpha) o.material.rayleigh_alpha_per_s = *alpha;
   if (beta) o.material.rayleigh_beta_s = *beta;
 
+  if (!no_cache) o.cache_dir = cache_dir ? *cache_dir : defaultModalCacheDir();
+  if (!o.scene.empty()) return o;
   const bool boxy = o.shape == ShapeKind::Box || o.shape == ShapeKind::Slab;
   if (boxy && o.size.minCoeff() <= 0) throw UsageError("--size: missing (X,Y,Z in metres) for a box or slab");
   if (!boxy && o.radius <= 0) throw UsageError("--radius: missing for a sphere or cylinder");
@@ -204,7 +221,6 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
     static const char* const kNames[] = {"box", "slab", "sphere", "cylinder"};
     o.name = kNames[int(o.shape)];
   }
-  if (!no_cache) o.cache_dir = cache_dir ? *cache_dir : defaultModalCacheDir();
   return o;
 }
 

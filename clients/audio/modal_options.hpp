@@ -18,6 +18,9 @@ enum class ShapeKind { Box, Slab, Sphere, Cylinder };
 
 struct ModalOptions {
   bool help = false;
+  std::string scene;  // --scene FILE: its surface slab and objects instead of one --shape
+  double slab_thickness = 0.01;
+  int slab_cells = 16;
   std::string name;  // the object's name in messages (default: the shape)
   ShapeKind shape = ShapeKind::Box;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box edges / slab extent_x, extent_y, thickness

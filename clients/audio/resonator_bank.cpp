@@ -56,7 +56,8 @@ void ResonatorBank::strikeMode(std::size_t mode, double modal_impulse) {
 template <class Sample>
 void ResonatorBank::renderImpl(std::span<Sample> out) {
   if (out.empty()) return;
-  const std::size_t m = count_;
+  const std::size_t m = std::min(count_, budget_);
+  last_rendered_ = m;
   double* __restrict y = y_.data();
   double* __restrict yp = y_prev_.data();
   const double* __restrict a1 = a1_.data();
@@ -74,7 +75,8 @@ void ResonatorBank::renderImpl(std::span<Sample> out) {
       pending_[k] = 0.0;
     }
     out[0] = Sample(sum);
-    any_pending_ = false;
+    // Impulses of modes beyond the budget wait until it admits them.
+    any_pending_ = m < count_;
     n = 1;
   }
   for (; n < out.size(); ++n) {

@@ -35,6 +35,14 @@ class ResonatorBank {
   void render(std::span<double> out);
   void render(std::span<float> out);
 
+  // Quality scaling under load: render() computes at most `modes` modes per block, the first
+  // ones (setModes' order is the priority order); the others are silent and keep their state
+  // until the budget admits them again. Default: no limit.
+  void setBudget(std::size_t modes) { budget_ = modes; }
+  std::size_t budget() const { return budget_; }
+  // Modes computed by the last render() (<= the budget).
+  std::size_t lastRenderedModes() const { return last_rendered_; }
+
   void silence();
   std::size_t size() const { return count_; }
   std::size_t capacity() const { return a1_.size(); }
@@ -51,6 +59,8 @@ class ResonatorBank {
   std::vector<double> y_, y_prev_;  // y[n] (the next sample out) and y[n-1]
   std::vector<double> pending_;     // impulses struck since the last render
   bool any_pending_ = false;
+  std::size_t budget_ = static_cast<std::size_t>(-1);
+  std::size_t last_rendered_ = 0;
 };
 
 }  // namespace thx::audio

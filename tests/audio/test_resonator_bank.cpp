@@ -89,6 +89,32 @@ TEST(ResonatorBank, ManyModesSumAndBlockSizeDoesNotMatter) {
   }
 }
 
+// Under a budget of 2 the bank sounds exactly like a bank of its first two modes, and computes
+// no more; a struck mode outside the budget waits and sounds once admitted.
+TEST(ResonatorBank, BudgetRendersOnlyTheFirstModes) {
+  const std::vector<double> f{200.0, 310.0, 777.0, 5000.0}, d{1.0, 2.0, 3.0, 30.0}, g{1.0, -0.5, 0.25, 2.0};
+  ResonatorBank limited(kRate, 4), two(kRate, 2);
+  ASSERT_TRUE(limited.setModes(f, d));
+  ASSERT_TRUE(two.setModes(std::span(f).first(2), std::span(d).first(2)));
+  limited.setBudget(2);
+  limited.strike(g);
+  two.strike(std::span(g).first(2));
+  std::vector<double> a(1000), b(1000);
+  for (int block = 0; block < 3; ++block) {
+    limited.render(a);
+    two.render(b);
+    EXPECT_EQ(a, b) << "block " << block;
+    EXPECT_EQ(limited.lastRenderedModes(), 2u);
+  }
+  limited.setBudget(4);
+  limited.render(a);
+  EXPECT_EQ(limited.lastRenderedModes(), 4u);
+  two.render(b);
+  double difference = 0;
+  for (std::size_t n = 0; n < a.size(); ++n) difference = std::max(difference, std::fabs(a[n] - b[n]));
+  EXPECT_GT(difference, 1e-6);  // modes 3 and 4 now sound
+}
+
 TEST(ResonatorBank, RefusesModesItCannotRepresent) {
   ResonatorBank bank(kRate, 2);
   const std::vector<double> ok{100.0, 200.0}, d{1.0, 1.0};

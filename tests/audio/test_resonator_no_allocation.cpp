@@ -18,6 +18,7 @@ TEST(ResonatorNoAllocation, SetStrikeAndRenderAllocateNothing) {
   const long before = test::t_allocations;
   ASSERT_TRUE(bank.setModes(f, d));
   for (int b = 0; b < 50; ++b) {
+    bank.setBudget(b % 2 ? 100 : 300);  // quality scaling under load
     bank.strike(g);
     bank.strikeMode(3, 0.01);
     bank.render(block);
