@@ -145,7 +145,7 @@ void writeHeatmap(const std::string& path, const SweepAxes& axes, const std::vec
   }
   std::string forces_text = "letters: verdict at push force ";
   for (std::size_t i = 0; i < forces.size(); ++i) forces_text += (i ? ", " : "") + fmt("%g", forces[i]);
-  forces_text += " N (S stable, L limit-cycle, U unstable, H cannot hold the push); colour: the worst of them.";
+  forces_text += " N (S stable, L limit-cycle, U unstable, H cannot hold); colour: the worst.";
   text(img, forces_text, {kMargin, ly + 30}, 0.38, kInk);
   text(img, "H: the continuous-force limit held the force below the push and the pen sank; lower case: it acted, the cell still counts.",
        {kMargin, ly + 46}, 0.38, kInk);
