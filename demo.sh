@@ -48,4 +48,10 @@ for kind in bricks vvalley grooves pebbles wood sine dimples tilted zigzag; do
 done
 
 echo
-echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png."
+echo "== visual: the default scene headless, relief mapping, 4 frames around it -> $OUT/visual/"
+VC="$BUILD/clients/visual/visual-client"
+LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/default.yaml --mode relief --frames 4 --out "$OUT/visual" --quiet \
+  && echo "frames: $OUT/visual/frame_0000.png ... frame_0003.png" || echo "visual-client failed"
+
+echo
+echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png."

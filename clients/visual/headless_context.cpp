@@ -5,6 +5,7 @@
 
 #include <cstdio>
 
+#include "clients/visual/driver_pin.hpp"
 #include "clients/visual/gl_api.hpp"
 #include "clients/visual/gl_error.hpp"
 
@@ -52,6 +53,7 @@ HeadlessContext::HeadlessContext() {
     context_ = context;
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
       throw GlError(eglFailure("eglMakeCurrent(surfaceless)"));
+    pinGlDriver();
   } catch (...) {
     if (context_) eglDestroyContext(display, context_);
     eglTerminate(display);

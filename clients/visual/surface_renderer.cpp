@@ -12,7 +12,7 @@ SurfaceRenderer::SurfaceRenderer(const tex::TexturedSurface& surface, const Rend
   if (settings.mode == SurfaceMode::Mesh) defines.push_back("MODE_MESH");
   program_ = std::make_unique<ShaderProgram>(embeddedShader("surface.vert"),
                                              withDefines(embeddedShader("surface.frag"), defines));
-  texture_ = std::make_unique<SurfaceTexture>(surface.map());
+  texture_ = std::make_unique<SurfaceTexture>(surface.map(), surface.sampling());
   mesh_ = std::make_unique<GpuMesh>(settings.mode == SurfaceMode::Mesh ? displacedGrid(surface, settings.mesh_n)
                                                                        : planeQuad(surface.mapping().size_m));
 }
@@ -26,9 +26,10 @@ void SurfaceRenderer::draw(const Camera& camera) const {
   const bool wrap = surface_.sampling().address == tex::Address::Wrap;
 
   program_->use();
-  texture_->bind(GL_TEXTURE0);
+  texture_->bind(GL_TEXTURE0, GL_TEXTURE1);
   const ShaderProgram& p = *program_;
   glUniform1i(p.uniform("u_texels"), 0);
+  glUniform1i(p.uniform("u_depths"), 1);
   glUniform2i(p.uniform("u_texels_size"), map.width(), map.height());
   glUniform2f(p.uniform("u_plane_size"), float(mapping.size_m.x()), float(mapping.size_m.y()));
   glUniform1i(p.uniform("u_wrap"), wrap);

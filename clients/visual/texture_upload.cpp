@@ -6,13 +6,15 @@
 
 namespace thx::visual {
 
-SurfaceTexture::SurfaceTexture(const tex::TextureMap& map) {
+SurfaceTexture::SurfaceTexture(const tex::TextureMap& map, const tex::SampleOptions& sampling) {
   std::vector<float> texels(std::size_t(map.width()) * map.height() * 4);
+  std::vector<float> depths(std::size_t(map.width()) * map.height());
   for (int j = 0; j < map.height(); ++j)
     for (int i = 0; i < map.width(); ++i) {
       const Eigen::Vector3f n = map.normal(i, j);
       float* t = &texels[(std::size_t(j) * map.width() + i) * 4];
       t[0] = n.x(), t[1] = n.y(), t[2] = n.z(), t[3] = map.depth(i, j);
+      depths[std::size_t(j) * map.width() + i] = t[3];
     }
   glGenTextures(1, &texture_);
   glBindTexture(GL_TEXTURE_2D, texture_);
@@ -21,14 +23,30 @@ SurfaceTexture::SurfaceTexture(const tex::TextureMap& map) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+
+  glGenTextures(1, &depths_);
+  glBindTexture(GL_TEXTURE_2D, depths_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, map.width(), map.height(), 0, GL_RED, GL_FLOAT, depths.data());
+  const GLint filter = sampling.filter == tex::Filter::Bilinear ? GL_LINEAR : GL_NEAREST;
+  const GLint wrap = sampling.address == tex::Address::Wrap ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
   checkGl("SurfaceTexture()");
 }
 
-SurfaceTexture::~SurfaceTexture() { glDeleteTextures(1, &texture_); }
+SurfaceTexture::~SurfaceTexture() {
+  glDeleteTextures(1, &texture_);
+  glDeleteTextures(1, &depths_);
+}
 
-void SurfaceTexture::bind(GLenum unit) const {
-  glActiveTexture(unit);
+void SurfaceTexture::bind(GLenum texels_unit, GLenum depths_unit) const {
+  glActiveTexture(texels_unit);
   glBindTexture(GL_TEXTURE_2D, texture_);
+  glActiveTexture(depths_unit);
+  glBindTexture(GL_TEXTURE_2D, depths_);
 }
 
 }  // namespace thx::visual

@@ -10,6 +10,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "clients/visual/driver_pin.hpp"
 #include "clients/visual/frame_renderer.hpp"
 #include "clients/visual/gl_error.hpp"
 #include "clients/visual/image_writer.hpp"
@@ -87,6 +88,7 @@ int runWindow(const tex::TexturedSurface& surface, RenderSettings settings, Came
       glfwCreateWindow(options.width, options.height, "visual-client", nullptr, nullptr), &glfwDestroyWindow);
   if (!window) throw GlError("window: cannot create a 3.3 core window: " + glfwReason() + "; Debian: libgl1-mesa-dri");
   glfwMakeContextCurrent(window.get());
+  pinGlDriver();
   glfwSwapInterval(1);
 
   ViewState state{settings, camera, settings.steps.shadow > 0 ? settings.steps.shadow : 8};

@@ -12,6 +12,7 @@ layout(location = 0) out vec4 o_colour;
 layout(location = 1) out vec4 o_hit;  // u, v, depth (m) of the shaded point, 1
 
 uniform sampler2D u_texels;  // RGBA32F: tangent normal xyz, depth in metres in w
+uniform sampler2D u_depths;  // R32F: depth in metres, filtered as the scene samples
 uniform ivec2 u_texels_size;
 uniform vec2 u_plane_size;   // metres covered by the map once
 uniform bool u_wrap;
@@ -57,7 +58,12 @@ vec4 sampleMap(vec2 uv) {
   return mix(mix(texel(i, j), texel(i + 1, j), f.x), mix(texel(i, j + 1), texel(i + 1, j + 1), f.x), f.y);
 }
 
-float depthAt(vec2 xy) { return sampleMap(uvOfLocal(xy)).w; }
+// The search loops' depth: one hardware-filtered fetch of a float depth texture (float filter
+// weights in llvmpipe; wrap = GL_REPEAT, clamp = GL_CLAMP_TO_EDGE, the same texel centres).
+float depthAt(vec2 xy) {
+  vec2 uv = uvOfLocal(xy);
+  return textureLod(u_depths, vec2(uv.x, 1.0 - uv.y), 0.0).r;
+}
 
 vec3 normalAt(vec2 xy) {
   vec2 uv = uvOfLocal(xy);
