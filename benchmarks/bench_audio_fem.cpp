@@ -50,7 +50,7 @@ struct Outcome {
   std::string error;
 };
 
-ElasticMaterial steel() { return fromSceneMaterial(*thx::scene::findMaterial("steel")); }
+ElasticMaterial steel() { return *thx::scene::findMaterial("steel"); }
 
 // Solves one case and returns the frequencies' relative errors.
 Outcome solveCase(const Case& c) {

@@ -106,7 +106,7 @@ int run(const Options& o) {
   });
   if (path.empty()) throw thx::Error(thx::Error::Kind::Io, o.log + ": no THX_CONTACT events (not a hapticd --record log?)");
 
-  ElasticMaterial material = fromSceneMaterial(scene.surface.material);
+  ElasticMaterial material = scene.surface.material;
   const TetMesh slab = slabMesh("surface (" + scene.surface.material.name + ")", scene.surface.size_m.x(),
                                 scene.surface.size_m.y(), o.thickness, {o.cells, o.cells, 1}, ElementOrder::Quadratic,
                                 o.clamp);

@@ -7,11 +7,6 @@
 
 namespace thx::audio {
 
-ElasticMaterial fromSceneMaterial(const scene::Material& m) {
-  return {m.name, m.density_kg_per_m3, m.youngs_modulus_pa, m.poisson_ratio, m.rayleigh_alpha_per_s,
-          m.rayleigh_beta_s};
-}
-
 void checkMaterial(const std::string& object, const ElasticMaterial& m) {
   auto fail = [&](const char* field, double v, const char* expected) {
     throw ModalError(object + ": material '" + m.name + "': " + field + " " + numberText(v) + ": expected " +

@@ -7,16 +7,9 @@
 
 namespace thx::audio {
 
-struct ElasticMaterial {
-  std::string name;
-  double density_kg_per_m3 = 0.0;
-  double youngs_modulus_pa = 0.0;
-  double poisson_ratio = 0.0;
-  double rayleigh_alpha_per_s = 0.0;  // C = alpha*M + beta*K
-  double rayleigh_beta_s = 0.0;
-};
-
-ElasticMaterial fromSceneMaterial(const scene::Material& m);
+// The scenes' own material (one table for every sense): modal analysis reads its density, elastic
+// constants and Rayleigh damping, and ignores the Bullet coefficients.
+using ElasticMaterial = scene::Material;
 
 // Throws ModalError naming `object` and the material unless rho > 0, E > 0, -1 < nu < 0.5,
 // alpha >= 0 and beta >= 0 (all finite).

@@ -198,7 +198,7 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
     for (const scene::Material& x : scene::materials()) names += (names.empty() ? "" : ", ") + x.name;
     throw UsageError("--material: unknown material '" + material + "', expected one of " + names);
   }
-  o.material = fromSceneMaterial(*m);
+  o.material = *m;
   if (density || youngs || poisson || alpha || beta) o.material.name += " (custom)";
   if (density) o.material.density_kg_per_m3 = *density;
   if (youngs) o.material.youngs_modulus_pa = *youngs;

@@ -15,10 +15,10 @@ std::vector<SceneBody> sceneBodies(const scene::Scene& scene, const SceneMeshOpt
   const scene::Surface& s = scene.surface;
   bodies.push_back({slabMesh("surface", s.size_m.x(), s.size_m.y(), o.slab_thickness_m,
                              {o.slab_cells, o.slab_cells, 1}, o.order, o.clamp_slab),
-                    fromSceneMaterial(s.material), ""});
+                    s.material, ""});
   for (const scene::SceneObject& obj : scene.objects) {
     if (obj.fixed) continue;
-    SceneBody b{{}, fromSceneMaterial(obj.material), ""};
+    SceneBody b{{}, obj.material, ""};
     switch (obj.shape) {
       case scene::Shape::Sphere:
         b.mesh = sphereMesh(obj.name, obj.radius_m, 4, o.order);

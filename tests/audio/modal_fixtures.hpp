@@ -12,7 +12,7 @@
 
 namespace thx::audio::test {
 
-inline ElasticMaterial steel() { return fromSceneMaterial(*scene::findMaterial("steel")); }
+inline ElasticMaterial steel() { return *scene::findMaterial("steel"); }
 
 // |a / b - 1|
 inline double relativeError(double a, double b) { return std::fabs(a / b - 1.0); }

@@ -100,7 +100,7 @@ TEST_F(ModalCacheTest, SecondAnalysisIsReadFromTheCacheUnchanged) {
   EXPECT_EQ(second.shapes, first.shapes);
   EXPECT_EQ(second.rigid_modes, 6);
   // Another material or solver setting is another key.
-  ElasticMaterial glass = fromSceneMaterial(*scene::findMaterial("glass"));
+  ElasticMaterial glass = *scene::findMaterial("glass");
   EXPECT_FALSE(solve(glass).from_cache);
   EXPECT_FALSE(solve(steel(), 7).from_cache);
 }
