@@ -1,5 +1,5 @@
-// Speed against error for the physics client (issue 6, DESIGN §6): time per step and memory for a
-// sphere and a box on the same surface as a plain plane, a normal map, a relief map, a
+// Speed against error for the physics client (issue 6, docs/design.md §6): time per step and memory
+// for a sphere and a box on the same surface as a plain plane, a normal map, a relief map, a
 // btHeightfieldTerrainShape and a btBvhTriangleMeshShape at 64² ... 1024² samples, with the
 // outcome error of each against analytic answers:
 //  - flat:  a ball rolling at 0.05 m/s keeps its speed (the timed run for the sphere); a ball and
@@ -10,7 +10,7 @@
 //  - bump:  a 1 mm high, 3 cm wide cos² ridge: the rolling ball's escape speed is the energy
 //           threshold sqrt(10/7 g H), found by bisection.
 // Heightfield and mesh runs also repeat the flat sphere cases with gContactBreakingThreshold
-// lowered from Bullet's 0.02 to 0.002 (the shared reference's §5 tuning).
+// lowered from Bullet's 0.02 to 0.002 (the tuning of docs/design.md §7 fact 8).
 //
 // Usage: bench_physics [--sizes 64,128,...] [--reps N] [--json F] [--csv F] [--md F] [--png F]
 // Progress goes to stderr. Takes about 2 minutes on the project's 2-core VM.

@@ -52,7 +52,7 @@ bool adjustEdgeContact(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, 
 }
 
 // btInternalEdgeUtility's thresholds assume metre-sized triangles: at 1 mm every triangle counts
-// as degenerate and the map stays empty (shared reference §5).
+// as degenerate and the map stays empty (docs/design.md §7 fact 8).
 void tuneEdgeMap(btTriangleInfoMap& map, double spacing_m) {
   map.m_equalVertexThreshold = btScalar(1e-16);
   map.m_zeroAreaThreshold = btScalar(1e-16);

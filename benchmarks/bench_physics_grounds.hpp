@@ -40,8 +40,8 @@ struct SurfaceSpec {
 class Ground {
  public:
   // internal_edges (heightfield and mesh only): Bullet's btInternalEdgeUtility, with its
-  // thresholds scaled to millimetre triangles (shared reference §5): the info map is built here
-  // and the static body gets CF_CUSTOM_MATERIAL_CALLBACK; installEdgeCallback() must have run.
+  // thresholds scaled to millimetre triangles (docs/design.md §7 fact 8): the info map is built
+  // here and the static body gets CF_CUSTOM_MATERIAL_CALLBACK; installEdgeCallback() must have run.
   Ground(const SurfaceSpec& spec, Rep rep, int n, bool internal_edges = false);
   ~Ground();
   Ground(const Ground&) = delete;

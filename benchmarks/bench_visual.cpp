@@ -4,7 +4,7 @@
 // Time: median over a camera path (glFinish per frame). Error: against the exact CPU reference
 // (clients/visual/cpu_reference.hpp; shadows in the reference iff the row has them) on two poses
 // of the path: pixels whose hit lands on another texel, mean intensity error in 8-bit LSB.
-// Timing is measured here, never asserted (DESIGN §4 rule 7).
+// Timing is measured here, never asserted (docs/design.md §4 rule 7).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

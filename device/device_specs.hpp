@@ -7,7 +7,7 @@
 namespace thx::dev {
 
 // PHANToM Desktop: peak force, stiffness, damping and workspace from CHAI3D 3.3.0's table
-// (shared/reference/haptics-anchors.md §0). Continuous force is the project's 15 %-of-peak
+// (docs/scenes.md "Device models"). Continuous force is the project's 15 %-of-peak
 // assumption (scenes::kContinuousForceFraction): 1.185 N. Resolution 0.023 mm is the commonly
 // quoted vendor figure [unverified]. Physical damping is an assumption, see the .cpp.
 DeviceSpec phantomDesktopSpec();

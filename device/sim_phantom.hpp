@@ -1,8 +1,8 @@
 #pragma once
 // SimPhantom: a simulated PHANToM held by a simulated hand, honouring the HapticDevice contract
-// (haptic_device.hpp) so the servo cannot tell it from a real device. DESIGN §5: it must be able
-// to go unstable the way a real device does, so it integrates the pen + hand in continuous time
-// far above the servo rate under a zero-order-hold motor force, quantises the encoders and
+// (haptic_device.hpp) so the servo cannot tell it from a real device. docs/design.md §5: it must be
+// able to go unstable the way a real device does, so it integrates the pen + hand in continuous
+// time far above the servo rate under a zero-order-hold motor force, quantises the encoders and
 // reports finite-difference velocity.
 //
 // One device tick (read() returns at the tick's deadline):

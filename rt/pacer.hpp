@@ -2,9 +2,9 @@
 // Pacer: the servo's timing policy, isolated so it can be unit-tested (as ros2_control does).
 //
 // Deadlines sit on a fixed grid t0 + k * period. wait() sleeps until the next grid point.
-// Missed-cycle policy (DESIGN §4 rule 2): if the loop arrives after its deadline has passed by a
-// whole period or more, it REALIGNS to the next grid point in the future (no catch-up burst) and
-// reports how many grid points it skipped; the caller decides what to do with the missed ticks
+// Missed-cycle policy (docs/design.md §4 rule 2): if the loop arrives after its deadline has passed
+// by a whole period or more, it REALIGNS to the next grid point in the future (no catch-up burst)
+// and reports how many grid points it skipped; the caller decides what to do with the missed ticks
 // (hold the force with decay, then force off).
 #include <cstdint>
 

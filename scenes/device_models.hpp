@@ -1,8 +1,8 @@
 #pragma once
 // Haptic device models: the limits the server's stability budget and safety stage start from.
-// Peak force, stiffness, damping and workspace are CHAI3D 3.3.0's table
-// (shared/reference/haptics-anchors.md §0). The reference gives no continuous force, so it is an
-// assumption: kContinuousForceFraction of the peak (docs/scenes.md §device models).
+// Peak force, stiffness, damping and workspace are CHAI3D 3.3.0's table (docs/scenes.md "Device
+// models"). That table gives no continuous force, so it is an assumption:
+// kContinuousForceFraction of the peak (same section).
 #include <string>
 #include <string_view>
 #include <vector>

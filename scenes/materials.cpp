@@ -4,8 +4,8 @@ namespace thx::scene {
 
 const std::vector<Material>& materials() {
   // Source A = KleinPAT (Wang & James 2019) Table 4. Rows without published damping borrow it
-  // from the nearest measured material, as sound-anchors.md §2 suggests; porous materials get a
-  // larger alpha because pores damp the low modes most.
+  // from the nearest measured material, as docs/scenes.md "Materials" explains; porous materials
+  // get a larger alpha because pores damp the low modes most.
   // clang-format off
   static const std::vector<Material> table = {
       // name           rho kg/m³  E Pa    nu     alpha 1/s beta s  mu    e     source of rho..beta

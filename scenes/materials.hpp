@@ -1,6 +1,6 @@
 #pragma once
 // The material table shared by sound (modal synthesis) and physics (Bullet contacts).
-// Elastic and damping values follow shared/reference/sound-anchors.md §2; friction and
+// Elastic and damping values are from the sources in docs/scenes.md "Materials"; friction and
 // restitution are our choice (docs/scenes.md §materials says why and how Bullet combines them).
 #include <string>
 #include <string_view>

@@ -30,7 +30,7 @@ SimDeviceParams parseSim(const Field& field) {
                     "hand_damping"});
   SimDeviceParams sim;
   if (auto f = field.find("integration_hz")) {
-    // DESIGN §5: far above the servo rate, or the simulator cannot show instability.
+    // docs/design.md §5: far above the servo rate, or the simulator cannot show instability.
     sim.integration_hz = static_cast<int>(f->integer(10000, 1000000, "Hz"));
   }
   if (auto f = field.find("encoder_resolution")) sim.encoder_resolution_m = f->number(positiveUpTo(1e-3, "m"));

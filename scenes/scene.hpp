@@ -49,8 +49,8 @@ struct Surface {
 
 enum class DeviceType { Sim, Vrpn };
 
-// The simulated PHANToM and the hand holding it (DESIGN §5: integrated far above the servo rate
-// so that instability stays possible).
+// The simulated PHANToM and the hand holding it (docs/design.md §5: integrated far above the servo
+// rate so that instability stays possible).
 struct SimDeviceParams {
   int integration_hz = 10000;
   double encoder_resolution_m = 2.3e-5;

@@ -1,6 +1,6 @@
 #pragma once
 // VRPN device addresses as stock VRPN clients write them: "Device@host", "Device@host:port" or
-// "Device@tcp://host:port" (shared/reference/vrpn-protocol.md). Checked at load time so a
+// "Device@tcp://host:port" (docs/vrpn.md §1). Checked at load time so a
 // malformed address is reported with its line instead of as a connection that never happens.
 #include <optional>
 #include <string>

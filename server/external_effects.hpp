@@ -10,7 +10,7 @@
 // in SI units and inside the device's limits when they arrive; render() still never produces a
 // non-finite force from finite inputs, and the servo's passivity and safety stages come after it.
 //
-// Rendering (reference §9, "what vrpn_Phantom does"):
+// Rendering (docs/vrpn.md §9, "what vrpn_Phantom does"):
 //  - Plane i: free space where n·p + d > 0 (n unit); depth = -(n·p + d) > 0 is contact. Spring
 //    k·depth plus damping -b·(v·n) along n, never pulling the pen in. Friction: a stick point on
 //    the plane held by a tangential spring of the same k; it slips when the tangential force

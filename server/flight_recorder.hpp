@@ -1,6 +1,6 @@
 #pragma once
 // Flight recorder: the last second of ticks, kept by the servo at no cost, dumped to a file by
-// another thread when something goes wrong (DESIGN §4 rule 2; libfranka keeps 50 records).
+// another thread when something goes wrong (docs/design.md §4 rule 2; libfranka keeps 50 records).
 //
 // Two preallocated buffers. The servo writes into the active one (a copy per tick). On a fault
 // it swaps in the spare buffer in O(1) and marks the full one frozen with the fault's reason;

@@ -4,7 +4,7 @@
 // tiny convex QP; we enumerate active sets of size 0..3 and return the one that satisfies the
 // KKT conditions (feasible, non-negative multipliers). Projection onto a convex set is
 // 1-Lipschitz, so the proxy, and with it the force, moves continuously with the tip: no force
-// jump when the tip crosses a crease (DESIGN §5).
+// jump when the tip crosses a crease (docs/design.md §5).
 // Real-time safe: fixed-size arrays, no allocation, at most 14 small solves.
 #include <Eigen/Core>
 #include <array>

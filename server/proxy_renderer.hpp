@@ -1,5 +1,5 @@
 #pragma once
-// Haptic rendering of a textured plane by plane proxies (DESIGN §5, Eq. 3). Runs inside the
+// Haptic rendering of a textured plane by plane proxies (docs/design.md §5, Eq. 3). Runs inside the
 // servo tick: no allocation, no locks, no system calls; constant time.
 //
 // Two modes:

@@ -1,5 +1,5 @@
 #pragma once
-// SafetyStage: the last stage before the device, always on (DESIGN §4 rule 3).
+// SafetyStage: the last stage before the device, always on (docs/design.md §4 rule 3).
 //
 // Contract (runs inside the 1 kHz servo tick):
 //  - apply(), disengage(), requestShutdown() and every accessor are real-time safe: no
@@ -27,8 +27,8 @@
 //     gain if a ramp-in is still running); shutdownComplete() afterwards. Shutdown is final until
 //     reset().
 //
-// The stage assumes one call per period: missed ticks are the servo's business (DESIGN §4 rule
-// 2); they only under-count cooling, which errs on the safe side.
+// The stage assumes one call per period: missed ticks are the servo's business (docs/design.md §4
+// rule 2); they only under-count cooling, which errs on the safe side.
 #include <Eigen/Core>
 #include <cstdint>
 

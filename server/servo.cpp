@@ -237,7 +237,7 @@ std::uint32_t Servo::latchFaults(std::uint32_t faults) {
 }
 
 // The surface contact point is the texture proxy in contact, else an external plane's contact
-// point, else the tip (reference §9: a stock PHANToM reports the tip when free).
+// point, else the tip (docs/vrpn.md §9: a stock PHANToM reports the tip when free).
 void Servo::writeSnapshot(const TickRecord& r, const dev::DeviceState& state, const RenderOutput& out,
                           const ExternalOutput& ext, const Eigen::Vector3d& f_out) {
   DeviceSnapshot snap;

@@ -1,7 +1,7 @@
 #pragma once
 // The servo tick: hapticd's hard-real-time heart. THIS FILE AND servo.cpp ARE THE REAL-TIME PATH.
 //
-// Contract of tick() (DESIGN §4 rules 1-3):
+// Contract of tick() (docs/design.md §4 rules 1-3):
 //  - One blocking device read, one device write; nothing else blocks. No allocation, no lock, no
 //    logging, no system call except the device's pacing sleep (a test proves "no allocation").
 //  - Data leaves only through the SPSC ring (publisher), the flight recorder and the device

@@ -1,7 +1,7 @@
 #pragma once
-// Stability budget as data (DESIGN §5): the rendered stiffness is a fraction of the device's
-// vendor maximum, checked at configuration time against the sampled-wall passivity bound of
-// Colgate & Schenkel,
+// Stability budget as data (docs/design.md §5): the rendered stiffness is a fraction of the
+// device's vendor maximum, checked at configuration time against the sampled-wall passivity bound
+// of Colgate & Schenkel,
 //     K <= 2 (b - |B|) / T     (b: device physical damping, B: virtual damping, T: period).
 //
 // Contract: configuration time only (allocates strings); never called from the servo tick.

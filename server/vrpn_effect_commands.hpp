@@ -1,5 +1,5 @@
 #pragma once
-// What a VRPN client's vrpn_ForceDevice messages do to the external effects (reference §9): the
+// What a VRPN client's vrpn_ForceDevice messages do to the external effects (docs/vrpn.md §9): the
 // PHANToM parameter clamps, unit conversion to SI, and validation. Pure functions on plain data,
 // used by the VRPN server's I/O thread (never by the servo thread); unit-tested without sockets.
 //

@@ -83,7 +83,7 @@ void VrpnServer::start() {
   if (!l) throw thx::Error(thx::Error::Kind::Io, "--vrpn-listen " + where + ": cannot listen on TCP: " + l.error().reason);
   impl->listen_fd = std::move(l).value();
   bound_port_ = localPort(impl->listen_fd.get());
-  // The UDP request socket shares the TCP port number (reference §1).
+  // The UDP request socket shares the TCP port number (docs/vrpn.md §1).
   Result<UniqueFd> u = bindUdp(options_.listen_ip, bound_port_);
   if (!u) throw thx::Error(thx::Error::Kind::Io, "--vrpn-listen " + where + ": cannot bind UDP: " + u.error().reason);
   impl->udp_fd = std::move(u).value();
@@ -244,7 +244,7 @@ void VrpnServer::run() {
         Result<ForcePlane2> r = ForcePlane2::decode(m.payload);
         if (!r) return ep.drop(r.error());
         if (!options_.render_plane2) {
-          // As a stock HDAPI PHANToM (reference §9): sample clients send placeholder Plane2
+          // As a stock HDAPI PHANToM (docs/vrpn.md §9): sample clients send placeholder Plane2
           // values with every report, which must not add forces the app never meant.
           bump(&VrpnServerStatus::plane2_ignored);
           if (!c.told_plane2_ignored)
@@ -398,7 +398,7 @@ void VrpnServer::run() {
       backlog = std::max(backlog, c.conn->endpoint().pendingOutput().size());
     }
 
-    // Forget closed clients; the last one out resets every effect (reference §9).
+    // Forget closed clients; the last one out resets every effect (docs/vrpn.md §9).
     for (Client& c : s.clients) {
       if (c.conn->open()) continue;
       while (c.conn->endpoint().poll()) {

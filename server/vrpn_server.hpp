@@ -2,7 +2,7 @@
 // VrpnServer: hapticd's device served to VRPN apps as a PHANToM (issue 4; `hapticd --vrpn-listen`).
 // One I/O thread; nothing here runs on, or waits for, the servo thread.
 //
-// What a client sees (reference §9, one name for three device kinds, default "Phantom0"):
+// What a client sees (docs/vrpn.md §9, one name for three device kinds, default "Phantom0"):
 //  - Tracker: `Pos_Quat` and `Velocity` (sensor 0, metres, the device frame) at the client's
 //    report rate: report_hz by default, changed per client by `set_update_rate` (clamped to
 //    [1, max_report_hz]; a non-finite or non-positive rate is refused with a text message).
@@ -22,7 +22,7 @@
 //    server) and ALL are reset when the last handshaken client disconnects (a socket still in
 //    the handshake never commanded anything and keeps nothing alive).
 //  - `Plane2` is ignored unless render_plane2 (hapticd --vrpn-plane2): a stock HDAPI PHANToM
-//    ignores it (reference §9: applied only in the GHOST build), and sample clients send
+//    ignores it (docs/vrpn.md §9: applied only in the GHOST build), and sample clients send
 //    placeholder values with every report, which would otherwise add forces. The first ignored
 //    Plane2 of a client gets one warning text.
 //  - `Reset_Origin` is answered with a warning text (not supported).
@@ -34,7 +34,7 @@
 // bound (1 MiB) is the client dropped. The kernel's send buffer per client is capped too
 // (socket_send_buffer_bytes), or megabytes of reports would queue there first, seconds old.
 //
-// Connections (reference §1, §10): a TCP listener and a UDP socket on the same port at
+// Connections (docs/vrpn.md §1, §10): a TCP listener and a UDP socket on the same port at
 // listen_ip (127.0.0.1 unless told otherwise). Direct TCP connects are accepted; a UDP lob
 // request is answered by connecting back to the datagram's source address. We never send a
 // UDP_DESCRIPTION, so the link is TCP-only. At most max_clients at once: more are closed at

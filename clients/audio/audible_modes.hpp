@@ -2,7 +2,7 @@
 // From an object's FEM modes to the modes worth synthesising: Rayleigh damping (Eq. 4,
 // C = alpha M + beta K, so d = (alpha + beta omega^2) / 2 and omega_d = omega sqrt(1 - xi^2)),
 // the audible band, the psychoacoustic merge of modes closer than the frequency-discrimination
-// threshold (Raghuvanshi & Lin 2006; sound-anchors.md §5) and truncation to a mode budget.
+// threshold (Raghuvanshi & Lin 2006; docs/audio.md §8.6) and truncation to a mode budget.
 #include <Eigen/Core>
 #include <vector>
 
@@ -17,7 +17,7 @@ struct AudibleOptions {
   double sample_rate_hz = 44100.0;
   bool merge = true;
   // Two modes are indistinguishable when their frequencies differ by less than
-  // max(merge_abs_hz, merge_rel * f) (pure-tone difference limens, sound-anchors.md §5).
+  // max(merge_abs_hz, merge_rel * f) (pure-tone difference limens, docs/audio.md §8.6).
   double merge_abs_hz = 2.0;
   double merge_rel = 0.003;
   int max_modes = 0;  // keep at most this many (the lowest) after merging; 0 = all

@@ -1,7 +1,7 @@
 #pragma once
-// Meso-level excitation from a normal map (DESIGN Eq. 5): a contact moving with tangential
-// velocity v_t over a texel with sampled normal n_s, on a surface of geometric normal n_g, carries
-// the normal momentum
+// Meso-level excitation from a normal map (docs/design.md §1 Eq. 5): a contact moving with
+// tangential velocity v_t over a texel with sampled normal n_s, on a surface of geometric normal
+// n_g, carries the normal momentum
 //   p_n = m (-(v_t . n_s) / (n_g . n_s)) n_g,
 // and every texel it enters applies the change of p_n from the texel it left as an impulse.
 // Both momenta are taken at the current velocity, so the impulse is the texture's relief and not

@@ -1,6 +1,6 @@
 #pragma once
 // A bank of damped modal resonators, the exact impulse-invariant two-pole recurrence per mode
-// (sound-anchors.md §4): with R = exp(-d/fs), theta = omega_d/fs,
+// (docs/audio.md §3): with R = exp(-d/fs), theta = omega_d/fs,
 //   y[n+1] = 2R cos(theta) y[n] - R^2 y[n-1] + (R sin(theta) / omega_d) g[n]
 // equals the closed form (g/omega_d) e^{-d t} sin(omega_d t) of a modal impulse g (N s per unit
 // modal mass, i.e. u_i . J with M-orthonormal shapes) at the sample times, so it has no
@@ -31,7 +31,7 @@ class ResonatorBank {
   void strikeMode(std::size_t mode, double modal_impulse);
 
   // Writes the next out.size() samples of the sum of the modal displacements q_i (a contact
-  // microphone's view, sound-anchors.md §4).
+  // microphone's view, docs/audio.md §3).
   void render(std::span<double> out);
   void render(std::span<float> out);
 

@@ -1,6 +1,6 @@
 #pragma once
-// Normal-map contact rule (DESIGN §1, Eq. 1 and Eq. 2), applied to one Bullet manifold point
-// between a flat textured plane and another body, after collision detection and before the
+// Normal-map contact rule (docs/design.md §1, Eq. 1 and Eq. 2), applied to one Bullet manifold
+// point between a flat textured plane and another body, after collision detection and before the
 // solver:
 //  - the contact normal becomes the texture's sampled normal n_s at the contact (Eq. 1), in world
 //    frame, pointing from the plane towards the object;

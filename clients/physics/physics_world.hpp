@@ -25,7 +25,7 @@ struct WorldOptions {
   Eigen::Vector3d gravity_m_per_s2{0.0, 0.0, -9.81};
   int solver_iterations = 10;
   // Convex margin for boxes, capsules' and cylinders' GJK (Bullet's 4 cm default is far too big
-  // at haptic scale; shared reference §5).
+  // at haptic scale; docs/design.md §7 fact 8).
   double convex_margin_m = 0.5e-3;
 };
 

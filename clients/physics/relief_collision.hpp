@@ -4,7 +4,7 @@
 // Each step it rasterises the object's underside over its footprint texels (relief_raster.hpp),
 // picks at most 4 contacts (contact_selection.hpp) and reports them with the relief normals
 // there. Its manifold is cleared at the start of every step: cached points fixed to a rolling
-// ball's surface rotate behind the centre and inject energy (shared reference §4), and the
+// ball's surface rotate behind the centre and inject energy (docs/design.md §7 fact 4), and the
 // rasteriser finds every contact afresh anyway.
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher

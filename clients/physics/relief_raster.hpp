@@ -1,7 +1,7 @@
 #pragma once
 // Rasterising an object's underside against a relief map over the object's footprint texels only
-// (DESIGN §4 rule 8): for every texel centre under the object's plane-frame bounding box, the
-// directional penetration depth along the plane normal, d = (object's lowest z there) - (relief
+// (docs/design.md §4 rule 8): for every texel centre under the object's plane-frame bounding box,
+// the directional penetration depth along the plane normal, d = (object's lowest z there) - (relief
 // height there). Texels where d < threshold become contact candidates.
 #include <vector>
 

@@ -5,7 +5,7 @@
 // detection, then rewrites every manifold point touching a registered normal-mapped plane
 // (normal_map_contact.hpp) before the solver runs. Doing it here rather than in
 // gContactAddedCallback reaches every point on every step, including points Bullet keeps from
-// earlier steps, and sees world positions after refreshContactPoints (shared reference §2-3).
+// earlier steps, and sees world positions after refreshContactPoints (docs/design.md §7 fact 7).
 //
 // Relief mode needs nothing from the world beyond the collision algorithms registered on its
 // dispatcher (relief_collision.hpp); PhysicsWorld wires both.

@@ -1,5 +1,5 @@
 #pragma once
-// Device addresses and the UDP connection request (reference §1).
+// Device addresses and the UDP connection request (docs/vrpn.md §1).
 //
 // Address: "Name@location". The device (sender) name is everything before the FIRST '@', the
 // location everything after the LAST '@'. Locations we accept:

@@ -1,5 +1,5 @@
 #pragma once
-// Messages common to every device (reference §6), sent with the device's name as sender.
+// Messages common to every device (docs/vrpn.md §6), sent with the device's name as sender.
 //
 // Each message type is a struct with kTypeName (the name described on the wire), encode() (appends
 // the unpadded body) and a static decode() that checks the exact body size and returns a typed

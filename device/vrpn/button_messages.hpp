@@ -1,5 +1,5 @@
 #pragma once
-// vrpn_Button messages we use (reference §8). Same struct shape as base_messages.hpp.
+// vrpn_Button messages we use (docs/vrpn.md §8). Same struct shape as base_messages.hpp.
 // State values are passed through as sent (stock servers send 0 or 1).
 #include <cstdint>
 #include <span>

@@ -1,5 +1,5 @@
 #pragma once
-// Big-endian reading and writing of the VRPN wire types (reference §4): integers in network
+// Big-endian reading and writing of the VRPN wire types (docs/vrpn.md §4): integers in network
 // order, float32 sent as its bit pattern like a uint32, float64 byte-reversed as a whole (i.e. the
 // 8-byte big-endian bit pattern).
 //

@@ -1,10 +1,10 @@
 #pragma once
-// The 24-byte cookie each side writes first on a new TCP link (reference §2).
+// The 24-byte cookie each side writes first on a new TCP link (docs/vrpn.md §2).
 //
 // Layout: "vrpn: ver. 07.38" (16 bytes), two spaces, one log-mode digit '0'..'3' at offset 18,
 // NULs at 19..23. We always send log mode '0' (we never ask the peer to log).
 //
-// Check rules, exactly the reference's:
+// Check rules, exactly a stock peer's (docs/vrpn.md §2):
 //  - the peer's bytes must equal ours up to and including the last '.' ("vrpn: ver. 07."),
 //    otherwise the link is dropped (kBadCookie);
 //  - the log-mode byte must be '0'..'3', otherwise the link is dropped (kBadLogMode);

@@ -3,12 +3,12 @@
 // feed()s what it read, drains poll() for events, and writes pendingOutput() to the peer. That
 // keeps the whole protocol drivable byte by byte in tests.
 //
-// Handshake (reference §2, §3): the constructor queues our cookie (log mode 0). Once the peer's
+// Handshake (docs/vrpn.md §2, §3): the constructor queues our cookie (log mode 0). Once the peer's
 // 24 cookie bytes are in and pass checkCookie, we queue a description of every local sender (id
 // order) and then every local type (id order) and poll() returns Connected. We are TCP-only: we
 // never send a UDP_DESCRIPTION or LOG_DESCRIPTION, and ignore the peer's.
 //
-// Names (reference §5): addSender/addType register local names (idempotent, stable ids; sender 0
+// Names (docs/vrpn.md §5): addSender/addType register local names (idempotent, stable ids; sender 0
 // "VRPN Control" and types 0..3 are pre-registered like a stock peer's). A name added after the
 // handshake is described at once. Peer descriptions are accepted at any time, echoes included;
 // peer ids are mapped to ours by name.
@@ -16,7 +16,7 @@
 // poll() returns, in stream order:
 //  - Connected once, after the peer's cookie;
 //  - UserMessage for a message whose sender and type the peer described AND we registered; the
-//    rest is skipped and counted (undescribed ids: reference §4; names we don't know: "unknown
+//    rest is skipped and counted (undescribed ids: docs/vrpn.md §4; names we don't know: "unknown
 //    types skipped"). Sequence words and padding are ignored. The payload (and the name views)
 //    stay valid until the next feed();
 //  - Dropped once, on the first error (bad cookie, malformed frame or description, output

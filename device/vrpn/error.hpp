@@ -3,7 +3,7 @@
 //
 // Contract: every decoding function of thx::vrpn returns either a value or an Error; none throws
 // and none aborts on bad input. An Error means "drop this connection" to the connection owner
-// (reference §4: a malformed message kills the link); `reason` is a one-line human-readable
+// (docs/vrpn.md §4: a malformed message kills the link); `reason` is a one-line human-readable
 // explanation for the log, `code` is for programs and tests.
 #include <string>
 #include <string_view>

@@ -1,5 +1,5 @@
 #pragma once
-// vrpn_ForceDevice messages (reference §9). Same struct shape as base_messages.hpp. Client ->
+// vrpn_ForceDevice messages (docs/vrpn.md §9). Same struct shape as base_messages.hpp. Client ->
 // server messages use float32, server -> client reports float64, all big-endian.
 //
 // These are wire layouts only. What a PHANToM server does with the values (kspring as a fraction

@@ -1,5 +1,5 @@
 #pragma once
-// One message on the wire: header + payload + zero padding to a multiple of 8 (reference §4).
+// One message on the wire: header + payload + zero padding to a multiple of 8 (docs/vrpn.md §4).
 //
 // Contract: appendFrame writes padding as zeros (receivers ignore its contents; stock senders
 // leave garbage there) and takes the length from the payload, ignoring header.payload_length.

@@ -1,5 +1,5 @@
 #pragma once
-// The 24-byte message header (reference §4), all words big-endian:
+// The 24-byte message header (docs/vrpn.md §4), all words big-endian:
 //   0 length   = 24 + UNPADDED payload length (the receiver infers the padding)
 //   4 tv_sec, 8 tv_usec   sender's timestamp
 //  12 sender   sender id, or data for system messages (e.g. a UDP port)

@@ -1,5 +1,5 @@
 #pragma once
-// Fixed limits of the VRPN wire protocol layer (shared/reference/vrpn-protocol.md §4, §5, §8).
+// Fixed limits of the VRPN wire protocol layer (docs/vrpn.md §4, §5, §8).
 //
 // Every buffer the decoder allocates from a length the peer chose is bounded by one of these, so
 // a hostile peer can make us reject its input but never make us allocate more than

@@ -1,5 +1,5 @@
 #pragma once
-// Name <-> id tables for one kind of name (senders, or types) on one connection (reference §5).
+// Name <-> id tables for one kind of name (senders, or types) on one connection (docs/vrpn.md §5).
 //
 // Ids belong to whoever sends: the ids we put in our messages (local) and the ids the peer puts in
 // its messages (remote) are separate spaces, joined only by name. So a message's remote type id

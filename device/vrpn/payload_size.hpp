@@ -1,6 +1,6 @@
 #pragma once
-// The exact-size rule every stock _Remote applies (reference §4): one body of the wrong size is an
-// error that drops the link. Shared by the fixed-size message decoders.
+// The exact-size rule every stock _Remote applies (docs/vrpn.md §4): one body of the wrong size
+// is an error that drops the link. Shared by the fixed-size message decoders.
 #include <cstddef>
 #include <cstdint>
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-// System messages: negative type ids (reference §5).
+// System messages: negative type ids (docs/vrpn.md §5).
 //
 //  -1 SENDER_DESCRIPTION  header.sender = the id being defined; body: uint32 n = strlen+1, name, NUL
 //  -2 TYPE_DESCRIPTION    same layout, header.sender = the type id being defined

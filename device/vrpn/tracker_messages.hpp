@@ -1,5 +1,5 @@
 #pragma once
-// vrpn_Tracker messages we use (reference §7). Metres, unit quaternions (x, y, z, w), float64
+// vrpn_Tracker messages we use (docs/vrpn.md §7). Metres, unit quaternions (x, y, z, w), float64
 // big-endian. Same struct shape as base_messages.hpp.
 //
 // Reports start with int32 sensor and an int32 "pad" that stock senders fill with the sensor

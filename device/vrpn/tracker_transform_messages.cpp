@@ -33,7 +33,7 @@ Result<TrackerToRoom> TrackerToRoom::decode(std::span<const std::uint8_t> payloa
 
 void TrackerUnitToSensor::encode(ByteWriter& w) const {
   w.i32(sensor);
-  w.i32(0);  // stock senders write 0 here (reference §7), not the sensor again
+  w.i32(0);  // stock senders write 0 here (docs/vrpn.md §7), not the sensor again
   putAll(w, pos);
   putAll(w, quat);
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The vrpn_Tracker transform and workspace messages a stock vrpn_Phantom answers (reference §7,
+// The vrpn_Tracker transform and workspace messages a stock vrpn_Phantom answers (docs/vrpn.md §7,
 // §9 "the tracker transform requests"). A client asks with an empty request; the server replies
 // with the matching message. Metres, quaternions (x, y, z, w), float64 big-endian; exact sizes
 // (a wrong size drops the link at a stock Remote, §4). Same struct shape as tracker_messages.hpp.

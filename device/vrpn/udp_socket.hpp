@@ -1,5 +1,5 @@
 #pragma once
-// UDP for the connection request of mode A ("UDP lob", reference §1): the server's request
+// UDP for the connection request of mode A ("UDP lob", docs/vrpn.md §1): the server's request
 // socket and the client's request datagram. With tcp_connection.hpp, the only files in thx_vrpn
 // that touch sockets. IPv4 only; nothing here blocks except name resolution (getaddrinfo) in
 // sendDatagram() and localAddressTowards(), which belong on I/O threads.

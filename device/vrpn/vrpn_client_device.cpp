@@ -47,7 +47,7 @@ void omegaFrom(const std::array<double, 4>& q, double dt, double out[3]) {
   for (int i = 0; i < 3; ++i) out[i] = q[std::size_t(i)] / s * angle / dt;
 }
 
-// Mode A (reference §1): listen on an ephemeral TCP port at the local address that routes to the
+// Mode A (docs/vrpn.md §1): listen on an ephemeral TCP port at the local address that routes to the
 // server, send the server "ip port" by UDP, and wait for it to connect back; re-send every
 // `resend_ns` (2 s) until it does. step() waits at most poll_ms and returns the accepted socket.
 class LobConnector {
@@ -425,7 +425,7 @@ void VrpnClientDevice::ioMain() {
         sent_plane.reset();
         sent_field = ForceField{};  // a fresh server link starts with no field
         conn->endpoint().sendMessage(sender, Ping{});
-        // A stock server keeps its vrpn.cfg rate (often 60 Hz) unless asked (reference §7, §9).
+        // A stock server keeps its vrpn.cfg rate (often 60 Hz) unless asked (docs/vrpn.md §7, §9).
         const bool asked = options_.request_rate_hz > 0.0 &&
                            conn->endpoint().sendMessage(sender, TrackerUpdateRate{options_.request_rate_hz});
         std::lock_guard lock(status_mutex_);

@@ -1,18 +1,19 @@
 #pragma once
 // VrpnClientDevice: a PHANToM served by a stock VRPN server (vrpn_Phantom), as a HapticDevice in
-// OutputMode::Planes (issue 4). Address "Phantom0@tcp://host:port" (direct TCP, reference §1 mode
-// B) or "Phantom0@host[:port]" (mode A: a UDP request, then the server connects back to an
-// ephemeral TCP listener of ours; the request is re-sent every reconnect_interval until it does).
+// OutputMode::Planes (issue 4). Address "Phantom0@tcp://host:port" (direct TCP, docs/vrpn.md
+// §1 mode B) or "Phantom0@host[:port]" (mode A: a UDP request, then the server connects back to
+// an ephemeral TCP listener of ours; the request is re-sent every reconnect_interval until it
+// does).
 //
 // Threads:
 //  - A background I/O thread owns the TcpConnection + Endpoint. It connects, retries every
-//    reconnect_interval (2 s, reference §1/§10) after a failure or a drop, pings on each connect
+//    reconnect_interval (2 s, docs/vrpn.md §1/§10) after a failure or a drop, pings on each connect
 //    (so the server sends Button States, §6), asks for request_rate_hz reports with
 //    `vrpn_Tracker set_update_rate` on each connect (a stock vrpn_Phantom otherwise keeps its
 //    vrpn.cfg rate, often 60 Hz, §9), and decodes `vrpn_Tracker Pos_Quat` / `Velocity`
 //    (sensor 0) and `vrpn_Button Change` / `States` from our sender name into a latest-value slot.
 //    ForceDevice Force/SCP/Force_Error are counted for diagnostics. A message that fails to
-//    decode drops the link (reference §4), which then reconnects.
+//    decode drops the link (docs/vrpn.md §4), which then reconnects.
 //  - The servo thread calls read()/write(): neither allocates nor locks; read() sleeps on the
 //    Pacer (the servo period on the given Clock) and then returns the newest state.
 //
@@ -26,7 +27,7 @@
 //
 // write() stores the command in a slot; the I/O thread turns it into wire messages:
 //  - planes[0] -> `vrpn_ForceDevice Plane` (toForcePlane below); num_planes == 0 or
-//    forces_enabled == false -> stop surface (plane (0,0,0,0), reference §9). Only planes[0] is
+//    forces_enabled == false -> stop surface (plane (0,0,0,0), docs/vrpn.md §9). Only planes[0] is
 //    sent: the stock Remote always sends plane_index 0 (and vrpn_Phantom does not bounds-check it).
 //  - force_world_n != 0 with forces enabled -> `Force_Field` with that constant force, J = 0,
 //    radius field_radius (default 100 m, as the stock Remote's constraints); when it returns to
@@ -67,7 +68,7 @@ struct VrpnClientOptions {
   std::chrono::nanoseconds min_send_interval{std::chrono::milliseconds(1)};
   std::chrono::nanoseconds command_timeout{std::chrono::milliseconds(10)};  // 0: no watchdog
   std::chrono::nanoseconds io_poll_interval{std::chrono::milliseconds(1)};  // I/O thread wake-up
-  std::int32_t n_rec_cycles = 1;  // sent as is; stock vrpn_Phantom ignores it (reference §9)
+  std::int32_t n_rec_cycles = 1;  // sent as is; stock vrpn_Phantom ignores it (docs/vrpn.md §9)
   float field_radius_m = 100.0f;
   // Report rate asked for with set_update_rate on every connect: the servo rate, so each tick
   // sees a fresh pose. <= 0: never ask (the server's own rate).
@@ -99,10 +100,10 @@ struct VrpnClientStatus {
 };
 
 // One PlaneProxy (n.x = d, n outward, SI units) as a vrpn_Phantom Plane message:
-//  - plane (a,b,c,d) = (n, -d): free space where a x + b y + c z + d > 0 (reference §9);
+//  - plane (a,b,c,d) = (n, -d): free space where a x + b y + c z + d > 0 (docs/vrpn.md §9);
 //  - kspring = k / spec.max_stiffness_n_per_m, clamped to [0.001, 1] like the server;
 //  - kdamp = b / 1000 (N·s/mm, GHOST's unit, which the server clamps to [0, 0.005]: 0.005 N·s/mm
-//    is the 5 N·s/m PHANToM Desktop maximum) [assumption: the reference gives only the range];
+//    is the 5 N·s/m PHANToM Desktop maximum) [assumption: docs/vrpn.md §9 gives only the range];
 //  - fstat = mu_static clamped to [0, 1], fdyn = mu_dynamic clamped to [0, fstat];
 //  - plane_index 0, n_rec_cycles as given.
 // A non-finite plane becomes a stop surface.

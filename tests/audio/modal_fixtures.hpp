@@ -1,5 +1,5 @@
 #pragma once
-// Shared by the modal tests: materials of the reference cases (sound-anchors.md §2, §3).
+// Shared by the modal tests: the reference cases of docs/audio.md §8.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,8 +17,8 @@ inline ElasticMaterial steel() { return *scene::findMaterial("steel"); }
 // |a / b - 1|
 inline double relativeError(double a, double b) { return std::fabs(a / b - 1.0); }
 
-// The free-free steel bar of §3a: 0.30 x 0.02 x 0.01 m, and its converged 3D elastic modes 7-12
-// (quadratic tets, unchanged between 2 and 3 layers), Hz.
+// The free-free steel bar of docs/audio.md §8.1: 0.30 x 0.02 x 0.01 m, and its converged 3D elastic
+// modes 7-12 (quadratic tets, unchanged between 2 and 3 layers), Hz.
 inline const Eigen::Vector3d kBar(0.30, 0.02, 0.01);
 inline constexpr double kBarConverged[6] = {574.3, 1135.2, 1572.0, 3044.7, 3051.2, 3887.6};
 
@@ -29,8 +29,8 @@ inline ModalSolution solveBar(int layers, ElementOrder order, int modes) {
   return analyse(boxMesh("bar", kBar, {30 * layers, 2 * layers, layers}, order), steel(), settings);
 }
 
-// Free-free steel plate 0.3 x 0.3 x 0.005 m (§3b), Tet10 cells x cells x 1: its first `modes`
-// elastic modes within 1.5 % of Kirchhoff (Leissa's lambda for nu = 0.29, modes 1-8).
+// Free-free steel plate 0.3 x 0.3 x 0.005 m (docs/audio.md §8.2), Tet10 cells x cells x 1: its
+// first `modes` elastic modes within 1.5 % of Kirchhoff (Leissa's lambda for nu = 0.29, modes 1-8).
 inline void expectPlateNearKirchhoff(int cells, int modes) {
   constexpr double kLambda[8] = {13.557, 19.706, 24.221, 34.967, 34.967, 61.137, 61.137, 63.959};
   const double a = 0.3, h = 0.005;

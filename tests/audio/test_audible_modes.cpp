@@ -13,7 +13,7 @@ namespace {
 using test::relativeError;
 using test::steel;
 
-// a = 0.1 m: T2 near 12.5 kHz, S2 near 13.2 kHz (sound-anchors.md §3c), both in band.
+// a = 0.1 m: T2 near 12.5 kHz, S2 near 13.2 kHz (docs/audio.md §8.3), both in band.
 // Solved once for all tests of this file.
 const ModalSolution& sphere10() {
   static const ModalSolution solution = [] {

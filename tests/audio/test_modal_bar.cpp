@@ -1,4 +1,4 @@
-// The free-free steel bar of sound-anchors.md §3a/§3d: Tet10 against the converged 3D values,
+// The free-free steel bar of docs/audio.md §8.1/§8.4: Tet10 against the converged 3D values,
 // linear tets converging to them from above. Small meshes (the sanitizer tree is unoptimised);
 // the converged sizes are in test_modal_bar_slow.cpp.
 #include <gtest/gtest.h>
@@ -19,7 +19,7 @@ using test::solveBar;
 // mode 12 needs two (+4.4 % with one), checked in test_modal_bar_slow.cpp.
 TEST(ModalBar, Tet10OneLayerWithinOnePercentOfConverged) {
   const ModalSolution s = solveBar(1, ElementOrder::Quadratic, 6);
-  EXPECT_EQ(s.mesh_dofs, 2745);  // sound-anchors.md §3d
+  EXPECT_EQ(s.mesh_dofs, 2745);  // docs/audio.md §8.4
   EXPECT_EQ(s.rigid_modes, 6);
   for (int k = 0; k < 5; ++k) {
     std::printf("mode %d: %.1f Hz (converged %.1f, %+.2f %%)\n", k + 7, s.frequencyHz(k), kBarConverged[k],

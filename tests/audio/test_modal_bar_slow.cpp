@@ -1,4 +1,4 @@
-// The converged sizes of the steel bar (sound-anchors.md §3a, §3d): label `slow`.
+// The converged sizes of the steel bar (docs/audio.md §8.1, §8.4): label `slow`.
 #include <gtest/gtest.h>
 
 #include <cstdio>

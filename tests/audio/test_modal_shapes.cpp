@@ -1,4 +1,4 @@
-// The Kirchhoff plate (sound-anchors.md §3b) and Lamb's sphere (§3c) with Tet10, on meshes
+// The Kirchhoff plate (docs/audio.md §8.2) and Lamb's sphere (§8.3) with Tet10, on meshes
 // small enough for the sanitizer tree.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// DESIGN §4 rule 1: the simulated device's read() and write() run inside the servo tick, so they
-// must not allocate. This executable replaces the global operator new to count allocations.
+// docs/design.md §4 rule 1: the simulated device's read() and write() run inside the servo tick, so
+// they must not allocate. This executable replaces the global operator new to count allocations.
 // (Eigen heap use would go through malloc, not operator new; device/ uses fixed-size types only.)
 #include <gtest/gtest.h>
 

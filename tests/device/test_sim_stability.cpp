@@ -1,6 +1,6 @@
-// DESIGN §5: "a simulator that cannot go unstable proves nothing about stability". The servo
-// side renders a plain wall F = K max(0, -z) n from the device's readings (quantised position,
-// no virtual damping) while the hand presses the pen onto it with 1 N. Passivity
+// docs/design.md §5: "a simulator that cannot go unstable proves nothing about stability". The
+// servo side renders a plain wall F = K max(0, -z) n from the device's readings (quantised
+// position, no virtual damping) while the hand presses the pen onto it with 1 N. Passivity
 // (Colgate): b > K T / 2 + |B|. Lock-step, deterministic.
 //
 //  - K = 1000 N/m with a light grip (hand mass 0.05 kg), no hand damping, b = 0.002 N·s/m,

@@ -1,4 +1,4 @@
-// Normal-map mode on a uniformly tilted normal map: the analytic cases of DESIGN §6.
+// Normal-map mode on a uniformly tilted normal map: the analytic cases of docs/design.md §6.
 // A ball rolling on a slope of angle θ that it "feels" only through the normal accelerates
 // horizontally at a = 5/7 g tanθ (rolling) or g tanθ (frictionless): the flat plane holds the
 // ball's height, the sampled normal tilts the push (Eq. 1, Eq. 2).

@@ -1,5 +1,5 @@
-// A ball at rest stays at rest: drift below 0.1 mm/s over 10 s simulated (DESIGN §6, issue 6),
-// on flat textures in both representations, at the bottom of a dimple (a textured, stable spot)
+// A ball at rest stays at rest: drift below 0.1 mm/s over 10 s simulated (docs/design.md §6, issue
+// 6), on flat textures in both representations, at the bottom of a dimple (a textured, stable spot)
 // and on the two walls of a groove, at 1 kHz and at 60 Hz.
 #include <gtest/gtest.h>
 

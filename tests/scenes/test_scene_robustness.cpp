@@ -1,6 +1,6 @@
-// Bad input gets a SceneError and nothing worse (DESIGN §4 rule 6): every truncation of a real
-// scene, and every value in it replaced by something hostile, either loads or throws SceneError
-// with a location; never another exception, a crash or a sanitizer report.
+// Bad input gets a SceneError and nothing worse (docs/design.md §4 rule 6): every truncation of a
+// real scene, and every value in it replaced by something hostile, either loads or throws
+// SceneError with a location; never another exception, a crash or a sanitizer report.
 #include <gtest/gtest.h>
 
 #include <fstream>

@@ -36,7 +36,7 @@ TEST(Materials, EveryNamedMaterialIsThereWithPlausibleValues) {
   EXPECT_EQ(findMaterial("unobtainium"), nullptr);
 }
 
-TEST(Materials, ValuesFromTheReferenceTable) {  // shared/reference/sound-anchors.md §2
+TEST(Materials, ValuesFromTheReferenceTable) {  // docs/scenes.md "Materials"
   const Material& steel = *findMaterial("steel");
   EXPECT_EQ(steel.density_kg_per_m3, 7850.0);
   EXPECT_EQ(steel.youngs_modulus_pa, 2.0e11);
@@ -46,11 +46,11 @@ TEST(Materials, ValuesFromTheReferenceTable) {  // shared/reference/sound-anchor
   const Material& wood = *findMaterial("wood");
   EXPECT_EQ(wood.rayleigh_alpha_per_s, 60.0);
   EXPECT_EQ(wood.rayleigh_beta_s, 2e-6);
-  // √(E/ρ) column of the reference, within its rounding.
+  // √(E/ρ) of KleinPAT's glass (4883 m/s), within its rounding.
   EXPECT_NEAR(std::sqrt(findMaterial("glass")->youngs_modulus_pa / findMaterial("glass")->density_kg_per_m3), 4883, 1);
 }
 
-TEST(DeviceModels, ChaiTableValues) {  // shared/reference/haptics-anchors.md §0
+TEST(DeviceModels, ChaiTableValues) {  // docs/scenes.md "Device models"
   const DeviceModel& desktop = *findDeviceModel("phantom_desktop");
   EXPECT_EQ(desktop.peak_force_n, 7.9);
   EXPECT_EQ(desktop.max_stiffness_n_per_m, 1000.0);

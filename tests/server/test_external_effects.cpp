@@ -290,7 +290,7 @@ TEST(ExternalEffects, RenderingAllocatesNothing) {
   EXPECT_EQ(test::g_allocations.load() - before, 0);
 }
 
-// ---- The clamps (reference §9) ----------------------------------------------------------------
+// ---- The clamps (docs/vrpn.md §9) ------------------------------------------------------------
 
 TEST(VrpnEffectCommands, PlaneParametersAreClampedLikeVrpnPhantom) {
   ExternalEffects e;

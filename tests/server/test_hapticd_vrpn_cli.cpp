@@ -164,7 +164,7 @@ TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
   EXPECT_EQ(std::stoi(m[2]), 0);
 }
 
-// --vrpn-plane2: without it hapticd ignores Plane2 like a stock HDAPI PHANToM (reference §9; the
+// --vrpn-plane2: without it hapticd ignores Plane2 like a stock HDAPI PHANToM (docs/vrpn.md §9; the
 // sample clients send placeholder values with every report); with it Plane2 is a force command.
 TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
   const ProcRun help = run("--help");

@@ -121,8 +121,8 @@ TEST(SceneSwap, UnderContactTheForceRampsDownSwapsAtZeroAndRampsUpWithinTheSafet
   EXPECT_LE(s.max_step_n, rate_limit_step);
   EXPECT_EQ(s.rate_limited_ticks, 0);
   EXPECT_LT(s.max_step_n, 0.03);
-  // DESIGN §4 rule 1 through the switch: the servo thread took, retargeted and completed without
-  // allocating or freeing anything.
+  // docs/design.md §4 rule 1 through the switch: the servo thread took, retargeted and completed
+  // without allocating or freeing anything.
   EXPECT_EQ(s.allocations, 0);
   EXPECT_EQ(s.frees, 0);
 }

@@ -1,5 +1,5 @@
-// DESIGN §4 rule 1: nothing in the servo tick allocates. Every operator new in this binary is
-// counted (tests/support/allocation_counter.hpp); a full tick pipeline (render with crease
+// docs/design.md §4 rule 1: nothing in the servo tick allocates. Every operator new in this binary
+// is counted (tests/support/allocation_counter.hpp); a full tick pipeline (render with crease
 // handling, passivity, safety, flight recorder, ring) runs 5000 ticks of presses and strokes
 // across V-valleys, with client forces, a fault and a client's fault reset.
 #include <gtest/gtest.h>

@@ -92,7 +92,8 @@ TEST(StabilityBudget, StrictPolicyMakesTheSameFindingAnError) {
 }
 
 TEST(StabilityBudget, VendorMaximumNeedsHalfANewtonSecondPerMetreOfPhysicalDamping) {
-  // haptics-anchors §0: at T = 1 ms, K = 1000 N/m needs b >= 0.5 N s/m before virtual damping.
+  // docs/design.md §5 (K <= 2(b - |B|)/T): at T = 1 ms, K = 1000 N/m needs b >= 0.5 N s/m before
+  // virtual damping.
   const StabilityBudget s = srv::checkStabilityBudget(desktop(), request(1.0));
   EXPECT_NEAR(s.required_physical_damping_ns_per_m, 0.5, 1e-12);
   EXPECT_FALSE(s.within_bound);

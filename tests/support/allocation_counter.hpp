@@ -1,7 +1,8 @@
 #pragma once
-// Counts every global operator new (and, per thread, every delete) of a test executable (DESIGN §4 rule 1: nothing in the servo
-// tick allocates). Include it in exactly ONE source file per executable: it defines the
-// replacement allocation functions, which must exist once per program.
+// Counts every global operator new (and, per thread, every delete) of a test executable
+// (docs/design.md §4 rule 1: nothing in the servo tick allocates). Include it in exactly ONE source
+// file per executable: it defines the replacement allocation functions, which must exist once per
+// program.
 #include <atomic>
 #include <cstddef>
 #include <cstdlib>

@@ -132,8 +132,9 @@ class HapticdProcessTest : public ::testing::Test {
   // (tests/server/test_servo_no_alloc.cpp: no allocation, lock or system call in the tick). How
   // punctually the servo ticks beside its clients on this shared 2-core VM (missed deadlines,
   // achieved rate, snapshots the publisher could not take) depends on the scheduler, so it is
-  // measured by the benchmarks (bench_clients, bench_latency) and never asserted here (DESIGN
-  // rule 7; CI has seen 2.3 % of deadlines missed to VM stalls with the sanitizer tree beside).
+  // measured by the benchmarks (bench_clients, bench_latency) and never asserted here
+  // (docs/design.md §4 rule 7; CI has seen 2.3 % of deadlines missed to VM stalls with the
+  // sanitizer tree beside).
   void expectServoRanSafely() const {
     const std::string s = slurp(path("s.json"));
     SCOPED_TRACE("hapticd --stats-json: " + s);

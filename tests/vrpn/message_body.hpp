@@ -1,6 +1,6 @@
 #pragma once
 // A message's body bytes as its encoder writes them (no header, no padding): what the golden and
-// layout tests compare with the reference's captures.
+// layout tests compare with the captures of docs/vrpn.md §11.
 #include <cstdint>
 #include <vector>
 

@@ -1,4 +1,4 @@
-// Device addresses and the mode-A connection request (reference §1), including the captured
+// Device addresses and the mode-A connection request (docs/vrpn.md §1), including the captured
 // request datagram byte-exact both ways.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Cookie checks exactly as the reference states them (§2): match through "vrpn: ver. 07.", log
+// Cookie checks exactly as docs/vrpn.md §2 states them: match through "vrpn: ver. 07.", log
 // mode '0'..'3', a different minor number only warns, the other bytes are not checked.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Golden tests from the stock-program captures (reference §11): every captured message decodes to
-// the expected values, and encoding those values gives exactly the captured bytes. The one
+// Golden tests from the stock-program captures (docs/vrpn.md §11): every captured message decodes
+// to the expected values, and encoding those values gives exactly the captured bytes. The one
 // allowed difference: padding, which stock senders leave as garbage and we write as zeros.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Device message bodies (reference §6-§9): field order and sizes on the wire, round trips, and the
-// exact-size rule (one wrong-sized body is an error, never a partial read).
+// Device message bodies (docs/vrpn.md §6-§9): field order and sizes on the wire, round trips, and
+// the exact-size rule (one wrong-sized body is an error, never a partial read).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Name <-> id maps: our ids and the peer's are separate spaces joined by name (reference §5).
+// Name <-> id maps: our ids and the peer's are separate spaces joined by name (docs/vrpn.md §5).
 #include <gtest/gtest.h>
 
 #include <string>

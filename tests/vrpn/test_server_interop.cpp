@@ -1,4 +1,4 @@
-// hapticd's VRPN server against what stock VRPN peers do (reference §7, §9, §10): a slow reader
+// hapticd's VRPN server against what stock VRPN peers do (docs/vrpn.md §7, §9, §10): a slow reader
 // (vrpn_print_devices on a terminal), the tracker transform requests, sphere_client's Plane2
 // placeholders, a socket that never finishes the handshake, and a servo without a valid reading
 // yet. Same rig as test_server_loopback.cpp (served_rig.hpp).
@@ -82,7 +82,7 @@ TEST(VrpnServerInterop, TrackerRequestsAreAnsweredWithIdentityTransformsAndTheWo
            c.counts[std::string(TrackerUnitToSensor::kTypeName)] == 1 &&
            c.counts[std::string(TrackerWorkspace::kTypeName)] == 1;
   }));
-  // The exact bodies of reference §7: pos (0,0,0), quat (0,0,0,1) = 1.0 is 3ff0000000000000.
+  // The exact bodies of docs/vrpn.md §7: pos (0,0,0), quat (0,0,0,1) = 1.0 is 3ff0000000000000.
   const std::vector<std::uint8_t> identity = hex(
       "00 00 00 00 00 00 00 00  00 00 00 00 00 00 00 00  00 00 00 00 00 00 00 00"
       "00 00 00 00 00 00 00 00  00 00 00 00 00 00 00 00  00 00 00 00 00 00 00 00  3f f0 00 00 00 00 00 00");

@@ -1,4 +1,4 @@
-// The tracker transform requests and replies a stock vrpn_Phantom answers (reference §7, §9):
+// The tracker transform requests and replies a stock vrpn_Phantom answers (docs/vrpn.md §7, §9):
 // golden-style byte tests written from the §7 layouts (no capture of these exists): exact type
 // names, exact body bytes both ways, whole frames, and the exact-size rule.
 #include <gtest/gtest.h>
@@ -64,7 +64,7 @@ TEST(VrpnTrackerTransform, UnitToSensorHasTheSensorThenAZeroPad) {
   ASSERT_EQ(identity0.size(), 64u);
   EXPECT_EQ(body(TrackerUnitToSensor{}), identity0);
 
-  // Sensor 3, pos (0.5, 0, -2), quat (0, 0, 0, 1): the pad word stays 0 (reference §7).
+  // Sensor 3, pos (0.5, 0, -2), quat (0, 0, 0, 1): the pad word stays 0 (docs/vrpn.md §7).
   TrackerUnitToSensor m;
   m.sensor = 3;
   m.pos = {0.5, 0.0, -2.0};

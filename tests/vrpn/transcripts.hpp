@@ -1,6 +1,6 @@
 #pragma once
 // Byte transcripts captured from stock VRPN programs, copied from
-// shared/reference/vrpn-protocol.md §11 (hex exactly as printed there), plus a hex parser.
+// the captures of docs/vrpn.md §11 (hex exactly as the team recorded them), plus a hex parser.
 #include <cctype>
 #include <cstdint>
 #include <stdexcept>

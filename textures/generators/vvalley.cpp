@@ -1,4 +1,4 @@
-// Parallel V-shaped valleys running along y: the haptic crease test case (DESIGN §5).
+// Parallel V-shaped valleys running along y: the haptic crease test case (docs/design.md §5).
 //
 // Ridges at x = k * period, floors half way between. The two walls of a valley meet at the
 // floor with the opening angle theta, so each wall rises at alpha = 90° - theta/2 from the plane
