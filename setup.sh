@@ -15,7 +15,7 @@ fi
 PACKAGES="
   g++ make cmake pkg-config
   libeigen3-dev libpng-dev
-  libopencv-core-dev libopencv-imgproc-dev
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libstb-dev
   libyaml-cpp-dev
   liblcm-dev liblcm-bin libglib2.0-dev
   libbullet-dev

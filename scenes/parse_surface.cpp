@@ -1,4 +1,5 @@
-// surface: size, pose, texture, representation, max_depth, green, sampling, material, smoothing_sigma.
+// surface: size, pose, texture, representation, max_depth or max_depth_fraction, green, sampling,
+// material, smoothing_sigma.
 #include "scenes/scene_sections.hpp"
 #include "textures/smoothing.hpp"
 
@@ -20,6 +21,23 @@ std::optional<double> parseMaxDepth(const Field& field, const std::optional<tex:
                range.describe() + " (depth into the surface), or leave max_depth out to use the texture's own");
   if (!range.contains(depth)) field.fail("out of range", range.describe());
   if (!relief) field.warn("max_depth is ignored for representation: normal (a normal map has no depth)");
+  return depth;
+}
+
+// The paper's form: depth as a fraction of the object's size, here the surface's width size[0]
+// (its extent along the plane's x axis, which the texture's u spans).
+double parseMaxDepthFraction(const Field& field, const std::optional<tex::Representation>& representation,
+                             double width_m) {
+  const bool relief = representation.value_or(tex::Representation::Relief) == tex::Representation::Relief;
+  const double fraction = field.number(positiveUpTo(1.0, "of size[0]"));
+  const double depth = fraction * width_m;
+  if (depth > kMaxReliefDepthM) {
+    field.fail("the depth it gives is too deep for a texture",
+               "at most " + formatNumber(kMaxReliefDepthM) + " m, i.e. a fraction up to " +
+                   formatNumber(kMaxReliefDepthM / width_m) + " of size[0] = " + formatNumber(width_m) + " m",
+               "'" + formatNumber(fraction) + "' (" + formatNumber(depth) + " m)");
+  }
+  if (!relief) field.warn("max_depth_fraction is ignored for representation: normal (a normal map has no depth)");
   return depth;
 }
 
@@ -61,8 +79,8 @@ TextureSource parseTexture(const Field& field, const Surface& surface) {
 
 Surface parseSurface(const Field& field) {
   if (field.isNull()) field.fail("missing value", "a mapping with at least size and texture");
-  field.expectKeys(
-      {"size", "pose", "texture", "representation", "max_depth", "green", "sampling", "material", "smoothing_sigma"});
+  field.expectKeys({"size", "pose", "texture", "representation", "max_depth", "max_depth_fraction", "green",
+                    "sampling", "material", "smoothing_sigma"});
   Surface s;
   s.size_m = field.at("size", "[x, y] in metres").vector2(positiveUpTo(10.0, "m"));
   if (auto p = field.find("pose")) s.pose = parsePose(*p);
@@ -72,7 +90,13 @@ Surface parseSurface(const Field& field) {
   s.texture = parseTexture(field.at("texture", "{file: PATH} or {generator: KIND, ...}"), s);
   if (s.texture.kind == TextureSource::Kind::Generator && !s.representation)
     s.representation = tex::Representation::Relief;  // what generators produce
-  if (auto d = field.find("max_depth")) s.max_depth_m = parseMaxDepth(*d, s.representation);
+  const auto depth = field.find("max_depth");
+  const auto fraction = field.find("max_depth_fraction");
+  if (depth && fraction)
+    fraction->fail("both max_depth and max_depth_fraction given",
+                   "one of them: metres, or a fraction of size[0]", "");
+  if (depth) s.max_depth_m = parseMaxDepth(*depth, s.representation);
+  if (fraction) s.max_depth_m = parseMaxDepthFraction(*fraction, s.representation, s.size_m.x());
   if (auto g = field.find("green")) {
     s.green = g->choice<tex::GreenConvention>(
         {{"opengl", tex::GreenConvention::OpenGL}, {"directx", tex::GreenConvention::DirectX}});

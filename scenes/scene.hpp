@@ -40,7 +40,8 @@ struct Surface {
   // Generator textures default to Relief. For a file, nullopt means "whatever the file holds"
   // (RGB -> normal, RGBA -> relief).
   std::optional<tex::Representation> representation;
-  std::optional<double> max_depth_m;  // overrides the texture's own maximum depth
+  std::optional<double> max_depth_m;  // overrides the texture's own maximum depth (max_depth, or
+                                      // max_depth_fraction × size_m.x(), the surface's width)
   tex::GreenConvention green = tex::GreenConvention::OpenGL;
   tex::SampleOptions sampling;  // bilinear + wrap by default
   Material material;

@@ -160,7 +160,10 @@ RawImage readPng(const std::string& path) {
     throw TextureError(path, "not a PNG file", "only " + std::to_string(got) + " bytes",
                        "at least the 8-byte PNG signature");
   }
-  if (png_sig_cmp(signature, 0, 8) != 0) throw TextureError(path, "not a PNG file", "wrong signature", "a PNG file");
+  if (png_sig_cmp(signature, 0, 8) != 0) {
+    throw TextureError(path, "not a PNG file", "wrong signature",
+                       "a PNG file (convert JPG, TGA, BMP, TIFF or WebP with texturetool import)");
+  }
 
   auto st = std::make_unique<ReadState>();
   const ReadStatus status = readInto(fp.get(), st.get());

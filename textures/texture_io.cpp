@@ -90,7 +90,11 @@ void repair(TextureMap& map, const std::vector<BadTexel>& bad, const std::vector
 const char* toString(GreenConvention g) { return g == GreenConvention::DirectX ? "directx" : "opengl"; }
 
 TextureMap loadTexture(const std::string& path, const LoadOptions& options, LoadReport* report) {
-  const RawImage raw = readPng(path);
+  return decodeTexture(readPng(path), path, options, report);
+}
+
+TextureMap decodeTexture(const RawImage& raw, const std::string& path, const LoadOptions& options,
+                         LoadReport* report) {
   if (raw.channels != 3 && raw.channels != 4) {
     throw TextureError(path, "wrong channel count", channelDescription(raw.channels),
                        "3 channels (RGB normal map) or 4 (RGBA relief map: alpha = depth)");

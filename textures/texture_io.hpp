@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "textures/png_io.hpp"
 #include "textures/texture_map.hpp"
 
 namespace thx::tex {
@@ -38,6 +39,10 @@ struct LoadReport {
 };
 
 TextureMap loadTexture(const std::string& path, const LoadOptions& options = {}, LoadReport* report = nullptr);
+// The same from an image already in memory (`source` names it in errors and warnings): RGB or
+// RGBA, 8 or 16 bits, text chunks as in a PNG. The importer of other formats uses it.
+TextureMap decodeTexture(const RawImage& raw, const std::string& source, const LoadOptions& options = {},
+                         LoadReport* report = nullptr);
 
 struct SaveOptions {
   int bit_depth = 16;  // 8 or 16

@@ -38,6 +38,11 @@ TEST(SceneWarnings, MaxDepthWithNormalRepresentation) {
                    {"w.yaml:7:", "surface.max_depth", "ignored for representation: normal"});
 }
 
+TEST(SceneWarnings, MaxDepthFractionWithNormalRepresentation) {
+  expectOneWarning(sceneWith("  representation: normal\n  max_depth_fraction: 0.01\n"),
+                   {"w.yaml:7:", "surface.max_depth_fraction", "ignored for representation: normal"});
+}
+
 TEST(SceneWarnings, GreenWithGeneratedTexture) {
   expectOneWarning(sceneWith("  green: directx\n"), {"surface.green", "ignored for generated textures"});
 }

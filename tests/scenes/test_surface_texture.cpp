@@ -63,6 +63,20 @@ TEST(SurfaceTexture, MaxDepthOverrideRescalesGeneratedDepth) {
     }
 }
 
+TEST(SurfaceTexture, MaxDepthAsAFractionOfTheSurfaceWidth) {
+  // generated() makes a 0.1 m wide surface: 2 % of it is 2 mm.
+  const Scene scene = parseScene(generated("  max_depth_fraction: 0.02\n"), "t.yaml", "");
+  ASSERT_TRUE(scene.surface.max_depth_m.has_value());
+  EXPECT_DOUBLE_EQ(*scene.surface.max_depth_m, 0.02 * scene.surface.size_m.x());
+  EXPECT_DOUBLE_EQ(buildSurfaceTexture(scene).maxDepth(), 0.002);
+  // The same depth given in metres builds the same texture.
+  const Scene metres = parseScene(generated("  max_depth: 0.002\n"), "t.yaml", "");
+  const tex::TextureMap a = buildSurfaceTexture(scene), b = buildSurfaceTexture(metres);
+  EXPECT_EQ(a.maxDepth(), b.maxDepth());
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i) EXPECT_EQ(a.depthCode(i, j), b.depthCode(i, j));
+}
+
 TEST(SurfaceTexture, SmoothingUsesTheSmootherEveryProgramShares) {
   const Scene scene = parseScene(generated("  smoothing_sigma: 1.5\n"), "t.yaml", "");
   const Scene plain = parseScene(generated(""), "t.yaml", "");

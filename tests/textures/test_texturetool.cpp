@@ -11,10 +11,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/textures/bump_images.hpp"
 #include "textures/png_io.hpp"
 #include "textures/texture_io.hpp"
 
 using namespace thx::tex;
+using namespace thx::tex::test;
 namespace fs = std::filesystem;
 
 namespace {
@@ -200,4 +202,65 @@ TEST_F(TextureTool, SmoothKeepsBitDepthAndChecksSigma) {
   r = run("smooth " + path("missing.png") + " " + path("s3.png") + " --sigma 1");
   EXPECT_EQ(r.status, 1);
   EXPECT_TRUE(has(r.err, "missing.png")) << r.err;
+}
+
+TEST_F(TextureTool, ImportATgaNormalMapWithDirectXGreen) {
+  const int n = 64;
+  writeTga(path("bump.tga"), n, n, 4, bumpRgb(n, /*directx=*/true, /*alpha=*/255));
+  // The file's convention is found from the normals alone.
+  ToolRun r = run("info " + path("bump.tga"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "format:          TGA")) << r.out;
+  EXPECT_TRUE(has(r.out, "green likely:    directx")) << r.out;
+
+  r = run("import " + path("bump.tga") + " " + path("bump.png") + " --green directx --extent 0.05");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;  // constant alpha dropped: nothing to warn about
+  LoadReport report;
+  const TextureMap m = loadTexture(path("bump.png"), {}, &report);  // our PNG, OpenGL green
+  EXPECT_TRUE(report.warnings.empty());
+  EXPECT_FALSE(m.isRelief());
+  EXPECT_EQ(report.bit_depth, 16);
+  EXPECT_NEAR(m.meta().extent_x_m, 0.05, 1e-12);
+  EXPECT_LT(maxAngleDeg(m, [&](int i, int j) { return bumpNormal(i, j, n); }), 0.5);
+  r = run("info " + path("bump.png"));
+  EXPECT_TRUE(has(r.out, "green likely:    opengl")) << r.out;
+
+  // The same alpha said to hold depth: imported, with the warning the issue asked for.
+  r = run("import " + path("bump.tga") + " " + path("flat.png") + " --green directx --alpha depth --alpha-scale 0.001");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "warning")) << r.err;
+  EXPECT_TRUE(has(r.err, "alpha is 255 everywhere")) << r.err;
+  EXPECT_TRUE(loadTexture(path("flat.png")).isRelief());
+}
+
+TEST_F(TextureTool, ImportHelpAndBadInput) {
+  ToolRun r = run("import --help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* part : {"--green", "--alpha none|height|depth", "--alpha-scale", "JPEG", "TGA", "WebP", "TIFF", "BMP"})
+    EXPECT_TRUE(has(r.out, part)) << part;
+  EXPECT_TRUE(has(run("--help").out, "import")) << "main help lists import";
+
+  std::ofstream(path("readme.txt")) << "hello";
+  r = run("import " + path("readme.txt") + " " + path("x.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(has(r.err, path("readme.txt"))) << r.err;
+  EXPECT_TRUE(has(r.err, "unknown image format")) << r.err;
+  EXPECT_FALSE(fs::exists(path("x.png")));
+
+  writeTga(path("cut.tga"), 32, 32, 3, bumpRgb(32, false), 500);
+  r = run("import " + path("cut.tga") + " " + path("x.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(has(r.err, "truncated TGA file")) << r.err;
+
+  writeTga(path("ok.tga"), 32, 32, 3, bumpRgb(32, false));
+  r = run("import " + path("ok.tga") + " " + path("x.png") + " --alpha depth --alpha-scale 0.001");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(has(r.err, "has no alpha")) << r.err;
+  r = run("import " + path("ok.tga") + " " + path("x.png") + " --alpha-scale 0.001");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(has(r.err, "--alpha-scale needs --alpha")) << r.err;
+  r = run("import " + path("ok.tga") + " " + path("x.png") + " --alpha colour");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(has(r.err, "expected none, height or depth")) << r.err;
 }

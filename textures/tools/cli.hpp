@@ -59,5 +59,6 @@ int runInfo(const Args& args);
 int runFromHeight(const Args& args);
 int runSmooth(const Args& args);
 int runPreview(const Args& args);
+int runImport(const Args& args);
 
 }  // namespace thx::tex::cli

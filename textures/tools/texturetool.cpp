@@ -35,6 +35,16 @@ Prints a texture's size, representation, bit depth, metadata, depth range, norma
 and how many texels steeper than 60 deg it has. Bad texels (degenerate or pointing into the
 surface) are repaired for the statistics and reported, not refused.
 
+It also says which green convention the normals most likely use: a normal map of a height
+field has slopes whose cross derivatives agree (zero curl); read with the wrong convention they
+have opposite signs. The score (their magnitude-weighted sign agreement) is +1 for a map
+consistent with how it was read and -1 for a flipped one; noise and creases pull it towards 0.
+Below |0.2| it says "cannot tell": the relief has no mixed slopes (straight grooves or valleys,
+a uniform tilt, a flat map), and no method could tell from the normals.
+
+FILE may also be a JPEG, TGA, BMP, TIFF or WebP image (see `texturetool help import`); it is
+then read as `import` would with --alpha none, and the import warnings are printed.
+
   --green opengl|directx  green-channel convention to read the file with (default opengl)
   --max-depth M           maximum depth in metres of a relief map (overrides the file's)
 )";
@@ -77,6 +87,42 @@ its normals; relief maps are also darkened with depth). Bad texels are repaired,
   --green opengl|directx  convention to read IN with (default opengl)
 )";
 
+const char* kImportHelp = R"(usage: texturetool import IN OUT [--green opengl|directx] [--alpha none|height|depth]
+                        [--alpha-scale M] [--extent M] [--bits 8|16]
+
+Converts a normal map made elsewhere into this project's PNG (RGB = normal, OpenGL green; RGBA
+adds alpha = depth into the surface, with its maximum depth in metres recorded in the file).
+
+Reads PNG (8 or 16 bit), JPEG, BMP, TIFF and WebP (OpenCV's codecs) and TGA (stb_image; the
+name must end in .tga, since TGA has no signature). The format is told from the file's bytes,
+not its name. RGB holds the normal as (n + 1)/2 per channel; every normal is renormalised.
+
+  --green opengl|directx  how IN stores green: opengl (+Y up, default) or directx (+Y down; the
+                          green channel is flipped). `texturetool info IN` says which one the
+                          normals most likely use. OUT is always written opengl.
+  --alpha none|height|depth
+                          what IN's alpha holds: none (default: alpha is dropped, OUT is a normal
+                          map), height (white = high: depth = (1 - a/max) x scale) or depth
+                          (white = deep: depth = a/max x scale). OUT is then a relief map.
+  --alpha-scale M         metres from alpha 0 to full alpha = OUT's maximum depth, in (0, 1];
+                          required with --alpha height|depth
+  --extent M              physical width of the image in metres (recorded in OUT; optional)
+  --bits 8|16             bits per channel of OUT (default 16)
+
+Warnings (on stderr; the file is still written):
+  - the alpha is constant although --alpha height|depth was given (an RGBA normal map whose
+    alpha is 255 everywhere would become a flat relief: import it with --alpha none);
+  - the alpha varies although it is dropped (--alpha none);
+  - the normals are far from unit length (more than 5 % of texels off by more than 10 %: not a
+    normal map, or another encoding);
+  - bad texels (degenerate, or pointing into the surface) were repaired, with their count;
+  - the normals look like the other green convention.
+
+Errors name the file: unknown format, truncated or corrupt file, grayscale input (use
+from-height), --alpha height|depth on an image without alpha or without --alpha-scale, size
+outside [2, 16384] per side, samples other than 8 or 16 bits.
+)";
+
 const char* kMainHelp = R"(usage: texturetool COMMAND [ARGS...]
 
 Commands:
@@ -85,6 +131,7 @@ Commands:
   from-height  convert a grayscale height image to a relief or normal map
   smooth       Gaussian-smooth a texture in the gradient domain
   preview      write a shaded picture of a texture
+  import       convert a JPEG, TGA, BMP, TIFF, WebP or PNG normal map into this project's PNG
   help [CMD]   this text, or a command's own help (also: texturetool CMD --help)
 
 Exit status: 0 success, 1 bad input or failed I/O, 2 bad command line.
@@ -101,6 +148,8 @@ const std::vector<Command>& commands() {
        {{"--extent"}, {"--height-range"}, {"--representation"}, {"--bits"}, {"--address"}, {"--green"}}},
       {"smooth", "Gaussian smoothing", kSmoothHelp, runSmooth, {{"--sigma"}, {"--address"}, {"--bits"}, {"--green"}}},
       {"preview", "shaded picture", kPreviewHelp, runPreview, {{"--azimuth"}, {"--elevation"}, {"--green"}}},
+      {"import", "other image formats to our PNG", kImportHelp, runImport,
+       {{"--green"}, {"--alpha"}, {"--alpha-scale"}, {"--extent"}, {"--bits"}}},
   };
   return list;
 }
