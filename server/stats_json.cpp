@@ -35,6 +35,13 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
   std::fprintf(f, "  \"nominal_rate_hz\": %.3f,\n", s.nominal_rate_hz);
   std::fprintf(f, "  \"device_time_s\": %.6f,\n  \"wall_time_s\": %.6f,\n", s.device_time_s, s.wall_time_s);
   std::fprintf(f, "  \"missed_ticks\": %llu,\n", (unsigned long long)s.servo.missed_ticks);
+  std::fprintf(f,
+               "  \"missed_policy\": {\"mode\": \"%s\", \"ride_throughs\": %llu, \"long_stalls\": %llu, "
+               "\"jumps\": %llu, \"success_rate\": %llu, \"disengaged_ticks\": %llu},\n",
+               missedTickModeName(s.missed_mode), (unsigned long long)s.missed_policy.ride_throughs,
+               (unsigned long long)s.missed_policy.long_stalls, (unsigned long long)s.missed_policy.jumps,
+               (unsigned long long)s.missed_policy.success_rate, (unsigned long long)s.missed_policy.disengaged_ticks);
+  std::fprintf(f, "  \"full_force_ticks\": %llu,\n", (unsigned long long)s.servo.full_force_ticks);
   std::fprintf(f, "  \"max_force_n\": %.6f,\n", s.servo.max_force_n);
   std::fprintf(f, "  \"tick_compute_us\": %s,\n", quantiles(compute).c_str());
   std::fprintf(f, "  \"wake_latency_us\": %s,\n", quantiles(wake).c_str());
@@ -77,6 +84,13 @@ void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& c
                (unsigned long long)s.ticks, s.device_time_s, achievedRate(s), s.wall_time_s);
   std::fprintf(out, "  missed ticks     %llu; faults %llu\n", (unsigned long long)s.servo.missed_ticks,
                (unsigned long long)s.servo.faults);
+  const MissedTickCounters& m = s.missed_policy;
+  std::fprintf(out,
+               "  gaps (%s)  %llu ridden through; disengaged for %llu long stalls, %llu jumps, %llu success-rate "
+               "drops; full force %.1f %% of ticks\n",
+               missedTickModeName(s.missed_mode), (unsigned long long)m.ride_throughs,
+               (unsigned long long)m.long_stalls, (unsigned long long)m.jumps, (unsigned long long)m.success_rate,
+               s.ticks > 0 ? 100.0 * double(s.servo.full_force_ticks) / double(s.ticks) : 0.0);
   std::fprintf(out, "  tick compute     p50 %.1f us, p99 %.1f us, max %.1f us\n", compute.quantileUs(0.5),
                compute.quantileUs(0.99), double(compute.maxNs()) / 1e3);
   if (!s.lockstep) {
