@@ -5,7 +5,8 @@
 // Missed-cycle policy (DESIGN §4 rule 2): if the loop arrives after its deadline has passed by a
 // whole period or more, it REALIGNS to the next grid point in the future (no catch-up burst) and
 // reports how many grid points it skipped; the caller decides what to do with the missed ticks
-// (hold the force with decay, then force off).
+// (the servo: server/missed_tick_policy.hpp). A tick less than a period late runs late and misses
+// nothing; one a period late or more skips every grid point already past, so a skip is >= 2.
 #include <cstdint>
 
 #include "rt/clock.hpp"

@@ -88,8 +88,9 @@ publishes device and contact state over LCM.
   --plane-rate HZ       planes per second in --paper-loop (default 100, at most the servo rate)
   --no-passivity        passivity controller off (the observer still runs)
   --missed-policy P     what a gap in the servo's ticks does (docs/hapticd.md): ride-through
-                        (default: gaps up to 20 ticks, with the pen within 2 mm of where it was
-                        and at least 80 of the last 100 periods served, keep the force on) or
+                        (default: gaps up to 20 ticks, with the pen within Fc/K of where it was
+                        (2 mm on the default scene) and at least 80 of the last 100 periods
+                        served, keep the force on) or
                         disengage (the old rule: any gap of 3 ticks or more turns the force off
                         and ramps it in again; for comparison)
   --stiffness-fraction F  override the scene's stiffness (fraction of the device maximum)

@@ -143,7 +143,16 @@ const TickRecord& Servo::tick() {
   const Eigen::Vector3d f_out = safety_.apply(f_passive);
   constexpr std::uint32_t kNotFull = kSafetyDisengaged | kSafetyEngaging | kSafetyRateLimited | kSafetyRampingOut |
                                      kSafetyShutDown | kSafetyNonFinite;
-  if (safety_.state() == SafetyState::Engaged && !(safety_.flags() & kNotFull)) ++counters_.full_force_ticks;
+  const bool full_force = safety_.state() == SafetyState::Engaged && !(safety_.flags() & kNotFull);
+  if (safety_.state() == SafetyState::Engaged) engaged_once_ = true;
+  const bool shutting_down = safety_.state() == SafetyState::RampingOut || safety_.state() == SafetyState::ShutDown;
+  if (engaged_once_ && !shutting_down) {
+    ++counters_.service_ticks;
+    if (r.in_contact) ++counters_.service_contact_ticks;
+    counters_.service_missed_ticks += std::uint64_t(state.timing.missed);
+    if (full_force) ++counters_.full_force_ticks;
+    if (full_force && r.in_contact) ++counters_.contact_full_force_ticks;
+  }
   // Not a reason to disengage: the safety stage's answer is the continuous limit itself.
   if (safety_.flags() & kSafetyBudgetExhausted) faults |= kFaultForceBudget;
   passivity_.recordAppliedForce(f_out);

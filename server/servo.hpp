@@ -95,6 +95,12 @@ struct ServoCounters {
   // The safety stage passed the force at gain 1, unclamped by its rate limit: neither disengaged,
   // ramping nor restarting after a gap. The pen felt the whole force the scene asked for.
   std::uint64_t full_force_ticks = 0;
+  std::uint64_t contact_full_force_ticks = 0;  // of those, in contact
+  // The ticks and missed periods from the first full engagement to the shutdown request: what
+  // full_force_ticks is a share of (the start-up engage ramp and the shutdown ramp are no loss).
+  std::uint64_t service_ticks = 0;
+  std::uint64_t service_missed_ticks = 0;
+  std::uint64_t service_contact_ticks = 0;  // of service_ticks, in contact
   double max_force_n = 0.0;
 };
 
@@ -159,6 +165,7 @@ class Servo {
   SwitchPhase switch_phase_ = SwitchPhase::None;
   int switch_tick_ = 0;
   std::uint32_t scene_swaps_ = 0;
+  bool engaged_once_ = false;
 
   LatencyHistogram compute_hist_;
   LatencyHistogram wake_hist_;

@@ -78,6 +78,7 @@ TEST(Servo, ShortGapsUnderAPressAreRiddenThroughAtFullForce) {
   rig.run(300 - 26);  // every tick from 1500 on, through all three gaps, to tick 1800
   EXPECT_EQ(rig.servo().counters().faults, 0u);
   EXPECT_EQ(rig.servo().counters().missed_ticks, 26u);
+  EXPECT_EQ(rig.servo().counters().service_missed_ticks, 26u);
   EXPECT_EQ(rig.safety().state(), srv::SafetyState::Engaged);
   EXPECT_EQ(rig.safety().counters().disengage_events, 0u);
   EXPECT_EQ(rig.servo().missedTickPolicy().counters().ride_throughs, 3u);
