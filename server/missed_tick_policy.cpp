@@ -101,12 +101,8 @@ MissedTickDecision MissedTickPolicy::observe(std::int64_t missed, const Eigen::V
   }
 
   if (config_.mode == MissedTickMode::DisengageOnGap) {
-    if (missed >= config_.legacy_max_missed_ticks) {
-      disengaging_ = false;  // the old rule: every long gap is its own fault
-      return disengage(StallReason::LongStall);
-    }
-    disengaging_ = false;
-    return MissedTickDecision{};
+    disengaging_ = false;  // the old rule: every long gap is its own fault
+    return missed >= config_.legacy_max_missed_ticks ? disengage(StallReason::LongStall) : MissedTickDecision{};
   }
 
   pushPeriods(missed);

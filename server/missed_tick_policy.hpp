@@ -17,6 +17,7 @@
 // RideThrough mode (hapticd's default). For a serviced tick after `missed` skipped periods:
 //  1. missed > max_stall_ticks                       -> Disengage, reason LongStall;
 //  2. missed > 0 and the pen moved more than max_jump_m since the last valid reading
+//     (an invalid reading is neither checked nor kept: the servo resets the renderer for it)
 //                                                     -> Disengage, reason Jump;
 //  3. more than max_missed_in_window of the last window_ticks device periods skipped (the success
 //     rate, serviced / all, below min_success_rate, as libfranka counts it)
