@@ -21,7 +21,7 @@ PACKAGES="
   libbullet-dev
   libarpack2-dev libsndfile1-dev
   googletest libgtest-dev libbenchmark-dev
-  rt-tests
+  rt-tests stress-ng
   libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb
 "
 if [ $# -gt 0 ]; then

@@ -24,62 +24,14 @@
 
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
+#include "benchmarks/cyclictest_run.hpp"
 #include "benchmarks/proc_tools.hpp"
 
 namespace {
 
 using namespace thx;
-
-struct Latency {
-  bool ok = false;
-  std::string source;  // "cyclictest" | "hapticd"
-  std::string run;     // "alone" | "concurrent"
-  std::string command;
-  bool fifo = false;
-  std::string note;
-  std::uint64_t count = 0, overflows = 0;
-  double min_us = 0, avg_us = 0, p50_us = 0, p99_us = 0, p999_us = 0, max_us = 0;
-};
-
-// cyclictest --histfile: "# Histogram" then "NNNNNN CCCCCC" per microsecond, then "# Total:",
-// "# Min Latencies:", "# Avg Latencies:", "# Max Latencies:", "# Histogram Overflows:".
-bool parseCyclictestHistogram(const std::string& text, Latency& l) {
-  std::vector<std::uint64_t> bins;
-  std::istringstream is(text);
-  std::string line;
-  while (std::getline(is, line)) {
-    long long v = 0, c = 0;
-    if (line.empty()) continue;
-    if (line[0] == '#') {
-      if (std::sscanf(line.c_str(), "# Min Latencies: %lld", &v) == 1) l.min_us = double(v);
-      if (std::sscanf(line.c_str(), "# Avg Latencies: %lld", &v) == 1) l.avg_us = double(v);
-      if (std::sscanf(line.c_str(), "# Max Latencies: %lld", &v) == 1) l.max_us = double(v);
-      if (std::sscanf(line.c_str(), "# Histogram Overflows: %lld", &v) == 1) l.overflows = std::uint64_t(v);
-      continue;
-    }
-    if (std::sscanf(line.c_str(), "%lld %lld", &v, &c) == 2 && v >= 0) {
-      if (std::size_t(v) >= bins.size()) bins.resize(std::size_t(v) + 1, 0);
-      bins[std::size_t(v)] = std::uint64_t(c);
-    }
-  }
-  std::uint64_t total = l.overflows;
-  for (auto c : bins) total += c;
-  if (total == 0) return false;
-  l.count = total;
-  auto q = [&](double p) {
-    const std::uint64_t want = std::uint64_t(std::ceil(p * double(total)));
-    std::uint64_t acc = 0;
-    for (std::size_t i = 0; i < bins.size(); ++i) {
-      acc += bins[i];
-      if (acc >= want) return double(i);
-    }
-    return l.max_us;  // in the overflow
-  };
-  l.p50_us = q(0.5);
-  l.p99_us = q(0.99);
-  l.p999_us = q(0.999);
-  return true;
-}
+using bench::Job;
+using bench::Latency;
 
 bool parseHapticdStats(const std::string& js, Latency& l) {
   const auto p50 = test::jsonNumber(js, "wake_latency_us", "p50");
@@ -98,24 +50,6 @@ bool parseHapticdStats(const std::string& js, Latency& l) {
   return true;
 }
 
-struct Job {
-  pid_t pid = -1;
-  std::vector<std::string> argv;
-  std::string log, out;  // out: histogram file (cyclictest) or stats JSON (hapticd)
-};
-
-Job startCyclictest(const std::string& exe, int seconds, const std::string& workdir, const std::string& tag) {
-  Job j;
-  j.out = workdir + "/lat_cyclictest_" + tag + ".hist";
-  j.log = workdir + "/lat_cyclictest_" + tag + ".log";
-  std::remove(j.out.c_str());
-  std::remove(j.log.c_str());
-  j.argv = {exe, "-m", "-p", "80", "-i", "1000", "-l", std::to_string(seconds * 1000), "-q", "-h", "10000",
-            "--histfile=" + j.out};
-  j.pid = bench::spawn(j.argv, j.log);
-  return j;
-}
-
 Job startHapticd(const std::string& exe, const std::string& scene, int seconds, const std::string& workdir,
                  const std::string& tag) {
   Job j;
@@ -127,33 +61,6 @@ Job startHapticd(const std::string& exe, const std::string& scene, int seconds, 
             "--flight-dir", workdir};
   j.pid = bench::spawn(j.argv, j.log);
   return j;
-}
-
-// Watches cyclictest for its SCHED_FIFO thread (policy 1) during its first two seconds. If it
-// ends meanwhile, `ended` receives its exit status (it has been reaped).
-bool sawFifo(pid_t pid, std::optional<int>& ended) {
-  for (int i = 0; i < 40; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if ((ended = test::pollExit(pid))) return false;
-    for (const auto& [tid, policy] : bench::threadPolicies(pid)) {
-      if (policy == 1) return true;
-    }
-  }
-  return false;
-}
-
-Latency finishCyclictest(const Job& j, const std::string& run, bool fifo, std::optional<int> status) {
-  Latency l;
-  l.source = "cyclictest";
-  l.run = run;
-  l.command = test::commandLine(j.argv);
-  const int st = status ? *status : test::waitExit(j.pid);
-  l.fifo = fifo;
-  l.ok = st == 0 && parseCyclictestHistogram(test::slurp(j.out), l);
-  const std::string log = test::slurp(j.log);
-  if (!l.ok) l.note = bench::fmt("cyclictest failed (exit %d): %s", st, log.substr(0, 300).c_str());
-  if (!fifo) l.note += (l.note.empty() ? "" : "; ") + std::string("cyclictest did NOT get SCHED_FIFO");
-  return l;
 }
 
 Latency finishHapticd(const Job& j, const std::string& run) {
@@ -211,10 +118,10 @@ benchmarks/run.sh BUILD_DIR latency runs it as the docs show.
       const std::string tag = "alone" + std::to_string(round), run = "alone #" + std::to_string(round);
       std::fprintf(stderr, "bench_latency: cyclictest alone (%d s), round %d\n", seconds, round);
       {
-        const Job c = startCyclictest(cyclictest, seconds, workdir, tag);
+        const Job c = bench::startCyclictest(cyclictest, seconds, workdir, tag);
         std::optional<int> ended;
-        const bool fifo = sawFifo(c.pid, ended);
-        rows.push_back(finishCyclictest(c, run, fifo, ended));
+        const bool fifo = bench::sawFifo(c.pid, ended);
+        rows.push_back(bench::finishCyclictest(c, run, fifo, ended));
       }
       std::fprintf(stderr, "bench_latency: hapticd alone (%d s, real time), round %d\n", seconds, round);
       rows.push_back(finishHapticd(startHapticd(hapticd, scene, seconds, workdir, tag), run));
@@ -222,10 +129,10 @@ benchmarks/run.sh BUILD_DIR latency runs it as the docs show.
     std::fprintf(stderr, "bench_latency: both at once (%d s)\n", seconds);
     {
       const Job h = startHapticd(hapticd, scene, seconds, workdir, "concurrent");
-      const Job c = startCyclictest(cyclictest, seconds, workdir, "concurrent");
+      const Job c = bench::startCyclictest(cyclictest, seconds, workdir, "concurrent");
       std::optional<int> ended;
-      const bool fifo = sawFifo(c.pid, ended);
-      rows.push_back(finishCyclictest(c, "concurrent", fifo, ended));
+      const bool fifo = bench::sawFifo(c.pid, ended);
+      rows.push_back(bench::finishCyclictest(c, "concurrent", fifo, ended));
       rows.push_back(finishHapticd(h, "concurrent"));
     }
 

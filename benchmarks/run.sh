@@ -6,7 +6,10 @@
 #   BUILD_DIR  a configured and built tree (default: build); build it first with
 #              cmake -S . -B BUILD_DIR -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build BUILD_DIR -j2 --target benchmarks
 #   PART       any of: render force_error memory latency clients physics visual (default: all seven, in that order),
-#              or audio (FEM modal analysis, about 2 min; its table goes to docs/audio.md)
+#              or audio (FEM modal analysis, about 2 min; its table goes to docs/audio.md),
+#              or load (hapticd's full-force share beside stress-ng and cyclictest, old and new
+#              missed-tick policy; THX_LOAD_SECONDS per run (25), THX_LOAD_LOADS (none,cpu2,cpu2+vm),
+#              THX_LOAD_ROUNDS (1); about 3 min a round; needs stress-ng, Debian stress-ng, in setup.sh)
 #
 # The clients part also sweeps the number of clients (issue 17): 1, 2, 4, 8, 16, 32, 64 clients
 # (THX_CLIENTS_SWEEP), for the workloads "mixed" (1/4 of the clients batched CONTACT at 1 kHz, the
@@ -110,6 +113,25 @@ run_latency() {
   return $rc
 }
 
+run_load() {
+  need "$BIN/bench_load" && need "$HAPTICD" || return 1
+  local ct sn
+  ct=$(command -v cyclictest || true)
+  sn=$(command -v stress-ng || true)
+  if [ -z "$ct" ] || [ -z "$sn" ]; then
+    say "cyclictest or stress-ng not found: install rt-tests and stress-ng (./setup.sh); skipping part load"
+    return 1
+  fi
+  say "part load: hapticd's full-force share beside stress-ng and cyclictest, old and new missed-tick policy"
+  "$BIN/bench_load" --hapticd "$HAPTICD" --scene "$ROOT/benchmarks/scenes/load_press.yaml" \
+    --seconds "${THX_LOAD_SECONDS:-25}" --loads "${THX_LOAD_LOADS:-none,cpu2,cpu2+vm}" --rounds "${THX_LOAD_ROUNDS:-1}" --cyclictest "$ct" \
+    --stress-ng "$sn" --workdir "$WORK" --json "$RESULTS/bench_load.json" --csv "$RESULTS/bench_load.csv" \
+    --md "$WORK/bench_load.md"
+  local rc=$?
+  [ -s "$WORK/bench_load.md" ] && splice bench_load "$WORK/bench_load.md"
+  return $rc
+}
+
 run_clients() {
   need "$BIN/bench_clients" && need "$HAPTICD" && need "$BUILD/clients/probe/probe-client" || return 1
   say "part 5: 16 clients against hapticd (60 s), and hapticd alone before and after (30 s each)"
@@ -174,14 +196,14 @@ run_visual() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | physics | visual | audio)
+    render | force_error | memory | latency | clients | physics | visual | audio | load)
       if ! "run_$part"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients physics visual audio)"
+      say "unknown part '$part' (expected: render force_error memory latency clients physics visual audio load)"
       exit 2
       ;;
   esac

@@ -2,10 +2,12 @@
 // Pacer: the servo's timing policy, isolated so it can be unit-tested (as ros2_control does).
 //
 // Deadlines sit on a fixed grid t0 + k * period. wait() sleeps until the next grid point.
-// Missed-cycle policy (docs/design.md §4 rule 2): if the loop arrives after its deadline has passed
-// by a whole period or more, it REALIGNS to the next grid point in the future (no catch-up burst)
-// and reports how many grid points it skipped; the caller decides what to do with the missed ticks
-// (hold the force with decay, then force off).
+// Missed-cycle policy (docs/design.md §4 rule 2): if the loop arrives after its deadline has
+// passed by a whole period or more, it REALIGNS to the next grid point in the future (no catch-up
+// burst) and reports how many grid points it skipped; the caller decides what to do with the
+// missed ticks (the servo: server/missed_tick_policy.hpp). A tick less than a period late runs
+// late and misses nothing; one a period late or more skips every grid point already past, so a
+// skip is >= 2.
 #include <cstdint>
 
 #include "rt/clock.hpp"

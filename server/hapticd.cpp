@@ -87,6 +87,12 @@ publishes device and contact state over LCM.
                         passivity controller; the safety stage stays (docs/stability.md)
   --plane-rate HZ       planes per second in --paper-loop (default 100, at most the servo rate)
   --no-passivity        passivity controller off (the observer still runs)
+  --missed-policy P     what a gap in the servo's ticks does (docs/hapticd.md): ride-through
+                        (default: gaps up to 20 ticks, with the pen within Fc/K of where it was
+                        (2 mm on the default scene) and at least 80 of the last 100 periods
+                        served, keep the force on) or
+                        disengage (the old rule: any gap of 3 ticks or more turns the force off
+                        and ramps it in again; for comparison)
   --stiffness-fraction F  override the scene's stiffness (fraction of the device maximum)
   --strict-stability    refuse a stiffness above the sampled-wall bound K <= 2(b - |B|)/T
                         (default: warn; the vendor maximum already assumes a damping hand)
@@ -139,6 +145,7 @@ struct Options {
   std::optional<double> stiffness_fraction;
   bool strict_stability = false;
   bool paper_loop = false;                                 // --paper-loop
+  thx::srv::MissedTickMode missed_mode = thx::srv::MissedTickMode::RideThrough;  // --missed-policy
   std::optional<double> plane_rate_hz;                     // --plane-rate
   thx::srv::RealtimeOptions rt;
   std::string flight_dir = ".";
@@ -244,6 +251,15 @@ Options parse(int argc, char** argv) {
       o.crease = false;
     } else if (a == "--no-passivity") {
       o.passivity = false;
+    } else if (a == "--missed-policy") {
+      const std::string p = value();
+      if (p == "ride-through") {
+        o.missed_mode = thx::srv::MissedTickMode::RideThrough;
+      } else if (p == "disengage") {
+        o.missed_mode = thx::srv::MissedTickMode::DisengageOnGap;
+      } else {
+        usage("--missed-policy: expected 'ride-through' or 'disengage', got '" + p + "'");
+      }
     } else if (a == "--paper-loop") {
       o.paper_loop = true;
     } else if (a == "--plane-rate") {
@@ -370,7 +386,8 @@ int run(const Options& o) {
     for (const std::string& line : srv::budgetReport(first->budget))
       std::fprintf(stderr, "hapticd: stability budget: %s\n", line.c_str());
   }
-  const srv::ServoRigConfig wiring = first->wiring;
+  srv::ServoRigConfig wiring = first->wiring;
+  wiring.missed_mode = o.missed_mode;
   const scene::SceneSurface& scene_surface = first->surface;
   const std::size_t texture_bytes = scene_surface.map->bytes();
   const std::string first_scene_name = scene_surface.scene_name;
@@ -567,6 +584,8 @@ int run(const Options& o) {
   summary.wall_time_s = wall_s;
   summary.nominal_rate_hz = sc.rates.servo_hz;
   summary.servo = servo.counters();
+  summary.missed_policy = servo.missedTickPolicy().counters();
+  summary.missed_mode = o.missed_mode;
   summary.safety = rig.safety().counters();
   summary.passivity_active_ticks = rig.passivity().activeTicks();
   summary.passivity_dissipated_j = rig.passivity().dissipatedEnergy();

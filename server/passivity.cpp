@@ -92,15 +92,27 @@ void PassivityController::sumInFlight() {
   }
 }
 
+Eigen::Vector3d PassivityController::deadbanded(const Eigen::Vector3d& velocity_reading_m_per_s) const {
+  // Quantisation dead band (header): a reading that toggled by one encoder count is not motion the
+  // loop can be blamed for.
+  Eigen::Vector3d v = velocity_reading_m_per_s;
+  for (int k = 0; k < 3; ++k) {
+    if (std::fabs(v[k]) <= config_.velocity_deadband_m_per_s) v[k] = 0.0;
+  }
+  return v;
+}
+
+void PassivityController::observeHeldPeriods(const Eigen::Vector3d& pen_velocity_m_per_s, double held_periods) {
+  if (!(held_periods > 0.0)) return;
+  const InFlight& due = in_flight_[static_cast<std::size_t>(oldest_)];
+  const double held_j = -due.force_n.dot(deadbanded(pen_velocity_m_per_s)) * config_.period_s * held_periods;
+  if (std::isfinite(held_j)) observed_j_ += held_j;  // apply() caps the reservoir next
+}
+
 Eigen::Vector3d PassivityController::apply(const Eigen::Vector3d& force_on_pen_n,
                                            const Eigen::Vector3d& velocity_reading_m_per_s) {
   const double t = config_.period_s;
-  // Quantisation dead band (header): a reading that toggled by one encoder count is not motion the
-  // loop can be blamed for.
-  Eigen::Vector3d pen_velocity_m_per_s = velocity_reading_m_per_s;
-  for (int k = 0; k < 3; ++k) {
-    if (std::fabs(pen_velocity_m_per_s[k]) <= config_.velocity_deadband_m_per_s) pen_velocity_m_per_s[k] = 0.0;
-  }
+  const Eigen::Vector3d pen_velocity_m_per_s = deadbanded(velocity_reading_m_per_s);
   const InFlight& due = in_flight_[static_cast<std::size_t>(oldest_)];
   const double still_in_flight_j = in_flight_j_ - due.predicted_j;
   alpha_ns_per_m_ = 0.0;

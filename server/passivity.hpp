@@ -106,6 +106,11 @@ class PassivityController {
   // Non-finite inputs pass through untouched (the safety stage handles them) and are not observed.
   Eigen::Vector3d apply(const Eigen::Vector3d& force_on_pen_n,
                         const Eigen::Vector3d& pen_velocity_m_per_s);
+  // A gap the servo rides through (server/missed_tick_policy.hpp), before this tick's apply():
+  // the device went on applying the last output x its watchdog's hold over the skipped periods,
+  // held_periods = the sum of those gains. Books -F . v T held_periods with this tick's velocity
+  // (the reading's average over the gap), the work apply() alone would miss.
+  void observeHeldPeriods(const Eigen::Vector3d& pen_velocity_m_per_s, double held_periods);
   // Optional, after the safety stage: the force actually written this tick, so the observer
   // accounts for clamps, ramps and disengagement. Without it apply()'s output is assumed.
   void recordAppliedForce(const Eigen::Vector3d& applied_force_n);
@@ -132,6 +137,7 @@ class PassivityController {
     double predicted_j = 0.0;
   };
   InFlight& newest();
+  Eigen::Vector3d deadbanded(const Eigen::Vector3d& velocity_m_per_s) const;
   void push(const Eigen::Vector3d& force_n, const Eigen::Vector3d& velocity_m_per_s,
             double predicted_j);
   void sumInFlight();

@@ -137,6 +137,11 @@ void SafetyStage::disengage() {
   enterDisengaged();
 }
 
+void SafetyStage::restartRateLimitFrom(double held_gain) {
+  const double g = held_gain > 0.0 ? (held_gain < 1.0 ? held_gain : 1.0) : 0.0;  // NaN fails both tests: 0
+  last_output_n_ *= g;
+}
+
 void SafetyStage::requestShutdown() {
   switch (state_) {
     case SafetyState::Engaged:

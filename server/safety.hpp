@@ -27,8 +27,9 @@
 //     gain if a ramp-in is still running); shutdownComplete() afterwards. Shutdown is final until
 //     reset().
 //
-// The stage assumes one call per period: missed ticks are the servo's business (docs/design.md §4
-// rule 2); they only under-count cooling, which errs on the safe side.
+// The stage assumes one call per period: missed ticks are the servo's business (docs/design.md
+// §4 rule 2); they only under-count cooling, which errs on the safe side. A gap the servo rides
+// through restarts the rate limit from the force the device held (restartRateLimitFrom()).
 #include <Eigen/Core>
 #include <cstdint>
 
@@ -107,6 +108,10 @@ class SafetyStage {
 
   // Fault from the servo (missed ticks, invalid reading): zero now, engage procedure again.
   void disengage();
+  // The servo rides through a gap (server/missed_tick_policy.hpp): the device was left applying
+  // held_gain x the last output, so the next apply()'s rate limit counts from that force rather
+  // than from what was written before the gap. held_gain is clamped to [0, 1] (NaN: 0).
+  void restartRateLimitFrom(double held_gain);
   void requestShutdown();
   bool shutdownComplete() const { return state_ == SafetyState::ShutDown; }
   // Back to the start-up state (disengaged, cold budget, counters kept).

@@ -28,7 +28,8 @@ Servo::Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityContro
       safety_(safety),
       recorder_(recorder),
       out_(out),
-      config_(config) {}
+      config_(config),
+      missed_policy_(config.missed) {}
 
 const TickRecord& Servo::tick() {
   const dev::DeviceState state = device_.read();
@@ -58,9 +59,9 @@ const TickRecord& Servo::tick() {
 
   std::uint32_t faults = 0;
   counters_.missed_ticks += std::uint64_t(state.timing.missed);
-  if (state.timing.missed >= config_.max_missed_ticks) faults |= kFaultMissedTicks;
-
   r.valid = state.valid && state.p_world.allFinite() && state.v_world.allFinite();
+  const MissedTickDecision gap = missed_policy_.observe(state.timing.missed, state.p_world, r.valid);
+  if (gap.fault) faults |= kFaultMissedTicks;
   Eigen::Vector3d f_render = Eigen::Vector3d::Zero();
   RenderOutput out;  // no planes unless rendered
   if (r.valid) {
@@ -125,14 +126,33 @@ const TickRecord& Servo::tick() {
                                 : device_renders_planes ? Eigen::Vector3d(f_client + f_external)
                                                         : Eigen::Vector3d(f_render + f_client + f_external);
   if (!f_env.allFinite()) faults |= kFaultNonFiniteForce;
+  if (gap.action == MissedTickAction::RideThrough) {
+    // The device went on pushing with its held force over the gap: the observer books that work,
+    // and the force returns from what the pen last felt, within the safety stage's rate limit.
+    if (r.valid) passivity_.observeHeldPeriods(state.v_world, gap.held_periods);
+    safety_.restartRateLimitFrom(gap.held_gain);
+  }
   const Eigen::Vector3d f_passive = r.valid ? passivity_.apply(f_env, state.v_world) : f_env;
-  // Held disengaged for as long as the readings stay invalid: the zero requests of those ticks
-  // must not count as the "small request" that re-engages the force.
-  if ((faults & (kFaultMissedTicks | kFaultInvalidReading)) || invalid_run_ >= config_.max_invalid_readings) {
+  // Held disengaged for as long as the readings stay invalid (or the policy says so): the zero
+  // requests of those ticks must not count as the "small request" that re-engages the force.
+  if (gap.action == MissedTickAction::Disengage || (faults & kFaultInvalidReading) ||
+      invalid_run_ >= config_.max_invalid_readings) {
     safety_.disengage();
     passivity_.reset();
   }
   const Eigen::Vector3d f_out = safety_.apply(f_passive);
+  constexpr std::uint32_t kNotFull = kSafetyDisengaged | kSafetyEngaging | kSafetyRateLimited | kSafetyRampingOut |
+                                     kSafetyShutDown | kSafetyNonFinite;
+  const bool full_force = safety_.state() == SafetyState::Engaged && !(safety_.flags() & kNotFull);
+  if (safety_.state() == SafetyState::Engaged) engaged_once_ = true;
+  const bool shutting_down = safety_.state() == SafetyState::RampingOut || safety_.state() == SafetyState::ShutDown;
+  if (engaged_once_ && !shutting_down) {
+    ++counters_.service_ticks;
+    if (r.in_contact) ++counters_.service_contact_ticks;
+    counters_.service_missed_ticks += std::uint64_t(state.timing.missed);
+    if (full_force) ++counters_.full_force_ticks;
+    if (full_force && r.in_contact) ++counters_.contact_full_force_ticks;
+  }
   // Not a reason to disengage: the safety stage's answer is the continuous limit itself.
   if (safety_.flags() & kSafetyBudgetExhausted) faults |= kFaultForceBudget;
   passivity_.recordAppliedForce(f_out);

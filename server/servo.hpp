@@ -10,10 +10,13 @@
 //  - Pipeline: read -> render (texture proxy) + client force + external effects (VRPN apps) ->
 //    passivity controller -> safety stage -> write. Safety is always last and always on.
 //  - Missed-cycle policy: the pacer realigns to the next period (no catch-up burst); while the
-//    servo is away the device holds its last force with decay (its own watchdog); a gap of
-//    max_missed_ticks or more, or max_invalid_readings consecutive invalid readings, disengages
-//    the safety stage (force off, then the small-force engage and ramp) and freezes the flight
-//    recorder for a dump.
+//    servo is away the device holds its last force with decay (its own watchdog). What a gap
+//    does then is MissedTickPolicy's decision (server/missed_tick_policy.hpp): ride through it
+//    (the safety stage's rate limit restarts from the force the device still held; the passivity
+//    observer books the held force's work over the gap), or disengage the safety stage (force
+//    off, then the small-force engage and ramp) and freeze the flight recorder for a dump, once
+//    per run of disengaging ticks. max_invalid_readings consecutive invalid readings disengage
+//    the same way.
 //  - Faults latch: every record carries the first fault since the last reset (server start, or a
 //    client's reset through faultResetSlot(), applied at the start of the next tick).
 //  - Scene switches: a SurfaceSwap offered through surfaceSwap() (built off this thread, owned by
@@ -26,6 +29,7 @@
 #include "device/haptic_device.hpp"
 #include "server/flight_recorder.hpp"
 #include "server/latency_histogram.hpp"
+#include "server/missed_tick_policy.hpp"
 #include "rt/handoff.hpp"
 #include "rt/latest_slot.hpp"
 #include "server/external_effects.hpp"
@@ -38,7 +42,7 @@
 namespace thx::srv {
 
 struct ServoConfig {
-  int max_missed_ticks = 3;      // a gap this long (ticks) is a fault: force off
+  MissedTickPolicyConfig missed;  // what a gap does (ServoRig fills it from the device)
   int max_invalid_readings = 3;  // consecutive invalid device readings before a fault
   int client_force_timeout_ticks = 50;  // a client force not refreshed for this long is dropped
   // A scene switch ramps the scene's force down over this many ticks, swaps, and ramps it up over
@@ -88,6 +92,15 @@ struct ServoCounters {
   std::uint64_t faults = 0;
   std::uint64_t contact_ticks = 0;
   std::uint64_t client_force_ticks = 0;  // a client's force (e.g. physics-client's pen contact) was non-zero
+  // The safety stage passed the force at gain 1, unclamped by its rate limit: neither disengaged,
+  // ramping nor restarting after a gap. The pen felt the whole force the scene asked for.
+  std::uint64_t full_force_ticks = 0;
+  std::uint64_t contact_full_force_ticks = 0;  // of those, in contact
+  // The ticks and missed periods from the first full engagement to the shutdown request: what
+  // full_force_ticks is a share of (the start-up engage ramp and the shutdown ramp are no loss).
+  std::uint64_t service_ticks = 0;
+  std::uint64_t service_missed_ticks = 0;
+  std::uint64_t service_contact_ticks = 0;  // of service_ticks, in contact
   double max_force_n = 0.0;
 };
 
@@ -117,6 +130,7 @@ class Servo {
   const LatencyHistogram& computeHistogram() const { return compute_hist_; }
   const LatencyHistogram& wakeHistogram() const { return wake_hist_; }
   const ServoCounters& counters() const { return counters_; }
+  const MissedTickPolicy& missedTickPolicy() const { return missed_policy_; }
 
  private:
   std::uint32_t latchFaults(std::uint32_t faults);
@@ -131,6 +145,7 @@ class Servo {
   FlightRecorder& recorder_;
   rt::SpscRing<TickRecord>& out_;
   ServoConfig config_;
+  MissedTickPolicy missed_policy_;
 
   rt::LatestSlot<ClientForce> client_slot_;
   ExternalEffectRenderer* external_ = nullptr;
@@ -150,6 +165,7 @@ class Servo {
   SwitchPhase switch_phase_ = SwitchPhase::None;
   int switch_tick_ = 0;
   std::uint32_t scene_swaps_ = 0;
+  bool engaged_once_ = false;
 
   LatencyHistogram compute_hist_;
   LatencyHistogram wake_hist_;

@@ -8,6 +8,11 @@ PassivityConfig passivityFor(const dev::DeviceSpec& spec, const ServoRigConfig& 
   if (!c.quantisation_deadband) p.velocity_deadband_m_per_s = 0.0;  // PassivityConfig::fromSpec()'s
   return p;
 }
+ServoConfig servoConfigFor(const dev::DeviceSpec& spec, const ServoRigConfig& c) {
+  ServoConfig s = c.servo;
+  s.missed = MissedTickPolicyConfig::fromSpec(spec, c.renderer.stiffness_n_per_m, c.missed_mode);
+  return s;
+}
 }  // namespace
 
 ServoRig::ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surface, const ServoRigConfig& config)
@@ -17,7 +22,7 @@ ServoRig::ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surfac
       safety_(SafetyConfig::fromSpec(device.spec(), config.period_s)),
       recorder_(config.flight_record_ticks),
       ring_(config.ring_records),
-      servo_(device, renderer_, passivity_, safety_, recorder_, ring_, config.servo) {}
+      servo_(device, renderer_, passivity_, safety_, recorder_, ring_, servoConfigFor(device.spec(), config)) {}
 
 const TickRecord& ServoRig::tickAndDrain() {
   const TickRecord& r = servo_.tick();

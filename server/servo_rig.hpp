@@ -30,6 +30,9 @@ struct ServoRigConfig {
   bool quantisation_deadband = true;
   std::size_t flight_record_ticks = 1000;  // hapticd: one second of ticks
   std::size_t ring_records = 1024;         // hapticd: 1 s of ticks, drained every 0.5 ms
+  // What a gap in the servo's ticks does (server/missed_tick_policy.hpp); the rig sets
+  // servo.missed from the device and the stiffness (MissedTickPolicyConfig::fromSpec) in this mode.
+  MissedTickMode missed_mode = MissedTickMode::RideThrough;
   ServoConfig servo;
 };
 

@@ -16,6 +16,12 @@ std::string quantiles(const LatencyHistogram& h) {
   return buf;
 }
 
+// Of every device period from the first engagement to the shutdown request, missed ones included.
+double fullForcePercent(const ServoCounters& c) {
+  const std::uint64_t periods = c.service_ticks + c.service_missed_ticks;
+  return periods > 0 ? 100.0 * double(c.full_force_ticks) / double(periods) : 0.0;
+}
+
 double achievedRate(const RunSummary& s) { return s.device_time_s > 0 ? double(s.ticks) / s.device_time_s : 0.0; }
 
 }  // namespace
@@ -35,6 +41,18 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
   std::fprintf(f, "  \"nominal_rate_hz\": %.3f,\n", s.nominal_rate_hz);
   std::fprintf(f, "  \"device_time_s\": %.6f,\n  \"wall_time_s\": %.6f,\n", s.device_time_s, s.wall_time_s);
   std::fprintf(f, "  \"missed_ticks\": %llu,\n", (unsigned long long)s.servo.missed_ticks);
+  std::fprintf(f,
+               "  \"missed_policy\": {\"policy\": \"%s\", \"ride_throughs\": %llu, \"long_stalls\": %llu, "
+               "\"jumps\": %llu, \"success_rate\": %llu, \"disengaged_ticks\": %llu},\n",
+               missedTickModeName(s.missed_mode), (unsigned long long)s.missed_policy.ride_throughs,
+               (unsigned long long)s.missed_policy.long_stalls, (unsigned long long)s.missed_policy.jumps,
+               (unsigned long long)s.missed_policy.success_rate, (unsigned long long)s.missed_policy.disengaged_ticks);
+  std::fprintf(f,
+               "  \"full_force\": {\"ticks\": %llu, \"contact_ticks\": %llu, \"service_ticks\": %llu, "
+               "\"service_missed_ticks\": %llu, \"service_contact_ticks\": %llu},\n",
+               (unsigned long long)s.servo.full_force_ticks, (unsigned long long)s.servo.contact_full_force_ticks,
+               (unsigned long long)s.servo.service_ticks, (unsigned long long)s.servo.service_missed_ticks,
+               (unsigned long long)s.servo.service_contact_ticks);
   std::fprintf(f, "  \"max_force_n\": %.6f,\n", s.servo.max_force_n);
   std::fprintf(f, "  \"tick_compute_us\": %s,\n", quantiles(compute).c_str());
   std::fprintf(f, "  \"wake_latency_us\": %s,\n", quantiles(wake).c_str());
@@ -77,6 +95,13 @@ void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& c
                (unsigned long long)s.ticks, s.device_time_s, achievedRate(s), s.wall_time_s);
   std::fprintf(out, "  missed ticks     %llu; faults %llu\n", (unsigned long long)s.servo.missed_ticks,
                (unsigned long long)s.servo.faults);
+  const MissedTickCounters& m = s.missed_policy;
+  std::fprintf(out,
+               "  gaps (%s)  %llu ridden through; disengaged for %llu long stalls, %llu jumps, %llu success-rate "
+               "drops; full force %.2f %% of device periods since engaged\n",
+               missedTickModeName(s.missed_mode), (unsigned long long)m.ride_throughs,
+               (unsigned long long)m.long_stalls, (unsigned long long)m.jumps, (unsigned long long)m.success_rate,
+               fullForcePercent(s.servo));
   std::fprintf(out, "  tick compute     p50 %.1f us, p99 %.1f us, max %.1f us\n", compute.quantileUs(0.5),
                compute.quantileUs(0.99), double(compute.maxNs()) / 1e3);
   if (!s.lockstep) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "server/latency_histogram.hpp"
+#include "server/missed_tick_policy.hpp"
 #include "server/process_memory.hpp"
 #include "server/publisher.hpp"
 #include "server/realtime.hpp"
@@ -24,6 +25,8 @@ struct RunSummary {
   double wall_time_s = 0.0;
   double nominal_rate_hz = 1000.0;
   ServoCounters servo;
+  MissedTickMode missed_mode = MissedTickMode::RideThrough;
+  MissedTickCounters missed_policy;
   SafetyCounters safety;
   std::uint64_t passivity_active_ticks = 0;
   double passivity_dissipated_j = 0.0;

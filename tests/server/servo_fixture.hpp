@@ -27,8 +27,14 @@ struct ServoRigInputs {
 };
 
 struct ServoRig : ServoRigInputs, srv::ServoRig {
-  explicit ServoRig(FakeDevice::Script script, bool crease = true)
-      : ServoRigInputs(std::move(script)), srv::ServoRig(device, *texture.surface, unitTestWiring(1000.0, crease)) {}
+  explicit ServoRig(FakeDevice::Script script, bool crease = true,
+                    srv::MissedTickMode missed = srv::MissedTickMode::RideThrough)
+      : ServoRigInputs(std::move(script)), srv::ServoRig(device, *texture.surface, wiring(crease, missed)) {}
+  static srv::ServoRigConfig wiring(bool crease, srv::MissedTickMode missed) {
+    srv::ServoRigConfig c = unitTestWiring(1000.0, crease);
+    c.missed_mode = missed;
+    return c;
+  }
 
   // Runs n ticks, draining the ring as a publisher would.
   void run(int n) {

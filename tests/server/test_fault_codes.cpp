@@ -22,7 +22,8 @@ constexpr std::int64_t kShortGapAt = 1600;   // 1 missed: FLAG_MISSED_TICK, no f
 constexpr std::int64_t kClientForceAt = 1700;
 constexpr std::int64_t kNanForceAt = 1900;
 constexpr std::int64_t kInvalidFrom = 2000;  // 3 invalid readings: FAULT_DEVICE_IO at 2002
-constexpr std::int64_t kLongGapAt = 2200;    // 4 missed: FAULT_MISSED_TICKS on tick 2204
+constexpr std::int64_t kLongGapAt = 2200;    // 25 missed, longer than the policy rides through:
+                                             // FAULT_MISSED_TICKS on tick 2225
 constexpr std::int64_t kSwitchAt = 2300;     // a scene switch: 200 ticks down, 200 up
 
 void session(std::int64_t tick, dev::DeviceState& s) {
@@ -34,7 +35,7 @@ void session(std::int64_t tick, dev::DeviceState& s) {
   }
   if (tick == kShortGapAt) s.timing.missed = 1;
   if (tick >= kInvalidFrom && tick < kInvalidFrom + 3) s.valid = false;
-  if (tick == kLongGapAt) s.timing.missed = 4;
+  if (tick == kLongGapAt) s.timing.missed = 25;
 }
 
 struct FaultCodes : ::testing::Test {
@@ -111,7 +112,7 @@ TEST_F(FaultCodes, EveryFaultIsRaisedWhereItHappensAndReachesA60HzSubscriber) {
   EXPECT_LT(budget, kPressTo);
   EXPECT_EQ(nan, kNanForceAt);
   EXPECT_EQ(io, kInvalidFrom + 2);
-  EXPECT_EQ(missed, kLongGapAt + 4);  // the tick after the gap
+  EXPECT_EQ(missed, kLongGapAt + 25);  // the tick after the gap
 
   const std::pair<std::int64_t, std::int32_t> raised[] = {{budget, D::FAULT_FORCE_BUDGET},
                                                           {nan, D::FAULT_NONFINITE_FORCE},

@@ -22,7 +22,10 @@ TEST(FaultReporting, AOneTickFaultReachesA60HzSubscriber) {
   FaultPipeline p(
       [](std::int64_t tick, dev::DeviceState& s) {
         test::hover(tick, s);
-        if (tick == 510) s.timing.missed = 4;  // the tick after the gap (514) raises the fault
+        // A 4-tick gap over which the pen jumped 5 mm (the policy rides through gaps, not jumps):
+        // the tick after the gap (514) raises the fault.
+        if (tick == 510) s.timing.missed = 4;
+        if (tick >= 510) s.p_world.z() += 0.005;
       },
       60.0);
   p.run(700);
@@ -58,7 +61,7 @@ TEST(FaultReporting, TheFirstFaultStaysLatchedUntilAClientResetsIt) {
   FaultPipeline p(
       [](std::int64_t tick, dev::DeviceState& s) {
         test::hover(tick, s);
-        if (tick == 300) s.timing.missed = 5;                           // first: missed ticks (305)
+        if (tick == 300) s.timing.missed = 25;                          // first: missed ticks (325)
         if (tick >= 400 && tick < 403) s.valid = false;                 // second: device I/O (402)
         if (tick >= 600 && tick < 603) s.p_world.z() = std::nan("");  // after the reset (602)
       },

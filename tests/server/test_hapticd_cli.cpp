@@ -173,6 +173,26 @@ TEST_F(Hapticd, FlightRecordCapsRejectBadValues) {
   EXPECT_EQ(jsonNumber(json, "flight_dumps_over_rate"), 0);
 }
 
+// The missed-tick policy is an option (docs/hapticd.md); the statistics name it and count the
+// full-force share's ticks. In lock-step no tick is missed.
+TEST_F(Hapticd, MissedTickPolicyIsAnOptionAndTheStatisticsNameIt) {
+  ProcRun r = run("--scene scenes/default.yaml --lockstep --no-lcm --missed-policy sometimes");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--missed-policy: expected 'ride-through' or 'disengage', got 'sometimes'"), std::string::npos)
+      << r.err;
+  for (const char* policy : {"disengage", "ride-through"}) {
+    r = run("--scene scenes/default.yaml --lockstep --no-lcm --no-mlock --quiet --duration 1 --missed-policy " +
+            std::string(policy) + " --flight-dir '" + path("") + "' --stats-json '" + path("s.json") + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string json = slurp(path("s.json"));
+    EXPECT_NE(json.find(std::string("\"missed_policy\": {\"policy\": \"") + policy + "\""), std::string::npos) << json;
+    EXPECT_EQ(jsonNumber(json, "service_missed_ticks"), 0) << json;
+    EXPECT_GT(jsonNumber(json, "service_ticks"), 0) << json;
+    EXPECT_LE(jsonNumber(json, "service_ticks"), jsonNumber(json, "ticks")) << json;
+    EXPECT_NE(r.out.find(std::string("gaps (") + policy + ")"), std::string::npos) << r.out;
+  }
+}
+
 TEST_F(Hapticd, UnusableLcmUrlIsAWarningAndTheServoRuns) {
   const ProcRun r = run("--scene scenes/default.yaml --lockstep --quiet --duration 0.5 --lcm-url 'bogus://nowhere' "
                     "--stats-json '" + path("s.json") + "' --flight-dir '" + path("") + "'");

@@ -341,6 +341,21 @@ TEST(Passivity, AppliedForceReplacesTheAssumedOutput) {
   EXPECT_NEAR(pc.energy(), 0.0, 1e-15);
 }
 
+TEST(Passivity, AGapRiddenThroughBooksTheDevicesHeldForce) {
+  PassivityController pc(PassivityConfig::fromSpec(desktop(), kT, 0.0));
+  const Vector3d f(2.0, 0.0, 0.0), v(-0.1, 0.0, 0.0);
+  pc.apply(f, v);  // the output due next tick: 2 N against the motion (a press), no controller
+  ASSERT_EQ(pc.alpha(), 0.0);
+  const double before = pc.observedEnergy();
+  // The watchdog held 0.5 then 0.25 of it over two missed periods: 0.75 periods of 2 N at 0.1 m/s,
+  // energy the environment absorbed.
+  pc.observeHeldPeriods(v, 0.75);
+  EXPECT_NEAR(pc.observedEnergy() - before, 2.0 * 0.1 * kT * 0.75, 1e-15);
+  pc.observeHeldPeriods(v, 0.0);  // nothing held: nothing booked
+  pc.observeHeldPeriods(Vector3d(std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0), 0.75);  // unobservable: nothing booked
+  EXPECT_NEAR(pc.observedEnergy() - before, 2.0 * 0.1 * kT * 0.75, 1e-15);
+}
+
 TEST(Passivity, NonFiniteInputPassesThroughUnobserved) {
   PassivityController pc(PassivityConfig::fromSpec(desktop(), kT, 500.0));
   const Vector3d v(0.0, 0.0, -0.1);

@@ -219,6 +219,31 @@ TEST(Safety, PeakClampKeepsTheDirection) {
   }
 }
 
+TEST(Safety, AfterARiddenThroughGapTheRateLimitCountsFromTheHeldForce) {
+  SafetyConfig c = isolated();
+  c.max_force_rate_n_per_s = 5000.0;  // 5 N per tick
+  SafetyStage s(c);
+  engage(s);
+  s.apply(Vector3d(5.0, 0.0, 0.0));
+  EXPECT_NEAR(s.apply(Vector3d(7.0, 0.0, 0.0)).x(), 7.0, 1e-12);
+  // The device's watchdog dropped the force to zero over the gap: back to 7 N in two steps.
+  s.restartRateLimitFrom(0.0);
+  EXPECT_NEAR(s.apply(Vector3d(7.0, 0.0, 0.0)).x(), 5.0, 1e-12);
+  EXPECT_TRUE(s.flags() & srv::kSafetyRateLimited);
+  EXPECT_NEAR(s.apply(Vector3d(7.0, 0.0, 0.0)).x(), 7.0, 1e-12);
+  // It still held half (one missed period): 3.5 N -> 7 N is inside one step.
+  s.restartRateLimitFrom(0.5);
+  EXPECT_NEAR(s.apply(Vector3d(7.0, 0.0, 0.0)).x(), 7.0, 1e-12);
+  EXPECT_FALSE(s.flags() & srv::kSafetyRateLimited);
+  EXPECT_EQ(s.state(), SafetyState::Engaged) << "a gap ridden through is no disengagement";
+  EXPECT_EQ(s.counters().disengage_events, 0u);
+  // Out-of-range and NaN gains are clamped, never raise the reference.
+  s.restartRateLimitFrom(2.0);
+  EXPECT_NEAR(s.lastOutput().x(), 7.0, 1e-12);
+  s.restartRateLimitFrom(kNaN);
+  EXPECT_EQ(s.lastOutput().x(), 0.0);
+}
+
 TEST(Safety, RateLimitBoundsEveryStep) {
   SafetyConfig c = isolated();
   c.max_force_rate_n_per_s = 5000.0;  // 5 N per tick

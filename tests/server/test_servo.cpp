@@ -34,14 +34,14 @@ TEST(Servo, PressIntoAValleyEngagesAndRendersUpward) {
 TEST(Servo, LongGapDisengagesAndFreezesAFlightRecord) {
   ServoRig rig([](std::int64_t tick, dev::DeviceState& s) {
     press(tick, s);
-    if (tick == 1500) s.timing.missed = 5;  // the servo was away for 5 ms
+    if (tick == 1500) s.timing.missed = 25;  // the servo was away for 25 ms: longer than ridden through
   });
   rig.run(1500);
   EXPECT_GT(rig.device.writes().back().norm(), 0.5);
-  rig.run(1);  // the tick after the gap: 1505, the fault
+  rig.run(1);  // the tick after the gap: 1525, the fault
   EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
   EXPECT_EQ(rig.servo().counters().faults, 1u);
-  EXPECT_EQ(rig.servo().counters().missed_ticks, 5u);
+  EXPECT_EQ(rig.servo().counters().missed_ticks, 25u);
   EXPECT_EQ(rig.safety().state(), srv::SafetyState::Disengaged);
   // The flight record holds the last second up to and including the fault.
   const std::string dir = testing::TempDir();
@@ -55,12 +55,64 @@ TEST(Servo, LongGapDisengagesAndFreezesAFlightRecord) {
     last = line;
   }
   EXPECT_EQ(lines, 2 + 1000);  // comment + header + 1000 ticks
-  EXPECT_EQ(last.rfind("1505,5,", 0), 0u) << last;  // the faulting tick, 5 missed
+  EXPECT_EQ(last.rfind("1525,25,", 0), 0u) << last;  // the faulting tick, 25 missed
   std::filesystem::remove(path);
   EXPECT_TRUE(rig.recorder().dumpPending(dir).empty());
   // While pressing, the force stays zero: re-engaging needs a small requested force first.
   rig.run(100);
   EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
+}
+
+// The gaps a loaded machine makes (a few ms) under a steady press: the force stays on.
+TEST(Servo, ShortGapsUnderAPressAreRiddenThroughAtFullForce) {
+  ServoRig rig([](std::int64_t tick, dev::DeviceState& s) {
+    press(tick, s);
+    if (tick == 1500) s.timing.missed = 1;
+    if (tick == 1600) s.timing.missed = 5;   // longer than the device's watchdog holds the force
+    if (tick == 1700) s.timing.missed = 20;  // the longest ridden through
+  });
+  rig.run(1500);
+  const double held = rig.device.writes().back().z();
+  ASSERT_GT(held, 0.9);
+  const std::uint64_t full_before = rig.servo().counters().full_force_ticks;
+  rig.run(300 - 26);  // every tick from 1500 on, through all three gaps, to tick 1800
+  EXPECT_EQ(rig.servo().counters().faults, 0u);
+  EXPECT_EQ(rig.servo().counters().missed_ticks, 26u);
+  EXPECT_EQ(rig.servo().counters().service_missed_ticks, 26u);
+  EXPECT_EQ(rig.safety().state(), srv::SafetyState::Engaged);
+  EXPECT_EQ(rig.safety().counters().disengage_events, 0u);
+  EXPECT_EQ(rig.servo().missedTickPolicy().counters().ride_throughs, 3u);
+  // 1 N is inside one rate-limit step: not one serviced tick below full force.
+  EXPECT_EQ(rig.servo().counters().full_force_ticks - full_before, std::uint64_t(300 - 26));
+  for (std::size_t k = rig.device.writes().size() - 274; k < rig.device.writes().size(); ++k)
+    EXPECT_NEAR(rig.device.writes()[k].z(), held, 0.05) << k;
+}
+
+TEST(Servo, TheOldPolicyDisengagesOnAFiveTickGap) {
+  ServoRig rig(
+      [](std::int64_t tick, dev::DeviceState& s) {
+        press(tick, s);
+        if (tick == 1500) s.timing.missed = 5;
+      },
+      true, srv::MissedTickMode::DisengageOnGap);
+  rig.run(1501);
+  EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
+  EXPECT_EQ(rig.servo().counters().faults, 1u);
+  EXPECT_EQ(rig.safety().state(), srv::SafetyState::Disengaged);
+  rig.run(100);  // pressing: no small request, so the force stays off
+  EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
+}
+
+TEST(Servo, AGapOverWhichThePenJumpedDisengages) {
+  ServoRig rig([](std::int64_t tick, dev::DeviceState& s) {
+    press(tick, s);
+    if (tick == 1500) s.timing.missed = 2;
+    if (tick >= 1500) s.p_world.z() -= 0.0015;  // 1.5 mm deeper after the gap: K x 1.5 mm > 1.185 N
+  });
+  rig.run(1501);
+  EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
+  EXPECT_EQ(rig.servo().counters().faults, 1u);
+  EXPECT_EQ(rig.servo().missedTickPolicy().counters().jumps, 1u);
 }
 
 TEST(Servo, InvalidReadingsTurnTheForceOffAfterThePolicyLimit) {

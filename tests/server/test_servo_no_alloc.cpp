@@ -17,7 +17,8 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
     const double z = t < 1.0 ? 0.002 - 0.0065 * t : (t < 4.5 ? -0.0045 : 0.002);
     s.p_world = Eigen::Vector3d(x, 0.001 * t, z);
     s.v_world = Eigen::Vector3d(0.04 * std::cos((t - 2.0) * 2.0), 0.001, 0.0);
-    if (tick == 3000) s.timing.missed = 4;  // a fault: flight recorder freeze on the path too
+    if (tick == 2500) s.timing.missed = 3;   // a gap ridden through: the policy's path
+    if (tick == 3000) s.timing.missed = 25;  // a long stall, a fault: flight recorder freeze on the path too
   });
   // Everything optional on the tick is on: VRPN effects (none commanded) and the snapshot slot.
   srv::ExternalEffectRenderer effects(1e-3);
@@ -34,8 +35,9 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
   }
   EXPECT_EQ(test::g_allocations.load() - before, 0);
   EXPECT_GT(rig.servo().counters().contact_ticks, 2000u);
-  // Two faults on the path: the 4-tick gap, and the continuous-force budget running out in the
+  // Two faults on the path: the 25-tick stall, and the continuous-force budget running out in the
   // long press (the safety stage limits the force from then on).
   EXPECT_EQ(rig.servo().counters().faults, 2u);
   EXPECT_GT(rig.safety().counters().continuous_limited, 0u);
+  EXPECT_EQ(rig.servo().missedTickPolicy().counters().ride_throughs, 1u);
 }
