@@ -12,6 +12,7 @@
 #include "clients/physics/contact_solver.hpp"
 #include "clients/physics/relief_collision.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
+#include "clients/physics/scaled_convex_collision.hpp"
 
 namespace thx::phys {
 
@@ -26,6 +27,8 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   configuration_->setPlaneConvexMultipointIterations(3, 3);
   dispatcher_ = std::make_unique<btCollisionDispatcher>(configuration_.get());
   registerReliefCollision(*dispatcher_);
+  // Convex pairs without an exact Bullet algorithm: GJK/EPA at metre scale (scaled_convex_collision.hpp).
+  if (options.scaled_convex_pairs) registerScaledConvexCollision(*dispatcher_);
   broadphase_ = std::make_unique<btDbvtBroadphase>();
   // Bullet's solver, except that friction never outlives its contact's normal impulse
   // (contact_solver.hpp: a box on a normal map slid 12 % slow without this).

@@ -27,6 +27,10 @@ struct WorldOptions {
   // Convex margin for boxes, capsules' and cylinders' GJK (Bullet's 4 cm default is far too big
   // at haptic scale; shared reference §5).
   double convex_margin_m = 0.5e-3;
+  // Sphere-box, sphere-cylinder, box-cylinder and the capsule-box/cylinder, cylinder-cylinder
+  // pairs through ScaledConvexAlgorithm (Bullet's GJK/EPA on shapes scaled to metres); false:
+  // Bullet's own btConvexConvexAlgorithm, which misses millimetre overlaps at this size.
+  bool scaled_convex_pairs = true;
 };
 
 struct BodyMaterial {
