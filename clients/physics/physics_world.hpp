@@ -2,7 +2,8 @@
 // Everything a Bullet simulation on a textured plane needs, owned in one place: collision
 // configuration, dispatcher (with the relief algorithms registered), broadphase, solver, the
 // TexturedWorld, and the shapes and bodies added through it. Defaults suit haptic scale
-// (cm objects, mm texels): no deactivation, 0.5 mm convex margins, multi-point plane contacts.
+// (cm objects, mm texels): bodies sleep only by our rest criterion (rest_detector.hpp), 0.5 mm
+// convex margins, multi-point plane contacts, friction along the slip at any speed.
 // SI units throughout. Not real-time code: adding bodies allocates.
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
@@ -31,6 +32,11 @@ struct WorldOptions {
   // pairs through ScaledConvexAlgorithm (Bullet's GJK/EPA on shapes scaled to metres); false:
   // Bullet's own btConvexConvexAlgorithm, which misses millimetre overlaps at this size.
   bool scaled_convex_pairs = true;
+  // Friction along the slip at any slip speed (friction_direction.hpp); false: Bullet's fixed
+  // tangent below 0.35 mm/s.
+  bool friction_along_slip = true;
+  // Bodies at rest sleep (rest_detector.hpp); disabled: no body ever sleeps.
+  RestOptions rest;
 };
 
 struct BodyMaterial {

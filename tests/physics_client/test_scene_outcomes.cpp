@@ -235,7 +235,9 @@ TEST(ShippedSceneOutcome, PinballHitsBumpersAndEndsInTheDrain) {
 
 // The zig-zag balls roll down the street inside its channel and stop at the kerb.
 TEST(ShippedSceneOutcome, ZigzagBallsStayInTheChannelAndRollDownTheStreet) {
-  const SceneRun r = runScene("zigzag_street.yaml", 5.0);
+  // 6 s: with friction along the slip at every speed (friction_direction.hpp) the last ball is
+  // still 0.3 mm short of the kerb's line at 5 s, rolling at 0.1 m/s.
+  const SceneRun r = runScene("zigzag_street.yaml", 6.0);
   const double period = param(r.scene, "period"), amplitude = param(r.scene, "amplitude"),
                width = param(r.scene, "width"), a = param(r.scene, "sharpness");
   // The street's centre line (zigzag generator, plane coordinates centred on the texture).
