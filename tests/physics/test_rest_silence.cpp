@@ -64,13 +64,6 @@ void expectSilent(const Quiet& q, const char* what, double dt) {
 
 class RestSilence : public ::testing::TestWithParam<double> {};  // time step
 
-// Rounded U grooves (scenes/pen_pushes_ball.yaml): a 6 mm ball rests on the two walls.
-double uGroove(double x, double) {
-  const double pitch = 0.0125, half_width = 0.004, dep = 1.5e-3;
-  const double dx = x - std::round(x / pitch) * pitch;
-  return std::fabs(dx) < half_width ? -dep * std::cos(0.5 * kPi * dx / half_width) : 0.0;
-}
-
 TEST_P(RestSilence, BallOnAGroovesWalls) {
   const SurfaceHolder s = holdSurface(heightMap(256, 0.1, uGroove), 0.1, true);
   PhysicsWorld w;

@@ -18,6 +18,7 @@
 
 #include "clients/physics_client/driver.hpp"
 #include "clients/physics_client/physics_scene.hpp"
+#include "sanitizer.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace {
@@ -62,17 +63,7 @@ struct SceneRun {
 
 // Under AddressSanitizer (the Debug ASan+UBSan build) rasterising a box on the relief runs
 // ~300x slower than in RelWithDebInfo: 140 s for the letter blocks at full size.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using thx::physclient::test::kSanitized;
 
 // texture_size > 0 replaces the generated texture's size (same pattern, coarser texels).
 SceneRun runScene(const std::string& file, double seconds, int texture_size = 0) {

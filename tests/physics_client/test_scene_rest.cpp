@@ -12,6 +12,7 @@
 #include <string>
 
 #include "clients/physics_client/physics_scene.hpp"
+#include "sanitizer.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace {
@@ -36,17 +37,7 @@ const std::map<std::string, const char*> kOpen = {
     {"letter_blocks", "7 mm/s at the fence"}, {"zigzag_street", "0.4 mm/s at the kerb"},
 };
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using thx::physclient::test::kSanitized;
 
 struct Quiet {
   double max_speed = 0.0, max_slip = 0.0;
