@@ -27,14 +27,15 @@ const std::map<std::string, double> kRestBy = {
     {"marble_bricks", 2.0}, {"pen_pushes_ball", 1.0}, {"pen_pushes_ball_dimples", 1.0},
     {"pinball", 4.0},       {"vvalley", 1.0},
 };
-// Not silent yet (docs/physics.md, "Rest", open), each with what was measured:
+// Not silent yet (docs/physics.md, "Known gaps"), each with what was measured:
 //  dimple_ball   -- the ball rolls in place in a dimple of its radius (2.3 mm/s read);
-//  default       -- the marble, no rolling friction, still slips 0.13 mm/s at 12 s;
-//  letter_blocks -- blocks against the fence still move at 7 mm/s at 8 s;
-//  zigzag_street -- the balls at the kerb still move at 0.4 mm/s at 15 s.
+//  default       -- the marble (no rolling friction) ends in a dip spinning about the vertical at
+//                   0.17 rad/s, its off-axis contact slipping 0.13 mm/s;
+//  letter_blocks -- the blocks against the fence rock on the pebbles (0.5-0.9 rad/s, 2 mm/s) at 8 s;
+//  zigzag_street -- the balls at the kerb creep at up to 0.4 mm/s at 15 s.
 const std::map<std::string, const char*> kOpen = {
-    {"dimple_ball", "rolls in place"}, {"default", "slips 0.13 mm/s"},
-    {"letter_blocks", "7 mm/s at the fence"}, {"zigzag_street", "0.4 mm/s at the kerb"},
+    {"dimple_ball", "rolls in place"}, {"default", "spins in place, slip 0.13 mm/s"},
+    {"letter_blocks", "rocks at the fence, 2 mm/s"}, {"zigzag_street", "creeps at the kerb, 0.4 mm/s"},
 };
 
 using thx::physclient::test::kSanitized;
