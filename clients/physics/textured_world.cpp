@@ -5,6 +5,7 @@
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 
 #include <algorithm>
+#include <utility>
 
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/friction_direction.hpp"
@@ -56,6 +57,28 @@ void TexturedWorld::rewriteNormalMapContacts() {
       break;
     }
   }
+}
+
+void TexturedWorld::solveConstraints(btContactSolverInfo& info) {
+  if (!rest_.enabled) return btDiscreteDynamicsWorld::solveConstraints(info);
+  // Kinematic bodies awake and touching nothing (few: the pen).
+  thread_local std::vector<std::pair<btCollisionObject*, int>> quiet;
+  quiet.clear();
+  for (int i = 0; i < m_collisionObjects.size(); ++i) {
+    btCollisionObject* o = m_collisionObjects[i];
+    if (o->isKinematicObject() && o->getActivationState() != ISLAND_SLEEPING) quiet.emplace_back(o, o->getActivationState());
+  }
+  if (!quiet.empty()) {
+    btDispatcher* dispatcher = getDispatcher();
+    for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
+      const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+      if (manifold->getNumContacts() == 0) continue;
+      std::erase_if(quiet, [&](const auto& k) { return k.first == manifold->getBody0() || k.first == manifold->getBody1(); });
+    }
+  }
+  for (const auto& [object, state] : quiet) object->forceActivationState(ISLAND_SLEEPING);
+  btDiscreteDynamicsWorld::solveConstraints(info);
+  for (const auto& [object, state] : quiet) object->forceActivationState(state);
 }
 
 // Bullet's btDiscreteDynamicsWorld::updateActivationState with the rest criterion of

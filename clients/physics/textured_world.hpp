@@ -53,6 +53,11 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
   };
   void rewriteNormalMapContacts();
   void updateActivationState(btScalar time_step) override;
+  // Bullet's island manager wakes every body that shares a manifold with an active kinematic
+  // body, even a manifold with no contact point (the pen's bounding box near a resting ball): a
+  // resting body beside the pen never slept. During the solve a kinematic body with no contact
+  // point in any manifold is marked asleep, so it wakes only what it touches.
+  void solveConstraints(btContactSolverInfo& info) override;
 
   std::vector<NormalMapPlane> planes_;
   long long rewritten_ = 0;

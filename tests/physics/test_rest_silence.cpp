@@ -122,6 +122,40 @@ TEST_P(RestSilence, BallRolledToAStopByRollingFriction) {
   expectSilent(quietAfter(w, ball, GetParam(), 1.0, 2.0), "ball stopped by rolling friction", GetParam());
 }
 
+// Sleeping is Bullet's: a ball asleep on the plane wakes when another ball rolls into it, and a
+// kinematic body (the physics client's pen) wakes it by touching it.
+TEST_P(RestSilence, AsleepBallWakesWhenTouched) {
+  const SurfaceHolder s = holdSurface(tiltedMap(0.0, 64, 0.4), 0.4, false);
+  const double dt = GetParam();
+  PhysicsWorld w;
+  w.addNormalMapPlane(s.surface, {1.0, 0.0, 0.0});
+  btRigidBody& resting = w.addSphere(0.005, 0.004, at(0, 0, 0.005), {0.5, 0.0, 0.0});
+  btRigidBody& pen = w.addSphere(0.004, 0.0, at(0.0, 0.1, 0.004), {0.5, 0.0, 0.0});
+  pen.setCollisionFlags(pen.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  pen.setActivationState(DISABLE_DEACTIVATION);
+  for (int k = 0; k < int(std::lround(1.0 / dt)); ++k) w.step(dt);
+  ASSERT_EQ(resting.getActivationState(), ISLAND_SLEEPING);
+
+  // A second ball rolls into it at 0.1 m/s along +x.
+  btRigidBody& rolling = w.addSphere(0.005, 0.004, at(-0.03, 0, 0.005), {0.5, 0.0, 0.0});
+  setRolling(rolling, 0.1, 0.005);
+  for (int k = 0; k < int(std::lround(0.5 / dt)); ++k) w.step(dt);
+  std::printf("[measured] hit at %.0f Hz: the sleeper moved %.2f mm\n", 1.0 / dt, positionOf(resting).x() * 1e3);
+  EXPECT_GT(positionOf(resting).x(), 0.005);
+
+  // Both asleep again; then the kinematic pen moves into the first along -y at 0.1 m/s.
+  for (int k = 0; k < int(std::lround(3.0 / dt)); ++k) w.step(dt);
+  const Eigen::Vector3d before = positionOf(resting);
+  for (int k = 1; k <= int(std::lround(1.0 / dt)); ++k) {
+    btTransform t = pen.getWorldTransform();
+    t.setOrigin(toBt(Eigen::Vector3d(before.x(), 0.1 - 0.1 * k * dt, 0.004)));
+    pen.setWorldTransform(t);
+    w.step(dt);
+  }
+  std::printf("[measured] pen at %.0f Hz: the sleeper moved %.2f mm\n", 1.0 / dt, (positionOf(resting) - before).norm() * 1e3);
+  EXPECT_GT((positionOf(resting) - before).norm(), 0.005);
+}
+
 INSTANTIATE_TEST_SUITE_P(TimeStep, RestSilence, ::testing::Values(1e-3, 1.0 / 60.0),
                          [](const auto& p) { return p.param < 0.01 ? "1kHz" : "60Hz"; });
 

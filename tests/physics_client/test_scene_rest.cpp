@@ -1,4 +1,5 @@
-// Every shipped scene, run without the pen (`physics-client --scene S --no-pen`), comes to rest
+// Every shipped scene, run with its pen parked (as `physics-client --scene S` before the first
+// device state), comes to rest
 // and is then silent: every moving object's speed and every contact's reported slip stay below
 // 0.01 mm/s over the last half second (docs/physics.md, "Rest"). The scenes are found in
 // scenes/*.yaml, so a new scene must be listed: in kRestBy (when it is at rest) or, while it is
@@ -49,9 +50,9 @@ Quiet runToRest(const std::string& path, double rest_s) {
   thx::scene::Scene scene = thx::scene::loadScene(path);
   // The sanitizer build rasterises relief boxes ~300x slower: coarser texels there.
   if (kSanitized && scene.surface.texture.generator.size > 128) scene.surface.texture.generator.size = 128;
-  SimOptions options;
-  options.pen.shape = PenShape::None;
-  PhysicsScene sim(scene, options);
+  // The pen is there (parked, as before hapticd's first state): a kinematic body must not keep
+  // resting objects awake.
+  PhysicsScene sim(scene, SimOptions{});
   const double dt = 1.0 / scene.rates.physics_hz;
   const auto steps = std::int64_t(std::llround((rest_s + kWindow) / dt));
   Quiet q;
