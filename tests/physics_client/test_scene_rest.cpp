@@ -1,7 +1,6 @@
 // Every shipped scene, run with its pen parked (as `physics-client --scene S` before the first
-// device state), comes to rest
-// and is then silent: every moving object's speed and every contact's reported slip stay below
-// 0.01 mm/s over the last half second (docs/physics.md, "Rest"). The scenes are found in
+// device state), comes to rest and is then silent: every moving object's speed and every
+// contact's reported slip stay below 0.01 mm/s over the last half second (docs/physics.md, "Rest"). The scenes are found in
 // scenes/*.yaml, so a new scene must be listed: in kRestBy (when it is at rest) or, while it is
 // not silent yet, in kOpen.
 #include <gtest/gtest.h>
