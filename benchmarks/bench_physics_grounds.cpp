@@ -185,7 +185,15 @@ btRigidBody& Ground::addTo(phys::PhysicsWorld& world, std::unique_ptr<btRigidBod
   throw std::logic_error("unknown representation");
 }
 
-Sim::Sim(const Ground& ground) { ground.addTo(world, ground_body); }
+// Bodies never sleep here: the timed runs of a resting object measure its contacts' cost, and
+// the rest checks its contacts' drift, not the rest criterion's freeze (docs/physics.md, "Rest").
+static phys::WorldOptions awake() {
+  phys::WorldOptions o;
+  o.rest.enabled = false;
+  return o;
+}
+
+Sim::Sim(const Ground& ground) : world(awake()) { ground.addTo(world, ground_body); }
 
 Sim::~Sim() {
   if (ground_body) world.world().removeRigidBody(ground_body.get());

@@ -12,6 +12,7 @@
 #include "clients/physics/contact_solver.hpp"
 #include "clients/physics/relief_collision.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
+#include "clients/physics/scaled_convex_collision.hpp"
 
 namespace thx::phys {
 
@@ -26,6 +27,8 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   configuration_->setPlaneConvexMultipointIterations(3, 3);
   dispatcher_ = std::make_unique<btCollisionDispatcher>(configuration_.get());
   registerReliefCollision(*dispatcher_);
+  // Convex pairs without an exact Bullet algorithm: GJK/EPA at metre scale (scaled_convex_collision.hpp).
+  if (options.scaled_convex_pairs) registerScaledConvexCollision(*dispatcher_);
   broadphase_ = std::make_unique<btDbvtBroadphase>();
   // Bullet's solver, except that friction never outlives its contact's normal impulse
   // (contact_solver.hpp: a box on a normal map slid 12 % slow without this).
@@ -33,6 +36,8 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   world_ = std::make_unique<TexturedWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(), configuration_.get());
   world_->setGravity(toBt(options.gravity_m_per_s2));
   world_->getSolverInfo().m_numIterations = options.solver_iterations;
+  if (options.friction_along_slip) world_->getSolverInfo().m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+  world_->setRestOptions(options.rest);
 }
 
 PhysicsWorld::~PhysicsWorld() {
@@ -50,8 +55,11 @@ btRigidBody& PhysicsWorld::addBody(std::unique_ptr<btCollisionShape> shape, doub
   info.m_restitution = narrow(material.restitution);
   info.m_rollingFriction = narrow(material.rolling_friction);
   auto body = std::make_unique<btRigidBody>(info);
-  // Haptic scenes: a resting object must still answer a push from the pen at once.
-  body->setActivationState(DISABLE_DEACTIVATION);
+  // Haptic scenes: a resting object must still answer a push from the pen at once. It sleeps
+  // only by our rest criterion, and a touch wakes it (textured_world.hpp); without that
+  // criterion it never sleeps (Bullet's own would put a centimetre ball rolling at 0.5 m/s to
+  // sleep after 2 s).
+  body->setActivationState(options_.rest.enabled ? ACTIVE_TAG : DISABLE_DEACTIVATION);
   world_->addRigidBody(body.get());
   shapes_.push_back(std::move(shape));
   bodies_.push_back(std::move(body));
@@ -109,6 +117,7 @@ Eigen::Vector3d positionOf(const btRigidBody& body) { return toEigen(body.getWor
 Eigen::Vector3d velocityOf(const btRigidBody& body) { return toEigen(body.getLinearVelocity()); }
 Eigen::Vector3d angularVelocityOf(const btRigidBody& body) { return toEigen(body.getAngularVelocity()); }
 void setVelocity(btRigidBody& body, const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
+  body.activate(true);  // a sleeping body would ignore it
   body.setLinearVelocity(toBt(v));
   body.setAngularVelocity(toBt(w));
 }

@@ -2,7 +2,8 @@
 // Everything a Bullet simulation on a textured plane needs, owned in one place: collision
 // configuration, dispatcher (with the relief algorithms registered), broadphase, solver, the
 // TexturedWorld, and the shapes and bodies added through it. Defaults suit haptic scale
-// (cm objects, mm texels): no deactivation, 0.5 mm convex margins, multi-point plane contacts.
+// (cm objects, mm texels): bodies sleep only by our rest criterion (rest_detector.hpp), 0.5 mm
+// convex margins, multi-point plane contacts, friction along the slip at any speed.
 // SI units throughout. Not real-time code: adding bodies allocates.
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
@@ -27,6 +28,15 @@ struct WorldOptions {
   // Convex margin for boxes, capsules' and cylinders' GJK (Bullet's 4 cm default is far too big
   // at haptic scale; docs/design.md §7 fact 8).
   double convex_margin_m = 0.5e-3;
+  // Sphere-box, sphere-cylinder, box-cylinder and the capsule-box/cylinder, cylinder-cylinder
+  // pairs through ScaledConvexAlgorithm (Bullet's GJK/EPA on shapes scaled to metres); false:
+  // Bullet's own btConvexConvexAlgorithm, which misses millimetre overlaps at this size.
+  bool scaled_convex_pairs = true;
+  // Friction along the slip at any slip speed (friction_direction.hpp); false: Bullet's fixed
+  // tangent below 0.35 mm/s.
+  bool friction_along_slip = true;
+  // Bodies at rest sleep (rest_detector.hpp); disabled: no body ever sleeps.
+  RestOptions rest;
 };
 
 struct BodyMaterial {

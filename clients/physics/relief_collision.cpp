@@ -38,34 +38,14 @@ std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen:
   }
 }
 
-ReliefCollisionAlgorithm::ReliefCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* body0,
-                                                   const btCollisionObjectWrapper* body1, bool swapped)
-    : btActivatingCollisionAlgorithm(ci, body0, body1), manifold_(ci.m_manifold), swapped_(swapped) {
-  if (!manifold_) {
-    const btCollisionObjectWrapper* object = swapped ? body1 : body0;
-    const btCollisionObjectWrapper* relief = swapped ? body0 : body1;
-    manifold_ = m_dispatcher->getNewManifold(object->getCollisionObject(), relief->getCollisionObject());
-    own_manifold_ = true;
-  }
-}
-
-ReliefCollisionAlgorithm::~ReliefCollisionAlgorithm() {
-  if (own_manifold_ && manifold_) m_dispatcher->releaseManifold(manifold_);
-}
-
-void ReliefCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-  if (manifold_ && own_manifold_) manifolds.push_back(manifold_);
-}
-
 void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                                 const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
                                                 btManifoldResult* result) {
-  if (!manifold_) return;
   const btCollisionObjectWrapper* object = swapped_ ? body1 : body0;
   const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
-  result->setPersistentManifold(manifold_);
-  manifold_->clearManifold();
+  btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());
+  result->setPersistentManifold(manifold);
+  manifold->clearManifold();
 
   const auto& plane = static_cast<const ReliefPlaneShape&>(*relief->getCollisionShape());
   const Eigen::Isometry3d world_from_plane = toEigen(relief->getWorldTransform());
@@ -74,7 +54,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
       undersideOf(*object->getCollisionShape(), world_from_plane.inverse() * world_from_object);
   if (!underside) return;
 
-  const double threshold = double(manifold_->getContactBreakingThreshold());
+  const double threshold = double(manifold->getContactBreakingThreshold());
   // Reused between steps so a resting object costs no allocation per step.
   thread_local std::vector<ReliefCandidate> candidates;
   candidates.clear();
@@ -125,13 +105,6 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     const Eigen::Vector3d on_relief = on_object - distance * n_world;
     result->addContactPoint(toBt(n_world), toBt(on_relief), static_cast<btScalar>(distance));
   }
-}
-
-btCollisionAlgorithm* ReliefCollisionAlgorithm::CreateFunc::CreateCollisionAlgorithm(
-    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
-    const btCollisionObjectWrapper* body1) {
-  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(int(sizeof(ReliefCollisionAlgorithm)));
-  return new (memory) ReliefCollisionAlgorithm(ci, body0, body1, m_swapped);
 }
 
 void registerReliefCollision(btCollisionDispatcher& dispatcher) {

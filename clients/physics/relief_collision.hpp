@@ -14,41 +14,32 @@
 // point on the object is where its surface faces -n (underside.hpp, contactOnObject): q = c - r n
 // for a sphere (Eq. 2), the axis point for a capsule or a cylinder's side, the lowest point above
 // the texel for a box or a cylinder's end face.
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
-#include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
-#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
-
 #include <optional>
 
+#include "clients/physics/manifold_algorithm.hpp"
 #include "clients/physics/underside.hpp"
 
 namespace thx::phys {
 
-class ReliefCollisionAlgorithm : public btActivatingCollisionAlgorithm {
+class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
  public:
   ReliefCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
-                           const btCollisionObjectWrapper* body1, bool swapped);
-  ~ReliefCollisionAlgorithm() override;
+                           const btCollisionObjectWrapper* body1, bool swapped)
+      : ManifoldAlgorithm(ci, body0, body1), swapped_(swapped) {}
 
   void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                         const btDispatcherInfo& info, btManifoldResult* result) override;
-  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                 btManifoldResult*) override {
-    return btScalar(1);  // no continuous collision: discrete contacts only
-  }
-  void getAllContactManifolds(btManifoldArray& manifolds) override;
 
   struct CreateFunc : btCollisionAlgorithmCreateFunc {
     explicit CreateFunc(bool swapped) { m_swapped = swapped; }
     btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
                                                    const btCollisionObjectWrapper* body0,
-                                                   const btCollisionObjectWrapper* body1) override;
+                                                   const btCollisionObjectWrapper* body1) override {
+      return create<ReliefCollisionAlgorithm>(ci, body0, body1, m_swapped);
+    }
   };
 
  private:
-  // Small on purpose: Bullet allocates algorithms from a pool sized for its own ones.
-  btPersistentManifold* manifold_ = nullptr;
-  bool own_manifold_ = false;
   bool swapped_ = false;  // true: body0 is the relief plane, body1 the object
 };
 

@@ -11,9 +11,11 @@
 // dispatcher (relief_collision.hpp); PhysicsWorld wires both.
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 
+#include <unordered_map>
 #include <vector>
 
 #include "clients/physics/normal_map_contact.hpp"
+#include "clients/physics/rest_detector.hpp"
 #include "textures/textured_surface.hpp"
 
 namespace thx::phys {
@@ -30,7 +32,15 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
                          const NormalMapOptions& options = {});
   void removeNormalMapPlane(const btCollisionObject* plane);
 
+  // Bullet's detection, then the normal-map rewrite, then (with the solver's
+  // SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) every point's friction along its slip
+  // (friction_direction.hpp).
   void performDiscreteCollisionDetection() override;
+
+  // Rest (rest_detector.hpp): bodies at rest go to sleep by Bullet's island rules. Bodies with
+  // DISABLE_DEACTIVATION (the pen) never do.
+  void setRestOptions(const RestOptions& options) { rest_ = options; }
+  const RestOptions& restOptions() const { return rest_; }
 
   // Contact points rewritten by the last step (for tests and statistics).
   long long rewrittenPoints() const { return rewritten_; }
@@ -41,8 +51,18 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
     const tex::TexturedSurface* surface;
     NormalMapOptions options;
   };
+  void rewriteNormalMapContacts();
+  void updateActivationState(btScalar time_step) override;
+  // Bullet's island manager wakes every body that shares a manifold with an active kinematic
+  // body, even a manifold with no contact point (the pen's bounding box near a resting ball): a
+  // resting body beside the pen never slept. During the solve a kinematic body with no contact
+  // point in any manifold is marked asleep, so it wakes only what it touches.
+  void solveConstraints(btContactSolverInfo& info) override;
+
   std::vector<NormalMapPlane> planes_;
   long long rewritten_ = 0;
+  RestOptions rest_;
+  std::unordered_map<const btRigidBody*, RestDetector> rest_detectors_;
 };
 
 }  // namespace thx::phys

@@ -71,6 +71,15 @@ inline Eigen::Isometry3d at(double x, double y, double z) {
   return t;
 }
 
+// Rounded U grooves along y (12.5 mm period, 8 mm wide, 1.5 mm deep), as in
+// scenes/pen_pushes_ball.yaml: a 6 mm ball is wider than the groove's floor and rests on its
+// two walls, two contacts pushing against each other.
+inline double uGroove(double x, double) {
+  const double pitch = 0.0125, half_width = 0.004, dep = 1.5e-3;
+  const double dx = x - std::round(x / pitch) * pitch;
+  return std::fabs(dx) < half_width ? -dep * std::cos(0.5 * kPi * dx / half_width) : 0.0;
+}
+
 // Rolling without slip along +x on a surface below: omega_y = v / r.
 inline void setRolling(btRigidBody& ball, double v_x, double radius) {
   setVelocity(ball, {v_x, 0.0, 0.0}, {0.0, v_x / radius, 0.0});

@@ -74,9 +74,8 @@ TEST(PhysicsClientPush, PenPushesBallIntoAGroove) {
   EXPECT_LT(std::fabs(moved.y()), 0.01);
   EXPECT_LT(std::fabs(o.groove_offset_m), 1e-3);  // settled in a groove ...
   EXPECT_LT(o.ball.p_world.z(), 0.006 - 0.0008);  // ... sunk into it (r = 6 mm, rests ~1.3 mm down)
-  // ... and stays: where it is at 4 s it still is 2 s later. (Bullet's velocity reading there is
-  // not zero: with the contact solver's friction release the ball keeps a steady ~2.5 mm/s that
-  // the contact's position correction cancels every step; docs/physics.md, known gaps.)
+  // ... and stays: where it is at 4 s it still is 2 s later (and reads still: it sleeps by the
+  // rest criterion, docs/physics.md "Rest"; it used to read a steady ~2.5 mm/s).
   const Outcome later = runPush(PenOptions{}, 6.0);
   EXPECT_LT((later.ball.p_world - o.ball.p_world).norm(), 1e-4);
   EXPECT_GT(o.summary.pen_contact_steps, 0);

@@ -18,6 +18,7 @@
 
 #include "clients/physics_client/driver.hpp"
 #include "clients/physics_client/physics_scene.hpp"
+#include "sanitizer.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace {
@@ -62,17 +63,7 @@ struct SceneRun {
 
 // Under AddressSanitizer (the Debug ASan+UBSan build) rasterising a box on the relief runs
 // ~300x slower than in RelWithDebInfo: 140 s for the letter blocks at full size.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using thx::physclient::test::kSanitized;
 
 // texture_size > 0 replaces the generated texture's size (same pattern, coarser texels).
 SceneRun runScene(const std::string& file, double seconds, int texture_size = 0) {
@@ -235,7 +226,9 @@ TEST(ShippedSceneOutcome, PinballHitsBumpersAndEndsInTheDrain) {
 
 // The zig-zag balls roll down the street inside its channel and stop at the kerb.
 TEST(ShippedSceneOutcome, ZigzagBallsStayInTheChannelAndRollDownTheStreet) {
-  const SceneRun r = runScene("zigzag_street.yaml", 5.0);
+  // 6 s: with friction along the slip at every speed (friction_direction.hpp) the last ball is
+  // still 0.3 mm short of the kerb's line at 5 s, rolling at 0.1 m/s.
+  const SceneRun r = runScene("zigzag_street.yaml", 6.0);
   const double period = param(r.scene, "period"), amplitude = param(r.scene, "amplitude"),
                width = param(r.scene, "width"), a = param(r.scene, "sharpness");
   // The street's centre line (zigzag generator, plane coordinates centred on the texture).
