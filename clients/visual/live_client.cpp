@@ -51,6 +51,7 @@ std::vector<ObjectInstance> frameObjects(const Options& o, const LoadedScene& l,
 // The server switched scenes: load the same scene from our folder (a name never leaves it).
 std::unique_ptr<LoadedScene> followSwitch(const Options& o, const client::SceneIdentity& to) {
   std::unique_ptr<LoadedScene> next = loadScene(client::resolveSceneName(to.name, o.scenes_dir));
+  if (!o.quiet) std::fprintf(stderr, "visual-client: hapticd switched to scene %s\n", to.name.c_str());
   if (next->surface.fingerprint != to.texture_fingerprint && !o.quiet)
     std::fprintf(stderr, "visual-client: warning: scene '%s' in %s has another texture than hapticd's; drawing ours\n",
                  to.name.c_str(), o.scenes_dir.c_str());

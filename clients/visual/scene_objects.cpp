@@ -6,9 +6,9 @@ namespace thx::visual {
 namespace {
 
 constexpr double kPenTipRadius = 0.0015;  // m: big enough to see at the default camera distance
-constexpr double kPenShaftRadius = 0.004;
+constexpr double kPenShaftRadius = 0.001;  // m: thinner than the ball, so the ball on the surface shows
 constexpr double kPenShaftLength = 0.05;
-constexpr double kProxyRadius = kPenTipRadius;  // m: the tip's size, in another colour
+constexpr double kHeldTipRadius = 0.6 * kPenTipRadius;  // m: the device's tip under a held proxy
 constexpr double kLinkRadius = 0.0002;
 
 Eigen::Vector3f albedoOf(const scene::Material& m) {
@@ -70,13 +70,15 @@ Eigen::Vector2d penRestPosition(const scene::Scene& scene) {
 
 std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local,
                                          const Eigen::Vector3d& proxy_local, bool proxy_held) {
-  std::vector<ObjectInstance> out = penAt(surface, tip_local);
   const Eigen::Vector3d link = proxy_local - tip_local;
-  if (!proxy_held || link.norm() <= 0.0) return out;
+  if (!proxy_held || link.norm() <= 0.0) return penAt(surface, tip_local);
+  // Held: the pen rests on the proxy (its ball yellow), the device's tip a smaller red ball below.
+  std::vector<ObjectInstance> out = penAt(surface, proxy_local);
+  out.front().albedo = {0.95f, 0.85f, 0.3f};
   const Eigen::Isometry3d& plane = surface.mapping().plane_to_world;
-  Eigen::Isometry3d proxy = plane;
-  proxy.translate(proxy_local);
-  out.push_back(instance(UnitShape::Sphere, proxy, Eigen::Vector3d::Constant(kProxyRadius), {0.95f, 0.85f, 0.3f}));
+  Eigen::Isometry3d tip = plane;
+  tip.translate(tip_local);
+  out.push_back(instance(UnitShape::Sphere, tip, Eigen::Vector3d::Constant(kHeldTipRadius), {0.85f, 0.15f, 0.1f}));
   // The unit cylinder runs along z: turn z onto the link, centre it between tip and proxy.
   Eigen::Isometry3d rod = plane;
   rod.translate(0.5 * (tip_local + proxy_local));

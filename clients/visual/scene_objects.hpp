@@ -22,9 +22,9 @@ Eigen::Vector2d penRestPosition(const scene::Scene& scene);
 
 // Tip at plane-local (x, y) on the surface (the relief depth there), shaft up the normal.
 std::vector<ObjectInstance> penAt(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local);
-// The pen of device_state_t: the tip (red) at the device's position with the shaft above it, and
-// when the proxy is held on the surface (the tip below it) the proxy as a larger pale sphere
-// there and a thin dark rod from it to the tip. Both plane-local.
+// The pen of device_state_t, plane-local: not held, penAt(tip). Held (the tip below the surface):
+// the pen's ball (yellow) and shaft at the proxy on the surface, the device's tip a smaller red
+// ball where it is (seen where the relief leaves it visible) and a thin dark rod between them.
 std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local,
                                          const Eigen::Vector3d& proxy_local, bool proxy_held);
 Eigen::Vector3d tipOnSurface(const tex::TexturedSurface& surface, const Eigen::Vector2d& xy_local);
