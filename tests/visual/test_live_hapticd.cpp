@@ -43,5 +43,22 @@ TEST_F(VisualLiveHapticd, DrawsTheServersPenAndFollowsASceneSwitch) {
   stopServer();
 }
 
+TEST_F(VisualLiveHapticd, InAWindowUnderXvfb) {
+  if (!udpmAvailable()) GTEST_SKIP() << "no multicast route for " << url_;
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run missing (Debian: xvfb)";
+  startServer({});
+  const std::string cmd = "cd '" + std::string(THX_SOURCE_DIR) +
+                          "' && LP_NUM_THREADS=2 xvfb-run -a -s '-screen 0 640x480x24 -nolisten tcp' '" +
+                          THX_VISUAL_CLIENT + "' --scene scenes/default.yaml --live --window --window-frames 5" +
+                          " --window-screenshot '" + path("window.ppm") + "' --size 160x90 --connect-timeout 20" +
+                          " --lcm-url '" + url_ + "' 2>'" + path("window.err") + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd << "\n" << slurp(path("window.err"));
+  const std::string err = slurp(path("window.err"));
+  EXPECT_NE(err.find("visual-client: live from"), std::string::npos) << err;
+  EXPECT_NE(err.find("window closed after 5 frames"), std::string::npos) << err;
+  EXPECT_EQ(slurp(path("window.ppm")).size(), std::size_t(14 + 160 * 90 * 3));  // "P6\n160 90\n255\n" + RGB
+  stopServer();
+}
+
 }  // namespace
 }  // namespace thx::test
