@@ -14,9 +14,9 @@ physics client use), the scene's objects and the pen. Without --live (and withou
 picture at rest: the objects at their poses in the file, the pen resting on the surface.
 
 Live (--live): subscribes through the client kit to hapticd's device state (tip, proxy, contact) at
---rate and to the physics client's poses (THX_PHYSICS_POSES), and draws the pen (tip: red sphere;
-proxy held on the surface while the tip is below it: a yellow sphere, a dark rod to the tip) and the
-bodies where they are. A loop step whose pen and poses equal the last frame's draws nothing (a
+--rate and to the physics client's poses (THX_PHYSICS_POSES), and draws the bodies where they are
+and the pen: its ball (red) and shaft at the tip; while the proxy is held on the surface (the tip
+below it) the ball (yellow) and shaft on the proxy, the tip a smaller red ball, a dark rod between. A loop step whose pen and poses equal the last frame's draws nothing (a
 skipped frame). It follows the server's scene switches (finds the new scene in --scenes-dir). The
 summary at exit counts steps, frames drawn and skipped. Without hapticd within --connect-timeout it
 says so and draws the scene at rest (one frame DIR/frame_0000, or the window at rest).
