@@ -27,7 +27,7 @@ says so and draws the scene at rest (one frame DIR/frame_0000, or the window at 
   --lcm-url URL          (default )" THX_DEFAULT_LCM_URL R"()
   --connect-timeout S    wait this long for hapticd's hello (default 3)
   --scenes-dir DIR       where a switched-to scene NAME.yaml is found (default scenes)
-  --verbose              the summary also while running (once per second)
+  --verbose              live headless: the counts also while running (every --rate steps)
 
 Output:
   --screenshot FILE      one frame, .png (libpng, compression level 1) or .ppm
