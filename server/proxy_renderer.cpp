@@ -233,6 +233,7 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
   out.depth_m = length;
   out.force_world = surface_->directionToWorld(f_local);
   out.proxy_world = surface_->toWorld(proxy_local_);
+  out.proxy_held = contact;
   const Eigen::Isometry3d& T = surface_->mapping().plane_to_world;
   out.num_planes = planes.count;
   for (int i = 0; i < planes.count; ++i) {

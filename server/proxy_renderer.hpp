@@ -49,6 +49,7 @@ struct RendererConfig {
 struct RenderOutput {
   bool in_contact = false;   // a spring acts (including a recovery ramp-out)
   bool recovering = false;   // the recovery ramp is active this tick
+  bool proxy_held = false;   // the proxy is held on the surface, the tip below it (else proxy = tip)
   Eigen::Vector3d force_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d proxy_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d p_proj_world = Eigen::Vector3d::Zero();  // tip projected onto the base plane

@@ -77,6 +77,7 @@ const TickRecord& Servo::tick() {
     r.uv[0] = out.uv.u;
     r.uv[1] = out.uv.v;
     put(r.proxy_world, out.proxy_world);
+    r.proxy_held = out.proxy_held;
     put(r.p_proj_world, out.p_proj_world);
     put(r.n_geom_world, out.n_geom_world);
     put(r.n_sampled_world, out.n_sampled_world);

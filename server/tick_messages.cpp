@@ -51,10 +51,13 @@ void toDeviceState(const TickRecord& r, bool simulated, thx_msgs::device_state_t
   if (simulated) flags |= D::FLAG_SIMULATED;
   if (r.faults) flags |= D::FLAG_FAULT;
   if (r.scene_gain < 1.0) flags |= D::FLAG_SCENE_SWITCHING;
+  if (r.proxy_held) flags |= D::FLAG_PROXY_HELD;
   d.flags = flags;
   d.flags_seen = flags;
   d.fault_code = wireFaultCode(r.fault_latched);
   d.fault_mask = wireFaultMask(r.faults);
+  // Not held (or no reading): the proxy is the tip, exactly, so a client may compare them.
+  copy(d.proxy_world, r.proxy_held ? r.proxy_world : r.p_world);
 }
 
 void toContact(const TickRecord& r, thx_msgs::contact_t& c) {

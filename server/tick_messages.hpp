@@ -15,7 +15,8 @@ std::int32_t wireFaultMask(std::uint32_t tick_faults);
 
 // One tick: flags_seen = flags and fault_mask = this tick's faults; a decimated subscription ORs
 // them over the ticks it skips (server/subscriptions.cpp). `simulated` sets FLAG_SIMULATED. utime is the tick's deadline in µs (CLOCK_MONOTONIC in real
-// time, the virtual clock in lock-step).
+// time, the virtual clock in lock-step). proxy_world is the renderer's proxy while it is held on the
+// surface (FLAG_PROXY_HELD), else p_world itself.
 void toDeviceState(const TickRecord& r, bool simulated, thx_msgs::device_state_t& out);
 void toContact(const TickRecord& r, thx_msgs::contact_t& out);
 

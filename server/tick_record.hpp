@@ -34,6 +34,7 @@ struct TickRecord {
   std::int32_t texel_i = 0, texel_j = 0;
   double uv[2] = {};
   double proxy_world[3] = {};
+  bool proxy_held = false;  // proxy_world is on the surface with the tip below it (RenderOutput)
   double p_proj_world[3] = {};
   double n_geom_world[3] = {0, 0, 1};
   double n_sampled_world[3] = {0, 0, 1};

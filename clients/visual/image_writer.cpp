@@ -65,4 +65,10 @@ void writeImage(const std::string& path, const Rgba8Image& image, int png_level)
   else throw UsageError(path + ": unknown image type '" + ext + "'; expected .png or .ppm");
 }
 
+std::string framePath(const std::string& dir, int index, const std::string& format) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.", index);
+  return (std::filesystem::path(dir) / (name + format)).string();
+}
+
 }  // namespace thx::visual

@@ -11,5 +11,7 @@ namespace thx::visual {
 // UsageError naming the file and what is expected.
 // png_level: zlib level 0..9 (9 for pictures kept in git).
 void writeImage(const std::string& path, const Rgba8Image& image, int png_level = 1);
+// DIR/frame_0042.FORMAT: the numbered frames of --frames, --replay-log and --live.
+std::string framePath(const std::string& dir, int index, const std::string& format);
 
 }  // namespace thx::visual

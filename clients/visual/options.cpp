@@ -1,23 +1,44 @@
 #include "clients/visual/options.hpp"
 
 #include "base/cli_number.hpp"
+#include "thx_msgs/protocol.hpp"
 
 namespace thx::visual {
 
 const char* const kHelp = R"(usage: visual-client --scene FILE (--screenshot FILE | --frames N --out DIR | --replay-log FILE --out DIR | --window) [options]
+       visual-client --scene FILE --live (--out DIR | --window) [--rate HZ] [--frames N] [--duration S] [options]
 
-Draws a scene at rest, headless (EGL, no display needed) or in a window: the textured plane from the scene's own
-texture through the textures library (the map, plane mapping and sampling hapticd and the physics
-client use), the scene's objects at their poses in the file, and the pen resting on the surface.
-Not yet: live subscription to hapticd and the physics client (docs/visual.md).
+Draws a scene headless (EGL, no display needed) or in a window: the textured plane from the scene's
+own texture through the textures library (the map, plane mapping and sampling hapticd and the
+physics client use), the scene's objects and the pen. Without --live (and without --replay-log) one
+picture at rest: the objects at their poses in the file, the pen resting on the surface.
+
+Live (--live): subscribes through the client kit to hapticd's device state (tip, proxy, contact) at
+--rate and to the physics client's poses (THX_PHYSICS_POSES), and draws the bodies where they are
+and the pen: its ball (red) and shaft at the tip; while the proxy is held on the surface (the tip
+below it) the ball (yellow) and shaft on the proxy, the tip a smaller red ball, a dark rod between. A loop step whose pen and poses equal the last frame's draws nothing (a
+skipped frame). It follows the server's scene switches (finds the new scene in --scenes-dir). The
+summary at exit counts steps, frames drawn and skipped. Without hapticd within --connect-timeout it
+says so and draws the scene at rest (one frame DIR/frame_0000, or the window at rest).
+  --live                 with --out DIR (each drawn frame, numbered) or --window
+  --rate HZ              live loop rate (default 30; in a window frames also wait for the display)
+  --frames N             live headless: stop after N drawn frames
+  --duration S           live: stop after S seconds (default 0: until --frames N or Ctrl-C)
+  --lcm-url URL          (default )" THX_DEFAULT_LCM_URL R"()
+  --connect-timeout S    wait this long for hapticd's hello (default 3)
+  --scenes-dir DIR       where a switched-to scene NAME.yaml is found (default scenes)
+  --verbose              live headless: the counts also while running (every --rate steps)
 
 Output:
   --screenshot FILE      one frame, .png (libpng, compression level 1) or .ppm
   --frames N --out DIR   N numbered frames DIR/frame_0000.png ..., the camera orbiting the target
   --orbit DEG            azimuth step per frame with --frames (default 360 / N)
   --replay-log FILE      a recorded hapticd session (`hapticd --record FILE`) frame by frame into
-                         --out DIR: one frame per 1/--rate s of recorded time, the pen where the
-                         recording put it, objects at rest; deterministic (--frames N: at most N)
+                         --out DIR: one frame per 1/--rate s of recorded time, the pen (tip,
+                         proxy) where the recording put it, the objects at the latest physics
+                         poses the log holds by then (`physics-client --replay-log S --record OUT`
+                         writes them; at rest before the first or without any); deterministic
+                         (--frames N: at most N)
   --rate HZ              --replay-log frames per recorded second (default 30)
   --window               a window (needs an X display, e.g. xvfb-run -a); keys: N/R/M mode,
                          S shadows, arrows camera, +/- distance, Esc/Q close
@@ -119,13 +140,25 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (a == "--window") o.window = true;
     else if (a == "--replay-log") o.replay_log = value();
     else if (a == "--rate") o.replay_rate_hz = cli::parseNumber(a, value(), {0, 1000, true, "Hz"});
+    else if (a == "--live") o.live = true;
+    else if (a == "--lcm-url") o.lcm_url = value();
+    else if (a == "--connect-timeout") o.connect_timeout_s = cli::parseNumber(a, value(), {0, 3600, false, "s"});
+    else if (a == "--duration") o.duration_s = cli::parseNumber(a, value(), {0, 1e9, false, "s"});
+    else if (a == "--scenes-dir") o.scenes_dir = value();
+    else if (a == "--verbose") o.verbose = true;
     else if (a == "--window-screenshot") o.window_screenshot = value(), o.window = true;
     else if (a == "--window-frames") o.window_frames = int(cli::parseInteger(a, value(), 1, 1000000)), o.window = true;
     else throw UsageError("unknown option '" + a + "'");
   }
   if (o.help) return o;
   if (o.scene.empty()) throw UsageError("--scene FILE is required");
+  if (o.lcm_url.empty()) o.lcm_url = thx_msgs::kDefaultLcmUrl;
   const bool replay = !o.replay_log.empty();
+  if (o.live) {
+    if (replay || !o.screenshot.empty()) throw UsageError("--live draws live frames: not with --replay-log or --screenshot");
+    if (int(o.window) + int(!o.out_dir.empty()) != 1) throw UsageError("--live needs exactly one of --out DIR and --window");
+    return o;
+  }
   if (int(!o.screenshot.empty()) + int(o.frames > 0 && !replay) + int(replay) + int(o.window) != 1)
     throw UsageError("give exactly one of --screenshot FILE, --frames N --out DIR, --replay-log FILE --out DIR and --window");
   if (replay && o.out_dir.empty()) throw UsageError("--replay-log FILE needs --out DIR");
@@ -136,6 +169,12 @@ Options parseOptions(const std::vector<std::string>& args) {
   if (o.pen_xy && o.no_pen) throw UsageError("--pen and --no-pen exclude each other");
   if (!o.orbit_given && o.frames > 0 && !replay) o.orbit_deg_per_frame = 360.0 / o.frames;
   return o;
+}
+
+CameraPlacement cameraPlacement(const Options& o, const scene::Scene& scene) {
+  CameraPlacement placement = o.camera;
+  if (!o.distance_given) placement.distance_m = 1.25 * scene.surface.size_m.maxCoeff();
+  return placement;
 }
 
 }  // namespace thx::visual

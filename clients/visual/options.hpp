@@ -8,6 +8,7 @@
 #include "base/error.hpp"
 #include "clients/visual/camera.hpp"
 #include "clients/visual/render_settings.hpp"
+#include "scenes/scene.hpp"
 
 namespace thx::visual {
 
@@ -32,12 +33,20 @@ struct Options {
   bool no_objects = false;
   bool quiet = false;
   std::string replay_log;  // --replay-log FILE (with --out DIR)
-  double replay_rate_hz = 30.0;
+  double replay_rate_hz = 30.0;  // --rate: replay frames per recorded second, or the live loop's rate
+  bool live = false;              // --live (with --out DIR or --window)
+  std::string lcm_url;            // --lcm-url (default thx_msgs::kDefaultLcmUrl)
+  double connect_timeout_s = 3.0; // --connect-timeout
+  double duration_s = 0.0;        // --duration (live; 0: until --frames or Ctrl-C)
+  std::string scenes_dir = "scenes";  // --scenes-dir: where a scene switch's name is found
+  bool verbose = false;           // --verbose
   bool window = false;   // --window
   int window_frames = 0;  // --window-frames N
   std::string window_screenshot;  // --window-screenshot FILE
 };
 
 Options parseOptions(const std::vector<std::string>& args);
+// The camera of the command line; --distance defaults to 1.25 x the plane's larger side.
+CameraPlacement cameraPlacement(const Options& o, const scene::Scene& scene);
 
 }  // namespace thx::visual

@@ -6,8 +6,10 @@ namespace thx::visual {
 namespace {
 
 constexpr double kPenTipRadius = 0.0015;  // m: big enough to see at the default camera distance
-constexpr double kPenShaftRadius = 0.004;
+constexpr double kPenShaftRadius = 0.001;  // m: thinner than the ball, so the ball on the surface shows
 constexpr double kPenShaftLength = 0.05;
+constexpr double kHeldTipRadius = 0.6 * kPenTipRadius;  // m: the device's tip under a held proxy
+constexpr double kLinkRadius = 0.0002;
 
 Eigen::Vector3f albedoOf(const scene::Material& m) {
   if (m.name == "glass") return {0.55f, 0.75f, 0.85f};
@@ -28,10 +30,13 @@ ObjectInstance instance(UnitShape shape, const Eigen::Isometry3d& pose, const Ei
 
 }  // namespace
 
-std::vector<ObjectInstance> objectsAtRest(const scene::Scene& scene) {
+std::vector<ObjectInstance> objectsAtRest(const scene::Scene& scene) { return objectsAt(scene, {}); }
+
+std::vector<ObjectInstance> objectsAt(const scene::Scene& scene, const std::vector<Eigen::Isometry3d>& poses) {
   std::vector<ObjectInstance> out;
-  for (const scene::SceneObject& o : scene.objects) {
-    const Eigen::Isometry3d pose = scene::toIsometry(o.pose);
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const scene::SceneObject& o = scene.objects[i];
+    const Eigen::Isometry3d pose = i < poses.size() ? poses[i] : scene::toIsometry(o.pose);
     const Eigen::Vector3f albedo = albedoOf(o.material);
     switch (o.shape) {
       case scene::Shape::Sphere:
@@ -61,6 +66,25 @@ Eigen::Vector2d penRestPosition(const scene::Scene& scene) {
     if (const auto* stroke = std::get_if<scene::StrokeStep>(&step)) return stroke->from_m;
   }
   return Eigen::Vector2d::Zero();
+}
+
+std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local,
+                                         const Eigen::Vector3d& proxy_local, bool proxy_held) {
+  const Eigen::Vector3d link = proxy_local - tip_local;
+  if (!proxy_held || link.norm() <= 0.0) return penAt(surface, tip_local);
+  // Held: the pen rests on the proxy (its ball yellow), the device's tip a smaller red ball below.
+  std::vector<ObjectInstance> out = penAt(surface, proxy_local);
+  out.front().albedo = {0.95f, 0.85f, 0.3f};
+  const Eigen::Isometry3d& plane = surface.mapping().plane_to_world;
+  Eigen::Isometry3d tip = plane;
+  tip.translate(tip_local);
+  out.push_back(instance(UnitShape::Sphere, tip, Eigen::Vector3d::Constant(kHeldTipRadius), {0.85f, 0.15f, 0.1f}));
+  // The unit cylinder runs along z: turn z onto the link, centre it between tip and proxy.
+  Eigen::Isometry3d rod = plane;
+  rod.translate(0.5 * (tip_local + proxy_local));
+  rod.rotate(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), link));
+  out.push_back(instance(UnitShape::Cylinder, rod, {kLinkRadius, kLinkRadius, link.norm()}, {0.1f, 0.1f, 0.1f}));
+  return out;
 }
 
 Eigen::Vector3d tipOnSurface(const tex::TexturedSurface& surface, const Eigen::Vector2d& xy_local) {

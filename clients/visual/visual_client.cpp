@@ -7,6 +7,7 @@
 #include "clients/visual/frame_renderer.hpp"
 #include "clients/visual/headless_context.hpp"
 #include "clients/visual/image_writer.hpp"
+#include "clients/visual/live_client.hpp"
 #include "clients/visual/options.hpp"
 #include "clients/visual/replay_frames.hpp"
 #include "clients/visual/scene_objects.hpp"
@@ -20,15 +21,12 @@ namespace {
 using namespace thx;
 using namespace thx::visual;
 
-std::string framePath(const Options& o, int f) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d.%s", f, o.frame_format.c_str());
-  return (std::filesystem::path(o.out_dir) / name).string();
-}
+std::string framePath(const Options& o, int f) { return visual::framePath(o.out_dir, f, o.frame_format); }
 
-// A recorded session frame by frame: the pen where the recording put it, objects at rest.
+// A recorded session frame by frame: the pen (tip, proxy) where the recording put it, the objects
+// at the recorded physics poses (at rest before the first, or when the log has none).
 int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
-           const CameraPlacement& placement, const std::vector<ObjectInstance>& at_rest) {
+           const CameraPlacement& placement) {
   std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz);
   if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
   HeadlessContext context;
@@ -36,9 +34,11 @@ int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurfa
   const Camera camera(placement, surface.mapping().plane_to_world, o.width, o.height);
   std::filesystem::create_directories(o.out_dir);
   for (std::size_t f = 0; f < frames.size(); ++f) {
-    std::vector<ObjectInstance> objects = at_rest;
+    std::vector<ObjectInstance> objects;
+    if (!o.no_objects) objects = objectsAt(scene, frames[f].bodies);
     if (!o.no_pen) {
-      const std::vector<ObjectInstance> pen = penAt(surface, surface.toLocal(frames[f].tip_world));
+      const std::vector<ObjectInstance> pen = penWithProxy(surface, surface.toLocal(frames[f].tip_world),
+                                                           surface.toLocal(frames[f].proxy_world), frames[f].proxy_held);
       objects.insert(objects.end(), pen.begin(), pen.end());
     }
     renderer.render(camera, objects);
@@ -56,12 +56,12 @@ int run(const Options& o) {
   texture_options.smooth = &tex::smoothTexture;
   const scene::SceneSurface surface = scene::buildSceneSurface(scene, texture_options);
 
-  CameraPlacement placement = o.camera;
-  if (!o.distance_given) placement.distance_m = 1.25 * scene.surface.size_m.maxCoeff();
+  if (o.live) return runLive(o);
+  const CameraPlacement placement = cameraPlacement(o, scene);
 
+  if (!o.replay_log.empty()) return replay(o, scene, surface.surface, placement);
   std::vector<ObjectInstance> objects;
   if (!o.no_objects) objects = objectsAtRest(scene);
-  if (!o.replay_log.empty()) return replay(o, scene, surface.surface, placement, objects);
   if (!o.no_pen) {
     const Eigen::Vector2d xy = o.pen_xy ? *o.pen_xy : penRestPosition(scene);
     const std::vector<ObjectInstance> pen = penAt(surface.surface, tipOnSurface(surface.surface, xy));
@@ -70,7 +70,7 @@ int run(const Options& o) {
 
   if (o.window) {
     const int drawn = runWindow(surface.surface, o.render, placement, objects,
-                                {o.width, o.height, o.window_frames, o.quiet, o.window_screenshot});
+                                {o.width, o.height, o.window_frames, o.quiet, o.window_screenshot, {}, 30.0});
     if (!o.quiet) std::fprintf(stderr, "visual-client: window closed after %d frames\n", drawn);
     return 0;
   }

@@ -74,8 +74,10 @@ struct GlfwSession {
 
 }  // namespace
 
-int runWindow(const tex::TexturedSurface& surface, RenderSettings settings, CameraPlacement camera,
-              const std::vector<ObjectInstance>& objects, const WindowOptions& options) {
+int runWindow(const tex::TexturedSurface& first_surface, RenderSettings settings, CameraPlacement camera,
+              const std::vector<ObjectInstance>& first_objects, const WindowOptions& options) {
+  const tex::TexturedSurface* surface = &first_surface;
+  std::vector<ObjectInstance> objects = first_objects;
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
     throw GlError("window: DISPLAY is not set: run under xvfb-run -a (Debian package xvfb) or use --screenshot / --frames");
@@ -97,15 +99,20 @@ int runWindow(const tex::TexturedSurface& surface, RenderSettings settings, Came
 
   int frames = 0;
   {
-    auto renderer = std::make_unique<FrameRenderer>(surface, state.settings, options.width, options.height);
+    auto renderer = std::make_unique<FrameRenderer>(*surface, state.settings, options.width, options.height);
     while (!glfwWindowShouldClose(window.get())) {
+      if (options.live_update) {
+        const WindowOptions::LiveChange change = options.live_update(objects, surface);
+        if (change != WindowOptions::LiveChange::Same) state.dirty = true;
+        if (change == WindowOptions::LiveChange::NewSurface) state.rebuild = true;
+      }
       if (state.rebuild) {
         renderer.reset();
-        renderer = std::make_unique<FrameRenderer>(surface, state.settings, options.width, options.height);
+        renderer = std::make_unique<FrameRenderer>(*surface, state.settings, options.width, options.height);
         state.rebuild = false;
       }
       if (state.dirty) {
-        renderer->render(Camera(state.camera, surface.mapping().plane_to_world, options.width, options.height), objects);
+        renderer->render(Camera(state.camera, surface->mapping().plane_to_world, options.width, options.height), objects);
         int fb_width = 0, fb_height = 0;
         glfwGetFramebufferSize(window.get(), &fb_width, &fb_height);
         renderer->framebuffer().bind();
@@ -125,8 +132,9 @@ int runWindow(const tex::TexturedSurface& surface, RenderSettings settings, Came
                        state.camera.azimuth_deg, state.camera.elevation_deg);
         if (options.max_frames > 0 && frames >= options.max_frames) break;
       }
-      // Nothing moves at rest: wait for a key rather than redraw the same frame.
-      glfwWaitEventsTimeout(0.1);
+      // Nothing moves at rest: wait for a key rather than redraw the same frame; live, until the
+      // next look at the streams.
+      glfwWaitEventsTimeout(options.live_update ? 1.0 / options.live_rate_hz : 0.1);
     }
   }
   if (!options.quiet) std::fputc('\n', stderr);

@@ -19,6 +19,12 @@ struct WindowOptions {
   int max_frames = 0;  // > 0: close after this many drawn frames (tests, scripted runs under Xvfb)
   bool quiet = false;
   std::string screenshot;  // with max_frames: the window's last frame, read back from the window
+  // Live (--live): called every 1/live_rate_hz s with the objects shown and the surface; it
+  // updates them and says whether a frame is due (Same: nothing moved, no frame). Frames also
+  // wait for the display (swap interval 1), so they never come faster than it refreshes.
+  enum class LiveChange { Same, Moved, NewSurface };
+  std::function<LiveChange(std::vector<ObjectInstance>& objects, const tex::TexturedSurface*& surface)> live_update;
+  double live_rate_hz = 30.0;
 };
 
 // Throws GlError when there is no display ("DISPLAY is not set: run under xvfb-run ...") or

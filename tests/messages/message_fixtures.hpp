@@ -43,6 +43,7 @@ inline thx_msgs::device_state_t make_device_state(int k) {
   m.fault_code = thx_msgs::device_state_t::FAULT_FORCE_BUDGET;
   m.fault_mask = (1 << D::FAULT_FORCE_BUDGET) | (1 << D::FAULT_MISSED_TICKS) | (k << 8);
   m.flags_seen = std::int32_t{D::FLAG_MISSED_TICK} | D::FLAG_FAULT | (k << 12);
+  fill(m.proxy_world, k, 70);
   return m;
 }
 inline void expect_eq(const thx_msgs::device_state_t& a, const thx_msgs::device_state_t& b) {
@@ -59,6 +60,7 @@ inline void expect_eq(const thx_msgs::device_state_t& a, const thx_msgs::device_
   EXPECT_EQ(a.fault_code, b.fault_code);
   EXPECT_EQ(a.fault_mask, b.fault_mask);
   EXPECT_EQ(a.flags_seen, b.flags_seen);
+  expect_array_eq(a.proxy_world, b.proxy_world, "proxy_world");
 }
 
 inline thx_msgs::contact_t make_contact(int k) {

@@ -86,7 +86,8 @@ TEST(MessagesProtocol, Constants) {
   using D = thx_msgs::device_state_t;
   const std::int32_t flags[] = {D::FLAG_ENGAGED,  D::FLAG_RAMPING,       D::FLAG_SAFETY_CLAMP,
                                 D::FLAG_IN_CONTACT, D::FLAG_MISSED_TICK, D::FLAG_CLIENT_FORCE,
-                                D::FLAG_SIMULATED,  D::FLAG_FAULT,        D::FLAG_SCENE_SWITCHING};
+                                D::FLAG_SIMULATED,  D::FLAG_FAULT,        D::FLAG_SCENE_SWITCHING,
+                                D::FLAG_PROXY_HELD};
   std::int32_t all = 0;
   for (std::int32_t f : flags) {
     EXPECT_EQ(f & (f - 1), 0) << f;

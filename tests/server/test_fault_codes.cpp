@@ -86,7 +86,8 @@ TEST_F(FaultCodes, EveryFlagIsRaisedAndReachesA60HzSubscriber) {
   for (const D& m : p->sink.state_msgs) seen |= m.flags_seen;
   const std::int32_t flags[] = {D::FLAG_ENGAGED,      D::FLAG_RAMPING,       D::FLAG_SAFETY_CLAMP,
                                 D::FLAG_IN_CONTACT,   D::FLAG_MISSED_TICK,   D::FLAG_CLIENT_FORCE,
-                                D::FLAG_SIMULATED,    D::FLAG_FAULT,         D::FLAG_SCENE_SWITCHING};
+                                D::FLAG_SIMULATED,    D::FLAG_FAULT,         D::FLAG_SCENE_SWITCHING,
+                                D::FLAG_PROXY_HELD};
   for (std::int32_t flag : flags) {
     EXPECT_TRUE(seen & flag) << "flag " << flag;
   }

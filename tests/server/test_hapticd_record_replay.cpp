@@ -10,6 +10,9 @@
 #include <regex>
 #include <sstream>
 
+#include <Eigen/Core>
+#include <thx_msgs/log_reader.hpp>
+
 #include "server/session_log.hpp"
 #include "tests/support/hapticd_harness.hpp"
 
@@ -88,6 +91,43 @@ TEST_F(HapticdRecordReplay, ReplayIsDeterministicAndOtherSettingsRenderDifferent
   }
   EXPECT_GT(multi_plane, 0u) << "crease handling holds two walls at the valley floor";
   EXPECT_GT(differing, 0u);
+}
+
+// The proxy as hapticd records and publishes it (device_state_t.proxy_world, FLAG_PROXY_HELD): on
+// vvalley's hand path, whenever it is held the tip is inside the proxy planes of that tick's
+// contact sample and the proxy lies on one of them, above the tip; otherwise it is the tip.
+TEST_F(HapticdRecordReplay, TheRecordedProxyIsHeldOnTheSurfaceWhileTheTipIsBelowIt) {
+  ASSERT_EQ(run("--scene scenes/vvalley.yaml --lockstep --record " + path("rec.lcm")), 0) << err_;
+  using D = thx_msgs::device_state_t;
+  std::vector<D> states;
+  thx_msgs::forEachLogMessage<D>(path("rec.lcm"), thx::srv::kSessionDeviceChannel,
+                                 [&](const D& d, const thx_msgs::LogPosition&) { states.push_back(d); });
+  const std::vector<contact_t> contacts = thx::srv::loadSessionContacts(path("rec.lcm"));
+  ASSERT_EQ(states.size(), contacts.size());
+  std::size_t held = 0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const D& d = states[i];
+    const contact_t& c = contacts[i];
+    ASSERT_EQ(d.tick, c.tick);
+    const Eigen::Vector3d tip(d.p_world[0], d.p_world[1], d.p_world[2]);
+    const Eigen::Vector3d proxy(d.proxy_world[0], d.proxy_world[1], d.proxy_world[2]);
+    if (!(d.flags & D::FLAG_PROXY_HELD)) {
+      EXPECT_EQ(proxy, tip) << "tick " << d.tick;
+      continue;
+    }
+    ++held;
+    EXPECT_TRUE(d.flags & D::FLAG_IN_CONTACT) << "tick " << d.tick;
+    ASSERT_GE(c.num_planes, 1) << "tick " << d.tick;
+    EXPECT_GT(c.depth, 0.0) << "tick " << d.tick;  // the tip below the primary plane
+    double nearest = 1e9;
+    for (int k = 0; k < c.num_planes; ++k) {
+      const Eigen::Vector3d n(c.plane_n_world[k][0], c.plane_n_world[k][1], c.plane_n_world[k][2]);
+      nearest = std::min(nearest, std::abs(n.dot(proxy) - c.plane_d[k]));
+      EXPECT_GE(n.dot(proxy) - c.plane_d[k], -1e-9) << "tick " << d.tick << ": the proxy inside plane " << k;
+    }
+    EXPECT_LT(nearest, 1e-9) << "tick " << d.tick << ": the proxy on none of its planes";
+  }
+  EXPECT_GT(held, 500u) << "vvalley's hand presses into the valleys";
 }
 
 TEST_F(HapticdRecordReplay, BadReplayAndRecordFilesAreClearErrors) {

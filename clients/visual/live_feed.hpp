@@ -1,0 +1,43 @@
+#pragma once
+// visual-client --live: the device state (tip, proxy, contact) through the client kit at the
+// client's own rate, the physics client's poses (THX_PHYSICS_POSES, no handshake), and the
+// server's scene switches from its hellos (docs/clients.md §3.3).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "clients/visual/live_view.hpp"
+#include "thx_client/app.hpp"
+#include "thx_client/subscriber.hpp"
+
+namespace thx::visual {
+
+struct LiveCounts {
+  std::int64_t steps = 0;     // loop steps at --rate
+  std::int64_t drawn = 0;     // frames drawn
+  std::int64_t skipped = 0;   // steps whose view equalled the last frame drawn: nothing drawn
+  std::int64_t scene_switches = 0;
+};
+
+class LiveFeed {
+ public:
+  // `mine`: the scene this client loaded; waitForServer() refuses another (the kit's check).
+  LiveFeed(const std::string& lcm_url, double rate_hz, double connect_timeout_s, const client::SceneIdentity& mine);
+
+  // Waits for hapticd's hello. nullopt and `why` when none came within the timeout (or a stop
+  // signal came); throws thx::Error when the server runs another scene.
+  std::optional<thx_msgs::hello_t> connect(std::string& why);
+  // Handles the traffic queued now (no wait) and returns what a frame would show.
+  LiveView poll();
+  // The scene the server switched to since the last call (the newest of several), else nullopt.
+  std::optional<client::SceneIdentity> takeSceneSwitch();
+  client::ClientApp& app() { return app_; }
+
+ private:
+  client::ClientApp app_;
+  client::PhysicsPosesSubscriber poses_;
+  std::uint64_t scene_changes_seen_ = 0;
+};
+
+}  // namespace thx::visual

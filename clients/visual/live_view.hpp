@@ -1,0 +1,39 @@
+#pragma once
+// What one live frame shows, from the newest messages: the pen (device_state_t: tip, proxy, held)
+// and the bodies (physics_poses_t). sameView() decides whether a frame would differ from the last
+// one drawn: the live loop skips a frame when nothing moved.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <thx_msgs/device_state_t.hpp>
+#include <thx_msgs/physics_poses_t.hpp>
+
+namespace thx::visual {
+
+struct PenView {
+  Eigen::Vector3d tip_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d proxy_world = Eigen::Vector3d::Zero();
+  bool proxy_held = false;
+};
+
+struct LiveView {
+  std::optional<PenView> pen;             // none before the first device state
+  std::vector<Eigen::Isometry3d> bodies;  // body i = the scene's objects[i]; empty: at rest
+};
+
+PenView penViewOf(const thx_msgs::device_state_t& s);
+// What is wrong with a poses message ("" if nothing): num_bodies outside 0..MAX_BODIES, a body
+// with a non-finite position or a quaternion far from unit.
+std::string posesProblem(const thx_msgs::physics_poses_t& m);
+// The bodies of a poses message; none (drawn at rest) when posesProblem() names something.
+std::vector<Eigen::Isometry3d> bodiesOf(const thx_msgs::physics_poses_t& m);
+LiveView liveViewOf(const std::optional<thx_msgs::device_state_t>& state,
+                    const std::optional<thx_msgs::physics_poses_t>& poses);
+
+// Exact comparison: the same messages give the same frame, anything else draws a new one.
+bool sameView(const LiveView& a, const LiveView& b);
+
+}  // namespace thx::visual

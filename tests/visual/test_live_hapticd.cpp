@@ -1,0 +1,64 @@
+// visual-client --live beside a running hapticd (processes, on a bus port of the test's own): it
+// connects through the client kit, draws the pen as the device state moves it, follows a scene
+// switch another client asks for, and prints its summary. Only what does not depend on the
+// scheduler is asserted: that it connected, drew a first frame, followed the one switch, and
+// counted its frames; how many are drawn or skipped is the machine's business.
+#include <gtest/gtest.h>
+
+#include "tests/support/hapticd_harness.hpp"
+#include "thx_client/app.hpp"
+
+namespace thx::test {
+namespace {
+
+struct VisualLiveHapticd : HapticdProcessTest {};
+
+TEST_F(VisualLiveHapticd, DrawsTheServersPenAndFollowsASceneSwitch) {
+  if (!udpmAvailable()) GTEST_SKIP() << "no multicast route for " << url_;
+  startServer({});
+  const pid_t visual = spawn({THX_VISUAL_CLIENT, "--scene", "scenes/default.yaml", "--live", "--lcm-url", url_,
+                              "--out", path("frames"), "--format", "ppm", "--size", "160x90", "--rate", "30",
+                              "--duration", "30", "--connect-timeout", "20"},
+                             path("visual.out"), path("visual.err"));
+  ASSERT_GT(visual, 0);
+  const auto visualLogHas = [&](const std::string& text, double timeout_s) {
+    return waitUntil([&] { return slurp(path("visual.err")).find(text) != std::string::npos; }, timeout_s);
+  };
+  ASSERT_TRUE(visualLogHas("visual-client: live from", 30)) << slurp(path("visual.err"));
+  ASSERT_TRUE(waitUntil([&] { return fs::exists(path("frames/frame_0000.ppm")); }, 30));
+
+  client::AppOptions o;
+  o.client_id = "switcher";
+  o.lcm_url = url_;
+  client::ClientApp app(o);
+  ASSERT_TRUE(app.waitForServer());
+  ASSERT_TRUE(app.loadScene("vvalley", 20));
+  // The visual client follows: it loads vvalley from its scenes folder and draws on.
+  ASSERT_TRUE(visualLogHas("visual-client: hapticd switched to scene vvalley", 30)) << slurp(path("visual.err"));
+  kill(visual, SIGTERM);
+  EXPECT_EQ(reap(visual, 20), 0) << slurp(path("visual.err"));
+  const std::string err = slurp(path("visual.err"));
+  EXPECT_NE(err.find("visual-client: live: loop steps"), std::string::npos) << err;
+  EXPECT_NE(err.find("scene switches 1"), std::string::npos) << err;
+  stopServer();
+}
+
+TEST_F(VisualLiveHapticd, InAWindowUnderXvfb) {
+  if (!udpmAvailable()) GTEST_SKIP() << "no multicast route for " << url_;
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run missing (Debian: xvfb)";
+  startServer({});
+  const std::string cmd = "cd '" + std::string(THX_SOURCE_DIR) +
+                          "' && LP_NUM_THREADS=2 xvfb-run -a -s '-screen 0 640x480x24 -nolisten tcp' '" +
+                          THX_VISUAL_CLIENT + "' --scene scenes/default.yaml --live --window --window-frames 5" +
+                          " --window-screenshot '" + path("window.ppm") + "' --size 160x90 --connect-timeout 20" +
+                          " --lcm-url '" + url_ + "' 2>'" + path("window.err") + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd << "\n" << slurp(path("window.err"));
+  const std::string err = slurp(path("window.err"));
+  EXPECT_NE(err.find("visual-client: live from"), std::string::npos) << err;
+  EXPECT_NE(err.find("window closed after 5 frames"), std::string::npos) << err;
+  EXPECT_EQ(slurp(path("window.ppm")).size(), std::size_t(14 + 160 * 90 * 3));  // "P6\n160 90\n255\n" + RGB
+  stopServer();
+}
+
+}  // namespace
+}  // namespace thx::test
