@@ -12,14 +12,22 @@ help:
 setup:
 	@./setup.sh
 
+# Line tables only (-g1): backtraces and sanitizer reports keep their file:line, and both trees
+# build about a fifth faster than with full debug info. Configure a tree of your own with plain
+# CMake for variables in a debugger.
+DEBUG_INFO = -g1
+
 $(BUILD)/CMakeCache.txt:
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+		"-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 $(DEBUG_INFO) -DNDEBUG" \
+		"-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 $(DEBUG_INFO) -DNDEBUG"
 
 build: setup $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j$(JOBS)
 
 $(BUILD_ASAN)/CMakeCache.txt:
-	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DTHX_SANITIZE=ON
+	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DTHX_SANITIZE=ON \
+		-DCMAKE_CXX_FLAGS_DEBUG=$(DEBUG_INFO) -DCMAKE_C_FLAGS_DEBUG=$(DEBUG_INFO)
 
 build-asan: setup $(BUILD_ASAN)/CMakeCache.txt
 	cmake --build $(BUILD_ASAN) -j$(JOBS)
