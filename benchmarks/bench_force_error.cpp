@@ -1,5 +1,8 @@
 // Part 2 of docs/benchmarks.md: force error of the plane proxy against the EXACT height-field
-// contact force, beside its cost, for nearest / bilinear / smoothed sampling and crease on/off.
+// contact force, beside its cost, for nearest / bilinear / smoothed sampling and crease on/off
+// (with sided ridges, and with issue 3's blended ridges for comparison); on request the paper's
+// loop with and without smoothing (docs/stability.md). V-valley errors are also split by where
+// the probe lies: near a floor line, near a ridge line, or on a wall between.
 //
 // Truth (exact_surfaces.hpp): an analytic surface (sine bumps, V valleys), penalty force
 // F = k (q - p) with q the closest point of the continuous surface to the probe p.
@@ -9,8 +12,9 @@
 // to p, hold 15 ticks (the recovery ramp lasts 10), compare the last tick's force with F.
 // Cost: wall time of render() over the ticks below the true surface, per tick.
 //
-// Usage: bench_force_error [--probes N] [--json F] [--csv F] [--png F] [--md F]
+// Usage: bench_force_error --help (kUsage below).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -33,13 +37,22 @@ namespace {
 
 using namespace thx;
 
-constexpr double kStiffness = 600.0;  // N/m: the shipped scenes' 0.6 x PHANToM Desktop
+double g_stiffness = 600.0;  // N/m: the shipped scenes' 0.6 x PHANToM Desktop (--stiffness)
 constexpr double kStartAbove = 0.5e-3;
 constexpr double kStep = 2e-5;  // m per tick
 constexpr int kHoldTicks = 15;
-constexpr double kSmoothSigma = 1.0;  // texels
+double g_smooth_sigma = 1.0;  // texels (--smooth)
 const std::vector<int> kSizes{128, 256, 512, 1024};
 const std::vector<double> kDepths{0.25e-3, 0.5e-3, 1e-3, 2e-3};
+constexpr double kRegionReachTexels = 1.5;  // "floor" / "ridge": probes this close to the line
+constexpr double kPlotFloorPercent = 0.01;
+
+// A relative error as a percentage, with more digits below 0.1 %.
+std::string pct(double rel) {
+  const double v = 100.0 * rel;
+  if (v == 0.0) return "0 %";
+  return v >= 0.1 ? bench::fmt("%.1f %%", v) : bench::fmt("%.2g %%", v);
+}
 
 std::int64_t nowNs() { return rt::monotonicNowNs(); }
 
@@ -56,9 +69,43 @@ struct Rng {
 };
 
 struct Variant {
+  std::string id;      // --variants name
   std::string filter;  // nearest | bilinear | smoothed | normal-map
   bool crease = false;
+  bool sided = true;   // RendererConfig::sided_ridges (crease handling only); false: issue 3's blend
+  bool paper = false;  // the paper's loop (server/paper_loop.hpp): a plane per 10 ticks, no recovery rule
 };
+
+// Every row the benchmark knows; the default set is all but the paper's loop.
+const std::vector<Variant> kAllVariants{
+    {"nearest", "nearest", false},
+    {"nearest+crease", "nearest", true},
+    {"bilinear", "bilinear", false},
+    {"bilinear+crease-blend", "bilinear", true, false},
+    {"bilinear+crease", "bilinear", true},
+    {"smoothed", "smoothed", false},
+    {"smoothed+crease", "smoothed", true},
+    {"normal-map", "normal-map", false},
+    {"normal-map+crease", "normal-map", true},
+    {"paper", "bilinear", false, true, true},
+    {"paper+smoothed", "smoothed", false, true, true},
+};
+const char* kDefaultVariants =
+    "nearest,nearest+crease,bilinear,bilinear+crease-blend,bilinear+crease,smoothed,smoothed+crease,normal-map,"
+    "normal-map+crease";
+
+std::string filterText(const Variant& v) {
+  std::string t = v.filter == "smoothed"     ? bench::fmt("smoothed σ=%g texel%s + bilinear", g_smooth_sigma,
+                                                          g_smooth_sigma == 1.0 ? "" : "s")
+                  : v.filter == "normal-map" ? std::string("normal map (depth ignored), bilinear")
+                                             : v.filter;
+  if (v.paper) t = "paper's loop (100 Hz plane), " + t;
+  return t;
+}
+std::string creaseText(const Variant& v) {
+  if (!v.crease) return "off";
+  return v.sided ? "on" : "on, ridges blended (issue 3)";
+}
 
 struct Stats {
   std::size_t n = 0, no_contact = 0;
@@ -89,13 +136,20 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+struct ProbeRecord {
+  Eigen::Vector3d p, f_exact, f_rendered;
+  bool contact = false;
+};
+
 struct Result {
+  std::vector<ProbeRecord> records;  // only with --probe-csv
   std::string surface;
   int size = 0;
   double texel_m = 0;
   Variant v;
   Stats all;
   std::vector<Stats> by_depth;
+  std::array<Stats, 3> by_region;  // V valleys only: floor, ridge, wall (bench::kRegionNames)
   double ns_per_tick = 0;
   std::size_t timed_ticks = 0;
 };
@@ -104,6 +158,8 @@ struct Probe {
   Eigen::Vector3d p;
   std::size_t depth_index;
 };
+
+bool g_keep_records = false;
 
 Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
            const std::vector<Eigen::Vector3d>& f_exact, const tex::TextureMap& map, const Variant& v, int size) {
@@ -114,9 +170,15 @@ Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
   so.address = tex::Address::Wrap;
   const tex::TexturedSurface surface(map, mapping, so, v.filter != "normal-map");
   srv::RendererConfig rc;
-  rc.stiffness_n_per_m = kStiffness;
+  rc.stiffness_n_per_m = g_stiffness;
   rc.damping_ns_per_m = 0.0;  // the exact force is a pure spring
   rc.crease_handling = v.crease;
+  rc.sided_ridges = v.sided;
+  if (v.paper) {  // as applyPaperLoop (server/paper_loop.cpp)
+    rc.crease_handling = false;
+    rc.recovery_ticks = 0;
+    rc.plane_hold_ticks = 10;
+  }
   srv::ProxyRenderer renderer(surface, rc);
 
   Result res;
@@ -155,6 +217,12 @@ Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
     const double err = (out.force_world - f_exact[i]).norm(), f = f_exact[i].norm();
     res.all.add(err, f, out.in_contact);
     res.by_depth[probes[i].depth_index].add(err, f, out.in_contact);
+    if (const auto* vv = dynamic_cast<const bench::VValleySurface*>(&truth)) {
+      // Within 1.5 texels, but at most a quarter period (at 128² a period is 2.56 texels).
+      const double reach = std::min(kRegionReachTexels * res.texel_m, vv->period() / 4);
+      res.by_region[std::size_t(vv->region(probes[i].p.x(), reach))].add(err, f, out.in_contact);
+    }
+    if (g_keep_records) res.records.push_back({probes[i].p, f_exact[i], out.force_world, out.in_contact});
   }
   pass_median.push_back(median(per_probe));
   for (int pass = 0; pass < 2; ++pass) {
@@ -171,22 +239,34 @@ Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
   return res;
 }
 
-const char* filterText(const std::string& f) {
-  if (f == "smoothed") return "smoothed σ=1 texel + bilinear";
-  if (f == "normal-map") return "normal map (depth ignored), bilinear";
-  return f.c_str();
-}
+
+constexpr const char* kUsage = R"(usage: bench_force_error [--probes N] [--json F] [--csv F] [--png F] [--md F]
+                         [--surface sine|vvalley] [--sizes 128,256,...] [--variants LIST]
+                         [--smooth SIGMA_TEXELS] [--stiffness N_PER_M] [--probe-csv F] [--md-compact 1]
+
+Force error of the texture renderers against exact surfaces (docs/benchmarks.md part 2).
+benchmarks/run.sh BUILD_DIR force_error runs it as the docs show (the defaults).
+
+  --variants LIST  comma-separated rows; default: nearest,nearest+crease,bilinear,
+                   bilinear+crease-blend,bilinear+crease,smoothed,smoothed+crease,normal-map,
+                   normal-map+crease; also paper, paper+smoothed (the paper's loop: one plane per
+                   10 ticks, no recovery rule; docs/stability.md). "+crease" = crease handling
+                   with sided ridges (the renderer's default); "+crease-blend" = issue 3's
+                   crease handling, which blends the two walls' normals across a ridge.
+  --smooth SIGMA   Gaussian sigma in texels of the "smoothed" rows (default 1).
+  --stiffness K    penalty stiffness in N/m (default 600).
+  --probe-csv F    every probe: position, exact and rendered force, contact.
+  --md-compact 1   the Markdown without the per-surface detail tables and the self-checks.
+)";
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  thx::bench::exitOnHelp(argc, argv, R"(usage: bench_force_error [--probes N] [--json F] [--csv F] [--png F] [--md F]
-
-Force error of the texture renderers against exact surfaces (docs/benchmarks.md part 2).
-benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
-)");
-  std::string json_path, csv_path, png_path, md_path;
+  thx::bench::exitOnHelp(argc, argv, kUsage);
+  std::string json_path, csv_path, png_path, md_path, probe_csv_path, only_surface, variant_list = kDefaultVariants;
+  std::vector<int> sizes = kSizes;
   int probes_per_depth = 2500;
+  bool md_compact = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) {
@@ -199,8 +279,22 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
     else if (a == "--png") png_path = val;
     else if (a == "--md") md_path = val;
     else if (a == "--probes") probes_per_depth = std::max(10, std::atoi(val));
+    else if (a == "--probe-csv") probe_csv_path = val;
+    else if (a == "--md-compact") md_compact = std::strcmp(val, "0") != 0;
+    else if (a == "--surface") only_surface = val;
+    else if (a == "--variants") variant_list = val;
+    else if (a == "--smooth") g_smooth_sigma = std::atof(val);
+    else if (a == "--stiffness") g_stiffness = std::atof(val);
+    else if (a == "--sizes") {
+      sizes.clear();
+      for (const char* c = val; *c;) {
+        sizes.push_back(std::atoi(c));
+        while (*c && *c != ',') ++c;
+        if (*c == ',') ++c;
+      }
+    }
     else {
-      std::fprintf(stderr, "usage: bench_force_error [--probes N] [--json F] [--csv F] [--png F] [--md F]\n");
+      std::fprintf(stderr, "%s", kUsage);
       return 2;
     }
   }
@@ -210,9 +304,22 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
     std::vector<std::unique_ptr<bench::ExactSurface>> surfaces;
     surfaces.push_back(std::make_unique<bench::SineSurface>(0.5e-3, 0.01, 0.2));
     surfaces.push_back(std::make_unique<bench::VValleySurface>(60.0, 0.004, 0.2));
-    const std::vector<Variant> variants{{"nearest", false},  {"nearest", true},  {"bilinear", false},
-                                        {"bilinear", true},  {"smoothed", false}, {"smoothed", true},
-                                        {"normal-map", false}, {"normal-map", true}};
+    if (!only_surface.empty()) {
+      std::erase_if(surfaces, [&](const auto& s) { return s->name() != only_surface; });
+      if (surfaces.empty()) throw std::runtime_error("--surface: sine or vvalley");
+    }
+    g_keep_records = !probe_csv_path.empty();
+    std::vector<Variant> variants;
+    for (std::size_t a = 0; a <= variant_list.size();) {
+      std::size_t b = variant_list.find(',', a);
+      if (b == std::string::npos) b = variant_list.size();
+      const std::string id = variant_list.substr(a, b - a);
+      const auto it = std::find_if(kAllVariants.begin(), kAllVariants.end(), [&](const Variant& v) { return v.id == id; });
+      if (it == kAllVariants.end()) throw std::runtime_error("--variants: unknown row '" + id + "' (see --help)");
+      variants.push_back(*it);
+      a = b + 1;
+    }
+    if (!(g_smooth_sigma >= 0.0) || !(g_stiffness > 0.0)) throw std::runtime_error("--smooth >= 0, --stiffness > 0");
 
     std::vector<Result> results;
     std::string checks;
@@ -225,7 +332,7 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
       std::vector<Eigen::Vector2d> xy(std::size_t(probes_per_depth) * kDepths.size());
       for (auto& q : xy) q = {-half + 2 * half * rng.next(), -half + 2 * half * rng.next()};
 
-      for (int size : kSizes) {
+      for (int size : sizes) {
         std::fprintf(stderr, "bench_force_error: %s %d²: truth", truth.name().c_str(), size);
         truth.setSize(size);
         std::vector<Probe> probes(xy.size());
@@ -236,7 +343,7 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
           const Eigen::Vector3d p(xy[i].x(), xy[i].y(), truth.z(xy[i].x(), xy[i].y()) - kDepths[di]);
           probes[i] = {p, di};
           const Eigen::Vector3d q = truth.closest(p);
-          f_exact[i] = kStiffness * (q - p);
+          f_exact[i] = g_stiffness * (q - p);
           if (const auto* vv = dynamic_cast<const bench::VValleySurface*>(&truth)) {
             worst_golden = std::max(worst_golden, (vv->closestGolden(p) - q).norm());
           } else {
@@ -256,11 +363,11 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
 
         const tex::TextureMap raw = tex::generate(truth.request(size));
         tex::SmoothOptions sm;
-        sm.sigma_texels = kSmoothSigma;
+        sm.sigma_texels = g_smooth_sigma;
         sm.address = tex::Address::Wrap;
         const tex::TextureMap smooth = tex::smoothTexture(raw, sm);
         for (const Variant& v : variants) {
-          std::fprintf(stderr, ", %s/%s", v.filter.c_str(), v.crease ? "crease" : "nocrease");
+          std::fprintf(stderr, ", %s", v.id.c_str());
           results.push_back(run(truth, probes, f_exact, v.filter == "smoothed" ? smooth : raw, v, size));
         }
         std::fprintf(stderr, "\n");
@@ -269,11 +376,12 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
 
     // ---- CSV: one row per configuration and depth (depth "all" = every probe).
     std::string csv =
-        "surface,size,texel_mm,filter,crease,depth_mm,probes,rms_err_n,max_err_n,rms_force_n,rel_rms,median_rel,max_rel,"
-        "no_contact,ns_per_tick\n";
+        "surface,size,texel_mm,variant,filter,crease,depth_mm,probes,rms_err_n,max_err_n,rms_force_n,rel_rms,median_rel,"
+        "max_rel,no_contact,ns_per_tick\n";
     auto csvRow = [&](const Result& r, const std::string& depth, const Stats& s) {
-      csv += bench::fmt("%s,%d,%.4f,%s,%s,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.1f\n", r.surface.c_str(), r.size,
-                        r.texel_m * 1e3, r.v.filter.c_str(), r.v.crease ? "on" : "off", depth.c_str(), s.n, s.rms(),
+      csv += bench::fmt("%s,%d,%.4f,%s,%s,%s,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.1f\n", r.surface.c_str(), r.size,
+                        r.texel_m * 1e3, r.v.id.c_str(), r.v.filter.c_str(), r.v.crease ? "on" : "off", depth.c_str(),
+                        s.n, s.rms(),
                         s.max_e, std::sqrt(s.sum_f2 / double(std::max<std::size_t>(1, s.n))), s.relRms(),
                         s.medianRel(), s.max_rel,
                         s.no_contact, r.ns_per_tick);
@@ -281,15 +389,31 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
     for (const Result& r : results) {
       csvRow(r, "all", r.all);
       for (std::size_t d = 0; d < kDepths.size(); ++d) csvRow(r, bench::fmt("%.2f", kDepths[d] * 1e3), r.by_depth[d]);
+      for (std::size_t g = 0; g < r.by_region.size(); ++g) {
+        if (r.by_region[g].n > 0) csvRow(r, bench::kRegionNames[g], r.by_region[g]);
+      }
     }
     if (!csv_path.empty()) bench::writeTextFile(csv_path, csv);
+    if (!probe_csv_path.empty()) {
+      std::string pc = "surface,size,variant,x_m,y_m,z_m,fx_exact,fy_exact,fz_exact,fx,fy,fz,contact\n";
+      for (const Result& r : results) {
+        for (const ProbeRecord& q : r.records) {
+          pc += bench::fmt("%s,%d,%s,%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d\n", r.surface.c_str(), r.size,
+                           r.v.id.c_str(), q.p.x(), q.p.y(), q.p.z(), q.f_exact.x(),
+                           q.f_exact.y(), q.f_exact.z(), q.f_rendered.x(), q.f_rendered.y(), q.f_rendered.z(),
+                           int(q.contact));
+        }
+      }
+      bench::writeTextFile(probe_csv_path, pc);
+    }
 
     // ---- JSON
     std::string js = "{\n";
     js += "  \"benchmark\": \"force error of the plane proxy vs exact height-field contact\",\n";
     js += "  \"machine\": \"" + bench::machineDescription() + "\",\n";
     js += "  \"date\": \"" + bench::isoTimeNow() + "\",\n";
-    js += bench::fmt("  \"stiffness_n_per_m\": %g,\n  \"probes_per_depth\": %d,\n", kStiffness, probes_per_depth);
+    js += bench::fmt("  \"stiffness_n_per_m\": %g,\n  \"smoothing_sigma_texels\": %g,\n  \"probes_per_depth\": %d,\n",
+                     g_stiffness, g_smooth_sigma, probes_per_depth);
     js += "  \"depths_mm\": [";
     for (std::size_t d = 0; d < kDepths.size(); ++d) js += bench::fmt("%s%g", d ? ", " : "", kDepths[d] * 1e3);
     js += "],\n";
@@ -306,15 +430,29 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
     for (std::size_t i = 0; i < results.size(); ++i) {
       const Result& r = results[i];
       js += bench::fmt(
-          "    {\"surface\": \"%s\", \"size\": %d, \"texel_mm\": %.4f, \"filter\": \"%s\", \"crease\": %s, "
-          "\"probes\": %zu, \"rms_err_n\": %.6g, \"max_err_n\": %.6g, \"rel_rms\": %.6g, \"median_rel\": %.6g, "
+          "    {\"surface\": \"%s\", \"size\": %d, \"texel_mm\": %.4f, \"variant\": \"%s\", \"filter\": \"%s\", "
+          "\"crease\": %s, \"sided_ridges\": %s, \"paper_loop\": %s, \"probes\": %zu, \"rms_err_n\": %.6g, \"max_err_n\": %.6g, \"rel_rms\": %.6g, \"median_rel\": %.6g, "
           "\"max_rel\": %.6g, "
           "\"no_contact\": %zu, \"ns_per_tick\": %.1f, \"by_depth_rel_rms\": [",
-          r.surface.c_str(), r.size, r.texel_m * 1e3, r.v.filter.c_str(), r.v.crease ? "true" : "false", r.all.n,
+          r.surface.c_str(), r.size, r.texel_m * 1e3, r.v.id.c_str(), r.v.filter.c_str(), r.v.crease ? "true" : "false",
+          r.v.crease && r.v.sided ? "true" : "false", r.v.paper ? "true" : "false", r.all.n,
           r.all.rms(), r.all.max_e, r.all.relRms(), r.all.medianRel(), r.all.max_rel, r.all.no_contact,
           r.ns_per_tick);
       for (std::size_t d = 0; d < kDepths.size(); ++d) js += bench::fmt("%s%.6g", d ? ", " : "", r.by_depth[d].relRms());
-      js += std::string("]}") + (i + 1 < results.size() ? ",\n" : "\n");
+      js += "]";
+      if (r.surface == "vvalley") {
+        // Each region's share of the relative RMS error (its squared errors over all probes' squared
+        // exact force: the three add up in quadrature to rel_rms).
+        js += ", \"by_region\": {";
+        for (std::size_t g = 0; g < r.by_region.size(); ++g) {
+          const Stats& st = r.by_region[g];
+          js += bench::fmt("%s\"%s\": {\"probes\": %zu, \"rel_rms_share\": %.6g, \"no_contact\": %zu}", g ? ", " : "",
+                           bench::kRegionNames[g], st.n, r.all.sum_f2 > 0 ? std::sqrt(st.sum_e2 / r.all.sum_f2) : 0.0,
+                           st.no_contact);
+        }
+        js += "}";
+      }
+      js += std::string("}") + (i + 1 < results.size() ? ",\n" : "\n");
     }
     js += "  ]\n}\n";
     if (!json_path.empty()) bench::writeTextFile(json_path, js);
@@ -330,17 +468,21 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
         double x_lo = 1e300, x_hi = 0, y_lo = 1e300, y_hi = 0;
         for (const Variant& v : variants) {
           bench::PlotSeries ps;
-          ps.label = std::string(v.filter == "normal-map" ? "normal map" : v.filter) + (v.crease ? ", crease on" : ", crease off");
-          ps.color = v.filter == "nearest"    ? bench::Rgb{214, 39, 40}
-                     : v.filter == "bilinear" ? bench::Rgb{31, 119, 180}
+          ps.label = std::string(v.paper ? "paper's loop, " : "") +
+                     std::string(v.filter == "normal-map" ? "normal map" : v.filter) +
+                     (v.crease ? (v.sided ? ", crease on" : ", crease on, ridges blended") : ", crease off");
+          ps.color = v.paper                  ? bench::Rgb{148, 103, 189}
+                     : v.filter == "nearest"  ? bench::Rgb{214, 39, 40}
+                     : v.filter == "bilinear" ? (v.crease && !v.sided ? bench::Rgb{255, 127, 14} : bench::Rgb{31, 119, 180})
                      : v.filter == "smoothed" ? bench::Rgb{44, 160, 44}
                                               : bench::Rgb{127, 127, 127};
-          ps.marker = v.crease ? bench::Marker::Square : bench::Marker::Circle;
+          ps.marker = v.crease ? (v.sided ? bench::Marker::Square : bench::Marker::Triangle) : bench::Marker::Circle;
           ps.filled = !v.crease;
           for (const Result& r : results) {
-            if (r.surface != s->name() || r.v.filter != v.filter || r.v.crease != v.crease) continue;
+            if (r.surface != s->name() || r.v.id != v.id) continue;
             ps.x.push_back(r.ns_per_tick);
-            ps.y.push_back(100.0 * r.all.relRms());
+            // A log axis has no 0: errors below the axis' floor are drawn on it.
+            ps.y.push_back(std::max(100.0 * r.all.relRms(), kPlotFloorPercent));
             ps.point_labels.push_back(std::to_string(r.size));
             x_lo = std::min(x_lo, r.ns_per_tick);
             x_hi = std::max(x_hi, r.ns_per_tick);
@@ -351,13 +493,14 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
         }
         p.x_min = std::pow(10.0, std::floor(std::log10(x_lo * 0.8) * 4) / 4);
         p.x_max = std::pow(10.0, std::ceil(std::log10(x_hi * 1.25) * 4) / 4);
-        p.y_min = std::pow(10.0, std::floor(std::log10(std::max(y_lo, 1e-3) * 0.8)));
+        p.y_min = std::pow(10.0, std::floor(std::log10(std::max(y_lo, kPlotFloorPercent) * 0.8)));
         p.y_max = std::pow(10.0, std::ceil(std::log10(y_hi * 1.25)));
         panels.push_back(p);
       }
       bench::writePlotPng(png_path, panels,
-                          "Points labelled by texture size (texels per side over 0.2 m). Regenerate: "
-                          "benchmarks/run.sh BUILD_DIR force_error. k = 600 N/m; errors of the renderer as built.");
+                          bench::fmt("Labels: texture size (texels per side over 0.2 m); errors below %g %% drawn "
+                                     "at %g %%. k = %g N/m. Regenerate: benchmarks/run.sh BUILD_DIR force_error.",
+                                     kPlotFloorPercent, kPlotFloorPercent, g_stiffness));
     }
 
     // ---- Markdown
@@ -370,25 +513,26 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
           "hold %d ticks, compare the last force with the exact k·(q − p). Errors are |F_rendered − F_exact|; "
           "relative = RMS error / RMS exact force; “no contact” = probes the renderer did not touch at all. "
           "ns/tick: render() over the ticks below the true surface (median over probes, best of 3 passes).\n\n",
-          kStiffness, probes_per_depth, probes_per_depth * int(kDepths.size()), kStartAbove * 1e3, kStep * 1e6,
+          g_stiffness, probes_per_depth, probes_per_depth * int(kDepths.size()), kStartAbove * 1e3, kStep * 1e6,
           kHoldTicks);
-      md += "Truth self-checks: " + checks + "\n";
+      if (!md_compact) md += "Truth self-checks: " + checks + "\n";
       // Compact view first: relative RMS error by size, and the cost.
-      md += "\nRelative RMS force error (median relative error in brackets) by texture size (texel over 0.2 m), and "
-            "render cost (ns/tick, median over the four sizes):\n\n";
+      md += md_compact ? "" : "\n";
+      md += "Relative RMS force error (median relative error in brackets) by texture size (texel over 0.2 m), and "
+            "render cost (ns/tick, median over the sizes):\n\n";
       md += "| surface | filter | crease |";
-      for (int size : kSizes) md += bench::fmt(" %d² (%.2f mm) |", size, 200.0 / size);
+      for (int size : sizes) md += bench::fmt(" %d² (%.2f mm) |", size, 200.0 / size);
       md += " ns/tick |\n|---|---|---|";
-      for (std::size_t i = 0; i < kSizes.size(); ++i) md += "---|";
+      for (std::size_t i = 0; i < sizes.size(); ++i) md += "---|";
       md += "---|\n";
       for (const auto& s : surfaces) {
         for (const Variant& v : variants) {
-          md += "| " + s->name() + " | " + filterText(v.filter) + " | " + (v.crease ? "on" : "off") + " |";
+          md += "| " + s->name() + " | " + filterText(v) + " | " + creaseText(v) + " |";
           std::vector<double> cost;
-          for (int size : kSizes) {
+          for (int size : sizes) {
             for (const Result& r : results) {
-              if (r.surface != s->name() || r.size != size || r.v.filter != v.filter || r.v.crease != v.crease) continue;
-              md += bench::fmt(" %.1f %% (%.1f %%) |", 100.0 * r.all.relRms(), 100.0 * r.all.medianRel());
+              if (r.surface != s->name() || r.size != size || r.v.id != v.id) continue;
+              md += bench::fmt(" %s (%s) |", pct(r.all.relRms()).c_str(), pct(r.all.medianRel()).c_str());
               cost.push_back(r.ns_per_tick);
             }
           }
@@ -397,16 +541,40 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show.
         }
       }
       for (const auto& s : surfaces) {
+        if (md_compact) break;
         md += "\n**" + s->description() + "**\n\n";
         md += "| size (texel) | filter | crease | RMS err (mN) | relative RMS | median relative | max err (mN) | "
               "max relative | no contact | ns/tick |\n";
         md += "|---|---|---|---|---|---|---|---|---|---|\n";
         for (const Result& r : results) {
           if (r.surface != s->name()) continue;
-          md += bench::fmt("| %d² (%.3f mm) | %s | %s | %.1f | %.1f %% | %.1f %% | %.0f | %.0f %% | %zu | %.0f |\n",
-                           r.size, r.texel_m * 1e3, filterText(r.v.filter), r.v.crease ? "on" : "off",
-                           r.all.rms() * 1e3, 100.0 * r.all.relRms(), 100.0 * r.all.medianRel(), r.all.max_e * 1e3, 100.0 * r.all.max_rel, r.all.no_contact,
-                           r.ns_per_tick);
+          md += bench::fmt("| %d² (%.3f mm) | %s | %s | %.1f | %s | %s | %.0f | %.0f %% | %zu | %.0f |\n", r.size,
+                           r.texel_m * 1e3, filterText(r.v).c_str(), creaseText(r.v).c_str(), r.all.rms() * 1e3,
+                           pct(r.all.relRms()).c_str(), pct(r.all.medianRel()).c_str(), r.all.max_e * 1e3,
+                           100.0 * r.all.max_rel, r.all.no_contact, r.ns_per_tick);
+        }
+      }
+      // Where the V-valley error lives: probes by their horizontal distance to the nearest floor or
+      // ridge line, each region's share of the relative RMS error (the shares add in quadrature).
+      bool any_valley = false;
+      for (const Result& r : results) any_valley = any_valley || r.surface == "vvalley";
+      if (any_valley) {
+        md += "\n**Where the V-valley error lives.** Probes by their horizontal distance to the nearest floor or "
+              "ridge line: within 1.5 texels (at most a quarter period) of a floor (“floor”), of a ridge (“ridge”), or "
+              "neither (“wall”). "
+              "Each cell: that region's share of the row's relative RMS error (its squared errors over every "
+              "probe's squared exact force, so the three shares add up in quadrature to the row's error), its "
+              "probes, and in brackets those that got no contact.\n\n";
+        md += "| size | filter | crease | relative RMS | floor | ridge | wall |\n|---|---|---|---|---|---|---|\n";
+        for (const Result& r : results) {
+          if (r.surface != "vvalley") continue;
+          md += bench::fmt("| %d² | %s | %s | %s |", r.size, filterText(r.v).c_str(), creaseText(r.v).c_str(),
+                           pct(r.all.relRms()).c_str());
+          for (const Stats& st : r.by_region) {
+            md += bench::fmt(" %s of %zu (%zu) |", pct(r.all.sum_f2 > 0 ? std::sqrt(st.sum_e2 / r.all.sum_f2) : 0.0).c_str(),
+                             st.n, st.no_contact);
+          }
+          md += "\n";
         }
       }
       bench::writeTextFile(md_path, md);

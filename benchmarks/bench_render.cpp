@@ -15,7 +15,8 @@
 //
 // Reported per benchmark: Google Benchmark's median over repetitions of the mean time per tick,
 // and, from three extra timed passes per repetition, the per-tick p50 / p99 (timer overhead
-// subtracted; median over repetitions). Usage: bench_render [--csv FILE] [--md FILE] [google-benchmark flags]
+// subtracted; median over repetitions). Usage: bench_render [--csv FILE] [--md FILE] [--ridges sided|blend]
+// [google-benchmark flags]; --ridges blend replays the same paths with issue 3's blended ridges.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -75,6 +76,16 @@ std::map<std::string, Meta> g_meta;
 double minOf(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); }
 double g_timer_ns = 0.0;
 
+// --ridges blend: the renderer with issue 3's blended ridges (RendererConfig::sided_ridges =
+// false) on the same recorded paths, for the cost of sided ridges (docs/benchmarks.md §1).
+bool g_blend_ridges = false;
+void applyRidges(bench::ServerRig& rig) {
+  if (!g_blend_ridges) return;
+  srv::RendererConfig c = rig.renderer().config();
+  c.sided_ridges = false;
+  rig.renderer().retarget(rig.renderer().surface(), c);
+}
+
 const char* kSceneFile(const std::string& texture) {
   return texture == "bricks" ? "/scenes/default.yaml" : "/scenes/vvalley.yaml";
 }
@@ -97,6 +108,7 @@ void registerRender(const Fixture& fx, bool relief, bool crease) {
   benchmark::RegisterBenchmark(name.c_str(), [f, path, relief, crease](benchmark::State& state) {
     bench::ReplayDevice dummy(srv::deviceSpecFor(f->st.scene), *path);
     bench::ServerRig rig(f->st.scene, f->st.map(), relief, crease, dummy);
+    applyRidges(rig);
     srv::ProxyRenderer& r = rig.renderer();
     const std::vector<dev::DeviceState>& p = *path;
     std::size_t k = 0;
@@ -157,6 +169,7 @@ void registerServo(const Fixture& fx) {
   benchmark::RegisterBenchmark((base + "full").c_str(), [f](benchmark::State& state) {
     dev::SimPhantom device(srv::simConfigFor(f->st.scene, true), srv::handScriptFor(f->st.scene));
     bench::ServerRig rig(f->st.scene, f->st.map(), true, true, device);
+    applyRidges(rig);
     device.open();
     timeServoTicks(state, rig);
   })->Iterations(std::int64_t(n))->Repetitions(kReps)->ReportAggregatesOnly(true)->Unit(benchmark::kNanosecond)->ComputeStatistics("min", minOf);
@@ -178,6 +191,7 @@ void registerServo(const Fixture& fx) {
   benchmark::RegisterBenchmark((base + "server").c_str(), [f, rec](benchmark::State& state) {
     bench::ReplayDevice device(srv::deviceSpecFor(f->st.scene), rec->states);
     bench::ServerRig rig(f->st.scene, f->st.map(), true, true, device);
+    applyRidges(rig);
     timeServoTicks(state, rig);
   })->Iterations(std::int64_t(n))->Repetitions(kReps)->ReportAggregatesOnly(true)->Unit(benchmark::kNanosecond)->ComputeStatistics("min", minOf);
 
@@ -185,6 +199,7 @@ void registerServo(const Fixture& fx) {
   benchmark::RegisterBenchmark((base + "render").c_str(), [f, rec](benchmark::State& state) {
     bench::ReplayDevice dummy(srv::deviceSpecFor(f->st.scene), rec->states);
     bench::ServerRig rig(f->st.scene, f->st.map(), true, true, dummy);
+    applyRidges(rig);
     srv::ProxyRenderer& r = rig.renderer();
     const std::vector<dev::DeviceState>& p = rec->states;
     std::size_t k = 0;
@@ -323,6 +338,13 @@ int main(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) {
     if ((std::strcmp(argv[i], "--csv") == 0 || std::strcmp(argv[i], "--md") == 0) && i + 1 < argc) {
       (std::strcmp(argv[i], "--csv") == 0 ? csv_path : md_path) = argv[i + 1];
+      ++i;
+    } else if (std::strcmp(argv[i], "--ridges") == 0 && i + 1 < argc) {
+      g_blend_ridges = std::strcmp(argv[i + 1], "blend") == 0;
+      if (!g_blend_ridges && std::strcmp(argv[i + 1], "sided") != 0) {
+        std::fprintf(stderr, "bench_render: --ridges sided|blend\n");
+        return 2;
+      }
       ++i;
     } else {
       args.push_back(argv[i]);

@@ -118,6 +118,13 @@ double VValleySurface::h(double X, double /*Y*/) const {
   return f < 0.5 ? -slope_ * f * period_ : -slope_ * (1.0 - f) * period_;
 }
 
+int VValleySurface::region(double x, double reach) const {
+  const double X = x + extent_m_ / 2, f = X / period_ - std::floor(X / period_);  // ridge at f = 0, floor at 0.5
+  if (std::fabs(f - 0.5) * period_ <= reach) return 0;
+  if (std::min(f, 1.0 - f) * period_ <= reach) return 1;
+  return 2;
+}
+
 namespace {
 
 // The walls in the (X, z) cross-section near X: segments between ridges (z = top) and floors.

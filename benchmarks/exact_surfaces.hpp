@@ -15,6 +15,9 @@
 
 namespace thx::bench {
 
+// VValleySurface::region's names.
+inline constexpr const char* kRegionNames[3] = {"floor", "ridge", "wall"};
+
 class ExactSurface {
  public:
   virtual ~ExactSurface() = default;
@@ -63,6 +66,10 @@ class VValleySurface final : public ExactSurface {
   Eigen::Vector3d closest(const Eigen::Vector3d& p) const override;
   // The same by golden-section search on each wall (for the self-check).
   Eigen::Vector3d closestGolden(const Eigen::Vector3d& p) const;
+  // Where plane-local x lies: 0 within `reach` (horizontally) of a floor line, 1 of a ridge line,
+  // 2 on a wall away from both (kRegionNames).
+  int region(double x, double reach) const;
+  double period() const { return period_; }
 
  private:
   double h(double X, double Y) const override;

@@ -80,10 +80,17 @@ run_render() {
 
 run_force_error() {
   need "$BIN/bench_force_error" || return 1
-  say "part 2: force error against the exact height-field contact (about 60 s)"
+  say "part 2: force error against the exact height-field contact (about 80 s)"
   "$BIN/bench_force_error" --json "$RESULTS/bench_force_error.json" --csv "$RESULTS/bench_force_error.csv" \
     --png "$RESULTS/bench_force_error.png" --md "$WORK/bench_force_error.md" || return 1
   splice bench_force_error "$WORK/bench_force_error.md"
+  # The paper's mitigation (docs/stability.md): its loop on the raw and the smoothed map, at the
+  # stability map's smoothing (2 texels) and the device's full stiffness, beside crease handling.
+  say "part 2b: force error of the paper's loop and its smoothing (about 10 s)"
+  "$BIN/bench_force_error" --sizes 512,1024 --smooth 2 --stiffness 1000 --variants paper,paper+smoothed,bilinear+crease \
+    --json "$RESULTS/bench_force_error_paper.json" --csv "$RESULTS/bench_force_error_paper.csv" \
+    --md "$WORK/bench_force_error_paper.md" --md-compact 1 || return 1
+  splice bench_force_error_paper "$WORK/bench_force_error_paper.md" "$ROOT/docs/stability.md"
 }
 
 run_memory() {

@@ -55,29 +55,97 @@ bool ProxyRenderer::concavePair(const Halfspace& a, const Eigen::Vector3d& qa, c
   return a.n.dot(qb) - a.d > concave_tolerance_m_ && b.n.dot(qa) - b.d > concave_tolerance_m_;
 }
 
+double ProxyRenderer::planeHeightAt(const tex::TexelPoint& t, double x, double y) {
+  const Eigen::Vector3d& n = t.n_local;
+  if (!(n.z() > 1e-9)) return t.q_local.z();  // a vertical texel plane has no height: its centre's
+  return t.q_local.z() - (n.x() * (x - t.q_local.x()) + n.y() * (y - t.q_local.y())) / n.z();
+}
+
 ProxyRenderer::LocalPlanes ProxyRenderer::planesAround(double x, double y) const {
+  // Neighbours in the order +x, -x, +y, -y (texel indices): k ^ 1 is the opposite of k.
+  static constexpr int kNeighbours[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   long long i = 0, j = 0;
   surface_->texelContaining(x, y, i, j);
-  const tex::TexelPoint c = surface_->texelPoint(i, j);
-  const Halfspace hc{c.n_local, c.n_local.dot(c.q_local)};
+  tex::TexelPoint c = surface_->texelPoint(i, j);
+  Halfspace hc{c.n_local, c.n_local.dot(c.q_local)};
+  std::array<tex::TexelPoint, 4> nbs;
+  std::array<Bend, 4> bends{};
+  auto readAround = [&] {
+    for (std::size_t k = 0; k < 4; ++k) nbs[k] = surface_->texelPoint(i + kNeighbours[k][0], j + kNeighbours[k][1]);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const tex::TexelPoint& t = nbs[k];
+      if (c.n_local.dot(t.n_local) >= crease_cos_) {
+        bends[k] = Bend::Smooth;
+      } else if (concavePair(hc, c.q_local, Halfspace{t.n_local, t.n_local.dot(t.q_local)}, t.q_local)) {
+        bends[k] = Bend::Concave;
+      } else if (!config_.sided_ridges) {
+        bends[k] = Bend::Convex;
+      } else {
+        // A ridge, or a smooth convex bend sampled coarsely (a sine's top at a few texels per
+        // period bends as sharply between two texels)? Two samples cannot tell; a ridge is
+        // the sharpest bend in its line: on both sides the next texel continues the wall.
+        const double bend = (c.n_local - t.n_local).norm();
+        auto continues = [&](const tex::TexelPoint& a, const tex::TexelPoint& b) {
+          return (a.n_local - b.n_local).norm() * kRidgeContrast <= bend ||
+                 concavePair(Halfspace{a.n_local, a.n_local.dot(a.q_local)}, a.q_local,
+                             Halfspace{b.n_local, b.n_local.dot(b.q_local)}, b.q_local);
+        };
+        const tex::TexelPoint& c_back = nbs[k ^ 1u];
+        bool ridge = continues(c_back, c);
+        if (ridge) {
+          const tex::TexelPoint t_next = surface_->texelPoint(i + 2 * kNeighbours[k][0], j + 2 * kNeighbours[k][1]);
+          ridge = continues(t, t_next);
+        }
+        bends[k] = ridge ? Bend::Ridge : Bend::Convex;
+      }
+    }
+  };
+  readAround();
+  if (config_.sided_ridges) {
+    // Which side of a ridge (x, y) lies on: next to it the surface is the lower of the two texel
+    // planes, so (x, y) belongs to the ridge neighbour whose plane is lower there than this
+    // texel's. Each hop lowers the height at (x, y), so it cannot cycle; two hops cover a point
+    // whose texel centre lies across a ridge in x and in y.
+    for (int hop = 0; hop < 2; ++hop) {
+      int best = -1;
+      double best_z = planeHeightAt(c, x, y) - concave_tolerance_m_;
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (bends[k] != Bend::Ridge) continue;
+        const double z = planeHeightAt(nbs[k], x, y);
+        if (z < best_z) {
+          best_z = z;
+          best = int(k);
+        }
+      }
+      if (best < 0) break;
+      i += kNeighbours[best][0];
+      j += kNeighbours[best][1];
+      c = nbs[std::size_t(best)];
+      hc = Halfspace{c.n_local, c.n_local.dot(c.q_local)};
+      readAround();
+    }
+  }
   LocalPlanes p;
   p.h[0] = hc;
   p.q[0] = c.q_local;
   p.count = 1;
-  static constexpr int kNeighbours[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-  for (const auto& nb : kNeighbours) {
-    const tex::TexelPoint t = surface_->texelPoint(i + nb[0], j + nb[1]);
-    if (c.n_local.dot(t.n_local) >= crease_cos_) continue;  // smooth here
+  bool ridge = false;
+  for (std::size_t k = 0; k < 4; ++k) {
+    ridge = ridge || bends[k] == Bend::Ridge;
+    if (bends[k] != Bend::Concave) continue;  // smooth here, or convex: one plane is right
+    const tex::TexelPoint& t = nbs[k];
     const Halfspace ht{t.n_local, t.n_local.dot(t.q_local)};
-    if (!concavePair(hc, c.q_local, ht, t.q_local)) continue;  // a ridge: one plane is right
     bool redundant = false;
-    for (int k = 1; k < p.count; ++k) redundant = redundant || p.h[std::size_t(k)].n.dot(ht.n) >= crease_cos_;
+    for (int m = 1; m < p.count; ++m) redundant = redundant || p.h[std::size_t(m)].n.dot(ht.n) >= crease_cos_;
     if (redundant || p.count == kMaxHalfspaces) continue;
     p.h[std::size_t(p.count)] = ht;
     p.q[std::size_t(p.count)] = t.q_local;
     ++p.count;
   }
+  p.ridge = ridge;
   if (p.count > 1) return p;
+  // Next to a ridge: this side's texel plane; the interpolated normal would blend both walls.
+  if (ridge) return p;
   // No crease: one plane from the interpolated normal, so smooth textures feel smooth.
   return singlePlaneAt(surface_->at(x, y), x, y);
 }
@@ -171,11 +239,26 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
       out.active_mask = 1;
     }
   } else {
-    const bool entering = !in_contact_ && t.z() < at_tip.height_m;
+    // Entering: below the bilinear surface, or (sided ridges, relief) next to a ridge, whose
+    // texel planes rise above the bilinear depth by up to slope x half a texel there: the
+    // projection below tells whether the tip is below them. planesAround only hops to planes
+    // lower at (x, y) than the plane of the texel under the tip, so a tip above that one plane
+    // (one texel read) is above the surface there, and the plane set is not built for it.
+    bool entering = !in_contact_ && t.z() < at_tip.height_m;
+    bool have_planes = false;
+    if (!in_contact_ && !entering && config_.sided_ridges && surface_->usesRelief()) {
+      long long i = 0, j = 0;
+      surface_->texelContaining(t.x(), t.y(), i, j);
+      if (t.z() < planeHeightAt(surface_->texelPoint(i, j), t.x(), t.y())) {
+        planes = planesAround(t.x(), t.y());
+        have_planes = true;
+        entering = planes.ridge;
+      }
+    }
     if (in_contact_ || entering) {
       const double ax = entering ? t.x() : proxy_local_.x();
       const double ay = entering ? t.y() : proxy_local_.y();
-      planes = planesAround(ax, ay);
+      if (!have_planes) planes = planesAround(ax, ay);
       // The planes that held the proxy last tick stay (if still a concave set): without this
       // memory a deep tip can make the proxy alternate between two plane sets on every tick.
       if (!entering) mergeConcave(planes, prev_active_);

@@ -15,7 +15,11 @@
 //    point lands in another texel, that texel's planes are merged in (concave ones only) and the
 //    projection repeated, at most kMaxMerges times, so a deep tip cannot make the proxy leap
 //    over a crease. At a V-valley floor both walls are held at once and the pen rests at the
-//    floor instead of bouncing between two single planes.
+//    floor instead of bouncing between two single planes. Where the sharp neighbour forms a
+//    convex crease with walls continuing on both sides (a ridge), the point takes the texel
+//    plane of the side it lies on: the lower of the two texel planes at its (x, y), so the ridge
+//    sits where the planes intersect, to a fraction of a texel, instead of being blended over a
+//    texel by the interpolated normal (`RendererConfig::sided_ridges`, issue 12).
 // Both: the recovery rule. If this tick's penetration differs by more than a threshold from what
 // last tick's planes give for this tick's tip (a plane changed under the pen; the tip's own
 // motion never counts), the previous penetration is kept and the rendered penetration moves to
@@ -35,6 +39,15 @@ struct RendererConfig {
   double damping_ns_per_m = 0.0;  // along the spring direction only; never pulls the pen in
   bool crease_handling = true;
   double crease_angle_deg = 8.0;      // neighbour texels whose normals differ more form a crease
+  // Convex creases (ridges: a sharp convex bend between two texels whose walls continue on both
+  // sides; kRidgeContrast), with crease handling (issue 12). true: a point next to a ridge takes
+  // the texel plane of the side it lies on (the lower of the two texel planes at its (x, y): the
+  // ridge is where the planes meet), and on a relief, contact begins at that surface rather than
+  // at the bilinear depth, which rounds a ridge down by up to slope x half a texel. false: issue
+  // 3's renderer, kept for comparison (bench_force_error's "blend" rows): one plane from the
+  // interpolated normal, which blends the two walls across the ridge, and a proxy entering there
+  // can slide over the ridge onto the far wall.
+  bool sided_ridges = true;
   int recovery_ticks = 10;            // 0 disables the recovery rule
   // A plane change is a jump of the spring force (k x the unexplained penetration change) above
   // this: a force threshold, so a deep press on a soft surface, whose long penetration vector
@@ -85,9 +98,26 @@ class ProxyRenderer {
     std::array<Halfspace, kMaxHalfspaces> h{};
     std::array<Eigen::Vector3d, kMaxHalfspaces> q{};  // the surface point each plane was built through
     int count = 0;
+    bool ridge = false;  // planesAround: a ridge (Bend::Ridge) borders the texel (sided_ridges)
   };
   static constexpr int kMaxMerges = 3;
+  // How one 4-neighbour's texel plane meets the centre texel's: within the crease angle; a sharp
+  // concave crease (both planes held); a sharp convex bend read as a ridge (sided_ridges: the
+  // point takes the plane of its side); any other sharp convex bend (one interpolated plane).
+  enum class Bend { Smooth, Concave, Ridge, Convex };
+  // A sharp convex bend is a ridge when, on both sides, the wall continues: the next texel's
+  // normal turns by at most 1 / kRidgeContrast of the bend (as normal-vector chords), or the next
+  // bend is concave (the wall runs into a valley floor: a V whose walls span one or two texels).
+  // A coarsely sampled smooth top spreads its bend over the texels on either side (a sine at 6.4
+  // texels per period: 0.24 between the top's texels, 0.27 one texel further); a plane sampled
+  // twice does not turn at all. Both sides, because one side alone is fooled by an inflection,
+  // where a sine's normal barely turns (0.03 there: one side alone faceted the sine at 128²,
+  // 10.8 -> 11.3 % RMS force error in bench_force_error). With the concave clause, 2 % of the
+  // sine's probes at 128² (6.4 texels per period) see a ridge (10.80 -> 10.77 %); none at 256².
+  static constexpr double kRidgeContrast = 5.0;
   LocalPlanes planesAround(double x, double y) const;
+  // Height at plane-local (x, y) of the plane through texel point `t` (its normal has n_z > 0).
+  static double planeHeightAt(const tex::TexelPoint& t, double x, double y);
   LocalPlanes singlePlaneAt(const tex::SurfacePoint& s, double x, double y) const;
   bool mergeConcave(LocalPlanes& into, const LocalPlanes& from) const;
   bool concavePair(const Halfspace& a, const Eigen::Vector3d& qa, const Halfspace& b, const Eigen::Vector3d& qb) const;

@@ -118,6 +118,7 @@ CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const
   rig_options.crease_handling = params.mitigations.crease;
   rig_options.passivity = params.mitigations.passivity;
   rig_options.recovery_ticks = setup.recovery_ticks;
+  rig_options.sided_ridges = setup.sided_ridges;
   if (params.mitigations.paper_loop) {
     rig_options.crease_handling = false;
     rig_options.passivity = false;

@@ -58,6 +58,7 @@ struct CellSetup {
   double virtual_damping_ns_per_m = 1.0;  // B, as both shipped scenes (default.yaml, vvalley.yaml)
   int recovery_ticks = RendererConfig{}.recovery_ticks;  // the renderer's recovery rule (0: off)
   double plane_rate_hz = 100.0;           // the paper's loop: planes per second (--plane-rate)
+  bool sided_ridges = RendererConfig{}.sided_ridges;  // --ridges sided|blend (issue 12)
   double aim_offset_m = 1e-4;             // half a texel, four encoder counts
   double hover_m = 0.005;
   double settle_s = 0.5;

@@ -40,6 +40,8 @@ Setup:
   --recovery-ticks N      renderer recovery ramp, ticks (default 10 = hapticd; 0 = off; the
                           paper's loop has none)
   --plane-rate HZ         planes per second in the paper's loop (default 100)
+  --ridges sided|blend    crease handling at ridges: sided (default, the renderer's) or blend
+                          (issue 3's, RendererConfig::sided_ridges = false)
   --smoothing-sigma S     normal smoothing sigma, texels (default 2)
   --aim-offset M          where the hand aims, beside the floor line, m (default 1e-4)
   --duration S            simulated seconds per cell (default 3)
@@ -151,6 +153,10 @@ bool parseCommandLine(int argc, char** argv, CliOptions& o) {
       const double v = parseNumber(a, value());
       if (v < 0 || v > 1000 || v != std::floor(v)) throw UsageError{a + ": expected a whole number of ticks in [0, 1000]"};
       o.setup.recovery_ticks = int(v);
+    } else if (a == "--ridges") {
+      const std::string name = value();
+      if (name != "sided" && name != "blend") throw UsageError{a + ": expected sided or blend, got '" + name + "'"};
+      o.setup.sided_ridges = name == "sided";
     } else if (a == "--plane-rate") {
       o.setup.plane_rate_hz = parseNumber(a, value());
       if (o.setup.plane_rate_hz <= 0 || o.setup.plane_rate_hz > 1000)

@@ -121,7 +121,8 @@ std::string setupJson(const CellSetup& s, double max_stiffness_fraction) {
     << ", \"servo_hz\": " << num(1e9 / double(sim.servo_period_ns)) << ", \"integration_hz\": " << sim.integration_hz
     << "},\n"
     << "    \"renderer\": {\"virtual_damping_ns_per_m\": " << num(s.virtual_damping_ns_per_m)
-    << ", \"recovery_ticks\": " << s.recovery_ticks << "},\n"
+    << ", \"recovery_ticks\": " << s.recovery_ticks << ", \"ridges\": \"" << (s.sided_ridges ? "sided" : "blend")
+    << "\"},\n"
     << "    \"stability_budget\": " << budgetJson(s, max_stiffness_fraction) << ",\n"
     << "    \"script\": {\"aim_offset_m\": " << num(s.aim_offset_m) << ", \"hover_m\": " << num(s.hover_m)
     << ", \"settle_s\": " << num(s.settle_s) << ", \"duration_s\": " << num(s.duration_s)

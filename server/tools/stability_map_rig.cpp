@@ -23,6 +23,7 @@ SimRig::SimRig(const tex::TexturedSurface& surface, const dev::SimPhantomConfig&
   c.renderer.crease_handling = options.crease_handling;
   c.renderer.recovery_ticks = options.recovery_ticks;
   c.renderer.plane_hold_ticks = options.plane_hold_ticks;
+  c.renderer.sided_ridges = options.sided_ridges;
   c.period_s = period_s_;
   c.passivity = options.passivity;
   c.quantisation_deadband = true;  // as hapticd

@@ -23,6 +23,7 @@ struct RigOptions {
   int recovery_ticks = RendererConfig{}.recovery_ticks;
   bool passivity = true;
   int plane_hold_ticks = 1;  // RendererConfig::plane_hold_ticks (the paper's loop)
+  bool sided_ridges = RendererConfig{}.sided_ridges;  // false: issue 3's blended ridges (--ridges blend)
 };
 
 class SimRig {

@@ -23,11 +23,17 @@ std::vector<CellResult> fullStiffnessRow(const char* mitigations) {
 }  // namespace
 
 TEST(StabilityMapSlow, WithoutMitigationsSteepValleysAreUnstableAtFullStiffness) {
+  // Of the cells that test the valley: at 1 N, 20 deg (both readings) and 40 deg relief sink
+  // while the continuous-force limit acts (cannot-hold: they do not test it; docs/stability.md).
+  int tested = 0;
   for (const CellResult& r : fullStiffnessRow("none")) {
     if (r.params.angle_deg > 60 || r.params.push_force_n != 1.0) continue;
+    if (r.metrics.verdict == Verdict::CannotHold) continue;
+    ++tested;
     EXPECT_EQ(r.metrics.verdict, Verdict::Unstable)
         << r.params.angle_deg << " deg " << (r.params.relief ? "relief" : "normal") << ": " << r.metrics.reason;
   }
+  EXPECT_GE(tested, 3);
 }
 
 TEST(StabilityMapSlow, CreaseHandlingLeavesNoUnstableCellAtFullStiffness) {
