@@ -19,6 +19,7 @@
 #include "server/tools/stability_map_rig.hpp"
 #include "server/tools/stability_map_sweep.hpp"
 #include "textures/generators.hpp"
+#include "tests/support/sanitized_build.hpp"
 
 using namespace thx;
 using namespace thx::srv::stab;
@@ -159,9 +160,10 @@ TEST(StabilityCells, ThePapersMitigationOnThePapersLoop) {
 }
 
 TEST(StabilityCells, SimulationIsDeterministicAndIndependentOfThreads) {
-  const std::vector<CellParams> cells = {cell(40, 1.0, 1.0, true, "none"), cell(40, 1.0, 1.0, true, "all"),
-                                         cell(120, 0.5, 2.0, false, "passivity"),
-                                         cell(120, 0.5, 2.0, false, "crease+smoothing")};
+  std::vector<CellParams> cells = {cell(40, 1.0, 1.0, true, "none"), cell(40, 1.0, 1.0, true, "all"),
+                                   cell(120, 0.5, 2.0, false, "passivity"),
+                                   cell(120, 0.5, 2.0, false, "crease+smoothing")};
+  if (thx::test::kSanitized) cells = {cells[0], cells[2]};  // two cells still split across the threads
   const CellSetup setup;
   const std::vector<CellResult> one = runSweep(cells, setup, 1);
   const std::vector<CellResult> two = runSweep(cells, setup, 2);
