@@ -2,7 +2,9 @@
 // it is held, its roughness; the pen (device.pen); the scene's own materials.
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <string>
+#include <vector>
 
 #include "scenes/scene_loader.hpp"
 
@@ -28,17 +30,32 @@ std::string errorOf(const std::string& text) {
   return "";
 }
 
+// The slab's and the pen's fields as one comparable row.
+struct SoundFields {
+  double thickness;
+  SlabSupport held;
+  double beta, amplitude, spacing;
+  double pen_radius, pen_length;
+  std::string pen_material;
+  double pen_tilt;
+  bool operator==(const SoundFields&) const = default;
+};
+
+void PrintTo(const SoundFields& f, std::ostream* os) {
+  *os << f.thickness << " " << toString(f.held) << " " << f.beta << " " << f.amplitude << " " << f.spacing << " "
+      << f.pen_radius << " " << f.pen_length << " " << f.pen_material << " " << f.pen_tilt;
+}
+
+SoundFields soundFields(const Scene& s) {
+  const Roughness& r = s.surface.roughness;
+  const Pen& p = s.device.pen;
+  return {s.surface.thickness_m, s.surface.held, r.beta, r.amplitude, r.spacing_m, p.radius_m, p.length_m,
+          p.material.name, p.tilt_deg};
+}
+
 TEST(SceneSoundFields, DefaultsWhenLeftOut) {
   const Scene s = parseScene(kHead + surfaceWith(""), "s.yaml", "");
-  EXPECT_EQ(s.surface.thickness_m, 0.01);
-  EXPECT_EQ(s.surface.held, SlabSupport::Free);
-  EXPECT_EQ(s.surface.roughness.beta, 1.0);
-  EXPECT_EQ(s.surface.roughness.amplitude, 0.01);
-  EXPECT_EQ(s.surface.roughness.spacing_m, 1e-5);
-  EXPECT_EQ(s.device.pen.radius_m, 0.005);
-  EXPECT_EQ(s.device.pen.length_m, 0.12);
-  EXPECT_EQ(s.device.pen.material.name, "plastic");
-  EXPECT_EQ(s.device.pen.tilt_deg, 30.0);
+  EXPECT_EQ(soundFields(s), (SoundFields{0.01, SlabSupport::Free, 1.0, 0.01, 1e-5, 0.005, 0.12, "plastic", 30.0}));
   EXPECT_TRUE(s.custom_materials.empty());
 }
 
@@ -58,26 +75,15 @@ objects:
                                "s.yaml", "");
   ASSERT_EQ(s.custom_materials.size(), 1u);
   const Material& oak = s.custom_materials[0];
+  const std::vector<double> values = {oak.density_kg_per_m3, oak.youngs_modulus_pa, oak.poisson_ratio,
+                                      oak.rayleigh_alpha_per_s, oak.rayleigh_beta_s, oak.friction, oak.restitution};
+  EXPECT_EQ(values, (std::vector<double>{700, 1.2e10, 0.3, 50, 1e-6, 0.4, 0.3}));
   EXPECT_EQ(oak.name, "oak");
-  EXPECT_EQ(oak.density_kg_per_m3, 700);
-  EXPECT_EQ(oak.youngs_modulus_pa, 1.2e10);
-  EXPECT_EQ(oak.poisson_ratio, 0.3);
-  EXPECT_EQ(oak.rayleigh_alpha_per_s, 50);
-  EXPECT_EQ(oak.rayleigh_beta_s, 1e-6);
-  EXPECT_EQ(oak.friction, 0.4);
-  EXPECT_EQ(oak.restitution, 0.3);
+  // Used by name like the table's, by the surface and by an object.
   EXPECT_EQ(s.surface.material.name, "oak");
   EXPECT_EQ(s.surface.material.youngs_modulus_pa, 1.2e10);
   EXPECT_EQ(s.objects.at(0).material.name, "oak");
-  EXPECT_EQ(s.surface.thickness_m, 0.02);
-  EXPECT_EQ(s.surface.held, SlabSupport::ClampedEdges);
-  EXPECT_EQ(s.surface.roughness.beta, 1.5);
-  EXPECT_EQ(s.surface.roughness.amplitude, 0.05);
-  EXPECT_EQ(s.surface.roughness.spacing_m, 2e-5);
-  EXPECT_EQ(s.device.pen.radius_m, 0.004);
-  EXPECT_EQ(s.device.pen.length_m, 0.15);
-  EXPECT_EQ(s.device.pen.material.name, "aluminium");
-  EXPECT_EQ(s.device.pen.tilt_deg, 45);
+  EXPECT_EQ(soundFields(s), (SoundFields{0.02, SlabSupport::ClampedEdges, 1.5, 0.05, 2e-5, 0.004, 0.15, "aluminium", 45}));
 }
 
 TEST(SceneSoundFields, BadValuesNameTheFieldAndTheValue) {
