@@ -40,7 +40,7 @@ enum class SlabSupport { Free, ClampedEdges };
 // Micro-level roughness of the surface for sound (clients/audio/fractal_roughness.hpp).
 struct Roughness {
   double beta = 1.0;        // power spectrum ∝ 1/f^beta along the travelled distance
-  double amplitude = 0.01;  // RMS micro force per newton of normal force
+  double amplitude = 0.03;  // RMS micro force per newton of normal force
   double spacing_m = 1e-5;  // finest roughness step (wavelength 2x this)
 };
 

@@ -17,7 +17,7 @@ namespace thx::audio {
 
 struct RoughnessOptions {
   double beta = 1.0;          // spectral exponent: power ∝ 1/f^beta (pink noise at 1)
-  double amplitude = 0.01;    // RMS micro force per newton of normal force (dimensionless)
+  double amplitude = 0.03;    // RMS micro force per newton of normal force (dimensionless)
   double spacing_m = 1e-5;    // distance between table entries (the finest roughness wavelength is 2x this)
   std::size_t length = 1u << 15;  // entries, a power of two; the profile repeats every length x spacing_m
   std::uint64_t seed = 1;

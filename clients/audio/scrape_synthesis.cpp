@@ -166,7 +166,9 @@ ScrapeRender renderScrape(const tex::TextureMap& map, const TetMesh& slab, const
     out.slab_peak = std::max(out.slab_peak, std::fabs(slab_out[n]));
     out.pen_peak = std::max(out.pen_peak, std::fabs(pen_out[n]));
     out.raw_peak = std::max(out.raw_peak, std::fabs(rendered[n]));
+    out.raw_rms += rendered[n] * rendered[n];
   }
+  out.raw_rms = std::sqrt(out.raw_rms / double(total));
   const double gain = out.raw_peak > 0 ? o.peak / out.raw_peak : 0.0;
   out.samples.resize(total);
   for (std::size_t n = 0; n < total; ++n) out.samples[n] = float(rendered[n] * gain);

@@ -61,6 +61,7 @@ struct ScrapeRender {
   std::vector<float> samples;
   std::size_t impulses = 0;       // meso impulses applied (texels entered, or relief ticks)
   double raw_peak = 0.0;          // peak of the modal displacement sum before normalising
+  double raw_rms = 0.0;           // its RMS over the whole render
   double slab_peak = 0.0, pen_peak = 0.0;  // each body's share before normalising
   double micro_rms_n = 0.0;       // RMS micro force over the samples in contact
 };

@@ -95,7 +95,7 @@ TEST(FractalRoughness, LoudnessFollowsTheNormalForceAndZeroForceIsSilent) {
     rms += one[n] * one[n];
   }
   // Amplitude x force x a unit-RMS profile (1 s reads 5 cm of a 33 cm period: near, not exactly, 1).
-  EXPECT_NEAR(std::sqrt(rms / double(one.size())), 0.01, 0.005);
+  EXPECT_NEAR(std::sqrt(rms / double(one.size())), 0.03, 0.015);
 }
 
 TEST(FractalRoughness, ReadByDistanceNotTime) {

@@ -105,7 +105,7 @@ TEST(ScrapeSynthesis, FlatMapStillSoundsItsFineRoughness) {
   const tex::TextureMap flat(64, 64, tex::Representation::Normal);
   const ScrapeRender r = renderScrape(flat, slab().mesh, slab().modes, pressedScrape(1.0), ScrapeOptions{});
   EXPECT_GT(r.raw_peak, 0.0);
-  EXPECT_NEAR(r.micro_rms_n, 0.01, 0.005);  // amplitude 0.01 x 1 N x a unit-RMS profile
+  EXPECT_NEAR(r.micro_rms_n, 0.03, 0.015);  // amplitude 0.03 x 1 N x a unit-RMS profile
   // Sound from the first sample in contact; the pen has not moved yet there (distance 0), so the
   // first non-zero force is at sample 1.
   EXPECT_NE(r.samples[2], 0.0f);

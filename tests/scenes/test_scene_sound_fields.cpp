@@ -55,7 +55,7 @@ SoundFields soundFields(const Scene& s) {
 
 TEST(SceneSoundFields, DefaultsWhenLeftOut) {
   const Scene s = parseScene(kHead + surfaceWith(""), "s.yaml", "");
-  EXPECT_EQ(soundFields(s), (SoundFields{0.01, SlabSupport::Free, 1.0, 0.01, 1e-5, 0.005, 0.12, "plastic", 30.0}));
+  EXPECT_EQ(soundFields(s), (SoundFields{0.01, SlabSupport::Free, 1.0, 0.03, 1e-5, 0.005, 0.12, "plastic", 30.0}));
   EXPECT_TRUE(s.custom_materials.empty());
 }
 
