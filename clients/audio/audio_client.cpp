@@ -152,9 +152,9 @@ int run(const Options& o) {
   so.roughness.spacing_m = rough.spacing_m;
   const ScrapeRender r = renderScrape(map, slab, modes, path, so, o.no_pen ? nullptr : &pen_view);
   writeWav(o.wav, r.samples, int(o.sample_rate));
-  std::printf("audio-client: %s: %zu ticks, %zu %s impulses, micro force RMS %.3g N, %zu slab + %zu pen modes "
+  std::printf("audio-client: %s: %zu ticks, %zu %s impulses (%zu non-zero), micro force RMS %.3g N, %zu slab + %zu pen modes "
               "(peaks %.3g / %.3g, RMS %.3g), %.2f s -> %s\n",
-              o.log.c_str(), path.size(), r.impulses, so.meso == MesoSource::TexelWalk ? "meso" : "relief",
+              o.log.c_str(), path.size(), r.impulses, so.meso == MesoSource::TexelWalk ? "meso" : "relief", r.nonzero_impulses,
               r.micro_rms_n, modes.size(), o.no_pen ? std::size_t(0) : pen_modes.size(), r.slab_peak, r.pen_peak,
               r.raw_rms, double(r.samples.size()) / o.sample_rate, o.wav.c_str());
   return 0;

@@ -105,10 +105,13 @@ ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& sla
       mesoImpulsesAlong(surface, state, a.uv, b.uv, v, [&](const MesoImpulse& m) {
         e.impulse_ns[at_b] += m.impulse.z();
         ++e.impulses;
+        e.nonzero_impulses += m.impulse.z() != 0.0;
       });
     } else {
-      e.impulse_ns[at_b] += reliefImpulse(reliefTick(a), reliefTick(b), o.pen_mass_kg);
+      const double j = reliefImpulse(reliefTick(a), reliefTick(b), o.pen_mass_kg);
+      e.impulse_ns[at_b] += j;
       ++e.impulses;
+      e.nonzero_impulses += j != 0.0;
     }
 
     // Micro: the force of the samples from tick a up to tick b, read along the travelled distance.
@@ -135,6 +138,7 @@ ScrapeRender renderScrape(const tex::TextureMap& map, const TetMesh& slab, const
   if (path.empty()) return out;
   const ScrapeExcitation e = scrapeExcitation(map, slab, path, o);
   out.impulses = e.impulses;
+  out.nonzero_impulses = e.nonzero_impulses;
   out.micro_rms_n = e.micro_rms_n;
   const std::size_t total = e.impulse_ns.size();
 

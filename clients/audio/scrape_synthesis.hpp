@@ -60,6 +60,7 @@ struct ScrapeOptions {
 struct ScrapeRender {
   std::vector<float> samples;
   std::size_t impulses = 0;       // meso impulses applied (texels entered, or relief ticks)
+  std::size_t nonzero_impulses = 0;  // of which not exactly 0
   double raw_peak = 0.0;          // peak of the modal displacement sum before normalising
   double raw_rms = 0.0;           // its RMS over the whole render
   double slab_peak = 0.0, pen_peak = 0.0;  // each body's share before normalising
@@ -72,7 +73,7 @@ struct ScrapeRender {
 struct ScrapeExcitation {
   std::vector<double> impulse_ns;
   std::vector<int> slab_node;
-  std::size_t impulses = 0;
+  std::size_t impulses = 0, nonzero_impulses = 0;
   double micro_rms_n = 0.0;
 };
 ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& slab, std::span<const ScrapeSample> path,

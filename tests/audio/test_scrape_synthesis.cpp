@@ -67,6 +67,7 @@ TEST(ScrapeSynthesis, FlatMapIsSilent) {
   const tex::TextureMap flat(64, 64, tex::Representation::Normal);
   const ScrapeRender r = renderScrape(flat, slab().mesh, slab().modes, straightScrape(), ScrapeOptions{});
   EXPECT_EQ(r.impulses, 16u);
+  EXPECT_EQ(r.nonzero_impulses, 0u);
   EXPECT_GT(r.samples.size(), 44100u / 2);
   for (float x : r.samples) ASSERT_EQ(x, 0.0f);
 }
@@ -162,6 +163,7 @@ TEST(ScrapeSynthesis, ReliefImpulsesFromTheContactNormal) {
   const tex::TextureMap flat(64, 64, tex::Representation::Normal);
   const ScrapeExcitation e = scrapeExcitation(flat, slab().mesh, path, o);
   EXPECT_EQ(e.impulses, 500u);  // one per tick in contact after the first
+  EXPECT_EQ(e.nonzero_impulses, 2u);
   std::vector<std::size_t> at;
   for (std::size_t n = 0; n < e.impulse_ns.size(); ++n)
     if (e.impulse_ns[n] != 0.0) at.push_back(n);
