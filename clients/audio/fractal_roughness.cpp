@@ -32,37 +32,53 @@ RoughnessProfile::RoughnessProfile(const RoughnessOptions& o) : options_(o) {
     if (k == n / 2) spectrum[k] = {spectrum[k].real(), 0.0};  // Nyquist bin of a real signal is real
     else spectrum[n - k] = std::conj(spectrum[k]);
   }
+  // Level L: the bins below its Nyquist (k <= m/2 for m = n / 2^L entries), the same scale.
   Eigen::FFT<double> fft;
-  std::vector<std::complex<double>> signal;
-  fft.inv(signal, spectrum);
-  table_.resize(n);
-  double power = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    table_[i] = signal[i].real();
-    power += table_[i] * table_[i];
+  double scale = 0.0;
+  for (std::size_t m = n; m >= 4; m /= 2) {
+    std::vector<std::complex<double>> band(m, {0.0, 0.0}), signal;
+    for (std::size_t k = 1; k <= m / 2; ++k) {
+      band[k] = spectrum[k];
+      if (k < m / 2) band[m - k] = spectrum[n - k];
+      else band[k] = {spectrum[k].real(), 0.0};  // its own Nyquist bin, real
+    }
+    fft.inv(signal, band);
+    std::vector<double> table(m);
+    // Eigen's inverse divides by the size; times m / n keeps every level on level 0's amplitude.
+    for (std::size_t i = 0; i < m; ++i) table[i] = signal[i].real() * double(m) / double(n);
+    if (m == n) {
+      double power = 0.0;
+      for (double x : table) power += x * x;
+      scale = 1.0 / std::sqrt(power / double(n));
+    }
+    for (double& x : table) x *= scale;
+    levels_.push_back(std::move(table));
   }
-  const double scale = 1.0 / std::sqrt(power / double(n));
-  for (double& x : table_) x *= scale;
 }
 
-double RoughnessProfile::at(double distance_m) const {
-  const double n = double(table_.size());
-  double x = distance_m / options_.spacing_m;
+double RoughnessProfile::at(double distance_m, std::size_t level) const {
+  const std::vector<double>& t = levels_[level];
+  const double n = double(t.size());
+  double x = distance_m / (options_.spacing_m * double(std::size_t(1) << level));
   x -= n * std::floor(x / n);  // into [0, n)
   std::size_t i = std::size_t(x);
-  if (i >= table_.size()) i = 0;  // x rounded up to n
+  if (i >= t.size()) i = 0;  // x rounded up to n
   const double frac = x - double(i);
-  const std::size_t j = (i + 1) & (table_.size() - 1);
-  return table_[i] + frac * (table_[j] - table_[i]);
+  const std::size_t j = (i + 1) & (t.size() - 1);
+  return t[i] + frac * (t[j] - t[i]);
 }
 
 void microForce(const RoughnessProfile& profile, double s0, double s1, double f0, double f1, std::span<double> out) {
   const double count = double(out.size());
   const double a = profile.options().amplitude;
+  // Entries advanced per sample at level 0; each level halves it.
+  double per_sample = std::fabs(s1 - s0) / (profile.options().spacing_m * count);
+  std::size_t level = 0;
+  while (per_sample > 1.0 && level + 1 < profile.levels()) per_sample *= 0.5, ++level;
   for (std::size_t n = 0; n < out.size(); ++n) {
     const double t = double(n) / count;
     const double f = f0 + t * (f1 - f0);
-    out[n] = f == 0.0 ? 0.0 : a * f * profile.at(s0 + t * (s1 - s0));
+    out[n] = f == 0.0 ? 0.0 : a * f * profile.at(s0 + t * (s1 - s0), level);
   }
 }
 

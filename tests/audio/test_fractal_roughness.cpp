@@ -111,6 +111,52 @@ TEST(FractalRoughness, ReadByDistanceNotTime) {
   EXPECT_NEAR(p.at(0.5e-5), 0.5 * (p.table()[0] + p.table()[1]), 1e-12);
 }
 
+TEST(FractalRoughness, FastContactsReadABandLimitedLevelInsteadOfAliasing) {
+  RoughnessOptions o;
+  o.length = 1u << 12;
+  const RoughnessProfile p(o);
+  ASSERT_EQ(p.levels(), 11u);  // 4096 down to 4 entries
+  // Level L keeps the bins k <= 2048 / 2^L: for beta = 1 its power is the share of sum 1/k.
+  auto share = [](std::size_t top) {
+    double part = 0, all = 0;
+    for (std::size_t k = 1; k <= 2048; ++k) (k <= top ? part : all) += 1.0 / double(k);
+    return part / (part + all);
+  };
+  for (std::size_t level : {1u, 3u}) {
+    double power = 0;
+    for (double x : p.table(level)) power += x * x;
+    EXPECT_NEAR(power / double(p.table(level).size()), share(2048u >> level), 0.01) << "level " << level;
+    // The same profile without its finest part: correlated with level 0 at the same places as a
+    // part with the whole, sqrt(share).
+    double ab = 0, aa = 0, bb = 0;
+    for (std::size_t i = 0; i < p.table(level).size(); ++i) {
+      const double x = p.table(level)[i], y = p.table(0)[i << level];
+      ab += x * y, aa += x * x, bb += y * y;
+    }
+    EXPECT_NEAR(ab / std::sqrt(aa * bb), std::sqrt(share(2048u >> level)), 0.03) << "level " << level;
+  }
+  // 8 entries per sample: level 3 is read, with 3/4 of the power (the rest is finer than two
+  // samples); reading level 0 there would fold all of it back (RMS near 1).
+  std::vector<double> fast(4096);
+  microForce(p, 0.0, 8 * 4096 * o.spacing_m, 1.0, 1.0, fast);
+  double power = 0, aliased = 0;
+  for (std::size_t n = 0; n < fast.size(); ++n) {
+    power += fast[n] * fast[n];
+    const double x = p.at(8.0 * double(n) * o.spacing_m, 0);
+    aliased += x * x;
+  }
+  const double a2 = o.amplitude * o.amplitude * double(fast.size());
+  EXPECT_NEAR(power / a2, share(256), 0.02);
+  EXPECT_NEAR(aliased / double(fast.size()), 1.0, 0.05);
+  std::printf("8 entries per sample: power %.4f (share %.4f), level 0 read %.4f\n", power / a2, share(256),
+              aliased / double(fast.size()));
+  // Slow contacts read level 0, unchanged.
+  std::vector<double> slow(100);
+  microForce(p, 0.0, 100 * o.spacing_m, 1.0, 1.0, slow);
+  for (std::size_t n = 0; n < slow.size(); ++n)
+    EXPECT_NEAR(slow[n], o.amplitude * p.at(double(n) * o.spacing_m, 0), 1e-15);
+}
+
 TEST(FractalRoughness, SameSeedSameProfileOtherSeedAnother) {
   RoughnessOptions o;
   const RoughnessProfile a(o), b(o);
