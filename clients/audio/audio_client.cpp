@@ -136,7 +136,8 @@ int run(const Options& o) {
   const AudibleModes modes = audibleModes(analyse(slab, material, ms, ao), material, audible);
   // The pen's own modes (device.pen), struck at its tip.
   const SceneBody pen = penBody(scene);
-  const AudibleModes pen_modes = audibleModes(analyse(pen.mesh, pen.material, ms, ao), pen.material, audible);
+  const AudibleModes pen_modes =
+      o.no_pen ? AudibleModes{} : audibleModes(analyse(pen.mesh, pen.material, ms, ao), pen.material, audible);
   const PenModes pen_view{&pen.mesh, &pen_modes, penTipNode(pen.mesh), scene.device.pen.tilt_deg};
 
   ScrapeOptions so;
@@ -155,7 +156,7 @@ int run(const Options& o) {
   std::printf("audio-client: %s: %zu ticks, %zu %s impulses (%zu non-zero), micro force RMS %.3g N, %zu slab + %zu pen modes "
               "(peaks %.3g / %.3g, RMS %.3g), %.2f s -> %s\n",
               o.log.c_str(), path.size(), r.impulses, so.meso == MesoSource::TexelWalk ? "meso" : "relief", r.nonzero_impulses,
-              r.micro_rms_n, modes.size(), o.no_pen ? std::size_t(0) : pen_modes.size(), r.slab_peak, r.pen_peak,
+              r.micro_rms_n, modes.size(), pen_modes.size(), r.slab_peak, r.pen_peak,
               r.raw_rms, double(r.samples.size()) / o.sample_rate, o.wav.c_str());
   return 0;
 }
