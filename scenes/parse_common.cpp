@@ -20,6 +20,11 @@ Material namedMaterial(const Field& field) {
   for (const Material& m : materials()) names.push_back(m.name);
   const std::string name = field.text();
   if (const Material* m = findMaterial(name)) return *m;
+  if (const std::vector<Material>* custom = field.context().custom_materials) {
+    for (const Material& m : *custom)
+      if (m.name == name) return m;
+    for (const Material& m : *custom) names.push_back(m.name);
+  }
   const std::string guess = closestMatch(name, names);
   field.fail(guess.empty() ? "unknown material" : "unknown material (did you mean '" + guess + "'?)",
              "one of: " + joinNames(names));
@@ -33,6 +38,65 @@ Material parseMaterial(const Field& field) {
   Material m = namedMaterial(field.at("name", "a material name (materials table)"));
   if (auto r = field.find("rolling_friction")) m.rolling_friction_m = r->number(closedRange(0.0, 0.01, "m"));
   return m;
+}
+
+namespace {
+// Poisson's ratio gets its own message: 0.5 is the incompressible limit, where the elastic
+// stiffness (Lamé lambda) is infinite and the modal analysis cannot run.
+double parsePoisson(const Field& field) {
+  NumberRange any;
+  const double nu = field.number(any);
+  const std::string expected = "a number in (-1, 0.5)";
+  if (nu >= 0.5) field.fail("Poisson's ratio of 0.5 or more is incompressible (the elastic stiffness is singular)", expected);
+  if (nu <= -1.0) field.fail("Poisson's ratio of -1 or less is not a stable elastic material", expected);
+  return nu;
+}
+
+Material customMaterial(const Field& field, const std::vector<Material>& earlier) {
+  field.expectKeys({"name", "density", "youngs_modulus", "poisson_ratio", "rayleigh_alpha", "rayleigh_beta", "friction",
+                    "restitution", "rolling_friction"});
+  if (field.isNull()) field.fail("missing value", "a mapping with name, density, youngs_modulus, poisson_ratio");
+  Material m;
+  const Field name = field.at("name", "a material name not in the materials table");
+  m.name = name.text();
+  if (findMaterial(m.name)) name.fail("already in the materials table", "a new name (or use the table's by name)");
+  for (const Material& e : earlier)
+    if (e.name == m.name) name.fail("defined twice", "a unique name among the scene's materials");
+  m.density_kg_per_m3 = field.at("density", "kg/m^3").number(positiveUpTo(1e5, "kg/m^3"));
+  m.youngs_modulus_pa = field.at("youngs_modulus", "Pa").number(positiveUpTo(1e13, "Pa"));
+  m.poisson_ratio = parsePoisson(field.at("poisson_ratio", "a number in (-1, 0.5)"));
+  if (auto f = field.find("rayleigh_alpha")) m.rayleigh_alpha_per_s = f->number(closedRange(0.0, 1e4, "1/s"));
+  if (auto f = field.find("rayleigh_beta")) m.rayleigh_beta_s = f->number(closedRange(0.0, 1e-2, "s"));
+  m.friction = 0.5;
+  m.restitution = 0.5;
+  if (auto f = field.find("friction")) m.friction = f->number(closedRange(0.0, 10.0, ""));
+  if (auto f = field.find("restitution")) m.restitution = f->number(closedRange(0.0, 1.0, ""));
+  if (auto f = field.find("rolling_friction")) m.rolling_friction_m = f->number(closedRange(0.0, 0.01, "m"));
+  m.source = "scene " + field.location().file;
+  return m;
+}
+}  // namespace
+
+std::vector<Material> parseCustomMaterials(const std::optional<Field>& field) {
+  std::vector<Material> out;
+  if (!field || field->isNull()) return out;
+  for (const Field& item : field->items()) out.push_back(customMaterial(item, out));
+  return out;
+}
+
+Pen parsePen(const Field& field) {
+  field.expectKeys({"radius", "length", "material", "tilt_deg"});
+  Pen pen;
+  pen.material = *findMaterial("plastic");
+  if (field.isNull()) return pen;
+  if (auto f = field.find("radius")) pen.radius_m = f->number(positiveUpTo(0.1, "m"));
+  if (auto f = field.find("length")) pen.length_m = f->number(positiveUpTo(1.0, "m"));
+  if (pen.length_m < 2 * pen.radius_m)
+    field.fail("the pen is shorter than it is wide", "length >= 2 x radius",
+               formatNumber(pen.length_m) + " m long, radius " + formatNumber(pen.radius_m) + " m");
+  if (auto f = field.find("material")) pen.material = parseMaterial(*f);
+  if (auto f = field.find("tilt_deg")) pen.tilt_deg = f->number(closedRange(0.0, 89.0, "deg"));
+  return pen;
 }
 
 std::string parseExistingFile(const Field& field, const std::string& what) {

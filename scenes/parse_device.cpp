@@ -53,8 +53,10 @@ void rejectForVrpn(const std::optional<Field>& field) {
 Device parseDevice(const std::optional<Field>& field, const Surface& surface) {
   Device d;
   d.model = *findDeviceModel("phantom_desktop");
+  d.pen.material = *findMaterial("plastic");
   if (!field) return d;
-  field->expectKeys({"type", "model", "address", "stiffness_fraction", "damping", "sim", "script"});
+  field->expectKeys({"type", "model", "address", "stiffness_fraction", "damping", "sim", "script", "pen"});
+  if (auto p = field->find("pen")) d.pen = parsePen(*p);
   if (auto t = field->find("type"))
     d.type = t->choice<DeviceType>({{"sim", DeviceType::Sim}, {"vrpn", DeviceType::Vrpn}});
   if (auto m = field->find("model")) d.model = parseModel(*m);

@@ -75,12 +75,33 @@ TextureSource parseTexture(const Field& field, const Surface& surface) {
   return source;
 }
 
+// The slab under the texture: a thickness that is not positive is an error of its own wording.
+std::optional<double> parseThickness(const Field& field) {
+  const auto t = field.find("thickness");
+  if (!t) return std::nullopt;
+  NumberRange any;
+  const double thickness = t->number(any);
+  const NumberRange range = positiveUpTo(1.0, "m");
+  if (thickness <= 0.0) t->fail("the slab's thickness must be positive", range.describe());
+  if (!range.contains(thickness)) t->fail("out of range", range.describe());
+  return thickness;
+}
+
+Roughness parseRoughness(const Field& field) {
+  field.expectKeys({"beta", "amplitude", "spacing"});
+  Roughness r;
+  if (auto f = field.find("beta")) r.beta = f->number(closedRange(0.0, 4.0, ""));
+  if (auto f = field.find("amplitude")) r.amplitude = f->number(closedRange(0.0, 10.0, "(micro force per newton of normal force)"));
+  if (auto f = field.find("spacing")) r.spacing_m = f->number(positiveUpTo(1e-2, "m"));
+  return r;
+}
+
 }  // namespace
 
 Surface parseSurface(const Field& field) {
   if (field.isNull()) field.fail("missing value", "a mapping with at least size and texture");
   field.expectKeys({"size", "pose", "texture", "representation", "max_depth", "max_depth_fraction", "green",
-                    "sampling", "material", "smoothing_sigma"});
+                    "sampling", "material", "smoothing_sigma", "thickness", "held", "roughness"});
   Surface s;
   s.size_m = field.at("size", "[x, y] in metres").vector2(positiveUpTo(10.0, "m"));
   if (auto p = field.find("pose")) s.pose = parsePose(*p);
@@ -108,6 +129,10 @@ Surface parseSurface(const Field& field) {
   if (auto m = field.find("material")) s.material = parseMaterial(*m);
   if (auto sigma = field.find("smoothing_sigma"))
     s.smoothing_sigma_texels = sigma->number(closedRange(0.0, tex::kMaxSmoothingSigma, "texels"));
+  if (auto t = parseThickness(field)) s.thickness_m = *t;
+  if (auto h = field.find("held"))
+    s.held = h->choice<SlabSupport>({{"free", SlabSupport::Free}, {"edges", SlabSupport::ClampedEdges}});
+  if (auto r = field.find("roughness")) s.roughness = parseRoughness(*r);
   return s;
 }
 

@@ -33,6 +33,17 @@ struct TextureSource {
   SourceLocation where;            // of `texture:` in the scene file, for errors found when building it
 };
 
+// How the surface slab is held in its modal analysis (the audio client): free, or clamped at its
+// four side faces.
+enum class SlabSupport { Free, ClampedEdges };
+
+// Micro-level roughness of the surface for sound (clients/audio/fractal_roughness.hpp).
+struct Roughness {
+  double beta = 1.0;        // power spectrum ∝ 1/f^beta along the travelled distance
+  double amplitude = 0.03;  // RMS micro force per newton of normal force
+  double spacing_m = 1e-5;  // finest roughness step (wavelength 2x this)
+};
+
 struct Surface {
   Eigen::Vector2d size_m{0.2, 0.2};  // the texture spans this rectangle once, centred on the pose
   Pose pose;
@@ -46,9 +57,22 @@ struct Surface {
   tex::SampleOptions sampling;  // bilinear + wrap by default
   Material material;
   double smoothing_sigma_texels = 0.0;  // 0 = off
+  // What the audio client analyses and hears: the slab under the texture.
+  double thickness_m = 0.01;
+  SlabSupport held = SlabSupport::Free;
+  Roughness roughness;
 };
 
 enum class DeviceType { Sim, Vrpn };
+
+// The pen (the device's stylus) as the audio client analyses it: a cylinder of this radius and
+// length, of this material, held at tilt_deg from the surface normal.
+struct Pen {
+  double radius_m = 0.005;
+  double length_m = 0.12;
+  Material material;  // plastic unless the scene says otherwise
+  double tilt_deg = 30.0;
+};
 
 // The simulated PHANToM and the hand holding it (docs/design.md §5: integrated far above the servo
 // rate so that instability stays possible).
@@ -91,6 +115,7 @@ struct Device {
   double damping_ns_per_m = 0.0;    // virtual damping, at most model.max_damping_ns_per_m
   SimDeviceParams sim;              // Sim only
   std::vector<ScriptStep> script;   // Sim only
+  Pen pen;
 
   double stiffnessNPerM() const { return stiffness_fraction * model.max_stiffness_n_per_m; }
 };
@@ -129,10 +154,12 @@ struct Scene {
   Device device;
   std::vector<SceneObject> objects;
   Rates rates;
+  std::vector<Material> custom_materials;  // the scene's `materials:` (beside the table's)
   std::vector<std::string> warnings;  // non-fatal issues, each "file:line:col: field: message"
 };
 
 const char* toString(DeviceType type);
 const char* toString(Shape shape);
+const char* toString(SlabSupport held);
 
 }  // namespace thx::scene

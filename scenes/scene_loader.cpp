@@ -26,10 +26,11 @@ YAML::Node parseYaml(const std::string& text, const std::string& source) {
   }
 }
 
-Scene parseRoot(const Field& root, const std::string& source, const std::string& base_dir) {
-  const std::string top = "a mapping with version, name, surface and optionally description, device, objects, rates";
+Scene parseRoot(const Field& root, const std::string& source, const std::string& base_dir,
+                std::vector<Material>& custom_materials) {
+  const std::string top = "a mapping with version, name, surface and optionally description, device, objects, rates, materials";
   if (root.isNull()) root.fail("empty scene", top, "");
-  root.expectKeys({"version", "name", "description", "surface", "device", "objects", "rates"});
+  root.expectKeys({"version", "name", "description", "surface", "device", "objects", "rates", "materials"});
 
   Scene scene;
   scene.source = source;
@@ -41,6 +42,9 @@ Scene parseRoot(const Field& root, const std::string& source, const std::string&
   scene.name = root.at("name", "a non-empty scene name").text();
   if (auto d = root.find("description")) scene.description = d->text();
   scene.rates = detail::parseRates(root.find("rates"));
+  // Before every section that may name one of them.
+  custom_materials = detail::parseCustomMaterials(root.find("materials"));
+  scene.custom_materials = custom_materials;
   scene.surface = detail::parseSurface(root.at("surface", "a mapping with at least size and texture"));
   scene.device = detail::parseDevice(root.find("device"), scene.surface);
   scene.objects = detail::parseObjects(root.find("objects"), scene.surface);
@@ -51,10 +55,11 @@ Scene parseRoot(const Field& root, const std::string& source, const std::string&
 
 Scene parseScene(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir) {
   std::vector<std::string> warnings;
-  const ParseContext context{source_name, base_dir, &warnings};
+  std::vector<Material> custom_materials;
+  const ParseContext context{source_name, base_dir, &warnings, &custom_materials};
   const YAML::Node document = parseYaml(yaml_text, source_name);
   const Field root = Field::root(context, document);
-  Scene scene = parseRoot(root, source_name, base_dir);
+  Scene scene = parseRoot(root, source_name, base_dir, custom_materials);
   detail::warnAboutInconsistencies(root, scene);
   scene.warnings = std::move(warnings);
   return scene;

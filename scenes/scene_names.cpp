@@ -26,4 +26,6 @@ const char* toString(Shape shape) {
   return "?";
 }
 
+const char* toString(SlabSupport held) { return held == SlabSupport::Free ? "free" : "edges"; }
+
 }  // namespace thx::scene

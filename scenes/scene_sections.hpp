@@ -10,7 +10,12 @@
 namespace thx::scene::detail {
 
 Pose parsePose(const Field& field);
+// A name from the materials table or the scene's own materials, or {name, rolling_friction}.
 Material parseMaterial(const Field& field);
+// The top-level `materials:` sequence: materials defined by the scene, beside the table's.
+std::vector<Material> parseCustomMaterials(const std::optional<Field>& field);
+// device.pen (clients/audio: the pen's own modes).
+Pen parsePen(const Field& field);
 // A file that must exist when the scene is loaded; returns the resolved path.
 std::string parseExistingFile(const Field& field, const std::string& what);
 

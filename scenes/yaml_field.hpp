@@ -21,10 +21,14 @@
 
 namespace thx::scene {
 
+struct Material;
+
 struct ParseContext {
   std::string source;    // file name for messages
   std::string base_dir;  // relative paths resolve against this ("" = current directory)
   std::vector<std::string>* warnings = nullptr;
+  // The scene's own materials (top-level `materials:`), read before any section that names one.
+  const std::vector<Material>* custom_materials = nullptr;
 };
 
 struct NumberRange {

@@ -11,6 +11,7 @@
 #include "base/cli_number.hpp"
 #include "base/error.hpp"
 #include "clients/audio/modal_options.hpp"
+#include "clients/audio/scene_bodies.hpp"
 #include "clients/audio/scrape_synthesis.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
@@ -24,19 +25,24 @@ using namespace thx::audio;
 const char* const kHelp = R"(usage: audio-client --scene FILE --replay-log FILE --wav FILE [options]
 
 Offline and deterministic: the pen scraping the scene's surface, from a session hapticd recorded
-(`hapticd --record FILE`: one contact_t per servo tick on THX_CONTACT). At every texel the pen tip
-enters, Eq. 5 gives a meso impulse (the pen's mass, the texel's own normal); it strikes the
-surface slab's modes (modal analysis of the scene's surface material, cached like
-modal-analyze's) at the nearest node of the slab's top face. The sum of the modal displacements
-is written as a 32-bit float WAV, normalised to a peak of 0.5 (-6 dBFS); a flat map is silent.
-Not yet: live audio, the physics client's impacts and rolling, micro-level roughness.
+(`hapticd --record FILE`: one contact_t per servo tick on THX_CONTACT). Meso level: on a normal
+map, Eq. 5 at every texel the pen tip enters (the pen's effective mass, the texel's own normal);
+on a relief map, the change of the contact normal from tick to tick. Micro level: the surface's
+fractal roughness (surface.roughness) read along the distance travelled, scaled by the normal
+force. Both sides sound: the surface slab's modes (surface.thickness, surface.held; at the top-face
+node nearest the tip) and the pen's own (device.pen: a cylinder, struck at its tip), each from a
+modal analysis cached like modal-analyze's. The sum of the modal displacements is written as a
+32-bit float WAV, normalised to a peak of 0.5 (-6 dBFS).
+Not yet: live audio, the physics client's impacts and rolling.
 
   --scene FILE           the scene hapticd ran (docs/scenes.md)
   --replay-log FILE      hapticd's --record log
   --wav FILE             output
-  --slab-thickness M     the surface slab's thickness (default 0.01)
+  --slab-thickness M     the surface slab's thickness (default: the scene's surface.thickness)
   --slab-cells N         Tet10 cells per side of the slab, 1 through its thickness (default 16)
-  --clamp-edges          hold the slab at its four sides (default: free)
+  --clamp-edges          hold the slab at its four sides (default: the scene's surface.held)
+  --no-pen               the slab alone sounds (not the pen's own modes)
+  --no-micro             no micro-level roughness (meso impulses only)
   --modes N              elastic modes computed (default 40)
   --pen-mass KG          the mass in Eq. 5 (default: the simulated device's mass)
   --sample-rate HZ       default 44100
@@ -47,9 +53,10 @@ Not yet: live audio, the physics client's impacts and rolling, micro-level rough
 
 struct Options {
   std::string scene, log, wav;
-  double thickness = 0.01, sample_rate = 44100, tail = 0.5;
+  std::optional<double> thickness;
+  double sample_rate = 44100, tail = 0.5;
   int cells = 16, modes = 40;
-  bool clamp = false, no_cache = false;
+  bool clamp = false, no_cache = false, no_pen = false, no_micro = false;
   std::optional<double> pen_mass;
   std::optional<std::string> cache_dir;
 };
@@ -68,6 +75,8 @@ Options parse(const std::vector<std::string>& args) {
     else if (a == "--slab-thickness") o.thickness = thx::cli::parseNumber(a, value(), {0, 1, true, "m"});
     else if (a == "--slab-cells") o.cells = int(thx::cli::parseInteger(a, value(), 1, 200));
     else if (a == "--clamp-edges") o.clamp = true;
+    else if (a == "--no-pen") o.no_pen = true;
+    else if (a == "--no-micro") o.no_micro = true;
     else if (a == "--modes") o.modes = int(thx::cli::parseInteger(a, value(), 1, 2000));
     else if (a == "--pen-mass") o.pen_mass = thx::cli::parseNumber(a, value(), {0, 100, true, "kg"});
     else if (a == "--sample-rate") o.sample_rate = thx::cli::parseNumber(a, value(), {8000, 384000, false, "Hz"});
@@ -89,6 +98,8 @@ void writeWav(const std::string& path, const std::vector<float>& samples, int ra
   info.format = SF_FORMAT_WAV | SF_FORMAT_FLOAT;
   SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
   if (!f) throw thx::Error(thx::Error::Kind::Io, path + ": cannot be written: " + sf_strerror(nullptr));
+  // No PEAK chunk: it holds the time of writing, which would make equal renders differ in bytes.
+  sf_command(f, SFC_SET_ADD_PEAK_CHUNK, nullptr, SF_FALSE);
   const sf_count_t n = sf_writef_float(f, samples.data(), sf_count_t(samples.size()));
   sf_close(f);
   if (n != sf_count_t(samples.size())) throw thx::Error(thx::Error::Kind::Io, path + ": write failed");
@@ -102,14 +113,19 @@ int run(const Options& o) {
 
   std::vector<ScrapeSample> path;
   thx_msgs::forEachLogMessage<thx_msgs::contact_t>(o.log, "THX_CONTACT", [&](const thx_msgs::contact_t& c, const auto&) {
-    path.push_back({c.tick, c.in_contact != 0, {c.uv[0], c.uv[1]}});
+    const auto v3 = [](const double* x) { return Eigen::Vector3d(x[0], x[1], x[2]); };
+    path.push_back({c.tick, c.in_contact != 0, {c.uv[0], c.uv[1]}, c.f_normal, v3(c.n_geom_world),
+                    v3(c.n_sampled_world), v3(c.v_tangent_world)});
   });
   if (path.empty()) throw thx::Error(thx::Error::Kind::Io, o.log + ": no THX_CONTACT events (not a hapticd --record log?)");
 
   ElasticMaterial material = scene.surface.material;
-  const TetMesh slab = slabMesh("surface (" + scene.surface.material.name + ")", scene.surface.size_m.x(),
-                                scene.surface.size_m.y(), o.thickness, {o.cells, o.cells, 1}, ElementOrder::Quadratic,
-                                o.clamp);
+  SceneMeshOptions mo;
+  mo.slab_thickness_m = o.thickness;
+  if (o.clamp) mo.clamp_slab = true;
+  mo.slab_cells = o.cells;
+  TetMesh slab = slabBody(scene, mo).mesh;
+  slab.name = "surface (" + scene.surface.material.name + ")";
   ModalSettings ms;
   ms.elastic_modes = o.modes;
   AnalysisOptions ao;
@@ -118,6 +134,11 @@ int run(const Options& o) {
   AudibleOptions audible;
   audible.sample_rate_hz = o.sample_rate;
   const AudibleModes modes = audibleModes(analyse(slab, material, ms, ao), material, audible);
+  // The pen's own modes (device.pen), struck at its tip.
+  const SceneBody pen = penBody(scene);
+  const AudibleModes pen_modes =
+      o.no_pen ? AudibleModes{} : audibleModes(analyse(pen.mesh, pen.material, ms, ao), pen.material, audible);
+  const PenModes pen_view{&pen.mesh, &pen_modes, penTipNode(pen.mesh), scene.device.pen.tilt_deg};
 
   ScrapeOptions so;
   so.sample_rate_hz = o.sample_rate;
@@ -125,10 +146,18 @@ int run(const Options& o) {
   so.pen_mass_kg = o.pen_mass ? *o.pen_mass : scene.device.sim.device_mass_kg;
   so.surface_size_m = scene.surface.size_m;
   so.tail_s = o.tail;
-  const ScrapeRender r = renderScrape(map, slab, modes, path, so);
+  so.meso = map.representation() == thx::tex::Representation::Relief ? MesoSource::ContactNormals : MesoSource::TexelWalk;
+  const thx::scene::Roughness& rough = scene.surface.roughness;
+  so.roughness.beta = rough.beta;
+  so.roughness.amplitude = o.no_micro ? 0.0 : rough.amplitude;
+  so.roughness.spacing_m = rough.spacing_m;
+  const ScrapeRender r = renderScrape(map, slab, modes, path, so, o.no_pen ? nullptr : &pen_view);
   writeWav(o.wav, r.samples, int(o.sample_rate));
-  std::printf("audio-client: %s: %zu ticks, %zu meso impulses, %zu modes, %.2f s -> %s\n", o.log.c_str(), path.size(),
-              r.impulses, modes.size(), double(r.samples.size()) / o.sample_rate, o.wav.c_str());
+  std::printf("audio-client: %s: %zu ticks, %zu %s impulses (%zu non-zero), micro force RMS %.3g N, %zu slab + %zu pen modes "
+              "(peaks %.3g / %.3g, RMS %.3g), %.2f s -> %s\n",
+              o.log.c_str(), path.size(), r.impulses, so.meso == MesoSource::TexelWalk ? "meso" : "relief", r.nonzero_impulses,
+              r.micro_rms_n, modes.size(), pen_modes.size(), r.slab_peak, r.pen_peak,
+              r.raw_rms, double(r.samples.size()) / o.sample_rate, o.wav.c_str());
   return 0;
 }
 

@@ -55,6 +55,7 @@ int runScene(const ModalOptions& o) {
   const thx::scene::Scene scene = thx::scene::loadScene(o.scene);
   SceneMeshOptions mo;
   mo.slab_thickness_m = o.slab_thickness;
+  if (o.clamp_edges) mo.clamp_slab = true;
   mo.slab_cells = o.slab_cells;
   AnalysisOptions ao;
   ao.cache_dir = o.cache_dir;

@@ -18,10 +18,11 @@ material, the audible band, the psychoacoustic merge of close modes and truncati
 line per audible mode; results are cached (docs/audio.md), so a second run is fast.
 
 Scene:
-  --scene FILE           analyse a scene's surface slab and each moving object (Tet10, the scene's
-                         materials; fixed obstacles skipped, a capsule as a cylinder of its overall
-                         length); prints one summary line per body
-  --slab-thickness M     the surface slab's thickness (default 0.01; scenes do not give it yet)
+  --scene FILE           analyse a scene's surface slab (surface.thickness, surface.held), each
+                         moving object and the pen (device.pen) (Tet10, the scene's materials;
+                         fixed obstacles skipped, a capsule as a cylinder of its overall length);
+                         prints one summary line per body
+  --slab-thickness M     the surface slab's thickness (default: the scene's surface.thickness)
   --slab-cells N         slab cells per side, 1 through the thickness (default 16)
 
 Shape (SI units):
@@ -33,7 +34,8 @@ Shape (SI units):
                          cylinder N,NZ (cross-section side, along the axis). Default: box/slab
                          sized from the shortest edge, sphere 4, cylinder 2,16
   --element E            tet10 (default, quadratic) | tet4 (linear; needs fine meshes)
-  --clamp-edges          slab only: hold the four side faces (default: a free body)
+  --clamp-edges          slab or scene: hold the slab's four side faces (default: a free
+                         body, or the scene's surface.held)
   --name NAME            the object's name in messages (default: the shape)
 
 Material (scenes' materials table, docs/scenes.md; any value can be overridden):
@@ -212,7 +214,7 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
   if (boxy && o.size.minCoeff() <= 0) throw UsageError("--size: missing (X,Y,Z in metres) for a box or slab");
   if (!boxy && o.radius <= 0) throw UsageError("--radius: missing for a sphere or cylinder");
   if (o.shape == ShapeKind::Cylinder && o.length <= 0) throw UsageError("--length: missing for a cylinder");
-  if (o.clamp_edges && o.shape != ShapeKind::Slab) throw UsageError("--clamp-edges: only a slab can be held at its edges");
+  if (o.clamp_edges && o.scene.empty() && o.shape != ShapeKind::Slab) throw UsageError("--clamp-edges: only a slab can be held at its edges");
   const std::size_t want = boxy ? 3 : (o.shape == ShapeKind::Sphere ? 1 : 2);
   if (!o.cells.empty() && o.cells.size() != want)
     throw UsageError("--cells: expected " + std::to_string(want) + " value(s) for this shape, got " +

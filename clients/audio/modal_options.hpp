@@ -19,7 +19,7 @@ enum class ShapeKind { Box, Slab, Sphere, Cylinder };
 struct ModalOptions {
   bool help = false;
   std::string scene;  // --scene FILE: its surface slab and objects instead of one --shape
-  double slab_thickness = 0.01;
+  std::optional<double> slab_thickness;  // overrides the scene's surface.thickness
   int slab_cells = 16;
   std::string name;  // the object's name in messages (default: the shape)
   ShapeKind shape = ShapeKind::Box;
@@ -27,7 +27,7 @@ struct ModalOptions {
   double radius = 0.0, length = 0.0;
   std::vector<int> cells;
   ElementOrder order = ElementOrder::Quadratic;
-  bool clamp_edges = false;
+  bool clamp_edges = false;  // a slab shape, or a scene's slab (overrides surface.held)
   ElasticMaterial material;
   ModalSettings settings;
   AudibleOptions audible;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace thx::audio {
 namespace {
@@ -10,12 +11,36 @@ int cellsAlong(double edge, double shortest) { return std::max(1, int(std::lroun
 
 }  // namespace
 
+SceneBody slabBody(const scene::Scene& scene, const SceneMeshOptions& o) {
+  const scene::Surface& s = scene.surface;
+  const double thickness = o.slab_thickness_m.value_or(s.thickness_m);
+  const bool clamp = o.clamp_slab.value_or(s.held == scene::SlabSupport::ClampedEdges);
+  return {slabMesh("surface", s.size_m.x(), s.size_m.y(), thickness, {o.slab_cells, o.slab_cells, 1}, o.order, clamp),
+          s.material, ""};
+}
+
+SceneBody penBody(const scene::Scene& scene, ElementOrder order) {
+  const scene::Pen& p = scene.device.pen;
+  // 2 x 2 cells across (an even count, so the axis is a grid line and the tip a node).
+  return {cylinderMesh("pen", p.radius_m, p.length_m, 2, cellsAlong(p.length_m, p.radius_m), order), p.material, ""};
+}
+
+int penTipNode(const TetMesh& pen) {
+  double low = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& x : pen.nodes) low = std::min(low, x.z());
+  int best = 0;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t n = 0; n < pen.nodes.size(); ++n) {
+    const Eigen::Vector3d& x = pen.nodes[n];
+    const double d = x.head<2>().squaredNorm() + (x.z() - low) * (x.z() - low);
+    if (d < best_d) best_d = d, best = int(n);
+  }
+  return best;
+}
+
 std::vector<SceneBody> sceneBodies(const scene::Scene& scene, const SceneMeshOptions& o) {
   std::vector<SceneBody> bodies;
-  const scene::Surface& s = scene.surface;
-  bodies.push_back({slabMesh("surface", s.size_m.x(), s.size_m.y(), o.slab_thickness_m,
-                             {o.slab_cells, o.slab_cells, 1}, o.order, o.clamp_slab),
-                    s.material, ""});
+  bodies.push_back(slabBody(scene, o));
   for (const scene::SceneObject& obj : scene.objects) {
     if (obj.fixed) continue;
     SceneBody b{{}, obj.material, ""};
@@ -42,6 +67,7 @@ std::vector<SceneBody> sceneBodies(const scene::Scene& scene, const SceneMeshOpt
     }
     bodies.push_back(std::move(b));
   }
+  if (o.pen) bodies.push_back(penBody(scene, o.order));
   return bodies;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
-// What a scene asks to be analysed: the surface slab and every moving object, each as a Tet10
+// What a scene asks to be analysed: the surface slab (its thickness and how it is held from the
+// scene's surface), every moving object, and the pen (device.pen: a cylinder), each as a Tet10
 // structured mesh with its material from the scene. Fixed obstacles are skipped (they do not
 // sound in this model). A capsule is meshed as a cylinder of its overall length (caps included).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,9 +14,10 @@
 namespace thx::audio {
 
 struct SceneMeshOptions {
-  double slab_thickness_m = 0.01;  // the scene format has no thickness yet
-  int slab_cells = 16;             // per side, 1 through the thickness
-  bool clamp_slab = false;
+  std::optional<double> slab_thickness_m;  // overrides surface.thickness
+  std::optional<bool> clamp_slab;          // overrides surface.held
+  int slab_cells = 16;                     // per side, 1 through the thickness
+  bool pen = true;                         // the pen's body, last
   ElementOrder order = ElementOrder::Quadratic;
 };
 
@@ -23,6 +26,13 @@ struct SceneBody {
   ElasticMaterial material;
   std::string note;  // how the shape was approximated, if it was
 };
+
+// The slab alone and the pen alone (mesh names "surface" and "pen"; the pen along z, centred on
+// the origin, its tip the centre of its end face at z = -length/2).
+SceneBody slabBody(const scene::Scene& scene, const SceneMeshOptions& options);
+SceneBody penBody(const scene::Scene& scene, ElementOrder order = ElementOrder::Quadratic);
+// The pen's tip node (the end-face node nearest the axis at z = -length/2).
+int penTipNode(const TetMesh& pen);
 
 std::vector<SceneBody> sceneBodies(const scene::Scene& scene, const SceneMeshOptions& options);
 
