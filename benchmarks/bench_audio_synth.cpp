@@ -45,7 +45,7 @@ Modal synthesis speed against error (clients/audio/resonator_bank.hpp, docs/audi
                instruction set this CPU supports.
   float        single modes (55 Hz ... 15 kHz, d = 0.1 1/s) struck once and rendered 60 s in float
                and double: the relative RMS difference in 50 ms windows at 1, 10 and 60 s, and the
-               frequency and decay the rounded float coefficients imply.
+               frequency and decay the float bank's rounded coefficients imply.
   compression  an impact on the default scene's brick slab and on a steel plate (Tet10), 1 s:
                log-spectral distance (Hann 2048, hop 512, 80 dB floor) of the compressed modes'
                sound from all audible modes', for merge thresholds and truncations.
@@ -210,10 +210,12 @@ FloatRow floatAgainstDouble(double f, double d, double seconds) {
   FloatRow r;
   r.f_hz = f;
   r.err_1s = window(1), r.err_10s = window(std::min(10.0, seconds)), r.err_60s = window(seconds);
-  // What the float coefficients mean: R^2 = -a2, 2 R cos(theta) = a1.
+  // What the float bank's coefficients (the difference form, resonator_kernel.hpp) mean:
+  // c2 = R^2, c1 = 2 R cos(theta) - 1 - R^2, rounded to float as the bank rounds them.
   const double wd = 2 * std::numbers::pi * f, rr = std::exp(-d / kRate), th = wd / kRate;
-  const double a1 = double(float(2 * rr * std::cos(th))), a2 = double(float(-rr * rr));
-  const double rf = std::sqrt(-a2), thf = std::acos(a1 / (2 * rf));
+  const double one_minus_r = -std::expm1(-d / kRate), sh = std::sin(0.5 * th);
+  const double c1 = double(float(-one_minus_r * one_minus_r - 4 * rr * sh * sh)), c2 = double(float(rr * rr));
+  const double rf = std::sqrt(c2), thf = std::acos((1 + c2 + c1) / (2 * rf));
   r.df_rel = (thf - th) / th;
   r.dd_rel = (-std::log(rf) * kRate - d) / d;
   return r;

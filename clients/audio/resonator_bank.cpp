@@ -50,8 +50,16 @@ bool BasicResonatorBank<Real>::setModes(std::span<const double> frequency_hz, st
     const double wd = 2.0 * std::numbers::pi * frequency_hz[k];
     const double r = std::exp(-decay_per_s[k] / sample_rate_hz_);
     const double theta = wd / sample_rate_hz_;
-    a1_[k] = Real(2.0 * r * std::cos(theta));
-    a2_[k] = Real(-r * r);
+    if constexpr (kResonatorDifferenceForm<Real>) {
+      const double s = std::sin(0.5 * theta);
+      const double one_minus_r = -std::expm1(-decay_per_s[k] / sample_rate_hz_);
+      // 2R cos(theta) - 1 - R^2 written without cancellation.
+      a1_[k] = Real(-one_minus_r * one_minus_r - 4.0 * r * s * s);
+      a2_[k] = Real(r * r);
+    } else {
+      a1_[k] = Real(2.0 * r * std::cos(theta));
+      a2_[k] = Real(-r * r);
+    }
     b_[k] = Real(r * std::sin(theta) / wd);
   }
   // Padding lanes stay all-zero, so they add exactly 0 to every sample.

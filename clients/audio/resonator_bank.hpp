@@ -9,8 +9,8 @@
 // Structure of arrays (coefficients and states in separate contiguous arrays), vectorised across
 // modes by resonator_kernel.hpp (-O3, the instruction set chosen at run time). Real-time safe
 // after construction: setModes (up to the capacity), strike and render never allocate or lock.
-// ResonatorBank computes in double, ResonatorBankFloat in float (about twice the modes per core;
-// its error against double is measured in docs/audio.md §3).
+// ResonatorBank computes in double, ResonatorBankFloat in float (more modes per core, in the
+// difference form that keeps low modes in tune; its error against double: docs/audio.md §3).
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -68,9 +68,10 @@ class BasicResonatorBank {
   double sample_rate_hz_;
   std::size_t capacity_;
   std::size_t count_ = 0;
-  // Per mode: y[n+1] = a1 y[n] + a2 y[n-1] + b g[n]; padded to whole vectors of lanes.
+  // Per mode, padded to whole vectors of lanes: c1, c2, b and the states y[n] (the next sample
+  // out) and x (y[n-1], or y[n] - y[n-1] in float: resonator_kernel.hpp).
   std::vector<Real> a1_, a2_, b_;
-  std::vector<Real> y_, y_prev_;  // y[n] (the next sample out) and y[n-1]
+  std::vector<Real> y_, y_prev_;
   std::vector<Real> pending_;     // impulses struck since the last render
   std::vector<Real> lanes_, block_;  // the kernel's scratch
   bool any_pending_ = false;

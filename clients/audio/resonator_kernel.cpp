@@ -7,6 +7,32 @@
 namespace thx::audio {
 namespace {
 
+// One sample of one mode, or of a vector of modes (resonator_kernel.hpp: c1, c2, x). The scalar
+// tail and the vectors go through these same lines, so they round alike.
+template <bool kDifference, class V>
+[[gnu::always_inline]] inline void step(const V& c1, const V& c2, V& y, V& x) {
+  if constexpr (kDifference) {
+    x = c1 * y + c2 * x;
+    y = y + x;
+  } else {
+    const V next = c1 * y + c2 * x;
+    x = y;
+    y = next;
+  }
+}
+
+template <bool kDifference, class V>
+[[gnu::always_inline]] inline void stepStruck(const V& c1, const V& c2, const V& bg, V& y, V& x) {
+  if constexpr (kDifference) {
+    x = c1 * y + c2 * x + bg;
+    y = y + x;
+  } else {
+    const V next = c1 * y + c2 * x + bg;
+    x = y;
+    y = next;
+  }
+}
+
 // Whole 64-byte vectors of modes ("logical" vectors, the lanes of resonator_kernel.hpp), each
 // held as 64 / kBytes native vectors of the instruction set (GCC lowers a vector wider than the
 // hardware's badly), kNative native vectors at a time: their recurrences are independent, so
@@ -20,7 +46,7 @@ template <class T, std::size_t kBytes, std::size_t kNative>
   constexpr std::size_t kPer = kBytes / sizeof(T);  // values per native vector
   constexpr std::size_t kParts = W / kPer;          // native vectors per lane vector
   static_assert(kNative % kParts == 0);
-  V a1[kNative], a2[kNative], y[kNative], yp[kNative];
+  V a1[kNative], a2[kNative], y[kNative], yp[kNative];  // c1, c2, y, x
 #pragma GCC unroll 16
   for (std::size_t c = 0; c < kNative; ++c) {
     const std::size_t at = first + c * kPer;
@@ -40,9 +66,7 @@ template <class T, std::size_t kBytes, std::size_t kNative>
       std::memcpy(&b, s.b + at, sizeof(V));
       std::memcpy(&g, s.pending + at, sizeof(V));
       acc[c % kParts] += y[c];
-      const V next = a1[c] * y[c] + a2[c] * yp[c] + b * g;
-      yp[c] = y[c];
-      y[c] = next;
+      stepStruck<kResonatorDifferenceForm<T>>(a1[c], a2[c], V(b * g), y[c], yp[c]);
       std::memset(s.pending + at, 0, sizeof(V));
     }
     for (std::size_t p = 0; p < kParts; ++p) std::memcpy(lanes + p * kPer, &acc[p], sizeof(V));
@@ -60,9 +84,7 @@ template <class T, std::size_t kBytes, std::size_t kNative>
       for (std::size_t p = 0; p < kParts; ++p) {
         const std::size_t c = l + p;
         acc[p] += y[c];
-        const V next = a1[c] * y[c] + a2[c] * yp[c];
-        yp[c] = y[c];
-        y[c] = next;
+        step<kResonatorDifferenceForm<T>>(a1[c], a2[c], y[c], yp[c]);
       }
 #pragma GCC unroll 16
     for (std::size_t p = 0; p < kParts; ++p) std::memcpy(lanes + n * W + p * kPer, &acc[p], sizeof(V));
@@ -87,15 +109,13 @@ template <class T>
     std::size_t n = 0;
     if (s.pending) {
       lanes[lane] += y;
-      const T next = s.a1[k] * y + s.a2[k] * yp + s.b[k] * s.pending[k];
-      yp = y, y = next;
+      stepStruck<kResonatorDifferenceForm<T>>(s.a1[k], s.a2[k], T(s.b[k] * s.pending[k]), y, yp);
       s.pending[k] = 0;
       n = 1;
     }
     for (; n < samples; ++n) {
       lanes[n * W + lane] += y;
-      const T next = s.a1[k] * y + s.a2[k] * yp;
-      yp = y, y = next;
+      step<kResonatorDifferenceForm<T>>(s.a1[k], s.a2[k], y, yp);
     }
     s.y[k] = y, s.y_prev[k] = yp;
   }

@@ -54,16 +54,18 @@ std::vector<T> bankRender(Isa isa, const std::vector<double>& f, const std::vect
   return out;
 }
 
+// The reference runs in double (the float bank's difference form is more accurate than a float
+// direct form would be, so the double loop is the fair yardstick for both).
 template <class Bank, class T>
 void variantsMatchTheReference(double tolerance) {
   std::vector<double> f, d, g;
   modes(37, f, d, g);
   const std::size_t samples = 8192, block = 300;  // blocks longer than the kernel's 256
-  const std::vector<T> ref = referenceRender<T>(f, d, g, samples, block);
+  const std::vector<double> ref = referenceRender<double>(f, d, g, samples, block);
   const std::vector<T> first = bankRender<Bank, T>(Isa::Default, f, d, g, samples, block);
   double peak = 0, worst = 0;
   for (std::size_t n = 0; n < samples; ++n)
-    peak = std::max(peak, std::fabs(double(ref[n]))), worst = std::max(worst, std::fabs(double(first[n] - ref[n])));
+    peak = std::max(peak, std::fabs(ref[n])), worst = std::max(worst, std::fabs(double(first[n]) - ref[n]));
   EXPECT_LT(worst, tolerance * peak) << "worst " << worst << " of peak " << peak;
   for (Isa isa : {Isa::Avx2, Isa::Avx512}) {
     if (!isaSupported(isa)) {
@@ -76,12 +78,12 @@ void variantsMatchTheReference(double tolerance) {
   }
 }
 
-// The reference sums in double, the kernel per lane in T: they differ only by rounding.
+// In double they differ only by the order of the sum over modes; in float by float's rounding.
 TEST(ResonatorKernel, EveryVariantMatchesTheScalarReferenceInDouble) {
   variantsMatchTheReference<ResonatorBank, double>(1e-12);
 }
 TEST(ResonatorKernel, EveryVariantMatchesTheScalarReferenceInFloat) {
-  variantsMatchTheReference<ResonatorBankFloat, float>(1e-5);
+  variantsMatchTheReference<ResonatorBankFloat, float>(1e-4);  // measured 2.9e-5
 }
 
 TEST(ResonatorKernel, TheDefaultChoiceIsTheBestSupported) {
@@ -91,11 +93,10 @@ TEST(ResonatorKernel, TheDefaultChoiceIsTheBestSupported) {
 }
 
 // Float against double over one second of 37 modes (100 Hz - 15 kHz, d = 1 - 30 1/s, each of
-// amplitude 1/37). Rounding a1 = 2R cos(theta) to float (steps of 2.4e-7 near 2) moves a low
-// mode's frequency by up to 0.5 x 1.2e-7 / theta^2 relative: 3e-4 at 100 Hz, a phase drift of
-// 0.19 rad after 1 s, i.e. up to 0.5 % of the peak for the lowest mode alone (measured 0.18 %;
-// docs/audio.md §3 has the long-run measurement per frequency). Higher modes drift far less.
-TEST(ResonatorKernel, FloatStaysWithinHalfAPercentOfDoubleForOneSecond) {
+// amplitude 1/37). In the difference form the float coefficients keep float's relative precision,
+// so what remains is the rounding of the float states: measured 3.3e-5 of the peak (a float
+// direct form gave 1.8e-3 here, the 100 Hz mode drifting in phase; docs/audio.md §3).
+TEST(ResonatorKernel, FloatStaysWithinTwoTenThousandthsOfDoubleForOneSecond) {
   std::vector<double> f, d, g;
   modes(37, f, d, g);
   const std::size_t samples = std::size_t(kRate);
@@ -105,7 +106,7 @@ TEST(ResonatorKernel, FloatStaysWithinHalfAPercentOfDoubleForOneSecond) {
   for (std::size_t n = 0; n < samples; ++n)
     peak = std::max(peak, std::fabs(yd[n])), worst = std::max(worst, std::fabs(double(yf[n]) - yd[n]));
   std::printf("float vs double over %zu samples: %.3g of the peak\n", samples, worst / peak);
-  EXPECT_LT(worst, 5e-3 * peak);
+  EXPECT_LT(worst, 2e-4 * peak);
   EXPECT_GT(peak, 0.1);  // it did sound
 }
 
