@@ -144,6 +144,8 @@ template <class T, std::size_t kBytes, std::size_t kNative>
 // change the result (each lane's sum stays in mode order).
 constexpr std::size_t kNativeAvx512 = 8, kNativeAvx2 = 4, kNativeSse = 8;
 
+#if defined(__x86_64__) || defined(__i386__)
+#define THX_RESONATOR_X86 1
 template <class T>
 [[gnu::target("avx512f")]] void resonateAvx512(const ResonatorArrays<T>& s, std::size_t modes, std::size_t samples,
                                                 T* lanes, T* out) {
@@ -154,6 +156,7 @@ template <class T>
                                            T* out) {
   resonate<T, 32, kNativeAvx2>(s, modes, samples, lanes, out);
 }
+#endif
 template <class T>
 void resonateDefault(const ResonatorArrays<T>& s, std::size_t modes, std::size_t samples, T* lanes, T* out) {
   resonate<T, 16, kNativeSse>(s, modes, samples, lanes, out);
@@ -171,13 +174,13 @@ const char* isaName(Isa isa) {
 }
 
 bool isaSupported(Isa isa) {
+  if (isa == Isa::Default) return true;
+#ifdef THX_RESONATOR_X86
   __builtin_cpu_init();
-  switch (isa) {
-    case Isa::Avx512: return __builtin_cpu_supports("avx512f");
-    case Isa::Avx2: return __builtin_cpu_supports("avx2");
-    case Isa::Default: return true;
-  }
-  return false;
+  if (isa == Isa::Avx512) return __builtin_cpu_supports("avx512f");
+  if (isa == Isa::Avx2) return __builtin_cpu_supports("avx2");
+#endif
+  return false;  // other architectures: only the portable build
 }
 
 Isa bestIsa() {
@@ -188,11 +191,11 @@ Isa bestIsa() {
 
 template <class T>
 ResonatorKernel<T> resonatorKernel(Isa isa) {
-  switch (isa) {
-    case Isa::Avx512: return &resonateAvx512<T>;
-    case Isa::Avx2: return &resonateAvx2<T>;
-    case Isa::Default: break;
-  }
+#ifdef THX_RESONATOR_X86
+  if (isa == Isa::Avx512) return &resonateAvx512<T>;
+  if (isa == Isa::Avx2) return &resonateAvx2<T>;
+#endif
+  (void)isa;
   return &resonateDefault<T>;
 }
 
