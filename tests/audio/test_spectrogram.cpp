@@ -15,18 +15,15 @@
 #include "clients/audio/spectrogram_image.hpp"
 #include "clients/audio/stft.hpp"
 #include "clients/audio/wav_file.hpp"
+#include "tests/audio/wav_fixture.hpp"
 #include "textures/png_io.hpp"
 
 namespace thx::audio {
 namespace {
 
 constexpr double kRate = 44100.0;
-
-std::vector<float> tone(double f_hz, double amplitude, std::size_t n) {
-  std::vector<float> x(n);
-  for (std::size_t i = 0; i < n; ++i) x[i] = float(amplitude * std::sin(2 * std::numbers::pi * f_hz * double(i) / kRate));
-  return x;
-}
+using test::tone;
+using test::writePcm16;
 
 std::size_t loudestBin(const Spectrogram& s, std::size_t frame) {
   std::size_t best = 0;
@@ -73,17 +70,6 @@ TEST(Stft, LogSpectralDistanceIsZeroForTheSameSoundAndGrowsWithADetunedOne) {
   const double far = logSpectralDistance(a, stft(tone(1100, 0.5, 16384), kRate, o));
   EXPECT_GT(near, 0.0);
   EXPECT_GT(far, 2 * near);
-}
-
-// A 16-bit PCM mono WAV written byte by byte (independent of libsndfile, which reads it).
-void writePcm16(const std::string& path, const std::vector<float>& x, int rate) {
-  std::ofstream out(path, std::ios::binary);
-  auto u32 = [&](std::uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };
-  auto u16 = [&](std::uint16_t v) { out.write(reinterpret_cast<const char*>(&v), 2); };
-  const std::uint32_t bytes = std::uint32_t(2 * x.size());
-  out.write("RIFF", 4), u32(36 + bytes), out.write("WAVEfmt ", 8), u32(16), u16(1), u16(1), u32(std::uint32_t(rate)),
-      u32(std::uint32_t(2 * rate)), u16(2), u16(16), out.write("data", 4), u32(bytes);
-  for (float v : x) u16(std::uint16_t(std::int16_t(std::lround(v * 32767))));
 }
 
 TEST(WavSpectrogram, ReadsAToneAndDrawsItsPicture) {
