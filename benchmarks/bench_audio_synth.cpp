@@ -35,7 +35,7 @@ using namespace thx::audio;
 using thx::bench::isoNow;
 using thx::bench::loadAverage;
 
-const char* const kHelp = R"(usage: bench_audio_synth [--prefix PATH] [--md FILE] [--quick]
+const char* const kHelp = R"(usage: bench_audio_synth [--prefix PATH] [--md FILE] [--quick] [--sizes LIST]
 
 Modal synthesis speed against error (clients/audio/resonator_bank.hpp, docs/audio.md §3):
   speed        modes synthesised in real time per core at 44.1 kHz (thread CPU time), for the bare
@@ -54,6 +54,7 @@ Modal synthesis speed against error (clients/audio/resonator_bank.hpp, docs/audi
   --prefix PATH  writes PATH_speed.csv, PATH_float.csv, PATH_compression.csv, PATH.json, PATH.png
   --md FILE      the Markdown tables for docs/audio.md
   --quick        fewer sizes and shorter runs (a smoke run)
+  --sizes LIST   the banks' mode counts, comma-separated (default 64,256,1024,4096,16384,65536)
   -h, --help
 )";
 
@@ -357,6 +358,7 @@ int main(int argc, char** argv) {
   thx::bench::exitOnHelp(argc, argv, kHelp);
   std::string prefix, md;
   bool quick = false;
+  std::vector<std::size_t> sizes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -369,14 +371,25 @@ int main(int argc, char** argv) {
     if (a == "--prefix") prefix = value();
     else if (a == "--md") md = value();
     else if (a == "--quick") quick = true;
+    else if (a == "--sizes") {
+      std::stringstream list(value());
+      for (std::string item; std::getline(list, item, ',');) {
+        const long n = std::atol(item.c_str());
+        if (n < 1 || n > 1 << 22) {
+          std::fprintf(stderr, "bench_audio_synth: --sizes: '%s' is not a mode count in [1, 4194304]\n", item.c_str());
+          return 2;
+        }
+        sizes.push_back(std::size_t(n));
+      }
+    }
     else {
       std::fprintf(stderr, "bench_audio_synth: unknown option '%s' (--help lists them)\n", a.c_str());
       return 2;
     }
   }
   const std::string started = isoNow(), load = loadAverage();
-  const std::vector<std::size_t> sizes = quick ? std::vector<std::size_t>{256, 4096}
-                                               : std::vector<std::size_t>{64, 256, 1024, 4096, 16384, 65536};
+  if (sizes.empty())
+    sizes = quick ? std::vector<std::size_t>{256, 4096} : std::vector<std::size_t>{64, 256, 1024, 4096, 16384, 65536};
   const double min_cpu = quick ? 0.05 : 0.3;
 
   std::fprintf(stderr, "bench_audio_synth: speed (best variant here: %s) ...\n", isaName(bestIsa()));

@@ -130,7 +130,11 @@ template <class T, std::size_t kBytes, std::size_t kNative>
   std::size_t k = 0;
   constexpr std::size_t kStep = kNative * kBytes / sizeof(T);
   for (; k + kStep <= whole; k += kStep) chunkOfVectors<T, kBytes, kNative>(s, k, samples, lanes);
-  for (; k < whole; k += W) chunkOfVectors<T, kBytes, 64 / kBytes>(s, k, samples, lanes);
+  // What is left of a small bank still goes several vectors at a time when it can.
+  constexpr std::size_t kParts = 64 / kBytes;
+  if constexpr (kNative / 2 >= kParts && (kNative / 2) % kParts == 0)
+    for (; k + kStep / 2 <= whole; k += kStep / 2) chunkOfVectors<T, kBytes, kNative / 2>(s, k, samples, lanes);
+  for (; k < whole; k += W) chunkOfVectors<T, kBytes, kParts>(s, k, samples, lanes);
   tailModes(s, whole, modes, samples, lanes);
   for (std::size_t n = 0; n < samples; ++n) {
     T sum = 0;
