@@ -2,7 +2,8 @@
 # The main job on the default scene: hapticd with the simulated PHANToM in real time, a scripted
 # stroke across the bricks and a press, then a press into a steep V-valley; each prints its
 # summary. Then physics-client next to hapticd: the pen pushes a ball into another dimple. Then the
-# texture gallery with shaded previews.
+# pen's scrape over the bricks as a WAV with its spectrogram. Then the texture gallery with shaded
+# previews.
 # Usage: ./demo.sh [BUILD_DIR]   (make demo builds first, then calls this)
 set -eu
 BUILD=${1:-build}
@@ -38,6 +39,18 @@ wait "$PC_PID" || echo "physics-client failed (see $OUT/physics_push.txt)"
 cat "$OUT/physics_push.txt"
 
 echo
+echo "== audio: the pen scraping the bricks, rendered offline from a lock-step recording of the default scene"
+AC="$BUILD/clients/audio/audio-client"
+WS="$BUILD/clients/audio/wav-spectrogram"
+"$HD" --scene scenes/default.yaml --lockstep --no-lcm --record "$OUT/default_session.lcm" --quiet > /dev/null
+"$AC" --scene scenes/default.yaml --replay-log "$OUT/default_session.lcm" --wav "$OUT/pen_scrape.wav"
+"$WS" "$OUT/pen_scrape.wav" "$OUT/pen_scrape_spectrogram.png" --title "pen scraping the bricks (scenes/default.yaml)"
+# ---- issue 14, marble on the bricks: its WAV and spectrogram go here (the physics client's
+# ---- impacts and rolling contact), e.g. "$OUT/marble_bricks.wav" and
+# ---- "$WS" "$OUT/marble_bricks.wav" "$OUT/marble_bricks_spectrogram.png" --title "..."
+echo "sound: $OUT/pen_scrape.wav, its spectrogram: $OUT/pen_scrape_spectrogram.png"
+
+echo
 echo "== texture gallery (512^2, seed 1) -> $OUT/"
 n=0
 for kind in bricks vvalley grooves pebbles wood sine dimples tilted zigzag; do
@@ -54,4 +67,4 @@ LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/default.yaml --mode rel
   && echo "frames: $OUT/visual/frame_0000.png ... frame_0003.png" || echo "visual-client failed"
 
 echo
-echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png."
+echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."

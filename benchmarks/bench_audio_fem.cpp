@@ -16,12 +16,15 @@
 #include <vector>
 
 #include "benchmarks/bench_help.hpp"
+#include "benchmarks/bench_stamp.hpp"
 #include "clients/audio/modal_analysis.hpp"
 #include "scenes/materials.hpp"
 
 namespace {
 
 using namespace thx::audio;
+using thx::bench::isoNow;
+using thx::bench::loadAverage;
 
 const char* const kHelp = R"(usage: bench_audio_fem [--csv FILE] [--json FILE] [--md FILE] [--quick]
 
@@ -127,20 +130,6 @@ Outcome runIsolated(const Case& c) {
   in >> o.dofs >> o.modes >> o.max_error >> o.first_error >> o.assemble_s >> o.factor_s >> o.iterate_s >> o.total_s;
   o.ok = bool(in);
   return o;
-}
-
-std::string isoNow() {
-  char buf[32];
-  const std::time_t t = std::time(nullptr);
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
-
-std::string loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return a + " " + b + " " + c;
 }
 
 }  // namespace

@@ -6,7 +6,8 @@
 #   BUILD_DIR  a configured and built tree (default: build); build it first with
 #              cmake -S . -B BUILD_DIR -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build BUILD_DIR -j2 --target benchmarks
 #   PART       any of: render force_error memory latency clients physics visual (default: all seven, in that order),
-#              or audio (FEM modal analysis, about 2 min; its table goes to docs/audio.md),
+#              or audio (FEM modal analysis and modal synthesis speed/error, about 3.5 min; its
+#              tables go to docs/audio.md),
 #              or load (hapticd's full-force share beside stress-ng and cyclictest, old and new
 #              missed-tick policy; THX_LOAD_SECONDS per run (25), THX_LOAD_LOADS (none,cpu2,cpu2+vm),
 #              THX_LOAD_ROUNDS (1); about 3 min a round; needs stress-ng, Debian stress-ng, in setup.sh)
@@ -191,6 +192,10 @@ run_audio() {
   "$BIN/bench_audio_fem" --json "$RESULTS/bench_audio_fem.json" --csv "$RESULTS/bench_audio_fem.csv" \
     --md "$WORK/bench_audio_fem.md" || return 1
   splice bench_audio_fem "$WORK/bench_audio_fem.md" "$ROOT/docs/audio.md"
+  need "$BIN/bench_audio_synth" || return 1
+  say "part 7b: audio, synthesis speed per instruction set, float against double, compression against spectral error (about 1.5 min)"
+  "$BIN/bench_audio_synth" --prefix "$RESULTS/bench_audio_synth" --md "$WORK/bench_audio_synth.md" > /dev/null || return 1
+  splice bench_audio_synth "$WORK/bench_audio_synth.md" "$ROOT/docs/audio.md"
 }
 
 run_visual() {

@@ -28,5 +28,22 @@ TEST(ResonatorNoAllocation, SetStrikeAndRenderAllocateNothing) {
   EXPECT_NE(block[0], 0.0f);  // it did render something
 }
 
+TEST(ResonatorNoAllocation, TheFloatBankAndAForcedInstructionSetAllocateNothing) {
+  std::vector<double> f(300), d(300), g(300);
+  for (std::size_t k = 0; k < f.size(); ++k) f[k] = 50.0 + 60.0 * double(k), d[k] = 2.0 + 0.1 * double(k), g[k] = 1e-3;
+  ResonatorBankFloat bank(44100.0, 512);
+  std::vector<float> block(700);  // longer than the kernel's block: rendered in pieces
+  const long before = test::t_allocations;
+  ASSERT_TRUE(bank.setIsa(Isa::Default));
+  ASSERT_TRUE(bank.setModes(f, d));
+  for (int b = 0; b < 20; ++b) {
+    bank.setBudget(b % 2 ? 77 : 300);
+    bank.strike(g);
+    bank.render(block);
+  }
+  EXPECT_EQ(test::t_allocations - before, 0);
+  EXPECT_NE(block[0], 0.0f);
+}
+
 }  // namespace
 }  // namespace thx::audio

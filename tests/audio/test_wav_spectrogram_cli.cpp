@@ -1,0 +1,68 @@
+// The wav-spectrogram program, run as a separate process: --help, a picture of a tone, and the
+// errors a user sees (exit status and the file named). Skipped, saying so, if it is not built.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tests/audio/wav_fixture.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "textures/png_io.hpp"
+
+namespace thx::audio {
+namespace {
+
+namespace fs = std::filesystem;
+
+class WavSpectrogramCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    tool_ = fs::read_symlink("/proc/self/exe").parent_path() / ".." / ".." / "clients" / "audio" / "wav-spectrogram";
+    if (!fs::exists(tool_)) GTEST_SKIP() << "wav-spectrogram not built at " << tool_;
+  }
+  std::string path(const std::string& name) const { return dir_.file(name); }
+  // Runs the tool; its exit status, with stdout and stderr in out_ and err_.
+  int run(std::vector<std::string> args) {
+    args.insert(args.begin(), tool_.string());
+    const int status = thx::test::reap(thx::test::spawnIn("", args, path("out.txt"), path("err.txt")), 30.0);
+    out_ = thx::test::slurp(path("out.txt"));
+    err_ = thx::test::slurp(path("err.txt"));
+    return status;
+  }
+  fs::path tool_;
+  thx::test::TempDir dir_{"thx_wav_spectrogram"};
+  std::string out_, err_;
+};
+
+TEST_F(WavSpectrogramCli, HelpExitsZero) {
+  EXPECT_EQ(run({"--help"}), 0);
+  EXPECT_NE(out_.find("usage: wav-spectrogram IN.wav OUT.png"), std::string::npos) << out_;
+}
+
+TEST_F(WavSpectrogramCli, DrawsAToneAndSaysWhere) {
+  test::writePcm16(path("tone.wav"), test::tone(2000, 0.5, 11025), 44100);
+  ASSERT_EQ(run({path("tone.wav"), path("tone.png"), "--width", "200", "--height", "100"}), 0) << err_;
+  EXPECT_NE(out_.find(path("tone.png")), std::string::npos) << out_;
+  const tex::RawImage image = tex::readPng(path("tone.png"));
+  EXPECT_GT(image.width, 200);
+}
+
+TEST_F(WavSpectrogramCli, AMissingOrBadFileIsNamedAndExitsOne) {
+  EXPECT_EQ(run({path("missing.wav"), path("x.png")}), 1);
+  EXPECT_NE(err_.find(path("missing.wav")), std::string::npos) << err_;
+  test::writePcm16(path("tone.wav"), test::tone(2000, 0.5, 4096), 44100);
+  EXPECT_EQ(run({path("tone.wav"), path("no_such_dir/x.png")}), 1);
+  EXPECT_NE(err_.find(path("no_such_dir/x.png")), std::string::npos) << err_;
+  EXPECT_FALSE(fs::exists(path("x.png")));
+}
+
+TEST_F(WavSpectrogramCli, ABadCommandLineExitsTwo) {
+  EXPECT_EQ(run({path("a.wav")}), 2);
+  EXPECT_EQ(run({path("a.wav"), path("b.png"), "--window", "1000"}), 2);
+  EXPECT_NE(err_.find("--window 1000"), std::string::npos) << err_;
+}
+
+}  // namespace
+}  // namespace thx::audio
