@@ -3,6 +3,7 @@
 #include <sndfile.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "base/cli_number.hpp"
 #include "base/error.hpp"
 #include "clients/audio/modal_options.hpp"
+#include "clients/audio/physics_sound.hpp"
 #include "clients/audio/scrape_synthesis.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
@@ -29,7 +31,13 @@ enters, Eq. 5 gives a meso impulse (the pen's mass, the texel's own normal); it 
 surface slab's modes (modal analysis of the scene's surface material, cached like
 modal-analyze's) at the nearest node of the slab's top face. The sum of the modal displacements
 is written as a 32-bit float WAV, normalised to a peak of 0.5 (-6 dBFS); a flat map is silent.
-Not yet: live audio, the physics client's impacts and rolling, micro-level roughness.
+If the log also holds the physics client's streams (`physics-client --replay-log SESSION --record
+FILE`: THX_PHYSICS_POSES/IMPACT/CONTACTS on the session's clock), they sound too, on the same clock:
+impacts (the impulse on both bodies' modes at the contact point, over a Hertz contact time),
+rolling and sliding objects' texel paths (Eq. 5 on a normal map; on a relief map the change of the
+object's normal momentum between contact reports), exciting the surface and the object. A
+THX_HELLO naming another scene switches the physics streams to NAME.yaml (--scenes-dir).
+Not yet: live audio, micro-level roughness.
 
   --scene FILE           the scene hapticd ran (docs/scenes.md)
   --replay-log FILE      hapticd's --record log
@@ -42,6 +50,8 @@ Not yet: live audio, the physics client's impacts and rolling, micro-level rough
   --sample-rate HZ       default 44100
   --tail S               ring-out after the last tick (default 0.5)
   --cache-dir DIR        modal cache (default as modal-analyze); --no-cache: none
+  --object-elements E    tet10 (default) or tet4: the moving objects' elements
+  --scenes-dir DIR       where a scene switched to is found as NAME.yaml (default: --scene's folder)
   -h, --help             this text
 )";
 
@@ -52,6 +62,8 @@ struct Options {
   bool clamp = false, no_cache = false;
   std::optional<double> pen_mass;
   std::optional<std::string> cache_dir;
+  ElementOrder object_order = ElementOrder::Quadratic;
+  std::optional<std::string> scenes_dir;
 };
 
 Options parse(const std::vector<std::string>& args) {
@@ -74,6 +86,12 @@ Options parse(const std::vector<std::string>& args) {
     else if (a == "--tail") o.tail = thx::cli::parseNumber(a, value(), {0, 60, false, "s"});
     else if (a == "--cache-dir") o.cache_dir = value();
     else if (a == "--no-cache") o.no_cache = true;
+    else if (a == "--scenes-dir") o.scenes_dir = value();
+    else if (a == "--object-elements") {
+      const std::string e = value();
+      if (e != "tet4" && e != "tet10") throw thx::UsageError("--object-elements: expected tet4 or tet10, got '" + e + "'");
+      o.object_order = e == "tet4" ? ElementOrder::Linear : ElementOrder::Quadratic;
+    }
     else throw thx::UsageError("unknown option '" + a + "'");
   }
   if (o.scene.empty()) throw thx::UsageError("--scene: missing");
@@ -101,10 +119,14 @@ int run(const Options& o) {
   const thx::tex::TextureMap map = thx::scene::buildSurfaceTexture(scene, to);
 
   std::vector<ScrapeSample> path;
+  std::int64_t first_contact_utime = 0;
   thx_msgs::forEachLogMessage<thx_msgs::contact_t>(o.log, "THX_CONTACT", [&](const thx_msgs::contact_t& c, const auto&) {
+    if (path.empty()) first_contact_utime = c.utime;
     path.push_back({c.tick, c.in_contact != 0, {c.uv[0], c.uv[1]}});
   });
-  if (path.empty()) throw thx::Error(thx::Error::Kind::Io, o.log + ": no THX_CONTACT events (not a hapticd --record log?)");
+  const PhysicsStreams physics = readPhysicsStreams(o.log);
+  if (path.empty() && physics.empty())
+    throw thx::Error(thx::Error::Kind::Io, o.log + ": no THX_CONTACT or THX_PHYSICS_* events (not a hapticd or physics-client --record log?)");
 
   ElasticMaterial material = scene.surface.material;
   const TetMesh slab = slabMesh("surface (" + scene.surface.material.name + ")", scene.surface.size_m.x(),
@@ -125,7 +147,37 @@ int run(const Options& o) {
   so.pen_mass_kg = o.pen_mass ? *o.pen_mass : scene.device.sim.device_mass_kg;
   so.surface_size_m = scene.surface.size_m;
   so.tail_s = o.tail;
-  const ScrapeRender r = renderScrape(map, slab, modes, path, so);
+  ScrapeRender r = renderScrape(map, slab, modes, path, so);
+  if (!physics.empty()) {
+    BodyOptions bo;
+    bo.slab_thickness_m = o.thickness;
+    bo.slab_cells = o.cells;
+    bo.clamp_slab = o.clamp;
+    bo.object_order = o.object_order;
+    bo.modal = ms;
+    bo.analysis = ao;
+    bo.audible = audible;
+    const auto stem = [](const std::string& file) { return std::filesystem::path(file).stem().string(); };
+    const SoundingScene first =
+        soundingScene(stem(o.scene), scene, map.isRelief(), bo, std::make_shared<const ModalBody>(slab, modes));
+    const std::string dir = o.scenes_dir ? *o.scenes_dir : std::filesystem::path(o.scene).parent_path().string();
+    const auto scene_for = [&](const std::string& name) {
+      const std::string file = (std::filesystem::path(dir.empty() ? "." : dir) / (name + ".yaml")).string();
+      const thx::scene::Scene next = thx::scene::loadScene(file);
+      return soundingScene(name, next, thx::scene::buildSurfaceTexture(next, to).isRelief(), bo);
+    };
+    PhysicsSoundOptions po;
+    po.sample_rate_hz = o.sample_rate;
+    po.tail_s = o.tail;
+    const std::int64_t origin = path.empty() ? physics.firstUtime() : first_contact_utime;
+    const PhysicsRender pr = renderPhysicsStreams(physics, first, scene_for, origin, po);
+    r.samples = mixSessionSound(r.samples, r.raw_peak / so.peak, pr.samples, so.peak);
+    std::printf("audio-client: %s: physics: %zu impacts (contact %.3g-%.3g ms), %zu meso impulses, %zu relief impulses, scenes:",
+                o.log.c_str(), pr.impacts, pr.min_contact_s * 1e3, pr.max_contact_s * 1e3, pr.meso_impulses,
+                pr.relief_impulses);
+    for (const std::string& n : pr.scenes) std::printf(" %s", n.c_str());
+    std::printf("\n");
+  }
   writeWav(o.wav, r.samples, int(o.sample_rate));
   std::printf("audio-client: %s: %zu ticks, %zu meso impulses, %zu modes, %.2f s -> %s\n", o.log.c_str(), path.size(),
               r.impulses, modes.size(), double(r.samples.size()) / o.sample_rate, o.wav.c_str());
