@@ -107,6 +107,9 @@ void writeWav(const std::string& path, const std::vector<float>& samples, int ra
   info.format = SF_FORMAT_WAV | SF_FORMAT_FLOAT;
   SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
   if (!f) throw thx::Error(thx::Error::Kind::Io, path + ": cannot be written: " + sf_strerror(nullptr));
+  // libsndfile's PEAK chunk of a float WAV carries the time of writing: without it, the same
+  // samples give the same bytes.
+  sf_command(f, SFC_SET_ADD_PEAK_CHUNK, nullptr, SF_FALSE);
   const sf_count_t n = sf_writef_float(f, samples.data(), sf_count_t(samples.size()));
   sf_close(f);
   if (n != sf_count_t(samples.size())) throw thx::Error(thx::Error::Kind::Io, path + ": write failed");
