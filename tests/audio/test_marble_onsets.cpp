@@ -148,13 +148,16 @@ TEST_F(MarbleOnBricks, OnsetsInTheWavComeAtTheMortarCrossingsOfTheTexelPath) {
   // which clicks, begins 0.75 mm = 2.5 ms before its half-depth texels; a frame is 4 ms) and 25 ms
   // after (the landing).
   std::size_t matched = 0;
+  double earliest = 1e9, latest = -1e9;
   for (double t : onsets) {
     double nearest = 1e9;
     for (double c : crossings)
       if (std::fabs(t - c) < std::fabs(nearest)) nearest = t - c;
+    earliest = std::min(earliest, nearest), latest = std::max(latest, nearest);
     if (nearest > -0.010 && nearest < 0.025) ++matched;
-    else std::printf("onset at %.4f s: nearest crossing %+.4f s away\n", t, -nearest);
+    else std::printf("onset at %.4f s: %+.4f s from the nearest crossing\n", t, nearest);
   }
+  std::printf("[measured] onsets %+.1f to %+.1f ms from their crossings\n", earliest * 1e3, latest * 1e3);
   EXPECT_EQ(matched, onsets.size());
 }
 
