@@ -40,7 +40,8 @@ THX_HELLO naming another scene switches the physics streams to NAME.yaml (--scen
 Not yet: live audio, micro-level roughness.
 
   --scene FILE           the scene hapticd ran (docs/scenes.md)
-  --replay-log FILE      hapticd's --record log
+  --replay-log FILE      hapticd's --record log, or physics-client's --record log (with or without
+                         a hapticd session in it)
   --wav FILE             output
   --slab-thickness M     the surface slab's thickness (default 0.01)
   --slab-cells N         Tet10 cells per side of the slab, 1 through its thickness (default 16)

@@ -5,6 +5,7 @@
 // texel path crossed mortar (docs/audio.md §12).
 #include <gtest/gtest.h>
 
+#include <lcm/lcm-cpp.hpp>
 #include <sndfile.h>
 #include <unistd.h>
 
@@ -128,7 +129,7 @@ TEST_F(MarbleOnBricks, OnsetsInTheWavComeAtTheMortarCrossingsOfTheTexelPath) {
   const std::vector<float> x = readWav(path("a.wav"), rate);
   ASSERT_EQ(rate, 44100);
   // One joint is the clicks of its trough (Eq. 5) and, on this normal map, the landing of the hop
-  // the far wall gives the marble (physics_impact_t 17-23 ms after the path enters the mortar):
+  // the far wall gives the marble (physics_impact_t 16-23 ms after the path enters the mortar):
   // all within 40 ms, while joints come at least 67 ms apart. So onsets closer than 40 ms are one.
   thx::test::OnsetOptions detect;
   detect.min_gap_s = 0.04;
@@ -159,6 +160,29 @@ TEST_F(MarbleOnBricks, OnsetsInTheWavComeAtTheMortarCrossingsOfTheTexelPath) {
   }
   std::printf("[measured] onsets %+.1f to %+.1f ms from their crossings\n", earliest * 1e3, latest * 1e3);
   EXPECT_EQ(matched, onsets.size());
+}
+
+// Bad input: a clear error naming the option or file.
+TEST_F(MarbleOnBricks, BadOptionsAndLogsAreNamed) {
+  const std::string bin = THX_AUDIO_CLIENT;
+  EXPECT_EQ(run(bin + " --scene " + kScene + " --replay-log x.lcm --wav x.wav --object-elements tet7 2> " + path("err1")), 2);
+  EXPECT_NE(fileBytes(path("err1")).find("--object-elements: expected tet4 or tet10, got 'tet7'"), std::string::npos)
+      << fileBytes(path("err1"));
+  {  // a log with neither hapticd's nor the physics client's streams
+    lcm::LogFile log(path("other.lcm"), "w");
+    ASSERT_TRUE(log.good());
+    char byte = 0;
+    lcm::LogEvent e{};
+    e.channel = "SOMETHING_ELSE";
+    e.datalen = 1;
+    e.data = &byte;
+    ASSERT_EQ(log.writeEvent(&e), 0);
+  }
+  EXPECT_EQ(run(bin + " --scene " + kScene + " --replay-log " + path("other.lcm") + " --wav " + path("x.wav") + " 2> " +
+                path("err2")),
+            1);
+  EXPECT_NE(fileBytes(path("err2")).find("other.lcm: no THX_CONTACT or THX_PHYSICS_* events"), std::string::npos)
+      << fileBytes(path("err2"));
 }
 
 }  // namespace
