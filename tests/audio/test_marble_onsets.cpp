@@ -77,7 +77,7 @@ TEST_F(MarbleOnBricks, OnsetsInTheWavComeAtTheMortarCrossingsOfTheTexelPath) {
             0);
   // 2. Rendered twice (the second from the modal cache): the same bytes.
   const std::string render = std::string(THX_AUDIO_CLIENT) + " --scene " + kScene + " --replay-log " + path("combined.lcm") +
-                             " --slab-cells 6 --object-elements tet4 --cache-dir " + path("cache") + " --wav ";
+                             " --slab-cells 4 --object-elements tet4 --cache-dir " + path("cache") + " --wav ";
   ASSERT_EQ(run(render + path("a.wav") + " > " + path("audio.out") + " 2>&1"), 0) << fileBytes(path("audio.out"));
   // In another second of wall-clock time: nothing of the time of rendering may reach the file.
   std::this_thread::sleep_for(std::chrono::milliseconds(1100));
@@ -129,7 +129,7 @@ TEST_F(MarbleOnBricks, OnsetsInTheWavComeAtTheMortarCrossingsOfTheTexelPath) {
   const std::vector<float> x = readWav(path("a.wav"), rate);
   ASSERT_EQ(rate, 44100);
   // One joint is the clicks of its trough (Eq. 5) and, on this normal map, the landing of the hop
-  // the far wall gives the marble (physics_impact_t 16-23 ms after the path enters the mortar):
+  // the far wall gives the marble (physics_impact_t 13-19 ms after the path enters the mortar):
   // all within 40 ms, while joints come at least 67 ms apart. So onsets closer than 40 ms are one.
   thx::test::OnsetOptions detect;
   detect.min_gap_s = 0.04;
