@@ -3,8 +3,15 @@
 // changes, scene switches, and the same samples every time.
 #include <gtest/gtest.h>
 
+#include <lcm/lcm-cpp.hpp>
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+
+#include <thx_msgs/hello_t.hpp>
+#include <thx_msgs/log_reader.hpp>
 
 #include "clients/audio/physics_sound.hpp"
 #include "scenes/scene_loader.hpp"
@@ -187,6 +194,64 @@ TEST(PhysicsSound, FollowsSceneSwitchesAnnouncedInTheLog) {
   ASSERT_EQ(r.scenes.size(), 2u);
   EXPECT_EQ(r.scenes[0], "marble_rolling_bricks");
   EXPECT_EQ(r.scenes[1], "other");
+}
+
+// The streams as a log holds them: the physics events in order, hellos with their scene, poses
+// ordered by time; an event that does not decode is an error naming the file and the event.
+TEST(PhysicsSound, ReadsThePhysicsStreamsOfALog) {
+  const std::string file = "/tmp/thx_physics_sound_" + std::to_string(::getpid()) + ".lcm";
+  {
+    lcm::LogFile log(file, "w");
+    ASSERT_TRUE(log.good());
+    std::vector<std::uint8_t> buf;
+    auto put = [&](const char* channel, const auto& m) {
+      buf.resize(std::size_t(m.getEncodedSize()));
+      m.encode(buf.data(), 0, int(buf.size()));
+      lcm::LogEvent e{};
+      e.channel = channel;
+      e.datalen = std::int32_t(buf.size());
+      e.data = buf.data();
+      ASSERT_EQ(log.writeEvent(&e), 0);
+    };
+    thx_msgs::hello_t h{};
+    h.utime = 10;
+    h.scene_name = "other";
+    put(thx_msgs::kChannelHello, h);
+    put(thx_msgs::kChannelPhysicsPoses, ballPose(2000));
+    put(thx_msgs::kChannelPhysicsPoses, ballPose(1000));
+    put(thx_msgs::kChannelPhysicsImpact, impact(1500, 0.5));
+    put(thx_msgs::kChannelPhysicsContacts, pathMessage(1000, 1e-3, {Eigen::Vector3d(0, 0, 1)}, 0));
+    put("THX_SOMETHING_ELSE", h);
+  }
+  const PhysicsStreams s = readPhysicsStreams(file);
+  ASSERT_EQ(s.hellos.size(), 1u);
+  EXPECT_EQ(s.hellos[0].scene_name, "other");
+  EXPECT_EQ(s.hellos[0].utime, 10);
+  ASSERT_EQ(s.poses.size(), 2u);
+  EXPECT_EQ(s.poses[0].utime, 1000);
+  EXPECT_EQ(s.impacts.size(), 1u);
+  ASSERT_EQ(s.contacts.size(), 1u);
+  EXPECT_EQ(s.contacts[0].num_path, 1);
+  EXPECT_EQ(s.firstUtime(), 1000);
+  {  // an impact channel carrying a hello
+    lcm::LogFile log(file, "w");
+    thx_msgs::hello_t h{};
+    std::vector<std::uint8_t> buf(std::size_t(h.getEncodedSize()));
+    h.encode(buf.data(), 0, int(buf.size()));
+    lcm::LogEvent e{};
+    e.channel = thx_msgs::kChannelPhysicsImpact;
+    e.datalen = std::int32_t(buf.size());
+    e.data = buf.data();
+    ASSERT_EQ(log.writeEvent(&e), 0);
+  }
+  try {
+    readPhysicsStreams(file);
+    ADD_FAILURE() << "expected an error";
+  } catch (const thx_msgs::LogError& e) {
+    EXPECT_NE(std::string(e.what()).find(file + ": event 1 (THX_PHYSICS_IMPACT): does not decode as"), std::string::npos)
+        << e.what();
+  }
+  std::remove(file.c_str());
 }
 
 }  // namespace
