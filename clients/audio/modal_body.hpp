@@ -1,0 +1,47 @@
+#pragma once
+// One sounding body: its mesh and its audible modes, and the gain of every mode for a force at
+// any point of it. A force (or impulse) J at point x excites mode i by u_i(x) . J, with u_i the
+// M-orthonormal mode shape (docs/audio.md §3); u_i(x) is interpolated from the nodes of the tet
+// containing x with the element's own shape functions (linear for Tet4, quadratic for Tet10), so
+// a point between nodes gets neither the nearest node's value nor a smeared one.
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "clients/audio/audible_modes.hpp"
+#include "clients/audio/tet_mesh.hpp"
+
+namespace thx::audio {
+
+class ModalBody {
+ public:
+  // `modes.shapes` has one row per DOF of `mesh` (audibleModes of analyse(mesh, ...)).
+  ModalBody(TetMesh mesh, AudibleModes modes);
+
+  const TetMesh& mesh() const { return mesh_; }
+  const AudibleModes& modes() const { return modes_; }
+  std::size_t size() const { return modes_.size(); }
+
+  // gains[i] = u_i(point) . direction, in the body's (mesh's) frame. A point outside the mesh
+  // (a contact point a little off a curved surface, a slab struck at the texture's edge) is
+  // taken at the nearest point of the mesh. `direction` is not normalised: pass the impulse to get modal
+  // impulses. gains.size() must be size().
+  void gainsAt(const Eigen::Vector3d& point, const Eigen::Vector3d& direction, std::span<double> gains) const;
+  std::vector<double> gainsAt(const Eigen::Vector3d& point, const Eigen::Vector3d& direction) const;
+
+  // The containing tet and its barycentric coordinates (>= 0, summing to 1); for a point outside
+  // the mesh, those of the mesh's nearest point. Brute force over the tets (meshes are small).
+  struct Location {
+    int tet = 0;
+    Eigen::Vector4d barycentric{1.0, 0.0, 0.0, 0.0};
+    bool inside = true;  // false: the point lay outside every tet
+  };
+  Location locate(const Eigen::Vector3d& point) const;
+
+ private:
+  TetMesh mesh_;
+  AudibleModes modes_;
+  std::vector<Eigen::Matrix3d> inverse_;  // per tet: barycentric (1..3) = inverse * (x - corner 0)
+};
+
+}  // namespace thx::audio
