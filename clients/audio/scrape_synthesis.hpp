@@ -10,17 +10,12 @@
 #include <Eigen/Core>
 
 #include "clients/audio/audible_modes.hpp"
+#include "clients/audio/pen_scrape.hpp"
 #include "clients/audio/tet_mesh.hpp"
 #include "textures/sampling.hpp"
 #include "textures/texture_map.hpp"
 
 namespace thx::audio {
-
-struct ScrapeSample {
-  std::int64_t tick = 0;  // servo tick index
-  bool in_contact = false;
-  tex::TexCoord uv;  // unwrapped texture coordinates of the tip's projection
-};
 
 struct ScrapeOptions {
   double sample_rate_hz = 44100.0;

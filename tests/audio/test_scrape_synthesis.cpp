@@ -6,27 +6,15 @@
 #include <vector>
 
 #include "clients/audio/scrape_synthesis.hpp"
-#include "tests/audio/modal_fixtures.hpp"
+#include "tests/audio/live_fixtures.hpp"
 
 namespace thx::audio {
 namespace {
 
 using test::steel;
 
-struct Slab {
-  TetMesh mesh = slabMesh("surface", 0.2, 0.2, 0.01, {4, 4, 1}, ElementOrder::Quadratic, false);
-  AudibleModes modes;
-  Slab() {
-    ModalSettings s;
-    s.elastic_modes = 10;
-    modes = audibleModes(analyse(mesh, steel(), s), steel(), AudibleOptions{});
-  }
-};
-
-const Slab& slab() {
-  static const Slab s;
-  return s;
-}
+// The small steel slab the live tests use too.
+const test::LiveSlab& slab() { return test::liveSlab(); }
 
 // 0.5 s at 0.1 m/s along u from u = 0.3, v = 0.41: 64 texels over 0.2 m, so one texel per
 // 3.125 mm, 16 texels entered.
@@ -36,12 +24,7 @@ std::vector<ScrapeSample> straightScrape() {
   return path;
 }
 
-tex::TextureMap grooves() {
-  tex::TextureMap map(64, 64, tex::Representation::Normal);
-  for (int i = 0; i < 64; i += 2)
-    for (int j = 0; j < 64; ++j) map.setNormal(i, j, Eigen::Vector3f(0.2f, 0.0f, 1.0f));
-  return map;
-}
+tex::TextureMap grooves() { return test::grooveMap(); }
 
 TEST(ScrapeSynthesis, FlatMapIsSilent) {
   const tex::TextureMap flat(64, 64, tex::Representation::Normal);
