@@ -66,6 +66,7 @@ Live:
   --fixed-budget         synthesise every mode always (no quality scaling under load)
   --duration S           stop after S seconds (default: at SIGINT/SIGTERM)
   --stats-json FILE      latency (contact -> callback block) and counters at the end
+  --events-csv FILE      every event played: its tick's time, receipt, due time, block start (ns)
   --quiet                no progress lines
   -h, --help             this text
 )";
@@ -115,6 +116,7 @@ Options parse(const std::vector<std::string>& args) {
     else if (a == "--fixed-budget") o.live.adapt_budget = false;
     else if (a == "--duration") o.live.duration_s = thx::cli::parseNumber(a, value(), {0, 1e7, false, "s"});
     else if (a == "--stats-json") o.live.stats_json = value();
+    else if (a == "--events-csv") o.live.events_csv = value();
     else if (a == "--quiet") o.live.quiet = true;
     else throw thx::UsageError("unknown option '" + a + "'");
   }

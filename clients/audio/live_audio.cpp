@@ -21,7 +21,11 @@ namespace {
 struct LatencyStats {
   std::vector<double> from_source_us, from_receipt_us;
   std::uint64_t late = 0;
+  std::FILE* csv = nullptr;  // --events-csv
   void add(const PlayedEvent& p) {
+    if (csv)
+      std::fprintf(csv, "%lld,%lld,%lld,%lld,%d,%d\n", (long long)p.source_ns, (long long)p.receipt_ns, (long long)p.time_ns,
+                   (long long)p.block_start_ns, int(p.offset), p.late ? 1 : 0);
     from_source_us.push_back(double(p.block_start_ns - p.source_ns) / 1e3);
     from_receipt_us.push_back(double(p.block_start_ns - p.receipt_ns) / 1e3);
     late += p.late ? 1 : 0;
@@ -95,6 +99,9 @@ int runLive(const LiveOptions& o) {
                  device->description().c_str(), device->blockFrames(), 1e3 * device->deviceLatencyS());
   }
 
+  // The output runs from before the first batch, so the first impulses find a running stream.
+  if (device) device->start();
+  if (timer) timer->start();
   client::ClientApp app(appOptions(o, *scene->sound));
   client::PhysicsContactsSubscriber physics_contacts(app.lcm());
   client::PhysicsImpactSubscriber physics_impacts(app.lcm());
@@ -110,9 +117,12 @@ int runLive(const LiveOptions& o) {
                  hello->server_name.c_str(), hello->scene_name.c_str(), o.batch_hz,
                  double(settings.playout_delay_ns) / 1e6);
 
-  if (device) device->start();
-  if (timer) timer->start();
   LatencyStats latency;
+  if (!o.events_csv.empty()) {
+    latency.csv = std::fopen(o.events_csv.c_str(), "w");
+    if (!latency.csv) throw Error(Error::Kind::Io, o.events_csv + ": cannot be written");
+    std::fprintf(latency.csv, "source_ns,receipt_ns,time_ns,block_start_ns,offset,late\n");
+  }
   std::uint64_t scene_switches = 0;
   auto block = std::make_unique<AudioBlock>();
   auto drain = [&] {
@@ -146,6 +156,7 @@ int runLive(const LiveOptions& o) {
   if (device) device->stop();
   if (timer) timer->stop();
   drain();
+  if (latency.csv) std::fclose(latency.csv);
 
   const LiveSynthCounters& c = synth.counters();
   const FeedCounters& f = feed.counters();
@@ -167,7 +178,7 @@ int runLive(const LiveOptions& o) {
                  "  \"playout_delay_ms\": %.3f,\n  \"batch_hz\": %g,\n  \"timer_realtime\": %s,\n  \"timer_max_wake_late_us\": %.1f,\n"
                  "  \"latency_from_source_us\": %s,\n  \"latency_from_receipt_us\": %s,\n"
                  "  \"batches\": %llu, \"ticks\": %llu, \"lost_batches\": %llu, \"server_dropped\": %llu,\n"
-                 "  \"events\": %llu, \"late_events\": %llu, \"stale_events\": %llu, \"queue_dropped\": %llu,\n"
+                 "  \"events\": %llu, \"late_events\": %llu, \"expired_events\": %llu, \"stale_events\": %llu, \"queue_dropped\": %llu,\n"
                  "  \"blocks\": %llu, \"late_blocks\": %llu, \"reanchors\": %llu, \"scene_switches\": %llu,\n"
                  "  \"modes\": %zu, \"budget\": %llu, \"min_rendered_modes\": %llu, \"max_cost_us\": %.1f,\n"
                  "  \"physics_contacts\": %llu, \"physics_impacts\": %llu\n}\n",
@@ -177,7 +188,8 @@ int runLive(const LiveOptions& o) {
                  quantiles(latency.from_source_us).c_str(), quantiles(latency.from_receipt_us).c_str(),
                  (unsigned long long)f.batches, (unsigned long long)f.samples, (unsigned long long)f.lost_batches,
                  (unsigned long long)f.server_dropped, (unsigned long long)c.events.load(),
-                 (unsigned long long)c.late_events.load(), (unsigned long long)c.stale_events.load(),
+                 (unsigned long long)c.late_events.load(), (unsigned long long)c.expired_events.load(),
+                 (unsigned long long)c.stale_events.load(),
                  (unsigned long long)sink.dropped(), (unsigned long long)c.blocks.load(),
                  (unsigned long long)c.late_blocks.load(), (unsigned long long)c.reanchors.load(),
                  (unsigned long long)scene_switches, scene->sound->modes.size(), (unsigned long long)c.budget.load(),

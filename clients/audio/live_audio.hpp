@@ -29,6 +29,7 @@ struct LiveOptions {
   ModeBudgetOptions budget;
   double duration_s = 0.0;           // 0 = until SIGINT/SIGTERM
   std::string stats_json;            // latency and counters, written at the end
+  std::string events_csv;            // one line per event played (its times), for the benchmark
   bool quiet = false;
 };
 

@@ -65,6 +65,7 @@ void LiveSynth::process(std::span<float> out, std::int64_t block_start_ns) {
   const std::int64_t n = std::int64_t(out.size());
   const std::int64_t reanchor = options_.reanchor_ns > 0 ? options_.reanchor_ns
                                                           : std::int64_t(2e9 * double(n) / options_.sample_rate_hz);
+  const std::int64_t expire = std::llround(double(options_.expire_ns) * options_.sample_rate_hz / 1e9);
   bool late = false;
   if (!anchored_) {
     anchored_ = true;
@@ -91,6 +92,12 @@ void LiveSynth::process(std::span<float> out, std::int64_t block_start_ns) {
     }
     const std::int64_t sample = sampleOf(e->time_ns) - stream_pos_;
     if (sample >= n) break;  // a later block's
+    if (sample < -expire) {
+      add(counters_.expired_events);
+      ExcitationEvent expired;
+      queue_.pop(expired);
+      continue;
+    }
     const std::int64_t at = std::max(sample, pos);
     if (at > pos) scene_->render(out.subspan(std::size_t(pos), std::size_t(at - pos)));
     pos = at;

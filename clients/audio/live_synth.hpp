@@ -7,7 +7,9 @@
 // anchor + (samples so far) / fs, so events keep their spacing to the sample whatever the
 // callback's jitter. A block that starts more than `reanchor_ns` away from that (a stall, a
 // device restart) re-anchors the stream at its own start time. An event whose sample is past
-// sounds at the block's first sample (counted late); one beyond the block waits in the queue.
+// sounds at the block's first sample (counted late), unless it is more than `expire_ns` late:
+// then it is dropped (counted expired) rather than heard in a burst with others; an event
+// beyond the block waits in the queue.
 //
 // Threads: one feed thread (queue().push, offerScene, collect, played().pop) and one audio thread
 // (process). The counters may be read from any thread.
@@ -31,6 +33,7 @@ struct LiveSynthOptions {
   std::size_t queue_capacity = 16384;    // events (about 16 s of a 1 kHz texel rate)
   std::size_t played_capacity = 65536;   // latency records kept for the feed thread
   std::int64_t reanchor_ns = 0;          // 0: two blocks
+  std::int64_t expire_ns = 100'000'000;  // an event later than this is dropped (counted), not played
   bool adapt_budget = true;
   ModeBudgetOptions budget;
 };
@@ -45,7 +48,7 @@ struct PlayedEvent {
 
 struct LiveSynthCounters {
   std::atomic<std::uint64_t> blocks{0}, samples{0};
-  std::atomic<std::uint64_t> events{0}, late_events{0}, stale_events{0}, bad_events{0};
+  std::atomic<std::uint64_t> events{0}, late_events{0}, stale_events{0}, bad_events{0}, expired_events{0};
   std::atomic<std::uint64_t> late_blocks{0}, reanchors{0}, scenes{0}, played_dropped{0};
   std::atomic<std::uint64_t> budget{0}, rendered_modes{0}, min_rendered_modes{~std::uint64_t(0)};
   std::atomic<std::int64_t> last_cost_ns{0}, max_cost_ns{0};
