@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
@@ -233,7 +234,7 @@ benchmarks/run.sh BUILD_DIR audio-live runs it as the docs show.
   }
   std::snprintf(line, sizeof line,
                 "\n%s; scene %s, %g s per phase, SCHED_FIFO %s. Sound device: %s.\n", bench::machineDescription().c_str(),
-                o.scene.c_str(), o.seconds, phases.front().fifo ? "yes" : "no",
+                std::filesystem::path(o.scene).filename().c_str(), o.seconds, phases.front().fifo ? "yes" : "no",
                 std::any_of(phases.begin(), phases.end(), [](const Phase& p) { return p.output == "device"; })
                     ? "yes (its latency in the JSON)"
                     : "none (the timer-driven callback stood in; RtAudio reports no device latency)");

@@ -1,8 +1,10 @@
 #include "clients/audio/live_audio.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <memory>
 #include <vector>
 
@@ -124,6 +126,9 @@ int runLive(const LiveOptions& o) {
     std::fprintf(latency.csv, "source_ns,receipt_ns,time_ns,block_start_ns,offset,late\n");
   }
   std::uint64_t scene_switches = 0;
+  std::optional<client::SceneIdentity> wanted;  // the newest switch not being built yet
+  client::SceneIdentity building_to;
+  std::future<std::unique_ptr<LiveScene>> building;
   auto block = std::make_unique<AudioBlock>();
   auto drain = [&] {
     synth.collect();
@@ -136,19 +141,40 @@ int runLive(const LiveOptions& o) {
   const std::int64_t t0 = clock.nowNs();
   while (!app.stopRequested()) {
     app.client().poll(2);
+    // A scene switch: silence (the sources would walk the old texture), then the new scene is built
+    // on another thread (a first modal solve takes seconds) while this one keeps polling, so the
+    // kit's heartbeats go on and no batch is lost; installed when ready, unless a newer switch
+    // came meanwhile (then that one is built next).
     if (app.client().sceneChanges() != scene_changes_seen && app.client().serverScene()) {
       scene_changes_seen = app.client().sceneChanges();
-      const client::SceneIdentity to = *app.client().serverScene();
-      std::unique_ptr<LiveScene> next =
-          buildLiveScene(client::resolveSceneName(to.name, o.scenes_dir), settings, ++generation);
-      if (!o.quiet) std::fprintf(stderr, "audio-client: hapticd switched to scene %s\n", to.name.c_str());
-      if (next->sound->surface.fingerprint != to.texture_fingerprint && !o.quiet)
-        std::fprintf(stderr, "audio-client: warning: scene '%s' in %s has another texture than hapticd's; playing ours\n",
-                     to.name.c_str(), o.scenes_dir.c_str());
-      feed.setSources(next->sourcePointers());
-      synth.offerScene(std::move(next->synth));
-      scene = std::move(next);
-      ++scene_switches;
+      wanted = *app.client().serverScene();
+      feed.setSources({});
+    }
+    if (wanted && !building.valid()) {
+      building_to = *wanted;
+      wanted.reset();
+      building = std::async(std::launch::async, [name = building_to.name, dir = o.scenes_dir, settings, g = ++generation] {
+        return buildLiveScene(client::resolveSceneName(name, dir), settings, g);
+      });
+    }
+    if (building.valid() && building.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+      std::unique_ptr<LiveScene> next;
+      try {
+        next = building.get();
+      } catch (const Error& e) {
+        std::fprintf(stderr, "audio-client: hapticd switched to scene %s, which cannot be played here: %s; silent\n",
+                     building_to.name.c_str(), e.what());
+      }
+      if (next && !wanted) {
+        if (!o.quiet) std::fprintf(stderr, "audio-client: hapticd switched to scene %s\n", building_to.name.c_str());
+        if (next->sound->surface.fingerprint != building_to.texture_fingerprint && !o.quiet)
+          std::fprintf(stderr, "audio-client: warning: scene '%s' in %s has another texture than hapticd's; playing ours\n",
+                       building_to.name.c_str(), o.scenes_dir.c_str());
+        feed.setSources(next->sourcePointers());
+        synth.offerScene(std::move(next->synth));
+        scene = std::move(next);
+        ++scene_switches;
+      }
     }
     drain();
     if (o.duration_s > 0 && double(clock.nowNs() - t0) >= o.duration_s * 1e9) break;
