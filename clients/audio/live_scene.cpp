@@ -1,5 +1,7 @@
 #include "clients/audio/live_scene.hpp"
 
+#include "clients/audio/physics_meso_source.hpp"
+
 namespace thx::audio {
 
 std::vector<ExcitationSource*> LiveScene::sourcePointers() const {
@@ -27,6 +29,8 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   po.surface_size_m = sound.scene.surface.size_m;
   live->sources.push_back(
       std::make_unique<PenMesoSource>(sound.map(), sound.slab, po, generation, s.playout_delay_ns));
+  live->sources.push_back(std::make_unique<PhysicsMesoSource>(sound.map(), sound.slab, po.surface_size_m, generation,
+                                                              s.playout_delay_ns));
   return live;
 }
 

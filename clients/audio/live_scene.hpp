@@ -31,7 +31,8 @@ struct LiveScene {
   std::vector<ExcitationSource*> sourcePointers() const;
 };
 
-// The surface slab as body 0 and the pen's meso impulses as its one source.
+// The surface slab as body 0; the pen's meso impulses (hapticd's CONTACT) and the rolling and
+// sliding objects' (the physics client's texel paths) as its sources.
 std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const LiveSceneSettings& settings,
                                           std::uint32_t generation);
 

@@ -9,8 +9,8 @@
 //   shed_above * shed_margin), at least one mode less (a late block with a low load: 3/4).
 //   load < grow_below for grow_after blocks in a row: budget += max(1, grow_step * max).
 // The budget stays in [min_modes, max_modes]. The synthesis drops the modes beyond the budget
-// from the end of its list: the highest (the modes are sorted by frequency), which are also the
-// quietest and the fastest to decay.
+// from the end of its list: the highest (the modes are sorted by frequency), which also decay the
+// fastest (Rayleigh damping: d = (alpha + beta omega^2) / 2 grows with the frequency).
 #include <cstddef>
 #include <cstdint>
 

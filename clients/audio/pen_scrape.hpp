@@ -37,6 +37,20 @@ struct PenStrike {
   double impulse_ns = 0.0;
 };
 
+// The slab's top-face nodes (z = 0) and the one nearest to a point of the texture.
+class SlabTopFace {
+ public:
+  // `slab` (slabMesh: top face at z = 0, centred on the origin) must outlive this.
+  SlabTopFace(const TetMesh& slab, Eigen::Vector2d surface_size_m);
+  // The top-face node nearest to texture coordinates uv (wrapped into the slab's one span).
+  int nearest(tex::TexCoord uv) const;
+
+ private:
+  const TetMesh& slab_;
+  Eigen::Vector2d size_;
+  std::vector<int> top_;
+};
+
 class PenScrape {
  public:
   // `slab`: the surface's mesh (slabMesh: top face at z = 0, centred on the origin). Both must
@@ -56,7 +70,7 @@ class PenScrape {
       int node = -1;
       count = mesoImpulsesAlong(surface_, state_, previous_.uv, s.uv, v, [&](const MesoImpulse& m) {
         if (m.impulse.z() == 0.0) return;
-        if (node < 0) node = nearestTopNode(s.uv);
+        if (node < 0) node = top_.nearest(s.uv);
         emit(PenStrike{s.tick, node, m.impulse.z()});
       });
     } else {
@@ -69,14 +83,10 @@ class PenScrape {
   // Forget the path so far (samples were lost).
   void reset();
 
-  // The top-face node nearest to texture coordinates uv (wrapped into the slab's one span).
-  int nearestTopNode(tex::TexCoord uv) const;
-
  private:
-  const TetMesh& slab_;
   PenScrapeOptions options_;
   MesoSurface surface_;
-  std::vector<int> top_;
+  SlabTopFace top_;
   MesoState state_;
   ScrapeSample previous_;
   bool have_previous_ = false;
