@@ -25,11 +25,12 @@ const char* const kHelp = R"(usage: audio-client --scene FILE [--wav FILE] [live
 The pen scraping the scene's surface. At every texel the pen tip enters, Eq. 5 gives a meso
 impulse (the pen's mass, the texel's own normal); it strikes the surface slab's modes (modal
 analysis of the scene's surface material, cached like modal-analyze's) at the nearest node of the
-slab's top face. A flat map is silent. Not yet: the physics client's impacts and rolling,
-micro-level roughness, the pen's own modes.
+slab's top face. A flat map is silent. Not yet: the physics client's impacts, micro-level
+roughness, the pen's and the objects' own modes.
 
 Live (the default; docs/audio.md "Live audio"): hapticd's CONTACT stream, batched (every servo
-tick), through the client kit; the physics client's contacts and impacts are received too. The
+tick), through the client kit, and the physics client's rolling objects (their texel paths on
+THX_PHYSICS_CONTACTS: Eq. 5 with each object's mass; its impacts are received, not played). The
 impulses go through a lock-free queue to the audio callback, which places each at its sample
 (the tick's time plus the playout delay) and lowers the number of modes it synthesises when its
 cost per block nears the block period. Output through RtAudio when a sound device exists; when
