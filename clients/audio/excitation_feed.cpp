@@ -6,11 +6,20 @@ void ExcitationFeed::contactBatch(const thx_msgs::contact_batch_t& b, std::int64
   ++counters_.batches;
   bool gap = false;
   if (have_batch_ && b.server_instance != server_instance_) {
-    ++counters_.restarts;
+    ++counters_.restarts;  // a new hapticd: its ticks start again
     gap = true;
-  } else if (have_batch_ && b.seq != last_seq_ + 1) {
-    if (b.seq <= last_seq_) return;  // a duplicate or an old batch: its samples were played
+    have_tick_ = false;
+  } else if (have_batch_ && b.seq > last_seq_ + 1) {
     counters_.lost_batches += std::uint64_t(b.seq - last_seq_ - 1);
+    gap = true;
+  } else if (have_batch_ && b.seq <= last_seq_) {
+    // A resend of a batch already played, or a new subscription whose seq starts again at 1
+    // (the kit asked again after a silence): only newer ticks are played.
+    if (b.samples.empty() || (have_tick_ && b.samples.back().tick <= last_tick_)) {
+      ++counters_.duplicates;
+      return;
+    }
+    ++counters_.resubscriptions;
     gap = true;
   }
   if (b.num_dropped > 0) {
@@ -23,6 +32,9 @@ void ExcitationFeed::contactBatch(const thx_msgs::contact_batch_t& b, std::int64
   if (gap)
     for (ExcitationSource* s : sources_) s->discontinuity();
   for (const thx_msgs::contact_t& c : b.samples) {
+    if (have_tick_ && c.tick <= last_tick_) continue;  // already played
+    have_tick_ = true;
+    last_tick_ = c.tick;
     ++counters_.samples;
     for (ExcitationSource* s : sources_) s->penContact(c, receipt_ns, sink_);
   }

@@ -2,7 +2,8 @@
 // The feed side of the live client, without the network: the streams' messages handed to the
 // scene's excitation sources, their events into a sink (the queue to the callback). Checks the
 // batched CONTACT stream's continuity (batch seq, the server's dropped samples, a new server
-// instance) and tells the sources when samples were lost. The live client calls it from the
+// instance, a new subscription) and tells the sources when samples were lost; a tick is played
+// once (resent batches and ticks already played are skipped). The live client calls it from the
 // kit's callbacks; tests call it with recorded batches.
 #include <cstdint>
 #include <vector>
@@ -32,6 +33,8 @@ struct FeedCounters {
   std::uint64_t lost_batches = 0;     // gaps in the batch seq
   std::uint64_t server_dropped = 0;   // samples hapticd dropped (its ring overflowed)
   std::uint64_t restarts = 0;         // a new server_instance
+  std::uint64_t duplicates = 0;       // batches whose ticks were all played already (resends)
+  std::uint64_t resubscriptions = 0;  // the batch seq started again within one server instance
   std::uint64_t physics_contacts = 0, physics_impacts = 0;
 };
 
@@ -54,8 +57,8 @@ class ExcitationFeed {
   ExcitationSink& sink_;
   std::vector<ExcitationSource*> sources_;
   FeedCounters counters_;
-  std::int64_t last_seq_ = 0, server_instance_ = 0;
-  bool have_batch_ = false;
+  std::int64_t last_seq_ = 0, server_instance_ = 0, last_tick_ = 0;
+  bool have_batch_ = false, have_tick_ = false;
 };
 
 }  // namespace thx::audio

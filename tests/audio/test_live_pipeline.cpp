@@ -149,6 +149,24 @@ TEST(LivePipeline, ALostBatchStartsANewWalkInsteadOfAnImpulseAcrossTheGap) {
   // A duplicate batch (a resend) is ignored.
   all.feed.contactBatch(batches.back(), 0);
   EXPECT_EQ(all.feed.counters().samples, 100u);
+  EXPECT_EQ(all.feed.counters().duplicates, 1u);
+}
+
+TEST(LivePipeline, ANewSubscriptionsBatchesArePlayedThoughTheirSeqStartsAgain) {
+  // The kit asked for the stream again (a silence): hapticd's batches count from seq 1 again,
+  // with newer ticks. They are played, after a restart of the walk.
+  const std::vector<thx_msgs::contact_batch_t> first = test::penBatches(kFirstTick, 50, 10, 0.1);
+  std::vector<thx_msgs::contact_batch_t> again = test::penBatches(kFirstTick, 100, 10, 0.1);
+  again.erase(again.begin(), again.begin() + 5);  // ticks 50..99
+  for (std::size_t k = 0; k < again.size(); ++k) again[k].seq = std::int64_t(k) + 1;
+  Pipeline p;
+  for (const auto& b : first) p.feed.contactBatch(b, 0);
+  for (const auto& b : again) p.feed.contactBatch(b, 0);
+  EXPECT_EQ(p.feed.counters().samples, 100u);
+  EXPECT_EQ(p.feed.counters().resubscriptions, 1u);
+  EXPECT_EQ(p.feed.counters().duplicates, 0u);
+  // The walk restarted at tick 50 (before texel 21's entry at 56.25): all 3 texels are heard.
+  EXPECT_EQ(p.pen.texels(), 3u);
 }
 
 }  // namespace
