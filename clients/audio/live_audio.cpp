@@ -204,6 +204,7 @@ int runLive(const LiveOptions& o) {
                  "  \"playout_delay_ms\": %.3f,\n  \"batch_hz\": %g,\n  \"timer_realtime\": %s,\n  \"timer_max_wake_late_us\": %.1f,\n"
                  "  \"latency_from_source_us\": %s,\n  \"latency_from_receipt_us\": %s,\n"
                  "  \"batches\": %llu, \"ticks\": %llu, \"lost_batches\": %llu, \"server_dropped\": %llu,\n"
+                 "  \"duplicate_batches\": %llu, \"resubscriptions\": %llu, \"server_restarts\": %llu,\n"
                  "  \"events\": %llu, \"late_events\": %llu, \"expired_events\": %llu, \"stale_events\": %llu, \"queue_dropped\": %llu,\n"
                  "  \"blocks\": %llu, \"late_blocks\": %llu, \"reanchors\": %llu, \"scene_switches\": %llu,\n"
                  "  \"modes\": %zu, \"budget\": %llu, \"min_rendered_modes\": %llu, \"max_cost_us\": %.1f,\n"
@@ -213,7 +214,8 @@ int runLive(const LiveOptions& o) {
                  timer && timer->realtimePriority() ? "true" : "false", timer ? double(timer->maxWakeLateNs()) / 1e3 : 0.0,
                  quantiles(latency.from_source_us).c_str(), quantiles(latency.from_receipt_us).c_str(),
                  (unsigned long long)f.batches, (unsigned long long)f.samples, (unsigned long long)f.lost_batches,
-                 (unsigned long long)f.server_dropped, (unsigned long long)c.events.load(),
+                 (unsigned long long)f.server_dropped, (unsigned long long)f.duplicates,
+                 (unsigned long long)f.resubscriptions, (unsigned long long)f.restarts, (unsigned long long)c.events.load(),
                  (unsigned long long)c.late_events.load(), (unsigned long long)c.expired_events.load(),
                  (unsigned long long)c.stale_events.load(),
                  (unsigned long long)sink.dropped(), (unsigned long long)c.blocks.load(),
