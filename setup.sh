@@ -19,7 +19,7 @@ PACKAGES="
   libyaml-cpp-dev
   liblcm-dev liblcm-bin libglib2.0-dev
   libbullet-dev
-  libarpack2-dev libsndfile1-dev
+  libarpack2-dev libsndfile1-dev librtaudio-dev libasound2-dev
   googletest libgtest-dev libbenchmark-dev
   rt-tests stress-ng
   libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb

@@ -8,6 +8,8 @@
 #   PART       any of: render force_error memory latency clients physics visual (default: all seven, in that order),
 #              or audio (FEM modal analysis and modal synthesis speed/error, about 3.5 min; its
 #              tables go to docs/audio.md),
+#              servo's wake latency with and without it; THX_AUDIO_LIVE_SECONDS per phase (20),
+#              THX_AUDIO_LIVE_ROUNDS (2); about 3 min; its table goes to docs/audio.md),
 #              or load (hapticd's full-force share beside stress-ng and cyclictest, old and new
 #              missed-tick policy; THX_LOAD_SECONDS per run (25), THX_LOAD_LOADS (none,cpu2,cpu2+vm),
 #              THX_LOAD_ROUNDS (1); about 3 min a round; needs stress-ng, Debian stress-ng, in setup.sh)
@@ -198,6 +200,16 @@ run_audio() {
   splice bench_audio_synth "$WORK/bench_audio_synth.md" "$ROOT/docs/audio.md"
 }
 
+run_audio_live() {
+  need "$BIN/bench_audio_live" && need "$HAPTICD" && need "$BUILD/clients/audio/audio-client" || return 1
+  say "part 7c: live audio beside hapticd, alone / with audio-client / with --playout-ms 0 (about 3 min)"
+  "$BIN/bench_audio_live" --hapticd "$HAPTICD" --audio-client "$BUILD/clients/audio/audio-client" \
+    --scene "$ROOT/benchmarks/scenes/audio_scrape.yaml" --seconds "${THX_AUDIO_LIVE_SECONDS:-20}" \
+    --rounds "${THX_AUDIO_LIVE_ROUNDS:-2}" --workdir "$WORK" --json "$RESULTS/bench_audio_live.json" \
+    --csv "$RESULTS/bench_audio_live.csv" --md "$WORK/bench_audio_live.md" || return 1
+  splice bench_audio_live "$WORK/bench_audio_live.md" "$ROOT/docs/audio.md"
+}
+
 run_visual() {
   need "$BIN/bench_visual" || return 1
   say "part 8: visual client, frame time against image error (normal / relief / mesh, about 3 min)"
@@ -208,14 +220,14 @@ run_visual() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | physics | visual | audio | load)
-      if ! "run_$part"; then
+    render | force_error | memory | latency | clients | physics | visual | audio | audio-live | load)
+      if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients physics visual audio load)"
+      say "unknown part '$part' (expected: render force_error memory latency clients physics visual audio audio-live load)"
       exit 2
       ;;
   esac

@@ -44,6 +44,13 @@ class SpscRing {
     return true;
   }
 
+  // Consumer side: the oldest record without removing it (null when empty); valid until pop().
+  const T* front() const {
+    const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
+    if (tail == head_.load(std::memory_order_acquire)) return nullptr;
+    return &slots_[tail & mask_];
+  }
+
   std::size_t capacity() const { return mask_ + 1; }
   // Records waiting (exact from either side; approximate from a third thread).
   std::size_t size() const {

@@ -1,7 +1,6 @@
-// audio-client, offline only (this step): the pen scraping a scene's surface, rendered from a
-// recorded hapticd session to a WAV file (kHelp below).
-#include <sndfile.h>
-
+// audio-client: the pen scraping a scene's surface, live from hapticd (live_audio.hpp) or
+// rendered from a recorded hapticd session to a WAV file (kHelp below).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -11,10 +10,13 @@
 
 #include "base/cli_number.hpp"
 #include "base/error.hpp"
+#include "clients/audio/audio_output.hpp"
+#include "clients/audio/live_audio.hpp"
 #include "clients/audio/modal_options.hpp"
-#include "clients/audio/scene_bodies.hpp"
 #include "clients/audio/physics_sound.hpp"
+#include "clients/audio/scene_bodies.hpp"
 #include "clients/audio/scrape_synthesis.hpp"
+#include "clients/audio/surface_sound.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
 #include "textures/smoothing.hpp"
@@ -24,53 +26,82 @@ namespace {
 
 using namespace thx::audio;
 
-const char* const kHelp = R"(usage: audio-client --scene FILE --replay-log FILE --wav FILE [options]
+const char* const kHelp = R"(usage: audio-client --scene FILE [--wav FILE] [live options]             (live)
+       audio-client --scene FILE --replay-log FILE --wav FILE [options]      (offline)
 
-Offline and deterministic: the pen scraping the scene's surface, from a session hapticd recorded
-(`hapticd --record FILE`: one contact_t per servo tick on THX_CONTACT). Meso level: on a normal
-map, Eq. 5 at every texel the pen tip enters (the pen's effective mass, the texel's own normal);
-on a relief map, the change of the contact normal from tick to tick. Micro level: the surface's
+The pen scraping the scene's surface. Meso level: on a normal map, Eq. 5 at every texel the pen
+tip enters (the pen's effective mass, the texel's own normal); on a relief map (offline), the
+change of the contact normal from tick to tick. A flat map is silent at this level.
+
+Live (the default; docs/audio.md "Live audio"): hapticd's CONTACT stream, batched (every servo
+tick), through the client kit, and the physics client's rolling objects (their texel paths on
+THX_PHYSICS_CONTACTS: Eq. 5 with each object's mass; its impacts are received, not played). The
+impulses go through a lock-free queue to the audio callback, which places each at its sample
+(the tick's time plus the playout delay) and lowers the number of modes it synthesises when its
+cost per block nears the block period. Output through RtAudio when a sound device exists; when
+none does, one line says so and a timer-driven callback writes the sound to --wav. Follows
+hapticd's scene switches (finds NAME.yaml in --scenes-dir).
+
+Offline (--replay-log): deterministic, from a recorded session (`hapticd --record FILE`: one
+contact_t per servo tick on THX_CONTACT). Besides the meso level: micro level, the surface's
 fractal roughness (surface.roughness) read along the distance travelled, scaled by the normal
-force. Both sides sound: the surface slab's modes (surface.thickness, surface.held; at the top-face
-node nearest the tip) and the pen's own (device.pen: a cylinder, struck at its tip), each from a
-modal analysis cached like modal-analyze's.
-If the log also holds the physics client's streams (`physics-client --replay-log SESSION --record
-FILE`: THX_PHYSICS_POSES/IMPACT/CONTACTS on the session's clock), they sound too, on the same clock:
-impacts (the impulse on both bodies' modes at the contact point, over a Hertz contact time),
-rolling and sliding objects' texel paths (Eq. 5 on a normal map; on a relief map the change of the
-object's normal momentum between contact reports), exciting the surface and the object. A
-THX_HELLO naming another scene switches the physics streams to NAME.yaml (--scenes-dir).
-The sum of the modal displacements is written as a 32-bit float WAV, normalised to a peak of 0.5
-(-6 dBFS).
-Not yet: live audio.
+force; both sides sound, the surface slab's modes (surface.thickness, surface.held; at the
+top-face node nearest the tip) and the pen's own (device.pen: a cylinder, struck at its tip). If
+the log also holds the physics client's streams (`physics-client --replay-log SESSION --record
+FILE`: THX_PHYSICS_POSES/IMPACT/CONTACTS on the session's clock), they sound too, on the same
+clock: impacts (the impulse on both bodies' modes at the contact point, over a Hertz contact
+time), rolling and sliding objects' texel paths (Eq. 5 on a normal map; on a relief map the
+change of the object's normal momentum between contact reports), exciting the surface and the
+object; a THX_HELLO naming another scene switches the physics streams to NAME.yaml
+(--scenes-dir). The sum of the modal displacements as a 32-bit float WAV normalised to a peak of
+0.5 (-6 dBFS). Live plays the meso level on the slab only (not yet: micro level, the pen's and
+the objects' own modes, impacts).
 
-  --scene FILE           the scene hapticd ran (docs/scenes.md)
-  --replay-log FILE      hapticd's --record log, or physics-client's --record log (with or without
-                         a hapticd session in it)
-  --wav FILE             output
+  --scene FILE           the scene hapticd runs (docs/scenes.md)
+  --replay-log FILE      offline: hapticd's --record log, or physics-client's --record log (with
+                         or without a hapticd session in it)
+  --wav FILE             output (offline: required; live: written when no device plays)
   --slab-thickness M     the surface slab's thickness (default: the scene's surface.thickness)
   --slab-cells N         Tet10 cells per side of the slab, 1 through its thickness (default 16)
   --clamp-edges          hold the slab at its four sides (default: the scene's surface.held)
-  --no-pen               the slab alone sounds (not the pen's own modes)
-  --no-micro             no micro-level roughness (meso impulses only)
   --modes N              elastic modes computed (default 40)
   --pen-mass KG          the mass in Eq. 5 (default: the simulated device's mass)
   --sample-rate HZ       default 44100
-  --tail S               ring-out after the last tick (default 0.5)
+  --tail S               offline: ring-out after the last tick (default 0.5)
   --cache-dir DIR        modal cache (default as modal-analyze); --no-cache: none
+  --scenes-dir DIR       where a switched-to scene NAME.yaml is found (offline default: --scene's
+                         folder; live default: scenes)
+Offline:
+  --no-pen               the slab alone sounds (not the pen's own modes)
+  --no-micro             no micro-level roughness (meso impulses only)
   --object-elements E    tet10 (default) or tet4: the moving objects' elements
-  --scenes-dir DIR       where a scene switched to is found as NAME.yaml (default: --scene's folder)
+Live:
+  --lcm-url URL          LCM bus (default the kit's)
+  --connect-timeout S    wait this long for hapticd's hello (default 10)
+  --allow-different-scene  play although hapticd runs another scene (a warning)
+  --batch-rate HZ        CONTACT batches per second (default 200; every tick either way)
+  --playout-ms MS        an impulse sounds this long after its tick (default: a batch period
+                         plus a block, so the ticks of one batch keep their spacing)
+  --block N              frames per callback block (default 256, at most 4096)
+  --output MODE          auto (a device, else timer + WAV; default), device, timer
+  --audio-api API        alsa, pulse or jack (default: ALSA, then PulseAudio)
+  --gain G               output = clamp(G x, -1, 1), x the modal displacement sum in m (default 8e4)
+  --fixed-budget         synthesise every mode always (no quality scaling under load)
+  --duration S           stop after S seconds (default: at SIGINT/SIGTERM)
+  --stats-json FILE      latency (contact -> callback block) and counters at the end
+  --events-csv FILE      every event played: its tick's time, receipt, due time, block start (ns)
+  --quiet                no progress lines
   -h, --help             this text
 )";
 
 struct Options {
   std::string scene, log, wav;
-  std::optional<double> thickness;
-  double sample_rate = 44100, tail = 0.5;
-  int cells = 16, modes = 40;
-  bool clamp = false, no_cache = false, no_pen = false, no_micro = false;
+  SlabSettings slab;
+  double tail = 0.5;
   std::optional<double> pen_mass;
-  std::optional<std::string> cache_dir;
+  LiveOptions live;
+  std::optional<double> playout_ms;
+  bool no_pen = false, no_micro = false;
   ElementOrder object_order = ElementOrder::Quadratic;
   std::optional<std::string> scenes_dir;
 };
@@ -86,47 +117,48 @@ Options parse(const std::vector<std::string>& args) {
     if (a == "--scene") o.scene = value();
     else if (a == "--replay-log") o.log = value();
     else if (a == "--wav") o.wav = value();
-    else if (a == "--slab-thickness") o.thickness = thx::cli::parseNumber(a, value(), {0, 1, true, "m"});
-    else if (a == "--slab-cells") o.cells = int(thx::cli::parseInteger(a, value(), 1, 200));
-    else if (a == "--clamp-edges") o.clamp = true;
+    else if (a == "--slab-thickness") o.slab.thickness_m = thx::cli::parseNumber(a, value(), {0, 1, true, "m"});
+    else if (a == "--slab-cells") o.slab.cells = int(thx::cli::parseInteger(a, value(), 1, 200));
+    else if (a == "--clamp-edges") o.slab.clamp_edges = true;
+    else if (a == "--modes") o.slab.modes = int(thx::cli::parseInteger(a, value(), 1, 2000));
+    else if (a == "--pen-mass") o.pen_mass = thx::cli::parseNumber(a, value(), {0, 100, true, "kg"});
+    else if (a == "--sample-rate") o.slab.sample_rate_hz = thx::cli::parseNumber(a, value(), {8000, 384000, false, "Hz"});
+    else if (a == "--tail") o.tail = thx::cli::parseNumber(a, value(), {0, 60, false, "s"});
+    else if (a == "--cache-dir") o.slab.cache_dir = value();
+    else if (a == "--no-cache") o.slab.no_cache = true;
+    else if (a == "--lcm-url") o.live.lcm_url = value();
+    else if (a == "--connect-timeout") o.live.connect_timeout_s = thx::cli::parseNumber(a, value(), {0, 3600, true, "s"});
+    else if (a == "--allow-different-scene") o.live.allow_different_scene = true;
+    else if (a == "--scenes-dir") o.scenes_dir = value();
     else if (a == "--no-pen") o.no_pen = true;
     else if (a == "--no-micro") o.no_micro = true;
-    else if (a == "--modes") o.modes = int(thx::cli::parseInteger(a, value(), 1, 2000));
-    else if (a == "--pen-mass") o.pen_mass = thx::cli::parseNumber(a, value(), {0, 100, true, "kg"});
-    else if (a == "--sample-rate") o.sample_rate = thx::cli::parseNumber(a, value(), {8000, 384000, false, "Hz"});
-    else if (a == "--tail") o.tail = thx::cli::parseNumber(a, value(), {0, 60, false, "s"});
-    else if (a == "--cache-dir") o.cache_dir = value();
-    else if (a == "--no-cache") o.no_cache = true;
-    else if (a == "--scenes-dir") o.scenes_dir = value();
     else if (a == "--object-elements") {
       const std::string e = value();
       if (e != "tet4" && e != "tet10") throw thx::UsageError("--object-elements: expected tet4 or tet10, got '" + e + "'");
       o.object_order = e == "tet4" ? ElementOrder::Linear : ElementOrder::Quadratic;
     }
+    else if (a == "--batch-rate") o.live.batch_hz = thx::cli::parseNumber(a, value(), {1, 100000, true, "Hz"});
+    else if (a == "--playout-ms") o.playout_ms = thx::cli::parseNumber(a, value(), {0, 10000, false, "ms"});
+    else if (a == "--block") o.live.block_frames = std::size_t(thx::cli::parseInteger(a, value(), 16, long(kMaxBlockFrames)));
+    else if (a == "--output") {
+      o.live.output = value();
+      if (o.live.output != "auto" && o.live.output != "device" && o.live.output != "timer")
+        throw thx::UsageError("--output: expected auto, device or timer, got '" + o.live.output + "'");
+    } else if (a == "--audio-api") o.live.audio_api = value();
+    else if (a == "--gain") o.live.gain = thx::cli::parseNumber(a, value(), {0, 1e12, false, ""});
+    else if (a == "--fixed-budget") o.live.adapt_budget = false;
+    else if (a == "--duration") o.live.duration_s = thx::cli::parseNumber(a, value(), {0, 1e7, false, "s"});
+    else if (a == "--stats-json") o.live.stats_json = value();
+    else if (a == "--events-csv") o.live.events_csv = value();
+    else if (a == "--quiet") o.live.quiet = true;
     else throw thx::UsageError("unknown option '" + a + "'");
   }
   if (o.scene.empty()) throw thx::UsageError("--scene: missing");
-  if (o.log.empty()) throw thx::UsageError("--replay-log: missing (live audio is not implemented yet)");
-  if (o.wav.empty()) throw thx::UsageError("--wav: missing");
+  if (!o.log.empty() && o.wav.empty()) throw thx::UsageError("--wav: missing (--replay-log renders to a WAV)");
   return o;
 }
 
-void writeWav(const std::string& path, const std::vector<float>& samples, int rate) {
-  SF_INFO info{};
-  info.samplerate = rate;
-  info.channels = 1;
-  info.format = SF_FORMAT_WAV | SF_FORMAT_FLOAT;
-  SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
-  if (!f) throw thx::Error(thx::Error::Kind::Io, path + ": cannot be written: " + sf_strerror(nullptr));
-  // libsndfile's PEAK chunk of a float WAV carries the time of writing: without it, the same
-  // samples give the same bytes.
-  sf_command(f, SFC_SET_ADD_PEAK_CHUNK, nullptr, SF_FALSE);
-  const sf_count_t n = sf_writef_float(f, samples.data(), sf_count_t(samples.size()));
-  sf_close(f);
-  if (n != sf_count_t(samples.size())) throw thx::Error(thx::Error::Kind::Io, path + ": write failed");
-}
-
-int run(const Options& o) {
+int runOffline(const Options& o) {
   const thx::scene::Scene scene = thx::scene::loadScene(o.scene);
   thx::scene::SurfaceTextureOptions to;
   to.smooth = thx::tex::smoothTexture;
@@ -146,18 +178,18 @@ int run(const Options& o) {
 
   ElasticMaterial material = scene.surface.material;
   SceneMeshOptions mo;
-  mo.slab_thickness_m = o.thickness;
-  if (o.clamp) mo.clamp_slab = true;
-  mo.slab_cells = o.cells;
+  mo.slab_thickness_m = o.slab.thickness_m;
+  mo.clamp_slab = o.slab.clamp_edges;
+  mo.slab_cells = o.slab.cells;
   TetMesh slab = slabBody(scene, mo).mesh;
   slab.name = "surface (" + scene.surface.material.name + ")";
   ModalSettings ms;
-  ms.elastic_modes = o.modes;
+  ms.elastic_modes = o.slab.modes;
   AnalysisOptions ao;
-  if (!o.no_cache) ao.cache_dir = o.cache_dir ? *o.cache_dir : defaultModalCacheDir();
+  if (!o.slab.no_cache) ao.cache_dir = o.slab.cache_dir ? *o.slab.cache_dir : defaultModalCacheDir();
   ao.progress = [](const std::string& line) { std::fprintf(stderr, "audio-client: %s\n", line.c_str()); };
   AudibleOptions audible;
-  audible.sample_rate_hz = o.sample_rate;
+  audible.sample_rate_hz = o.slab.sample_rate_hz;
   const AudibleModes modes = audibleModes(analyse(slab, material, ms, ao), material, audible);
   // The pen's own modes (device.pen), struck at its tip.
   const SceneBody pen = penBody(scene);
@@ -166,7 +198,7 @@ int run(const Options& o) {
   const PenModes pen_view{&pen.mesh, &pen_modes, penTipNode(pen.mesh), scene.device.pen.tilt_deg};
 
   ScrapeOptions so;
-  so.sample_rate_hz = o.sample_rate;
+  so.sample_rate_hz = o.slab.sample_rate_hz;
   so.servo_hz = scene.rates.servo_hz;
   so.pen_mass_kg = o.pen_mass ? *o.pen_mass : scene.device.sim.device_mass_kg;
   so.surface_size_m = scene.surface.size_m;
@@ -179,9 +211,9 @@ int run(const Options& o) {
   ScrapeRender r = renderScrape(map, slab, modes, path, so, o.no_pen ? nullptr : &pen_view);
   if (!physics.empty()) {
     BodyOptions bo;
-    bo.slab_thickness_m = o.thickness;
-    bo.slab_cells = o.cells;
-    if (o.clamp) bo.clamp_slab = true;
+    bo.slab_thickness_m = o.slab.thickness_m;
+    bo.slab_cells = o.slab.cells;
+    bo.clamp_slab = o.slab.clamp_edges;
     bo.object_order = o.object_order;
     bo.modal = ms;
     bo.analysis = ao;
@@ -196,7 +228,7 @@ int run(const Options& o) {
       return soundingScene(name, next, thx::scene::buildSurfaceTexture(next, to).isRelief(), bo);
     };
     PhysicsSoundOptions po;
-    po.sample_rate_hz = o.sample_rate;
+    po.sample_rate_hz = o.slab.sample_rate_hz;
     po.tail_s = o.tail;
     const std::int64_t origin = path.empty() ? physics.firstUtime() : first_contact_utime;
     const PhysicsRender pr = renderPhysicsStreams(physics, first, scene_for, origin, po);
@@ -207,13 +239,27 @@ int run(const Options& o) {
     for (const std::string& n : pr.scenes) std::printf(" %s", n.c_str());
     std::printf("\n");
   }
-  writeWav(o.wav, r.samples, int(o.sample_rate));
+  WavWriter(o.wav, int(o.slab.sample_rate_hz)).write(r.samples);
   std::printf("audio-client: %s: %zu ticks, %zu %s impulses (%zu non-zero), micro force RMS %.3g N, %zu slab + %zu pen modes "
               "(peaks %.3g / %.3g, RMS %.3g), %.2f s -> %s\n",
               o.log.c_str(), path.size(), r.impulses, so.meso == MesoSource::TexelWalk ? "meso" : "relief", r.nonzero_impulses,
               r.micro_rms_n, modes.size(), pen_modes.size(), r.slab_peak, r.pen_peak,
-              r.raw_rms, double(r.samples.size()) / o.sample_rate, o.wav.c_str());
+              r.raw_rms, double(r.samples.size()) / o.slab.sample_rate_hz, o.wav.c_str());
   return 0;
+}
+
+int run(Options o) {
+  if (!o.log.empty()) return runOffline(o);
+  LiveOptions& l = o.live;
+  l.scene = o.scene;
+  l.wav = o.wav;
+  l.scene_settings.slab = o.slab;
+  l.scene_settings.slab.quiet = l.quiet;
+  l.scene_settings.pen_mass_kg = o.pen_mass;
+  if (o.scenes_dir) l.scenes_dir = *o.scenes_dir;
+  const double playout_ms = o.playout_ms ? *o.playout_ms : 1e3 / l.batch_hz + 1e3 * double(l.block_frames) / o.slab.sample_rate_hz;
+  l.scene_settings.playout_delay_ns = std::int64_t(std::llround(playout_ms * 1e6));
+  return runLive(l);
 }
 
 }  // namespace

@@ -12,19 +12,6 @@
 namespace thx::audio {
 namespace {
 
-// The top-face node nearest to texture coordinates uv (wrapped into the one span of the slab).
-int nearestTopNode(const TetMesh& slab, const std::vector<int>& top, tex::TexCoord uv, const Eigen::Vector2d& size) {
-  const double u = uv.u - std::floor(uv.u), v = uv.v - std::floor(uv.v);
-  const Eigen::Vector2d p((u - 0.5) * size.x(), (v - 0.5) * size.y());
-  int best = top.front();
-  double best_d = std::numeric_limits<double>::infinity();
-  for (int n : top) {
-    const double d = (slab.nodes[std::size_t(n)].head<2>() - p).squaredNorm();
-    if (d < best_d) best_d = d, best = n;
-  }
-  return best;
-}
-
 ReliefTick reliefTick(const ScrapeSample& s) { return {s.in_contact, s.n_geom, s.n_contact, s.v_tangent}; }
 
 // One body's modes driven by a modal impulse per sample: gain[i] x impulse[n] on mode i. Runs of
@@ -74,6 +61,7 @@ ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& sla
   e.impulse_ns.assign(total, 0.0);
   e.slab_node.assign(total, top.empty() ? 0 : top.front());
   if (top.empty()) return e;
+  const SlabTopFace top_face(slab, o.surface_size_m);
 
   const bool micro = o.roughness.amplitude > 0.0;
   const RoughnessProfile profile(micro ? o.roughness : RoughnessOptions{});
@@ -92,7 +80,7 @@ ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& sla
       continue;
     }
     const std::size_t at_a = std::min(sampleOf(a.tick), total - 1), at_b = std::min(sampleOf(b.tick), total - 1);
-    const int node = nearestTopNode(slab, top, b.uv, o.surface_size_m);
+    const int node = top_face.nearest(b.uv);
     for (std::size_t n = continuing ? at_a + 1 : at_a; n <= at_b; ++n) e.slab_node[n] = node;
     continuing = true;
 

@@ -16,22 +16,12 @@
 
 #include "clients/audio/audible_modes.hpp"
 #include "clients/audio/fractal_roughness.hpp"
+#include "clients/audio/pen_scrape.hpp"
 #include "clients/audio/tet_mesh.hpp"
 #include "textures/sampling.hpp"
 #include "textures/texture_map.hpp"
 
 namespace thx::audio {
-
-struct ScrapeSample {
-  std::int64_t tick = 0;  // servo tick index
-  bool in_contact = false;
-  tex::TexCoord uv;  // unwrapped texture coordinates of the tip's projection
-  double f_normal_n = 0.0;  // normal force pushing the pen out (micro level's loudness)
-  // World frame (contact_t): base plane normal, contact normal (a relief's own), tip velocity.
-  Eigen::Vector3d n_geom{0.0, 0.0, 1.0};
-  Eigen::Vector3d n_contact{0.0, 0.0, 1.0};
-  Eigen::Vector3d v_tangent{0.0, 0.0, 0.0};
-};
 
 enum class MesoSource {
   TexelWalk,       // a normal map: Eq. 5 at every texel entered, the texel's own normal

@@ -8,27 +8,15 @@
 
 #include "clients/audio/scene_bodies.hpp"
 #include "clients/audio/scrape_synthesis.hpp"
-#include "tests/audio/modal_fixtures.hpp"
+#include "tests/audio/live_fixtures.hpp"
 
 namespace thx::audio {
 namespace {
 
 using test::steel;
 
-struct Slab {
-  TetMesh mesh = slabMesh("surface", 0.2, 0.2, 0.01, {4, 4, 1}, ElementOrder::Quadratic, false);
-  AudibleModes modes;
-  Slab() {
-    ModalSettings s;
-    s.elastic_modes = 10;
-    modes = audibleModes(analyse(mesh, steel(), s), steel(), AudibleOptions{});
-  }
-};
-
-const Slab& slab() {
-  static const Slab s;
-  return s;
-}
+// The small steel slab the live tests use too.
+const test::LiveSlab& slab() { return test::liveSlab(); }
 
 // A steel pen, 12 cm x r 5 mm, Tet10 2 x 2 x 6 cells: 3 audible modes, the first bending pair
 // at 3126 Hz (Euler-Bernoulli: 3121 Hz).
@@ -57,12 +45,7 @@ std::vector<ScrapeSample> straightScrape() {
   return path;
 }
 
-tex::TextureMap grooves() {
-  tex::TextureMap map(64, 64, tex::Representation::Normal);
-  for (int i = 0; i < 64; i += 2)
-    for (int j = 0; j < 64; ++j) map.setNormal(i, j, Eigen::Vector3f(0.2f, 0.0f, 1.0f));
-  return map;
-}
+tex::TextureMap grooves() { return test::grooveMap(); }
 
 TEST(ScrapeSynthesis, FlatMapIsSilent) {
   const tex::TextureMap flat(64, 64, tex::Representation::Normal);

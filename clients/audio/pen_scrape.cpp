@@ -1,0 +1,35 @@
+#include "clients/audio/pen_scrape.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace thx::audio {
+
+SlabTopFace::SlabTopFace(const TetMesh& slab, Eigen::Vector2d surface_size_m) : slab_(slab), size_(surface_size_m) {
+  for (std::size_t n = 0; n < slab.nodes.size(); ++n)
+    if (std::fabs(slab.nodes[n].z()) < 1e-12) top_.push_back(int(n));
+}
+
+int SlabTopFace::nearest(tex::TexCoord uv) const {
+  const double u = uv.u - std::floor(uv.u), v = uv.v - std::floor(uv.v);
+  const Eigen::Vector2d p((u - 0.5) * size_.x(), (v - 0.5) * size_.y());
+  int best = top_.empty() ? 0 : top_.front();
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int n : top_) {
+    const double d = (slab_.nodes[std::size_t(n)].head<2>() - p).squaredNorm();
+    if (d < best_d) best_d = d, best = n;
+  }
+  return best;
+}
+
+PenScrape::PenScrape(const tex::TextureMap& map, const TetMesh& slab, PenScrapeOptions options)
+    : options_(options),
+      surface_{&map, tex::Address::Wrap, {0, 0, 1}, options.pen_mass_kg, 0.05},
+      top_(slab, options.surface_size_m) {}
+
+void PenScrape::reset() {
+  state_ = {};
+  have_previous_ = false;
+}
+
+}  // namespace thx::audio

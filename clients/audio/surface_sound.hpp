@@ -1,0 +1,38 @@
+#pragma once
+// A scene's surface as it sounds: its texture (smoothed as hapticd smooths it), the surface slab's
+// mesh and its audible modes (modal analysis of the scene's surface material, cached as
+// modal-analyze caches). Shared by the offline render and the live client.
+#include <optional>
+#include <string>
+
+#include "clients/audio/audible_modes.hpp"
+#include "clients/audio/tet_mesh.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/scene_surface.hpp"
+#include "textures/texture_map.hpp"
+
+namespace thx::audio {
+
+struct SlabSettings {
+  std::optional<double> thickness_m;  // unset: the scene's surface.thickness
+  int cells = 16;          // Tet10 cells per side, 1 through the thickness
+  std::optional<bool> clamp_edges;    // unset: the scene's surface.held
+  int modes = 40;          // elastic modes computed
+  double sample_rate_hz = 44100.0;
+  std::optional<std::string> cache_dir;  // unset: the default cache folder
+  bool no_cache = false;
+  bool quiet = false;      // no progress lines on stderr
+};
+
+struct SurfaceSound {
+  scene::Scene scene;
+  scene::SceneSurface surface;  // the texture, its scene name and fingerprint (as hapticd's hello names them)
+  TetMesh slab;
+  AudibleModes modes;
+  const tex::TextureMap& map() const { return *surface.map; }
+};
+
+// Throws thx::Error naming the scene file or the cause.
+SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& settings);
+
+}  // namespace thx::audio
