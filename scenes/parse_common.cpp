@@ -28,10 +28,11 @@ Material namedMaterial(const Field& field) {
 
 Material parseMaterial(const Field& field) {
   if (!field.isMapping()) return namedMaterial(field);
-  // The table's material with the scene's own rolling friction.
-  field.expectKeys({"name", "rolling_friction"});
+  // The table's material with the scene's own rolling and spinning friction.
+  field.expectKeys({"name", "rolling_friction", "spinning_friction"});
   Material m = namedMaterial(field.at("name", "a material name (materials table)"));
   if (auto r = field.find("rolling_friction")) m.rolling_friction_m = r->number(closedRange(0.0, 0.01, "m"));
+  if (auto s = field.find("spinning_friction")) m.spinning_friction_m = s->number(closedRange(0.0, 0.01, "m"));
   return m;
 }
 

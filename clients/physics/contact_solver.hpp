@@ -13,7 +13,15 @@
 // slower than g (tanθ − μ) / (1 + μ tanθ) (docs/physics.md).
 //
 // After each of Bullet's iterations this solver re-solves exactly those rows with the limits
-// [0, 0], which removes their accumulated impulse; everything else is Bullet's.
+// [0, 0], which removes their accumulated impulse.
+//
+// Second correction: spinning (torsional) friction without rolling friction. Bullet adds a
+// contact's spinning-friction row (a torque about the normal, at most the combined spinning
+// friction × the normal impulse) only inside `if (m_combinedRollingFriction > 0)`, so a body
+// with spinning friction and no rolling friction spun on forever (the `default` scene's marble,
+// 0.17 rad/s in a dip). convertContacts adds that row for such contacts, the same row Bullet
+// builds (addTorsionalFrictionConstraint), so the solve is the same either way. Everything else
+// is Bullet's.
 #include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
 
 namespace thx::phys {
@@ -22,19 +30,25 @@ class ContactSolver : public btSequentialImpulseConstraintSolver {
  public:
   // Friction rows released in the last solve (for tests and statistics).
   long long releasedFrictionRows() const { return released_; }
+  // Friction pairs scaled onto the disc in the last solve (for tests and statistics).
+  long long clampedFrictionPairs() const { return clamped_; }
 
   btScalar solveGroup(btCollisionObject** bodies, int num_bodies, btPersistentManifold** manifolds, int num_manifolds,
                       btTypedConstraint** constraints, int num_constraints, const btContactSolverInfo& info,
                       btIDebugDraw* debug_draw, btDispatcher* dispatcher) override;
 
  protected:
+  void convertContacts(btPersistentManifold** manifolds, int num_manifolds, const btContactSolverInfo& info) override;
   btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int num_bodies,
                                 btPersistentManifold** manifolds, int num_manifolds, btTypedConstraint** constraints,
                                 int num_constraints, const btContactSolverInfo& info,
                                 btIDebugDraw* debug_draw) override;
 
  private:
+  void clampToFrictionDisc();
+
   long long released_ = 0;
+  long long clamped_ = 0;
 };
 
 }  // namespace thx::phys
