@@ -15,10 +15,28 @@ btScalar ContactSolver::solveGroup(btCollisionObject** bodies, int num_bodies, b
                                                          num_constraints, info, debug_draw, dispatcher);
 }
 
+namespace {
+// Tangential speed of the contact's two bodies at its point, from their velocities before the
+// solve and without this step's external impulses (gravity): how fast the point really slides.
+btScalar slidingSpeed(const btSolverBody& a, const btSolverBody& b, const btManifoldPoint& point) {
+  const btVector3 rel_a = point.getPositionWorldOnA() - a.getWorldTransform().getOrigin();
+  const btVector3 rel_b = point.getPositionWorldOnB() - b.getWorldTransform().getOrigin();
+  const btVector3 v = (a.m_linearVelocity + a.m_angularVelocity.cross(rel_a)) - (b.m_linearVelocity + b.m_angularVelocity.cross(rel_b));
+  const btVector3& n = point.m_normalWorldOnB;
+  return (v - n * n.dot(v)).length();
+}
+}  // namespace
+
 void ContactSolver::convertContacts(btPersistentManifold** manifolds, int num_manifolds,
                                     const btContactSolverInfo& info) {
   btSequentialImpulseConstraintSolver::convertContacts(manifolds, num_manifolds, info);
   const int contacts = m_tmpSolverContactConstraintPool.size();
+  sliding_.resize(std::size_t(contacts));
+  for (int k = 0; k < contacts; ++k) {
+    const btSolverConstraint& contact = m_tmpSolverContactConstraintPool[k];
+    sliding_[std::size_t(k)] = slidingSpeed(m_tmpSolverBodyPool[contact.m_solverBodyIdA], m_tmpSolverBodyPool[contact.m_solverBodyIdB],
+                                            *static_cast<const btManifoldPoint*>(contact.m_originalContactPoint)) > kSlidingSpeed;
+  }
   for (int k = 0; k < contacts; ++k) {
     const btSolverConstraint& contact = m_tmpSolverContactConstraintPool[k];
     auto& point = *static_cast<btManifoldPoint*>(contact.m_originalContactPoint);
@@ -63,6 +81,11 @@ btScalar ContactSolver::solveSingleIteration(int iteration, btCollisionObject** 
   return residual;
 }
 
+void ContactSolver::setImpulse(btSolverConstraint& row, btScalar impulse) {
+  row.m_lowerLimit = row.m_upperLimit = impulse;
+  m_resolveSingleConstraintRowGeneric(m_tmpSolverBodyPool[row.m_solverBodyIdA], m_tmpSolverBodyPool[row.m_solverBodyIdB], row);
+}
+
 void ContactSolver::clampToFrictionDisc() {
   btConstraintArray& pool = m_tmpSolverContactFrictionConstraintPool;
   const int count = pool.size();
@@ -73,14 +96,24 @@ void ContactSolver::clampToFrictionDisc() {
     ++k;
     const btSolverConstraint& normal = m_tmpSolverContactConstraintPool[first.m_frictionIndex];
     const btScalar limit = first.m_friction * std::max(normal.m_appliedImpulse, btScalar(0));
-    // The row along the slip first (Bullet clamps it to +-limit itself); the row across it gets
-    // what the disc leaves. Sliding, the first row takes all of mu * N and the motion meets
-    // friction along its slip only, as with a single row.
-    const btScalar budget = btSqrt(std::max(limit * limit - first.m_appliedImpulse * first.m_appliedImpulse, btScalar(0)));
-    if (btFabs(second.m_appliedImpulse) <= budget) continue;
-    second.m_lowerLimit = second.m_upperLimit = second.m_appliedImpulse > btScalar(0) ? budget : -budget;
-    m_resolveSingleConstraintRowGeneric(m_tmpSolverBodyPool[second.m_solverBodyIdA],
-                                        m_tmpSolverBodyPool[second.m_solverBodyIdB], second);
+    if (sliding_[std::size_t(first.m_frictionIndex)]) {
+      // Sliding: the row along the slip first (Bullet clamps it to +-limit itself), the row
+      // across it gets what the disc leaves, so the motion meets mu * N along its slip, as with
+      // a single row.
+      const btScalar budget = btSqrt(std::max(limit * limit - first.m_appliedImpulse * first.m_appliedImpulse, btScalar(0)));
+      if (btFabs(second.m_appliedImpulse) <= budget) continue;
+      setImpulse(second, second.m_appliedImpulse > btScalar(0) ? budget : -budget);
+    } else {
+      // Sticking: the "slip" direction holds this step's gravity, which other contacts may carry
+      // (a block against a fence); the friction the solve found is kept in its direction, within
+      // mu * N.
+      const btScalar magnitude = btSqrt(first.m_appliedImpulse * first.m_appliedImpulse +
+                                        second.m_appliedImpulse * second.m_appliedImpulse);
+      if (magnitude <= limit) continue;
+      const btScalar scale = limit / magnitude;
+      setImpulse(first, first.m_appliedImpulse * scale);
+      setImpulse(second, second.m_appliedImpulse * scale);
+    }
     ++clamped_;
   }
 }

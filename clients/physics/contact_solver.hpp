@@ -24,6 +24,8 @@
 // is Bullet's.
 #include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
 
+#include <vector>
+
 namespace thx::phys {
 
 class ContactSolver : public btSequentialImpulseConstraintSolver {
@@ -45,7 +47,13 @@ class ContactSolver : public btSequentialImpulseConstraintSolver {
                                 btIDebugDraw* debug_draw) override;
 
  private:
+  // Sets a row's accumulated impulse (limits [impulse, impulse], one row solve).
+  void setImpulse(btSolverConstraint& row, btScalar impulse);
   void clampToFrictionDisc();
+
+  // A contact point slides when its tangential speed before the solve exceeds this.
+  static constexpr btScalar kSlidingSpeed = btScalar(1e-3);
+  std::vector<bool> sliding_;  // per contact row of the current solve
 
   long long released_ = 0;
   long long clamped_ = 0;
