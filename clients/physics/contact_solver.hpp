@@ -20,8 +20,16 @@
 // friction × the normal impulse) only inside `if (m_combinedRollingFriction > 0)`, so a body
 // with spinning friction and no rolling friction spun on forever (the `default` scene's marble,
 // 0.17 rad/s in a dip). convertContacts adds that row for such contacts, the same row Bullet
-// builds (addTorsionalFrictionConstraint), so the solve is the same either way. Everything else
-// is Bullet's.
+// builds (addTorsionalFrictionConstraint), so the solve is the same either way.
+//
+// Third: Coulomb's disc. With SOLVER_USE_2_FRICTION_DIRECTIONS (PhysicsWorld's default) each
+// point has a row along its slip and one across it, each clamped by Bullet to +-mu N alone. After
+// each iteration the pair is kept within mu N: for a point that slides (tangential speed before
+// the solve, without gravity's impulse, above 1 mm/s) the row along the slip keeps its impulse
+// and the row across gets what is left; for a sticking point both are scaled onto the disc. One
+// row alone left the motion across the slip free (a ball on two walls crept along them at
+// 0.28 mm/s); two rows scaled together made sliding boxes up to 66 % fast (docs/physics.md).
+// Everything else is Bullet's.
 #include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
 
 #include <vector>
