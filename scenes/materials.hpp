@@ -24,6 +24,10 @@ struct Material {
   // normal force. Bullet combines a pair as delta_a * mu_b + delta_b * mu_a. 0 in the table (a
   // scene sets it: `material: {name: steel, rolling_friction: 1e-4}`).
   double rolling_friction_m = 0.0;
+  // Bullet's spinning (torsional) friction, a length: the torque resisting a spin about the
+  // contact normal is at most this times the normal force; combined like rolling friction. 0 in
+  // the table (a scene sets it: `material: {name: glass, spinning_friction: 1e-4}`).
+  double spinning_friction_m = 0.0;
 };
 
 const std::vector<Material>& materials();

@@ -33,10 +33,11 @@ Material namedMaterial(const Field& field) {
 
 Material parseMaterial(const Field& field) {
   if (!field.isMapping()) return namedMaterial(field);
-  // The table's material with the scene's own rolling friction.
-  field.expectKeys({"name", "rolling_friction"});
+  // The table's material with the scene's own rolling and spinning friction.
+  field.expectKeys({"name", "rolling_friction", "spinning_friction"});
   Material m = namedMaterial(field.at("name", "a material name (materials table)"));
   if (auto r = field.find("rolling_friction")) m.rolling_friction_m = r->number(closedRange(0.0, 0.01, "m"));
+  if (auto s = field.find("spinning_friction")) m.spinning_friction_m = s->number(closedRange(0.0, 0.01, "m"));
   return m;
 }
 
@@ -54,7 +55,7 @@ double parsePoisson(const Field& field) {
 
 Material customMaterial(const Field& field, const std::vector<Material>& earlier) {
   field.expectKeys({"name", "density", "youngs_modulus", "poisson_ratio", "rayleigh_alpha", "rayleigh_beta", "friction",
-                    "restitution", "rolling_friction"});
+                    "restitution", "rolling_friction", "spinning_friction"});
   if (field.isNull()) field.fail("missing value", "a mapping with name, density, youngs_modulus, poisson_ratio");
   Material m;
   const Field name = field.at("name", "a material name not in the materials table");
@@ -72,6 +73,7 @@ Material customMaterial(const Field& field, const std::vector<Material>& earlier
   if (auto f = field.find("friction")) m.friction = f->number(closedRange(0.0, 10.0, ""));
   if (auto f = field.find("restitution")) m.restitution = f->number(closedRange(0.0, 1.0, ""));
   if (auto f = field.find("rolling_friction")) m.rolling_friction_m = f->number(closedRange(0.0, 0.01, "m"));
+  if (auto f = field.find("spinning_friction")) m.spinning_friction_m = f->number(closedRange(0.0, 0.01, "m"));
   m.source = "scene " + field.location().file;
   return m;
 }

@@ -25,7 +25,8 @@ inline constexpr std::size_t kMaxReliefContacts = 4;
 std::size_t selectReliefContacts(std::span<const ReliefCandidate> candidates,
                                  std::array<std::size_t, kMaxReliefContacts>& chosen);
 
-// For a sphere, whose contacts are isolated points: moves each chosen candidate downhill in
+// For a sphere, whose contacts are isolated points, and a box on a bumpy relief (it rests on the
+// bumps' tops; before, it stood on its deepest point and rocked): moves each chosen candidate downhill in
 // depth, over its 8 neighbours on the candidate grid (texels `stride` apart), to the bottom of its
 // basin, unless an earlier chosen point holds that basin (then it stays: around a single contact
 // the spread points are look-ahead for a fast ball). The spread rule alone picks a fringe texel

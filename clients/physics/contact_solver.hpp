@@ -13,8 +13,26 @@
 // slower than g (tanθ − μ) / (1 + μ tanθ) (docs/physics.md).
 //
 // After each of Bullet's iterations this solver re-solves exactly those rows with the limits
-// [0, 0], which removes their accumulated impulse; everything else is Bullet's.
+// [0, 0], which removes their accumulated impulse.
+//
+// Second correction: spinning (torsional) friction without rolling friction. Bullet adds a
+// contact's spinning-friction row (a torque about the normal, at most the combined spinning
+// friction × the normal impulse) only inside `if (m_combinedRollingFriction > 0)`, so a body
+// with spinning friction and no rolling friction spun on forever (the `default` scene's marble,
+// 0.17 rad/s in a dip). convertContacts adds that row for such contacts, the same row Bullet
+// builds (addTorsionalFrictionConstraint), so the solve is the same either way.
+//
+// Third: Coulomb's disc. With SOLVER_USE_2_FRICTION_DIRECTIONS (PhysicsWorld's default) each
+// point has a row along its slip and one across it, each clamped by Bullet to +-mu N alone. After
+// each iteration the pair is kept within mu N: for a point that slides (tangential speed before
+// the solve, without gravity's impulse, above 1 mm/s) the row along the slip keeps its impulse
+// and the row across gets what is left; for a sticking point both are scaled onto the disc. One
+// row alone left the motion across the slip free (a ball on two walls crept along them at
+// 0.28 mm/s); two rows scaled together made sliding boxes up to 66 % fast (docs/physics.md).
+// Everything else is Bullet's.
 #include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
+
+#include <vector>
 
 namespace thx::phys {
 
@@ -22,19 +40,31 @@ class ContactSolver : public btSequentialImpulseConstraintSolver {
  public:
   // Friction rows released in the last solve (for tests and statistics).
   long long releasedFrictionRows() const { return released_; }
+  // Friction pairs scaled onto the disc in the last solve (for tests and statistics).
+  long long clampedFrictionPairs() const { return clamped_; }
 
   btScalar solveGroup(btCollisionObject** bodies, int num_bodies, btPersistentManifold** manifolds, int num_manifolds,
                       btTypedConstraint** constraints, int num_constraints, const btContactSolverInfo& info,
                       btIDebugDraw* debug_draw, btDispatcher* dispatcher) override;
 
  protected:
+  void convertContacts(btPersistentManifold** manifolds, int num_manifolds, const btContactSolverInfo& info) override;
   btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int num_bodies,
                                 btPersistentManifold** manifolds, int num_manifolds, btTypedConstraint** constraints,
                                 int num_constraints, const btContactSolverInfo& info,
                                 btIDebugDraw* debug_draw) override;
 
  private:
+  // Sets a row's accumulated impulse (limits [impulse, impulse], one row solve).
+  void setImpulse(btSolverConstraint& row, btScalar impulse);
+  void clampToFrictionDisc();
+
+  // A contact point slides when its tangential speed before the solve exceeds this.
+  static constexpr btScalar kSlidingSpeed = btScalar(1e-3);
+  std::vector<bool> sliding_;  // per contact row of the current solve
+
   long long released_ = 0;
+  long long clamped_ = 0;
 };
 
 }  // namespace thx::phys

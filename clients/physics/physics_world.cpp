@@ -37,6 +37,7 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   world_->setGravity(toBt(options.gravity_m_per_s2));
   world_->getSolverInfo().m_numIterations = options.solver_iterations;
   if (options.friction_along_slip) world_->getSolverInfo().m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+  if (options.friction_disc) world_->getSolverInfo().m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
   world_->setRestOptions(options.rest);
 }
 
@@ -54,6 +55,7 @@ btRigidBody& PhysicsWorld::addBody(std::unique_ptr<btCollisionShape> shape, doub
   info.m_friction = narrow(material.friction);
   info.m_restitution = narrow(material.restitution);
   info.m_rollingFriction = narrow(material.rolling_friction);
+  info.m_spinningFriction = narrow(material.spinning_friction);
   auto body = std::make_unique<btRigidBody>(info);
   // Haptic scenes: a resting object must still answer a push from the pen at once. It sleeps
   // only by our rest criterion, and a touch wakes it (textured_world.hpp); without that

@@ -35,6 +35,10 @@ struct WorldOptions {
   // Friction along the slip at any slip speed (friction_direction.hpp); false: Bullet's fixed
   // tangent below 0.35 mm/s.
   bool friction_along_slip = true;
+  // Two friction rows per contact point (along the slip and across it) whose joint impulse is
+  // kept within mu * N (Coulomb's disc, contact_solver.hpp); false: Bullet's single row along
+  // the slip, which leaves the motion across it free (a ball on two walls crept along them).
+  bool friction_disc = true;
   // Bodies at rest sleep (rest_detector.hpp); disabled: no body ever sleeps.
   RestOptions rest;
 };
@@ -43,6 +47,10 @@ struct BodyMaterial {
   double friction = 0.5;
   double restitution = 0.0;
   double rolling_friction = 0.0;
+  // Spinning (torsional) friction, a length like rolling friction: the torque about a contact's
+  // normal is at most the pair's value (Bullet's rule, delta_a * mu_b + delta_b * mu_a) times
+  // the normal force. Applied with or without rolling friction (contact_solver.hpp).
+  double spinning_friction = 0.0;
 };
 
 class PhysicsWorld {

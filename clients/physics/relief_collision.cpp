@@ -69,7 +69,11 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     snapToBasins(candidates, raster.stride, std::span(chosen.data(), n));
     for (std::size_t k = 0; k < n; ++k)
       if (k == 0 || chosen[k] != spread[k]) candidates[chosen[k]] = refineDeepest(plane.surface(), *underside, candidates[chosen[k]]);
-  } else if (n > 0 && underside->kind != Underside::Kind::Box) {
+  } else if (n > 0 && underside->kind == Underside::Kind::Box) {
+    // A box stands on the tops of the bumps under it: its spread points go to their basins'
+    // bottoms (a flat relief leaves its corners). Not refined: its faces are flat.
+    snapToBasins(candidates, raster.stride, std::span(chosen.data(), n));
+  } else if (n > 0) {
     candidates[chosen[0]] = refineDeepest(plane.surface(), *underside, candidates[chosen[0]]);
   }
 

@@ -27,6 +27,7 @@ phys::BodyMaterial materialOf(const scene::Material& m) {
   b.friction = m.friction;
   b.restitution = m.restitution;
   b.rolling_friction = m.rolling_friction_m;
+  b.spinning_friction = m.spinning_friction_m;
   return b;
 }
 

@@ -73,12 +73,12 @@ TEST_P(RestSilence, BallOnAGroovesWalls) {
 }
 
 // A dimple whose cap has the ball's radius (scenes/dimple_ball.yaml): the ball touches it
-// everywhere at once. NOT SILENT YET (docs/physics.md, "Rest", open): at 1 kHz the ball rolls in
-// place, its centre fixed to 0.01 µm but turning at 0.36 rad/s (2.3 mm/s read, 1.0 mm/s slip),
-// each step's position correction undoing the roll; at 60 Hz it bounces up to 1.2 mm into the
-// cap. More solver iterations, a lower ERP, split impulse for every penetration, no warm
-// starting and rolling friction each leave it so. It really turns, so the rest criterion
-// rightly does not call it rest. Enable when the relief contact handles conforming caps.
+// everywhere at once. NOT SILENT YET (docs/physics.md, "Known gaps"): at 1 kHz it rocks in a
+// two-step cycle (2.3 mm/s read, 0.72 mm/s slip) with a steady spin about the vertical, at 60 Hz
+// it bounces up to 1.5 mm into the cap (98 mm/s). The relief contact measures the gap three
+// ways that disagree on a conforming cap (refined points on the bilinear surface, rim texels'
+// normals, spread texels outside the rim); the rest criterion rightly calls the spin motion.
+// Enable when all of a round object's relief contacts use one consistent distance.
 double conformingDimple(double x, double y) {
   const double a = 0.004, dep = 0.002, cap = (a * a + dep * dep) / (2.0 * dep);  // 5 mm
   const double r2 = x * x + y * y;
