@@ -1,0 +1,88 @@
+// The accelerated relief search (--search maxmip: the walk over the relief's max-mipmap) against
+// the exact CPU reference (clients/visual/cpu_reference.hpp), as test_relief_reference.cpp does
+// for the linear search: the fraction of pixels whose hit lands on another texel than the
+// reference's and the mean intensity error in 8-bit LSB, for steep, oblique and grazing views of
+// the bricks and a box step, with self-shadowing, and thin walls that a coarse linear search
+// steps over. The bounds are the values measured with Mesa 22.3.6 llvmpipe plus a margin.
+#include "tests/visual/visual_fixture.hpp"
+
+namespace thx::visual::testing {
+namespace {
+
+struct View {
+  const char* name;
+  double elevation_deg;
+  double azimuth_deg;
+};
+constexpr View kSteep{"steep", 70, -100};
+constexpr View kOblique{"oblique", 40, -60};
+constexpr View kGrazing{"grazing", 15, -80};
+
+constexpr ReliefSteps kMaxMip{16, 6, 0, ReliefSearch::MaxMip};
+constexpr ReliefSteps kMaxMipShadows{16, 6, 8, ReliefSearch::MaxMip};
+
+PixelStats run(const OwnedSurface& s, const View& view, double distance_m, ReliefSteps steps) {
+  RenderSettings settings = referenceLighting(SurfaceMode::Relief);
+  settings.steps = steps;
+  CameraPlacement camera;
+  camera.elevation_deg = view.elevation_deg;
+  camera.azimuth_deg = view.azimuth_deg;
+  camera.distance_m = distance_m;
+  const PixelStats stats = compareWithReference(s.surface, settings, camera);
+  std::printf("%-6s %-8s shadows %d: %5d px, other texel %.4f, mean %.3f LSB, max %3d LSB\n",
+              steps.search == ReliefSearch::MaxMip ? "maxmip" : "linear", view.name, steps.shadow > 0,
+              stats.compared, stats.otherTexelFraction(), stats.meanError(), stats.max_error);
+  EXPECT_GT(stats.compared, kImageSide * kImageSide / 8) << view.name;
+  return stats;
+}
+
+void expectWithin(const PixelStats& stats, double other_texel_fraction, double mean_lsb, const char* what) {
+  EXPECT_LE(stats.otherTexelFraction(), other_texel_fraction) << what;
+  EXPECT_LE(stats.meanError(), mean_lsb) << what;
+}
+
+// Walls one texel thick and `max` deep on a floor, every `period` rows: rows of thin ridges
+// across a grazing view (the bilinear surface makes each a tent two cells wide).
+OwnedSurface thinWalls(int texels, int period, double size_m, double depth_m) {
+  tex::HeightField h(texels, texels, -depth_m);
+  for (int j = 0; j < texels; j += period)
+    for (int i = 0; i < texels; ++i) h.at(i, j) = 0.0;
+  tex::ReliefFromHeightOptions o;
+  o.texel_m = Eigen::Vector2d::Constant(size_m / texels);
+  o.address = tex::Address::Wrap;
+  return place(tex::reliefFromHeight(h, o), size_m);
+}
+
+TEST(VisualReliefMaxMip, BricksFromThreeViews) {
+  const OwnedSurface s = generated("bricks", 128, {});
+  expectWithin(run(s, kSteep, 0.08, kMaxMip), 0.0005, 0.02, "steep");
+  expectWithin(run(s, kOblique, 0.08, kMaxMip), 0.0005, 0.02, "oblique");
+  expectWithin(run(s, kGrazing, 0.08, kMaxMip), 0.0005, 0.02, "grazing");
+}
+
+TEST(VisualReliefMaxMip, BricksWithSelfShadowing) {
+  const OwnedSurface s = generated("bricks", 128, {});
+  expectWithin(run(s, kOblique, 0.08, kMaxMipShadows), 0.0005, 0.5, "oblique, shadows");
+  expectWithin(run(s, kGrazing, 0.08, kMaxMipShadows), 0.0005, 0.5, "grazing, shadows");
+}
+
+TEST(VisualReliefMaxMip, BoxStepFromThreeViews) {
+  const OwnedSurface s = boxStep(64, 24, 0.05, 0.001);
+  expectWithin(run(s, kSteep, 0.06, kMaxMip), 0.0005, 0.02, "steep");
+  expectWithin(run(s, kOblique, 0.06, kMaxMip), 0.0005, 0.02, "oblique");
+  expectWithin(run(s, kGrazing, 0.06, kMaxMipShadows), 0.0005, 0.5, "grazing, shadows");
+}
+
+TEST(VisualReliefMaxMip, ThinWallsAreNeverSteppedOver) {
+  // 0.2 mm texels, 1 mm deep: at 15 degrees 8 linear steps move 0.7 mm sideways each, more than
+  // a wall's tent (0.4 mm), so the linear search runs through walls; the walk cannot.
+  const OwnedSurface s = thinWalls(128, 8, 0.025, 0.001);
+  const PixelStats linear = run(s, kGrazing, 0.03, {8, 6, 0});
+  const PixelStats maxmip = run(s, kGrazing, 0.03, kMaxMip);
+  EXPECT_GT(linear.otherTexelFraction(), 0.01) << "the case must defeat the linear search";
+  expectWithin(maxmip, 0.0005, 0.02, "thin walls, grazing");
+  expectWithin(run(s, kOblique, 0.03, kMaxMipShadows), 0.0005, 0.5, "thin walls, oblique, shadows");
+}
+
+}  // namespace
+}  // namespace thx::visual::testing
