@@ -57,6 +57,8 @@ void SurfaceRenderer::draw(const Camera& camera) const {
     glUniform1i(p.uniform("u_maxmip"), 2);
     glUniform1i(p.uniform("u_maxmip_top"), maxmip_->topLevel());
     glUniform2i(p.uniform("u_maxmip_cells"), maxmip_->cells_x, maxmip_->cells_y);
+    const auto pow2 = [](int n) { return (n & (n - 1)) == 0; };
+    glUniform1i(p.uniform("u_maxmip_pow2"), pow2(maxmip_->cells_x) && pow2(maxmip_->cells_y));
     glUniform1f(p.uniform("u_grid_shift"), (maxmip_->between_centres ? 0.5f : 0.0f) - float(maxmip_->offset));
   }
   mesh_->draw();

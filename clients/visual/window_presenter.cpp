@@ -1,6 +1,7 @@
 #include "clients/visual/window_presenter.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -100,7 +101,10 @@ int runWindow(const tex::TexturedSurface& first_surface, RenderSettings settings
   int frames = 0;
   {
     auto renderer = std::make_unique<FrameRenderer>(*surface, state.settings, options.width, options.height);
-    while (!glfwWindowShouldClose(window.get())) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    while (!glfwWindowShouldClose(window.get()) && !(options.max_seconds > 0 && elapsed() >= options.max_seconds) &&
+           !(options.stop && options.stop())) {
       if (options.live_update) {
         const WindowOptions::LiveChange change = options.live_update(objects, surface);
         if (change != WindowOptions::LiveChange::Same) state.dirty = true;

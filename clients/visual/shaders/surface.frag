@@ -131,6 +131,7 @@ uniform sampler2D u_maxmip;      // RGBA32F (max_mipmap.hpp)
 uniform int u_maxmip_top;        // the coarsest level
 uniform ivec2 u_maxmip_cells;    // real level-0 cells
 uniform float u_grid_shift;      // texel coordinates - u_grid_shift = m
+uniform bool u_maxmip_pow2;      // both sides of level 0 are powers of two
 const int kMaxMipIterations = 400;
 
 vec2 gridOfLocal(vec2 xy) {
@@ -145,7 +146,8 @@ vec4 boxDepths(ivec2 k, int level) {
   ivec2 n;
   if (u_wrap) {
     n = u_maxmip_cells >> level;
-    k -= n * ivec2(floor(vec2(k) / vec2(n)));
+    // Powers of two (the shipped maps): a mask; else the floor division.
+    k = u_maxmip_pow2 ? (k & (n - 1)) : k - n * ivec2(floor(vec2(k) / vec2(n)));
   } else {
     n = (u_maxmip_cells + (1 << level) - 1) >> level;
     k = clamp(k, ivec2(0), n - 1);
@@ -193,7 +195,7 @@ float walkMaxMip(vec2 m0, vec2 dm, float h0, float slope, float s_begin, float s
   float s = s_begin;
   for (int it = 0; it < kMaxMipIterations; ++it) {
     float size = float(1 << level);
-    ivec2 k = ivec2(floor((m0 + dm * s + nudge) / size));
+    ivec2 k = ivec2(floor((m0 + dm * s + nudge) * (1.0 / size)));
     vec2 leave = ((vec2(k) + upper) * size - m0) * inv_dm;
     float s_exit = min(min(leave.x, leave.y), s_end);
     vec4 z = boxDepths(k, level);
