@@ -250,12 +250,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  thx::bench::exitOnHelp(argc, argv, kHelp);
-  try {
-    return run(argc, argv);
-  } catch (const thx::Error& e) {
-    std::fprintf(stderr, "bench_visual: %s\n", e.what());
-    return thx::exitStatus(e);
-  }
-}
+int main(int argc, char** argv) { return thx::bench::benchMain(argc, argv, kHelp, "bench_visual", run); }

@@ -9,33 +9,13 @@
 namespace thx::visual::testing {
 namespace {
 
-struct View {
-  const char* name;
-  double elevation_deg;
-  double azimuth_deg;
-};
-constexpr View kSteep{"steep", 70, -100};
-constexpr View kOblique{"oblique", 40, -60};
-constexpr View kGrazing{"grazing", 15, -80};
-
 struct Bound {
   double other_texel_fraction;
   double mean_lsb;
 };
 
 PixelStats run(const OwnedSurface& s, const View& view, double distance_m, ReliefSteps steps) {
-  RenderSettings settings = referenceLighting(SurfaceMode::Relief);
-  settings.steps = steps;
-  CameraPlacement camera;
-  camera.elevation_deg = view.elevation_deg;
-  camera.azimuth_deg = view.azimuth_deg;
-  camera.distance_m = distance_m;
-  const PixelStats stats = compareWithReference(s.surface, settings, camera);
-  std::printf("relief %-8s %2d+%d shadow %2d: %5d px, other texel %.4f, mean %.3f LSB, max %3d LSB\n", view.name,
-              steps.linear, steps.binary, steps.shadow, stats.compared, stats.otherTexelFraction(), stats.meanError(),
-              stats.max_error);
-  EXPECT_GT(stats.compared, kImageSide * kImageSide / 8) << view.name;
-  return stats;
+  return reliefAgainstReference(s.surface, view, distance_m, steps);
 }
 
 void expectWithin(const PixelStats& stats, const Bound& bound, const char* what) {
