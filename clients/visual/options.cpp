@@ -41,7 +41,7 @@ Output:
                          (--frames N: at most N)
   --rate HZ              --replay-log frames per recorded second (default 30)
   --window               a window (needs an X display, e.g. xvfb-run -a); keys: N/R/M mode,
-                         S shadows, arrows camera, +/- distance, Esc/Q close
+                         S shadows, X relief search, arrows camera, +/- distance, Esc/Q close
   --window-frames N      close the window after N drawn frames
   --window-screenshot F  with --window-frames: save the window's last frame (read from the window)
   --format png|ppm       frame files with --frames (default png)

@@ -51,6 +51,11 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods
       s->settings.steps.shadow = s->settings.steps.shadow > 0 ? 0 : s->shadow_steps_when_on;
       s->rebuild = true;
       break;
+    case GLFW_KEY_X:  // relief's search: linear <-> max-mipmap walk
+      s->settings.steps.search =
+          s->settings.steps.search == ReliefSearch::Linear ? ReliefSearch::MaxMip : ReliefSearch::Linear;
+      s->rebuild = true;
+      break;
     case GLFW_KEY_LEFT: s->camera.azimuth_deg -= 5; break;
     case GLFW_KEY_RIGHT: s->camera.azimuth_deg += 5; break;
     case GLFW_KEY_UP: s->camera.elevation_deg = std::min(90.0, s->camera.elevation_deg + 5); break;
@@ -131,8 +136,12 @@ int runWindow(const tex::TexturedSurface& first_surface, RenderSettings settings
         state.dirty = options.max_frames > 0;
         ++frames;
         if (!options.quiet)
-          std::fprintf(stderr, "\rvisual-client: %s, shadows %s, azimuth %.0f, elevation %.0f   ",
-                       modeName(state.settings).c_str(), state.settings.steps.shadow > 0 ? "on" : "off",
+          std::fprintf(stderr, "\rvisual-client: %s%s, shadows %s, azimuth %.0f, elevation %.0f   ",
+                       modeName(state.settings).c_str(),
+                       state.settings.mode == SurfaceMode::Relief && state.settings.steps.search == ReliefSearch::MaxMip
+                           ? " (maxmip)"
+                           : "",
+                       state.settings.steps.shadow > 0 ? "on" : "off",
                        state.camera.azimuth_deg, state.camera.elevation_deg);
         if (options.max_frames > 0 && frames >= options.max_frames) break;
       }

@@ -1,7 +1,7 @@
 #pragma once
 // The second presenter: a GLFW window (a real X server or Xvfb) showing the framebuffer the one
 // render path fills (blit, then swap). Keys: N / R / M switch normal / relief / mesh, S toggles
-// self-shadowing, arrows turn the camera (azimuth, elevation), + / - move it nearer / farther,
+// self-shadowing, X relief's search (linear / maxmip), arrows turn the camera (azimuth, elevation), + / - move it nearer / farther,
 // Esc or Q closes. A frame is drawn only when something changed.
 #include <functional>
 #include <string>
