@@ -252,13 +252,15 @@ void main() {
 #ifdef SEARCH_MAXMIP
   float depth = intersectMaxMip(v_local.xy, xy_per_depth);
   vec3 hit = vec3(v_local.xy + xy_per_depth * depth, -depth);
-  float lit = lightReachesMaxMip(hit);
+  vec3 n = normalAt(hit.xy);
+  // A point facing away from the light is in its own shadow: no walk towards the light.
+  float lit = dot(n, u_light_local) > 0.0 ? lightReachesMaxMip(hit) : 0.0;
 #else
   float depth = intersectRelief(v_local.xy, xy_per_depth);
   vec3 hit = vec3(v_local.xy + xy_per_depth * depth, -depth);
   float lit = lightReaches(hit);
-#endif
   vec3 n = normalAt(hit.xy);
+#endif
   o_colour = vec4(shade(n, view_dir, lit), 1.0);
   vec4 clip = u_plane_to_clip * vec4(hit, 1.0);
   // Objects and the pen tip sit in the grooves: the depth buffer gets the relief, not the plane.
