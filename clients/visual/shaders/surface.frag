@@ -234,9 +234,10 @@ float lightReachesMaxMip(vec3 hit) {
   if (u_shadow_steps <= 0 || hit.z >= 0.0 || u_light_local.z <= 0.0) return 1.0;
   vec2 dm = u_light_local.xy / u_light_local.z * u_max_depth * gridPerLocal();
   float h0 = -hit.z / u_max_depth;
-  // From just above the hit (1e-4 of the maximum depth along the light, as the CPU reference)
-  // until the ray rises out of the relief.
-  float s0 = 1e-4 * u_light_local.z;
+  // From just above the hit until the ray rises out of the relief. 1e-3 of the maximum depth
+  // along the light (the CPU reference, in double: 1e-4): the float hit can land that far below
+  // the surface, and its own cell then shadows it (isolated dark pixels on the pebbles).
+  float s0 = 1e-3 * u_light_local.z;
   if (s0 >= h0) return 1.0;
   return walkMaxMip(gridOfLocal(hit.xy), dm, h0, -1.0, s0, h0) >= 0.0 ? 0.0 : 1.0;
 }
