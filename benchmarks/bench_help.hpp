@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <string_view>
 
+#include "base/error.hpp"
+
 namespace thx::bench {
 
 inline void exitOnHelp(int argc, char** argv, const char* text) {
@@ -14,6 +16,18 @@ inline void exitOnHelp(int argc, char** argv, const char* text) {
       std::fputs(text, stdout);
       std::exit(0);
     }
+  }
+}
+
+// A benchmark's main(): --help, then run(argc, argv); a thx::Error is printed as "NAME: what" and
+// gives the exit status (2 for usage, 1 otherwise).
+inline int benchMain(int argc, char** argv, const char* help, const char* name, int (*run)(int, char**)) {
+  exitOnHelp(argc, argv, help);
+  try {
+    return run(argc, argv);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: %s\n", name, e.what());
+    return exitStatus(e);
   }
 }
 

@@ -13,6 +13,9 @@
 #              or load (hapticd's full-force share beside stress-ng and cyclictest, old and new
 #              missed-tick policy; THX_LOAD_SECONDS per run (25), THX_LOAD_LOADS (none,cpu2,cpu2+vm),
 #              THX_LOAD_ROUNDS (1); about 3 min a round; needs stress-ng, Debian stress-ng, in setup.sh)
+#              or visual_servo (hapticd's wake latency alone and beside visual-client --live, servo
+#              SCHED_FIFO and normal, LP_NUM_THREADS 2 and 1; THX_VISUAL_SERVO_SECONDS per run (20);
+#              about 2.5 min; needs xvfb-run and setpriv; its table goes to docs/visual.md)
 #
 # The clients part also sweeps the number of clients (issue 17): 1, 2, 4, 8, 16, 32, 64 clients
 # (THX_CLIENTS_SWEEP), for the workloads "mixed" (1/4 of the clients batched CONTACT at 1 kHz, the
@@ -218,16 +221,25 @@ run_visual() {
   splice bench_visual "$WORK/bench_visual.md" "$ROOT/docs/visual.md"
 }
 
+run_visual_servo() {
+  need "$BIN/bench_visual_servo" && need "$HAPTICD" && need "$BUILD/clients/visual/visual-client" || return 1
+  say "part visual_servo: hapticd's wake latency alone and beside visual-client --live (6 runs of ${THX_VISUAL_SERVO_SECONDS:-20} s)"
+  "$BIN/bench_visual_servo" --hapticd "$HAPTICD" --visual-client "$BUILD/clients/visual/visual-client" \
+    --seconds "${THX_VISUAL_SERVO_SECONDS:-20}" --workdir "$WORK" --json "$RESULTS/bench_visual_servo.json" \
+    --csv "$RESULTS/bench_visual_servo.csv" --md "$WORK/bench_visual_servo.md" || return 1
+  splice bench_visual_servo "$WORK/bench_visual_servo.md" "$ROOT/docs/visual.md"
+}
+
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | physics | visual | audio | audio-live | load)
+    render | force_error | memory | latency | clients | physics | visual | visual_servo | audio | audio-live | load)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients physics visual audio audio-live load)"
+      say "unknown part '$part' (expected: render force_error memory latency clients physics visual visual_servo audio audio-live load)"
       exit 2
       ;;
   esac

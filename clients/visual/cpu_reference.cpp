@@ -122,9 +122,11 @@ std::optional<ReferenceHit> referenceHit(const tex::TexturedSurface& surface, co
     const Eigen::Vector3d exit = entry + dir * (max_depth / -dir.z());
     const std::optional<double> f = firstReliefCrossing(surface, entry, exit);
     hit.p_local = entry + (exit - entry) * f.value_or(1.0);
-    if (light.shadows && l.z() > 0 && hit.p_local.z() < 0) {
+    const Eigen::Vector3d from = hit.p_local + l * (max_depth * 1e-4);
+    // A hit whose start point is already above the plane is lit: nothing of the relief rises
+    // above z = 0 (a hit on a plateau at depth 0 lands a rounding error below it).
+    if (light.shadows && l.z() > 0 && from.z() < 0) {
       // From just above the hit towards the light, until the ray rises out of the relief.
-      const Eigen::Vector3d from = hit.p_local + l * (max_depth * 1e-4);
       const Eigen::Vector3d to = hit.p_local + l * (-hit.p_local.z() / l.z());
       hit.shadowed = firstReliefCrossing(surface, from, to).has_value();
     }

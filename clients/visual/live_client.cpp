@@ -10,6 +10,7 @@
 #include "clients/visual/live_feed.hpp"
 #include "clients/visual/scene_objects.hpp"
 #include "clients/visual/window_presenter.hpp"
+#include "thx_client/stop_signal.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_surface.hpp"
 #include "textures/smoothing.hpp"
@@ -116,7 +117,9 @@ int liveWindow(const Options& o, LiveFeed& feed, std::unique_ptr<LoadedScene> lo
   LiveCounts counts;
   std::optional<LiveView> last;
   std::unique_ptr<LoadedScene> previous;  // the window's renderer reads it until it rebuilds on the next
-  WindowOptions w{o.width, o.height, o.window_frames, o.quiet, o.window_screenshot, {}, o.replay_rate_hz};
+  WindowOptions w{o.width, o.height, o.window_frames, o.duration_s, o.quiet, o.window_screenshot, {}, o.replay_rate_hz, {}};
+  client::installStopSignals();
+  w.stop = [] { return client::stopRequested(); };
   if (connected) {
     w.live_update = [&](std::vector<ObjectInstance>& objects, const tex::TexturedSurface*& surface) {
       ++counts.steps;

@@ -1,6 +1,7 @@
 #include "clients/visual/object_renderer.hpp"
 
 #include "clients/visual/gl_error.hpp"
+#include "clients/visual/glyphs.hpp"
 #include "clients/visual/shader_sources.hpp"
 
 namespace thx::visual {
@@ -29,6 +30,12 @@ void ObjectRenderer::draw(const std::vector<ObjectInstance>& objects, const Came
     glUniformMatrix4fv(p.uniform("u_model"), 1, GL_FALSE, model.data());
     glUniformMatrix3fv(p.uniform("u_normal_matrix"), 1, GL_FALSE, normal_matrix.data());
     glUniform3fv(p.uniform("u_albedo"), 1, o.albedo.data());
+    const std::optional<Glyph> glyph = o.shape == UnitShape::Box && o.letter ? glyph5x7(o.letter) : std::nullopt;
+    GLint rows[7] = {0, 0, 0, 0, 0, 0, 0};
+    if (glyph)
+      for (int r = 0; r < 7; ++r) rows[r] = (*glyph)[std::size_t(r)];
+    glUniform1i(p.uniform("u_has_glyph"), glyph.has_value());
+    glUniform1iv(p.uniform("u_glyph"), 7, rows);
     switch (o.shape) {
       case UnitShape::Sphere: sphere_->draw(); break;
       case UnitShape::Box: box_->draw(); break;

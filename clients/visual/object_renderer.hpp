@@ -18,6 +18,7 @@ struct ObjectInstance {
   UnitShape shape = UnitShape::Sphere;
   Eigen::Affine3d model = Eigen::Affine3d::Identity();  // unit shape -> world (includes scale)
   Eigen::Vector3f albedo{0.8f, 0.8f, 0.8f};
+  char letter = 0;  // a letter block (box): this glyph (glyphs.hpp) on its ±z faces; 0 = none
 };
 
 class ObjectRenderer {

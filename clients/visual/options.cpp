@@ -41,7 +41,7 @@ Output:
                          (--frames N: at most N)
   --rate HZ              --replay-log frames per recorded second (default 30)
   --window               a window (needs an X display, e.g. xvfb-run -a); keys: N/R/M mode,
-                         S shadows, arrows camera, +/- distance, Esc/Q close
+                         S shadows, X relief search, arrows camera, +/- distance, Esc/Q close
   --window-frames N      close the window after N drawn frames
   --window-screenshot F  with --window-frames: save the window's last frame (read from the window)
   --format png|ppm       frame files with --frames (default png)
@@ -58,6 +58,10 @@ Surface:
   --binary-steps N       relief: binary refinement halvings (default 6, 0..32)
   --shadow-steps N       relief: samples towards the light (default 8, 0..1024)
   --no-shadows           relief: no self-shadowing (same as --shadow-steps 0)
+  --search S             relief: linear (default: the linear + binary search above) or maxmip
+                           (walks the relief's max-mipmap, built at load: the exact hit, never
+                           stepping over a thin wall; shadows by the same walk towards the light,
+                           on unless --no-shadows; the step counts are not used)
 
 Camera and light (angles in the plane's frame):
   --elevation DEG        camera above the plane (default 35, 1..90)
@@ -124,6 +128,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (a == "--binary-steps") o.render.steps.binary = int(cli::parseInteger(a, value(), 0, 32));
     else if (a == "--shadow-steps") o.render.steps.shadow = int(cli::parseInteger(a, value(), 0, 1024));
     else if (a == "--no-shadows") o.render.steps.shadow = 0;
+    else if (a == "--search") o.render.steps.search = parseSearch(a, value());
     else if (a == "--elevation") o.camera.elevation_deg = cli::parseNumber(a, value(), {1, 90, false, "deg"});
     else if (a == "--azimuth") o.camera.azimuth_deg = cli::parseNumber(a, value(), {-360, 360, false, "deg"});
     else if (a == "--distance") o.camera.distance_m = cli::parseNumber(a, value(), {0, 100, true, "m"}), o.distance_given = true;

@@ -35,4 +35,10 @@ std::string modeName(const RenderSettings& settings) {
   return "?";
 }
 
+ReliefSearch parseSearch(const std::string& option, const std::string& text) {
+  if (text == "linear") return ReliefSearch::Linear;
+  if (text == "maxmip") return ReliefSearch::MaxMip;
+  throw UsageError(option + ": expected linear or maxmip, got '" + text + "'");
+}
+
 }  // namespace thx::visual

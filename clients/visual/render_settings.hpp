@@ -8,10 +8,15 @@ namespace thx::visual {
 
 enum class SurfaceMode { Normal, Relief, Mesh };
 
+// How relief mode finds the view ray's hit: a linear then binary search with fixed step counts,
+// or the walk over the max-mipmap (max_mipmap.hpp), exact and never skipping a thin wall.
+enum class ReliefSearch { Linear, MaxMip };
+
 struct ReliefSteps {
   int linear = 16;  // samples from the plane down to the maximum depth
   int binary = 6;   // halvings of the last interval
-  int shadow = 8;   // samples towards the light; 0 = no self-shadowing
+  int shadow = 8;   // samples towards the light; 0 = no self-shadowing (maxmip: > 0 = shadows)
+  ReliefSearch search = ReliefSearch::Linear;
 };
 
 struct Lighting {
@@ -36,5 +41,7 @@ Eigen::Vector3d lightDirectionLocal(const Lighting& light);
 // "normal", "relief", "mesh:N" (N in [1, 4096]); UsageError naming `option` and the value otherwise.
 void parseMode(const std::string& option, const std::string& text, RenderSettings& settings);
 std::string modeName(const RenderSettings& settings);
+// "linear" or "maxmip"; UsageError naming `option` and the value otherwise.
+ReliefSearch parseSearch(const std::string& option, const std::string& text);
 
 }  // namespace thx::visual

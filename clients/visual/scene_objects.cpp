@@ -1,5 +1,6 @@
 #include "clients/visual/scene_objects.hpp"
 
+#include "clients/visual/glyphs.hpp"
 #include "scenes/scene_frames.hpp"
 
 namespace thx::visual {
@@ -42,7 +43,10 @@ std::vector<ObjectInstance> objectsAt(const scene::Scene& scene, const std::vect
       case scene::Shape::Sphere:
         out.push_back(instance(UnitShape::Sphere, pose, Eigen::Vector3d::Constant(o.radius_m), albedo));
         break;
-      case scene::Shape::Box: out.push_back(instance(UnitShape::Box, pose, o.size_m, albedo)); break;
+      case scene::Shape::Box:
+        out.push_back(instance(UnitShape::Box, pose, o.size_m, albedo));
+        out.back().letter = blockLetter(o.name);
+        break;
       case scene::Shape::Cylinder:
         out.push_back(instance(UnitShape::Cylinder, pose, {o.radius_m, o.radius_m, o.length_m}, albedo));
         break;

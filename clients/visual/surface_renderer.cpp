@@ -10,9 +10,15 @@ SurfaceRenderer::SurfaceRenderer(const tex::TexturedSurface& surface, const Rend
   std::vector<std::string> defines;
   if (settings.mode == SurfaceMode::Relief) defines.push_back("MODE_RELIEF");
   if (settings.mode == SurfaceMode::Mesh) defines.push_back("MODE_MESH");
+  const bool maxmip = settings.mode == SurfaceMode::Relief && settings.steps.search == ReliefSearch::MaxMip;
+  if (maxmip) defines.push_back("SEARCH_MAXMIP");
   program_ = std::make_unique<ShaderProgram>(embeddedShader("surface.vert"),
                                              withDefines(embeddedShader("surface.frag"), defines));
   texture_ = std::make_unique<SurfaceTexture>(surface.map(), surface.sampling());
+  if (maxmip) {
+    maxmip_ = std::make_unique<MaxMipmap>(buildMaxMipmap(surface.map(), surface.sampling()));
+    maxmip_texture_ = std::make_unique<MaxMipmapTexture>(*maxmip_);
+  }
   mesh_ = std::make_unique<GpuMesh>(settings.mode == SurfaceMode::Mesh ? displacedGrid(surface, settings.mesh_n)
                                                                        : planeQuad(surface.mapping().size_m));
 }
@@ -46,6 +52,15 @@ void SurfaceRenderer::draw(const Camera& camera) const {
   glUniform1i(p.uniform("u_linear_steps"), settings_.steps.linear);
   glUniform1i(p.uniform("u_binary_steps"), settings_.steps.binary);
   glUniform1i(p.uniform("u_shadow_steps"), settings_.steps.shadow);
+  if (maxmip_) {
+    maxmip_texture_->bind(GL_TEXTURE2);
+    glUniform1i(p.uniform("u_maxmip"), 2);
+    glUniform1i(p.uniform("u_maxmip_top"), maxmip_->topLevel());
+    glUniform2i(p.uniform("u_maxmip_cells"), maxmip_->cells_x, maxmip_->cells_y);
+    const auto pow2 = [](int n) { return (n & (n - 1)) == 0; };
+    glUniform1i(p.uniform("u_maxmip_pow2"), pow2(maxmip_->cells_x) && pow2(maxmip_->cells_y));
+    glUniform1f(p.uniform("u_grid_shift"), (maxmip_->between_centres ? 0.5f : 0.0f) - float(maxmip_->offset));
+  }
   mesh_->draw();
   checkGl("SurfaceRenderer::draw");
 }

@@ -24,6 +24,8 @@ class SurfaceRenderer {
   RenderSettings settings_;
   std::unique_ptr<ShaderProgram> program_;
   std::unique_ptr<SurfaceTexture> texture_;
+  std::unique_ptr<MaxMipmap> maxmip_;  // relief with --search maxmip only
+  std::unique_ptr<MaxMipmapTexture> maxmip_texture_;
   std::unique_ptr<GpuMesh> mesh_;
 };
 

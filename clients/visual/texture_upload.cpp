@@ -49,4 +49,26 @@ void SurfaceTexture::bind(GLenum texels_unit, GLenum depths_unit) const {
   glBindTexture(GL_TEXTURE_2D, depths_);
 }
 
+MaxMipmapTexture::MaxMipmapTexture(const MaxMipmap& mipmap) {
+  glGenTextures(1, &texture_);
+  glBindTexture(GL_TEXTURE_2D, texture_);
+  for (int level = 0; level <= mipmap.topLevel(); ++level) {
+    const MaxMipmapLevel& l = mipmap.levels[std::size_t(level)];
+    glTexImage2D(GL_TEXTURE_2D, level, GL_RGBA32F, l.width, l.height, 0, GL_RGBA, GL_FLOAT, l.depths.data());
+  }
+  // Read only with texelFetch; the parameters make the chain complete.
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, mipmap.topLevel());
+  checkGl("MaxMipmapTexture()");
+}
+
+MaxMipmapTexture::~MaxMipmapTexture() { glDeleteTextures(1, &texture_); }
+
+void MaxMipmapTexture::bind(GLenum unit) const {
+  glActiveTexture(unit);
+  glBindTexture(GL_TEXTURE_2D, texture_);
+}
+
 }  // namespace thx::visual

@@ -5,6 +5,7 @@
 // Beside it, the depth alone (R32F) filtered by the sampler as the scene samples (bilinear or
 // nearest, wrap or clamp): the relief search's one fetch per sample.
 #include "clients/visual/gl_api.hpp"
+#include "clients/visual/max_mipmap.hpp"
 #include "textures/sampling.hpp"
 #include "textures/texture_map.hpp"
 
@@ -20,6 +21,20 @@ class SurfaceTexture {
 
  private:
   GLuint texture_ = 0, depths_ = 0;
+};
+
+// The max-mipmap (max_mipmap.hpp) as one RGBA32F texture with its levels as GL mip levels, read
+// with texelFetch(level) by the accelerated relief search.
+class MaxMipmapTexture {
+ public:
+  explicit MaxMipmapTexture(const MaxMipmap& mipmap);
+  ~MaxMipmapTexture();
+  MaxMipmapTexture(const MaxMipmapTexture&) = delete;
+  MaxMipmapTexture& operator=(const MaxMipmapTexture&) = delete;
+  void bind(GLenum unit) const;
+
+ private:
+  GLuint texture_ = 0;
 };
 
 }  // namespace thx::visual

@@ -70,7 +70,7 @@ int run(const Options& o) {
 
   if (o.window) {
     const int drawn = runWindow(surface.surface, o.render, placement, objects,
-                                {o.width, o.height, o.window_frames, o.quiet, o.window_screenshot, {}, 30.0});
+                                {o.width, o.height, o.window_frames, 0.0, o.quiet, o.window_screenshot, {}, 30.0, {}});
     if (!o.quiet) std::fprintf(stderr, "visual-client: window closed after %d frames\n", drawn);
     return 0;
   }

@@ -1,6 +1,7 @@
 #include "clients/visual/window_presenter.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -48,6 +49,11 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods
     case GLFW_KEY_M: mode(SurfaceMode::Mesh); break;
     case GLFW_KEY_S:
       s->settings.steps.shadow = s->settings.steps.shadow > 0 ? 0 : s->shadow_steps_when_on;
+      s->rebuild = true;
+      break;
+    case GLFW_KEY_X:  // relief's search: linear <-> max-mipmap walk
+      s->settings.steps.search =
+          s->settings.steps.search == ReliefSearch::Linear ? ReliefSearch::MaxMip : ReliefSearch::Linear;
       s->rebuild = true;
       break;
     case GLFW_KEY_LEFT: s->camera.azimuth_deg -= 5; break;
@@ -100,7 +106,10 @@ int runWindow(const tex::TexturedSurface& first_surface, RenderSettings settings
   int frames = 0;
   {
     auto renderer = std::make_unique<FrameRenderer>(*surface, state.settings, options.width, options.height);
-    while (!glfwWindowShouldClose(window.get())) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    while (!glfwWindowShouldClose(window.get()) && !(options.max_seconds > 0 && elapsed() >= options.max_seconds) &&
+           !(options.stop && options.stop())) {
       if (options.live_update) {
         const WindowOptions::LiveChange change = options.live_update(objects, surface);
         if (change != WindowOptions::LiveChange::Same) state.dirty = true;
@@ -127,8 +136,12 @@ int runWindow(const tex::TexturedSurface& first_surface, RenderSettings settings
         state.dirty = options.max_frames > 0;
         ++frames;
         if (!options.quiet)
-          std::fprintf(stderr, "\rvisual-client: %s, shadows %s, azimuth %.0f, elevation %.0f   ",
-                       modeName(state.settings).c_str(), state.settings.steps.shadow > 0 ? "on" : "off",
+          std::fprintf(stderr, "\rvisual-client: %s%s, shadows %s, azimuth %.0f, elevation %.0f   ",
+                       modeName(state.settings).c_str(),
+                       state.settings.mode == SurfaceMode::Relief && state.settings.steps.search == ReliefSearch::MaxMip
+                           ? " (maxmip)"
+                           : "",
+                       state.settings.steps.shadow > 0 ? "on" : "off",
                        state.camera.azimuth_deg, state.camera.elevation_deg);
         if (options.max_frames > 0 && frames >= options.max_frames) break;
       }

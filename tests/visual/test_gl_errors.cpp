@@ -76,6 +76,10 @@ TEST(VisualGlErrors, CommandLineMistakesNameOptionAndValue) {
   EXPECT_EQ(parse({"--scene", "s.yaml", "--frames", "3"}), "--frames N needs --out DIR");
   EXPECT_EQ(parse({"--scene", "s.yaml", "--screenshot", "x.png", "--size", "640"}),
             "--size: expected WxH in pixels, e.g. 640x360, got '640'");
+  EXPECT_EQ(parse({"--scene", "s.yaml", "--screenshot", "x.png", "--search", "cone"}),
+            "--search: expected linear or maxmip, got 'cone'");
+  EXPECT_EQ(parseOptions({"--scene", "s.yaml", "--screenshot", "x.png", "--search", "maxmip"}).render.steps.search,
+            ReliefSearch::MaxMip);
   const Options ok = parseOptions({"--scene", "s.yaml", "--frames", "4", "--out", "d", "--mode", "mesh:64"});
   EXPECT_EQ(ok.render.mode, SurfaceMode::Mesh);
   EXPECT_EQ(ok.render.mesh_n, 64);

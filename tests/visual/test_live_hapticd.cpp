@@ -5,6 +5,9 @@
 // counted its frames; how many are drawn or skipped is the machine's business.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <set>
+
 #include "tests/support/hapticd_harness.hpp"
 #include "thx_client/app.hpp"
 
@@ -56,7 +59,19 @@ TEST_F(VisualLiveHapticd, InAWindowUnderXvfb) {
   const std::string err = slurp(path("window.err"));
   EXPECT_NE(err.find("visual-client: live from"), std::string::npos) << err;
   EXPECT_NE(err.find("window closed after 5 frames"), std::string::npos) << err;
-  EXPECT_EQ(slurp(path("window.ppm")).size(), std::size_t(14 + 160 * 90 * 3));  // "P6\n160 90\n255\n" + RGB
+  const std::string ppm = slurp(path("window.ppm"));
+  ASSERT_EQ(ppm.size(), std::size_t(14 + 160 * 90 * 3));  // "P6\n160 90\n255\n" + RGB
+  // Content, not a blank window: many pixels show the lit plane (not the clear colour, 20 23 28)
+  // and the shading varies across it.
+  int plane = 0;
+  std::set<int> shades;
+  for (std::size_t p = 14; p + 2 < ppm.size(); p += 3) {
+    const int r = (unsigned char)ppm[p], g = (unsigned char)ppm[p + 1], b = (unsigned char)ppm[p + 2];
+    if (std::abs(r - 20) + std::abs(g - 23) + std::abs(b - 28) > 24) ++plane;
+    shades.insert((r << 16) | (g << 8) | b);
+  }
+  EXPECT_GT(plane, 160 * 90 / 4) << "pixels that are not the background";  // measured 6977 (48 %)
+  EXPECT_GT(shades.size(), 32u) << "distinct colours in the frame";
   stopServer();
 }
 

@@ -53,6 +53,34 @@ inline PixelStats compareWithReference(const tex::TexturedSurface& surface, cons
   return stats;
 }
 
+// The relief tests' camera views (elevation above the plane, azimuth around its normal).
+struct View {
+  const char* name;
+  double elevation_deg;
+  double azimuth_deg;
+};
+inline constexpr View kSteep{"steep", 70, -100};
+inline constexpr View kOblique{"oblique", 40, -60};
+inline constexpr View kGrazing{"grazing", 15, -80};
+
+// A relief render of `surface` from `view` against the exact reference, printed (the tests pin
+// these numbers) and checked to cover enough pixels.
+inline PixelStats reliefAgainstReference(const tex::TexturedSurface& surface, const View& view, double distance_m,
+                                         ReliefSteps steps) {
+  RenderSettings settings = referenceLighting(SurfaceMode::Relief);
+  settings.steps = steps;
+  CameraPlacement camera;
+  camera.elevation_deg = view.elevation_deg;
+  camera.azimuth_deg = view.azimuth_deg;
+  camera.distance_m = distance_m;
+  const PixelStats stats = compareWithReference(surface, settings, camera);
+  std::printf("relief %-6s %-8s %2d+%d shadow %2d: %5d px, other texel %.4f, mean %.3f LSB, max %3d LSB\n",
+              steps.search == ReliefSearch::MaxMip ? "maxmip" : "linear", view.name, steps.linear, steps.binary,
+              steps.shadow, stats.compared, stats.otherTexelFraction(), stats.meanError(), stats.max_error);
+  EXPECT_GT(stats.compared, kImageSide * kImageSide / 8) << view.name;
+  return stats;
+}
+
 // A surface that owns its map (TexturedSurface only points at it).
 struct OwnedSurface {
   std::unique_ptr<tex::TextureMap> map;

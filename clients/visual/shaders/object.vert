@@ -9,10 +9,12 @@ uniform mat4 u_view_projection;
 
 out vec3 v_world;
 out vec3 v_normal_world;
+out vec3 v_unit;  // the unit mesh's own coordinates (the box: [-0.5, 0.5]^3)
 
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
   v_world = world.xyz;
   v_normal_world = u_normal_matrix * a_normal;
+  v_unit = a_position;
   gl_Position = u_view_projection * world;
 }
