@@ -21,6 +21,7 @@ PACKAGES="
   libbullet-dev
   libarpack2-dev libsndfile1-dev librtaudio-dev libasound2-dev
   googletest libgtest-dev libbenchmark-dev
+  libboost-math-dev
   rt-tests stress-ng
   libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb
 "
