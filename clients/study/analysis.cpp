@@ -15,8 +15,8 @@ std::vector<const Session*> ofStudy(const std::vector<Session>& sessions, Study 
     if (s.header.study != study) continue;
     for (const Session* o : out) {
       if (o->header.participant == s.header.participant) {
-        throw SessionError(s.source + ": participant '" + s.header.participant + "' already has a " +
-                           std::string(studyName(study)) + " session in " + o->source);
+        throw SessionError(s.source + ": participant '" + s.header.participant + "' already has a session of study " +
+                           std::string(studyName(study)) + " in " + o->source);
       }
     }
     out.push_back(&s);

@@ -33,22 +33,24 @@ double tickStep(double top) {
 }
 
 void drawPanel(cv::Mat& img, const BarPanel& p, int x0, int w, int h) {
-  const int left = x0 + 70, right = x0 + w - 20, top = 50, bottom = h - 110;
+  const int left = x0 + 80, right = x0 + w - 20, top = 50, bottom = h - 110;
   text(img, p.title, {x0 + w / 2, 28}, 0.55, true);
   const auto y = [&](double v) { return bottom - int(std::lround(v / p.y_max * (bottom - top))); };
-  const double step = tickStep(p.y_max);
-  for (double v = 0; v <= p.y_max * (1 + 1e-9); v += step) {
-    cv::line(img, {left, y(v)}, {right, y(v)}, kRule, 1);
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    text(img, buf, {left - 45, y(v) + 5}, 0.42);
-  }
   // The y label, rotated: drawn on its own strip, then turned a quarter.
   cv::Mat strip(24, bottom - top, CV_8UC3, cv::Scalar(255, 255, 255));
   text(strip, p.y_label, {strip.cols / 2, 17}, 0.45, true);
   cv::Mat turned;
   cv::rotate(strip, turned, cv::ROTATE_90_COUNTERCLOCKWISE);
   turned.copyTo(img(cv::Rect(x0 + 4, top, turned.cols, turned.rows)));
+  const double step = tickStep(p.y_max);
+  for (double v = 0; v <= p.y_max * (1 + 1e-9); v += step) {
+    cv::line(img, {left, y(v)}, {right, y(v)}, kRule, 1);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", std::fabs(v) < 1e-12 ? 0.0 : v);
+    int base = 0;
+    const int width = cv::getTextSize(buf, kFace, 0.42, 1, &base).width;
+    text(img, buf, {left - 8 - width, y(v) + 5}, 0.42);  // right-aligned against the axis
+  }
 
   const std::size_t nc = p.categories.size(), ns = p.series.size();
   const double slot = double(right - left) / double(std::max<std::size_t>(nc, 1));

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace thx::study {
 
@@ -54,6 +55,20 @@ std::string csvCell(const std::string& s) {
   std::string q = "\"";
   for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
+}
+
+bool isNumber(const std::string& s) {
+  char* end = nullptr;
+  std::strtod(s.c_str(), &end);
+  return !s.empty() && end == s.c_str() + s.size();
+}
+
+// Numbers are right-aligned in Markdown, names left.
+bool numericColumn(const Table& t, std::size_t i) {
+  for (const auto& row : t.rows) {
+    if (!row[i].empty() && !isNumber(row[i])) return false;
+  }
+  return !t.rows.empty();
 }
 
 }  // namespace
@@ -152,7 +167,7 @@ std::string markdown(const Table& t) {
   std::string s = "### " + t.title + "\n\n" + t.note + "\n\n|";
   for (const std::string& c : t.columns) s += " " + c + " |";
   s += "\n|";
-  for (std::size_t i = 0; i < t.columns.size(); ++i) s += i == 0 ? "---|" : "---:|";
+  for (std::size_t i = 0; i < t.columns.size(); ++i) s += numericColumn(t, i) ? "---:|" : "---|";
   s += "\n";
   for (const auto& row : t.rows) {
     s += "|";
