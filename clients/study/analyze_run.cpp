@@ -78,11 +78,17 @@ AnalyzeOutput analyzeSessions(const std::vector<std::string>& session_files, con
   out.rating_sessions = rt.sessions;
   if (id.sessions > 0) {
     md += "## Study 1: material identification\n\n![ID rate and time by cue](identification_by_cue.png)\n\n";
-    for (const Table& t : identificationTables(id)) md += markdown(t) + "\n", tables.push_back(t);
+    for (Table& t : identificationTables(id)) {
+      md += markdown(t) + "\n";
+      tables.push_back(std::move(t));
+    }
   }
   if (rt.sessions > 0) {
     md += "## Study 2: relief against normal maps\n\n![ratings by representation](ratings_by_representation.png)\n\n";
-    for (const Table& t : ratingTables(rt)) md += markdown(t) + "\n", tables.push_back(t);
+    for (Table& t : ratingTables(rt)) {
+      md += markdown(t) + "\n";
+      tables.push_back(std::move(t));
+    }
   }
   writeText(at("study.md"), md, out);
   for (const Table& t : tables) writeText(at(t.name + ".csv"), csv(t), out);

@@ -72,6 +72,8 @@ std::string cueCondition(const Cues& c) {
   return off.empty() ? "all cues" : "no " + off;
 }
 
+std::string softwareVersion() { return std::string("texhaptics ") + THX_PROJECT_VERSION; }
+
 const RatingScale& ratingScale(Rating r) { return kScales[static_cast<std::size_t>(r)]; }
 
 const Candidate* SessionHeader::find(std::string_view surface) const {

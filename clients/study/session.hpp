@@ -61,6 +61,10 @@ struct Candidate {
   bool operator==(const Candidate&) const = default;
 };
 
+// "texhaptics " and the project's version (CMake's PROJECT_VERSION): what a runner of this
+// build writes in the header's `software` line.
+std::string softwareVersion();
+
 struct SessionHeader {
   Study study = Study::Identification;
   std::string participant;

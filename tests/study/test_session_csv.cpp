@@ -210,6 +210,12 @@ TEST(SessionCsv, TheWriterRefusesWhatTheReaderWould) {
   EXPECT_EQ(readSession(path).trials.size(), 1u);
 }
 
+TEST(SessionCsv, SoftwareVersionFitsTheHeader) {
+  const std::string v = softwareVersion();
+  EXPECT_EQ(v.rfind("texhaptics ", 0), 0u) << v;
+  EXPECT_TRUE(isHeaderValue(v)) << v;
+}
+
 TEST(SessionCsv, CueConditionNames) {
   EXPECT_EQ(cueCondition({}), "all cues");
   EXPECT_EQ(cueCondition({false, true, true}), "no sound");
