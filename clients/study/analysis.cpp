@@ -28,12 +28,15 @@ IdGroup& groupFor(std::vector<IdGroup>& groups, const std::string& label) {
   for (IdGroup& g : groups) {
     if (g.label == label) return g;
   }
-  groups.push_back({label, "", 0, 0, {}});
+  groups.push_back({label, "", 0, 0, {}, {}});
   return groups.back();
 }
 
 void count(IdGroup& g, const TrialRow& r) {
   ++g.trials;
+  for (std::size_t i = 0; i < r.ratings.size(); ++i) {
+    if (r.ratings[i]) g.ratings[i].push_back(double(*r.ratings[i]));
+  }
   if (*r.correct) {
     ++g.correct;
     g.correct_times_s.push_back(*r.time_s);
@@ -60,7 +63,7 @@ IdentificationResults analyzeIdentification(const std::vector<Session>& sessions
   for (const Candidate& c : first.surfaces) {
     names.push_back(c.name);
     if (std::find(families.begin(), families.end(), c.family) == families.end()) families.push_back(c.family);
-    res.by_surface.push_back({c.name, c.family, 0, 0, {}});
+    res.by_surface.push_back({c.name, c.family, 0, 0, {}, {}});
   }
   res.surfaces = ConfusionMatrix(names);
   res.families = ConfusionMatrix(families);

@@ -2,6 +2,7 @@
 // The numbers behind study-analyze's tables (docs/study.md §4): Study 1's identification rate,
 // time of correct answers and confusions by condition, cue and surface; Study 2's ratings of
 // relief against normal maps, paired within participants, and per surface.
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@ struct IdGroup {
   std::string family;  // by surface only
   int trials = 0, correct = 0;
   std::vector<double> correct_times_s;
+  std::array<std::vector<double>, kRatingCount> ratings;  // every rating given in these trials
   double idRate() const;  // correct / trials; NaN for no trials
   Summary time() const { return summarize(correct_times_s); }
 };

@@ -106,6 +106,28 @@ std::vector<Table> identificationTables(const IdentificationResults& r) {
   }
   out.push_back(std::move(cue));
 
+  Table asked{"identification_ratings", "Study 1: ease and cue ratings by cue condition",
+              "Mean (and sample SD) of the ratings given in each condition: ease 1–10, how much each cue was "
+              "used 1–5, how accurate it felt 1–10; a removed cue is not rated.",
+              {"condition"}, {}};
+  for (int i = 0; i < kRatingCount; ++i) {
+    const RatingScale& sc = ratingScale(Rating(i));
+    if (sc.study != Study::Identification) continue;
+    asked.columns.push_back(std::string(sc.column) + "_mean");
+    asked.columns.push_back(std::string(sc.column) + "_sd");
+  }
+  for (const IdGroup& g : r.by_cue) {
+    std::vector<std::string> row{g.label};
+    for (int i = 0; i < kRatingCount; ++i) {
+      if (ratingScale(Rating(i)).study != Study::Identification) continue;
+      const Summary sm = summarize(g.ratings[std::size_t(i)]);
+      row.push_back(fixed(sm.mean, 2));
+      row.push_back(fixed(sm.sd, 2));
+    }
+    asked.rows.push_back(std::move(row));
+  }
+  out.push_back(std::move(asked));
+
   Table surf{"identification_by_surface", "Study 1: identification by surface (Table 4)",
              "Per surface drawn: trials, correct answers, ID rate, correct-answer time.", {"surface", "family"}, {}};
   surf.columns.insert(surf.columns.end(), id_columns.begin(), id_columns.end());

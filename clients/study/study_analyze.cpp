@@ -17,6 +17,7 @@ trial runner writes them) and writes into DIR (default: study-results):
   identification_by_condition.csv      Study 1: ID rate, correct-answer time, all cues / one removed
   identification_by_cue.csv           Study 1: the same per cue removed, with Student and Welch
                                        t-tests of the times against all cues, Cohen's d
+  identification_ratings.csv          Study 1: ease, cue use and cue accuracy per cue condition
   identification_by_surface.csv       Study 1: per surface drawn
   identification_confusion.csv        Study 1: surface drawn against surface answered
   identification_family_confusion.csv Study 1: the same by sound family

@@ -132,12 +132,19 @@ TEST(StudyAnalysis, InconsistentSessionsAreRefused) {
 
 TEST(StudyAnalysis, TablesCarryTheNumbers) {
   const std::vector<Table> id = identificationTables(analyzeIdentification(fixtures::identificationSessions()));
-  ASSERT_EQ(id.size(), 5u);
+  ASSERT_EQ(id.size(), 6u);
   EXPECT_EQ(id[0].name, "identification_by_condition");
   EXPECT_EQ(id[0].rows[0], (std::vector<std::string>{"all cues", "6", "4", "0.667", "15.00", "4.16"}));
   const std::string md = markdown(id[1]);
   EXPECT_NE(md.find("| no sound | 2 | 1 | 0.500 | 30.00 | – | – |"), std::string::npos) << md;
-  const std::string confusion = csv(id[3]);
+  // Ease is 5 + trial % 3: trials 1, 2, 3 with all cues give 6, 7, 5 for both participants;
+  // sound is not rated without sound; no pen (trial 6) gives ease 5.
+  EXPECT_EQ(id[2].name, "identification_ratings");
+  EXPECT_EQ(id[2].rows[0][1], "6.00");
+  EXPECT_EQ(id[2].rows[0][2], "0.89");  // 6, 7, 5, 6, 7, 5: squared deviations 4 over 5
+  EXPECT_EQ(id[2].rows[1][3], "");      // no sound: use_sound never given
+  EXPECT_EQ(id[2].rows[3][1], "5.00");
+  const std::string confusion = csv(id[4]);
   EXPECT_EQ(confusion.substr(0, confusion.find('\n')),
             "truth \\ answer,bricks_a,bricks_b,metal_a,metal_b,wood_a,wood_b,trials,id_rate");
   EXPECT_NE(confusion.find("\nmetal_a,1,0,0,1,0,0,2,0.000\n"), std::string::npos) << confusion;

@@ -47,7 +47,7 @@ TEST(StudyAnalyzeCli, BothStudiesToTablesAndPlots) {
   args.insert(args.end(), {"--out", dir.file("out")});
   const CliRun r = analyze(dir, args);
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("2 identification and 4 relief-vs-normal sessions; wrote 10 files"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2 identification and 4 relief-vs-normal sessions; wrote 11 files"), std::string::npos) << r.out;
   const auto out = [&](const std::string& name) { return test::slurp(dir.file("out/" + name)); };
 
   // The hand-worked numbers of test_analysis.cpp, as a user reads them.
