@@ -62,6 +62,9 @@ BarPanel ratingsPanel(const RatingResults& r) {
 AnalyzeOutput analyzeSessions(const std::vector<std::string>& session_files, const std::string& out_dir) {
   std::vector<Session> sessions;
   for (const std::string& f : session_files) sessions.push_back(readSession(f));
+  // Analyse before creating anything, so a refused set of sessions leaves no folder behind.
+  const IdentificationResults id = analyzeIdentification(sessions);
+  const RatingResults rt = analyzeRatings(sessions);
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) throw Error(Error::Kind::Io, out_dir + ": cannot create the output folder: " + ec.message());
@@ -72,8 +75,6 @@ AnalyzeOutput analyzeSessions(const std::vector<std::string>& session_files, con
   for (const std::string& f : session_files) md += " `" + std::filesystem::path(f).filename().string() + "`";
   md += "\n\n";
   std::vector<Table> tables;
-  const IdentificationResults id = analyzeIdentification(sessions);
-  const RatingResults rt = analyzeRatings(sessions);
   out.identification_sessions = id.sessions;
   out.rating_sessions = rt.sessions;
   if (id.sessions > 0) {

@@ -117,6 +117,12 @@ TEST(StudyAnalyzeCli, ErrorsAreClear) {
   EXPECT_EQ(r.err, "study-analyze: " + dir.file("bad.csv") +
                        ":11: field 'time_s': expected seconds (a number) or nothing, got '3O'\n");
   EXPECT_FALSE(std::filesystem::exists(dir.file("never")));
+  // The same participant twice in one study: refused before anything is written.
+  r = analyze(dir, {files[0], files[0], "--out", dir.file("never")});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "study-analyze: " + files[0] + ": participant 'P1' already has a session of study identification in " +
+                       files[0] + "\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("never")));
 }
 
 }  // namespace
