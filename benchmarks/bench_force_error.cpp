@@ -28,7 +28,10 @@
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/exact_surfaces.hpp"
 #include "benchmarks/plot.hpp"
+#include "server/mesh_god_object.hpp"
 #include "server/proxy_renderer.hpp"
+#include "server/triangle_bvh.hpp"
+#include "server/triangle_mesh.hpp"
 #include "textures/generators.hpp"
 #include "textures/smoothing.hpp"
 #include "textures/textured_surface.hpp"
@@ -89,6 +92,9 @@ const std::vector<Variant> kAllVariants{
     {"normal-map+crease", "normal-map", true},
     {"paper", "bilinear", false, true, true},
     {"paper+smoothed", "smoothed", false, true, true},
+    // The relief displaced as a size x size grid mesh (bilinear samples at the grid corners, as
+    // the visual client's mesh:N) rendered by the god object over its BVH (server/mesh_god_object.hpp).
+    {"mesh", "mesh", false},
 };
 const char* kDefaultVariants =
     "nearest,nearest+crease,bilinear,bilinear+crease-blend,bilinear+crease,smoothed,smoothed+crease,normal-map,"
@@ -100,9 +106,11 @@ std::string filterText(const Variant& v) {
                   : v.filter == "normal-map" ? std::string("normal map (depth ignored), bilinear")
                                              : v.filter;
   if (v.paper) t = "paper's loop (100 Hz plane), " + t;
+  if (v.filter == "mesh") t = "mesh N² (god object + BVH)";
   return t;
 }
 std::string creaseText(const Variant& v) {
+  if (v.filter == "mesh") return "(mesh)";
   if (!v.crease) return "off";
   return v.sided ? "on" : "on, ridges blended (issue 3)";
 }
@@ -152,6 +160,8 @@ struct Result {
   std::array<Stats, 3> by_region;  // V valleys only: floor, ridge, wall (bench::kRegionNames)
   double ns_per_tick = 0;
   std::size_t timed_ticks = 0;
+  std::size_t mesh_bytes = 0;  // mesh rows: vertices + triangles + BVH
+  double mesh_build_ms = 0;
 };
 
 struct Probe {
@@ -161,32 +171,10 @@ struct Probe {
 
 bool g_keep_records = false;
 
-Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
-           const std::vector<Eigen::Vector3d>& f_exact, const tex::TextureMap& map, const Variant& v, int size) {
-  tex::PlaneMapping mapping;
-  mapping.size_m = {truth.extent(), truth.extent()};
-  tex::SampleOptions so;
-  so.filter = v.filter == "nearest" ? tex::Filter::Nearest : tex::Filter::Bilinear;
-  so.address = tex::Address::Wrap;
-  const tex::TexturedSurface surface(map, mapping, so, v.filter != "normal-map");
-  srv::RendererConfig rc;
-  rc.stiffness_n_per_m = g_stiffness;
-  rc.damping_ns_per_m = 0.0;  // the exact force is a pure spring
-  rc.crease_handling = v.crease;
-  rc.sided_ridges = v.sided;
-  if (v.paper) {  // as applyPaperLoop (server/paper_loop.cpp)
-    rc.crease_handling = false;
-    rc.recovery_ticks = 0;
-    rc.plane_hold_ticks = 10;
-  }
-  srv::ProxyRenderer renderer(surface, rc);
-
-  Result res;
-  res.surface = truth.name();
-  res.size = size;
-  res.texel_m = truth.extent() / size;
-  res.v = v;
-  res.by_depth.resize(kDepths.size());
+// The probes pressed with one renderer (ProxyRenderer or MeshGodObject): errors and cost into res.
+template <class Renderer>
+void measure(Renderer& renderer, const bench::ExactSurface& truth, const std::vector<Probe>& probes,
+             const std::vector<Eigen::Vector3d>& f_exact, Result& res) {
   const Eigen::Vector3d v_down(0, 0, -kStep * 1000.0), still = Eigen::Vector3d::Zero();
   // One press; returns the last force. Times the ticks below the true surface into ns_per_tick.
   auto press = [&](const Eigen::Vector3d& p, double& ns_per_tick, std::size_t& timed) {
@@ -236,6 +224,44 @@ Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
     pass_median.push_back(median(per_probe));
   }
   res.ns_per_tick = *std::min_element(pass_median.begin(), pass_median.end());
+}
+
+Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
+           const std::vector<Eigen::Vector3d>& f_exact, const tex::TextureMap& map, const Variant& v, int size) {
+  tex::PlaneMapping mapping;
+  mapping.size_m = {truth.extent(), truth.extent()};
+  tex::SampleOptions so;
+  so.filter = v.filter == "nearest" ? tex::Filter::Nearest : tex::Filter::Bilinear;
+  so.address = tex::Address::Wrap;
+  const tex::TexturedSurface surface(map, mapping, so, v.filter != "normal-map");
+  srv::RendererConfig rc;
+  rc.stiffness_n_per_m = g_stiffness;
+  rc.damping_ns_per_m = 0.0;  // the exact force is a pure spring
+  rc.crease_handling = v.crease;
+  rc.sided_ridges = v.sided;
+  if (v.paper) {  // as applyPaperLoop (server/paper_loop.cpp)
+    rc.crease_handling = false;
+    rc.recovery_ticks = 0;
+    rc.plane_hold_ticks = 10;
+  }
+  Result res;
+  res.surface = truth.name();
+  res.size = size;
+  res.texel_m = truth.extent() / size;
+  res.v = v;
+  res.by_depth.resize(kDepths.size());
+  if (v.filter == "mesh") {
+    const std::int64_t t0 = nowNs();
+    const srv::TriangleMesh mesh = srv::reliefGridMesh(surface, size);
+    const srv::TriangleBvh bvh(mesh);
+    res.mesh_build_ms = double(nowNs() - t0) * 1e-6;
+    res.mesh_bytes = mesh.bytes() + bvh.bytes();
+    srv::MeshGodObject renderer(bvh, mapping, rc);
+    measure(renderer, truth, probes, f_exact, res);
+  } else {
+    srv::ProxyRenderer renderer(surface, rc);
+    measure(renderer, truth, probes, f_exact, res);
+  }
   return res;
 }
 
@@ -253,6 +279,9 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show (the defaults).
                    10 ticks, no recovery rule; docs/stability.md). "+crease" = crease handling
                    with sided ridges (the renderer's default); "+crease-blend" = issue 3's
                    crease handling, which blends the two walls' normals across a ridge.
+                   Also mesh: the relief displaced as an N x N grid mesh (N = the row's size,
+                   vertices bilinear at the grid corners as the visual client's mesh:N) under
+                   the god-object renderer with its BVH (server/mesh_god_object.hpp).
   --smooth SIGMA   Gaussian sigma in texels of the "smoothed" rows (default 1).
   --stiffness K    penalty stiffness in N/m (default 600).
   --probe-csv F    every probe: position, exact and rendered force, contact.
@@ -440,6 +469,7 @@ int main(int argc, char** argv) {
           r.ns_per_tick);
       for (std::size_t d = 0; d < kDepths.size(); ++d) js += bench::fmt("%s%.6g", d ? ", " : "", r.by_depth[d].relRms());
       js += "]";
+      if (r.v.filter == "mesh") js += bench::fmt(", \"mesh_bytes\": %zu, \"mesh_build_ms\": %.1f", r.mesh_bytes, r.mesh_build_ms);
       if (r.surface == "vvalley") {
         // Each region's share of the relative RMS error (its squared errors over all probes' squared
         // exact force: the three add up in quadrature to rel_rms).
