@@ -3,7 +3,7 @@
 // point that never enters the surface; each tick it moves toward the device tip as far as the
 // mesh lets it, and a spring-damper pulls the tip toward it. This is the renderer the textures
 // replace: the relief displaced as an N x N mesh (triangle_mesh.hpp), held to the same force-error
-// benchmark as the texture renderers (docs/benchmarks.md, part 2, "mesh" rows).
+// benchmark as the texture renderers (docs/benchmarks.md §2c).
 //
 // One tick, from the last proxy P (outside the surface) toward the tip H, with no constraint:
 //   1. sweep P -> goal (first goal: H) through the BVH (triangle_bvh.hpp); no entry: P = goal, done.

@@ -184,12 +184,12 @@ TEST(MeshGodObject, NoPopThroughAcrossEdgesAndVertices) {
   };
   long ticks = 0, contact_ticks = 0;
   for (const Stroke& s : strokes) {
-    for (double depth : {0.0002, 0.001, 0.003}) {
+    for (double depth : {0.0002, 0.003}) {
       r.reset();
       const auto surf = [&](const Eigen::Vector2d& p) { return test::gridHeight(mesh, n, half, p.x(), p.y()); };
       r.render({s.a.x(), s.a.y(), 0.002}, Eigen::Vector3d::Zero());
       for (double z = 0.002; z > surf(s.a) - depth; z -= kStep) r.render({s.a.x(), s.a.y(), z}, Eigen::Vector3d::Zero());
-      const int steps = int((s.b - s.a).norm() / kStep);
+      const int steps = int((s.b - s.a).norm() / (2.5 * kStep));  // 50 mm/s
       for (int k = 0; k <= steps; ++k) {
         const Eigen::Vector2d p = s.a + (s.b - s.a) * (double(k) / steps);
         const srv::RenderOutput out = r.render({p.x(), p.y(), surf(p) - depth}, Eigen::Vector3d::Zero());

@@ -49,19 +49,19 @@ double bumpy(double x, double y) {
 }  // namespace
 
 TEST(TriangleBvh, EqualsBruteForceOnRandomSegments) {
-  const srv::TriangleMesh mesh = test::gridMesh(24, 0.01, bumpy);
+  const srv::TriangleMesh mesh = test::gridMesh(12, 0.01, bumpy);
   const TriangleBvh bvh(mesh);
-  EXPECT_LE(bvh.depth(), 10);  // median split: log2(1152 / 4) rounded up is 9
+  EXPECT_LE(bvh.depth(), 7);  // median split: log2(288 / 4) rounded up
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> xy(-0.012, 0.012), z(-0.005, 0.005);
   int hits = 0;
-  for (int i = 0; i < 3000; ++i) {
+  for (int i = 0; i < 1000; ++i) {
     const Eigen::Vector3d a(xy(rng), xy(rng), z(rng)), b(xy(rng), xy(rng), z(rng));
     expectSame(bvh, a, b, hits);
     // Short segments too: a servo tick's motion is a fraction of a triangle.
     expectSame(bvh, a, a + 0.02 * (b - a), hits);
   }
-  EXPECT_GT(hits, 1000);  // the sample exercises hits, not only misses
+  EXPECT_GT(hits, 300);  // the sample exercises hits, not only misses
 }
 
 TEST(TriangleBvh, VerticalSegmentsThroughVerticesAndEdgesHitExactlyOnce) {
