@@ -27,8 +27,12 @@
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/exact_surfaces.hpp"
+#include "benchmarks/mesh_closest.hpp"
 #include "benchmarks/plot.hpp"
+#include "server/mesh_god_object.hpp"
 #include "server/proxy_renderer.hpp"
+#include "server/triangle_bvh.hpp"
+#include "server/triangle_mesh.hpp"
 #include "textures/generators.hpp"
 #include "textures/smoothing.hpp"
 #include "textures/textured_surface.hpp"
@@ -89,6 +93,9 @@ const std::vector<Variant> kAllVariants{
     {"normal-map+crease", "normal-map", true},
     {"paper", "bilinear", false, true, true},
     {"paper+smoothed", "smoothed", false, true, true},
+    // The relief displaced as a size x size grid mesh (bilinear samples at the grid corners, as
+    // the visual client's mesh:N) rendered by the god object over its BVH (server/mesh_god_object.hpp).
+    {"mesh", "mesh", false},
 };
 const char* kDefaultVariants =
     "nearest,nearest+crease,bilinear,bilinear+crease-blend,bilinear+crease,smoothed,smoothed+crease,normal-map,"
@@ -100,9 +107,11 @@ std::string filterText(const Variant& v) {
                   : v.filter == "normal-map" ? std::string("normal map (depth ignored), bilinear")
                                              : v.filter;
   if (v.paper) t = "paper's loop (100 Hz plane), " + t;
+  if (v.filter == "mesh") t = "mesh N² (god object + BVH)";
   return t;
 }
 std::string creaseText(const Variant& v) {
+  if (v.filter == "mesh") return "(mesh)";
   if (!v.crease) return "off";
   return v.sided ? "on" : "on, ridges blended (issue 3)";
 }
@@ -152,6 +161,12 @@ struct Result {
   std::array<Stats, 3> by_region;  // V valleys only: floor, ridge, wall (bench::kRegionNames)
   double ns_per_tick = 0;
   std::size_t timed_ticks = 0;
+  std::size_t mesh_bytes = 0;  // mesh rows: vertices + triangles + BVH
+  double mesh_build_ms = 0;
+  // Mesh rows: the error against the mesh's own exact contact (bench::GridMeshReference), relative
+  // to the same exact force as `all`, and the probes that lie above the mesh (no mesh contact).
+  Stats vs_mesh;
+  std::size_t above_mesh = 0;
 };
 
 struct Probe {
@@ -161,32 +176,11 @@ struct Probe {
 
 bool g_keep_records = false;
 
-Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
-           const std::vector<Eigen::Vector3d>& f_exact, const tex::TextureMap& map, const Variant& v, int size) {
-  tex::PlaneMapping mapping;
-  mapping.size_m = {truth.extent(), truth.extent()};
-  tex::SampleOptions so;
-  so.filter = v.filter == "nearest" ? tex::Filter::Nearest : tex::Filter::Bilinear;
-  so.address = tex::Address::Wrap;
-  const tex::TexturedSurface surface(map, mapping, so, v.filter != "normal-map");
-  srv::RendererConfig rc;
-  rc.stiffness_n_per_m = g_stiffness;
-  rc.damping_ns_per_m = 0.0;  // the exact force is a pure spring
-  rc.crease_handling = v.crease;
-  rc.sided_ridges = v.sided;
-  if (v.paper) {  // as applyPaperLoop (server/paper_loop.cpp)
-    rc.crease_handling = false;
-    rc.recovery_ticks = 0;
-    rc.plane_hold_ticks = 10;
-  }
-  srv::ProxyRenderer renderer(surface, rc);
-
-  Result res;
-  res.surface = truth.name();
-  res.size = size;
-  res.texel_m = truth.extent() / size;
-  res.v = v;
-  res.by_depth.resize(kDepths.size());
+// The probes pressed with one renderer (ProxyRenderer or MeshGodObject): errors and cost into res.
+template <class Renderer>
+void measure(Renderer& renderer, const bench::ExactSurface& truth, const std::vector<Probe>& probes,
+             const std::vector<Eigen::Vector3d>& f_exact, Result& res,
+             const bench::GridMeshReference* mesh_ref = nullptr) {
   const Eigen::Vector3d v_down(0, 0, -kStep * 1000.0), still = Eigen::Vector3d::Zero();
   // One press; returns the last force. Times the ticks below the true surface into ns_per_tick.
   auto press = [&](const Eigen::Vector3d& p, double& ns_per_tick, std::size_t& timed) {
@@ -217,6 +211,11 @@ Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
     const double err = (out.force_world - f_exact[i]).norm(), f = f_exact[i].norm();
     res.all.add(err, f, out.in_contact);
     res.by_depth[probes[i].depth_index].add(err, f, out.in_contact);
+    if (mesh_ref) {
+      const Eigen::Vector3d f_mesh = mesh_ref->force(probes[i].p, g_stiffness);
+      res.above_mesh += f_mesh.isZero() ? 1 : 0;
+      res.vs_mesh.add((out.force_world - f_mesh).norm(), f, out.in_contact);
+    }
     if (const auto* vv = dynamic_cast<const bench::VValleySurface*>(&truth)) {
       // Within 1.5 texels, but at most a quarter period (at 128² a period is 2.56 texels).
       const double reach = std::min(kRegionReachTexels * res.texel_m, vv->period() / 4);
@@ -236,6 +235,45 @@ Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
     pass_median.push_back(median(per_probe));
   }
   res.ns_per_tick = *std::min_element(pass_median.begin(), pass_median.end());
+}
+
+Result run(const bench::ExactSurface& truth, const std::vector<Probe>& probes,
+           const std::vector<Eigen::Vector3d>& f_exact, const tex::TextureMap& map, const Variant& v, int size) {
+  tex::PlaneMapping mapping;
+  mapping.size_m = {truth.extent(), truth.extent()};
+  tex::SampleOptions so;
+  so.filter = v.filter == "nearest" ? tex::Filter::Nearest : tex::Filter::Bilinear;
+  so.address = tex::Address::Wrap;
+  const tex::TexturedSurface surface(map, mapping, so, v.filter != "normal-map");
+  srv::RendererConfig rc;
+  rc.stiffness_n_per_m = g_stiffness;
+  rc.damping_ns_per_m = 0.0;  // the exact force is a pure spring
+  rc.crease_handling = v.crease;
+  rc.sided_ridges = v.sided;
+  if (v.paper) {  // as applyPaperLoop (server/paper_loop.cpp)
+    rc.crease_handling = false;
+    rc.recovery_ticks = 0;
+    rc.plane_hold_ticks = 10;
+  }
+  Result res;
+  res.surface = truth.name();
+  res.size = size;
+  res.texel_m = truth.extent() / size;
+  res.v = v;
+  res.by_depth.resize(kDepths.size());
+  if (v.filter == "mesh") {
+    const std::int64_t t0 = nowNs();
+    const srv::TriangleMesh mesh = srv::reliefGridMesh(surface, size);
+    const srv::TriangleBvh bvh(mesh);
+    res.mesh_build_ms = double(nowNs() - t0) * 1e-6;
+    res.mesh_bytes = mesh.bytes() + bvh.bytes();
+    srv::MeshGodObject renderer(bvh, mapping, rc);
+    const bench::GridMeshReference reference(mesh, size, mapping.size_m);
+    measure(renderer, truth, probes, f_exact, res, &reference);
+  } else {
+    srv::ProxyRenderer renderer(surface, rc);
+    measure(renderer, truth, probes, f_exact, res);
+  }
   return res;
 }
 
@@ -253,6 +291,9 @@ benchmarks/run.sh BUILD_DIR force_error runs it as the docs show (the defaults).
                    10 ticks, no recovery rule; docs/stability.md). "+crease" = crease handling
                    with sided ridges (the renderer's default); "+crease-blend" = issue 3's
                    crease handling, which blends the two walls' normals across a ridge.
+                   Also mesh: the relief displaced as an N x N grid mesh (N = the row's size,
+                   vertices bilinear at the grid corners as the visual client's mesh:N) under
+                   the god-object renderer with its BVH (server/mesh_god_object.hpp).
   --smooth SIGMA   Gaussian sigma in texels of the "smoothed" rows (default 1).
   --stiffness K    penalty stiffness in N/m (default 600).
   --probe-csv F    every probe: position, exact and rendered force, contact.
@@ -440,6 +481,11 @@ int main(int argc, char** argv) {
           r.ns_per_tick);
       for (std::size_t d = 0; d < kDepths.size(); ++d) js += bench::fmt("%s%.6g", d ? ", " : "", r.by_depth[d].relRms());
       js += "]";
+      if (r.v.filter == "mesh") {
+        js += bench::fmt(", \"mesh_bytes\": %zu, \"mesh_build_ms\": %.1f, \"rel_rms_vs_mesh\": %.6g, "
+                         "\"median_rel_vs_mesh\": %.6g, \"above_mesh\": %zu",
+                         r.mesh_bytes, r.mesh_build_ms, r.vs_mesh.relRms(), r.vs_mesh.medianRel(), r.above_mesh);
+      }
       if (r.surface == "vvalley") {
         // Each region's share of the relative RMS error (its squared errors over all probes' squared
         // exact force: the three add up in quadrature to rel_rms).
@@ -538,6 +584,23 @@ int main(int argc, char** argv) {
           }
           std::sort(cost.begin(), cost.end());
           md += bench::fmt(" %.0f |\n", cost.empty() ? 0.0 : (cost[(cost.size() - 1) / 2] + cost[cost.size() / 2]) / 2);
+        }
+      }
+      bool any_mesh = false;
+      for (const Result& r : results) any_mesh = any_mesh || r.v.filter == "mesh";
+      if (any_mesh) {
+        md += "\n**Mesh rows, split.** The same rendered forces against the mesh's own exact contact (k·(q − p), q "
+              "the closest point of the mesh, zero above it): what the god object adds to what the mesh cannot "
+              "represent. Relative to the same RMS exact force as above; “above mesh”: probes below the true surface "
+              "but above the mesh (no contact is right for the mesh there).\n\n";
+        md += "| surface | mesh | vs exact surface | vs the mesh's own contact | no contact | above mesh | mesh + BVH "
+              "(MB) | build (ms) |\n|---|---|---|---|---|---|---|---|\n";
+        for (const Result& r : results) {
+          if (r.v.filter != "mesh") continue;
+          md += bench::fmt("| %s | %d² | %s (%s) | %s (%s) | %zu | %zu | %.1f | %.0f |\n", r.surface.c_str(), r.size,
+                           pct(r.all.relRms()).c_str(), pct(r.all.medianRel()).c_str(), pct(r.vs_mesh.relRms()).c_str(),
+                           pct(r.vs_mesh.medianRel()).c_str(), r.all.no_contact, r.above_mesh,
+                           double(r.mesh_bytes) / 1e6, r.mesh_build_ms);
         }
       }
       for (const auto& s : surfaces) {

@@ -97,6 +97,17 @@ run_force_error() {
     --json "$RESULTS/bench_force_error_paper.json" --csv "$RESULTS/bench_force_error_paper.csv" \
     --md "$WORK/bench_force_error_paper.md" --md-compact 1 || return 1
   splice bench_force_error_paper "$WORK/bench_force_error_paper.md" "$ROOT/docs/stability.md"
+  # Issue 16: the relief as 256² and 512² meshes under the god object, beside the texture renderers,
+  # on the same probes; then the haptic time per tick on the default scene's meshes (Table 1).
+  need "$BIN/bench_mesh_haptic" || return 1
+  say "part 2c: the meshes' god object: force error and time per tick (about 40 s)"
+  "$BIN/bench_force_error" --sizes 256,512 --variants normal-map+crease,bilinear+crease,mesh \
+    --json "$RESULTS/bench_force_error_mesh.json" --csv "$RESULTS/bench_force_error_mesh.csv" \
+    --md "$WORK/bench_force_error_mesh.md" --md-compact 1 || return 1
+  splice bench_force_error_mesh "$WORK/bench_force_error_mesh.md"
+  "$BIN/bench_mesh_haptic" --csv "$RESULTS/bench_mesh_haptic.csv" --json "$RESULTS/bench_mesh_haptic.json" \
+    --md "$WORK/bench_mesh_haptic.md" || return 1
+  splice bench_mesh_haptic "$WORK/bench_mesh_haptic.md"
 }
 
 run_memory() {

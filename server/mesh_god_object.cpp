@@ -1,0 +1,105 @@
+#include "server/mesh_god_object.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace thx::srv {
+
+MeshGodObject::MeshGodObject(const TriangleBvh& bvh, const tex::PlaneMapping& mapping, const RendererConfig& config)
+    : bvh_(&bvh),
+      config_(config),
+      plane_to_world_(mapping.plane_to_world),
+      world_to_plane_(mapping.plane_to_world.inverse()) {}
+
+void MeshGodObject::reset() {
+  have_proxy_ = false;
+  last_sweeps_ = 0;
+}
+
+RenderOutput MeshGodObject::render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world) {
+  RenderOutput out;
+  const Eigen::Vector3d tip = world_to_plane_ * tip_world;
+  const Eigen::Vector3d v = world_to_plane_.linear() * v_world;
+  out.n_geom_world = plane_to_world_.linear().col(2);
+  out.n_sampled_world = out.n_geom_world;
+  out.p_proj_world = plane_to_world_ * Eigen::Vector3d(tip.x(), tip.y(), 0.0);
+  if (!tip.allFinite()) {
+    // Nothing sensible to render from a non-finite tip; the safety stage handles the fault.
+    out.proxy_world = plane_to_world_ * proxy_;
+    return out;
+  }
+  if (!have_proxy_) {
+    proxy_ = tip;
+    have_proxy_ = true;
+  }
+
+  std::array<Halfspace, kMaxHalfspaces> planes{};
+  std::array<std::uint32_t, kMaxConstraints> ids{};
+  int count = 0;
+  Eigen::Vector3d p = proxy_, goal = tip;
+  int sweeps = 0;
+  while (sweeps < kMaxSweeps) {
+    ++sweeps;
+    const TriangleBvh::Hit hit = bvh_->firstEntry(p, goal, ids.data(), count);
+    if (!hit.hit) {
+      p = goal;
+      break;
+    }
+    // Stop short of the face, back along the sweep (the way it came is free), so that the proxy
+    // stays kStandoffM outside its plane even when the sweep grazes it.
+    const Eigen::Vector3d seg = goal - p;
+    const double len = seg.norm();
+    const Halfspace& h = bvh_->plane(hit.triangle);
+    if (len > 0.0) {
+      const double cos_in = std::fabs(h.n.dot(seg)) / len;
+      const double back = std::min(hit.t * len, kStandoffM / std::max(cos_in, 1e-3));
+      p = hit.point - seg * (back / len);
+    }
+    if (count == kMaxConstraints) break;  // a fourth face: a corner holds the proxy where it is
+    planes[std::size_t(count)] = Halfspace{h.n, h.d + kStandoffM};
+    ids[std::size_t(count)] = hit.triangle;
+    ++count;
+    const Projection pr = projectOntoHalfspaces(tip, planes, count);
+    if (!pr.solved) break;  // numerically degenerate set: stay where the sweep stopped
+    int kept = 0;  // planes with a zero multiplier no longer hold the proxy
+    for (int i = 0; i < count; ++i) {
+      if (!(pr.active_mask & (1u << i))) continue;
+      planes[std::size_t(kept)] = planes[std::size_t(i)];
+      ids[std::size_t(kept)] = ids[std::size_t(i)];
+      ++kept;
+    }
+    count = kept;
+    goal = pr.x;
+  }
+  last_sweeps_ = sweeps;
+  proxy_ = p;
+
+  const Eigen::Vector3d e = p - tip;
+  const double length = e.norm();
+  Eigen::Vector3d f_local = Eigen::Vector3d::Zero();
+  if (length > 0.0) {
+    const Eigen::Vector3d dir = e / length;
+    // Damping along the spring only, and never pulling the pen into the surface.
+    const double magnitude = std::max(0.0, config_.stiffness_n_per_m * length - config_.damping_ns_per_m * v.dot(dir));
+    f_local = magnitude * dir;
+  }
+  out.in_contact = length > 0.0;
+  out.proxy_held = length > 0.0;
+  out.depth_m = length;
+  out.force_world = plane_to_world_.linear() * f_local;
+  out.proxy_world = plane_to_world_ * p;
+  out.v_tangent_world = plane_to_world_.linear() * Eigen::Vector3d(v.x(), v.y(), 0.0);
+  out.num_planes = count;
+  out.active_mask = (1u << count) - 1u;
+  for (int i = 0; i < count; ++i) {
+    dev::PlaneProxy& pp = out.planes[std::size_t(i)];
+    pp.n_world = plane_to_world_.linear() * planes[std::size_t(i)].n;
+    pp.d_m = planes[std::size_t(i)].d + pp.n_world.dot(plane_to_world_.translation());
+    pp.k_n_per_m = config_.stiffness_n_per_m;
+    pp.b_ns_per_m = config_.damping_ns_per_m;
+  }
+  out.f_normal_n = count > 0 ? f_local.dot(planes[0].n) : f_local.z();
+  return out;
+}
+
+}  // namespace thx::srv

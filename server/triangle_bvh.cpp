@@ -1,0 +1,193 @@
+#include "server/triangle_bvh.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace thx::srv {
+
+namespace {
+constexpr double kBarycentricTol = 1e-9;  // relative: a hit on a shared edge belongs to both sides
+// Boxes grow by this fraction of their extent (plus an absolute floor) so that a point the
+// barycentric tolerance accepts is never outside its leaf's box.
+constexpr double kBoxPadRel = 1e-6;
+constexpr double kBoxPadAbs = 1e-12;  // metres
+}  // namespace
+
+TriangleBvh::TriangleBvh(const TriangleMesh& mesh, int leaf_size) : mesh_(&mesh), leaf_size_(std::max(1, leaf_size)) {
+  const std::size_t n = mesh.triangles.size();
+  if (n == 0) throw std::invalid_argument("TriangleBvh: the mesh has no triangles");
+  if (n >= std::numeric_limits<std::uint32_t>::max() / 2) throw std::invalid_argument("TriangleBvh: too many triangles");
+  planes_.resize(n);
+  std::vector<Eigen::Vector3d> centroids(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& tri = mesh.triangles[i];
+    for (std::uint32_t v : tri) {
+      if (v >= mesh.vertices.size()) {
+        throw std::invalid_argument("TriangleBvh: triangle " + std::to_string(i) + " uses vertex " + std::to_string(v) +
+                                    " of " + std::to_string(mesh.vertices.size()));
+      }
+    }
+    const Eigen::Vector3d& p0 = mesh.vertices[tri[0]];
+    const Eigen::Vector3d& p1 = mesh.vertices[tri[1]];
+    const Eigen::Vector3d& p2 = mesh.vertices[tri[2]];
+    const Eigen::Vector3d cross = (p1 - p0).cross(p2 - p0);
+    const double len = cross.norm();
+    const double scale = std::max({(p1 - p0).squaredNorm(), (p2 - p0).squaredNorm(), (p2 - p1).squaredNorm()});
+    if (!(len > 1e-12 * scale) || !std::isfinite(len)) {
+      throw std::invalid_argument("TriangleBvh: triangle " + std::to_string(i) + " is degenerate (zero area)");
+    }
+    planes_[i].n = cross / len;
+    planes_[i].d = planes_[i].n.dot(p0);
+    centroids[i] = (p0 + p1 + p2) / 3.0;
+  }
+  order_.resize(n);
+  std::iota(order_.begin(), order_.end(), std::uint32_t{0});
+  nodes_.reserve(2 * (n / std::size_t(leaf_size_) + 1));
+  build(centroids, 0, std::uint32_t(n), 0);
+}
+
+std::uint32_t TriangleBvh::build(std::vector<Eigen::Vector3d>& centroids, std::uint32_t begin, std::uint32_t end,
+                                 int depth) {
+  if (depth > kMaxDepth) throw std::logic_error("TriangleBvh: hierarchy deeper than kMaxDepth");
+  depth_ = std::max(depth_, depth);
+  const std::uint32_t index = std::uint32_t(nodes_.size());
+  nodes_.emplace_back();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo, c_lo = lo, c_hi = hi;
+  for (std::uint32_t k = begin; k < end; ++k) {
+    for (std::uint32_t v : mesh_->triangles[order_[k]]) {
+      lo = lo.cwiseMin(mesh_->vertices[v]);
+      hi = hi.cwiseMax(mesh_->vertices[v]);
+    }
+    c_lo = c_lo.cwiseMin(centroids[order_[k]]);
+    c_hi = c_hi.cwiseMax(centroids[order_[k]]);
+  }
+  const double pad = kBoxPadRel * (hi - lo).maxCoeff() + kBoxPadAbs;
+  for (int k = 0; k < 3; ++k) {
+    nodes_[index].lo[std::size_t(k)] = lo[k] - pad;
+    nodes_[index].hi[std::size_t(k)] = hi[k] + pad;
+  }
+  if (end - begin <= std::uint32_t(leaf_size_)) {
+    nodes_[index].first_or_right = begin;
+    nodes_[index].count = end - begin;
+    return index;
+  }
+  // Median split on the longest axis of the centroids: balanced, so the depth is log2(n / leaf).
+  int axis = 0;
+  (c_hi - c_lo).maxCoeff(&axis);
+  const std::uint32_t mid = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](std::uint32_t x, std::uint32_t y) { return centroids[x][axis] < centroids[y][axis]; });
+  build(centroids, begin, mid, depth + 1);
+  const std::uint32_t right = build(centroids, mid, end, depth + 1);
+  nodes_[index].first_or_right = right;
+  nodes_[index].count = 0;
+  return index;
+}
+
+std::size_t TriangleBvh::bytes() const {
+  return nodes_.size() * sizeof(Node) + order_.size() * sizeof(order_[0]) + planes_.size() * sizeof(planes_[0]);
+}
+
+bool TriangleBvh::boxEntry(const Node& node, const Eigen::Vector3d& a, const Eigen::Vector3d& d, double t_max,
+                           double& t_enter) {
+  double t0 = 0.0, t1 = t_max;
+  for (int k = 0; k < 3; ++k) {
+    const double lo = node.lo[std::size_t(k)], hi = node.hi[std::size_t(k)];
+    if (d[k] == 0.0) {
+      if (a[k] < lo || a[k] > hi) return false;
+      continue;
+    }
+    const double inv = 1.0 / d[k];
+    double ta = (lo - a[k]) * inv, tb = (hi - a[k]) * inv;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  t_enter = t0;
+  return true;
+}
+
+bool TriangleBvh::entersTriangle(std::uint32_t triangle, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                 double& t) const {
+  const Halfspace& h = planes_[triangle];
+  const double sa = h.n.dot(a) - h.d, sb = h.n.dot(b) - h.d;
+  if (!(sa >= 0.0 && sb < 0.0)) return false;  // not entering through the front
+  const double s = sa / (sa - sb);
+  const auto& tri = mesh_->triangles[triangle];
+  const Eigen::Vector3d& p0 = mesh_->vertices[tri[0]];
+  const Eigen::Vector3d e1 = mesh_->vertices[tri[1]] - p0, e2 = mesh_->vertices[tri[2]] - p0;
+  const Eigen::Vector3d w = a + s * (b - a) - p0;
+  const Eigen::Vector3d n = e1.cross(e2);
+  const double inv_area2 = 1.0 / n.squaredNorm();
+  const double l1 = w.cross(e2).dot(n) * inv_area2;  // weight of vertex 1
+  const double l2 = e1.cross(w).dot(n) * inv_area2;  // weight of vertex 2
+  if (l1 < -kBarycentricTol || l2 < -kBarycentricTol || l1 + l2 > 1.0 + kBarycentricTol) return false;
+  t = s;
+  return true;
+}
+
+TriangleBvh::Hit TriangleBvh::firstEntry(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const std::uint32_t* skip,
+                                         int n_skip) const {
+  Hit best;
+  if (!a.allFinite() || !b.allFinite()) return best;
+  const Eigen::Vector3d d = b - a;
+  double best_t = std::numeric_limits<double>::infinity();
+  std::uint32_t best_tri = 0;
+  // Entry parameter kept with each node, so a node farther than a hit found meanwhile is dropped.
+  std::array<std::uint32_t, kMaxDepth + 2> stack;
+  std::array<double, kMaxDepth + 2> stack_t;
+  int sp = 0;
+  double t_root = 0.0;
+  if (!boxEntry(nodes_[0], a, d, 1.0, t_root)) return best;
+  stack[0] = 0;
+  stack_t[0] = t_root;
+  sp = 1;
+  while (sp > 0) {
+    --sp;
+    if (stack_t[std::size_t(sp)] > best_t) continue;
+    const Node& node = nodes_[stack[std::size_t(sp)]];
+    if (node.count > 0) {
+      for (std::uint32_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
+        const std::uint32_t tri = order_[k];
+        bool skipped = false;
+        for (int s = 0; s < n_skip; ++s) skipped = skipped || skip[s] == tri;
+        double t = 0.0;
+        if (skipped || !entersTriangle(tri, a, b, t)) continue;
+        if (t < best_t || (t == best_t && tri < best_tri)) {
+          best_t = t;
+          best_tri = tri;
+        }
+      }
+      continue;
+    }
+    const std::uint32_t left = std::uint32_t(&node - nodes_.data()) + 1, right = node.first_or_right;
+    const double t_max = std::min(1.0, best_t);
+    double tl = 0.0, tr = 0.0;
+    const bool hl = boxEntry(nodes_[left], a, d, t_max, tl);
+    const bool hr = boxEntry(nodes_[right], a, d, t_max, tr);
+    // The nearer child on top, so its hits prune the farther one.
+    if (hl && hr && tl < tr) {
+      stack[std::size_t(sp)] = right, stack_t[std::size_t(sp++)] = tr;
+      stack[std::size_t(sp)] = left, stack_t[std::size_t(sp++)] = tl;
+    } else {
+      if (hl) stack[std::size_t(sp)] = left, stack_t[std::size_t(sp++)] = tl;
+      if (hr) stack[std::size_t(sp)] = right, stack_t[std::size_t(sp++)] = tr;
+    }
+  }
+  if (best_t <= 1.0) {
+    best.hit = true;
+    best.t = best_t;
+    best.triangle = best_tri;
+    best.point = a + best_t * d;
+  }
+  return best;
+}
+
+}  // namespace thx::srv
