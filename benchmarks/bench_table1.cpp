@@ -277,6 +277,8 @@ int run(int argc, char** argv) {
   md << ". CPU per physics step: ";
   for (int c = 0; c < kColumns; ++c)
     md << (c ? ", " : "") << columnName(c) << " " << formatValue(physics[std::size_t(c)].cpu_s, Unit::Seconds);
+  md << ". Physics grounds: ";
+  for (int c = 0; c < kColumns; ++c) md << (c ? "; " : "") << physics[std::size_t(c)].note;
   md << ". Haptic p99 per tick: normal " << formatValue(haptic[0].p99_s, Unit::Seconds) << ", relief "
      << formatValue(haptic[1].p99_s, Unit::Seconds) << " (" << haptic[1].note << ").\n";
 

@@ -107,6 +107,7 @@ std::array<Timing, kColumns> timePhysics(const SceneTexture& st, int steps, int 
   for (int c = 0; c < kColumns; ++c) {
     const Ground ground(spec, grounds[c].first, grounds[c].second);
     std::vector<double> medians, cpu;
+    long long contacts = 0;
     for (int r = 0; r < reps; ++r) {
       Sim sim(ground);
       // Starts on a brick face's height at x = -0.06 and rolls along +x across the head joints.
@@ -124,6 +125,7 @@ std::array<Timing, kColumns> timePhysics(const SceneTexture& st, int steps, int 
         const auto t0 = std::chrono::steady_clock::now();
         sim.world.step(kDt);
         t.push_back(secondsSince(t0));
+        contacts += sim.contactPoints();
       }
       cpu.push_back((processCpuSeconds() - cpu0) / steps);
       medians.push_back(median(t));
@@ -131,8 +133,9 @@ std::array<Timing, kColumns> timePhysics(const SceneTexture& st, int steps, int 
     out[std::size_t(c)].median_s = median(medians);
     out[std::size_t(c)].cpu_s = median(cpu);
     out[std::size_t(c)].note = std::string(repName(grounds[c].first)) + " " + std::to_string(grounds[c].second) + "², " +
-                               std::to_string(ground.triangles()) + " triangles, built in " +
-                               std::to_string(int(ground.buildMs())) + " ms";
+                               (ground.triangles() > 0 ? std::to_string(ground.triangles()) + " triangles, " : "") + "built in " +
+                               std::to_string(int(ground.buildMs())) + " ms, " +
+                               std::to_string(double(contacts) / double(steps * reps)).substr(0, 4) + " contact points per step";
   }
   return out;
 }

@@ -56,9 +56,10 @@ std::string formatValue(double v, Unit unit) {
   if (std::isnan(v)) return "—";
   switch (unit) {
     case Unit::Bytes: {
-      const char* prefixes[] = {"B", "KB", "MB", "GB", "TB"};
+      // Up to GB, as the paper writes its 4500 GB.
+      const char* prefixes[] = {"B", "KB", "MB", "GB"};
       int p = 0;
-      while (v >= 1024 && p < 4) v /= 1024, ++p;
+      while (v >= 1024 && p < 3) v /= 1024, ++p;
       return sig(v) + " " + prefixes[p];
     }
     case Unit::Seconds:

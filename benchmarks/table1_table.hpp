@@ -43,7 +43,7 @@ struct Metric {
   std::array<PaperCell, kColumns> paper;
 };
 
-// "10 KB", "4.5 MB", "175 µs", "66,049" (binary prefixes: 1 KB = 1024 B, as the paper's sizes).
+// "10 KB", "4.5 MB", "4500 GB", "175 µs", "66,049" (binary prefixes, 1 KB = 1024 B, up to GB).
 std::string formatValue(double value, Unit unit);
 // "× 12.3" of value / the normal column's (blank when either is missing or the normal's is 0).
 std::string formatRatio(double value, double normal);
