@@ -51,6 +51,9 @@ The paper's figures beside ours, every cell also as a ratio to the normal-map co
   --steps N  --reps N     timed physics steps per repetition (1000), repetitions (3)
   --passes N              haptic passes over the path (default 5)
   --quick                 small everything (a smoke run)
+  --modal-child KIND SIZE [--scene FILE]
+                          one solve alone (idle, spring, fem-slab, fem-mesh), its reply on stdout:
+                          what the program runs in its child processes
 )";
 
 struct Options {

@@ -20,7 +20,7 @@
 #              512², beside the paper's figures; writes docs/results/table1.{md,csv} and the table in
 #              docs/table1.md; THX_TABLE1_MESH_SIZES the Tet4 slabs measured for the meshes' memory
 #              fit (24,32,48,64,96,128; add 256 to measure that cell: about 2 GB and minutes more);
-#              about 4 min)
+#              about 2 min)
 #
 # The clients part also sweeps the number of clients (issue 17): 1, 2, 4, 8, 16, 32, 64 clients
 # (THX_CLIENTS_SWEEP), for the workloads "mixed" (1/4 of the clients batched CONTACT at 1 kHz, the
@@ -237,7 +237,7 @@ run_visual_servo() {
 
 run_table1() {
   need "$BIN/bench_table1" || return 1
-  say "part table1: the paper's Table 1 on one surface, normal / relief / mesh 256² / mesh 512² (about 4 min)"
+  say "part table1: the paper's Table 1 on one surface, normal / relief / mesh 256² / mesh 512² (about 2 min)"
   "$BIN/bench_table1" --scene "$ROOT/scenes/default.yaml" --workdir "$WORK" \
     --fem-mesh-sizes "${THX_TABLE1_MESH_SIZES:-24,32,48,64,96,128}" \
     --md "$RESULTS/table1.md" --csv "$RESULTS/table1.csv" > /dev/null || return 1
