@@ -1,8 +1,6 @@
 // FEM modal analysis: frequency error against DOF, solve time and peak memory, Tet4 and Tet10
 // (issue 14). Each case runs in a child process so its peak resident set is its own.
 // Writes --csv, --json and a Markdown table (--md) for docs/audio.md; benchmarks/run.sh audio.
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -17,6 +15,7 @@
 
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_stamp.hpp"
+#include "benchmarks/child_reply.hpp"
 #include "clients/audio/modal_analysis.hpp"
 #include "scenes/materials.hpp"
 
@@ -113,15 +112,10 @@ Outcome runIsolated(const Case& c) {
     _exit(0);
   }
   close(fd[1]);
-  std::string text;
-  char buf[512];
-  for (ssize_t n; (n = read(fd[0], buf, sizeof buf)) > 0;) text.append(buf, std::size_t(n));
-  close(fd[0]);
-  int status = 0;
-  rusage usage{};
-  wait4(pid, &status, 0, &usage);
+  const thx::bench::ChildReply reply = thx::bench::readChildReply(pid, fd[0]);
+  const std::string& text = reply.text;
   Outcome o;
-  o.peak_rss_kb = usage.ru_maxrss;
+  o.peak_rss_kb = reply.peak_rss_kb;
   if (text.rfind("error ", 0) == 0 || text.empty()) {
     o.error = text.empty() ? "child failed" : text.substr(6);
     return o;

@@ -16,6 +16,11 @@
 #              or visual_servo (hapticd's wake latency alone and beside visual-client --live, servo
 #              SCHED_FIFO and normal, LP_NUM_THREADS 2 and 1; THX_VISUAL_SERVO_SECONDS per run (20);
 #              about 2.5 min; needs xvfb-run and setpriv; its table goes to docs/visual.md)
+#              or table1 (the paper's Table 1 on one surface: normal map, relief map, meshes 256² and
+#              512², beside the paper's figures; writes docs/results/table1.{md,csv} and the table in
+#              docs/table1.md; THX_TABLE1_MESH_SIZES the Tet4 slabs measured for the meshes' memory
+#              fit (24,32,48,64,96,128; add 256 to measure that cell: about 2 GB and minutes more);
+#              about 2 min)
 #
 # The clients part also sweeps the number of clients (issue 17): 1, 2, 4, 8, 16, 32, 64 clients
 # (THX_CLIENTS_SWEEP), for the workloads "mixed" (1/4 of the clients batched CONTACT at 1 kHz, the
@@ -241,16 +246,25 @@ run_visual_servo() {
   splice bench_visual_servo "$WORK/bench_visual_servo.md" "$ROOT/docs/visual.md"
 }
 
+run_table1() {
+  need "$BIN/bench_table1" || return 1
+  say "part table1: the paper's Table 1 on one surface, normal / relief / mesh 256² / mesh 512² (about 2 min)"
+  "$BIN/bench_table1" --scene "$ROOT/scenes/default.yaml" --workdir "$WORK" \
+    --fem-mesh-sizes "${THX_TABLE1_MESH_SIZES:-24,32,48,64,96,128}" \
+    --md "$RESULTS/table1.md" --csv "$RESULTS/table1.csv" > /dev/null || return 1
+  splice table1 "$RESULTS/table1.md" "$ROOT/docs/table1.md"
+}
+
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | physics | visual | visual_servo | audio | audio-live | load)
+    render | force_error | memory | latency | clients | physics | visual | visual_servo | audio | audio-live | load | table1)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients physics visual visual_servo audio audio-live load)"
+      say "unknown part '$part' (expected: render force_error memory latency clients physics visual visual_servo audio audio-live load table1)"
       exit 2
       ;;
   esac
