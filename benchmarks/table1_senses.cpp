@@ -12,6 +12,10 @@
 #include "clients/visual/frame_renderer.hpp"
 #include "clients/visual/mesh_builders.hpp"
 #include "rt/clock.hpp"
+#include "server/mesh_god_object.hpp"
+#include "server/servo_rig.hpp"
+#include "server/triangle_bvh.hpp"
+#include "server/triangle_mesh.hpp"
 #include "server/scene_device.hpp"
 #include "textures/texture_io.hpp"
 
@@ -206,6 +210,38 @@ std::array<Timing, 2> timeHaptics(const SceneTexture& st, int passes, std::vecto
                                std::to_string(passes) + " passes";
     if (relief) relief_path = path;
   }
+  return out;
+}
+
+Timing timeMeshHaptics(const SceneTexture& st, int mesh_n, const std::vector<dev::DeviceState>& path, int passes) {
+  const PlacedSurface placed(st.scene, st.map(), /*relief=*/true);
+  const srv::TriangleMesh mesh = srv::reliefGridMesh(placed.surface, mesh_n);
+  const srv::TriangleBvh bvh(mesh);
+  srv::MeshGodObject r(bvh, placed.surface.mapping(), srv::servoRigConfigFor(st.scene).renderer);
+  std::vector<double> all, medians;
+  all.reserve(std::size_t(passes) * path.size());
+  std::size_t contact = 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    r.reset();
+    std::vector<double> t;
+    t.reserve(path.size());
+    for (const dev::DeviceState& s : path) {
+      const std::int64_t t0 = rt::monotonicNowNs();
+      const srv::RenderOutput o = r.render(s.p_world, s.v_world);
+      const std::int64_t t1 = rt::monotonicNowNs();
+      g_sink = g_sink + o.force_world.z();
+      if (pass == 0 && o.in_contact) ++contact;
+      t.push_back(double(t1 - t0) * 1e-9);
+    }
+    medians.push_back(median(t));
+    all.insert(all.end(), t.begin(), t.end());
+  }
+  Timing out;
+  out.median_s = median(medians);
+  out.p99_s = quantile(all, 0.99);
+  out.note = "god object on the " + std::to_string(mesh_n) + "^2 mesh (" + std::to_string(mesh.triangles.size()) +
+             " triangles, BVH), the relief's " + std::to_string(path.size()) + " ticks (" + std::to_string(contact) +
+             " in contact), " + std::to_string(passes) + " passes";
   return out;
 }
 

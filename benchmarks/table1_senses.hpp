@@ -39,4 +39,10 @@ std::array<Timing, kColumns> timeVisual(const SceneTexture& st, int width, int h
 // Also returns that relief path (for the mesh renderer's hook).
 std::array<Timing, 2> timeHaptics(const SceneTexture& st, int passes, std::vector<dev::DeviceState>& relief_path);
 
+// Haptic time on a mesh: the relief displaced as an N x N grid (srv::reliefGridMesh: the same
+// vertices and diagonals as the visual client's mesh:N) rendered by the god object over its BVH
+// (server/mesh_god_object.hpp) with hapticd's stiffness and damping for the scene, on `path` (the
+// tip path the relief renderer was timed on), timed per tick as timeHaptics times the textures.
+Timing timeMeshHaptics(const SceneTexture& st, int mesh_n, const std::vector<dev::DeviceState>& path, int passes);
+
 }  // namespace thx::bench::table1
