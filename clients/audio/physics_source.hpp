@@ -27,6 +27,8 @@ class PhysicsSource final : public ExcitationSource {
   // silent); the surface is body 0.
   PhysicsSource(const SoundingScene& scene, std::vector<int> object_bodies, std::uint32_t generation,
                 std::int64_t playout_delay_ns);
+  PhysicsSource(const PhysicsSource&) = delete;  // lookup_ points at this
+  PhysicsSource& operator=(const PhysicsSource&) = delete;
 
   void physicsPoses(const thx_msgs::physics_poses_t& m, std::int64_t receipt_ns) override;
   void physicsContacts(const thx_msgs::physics_contacts_t& m, std::int64_t receipt_ns, ExcitationSink& sink) override;
