@@ -29,33 +29,32 @@ using namespace thx::audio;
 const char* const kHelp = R"(usage: audio-client --scene FILE [--wav FILE] [live options]             (live)
        audio-client --scene FILE --replay-log FILE --wav FILE [options]      (offline)
 
-The pen scraping the scene's surface. Meso level: on a normal map, Eq. 5 at every texel the pen
-tip enters (the pen's effective mass, the texel's own normal); on a relief map (offline), the
-change of the contact normal from tick to tick. A flat map is silent at this level.
+The pen scraping the scene's surface, and the physics client's objects. Both sides of every
+contact sound: the surface slab's modes (surface.thickness, surface.held), the pen's own
+(device.pen: a cylinder, struck at its tip) and each moving object's. The pen: meso level, on a
+normal map Eq. 5 at every texel the tip enters (the pen's effective mass, the texel's own
+normal), on a relief map the change of the contact normal from tick to tick (a flat map is
+silent at this level); micro level, the surface's fractal roughness (surface.roughness) read
+along the distance travelled, scaled by the normal force. The physics client's streams: impacts
+(the impulse on both bodies' modes at the contact point, over a Hertz contact time), rolling and
+sliding objects' texel paths (Eq. 5 on a normal map; on a relief map the change of the object's
+normal momentum between contact reports), on the surface and the object. Live and offline play
+the same excitations through the same code.
 
 Live (the default; docs/audio.md "Live audio"): hapticd's CONTACT stream, batched (every servo
-tick), through the client kit, and the physics client's rolling objects (their texel paths on
-THX_PHYSICS_CONTACTS: Eq. 5 with each object's mass; its impacts are received, not played). The
-impulses go through a lock-free queue to the audio callback, which places each at its sample
-(the tick's time plus the playout delay) and lowers the number of modes it synthesises when its
-cost per block nears the block period. Output through RtAudio when a sound device exists; when
-none does, one line says so and a timer-driven callback writes the sound to --wav. Follows
-hapticd's scene switches (finds NAME.yaml in --scenes-dir).
+tick), through the client kit, and the physics client's THX_PHYSICS_POSES/IMPACT/CONTACTS. The
+events go through a lock-free queue to the audio callback, which places each at its sample (the
+tick's time plus the playout delay), renders the micro level sample by sample, and lowers the
+number of modes it synthesises when its cost per block nears the block period. Output through
+RtAudio when a sound device exists; when none does, one line says so and a timer-driven callback
+writes the sound to --wav. Follows hapticd's scene switches (finds NAME.yaml in --scenes-dir).
 
 Offline (--replay-log): deterministic, from a recorded session (`hapticd --record FILE`: one
-contact_t per servo tick on THX_CONTACT). Besides the meso level: micro level, the surface's
-fractal roughness (surface.roughness) read along the distance travelled, scaled by the normal
-force; both sides sound, the surface slab's modes (surface.thickness, surface.held; at the
-top-face node nearest the tip) and the pen's own (device.pen: a cylinder, struck at its tip). If
-the log also holds the physics client's streams (`physics-client --replay-log SESSION --record
-FILE`: THX_PHYSICS_POSES/IMPACT/CONTACTS on the session's clock), they sound too, on the same
-clock: impacts (the impulse on both bodies' modes at the contact point, over a Hertz contact
-time), rolling and sliding objects' texel paths (Eq. 5 on a normal map; on a relief map the
-change of the object's normal momentum between contact reports), exciting the surface and the
-object; a THX_HELLO naming another scene switches the physics streams to NAME.yaml
-(--scenes-dir). The sum of the modal displacements as a 32-bit float WAV normalised to a peak of
-0.5 (-6 dBFS). Live plays the meso level on the slab only (not yet: micro level, the pen's and
-the objects' own modes, impacts).
+contact_t per servo tick on THX_CONTACT). If the log also holds the physics client's streams
+(`physics-client --replay-log SESSION --record FILE`: THX_PHYSICS_POSES/IMPACT/CONTACTS on the
+session's clock), they sound too, on the same clock; a THX_HELLO naming another scene switches
+the physics streams to NAME.yaml (--scenes-dir). The sum of the modal displacements as a 32-bit
+float WAV normalised to a peak of 0.5 (-6 dBFS).
 
   --scene FILE           the scene hapticd runs (docs/scenes.md)
   --replay-log FILE      offline: hapticd's --record log, or physics-client's --record log (with
@@ -71,7 +70,6 @@ the objects' own modes, impacts).
   --cache-dir DIR        modal cache (default as modal-analyze); --no-cache: none
   --scenes-dir DIR       where a switched-to scene NAME.yaml is found (offline default: --scene's
                          folder; live default: scenes)
-Offline:
   --no-pen               the slab alone sounds (not the pen's own modes)
   --no-micro             no micro-level roughness (meso impulses only)
   --object-elements E    tet10 (default) or tet4: the moving objects' elements
@@ -168,9 +166,7 @@ int runOffline(const Options& o) {
   std::int64_t first_contact_utime = 0;
   thx_msgs::forEachLogMessage<thx_msgs::contact_t>(o.log, "THX_CONTACT", [&](const thx_msgs::contact_t& c, const auto&) {
     if (path.empty()) first_contact_utime = c.utime;
-    const auto v3 = [](const double* x) { return Eigen::Vector3d(x[0], x[1], x[2]); };
-    path.push_back({c.tick, c.in_contact != 0, {c.uv[0], c.uv[1]}, c.f_normal, v3(c.n_geom_world),
-                    v3(c.n_sampled_world), v3(c.v_tangent_world)});
+    path.push_back(scrapeSample(c));
   });
   const PhysicsStreams physics = readPhysicsStreams(o.log);
   if (path.empty() && physics.empty())
@@ -183,19 +179,13 @@ int runOffline(const Options& o) {
   mo.slab_cells = o.slab.cells;
   TetMesh slab = slabBody(scene, mo).mesh;
   slab.name = "surface (" + scene.surface.material.name + ")";
-  ModalSettings ms;
-  ms.elastic_modes = o.slab.modes;
-  AnalysisOptions ao;
-  if (!o.slab.no_cache) ao.cache_dir = o.slab.cache_dir ? *o.slab.cache_dir : defaultModalCacheDir();
-  ao.progress = [](const std::string& line) { std::fprintf(stderr, "audio-client: %s\n", line.c_str()); };
-  AudibleOptions audible;
-  audible.sample_rate_hz = o.slab.sample_rate_hz;
+  const ModalSettings ms = modalSettings(o.slab);
+  const AnalysisOptions ao = analysisOptions(o.slab);
+  const AudibleOptions audible = audibleOptions(o.slab);
   const AudibleModes modes = audibleModes(analyse(slab, material, ms, ao), material, audible);
   // The pen's own modes (device.pen), struck at its tip.
-  const SceneBody pen = penBody(scene);
-  const AudibleModes pen_modes =
-      o.no_pen ? AudibleModes{} : audibleModes(analyse(pen.mesh, pen.material, ms, ao), pen.material, audible);
-  const PenModes pen_view{&pen.mesh, &pen_modes, penTipNode(pen.mesh), scene.device.pen.tilt_deg};
+  const PenSound pen = o.no_pen ? PenSound{} : buildPenSound(scene, o.slab);
+  const PenModes pen_view{&pen.mesh, &pen.modes, pen.tip_node, pen.tilt_deg};
 
   ScrapeOptions so;
   so.sample_rate_hz = o.slab.sample_rate_hz;
@@ -204,10 +194,8 @@ int runOffline(const Options& o) {
   so.surface_size_m = scene.surface.size_m;
   so.tail_s = o.tail;
   so.meso = map.representation() == thx::tex::Representation::Relief ? MesoSource::ContactNormals : MesoSource::TexelWalk;
-  const thx::scene::Roughness& rough = scene.surface.roughness;
-  so.roughness.beta = rough.beta;
-  so.roughness.amplitude = o.no_micro ? 0.0 : rough.amplitude;
-  so.roughness.spacing_m = rough.spacing_m;
+  so.roughness = sceneRoughness(scene);
+  if (o.no_micro) so.roughness.amplitude = 0.0;
   ScrapeRender r = renderScrape(map, slab, modes, path, so, o.no_pen ? nullptr : &pen_view);
   if (!physics.empty()) {
     BodyOptions bo;
@@ -243,7 +231,7 @@ int runOffline(const Options& o) {
   std::printf("audio-client: %s: %zu ticks, %zu %s impulses (%zu non-zero), micro force RMS %.3g N, %zu slab + %zu pen modes "
               "(peaks %.3g / %.3g, RMS %.3g), %.2f s -> %s\n",
               o.log.c_str(), path.size(), r.impulses, so.meso == MesoSource::TexelWalk ? "meso" : "relief", r.nonzero_impulses,
-              r.micro_rms_n, modes.size(), pen_modes.size(), r.slab_peak, r.pen_peak,
+              r.micro_rms_n, modes.size(), pen.modes.size(), r.slab_peak, r.pen_peak,
               r.raw_rms, double(r.samples.size()) / o.slab.sample_rate_hz, o.wav.c_str());
   return 0;
 }
@@ -256,6 +244,9 @@ int run(Options o) {
   l.scene_settings.slab = o.slab;
   l.scene_settings.slab.quiet = l.quiet;
   l.scene_settings.pen_mass_kg = o.pen_mass;
+  l.scene_settings.pen_modes = !o.no_pen;
+  l.scene_settings.micro = !o.no_micro;
+  l.scene_settings.object_order = o.object_order;
   if (o.scenes_dir) l.scenes_dir = *o.scenes_dir;
   const double playout_ms = o.playout_ms ? *o.playout_ms : 1e3 / l.batch_hz + 1e3 * double(l.block_frames) / o.slab.sample_rate_hz;
   l.scene_settings.playout_delay_ns = std::int64_t(std::llround(playout_ms * 1e6));

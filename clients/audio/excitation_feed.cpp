@@ -40,6 +40,11 @@ void ExcitationFeed::contactBatch(const thx_msgs::contact_batch_t& b, std::int64
   }
 }
 
+void ExcitationFeed::physicsPoses(const thx_msgs::physics_poses_t& m, std::int64_t receipt_ns) {
+  ++counters_.physics_poses;
+  for (ExcitationSource* s : sources_) s->physicsPoses(m, receipt_ns);
+}
+
 void ExcitationFeed::physicsContacts(const thx_msgs::physics_contacts_t& m, std::int64_t receipt_ns) {
   ++counters_.physics_contacts;
   for (ExcitationSource* s : sources_) s->physicsContacts(m, receipt_ns, sink_);

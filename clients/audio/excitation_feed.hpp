@@ -35,7 +35,7 @@ struct FeedCounters {
   std::uint64_t restarts = 0;         // a new server_instance
   std::uint64_t duplicates = 0;       // batches whose ticks were all played already (resends)
   std::uint64_t resubscriptions = 0;  // the batch seq started again within one server instance
-  std::uint64_t physics_contacts = 0, physics_impacts = 0;
+  std::uint64_t physics_poses = 0, physics_contacts = 0, physics_impacts = 0;
 };
 
 class ExcitationFeed {
@@ -48,6 +48,7 @@ class ExcitationFeed {
   void addSource(ExcitationSource* source) { sources_.push_back(source); }
 
   void contactBatch(const thx_msgs::contact_batch_t& batch, std::int64_t receipt_ns);
+  void physicsPoses(const thx_msgs::physics_poses_t& m, std::int64_t receipt_ns);
   void physicsContacts(const thx_msgs::physics_contacts_t& m, std::int64_t receipt_ns);
   void physicsImpact(const thx_msgs::physics_impact_t& m, std::int64_t receipt_ns);
 

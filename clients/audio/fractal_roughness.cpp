@@ -68,18 +68,24 @@ double RoughnessProfile::at(double distance_m, std::size_t level) const {
   return t[i] + frac * (t[j] - t[i]);
 }
 
-void microForce(const RoughnessProfile& profile, double s0, double s1, double f0, double f1, std::span<double> out) {
-  const double count = double(out.size());
-  const double a = profile.options().amplitude;
+std::size_t microLevel(const RoughnessProfile& profile, double s0, double s1, std::size_t count) {
   // Entries advanced per sample at level 0; each level halves it.
-  double per_sample = std::fabs(s1 - s0) / (profile.options().spacing_m * count);
+  double per_sample = std::fabs(s1 - s0) / (profile.options().spacing_m * double(count));
   std::size_t level = 0;
   while (per_sample > 1.0 && level + 1 < profile.levels()) per_sample *= 0.5, ++level;
-  for (std::size_t n = 0; n < out.size(); ++n) {
-    const double t = double(n) / count;
-    const double f = f0 + t * (f1 - f0);
-    out[n] = f == 0.0 ? 0.0 : a * f * profile.at(s0 + t * (s1 - s0), level);
-  }
+  return level;
+}
+
+double microForceAt(const RoughnessProfile& profile, std::size_t level, double s0, double s1, double f0, double f1,
+                    std::size_t n, std::size_t count) {
+  const double t = double(n) / double(count);
+  const double f = f0 + t * (f1 - f0);
+  return f == 0.0 ? 0.0 : profile.options().amplitude * f * profile.at(s0 + t * (s1 - s0), level);
+}
+
+void microForce(const RoughnessProfile& profile, double s0, double s1, double f0, double f1, std::span<double> out) {
+  const std::size_t level = microLevel(profile, s0, s1, out.size());
+  for (std::size_t n = 0; n < out.size(); ++n) out[n] = microForceAt(profile, level, s0, s1, f0, f1, n, out.size());
 }
 
 }  // namespace thx::audio

@@ -55,4 +55,10 @@ class RoughnessProfile {
 // zeros. Allocation-free.
 void microForce(const RoughnessProfile& profile, double s0, double s1, double f0, double f1, std::span<double> out);
 
+// microForce one sample at a time (the live callback renders a segment across its blocks):
+// the level it reads for a segment of `count` samples, and its sample n (< count).
+std::size_t microLevel(const RoughnessProfile& profile, double s0, double s1, std::size_t count);
+double microForceAt(const RoughnessProfile& profile, std::size_t level, double s0, double s1, double f0, double f1,
+                    std::size_t n, std::size_t count);
+
 }  // namespace thx::audio

@@ -75,6 +75,7 @@ int runLive(const LiveOptions& o) {
   QueueSink sink(synth.queue());
   ExcitationFeed feed(sink);
   feed.setSources(scene->sourcePointers());
+  std::size_t scene_modes = scene->synth->modes();  // every body's
   synth.offerScene(std::move(scene->synth));
 
   const float gain = float(o.gain);
@@ -105,9 +106,11 @@ int runLive(const LiveOptions& o) {
   if (device) device->start();
   if (timer) timer->start();
   client::ClientApp app(appOptions(o, *scene->sound));
+  client::PhysicsPosesSubscriber physics_poses(app.lcm());
   client::PhysicsContactsSubscriber physics_contacts(app.lcm());
   client::PhysicsImpactSubscriber physics_impacts(app.lcm());
   app.client().onContactBatch([&](const thx_msgs::contact_batch_t& b, std::int64_t t) { feed.contactBatch(b, t); });
+  physics_poses.onMessage([&](const thx_msgs::physics_poses_t& m, std::int64_t t) { feed.physicsPoses(m, t); });
   physics_contacts.onMessage([&](const thx_msgs::physics_contacts_t& m, std::int64_t t) { feed.physicsContacts(m, t); });
   physics_impacts.onMessage([&](const thx_msgs::physics_impact_t& m, std::int64_t t) { feed.physicsImpact(m, t); });
   app.client().subscribe("CONTACT", o.batch_hz, /*batch=*/true);
@@ -171,6 +174,7 @@ int runLive(const LiveOptions& o) {
           std::fprintf(stderr, "audio-client: warning: scene '%s' in %s has another texture than hapticd's; playing ours\n",
                        building_to.name.c_str(), o.scenes_dir.c_str());
         feed.setSources(next->sourcePointers());
+        scene_modes = next->synth->modes();
         synth.offerScene(std::move(next->synth));
         scene = std::move(next);
         ++scene_switches;
@@ -192,7 +196,7 @@ int runLive(const LiveOptions& o) {
                  "modes %llu of %zu (fewest %llu), scene switches %llu; latency contact -> block p50 %.0f us, p99 %.0f us\n",
                  (unsigned long long)f.batches, (unsigned long long)f.samples, (unsigned long long)c.events.load(),
                  (unsigned long long)c.late_events.load(), (unsigned long long)sink.dropped(),
-                 (unsigned long long)c.blocks.load(), (unsigned long long)c.budget.load(), scene->sound->modes.size(),
+                 (unsigned long long)c.blocks.load(), (unsigned long long)c.budget.load(), scene_modes,
                  (unsigned long long)(c.min_rendered_modes.load() == ~std::uint64_t(0) ? 0 : c.min_rendered_modes.load()),
                  (unsigned long long)scene_switches, percentile(latency.from_source_us, 0.5),
                  percentile(latency.from_source_us, 0.99));
@@ -220,7 +224,7 @@ int runLive(const LiveOptions& o) {
                  (unsigned long long)c.stale_events.load(),
                  (unsigned long long)sink.dropped(), (unsigned long long)c.blocks.load(),
                  (unsigned long long)c.late_blocks.load(), (unsigned long long)c.reanchors.load(),
-                 (unsigned long long)scene_switches, scene->sound->modes.size(), (unsigned long long)c.budget.load(),
+                 (unsigned long long)scene_switches, scene_modes, (unsigned long long)c.budget.load(),
                  (unsigned long long)(c.min_rendered_modes.load() == ~std::uint64_t(0) ? 0 : c.min_rendered_modes.load()),
                  double(c.max_cost_ns.load()) / 1e3, (unsigned long long)f.physics_contacts,
                  (unsigned long long)f.physics_impacts);

@@ -1,6 +1,8 @@
 #include "clients/audio/live_scene.hpp"
 
-#include "clients/audio/physics_meso_source.hpp"
+#include <filesystem>
+
+#include "clients/audio/physics_sound.hpp"
 
 namespace thx::audio {
 
@@ -10,9 +12,11 @@ std::vector<ExcitationSource*> LiveScene::sourcePointers() const {
   return out;
 }
 
-SoundingBody surfaceBody(const SurfaceSound& sound) {
-  return SoundingBody{sound.slab.name, sound.modes.frequency_hz, sound.modes.decay_per_s, sound.modes.shapes};
+SoundingBody soundingBody(std::string name, const AudibleModes& modes) {
+  return SoundingBody{std::move(name), modes.frequency_hz, modes.decay_per_s, modes.shapes};
 }
+
+SoundingBody surfaceBody(const SurfaceSound& sound) { return soundingBody(sound.slab.name, sound.modes); }
 
 std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const LiveSceneSettings& s,
                                           std::uint32_t generation) {
@@ -22,15 +26,52 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   const SurfaceSound& sound = *live->sound;
   std::vector<SoundingBody> bodies;
   bodies.push_back(surfaceBody(sound));
-  live->synth = std::make_unique<SynthScene>(std::move(bodies), s.slab.sample_rate_hz, s.max_block, generation);
+
+  PenSourceBodies pen;
+  if (s.pen_modes) {
+    const PenSound p = buildPenSound(sound.scene, s.slab);
+    if (p.modes.size() > 0) {
+      pen.pen_body = int(bodies.size());
+      pen.tip_node = p.tip_node;
+      pen.tilt_deg = p.tilt_deg;
+      bodies.push_back(soundingBody("pen", p.modes));
+    }
+  }
+  live->pen_body = pen.pen_body;
+
+  // The moving objects, meshed and analysed as the offline render does (physics_sound.hpp).
+  BodyOptions bo;
+  bo.slab_thickness_m = s.slab.thickness_m;
+  bo.slab_cells = s.slab.cells;
+  bo.clamp_slab = s.slab.clamp_edges;
+  bo.object_order = s.object_order;
+  bo.modal = modalSettings(s.slab);
+  bo.analysis = analysisOptions(s.slab);
+  bo.audible = audibleOptions(s.slab);
+  live->physics = std::make_unique<SoundingScene>(soundingScene(std::filesystem::path(scene_file).stem().string(), sound.scene,
+                                                                sound.map().isRelief(), bo,
+                                                                std::make_shared<const ModalBody>(sound.slab, sound.modes)));
+  for (const auto& object : live->physics->objects) {
+    if (!object || object->size() == 0) {
+      live->object_bodies.push_back(-1);
+      continue;
+    }
+    live->object_bodies.push_back(int(bodies.size()));
+    bodies.push_back(soundingBody(object->mesh().name, object->modes()));
+  }
+
+  const RoughnessOptions roughness = sceneRoughness(sound.scene);
+  pen.micro = s.micro && roughness.amplitude > 0.0;
+  live->synth = std::make_unique<SynthScene>(std::move(bodies), s.slab.sample_rate_hz, s.max_block, generation,
+                                             pen.micro ? std::make_shared<const RoughnessProfile>(roughness) : nullptr);
   PenScrapeOptions po;
   po.servo_hz = sound.scene.rates.servo_hz;
   po.pen_mass_kg = s.pen_mass_kg ? *s.pen_mass_kg : sound.scene.device.sim.device_mass_kg;
   po.surface_size_m = sound.scene.surface.size_m;
+  po.meso = sound.map().isRelief() ? MesoSource::ContactNormals : MesoSource::TexelWalk;
+  live->sources.push_back(std::make_unique<PenSource>(sound.map(), sound.slab, po, pen, generation, s.playout_delay_ns));
   live->sources.push_back(
-      std::make_unique<PenMesoSource>(sound.map(), sound.slab, po, generation, s.playout_delay_ns));
-  live->sources.push_back(std::make_unique<PhysicsMesoSource>(sound.map(), sound.slab, po.surface_size_m, generation,
-                                                              s.playout_delay_ns));
+      std::make_unique<PhysicsSource>(*live->physics, live->object_bodies, generation, s.playout_delay_ns));
   return live;
 }
 

@@ -101,7 +101,7 @@ void LiveSynth::process(std::span<float> out, std::int64_t block_start_ns) {
     const std::int64_t at = std::max(sample, pos);
     if (at > pos) scene_->render(out.subspan(std::size_t(pos), std::size_t(at - pos)));
     pos = at;
-    if (scene_->strike(*e)) {
+    if (scene_->strike(*e, sampleOf(e->end_ns) - sampleOf(e->time_ns))) {
       add(counters_.events);
       if (sample < 0) add(counters_.late_events);
       PlayedEvent p{e->source_ns, e->receipt_ns, e->time_ns, block_start_ns, std::int32_t(at), sample < 0};

@@ -81,30 +81,37 @@ ModalBody::Location ModalBody::locate(const Eigen::Vector3d& point) const {
   return at;
 }
 
-void ModalBody::gainsAt(const Eigen::Vector3d& point, const Eigen::Vector3d& direction, std::span<double> gains) const {
-  std::fill(gains.begin(), gains.end(), 0.0);
-  if (modes_.size() == 0 || mesh_.tets.empty()) return;
+ModalBody::Weights ModalBody::weightsAt(const Eigen::Vector3d& point) const {
+  Weights w;
+  if (mesh_.tets.empty()) return w;
   const Location at = locate(point);
   const auto& t = mesh_.tets[std::size_t(at.tet)];
   const Eigen::Vector4d& L = at.barycentric;
   // Shape functions of the element at L: Tet4 the barycentric coordinates; Tet10 corners
   // L(2L - 1) and edge midpoints 4 L_a L_b (tet_mesh.hpp's node order).
-  double weight[10];
-  int count = 4;
   if (mesh_.order == ElementOrder::Linear) {
-    for (int c = 0; c < 4; ++c) weight[c] = L[c];
+    for (int c = 0; c < 4; ++c) w.weights[c] = L[c];
+    w.count = 4;
   } else {
-    for (int c = 0; c < 4; ++c) weight[c] = L[c] * (2.0 * L[c] - 1.0);
-    for (int e = 0; e < 6; ++e) weight[4 + e] = 4.0 * L[kTet10Edges[std::size_t(e)][0]] * L[kTet10Edges[std::size_t(e)][1]];
-    count = 10;
+    for (int c = 0; c < 4; ++c) w.weights[c] = L[c] * (2.0 * L[c] - 1.0);
+    for (int e = 0; e < 6; ++e) w.weights[4 + e] = 4.0 * L[kTet10Edges[std::size_t(e)][0]] * L[kTet10Edges[std::size_t(e)][1]];
+    w.count = 10;
   }
+  for (int c = 0; c < w.count; ++c) w.nodes[c] = t[std::size_t(c)];
+  return w;
+}
+
+void ModalBody::gainsAt(const Eigen::Vector3d& point, const Eigen::Vector3d& direction, std::span<double> gains) const {
+  std::fill(gains.begin(), gains.end(), 0.0);
+  if (modes_.size() == 0 || mesh_.tets.empty()) return;
+  const Weights w = weightsAt(point);
   const std::size_t n = std::min(gains.size(), modes_.size());
-  for (int c = 0; c < count; ++c) {
-    const Eigen::Index row = 3 * Eigen::Index(t[std::size_t(c)]);
+  for (int c = 0; c < w.count; ++c) {
+    const Eigen::Index row = 3 * Eigen::Index(w.nodes[c]);
     for (std::size_t i = 0; i < n; ++i) {
       const Eigen::Index col = Eigen::Index(i);
-      gains[i] += weight[c] * (modes_.shapes(row, col) * direction.x() + modes_.shapes(row + 1, col) * direction.y() +
-                               modes_.shapes(row + 2, col) * direction.z());
+      gains[i] += w.weights[c] * (modes_.shapes(row, col) * direction.x() + modes_.shapes(row + 1, col) * direction.y() +
+                                  modes_.shapes(row + 2, col) * direction.z());
     }
   }
 }

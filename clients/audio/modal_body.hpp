@@ -38,6 +38,16 @@ class ModalBody {
   };
   Location locate(const Eigen::Vector3d& point) const;
 
+  // The nodes a point's shape functions weigh and their weights (4 for Tet4, 10 for Tet10):
+  // gainsAt is the sum over them of weight x (node's shape . direction). The live client sends
+  // them with a Point event and the callback sums the same way (synth_scene.hpp).
+  struct Weights {
+    int nodes[10] = {};
+    double weights[10] = {};
+    int count = 0;
+  };
+  Weights weightsAt(const Eigen::Vector3d& point) const;
+
  private:
   TetMesh mesh_;
   AudibleModes modes_;

@@ -23,24 +23,8 @@
 namespace thx::audio {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-Eigen::Vector3d vec(const double (&a)[3]) { return {a[0], a[1], a[2]}; }
-
 std::shared_ptr<const ModalBody> analysedBody(const TetMesh& mesh, const ElasticMaterial& material, const BodyOptions& o) {
   return std::make_shared<const ModalBody>(mesh, audibleModes(analyse(mesh, material, o.modal, o.analysis), material, o.audible));
-}
-
-// The Hertz description of one side of an impact (contact_pulse.hpp).
-HertzSide hertzSide(const scene::Scene& scene, int body) {
-  if (body == thx_msgs::physics_impact_t::BODY_SURFACE)
-    return {scene.surface.material.youngs_modulus_pa, scene.surface.material.poisson_ratio, kInf, kInf};
-  if (body < 0 || std::size_t(body) >= scene.objects.size()) return {};  // the pen: rigid, flat, kinematic
-  const scene::SceneObject& o = scene.objects[std::size_t(body)];
-  // A box strikes with an edge or corner more often than flat: half its shortest edge stands in
-  // for the curvature radius there.
-  const double radius = o.shape == scene::Shape::Box ? 0.5 * o.size_m.minCoeff() : o.radius_m;
-  return {o.material.youngs_modulus_pa, o.material.poisson_ratio, radius, o.fixed ? kInf : o.mass_kg};
 }
 
 struct Strike {
@@ -65,8 +49,30 @@ class Renderer {
   }
 
   PhysicsRender run() {
-    for (const auto& m : streams_.impacts) impact(m);
-    for (const auto& m : streams_.contacts) contacts(m);
+    for (const SoundingScene& sc : scenes_) excitations_.push_back(std::make_unique<PhysicsExcitation>(sc, o_.min_normal_dot));
+    for (const auto& m : streams_.impacts) {
+      const std::size_t seg = segmentAt(m.utime);
+      excitations_[std::size_t(switches_[seg].scene)]->impact(m, poseLookup(seg), sink(seg));
+    }
+    for (const auto& m : streams_.contacts) {
+      const std::size_t seg = segmentAt(m.utime);
+      PhysicsExcitation& x = *excitations_[std::size_t(switches_[seg].scene)];
+      if (seg != last_segment_) x.reset();  // a new scene: every walk starts anew
+      last_segment_ = seg;
+      x.contacts(m, poseLookup(seg), sink(seg));
+    }
+    bool first = true;
+    for (const auto& x : excitations_) {
+      const PhysicsExcitationCounts& c = x->counts();
+      out_.impacts += c.impacts;
+      out_.meso_impulses += c.meso_impulses;
+      out_.relief_impulses += c.relief_impulses;
+      out_.strikes += c.strikes;
+      if (c.impacts == 0) continue;
+      out_.min_contact_s = first ? c.min_contact_s : std::min(out_.min_contact_s, c.min_contact_s);
+      out_.max_contact_s = std::max(out_.max_contact_s, c.max_contact_s);
+      first = false;
+    }
     return render();
   }
 
@@ -74,13 +80,6 @@ class Renderer {
   struct Segment {
     std::int64_t from;
     int scene;
-  };
-  struct PathState {
-    bool has_texel = false;
-    int i = 0, j = 0;
-    Eigen::Vector3f normal{0, 0, 1};
-    bool has_vn = false;
-    double vn = 0.0;
   };
 
   int sceneIndex(const std::string& name) {
@@ -98,136 +97,28 @@ class Renderer {
     return std::max<std::int64_t>(0, std::llround((double(utime - origin_) * 1e-6 + delay_s) * o_.sample_rate_hz));
   }
 
-  // World -> body frame at `utime`: the newest pose at or before it, moved on by its velocities.
-  bool objectFrame(std::size_t segment, int body, std::int64_t utime, Eigen::Isometry3d& world_to_body) const {
-    const auto& poses = streams_.poses;
-    auto it = std::upper_bound(poses.begin(), poses.end(), utime,
-                               [](std::int64_t t, const thx_msgs::physics_poses_t& p) { return t < p.utime; });
-    if (it == poses.begin()) return false;
-    const thx_msgs::physics_poses_t& p = *(it - 1);
-    if (p.utime < switches_[segment].from || body >= p.num_bodies) return false;
-    const auto b = std::size_t(body);
-    const double dt = double(utime - p.utime) * 1e-6;
-    const Eigen::Vector3d c = vec(p.p_world[b]) + dt * vec(p.v_world[b]);
-    Eigen::Quaterniond q(p.q_world[b][0], p.q_world[b][1], p.q_world[b][2], p.q_world[b][3]);
-    const Eigen::Vector3d w = vec(p.w_world[b]);
-    if (w.norm() * dt > 0) q = Eigen::Quaterniond(Eigen::AngleAxisd(w.norm() * dt, w.normalized())) * q;
-    Eigen::Isometry3d body_to_world = Eigen::Isometry3d::Identity();
-    body_to_world.linear() = q.normalized().toRotationMatrix();
-    body_to_world.translation() = c;
-    world_to_body = body_to_world.inverse();
-    return true;
+  // The newest pose at or before a time, within the segment's scene.
+  PoseLookup poseLookup(std::size_t segment) const {
+    return [this, segment](std::int64_t utime) -> const thx_msgs::physics_poses_t* {
+      const auto& poses = streams_.poses;
+      auto it = std::upper_bound(poses.begin(), poses.end(), utime,
+                                 [](std::int64_t t, const thx_msgs::physics_poses_t& p) { return t < p.utime; });
+      if (it == poses.begin() || (it - 1)->utime < switches_[segment].from) return nullptr;
+      return &*(it - 1);
+    };
   }
 
-  // Strikes `body` of the segment's scene with impulse J (world) at p (world); false if silent.
-  bool strike(std::size_t segment, int body, std::int64_t sample, std::int64_t utime, const Eigen::Vector3d& p,
-              const Eigen::Vector3d& J, double pulse_s) {
-    const int si = switches_[segment].scene;
-    const SoundingScene& sc = scenes_[std::size_t(si)];
-    const ModalBody* mb = nullptr;
-    Eigen::Vector3d point, direction;
-    if (body == thx_msgs::physics_impact_t::BODY_SURFACE) {
-      mb = sc.surface.get();
-      point = sc.mapping.toLocal(p);
-      direction = sc.mapping.directionToLocal(J);
-      for (int a = 0; a < 2; ++a) {  // the slab is the texture's one span; the texture repeats
-        const double size = sc.mapping.size_m[a];
-        point[a] -= size * std::floor(point[a] / size + 0.5);
-      }
-      point.z() = std::clamp(point.z(), -sc.slab_thickness_m, 0.0);
-    } else if (body >= 0 && std::size_t(body) < sc.objects.size() && sc.objects[std::size_t(body)]) {
-      Eigen::Isometry3d to_body;
-      if (!objectFrame(segment, body, utime, to_body)) return false;
-      mb = sc.objects[std::size_t(body)].get();
-      point = to_body * p;
-      direction = to_body.linear() * J;
-    }
-    if (!mb || mb->size() == 0) return false;
-    std::vector<double> g = mb->gainsAt(point, direction);
-    if (pulse_s > 0)
-      for (std::size_t i = 0; i < g.size(); ++i)
-        g[i] *= halfSinePulseFactor(2.0 * std::numbers::pi * mb->modes().frequency_hz[i], pulse_s);
-    if (std::all_of(g.begin(), g.end(), [](double x) { return x == 0.0; })) return false;
-    strikes_.push_back({sample, si, body, std::move(g)});
-    return true;
-  }
-
-  void impact(const thx_msgs::physics_impact_t& m) {
-    if (!(m.impulse > 0.0)) return;
-    const std::size_t seg = segmentAt(m.utime);
-    const scene::Scene& scene = scenes_[std::size_t(switches_[seg].scene)].scene;
-    double tau = 0.0;
-    try {
-      tau = hertzContactDuration(hertzSide(scene, m.body_a), hertzSide(scene, m.body_b), m.v_approach);
-    } catch (const std::invalid_argument&) {
-      tau = 0.0;  // no elastic side to set a duration (the pen on a rigid body): an ideal impulse
-    }
-    const std::int64_t sample = sampleAt(m.utime, 0.5 * tau);
-    const Eigen::Vector3d J = m.impulse * vec(m.n_world), p = vec(m.p_world);
-    const bool a = strike(seg, m.body_a, sample, m.utime, p, J, tau);
-    const bool b = strike(seg, m.body_b, sample, m.utime, p, -J, tau);
-    if (!a && !b) return;
-    out_.strikes += std::size_t(a) + std::size_t(b);
-    out_.min_contact_s = out_.impacts == 0 ? tau : std::min(out_.min_contact_s, tau);
-    out_.max_contact_s = std::max(out_.max_contact_s, tau);
-    ++out_.impacts;
-  }
-
-  // The object gains +dp at p, the surface -dp: both sides ring.
-  void strikePair(std::size_t seg, int object, std::int64_t utime, const Eigen::Vector3d& p, const Eigen::Vector3d& dp,
-                  std::size_t& counter) {
-    const std::int64_t sample = sampleAt(utime);
-    const bool s = strike(seg, thx_msgs::physics_impact_t::BODY_SURFACE, sample, utime, p, -dp, 0.0);
-    const bool o = strike(seg, object, sample, utime, p, dp, 0.0);
-    out_.strikes += std::size_t(s) + std::size_t(o);
-    if (s || o) ++counter;
-  }
-
-  void contacts(const thx_msgs::physics_contacts_t& m) {
-    const std::size_t seg = segmentAt(m.utime);
-    // A new scene, or a gap in the reports (no contact lasted meanwhile): every walk starts anew.
-    if (seg != last_segment_ || m.sim_time - m.window > last_sim_time_ + 1e-9) states_.clear();
-    last_segment_ = seg;
-    last_sim_time_ = m.sim_time;
-    const SoundingScene& sc = scenes_[std::size_t(switches_[seg].scene)];
-    const Eigen::Vector3d ng = vec(m.n_geometric_world).normalized();
-    std::set<int> present;
-    const int n = std::clamp(m.num_contacts, 0, int(thx_msgs::physics_contacts_t::MAX_CONTACTS));
-    for (int k = 0; k < n; ++k) {
-      const int a = m.body_a[k];
-      if (m.body_b[k] != thx_msgs::physics_contacts_t::BODY_SURFACE || a < 0 || !(m.mass_a[k] > 0.0)) continue;
-      present.insert(a);
-      PathState& st = states_[a];
-      const Eigen::Vector3d p = vec(m.p_world[k]);
-      if (sc.relief) {
-        // The relief's geometry is in the physics already: what it does to the object's normal
-        // momentum between two reports is the impulse (the static support is not a change).
-        const double vn = vec(m.v_world[k]).dot(ng);
-        if (st.has_vn && vn != st.vn) strikePair(seg, a, m.utime, p, m.mass_a[k] * (vn - st.vn) * ng, out_.relief_impulses);
-        st.has_vn = true;
-        st.vn = vn;
-        continue;
-      }
-      const MesoSurface surface{nullptr, tex::Address::Wrap, ng, m.mass_a[k], o_.min_normal_dot};
-      const int end = std::min(m.path_start[k] + m.num_texels[k], m.num_path);
-      for (int e = std::max(0, m.path_start[k]); e < end; ++e) {
-        const thx_msgs::physics_texel_t& t = m.path[std::size_t(e)];
-        if (st.has_texel && t.i == st.i && t.j == st.j) continue;  // not entered: still in it
-        const Eigen::Vector3f ns = vec(t.n_world).cast<float>();
-        if (st.has_texel) {
-          const Eigen::Vector3d v = vec(t.v_world);
-          const Eigen::Vector3d dp = mesoMomentum(surface, ns, v) - mesoMomentum(surface, st.normal, v);
-          if (dp.squaredNorm() > 0.0)
-            strikePair(seg, a, m.utime + std::llround((t.t - m.sim_time) * 1e6), p, dp, out_.meso_impulses);
-        }
-        st.has_texel = true;
-        st.i = t.i;
-        st.j = t.j;
-        st.normal = ns;
-      }
-    }
-    for (auto it = states_.begin(); it != states_.end();)  // a contact that ended
-      it = present.count(it->first) ? std::next(it) : states_.erase(it);
+  // Each mode's gain at the strike's point, times the Hertz pulse factor; kept unless all 0.
+  StrikeSink sink(std::size_t segment) {
+    return [this, segment](const BodyStrike& b) {
+      std::vector<double> g = b.modal->gainsAt(b.point, b.impulse);
+      if (b.pulse_s > 0)
+        for (std::size_t i = 0; i < g.size(); ++i)
+          g[i] *= halfSinePulseFactor(2.0 * std::numbers::pi * b.modal->modes().frequency_hz[i], b.pulse_s);
+      if (std::all_of(g.begin(), g.end(), [](double x) { return x == 0.0; })) return false;
+      strikes_.push_back({sampleAt(b.utime, b.delay_s), switches_[segment].scene, b.body, std::move(g)});
+      return true;
+    };
   }
 
   PhysicsRender render() {
@@ -271,9 +162,8 @@ class Renderer {
   std::vector<SoundingScene> scenes_;
   std::vector<Segment> switches_;
   std::vector<Strike> strikes_;
-  std::map<int, PathState> states_;
+  std::vector<std::unique_ptr<PhysicsExcitation>> excitations_;  // by scene
   std::size_t last_segment_ = 0;
-  double last_sim_time_ = -kInf;
   PhysicsRender out_;
 };
 

@@ -8,8 +8,9 @@
 //   - lasting contacts on a relief map: the change of the object's momentum along the plane's
 //     normal between two contact reports, m (v_k - v_{k-1}) . n_g (the relief pushing the body up
 //     or catching it, without the static support), on both sides.
-// Strikes are collected per body with their sample times, then every body's resonator bank is
-// rendered in one pass: the same streams give the same samples.
+// The strikes come from PhysicsExcitation (physics_excitation.hpp, the live client's too); they
+// are collected per body with their sample times, then every body's resonator bank is rendered
+// in one pass: the same streams give the same samples.
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -24,23 +25,13 @@
 #include <thx_msgs/physics_poses_t.hpp>
 
 #include "clients/audio/modal_body.hpp"
+#include "clients/audio/physics_excitation.hpp"
 #include "clients/audio/modal_analysis.hpp"
 #include "clients/audio/audible_modes.hpp"
 #include "scenes/scene.hpp"
 #include "textures/plane_mapping.hpp"
 
 namespace thx::audio {
-
-// One scene's sounding bodies.
-struct SoundingScene {
-  std::string name;  // the scene file's stem, as hapticd's hello names it
-  scene::Scene scene;
-  tex::PlaneMapping mapping;
-  bool relief = false;     // the surface texture is a relief map (else a normal map)
-  double slab_thickness_m = 0.01;
-  std::shared_ptr<const ModalBody> surface;
-  std::vector<std::shared_ptr<const ModalBody>> objects;  // by objects[] index; null for fixed ones
-};
 
 struct BodyOptions {
   std::optional<double> slab_thickness_m;  // overrides the scene's surface.thickness

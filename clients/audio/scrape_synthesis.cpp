@@ -5,14 +5,10 @@
 #include <limits>
 #include <numbers>
 
-#include "clients/audio/meso_impulses.hpp"
-#include "clients/audio/relief_impulses.hpp"
 #include "clients/audio/resonator_bank.hpp"
 
 namespace thx::audio {
 namespace {
-
-ReliefTick reliefTick(const ScrapeSample& s) { return {s.in_contact, s.n_geom, s.n_contact, s.v_tangent}; }
 
 // One body's modes driven by a modal impulse per sample: gain[i] x impulse[n] on mode i. Runs of
 // silent input are rendered as one block (the bank's output does not depend on the blocking).
@@ -44,14 +40,19 @@ void renderBody(const AudibleModes& modes, const std::vector<double>& gain_per_m
 
 }  // namespace
 
+PenScrapeOptions penScrapeOptions(const ScrapeOptions& o) {
+  PenScrapeOptions p;
+  p.servo_hz = o.servo_hz;
+  p.pen_mass_kg = o.pen_mass_kg;
+  p.surface_size_m = o.surface_size_m;
+  p.meso = o.meso;
+  return p;
+}
+
 ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& slab, std::span<const ScrapeSample> path,
                                   const ScrapeOptions& o) {
   ScrapeExcitation e;
   if (path.empty()) return e;
-  std::vector<int> top;
-  for (std::size_t n = 0; n < slab.nodes.size(); ++n)
-    if (std::fabs(slab.nodes[n].z()) < 1e-12) top.push_back(int(n));
-
   const std::int64_t first_tick = path.front().tick;
   auto sampleOf = [&](std::int64_t tick) {
     return std::size_t(std::llround(double(tick - first_tick) / o.servo_hz * o.sample_rate_hz));
@@ -59,62 +60,35 @@ ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& sla
   const double last_s = double(path.back().tick - first_tick) / o.servo_hz;
   const std::size_t total = std::size_t(std::ceil((last_s + o.tail_s) * o.sample_rate_hz)) + 1;
   e.impulse_ns.assign(total, 0.0);
-  e.slab_node.assign(total, top.empty() ? 0 : top.front());
-  if (top.empty()) return e;
   const SlabTopFace top_face(slab, o.surface_size_m);
+  e.slab_node.assign(total, top_face.nearest({0.5, 0.5}));
+  if (slab.nodes.empty()) return e;
 
   const bool micro = o.roughness.amplitude > 0.0;
   const RoughnessProfile profile(micro ? o.roughness : RoughnessOptions{});
   std::vector<double> force;
-  double distance_m = 0.0, micro_power = 0.0;
+  double micro_power = 0.0;
   std::size_t micro_samples = 0;
-
-  MesoSurface surface{&map, tex::Address::Wrap, {0, 0, 1}, o.pen_mass_kg, 0.05};
-  MesoState state;
-  bool continuing = false;  // the previous segment was in contact and owns sample at_a
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    const ScrapeSample &a = path[k - 1], &b = path[k];
-    if (!a.in_contact || !b.in_contact || b.tick <= a.tick) {
-      state = {};  // lifted: the next touch starts a new walk
-      continuing = false;
-      continue;
-    }
-    const std::size_t at_a = std::min(sampleOf(a.tick), total - 1), at_b = std::min(sampleOf(b.tick), total - 1);
-    const int node = top_face.nearest(b.uv);
-    for (std::size_t n = continuing ? at_a + 1 : at_a; n <= at_b; ++n) e.slab_node[n] = node;
-    continuing = true;
-
-    // Meso: the pen's momentum change at the sample of the tick that entered the texel.
-    if (o.meso == MesoSource::TexelWalk) {
-      const double dt = double(b.tick - a.tick) / o.servo_hz;
-      // Velocity in the texture's tangent frame: +x along u, +y along v.
-      const Eigen::Vector3d v((b.uv.u - a.uv.u) * o.surface_size_m.x() / dt,
-                              (b.uv.v - a.uv.v) * o.surface_size_m.y() / dt, 0);
-      mesoImpulsesAlong(surface, state, a.uv, b.uv, v, [&](const MesoImpulse& m) {
-        e.impulse_ns[at_b] += m.impulse.z();
-        ++e.impulses;
-        e.nonzero_impulses += m.impulse.z() != 0.0;
-      });
-    } else {
-      const double j = reliefImpulse(reliefTick(a), reliefTick(b), o.pen_mass_kg);
-      e.impulse_ns[at_b] += j;
-      ++e.impulses;
-      e.nonzero_impulses += j != 0.0;
-    }
-
-    // Micro: the force of the samples from tick a up to tick b, read along the travelled distance.
-    const double step_m = Eigen::Vector2d((b.uv.u - a.uv.u) * o.surface_size_m.x(),
-                                          (b.uv.v - a.uv.v) * o.surface_size_m.y()).norm();
-    if (micro && at_b > at_a) {
-      force.assign(at_b - at_a, 0.0);
-      microForce(profile, distance_m, distance_m + step_m, a.f_normal_n, b.f_normal_n, force);
-      for (std::size_t n = 0; n < force.size(); ++n) {
-        e.impulse_ns[at_a + n] += force[n] / o.sample_rate_hz;
-        micro_power += force[n] * force[n];
-      }
-      micro_samples += force.size();
-    }
-    distance_m += step_m;
+  PenScrape scrape(map, slab, penScrapeOptions(o));
+  for (const ScrapeSample& s : path) {
+    e.impulses += scrape.next(
+        s,
+        [&](const PenStrike& p) {
+          e.impulse_ns[std::min(sampleOf(p.tick), total - 1)] += p.impulse_ns;
+          ++e.nonzero_impulses;
+        },
+        [&](const PenMicroSegment& m) {
+          const std::size_t at_a = std::min(sampleOf(m.tick_a), total - 1), at_b = std::min(sampleOf(m.tick_b), total - 1);
+          for (std::size_t n = at_a + 1; n <= at_b; ++n) e.slab_node[n] = m.node;
+          if (!micro || at_b <= at_a) return;
+          force.assign(at_b - at_a, 0.0);
+          microForce(profile, m.s0, m.s1, m.f0, m.f1, force);
+          for (std::size_t n = 0; n < force.size(); ++n) {
+            e.impulse_ns[at_a + 1 + n] += force[n] / o.sample_rate_hz;
+            micro_power += force[n] * force[n];
+          }
+          micro_samples += force.size();
+        });
   }
   e.micro_rms_n = micro_samples ? std::sqrt(micro_power / double(micro_samples)) : 0.0;
   return e;

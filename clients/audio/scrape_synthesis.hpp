@@ -23,11 +23,6 @@
 
 namespace thx::audio {
 
-enum class MesoSource {
-  TexelWalk,       // a normal map: Eq. 5 at every texel entered, the texel's own normal
-  ContactNormals,  // a relief map: the change of the contact's normal between ticks
-};
-
 // The pen's own modes (nullptr in renderScrape: the slab alone sounds).
 struct PenModes {
   const TetMesh* mesh = nullptr;  // the pen along its z axis, the tip at its lowest node
@@ -57,9 +52,11 @@ struct ScrapeRender {
   double micro_rms_n = 0.0;       // RMS micro force over the samples in contact
 };
 
-// The excitation alone, sample by sample: the impulse (N s, on the pen along n_g; the slab gets
-// the opposite) applied at each sample, meso and micro (a force F contributes F/fs), and the
-// slab's top-face node under the tip. Both vectors have the render's length.
+// The excitation alone, sample by sample (PenScrape's, pen_scrape.hpp): the impulse (N s, on the
+// pen along n_g; the slab gets the opposite) applied at each sample, meso and micro (a force F
+// contributes F/fs), and the slab's top-face node under the tip. A segment from tick a to tick b
+// owns the samples after a's up to b's: its micro force over them, its meso impulses at b's.
+// Both vectors have the render's length.
 struct ScrapeExcitation {
   std::vector<double> impulse_ns;
   std::vector<int> slab_node;
@@ -68,6 +65,9 @@ struct ScrapeExcitation {
 };
 ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& slab, std::span<const ScrapeSample> path,
                                   const ScrapeOptions& options);
+
+// The options of the pen's PenScrape.
+PenScrapeOptions penScrapeOptions(const ScrapeOptions& options);
 
 // `slab` is the surface's mesh (slabMesh: top face at z = 0, centred on the origin) and `modes`
 // its audible modes (shapes over slab's DOFs).

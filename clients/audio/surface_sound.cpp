@@ -10,6 +10,25 @@
 
 namespace thx::audio {
 
+ModalSettings modalSettings(const SlabSettings& o) {
+  ModalSettings ms;
+  ms.elastic_modes = o.modes;
+  return ms;
+}
+
+AnalysisOptions analysisOptions(const SlabSettings& o) {
+  AnalysisOptions ao;
+  if (!o.no_cache) ao.cache_dir = o.cache_dir ? *o.cache_dir : defaultModalCacheDir();
+  if (!o.quiet) ao.progress = [](const std::string& line) { std::fprintf(stderr, "audio-client: %s\n", line.c_str()); };
+  return ao;
+}
+
+AudibleOptions audibleOptions(const SlabSettings& o) {
+  AudibleOptions audible;
+  audible.sample_rate_hz = o.sample_rate_hz;
+  return audible;
+}
+
 SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& o) {
   scene::Scene scene = scene::loadScene(scene_file);
   scene::SurfaceTextureOptions to;
@@ -23,15 +42,26 @@ SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings
   mo.slab_cells = o.cells;
   TetMesh slab = slabBody(scene, mo).mesh;
   slab.name = "surface (" + scene.surface.material.name + ")";
-  ModalSettings ms;
-  ms.elastic_modes = o.modes;
-  AnalysisOptions ao;
-  if (!o.no_cache) ao.cache_dir = o.cache_dir ? *o.cache_dir : defaultModalCacheDir();
-  if (!o.quiet) ao.progress = [](const std::string& line) { std::fprintf(stderr, "audio-client: %s\n", line.c_str()); };
-  AudibleOptions audible;
-  audible.sample_rate_hz = o.sample_rate_hz;
-  AudibleModes modes = audibleModes(analyse(slab, material, ms, ao), material, audible);
+  AudibleModes modes = audibleModes(analyse(slab, material, modalSettings(o), analysisOptions(o)), material, audibleOptions(o));
   return SurfaceSound{std::move(scene), std::move(surface), std::move(slab), std::move(modes)};
+}
+
+PenSound buildPenSound(const scene::Scene& scene, const SlabSettings& o) {
+  SceneBody pen = penBody(scene);
+  PenSound p;
+  p.modes = audibleModes(analyse(pen.mesh, pen.material, modalSettings(o), analysisOptions(o)), pen.material, audibleOptions(o));
+  p.tip_node = penTipNode(pen.mesh);
+  p.mesh = std::move(pen.mesh);
+  p.tilt_deg = scene.device.pen.tilt_deg;
+  return p;
+}
+
+RoughnessOptions sceneRoughness(const scene::Scene& scene) {
+  RoughnessOptions r;
+  r.beta = scene.surface.roughness.beta;
+  r.amplitude = scene.surface.roughness.amplitude;
+  r.spacing_m = scene.surface.roughness.spacing_m;
+  return r;
 }
 
 }  // namespace thx::audio

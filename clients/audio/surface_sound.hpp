@@ -6,6 +6,8 @@
 #include <string>
 
 #include "clients/audio/audible_modes.hpp"
+#include "clients/audio/fractal_roughness.hpp"
+#include "clients/audio/modal_analysis.hpp"
 #include "clients/audio/tet_mesh.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_surface.hpp"
@@ -34,5 +36,22 @@ struct SurfaceSound {
 
 // Throws thx::Error naming the scene file or the cause.
 SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& settings);
+
+// How the slab's settings analyse any body (modes, cache, progress, band).
+ModalSettings modalSettings(const SlabSettings& settings);
+AnalysisOptions analysisOptions(const SlabSettings& settings);
+AudibleOptions audibleOptions(const SlabSettings& settings);
+
+// The pen's own modes (device.pen, a cylinder: penBody), analysed as the slab is; struck at its tip.
+struct PenSound {
+  TetMesh mesh;
+  AudibleModes modes;
+  int tip_node = 0;
+  double tilt_deg = 30.0;
+};
+PenSound buildPenSound(const scene::Scene& scene, const SlabSettings& settings);
+
+// The scene's surface roughness as the micro level reads it (amplitude 0: none).
+RoughnessOptions sceneRoughness(const scene::Scene& scene);
 
 }  // namespace thx::audio

@@ -14,55 +14,17 @@
 #include <thx_msgs/log_reader.hpp>
 
 #include "clients/audio/physics_sound.hpp"
+#include "tests/audio/physics_fixtures.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace {
 
 using namespace thx::audio;
+using namespace thx::audio::test;
 using thx_msgs::physics_contacts_t;
 using thx_msgs::physics_impact_t;
 
 constexpr double kFs = 44100.0;
-
-// The marble scene with the marble made a 10 cm steel ball, so that it has audible modes
-// (T2 about 12.5 kHz, docs/audio.md §8.3), on a small slab.
-const SoundingScene& testScene() {
-  static const SoundingScene s = [] {
-    thx::scene::Scene scene = thx::scene::loadScene(std::string(THX_SOURCE_DIR) + "/scenes/marble_rolling_bricks.yaml");
-    auto& ball = scene.objects.at(0);
-    ball.radius_m = 0.1;
-    ball.material = *thx::scene::findMaterial("steel");
-    ball.mass_kg = ball.material.density_kg_per_m3 * 4.0 / 3.0 * std::numbers::pi * 1e-3;
-    BodyOptions o;
-    o.slab_cells = 4;
-    o.object_order = ElementOrder::Linear;
-    o.modal.elastic_modes = 16;
-    return soundingScene("marble_rolling_bricks", scene, false, o);
-  }();
-  return s;
-}
-
-thx_msgs::physics_poses_t ballPose(std::int64_t utime) {
-  thx_msgs::physics_poses_t p{};
-  p.utime = utime;
-  p.num_bodies = 1;
-  p.p_world[0][2] = 0.1;
-  p.q_world[0][0] = 1.0;
-  return p;
-}
-
-physics_impact_t impact(std::int64_t utime, double v) {
-  physics_impact_t m{};
-  m.utime = utime;
-  m.body_a = 0;
-  m.body_b = physics_impact_t::BODY_SURFACE;
-  m.impulse = 1e-3;
-  m.v_approach = v;
-  m.p_world[0] = 0.013;
-  m.p_world[1] = -0.021;
-  m.n_world[2] = 1.0;
-  return m;
-}
 
 PhysicsRender render(const PhysicsStreams& s, const SoundingScene& first = testScene()) {
   PhysicsSoundOptions o;
@@ -114,33 +76,6 @@ TEST(PhysicsSound, ImpactRingsBothBodiesAfterTheHertzTime) {
   const PhysicsRender rf = render(fast);
   EXPECT_NEAR(r.min_contact_s / rf.min_contact_s, 2.0, 1e-9);
   EXPECT_EQ(render(s).samples, r.samples);
-}
-
-// A texel path on a normal map: flat, tilted, tilted, flat -> Eq. 5 impulses entering and leaving
-// the tilt, none inside it or on a flat path.
-physics_contacts_t pathMessage(std::int64_t utime, double sim_time, const std::vector<Eigen::Vector3d>& normals, int first_i) {
-  physics_contacts_t m{};
-  m.utime = utime;
-  m.sim_time = sim_time;
-  m.window = 1e-3;
-  m.n_geometric_world[2] = 1.0;
-  m.num_contacts = 1;
-  m.body_a[0] = 0;
-  m.body_b[0] = physics_contacts_t::BODY_SURFACE;
-  m.mass_a[0] = 0.1;
-  m.p_world[0][0] = 0.02;
-  m.path_start[0] = 0;
-  m.num_texels[0] = int(normals.size());
-  m.num_path = int(normals.size());
-  for (std::size_t k = 0; k < normals.size(); ++k) {
-    thx_msgs::physics_texel_t t{};
-    t.i = first_i + int(k);
-    t.t = sim_time - 1e-3 + 1e-3 * double(k + 1) / double(normals.size());
-    for (int a = 0; a < 3; ++a) t.n_world[a] = normals[k][a];
-    t.v_world[0] = 0.3;
-    m.path.push_back(t);
-  }
-  return m;
 }
 
 TEST(PhysicsSound, TexelPathsGiveEq5ImpulsesOnANormalMap) {

@@ -1,0 +1,96 @@
+#pragma once
+// The physics client's streams as strikes on one scene's sounding bodies, message by message
+// (docs/audio.md §9–§10): shared by the offline render (physics_sound.hpp) and the live client
+// (physics_source.hpp), so both strike the same bodies at the same points with the same impulses.
+//   - impacts: J n on body a, -J n on body b, at p_world, with the Hertz contact time
+//     (contact_pulse.hpp), at the impact's time + tau/2;
+//   - lasting contacts of an object on a normal map: Eq. 5 at every texel entered (the object
+//     +dp, the surface -dp), at the texel's entry time;
+//   - on a relief map: the change of the object's normal momentum between two reports.
+// Each strike is given in its body's frame: the surface slab's (plane-local, wrapped into the
+// texture's one span, depth clamped into the slab) or an object's (from the newest pose at or
+// before the event, moved on by its velocities).
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <thx_msgs/physics_contacts_t.hpp>
+#include <thx_msgs/physics_impact_t.hpp>
+#include <thx_msgs/physics_poses_t.hpp>
+
+#include "clients/audio/modal_body.hpp"
+#include "scenes/scene.hpp"
+#include "textures/plane_mapping.hpp"
+
+namespace thx::audio {
+
+// One scene's sounding bodies.
+struct SoundingScene {
+  std::string name;  // the scene file's stem, as hapticd's hello names it
+  scene::Scene scene;
+  tex::PlaneMapping mapping;
+  bool relief = false;     // the surface texture is a relief map (else a normal map)
+  double slab_thickness_m = 0.01;
+  std::shared_ptr<const ModalBody> surface;
+  std::vector<std::shared_ptr<const ModalBody>> objects;  // by objects[] index; null for fixed ones
+};
+
+// One strike on one body, in the body's frame.
+struct BodyStrike {
+  int body = -1;                 // -1: the surface, else the scene's objects[] index
+  const ModalBody* modal = nullptr;
+  std::int64_t utime = 0;        // the event's time (µs)
+  double delay_s = 0.0;          // after utime: an impact's half contact time
+  Eigen::Vector3d point{0, 0, 0};
+  Eigen::Vector3d impulse{0, 0, 0};  // N s
+  double pulse_s = 0.0;          // the Hertz contact time (0: an ideal impulse)
+};
+
+// The newest poses message at or before a time (nullptr: none).
+using PoseLookup = std::function<const thx_msgs::physics_poses_t*(std::int64_t utime)>;
+// Takes a strike; returns whether it sounded.
+using StrikeSink = std::function<bool(const BodyStrike&)>;
+
+struct PhysicsExcitationCounts {
+  std::size_t impacts = 0, meso_impulses = 0, relief_impulses = 0;  // excitations that sounded
+  std::size_t strikes = 0;                                          // body strikes that sounded
+  double min_contact_s = 0, max_contact_s = 0;                      // the impacts' Hertz times
+};
+
+class PhysicsExcitation {
+ public:
+  // `scene` must outlive this.
+  explicit PhysicsExcitation(const SoundingScene& scene, double min_normal_dot = 0.05);
+
+  void impact(const thx_msgs::physics_impact_t& m, const PoseLookup& poses, const StrikeSink& sink);
+  void contacts(const thx_msgs::physics_contacts_t& m, const PoseLookup& poses, const StrikeSink& sink);
+  // Every walk starts anew (a scene switch, lost messages).
+  void reset();
+
+  const PhysicsExcitationCounts& counts() const { return counts_; }
+
+ private:
+  struct PathState {
+    bool has_texel = false;
+    int i = 0, j = 0;
+    Eigen::Vector3f normal{0, 0, 1};
+    bool has_vn = false;
+    double vn = 0.0;
+  };
+  bool strike(int body, std::int64_t utime, double delay_s, const Eigen::Vector3d& p, const Eigen::Vector3d& J,
+              double pulse_s, const PoseLookup& poses, const StrikeSink& sink) const;
+  void strikePair(int object, std::int64_t utime, const Eigen::Vector3d& p, const Eigen::Vector3d& dp,
+                  const PoseLookup& poses, const StrikeSink& sink, std::size_t& counter);
+
+  const SoundingScene& scene_;
+  double min_normal_dot_;
+  std::map<int, PathState> states_;
+  double last_sim_time_;
+  PhysicsExcitationCounts counts_;
+};
+
+}  // namespace thx::audio
