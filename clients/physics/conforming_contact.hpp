@@ -33,12 +33,15 @@ namespace thx::phys {
 // a ball off the cap's centre adds a slope to the depths, not a curvature.
 inline constexpr double kConformFraction = 0.25;
 // Conforming only when every walk gets this far (texels): a ball near the cap's edge, or on a
-// relief that conforms over a smaller patch, keeps the usual rule.
+// relief that conforms over a smaller patch, keeps the usual rule. So does a ball that touches
+// the relief elsewhere than at the ring (a candidate deeper than the ring's deepest texel by
+// more than the curvature tolerance t^2 / 4r plus the ring's own penetration): one crossing a
+// cap fast, against its far wall.
 inline constexpr long long kConformMinWalk = 3;
 
-// Fills `chosen` with the conforming contacts (appended to `candidates`, deepest first) and
-// returns how many (4), or returns 0 when the relief under the ball (a sphere) does not conform
-// to it; `surface` reads the map as relief.
+// Fills `chosen` with the conforming contacts (appended to `candidates`, the rasterised ones,
+// deepest first) and returns how many (4), or returns 0 when the relief under the ball (a sphere)
+// does not conform to it or it touches elsewhere; `surface` reads the map as relief.
 std::size_t selectConformingContacts(const tex::TexturedSurface& surface, const Underside& ball,
                                      std::vector<ReliefCandidate>& candidates,
                                      std::array<std::size_t, kMaxReliefContacts>& chosen);

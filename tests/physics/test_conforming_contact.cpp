@@ -1,6 +1,7 @@
 // A ball in a relief of its own curvature gets its contacts by position (conforming_contact.hpp):
 // where the relief conforms, four texels at the widest ring the cap offers, each measured as the
-// ball's gap from the texel's tangent plane; elsewhere nothing (the usual rule applies).
+// ball's gap from the texel's tangent plane; elsewhere, or where the ball touches the relief
+// deeper than at that ring, nothing (the usual rule applies).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,8 +31,8 @@ struct Picked {
   std::vector<ReliefCandidate> contacts;
 };
 
-Picked pick(const tex::TexturedSurface& surface, const Eigen::Vector3d& centre) {
-  std::vector<ReliefCandidate> candidates;
+Picked pick(const tex::TexturedSurface& surface, const Eigen::Vector3d& centre,
+            std::vector<ReliefCandidate> candidates = {}) {
   std::array<std::size_t, kMaxReliefContacts> chosen{};
   Picked p;
   p.n = selectConformingContacts(surface, Underside::sphere(at(centre.x(), centre.y(), centre.z()), kBall), candidates, chosen);
@@ -78,6 +79,14 @@ TEST(ConformingContact, NoneWhereTheReliefDoesNotConform) {
   EXPECT_EQ(pick(flat.surface, {0.0, 0.0, kBall}).n, 0u);
   const SurfaceHolder wider = holdSurface(heightMap(256, 0.1, widerCap), 0.1, true);
   EXPECT_EQ(pick(wider.surface, {0.0, 0.0, kBall + widerCap(0.0, 0.0)}).n, 0u);  // resting on its bottom
+  // A conforming cap, but the ball touches elsewhere, 0.1 mm deeper than at the ring (a ball
+  // crossing the cap fast meets its far wall): the usual rule.
+  const Eigen::Vector3d centre(0.0, 0.0, kCapCentreZ);
+  ReliefCandidate wall;
+  wall.depth = -1e-4;
+  EXPECT_EQ(pick(cap.surface, centre, {wall}).n, 0u);
+  wall.depth = -1e-6;  // within the tolerance: a resting ball's rim texels
+  EXPECT_EQ(pick(cap.surface, centre, {wall}).n, 4u);
 }
 
 }  // namespace
