@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "clients/physics/bullet_convert.hpp"
+#include "clients/physics/conforming_contact.hpp"
 #include "clients/physics/contact_selection.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/relief_raster.hpp"
@@ -59,12 +60,19 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   thread_local std::vector<ReliefCandidate> candidates;
   candidates.clear();
   const RasterStats raster = rasterizeRelief(plane.surface(), *underside, threshold, candidates);
+  // A ball in a relief of its own curvature: contacts by position, one measure
+  // (conforming_contact.hpp). Otherwise the deepest and the spread points.
   std::array<std::size_t, kMaxReliefContacts> chosen{};
-  const std::size_t n = selectReliefContacts(candidates, chosen);
+  std::size_t n = 0;
+  const bool conforming = underside->kind == Underside::Kind::Sphere && raster.stride == 1 && !candidates.empty() &&
+                          (n = selectConformingContacts(plane.surface(), *underside, candidates, chosen)) > 0;
+  if (!conforming) n = selectReliefContacts(candidates, chosen);
   // Round objects roll on their contacts: locate them within their texels (relief_raster.hpp).
   // A sphere touches at the bottoms of basins (contact_selection.hpp); a capsule or cylinder
   // lying flat touches along a line of equal depths, so only its deepest point is refined.
-  if (n > 0 && underside->kind == Underside::Kind::Sphere) {
+  if (conforming) {
+    // Texel centres with their own normals, already measured: nothing to refine or snap.
+  } else if (n > 0 && underside->kind == Underside::Kind::Sphere) {
     const std::array<std::size_t, kMaxReliefContacts> spread = chosen;
     snapToBasins(candidates, raster.stride, std::span(chosen.data(), n));
     for (std::size_t k = 0; k < n; ++k)
@@ -99,7 +107,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     // the curvature; the vertical gap there, projected on n, is used when it is the larger.
     // Flat reliefs give the same value both ways, concave spots keep the tangent-plane gap.
     const double gap_below_q = q.z() - plane.surface().at(q.x(), q.y()).height_m;
-    const double distance = std::max((q - c.p_surface).dot(c.n_local), gap_below_q * c.n_local.z());
+    const double distance = conforming ? c.depth : std::max((q - c.p_surface).dot(c.n_local), gap_below_q * c.n_local.z());
     const Eigen::Vector3d on_object = world_from_plane * q;
     bool duplicate = false;
     for (std::size_t a = 0; a < added_count; ++a)
