@@ -27,7 +27,7 @@ using namespace thx::audio;
 using thx::bench::isoNow;
 using thx::bench::loadAverage;
 
-const char* const kHelp = R"(usage: bench_audio_fem [--csv FILE] [--json FILE] [--md FILE] [--quick]
+const char* const kHelp = R"(usage: bench_audio_fem [--csv FILE] [--json FILE] [--md FILE] [--quick] [--part P]
 
 Modal analysis (clients/audio, ARPACK shift-invert + SimplicialLDLT) of the validation objects of
 docs/audio.md at growing mesh sizes, Tet4 and Tet10: DOF, the largest relative frequency error of
@@ -336,7 +336,7 @@ int main(int argc, char** argv) {
   }
 
   if (part != "validation") {
-    md_objects << "\n\nThe shipped scenes' sounding bodies, Tet10, meshed as `clients/audio/scene_bodies.cpp` does "
+    md_objects << (cases.empty() ? "\n\n" : "\n") << "The shipped scenes' sounding bodies, Tet10, meshed as `clients/audio/scene_bodies.cpp` does "
                   "(**bold**: the size it uses), each against its finest mesh (the reference row; the row above it "
                   "shows how much the last refinement still moved). Error: the largest relative error of the first "
                   "N elastic modes, in ascending order, against the reference's. Frequencies scale as 1/size, so one "
