@@ -39,7 +39,7 @@ wait "$PC_PID" || echo "physics-client failed (see $OUT/physics_push.txt)"
 cat "$OUT/physics_push.txt"
 
 echo
-echo "== audio: the pen scraping the bricks, rendered offline from a lock-step recording of the default scene (about 10 s the first time, 1 s from the modal cache)"
+echo "== audio: the pen scraping the bricks, rendered offline from a lock-step recording of the default scene (3-10 s the first time: the modal solves; under 1 s from the modal cache)"
 AC="$BUILD/clients/audio/audio-client"
 WS="$BUILD/clients/audio/wav-spectrogram"
 "$HD" --scene scenes/default.yaml --lockstep --no-lcm --record "$OUT/default_session.lcm" --quiet > /dev/null
@@ -48,7 +48,7 @@ WS="$BUILD/clients/audio/wav-spectrogram"
 echo "sound: $OUT/pen_scrape.wav, its spectrogram: $OUT/pen_scrape_spectrogram.png"
 
 echo
-echo "== audio: a glass marble rolling over the bricks' bed joints (scenes/marble_rolling_bricks.yaml; about 5 s the first time)"
+echo "== audio: a glass marble rolling over the bricks' bed joints (scenes/marble_rolling_bricks.yaml; 1-3 s)"
 echo "   hapticd records 1.5 s in lock-step (pen held off the surface), physics-client adds its streams on the same clock,"
 echo "   audio-client renders the combined session: the marble's impacts and texel path on the slab's modes"
 MS=scenes/marble_rolling_bricks.yaml
