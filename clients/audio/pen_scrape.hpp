@@ -1,10 +1,10 @@
 #pragma once
 // The pen's scrape as meso impulses, one servo tick at a time, for the live client
 // (pen_meso_source.hpp). The offline render (scrape_synthesis.cpp) walks the path itself with the
-// same Eq. 5 and finds nodes with the same SlabTopFace, so both strike the same nodes with the
-// same impulses (the LivePipeline test compares them). Between two consecutive ticks in contact
-// the tip's texture path is walked (Eq. 5, meso_impulses.hpp) at the velocity of that segment;
-// each texel entered gives an impulse along the surface normal at the slab's top-face node
+// same Eq. 5 and finds nodes with the same SlabTopFace, so on a normal map both strike the same
+// nodes with the same impulses (the LivePipeline test compares them). Between two consecutive ticks
+// in contact the tip's texture path is walked (Eq. 5, meso_impulses.hpp) at the velocity of that
+// segment; each texel entered gives an impulse along the surface normal at the slab's top-face node
 // nearest the tip. A lift, a gap in the ticks or a tick going backwards starts a new walk.
 #include <cstddef>
 #include <cstdint>

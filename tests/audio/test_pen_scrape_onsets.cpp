@@ -39,8 +39,8 @@ TEST_F(PenScrapeOnsets, OnsetsInTheWavComeAtTheMortarCrossingsOfTheStroke) {
   // under the device's tip) is mortar after a tick in contact on a brick. Mortar: relief deeper
   // than halfway between the highest brick face and the joints' floor. The tip, pulled by the
   // hand's grip spring, is caught at a joint's far wall and swings back into the joint when it
-  // gets over it (re-entries 45-65 ms after the entry): an entry within 120 ms of the last
-  // crossing is the same crossing (entries into the next joint come more than 200 ms later).
+  // gets over it (once here, 50 ms after the entry): an entry within 120 ms of the last
+  // crossing is the same crossing (entries into the next joint came at least 215 ms later).
   const thx::test::MortarMap mortar(kScene);
   std::int64_t origin = -1;
   std::vector<double> crossings;  // s from the WAV's first sample (the first THX_CONTACT)
@@ -63,7 +63,7 @@ TEST_F(PenScrapeOnsets, OnsetsInTheWavComeAtTheMortarCrossingsOfTheStroke) {
   ASSERT_GE(crossings.size(), 12u) << "the stroke crosses 7 bed joints each way";
 
   // 4. The onsets in the WAV. One joint is more than one click: the drop in, and the climb over
-  // the far wall 90-190 ms later (the pen caught there until the grip spring pulls it over; the
+  // the far wall 30-190 ms later (the pen caught there until the grip spring pulls it over; the
   // longest at the end of a stroke); the drop-ins come at least 219 ms apart. So onsets closer
   // than 200 ms are one.
   const std::vector<double> onsets = thx::test::wavOnsets(path("scrape.wav"), 0.2);
