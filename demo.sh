@@ -39,7 +39,7 @@ wait "$PC_PID" || echo "physics-client failed (see $OUT/physics_push.txt)"
 cat "$OUT/physics_push.txt"
 
 echo
-echo "== audio: the pen scraping the bricks, rendered offline from a lock-step recording of the default scene (3-10 s the first time: the modal solves; under 1 s from the modal cache)"
+echo "== audio: the pen scraping the bricks, rendered offline from a lock-step recording of the default scene (2-10 s, the most the first time, when the slab's and the pen's modes are solved)"
 AC="$BUILD/clients/audio/audio-client"
 WS="$BUILD/clients/audio/wav-spectrogram"
 "$HD" --scene scenes/default.yaml --lockstep --no-lcm --record "$OUT/default_session.lcm" --quiet > /dev/null
