@@ -2,8 +2,8 @@
 # The main job on the default scene: hapticd with the simulated PHANToM in real time, a scripted
 # stroke across the bricks and a press, then a press into a steep V-valley; each prints its
 # summary. Then physics-client next to hapticd: the pen pushes a ball into another dimple. Then the
-# pen's scrape over the bricks as a WAV with its spectrogram. Then the texture gallery with shaded
-# previews.
+# pen's scrape over the bricks and a marble rolling over them, each as a WAV with its spectrogram.
+# Then the texture gallery with shaded previews.
 # Usage: ./demo.sh [BUILD_DIR]   (make demo builds first, then calls this)
 set -eu
 BUILD=${1:-build}
@@ -39,16 +39,24 @@ wait "$PC_PID" || echo "physics-client failed (see $OUT/physics_push.txt)"
 cat "$OUT/physics_push.txt"
 
 echo
-echo "== audio: the pen scraping the bricks, rendered offline from a lock-step recording of the default scene"
+echo "== audio: the pen scraping the bricks, rendered offline from a lock-step recording of the default scene (2-10 s, the most the first time, when the slab's and the pen's modes are solved)"
 AC="$BUILD/clients/audio/audio-client"
 WS="$BUILD/clients/audio/wav-spectrogram"
 "$HD" --scene scenes/default.yaml --lockstep --no-lcm --record "$OUT/default_session.lcm" --quiet > /dev/null
 "$AC" --scene scenes/default.yaml --replay-log "$OUT/default_session.lcm" --wav "$OUT/pen_scrape.wav"
 "$WS" "$OUT/pen_scrape.wav" "$OUT/pen_scrape_spectrogram.png" --title "pen scraping the bricks (scenes/default.yaml)"
-# ---- issue 14, marble on the bricks: its WAV and spectrogram go here (the physics client's
-# ---- impacts and rolling contact), e.g. "$OUT/marble_bricks.wav" and
-# ---- "$WS" "$OUT/marble_bricks.wav" "$OUT/marble_bricks_spectrogram.png" --title "..."
 echo "sound: $OUT/pen_scrape.wav, its spectrogram: $OUT/pen_scrape_spectrogram.png"
+
+echo
+echo "== audio: a glass marble rolling over the bricks' bed joints (scenes/marble_rolling_bricks.yaml; 1-3 s)"
+echo "   hapticd records 1.5 s in lock-step (pen held off the surface), physics-client adds its streams on the same clock,"
+echo "   audio-client renders the combined session: the marble's impacts and texel path on the slab's modes"
+MS=scenes/marble_rolling_bricks.yaml
+"$HD" --scene "$MS" --lockstep --no-lcm --duration 1.5 --record "$OUT/marble_session.lcm" --quiet > /dev/null
+"$PC" --scene "$MS" --replay-log "$OUT/marble_session.lcm" --record "$OUT/marble_combined.lcm" --no-lcm --quiet > /dev/null
+"$AC" --scene "$MS" --replay-log "$OUT/marble_combined.lcm" --wav "$OUT/marble_bricks.wav"
+"$WS" "$OUT/marble_bricks.wav" "$OUT/marble_bricks_spectrogram.png" --title "glass marble rolling over the bricks (scenes/marble_rolling_bricks.yaml)"
+echo "sound: $OUT/marble_bricks.wav, its spectrogram: $OUT/marble_bricks_spectrogram.png"
 
 echo
 echo "== texture gallery (512^2, seed 1) -> $OUT/"

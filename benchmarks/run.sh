@@ -8,6 +8,7 @@
 #   PART       any of: render force_error memory latency clients physics visual (default: all seven, in that order),
 #              or audio (FEM modal analysis and modal synthesis speed/error, about 3.5 min; its
 #              tables go to docs/audio.md),
+#              or audio-live (the live audio client beside hapticd with its simulated device: the
 #              servo's wake latency with and without it; THX_AUDIO_LIVE_SECONDS per phase (20),
 #              THX_AUDIO_LIVE_ROUNDS (2); about 3 min; its table goes to docs/audio.md),
 #              or load (hapticd's full-force share beside stress-ng and cyclictest, old and new

@@ -1,6 +1,6 @@
 #pragma once
 // Modal analysis of one object: mesh + material -> its elastic modes (the rigid-body modes of a
-// free body found and dropped), through the cache when one is given (docs/audio.md §cache).
+// free body found and dropped), through the cache when one is given (docs/audio.md §2).
 #include <Eigen/Core>
 #include <functional>
 #include <optional>

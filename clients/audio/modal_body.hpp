@@ -1,7 +1,7 @@
 #pragma once
 // One sounding body: its mesh and its audible modes, and the gain of every mode for a force at
 // any point of it. A force (or impulse) J at point x excites mode i by u_i(x) . J, with u_i the
-// M-orthonormal mode shape (docs/audio.md §3); u_i(x) is interpolated from the nodes of the tet
+// M-orthonormal mode shape (docs/audio.md §9); u_i(x) is interpolated from the nodes of the tet
 // containing x with the element's own shape functions (linear for Tet4, quadratic for Tet10), so
 // a point between nodes gets neither the nearest node's value nor a smeared one.
 #include <Eigen/Core>

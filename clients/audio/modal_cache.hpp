@@ -1,6 +1,6 @@
 #pragma once
 // The modal cache: one binary file per (mesh, material, solver settings), named by a 64-bit
-// FNV-1a key over all three. Layout in docs/audio.md §cache.
+// FNV-1a key over all three. Layout in docs/audio.md §2.
 #include <cstdint>
 #include <optional>
 #include <string>

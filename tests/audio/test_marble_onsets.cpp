@@ -6,15 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <lcm/lcm-cpp.hpp>
-#include <sndfile.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -23,55 +18,18 @@
 #include <thx_msgs/physics_contacts_t.hpp>
 #include <thx_msgs/physics_impact_t.hpp>
 
-#include "scenes/scene_loader.hpp"
-#include "scenes/surface_texture.hpp"
-#include "tests/support/onset_detector.hpp"
+#include "tests/support/rendered_sound.hpp"
 #include "thx_msgs/log_reader.hpp"
-
-namespace fs = std::filesystem;
 
 namespace {
 
 const std::string kScene = std::string(THX_SOURCE_DIR) + "/scenes/marble_rolling_bricks.yaml";
 
-std::string fileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<float> readWav(const std::string& path, int& rate) {
-  SF_INFO info{};
-  SNDFILE* f = sf_open(path.c_str(), SFM_READ, &info);
-  EXPECT_NE(f, nullptr) << path;
-  if (!f) return {};
-  std::vector<float> x(std::size_t(info.frames) * std::size_t(info.channels));
-  sf_readf_float(f, x.data(), info.frames);
-  sf_close(f);
-  rate = info.samplerate;
-  return x;
-}
-
-int run(const std::string& cmd) {
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-class MarbleOnBricks : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("thx_marble_onsets_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
-};
+class MarbleOnBricks : public thx::test::SessionTest {};
 
 TEST_F(MarbleOnBricks, OnsetsInTheWavComeAtTheMortarCrossingsOfTheTexelPath) {
   // 1. The combined session: hapticd's (the pen held off the surface) with the physics streams.
-  ASSERT_EQ(run(std::string(THX_HAPTICD) + " --scene " + kScene + " --lockstep --no-lcm --no-mlock --duration 1.5 --record " +
-                path("session.lcm") + " --quiet > " + path("hapticd.out")),
-            0);
+  ASSERT_EQ(recordSession(kScene, "--duration 1.5"), 0);
   ASSERT_EQ(run(std::string(THX_PHYSICS_CLIENT) + " --scene " + kScene + " --replay-log " + path("session.lcm") +
                 " --record " + path("combined.lcm") + " --no-lcm --quiet > " + path("physics.out")),
             0);
@@ -90,16 +48,8 @@ TEST_F(MarbleOnBricks, OnsetsInTheWavComeAtTheMortarCrossingsOfTheTexelPath) {
   // 3. The mortar crossings the physics client reported: entries of the marble's texel path into
   // mortar, a texel whose relief (the same generator as a relief map) lies deeper than halfway
   // between the highest brick face and the joints' floor.
-  thx::scene::Scene relief_scene = thx::scene::loadScene(kScene);
-  relief_scene.surface.representation = thx::tex::Representation::Relief;
-  const thx::tex::TextureMap relief = thx::scene::buildSurfaceTexture(relief_scene);
-  float lo = 1e9f, hi = -1e9f;
-  for (int j = 0; j < relief.height(); ++j)
-    for (int i = 0; i < relief.width(); ++i) lo = std::min(lo, relief.depth(i, j)), hi = std::max(hi, relief.depth(i, j));
-  auto isMortar = [&](int i, int j) {
-    const int w = relief.width(), h = relief.height();
-    return relief.depth(((i % w) + w) % w, ((j % h) + h) % h) > 0.5f * (lo + hi);
-  };
+  const thx::test::MortarMap mortar_map(kScene);
+  auto isMortar = [&](int i, int j) { return mortar_map.isMortar(i, j); };
   std::int64_t origin = -1;
   thx_msgs::forEachLogMessage<thx_msgs::contact_t>(path("combined.lcm"), "THX_CONTACT", [&](const auto& c, const auto&) {
     if (origin < 0) origin = c.utime;
@@ -124,19 +74,13 @@ TEST_F(MarbleOnBricks, OnsetsInTheWavComeAtTheMortarCrossingsOfTheTexelPath) {
   });
   ASSERT_GE(crossings.size(), 20u) << "the marble should cross a bed joint every 67 ms";
 
-  // 4. The onsets in the WAV.
-  int rate = 0;
-  const std::vector<float> x = readWav(path("a.wav"), rate);
-  ASSERT_EQ(rate, 44100);
-  // One joint is the clicks of its trough (Eq. 5) and, on this normal map, the landing of the hop
-  // the far wall gives the marble (physics_impact_t 13-19 ms after the path enters the mortar):
-  // all within 40 ms, while joints come at least 67 ms apart. So onsets closer than 40 ms are one.
-  thx::test::OnsetOptions detect;
-  detect.min_gap_s = 0.04;
-  const std::vector<double> onsets = thx::test::detectOnsets(x, rate, detect);
-  const double span = last_t;  // both rates over the marble's whole path
-  std::printf("[measured] %zu mortar crossings (%.2f /s), %zu onsets (%.2f /s) over %.2f s\n", crossings.size(),
-              double(crossings.size()) / span, onsets.size(), double(onsets.size()) / span, span);
+  // 4. The onsets in the WAV. One joint is the clicks of its trough (Eq. 5) and, on this normal
+  // map, the landing of the hop the far wall gives the marble (physics_impact_t 13-19 ms after the
+  // path enters the mortar): all within 40 ms, while joints come at least 67 ms apart. So onsets
+  // closer than 40 ms are one.
+  const std::vector<double> onsets = thx::test::wavOnsets(path("a.wav"), 0.04);
+  ASSERT_FALSE(onsets.empty()) << "no sound in " << path("a.wav");
+  thx::test::printRates(crossings, onsets, last_t);  // both rates over the marble's whole path
   EXPECT_NEAR(double(onsets.size()) / double(crossings.size()), 1.0, 0.05);
   if (std::getenv("THX_DEBUG_ONSETS")) {
     for (double c : crossings) std::printf("crossing %.4f\n", c);
@@ -148,18 +92,7 @@ TEST_F(MarbleOnBricks, OnsetsInTheWavComeAtTheMortarCrossingsOfTheTexelPath) {
   // Each onset at a crossing: at most 10 ms before the path entered mortar (the trough's slope,
   // which clicks, begins 0.75 mm = 2.5 ms before its half-depth texels; a frame is 4 ms) and 25 ms
   // after (the landing).
-  std::size_t matched = 0;
-  double earliest = 1e9, latest = -1e9;
-  for (double t : onsets) {
-    double nearest = 1e9;
-    for (double c : crossings)
-      if (std::fabs(t - c) < std::fabs(nearest)) nearest = t - c;
-    earliest = std::min(earliest, nearest), latest = std::max(latest, nearest);
-    if (nearest > -0.010 && nearest < 0.025) ++matched;
-    else std::printf("onset at %.4f s: %+.4f s from the nearest crossing\n", t, nearest);
-  }
-  std::printf("[measured] onsets %+.1f to %+.1f ms from their crossings\n", earliest * 1e3, latest * 1e3);
-  EXPECT_EQ(matched, onsets.size());
+  EXPECT_EQ(thx::test::onsetsAtCrossings(onsets, crossings, 0.010, 0.025), onsets.size());
 }
 
 // Bad input: a clear error naming the option or file.
