@@ -132,6 +132,20 @@ TEST_F(SceneSwitch, AClientSwitchesTheSceneAndABrokenOneIsRefusedWhileTheOldOneR
     }
   }
   EXPECT_TRUE(hello_then_tick);
+
+  // audio-client renders the session's pen scrape in two stretches, the second on vvalley (found
+  // in the scenes folder), the same bytes twice. A coarse slab without the pen keeps it fast.
+  const auto render = [&](const std::string& wav) {
+    return shellStatus(std::string("cd '") + THX_SOURCE_DIR + "' && '" + THX_AUDIO_CLIENT +
+                       "' --scene scenes/default.yaml --scenes-dir '" + scenes.string() + "' --replay-log '" + record +
+                       "' --wav '" + path(wav) + "' --slab-cells 2 --modes 8 --no-pen --tail 0.05 --cache-dir '" +
+                       path("cache") + "' >'" + path(wav + ".out") + "' 2>&1");
+  };
+  ASSERT_EQ(render("a.wav"), 0) << slurp(path("a.wav.out"));
+  EXPECT_NE(slurp(path("a.wav.out")).find("the pen's scrape in 2 stretches, scenes: default vvalley"), std::string::npos)
+      << slurp(path("a.wav.out"));
+  ASSERT_EQ(render("b.wav"), 0) << slurp(path("b.wav.out"));
+  EXPECT_EQ(slurp(path("a.wav")), slurp(path("b.wav")));
 }
 
 // As a user runs it: hapticd, a physics-client on the same scene, and hapticctl switching the
