@@ -259,7 +259,11 @@ void Publisher::applyControl(std::int64_t now_ns) {
 
 void Publisher::handleRecord(const TickRecord& r, std::int64_t now_ns) {
   records_.fetch_add(1, std::memory_order_relaxed);
+  // Commands first: a switch this record shows is recorded as a hello before this tick.
+  answerCommands(r, now_ns);
   if (SessionRecorder* s = options_.session; s && s->ok()) {
+    if (session_hello_due_) s->recordHello(hello(r.deadline_ns / 1000));  // on the ticks' clock
+    session_hello_due_ = false;
     s->record(r);
     if (!s->ok()) std::fprintf(stderr, "hapticd: warning: %s\n", s->error().c_str());
   }
@@ -272,7 +276,6 @@ void Publisher::handleRecord(const TickRecord& r, std::int64_t now_ns) {
     ++window_fault_ticks_;
     window_fault_mask_ |= wireFaultMask(r.faults);
   }
-  answerCommands(r, now_ns);
   const double f = std::sqrt(r.f_out[0] * r.f_out[0] + r.f_out[1] * r.f_out[1] + r.f_out[2] * r.f_out[2]);
   if (f > window_max_force_n_) window_max_force_n_ = f;
   if (!lcm_ || !table_.wantsTicks()) return;  // compute a stream only while someone subscribes
@@ -295,6 +298,7 @@ void Publisher::answerCommands(const TickRecord& r, std::int64_t now_ns) {
     scene_name_ = std::move(change->scene_name);
     if (scene_name_.size() >= thx_msgs::kMaxTextLength) scene_name_.resize(thx_msgs::kMaxTextLength - 1);
     texture_fingerprint_ = change->fingerprint;
+    session_hello_due_ = true;
     if (lcm_) publishHello(now_ns);
   }
 }
@@ -370,10 +374,10 @@ void Publisher::publishStats(std::int64_t now_ns) {
   window_fault_mask_ = 0;
 }
 
-void Publisher::publishHello(std::int64_t now_ns) {
+thx_msgs::hello_t Publisher::hello(std::int64_t utime) const {
   thx_msgs::hello_t h{};
-  h.utime = now_ns / 1000;
-  h.seq = ++hello_seq_;
+  h.utime = utime;
+  h.seq = hello_seq_;
   h.server_instance = server_instance_;
   h.start_utime = start_ns_ / 1000;
   h.start_unix_us = start_unix_us_;
@@ -384,6 +388,12 @@ void Publisher::publishHello(std::int64_t now_ns) {
   h.scene_name = scene_name_;
   h.texture_fingerprint = static_cast<std::int64_t>(texture_fingerprint_);  // the same 64 bits
   h.control_url = options_.control_url;
+  return h;
+}
+
+void Publisher::publishHello(std::int64_t now_ns) {
+  ++hello_seq_;
+  const thx_msgs::hello_t h = hello(now_ns / 1000);
   LcmSink sink(*this);
   sink.put(thx_msgs::kChannelHello, h);
   hellos_.fetch_add(1, std::memory_order_relaxed);

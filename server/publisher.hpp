@@ -18,6 +18,8 @@
 #include <thread>
 #include <vector>
 
+#include <thx_msgs/hello_t.hpp>
+
 #include "server/flight_dump_limits.hpp"
 #include "server/flight_recorder.hpp"
 #include "server/server_commands.hpp"
@@ -48,7 +50,8 @@ struct PublisherOptions {
   // Client limits. servo_rate_hz and server_instance are set by the publisher.
   SubscriptionLimits limits;
   std::int64_t hello_period_ns = 1'000'000'000;
-  // Every tick that comes out of the ring is also written here (hapticd --record); not owned.
+  // Every tick that comes out of the ring is also written here (hapticd --record), and a hello
+  // before the first tick and before the first tick on each switched-to scene; not owned.
   SessionRecorder* session = nullptr;
   // The servo's Servo::faultResetSlot(), written only by the publisher thread (client fault
   // resets); null: resets are refused. Not owned.
@@ -120,6 +123,7 @@ class Publisher {
   void sendReplies(std::int64_t now_ns);  // command_replies_
   void publishStats(std::int64_t now_ns);
   void publishHello(std::int64_t now_ns);
+  thx_msgs::hello_t hello(std::int64_t utime) const;  // the announcement of the scene rendered now
   void dumpFlight();
   lcm::LCM* dataLcm(int port);  // port 0: lcm_; else the port's send-only LCM (null if it cannot open)
 
@@ -149,6 +153,7 @@ class Publisher {
   std::int64_t last_stats_ns_ = 0;
   std::int64_t last_hello_ns_ = 0;
   std::int64_t hello_seq_ = 0;
+  bool session_hello_due_ = true;  // --record: a hello goes before the next tick (at start, after a switch)
   std::uint64_t ticks_seen_ = 0;   // counted from the records: the servo's own counters are
   std::uint64_t missed_seen_ = 0;  // not shared across threads
   std::uint64_t last_stats_ticks_ = 0;

@@ -74,6 +74,16 @@ void SessionRecorder::record(const TickRecord& r) {
   if (ticks_ % 1000 == 0) std::fflush(log_->getFilePtr());  // a crash loses at most a second
 }
 
+void SessionRecorder::recordHello(const thx_msgs::hello_t& h) {
+  if (!ok()) return;
+  if (!have_offset_) {
+    unix_offset_us_ = realtimeUs() - h.utime;
+    have_offset_ = true;
+  }
+  encodeInto(h, buffer_);
+  write(kSessionHelloChannel, h.utime, buffer_);
+}
+
 std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path) {
   std::vector<dev::ReplaySample> out;
   thx_msgs::forEachLogMessage<thx_msgs::device_state_t>(path, kSessionDeviceChannel, [&](const thx_msgs::device_state_t& d,
@@ -101,6 +111,13 @@ std::vector<thx_msgs::contact_t> loadSessionContacts(const std::string& path) {
   std::vector<thx_msgs::contact_t> out;
   thx_msgs::forEachLogMessage<thx_msgs::contact_t>(
       path, kSessionContactChannel, [&](const thx_msgs::contact_t& c, const thx_msgs::LogPosition&) { out.push_back(c); });
+  return out;
+}
+
+std::vector<thx_msgs::hello_t> loadSessionHellos(const std::string& path) {
+  std::vector<thx_msgs::hello_t> out;
+  thx_msgs::forEachLogMessage<thx_msgs::hello_t>(
+      path, kSessionHelloChannel, [&](const thx_msgs::hello_t& h, const thx_msgs::LogPosition&) { out.push_back(h); });
   return out;
 }
 

@@ -4,7 +4,9 @@
 // (`--record FILE`) and by the replay device (`--device replay:FILE`); never by the servo.
 //
 // A session log holds, for every servo tick, one event on THX_DEVICE_STATE (device_state_t) and
-// one on THX_CONTACT (contact_t), in tick order. Event timestamps are microseconds since the Unix
+// one on THX_CONTACT (contact_t), in tick order, and hapticd's hello (THX_HELLO, hello_t: the
+// scene it renders) before the first tick and before the first tick on each switched-to scene,
+// its utime that tick's (so ticks from a hello's utime on belong to its scene). Event timestamps are microseconds since the Unix
 // epoch (CLOCK_REALTIME at recording start + the tick's offset from the first tick), as
 // lcm-logger writes them, so lcm-logplayer replays the session at its original pace.
 #include <cstdint>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include <thx_msgs/contact_t.hpp>
+#include <thx_msgs/hello_t.hpp>
 
 #include "device/replay_device.hpp"
 #include "server/tick_record.hpp"
@@ -25,6 +28,7 @@ namespace thx::srv {
 
 inline constexpr char kSessionDeviceChannel[] = "THX_DEVICE_STATE";
 inline constexpr char kSessionContactChannel[] = "THX_CONTACT";
+inline constexpr char kSessionHelloChannel[] = "THX_HELLO";
 
 class SessionRecorder {
  public:
@@ -37,6 +41,9 @@ class SessionRecorder {
   // Appends one tick. After a write error (disk full) recording stops; ok() turns false and
   // error() says why. Never throws.
   void record(const TickRecord& r);
+
+  // Appends a hello (the scene from h.utime on, on the ticks' clock); like record(), never throws.
+  void recordHello(const thx_msgs::hello_t& h);
 
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }
@@ -63,5 +70,7 @@ std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path);
 
 // Every THX_CONTACT event of a session log, in order (to compare sessions). Throws like above.
 std::vector<thx_msgs::contact_t> loadSessionContacts(const std::string& path);
+// Every THX_HELLO event of a session log, in order. Throws like above.
+std::vector<thx_msgs::hello_t> loadSessionHellos(const std::string& path);
 
 }  // namespace thx::srv

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "clients/audio/modal_options.hpp"
 #include "clients/audio/physics_sound.hpp"
 #include "clients/audio/scene_bodies.hpp"
+#include "clients/audio/scrape_session.hpp"
 #include "clients/audio/scrape_synthesis.hpp"
 #include "clients/audio/surface_sound.hpp"
 #include "scenes/scene_loader.hpp"
@@ -52,8 +55,10 @@ writes the sound to --wav. Follows hapticd's scene switches (finds NAME.yaml in 
 Offline (--replay-log): deterministic, from a recorded session (`hapticd --record FILE`: one
 contact_t per servo tick on THX_CONTACT). If the log also holds the physics client's streams
 (`physics-client --replay-log SESSION --record FILE`: THX_PHYSICS_POSES/IMPACT/CONTACTS on the
-session's clock), they sound too, on the same clock; a THX_HELLO naming another scene switches
-the physics streams to NAME.yaml (--scenes-dir). The sum of the modal displacements as a 32-bit
+session's clock), they sound too, on the same clock. A THX_HELLO naming another scene (hapticd
+--record writes one at each switch) switches to NAME.yaml (--scenes-dir) from its utime on: the
+pen's CONTACT samples after it scrape that scene's surface and pen (the walk starts afresh), the
+physics streams strike its bodies; bodies struck before ring on. The sum of the modal displacements as a 32-bit
 float WAV normalised to a peak of 0.5 (-6 dBFS).
 
   --scene FILE           the scene hapticd runs (docs/scenes.md)
@@ -156,70 +161,85 @@ Options parse(const std::vector<std::string>& args) {
   return o;
 }
 
-int runOffline(const Options& o) {
-  const thx::scene::Scene scene = thx::scene::loadScene(o.scene);
-  thx::scene::SurfaceTextureOptions to;
-  to.smooth = thx::tex::smoothTexture;
-  const thx::tex::TextureMap map = thx::scene::buildSurfaceTexture(scene, to);
+// One scene as the offline render plays it: the surface (texture, slab, modes) and the pen the
+// scrape uses; the physics streams share the slab's modes.
+struct OfflineScene {
+  SurfaceSound surface;
+  PenSound pen;
+  PenModes pen_view;
+  ScrapeSurface scrape;
+  std::shared_ptr<const ModalBody> slab_body;
+};
 
-  std::vector<ScrapeSample> path;
-  std::int64_t first_contact_utime = 0;
+int runOffline(const Options& o) {
+  const auto stem = [](const std::string& file) { return std::filesystem::path(file).stem().string(); };
+  const std::string first_name = stem(o.scene);
+  const std::string dir = o.scenes_dir ? *o.scenes_dir : std::filesystem::path(o.scene).parent_path().string();
+  const auto file_of = [&](const std::string& name) {
+    if (name == first_name) return o.scene;
+    return (std::filesystem::path(dir.empty() ? "." : dir) / (name + ".yaml")).string();
+  };
+  // Each scene the log names is loaded and analysed once, when first needed (cache §2).
+  std::map<std::string, std::unique_ptr<OfflineScene>> scenes;
+  const auto offline_scene = [&](const std::string& name) -> OfflineScene& {
+    std::unique_ptr<OfflineScene>& slot = scenes[name];
+    if (slot) return *slot;
+    auto sc = std::make_unique<OfflineScene>(OfflineScene{buildSurfaceSound(file_of(name), o.slab), {}, {}, {}, nullptr});
+    const thx::scene::Scene& scene = sc->surface.scene;
+    if (!o.no_pen) sc->pen = buildPenSound(scene, o.slab);
+    sc->pen_view = PenModes{&sc->pen.mesh, &sc->pen.modes, sc->pen.tip_node, sc->pen.tilt_deg};
+    ScrapeOptions& so = sc->scrape.options;
+    so.sample_rate_hz = o.slab.sample_rate_hz;
+    so.servo_hz = scene.rates.servo_hz;
+    so.pen_mass_kg = o.pen_mass ? *o.pen_mass : scene.device.sim.device_mass_kg;
+    so.surface_size_m = scene.surface.size_m;
+    so.tail_s = o.tail;
+    so.meso = sc->surface.map().isRelief() ? MesoSource::ContactNormals : MesoSource::TexelWalk;
+    so.roughness = sceneRoughness(scene);
+    if (o.no_micro) so.roughness.amplitude = 0.0;
+    sc->scrape.map = &sc->surface.map();
+    sc->scrape.slab = &sc->surface.slab;
+    sc->scrape.modes = &sc->surface.modes;
+    sc->scrape.pen = o.no_pen ? nullptr : &sc->pen_view;
+    sc->slab_body = std::make_shared<const ModalBody>(sc->surface.slab, sc->surface.modes);
+    slot = std::move(sc);
+    return *slot;
+  };
+
+  std::vector<TimedScrapeSample> path;
   thx_msgs::forEachLogMessage<thx_msgs::contact_t>(o.log, "THX_CONTACT", [&](const thx_msgs::contact_t& c, const auto&) {
-    if (path.empty()) first_contact_utime = c.utime;
-    path.push_back(scrapeSample(c));
+    path.push_back({c.utime, scrapeSample(c)});
   });
   const PhysicsStreams physics = readPhysicsStreams(o.log);
   if (path.empty() && physics.empty())
     throw thx::Error(thx::Error::Kind::Io, o.log + ": no THX_CONTACT or THX_PHYSICS_* events (not a hapticd or physics-client --record log?)");
+  std::vector<SceneStart> hellos;
+  for (const auto& h : physics.hellos) hellos.push_back({h.utime, h.scene_name});
 
-  ElasticMaterial material = scene.surface.material;
-  SceneMeshOptions mo;
-  mo.slab_thickness_m = o.slab.thickness_m;
-  mo.clamp_slab = o.slab.clamp_edges;
-  mo.slab_cells = o.slab.cells;
-  TetMesh slab = slabBody(scene, mo).mesh;
-  slab.name = "surface (" + scene.surface.material.name + ")";
-  const ModalSettings ms = modalSettings(o.slab);
-  const AnalysisOptions ao = analysisOptions(o.slab);
-  const AudibleOptions audible = audibleOptions(o.slab);
-  const AudibleModes modes = audibleModes(analyse(slab, material, ms, ao), material, audible);
-  // The pen's own modes (device.pen), struck at its tip.
-  const PenSound pen = o.no_pen ? PenSound{} : buildPenSound(scene, o.slab);
-  const PenModes pen_view{&pen.mesh, &pen.modes, pen.tip_node, pen.tilt_deg};
-
-  ScrapeOptions so;
-  so.sample_rate_hz = o.slab.sample_rate_hz;
-  so.servo_hz = scene.rates.servo_hz;
-  so.pen_mass_kg = o.pen_mass ? *o.pen_mass : scene.device.sim.device_mass_kg;
-  so.surface_size_m = scene.surface.size_m;
-  so.tail_s = o.tail;
-  so.meso = map.representation() == thx::tex::Representation::Relief ? MesoSource::ContactNormals : MesoSource::TexelWalk;
-  so.roughness = sceneRoughness(scene);
-  if (o.no_micro) so.roughness.amplitude = 0.0;
-  ScrapeRender r = renderScrape(map, slab, modes, path, so, o.no_pen ? nullptr : &pen_view);
+  OfflineScene& first = offline_scene(first_name);
+  // The pen's scrape, each stretch between switches on its own scene's surface.
+  ScrapeSessionRender session = renderScrapeSession(
+      path, hellos, first_name, [&](const std::string& name) -> const ScrapeSurface& { return offline_scene(name).scrape; });
+  ScrapeRender& r = session.render;
+  const ScrapeOptions& so = first.scrape.options;
   if (!physics.empty()) {
     BodyOptions bo;
     bo.slab_thickness_m = o.slab.thickness_m;
     bo.slab_cells = o.slab.cells;
     bo.clamp_slab = o.slab.clamp_edges;
     bo.object_order = o.object_order;
-    bo.modal = ms;
-    bo.analysis = ao;
-    bo.audible = audible;
-    const auto stem = [](const std::string& file) { return std::filesystem::path(file).stem().string(); };
-    const SoundingScene first =
-        soundingScene(stem(o.scene), scene, map.isRelief(), bo, std::make_shared<const ModalBody>(slab, modes));
-    const std::string dir = o.scenes_dir ? *o.scenes_dir : std::filesystem::path(o.scene).parent_path().string();
-    const auto scene_for = [&](const std::string& name) {
-      const std::string file = (std::filesystem::path(dir.empty() ? "." : dir) / (name + ".yaml")).string();
-      const thx::scene::Scene next = thx::scene::loadScene(file);
-      return soundingScene(name, next, thx::scene::buildSurfaceTexture(next, to).isRelief(), bo);
+    bo.modal = modalSettings(o.slab);
+    bo.analysis = analysisOptions(o.slab);
+    bo.audible = audibleOptions(o.slab);
+    const auto sounding = [&](const std::string& name) {
+      OfflineScene& sc = offline_scene(name);
+      return soundingScene(name, sc.surface.scene, sc.surface.map().isRelief(), bo, sc.slab_body);
     };
     PhysicsSoundOptions po;
     po.sample_rate_hz = o.slab.sample_rate_hz;
     po.tail_s = o.tail;
-    const std::int64_t origin = path.empty() ? physics.firstUtime() : first_contact_utime;
-    const PhysicsRender pr = renderPhysicsStreams(physics, first, scene_for, origin, po);
+    const std::int64_t origin = path.empty() ? physics.firstUtime() : path.front().utime;
+    const PhysicsRender pr = renderPhysicsStreams(physics, sounding(first_name), sounding, origin, po);
     r.samples = mixSessionSound(r.samples, r.raw_peak / so.peak, pr.samples, so.peak);
     std::printf("audio-client: %s: physics: %zu impacts (contact %.3g-%.3g ms), %zu meso impulses, %zu relief impulses, scenes:",
                 o.log.c_str(), pr.impacts, pr.min_contact_s * 1e3, pr.max_contact_s * 1e3, pr.meso_impulses,
@@ -228,10 +248,15 @@ int runOffline(const Options& o) {
     std::printf("\n");
   }
   WavWriter(o.wav, int(o.slab.sample_rate_hz)).write(r.samples);
+  if (session.scenes.size() > 1) {
+    std::printf("audio-client: %s: the pen's scrape in %zu stretches, scenes:", o.log.c_str(), session.scenes.size());
+    for (const std::string& n : session.scenes) std::printf(" %s", n.c_str());
+    std::printf("\n");
+  }
   std::printf("audio-client: %s: %zu ticks, %zu %s impulses (%zu non-zero), micro force RMS %.3g N, %zu slab + %zu pen modes "
               "(peaks %.3g / %.3g, RMS %.3g), %.2f s -> %s\n",
               o.log.c_str(), path.size(), r.impulses, so.meso == MesoSource::TexelWalk ? "meso" : "relief", r.nonzero_impulses,
-              r.micro_rms_n, modes.size(), pen.modes.size(), r.slab_peak, r.pen_peak,
+              r.micro_rms_n, first.surface.modes.size(), first.pen.modes.size(), r.slab_peak, r.pen_peak,
               r.raw_rms, double(r.samples.size()) / o.slab.sample_rate_hz, o.wav.c_str());
   return 0;
 }

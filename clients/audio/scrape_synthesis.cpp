@@ -53,7 +53,7 @@ ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& sla
                                   const ScrapeOptions& o) {
   ScrapeExcitation e;
   if (path.empty()) return e;
-  const std::int64_t first_tick = path.front().tick;
+  const std::int64_t first_tick = o.origin_tick ? *o.origin_tick : path.front().tick;
   auto sampleOf = [&](std::int64_t tick) {
     return std::size_t(std::llround(double(tick - first_tick) / o.servo_hz * o.sample_rate_hz));
   };
@@ -91,17 +91,19 @@ ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& sla
         });
   }
   e.micro_rms_n = micro_samples ? std::sqrt(micro_power / double(micro_samples)) : 0.0;
+  e.micro_samples = micro_samples;
   return e;
 }
 
-ScrapeRender renderScrape(const tex::TextureMap& map, const TetMesh& slab, const AudibleModes& modes,
-                          std::span<const ScrapeSample> path, const ScrapeOptions& o, const PenModes* pen) {
+ScrapeRender scrapeDisplacement(const tex::TextureMap& map, const TetMesh& slab, const AudibleModes& modes,
+                                std::span<const ScrapeSample> path, const ScrapeOptions& o, const PenModes* pen) {
   ScrapeRender out;
   if (path.empty()) return out;
   const ScrapeExcitation e = scrapeExcitation(map, slab, path, o);
   out.impulses = e.impulses;
   out.nonzero_impulses = e.nonzero_impulses;
   out.micro_rms_n = e.micro_rms_n;
+  out.micro_samples = e.micro_samples;
   const std::size_t total = e.impulse_ns.size();
 
   // The slab receives -J along its top face's normal (+z): the gain of each mode at each node.
@@ -126,18 +128,33 @@ ScrapeRender renderScrape(const tex::TextureMap& map, const TetMesh& slab, const
     renderBody(pm, pen_gain, tip, e.impulse_ns, o.sample_rate_hz, pm.size(), pen_out);
   }
 
-  std::vector<double> rendered(total);
+  out.displacement.resize(total);
   for (std::size_t n = 0; n < total; ++n) {
-    rendered[n] = slab_out[n] + pen_out[n];
+    out.displacement[n] = slab_out[n] + pen_out[n];
     out.slab_peak = std::max(out.slab_peak, std::fabs(slab_out[n]));
     out.pen_peak = std::max(out.pen_peak, std::fabs(pen_out[n]));
-    out.raw_peak = std::max(out.raw_peak, std::fabs(rendered[n]));
-    out.raw_rms += rendered[n] * rendered[n];
   }
-  out.raw_rms = std::sqrt(out.raw_rms / double(total));
-  const double gain = out.raw_peak > 0 ? o.peak / out.raw_peak : 0.0;
-  out.samples.resize(total);
-  for (std::size_t n = 0; n < total; ++n) out.samples[n] = float(rendered[n] * gain);
+  return out;
+}
+
+void normaliseScrape(ScrapeRender& out, double peak) {
+  const std::vector<double>& d = out.displacement;
+  out.raw_peak = 0.0;
+  out.raw_rms = 0.0;
+  for (double x : d) {
+    out.raw_peak = std::max(out.raw_peak, std::fabs(x));
+    out.raw_rms += x * x;
+  }
+  out.raw_rms = d.empty() ? 0.0 : std::sqrt(out.raw_rms / double(d.size()));
+  const double gain = out.raw_peak > 0 ? peak / out.raw_peak : 0.0;
+  out.samples.resize(d.size());
+  for (std::size_t n = 0; n < d.size(); ++n) out.samples[n] = float(d[n] * gain);
+}
+
+ScrapeRender renderScrape(const tex::TextureMap& map, const TetMesh& slab, const AudibleModes& modes,
+                          std::span<const ScrapeSample> path, const ScrapeOptions& o, const PenModes* pen) {
+  ScrapeRender out = scrapeDisplacement(map, slab, modes, path, o, pen);
+  normaliseScrape(out, o.peak);
   return out;
 }
 

@@ -9,6 +9,7 @@
 // The pen receives +J along the surface normal, the slab -J. Deterministic: the same path gives
 // the same samples.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -39,6 +40,7 @@ struct ScrapeOptions {
   MesoSource meso = MesoSource::TexelWalk;
   RoughnessOptions roughness;       // amplitude 0: no micro level
   double tail_s = 0.5;              // rendered after the last sample, for the ring-out
+  std::optional<std::int64_t> origin_tick;  // the tick at sample 0 (unset: the path's first)
   double peak = 0.5;                // output normalised to this peak (unless silent)
 };
 
@@ -50,6 +52,8 @@ struct ScrapeRender {
   double raw_rms = 0.0;           // its RMS over the whole render
   double slab_peak = 0.0, pen_peak = 0.0;  // each body's share before normalising
   double micro_rms_n = 0.0;       // RMS micro force over the samples in contact
+  std::size_t micro_samples = 0;  // the samples in contact that RMS is over
+  std::vector<double> displacement;  // the modal displacement sum before normalising
 };
 
 // The excitation alone, sample by sample (PenScrape's, pen_scrape.hpp): the impulse (N s, on the
@@ -62,6 +66,7 @@ struct ScrapeExcitation {
   std::vector<int> slab_node;
   std::size_t impulses = 0, nonzero_impulses = 0;
   double micro_rms_n = 0.0;
+  std::size_t micro_samples = 0;
 };
 ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& slab, std::span<const ScrapeSample> path,
                                   const ScrapeOptions& options);
@@ -70,7 +75,13 @@ ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& sla
 PenScrapeOptions penScrapeOptions(const ScrapeOptions& options);
 
 // `slab` is the surface's mesh (slabMesh: top face at z = 0, centred on the origin) and `modes`
-// its audible modes (shapes over slab's DOFs).
+// its audible modes (shapes over slab's DOFs). scrapeDisplacement leaves `samples` empty and the
+// sum in `displacement`; normaliseScrape fills `samples`, raw_peak and raw_rms from it;
+// renderScrape does both.
+ScrapeRender scrapeDisplacement(const tex::TextureMap& map, const TetMesh& slab, const AudibleModes& modes,
+                                std::span<const ScrapeSample> path, const ScrapeOptions& options,
+                                const PenModes* pen = nullptr);
+void normaliseScrape(ScrapeRender& render, double peak);
 ScrapeRender renderScrape(const tex::TextureMap& map, const TetMesh& slab, const AudibleModes& modes,
                           std::span<const ScrapeSample> path, const ScrapeOptions& options,
                           const PenModes* pen = nullptr);

@@ -6,6 +6,7 @@
 // language's would be.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_surface.hpp"
+#include "server/session_log.hpp"
 #include "tests/support/hapticd_harness.hpp"
 #include "thx_msgs/protocol.hpp"
 
@@ -70,7 +72,8 @@ TEST_F(SceneSwitch, AClientSwitchesTheSceneAndABrokenOneIsRefusedWhileTheOldOneR
   Inbox inbox;
   lcm.subscribe(thx_msgs::kChannelHello, &Inbox::onHello, &inbox);
   lcm.subscribe(thx_msgs::kChannelCommandReply, &Inbox::onReply, &inbox);
-  startServer({"--scene", "scenes/default.yaml", "--scenes-dir", scenes.string()});
+  const std::string record = (dir_ / "session.lcm").string();
+  startServer({"--scene", "scenes/default.yaml", "--scenes-dir", scenes.string(), "--record", record});
   ASSERT_TRUE(waitFor(lcm, [&] { return inbox.hello.has_value(); }, 30)) << serverLog();
   EXPECT_EQ(inbox.hello->scene_name, "default");
   EXPECT_GE(inbox.hello->protocol_version, 3);  // scene switches since version 3
@@ -101,6 +104,48 @@ TEST_F(SceneSwitch, AClientSwitchesTheSceneAndABrokenOneIsRefusedWhileTheOldOneR
   EXPECT_EQ(stopServer(), 0) << serverLog();
   expectServoRanSafely();
   EXPECT_NE(serverLog().find("client runner switched the scene"), std::string::npos) << serverLog();
+
+  // The recorded session says which scene each tick belongs to: a hello before the first tick
+  // and one before the first tick on vvalley (the reply's tick), each with that tick's utime;
+  // none for the refused switch.
+  const std::vector<thx_msgs::contact_t> contacts = srv::loadSessionContacts(record);
+  const std::vector<thx_msgs::hello_t> hellos = srv::loadSessionHellos(record);
+  ASSERT_FALSE(contacts.empty());
+  ASSERT_EQ(hellos.size(), 2u);
+  EXPECT_EQ(hellos[0].scene_name, "default");
+  EXPECT_EQ(hellos[0].utime, contacts.front().utime);
+  EXPECT_EQ(hellos[1].scene_name, "vvalley");
+  EXPECT_EQ(static_cast<std::uint64_t>(hellos[1].texture_fingerprint), mine.fingerprint);
+  const auto first_on_vvalley = std::find_if(contacts.begin(), contacts.end(),
+                                             [&](const thx_msgs::contact_t& c) { return c.tick == good->tick; });
+  ASSERT_NE(first_on_vvalley, contacts.end());
+  EXPECT_EQ(hellos[1].utime, first_on_vvalley->utime);
+  // In the log the hello comes just before that tick's events.
+  lcm::LogFile log(record, "r");
+  bool hello_then_tick = false;
+  for (int hellos_seen = 0; const lcm::LogEvent* e = log.readNextEvent();) {
+    if (e->channel == thx_msgs::kChannelHello) ++hellos_seen;
+    if (hellos_seen == 2 && e->channel == "THX_CONTACT") {
+      thx_msgs::contact_t c;
+      hello_then_tick = c.decode(e->data, 0, e->datalen) > 0 && c.tick == good->tick;
+      break;
+    }
+  }
+  EXPECT_TRUE(hello_then_tick);
+
+  // audio-client renders the session's pen scrape in two stretches, the second on vvalley (found
+  // in the scenes folder), the same bytes twice. A coarse slab without the pen keeps it fast.
+  const auto render = [&](const std::string& wav) {
+    return shellStatus(std::string("cd '") + THX_SOURCE_DIR + "' && '" + THX_AUDIO_CLIENT +
+                       "' --scene scenes/default.yaml --scenes-dir '" + scenes.string() + "' --replay-log '" + record +
+                       "' --wav '" + path(wav) + "' --slab-cells 2 --modes 8 --no-pen --tail 0.05 --cache-dir '" +
+                       path("cache") + "' >'" + path(wav + ".out") + "' 2>&1");
+  };
+  ASSERT_EQ(render("a.wav"), 0) << slurp(path("a.wav.out"));
+  EXPECT_NE(slurp(path("a.wav.out")).find("the pen's scrape in 2 stretches, scenes: default vvalley"), std::string::npos)
+      << slurp(path("a.wav.out"));
+  ASSERT_EQ(render("b.wav"), 0) << slurp(path("b.wav.out"));
+  EXPECT_EQ(slurp(path("a.wav")), slurp(path("b.wav")));
 }
 
 // As a user runs it: hapticd, a physics-client on the same scene, and hapticctl switching the

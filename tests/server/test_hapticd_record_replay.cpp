@@ -58,6 +58,11 @@ TEST_F(HapticdRecordReplay, ARecordedSessionReplaysWithTheSameContactStates) {
   const std::vector<contact_t> rep = thx::srv::loadSessionContacts(path("replay.lcm"));
   ASSERT_GT(rec.size(), 1000u);
   ASSERT_GE(rep.size(), rec.size());  // the replay also ramps out after its last sample
+  // The session names its scene: one hello (no switch), before the first tick, on its clock.
+  const std::vector<thx_msgs::hello_t> hellos = thx::srv::loadSessionHellos(path("rec.lcm"));
+  ASSERT_EQ(hellos.size(), 1u);
+  EXPECT_EQ(hellos[0].scene_name, "default");
+  EXPECT_EQ(hellos[0].utime, rec.front().utime);
   std::size_t contacts = 0, differing = 0;
   for (std::size_t i = 0; i < rec.size(); ++i) {
     if (rec[i].in_contact) ++contacts;

@@ -74,6 +74,46 @@ TEST(SessionLog, WhatIsRecordedComesBackInOrder) {
   fs::remove(path);
 }
 
+TEST(SessionLog, AHelloIsRecordedOnTheTicksClockBeforeItsTick) {
+  const std::string path = tempPath("hello.lcm");
+  thx_msgs::hello_t a{}, b{};
+  a.utime = tickAt(0).deadline_ns / 1000;
+  a.scene_name = "flat";
+  b.utime = tickAt(2).deadline_ns / 1000;
+  b.scene_name = "grooves";
+  {
+    srv::SessionRecorder rec(path, true);
+    rec.recordHello(a);
+    for (std::int64_t t : {0, 1}) rec.record(tickAt(t));
+    rec.recordHello(b);
+    rec.record(tickAt(2));
+    EXPECT_TRUE(rec.ok());
+    EXPECT_EQ(rec.ticks(), 3u);  // hellos are not ticks
+  }
+  const std::vector<thx_msgs::hello_t> hellos = srv::loadSessionHellos(path);
+  ASSERT_EQ(hellos.size(), 2u);
+  EXPECT_EQ(hellos[0].scene_name, "flat");
+  EXPECT_EQ(hellos[1].scene_name, "grooves");
+  EXPECT_EQ(hellos[1].utime, 2000);
+  EXPECT_EQ(srv::loadSessionTrajectory(path).size(), 3u);  // the readers skip the hellos
+  // The events in order, each hello's timestamp that of the tick it precedes.
+  lcm::LogFile log(path, "r");
+  std::vector<std::string> channels;
+  std::vector<std::int64_t> stamps;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    channels.push_back(e->channel);
+    stamps.push_back(e->timestamp);
+  }
+  const std::vector<std::string> expected{"THX_HELLO",  "THX_DEVICE_STATE", "THX_CONTACT", "THX_DEVICE_STATE",
+                                          "THX_CONTACT", "THX_HELLO",        "THX_DEVICE_STATE", "THX_CONTACT"};
+  EXPECT_EQ(channels, expected);
+  ASSERT_EQ(stamps.size(), 8u);
+  EXPECT_EQ(stamps[0], stamps[1]);
+  EXPECT_EQ(stamps[5], stamps[6]);
+  EXPECT_EQ(stamps[6] - stamps[1], 2000);
+  fs::remove(path);
+}
+
 TEST(SessionLog, LockstepReplayReproducesTheRecordedTicksAndGaps) {
   std::vector<dev::ReplaySample> samples;
   for (std::int64_t t : {10, 11, 12, 15, 16}) {
