@@ -45,6 +45,35 @@ double processCpuSeconds() {
 
 volatile double g_sink = 0;
 
+// One render() per tick of `path`, `passes` times from a reset: the median of each pass's median
+// tick and the 99th percentile over all ticks (Timing's median_s and p99_s); the ticks in contact
+// on the first pass into `contact_ticks`.
+template <class Renderer>
+Timing timeRenderTicks(Renderer& r, const std::vector<dev::DeviceState>& path, int passes, std::size_t& contact_ticks) {
+  std::vector<double> all, medians;
+  all.reserve(std::size_t(passes) * path.size());
+  contact_ticks = 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    r.reset();
+    std::vector<double> t;
+    t.reserve(path.size());
+    for (const dev::DeviceState& s : path) {
+      const std::int64_t t0 = rt::monotonicNowNs();
+      const srv::RenderOutput o = r.render(s.p_world, s.v_world);
+      const std::int64_t t1 = rt::monotonicNowNs();
+      g_sink = g_sink + o.force_world.z();  // keeps the call from being optimised away
+      if (pass == 0 && o.in_contact) ++contact_ticks;
+      t.push_back(double(t1 - t0) * 1e-9);
+    }
+    medians.push_back(median(t));
+    all.insert(all.end(), t.begin(), t.end());
+  }
+  Timing out;
+  out.median_s = median(medians);
+  out.p99_s = quantile(all, 0.99);
+  return out;
+}
+
 double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -187,25 +216,8 @@ std::array<Timing, 2> timeHaptics(const SceneTexture& st, int passes, std::vecto
                                              rec.states.begin() + std::ptrdiff_t(rec.last_contact + 1));
     ReplayDevice dummy(srv::deviceSpecFor(st.scene), path);
     ServerRig rig(st.scene, st.map(), relief, /*crease=*/true, dummy);
-    srv::ProxyRenderer& r = rig.renderer();
-    std::vector<double> all, medians;
-    all.reserve(std::size_t(passes) * path.size());
-    for (int pass = 0; pass < passes; ++pass) {
-      r.reset();
-      std::vector<double> t;
-      t.reserve(path.size());
-      for (const dev::DeviceState& s : path) {
-        const std::int64_t t0 = rt::monotonicNowNs();
-        const srv::RenderOutput o = r.render(s.p_world, s.v_world);
-        const std::int64_t t1 = rt::monotonicNowNs();
-        g_sink = g_sink + o.force_world.z();  // keeps the call from being optimised away
-        t.push_back(double(t1 - t0) * 1e-9);
-      }
-      medians.push_back(median(t));
-      all.insert(all.end(), t.begin(), t.end());
-    }
-    out[std::size_t(c)].median_s = median(medians);
-    out[std::size_t(c)].p99_s = quantile(all, 0.99);
+    std::size_t contact = 0;
+    out[std::size_t(c)] = timeRenderTicks(rig.renderer(), path, passes, contact);
     out[std::size_t(c)].note = std::to_string(path.size()) + " ticks of the scripted path (first to last contact), " +
                                std::to_string(passes) + " passes";
     if (relief) relief_path = path;
@@ -218,27 +230,8 @@ Timing timeMeshHaptics(const SceneTexture& st, int mesh_n, const std::vector<dev
   const srv::TriangleMesh mesh = srv::reliefGridMesh(placed.surface, mesh_n);
   const srv::TriangleBvh bvh(mesh);
   srv::MeshGodObject r(bvh, placed.surface.mapping(), srv::servoRigConfigFor(st.scene).renderer);
-  std::vector<double> all, medians;
-  all.reserve(std::size_t(passes) * path.size());
   std::size_t contact = 0;
-  for (int pass = 0; pass < passes; ++pass) {
-    r.reset();
-    std::vector<double> t;
-    t.reserve(path.size());
-    for (const dev::DeviceState& s : path) {
-      const std::int64_t t0 = rt::monotonicNowNs();
-      const srv::RenderOutput o = r.render(s.p_world, s.v_world);
-      const std::int64_t t1 = rt::monotonicNowNs();
-      g_sink = g_sink + o.force_world.z();
-      if (pass == 0 && o.in_contact) ++contact;
-      t.push_back(double(t1 - t0) * 1e-9);
-    }
-    medians.push_back(median(t));
-    all.insert(all.end(), t.begin(), t.end());
-  }
-  Timing out;
-  out.median_s = median(medians);
-  out.p99_s = quantile(all, 0.99);
+  Timing out = timeRenderTicks(r, path, passes, contact);
   out.note = "god object on the " + std::to_string(mesh_n) + "^2 mesh (" + std::to_string(mesh.triangles.size()) +
              " triangles, BVH), the relief's " + std::to_string(path.size()) + " ticks (" + std::to_string(contact) +
              " in contact), " + std::to_string(passes) + " passes";

@@ -223,14 +223,7 @@ int runOffline(const Options& o) {
   ScrapeRender& r = session.render;
   const ScrapeOptions& so = first.scrape.options;
   if (!physics.empty()) {
-    BodyOptions bo;
-    bo.slab_thickness_m = o.slab.thickness_m;
-    bo.slab_cells = o.slab.cells;
-    bo.clamp_slab = o.slab.clamp_edges;
-    bo.object_order = o.object_order;
-    bo.modal = modalSettings(o.slab);
-    bo.analysis = analysisOptions(o.slab);
-    bo.audible = audibleOptions(o.slab);
+    const BodyOptions bo = bodyOptions(o.slab, o.object_order);
     const auto sounding = [&](const std::string& name) {
       OfflineScene& sc = offline_scene(name);
       return soundingScene(name, sc.surface.scene, sc.surface.map().isRelief(), bo, sc.slab_body);

@@ -40,14 +40,7 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   live->pen_body = pen.pen_body;
 
   // The moving objects, meshed and analysed as the offline render does (physics_sound.hpp).
-  BodyOptions bo;
-  bo.slab_thickness_m = s.slab.thickness_m;
-  bo.slab_cells = s.slab.cells;
-  bo.clamp_slab = s.slab.clamp_edges;
-  bo.object_order = s.object_order;
-  bo.modal = modalSettings(s.slab);
-  bo.analysis = analysisOptions(s.slab);
-  bo.audible = audibleOptions(s.slab);
+  const BodyOptions bo = bodyOptions(s.slab, s.object_order);
   live->physics = std::make_unique<SoundingScene>(soundingScene(std::filesystem::path(scene_file).stem().string(), sound.scene,
                                                                 sound.map().isRelief(), bo,
                                                                 std::make_shared<const ModalBody>(sound.slab, sound.modes)));

@@ -17,11 +17,44 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+}  // namespace
+
 double signedHz(double lambda) {
   return std::copysign(std::sqrt(std::fabs(lambda)), lambda) / (2.0 * std::numbers::pi);
 }
 
-}  // namespace
+EigenSolveSettings eigenSolveSettings(const ModalSettings& settings, int rigid) {
+  EigenSolveSettings es;
+  es.eigenpairs = settings.elastic_modes + rigid;
+  es.lanczos_vectors = settings.lanczos_vectors;
+  es.shift = -std::pow(2.0 * std::numbers::pi * settings.shift_hz, 2);
+  es.tolerance = settings.tolerance;
+  es.max_iterations = settings.max_iterations;
+  return es;
+}
+
+int rigidModeCount(const EigenSolveResult& r, const ModalSettings& settings) {
+  int rigid = 0;
+  while (rigid < r.values.size() && signedHz(r.values[rigid]) < settings.rigid_below_hz) ++rigid;
+  return rigid;
+}
+
+void takeModes(const EigenSolveResult& r, int rigid, const std::vector<int>& free_dof, ModalSolution& s) {
+  s.factor_s = r.stats.factor_s;
+  s.iterate_s = r.stats.iterate_s;
+  s.operator_applications = r.stats.operator_applications;
+  s.rigid_modes = rigid;
+  s.rigid_hz.resize(rigid);
+  for (int k = 0; k < rigid; ++k) s.rigid_hz[k] = signedHz(r.values[k]);
+  const int elastic = int(r.values.size()) - rigid;
+  s.omega_rad_per_s.resize(elastic);
+  s.shapes = Eigen::MatrixXd::Zero(s.mesh_dofs, elastic);
+  for (int k = 0; k < elastic; ++k) {
+    s.omega_rad_per_s[k] = std::sqrt(r.values[rigid + k]);
+    for (std::size_t i = 0; i < free_dof.size(); ++i)
+      if (free_dof[i] >= 0) s.shapes(Eigen::Index(i), k) = r.vectors(free_dof[i], rigid + k);
+  }
+}
 
 double ModalSolution::frequencyHz(int mode) const { return omega_rad_per_s[mode] / (2.0 * std::numbers::pi); }
 
@@ -66,12 +99,7 @@ ModalSolution analyse(const TetMesh& mesh, const ElasticMaterial& material, cons
   s.mesh_dofs = mesh.dofCount();
   s.free_dofs = sys.free_count;
 
-  EigenSolveSettings es;
-  es.eigenpairs = settings.elastic_modes + (free_body ? 6 : 0);
-  es.lanczos_vectors = settings.lanczos_vectors;
-  es.shift = -std::pow(2.0 * std::numbers::pi * settings.shift_hz, 2);
-  es.tolerance = settings.tolerance;
-  es.max_iterations = settings.max_iterations;
+  const EigenSolveSettings es = eigenSolveSettings(settings, free_body ? 6 : 0);
   say("factorizing K - sigma M and iterating (ARPACK, " + std::to_string(es.eigenpairs) + " modes)");
   // At most one progress line a second: only long solves show their Lanczos steps.
   auto last_line = std::chrono::steady_clock::now();
@@ -80,12 +108,8 @@ ModalSolution analyse(const TetMesh& mesh, const ElasticMaterial& material, cons
     last_line = std::chrono::steady_clock::now();
     say("  " + std::to_string(applications) + " Lanczos steps");
   });
-  s.factor_s = r.stats.factor_s;
-  s.iterate_s = r.stats.iterate_s;
-  s.operator_applications = r.stats.operator_applications;
 
-  int rigid = 0;
-  while (rigid < r.values.size() && signedHz(r.values[rigid]) < settings.rigid_below_hz) ++rigid;
+  const int rigid = rigidModeCount(r, settings);
   const int expected = free_body ? 6 : 0;
   if (rigid != expected) {
     std::string list;
@@ -96,17 +120,7 @@ ModalSolution analyse(const TetMesh& mesh, const ElasticMaterial& material, cons
                      (free_body ? " rigid-body modes for a free body (is the mesh in several pieces?)"
                                 : " for a held body (is it held at enough nodes?)"));
   }
-  s.rigid_modes = rigid;
-  s.rigid_hz.resize(rigid);
-  for (int k = 0; k < rigid; ++k) s.rigid_hz[k] = signedHz(r.values[k]);
-  const int elastic = int(r.values.size()) - rigid;
-  s.omega_rad_per_s.resize(elastic);
-  s.shapes = Eigen::MatrixXd::Zero(s.mesh_dofs, elastic);
-  for (int k = 0; k < elastic; ++k) {
-    s.omega_rad_per_s[k] = std::sqrt(r.values[rigid + k]);
-    for (std::size_t i = 0; i < sys.free_dof.size(); ++i)
-      if (sys.free_dof[i] >= 0) s.shapes(Eigen::Index(i), k) = r.vectors(sys.free_dof[i], rigid + k);
-  }
+  takeModes(r, rigid, sys.free_dof, s);
   if (options.cache_dir) {
     writeModalCache(cache_path, key, s);
     s.cache_file = cache_path;

@@ -5,6 +5,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "clients/audio/elastic_material.hpp"
 #include "clients/audio/tet_mesh.hpp"
@@ -45,6 +46,21 @@ struct AnalysisOptions {
 // unconverged solve, or a rigid-mode count other than 6 (free) or 0 (clamped).
 ModalSolution analyse(const TetMesh& mesh, const ElasticMaterial& material, const ModalSettings& settings,
                       const AnalysisOptions& options = {});
+
+// Shared by analyse() and the spring-mass lattice (spring_mass.hpp), which solve K x = lambda M x
+// the same way with different systems:
+struct EigenSolveSettings;
+struct EigenSolveResult;
+// A mode's frequency in Hz from its eigenvalue, negative for a negative eigenvalue.
+double signedHz(double lambda);
+// The solver's settings for `settings`, with `rigid` more eigenpairs for the rigid modes.
+EigenSolveSettings eigenSolveSettings(const ModalSettings& settings, int rigid);
+// The eigenpairs below settings.rigid_below_hz (the first ones; r's values ascend).
+int rigidModeCount(const EigenSolveResult& r, const ModalSettings& settings);
+// Fills s's solver statistics, rigid_modes and rigid_hz (r's first `rigid` pairs) and its elastic
+// modes: omega and the shapes over s.mesh_dofs rows, each mesh DOF i taken from r's row free_dof[i]
+// (0 where free_dof[i] < 0).
+void takeModes(const EigenSolveResult& r, int rigid, const std::vector<int>& free_dof, ModalSolution& s);
 
 // The rows of a full mesh-DOF vector block that belong to free DOFs (free_dof from assemble()).
 Eigen::MatrixXd freeRows(const Eigen::MatrixXd& full, const std::vector<int>& free_dof, int free_count);

@@ -169,6 +169,18 @@ class Renderer {
 
 }  // namespace
 
+BodyOptions bodyOptions(const SlabSettings& slab, ElementOrder object_order) {
+  BodyOptions bo;
+  bo.slab_thickness_m = slab.thickness_m;
+  bo.slab_cells = slab.cells;
+  bo.clamp_slab = slab.clamp_edges;
+  bo.object_order = object_order;
+  bo.modal = modalSettings(slab);
+  bo.analysis = analysisOptions(slab);
+  bo.audible = audibleOptions(slab);
+  return bo;
+}
+
 SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, bool relief, const BodyOptions& o,
                             std::shared_ptr<const ModalBody> surface) {
   SoundingScene s;

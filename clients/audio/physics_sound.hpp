@@ -27,6 +27,7 @@
 #include "clients/audio/modal_body.hpp"
 #include "clients/audio/physics_excitation.hpp"
 #include "clients/audio/modal_analysis.hpp"
+#include "clients/audio/surface_sound.hpp"
 #include "clients/audio/audible_modes.hpp"
 #include "scenes/scene.hpp"
 #include "textures/plane_mapping.hpp"
@@ -42,6 +43,10 @@ struct BodyOptions {
   AnalysisOptions analysis;
   AudibleOptions audible;
 };
+
+// The body options of a slab's settings (the command line's): its thickness, cells and support,
+// and the same modal, cache and audible settings for every body.
+BodyOptions bodyOptions(const SlabSettings& slab, ElementOrder object_order);
 
 // Meshes and analyses the scene's moving objects (scene_bodies.hpp) and, unless `surface` is
 // given, its surface slab.

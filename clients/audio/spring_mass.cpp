@@ -9,14 +9,6 @@
 #include "clients/audio/modal_error.hpp"
 
 namespace thx::audio {
-namespace {
-
-double signedHz(double lambda) {
-  return std::copysign(std::sqrt(std::fabs(lambda)), lambda) / (2.0 * std::numbers::pi);
-}
-
-}  // namespace
-
 SpringMassLattice surfaceLattice(const std::string& name, double extent_x, double extent_y, double thickness,
                                  int nodes, const ElasticMaterial& m, bool clamp_edges) {
   checkMaterial(name, m);
@@ -91,41 +83,22 @@ ModalSolution springMassModes(const SpringMassLattice& l, const ModalSettings& s
   const SpringMassSystem sys = assembleSpringMass(l);
   const bool free_body = !l.clamp_edges;
   const int rigid_expected = free_body ? 1 : 0;
-  EigenSolveSettings es;
-  es.eigenpairs = settings.elastic_modes + rigid_expected;
+  const EigenSolveSettings es = eigenSolveSettings(settings, rigid_expected);
   if (es.eigenpairs >= sys.free_count)
     throw ModalError(l.name + ": " + std::to_string(settings.elastic_modes) + " modes requested of a lattice with " +
                      std::to_string(sys.free_count) + " free nodes: expected fewer than " +
                      std::to_string(sys.free_count - rigid_expected));
-  es.lanczos_vectors = settings.lanczos_vectors;
-  es.shift = -std::pow(2.0 * std::numbers::pi * settings.shift_hz, 2);
-  es.tolerance = settings.tolerance;
-  es.max_iterations = settings.max_iterations;
   const EigenSolveResult r = solveLowestModes(l.name, sys.stiffness, sys.mass, es);
 
   ModalSolution s;
   s.mesh_dofs = int(sys.free_dof.size());
   s.free_dofs = sys.free_count;
-  s.factor_s = r.stats.factor_s;
-  s.iterate_s = r.stats.iterate_s;
-  s.operator_applications = r.stats.operator_applications;
-  int rigid = 0;
-  while (rigid < r.values.size() && signedHz(r.values[rigid]) < settings.rigid_below_hz) ++rigid;
+  const int rigid = rigidModeCount(r, settings);
   if (rigid != rigid_expected)
     throw ModalError(l.name + ": " + std::to_string(rigid) + " modes below " + numberText(settings.rigid_below_hz) +
                      " Hz: expected " + std::to_string(rigid_expected) +
                      (free_body ? " (the free lattice's uniform translation)" : " (a held lattice has none)"));
-  s.rigid_modes = rigid;
-  s.rigid_hz.resize(rigid);
-  for (int k = 0; k < rigid; ++k) s.rigid_hz[k] = signedHz(r.values[k]);
-  const int elastic = int(r.values.size()) - rigid;
-  s.omega_rad_per_s.resize(elastic);
-  s.shapes = Eigen::MatrixXd::Zero(s.mesh_dofs, elastic);
-  for (int k = 0; k < elastic; ++k) {
-    s.omega_rad_per_s[k] = std::sqrt(r.values[rigid + k]);
-    for (std::size_t i = 0; i < sys.free_dof.size(); ++i)
-      if (sys.free_dof[i] >= 0) s.shapes(Eigen::Index(i), k) = r.vectors(sys.free_dof[i], rigid + k);
-  }
+  takeModes(r, rigid, sys.free_dof, s);
   s.total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return s;
 }
