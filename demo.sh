@@ -1,7 +1,7 @@
 #!/bin/sh
 # The main job on the default scene: hapticd with the simulated PHANToM in real time, a scripted
 # stroke across the bricks and a press, then a press into a steep V-valley; each prints its
-# summary. Then physics-client next to hapticd: the pen pushes a ball into another dimple. Then the
+# summary. Then physics-client next to hapticd: the pen pushes a ball out of its dimple. Then the
 # pen's scrape over the bricks and a marble rolling over them, each as a WAV with its spectrogram.
 # Then the texture gallery with shaded previews.
 # Usage: ./demo.sh [BUILD_DIR]   (make demo builds first, then calls this)
@@ -27,7 +27,7 @@ echo "== hapticd, real time: a press into a 60 degree V-valley, crease handling 
 "$HD" --scene scenes/vvalley.yaml --stats-json "$OUT/hapticd_vvalley.json" --flight-dir "$OUT"
 
 echo
-echo "== physics: hapticd + physics-client, the simulated pen pushes a ball out of its dimple into another (about 6 s)"
+echo "== physics: hapticd + physics-client, the simulated pen pushes a ball out of its dimple (about 6 s)"
 PC="$BUILD/clients/physics_client/physics-client"
 "$PC" --scene scenes/pen_pushes_ball_dimples.yaml --duration 5.5 --json "$OUT/physics_push.json" \
   --quiet > "$OUT/physics_push.txt" 2>&1 &
