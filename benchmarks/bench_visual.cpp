@@ -35,7 +35,7 @@ const char* const kHelp = R"(usage: bench_visual [--scene FILE] [--frames N] [--
 
 Frame time (median over a camera path, glFinish per frame) against image error (vs the exact CPU
 ray-vs-relief reference) for normal mapping, relief mapping (linear 8..64 x binary 4..8 steps and
-128, 256 x 8, with and without 8 shadow steps), the max-mipmap search (maxmip, with and without shadows) and
+128 ... 1024 x 8, with and without 8 shadow steps), the max-mipmap search (maxmip, with and without shadows) and
 displaced meshes 256^2 / 512^2, at 640x360 and 1280x720. Also the max-mipmap's build time.
 
   --scene FILE   default scenes/marble_bricks.yaml (run from the repository's root)
@@ -126,12 +126,14 @@ int run(int argc, char** argv) {
   for (const auto& [w, h] : sizes) {
     rows.push_back({"normal", 0, 0, 0, 0, false, w, h});
     for (int shadow : {0, 8}) {
-      // 128 and 256 linear steps: where the linear search reaches the accelerated one's error.
-      std::vector<int> linears{8, 16, 32, 64, 128, 256};
+      // Up to 1024 linear steps (with 8 binary): the accelerated search is compared with the
+      // linear one at equal error, and the linear search approaches its error only there.
+      std::vector<int> linears{8, 16, 32, 64, 128, 256, 512, 1024};
       if (quick && !only_search) linears = {8, 16};
       for (int linear : linears)
         for (int binary : {4, 8})
-          if ((binary == 8 || (linear <= 64 && !only_search)) && (!only_search || linear >= 16))
+          if ((binary == 8 || (linear <= 64 && !only_search)) && (!only_search || linear >= 16) &&
+              (linear <= 256 || binary == 8))
             rows.push_back({"relief", linear, binary, shadow, 0, false, w, h});
       rows.push_back({"relief", 0, 0, shadow, 0, true, w, h});
     }
