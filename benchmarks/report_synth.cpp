@@ -115,8 +115,11 @@ Section synthSection(const std::filesystem::path& dir) {
     if (other) reading += " (" + num(fastest->cost / *other, 2) + "× the other precision with the same instructions)";
     reading += ". ";
     if (precision == "float") {
-      reading += "Float's error against double stays at or below " + error_text + " (worst at " + num(worst_f) +
-                 " Hz), so float is the pick unless a high mode must ring for tens of seconds.";
+      reading += "Float's error against double is at most " + error_text + " (worst at " + num(worst_f) + " Hz)" +
+                 (fd.empty() ? std::string(".")
+                  : worst_1s <= 0.01 ? ", under 1 % for the first second: float is the pick for sounds whose modes die "
+                                       "out within seconds, double only for modes that must ring far longer."
+                                     : ", over 1 % within the first second: double is the safer pick.");
     } else {
       reading += "Double is also the reference, so nothing is lost in accuracy.";
     }

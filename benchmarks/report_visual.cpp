@@ -117,9 +117,10 @@ Section visualSection(const std::filesystem::path& dir) {
     reading += cheap ? "; the cheapest under 0.1 % mis-texels is " + cheap->label + " (" + num(cheap->cost) + " ms)."
                      : "; nothing stays under 0.1 % mis-texels.";
   }
-  s.reading = reading +
-              " Frame times here are llvmpipe's on 2 shared cores; a GPU is far faster, so compare configurations "
-              "by their ratios to one another.";
+  const auto renderer = f->json.find("renderer");
+  s.reading = reading + " Frame times are those of the renderer that ran the benchmark (" +
+              (renderer != f->json.end() && renderer->is_string() ? renderer->get<std::string>() : "not recorded") +
+              "); another renderer changes them, so compare configurations by their ratios to one another.";
 
   // Plot: mis-texels and colour error against frame time; filled markers for the first image size.
   PlotPanel texel, colour;
