@@ -42,7 +42,7 @@ Section hapticsSection(const std::filesystem::path& dir) {
   s.command = "benchmarks/run.sh BUILD force_error";
   s.what =
       "Relative RMS force error of the renderer against the exact height-field contact force of analytic surfaces "
-      "(`sine`: smooth bumps; `vvalley`: V-shaped valleys with sharp creases), 10 000 presses per row, against the "
+      "(`sine`: smooth bumps; `vvalley`: V-shaped valleys with sharp creases), pressed at random points, against the "
       "median cost of `render()` per servo tick; variants are the sampling filter (nearest, bilinear, Gaussian-"
       "smoothed), crease handling (`+crease`; `-blend`: issue 3's blended ridges), the normal map (depth ignored) and "
       "the relief as a grid mesh under the god object (`mesh`). Definitions: docs/benchmarks.md §2 and §2c.";

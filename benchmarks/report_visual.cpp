@@ -45,7 +45,7 @@ Section visualSection(const std::filesystem::path& dir) {
   s.title = "Visual: image error against frame time";
   s.command = "benchmarks/run.sh BUILD visual";
   s.what =
-      "The visual client's median frame time (with `glFinish`, Mesa's llvmpipe software renderer on this machine) "
+      "The visual client's median frame time (with `glFinish`, on the renderer the machine line names) "
       "against the exact CPU reference image: the share of pixels that show another texel than the reference "
       "(\"mis-texel\") and the mean colour error in 8-bit steps (LSB). Modes: normal mapping, relief mapping with "
       "the linear + binary search or the max-mipmap walk, with and without self-shadows, and displaced meshes. "
