@@ -1,5 +1,6 @@
 // bench_report: docs/report.md, one speed-against-error report of every modality, built from the
 // results the benchmarks already wrote (docs/results/*.json); measures nothing itself.
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -35,10 +36,23 @@ std::string relativeLink(const fs::path& target, const fs::path& from_dir) {
   return r.empty() ? target.string() : r.string();
 }
 
-std::string anchor(std::size_t i, const Section& s) { return std::to_string(i + 1) + ". " + s.title; }
+std::string heading(std::size_t i, const Section& s) { return std::to_string(i + 1) + ". " + s.title; }
+
+// The link target GitHub gives a heading: lower case, spaces to '-', other punctuation dropped.
+std::string slug(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') {
+      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    } else if (c == ' ') {
+      out += '-';
+    }
+  }
+  return out;
+}
 
 void writeSection(std::ofstream& md, std::size_t i, const Section& s, const fs::path& pictures, const fs::path& out_dir) {
-  md << "## " << anchor(i, s) << "\n\n" << s.what << "\n\n";
+  md << "## " << heading(i, s) << "\n\n" << s.what << "\n\n";
   md << "**Regenerate:** `" << s.command << "`, then `benchmarks/run.sh BUILD report`.\n\n";
   if (!s.measured) {
     md << "**Not measured.** " << s.missing << "\n\n";
@@ -94,15 +108,16 @@ int run(int argc, char** argv) {
        << "Every modality's accuracy against what it costs, from the results the benchmarks wrote: a table, a plot, "
           "the machine the numbers come from, the command that measures them again, and a reading of what to pick "
           "for a given budget. The readings' numbers and picks are computed from the tables when the report is "
-          "built, so they change with the results; absolute times are this machine's (a shared virtual machine: "
-          "compare ratios within one table).\n\n"
+          "built, so they change with the results. Absolute times are those of the machine each section names; "
+          "compare ratios within one table.\n\n"
        << "**Rebuild the report** from the results already in `docs/results/` (seconds): `benchmarks/run.sh BUILD "
           "report`. **Measure everything again first:** `benchmarks/run.sh BUILD` (the default parts, about 17 "
           "minutes, including force_error, physics and visual), `benchmarks/run.sh BUILD audio` (about 3.5 "
           "minutes), then `benchmarks/run.sh BUILD report`; or only the part a section names. The benchmarks and "
           "their definitions: docs/benchmarks.md, docs/visual.md, docs/audio.md.\n\n";
     for (std::size_t i = 0; i < sections.size(); ++i) {
-      md << "- " << anchor(i, sections[i]) << (sections[i].measured ? "" : " (not measured)") << "\n";
+      md << "- [" << heading(i, sections[i]) << "](#" << slug(heading(i, sections[i])) << ")"
+         << (sections[i].measured ? "" : " (not measured)") << "\n";
     }
     md << "\n";
     for (std::size_t i = 0; i < sections.size(); ++i) writeSection(md, i, sections[i], pictures, out_dir);

@@ -104,7 +104,7 @@ TEST(BenchReport, WritesEverySectionWithPictureMachineLineAndCommand) {
       << section(r.report, 3);
 }
 
-TEST(BenchReport, ReadingsPickWhatTheFixtureData) {
+TEST(BenchReport, ReadingsPickFromTheFixtureData) {
   TempDir dir("bench_report");
   const ReportRun r = runReport(dir, kFixtures);
   ASSERT_EQ(r.status, 0) << r.err;
@@ -154,7 +154,7 @@ TEST(BenchReport, MissingResultsFileMarksItsSectionNotMeasured) {
             std::string::npos) << v;
   EXPECT_EQ(v.find("|---"), std::string::npos) << "a table for a file that is not there:\n" << v;
   EXPECT_FALSE(fs::exists(dir.path() / "report" / "visual.png"));
-  EXPECT_NE(r.report.find("- 3. Visual: image error against frame time (not measured)"), std::string::npos);
+  EXPECT_NE(r.report.find("- [3. Visual: image error against frame time](#3-visual-image-error-against-frame-time) (not measured)"), std::string::npos);
   EXPECT_NE(section(r.report, 2).find("**Reading"), std::string::npos) << "the other sections are still there";
 }
 
