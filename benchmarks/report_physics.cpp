@@ -44,7 +44,7 @@ Section physicsSection(const std::filesystem::path& dir) {
   s.command = "benchmarks/run.sh BUILD physics";
   s.what =
       "A sphere and a box on the same surface as a plain plane, a normal map, a relief map, Bullet's heightfield and "
-      "a BVH mesh at several sizes: the median time of one 1 ms physics step, and the worst relative error over the "
+      "a BVH mesh at several sizes: the median time of one physics step, and the worst relative error over the "
       "cases that have an analytic answer (the sphere: speed after rolling on the flat, acceleration down a slope, "
       "escape speed over a bump; the box: acceleration sliding down a slope), at Bullet's default contact breaking "
       "threshold. Cases without an analytic answer (rest, sink) and the rows at a smaller threshold are in "
