@@ -16,7 +16,7 @@ PACKAGES="
   g++ make cmake pkg-config
   libeigen3-dev libpng-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libstb-dev
-  libyaml-cpp-dev
+  libyaml-cpp-dev nlohmann-json3-dev
   liblcm-dev liblcm-bin libglib2.0-dev
   libbullet-dev
   libarpack2-dev libsndfile1-dev librtaudio-dev libasound2-dev

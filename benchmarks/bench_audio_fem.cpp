@@ -275,7 +275,8 @@ int main(int argc, char** argv) {
   std::ostringstream csv_text, json_text, md_text, md_objects;
   csv_text << "part,object,element,size,dofs,modes,max_rel_error,first_rel_error,assemble_s,factor_s,iterate_s,total_s,"
               "peak_rss_mb\n";
-  json_text << "{\n  \"measured\": \"" << started << "\",\n  \"load_average\": \"" << load << "\",\n  \"cases\": [\n";
+  json_text << "{\n  \"machine\": \"" << thx::bench::machineSummary() << "\",\n  \"measured\": \"" << started << "\",\n  \"load_average\": \"" << load << "\",\n  \"build_type\": \""
+            << thx::bench::buildType() << "\",\n  \"cases\": [\n";
   md_text << "Measured " << started << " (" << long(sysconf(_SC_NPROCESSORS_ONLN)) << " CPUs, load average " << load
           << " at start), one thread, RelWithDebInfo (-O2), `bench_audio_fem"
           << (quick ? " --quick" : "") << (part != "all" ? " --part " + part : std::string()) << "`.";

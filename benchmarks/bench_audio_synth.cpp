@@ -424,7 +424,8 @@ int main(int argc, char** argv) {
   for (const CompressionRow& r : comp)
     csv3 << r.object << ',' << r.setting << ',' << r.modes << ',' << r.saved << ',' << r.lsd_db << ',' << r.energy_db
          << '\n';
-  json << "{\n  \"measured\": \"" << started << "\",\n  \"load_average\": \"" << load << "\",\n  \"best_isa\": \""
+  json << "{\n  \"machine\": \"" << thx::bench::machineSummary() << "\",\n  \"measured\": \"" << started << "\",\n  \"load_average\": \"" << load << "\",\n  \"build_type\": \""
+       << thx::bench::buildType() << "\",\n  \"best_isa\": \""
        << isaName(bestIsa()) << "\",\n  \"speed\": [\n";
   for (std::size_t i = 0; i < speed.size(); ++i)
     json << "    {\"precision\": \"" << speed[i].precision << "\", \"variant\": \"" << speed[i].variant

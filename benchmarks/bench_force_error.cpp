@@ -26,6 +26,7 @@
 #include "rt/clock.hpp"
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
+#include "benchmarks/bench_stamp.hpp"
 #include "benchmarks/exact_surfaces.hpp"
 #include "benchmarks/mesh_closest.hpp"
 #include "benchmarks/plot.hpp"
@@ -453,6 +454,7 @@ int main(int argc, char** argv) {
     js += "  \"benchmark\": \"force error of the plane proxy vs exact height-field contact\",\n";
     js += "  \"machine\": \"" + bench::machineDescription() + "\",\n";
     js += "  \"date\": \"" + bench::isoTimeNow() + "\",\n";
+    js += "  \"build_type\": \"" + std::string(bench::buildType()) + "\",\n";
     js += bench::fmt("  \"stiffness_n_per_m\": %g,\n  \"smoothing_sigma_texels\": %g,\n  \"probes_per_depth\": %d,\n",
                      g_stiffness, g_smooth_sigma, probes_per_depth);
     js += "  \"depths_mm\": [";

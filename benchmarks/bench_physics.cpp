@@ -35,6 +35,7 @@
 
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_physics_grounds.hpp"
+#include "benchmarks/bench_stamp.hpp"
 #include "benchmarks/plot.hpp"
 #include "clients/physics/bullet_convert.hpp"
 
@@ -633,6 +634,7 @@ std::string csv(const Results& r) {
 std::string json(const Results& r, const std::string& machine, const std::string& when, const Goals& goals) {
   std::ostringstream o;
   o << "{\n\"benchmark\":\"bench_physics\",\"machine\":" << jsonString(machine) << ",\"measured\":" << jsonString(when)
+    << ",\"build_type\":" << jsonString(thx::bench::buildType())
     << ",\n\"settings\":{\"dt_s\":" << kDt << ",\"extent_m\":0.5,\"sphere_radius_m\":" << kRadius
     << ",\"sphere_mass_kg\":" << kBallMass << ",\"box_half_m\":" << kBoxHalf << ",\"box_mass_kg\":" << kBoxMass
     << ",\"roll_speed_m_per_s\":" << kRollSpeed << ",\"slope_deg\":" << kSlopeDeg << ",\"box_mu\":" << kBoxMu

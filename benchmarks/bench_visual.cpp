@@ -19,6 +19,7 @@
 #include "base/cli_number.hpp"
 #include "base/error.hpp"
 #include "benchmarks/bench_help.hpp"
+#include "benchmarks/bench_stamp.hpp"
 #include "clients/visual/frame_renderer.hpp"
 #include "clients/visual/headless_context.hpp"
 #include "clients/visual/image_error.hpp"
@@ -98,6 +99,7 @@ std::string label(const Row& r) {
 
 int run(int argc, char** argv) {
   std::string scene_path = "scenes/marble_bricks.yaml", json, csv, md;
+  const std::string started = thx::bench::isoNow(), load = thx::bench::loadAverage();
   int frames = 8;
   bool quick = false, only_search = false;
   for (int i = 1; i < argc; ++i) {
@@ -217,6 +219,8 @@ int run(int argc, char** argv) {
   if (!json.empty()) {
     std::ofstream f(json);
     f << "{\n  \"scene\": \"" << scene_path << "\",\n  \"renderer\": \"" << context.description()
+      << "\",\n  \"machine\": \"" << thx::bench::machineSummary() << "\",\n  \"measured\": \"" << started << "\",\n  \"load_average\": \"" << load
+      << "\",\n  \"build_type\": \"" << thx::bench::buildType()
       << "\",\n  \"frames_per_row\": " << frames << ",\n  \"maxmip_build_ms\": " << build_ms
       << ",\n  \"rows\": [\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {

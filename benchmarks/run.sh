@@ -22,6 +22,9 @@
 #              docs/table1.md; THX_TABLE1_MESH_SIZES the Tet4 slabs measured for the meshes' memory
 #              fit (24,32,48,64,96,128; add 256 to measure that cell: about 2 GB and minutes more);
 #              about 2 min)
+#              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
+#              against error, from the results already in docs/results/; seconds. To measure
+#              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
 #
 # The clients part also sweeps the number of clients (issue 17): 1, 2, 4, 8, 16, 32, 64 clients
 # (THX_CLIENTS_SWEEP), for the workloads "mixed" (1/4 of the clients batched CONTACT at 1 kHz, the
@@ -256,16 +259,23 @@ run_table1() {
   splice table1 "$RESULTS/table1.md" "$ROOT/docs/table1.md"
 }
 
+run_report() {
+  need "$BIN/bench_report" || return 1
+  say "part report: docs/report.md from docs/results/ (measures nothing)"
+  # From the root, so the report names its sources as docs/results/..., not this checkout's path.
+  (cd "$ROOT" && "$BIN/bench_report" --results docs/results --out docs/report.md --pictures docs/report)
+}
+
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | physics | visual | visual_servo | audio | audio-live | load | table1)
+    render | force_error | memory | latency | clients | physics | visual | visual_servo | audio | audio-live | load | table1 | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients physics visual visual_servo audio audio-live load table1)"
+      say "unknown part '$part' (expected: render force_error memory latency clients physics visual visual_servo audio audio-live load table1 report)"
       exit 2
       ;;
   esac
