@@ -237,7 +237,9 @@ int runOffline(const Options& o) {
     const BodyOptions bo = bodyOptions(o.slab, o.object_order);
     const auto sounding = [&](const std::string& name) {
       OfflineScene& sc = offline_scene(name);
-      return soundingScene(name, sc.surface.scene, sc.surface.map().isRelief(), bo, sc.slab_body);
+      SoundingScene s = soundingScene(name, sc.surface.scene, sc.surface.map().isRelief(), bo, sc.slab_body);
+      setPenBody(s, sc.pen);  // impacts with the pen ring the scrape's pen
+      return s;
     };
     PhysicsSoundOptions po;
     po.sample_rate_hz = o.slab.sample_rate_hz;

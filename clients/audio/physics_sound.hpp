@@ -53,6 +53,10 @@ BodyOptions bodyOptions(const SlabSettings& slab, ElementOrder object_order);
 SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, bool relief, const BodyOptions& options,
                             std::shared_ptr<const ModalBody> surface = nullptr);
 
+// The scrape's pen (buildPenSound) as the pen the physics client's impacts strike; a pen without
+// audible modes (or --no-pen's empty one) leaves it silent there.
+void setPenBody(SoundingScene& scene, const PenSound& pen);
+
 // The physics client's events of a log, and the scene hapticd announced (THX_HELLO), in log order.
 struct PhysicsStreams {
   std::vector<thx_msgs::physics_poses_t> poses;
