@@ -247,9 +247,10 @@ int runOffline(const Options& o) {
     const std::int64_t origin = path.empty() ? physics.firstUtime() : path.front().utime;
     const PhysicsRender pr = renderPhysicsStreams(physics, sounding(first_name), sounding, origin, po);
     r.samples = mixSessionSound(r.samples, r.raw_peak / so.peak, pr.samples, so.peak);
-    std::printf("audio-client: %s: physics: %zu impacts (contact %.3g-%.3g ms), %zu meso impulses, %zu relief impulses, scenes:",
-                o.log.c_str(), pr.impacts, pr.min_contact_s * 1e3, pr.max_contact_s * 1e3, pr.meso_impulses,
-                pr.relief_impulses);
+    std::printf("audio-client: %s: physics: %zu impacts (%zu between two objects; contact %.3g-%.3g ms), %zu meso "
+                "impulses, %zu relief impulses, scenes:",
+                o.log.c_str(), pr.impacts, pr.object_impacts, pr.min_contact_s * 1e3, pr.max_contact_s * 1e3,
+                pr.meso_impulses, pr.relief_impulses);
     for (const std::string& n : pr.scenes) std::printf(" %s", n.c_str());
     std::printf("\n");
   }

@@ -107,6 +107,7 @@ void PhysicsExcitation::impact(const thx_msgs::physics_impact_t& m, const PoseLo
   counts_.min_contact_s = counts_.impacts == 0 ? tau : std::min(counts_.min_contact_s, tau);
   counts_.max_contact_s = std::max(counts_.max_contact_s, tau);
   ++counts_.impacts;
+  counts_.object_impacts += m.body_a >= 0 && m.body_b >= 0;
 }
 
 // The object gains +dp at p, the surface -dp: both sides ring.

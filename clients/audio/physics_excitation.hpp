@@ -65,6 +65,7 @@ using StrikeSink = std::function<bool(const BodyStrike&)>;
 struct PhysicsExcitationCounts {
   std::size_t impacts = 0, meso_impulses = 0, relief_impulses = 0;  // excitations that sounded
   std::size_t strikes = 0;                                          // body strikes that sounded
+  std::size_t object_impacts = 0;                                   // impacts between two objects that sounded
   double min_contact_s = 0, max_contact_s = 0;                      // the impacts' Hertz times
 };
 

@@ -68,6 +68,7 @@ class Renderer {
       out_.meso_impulses += c.meso_impulses;
       out_.relief_impulses += c.relief_impulses;
       out_.strikes += c.strikes;
+      out_.object_impacts += c.object_impacts;
       if (c.impacts == 0) continue;
       out_.min_contact_s = first ? c.min_contact_s : std::min(out_.min_contact_s, c.min_contact_s);
       out_.max_contact_s = std::max(out_.max_contact_s, c.max_contact_s);

@@ -84,6 +84,7 @@ struct PhysicsRender {
   std::vector<double> samples;  // the sum of every body's modal displacements, from the origin
   std::size_t impacts = 0, meso_impulses = 0, relief_impulses = 0;  // excitations applied (non-zero)
   std::size_t strikes = 0;                  // body strikes (an impact strikes up to two bodies)
+  std::size_t object_impacts = 0;           // impacts between two objects (of `impacts`)
   double min_contact_s = 0, max_contact_s = 0;  // the impacts' Hertz durations
   std::vector<std::string> scenes;          // the scenes that sounded, in order of first use
 };

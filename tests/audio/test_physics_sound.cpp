@@ -273,6 +273,7 @@ TEST(PhysicsSound, TwoObjectsStrikingEachOtherRingBothOfTheirModes) {
   const PhysicsRender r = render(s, sc);
   EXPECT_EQ(r.impacts, 1u);
   EXPECT_EQ(r.strikes, 2u) << "both balls, not the surface";
+  EXPECT_EQ(r.object_impacts, 1u);
   // The Hertz time from both sides: steel on steel, 1/R* = 1/0.1 + 1/0.13, 1/m* = 1/m0 + 1/m1.
   const auto side = [&](std::size_t k) {
     const thx::scene::SceneObject& o = sc.scene.objects[k];
