@@ -40,7 +40,8 @@ normal map Eq. 5 at every texel the tip enters (the pen's effective mass, the te
 normal), on a relief map the change of the contact normal from tick to tick (a flat map is
 silent at this level); micro level, the surface's fractal roughness (surface.roughness) read
 along the distance travelled, scaled by the normal force. The physics client's streams: impacts
-(the impulse on both bodies' modes at the contact point, over a Hertz contact time), rolling and
+(the impulse on both bodies' modes at the contact point, over a Hertz contact time from both
+sides: an object on the surface, two objects, an object on the pen at its tip), rolling and
 sliding objects' texel paths (Eq. 5 on a normal map; on a relief map the change of the object's
 normal momentum between contact reports), on the surface and the object. Live and offline play
 the same excitations through the same code.
