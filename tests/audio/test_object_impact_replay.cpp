@@ -2,7 +2,8 @@
 // both sides): hapticd records a session in lock-step, physics-client replays it with two large
 // steel balls (tests/data/scenes/balls_collide.yaml: the 10 cm ball rolls into the 13 cm one) and
 // records the physics streams into it, audio-client renders the combined log. The log holds one
-// impact naming both balls; the render sounds it on both (docs/audio.md §9, §11).
+// impact naming both balls; the render sounds it on both (docs/audio.md §9, §11). (Two renders
+// giving the same bytes: MarbleOnBricks; the same samples from the same streams: PhysicsSound.)
 #include <gtest/gtest.h>
 
 #include <string>
@@ -49,14 +50,13 @@ TEST_F(ObjectImpactReplay, ABallStrikingABallSoundsInTheOfflineRender) {
   std::printf("[measured] ball on ball: impulse %.4g N s at %.3f s, approach %.4g m/s\n", hit.impulse, hit.sim_time,
               hit.v_approach);
 
+  // Small meshes and few modes: quick in the sanitizer tree (each ball keeps audible modes).
   const std::string render = std::string(THX_AUDIO_CLIENT) + " --scene " + kScene + " --replay-log " + path("combined.lcm") +
-                             " --slab-cells 4 --object-elements tet4 --no-pen --cache-dir " + path("cache") + " --wav ";
+                             " --slab-cells 2 --modes 12 --object-elements tet4 --no-pen --cache-dir " + path("cache") + " --wav ";
   ASSERT_EQ(run(render + path("a.wav") + " > " + path("audio.out") + " 2>&1"), 0) << fileBytes(path("audio.out"));
   const std::string out = fileBytes(path("audio.out"));
   std::printf("%s", out.c_str());
   EXPECT_NE(out.find("(1 between two objects;"), std::string::npos) << out;
-  ASSERT_EQ(run(render + path("b.wav") + " > /dev/null 2>&1"), 0);
-  EXPECT_TRUE(fileBytes(path("a.wav")) == fileBytes(path("b.wav"))) << "two renders of one session differ";
   EXPECT_FALSE(thx::test::wavOnsets(path("a.wav"), 0.2).empty()) << "no sound in " << path("a.wav");
 }
 

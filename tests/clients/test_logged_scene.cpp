@@ -25,10 +25,12 @@ namespace {
 
 using namespace thx::client;
 
-const std::string kScene = std::string(THX_SOURCE_DIR) + "/scenes/vvalley.yaml";
+// A scene with a 32² texture: quick to build in every process of the test.
+const std::string kScene = std::string(THX_TEST_DATA_DIR) + "/scenes/balls_collide.yaml";
+const std::string kName = "balls_collide";
 
 // The scene's identity as every client computes it (the smoothed texture's fingerprint).
-SceneIdentity vvalley() {
+SceneIdentity loaded() {
   const thx::scene::Scene scene = thx::scene::loadScene(kScene);
   thx::scene::SurfaceTextureOptions o;
   o.smooth = thx::tex::smoothTexture;
@@ -70,7 +72,7 @@ void writeSession(const std::string& path, const SceneIdentity& scene) {
 
 TEST(LoggedScene, TheRecordedFingerprintMustBeTheLoadedScenes) {
   thx::test::TempDir dir("logged_scene");
-  const SceneIdentity mine = vvalley();
+  const SceneIdentity mine = loaded();
   writeSession(dir.file("same.lcm"), mine);
   const std::vector<LoggedScene> same = loggedScenes(dir.file("same.lcm"));
   ASSERT_EQ(same.size(), 1u);
@@ -87,7 +89,7 @@ TEST(LoggedScene, TheRecordedFingerprintMustBeTheLoadedScenes) {
     FAIL() << "a differing fingerprint must be refused";
   } catch (const LoggedSceneMismatch& e) {
     const std::string m = e.what();
-    for (const std::string& part : {std::string("other.lcm"), std::string("'vvalley'"), thx::tex::formatFingerprint(mine.texture_fingerprint),
+    for (const std::string& part : {std::string("other.lcm"), "'" + kName + "'", thx::tex::formatFingerprint(mine.texture_fingerprint),
                                     thx::tex::formatFingerprint(edited.texture_fingerprint), std::string("utime 2000")})
       EXPECT_NE(m.find(part), std::string::npos) << part << " not in: " << m;
   }
@@ -106,14 +108,14 @@ int runProgram(const thx::test::TempDir& dir, const std::vector<std::string>& ar
 void expectNamesTheMismatch(const std::string& output, const std::string& log, const SceneIdentity& mine,
                             const SceneIdentity& recorded) {
   EXPECT_NE(output.find(log), std::string::npos) << output;
-  EXPECT_NE(output.find("'vvalley'"), std::string::npos) << output;
+  EXPECT_NE(output.find("'" + kName + "'"), std::string::npos) << output;
   EXPECT_NE(output.find(thx::tex::formatFingerprint(mine.texture_fingerprint)), std::string::npos) << output;
   EXPECT_NE(output.find(thx::tex::formatFingerprint(recorded.texture_fingerprint)), std::string::npos) << output;
 }
 
 TEST(LoggedScene, ReplayingClientsRefuseALogOfAnotherTexture) {
   thx::test::TempDir dir("logged_scene");
-  const SceneIdentity mine = vvalley();
+  const SceneIdentity mine = loaded();
   const SceneIdentity recorded{mine.name, mine.texture_fingerprint ^ 0x10};
   const std::string log = dir.file("edited.lcm");
   writeSession(log, recorded);
