@@ -23,6 +23,7 @@
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
 #include "textures/smoothing.hpp"
+#include "thx_client/logged_scene.hpp"
 #include "thx_msgs/log_reader.hpp"
 
 namespace {
@@ -39,7 +40,8 @@ normal map Eq. 5 at every texel the tip enters (the pen's effective mass, the te
 normal), on a relief map the change of the contact normal from tick to tick (a flat map is
 silent at this level); micro level, the surface's fractal roughness (surface.roughness) read
 along the distance travelled, scaled by the normal force. The physics client's streams: impacts
-(the impulse on both bodies' modes at the contact point, over a Hertz contact time), rolling and
+(the impulse on both bodies' modes at the contact point, over a Hertz contact time from both
+sides: an object on the surface, two objects, an object on the pen at its tip), rolling and
 sliding objects' texel paths (Eq. 5 on a normal map; on a relief map the change of the object's
 normal momentum between contact reports), on the surface and the object. Live and offline play
 the same excitations through the same code.
@@ -58,8 +60,10 @@ contact_t per servo tick on THX_CONTACT). If the log also holds the physics clie
 session's clock), they sound too, on the same clock. A THX_HELLO naming another scene (hapticd
 --record writes one at each switch) switches to NAME.yaml (--scenes-dir) from its utime on: the
 pen's CONTACT samples after it scrape that scene's surface and pen (the walk starts afresh), the
-physics streams strike its bodies; bodies struck before ring on. The sum of the modal displacements as a 32-bit
-float WAV normalised to a peak of 0.5 (-6 dBFS).
+physics streams strike its bodies; bodies struck before ring on. Each scene loaded must have the
+texture fingerprint the log's hellos give it (else an error naming the log, the scene and both
+fingerprints; --allow-different-scene renders anyway, with a warning). The sum of the modal
+displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS).
 
   --scene FILE           the scene hapticd runs (docs/scenes.md)
   --replay-log FILE      offline: hapticd's --record log, or physics-client's --record log (with
@@ -78,10 +82,11 @@ float WAV normalised to a peak of 0.5 (-6 dBFS).
   --no-pen               the slab alone sounds (not the pen's own modes)
   --no-micro             no micro-level roughness (meso impulses only)
   --object-elements E    tet10 (default) or tet4: the moving objects' elements
+  --allow-different-scene  play although hapticd runs another scene, or the log's hellos give the
+                         scene another texture fingerprint (a warning)
 Live:
   --lcm-url URL          LCM bus (default the kit's)
   --connect-timeout S    wait this long for hapticd's hello (default 10)
-  --allow-different-scene  play although hapticd runs another scene (a warning)
   --batch-rate HZ        CONTACT batches per second (default 200; every tick either way)
   --playout-ms MS        an impulse sounds this long after its tick (default: a batch period
                          plus a block, so the ticks of one batch keep their spacing)
@@ -181,10 +186,17 @@ int runOffline(const Options& o) {
   };
   // Each scene the log names is loaded and analysed once, when first needed (cache §2).
   std::map<std::string, std::unique_ptr<OfflineScene>> scenes;
+  // hapticd --record's hellos carry the texture's fingerprint: each scene loaded must be the one
+  // recorded (thx_client/logged_scene.hpp).
+  const std::vector<thx::client::LoggedScene> logged = thx::client::loggedScenes(o.log);
   const auto offline_scene = [&](const std::string& name) -> OfflineScene& {
     std::unique_ptr<OfflineScene>& slot = scenes[name];
     if (slot) return *slot;
-    auto sc = std::make_unique<OfflineScene>(OfflineScene{buildSurfaceSound(file_of(name), o.slab), {}, {}, {}, nullptr});
+    const auto check = [&](const thx::scene::SceneSurface& s) {
+      const std::string warning = thx::client::checkLoggedScene(logged, {name, s.fingerprint}, o.log, o.live.allow_different_scene);
+      if (!warning.empty()) std::fprintf(stderr, "audio-client: warning: %s\n", warning.c_str());
+    };
+    auto sc = std::make_unique<OfflineScene>(OfflineScene{buildSurfaceSound(file_of(name), o.slab, check), {}, {}, {}, nullptr});
     const thx::scene::Scene& scene = sc->surface.scene;
     if (!o.no_pen) sc->pen = buildPenSound(scene, o.slab);
     sc->pen_view = PenModes{&sc->pen.mesh, &sc->pen.modes, sc->pen.tip_node, sc->pen.tilt_deg};
@@ -226,7 +238,9 @@ int runOffline(const Options& o) {
     const BodyOptions bo = bodyOptions(o.slab, o.object_order);
     const auto sounding = [&](const std::string& name) {
       OfflineScene& sc = offline_scene(name);
-      return soundingScene(name, sc.surface.scene, sc.surface.map().isRelief(), bo, sc.slab_body);
+      SoundingScene s = soundingScene(name, sc.surface.scene, sc.surface.map().isRelief(), bo, sc.slab_body);
+      setPenBody(s, sc.pen);  // impacts with the pen ring the scrape's pen
+      return s;
     };
     PhysicsSoundOptions po;
     po.sample_rate_hz = o.slab.sample_rate_hz;
@@ -234,9 +248,10 @@ int runOffline(const Options& o) {
     const std::int64_t origin = path.empty() ? physics.firstUtime() : path.front().utime;
     const PhysicsRender pr = renderPhysicsStreams(physics, sounding(first_name), sounding, origin, po);
     r.samples = mixSessionSound(r.samples, r.raw_peak / so.peak, pr.samples, so.peak);
-    std::printf("audio-client: %s: physics: %zu impacts (contact %.3g-%.3g ms), %zu meso impulses, %zu relief impulses, scenes:",
-                o.log.c_str(), pr.impacts, pr.min_contact_s * 1e3, pr.max_contact_s * 1e3, pr.meso_impulses,
-                pr.relief_impulses);
+    std::printf("audio-client: %s: physics: %zu impacts (%zu between two objects; contact %.3g-%.3g ms), %zu meso "
+                "impulses, %zu relief impulses, scenes:",
+                o.log.c_str(), pr.impacts, pr.object_impacts, pr.min_contact_s * 1e3, pr.max_contact_s * 1e3,
+                pr.meso_impulses, pr.relief_impulses);
     for (const std::string& n : pr.scenes) std::printf(" %s", n.c_str());
     std::printf("\n");
   }

@@ -28,8 +28,9 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   bodies.push_back(surfaceBody(sound));
 
   PenSourceBodies pen;
+  PenSound p;
   if (s.pen_modes) {
-    const PenSound p = buildPenSound(sound.scene, s.slab);
+    p = buildPenSound(sound.scene, s.slab);
     if (p.modes.size() > 0) {
       pen.pen_body = int(bodies.size());
       pen.tip_node = p.tip_node;
@@ -44,6 +45,7 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   live->physics = std::make_unique<SoundingScene>(soundingScene(std::filesystem::path(scene_file).stem().string(), sound.scene,
                                                                 sound.map().isRelief(), bo,
                                                                 std::make_shared<const ModalBody>(sound.slab, sound.modes)));
+  setPenBody(*live->physics, p);  // impacts with the pen ring the pen's body
   for (const auto& object : live->physics->objects) {
     if (!object || object->size() == 0) {
       live->object_bodies.push_back(-1);
@@ -64,7 +66,7 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   po.meso = sound.map().isRelief() ? MesoSource::ContactNormals : MesoSource::TexelWalk;
   live->sources.push_back(std::make_unique<PenSource>(sound.map(), sound.slab, po, pen, generation, s.playout_delay_ns));
   live->sources.push_back(
-      std::make_unique<PhysicsSource>(*live->physics, live->object_bodies, generation, s.playout_delay_ns));
+      std::make_unique<PhysicsSource>(*live->physics, live->object_bodies, generation, s.playout_delay_ns, pen.pen_body));
   return live;
 }
 

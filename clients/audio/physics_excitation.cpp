@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <set>
 #include <stdexcept>
 
@@ -71,6 +72,13 @@ bool PhysicsExcitation::strike(int body, std::int64_t utime, double delay_s, con
       s.point[a] -= size * std::floor(s.point[a] / size + 0.5);
     }
     s.point.z() = std::clamp(s.point.z(), -scene_.slab_thickness_m, 0.0);
+  } else if (body == thx_msgs::physics_impact_t::BODY_PEN) {
+    if (!scene_.pen || scene_.pen->mesh().nodes.empty()) return false;
+    s.modal = scene_.pen.get();
+    s.point = scene_.pen->mesh().nodes.at(std::size_t(scene_.pen_tip_node));
+    // Plane-local to the pen's frame: the surface normal becomes (sin tilt, 0, cos tilt).
+    s.impulse = Eigen::AngleAxisd(scene_.pen_tilt_deg * std::numbers::pi / 180.0, Eigen::Vector3d::UnitY()) *
+                scene_.mapping.directionToLocal(J);
   } else if (body >= 0 && std::size_t(body) < scene_.objects.size() && scene_.objects[std::size_t(body)]) {
     const thx_msgs::physics_poses_t* pose = poses ? poses(utime) : nullptr;
     if (!pose || body >= pose->num_bodies) return false;
@@ -99,6 +107,7 @@ void PhysicsExcitation::impact(const thx_msgs::physics_impact_t& m, const PoseLo
   counts_.min_contact_s = counts_.impacts == 0 ? tau : std::min(counts_.min_contact_s, tau);
   counts_.max_contact_s = std::max(counts_.max_contact_s, tau);
   ++counts_.impacts;
+  counts_.object_impacts += m.body_a >= 0 && m.body_b >= 0;
 }
 
 // The object gains +dp at p, the surface -dp: both sides ring.

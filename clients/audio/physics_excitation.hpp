@@ -3,13 +3,14 @@
 // (docs/audio.md §9–§10): shared by the offline render (physics_sound.hpp) and the live client
 // (physics_source.hpp), so both strike the same bodies at the same points with the same impulses.
 //   - impacts: J n on body a, -J n on body b, at p_world, with the Hertz contact time
-//     (contact_pulse.hpp), at the impact's time + tau/2;
+//     (contact_pulse.hpp), at the impact's time + tau/2: the surface, any object (two objects
+//     striking each other ring both) and the pen (at its tip);
 //   - lasting contacts of an object on a normal map: Eq. 5 at every texel entered (the object
 //     +dp, the surface -dp), at the texel's entry time;
 //   - on a relief map: the change of the object's normal momentum between two reports.
 // Each strike is given in its body's frame: the surface slab's (plane-local, wrapped into the
-// texture's one span, depth clamped into the slab) or an object's (from the newest pose at or
-// before the event, moved on by its velocities).
+// texture's one span, depth clamped into the slab), an object's (from the newest pose at or
+// before the event, moved on by its velocities) or the pen's (its tip node).
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -37,11 +38,17 @@ struct SoundingScene {
   double slab_thickness_m = 0.01;
   std::shared_ptr<const ModalBody> surface;
   std::vector<std::shared_ptr<const ModalBody>> objects;  // by objects[] index; null for fixed ones
+  // The pen's own modes (the scrape's, device.pen; null: the pen is silent here). Impacts with the
+  // pen strike it at its tip node, the impulse turned into its frame (axis +z from the tip, tilted
+  // from the surface normal about y by pen_tilt_deg, as the scrape strikes it).
+  std::shared_ptr<const ModalBody> pen;
+  int pen_tip_node = 0;
+  double pen_tilt_deg = 30.0;
 };
 
 // One strike on one body, in the body's frame.
 struct BodyStrike {
-  int body = -1;                 // -1: the surface, else the scene's objects[] index
+  int body = -1;                 // -1: the surface, -2: the pen, else the scene's objects[] index
   const ModalBody* modal = nullptr;
   std::int64_t utime = 0;        // the event's time (µs)
   double delay_s = 0.0;          // after utime: an impact's half contact time
@@ -58,6 +65,7 @@ using StrikeSink = std::function<bool(const BodyStrike&)>;
 struct PhysicsExcitationCounts {
   std::size_t impacts = 0, meso_impulses = 0, relief_impulses = 0;  // excitations that sounded
   std::size_t strikes = 0;                                          // body strikes that sounded
+  std::size_t object_impacts = 0;                                   // impacts between two objects that sounded
   double min_contact_s = 0, max_contact_s = 0;                      // the impacts' Hertz times
 };
 

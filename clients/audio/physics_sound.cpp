@@ -29,7 +29,7 @@ std::shared_ptr<const ModalBody> analysedBody(const TetMesh& mesh, const Elastic
 
 struct Strike {
   std::int64_t sample;
-  int scene, body;  // body: -1 the surface, else objects[] index
+  int scene, body;  // body: -1 the surface, -2 the pen, else objects[] index
   std::vector<double> gains;
 };
 
@@ -68,6 +68,7 @@ class Renderer {
       out_.meso_impulses += c.meso_impulses;
       out_.relief_impulses += c.relief_impulses;
       out_.strikes += c.strikes;
+      out_.object_impacts += c.object_impacts;
       if (c.impacts == 0) continue;
       out_.min_contact_s = first ? c.min_contact_s : std::min(out_.min_contact_s, c.min_contact_s);
       out_.max_contact_s = std::max(out_.max_contact_s, c.max_contact_s);
@@ -132,7 +133,8 @@ class Renderer {
     std::vector<double> buffer;
     for (std::size_t k = 0; k < strikes_.size();) {
       const SoundingScene& sc = scenes_[std::size_t(strikes_[k].scene)];
-      const ModalBody& body = strikes_[k].body < 0 ? *sc.surface : *sc.objects[std::size_t(strikes_[k].body)];
+      const int id = strikes_[k].body;
+      const ModalBody& body = id == -1 ? *sc.surface : id == -2 ? *sc.pen : *sc.objects[std::size_t(id)];
       if (std::find(out_.scenes.begin(), out_.scenes.end(), sc.name) == out_.scenes.end()) out_.scenes.push_back(sc.name);
       ResonatorBank bank(o_.sample_rate_hz, body.size());
       if (!bank.setModes(body.modes().frequency_hz, body.modes().decay_per_s))
@@ -215,6 +217,13 @@ SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, 
     s.objects.push_back(analysedBody(b.mesh, b.material, o));
   }
   return s;
+}
+
+void setPenBody(SoundingScene& scene, const PenSound& pen) {
+  if (pen.modes.size() == 0) return;
+  scene.pen = std::make_shared<const ModalBody>(pen.mesh, pen.modes);
+  scene.pen_tip_node = pen.tip_node;
+  scene.pen_tilt_deg = pen.tilt_deg;
 }
 
 std::int64_t PhysicsStreams::firstUtime() const {

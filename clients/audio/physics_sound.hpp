@@ -53,6 +53,10 @@ BodyOptions bodyOptions(const SlabSettings& slab, ElementOrder object_order);
 SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, bool relief, const BodyOptions& options,
                             std::shared_ptr<const ModalBody> surface = nullptr);
 
+// The scrape's pen (buildPenSound) as the pen the physics client's impacts strike; a pen without
+// audible modes (or --no-pen's empty one) leaves it silent there.
+void setPenBody(SoundingScene& scene, const PenSound& pen);
+
 // The physics client's events of a log, and the scene hapticd announced (THX_HELLO), in log order.
 struct PhysicsStreams {
   std::vector<thx_msgs::physics_poses_t> poses;
@@ -80,6 +84,7 @@ struct PhysicsRender {
   std::vector<double> samples;  // the sum of every body's modal displacements, from the origin
   std::size_t impacts = 0, meso_impulses = 0, relief_impulses = 0;  // excitations applied (non-zero)
   std::size_t strikes = 0;                  // body strikes (an impact strikes up to two bodies)
+  std::size_t object_impacts = 0;           // impacts between two objects (of `impacts`)
   double min_contact_s = 0, max_contact_s = 0;  // the impacts' Hertz durations
   std::vector<std::string> scenes;          // the scenes that sounded, in order of first use
 };

@@ -9,9 +9,10 @@ constexpr std::size_t kPosesKept = 256;
 }
 
 PhysicsSource::PhysicsSource(const SoundingScene& scene, std::vector<int> object_bodies, std::uint32_t generation,
-                             std::int64_t playout_delay_ns)
+                             std::int64_t playout_delay_ns, int pen_body)
     : excitation_(scene),
       object_bodies_(std::move(object_bodies)),
+      pen_body_(pen_body),
       generation_(generation),
       delay_ns_(playout_delay_ns) {
   lookup_ = [this](std::int64_t utime) -> const thx_msgs::physics_poses_t* {
@@ -29,7 +30,9 @@ void PhysicsSource::physicsPoses(const thx_msgs::physics_poses_t& m, std::int64_
 
 StrikeSink PhysicsSource::eventSink(std::int64_t source_ns, std::int64_t receipt_ns, ExcitationSink& sink) {
   return [=, this, &sink](const BodyStrike& s) {
-    const int body = s.body < 0 ? 0 : (std::size_t(s.body) < object_bodies_.size() ? object_bodies_[std::size_t(s.body)] : -1);
+    const int body = s.body == -1   ? 0
+                     : s.body == -2 ? pen_body_
+                                    : (std::size_t(s.body) < object_bodies_.size() ? object_bodies_[std::size_t(s.body)] : -1);
     if (body < 0) return false;
     const ModalBody::Weights w = s.modal->weightsAt(s.point);
     if (w.count == 0) return false;

@@ -7,7 +7,8 @@
 // element nodes and shape-function weights (ModalBody::weightsAt), the impulse in the body's
 // frame, the contact time; the callback sums the gains as ModalBody::gainsAt does.
 // Objects' frames come from the newest THX_PHYSICS_POSES at or before the event (the last 256
-// messages are kept). The pen's contacts are skipped (its sound comes from hapticd's CONTACT).
+// messages are kept). Impacts with the pen strike the pen's body at its tip; the pen's lasting
+// contacts are skipped (its scrape comes from hapticd's CONTACT).
 // Timing: a strike sounds at its time on the physics client's clock, as the offline render places
 // it (an impact's utime plus half its contact time, a texel's entry time, a relief report's utime),
 // plus the playout delay. A contacts message's texels lie up to its window (1 / contact rate,
@@ -24,9 +25,9 @@ namespace thx::audio {
 class PhysicsSource final : public ExcitationSource {
  public:
   // `scene` must outlive this. object_bodies[k]: the SynthScene body of scene.objects[k] (-1:
-  // silent); the surface is body 0.
+  // silent); the surface is body 0; pen_body: the pen's (-1: silent).
   PhysicsSource(const SoundingScene& scene, std::vector<int> object_bodies, std::uint32_t generation,
-                std::int64_t playout_delay_ns);
+                std::int64_t playout_delay_ns, int pen_body = -1);
   PhysicsSource(const PhysicsSource&) = delete;  // lookup_ points at this
   PhysicsSource& operator=(const PhysicsSource&) = delete;
 
@@ -41,6 +42,7 @@ class PhysicsSource final : public ExcitationSource {
 
   PhysicsExcitation excitation_;
   std::vector<int> object_bodies_;
+  int pen_body_ = -1;
   std::uint32_t generation_;
   std::int64_t delay_ns_;
   std::deque<thx_msgs::physics_poses_t> poses_;

@@ -29,11 +29,13 @@ AudibleOptions audibleOptions(const SlabSettings& o) {
   return audible;
 }
 
-SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& o) {
+SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& o,
+                               const std::function<void(const scene::SceneSurface&)>& check_surface) {
   scene::Scene scene = scene::loadScene(scene_file);
   scene::SurfaceTextureOptions to;
   to.smooth = tex::smoothTexture;
   scene::SceneSurface surface = scene::buildSceneSurface(scene, to);
+  if (check_surface) check_surface(surface);
 
   const ElasticMaterial material = scene.surface.material;
   SceneMeshOptions mo;

@@ -2,6 +2,7 @@
 // A scene's surface as it sounds: its texture (smoothed as hapticd smooths it), the surface slab's
 // mesh and its audible modes (modal analysis of the scene's surface material, cached as
 // modal-analyze caches). Shared by the offline render and the live client.
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -34,8 +35,10 @@ struct SurfaceSound {
   const tex::TextureMap& map() const { return *surface.map; }
 };
 
-// Throws thx::Error naming the scene file or the cause.
-SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& settings);
+// Throws thx::Error naming the scene file or the cause. `check_surface` (if given) sees the
+// texture as soon as it is built, before the slab's modal analysis: it may throw to refuse it.
+SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& settings,
+                               const std::function<void(const scene::SceneSurface&)>& check_surface = {});
 
 // How the slab's settings analyse any body (modes, cache, progress, band).
 ModalSettings modalSettings(const SlabSettings& settings);

@@ -38,7 +38,8 @@ Output:
                          proxy) where the recording put it, the objects at the latest physics
                          poses the log holds by then (`physics-client --replay-log S --record OUT`
                          writes them; at rest before the first or without any); deterministic
-                         (--frames N: at most N)
+                         (--frames N: at most N); refused when a recorded hello gives the scene
+                         another texture fingerprint than --scene's
   --rate HZ              --replay-log frames per recorded second (default 30)
   --window               a window (needs an X display, e.g. xvfb-run -a); keys: N/R/M mode,
                          S shadows, X relief search, arrows camera, +/- distance, Esc/Q close

@@ -14,6 +14,7 @@
 #include "clients/visual/window_presenter.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_surface.hpp"
+#include "thx_client/logged_scene.hpp"
 #include "textures/smoothing.hpp"
 
 namespace {
@@ -59,7 +60,12 @@ int run(const Options& o) {
   if (o.live) return runLive(o);
   const CameraPlacement placement = cameraPlacement(o, scene);
 
-  if (!o.replay_log.empty()) return replay(o, scene, surface.surface, placement);
+  if (!o.replay_log.empty()) {
+    // The recording's hellos name the scene's texture fingerprint: it must be this one's.
+    client::checkLoggedScene(client::loggedScenes(o.replay_log), {surface.scene_name, surface.fingerprint}, o.replay_log,
+                             false, false);
+    return replay(o, scene, surface.surface, placement);
+  }
   std::vector<ObjectInstance> objects;
   if (!o.no_objects) objects = objectsAtRest(scene);
   if (!o.no_pen) {

@@ -27,10 +27,9 @@ TEST_F(PenScrapeOnsets, OnsetsInTheWavComeAtTheMortarCrossingsOfTheStroke) {
   // 1. The session: 7 bed joints down and 7 back up at 0.08 m/s, 1 N (4.1 s).
   ASSERT_EQ(recordSession(kScene), 0);
   // 2. Rendered with a small slab mesh and without the pen's own modes (quick in the sanitizer
-  // tree; the pen would ring at the same impulses), and without the micro level: this checks the
-  // relief's impulses, and the roughness adds onsets of its own (15 for 14 crossings).
+  // tree; the pen would ring at the same impulses); the micro level on, as in the demo.
   ASSERT_EQ(run(std::string(THX_AUDIO_CLIENT) + " --scene " + kScene + " --replay-log " + path("session.lcm") +
-                " --slab-cells 4 --no-pen --no-micro --cache-dir " + path("cache") + " --wav " + path("scrape.wav") + " > " + path("audio.out") +
+                " --slab-cells 4 --no-pen --cache-dir " + path("cache") + " --wav " + path("scrape.wav") + " > " + path("audio.out") +
                 " 2>&1"),
             0)
       << fileBytes(path("audio.out"));
@@ -76,10 +75,9 @@ TEST_F(PenScrapeOnsets, OnsetsInTheWavComeAtTheMortarCrossingsOfTheStroke) {
   }
   EXPECT_NEAR(double(onsets.size()) / double(crossings.size()), 1.0, 0.05);
   // Each onset at a crossing: the drop-in click starts as the tip goes over the joint's edge,
-  // before it reaches the half-depth texels (5-29 ms before; 40 ms is 3.2 mm at 0.08 m/s, about
-  // the joint's width; a frame is 4 ms). One onset may miss the window: the last joint before the
-  // stroke turns clicks 60 ms early, not explained yet (docs/audio.md §12, issue 14).
-  EXPECT_GE(thx::test::onsetsAtCrossings(onsets, crossings, 0.040, 0.025) + 1, onsets.size());
+  // before it reaches the half-depth texels (5-20 ms before; 40 ms is 3.2 mm at 0.08 m/s, about
+  // the joint's width; a frame is 4 ms).
+  EXPECT_EQ(thx::test::onsetsAtCrossings(onsets, crossings, 0.040, 0.025), onsets.size());
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <thx_msgs/hello_t.hpp>
 #include <thx_msgs/log_reader.hpp>
 
+#include "clients/audio/contact_pulse.hpp"
 #include "clients/audio/physics_sound.hpp"
 #include "tests/audio/physics_fixtures.hpp"
 #include "scenes/scene_loader.hpp"
@@ -187,6 +188,142 @@ TEST(PhysicsSound, ReadsThePhysicsStreamsOfALog) {
         << e.what();
   }
   std::remove(file.c_str());
+}
+
+// Two audible balls floating apart from the surface: a steel ball of 10 cm (body 0, at the origin)
+// and one of 13 cm (body 1, on +x), so their loudest modes lie apart (Tet4, 16 modes each; audible:
+// 13.6-14.9 kHz and 10.5-14.7 kHz; a sphere's frequencies go as 1/r).
+const SoundingScene& twoBalls() {
+  static const SoundingScene s = [] {
+    thx::scene::Scene scene = testScene().scene;
+    thx::scene::SceneObject big = scene.objects.at(0);
+    big.name = "big";
+    big.radius_m = 0.13;
+    big.mass_kg = big.material.density_kg_per_m3 * 4.0 / 3.0 * std::numbers::pi * std::pow(0.13, 3);
+    scene.objects.push_back(big);
+    BodyOptions o;
+    o.object_order = ElementOrder::Linear;
+    o.modal.elastic_modes = 16;
+    return soundingScene("two_balls", scene, false, o, testScene().surface);
+  }();
+  return s;
+}
+
+constexpr double kGap = 0.23;  // between the centres: the balls touch at x = 0.1
+
+thx_msgs::physics_poses_t twoBallPoses() {
+  thx_msgs::physics_poses_t p{};
+  p.num_bodies = 2;
+  for (int b = 0; b < 2; ++b) {
+    p.p_world[b][2] = 0.3;
+    p.q_world[b][0] = 1.0;
+  }
+  p.p_world[1][0] = kGap;
+  return p;
+}
+
+// Ball 0 strikes ball 1 head-on: n from b (ball 1) to a (ball 0) is -x.
+physics_impact_t ballOnBall(double impulse) {
+  physics_impact_t m{};
+  m.utime = 10'000;
+  m.body_a = 0;
+  m.body_b = 1;
+  m.impulse = impulse;
+  m.v_approach = 0.5;
+  m.p_world[0] = 0.1;
+  m.p_world[2] = 0.3;
+  m.n_world[0] = -1.0;
+  return m;
+}
+
+// |DFT| of x at f (Hz).
+double magnitudeAt(const std::vector<double>& x, double f) {
+  double re = 0, im = 0;
+  for (std::size_t n = 0; n < x.size(); ++n) {
+    const double w = 2.0 * std::numbers::pi * f * double(n) / kFs;
+    re += x[n] * std::cos(w);
+    im -= x[n] * std::sin(w);
+  }
+  return std::hypot(re, im);
+}
+
+// The frequency of the body's mode struck hardest at `point` along `direction`.
+double loudestMode(const ModalBody& body, const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
+  const std::vector<double> g = body.gainsAt(point, direction);
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < g.size(); ++i)
+    if (std::fabs(g[i]) > std::fabs(g[best])) best = i;
+  return body.modes().frequency_hz[best];
+}
+
+TEST(PhysicsSound, TwoObjectsStrikingEachOtherRingBothOfTheirModes) {
+  const SoundingScene& sc = twoBalls();
+  ASSERT_TRUE(sc.objects.at(0) && sc.objects.at(1));
+  ASSERT_GT(sc.objects[0]->size(), 0u);
+  ASSERT_GT(sc.objects[1]->size(), 0u);
+  const double f0 = loudestMode(*sc.objects[0], {0.1, 0, 0}, {-1, 0, 0});
+  const double f1 = loudestMode(*sc.objects[1], {-0.13, 0, 0}, {1, 0, 0});
+  std::printf("[measured] ball 0: %zu modes %.0f-%.0f Hz, struck hardest at %.1f Hz; ball 1: %zu modes %.0f-%.0f Hz, at %.1f Hz\n",
+              sc.objects[0]->size(), sc.objects[0]->modes().frequency_hz.front(), sc.objects[0]->modes().frequency_hz.back(), f0,
+              sc.objects[1]->size(), sc.objects[1]->modes().frequency_hz.front(), sc.objects[1]->modes().frequency_hz.back(), f1);
+
+  PhysicsStreams s;
+  s.poses.push_back(twoBallPoses());
+  s.impacts.push_back(ballOnBall(1e-3));
+  const PhysicsRender r = render(s, sc);
+  EXPECT_EQ(r.impacts, 1u);
+  EXPECT_EQ(r.strikes, 2u) << "both balls, not the surface";
+  EXPECT_EQ(r.object_impacts, 1u);
+  // The Hertz time from both sides: steel on steel, 1/R* = 1/0.1 + 1/0.13, 1/m* = 1/m0 + 1/m1.
+  const auto side = [&](std::size_t k) {
+    const thx::scene::SceneObject& o = sc.scene.objects[k];
+    return HertzSide{o.material.youngs_modulus_pa, o.material.poisson_ratio, o.radius_m, o.mass_kg};
+  };
+  EXPECT_GT(r.min_contact_s, 0.0);
+  EXPECT_DOUBLE_EQ(r.min_contact_s, hertzContactDuration(side(0), side(1), 0.5));
+
+  // Each ball's mode is in the sound, and goes when that ball has no modes.
+  SoundingScene without0 = sc, without1 = sc;
+  without0.objects[0] = nullptr;
+  without1.objects[1] = nullptr;
+  const PhysicsRender r0 = render(s, without1), r1 = render(s, without0);  // ball 0 alone, ball 1 alone
+  EXPECT_EQ(r0.strikes, 1u);
+  EXPECT_EQ(r1.strikes, 1u);
+  const double both_at_f0 = magnitudeAt(r.samples, f0), both_at_f1 = magnitudeAt(r.samples, f1);
+  std::printf("[measured] |X| at %.1f Hz: both %.3g, ball 1 alone %.3g; at %.1f Hz: both %.3g, ball 0 alone %.3g\n", f0,
+              both_at_f0, magnitudeAt(r1.samples, f0), f1, both_at_f1, magnitudeAt(r0.samples, f1));
+  EXPECT_GT(both_at_f0, 20.0 * magnitudeAt(r1.samples, f0));  // measured 55x (ball 1 rings at 14.7 kHz too)
+  EXPECT_GT(both_at_f1, 20.0 * magnitudeAt(r0.samples, f1));  // measured 790x
+  // The same every time.
+  EXPECT_EQ(render(s, sc).samples, r.samples);
+
+  // No impulse, no sound.
+  PhysicsStreams zero = s;
+  zero.impacts[0].impulse = 0.0;
+  const PhysicsRender silent = render(zero, sc);
+  EXPECT_EQ(silent.impacts, 0u);
+  EXPECT_EQ(silent.strikes, 0u);
+  EXPECT_TRUE(silent.samples.empty());
+}
+
+TEST(PhysicsSound, AnImpactWithThePenRingsThePenAtItsTip) {
+  // A test double for the pen's modes: the 13 cm ball's body, struck at its node 0.
+  SoundingScene sc = twoBalls();
+  PhysicsStreams s;
+  s.poses.push_back(twoBallPoses());
+  physics_impact_t m = ballOnBall(1e-3);
+  m.body_b = physics_impact_t::BODY_PEN;
+  s.impacts.push_back(m);
+  const PhysicsRender no_pen = render(s, sc);
+  EXPECT_EQ(no_pen.strikes, 1u) << "the ball alone: no pen modes";
+  sc.pen = sc.objects[1];
+  sc.pen_tip_node = 0;
+  const PhysicsRender with_pen = render(s, sc);
+  EXPECT_EQ(with_pen.strikes, 2u);
+  double diff = 0;
+  for (std::size_t n = 0; n < std::min(no_pen.samples.size(), with_pen.samples.size()); ++n)
+    diff = std::max(diff, std::fabs(with_pen.samples[n] - no_pen.samples[n]));
+  EXPECT_GT(diff, 0.0);
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 // shared PhysicsExcitation as a Point event on its SynthScene body, at its time plus the playout
 // delay; impacts on both bodies with their Hertz contact time; the texel walk carried across
 // messages and restarted when the body loses contact; the pen's entries, object pairs and
-// objects without a pose give no object strike.
+// objects without a pose give no object strike; impacts between two objects ring both, impacts
+// with the pen ring the pen's body.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,6 +59,41 @@ TEST(PhysicsSource, AnImpactStrikesBothBodiesAtTheCentreOfItsHertzPulse) {
   double sum = 0;
   for (int c = 0; c < ball.point_count; ++c) sum += ball.point_weights[c];
   EXPECT_NEAR(sum, 1.0, 1e-12);
+}
+
+TEST(PhysicsSource, TwoObjectsAndThePenEachRingTheirOwnBody) {
+  // The test ball twice (objects 0 and 1 on SynthScene bodies 1 and 2), the pen's double on body 3:
+  // the ball's modal body struck at its node 0.
+  SoundingScene sc = testScene();
+  sc.objects.push_back(sc.objects[0]);
+  sc.pen = sc.objects[0];
+  sc.pen_tip_node = 0;
+  PhysicsSource source(sc, {1, 2}, 1, 0, 3);
+  VectorSink sink;
+  thx_msgs::physics_poses_t poses = test::ballPose(0);
+  poses.num_bodies = 2;
+  poses.p_world[1][0] = 0.2;  // ball 1 beside ball 0, touching at x = 0.1
+  poses.p_world[1][2] = 0.1;
+  poses.q_world[1][0] = 1.0;
+  source.physicsPoses(poses, 0);
+  thx_msgs::physics_impact_t m = test::impact(1000, 0.5);
+  m.body_b = 1;
+  m.p_world[0] = 0.1;
+  m.p_world[1] = 0.0;
+  m.p_world[2] = 0.1;
+  m.n_world[0] = -1.0;
+  m.n_world[2] = 0.0;
+  source.physicsImpact(m, 0, sink);
+  ASSERT_EQ(sink.events.size(), 2u);
+  EXPECT_EQ(sink.events[0].body + sink.events[1].body, 1 + 2);  // both balls, not the surface
+  EXPECT_NEAR(sink.events[0].impulse[0] + sink.events[1].impulse[0], 0.0, 1e-15);  // +J on a, -J on b
+  EXPECT_EQ(source.counts().object_impacts, 1u);
+
+  sink.events.clear();
+  m.body_b = thx_msgs::physics_impact_t::BODY_PEN;
+  source.physicsImpact(m, 0, sink);
+  ASSERT_EQ(sink.events.size(), 2u);
+  EXPECT_EQ(sink.events[0].body + sink.events[1].body, 1 + 3);  // ball 0 and the pen
 }
 
 TEST(PhysicsSource, TexelPathsStrikeTheSurfaceAndTheObjectAtTheirEntryTimes) {
