@@ -9,10 +9,11 @@
 // steeper than along it.
 // Knurled: two sets of grooves crossing at +-45 degrees, h = -knurl_depth (q(x + y) + q(x - y)) / 2,
 // q = ((1 - cos(2 pi t / P)) / 2)^2, P = knurl_pitch rounded to divide the extent: rounded pyramids.
-// Hammered: one dent per cell of a jittered grid (`dent_spacing`), each a smooth bump
-// -dent_depth * k * (1 - r^2 / R^2)^3 for r < R, seeded R (0.6-0.9 cell) and k (0.6-1); dents
-// overlap and add. The sites stay in the middle 40 % of their cell, so R <= 0.9 cell never reaches
-// beyond the 3 x 3 cells around the point.
+// Hammered: one dent per cell of a jittered grid (`dent_spacing`), each a paraboloid bowl
+// -dent_depth * k * (1 - r^2 / R^2) for r < R, seeded R (0.6-0.9 cell) and k (0.6-1); where dents
+// overlap the deepest wins, so they meet in sharp ridges (creases), and the bowl rims are creases
+// too. The sites stay in the middle 40 % of their cell, so R <= 0.9 cell never reaches beyond the
+// 3 x 3 cells around the point.
 #include "textures/generators/noise.hpp"
 
 namespace thx::tex::gen {
@@ -52,22 +53,19 @@ SurfacePoint knurl(double x, double y, double pitch, double depth) {
 }
 
 SurfacePoint dents(double x, double y, double cell, std::int64_t n, double depth, std::uint64_t seed) {
-  SurfacePoint s;
+  SurfacePoint s;  // the undented sheet, h = 0, where no dent reaches
   const auto i0 = std::int64_t(std::floor(x / cell)), j0 = std::int64_t(std::floor(y / cell));
   for (std::int64_t dj = -1; dj <= 1; ++dj)
     for (std::int64_t di = -1; di <= 1; ++di) {
       const std::int64_t ci = i0 + di, cj = j0 + dj;
       const Eigen::Vector2d c = voronoiSite(ci, cj, cell, n, 0.4, seed, kSalt + 32);
       const double r_max = cell * (0.6 + 0.3 * random01(seed, wrapIndex(ci, n), wrapIndex(cj, n), kSalt + 34));
-      const double k = 0.6 + 0.4 * random01(seed, wrapIndex(ci, n), wrapIndex(cj, n), kSalt + 35);
+      const double k = depth * (0.6 + 0.4 * random01(seed, wrapIndex(ci, n), wrapIndex(cj, n), kSalt + 35));
       const double dx = x - c.x(), dy = y - c.y();
       const double t = 1.0 - (dx * dx + dy * dy) / (r_max * r_max);
-      if (t <= 0.0) continue;
-      // d/dx of -depth k t^3 = -depth k 3 t^2 (-2 dx / R^2)
-      const double g = depth * k * 6.0 * t * t / (r_max * r_max);
-      s.h -= depth * k * t * t * t;
-      s.dhdx += g * dx;
-      s.dhdy += g * dy;
+      // The deepest dent at the point wins: overlapping dents meet in sharp ridges, as hammer blows do.
+      if (t <= 0.0 || -k * t >= s.h) continue;
+      s = {-k * t, 2.0 * k * dx / (r_max * r_max), 2.0 * k * dy / (r_max * r_max)};
     }
   return s;
 }
