@@ -40,8 +40,9 @@ TextureMap makeCeramicTile(const Params& p, int size, std::uint64_t seed) {
   }
   const std::int64_t n = periodsIn(extent, tile_req);
   const double tile = extent / double(n), g = grout / 2.0, texel = extent / size;
+  const FractalNoise glaze(extent, tile, 2, undulation, 0.5, 3.0 * texel, seed, kSalt);
   return rasterize(size, extent, [&](double x, double y) {
-    SurfacePoint s = fractalNoise(x, y, extent, tile, 2, undulation, 0.5, 3.0 * texel, seed, kSalt);
+    SurfacePoint s = glaze(x, y);
     const double u = x - (std::floor(x / tile) + 0.5) * tile, v = y - (std::floor(y / tile) + 0.5) * tile;
     // Distances to the tile's edge lines across x and y; each shrinks away from the tile's centre.
     const Rise bx = rise(tile / 2.0 - std::fabs(u), g, bevel), by = rise(tile / 2.0 - std::fabs(v), g, bevel);

@@ -52,16 +52,19 @@ SurfacePoint knurl(double x, double y, double pitch, double depth) {
   return s;
 }
 
-SurfacePoint dents(double x, double y, double cell, std::int64_t n, double depth, std::uint64_t seed) {
+// sizes: per dent cell, its radius and depth factors in [0, 1).
+SurfacePoint dents(double x, double y, const VoronoiSites& sites, const Lattice& sizes, double depth) {
   SurfacePoint s;  // the undented sheet, h = 0, where no dent reaches
+  const double cell = sites.cell();
   const auto i0 = std::int64_t(std::floor(x / cell)), j0 = std::int64_t(std::floor(y / cell));
   for (std::int64_t dj = -1; dj <= 1; ++dj)
     for (std::int64_t di = -1; di <= 1; ++di) {
       const std::int64_t ci = i0 + di, cj = j0 + dj;
-      const Eigen::Vector2d c = voronoiSite(ci, cj, cell, n, 0.4, seed, kSalt + 32);
-      const double r_max = cell * (0.6 + 0.3 * random01(seed, wrapIndex(ci, n), wrapIndex(cj, n), kSalt + 34));
-      const double k = depth * (0.6 + 0.4 * random01(seed, wrapIndex(ci, n), wrapIndex(cj, n), kSalt + 35));
-      const double dx = x - c.x(), dy = y - c.y();
+      double cx, cy;
+      sites.site(ci, cj, cx, cy);
+      const double r_max = cell * (0.6 + 0.3 * sizes.value(ci, cj, 0));
+      const double k = depth * (0.6 + 0.4 * sizes.value(ci, cj, 1));
+      const double dx = x - cx, dy = y - cy;
       const double t = 1.0 - (dx * dx + dy * dy) / (r_max * r_max);
       // The deepest dent at the point wins: overlapping dents meet in sharp ridges, as hammer blows do.
       if (t <= 0.0 || -k * t >= s.h) continue;
@@ -80,13 +83,16 @@ TextureMap makeMetal(const Params& p, int size, std::uint64_t seed) {
   const std::int64_t bands = periodsIn(extent, spacing);
   const double band = extent / double(bands);
   const double pitch = extent / double(periodsIn(extent, p.at("knurl_pitch"))), kdepth = p.at("knurl_depth");
-  const std::int64_t dent_n = periodsIn(extent, p.at("dent_spacing"));
-  const double dent_cell = extent / double(dent_n), ddepth = p.at("dent_depth");
   const int kind = int(pattern);
+  // Dent sites and sizes, tabulated only for the hammered pattern.
+  const std::int64_t dent_n = kind == 2 ? periodsIn(extent, p.at("dent_spacing")) : 1;
+  const VoronoiSites dent_sites(extent / double(dent_n), dent_n, 0.4, seed, kSalt + 32);
+  const Lattice dent_sizes(dent_n, seed, kSalt + 34);
+  const double ddepth = p.at("dent_depth");
   return rasterize(size, extent, [&](double x, double y) {
     SurfacePoint s = sdepth > 0.0 ? scratches(x, y, band, bands, length, sdepth, seed) : SurfacePoint{};
-    if (kind == 1) s = s + knurl(x, y, pitch, kdepth);
-    if (kind == 2) s = s + dents(x, y, dent_cell, dent_n, ddepth, seed);
+    if (kind == 1) s += knurl(x, y, pitch, kdepth);
+    if (kind == 2) s += dents(x, y, dent_sites, dent_sizes, ddepth);
     return s;
   });
 }

@@ -2,126 +2,214 @@
 // Internal to the generators: seeded smooth noise and cell networks with exact gradients, shared
 // by porcelain, stone, ceramic_tile and metal. Everything is keyed by (seed, lattice index, salt)
 // through random01, and every lattice wraps with the tile, so a pattern whose cell divides the
-// extent tiles seamlessly.
+// extent tiles seamlessly. The per-point random values are tabulated once per map (the search
+// below visits 50 sites per texel; hashing each visit made a 512² map take seconds), except for
+// lattices too fine to be worth a table, which hash on the fly with the same result.
+#include <vector>
+
 #include "textures/generators/common.hpp"
 
 namespace thx::tex::gen {
 
+inline SurfacePoint& operator+=(SurfacePoint& a, const SurfacePoint& b) {
+  a.h += b.h;
+  a.dhdx += b.dhdx;
+  a.dhdy += b.dhdy;
+  return a;
+}
+
+// Two seeded values in [0, 1) per point of an n x n lattice that repeats every n points.
+class Lattice {
+ public:
+  Lattice(std::int64_t n, std::uint64_t seed, std::uint64_t salt) : n_(n), seed_(seed), salt_(salt) {
+    if (n_ > kMaxTabulated) return;
+    table_.resize(std::size_t(2 * n_ * n_));
+    for (std::int64_t i = 0; i < n_; ++i)
+      for (std::int64_t j = 0; j < n_; ++j) {
+        table_[std::size_t(2 * (i * n_ + j))] = random01(seed_, i, j, salt_);
+        table_[std::size_t(2 * (i * n_ + j) + 1)] = random01(seed_, i, j, salt_ + 1);
+      }
+  }
+  std::int64_t n() const { return n_; }
+  // The k-th (0 or 1) value of lattice point (i, j), any integers (wrapped).
+  double value(std::int64_t i, std::int64_t j, int k) const {
+    const std::int64_t wi = wrapIndex(i, n_), wj = wrapIndex(j, n_);
+    if (table_.empty()) return random01(seed_, wi, wj, salt_ + std::uint64_t(k));
+    return table_[std::size_t(2 * (wi * n_ + wj) + k)];
+  }
+
+ private:
+  static constexpr std::int64_t kMaxTabulated = 2048;  // 64 MiB at most
+  std::int64_t n_;
+  std::uint64_t seed_, salt_;
+  std::vector<double> table_;
+};
+
 // Perlin gradient noise on a square lattice of cell `cell` (metres) that repeats every n cells:
 // unit gradients keyed per lattice point, quintic fade. Value roughly in [-0.7, 0.7], C2-smooth.
-inline SurfacePoint gradientNoise(double x, double y, double cell, std::int64_t n, std::uint64_t seed,
-                                  std::uint64_t salt) {
-  const double gx = x / cell, gy = y / cell;
-  const double fxl = std::floor(gx), fyl = std::floor(gy);
-  const auto ix = std::int64_t(fxl), iy = std::int64_t(fyl);
-  const double fx = gx - fxl, fy = gy - fyl;
-  auto grad = [&](std::int64_t di, std::int64_t dj) {
-    const double a = 2.0 * kPi * random01(seed, wrapIndex(ix + di, n), wrapIndex(iy + dj, n), salt);
-    return Eigen::Vector2d(std::cos(a), std::sin(a));
-  };
-  const Eigen::Vector2d g00 = grad(0, 0), g10 = grad(1, 0), g01 = grad(0, 1), g11 = grad(1, 1);
-  const double a = g00.x() * fx + g00.y() * fy, b = g10.x() * (fx - 1) + g10.y() * fy;
-  const double c = g01.x() * fx + g01.y() * (fy - 1), d = g11.x() * (fx - 1) + g11.y() * (fy - 1);
-  auto fade = [](double t) { return t * t * t * (t * (t * 6 - 15) + 10); };
-  auto dfade = [](double t) { return 30 * t * t * (t * (t - 2) + 1); };
-  const double u = fade(fx), v = fade(fy), du = dfade(fx), dv = dfade(fy);
-  const double k = a - b - c + d;
-  const Eigen::Vector2d gk = g00 - g10 - g01 + g11;
-  const Eigen::Vector2d grad_in_cells = g00 + u * (g10 - g00) + v * (g01 - g00) + u * v * gk +
-                                        Eigen::Vector2d(du * ((b - a) + v * k), dv * ((c - a) + u * k));
-  return {a + u * (b - a) + v * (c - a) + u * v * k, grad_in_cells.x() / cell, grad_in_cells.y() / cell};
-}
+class GradientNoise {
+ public:
+  GradientNoise(double cell, std::int64_t n, std::uint64_t seed, std::uint64_t salt)
+      : cell_(cell), angles_(n, seed, salt) {
+    if (n > kMaxTabulated) return;
+    directions_.resize(std::size_t(2 * n * n));
+    for (std::int64_t i = 0; i < n; ++i)
+      for (std::int64_t j = 0; j < n; ++j) {
+        const double a = 2.0 * kPi * angles_.value(i, j, 0);
+        directions_[std::size_t(2 * (i * n + j))] = std::cos(a);
+        directions_[std::size_t(2 * (i * n + j) + 1)] = std::sin(a);
+      }
+  }
+
+  SurfacePoint operator()(double x, double y) const {
+    const double gx = x / cell_, gy = y / cell_;
+    const double fxl = std::floor(gx), fyl = std::floor(gy);
+    const auto ix = std::int64_t(fxl), iy = std::int64_t(fyl);
+    const double fx = gx - fxl, fy = gy - fyl;
+    double g[4][2];  // gradients at (0,0), (1,0), (0,1), (1,1)
+    for (int k = 0; k < 4; ++k) direction(ix + (k & 1), iy + (k >> 1), g[k]);
+    const double a = g[0][0] * fx + g[0][1] * fy, b = g[1][0] * (fx - 1) + g[1][1] * fy;
+    const double c = g[2][0] * fx + g[2][1] * (fy - 1), d = g[3][0] * (fx - 1) + g[3][1] * (fy - 1);
+    const double u = fade(fx), v = fade(fy), du = dfade(fx), dv = dfade(fy);
+    const double k = a - b - c + d;
+    double grad[2];
+    for (int axis = 0; axis < 2; ++axis) {
+      const double gk = g[0][axis] - g[1][axis] - g[2][axis] + g[3][axis];
+      grad[axis] = g[0][axis] + u * (g[1][axis] - g[0][axis]) + v * (g[2][axis] - g[0][axis]) + u * v * gk;
+    }
+    grad[0] += du * ((b - a) + v * k);
+    grad[1] += dv * ((c - a) + u * k);
+    return {a + u * (b - a) + v * (c - a) + u * v * k, grad[0] / cell_, grad[1] / cell_};
+  }
+
+ private:
+  static constexpr std::int64_t kMaxTabulated = 2048;
+  // The unit gradient at lattice point (i, j), from the table when there is one.
+  void direction(std::int64_t i, std::int64_t j, double g[2]) const {
+    if (directions_.empty()) {
+      const double a = 2.0 * kPi * angles_.value(i, j, 0);
+      g[0] = std::cos(a);
+      g[1] = std::sin(a);
+      return;
+    }
+    const std::int64_t n = angles_.n(), k = 2 * (wrapIndex(i, n) * n + wrapIndex(j, n));
+    g[0] = directions_[std::size_t(k)];
+    g[1] = directions_[std::size_t(k + 1)];
+  }
+  static double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+  static double dfade(double t) { return 30 * t * t * (t * (t - 2) + 1); }
+  double cell_;
+  Lattice angles_;
+  std::vector<double> directions_;  // cos, sin per lattice point
+};
 
 // Fractal sum of gradient noise: octave o has wavelength base / 2^o (rounded so it divides the
 // extent) and amplitude amplitude * gain^o. Octaves shorter than three texels (min_wavelength)
 // are left out: on the grid they would only alias.
-inline SurfacePoint fractalNoise(double x, double y, double extent, double base, int octaves, double amplitude,
-                                 double gain, double min_wavelength, std::uint64_t seed, std::uint64_t salt) {
-  SurfacePoint s;
-  double wavelength = base, amp = amplitude;
-  for (int o = 0; o < octaves; ++o, wavelength /= 2.0, amp *= gain) {
-    const std::int64_t n = periodsIn(extent, wavelength);
-    const double cell = extent / double(n);
-    if (cell < min_wavelength) break;
-    const SurfacePoint q = gradientNoise(x, y, cell, n, seed, salt + std::uint64_t(o));
-    s.h += amp * q.h;
-    s.dhdx += amp * q.dhdx;
-    s.dhdy += amp * q.dhdy;
+class FractalNoise {
+ public:
+  FractalNoise(double extent, double base, int octaves, double amplitude, double gain, double min_wavelength,
+               std::uint64_t seed, std::uint64_t salt) {
+    double wavelength = base, amp = amplitude;
+    for (int o = 0; o < octaves; ++o, wavelength /= 2.0, amp *= gain) {
+      const std::int64_t n = periodsIn(extent, wavelength);
+      const double cell = extent / double(n);
+      if (cell < min_wavelength) break;
+      octaves_.push_back({amp, GradientNoise(cell, n, seed, salt + 2 * std::uint64_t(o))});
+    }
   }
-  return s;
-}
+  SurfacePoint operator()(double x, double y) const {
+    SurfacePoint s;
+    for (const Octave& o : octaves_) {
+      const SurfacePoint q = o.noise(x, y);
+      s += SurfacePoint{o.amplitude * q.h, o.amplitude * q.dhdx, o.amplitude * q.dhdy};
+    }
+    return s;
+  }
 
-// Distance from a point to the border of its cell in a jittered-grid Voronoi network (one seeded
-// site per cell of side `cell`, n cells per period, sites within the middle `jitter` of their
-// cell) and the gradient of that distance. The distance to the border with a neighbour's cell is
-// the distance to the bisector of the two sites, linear in the point, so its gradient is the unit
-// vector between the sites; the nearest border wins (a crease where two borders are equally near).
-struct CellBorder {
-  double s = 0.0;              // metres to the nearest border
-  Eigen::Vector2d grad{0, 0};  // ds/d(x, y)
-  std::int64_t ci = 0, cj = 0; // the cell whose site is nearest
+ private:
+  struct Octave {
+    double amplitude;
+    GradientNoise noise;
+  };
+  std::vector<Octave> octaves_;
 };
 
-inline Eigen::Vector2d voronoiSite(std::int64_t ci, std::int64_t cj, double cell, std::int64_t n, double jitter,
-                                   std::uint64_t seed, std::uint64_t salt) {
-  const double ox = 0.5 + jitter * (random01(seed, wrapIndex(ci, n), wrapIndex(cj, n), salt) - 0.5);
-  const double oy = 0.5 + jitter * (random01(seed, wrapIndex(ci, n), wrapIndex(cj, n), salt + 1) - 0.5);
-  return {(double(ci) + ox) * cell, (double(cj) + oy) * cell};
-}
+// A jittered-grid Voronoi network: one seeded site per cell of side `cell` (n cells per period),
+// each within the middle `jitter` of its cell.
+//
+// border(x, y): the distance from a point to the border of its Voronoi cell and its gradient (sites
+// within the middle 90 % of their cells at most). The
+// distance to the border with a neighbour's cell is the distance to the bisector of the two
+// sites, linear in the point, so its gradient is the unit vector between the sites; the nearest
+// border wins (a crease where two borders are equally near).
+struct CellBorder {
+  double s = 0.0;                // metres to the nearest border
+  double dsdx = 0.0, dsdy = 0.0;
+};
 
-inline CellBorder cellBorder(double x, double y, double cell, std::int64_t n, double jitter, std::uint64_t seed,
-                             std::uint64_t salt) {
-  const Eigen::Vector2d p(x, y);
-  const auto i0 = std::int64_t(std::floor(x / cell)), j0 = std::int64_t(std::floor(y / cell));
-  CellBorder out;
-  Eigen::Vector2d near{0, 0};
-  double best = std::numeric_limits<double>::infinity();
-  // 5 x 5 cells: with sites anywhere in the middle 90 % of a cell, the nearest can be two cells away.
-  for (std::int64_t dj = -2; dj <= 2; ++dj)
-    for (std::int64_t di = -2; di <= 2; ++di) {
-      const Eigen::Vector2d c = voronoiSite(i0 + di, j0 + dj, cell, n, jitter, seed, salt);
-      const double dist2 = (p - c).squaredNorm();
-      if (dist2 < best) {
-        best = dist2;
-        near = c;
-        out.ci = i0 + di;
-        out.cj = j0 + dj;
+class VoronoiSites {
+ public:
+  VoronoiSites(double cell, std::int64_t n, double jitter, std::uint64_t seed, std::uint64_t salt)
+      : cell_(cell), jitter_(jitter), offsets_(n, seed, salt) {}
+
+  double cell() const { return cell_; }
+  std::int64_t n() const { return offsets_.n(); }
+  // The site of cell (ci, cj), any integers, in plane coordinates.
+  void site(std::int64_t ci, std::int64_t cj, double& x, double& y) const {
+    x = (double(ci) + 0.5 + jitter_ * (offsets_.value(ci, cj, 0) - 0.5)) * cell_;
+    y = (double(cj) + 0.5 + jitter_ * (offsets_.value(ci, cj, 1) - 0.5)) * cell_;
+  }
+
+  // Exact wherever the distance is below a quarter cell, which is all a crack (narrower than half a
+  // cell) needs: the 5 x 5 cells around the point hold its nearest site (sites stay in the middle
+  // 90 % of their cells, so that one is within 1.34 cells) and every site whose border comes
+  // nearer than 0.35 cells (a site beyond them is at least 2.05 cells away, and the distance to
+  // a border is at least half the difference of the distances to the two sites).
+  CellBorder border(double x, double y) const {
+    const auto i0 = std::int64_t(std::floor(x / cell_)), j0 = std::int64_t(std::floor(y / cell_));
+    double sx[25], sy[25];
+    int nearest = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 25; ++k) {
+      site(i0 + k % 5 - 2, j0 + k / 5 - 2, sx[k], sy[k]);
+      const double d2 = (x - sx[k]) * (x - sx[k]) + (y - sy[k]) * (y - sy[k]);
+      if (d2 < best) {
+        best = d2;
+        nearest = k;
       }
     }
-  out.s = std::numeric_limits<double>::infinity();
-  for (std::int64_t dj = -2; dj <= 2; ++dj)
-    for (std::int64_t di = -2; di <= 2; ++di) {
-      if (di == out.ci - i0 && dj == out.cj - j0) continue;
-      const Eigen::Vector2d c = voronoiSite(out.ci + di, out.cj + dj, cell, n, jitter, seed, salt);
-      const Eigen::Vector2d along = c - near;
-      const double len = along.norm();
-      const double s = (c.squaredNorm() - near.squaredNorm() - 2.0 * p.dot(along)) / (2.0 * len);
-      if (s < out.s) {
-        out.s = s;
-        out.grad = -along / len;
-      }
+    const double nx = sx[nearest], ny = sy[nearest];
+    CellBorder out;
+    out.s = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 25; ++k) {
+      if (k == nearest) continue;
+      const double ax = sx[k] - nx, ay = sy[k] - ny, len = std::sqrt(ax * ax + ay * ay);
+      const double s = ((sx[k] * sx[k] + sy[k] * sy[k]) - (nx * nx + ny * ny) - 2.0 * (x * ax + y * ay)) / (2.0 * len);
+      if (s < out.s) out = {s, -ax / len, -ay / len};
     }
-  return out;
-}
+    return out;
+  }
+
+ private:
+  double cell_, jitter_;
+  Lattice offsets_;
+};
 
 // A groove of half-width w and depth `depth` along a line at distance s (gradient ds) from the
 // point: raised-cosine profile, flat on the line and where it meets the surface around it.
-inline SurfacePoint grooveAt(double s, const Eigen::Vector2d& ds, double w, double depth) {
-  if (s >= w || depth <= 0.0) return {};
-  const double c = 0.5 * (1.0 + std::cos(kPi * s / w));
-  const double dc = -0.5 * kPi / w * std::sin(kPi * s / w);
-  return {-depth * c, -depth * dc * ds.x(), -depth * dc * ds.y()};
-}
-
-inline SurfacePoint operator+(SurfacePoint a, const SurfacePoint& b) {
-  return {a.h + b.h, a.dhdx + b.dhdx, a.dhdy + b.dhdy};
+inline SurfacePoint grooveAt(const CellBorder& b, double w, double depth) {
+  if (b.s >= w || depth <= 0.0) return {};
+  const double c = 0.5 * (1.0 + std::cos(kPi * b.s / w));
+  const double dc = -0.5 * kPi / w * std::sin(kPi * b.s / w);
+  return {-depth * c, -depth * dc * b.dsdx, -depth * dc * b.dsdy};
 }
 
 // Fractal noise cut by raised-cosine cracks along the borders of a Voronoi network: the relief of
 // porcelain (faint undulation, crazing) and of stone (roughness, cleft planes) alike.
 struct CrackedNoise {
   double extent = 0.0;
-  double wavelength = 0.0, amplitude = 0.0, gain = 0.5;  // fractalNoise's first octave and ratio
+  double wavelength = 0.0, amplitude = 0.0, gain = 0.5;  // FractalNoise's first octave and ratio
   int octaves = 1;
   double min_wavelength = 0.0;                  // three texels
   double crack_cell_request = 0.0;              // grown or shrunk to divide the extent
@@ -131,15 +219,13 @@ struct CrackedNoise {
 };
 
 inline TextureMap rasterizeCrackedNoise(int size, const CrackedNoise& c) {
+  const FractalNoise noise(c.extent, c.wavelength, c.octaves, c.amplitude, c.gain, c.min_wavelength, c.seed, c.salt);
   const std::int64_t n = periodsIn(c.extent, c.crack_cell_request);
-  const double cell = c.extent / double(n);
-  return rasterize(size, c.extent, [&c, n, cell](double x, double y) {
-    SurfacePoint s = fractalNoise(x, y, c.extent, c.wavelength, c.octaves, c.amplitude, c.gain, c.min_wavelength,
-                                  c.seed, c.salt);
-    if (c.crack_depth > 0.0) {
-      const CellBorder b = cellBorder(x, y, cell, n, c.jitter, c.seed, c.salt + 16);
-      s = s + grooveAt(b.s, b.grad, c.crack_width / 2.0, c.crack_depth);
-    }
+  // The site table is only built when there are cracks to draw.
+  const VoronoiSites sites(c.extent / double(n), c.crack_depth > 0.0 ? n : 1, c.jitter, c.seed, c.salt + 1000);
+  return rasterize(size, c.extent, [&](double x, double y) {
+    SurfacePoint s = noise(x, y);
+    if (c.crack_depth > 0.0) s += grooveAt(sites.border(x, y), c.crack_width / 2.0, c.crack_depth);
     return s;
   });
 }

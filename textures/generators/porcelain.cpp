@@ -17,10 +17,14 @@ constexpr std::uint64_t kSalt = 0x706f7263;  // "porc"
 TextureMap makePorcelain(const Params& p, int size, std::uint64_t seed) {
   const double extent = p.at("extent"), amplitude = p.at("undulation"), wavelength = p.at("undulation_wavelength");
   const double cell_req = p.at("craze_cell"), width = p.at("craze_width"), depth = p.at("craze_depth");
-  if (width >= cell_req / 2.0) {
+  // The cells are craze_cell rounded to divide the extent; a crack must stay under half of that.
+  const std::int64_t cells = periodsIn(extent, cell_req);
+  const double cell = extent / double(cells);
+  if (width >= cell / 2.0) {
     failParams("porcelain", "crazing cracks wider than half a craze cell",
-               "craze_width=" + formatNumber(width) + ", craze_cell=" + formatNumber(cell_req),
-               "craze_width < craze_cell / 2");
+               "craze_width=" + formatNumber(width) + ", craze_cell=" + formatNumber(cell_req) + " (used: " +
+                   formatNumber(cell) + " = extent/" + std::to_string(cells) + ")",
+               "craze_width < the cell used / 2");
   }
   return rasterizeCrackedNoise(
       size, {.extent = extent, .wavelength = wavelength, .amplitude = amplitude, .gain = 0.5, .octaves = 2,

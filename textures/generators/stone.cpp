@@ -23,10 +23,14 @@ TextureMap makeStone(const Params& p, int size, std::uint64_t seed) {
   if (octaves_f != std::floor(octaves_f)) {
     failParams("stone", "octaves must be a whole number", "octaves=" + formatNumber(octaves_f), "an integer in [1, 8]");
   }
-  if (width >= spacing_req / 2.0) {
+  // The cells are crack_spacing rounded to divide the extent; a crack must stay under half of that.
+  const std::int64_t cells = periodsIn(extent, spacing_req);
+  const double cell = extent / double(cells);
+  if (width >= cell / 2.0) {
     failParams("stone", "cracks wider than half the crack spacing",
-               "crack_width=" + formatNumber(width) + ", crack_spacing=" + formatNumber(spacing_req),
-               "crack_width < crack_spacing / 2");
+               "crack_width=" + formatNumber(width) + ", crack_spacing=" + formatNumber(spacing_req) + " (used: " +
+                   formatNumber(cell) + " = extent/" + std::to_string(cells) + ")",
+               "crack_width < the spacing used / 2");
   }
   return rasterizeCrackedNoise(
       size, {.extent = extent, .wavelength = wavelength, .amplitude = amplitude, .gain = gain, .octaves = int(octaves_f),
