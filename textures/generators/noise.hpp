@@ -18,6 +18,9 @@ inline SurfacePoint& operator+=(SurfacePoint& a, const SurfacePoint& b) {
   return a;
 }
 
+// Lattices up to this many points per side are tabulated (16 MiB for a Lattice); finer ones hash.
+inline constexpr std::int64_t kMaxTabulated = 1024;
+
 // Two seeded values in [0, 1) per point of an n x n lattice that repeats every n points.
 class Lattice {
  public:
@@ -39,7 +42,6 @@ class Lattice {
   }
 
  private:
-  static constexpr std::int64_t kMaxTabulated = 2048;  // 64 MiB at most
   std::int64_t n_;
   std::uint64_t seed_, salt_;
   std::vector<double> table_;
@@ -83,7 +85,6 @@ class GradientNoise {
   }
 
  private:
-  static constexpr std::int64_t kMaxTabulated = 2048;
   // The unit gradient at lattice point (i, j), from the table when there is one.
   void direction(std::int64_t i, std::int64_t j, double g[2]) const {
     if (directions_.empty()) {
