@@ -61,9 +61,9 @@ echo "sound: $OUT/marble_bricks.wav, its spectrogram: $OUT/marble_bricks_spectro
 echo
 echo "== texture gallery (512^2, seed 1) -> $OUT/"
 n=0
-for kind in bricks vvalley grooves pebbles wood sine dimples tilted zigzag; do
+for kind in bricks vvalley grooves pebbles wood sine dimples tilted zigzag porcelain metal stone ceramic_tile; do
   n=$((n + 1))
-  printf "[%d/9] %-8s " "$n" "$kind"
+  printf "[%d/13] %-12s " "$n" "$kind"
   "$TT" generate "$kind" --size 512 --out "$OUT/$kind.png" | head -n 1
   "$TT" preview "$OUT/$kind.png" "$OUT/${kind}_preview.png" > /dev/null
 done

@@ -25,6 +25,17 @@ const std::vector<Material>& materials() {
        "fired-clay handbook mid-range (recalled); damping = ceramic with alpha x5 (porous)"},
       {"concrete",      2400,      3.0e10, 0.20,  20.0,     1e-7,   0.80, 0.40,
        "handbook (recalled); damping = ceramic with alpha x3.3 (porous)"},
+      // The study surfaces' materials (docs/scenes.md "Materials" names the pages).
+      {"porcelain",     2400,      7.0e10, 0.17,  6.0,      1e-7,   0.50, 0.65,
+       "material-properties.org (rho), MakeItFrom engineering porcelain (E low end, nu); damping = ceramic"},
+      {"granite",       2700,      4.96e10, 0.213, 6.0,     1e-7,   0.70, 0.50,
+       "Dowling Table 5.2 Westerly granite (E, nu), rho mid-range of granite/marble; damping = ceramic"},
+      {"marble",        2700,      6.9e10, 0.281, 6.0,      1e-7,   0.50, 0.55,
+       "Dowling Table 5.2 dolomitic limestone (E, nu), rho mid-range of granite/marble; damping = ceramic"},
+      {"brass",         8500,      1.01e11, 0.35, 5.0,      3e-8,   0.50, 0.65,
+       "Dowling Table 5.2 brass 70Cu-30Zn (E, nu), rho mid-range 8400-8600; damping = steel"},
+      {"copper",        8900,      1.3e11, 0.343, 5.0,      3e-8,   0.55, 0.55,
+       "Dowling Table 5.2 copper (E, nu), rho 8900; damping = steel"},
   };
   // clang-format on
   return table;

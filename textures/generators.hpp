@@ -25,7 +25,8 @@ struct GeneratorParam {
 };
 
 struct GeneratorSpec {
-  std::string kind;  // "bricks", "vvalley", "grooves", "pebbles", "wood", "sine", "dimples", "tilted"
+  std::string kind;  // "bricks", "vvalley", "grooves", "pebbles", "wood", "sine", "dimples", "tilted", "zigzag",
+                     // "porcelain", "metal", "stone", "ceramic_tile"
   std::string description;
   std::vector<GeneratorParam> params;
 };

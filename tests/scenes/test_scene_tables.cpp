@@ -17,7 +17,7 @@ using namespace thx::scene;
 
 TEST(Materials, EveryNamedMaterialIsThereWithPlausibleValues) {
   for (const char* name : {"ceramic", "glass", "wood", "plastic", "polycarbonate", "iron", "steel", "tin", "aluminium",
-                           "stone", "brick", "concrete"}) {
+                           "stone", "brick", "concrete", "porcelain", "granite", "marble", "brass", "copper"}) {
     const Material* m = findMaterial(name);
     ASSERT_NE(m, nullptr) << name;
     EXPECT_GT(m->density_kg_per_m3, 500.0) << name;
@@ -32,7 +32,7 @@ TEST(Materials, EveryNamedMaterialIsThereWithPlausibleValues) {
     EXPECT_LT(m->restitution, 1.0) << name;
     EXPECT_FALSE(m->source.empty()) << name;
   }
-  EXPECT_EQ(materials().size(), 12u);
+  EXPECT_EQ(materials().size(), 17u);
   EXPECT_EQ(findMaterial("unobtainium"), nullptr);
 }
 
@@ -46,6 +46,12 @@ TEST(Materials, ValuesFromTheReferenceTable) {  // docs/scenes.md "Materials"
   const Material& wood = *findMaterial("wood");
   EXPECT_EQ(wood.rayleigh_alpha_per_s, 60.0);
   EXPECT_EQ(wood.rayleigh_beta_s, 2e-6);
+  const Material& porcelain = *findMaterial("porcelain");
+  EXPECT_EQ(porcelain.density_kg_per_m3, 2400.0);
+  EXPECT_EQ(porcelain.youngs_modulus_pa, 7.0e10);
+  EXPECT_EQ(porcelain.poisson_ratio, 0.17);
+  EXPECT_EQ(findMaterial("brass")->youngs_modulus_pa, 1.01e11);
+  EXPECT_EQ(findMaterial("granite")->poisson_ratio, 0.213);
   // √(E/ρ) of KleinPAT's glass (4883 m/s), within its rounding.
   EXPECT_NEAR(std::sqrt(findMaterial("glass")->youngs_modulus_pa / findMaterial("glass")->density_kg_per_m3), 4883, 1);
 }

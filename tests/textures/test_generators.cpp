@@ -17,7 +17,8 @@ using namespace thx::tex;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-const char* const kKinds[] = {"bricks", "vvalley", "grooves", "pebbles", "wood", "sine", "dimples", "tilted", "zigzag"};
+const char* const kKinds[] = {"bricks", "vvalley", "grooves", "pebbles", "wood", "sine", "dimples", "tilted", "zigzag",
+                              "porcelain", "metal", "stone", "ceramic_tile"};
 
 TextureMap make(const std::string& kind, int size, std::map<std::string, double> params = {}, std::uint64_t seed = 1) {
   GenerateRequest r;
@@ -161,30 +162,41 @@ TEST(Generators, SpecsListEveryKindWithSaneDefaults) {
 // every 20 texels; sine, wood and tilted have none). min_caught: the share of tested texels at
 // which the check would notice a mirrored slope (a wrong sign or axis convention): it proves the
 // tolerance is tight where the surface slopes (bricks and pebbles are mostly flat faces/ground).
-TEST(Generators, NormalsAgreeWithTheirOwnDepth) {
-  struct Case {
-    const char* kind;
-    double min_tested, min_caught;
-  };
-  const Case cases[] = {{"bricks", 0.9, 0.1},  {"vvalley", 0.75, 0.99}, {"grooves", 0.85, 0.4},
-                        {"pebbles", 0.9, 0.2}, {"wood", 1.0, 0.5},      {"sine", 1.0, 0.9},
-                        {"dimples", 0.9, 0.2}, {"tilted", 1.0, 0.99},   {"zigzag", 0.95, 0.3}};
+struct ConsistencyCase {
+  const char* kind;
+  double min_tested, min_caught;
+};
+
+void expectConsistentAtDefaults(const ConsistencyCase& k) {
   const int n = 256;
   const double extent = 0.025, texel = extent / n;
-  for (const Case& k : cases) {
-    const TextureMap m = make(k.kind, n, {{"extent", extent}});
-    ASSERT_TRUE(m.isRelief());
-    const Consistency c = checkConsistency(m, texel);
-    const double interior = double(n - 4) * (n - 4);
-    std::printf("[ generators ] %-8s max depth %.3g mm: tested %.1f %% of interior texels (skipped %ld near "
-                "creases), max slope error %.2e (mean %.2e), largest tolerance %.2e, mirrored slope caught at "
-                "%.1f %%\n",
-                k.kind, m.maxDepth() * 1e3, 100 * double(c.tested) / interior, c.skipped, c.max_error,
-                c.sum_error / double(c.tested), c.max_tolerance, 100 * double(c.flip_caught) / double(c.tested));
-    EXPECT_EQ(c.failed, 0) << k.kind;
-    EXPECT_GE(double(c.tested), k.min_tested * interior) << k.kind;
-    EXPECT_GE(double(c.flip_caught), k.min_caught * double(c.tested)) << k.kind;
-  }
+  const TextureMap m = make(k.kind, n, {{"extent", extent}});
+  ASSERT_TRUE(m.isRelief());
+  const Consistency c = checkConsistency(m, texel);
+  const double interior = double(n - 4) * (n - 4);
+  std::printf("[ generators ] %-8s max depth %.3g mm: tested %.1f %% of interior texels (skipped %ld near "
+              "creases), max slope error %.2e (mean %.2e), largest tolerance %.2e, mirrored slope caught at "
+              "%.1f %%\n",
+              k.kind, m.maxDepth() * 1e3, 100 * double(c.tested) / interior, c.skipped, c.max_error,
+              c.sum_error / double(c.tested), c.max_tolerance, 100 * double(c.flip_caught) / double(c.tested));
+  EXPECT_EQ(c.failed, 0) << k.kind;
+  EXPECT_GE(double(c.tested), k.min_tested * interior) << k.kind;
+  EXPECT_GE(double(c.flip_caught), k.min_caught * double(c.tested)) << k.kind;
+}
+
+TEST(Generators, NormalsAgreeWithTheirOwnDepth) {
+  const ConsistencyCase cases[] = {{"bricks", 0.9, 0.1},  {"vvalley", 0.75, 0.99}, {"grooves", 0.85, 0.4},
+                                   {"pebbles", 0.9, 0.2}, {"wood", 1.0, 0.5},      {"sine", 1.0, 0.9},
+                                   {"dimples", 0.9, 0.2}, {"tilted", 1.0, 0.99},   {"zigzag", 0.95, 0.3}};
+  for (const ConsistencyCase& k : cases) expectConsistentAtDefaults(k);
+}
+
+// The study surfaces' generators, the same way (a test of their own keeps each short under the
+// sanitizers). Cracks, grout corners and scratches a few texels wide are skipped like creases.
+TEST(SurfaceGenerators, NormalsAgreeWithTheirOwnDepth) {
+  const ConsistencyCase cases[] = {{"porcelain", 0.75, 0.6}, {"metal", 0.5, 0.05}, {"stone", 0.85, 0.95},
+                                   {"ceramic_tile", 0.85, 0.5}};
+  for (const ConsistencyCase& k : cases) expectConsistentAtDefaults(k);
 }
 
 TEST(Generators, SameSeedSameMapDifferentSeedDifferentMap) {
@@ -192,7 +204,8 @@ TEST(Generators, SameSeedSameMapDifferentSeedDifferentMap) {
     const TextureMap a = make(kind, 96, {}, 42), b = make(kind, 96, {}, 42), c = make(kind, 96, {}, 43);
     EXPECT_TRUE(identical(a, b)) << kind;
     const std::string k = kind;
-    const bool seeded = k == "bricks" || k == "pebbles" || k == "wood";
+    const bool seeded = k == "bricks" || k == "pebbles" || k == "wood" || k == "porcelain" || k == "metal" ||
+                        k == "stone" || k == "ceramic_tile";
     EXPECT_EQ(identical(a, c), !seeded) << kind;
   }
 }
@@ -310,4 +323,161 @@ TEST(Generators, BadRequestsNameTheParameterAndValue) {
     EXPECT_EQ(e.source(), "generator vvalley");
     EXPECT_EQ(e.value(), "period=0");
   }
+}
+
+// The surfaces of the user studies (porcelain, metal, stone, ceramic_tile): what each pattern
+// promises, checked where it is known exactly.
+
+// Metal's other patterns (the defaults test covers brushed) keep normals and depth consistent.
+TEST(SurfaceGenerators, MetalKnurledAndHammeredNormalsAgreeWithTheirDepth) {
+  const int n = 256;
+  const double extent = 0.025;
+  for (const double pattern : {1.0, 2.0}) {
+    const TextureMap m = make("metal", n, {{"extent", extent}, {"pattern", pattern}});
+    const Consistency c = checkConsistency(m, extent / n);
+    EXPECT_EQ(c.failed, 0) << "pattern " << pattern;
+    std::printf("[ metal ] pattern %g: tested %.1f %% of interior texels, mirrored slope caught at %.1f %%\n", pattern,
+                100 * double(c.tested) / ((n - 4) * (n - 4)), 100 * double(c.flip_caught) / double(c.tested));
+    // The scratches (on every pattern) are a few texels wide here, and skipped like creases.
+    EXPECT_GE(double(c.tested), 0.5 * (n - 4) * (n - 4)) << "pattern " << pattern;
+    EXPECT_GE(double(c.flip_caught), 0.5 * double(c.tested)) << "pattern " << pattern;
+  }
+}
+
+// Without undulation the tile is exact: grout texels (within grout/2 of a joint line x or y = k *
+// tile) lie grout_depth below the faces, and faces (beyond grout/2 + bevel from every joint) at 0.
+TEST(SurfaceGenerators, CeramicTileGroutSitsOnTheJointLines) {
+  const int n = 200;
+  const double extent = 0.2, tile = 0.05, grout = 0.004, depth = 0.001, bevel = 0.002, d = extent / n;
+  const TextureMap m = make("ceramic_tile", n,
+                            {{"extent", extent}, {"tile", tile}, {"grout", grout}, {"grout_depth", depth},
+                             {"bevel", bevel}, {"undulation", 0.0}});
+  EXPECT_NEAR(m.maxDepth(), depth, 1e-9);
+  const double q = m.maxDepth() / 65535;
+  int grout_texels = 0, face_texels = 0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      auto edge = [&](double c) { return std::fabs(c - std::round(c / tile) * tile); };
+      const double ex = edge((i + 0.5) * d), ey = edge(extent - (j + 0.5) * d);
+      if (std::min(ex, ey) < grout / 2) {
+        EXPECT_NEAR(m.depth(i, j), depth, q) << i << "," << j;
+        ++grout_texels;
+      } else if (std::min(ex, ey) > grout / 2 + bevel) {
+        EXPECT_NEAR(m.depth(i, j), 0.0, q) << i << "," << j;
+        EXPECT_LT(angleBetween(m.normal(i, j).cast<double>(), Eigen::Vector3d::UnitZ()), 1e-4);
+        ++face_texels;
+      }
+    }
+  }
+  // 1 mm texels: 4 joint lines each way (x = 0 = 0.2, 0.05, 0.1, 0.15), 4 texel columns each within
+  // grout/2 = 2 mm of one: 16 grout columns and rows; 8 columns per tile are grout or bevel (within
+  // 4 mm of a joint), so 4 x 42 columns and rows are face.
+  EXPECT_EQ(grout_texels, n * n - (n - 16) * (n - 16));
+  EXPECT_EQ(face_texels, 168 * 168);
+}
+
+// Porcelain is nearly flat: a few micrometres of undulation, crazing cracks a thin network.
+TEST(SurfaceGenerators, PorcelainIsNearlyFlatWithAThinCrackNetwork) {
+  const int n = 160;
+  const double extent = 0.1;
+  const TextureMap plain = make("porcelain", n, {{"extent", extent}, {"craze_depth", 0.0}});
+  EXPECT_GT(plain.maxDepth(), 1e-6);
+  EXPECT_LT(plain.maxDepth(), 3 * 5e-6);  // |noise| <= ~0.7 per octave, two octaves of 5 and 2.5 um
+  const TextureMap crazed = make("porcelain", n, {{"extent", extent}});
+  EXPECT_GT(crazed.maxDepth(), 2e-5);
+  EXPECT_LT(crazed.maxDepth(), 2e-5 + 3 * 5e-6);
+  int cracked = 0;
+  double worst_tilt = 0.0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      cracked += crazed.depth(i, j) > crazed.maxDepth() - 1e-5;  // within the lower half of a crack
+      worst_tilt = std::max(worst_tilt, angleBetween(crazed.normal(i, j).cast<double>(), Eigen::Vector3d::UnitZ()));
+    }
+  const double share = double(cracked) / (n * n);
+  std::printf("[ porcelain ] cracked share %.3f, steepest normal %.2f deg\n", share, worst_tilt * 180 / kPi);
+  EXPECT_GT(share, 0.01);
+  EXPECT_LT(share, 0.2);
+  EXPECT_LT(worst_tilt, 10 * kPi / 180);  // shallow cracks: never steep
+}
+
+// Brushed metal is anisotropic: scratches run along x, so slopes across them (y) dominate.
+TEST(SurfaceGenerators, BrushedMetalSlopesAcrossTheScratches) {
+  const int n = 256;
+  const TextureMap m = make("metal", n, {{"extent", 0.05}});
+  double sx = 0.0, sy = 0.0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector2d s = slopeOf(m, i, j);
+      sx += std::fabs(s.x());
+      sy += std::fabs(s.y());
+    }
+  std::printf("[ metal ] brushed mean |dh/dx| %.2e, mean |dh/dy| %.2e\n", sx / (n * n), sy / (n * n));
+  EXPECT_GT(sy, 10 * sx);
+  EXPECT_LE(m.maxDepth(), 1.5e-5 + 1e-9);
+}
+
+// Knurling repeats with its pitch along x and y; its depth is the groove depth.
+TEST(SurfaceGenerators, KnurledMetalRepeatsWithItsPitch) {
+  const int n = 200;
+  const double extent = 0.05, pitch = 0.005;  // 20 texels per pitch
+  const TextureMap m =
+      make("metal", n, {{"extent", extent}, {"pattern", 1}, {"knurl_pitch", pitch}, {"scratch_depth", 0.0}});
+  EXPECT_NEAR(m.maxDepth(), 0.0005, 0.0005 * 0.05);  // texel centres miss the exact groove bottom
+  const double q = m.maxDepth() / 65535;
+  for (int j = 0; j + 20 < n; j += 3)
+    for (int i = 0; i + 20 < n; i += 5) {
+      EXPECT_NEAR(m.depth(i, j), m.depth(i + 20, j), 2 * q) << i << "," << j;
+      EXPECT_NEAR(m.depth(i, j), m.depth(i, j + 20), 2 * q) << i << "," << j;
+    }
+}
+
+// Hammered dents overlap and add up, but stay of the order of dent_depth.
+TEST(SurfaceGenerators, HammeredMetalDentsHaveTheirDepth) {
+  const TextureMap m = make("metal", 128, {{"extent", 0.05}, {"pattern", 2}, {"scratch_depth", 0.0}});
+  EXPECT_GT(m.maxDepth(), 0.5 * 0.0003);
+  EXPECT_LT(m.maxDepth(), 4 * 0.0003);
+}
+
+// Stone is rough enough for a relief map; its cracks deepen it.
+TEST(SurfaceGenerators, StoneHasReliefWorthyDepthAndCracks) {
+  const TextureMap rough = make("stone", 256, {{"crack_depth", 0.0}});
+  const TextureMap cracked = make("stone", 256);
+  EXPECT_GT(rough.maxDepth(), 0.5e-3);
+  EXPECT_GT(cracked.maxDepth(), rough.maxDepth() + 0.5e-3);
+  EXPECT_LT(cracked.maxDepth(), 6e-3);
+}
+
+TEST(SurfaceGenerators, BadParametersNameTheParameter) {
+  auto err = [](const std::string& kind, std::map<std::string, double> params) {
+    GenerateRequest r;
+    r.kind = kind;
+    r.size = 16;
+    r.params = std::move(params);
+    return errorOf(r);
+  };
+  std::string m = err("metal", {{"pattern", 1.5}});
+  EXPECT_NE(m.find("pattern=1.5"), std::string::npos) << m;
+  EXPECT_NE(m.find("hammered"), std::string::npos) << m;
+  m = err("metal", {{"pattern", 3}});
+  EXPECT_NE(m.find("pattern=3"), std::string::npos) << m;
+  m = err("stone", {{"octaves", 2.5}});
+  EXPECT_NE(m.find("octaves=2.5"), std::string::npos) << m;
+  m = err("stone", {{"crack_width", 0.04}});
+  EXPECT_NE(m.find("crack_width=0.04"), std::string::npos) << m;
+  m = err("porcelain", {{"craze_width", 0.005}});
+  EXPECT_NE(m.find("craze_width=0.005"), std::string::npos) << m;
+  EXPECT_NE(m.find("craze_cell=0.008"), std::string::npos) << m;
+  m = err("ceramic_tile", {{"bevel", 0.03}});
+  EXPECT_NE(m.find("bevel=0.03"), std::string::npos) << m;
+  m = err("ceramic_tile", {{"grout_depth", -1}});
+  EXPECT_NE(m.find("grout_depth=-1"), std::string::npos) << m;
+}
+
+// Lattices finer than 1024 points per side hash each point instead of tabulating it
+// (textures/generators/noise.hpp); that path is deterministic too.
+TEST(SurfaceGenerators, FineLatticesAreHashedDeterministically) {
+  const std::map<std::string, double> fine{{"extent", 1.0}, {"craze_cell", 0.0009}, {"craze_width", 0.0002}};
+  const TextureMap a = make("porcelain", 32, fine, 5), b = make("porcelain", 32, fine, 5);
+  EXPECT_TRUE(identical(a, b));
+  EXPECT_GT(a.maxDepth(), 0.0);
 }

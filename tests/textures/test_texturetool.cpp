@@ -94,7 +94,8 @@ TEST_F(TextureTool, HelpAndUsageErrors) {
 TEST_F(TextureTool, GenerateListShowsEveryKindWithRanges) {
   const ToolRun r = run("generate --list");
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const char* kind : {"bricks", "vvalley", "grooves", "pebbles", "wood", "sine", "dimples", "tilted"})
+  for (const char* kind : {"bricks", "vvalley", "grooves", "pebbles", "wood", "sine", "dimples", "tilted", "zigzag",
+                           "porcelain", "metal", "stone", "ceramic_tile"})
     EXPECT_TRUE(has(r.out, std::string(kind) + ":")) << kind;
   EXPECT_TRUE(has(r.out, "angle_deg")) << r.out;
   EXPECT_TRUE(has(r.out, "[10, 170] deg")) << r.out;

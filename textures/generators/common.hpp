@@ -48,6 +48,10 @@ GeneratorEntry sineGenerator();
 GeneratorEntry dimplesGenerator();
 GeneratorEntry tiltedGenerator();
 GeneratorEntry zigzagGenerator();
+GeneratorEntry porcelainGenerator();
+GeneratorEntry metalGenerator();
+GeneratorEntry stoneGenerator();
+GeneratorEntry ceramicTileGenerator();
 
 std::string formatNumber(double v);
 

@@ -32,7 +32,9 @@ const std::vector<gen::GeneratorEntry>& entries() {
   static const std::vector<gen::GeneratorEntry> list = [] {
     std::vector<gen::GeneratorEntry> v{gen::bricksGenerator(), gen::vvalleyGenerator(), gen::groovesGenerator(),
                                        gen::pebblesGenerator(), gen::woodGenerator(),    gen::sineGenerator(),
-                                       gen::dimplesGenerator(), gen::tiltedGenerator(),   gen::zigzagGenerator()};
+                                       gen::dimplesGenerator(), gen::tiltedGenerator(),   gen::zigzagGenerator(),
+                                       gen::porcelainGenerator(), gen::metalGenerator(), gen::stoneGenerator(),
+                                       gen::ceramicTileGenerator()};
     for (gen::GeneratorEntry& e : v) e.spec.params.push_back(extentParam());
     return v;
   }();

@@ -18,7 +18,8 @@ const char* kGenerateHelp = R"(usage: texturetool generate KIND --out FILE [--si
 Writes a procedural relief map (RGBA PNG: RGB = normal, alpha = depth) whose normals are the
 exact gradients of the generator's continuous height field.
 
-  KIND                 bricks, vvalley, grooves, pebbles, wood, sine, dimples, tilted
+  KIND                 bricks, vvalley, grooves, pebbles, wood, sine, dimples, tilted, zigzag,
+                       porcelain, metal, stone, ceramic_tile
   --out FILE           output PNG
   --size N             texels per side (default 512)
   --param NAME=VALUE   a generator parameter in SI units (metres, degrees for *_deg);
