@@ -46,7 +46,12 @@ IdentificationAnswer SimulatedParticipant::identify(const Percept& presented, co
     for (Cue c : kCues) d += cueDistance(perceived, e, c).first;
     a.distances.push_back(d);
   }
-  a.answer = int(std::min_element(a.distances.begin(), a.distances.end()) - a.distances.begin());
+  // Ties (candidates the carried features cannot tell apart) are broken at random, not by order.
+  const double best = *std::min_element(a.distances.begin(), a.distances.end());
+  std::vector<int> tied;
+  for (std::size_t c = 0; c < a.distances.size(); ++c)
+    if (a.distances[c] <= best + 1e-9 * (1.0 + best)) tied.push_back(int(c));
+  a.answer = tied[std::size_t(rng_.below(int(tied.size())))];
   std::vector<double> sorted = a.distances;
   std::sort(sorted.begin(), sorted.end());
   const double d1 = sorted[0], d2 = sorted.size() > 1 ? sorted[1] : sorted[0];

@@ -87,7 +87,7 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
   session.header = sessionHeaderFor(m, o.participant, o.seed);
   SessionHeader& h = session.header;
   h.extra.push_back({"participant_model", "a person"});
-  h.extra.push_back({"operator_steps", "cue removal and candidate looks by hand (docs/study.md 8)"});
+  h.extra.push_back({"operator_steps", "cue removal and candidate looks by hand: docs/study.md section 8"});
   SessionWriter writer(o.out_csv, h);
   const std::vector<PlannedTrial> plan = planSession(m, o.seed);
   const int n = int(m.surfaces.size());

@@ -75,7 +75,7 @@ Percept measureSurface(const std::string& scene_path, const Cues& cues) {
         const Eigen::Vector3d nl = surf.surface.at(x, y).n_local;
         sum += (nl.x() * nl.x() + nl.y() * nl.y()) / std::max(1e-6, nl.z() * nl.z());
       }
-    p.features[kBallSlope] = std::sqrt(sum / (n * n));
+    p.features[kBallSlope] = std::log10(std::max(1e-4, std::sqrt(sum / (n * n))));
     p.features[kBallFriction] = mat.friction;
   }
   // The pen: what the servo renders along the exploration stroke, whatever the cues; without
@@ -99,7 +99,7 @@ Percept measureSurface(const std::string& scene_path, const Cues& cues) {
   if (count > 0) {
     const double mean_n = sum_n / double(count);
     if (mean_n > 0.05) {
-      p.features[kPenLateral] = std::sqrt(sum_lat2 / double(count)) / mean_n;
+      p.features[kPenLateral] = std::log10(std::max(1e-4, std::sqrt(sum_lat2 / double(count)) / mean_n));
       const double var = std::max(0.0, sum_n2 / double(count) - mean_n * mean_n);
       p.features[kPenNormalVar] = std::sqrt(var) / mean_n;
     }

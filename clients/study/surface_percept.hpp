@@ -4,11 +4,11 @@
 // it to expect.
 //  - sound: the surface material's wave speed log10 √(E/ρ) and damping log10(1 + α) (Rayleigh
 //    α): what sets a modal sound's pitch and ring (docs/audio.md);
-//  - ball: the texture's RMS slope (what makes a rolling ball jiggle and steer) and the surface's
-//    friction μ and restitution e (what the ball's bounces and slips show);
+//  - ball: log10 of the texture's RMS slope (what makes a rolling ball jiggle and steer) and the
+//    surface's friction μ (what its slips show);
 //  - pen: the force hapticd's servo actually renders while the simulated hand strokes the
-//    surface (server/servo_rig.hpp on the simulated PHANToM, lock-step): the RMS of the lateral
-//    force over the mean normal force, and the normal force's RMS variation over its mean.
+//    surface (server/servo_rig.hpp on the simulated PHANToM, lock-step): log10 of the RMS of the
+//    lateral force over the mean normal force, and the normal force's RMS variation over its mean.
 // A cue that is removed carries nothing: sound and ball give no features; the pen's scene is
 // rendered with zero stiffness (as in a real session), so its measured force is zero and the
 // pen gives no feature because there is none to feel, not because a flag says so.
@@ -27,8 +27,9 @@ inline constexpr int kFeatureCount = 6;
 enum Feature : int { kSoundSpeed, kSoundDamping, kBallSlope, kBallFriction, kPenLateral, kPenNormalVar };
 
 // The perceptual resolution (just-noticeable difference) of each feature, in its own units: a
-// difference of one JND is what noise of one standard deviation blurs. Our model's choice.
-inline constexpr std::array<double, kFeatureCount> kFeatureJnd{0.05, 0.15, 0.01, 0.05, 0.03, 0.03};
+// difference of one JND is what noise of one standard deviation blurs. Our model's choice: the
+// log features get 0.08 (a Weber fraction of 20 %), friction 0.05, the force variation 0.03.
+inline constexpr std::array<double, kFeatureCount> kFeatureJnd{0.05, 0.15, 0.08, 0.05, 0.08, 0.03};
 
 // The cue each feature belongs to.
 enum class Cue { Sound, Ball, Pen };
