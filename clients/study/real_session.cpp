@@ -7,8 +7,11 @@
 
 #include "clients/study/button_protocol.hpp"
 #include "clients/study/rating_prompt.hpp"
+#include "clients/study/scene_stage.hpp"
 #include "clients/study/session_csv.hpp"
 #include "clients/study/trial_plan.hpp"
+#include "scenes/scene_loader.hpp"
+#include "scenes/scene_surface.hpp"
 #include "thx_client/app.hpp"
 
 namespace thx::study {
@@ -61,17 +64,19 @@ struct ButtonSource {
   }
 };
 
-void switchTo(ClientApp& app, const std::string& scene_path) {
-  if (!app.loadScene(sceneNameOf(scene_path)))
+void switchTo(ClientApp& app, const std::string& scene_path, const Cues& cues = {}) {
+  if (!app.loadScene(stagedSceneName(scene_path, cues)))
     throw Error(Error::Kind::Io, "stopped by a signal while switching the scene; the rows written so far are kept");
 }
 
-std::string removedCue(const Cues& c) {
-  return !c.sound ? "the sound (mute the audio client's output)"
-       : !c.ball  ? "the ball (no rolling object: take the ball scene's object away in the physics client)"
-       : !c.pen   ? "the pen's force (the pen must still move the cursor)"
-                  : "";
+// The representation a scene's surface is drawn and rendered as.
+Representation representationOf(const std::string& scene_path) {
+  const scene::Scene sc = scene::loadScene(scene_path);
+  return scene::buildSceneSurface(sc).map->isRelief() ? Representation::Relief : Representation::Normal;
 }
+
+// The removals a staged scene variant does not make (scene_stage.hpp): the sound's.
+std::string removedByHand(const Cues& c) { return c.sound ? "" : "the sound (mute the audio client's output)"; }
 
 }  // namespace
 
@@ -87,7 +92,7 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
   session.header = sessionHeaderFor(m, o.participant, o.seed);
   SessionHeader& h = session.header;
   h.extra.push_back({"participant_model", "a person"});
-  h.extra.push_back({"operator_steps", "cue removal and candidate looks by hand: docs/study.md section 8"});
+  h.extra.push_back({"operator_steps", "sound removal and candidate looks by hand: docs/study.md section 8"});
   SessionWriter writer(o.out_csv, h);
   const std::vector<PlannedTrial> plan = planSession(m, o.seed);
   const int n = int(m.surfaces.size());
@@ -99,11 +104,11 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
       while (button.next() != ButtonEvent::Confirm) {}
     }
     for (const PlannedTrial& t : plan) {
-      switchTo(app, t.scene);
-      const std::string removed = removedCue(t.cues);
-      if (!removed.empty()) console.operatorStep("remove " + removed);
+      switchTo(app, t.scene, t.cues);  // NAME.nopen / NAME.noball remove the pen's force / the ball
+      const std::string by_hand = removedByHand(t.cues);
+      if (!by_hand.empty()) console.operatorStep("remove " + by_hand);
       std::cout << "\nTrial " << t.trial << " of " << plan.size() << ": "
-                << (removed.empty() ? "every cue is on" : "one cue is removed: " + cueCondition(t.cues)) << ".\n"
+                << (t.cues == Cues{} ? std::string("every cue is on") : "one cue is removed: " + cueCondition(t.cues)) << ".\n"
                 << "Short press: next look; hold: this is my answer.\n";
       int look = t.first_look;
       console.operatorStep("show candidate look " + m.surfaces[std::size_t(look)].name);
@@ -118,20 +123,21 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
       row.trial = t.trial;
       row.surface = m.surfaces[std::size_t(t.surface)].name;
       row.cues = t.cues;
+      row.representation = representationOf(t.scene);
       row.answer = m.surfaces[std::size_t(look)].name;
       row.correct = look == t.surface;
       row.time_s = std::max(0.0, button.now_s - start);
       row.setRating(Rating::Ease, console.rating("How easy was this trial?", 1, 10));
       const struct { bool on; const char* name; Rating use, acc; } cues[3] = {
           {t.cues.sound, "the sound", Rating::UseSound, Rating::AccSound},
-          {t.cues.ball, "the ball", Rating::UseBall, Rating::AccBall},
-          {t.cues.pen, "the pen's feel", Rating::UsePen, Rating::AccPen}};
+          {t.cues.ball, "the ball's motion", Rating::UseBall, Rating::AccBall},
+          {t.cues.pen, "what the pen felt", Rating::UsePen, Rating::AccPen}};
       for (const auto& c : cues) {
         if (!c.on) continue;
         row.setRating(c.use, console.rating(std::string("How much did you use ") + c.name + "?", 1, 5));
-        row.setRating(c.acc, console.rating(std::string("How accurate did ") + c.name + " feel?", 1, 10));
+        row.setRating(c.acc, console.rating(std::string("How accurate did ") + c.name + " seem?", 1, 10));
       }
-      if (!removed.empty()) console.operatorStep("put " + removed.substr(0, removed.find(" (")) + " back");
+      if (!by_hand.empty()) console.operatorStep("put the sound back (unmute)");
       writer.append(row);
       session.trials.push_back(row);
     }

@@ -1,12 +1,13 @@
 #pragma once
-// A session with a person at the device (docs/study.md §7): hapticd runs on the manifest's
-// folder; the runner switches its scene for each trial (ClientApp::loadScene), decodes the device
+// A session with a person at the device (docs/study.md §7): hapticd and the clients run on the
+// staged folder (scene_stage.hpp); the runner switches the scene for each trial
+// (ClientApp::loadScene; NAME.nopen without the pen's force, NAME.noball without the ball), decodes the device
 // button from hapticd's device_state_t stream (button_protocol.hpp) and asks the ratings on the
 // terminal (rating_prompt.hpp). Each row is flushed as its trial ends.
 //
 // Not automated yet, and said on the terminal as an OPERATOR step that must be confirmed with
-// Enter (recorded in the session header): removing a cue (mute the audio client's output; take
-// the ball away; switch the pen's force off) and showing the candidate look the participant is
+// Enter (recorded in the session header): removing the sound (mute the audio client's output)
+// and showing the candidate look the participant is
 // on (the visual client draws hapticd's scene, which is the trial's surface: in Study 1 it must
 // not be on the participant's screen).
 #include <cstdint>

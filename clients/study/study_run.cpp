@@ -8,6 +8,7 @@
 #include "base/cli_number.hpp"
 #include "base/error.hpp"
 #include "clients/study/real_session.hpp"
+#include "clients/study/scene_stage.hpp"
 #include "clients/study/simulated_session.hpp"
 #include "clients/study/study_manifest.hpp"
 
@@ -15,6 +16,7 @@ namespace {
 
 constexpr const char* kHelp = R"(usage: study-run --manifest FILE --participant ID [--seed N] [--out FILE]
                  [--simulate [--noise JND]] [--lcm-url URL] [--long-press S]
+       study-run --manifest FILE --stage DIR
 
 Runs one participant's session of a user study (docs/study.md) and writes it as a session CSV,
 one row per trial, flushed as each trial ends (study-analyze reads it).
@@ -23,11 +25,15 @@ The manifest (docs/study.md §5.1) names the study (identification or relief-vs-
 candidate surfaces with their sound families and scene files; the trials are drawn from the
 seed, which the session file records.
 
-Real session (default): hapticd must run on the manifest's folder, e.g.
+Stage (--stage DIR): writes the manifest's scenes into DIR, and for Study 1 each surface's
+variants NAME.nopen.yaml (no pen force) and NAME.noball.yaml (no ball), then exits.
+
+Real session (default): hapticd and the clients run on the staged folder, e.g.
   hapticd --scene DIR/TRAINING.yaml --scenes-dir DIR
-with physics-client, audio-client and visual-client --live beside it (docs/study.md §7). The
-runner switches hapticd's scene for each trial, reads the device button from hapticd's
-device_state_t stream and asks the ratings on this terminal.
+with physics-client, audio-client (--scenes-dir DIR) beside it (docs/study.md §7). The runner
+switches hapticd's scene for each trial (a variant where a cue is removed), reads the device
+button from hapticd's device_state_t stream and asks the ratings on this terminal; muting the
+sound and showing the candidate look are operator steps it prints (docs/study.md §8).
 Button: short press (< --long-press s) of button 1 = next look / next surface; hold button 1
 for --long-press s, or press button 2 = confirm.
 
@@ -41,6 +47,7 @@ options:
   --seed N           the seed that draws the trials, a whole number in [0, 2^63); default: a
                      random one (printed, and recorded in the session file)
   --out FILE         the session CSV (default: ID_STUDY.csv)
+  --stage DIR        write the staged scene folder and exit
   --simulate         a simulated participant instead of a person
   --noise JND        --simulate: the participant's perceptual noise in JNDs (default 1)
   --lcm-url URL      real session: the LCM bus hapticd publishes on (default LCM's)
@@ -59,7 +66,7 @@ std::string need(int& i, int argc, char** argv, const std::string& opt) {
 
 int main(int argc, char** argv) {
   try {
-    std::string manifest_path, participant, out, lcm_url;
+    std::string manifest_path, participant, out, lcm_url, stage_dir;
     std::optional<std::uint64_t> seed;
     bool simulate = false;
     double noise = 1.0, long_press = 0.8;
@@ -74,12 +81,18 @@ int main(int argc, char** argv) {
       else if (a == "--seed") seed = std::uint64_t(thx::cli::parseInteger(a, need(i, argc, argv, a), 0, std::numeric_limits<long long>::max()));
       else if (a == "--out") out = need(i, argc, argv, a);
       else if (a == "--simulate") simulate = true;
+      else if (a == "--stage") stage_dir = need(i, argc, argv, a);
       else if (a == "--noise") noise = thx::cli::parseNumber(a, need(i, argc, argv, a), {0.0, 100.0, false, "JND"});
       else if (a == "--lcm-url") lcm_url = need(i, argc, argv, a);
       else if (a == "--long-press") long_press = thx::cli::parseNumber(a, need(i, argc, argv, a), {0.1, 10.0, false, "s"});
       else throw thx::UsageError("unknown option '" + a + "'");
     }
     if (manifest_path.empty()) throw thx::UsageError("--manifest: required");
+    if (!stage_dir.empty()) {
+      const auto files = thx::study::stageScenes(thx::study::loadManifest(manifest_path), stage_dir);
+      std::printf("study-run: staged %zu scenes in %s\n", files.size(), stage_dir.c_str());
+      return 0;
+    }
     if (participant.empty()) throw thx::UsageError("--participant: required");
     if (!thx::study::isToken(participant))
       throw thx::UsageError("--participant: expected letters, digits and _-.+, got '" + participant + "'");

@@ -41,7 +41,7 @@ void runServo(const std::string& scene_path, const Cues& cues, dev::HandScript s
   const scene::Scene sc = scene::loadScene(scene_path);
   dev::SimPhantom device(srv::simConfigFor(sc, /*lockstep=*/true), std::move(script));
   srv::ScenePolicy policy;
-  if (!cues.pen) policy.stiffness_fraction = 0.0;  // the pen still moves, nothing pushes back
+  if (!cues.pen) policy.stiffness_fraction = 0.0;  // the pen still moves, nothing pushes back (as NAME.nopen)
   const auto prepared = srv::prepareScene(sc, scene_path, device.spec(), policy);
   srv::ServoRig rig(device, prepared->surface.surface, prepared->wiring);
   device.open();
