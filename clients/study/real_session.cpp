@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "clients/study/button_protocol.hpp"
+#include "clients/study/look_window.hpp"
 #include "clients/study/rating_prompt.hpp"
 #include "clients/study/scene_stage.hpp"
 #include "clients/study/session_csv.hpp"
@@ -92,7 +94,17 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
   session.header = sessionHeaderFor(m, o.participant, o.seed);
   SessionHeader& h = session.header;
   h.extra.push_back({"participant_model", "a person"});
-  h.extra.push_back({"operator_steps", "sound removal and candidate looks by hand: docs/study.md section 8"});
+  h.extra.push_back({"operator_steps", o.visual_client.empty() ? "sound removal and candidate looks by hand: docs/study.md section 8"
+                                                               : "sound removal by hand: docs/study.md section 8"});
+  std::optional<LookWindow> window;
+  if (!o.visual_client.empty())
+    window.emplace(o.visual_client, o.lcm_url.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--lcm-url", o.lcm_url});
+  // The look shown: a window of visual-client, or the operator's step.
+  const auto showLook = [&](const std::string& scene, bool ball, const std::string& name, bool first) {
+    if (window) window->show(scene, ball);
+    else if (first) console.operatorStep("show candidate look " + name);
+    else std::cout << "OPERATOR: show candidate look " << name << "\n";
+  };
   SessionWriter writer(o.out_csv, h);
   const std::vector<PlannedTrial> plan = planSession(m, o.seed);
   const int n = int(m.surfaces.size());
@@ -104,6 +116,7 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
       while (button.next() != ButtonEvent::Confirm) {}
     }
     for (const PlannedTrial& t : plan) {
+      if (window) window->stop();  // never draw the trial's own surface: no window while switching
       switchTo(app, t.scene, t.cues);  // NAME.nopen / NAME.noball remove the pen's force / the ball
       const std::string by_hand = removedByHand(t.cues);
       if (!by_hand.empty()) console.operatorStep("remove " + by_hand);
@@ -111,14 +124,15 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
                 << (t.cues == Cues{} ? std::string("every cue is on") : "one cue is removed: " + cueCondition(t.cues)) << ".\n"
                 << "Short press: next look; hold: this is my answer.\n";
       int look = t.first_look;
-      console.operatorStep("show candidate look " + m.surfaces[std::size_t(look)].name);
+      showLook(m.surfaces[std::size_t(look)].scene, t.cues.ball, m.surfaces[std::size_t(look)].name, true);
       const double start = button.clock();
       for (;;) {
         const ButtonEvent e = button.next();
         if (e == ButtonEvent::Confirm) break;
         look = (look + 1) % n;
-        std::cout << "OPERATOR: show candidate look " << m.surfaces[std::size_t(look)].name << "\n";
+        showLook(m.surfaces[std::size_t(look)].scene, t.cues.ball, m.surfaces[std::size_t(look)].name, false);
       }
+      if (window) window->stop();
       TrialRow row;
       row.trial = t.trial;
       row.surface = m.surfaces[std::size_t(t.surface)].name;

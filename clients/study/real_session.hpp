@@ -7,7 +7,7 @@
 //
 // Not automated yet, and said on the terminal as an OPERATOR step that must be confirmed with
 // Enter (recorded in the session header): removing the sound (mute the audio client's output)
-// and showing the candidate look the participant is
+// and, without --visual-client, showing the candidate look the participant is
 // on (the visual client draws hapticd's scene, which is the trial's surface: in Study 1 it must
 // not be on the participant's screen).
 #include <cstdint>
@@ -24,6 +24,7 @@ struct RealSessionOptions {
   std::string out_csv;
   std::string lcm_url;         // "" = LCM's default
   double long_press_s = 0.8;   // ButtonProtocolConfig::long_press_s
+  std::string visual_client;   // Study 1: show the candidate looks with it (look_window.hpp); "" = operator
 };
 
 Session runRealSession(const StudyManifest& manifest, const RealSessionOptions& options);

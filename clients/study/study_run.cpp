@@ -16,6 +16,7 @@ namespace {
 
 constexpr const char* kHelp = R"(usage: study-run --manifest FILE --participant ID [--seed N] [--out FILE]
                  [--simulate [--noise JND]] [--lcm-url URL] [--long-press S]
+                 [--visual-client PATH]
        study-run --manifest FILE --stage DIR
 
 Runs one participant's session of a user study (docs/study.md) and writes it as a session CSV,
@@ -32,8 +33,10 @@ Real session (default): hapticd and the clients run on the staged folder, e.g.
   hapticd --scene DIR/TRAINING.yaml --scenes-dir DIR
 with physics-client, audio-client (--scenes-dir DIR) beside it (docs/study.md §7). The runner
 switches hapticd's scene for each trial (a variant where a cue is removed), reads the device
-button from hapticd's device_state_t stream and asks the ratings on this terminal; muting the
-sound and showing the candidate look are operator steps it prints (docs/study.md §8).
+button from hapticd's device_state_t stream and asks the ratings on this terminal. Study 1's
+candidate looks: with --visual-client, a window of visual-client --live --allow-different-scene
+per look; without it, an operator step it prints. Muting the sound is an operator step
+(docs/study.md §8).
 Button: short press (< --long-press s) of button 1 = next look / next surface; hold button 1
 for --long-press s, or press button 2 = confirm.
 
@@ -52,6 +55,8 @@ options:
   --noise JND        --simulate: the participant's perceptual noise in JNDs (default 1)
   --lcm-url URL      real session: the LCM bus hapticd publishes on (default LCM's)
   --long-press S     real session: the hold that confirms (default 0.8 s)
+  --visual-client P  real session, Study 1: show each candidate look with the program P
+                     (e.g. build/clients/visual/visual-client; needs a display)
   --help             this text
 exit status: 0 done, 1 an error (bad manifest, a scene hapticd refused, no hapticd...), 2 a
 command-line mistake.
@@ -66,7 +71,7 @@ std::string need(int& i, int argc, char** argv, const std::string& opt) {
 
 int main(int argc, char** argv) {
   try {
-    std::string manifest_path, participant, out, lcm_url, stage_dir;
+    std::string manifest_path, participant, out, lcm_url, stage_dir, visual_client;
     std::optional<std::uint64_t> seed;
     bool simulate = false;
     double noise = 1.0, long_press = 0.8;
@@ -84,6 +89,7 @@ int main(int argc, char** argv) {
       else if (a == "--stage") stage_dir = need(i, argc, argv, a);
       else if (a == "--noise") noise = thx::cli::parseNumber(a, need(i, argc, argv, a), {0.0, 100.0, false, "JND"});
       else if (a == "--lcm-url") lcm_url = need(i, argc, argv, a);
+      else if (a == "--visual-client") visual_client = need(i, argc, argv, a);
       else if (a == "--long-press") long_press = thx::cli::parseNumber(a, need(i, argc, argv, a), {0.1, 10.0, false, "s"});
       else throw thx::UsageError("unknown option '" + a + "'");
     }
@@ -120,6 +126,7 @@ int main(int argc, char** argv) {
       o.out_csv = out;
       o.lcm_url = lcm_url;
       o.long_press_s = long_press;
+      o.visual_client = visual_client;
       s = thx::study::runRealSession(m, o);
     }
     int correct = 0;
