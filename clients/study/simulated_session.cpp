@@ -21,14 +21,16 @@ SessionHeader headerFor(const StudyManifest& m, const SimulatedSessionOptions& o
   return h;
 }
 
-// Measures each scene once per cue set (the candidates' expectations are asked for every trial).
+// Renders each scene once with the pen and once without (lock-step, so a second run would give
+// the same numbers); sound and ball are dropped from the first where a trial removes them.
 class PerceptCache {
  public:
-  const Percept& get(const std::string& scene, const Cues& cues) {
-    const std::string key = scene + (cues.sound ? "S" : "-") + (cues.ball ? "B" : "-") + (cues.pen ? "P" : "-");
+  Percept get(const std::string& scene, const Cues& cues) {
+    const Cues render{true, true, cues.pen};
+    const std::string key = scene + (cues.pen ? "|pen" : "|nopen");
     auto it = cache_.find(key);
-    if (it == cache_.end()) it = cache_.emplace(key, measureSurface(scene, cues)).first;
-    return it->second;
+    if (it == cache_.end()) it = cache_.emplace(key, measureSurface(scene, render)).first;
+    return withoutSoundOrBall(it->second, cues);
   }
 
  private:
@@ -60,7 +62,7 @@ Session runSimulatedSession(const StudyManifest& m, const SimulatedSessionOption
     row.trial = t.trial;
     row.surface = s.name;
     row.cues = t.cues;
-    const Percept presented = measureSurface(t.scene, t.cues);
+    const Percept presented = cache.get(t.scene, t.cues);
     row.representation = presented.representation;
     if (m.study == Study::ReliefVsNormal && presented.representation != t.representation)
       throw SessionError(m.source + ": surface '" + s.name + "': its " + std::string(representationName(t.representation)) +

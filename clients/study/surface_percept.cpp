@@ -24,20 +24,21 @@ bool cueOn(const Cues& cues, Cue cue) {
 }
 
 dev::HandScript explorationScript(double extent_m, double force_n) {
-  const double a = 0.35 * extent_m;  // well inside the surface, clear of its edges
+  const double a = 0.25 * extent_m;  // well inside the surface, clear of its edges
   std::vector<dev::HandStep> steps;
   steps.emplace_back(std::in_place_type<dev::HandHold>, dev::HandHold{0.6});  // the safety stage's engage ramp (0.5 s) passes
-  steps.emplace_back(std::in_place_type<dev::HandStroke>, dev::HandStroke{{-a, -0.3 * a}, {a, 0.3 * a}, 0.06, force_n});
-  steps.emplace_back(std::in_place_type<dev::HandStroke>, dev::HandStroke{{a, 0.3 * a}, {-a, -0.3 * a}, 0.06, force_n});
+  // One diagonal stroke, so the tip crosses features along both axes.
+  steps.emplace_back(std::in_place_type<dev::HandStroke>, dev::HandStroke{{-a, -0.5 * a}, {a, 0.5 * a}, 0.08, force_n});
   return dev::HandScript(std::move(steps));
 }
 
 namespace {
 
 // The scene prepared as hapticd prepares it, on a lock-step simulated PHANToM driven by `script`;
-// calls `each` with every tick record and the simulated time, for `duration_s`.
+// calls `each` with every tick record and the simulated time, for `duration_s` or until `each`
+// returns false.
 void runServo(const std::string& scene_path, const Cues& cues, dev::HandScript script, double duration_s,
-              const std::function<void(const srv::TickRecord&, double)>& each) {
+              const std::function<bool(const srv::TickRecord&, double)>& each) {
   const scene::Scene sc = scene::loadScene(scene_path);
   dev::SimPhantom device(srv::simConfigFor(sc, /*lockstep=*/true), std::move(script));
   srv::ScenePolicy policy;
@@ -47,7 +48,8 @@ void runServo(const std::string& scene_path, const Cues& cues, dev::HandScript s
   device.open();
   const double period_s = prepared->wiring.period_s;
   const long ticks = long(std::ceil(duration_s / period_s));
-  for (long k = 0; k < ticks; ++k) each(rig.tickAndDrain(), double(k + 1) * period_s);
+  for (long k = 0; k < ticks; ++k)
+    if (!each(rig.tickAndDrain(), double(k + 1) * period_s)) return;
 }
 
 double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
@@ -85,7 +87,7 @@ Percept measureSurface(const std::string& scene_path, const Cues& cues) {
   double sum_lat2 = 0.0, sum_n = 0.0, sum_n2 = 0.0;
   long count = 0;
   runServo(scene_path, cues, script, duration, [&](const srv::TickRecord& r, double t) {
-    if (t < 0.8 || !r.in_contact) return;  // after the engage ramp, while touching
+    if (t < 0.8 || !r.in_contact) return true;  // after the engage ramp, while touching
     const double* n = r.n_geom_world;
     const double fn = r.f_out[0] * n[0] + r.f_out[1] * n[1] + r.f_out[2] * n[2];
     const double lat[3] = {r.f_out[0] - fn * n[0], r.f_out[1] - fn * n[1], r.f_out[2] - fn * n[2]};
@@ -94,6 +96,7 @@ Percept measureSurface(const std::string& scene_path, const Cues& cues) {
     sum_n += fn;
     sum_n2 += fn * fn;
     ++count;
+    return true;
   });
   p.explore_s = duration;
   if (count > 0) {
@@ -107,20 +110,31 @@ Percept measureSurface(const std::string& scene_path, const Cues& cues) {
   return p;
 }
 
+Percept withoutSoundOrBall(Percept all, const Cues& cues) {
+  for (int f = 0; f < kFeatureCount; ++f)
+    if (cueOf(f) != Cue::Pen && !cueOn(cues, cueOf(f))) all.features[std::size_t(f)].reset();
+  return all;
+}
+
 ButtonRun pressButton(const std::string& scene_path, const Cues& cues, int nexts) {
-  // Presses off to one side of the surface's centre: a short push is a NEXT, a long one CONFIRM.
+  // Quick taps at the surface's centre (a short push is a NEXT), then a hold (CONFIRM). The sim's
+  // button is down while its hand pushes, so a tap is a quick push: short approach and ramps.
+  dev::HandScriptOptions quick;
+  quick.hover_height_m = 0.002;
+  quick.approach_s = 0.05;
+  quick.force_ramp_s = 0.03;
   std::vector<dev::HandStep> steps;
   for (int i = 0; i < nexts; ++i) steps.emplace_back(std::in_place_type<dev::HandPress>, dev::HandPress{{0.0, 0.0}, 1.0, 0.1});
   steps.emplace_back(std::in_place_type<dev::HandPress>, dev::HandPress{{0.0, 0.0}, 1.0, 1.0});
   steps.emplace_back(std::in_place_type<dev::HandHold>, dev::HandHold{0.2});
-  dev::HandScript script(std::move(steps));
+  dev::HandScript script(std::move(steps), quick);
   ButtonProtocol protocol;
   ButtonRun out;
   runServo(scene_path, cues, script, script.duration(), [&](const srv::TickRecord& r, double t) {
     const ButtonEvent e = protocol.update(t, r.buttons);
-    if (out.confirm_s) return;
     if (e == ButtonEvent::Next) ++out.nexts;
     if (e == ButtonEvent::Confirm) out.confirm_s = t;
+    return !out.confirm_s;  // the answer is given: the trial ends
   });
   return out;
 }

@@ -42,8 +42,9 @@ struct Percept {
   double explore_s = 0.0;  // simulated time the hand spent stroking
 };
 
-// The hand's exploration of a surface: a hold, then a stroke across it and back, pushing with
-// force_n. `extent_m` the surface's smaller side.
+// The hand's exploration of a surface: a hold (the safety stage's engage ramp), then one diagonal
+// stroke over half the surface at 0.08 m/s, pushing with force_n. `extent_m` the surface's
+// smaller side.
 dev::HandScript explorationScript(double extent_m, double force_n = 1.0);
 
 // Measures a scene's cues as `cues` leaves them on. Loads the scene from `scene_path`, prepares it
@@ -51,6 +52,12 @@ dev::HandScript explorationScript(double extent_m, double force_n = 1.0);
 // simulated PHANToM with the exploration script through the servo rig. Throws thx::Error naming
 // the scene file.
 Percept measureSurface(const std::string& scene_path, const Cues& cues);
+
+// The percept of a trial under `cues` from the same scene's percept with every cue on: the sound
+// and ball features dropped where removed. Equal to measureSurface(scene, cues) whenever the pen
+// is on (sound and ball are read from the scene, not rendered); a trial without the pen needs its
+// own measurement, since the force the servo renders is what changes.
+Percept withoutSoundOrBall(Percept all, const Cues& cues);
 
 // The result of a scripted answer: simulated time from the answer phase's start to the
 // CONFIRM, and how many NEXT events the button protocol decoded before it.

@@ -17,7 +17,7 @@ TEST(SurfacePercept, RemovedCuesCarryNothing) {
   const Percept all = measureSurface(scene, Cues{});
   for (int f = 0; f < kFeatureCount; ++f) EXPECT_TRUE(all.features[std::size_t(f)]) << "feature " << f;
   EXPECT_EQ(all.representation, Representation::Relief);
-  EXPECT_GT(all.explore_s, 2.0);
+  EXPECT_GT(all.explore_s, 1.5);
   EXPECT_GT(*all.features[kPenLateral], -1.0);  // the lateral force is above a tenth of the normal
 
   const Percept no_sound = measureSurface(scene, Cues{false, true, true});
@@ -32,6 +32,11 @@ TEST(SurfacePercept, RemovedCuesCarryNothing) {
   EXPECT_FALSE(no_pen.features[kPenLateral]);
   EXPECT_FALSE(no_pen.features[kPenNormalVar]);
   EXPECT_EQ(no_pen.features[kBallSlope], all.features[kBallSlope]);
+
+  // What the simulated session derives instead of rendering again (lock-step: the same numbers).
+  const auto same = [](const Percept& a, const Percept& b) { return a.features == b.features; };
+  EXPECT_TRUE(same(withoutSoundOrBall(all, Cues{false, true, true}), no_sound));
+  EXPECT_TRUE(same(withoutSoundOrBall(all, Cues{true, false, true}), no_ball));
 }
 
 TEST(SurfacePercept, ButtonPressesThroughTheSimulatedDeviceDecode) {
@@ -44,16 +49,28 @@ TEST(SurfacePercept, ButtonPressesThroughTheSimulatedDeviceDecode) {
   }
 }
 
-// Accuracy of `trials` identifications under `cues`, every candidate presented in turn.
-double accuracy(const std::vector<std::string>& scenes, const Cues& cues, std::uint64_t seed, int trials, double noise) {
-  std::vector<Percept> expected, presented;
+// Each scene rendered with every cue (the expectation) and without the pen's force.
+struct Measured {
+  std::vector<Percept> all, no_pen;
+};
+Measured measureAll(const std::vector<std::string>& scenes) {
+  Measured m;
   for (const auto& s : scenes) {
-    expected.push_back(measureSurface(s, Cues{}));
-    std::printf("%-60s", s.c_str());
-    for (const auto& f : expected.back().features) std::printf(" %8.4f", f.value_or(-1));
+    m.all.push_back(measureSurface(s, Cues{}));
+    m.no_pen.push_back(measureSurface(s, Cues{true, true, false}));
+    std::printf("%-28s", s.substr(s.rfind('/') + 1).c_str());
+    for (const auto& f : m.all.back().features) std::printf(" %8.4f", f.value_or(-1));
     std::printf("\n");
-    presented.push_back(measureSurface(s, cues));
   }
+  return m;
+}
+
+// Accuracy of `trials` identifications under `cues`, every candidate presented in turn.
+double accuracy(const Measured& m, const Cues& cues, std::uint64_t seed, int trials, double noise) {
+  const std::vector<Percept>& expected = m.all;
+  std::vector<Percept> presented;
+  for (std::size_t i = 0; i < m.all.size(); ++i) presented.push_back(withoutSoundOrBall(cues.pen ? m.all[i] : m.no_pen[i], cues));
+  const std::vector<std::string> scenes(m.all.size());
   SimulatedParticipant p(seed, noise);
   int correct = 0;
   for (int i = 0; i < trials; ++i) {
@@ -80,11 +97,12 @@ TEST(ParticipantModel, RemovingACueLowersAccuracy) {
   const StudyManifest m = loadManifest(kIdent);
   std::vector<std::string> scenes;
   for (const auto& s : m.surfaces) scenes.push_back(s.scene);
-  const double noise = 1.0, n = 500;
-  const double all = accuracy(scenes, Cues{}, 11, n, noise);
-  const double no_sound = accuracy(scenes, Cues{false, true, true}, 11, n, noise);
-  const double no_ball = accuracy(scenes, Cues{true, false, true}, 11, n, noise);
-  const double no_pen = accuracy(scenes, Cues{true, true, false}, 11, n, noise);
+  const Measured measured = measureAll(scenes);
+  const double noise = 2.0, n = 500;
+  const double all = accuracy(measured, Cues{}, 11, n, noise);
+  const double no_sound = accuracy(measured, Cues{false, true, true}, 11, n, noise);
+  const double no_ball = accuracy(measured, Cues{true, false, true}, 11, n, noise);
+  const double no_pen = accuracy(measured, Cues{true, true, false}, 11, n, noise);
   std::printf("accuracy at %.0f JND: all %.3f, no sound %.3f, no ball %.3f, no pen %.3f\n", noise, all, no_sound, no_ball,
               no_pen);
   EXPECT_GT(all, no_sound);

@@ -29,10 +29,12 @@ CliRun run(const test::TempDir& dir, const char* program, std::vector<std::strin
 
 bool has(const std::string& text, const std::string& s) { return text.find(s) != std::string::npos; }
 
-TEST(StudyRunE2e, BothStudiesSimulatedThenAnalysed) {
+// `participants` simulated participants through both studies, their sessions checked, then
+// study-analyze on them. With `rerun`, one session is run again and must come out byte for byte.
+void bothStudies(int participants, bool rerun) {
   test::TempDir dir("study_run");
   std::vector<std::string> files;
-  for (int p = 1; p <= 3; ++p) {
+  for (int p = 1; p <= participants; ++p) {
     for (const char* study : {"identification", "relief_vs_normal"}) {
       const std::string id = "S0" + std::to_string(p);
       const std::string out = dir.file(id + "_" + study + ".csv");
@@ -78,25 +80,37 @@ TEST(StudyRunE2e, BothStudiesSimulatedThenAnalysed) {
     }
   }
 
+  if (rerun) {
   // The same seed, the same session, byte for byte.
   const CliRun again = run(dir, THX_STUDY_RUN,
                         {"--simulate", "--manifest", kData + "/identification/manifest.yaml", "--participant", "S01",
                          "--seed", "101", "--out", dir.file("again.csv")});
   ASSERT_EQ(again.status, 0) << again.err;
   EXPECT_EQ(test::slurp(dir.file("again.csv")), test::slurp(files[0]));
+  }
 
   std::vector<std::string> args = files;
   args.insert(args.end(), {"--out", dir.file("results")});
   const CliRun a = run(dir, THX_STUDY_ANALYZE, args);
   ASSERT_EQ(a.status, 0) << a.err;
-  EXPECT_TRUE(has(a.out, "3 identification and 3 relief-vs-normal sessions")) << a.out;
+  const std::string n = std::to_string(participants);
+  EXPECT_TRUE(has(a.out, n + " identification and " + n + " relief-vs-normal sessions")) << a.out;
   const std::string by_cue = test::slurp(dir.file("results/identification_by_cue.csv"));
-  for (const char* row : {"\nall cues,9,", "\nno sound,3,", "\nno ball,3,", "\nno pen,3,"})
-    EXPECT_TRUE(has(by_cue, row)) << row << " in\n" << by_cue;
+  const std::vector<std::string> rows{"\nall cues," + std::to_string(3 * participants) + ",", "\nno sound," + n + ",",
+                                      "\nno ball," + n + ",", "\nno pen," + n + ","};
+  for (const std::string& row : rows) EXPECT_TRUE(has(by_cue, row)) << row << " in\n" << by_cue;
   const std::string paired = test::slurp(dir.file("results/ratings_relief_vs_normal.csv"));
-  EXPECT_TRUE(has(paired, "\noverall,3,")) << paired;
+  EXPECT_TRUE(has(paired, "\noverall," + n + ",")) << paired;
   EXPECT_TRUE(has(test::slurp(dir.file("results/study.md")), "identification"));
 }
+
+#ifdef THX_STUDY_RUN_E2E_SLOW
+// The long version (label slow): three participants per study, and one session run again.
+TEST(StudyRunE2eSlow, ThreeParticipantsAndARerun) { bothStudies(3, true); }
+#else
+// One participant per study: the short version every test run has (this file built without
+// THX_STUDY_RUN_E2E_SLOW).
+TEST(StudyRunE2e, BothStudiesSimulatedThenAnalysed) { bothStudies(1, false); }
 
 TEST(StudyRunE2e, UsageAndErrors) {
   test::TempDir dir("study_run");
@@ -112,6 +126,7 @@ TEST(StudyRunE2e, UsageAndErrors) {
   EXPECT_EQ(missing.status, 1);
   EXPECT_TRUE(has(missing.err, "none.yaml: cannot read the manifest")) << missing.err;
 }
+#endif
 
 }  // namespace
 }  // namespace thx::study
