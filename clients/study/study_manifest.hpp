@@ -1,5 +1,5 @@
 #pragma once
-// A study's manifest (docs/study.md §5): which study, the candidate surfaces with their sound
+// A study's manifest (docs/study.md §5.1): which study, the candidate surfaces with their sound
 // families and their scene files, and Study 1's training scene. The trial runner reads it; the
 // shipped ones are scenes/study/identification.yaml and scenes/study/relief_vs_normal.yaml.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The trials of one session, drawn from a seed (docs/study.md §5). Pure and deterministic: the
+// The trials of one session, drawn from a seed (docs/study.md §5.2). Pure and deterministic: the
 // same manifest and seed give the same plan on every machine (our own generator, not the
 // standard library's distributions, whose results differ between implementations).
 #include <cstdint>
