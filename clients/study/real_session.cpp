@@ -112,6 +112,7 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
   if (m.study == Study::Identification) {
     if (m.training) {
       switchTo(app, *m.training);
+      if (window) window->show(*m.training, true);  // its own look: nothing to give away
       std::cout << "Training surface: explore it with the pen; confirm (hold the button) when ready.\n";
       while (button.next() != ButtonEvent::Confirm) {}
     }
