@@ -162,13 +162,14 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
     std::size_t at = 0;
     int trial = 0;
     switchTo(app, left[at].scene);
-    const double start = button.clock();
+    double shown_at = button.clock();  // when the surface on show was switched to
     while (!left.empty()) {
       std::cout << "\nSurface " << (at + 1) << " of " << left.size()
                 << " still to rate. Short press: next surface; hold: rate this one.\n";
       if (button.next() == ButtonEvent::Next) {
         at = (at + 1) % left.size();
         switchTo(app, left[at].scene);
+        shown_at = button.clock();
         continue;
       }
       const PlannedTrial t = left[at];
@@ -176,7 +177,7 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
       row.trial = ++trial;
       row.surface = m.surfaces[std::size_t(t.surface)].name;
       row.representation = t.representation;
-      row.time_s = std::max(0.0, button.now_s - start);
+      row.time_s = std::max(0.0, button.now_s - shown_at);
       row.setRating(Rating::Realism, console.rating("How realistic does the surface look?", 1, 10));
       row.setRating(Rating::MatchPhysics, console.rating("How well did the ball's motion match what the look led you to expect?", 1, 10));
       row.setRating(Rating::MatchSound, console.rating("How well did the sound match?", 1, 10));
@@ -188,6 +189,7 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
       if (left.empty()) break;
       at %= left.size();
       switchTo(app, left[at].scene);
+      shown_at = button.clock();
     }
   }
   return session;
