@@ -50,7 +50,12 @@ std::vector<ObjectInstance> frameObjects(const Options& o, const LoadedScene& l,
 }
 
 // The server switched scenes: load the same scene from our folder (a name never leaves it).
+// With --allow-different-scene the look stays --scene's: nullptr.
 std::unique_ptr<LoadedScene> followSwitch(const Options& o, const client::SceneIdentity& to) {
+  if (o.allow_different_scene) {
+    if (!o.quiet) std::fprintf(stderr, "visual-client: hapticd switched to scene %s; drawing ours\n", to.name.c_str());
+    return nullptr;
+  }
   std::unique_ptr<LoadedScene> next = loadScene(client::resolveSceneName(to.name, o.scenes_dir));
   if (!o.quiet) std::fprintf(stderr, "visual-client: hapticd switched to scene %s\n", to.name.c_str());
   if (next->surface.fingerprint != to.texture_fingerprint && !o.quiet)
@@ -87,9 +92,11 @@ int liveHeadless(const Options& o, LiveFeed& feed, std::unique_ptr<LoadedScene> 
   const std::int64_t steps_per_report = std::max<std::int64_t>(1, std::int64_t(o.replay_rate_hz));
   feed.app().runPaced(o.replay_rate_hz, [&](const rt::TickTiming& t) {
     ++counts.steps;
-    if (std::optional<client::SceneIdentity> to = feed.takeSceneSwitch()) {
+    std::optional<client::SceneIdentity> to = feed.takeSceneSwitch();
+    std::unique_ptr<LoadedScene> next = to ? followSwitch(o, *to) : nullptr;
+    if (next) {
       renderer.reset();
-      loaded = followSwitch(o, *to);
+      loaded = std::move(next);
       renderer = std::make_unique<FrameRenderer>(loaded->surface.surface, o.render, o.width, o.height);
       last.reset();
       ++counts.scene_switches;
@@ -124,9 +131,11 @@ int liveWindow(const Options& o, LiveFeed& feed, std::unique_ptr<LoadedScene> lo
     w.live_update = [&](std::vector<ObjectInstance>& objects, const tex::TexturedSurface*& surface) {
       ++counts.steps;
       WindowOptions::LiveChange change = WindowOptions::LiveChange::Moved;
-      if (std::optional<client::SceneIdentity> to = feed.takeSceneSwitch()) {
+      std::optional<client::SceneIdentity> to = feed.takeSceneSwitch();
+      std::unique_ptr<LoadedScene> next = to ? followSwitch(o, *to) : nullptr;
+      if (next) {
         previous = std::move(loaded);
-        loaded = followSwitch(o, *to);
+        loaded = std::move(next);
         surface = &loaded->surface.surface;
         last.reset();
         ++counts.scene_switches;
@@ -158,7 +167,7 @@ int liveWindow(const Options& o, LiveFeed& feed, std::unique_ptr<LoadedScene> lo
 int runLive(const Options& o) {
   std::unique_ptr<LoadedScene> loaded = loadScene(o.scene);
   LiveFeed feed(o.lcm_url, o.replay_rate_hz, o.connect_timeout_s,
-                client::SceneIdentity{loaded->surface.scene_name, loaded->surface.fingerprint});
+                client::SceneIdentity{loaded->surface.scene_name, loaded->surface.fingerprint}, o.allow_different_scene);
   std::string why;
   const std::optional<thx_msgs::hello_t> hello = feed.connect(why);
   if (!hello) {

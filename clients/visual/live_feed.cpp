@@ -3,18 +3,21 @@
 namespace thx::visual {
 
 namespace {
-client::AppOptions appOptions(const std::string& lcm_url, double connect_timeout_s, const client::SceneIdentity& mine) {
+client::AppOptions appOptions(const std::string& lcm_url, double connect_timeout_s, const client::SceneIdentity& mine,
+                              bool allow_different_scene) {
   client::AppOptions o;
   o.client_id = "visual";
   o.lcm_url = lcm_url;
   o.connect_timeout_s = connect_timeout_s;
   o.scene = mine;
+  o.allow_different_scene = allow_different_scene;
   return o;
 }
 }  // namespace
 
-LiveFeed::LiveFeed(const std::string& lcm_url, double rate_hz, double connect_timeout_s, const client::SceneIdentity& mine)
-    : app_(appOptions(lcm_url, connect_timeout_s, mine)), poses_(app_.lcm()) {
+LiveFeed::LiveFeed(const std::string& lcm_url, double rate_hz, double connect_timeout_s, const client::SceneIdentity& mine,
+                   bool allow_different_scene)
+    : app_(appOptions(lcm_url, connect_timeout_s, mine, allow_different_scene)), poses_(app_.lcm()) {
   app_.client().subscribe("DEVICE_STATE", rate_hz);
 }
 

@@ -22,8 +22,10 @@ struct LiveCounts {
 
 class LiveFeed {
  public:
-  // `mine`: the scene this client loaded; waitForServer() refuses another (the kit's check).
-  LiveFeed(const std::string& lcm_url, double rate_hz, double connect_timeout_s, const client::SceneIdentity& mine);
+  // `mine`: the scene this client loaded; waitForServer() refuses another (the kit's check)
+  // unless `allow_different_scene` (then a warning on stderr).
+  LiveFeed(const std::string& lcm_url, double rate_hz, double connect_timeout_s, const client::SceneIdentity& mine,
+           bool allow_different_scene = false);
 
   // Waits for hapticd's hello. nullopt and `why` when none came within the timeout (or a stop
   // signal came); throws thx::Error when the server runs another scene.

@@ -27,6 +27,10 @@ says so and draws the scene at rest (one frame DIR/frame_0000, or the window at 
   --lcm-url URL          (default )" THX_DEFAULT_LCM_URL R"()
   --connect-timeout S    wait this long for hapticd's hello (default 3)
   --scenes-dir DIR       where a switched-to scene NAME.yaml is found (default scenes)
+  --allow-different-scene  run even when hapticd announces another scene or texture (a warning
+                         instead of an error) and keep drawing --scene's look when hapticd
+                         switches; the pen and the objects still move as hapticd and the physics
+                         client say (the user study's candidate looks, docs/study.md §7)
   --verbose              live headless: the counts also while running (every --rate steps)
 
 Output:
@@ -151,6 +155,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (a == "--connect-timeout") o.connect_timeout_s = cli::parseNumber(a, value(), {0, 3600, false, "s"});
     else if (a == "--duration") o.duration_s = cli::parseNumber(a, value(), {0, 1e9, false, "s"});
     else if (a == "--scenes-dir") o.scenes_dir = value();
+    else if (a == "--allow-different-scene") o.allow_different_scene = true;
     else if (a == "--verbose") o.verbose = true;
     else if (a == "--window-screenshot") o.window_screenshot = value(), o.window = true;
     else if (a == "--window-frames") o.window_frames = int(cli::parseInteger(a, value(), 1, 1000000)), o.window = true;

@@ -39,6 +39,7 @@ struct Options {
   double connect_timeout_s = 3.0; // --connect-timeout
   double duration_s = 0.0;        // --duration (live; 0: until --frames or Ctrl-C)
   std::string scenes_dir = "scenes";  // --scenes-dir: where a scene switch's name is found
+  bool allow_different_scene = false;  // --allow-different-scene: draw --scene whatever hapticd runs
   bool verbose = false;           // --verbose
   bool window = false;   // --window
   int window_frames = 0;  // --window-frames N

@@ -14,35 +14,75 @@
 namespace thx::test {
 namespace {
 
-struct VisualLiveHapticd : HapticdProcessTest {};
+struct VisualLiveHapticd : HapticdProcessTest {
+  // Waits until the text of `file` holds `text`.
+  bool logHas(const std::string& file, const std::string& text, double timeout_s) {
+    return waitUntil([&] { return slurp(file).find(text) != std::string::npos; }, timeout_s);
+  }
+  // A visual client live and drawing: connected, its first frame written.
+  void expectLive(const std::string& err) {
+    ASSERT_TRUE(logHas(err, "visual-client: live from", 30)) << slurp(err);
+    ASSERT_TRUE(waitUntil([&] { return fs::exists(path("frames/frame_0000.ppm")); }, 30));
+  }
+  // visual-client live on `scene`, headless into frames/.
+  std::vector<std::string> liveArgs(const std::string& scene) {
+    return {THX_VISUAL_CLIENT, "--scene", scene, "--live", "--lcm-url", url_, "--out", path("frames"), "--format",
+            "ppm", "--size", "160x90", "--rate", "30", "--duration", "30", "--connect-timeout", "20"};
+  }
+  // Ends it as a user would (SIGTERM) and returns what it said.
+  std::string stopVisual(pid_t visual) {
+    kill(visual, SIGTERM);
+    EXPECT_EQ(reap(visual, 20), 0) << slurp(path("visual.err"));
+    return slurp(path("visual.err"));
+  }
+  // Runs visual-client with `args` while hapticd switches to `scene`; waits until its log says
+  // `said`, ends it and returns its log.
+  std::string liveThroughSwitch(const std::vector<std::string>& args, const std::string& scene, const std::string& said) {
+    const pid_t visual = spawn(args, path("visual.out"), path("visual.err"));
+    EXPECT_GT(visual, 0);
+    expectLive(path("visual.err"));
+    switchServer(scene);
+    EXPECT_TRUE(logHas(path("visual.err"), said, 30)) << slurp(path("visual.err"));
+    return stopVisual(visual);
+  }
+  // Another client asks hapticd to switch to `scene`.
+  void switchServer(const std::string& scene) {
+    client::AppOptions o;
+    o.client_id = "switcher";
+    o.lcm_url = url_;
+    client::ClientApp app(o);
+    ASSERT_TRUE(app.waitForServer());
+    ASSERT_TRUE(app.loadScene(scene, 20));
+  }
+};
 
 TEST_F(VisualLiveHapticd, DrawsTheServersPenAndFollowsASceneSwitch) {
   if (!udpmAvailable()) GTEST_SKIP() << "no multicast route for " << url_;
   startServer({});
-  const pid_t visual = spawn({THX_VISUAL_CLIENT, "--scene", "scenes/default.yaml", "--live", "--lcm-url", url_,
-                              "--out", path("frames"), "--format", "ppm", "--size", "160x90", "--rate", "30",
-                              "--duration", "30", "--connect-timeout", "20"},
-                             path("visual.out"), path("visual.err"));
-  ASSERT_GT(visual, 0);
-  const auto visualLogHas = [&](const std::string& text, double timeout_s) {
-    return waitUntil([&] { return slurp(path("visual.err")).find(text) != std::string::npos; }, timeout_s);
-  };
-  ASSERT_TRUE(visualLogHas("visual-client: live from", 30)) << slurp(path("visual.err"));
-  ASSERT_TRUE(waitUntil([&] { return fs::exists(path("frames/frame_0000.ppm")); }, 30));
-
-  client::AppOptions o;
-  o.client_id = "switcher";
-  o.lcm_url = url_;
-  client::ClientApp app(o);
-  ASSERT_TRUE(app.waitForServer());
-  ASSERT_TRUE(app.loadScene("vvalley", 20));
   // The visual client follows: it loads vvalley from its scenes folder and draws on.
-  ASSERT_TRUE(visualLogHas("visual-client: hapticd switched to scene vvalley", 30)) << slurp(path("visual.err"));
-  kill(visual, SIGTERM);
-  EXPECT_EQ(reap(visual, 20), 0) << slurp(path("visual.err"));
-  const std::string err = slurp(path("visual.err"));
+  const std::string err =
+      liveThroughSwitch(liveArgs("scenes/default.yaml"), "vvalley", "visual-client: hapticd switched to scene vvalley\n");
   EXPECT_NE(err.find("visual-client: live: loop steps"), std::string::npos) << err;
   EXPECT_NE(err.find("scene switches 1"), std::string::npos) << err;
+  stopServer();
+}
+
+// The user study's candidate looks (docs/study.md §7): --allow-different-scene draws its own
+// scene's look beside a hapticd running another, and keeps it through hapticd's switches;
+// without it the other scene is an error naming both.
+TEST_F(VisualLiveHapticd, AnotherLookWithAllowDifferentScene) {
+  if (!udpmAvailable()) GTEST_SKIP() << "no multicast route for " << url_;
+  startServer({});
+  const pid_t refused = spawn(liveArgs("scenes/vvalley.yaml"), path("refused.out"), path("refused.err"));
+  ASSERT_GT(refused, 0);
+  EXPECT_NE(reap(refused, 60), 0);
+  EXPECT_NE(slurp(path("refused.err")).find("vvalley"), std::string::npos) << slurp(path("refused.err"));
+
+  std::vector<std::string> args = liveArgs("scenes/vvalley.yaml");
+  args.push_back("--allow-different-scene");
+  const std::string err =
+      liveThroughSwitch(args, "pinball", "visual-client: hapticd switched to scene pinball; drawing ours");
+  EXPECT_NE(err.find("scene switches 0"), std::string::npos) << err;
   stopServer();
 }
 
