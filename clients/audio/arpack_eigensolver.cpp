@@ -1,6 +1,7 @@
 #include "clients/audio/arpack_eigensolver.hpp"
 
 #include <arpack/arpack.h>
+#include <omp.h>
 #include <time.h>
 
 #include <Eigen/CholmodSupport>
@@ -57,6 +58,9 @@ class SimplicialInverse : public ShiftedInverse {
 class CholmodInverse : public ShiftedInverse {
  public:
   CholmodInverse(const std::string& object, const Eigen::SparseMatrix<double>& a) {
+    // Debian's CHOLMOD runs OpenMP threads: one thread keeps the solve off the other work of a
+    // 2-CPU machine (the servo's) and its cost comparable with the simplicial factorization.
+    omp_set_num_threads(1);
     llt_.compute(a);
     // A Cholesky factorization exists only for a positive-definite matrix, so failure says both.
     if (llt_.info() != Eigen::Success)
