@@ -1,10 +1,14 @@
 #include "clients/audio/arpack_eigensolver.hpp"
 
 #include <arpack/arpack.h>
+#include <omp.h>
+#include <time.h>
 
+#include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <numeric>
 #include <vector>
 
@@ -27,7 +31,60 @@ std::string arpackMessage(const char* routine, a_int info) {
   }
 }
 
+// (K - sigma M)^-1 applied to vectors: the factor behind it chosen by Factorization.
+class ShiftedInverse {
+ public:
+  virtual ~ShiftedInverse() = default;
+  virtual void solve(const Eigen::VectorXd& b, Eigen::Map<Eigen::VectorXd> x) = 0;
+};
+
+class SimplicialInverse : public ShiftedInverse {
+ public:
+  SimplicialInverse(const std::string& object, const Eigen::SparseMatrix<double>& a) : ldlt_(a) {
+    const long n = long(a.rows());
+    if (ldlt_.info() != Eigen::Success)
+      throw ModalError(object + ": the factorization of K - sigma M failed (" + std::to_string(n) +
+                       " DOFs): the mesh or material gives no positive-definite stiffness");
+    if ((ldlt_.vectorD().array() <= 0).any())
+      throw ModalError(object + ": K - sigma M is not positive definite: a negative shift should make it so; "
+                       "check the material and the mesh");
+  }
+  void solve(const Eigen::VectorXd& b, Eigen::Map<Eigen::VectorXd> x) override { x = ldlt_.solve(b); }
+
+ private:
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+};
+
+class CholmodInverse : public ShiftedInverse {
+ public:
+  CholmodInverse(const std::string& object, const Eigen::SparseMatrix<double>& a) {
+    // Debian's CHOLMOD runs OpenMP threads: one thread keeps the solve off the other work of a
+    // 2-CPU machine (the servo's) and its cost comparable with the simplicial factorization.
+    omp_set_num_threads(1);
+    llt_.compute(a);
+    // A Cholesky factorization exists only for a positive-definite matrix, so failure says both.
+    if (llt_.info() != Eigen::Success)
+      throw ModalError(object + ": the factorization of K - sigma M failed (" + std::to_string(a.rows()) +
+                       " DOFs): K - sigma M is not positive definite; a negative shift should make it so, "
+                       "check the material and the mesh");
+  }
+  void solve(const Eigen::VectorXd& b, Eigen::Map<Eigen::VectorXd> x) override {
+    solved_ = llt_.solve(b);
+    x = solved_;
+  }
+
+ private:
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> llt_;
+  Eigen::VectorXd solved_;
+};
+
 }  // namespace
+
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 EigenSolveResult solveLowestModes(const std::string& object, const Eigen::SparseMatrix<double>& stiffness,
                                   const Eigen::SparseMatrix<double>& mass, const EigenSolveSettings& settings,
@@ -40,7 +97,9 @@ EigenSolveResult solveLowestModes(const std::string& object, const Eigen::Sparse
   if (nev < 1 || nev >= n)
     throw ModalError(object + ": " + std::to_string(nev) + " modes requested from " + std::to_string(n) +
                      " degrees of freedom: expected at least 1 and fewer than the DOFs (refine the mesh)");
-  a_int ncv = settings.lanczos_vectors > 0 ? settings.lanczos_vectors : std::max(2 * nev + 1, nev + 20);
+  // At least 40 vectors beyond nev: with fewer, single-vector Lanczos can miss a copy of a
+  // repeated eigenvalue (a symmetric mesh's pairs and triples; docs/audio.md §1).
+  a_int ncv = settings.lanczos_vectors > 0 ? settings.lanczos_vectors : std::max(2 * nev + 1, nev + 40);
   ncv = std::min(ncv, n);
   if (ncv <= nev)
     throw ModalError(object + ": " + std::to_string(ncv) + " Lanczos vectors for " + std::to_string(nev) +
@@ -48,17 +107,20 @@ EigenSolveResult solveLowestModes(const std::string& object, const Eigen::Sparse
 
   EigenSolveResult result;
   auto t0 = std::chrono::steady_clock::now();
-  const Eigen::SparseMatrix<double> shifted = stiffness - settings.shift * mass;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(shifted);
-  if (ldlt.info() != Eigen::Success)
-    throw ModalError(object + ": the factorization of K - sigma M failed (" + std::to_string(n) +
-                     " DOFs): the mesh or material gives no positive-definite stiffness");
-  if ((ldlt.vectorD().array() <= 0).any())
-    throw ModalError(object + ": K - sigma M is not positive definite: a negative shift should make it so; "
-                     "check the material and the mesh");
+  double cpu0 = processCpuSeconds();
+  std::unique_ptr<ShiftedInverse> inverse;
+  {
+    const Eigen::SparseMatrix<double> shifted = stiffness - settings.shift * mass;
+    if (settings.factorization == Factorization::SimplicialLdlt)
+      inverse = std::make_unique<SimplicialInverse>(object, shifted);
+    else
+      inverse = std::make_unique<CholmodInverse>(object, shifted);
+  }
   result.stats.factor_s = secondsSince(t0);
+  result.stats.factor_cpu_s = processCpuSeconds() - cpu0;
 
   t0 = std::chrono::steady_clock::now();
+  cpu0 = processCpuSeconds();
   a_int ido = 0, info = 0;
   const a_int lworkl = ncv * (ncv + 8);
   std::vector<double> resid(std::size_t(n), 0.0), v(std::size_t(n) * ncv), workd(std::size_t(3) * n),
@@ -80,10 +142,11 @@ EigenSolveResult solveLowestModes(const std::string& object, const Eigen::Sparse
     Eigen::Map<Eigen::VectorXd> xv(x, n), yv(y, n);
     if (ido == -1) {
       tmp = mass * xv;
-      yv = ldlt.solve(tmp);
+      inverse->solve(tmp, yv);
     } else if (ido == 1) {
       Eigen::Map<Eigen::VectorXd> bx(workd.data() + ipntr[2] - 1, n);  // M x, provided by ARPACK
-      yv = ldlt.solve(bx);
+      tmp = bx;
+      inverse->solve(tmp, yv);
     } else if (ido == 2) {
       yv = mass * xv;
       continue;
@@ -112,6 +175,7 @@ EigenSolveResult solveLowestModes(const std::string& object, const Eigen::Sparse
   if (info_e != 0)
     throw ModalError(object + ": eigenvector extraction failed (" + arpackMessage("dseupd", info_e) + ")");
   result.stats.iterate_s = secondsSince(t0);
+  result.stats.iterate_cpu_s = processCpuSeconds() - cpu0;
 
   std::vector<int> order(static_cast<std::size_t>(nev));
   std::iota(order.begin(), order.end(), 0);

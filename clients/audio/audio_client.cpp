@@ -70,7 +70,8 @@ displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS).
                          or without a hapticd session in it)
   --wav FILE             output (offline: required; live: written when no device plays)
   --slab-thickness M     the surface slab's thickness (default: the scene's surface.thickness)
-  --slab-cells N         Tet10 cells per side of the slab, 1 through its thickness (default 16)
+  --slab-cells N         Tet10 cells per side of the slab, in the plane (default 20)
+  --slab-layers N        Tet10 cells through the slab's thickness (default 2)
   --clamp-edges          hold the slab at its four sides (default: the scene's surface.held)
   --modes N              elastic modes computed (default 40)
   --pen-mass KG          the mass in Eq. 5 (default: the simulated device's mass)
@@ -127,6 +128,7 @@ Options parse(const std::vector<std::string>& args) {
     else if (a == "--wav") o.wav = value();
     else if (a == "--slab-thickness") o.slab.thickness_m = thx::cli::parseNumber(a, value(), {0, 1, true, "m"});
     else if (a == "--slab-cells") o.slab.cells = int(thx::cli::parseInteger(a, value(), 1, 200));
+    else if (a == "--slab-layers") o.slab.layers = int(thx::cli::parseInteger(a, value(), 1, 40));
     else if (a == "--clamp-edges") o.slab.clamp_edges = true;
     else if (a == "--modes") o.slab.modes = int(thx::cli::parseInteger(a, value(), 1, 2000));
     else if (a == "--pen-mass") o.pen_mass = thx::cli::parseNumber(a, value(), {0, 100, true, "kg"});

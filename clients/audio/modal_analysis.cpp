@@ -30,6 +30,7 @@ EigenSolveSettings eigenSolveSettings(const ModalSettings& settings, int rigid) 
   es.shift = -std::pow(2.0 * std::numbers::pi * settings.shift_hz, 2);
   es.tolerance = settings.tolerance;
   es.max_iterations = settings.max_iterations;
+  es.factorization = settings.factorization;
   return es;
 }
 
@@ -42,6 +43,8 @@ int rigidModeCount(const EigenSolveResult& r, const ModalSettings& settings) {
 void takeModes(const EigenSolveResult& r, int rigid, const std::vector<int>& free_dof, ModalSolution& s) {
   s.factor_s = r.stats.factor_s;
   s.iterate_s = r.stats.iterate_s;
+  s.factor_cpu_s = r.stats.factor_cpu_s;
+  s.iterate_cpu_s = r.stats.iterate_cpu_s;
   s.operator_applications = r.stats.operator_applications;
   s.rigid_modes = rigid;
   s.rigid_hz.resize(rigid);
@@ -93,9 +96,11 @@ ModalSolution analyse(const TetMesh& mesh, const ElasticMaterial& material, cons
   say("assembling " + std::to_string(mesh.tets.size()) + (mesh.order == ElementOrder::Linear ? " Tet4" : " Tet10") +
       " elements, " + std::to_string(mesh.dofCount()) + " DOFs");
   auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = processCpuSeconds();
   const AssembledSystem sys = assemble(mesh, material);
   ModalSolution s;
   s.assemble_s = secondsSince(t0);
+  s.assemble_cpu_s = processCpuSeconds() - cpu0;
   s.mesh_dofs = mesh.dofCount();
   s.free_dofs = sys.free_count;
 
@@ -127,7 +132,9 @@ ModalSolution analyse(const TetMesh& mesh, const ElasticMaterial& material, cons
   }
   s.total_s = secondsSince(t_start);
   say("done in " + numberText(s.total_s) + " s (factor " + numberText(s.factor_s) + " s, iterate " +
-      numberText(s.iterate_s) + " s)");
+      numberText(s.iterate_s) + " s; CPU: assemble " + numberText(s.assemble_cpu_s) + " s, factor " +
+      numberText(s.factor_cpu_s) + " s, iterate " + numberText(s.iterate_cpu_s) + " s, " +
+      std::to_string(s.operator_applications) + " applications of OP)");
   return s;
 }
 

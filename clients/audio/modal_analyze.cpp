@@ -57,6 +57,7 @@ int runScene(const ModalOptions& o) {
   mo.slab_thickness_m = o.slab_thickness;
   if (o.clamp_edges) mo.clamp_slab = true;
   mo.slab_cells = o.slab_cells;
+  mo.slab_layers = o.slab_layers;
   AnalysisOptions ao;
   ao.cache_dir = o.cache_dir;
   if (!o.quiet) ao.progress = [](const std::string& line) { std::fprintf(stderr, "modal-analyze: %s\n", line.c_str()); };

@@ -59,6 +59,7 @@ std::uint64_t modalCacheKey(const TetMesh& mesh, const ElasticMaterial& material
   h.value(settings.max_iterations);
   h.value(settings.lanczos_vectors);
   h.value(settings.rigid_below_hz);
+  h.value(int(settings.factorization));
   return h.digest();
 }
 

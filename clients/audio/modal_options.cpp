@@ -13,7 +13,7 @@ const char* const kModalHelp = R"(usage: modal-analyze --shape SHAPE [dimensions
 
 Offline modal analysis of one object: a structured tetrahedral mesh, linear elasticity with
 consistent mass, K x = lambda M x solved by ARPACK in shift-invert mode (negative shift, sparse
-LDLT of K - sigma M), the 6 rigid-body modes of a free body dropped, Rayleigh damping from the
+Cholesky of K - sigma M), the 6 rigid-body modes of a free body dropped, Rayleigh damping from the
 material, the audible band, the psychoacoustic merge of close modes and truncation. Prints one
 line per audible mode; results are cached (docs/audio.md), so a second run is fast.
 
@@ -23,7 +23,8 @@ Scene:
                          fixed obstacles skipped, a capsule as a cylinder of its overall length);
                          prints one summary line per body
   --slab-thickness M     the surface slab's thickness (default: the scene's surface.thickness)
-  --slab-cells N         slab cells per side, 1 through the thickness (default 16)
+  --slab-cells N         slab cells per side, in the plane (default 20)
+  --slab-layers N        slab cells through the thickness (default 2)
 
 Shape (SI units):
   --shape S              box | slab | sphere | cylinder
@@ -47,7 +48,10 @@ Solver:
   --shift-hz F           sigma = -(2 pi F)^2 (default 20)
   --tolerance T          ARPACK relative tolerance (default 1e-10)
   --max-iterations N     ARPACK implicit restarts (default 1000)
-  --lanczos-vectors N    ARPACK ncv (default max(2 modes + 1, modes + 20))
+  --lanczos-vectors N    ARPACK ncv (default max(2 nev + 1, nev + 40), nev the modes
+                         asked of ARPACK, rigid ones included)
+  --factorization F      of K - sigma M: cholmod (default; CHOLMOD supernodal Cholesky) | ldlt
+                         (Eigen's SimplicialLDLT, AMD ordering; slower on large meshes)
 
 Audible modes:
   --min-hz F             default 20
@@ -113,6 +117,8 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
       o.slab_thickness = cli::parseNumber(a, value(), length);
     } else if (a == "--slab-cells") {
       o.slab_cells = int(cli::parseInteger(a, value(), 1, 400));
+    } else if (a == "--slab-layers") {
+      o.slab_layers = int(cli::parseInteger(a, value(), 1, 40));
     } else if (a == "--shape") {
       const std::string v = value();
       if (v == "box") o.shape = ShapeKind::Box;
@@ -165,6 +171,11 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
       o.settings.max_iterations = int(cli::parseInteger(a, value(), 1, 1000000));
     } else if (a == "--lanczos-vectors") {
       o.settings.lanczos_vectors = int(cli::parseInteger(a, value(), 2, 100000));
+    } else if (a == "--factorization") {
+      const std::string v = value();
+      if (v == "cholmod") o.settings.factorization = Factorization::CholmodSupernodal;
+      else if (v == "ldlt") o.settings.factorization = Factorization::SimplicialLdlt;
+      else throw UsageError("--factorization: expected cholmod or ldlt, got '" + v + "'");
     } else if (a == "--min-hz") {
       o.audible.min_hz = cli::parseNumber(a, value(), {0, 1e5, false, "Hz"});
     } else if (a == "--max-hz") {

@@ -8,6 +8,7 @@
 #include "clients/audio/audible_modes.hpp"
 #include "clients/audio/elastic_material.hpp"
 #include "clients/audio/modal_analysis.hpp"
+#include "clients/audio/scene_bodies.hpp"
 #include "clients/audio/tet_mesh.hpp"
 
 namespace thx::audio {
@@ -20,7 +21,8 @@ struct ModalOptions {
   bool help = false;
   std::string scene;  // --scene FILE: its surface slab and objects instead of one --shape
   std::optional<double> slab_thickness;  // overrides the scene's surface.thickness
-  int slab_cells = 16;
+  int slab_cells = kSlabCells;
+  int slab_layers = kSlabLayers;
   std::string name;  // the object's name in messages (default: the shape)
   ShapeKind shape = ShapeKind::Box;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box edges / slab extent_x, extent_y, thickness

@@ -175,6 +175,7 @@ BodyOptions bodyOptions(const SlabSettings& slab, ElementOrder object_order) {
   BodyOptions bo;
   bo.slab_thickness_m = slab.thickness_m;
   bo.slab_cells = slab.cells;
+  bo.slab_layers = slab.layers;
   bo.clamp_slab = slab.clamp_edges;
   bo.object_order = object_order;
   bo.modal = modalSettings(slab);
@@ -198,13 +199,14 @@ SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, 
     so.slab_thickness_m = o.slab_thickness_m;
     so.clamp_slab = o.clamp_slab;
     so.slab_cells = o.slab_cells;
+    so.slab_layers = o.slab_layers;
     SceneBody slab = slabBody(scene, so);
     slab.mesh.name = "surface (" + slab.material.name + ")";
     s.surface = analysedBody(slab.mesh, slab.material, o);
   }
   SceneMeshOptions mo;
   mo.order = o.object_order;
-  mo.slab_cells = 1;  // sceneBodies' slab is not used: the surface is above
+  mo.slab_cells = mo.slab_layers = 1;  // sceneBodies' slab is not used: the surface is above
   mo.pen = false;     // the pen is not a physics body (its own modes sound in the scrape)
   const std::vector<SceneBody> bodies = sceneBodies(scene, mo);
   std::size_t next = 1;

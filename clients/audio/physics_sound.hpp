@@ -36,7 +36,8 @@ namespace thx::audio {
 
 struct BodyOptions {
   std::optional<double> slab_thickness_m;  // overrides the scene's surface.thickness
-  int slab_cells = 16;
+  int slab_cells = kSlabCells;
+  int slab_layers = kSlabLayers;
   std::optional<bool> clamp_slab;          // overrides the scene's surface.held
   ElementOrder object_order = ElementOrder::Quadratic;
   ModalSettings modal;

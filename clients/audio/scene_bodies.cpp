@@ -15,7 +15,7 @@ SceneBody slabBody(const scene::Scene& scene, const SceneMeshOptions& o) {
   const scene::Surface& s = scene.surface;
   const double thickness = o.slab_thickness_m.value_or(s.thickness_m);
   const bool clamp = o.clamp_slab.value_or(s.held == scene::SlabSupport::ClampedEdges);
-  return {slabMesh("surface", s.size_m.x(), s.size_m.y(), thickness, {o.slab_cells, o.slab_cells, 1}, o.order, clamp),
+  return {slabMesh("surface", s.size_m.x(), s.size_m.y(), thickness, {o.slab_cells, o.slab_cells, o.slab_layers}, o.order, clamp),
           s.material, ""};
 }
 
@@ -46,10 +46,10 @@ std::vector<SceneBody> sceneBodies(const scene::Scene& scene, const SceneMeshOpt
     SceneBody b{{}, obj.material, ""};
     switch (obj.shape) {
       case scene::Shape::Sphere:
-        b.mesh = sphereMesh(obj.name, obj.radius_m, 4, o.order);
+        b.mesh = sphereMesh(obj.name, obj.radius_m, kSphereCells, o.order);
         break;
       case scene::Shape::Box: {
-        const double h = obj.size_m.minCoeff();
+        const double h = obj.size_m.minCoeff() / kBoxCellsShortest;
         b.mesh = boxMesh(obj.name, obj.size_m,
                          {cellsAlong(obj.size_m.x(), h), cellsAlong(obj.size_m.y(), h), cellsAlong(obj.size_m.z(), h)},
                          o.order);

@@ -42,6 +42,7 @@ SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings
   mo.slab_thickness_m = o.thickness_m;
   mo.clamp_slab = o.clamp_edges;
   mo.slab_cells = o.cells;
+  mo.slab_layers = o.layers;
   TetMesh slab = slabBody(scene, mo).mesh;
   slab.name = "surface (" + scene.surface.material.name + ")";
   AudibleModes modes = audibleModes(analyse(slab, material, modalSettings(o), analysisOptions(o)), material, audibleOptions(o));

@@ -9,6 +9,7 @@
 #include "clients/audio/audible_modes.hpp"
 #include "clients/audio/fractal_roughness.hpp"
 #include "clients/audio/modal_analysis.hpp"
+#include "clients/audio/scene_bodies.hpp"
 #include "clients/audio/tet_mesh.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_surface.hpp"
@@ -18,7 +19,8 @@ namespace thx::audio {
 
 struct SlabSettings {
   std::optional<double> thickness_m;  // unset: the scene's surface.thickness
-  int cells = 16;          // Tet10 cells per side, 1 through the thickness
+  int cells = kSlabCells;   // Tet10 cells per side, in the plane
+  int layers = kSlabLayers; // Tet10 cells through the thickness
   std::optional<bool> clamp_edges;    // unset: the scene's surface.held
   int modes = 40;          // elastic modes computed
   double sample_rate_hz = 44100.0;

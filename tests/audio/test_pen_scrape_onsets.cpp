@@ -27,7 +27,8 @@ TEST_F(PenScrapeOnsets, OnsetsInTheWavComeAtTheMortarCrossingsOfTheStroke) {
   // 1. The session: 7 bed joints down and 7 back up at 0.08 m/s, 1 N (4.1 s).
   ASSERT_EQ(recordSession(kScene), 0);
   // 2. Rendered with a small slab mesh and without the pen's own modes (quick in the sanitizer
-  // tree; the pen would ring at the same impulses); the micro level on, as in the demo.
+  // tree; the pen would ring at the same impulses); the micro level on, as in the demo. The slab
+  // is 4 x 4 x 2 cells (the default 2 layers).
   ASSERT_EQ(run(std::string(THX_AUDIO_CLIENT) + " --scene " + kScene + " --replay-log " + path("session.lcm") +
                 " --slab-cells 4 --no-pen --cache-dir " + path("cache") + " --wav " + path("scrape.wav") + " > " + path("audio.out") +
                 " 2>&1"),
