@@ -144,6 +144,11 @@ struct Rates {
   int audio_feed_hz = 1000;
 };
 
+// What the audio client does with the scene (docs/scenes.md, audio).
+struct Audio {
+  bool mute = false;  // the audio client plays exact silence while this scene runs (Study 1's "no sound")
+};
+
 struct Scene {
   int version = 1;
   std::string name;
@@ -154,6 +159,7 @@ struct Scene {
   Device device;
   std::vector<SceneObject> objects;
   Rates rates;
+  Audio audio;
   std::vector<Material> custom_materials;  // the scene's `materials:` (beside the table's)
   std::vector<std::string> warnings;  // non-fatal issues, each "file:line:col: field: message"
 };

@@ -28,9 +28,9 @@ YAML::Node parseYaml(const std::string& text, const std::string& source) {
 
 Scene parseRoot(const Field& root, const std::string& source, const std::string& base_dir,
                 std::vector<Material>& custom_materials) {
-  const std::string top = "a mapping with version, name, surface and optionally description, device, objects, rates, materials";
+  const std::string top = "a mapping with version, name, surface and optionally description, device, objects, rates, audio, materials";
   if (root.isNull()) root.fail("empty scene", top, "");
-  root.expectKeys({"version", "name", "description", "surface", "device", "objects", "rates", "materials"});
+  root.expectKeys({"version", "name", "description", "surface", "device", "objects", "rates", "audio", "materials"});
 
   Scene scene;
   scene.source = source;
@@ -42,6 +42,7 @@ Scene parseRoot(const Field& root, const std::string& source, const std::string&
   scene.name = root.at("name", "a non-empty scene name").text();
   if (auto d = root.find("description")) scene.description = d->text();
   scene.rates = detail::parseRates(root.find("rates"));
+  scene.audio = detail::parseAudio(root.find("audio"));
   // Before every section that may name one of them.
   custom_materials = detail::parseCustomMaterials(root.find("materials"));
   scene.custom_materials = custom_materials;

@@ -20,6 +20,7 @@ Pen parsePen(const Field& field);
 std::string parseExistingFile(const Field& field, const std::string& what);
 
 Rates parseRates(const std::optional<Field>& field);
+Audio parseAudio(const std::optional<Field>& field);
 Surface parseSurface(const Field& field);
 tex::GenerateRequest parseGenerator(const Field& texture, const Surface& surface);
 // Script positions are checked against the surface, forces against the device model.

@@ -17,6 +17,7 @@
 #include "clients/audio/modal_options.hpp"
 #include "clients/audio/physics_sound.hpp"
 #include "clients/audio/scene_bodies.hpp"
+#include "clients/audio/scene_mute.hpp"
 #include "clients/audio/scrape_session.hpp"
 #include "clients/audio/scrape_synthesis.hpp"
 #include "clients/audio/surface_sound.hpp"
@@ -62,7 +63,10 @@ session's clock), they sound too, on the same clock. A THX_HELLO naming another 
 pen's CONTACT samples after it scrape that scene's surface and pen (the walk starts afresh), the
 physics streams strike its bodies; bodies struck before ring on. Each scene loaded must have the
 texture fingerprint the log's hellos give it (else an error naming the log, the scene and both
-fingerprints; --allow-different-scene renders anyway, with a warning). The sum of the modal
+fingerprints; --allow-different-scene renders anyway, with a warning). While a scene with
+`audio: {mute: true}` runs the output is exact silence (live: from the switch to it, nothing is
+synthesised; offline: the render's samples from its hello to the next unmuted scene's are zeroed);
+the sound comes back with the next unmuted scene. The sum of the modal
 displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS).
 
   --scene FILE           the scene hapticd runs (docs/scenes.md)
@@ -256,6 +260,18 @@ int runOffline(const Options& o) {
                 pr.meso_impulses, pr.relief_impulses);
     for (const std::string& n : pr.scenes) std::printf(" %s", n.c_str());
     std::printf("\n");
+  }
+  // A muted scene (audio.mute) is exact silence for as long as it runs; normalised before, so the
+  // unmuted stretches sound as they would without the muted ones' silence.
+  const std::vector<MutedSpan> muted = mutedSpans(hellos, first_name, [&](const std::string& name) {
+    return name == first_name ? first.surface.scene.audio.mute : thx::scene::loadScene(file_of(name)).audio.mute;
+  });
+  if (!muted.empty()) {
+    const std::int64_t origin = path.empty() ? physics.firstUtime() : path.front().utime;
+    const std::size_t zeroed = silenceMuted(r.samples, muted, origin, o.slab.sample_rate_hz);
+    std::printf("audio-client: %s: muted scenes (audio.mute):", o.log.c_str());
+    for (const MutedSpan& m : muted) std::printf(" %s", m.scene.c_str());
+    std::printf(", %zu samples of silence\n", zeroed);
   }
   WavWriter(o.wav, int(o.slab.sample_rate_hz)).write(r.samples);
   if (session.scenes.size() > 1) {

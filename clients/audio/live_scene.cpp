@@ -59,6 +59,10 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   pen.micro = s.micro && roughness.amplitude > 0.0;
   live->synth = std::make_unique<SynthScene>(std::move(bodies), s.slab.sample_rate_hz, s.max_block, generation,
                                              pen.micro ? std::make_shared<const RoughnessProfile>(roughness) : nullptr);
+  if (sound.scene.audio.mute) {  // audio.mute: no sources, the callback plays zeros (live_synth.hpp)
+    live->synth->setMuted(true);
+    return live;
+  }
   PenScrapeOptions po;
   po.servo_hz = sound.scene.rates.servo_hz;
   po.pen_mass_kg = s.pen_mass_kg ? *s.pen_mass_kg : sound.scene.device.sim.device_mass_kg;

@@ -41,7 +41,8 @@ struct LiveScene {
 // Bodies: the surface slab (0), the pen (device.pen, when it has audible modes), each moving
 // object with audible modes. Sources: the pen (hapticd's CONTACT: meso or relief impulses and the
 // micro level on the slab and the pen) and the physics client's streams (impacts, texel paths,
-// relief momentum changes on the slab and the objects).
+// relief momentum changes on the slab and the objects). A muted scene (audio.mute) has the same
+// bodies, no sources and a muted SynthScene: the callback plays zeros while it is current.
 std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const LiveSceneSettings& settings,
                                           std::uint32_t generation);
 

@@ -81,6 +81,22 @@ void LiveSynth::process(std::span<float> out, std::int64_t block_start_ns) {
   }
   if (late) add(counters_.late_blocks);
 
+  if (scene_ && scene_->muted()) {
+    // Exact silence, the old scene's ring cut with it. A muted scene has no sources, so what
+    // waits in the queue is older scenes' (stale); a newer scene's events wait for it.
+    while (const ExcitationEvent* e = queue_.front()) {
+      if (e->generation > scene_->generation()) break;
+      add(counters_.stale_events);
+      ExcitationEvent stale;
+      queue_.pop(stale);
+    }
+    std::fill(out.begin(), out.end(), 0.0f);
+    stream_pos_ += n;
+    add(counters_.blocks);
+    add(counters_.samples, std::uint64_t(n));
+    return;
+  }
+
   std::int64_t pos = 0;
   while (const ExcitationEvent* e = queue_.front()) {
     if (!scene_ || e->generation > scene_->generation()) break;  // its scene is not here yet

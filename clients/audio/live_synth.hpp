@@ -9,7 +9,8 @@
 // device restart) re-anchors the stream at its own start time. An event whose sample is past
 // sounds at the block's first sample (counted late), unless it is more than `expire_ns` late:
 // then it is dropped (counted expired) rather than heard in a burst with others; an event
-// beyond the block waits in the queue.
+// beyond the block waits in the queue. While the current scene is muted (SynthScene::muted) every
+// block is zeros and nothing is struck.
 //
 // Threads: one feed thread (queue().push, offerScene, collect, played().pop) and one audio thread
 // (process). The counters may be read from any thread.

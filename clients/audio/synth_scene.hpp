@@ -60,6 +60,10 @@ class SynthScene {
   // At most `total` modes in all, shared among the bodies in proportion to their modes.
   void setBudget(std::size_t total);
   std::size_t renderedModes() const;  // by the last render()
+  // A muted scene (the scene's audio.mute): LiveSynth plays zeros while it is current and
+  // strikes nothing. Set before the scene is offered.
+  void setMuted(bool muted) { muted_ = muted; }
+  bool muted() const { return muted_; }
 
  private:
   struct Voice {
@@ -89,6 +93,7 @@ class SynthScene {
   std::vector<float> scratch_;
   std::size_t modes_ = 0;
   std::uint32_t generation_;
+  bool muted_ = false;
 };
 
 }  // namespace thx::audio

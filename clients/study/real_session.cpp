@@ -77,9 +77,6 @@ Representation representationOf(const std::string& scene_path) {
   return scene::buildSceneSurface(sc).map->isRelief() ? Representation::Relief : Representation::Normal;
 }
 
-// The removals a staged scene variant does not make (scene_stage.hpp): the sound's.
-std::string removedByHand(const Cues& c) { return c.sound ? "" : "the sound (mute the audio client's output)"; }
-
 }  // namespace
 
 Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
@@ -94,8 +91,11 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
   session.header = sessionHeaderFor(m, o.participant, o.seed);
   SessionHeader& h = session.header;
   h.extra.push_back({"participant_model", "a person"});
-  h.extra.push_back({"operator_steps", o.visual_client.empty() ? "sound removal and candidate looks by hand: docs/study.md section 8"
-                                                               : "sound removal by hand: docs/study.md section 8"});
+  // Every cue is removed by a staged variant (NAME.nopen, .noball, .nosound); only Study 1's looks
+  // without --visual-client are left to the operator.
+  h.extra.push_back({"operator_steps", m.study == Study::Identification && o.visual_client.empty()
+                                           ? "candidate looks by hand: docs/study.md section 8"
+                                           : "none"});
   std::optional<LookWindow> window;
   if (!o.visual_client.empty())
     window.emplace(o.visual_client, o.lcm_url.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--lcm-url", o.lcm_url});
@@ -118,9 +118,7 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
     }
     for (const PlannedTrial& t : plan) {
       if (window) window->stop();  // never draw the trial's own surface: no window while switching
-      switchTo(app, t.scene, t.cues);  // NAME.nopen / NAME.noball remove the pen's force / the ball
-      const std::string by_hand = removedByHand(t.cues);
-      if (!by_hand.empty()) console.operatorStep("remove " + by_hand);
+      switchTo(app, t.scene, t.cues);  // NAME.nopen / .noball / .nosound: no pen force / no ball / silence
       std::cout << "\nTrial " << t.trial << " of " << plan.size() << ": "
                 << (t.cues == Cues{} ? std::string("every cue is on") : "one cue is removed: " + cueCondition(t.cues)) << ".\n"
                 << "Short press: next look; hold: this is my answer.\n";
@@ -152,7 +150,6 @@ Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
         row.setRating(c.use, console.rating(std::string("How much did you use ") + c.name + "?", 1, 5));
         row.setRating(c.acc, console.rating(std::string("How accurate did ") + c.name + " seem?", 1, 10));
       }
-      if (!by_hand.empty()) console.operatorStep("put the sound back (unmute)");
       writer.append(row);
       session.trials.push_back(row);
     }

@@ -47,6 +47,9 @@ void stageOne(const std::string& scene_path, bool variants, const fs::path& dir,
   YAML::Node no_ball = YAML::Clone(root);
   no_ball.remove("objects");
   write(no_ball, dir / (name + ".noball.yaml"), written);
+  YAML::Node no_sound = YAML::Clone(root);
+  no_sound["audio"]["mute"] = true;  // the audio client plays exact silence (docs/scenes.md, audio)
+  write(no_sound, dir / (name + ".nosound.yaml"), written);
 }
 
 }  // namespace
@@ -55,6 +58,7 @@ std::string stagedSceneName(const std::string& scene_path, const Cues& cues) {
   const std::string name = sceneNameOf(scene_path);
   if (!cues.pen) return name + ".nopen";
   if (!cues.ball) return name + ".noball";
+  if (!cues.sound) return name + ".nosound";
   return name;
 }
 

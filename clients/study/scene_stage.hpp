@@ -6,8 +6,8 @@
 //   NAME.nopen.yaml   the same with device.stiffness_fraction and damping 0: hapticd renders no force, the
 //                     pen still moves the cursor ("no pen")
 //   NAME.noball.yaml  the same without objects: the physics client rolls nothing ("no ball")
-// A switch keeps the device and the servo rate, so the variants change nothing else. Sound
-// removal has no scene variant (docs/study.md §8).
+//   NAME.nosound.yaml the same with audio.mute: the audio client plays exact silence ("no sound")
+// A switch keeps the device and the servo rate, so the variants change nothing else.
 #include <string>
 #include <vector>
 
@@ -16,8 +16,8 @@
 
 namespace thx::study {
 
-// The name hapticd is switched to for a trial of `scene_path` under `cues` (at most the ball or
-// the pen removed has a variant; sound is removed by hand): "bricks", "bricks.nopen", ...
+// The name hapticd is switched to for a trial of `scene_path` under `cues` (Study 1 removes at
+// most one cue): "bricks", "bricks.nopen", "bricks.noball", "bricks.nosound".
 std::string stagedSceneName(const std::string& scene_path, const Cues& cues);
 
 // Writes the folder (created if missing; existing files of these names are replaced). Returns

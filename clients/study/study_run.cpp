@@ -27,7 +27,8 @@ candidate surfaces with their sound families and scene files; the trials are dra
 seed, which the session file records.
 
 Stage (--stage DIR): writes the manifest's scenes into DIR, and for Study 1 each surface's
-variants NAME.nopen.yaml (no pen force) and NAME.noball.yaml (no ball), then exits.
+variants NAME.nopen.yaml (no pen force), NAME.noball.yaml (no ball) and NAME.nosound.yaml
+(audio.mute: the audio client plays silence), then exits.
 
 Real session (default): hapticd and the clients run on the staged folder, e.g.
   hapticd --scene DIR/TRAINING.yaml --scenes-dir DIR
@@ -35,8 +36,7 @@ with physics-client, audio-client (--scenes-dir DIR) beside it (docs/study.md §
 switches hapticd's scene for each trial (a variant where a cue is removed), reads the device
 button from hapticd's device_state_t stream and asks the ratings on this terminal. Study 1's
 candidate looks: with --visual-client, a window of visual-client --live --allow-different-scene
-per look; without it, an operator step it prints. Muting the sound is an operator step
-(docs/study.md §8).
+per look; without it, an operator step it prints (docs/study.md §8).
 Button: short press (< --long-press s) of button 1 = next look / next surface; hold button 1
 for --long-press s, or press button 2 = confirm.
 

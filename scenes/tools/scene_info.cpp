@@ -77,9 +77,10 @@ void printSummary(const scene::Scene& s, const scene::SceneSurface& built, doubl
     std::printf("script:          %zu step(s), %.2f s\n", dev.script.size(), scriptDuration(dev));
   }
   std::printf("sound:           slab %.4g m thick, held %s; roughness beta %.3g, amplitude %.3g, spacing %.3g m;"
-              " pen %.4g x r %.4g m, %s, tilt %.3g deg\n",
+              " pen %.4g x r %.4g m, %s, tilt %.3g deg%s\n",
               surf.thickness_m, scene::toString(surf.held), surf.roughness.beta, surf.roughness.amplitude,
-              surf.roughness.spacing_m, dev.pen.length_m, dev.pen.radius_m, dev.pen.material.name.c_str(), dev.pen.tilt_deg);
+              surf.roughness.spacing_m, dev.pen.length_m, dev.pen.radius_m, dev.pen.material.name.c_str(), dev.pen.tilt_deg,
+              s.audio.mute ? "; muted (audio.mute: the audio client plays silence)" : "");
   for (const scene::Material& m : s.custom_materials)
     std::printf("material:        %s (the scene's): rho %.4g kg/m^3, E %.4g Pa, nu %.3g, alpha %.3g 1/s, beta %.3g s\n",
                 m.name.c_str(), m.density_kg_per_m3, m.youngs_modulus_pa, m.poisson_ratio, m.rayleigh_alpha_per_s,

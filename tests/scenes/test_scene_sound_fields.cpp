@@ -57,6 +57,14 @@ TEST(SceneSoundFields, DefaultsWhenLeftOut) {
   const Scene s = parseScene(kHead + surfaceWith(""), "s.yaml", "");
   EXPECT_EQ(soundFields(s), (SoundFields{0.01, SlabSupport::Free, 1.0, 0.03, 1e-5, 0.005, 0.12, "plastic", 30.0}));
   EXPECT_TRUE(s.custom_materials.empty());
+  EXPECT_FALSE(s.audio.mute);
+}
+
+// audio.mute: how a study removes the sound by a scene switch (docs/scenes.md, audio).
+TEST(SceneSoundFields, AudioMuteArrives) {
+  EXPECT_TRUE(parseScene(kHead + "audio: {mute: true}\n" + surfaceWith(""), "s.yaml", "").audio.mute);
+  EXPECT_FALSE(parseScene(kHead + "audio:\n  mute: false\n" + surfaceWith(""), "s.yaml", "").audio.mute);
+  EXPECT_FALSE(parseScene(kHead + "audio: {}\n" + surfaceWith(""), "s.yaml", "").audio.mute);
 }
 
 TEST(SceneSoundFields, EveryValueArrives) {
@@ -113,6 +121,10 @@ TEST(SceneSoundFields, BadValuesNameTheFieldAndTheValue) {
        {"device.pen", "shorter than it is wide", "length >= 2 x radius"}},
       {surfaceWith("device:\n  pen: {tilt_deg: 90}\n"), {"device.pen.tilt_deg", "[0, 89] deg", "got '90'"}},
       {surfaceWith("device:\n  pen: {shape: cone}\n"), {"device.pen.shape", "unknown field"}},
+      {"audio: {mute: 1}\n" + surfaceWith(""), {"s.yaml:3:", "audio.mute", "one of: false, true", "got '1'"}},
+      {"audio: {mute: yes please}\n" + surfaceWith(""), {"audio.mute", "got 'yes please'"}},
+      {"audio: {gain: 0}\n" + surfaceWith(""), {"audio.gain", "unknown field"}},
+      {"audio: true\n" + surfaceWith(""), {"audio", "mapping"}},
   };
   for (const Case& c : cases) {
     const std::string message = errorOf(c.text);

@@ -1,7 +1,8 @@
 // study-run end to end (docs/study.md §6): simulated participants run both studies on the test
 // manifests (the servo rig lock-step, no real-time process, nothing timed), the session files read
 // back valid, Study 1 has its cue schedule and Study 2 its split, and study-analyze makes the
-// tables from them. Also the program's usage and errors.
+// tables from them. Also the program's usage and errors. Under the label slow, also on the
+// shipped manifests (scenes/study/).
 #include <gtest/gtest.h>
 
 #include <set>
@@ -29,17 +30,27 @@ CliRun run(const test::TempDir& dir, const char* program, std::vector<std::strin
 
 bool has(const std::string& text, const std::string& s) { return text.find(s) != std::string::npos; }
 
+// The manifests a run uses and what their sessions must show.
+struct Manifests {
+  std::string identification, relief_vs_normal;
+  Representation study1_representation;  // every Study 1 surface's
+  std::size_t study2_surfaces;           // half of them shown as relief maps
+};
+const Manifests kTestManifests{kData + "/identification/manifest.yaml", kData + "/relief_vs_normal/manifest.yaml",
+                               Representation::Relief, 4};
+
 // `participants` simulated participants through both studies, their sessions checked, then
 // study-analyze on them. With `rerun`, one session is run again and must come out byte for byte.
-void bothStudies(int participants, bool rerun) {
+void bothStudies(int participants, bool rerun, const Manifests& m = kTestManifests) {
   test::TempDir dir("study_run");
   std::vector<std::string> files;
   for (int p = 1; p <= participants; ++p) {
     for (const char* study : {"identification", "relief_vs_normal"}) {
       const std::string id = "S0" + std::to_string(p);
       const std::string out = dir.file(id + "_" + study + ".csv");
+      const std::string& manifest = std::string(study) == "identification" ? m.identification : m.relief_vs_normal;
       const CliRun r = run(dir, THX_STUDY_RUN,
-                        {"--simulate", "--manifest", kData + "/" + study + "/manifest.yaml", "--participant", id,
+                        {"--simulate", "--manifest", manifest, "--participant", id,
                          "--seed", std::to_string(100 + p), "--out", out});
       ASSERT_EQ(r.status, 0) << r.err;
       EXPECT_TRUE(has(r.out, "trials written to " + out)) << r.out;
@@ -61,29 +72,29 @@ void bothStudies(int participants, bool rerun) {
         }
         ASSERT_TRUE(t.time_s);
         EXPECT_GT(*t.time_s, 0.0);
-        EXPECT_EQ(t.representation, Representation::Relief);
+        EXPECT_EQ(t.representation, m.study1_representation);
         EXPECT_TRUE(t.rating(Rating::Ease));
         EXPECT_EQ(t.rating(Rating::UsePen).has_value(), t.cues.pen);  // a removed cue is not rated
       }
       EXPECT_EQ(removed, (std::set<std::string>{"no sound", "no ball", "no pen"})) << f;
     } else {
-      ASSERT_EQ(s.trials.size(), 4u) << f;
+      ASSERT_EQ(s.trials.size(), m.study2_surfaces) << f;
       std::set<std::string> surfaces;
-      int relief = 0;
+      std::size_t relief = 0;
       for (const TrialRow& t : s.trials) {
         surfaces.insert(t.surface);  // each once: never both versions of one surface
         relief += t.representation == Representation::Relief;
         EXPECT_TRUE(t.rating(Rating::Overall));
       }
-      EXPECT_EQ(surfaces.size(), 4u);
-      EXPECT_EQ(relief, 2) << f;
+      EXPECT_EQ(surfaces.size(), m.study2_surfaces);
+      EXPECT_EQ(relief, m.study2_surfaces / 2) << f;
     }
   }
 
   if (rerun) {
   // The same seed, the same session, byte for byte.
   const CliRun again = run(dir, THX_STUDY_RUN,
-                        {"--simulate", "--manifest", kData + "/identification/manifest.yaml", "--participant", "S01",
+                        {"--simulate", "--manifest", m.identification, "--participant", "S01",
                          "--seed", "101", "--out", dir.file("again.csv")});
   ASSERT_EQ(again.status, 0) << again.err;
   EXPECT_EQ(test::slurp(dir.file("again.csv")), test::slurp(files[0]));
@@ -107,6 +118,13 @@ void bothStudies(int participants, bool rerun) {
 #ifdef THX_STUDY_RUN_E2E_SLOW
 // The long version (label slow): three participants per study, and one session run again.
 TEST(StudyRunE2eSlow, ThreeParticipantsAndARerun) { bothStudies(3, true); }
+
+// The shipped surfaces (scenes/study/, 512² textures) through the runner: one participant per
+// study; Study 1's ten surfaces are normal maps, Study 2 has six surfaces.
+TEST(StudyRunE2eSlow, ShippedManifestsOneParticipantEach) {
+  const std::string shipped = std::string(THX_SOURCE_DIR) + "/scenes/study/";
+  bothStudies(1, false, Manifests{shipped + "identification.yaml", shipped + "relief_vs_normal.yaml", Representation::Normal, 6});
+}
 #else
 // One participant per study: the short version every test run has (this file built without
 // THX_STUDY_RUN_E2E_SLOW).

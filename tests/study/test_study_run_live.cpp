@@ -2,7 +2,7 @@
 // command of docs/study.md §7 with the staged folder, the simulated PHANToM's scene script
 // tapping and holding its button (down while the hand pushes), the ratings piped on stdin. Only
 // what does not depend on the scheduler is asserted: the session ends, its six rows are valid,
-// the cue schedule holds and the scene variants were accepted. Which look each hold confirms
+// the cue schedule holds and the scene variants (.nopen, .noball, .nosound) were accepted. Which look each hold confirms
 // depends on timing and is not checked.
 #include <gtest/gtest.h>
 
@@ -53,7 +53,13 @@ TEST_F(StudyRunLive, Study1BesideHapticd) {
   }
   EXPECT_EQ(removed, (std::set<std::string>{"no sound", "no ball", "no pen"}));
   const std::string log = slurp(path("run.out"));
-  EXPECT_NE(log.find("OPERATOR (not automated, docs/study.md §8): remove the sound"), std::string::npos) << log;
+  // The sound is removed by the NAME.nosound switch, not by the operator; the looks still are.
+  EXPECT_EQ(log.find("remove the sound"), std::string::npos) << log;
+  EXPECT_NE(log.find("OPERATOR (not automated, docs/study.md §8): show candidate look"), std::string::npos) << log;
+  bool recorded = false;
+  for (const auto& [key, value] : s.header.extra)
+    if (key == "operator_steps") recorded = value == "candidate looks by hand: docs/study.md section 8";
+  EXPECT_TRUE(recorded);
   EXPECT_NE(log.find("6 trials written"), std::string::npos) << log;
   stopServer();
 }
