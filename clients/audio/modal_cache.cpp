@@ -112,6 +112,7 @@ std::optional<ModalSolution> decodeModalCache(std::span<const std::uint8_t> byte
   s.shapes.resize(hd.mesh_dofs, hd.modes);
   std::size_t at = sizeof hd;
   auto block = [&](double* p, std::size_t count) {
+    if (count == 0) return true;  // an empty Eigen vector's data() is null, not for memcpy
     std::memcpy(p, bytes.data() + at, count * sizeof(double));
     at += count * sizeof(double);
     return std::all_of(p, p + count, [](double v) { return std::isfinite(v); });
