@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <span>
@@ -35,6 +36,8 @@ inline constexpr int kFuzzBuildSide = 64;
 
 namespace scene_detail {
 
+inline void removeSceneDir();
+
 inline const std::filesystem::path& sceneDir() {
   static const std::filesystem::path dir = [] {
     const auto d = std::filesystem::temp_directory_path() / ("thx_fuzz_scene_" + std::to_string(::getpid()));
@@ -47,7 +50,16 @@ inline const std::filesystem::path& sceneDir() {
     std::ofstream(d / "path.csv") << "t_s,x_m,y_m,force_n\n0,0,0,0.5\n1,0.01,0,0.5\n";
     return d;
   }();
+  // Registered after `dir` exists, so it runs before `dir` is destroyed.
+  static const bool removed_at_exit = std::atexit(removeSceneDir) == 0;
+  (void)removed_at_exit;
   return dir;
+}
+
+// At exit, so that every test process does not leave its fixture behind.
+inline void removeSceneDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(sceneDir(), ec);
 }
 
 inline bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
