@@ -44,7 +44,7 @@ std::map<std::string, double> parseParams(const Field& field, const tex::Generat
   std::map<std::string, double> params;
   for (const auto& [name, value] : field.entries()) {
     const auto p = std::find_if(spec.params.begin(), spec.params.end(),
-                                [&](const tex::GeneratorParam& gp) { return gp.name == name; });
+                                [&name = name](const tex::GeneratorParam& gp) { return gp.name == name; });
     params[name] = p != spec.params.end() ? value.number(rangeOf(*p)) : value.number(positiveUpTo(10.0, "m"));
   }
   return params;

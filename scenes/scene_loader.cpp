@@ -55,6 +55,9 @@ Scene parseRoot(const Field& root, const std::string& source, const std::string&
 }  // namespace
 
 Scene parseScene(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir) {
+  if (yaml_text.size() > kMaxSceneBytes)
+    throw SceneError({source_name, 0, 0}, "", "text too large for a scene",
+                     "at most " + std::to_string(kMaxSceneBytes) + " bytes", std::to_string(yaml_text.size()) + " bytes");
   std::vector<std::string> warnings;
   std::vector<Material> custom_materials;
   const ParseContext context{source_name, base_dir, &warnings, &custom_materials};

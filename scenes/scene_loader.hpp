@@ -14,7 +14,8 @@ namespace thx::scene {
 Scene loadScene(const std::string& path);
 
 // Same from text: `source_name` is what messages call it, `base_dir` resolves relative paths
-// ("" = the current directory).
+// ("" = the current directory). Text above 1 MiB is refused as not a scene (loadScene checks the
+// file's size before reading it).
 Scene parseScene(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir);
 
 }  // namespace thx::scene

@@ -2,9 +2,11 @@
 // Minimal PNG reading and writing on libpng (no OpenCV codecs: the real-time server links this).
 // Errors are TextureError naming the file: unreadable, not a PNG, truncated or corrupt data,
 // unsupported layout, size outside [kMinTextureSide, kMaxTextureSide] (checked from the header,
-// before any pixel memory is allocated).
+// before any pixel memory is allocated), or more pixel data than the file's bytes can hold at
+// zlib's largest compression ratio (1032:1; so pixel memory stays within ~1032x the file size).
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,8 +26,14 @@ struct RawImage {
   int maxValue() const { return bit_depth == 16 ? 65535 : 255; }
 };
 
-// Palette images are expanded to RGB(A); 1/2/4-bit grayscale to 8 bit.
+// Palette images are expanded to RGB(A); 1/2/4-bit grayscale to 8 bit. A chunk stating more bytes
+// than follow it is refused before libpng sees it (libpng allocates a text chunk's stated length
+// before reading it). Writing refuses a text key
+// that is not a PNG keyword (1-79 printable Latin-1 characters, no leading/trailing/double space).
 RawImage readPng(const std::string& path);
 void writePng(const std::string& path, const RawImage& image);
+// The same in memory; `source` names the bytes in errors.
+RawImage decodePng(std::span<const std::uint8_t> bytes, const std::string& source);
+std::vector<std::uint8_t> encodePng(const RawImage& image, const std::string& source);
 
 }  // namespace thx::tex

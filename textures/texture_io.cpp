@@ -183,6 +183,10 @@ TextureMap decodeTexture(const RawImage& raw, const std::string& path, const Loa
 }
 
 void saveTexture(const std::string& path, const TextureMap& map, const SaveOptions& options) {
+  writePng(path, encodeTexture(map, path, options));
+}
+
+RawImage encodeTexture(const TextureMap& map, const std::string& path, const SaveOptions& options) {
   if (options.bit_depth != 8 && options.bit_depth != 16) {
     throw TextureError(path, "unsupported bit depth", std::to_string(options.bit_depth), "8 or 16");
   }
@@ -220,7 +224,7 @@ void saveTexture(const std::string& path, const TextureMap& map, const SaveOptio
     raw.text[kKeyExtent] = formatDouble(meta.extent_x_m) + " " + formatDouble(meta.extent_y_m);
   }
   if (!meta.params.empty()) raw.text[kKeyParams] = meta.params;
-  writePng(path, raw);
+  return raw;
 }
 
 }  // namespace thx::tex

@@ -49,6 +49,8 @@ struct SaveOptions {
   GreenConvention green = GreenConvention::OpenGL;
 };
 void saveTexture(const std::string& path, const TextureMap& map, const SaveOptions& options = {});
+// What saveTexture writes, as an image in memory (`source` names it in errors).
+RawImage encodeTexture(const TextureMap& map, const std::string& source, const SaveOptions& options = {});
 
 const char* toString(GreenConvention g);
 

@@ -2,10 +2,14 @@
 
 #include "base/error.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <vector>
 
 namespace thx::audio {
@@ -69,40 +73,93 @@ std::string modalCachePath(const std::string& dir, std::uint64_t key) {
   return (std::filesystem::path(dir) / name).string();
 }
 
-std::optional<ModalSolution> readModalCache(const std::string& path, std::uint64_t key,
-                                            const std::function<void(const std::string&)>& warn) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
+std::optional<ModalSolution> decodeModalCache(std::span<const std::uint8_t> bytes, std::uint64_t key,
+                                              const std::string& source,
+                                              const std::function<void(const std::string&)>& warn) {
   auto damaged = [&](const std::string& why) -> std::optional<ModalSolution> {
-    if (warn) warn("modal cache " + path + ": " + why + "; solving again");
+    if (warn) warn("modal cache " + source + ": " + why + "; solving again");
     return std::nullopt;
   };
   Header hd{};
-  if (!in.read(reinterpret_cast<char*>(&hd), sizeof hd)) return damaged("shorter than its header");
+  if (bytes.size() < sizeof hd + sizeof(std::uint64_t)) return damaged("shorter than its header");
+  std::memcpy(&hd, bytes.data(), sizeof hd);
   if (std::memcmp(hd.magic, kMagic, sizeof kMagic) != 0) return damaged("not a modal cache file");
   if (hd.version != kModalCacheVersion) return damaged("format version " + std::to_string(hd.version));
   if (hd.key != key) return damaged("another key");
+  if (hd.reserved != 0) return damaged("reserved header field " + std::to_string(hd.reserved) + ", expected 0");
+  constexpr std::uint32_t kMaxCount = std::numeric_limits<int>::max();
+  if (hd.rigid_modes > kMaxCount || hd.mesh_dofs > kMaxCount || hd.modes > kMaxCount)
+    return damaged("counts R " + std::to_string(hd.rigid_modes) + ", D " + std::to_string(hd.mesh_dofs) + ", N " +
+                   std::to_string(hd.modes) + " beyond " + std::to_string(kMaxCount));
+  if (hd.free_dofs > hd.mesh_dofs)
+    return damaged("free DOFs " + std::to_string(hd.free_dofs) + " above mesh DOFs " + std::to_string(hd.mesh_dofs));
+  // The counts must account for the file's size exactly before anything is allocated from them.
+  const std::uint64_t doubles = std::uint64_t(hd.rigid_modes) + hd.modes + std::uint64_t(hd.mesh_dofs) * hd.modes;
+  const std::uint64_t available = (bytes.size() - sizeof hd - sizeof(std::uint64_t)) / sizeof(double);
+  if (doubles != available || (bytes.size() - sizeof hd) % sizeof(double) != 0)
+    return damaged(std::to_string(bytes.size()) + " bytes where R " + std::to_string(hd.rigid_modes) + ", D " +
+                   std::to_string(hd.mesh_dofs) + ", N " + std::to_string(hd.modes) + " need " +
+                   std::to_string(sizeof hd + 8 * (doubles + 1)) + " (truncated or trailing data)");
+  std::uint64_t checksum = 0;
+  std::memcpy(&checksum, bytes.data() + bytes.size() - sizeof checksum, sizeof checksum);
+  Fnv1a h;
+  h.bytes(bytes.data(), bytes.size() - sizeof checksum);
+  if (checksum != h.digest()) return damaged("checksum mismatch");
+
   ModalSolution s;
   s.mesh_dofs = int(hd.mesh_dofs), s.free_dofs = int(hd.free_dofs), s.rigid_modes = int(hd.rigid_modes);
   s.rigid_hz.resize(hd.rigid_modes);
   s.omega_rad_per_s.resize(hd.modes);
   s.shapes.resize(hd.mesh_dofs, hd.modes);
-  Fnv1a h;
-  h.value(hd);
+  std::size_t at = sizeof hd;
   auto block = [&](double* p, std::size_t count) {
-    if (!in.read(reinterpret_cast<char*>(p), std::streamsize(count * sizeof(double)))) return false;
-    h.bytes(p, count * sizeof(double));
-    return true;
+    if (count == 0) return true;  // an empty Eigen vector's data() is null, not for memcpy
+    std::memcpy(p, bytes.data() + at, count * sizeof(double));
+    at += count * sizeof(double);
+    return std::all_of(p, p + count, [](double v) { return std::isfinite(v); });
   };
-  std::uint64_t checksum = 0;
-  if (!block(s.rigid_hz.data(), hd.rigid_modes) || !block(s.omega_rad_per_s.data(), hd.modes) ||
-      !block(s.shapes.data(), std::size_t(hd.mesh_dofs) * hd.modes) ||
-      !in.read(reinterpret_cast<char*>(&checksum), sizeof checksum))
-    return damaged("truncated");
-  if (checksum != h.digest()) return damaged("checksum mismatch");
+  if (!block(s.rigid_hz.data(), hd.rigid_modes)) return damaged("a rigid-mode frequency is not finite");
+  if (!block(s.omega_rad_per_s.data(), hd.modes)) return damaged("an elastic frequency is not finite");
+  for (Eigen::Index m = 0; m < s.omega_rad_per_s.size(); ++m)
+    if (s.omega_rad_per_s[m] < 0.0 || (m > 0 && s.omega_rad_per_s[m] < s.omega_rad_per_s[m - 1]))
+      return damaged("elastic frequencies not ascending from 0 at mode " + std::to_string(m));
+  if (!block(s.shapes.data(), std::size_t(hd.mesh_dofs) * hd.modes)) return damaged("a mode shape is not finite");
   s.from_cache = true;
-  s.cache_file = path;
+  s.cache_file = source;
   return s;
+}
+
+std::optional<ModalSolution> readModalCache(const std::string& path, std::uint64_t key,
+                                            const std::function<void(const std::string&)>& warn) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return decodeModalCache(bytes, key, path, warn);
+}
+
+std::vector<std::uint8_t> encodeModalCache(std::uint64_t key, const ModalSolution& s) {
+  Header hd{};
+  std::memcpy(hd.magic, kMagic, sizeof kMagic);
+  hd.version = kModalCacheVersion;
+  hd.rigid_modes = std::uint32_t(s.rigid_hz.size());
+  hd.key = key;
+  hd.mesh_dofs = std::uint32_t(s.shapes.rows()), hd.free_dofs = std::uint32_t(s.free_dofs);
+  hd.modes = std::uint32_t(s.omega_rad_per_s.size());
+  std::vector<std::uint8_t> out(sizeof hd);
+  std::memcpy(out.data(), &hd, sizeof hd);
+  auto block = [&](const double* p, std::size_t count) {
+    const auto* b = reinterpret_cast<const std::uint8_t*>(p);
+    out.insert(out.end(), b, b + count * sizeof(double));
+  };
+  block(s.rigid_hz.data(), std::size_t(s.rigid_hz.size()));
+  block(s.omega_rad_per_s.data(), std::size_t(s.omega_rad_per_s.size()));
+  block(s.shapes.data(), std::size_t(s.shapes.size()));
+  Fnv1a h;
+  h.bytes(out.data(), out.size());
+  const std::uint64_t checksum = h.digest();
+  const auto* c = reinterpret_cast<const std::uint8_t*>(&checksum);
+  out.insert(out.end(), c, c + sizeof checksum);
+  return out;
 }
 
 void writeModalCache(const std::string& path, std::uint64_t key, const ModalSolution& s) {
@@ -112,25 +169,8 @@ void writeModalCache(const std::string& path, std::uint64_t key, const ModalSolu
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw Error(Error::Kind::Io, "modal cache " + tmp + ": cannot be written");
-    Header hd{};
-    std::memcpy(hd.magic, kMagic, sizeof kMagic);
-    hd.version = kModalCacheVersion;
-    hd.rigid_modes = std::uint32_t(s.rigid_modes);
-    hd.key = key;
-    hd.mesh_dofs = std::uint32_t(s.mesh_dofs), hd.free_dofs = std::uint32_t(s.free_dofs);
-    hd.modes = std::uint32_t(s.omega_rad_per_s.size());
-    Fnv1a h;
-    h.value(hd);
-    out.write(reinterpret_cast<const char*>(&hd), sizeof hd);
-    auto block = [&](const double* p, std::size_t count) {
-      out.write(reinterpret_cast<const char*>(p), std::streamsize(count * sizeof(double)));
-      h.bytes(p, count * sizeof(double));
-    };
-    block(s.rigid_hz.data(), std::size_t(s.rigid_hz.size()));
-    block(s.omega_rad_per_s.data(), std::size_t(s.omega_rad_per_s.size()));
-    block(s.shapes.data(), std::size_t(s.shapes.size()));
-    const std::uint64_t checksum = h.digest();
-    out.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
+    const std::vector<std::uint8_t> bytes = encodeModalCache(key, s);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     if (!out) throw Error(Error::Kind::Io, "modal cache " + tmp + ": write failed");
   }
   std::filesystem::rename(tmp, path, ec);

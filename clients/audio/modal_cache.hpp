@@ -3,6 +3,8 @@
 // FNV-1a key over all three. Layout in docs/audio.md §2.
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <vector>
 #include <string>
 
 #include "clients/audio/elastic_material.hpp"
@@ -20,6 +22,14 @@ std::string modalCachePath(const std::string& dir, std::uint64_t key);
 // file is reported through `warn` and then ignored).
 std::optional<ModalSolution> readModalCache(const std::string& path, std::uint64_t key,
                                             const std::function<void(const std::string&)>& warn = {});
+// The same from the file's bytes (`source` names them in warnings). Refused before any allocation:
+// counts that do not account for the size exactly, or beyond int; after the checksum: a nonzero
+// reserved field, free DOFs above mesh DOFs, a value that is not finite, frequencies not ascending.
+std::optional<ModalSolution> decodeModalCache(std::span<const std::uint8_t> bytes, std::uint64_t key,
+                                              const std::string& source,
+                                              const std::function<void(const std::string&)>& warn = {});
+// The file's bytes for a solution (R from rigid_hz, D from the shapes' rows).
+std::vector<std::uint8_t> encodeModalCache(std::uint64_t key, const ModalSolution& solution);
 // Writes atomically (temporary file, then rename). Throws thx::Error (Io) if it cannot.
 void writeModalCache(const std::string& path, std::uint64_t key, const ModalSolution& solution);
 
