@@ -124,18 +124,35 @@ std::string columnLine() {
   return s;
 }
 
+namespace {
+
+std::string headerText(const SessionHeader& h) {
+  std::string s = std::string(kSessionMagic) + "\n# format: " + std::to_string(kSessionFormat) +
+                  "\n# study: " + std::string(studyName(h.study)) + "\n# participant: " + h.participant +
+                  "\n# seed: " + std::to_string(h.seed) + "\n# software: " + h.software + "\n# surfaces:";
+  for (const Candidate& c : h.surfaces) s += ' ' + c.name + '=' + c.family;
+  s += '\n';
+  for (const auto& [key, value] : h.extra) s += "# " + key + ": " + value + '\n';
+  return s + columnLine() + '\n';
+}
+
+std::string rowText(const TrialRow& row) {
+  std::string s = std::to_string(row.trial) + ',' + row.surface + ',' + std::string(representationName(row.representation)) +
+                  ',' + (row.cues.sound ? '1' : '0') + ',' + (row.cues.ball ? '1' : '0') + ',' +
+                  (row.cues.pen ? '1' : '0') + ',' + row.answer + ',' +
+                  (row.correct ? (*row.correct ? "1" : "0") : "") + ',' + (row.time_s ? numberField(*row.time_s) : "");
+  for (const std::optional<int>& r : row.ratings) s += ',' + (r ? std::to_string(*r) : "");
+  return s + '\n';
+}
+
+}  // namespace
+
 SessionWriter::SessionWriter(const std::string& path, const SessionHeader& header)
     : path_(path), header_(header), rules_(header_) {
   checkHeader(header_, path_ + ": header");
   out_.open(path_, std::ios::binary | std::ios::trunc);
   if (!out_) throw Error(Error::Kind::Io, path_ + ": cannot create the session file: " + std::strerror(errno));
-  out_ << kSessionMagic << "\n# format: " << kSessionFormat << "\n# study: " << studyName(header_.study)
-       << "\n# participant: " << header_.participant << "\n# seed: " << header_.seed
-       << "\n# software: " << header_.software << "\n# surfaces:";
-  for (const Candidate& c : header_.surfaces) out_ << ' ' << c.name << '=' << c.family;
-  out_ << '\n';
-  for (const auto& [key, value] : header_.extra) out_ << "# " << key << ": " << value << '\n';
-  out_ << columnLine() << '\n';
+  out_ << headerText(header_);
   line_ = 8 + static_cast<int>(header_.extra.size());
   flushOrThrow();
 }
@@ -143,12 +160,7 @@ SessionWriter::SessionWriter(const std::string& path, const SessionHeader& heade
 void SessionWriter::append(const TrialRow& row) {
   ++line_;
   rules_.check(row, place(path_, line_));
-  std::string s = std::to_string(row.trial) + ',' + row.surface + ',' + std::string(representationName(row.representation)) +
-                  ',' + (row.cues.sound ? '1' : '0') + ',' + (row.cues.ball ? '1' : '0') + ',' +
-                  (row.cues.pen ? '1' : '0') + ',' + row.answer + ',' +
-                  (row.correct ? (*row.correct ? "1" : "0") : "") + ',' + (row.time_s ? numberField(*row.time_s) : "");
-  for (const std::optional<int>& r : row.ratings) s += ',' + (r ? std::to_string(*r) : "");
-  out_ << s << '\n';
+  out_ << rowText(row);
   flushOrThrow();
 }
 
@@ -160,6 +172,18 @@ void SessionWriter::flushOrThrow() {
 void writeSession(const std::string& path, const Session& session) {
   SessionWriter w(path, session.header);
   for (const TrialRow& r : session.trials) w.append(r);
+}
+
+std::string formatSession(const Session& session, const std::string& name) {
+  checkHeader(session.header, name + ": header");
+  std::string text = headerText(session.header);
+  RowRules rules(session.header);
+  int line = 8 + static_cast<int>(session.header.extra.size());
+  for (const TrialRow& r : session.trials) {
+    rules.check(r, place(name, ++line));
+    text += rowText(r);
+  }
+  return text;
 }
 
 Session readSession(const std::string& path) {
