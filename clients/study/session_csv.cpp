@@ -37,7 +37,7 @@ std::string place(const std::string& source, int line) { return source + ":" + s
 [[noreturn]] void fieldError(const std::string& where, std::string_view field, const std::string& expected,
                              std::string_view got) {
   throw SessionError(where + ": field '" + std::string(field) + "': expected " + expected + ", got '" +
-                     std::string(got) + "'");
+                     shownText(got) + "'");
 }
 
 template <class T>
@@ -110,7 +110,7 @@ void parseHeaderValue(SessionHeader& h, std::string_view key, std::string_view v
     }
   } else {
     for (const auto& [k, v] : h.extra) {
-      if (k == key) throw SessionError(where + ": header key '" + std::string(key) + "' appears twice");
+      if (k == key) throw SessionError(where + ": header key '" + shownText(key) + "' appears twice");
     }
     h.extra.emplace_back(key, value);
   }
@@ -214,7 +214,7 @@ Session parseSession(std::string_view text, const std::string& source) {
     const std::string_view l = lines[i];
     const auto colon = l.find(": ");
     if (l.size() < 3 || l[1] != ' ' || colon == std::string_view::npos) {
-      throw SessionError(where + ": expected a header line '# key: value', got '" + std::string(l) + "'");
+      throw SessionError(where + ": expected a header line '# key: value', got '" + shownText(l) + "'");
     }
     const std::string_view key = l.substr(2, colon - 2), value = l.substr(colon + 2);
     bool* once = key == "format"        ? &has_format
@@ -224,7 +224,7 @@ Session parseSession(std::string_view text, const std::string& source) {
                  : key == "software"    ? &has_software
                  : key == "surfaces"    ? &has_surfaces
                                         : nullptr;
-    if (once && *once) throw SessionError(where + ": header key '" + std::string(key) + "' appears twice");
+    if (once && *once) throw SessionError(where + ": header key '" + shownText(key) + "' appears twice");
     if (key == "format") {
       int f = 0;
       if (!parseWhole(value, f) || f != kSessionFormat) {
@@ -245,7 +245,7 @@ Session parseSession(std::string_view text, const std::string& source) {
   const std::vector<std::string> names = columns();
   if (i >= lines.size() || lines[i] != columnLine()) {
     throw SessionError(place(source, int(i + 1)) + ": expected the column line '" + columnLine() + "', got '" +
-                       (i < lines.size() ? std::string(lines[i]) : std::string("end of file")) + "'");
+                       (i < lines.size() ? shownText(lines[i]) : std::string("end of file")) + "'");
   }
   RowRules rules(s.header);
   for (++i; i < lines.size(); ++i) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "tests/fuzz/seed_writer.hpp"
@@ -51,6 +52,32 @@ TEST(FuzzSessionCsv, FormatSessionIsWhatTheWriterWrites) {
     EXPECT_EQ(text.str(), std::string(bytes.begin(), bytes.end())) << name;
     EXPECT_EQ(study::readSession(path).trials, s.trials) << name;
   }
+}
+
+// Found by the long run (corpus/session_csv/regression_nul_in_header_key): a header key holding a
+// NUL was quoted raw in the error, so what() ended at the NUL and the message lost its reason.
+// Text from the file is now quoted with shownText(): non-printable bytes as \xNN, at most 100
+// characters.
+TEST(FuzzSessionCsv, ErrorsQuoteTheFileSafely) {
+  const std::string head = "# texhaptics study session\n# format: 1\n";
+  auto error = [](const std::string& text) {
+    try {
+      study::parseSession(text, "s.csv");
+    } catch (const study::SessionError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string key("k\0y", 3);
+  EXPECT_EQ(error(head + "# " + key + ": a\n# " + key + ": b\n"), "s.csv:4: header key 'k\\x00y' appears twice");
+  EXPECT_EQ(error(head + "#\x01\n"), "s.csv:3: expected a header line '# key: value', got '#\\x01'");
+  EXPECT_EQ(error(head + "# seed: " + std::string(300, '7') + "\n"),
+            "s.csv:3: field 'seed': expected a whole number in [0, 2^64), got '" + std::string(100, '7') + "...'");
+  std::ifstream f(std::string(THX_SOURCE_DIR) + "/tests/fuzz/corpus/session_csv/regression_nul_in_header_key",
+                  std::ios::binary);
+  const Bytes found((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(found.empty());
+  EXPECT_EQ(session_csv::fuzzOnce(found), std::nullopt);
 }
 
 TEST(FuzzSessionCsv, ShortRun) { shortRun("session_csv", &session_csv::fuzzOnce); }
