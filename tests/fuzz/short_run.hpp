@@ -5,9 +5,10 @@
 // input to the same body the libFuzzer target runs, and fail with the input as hex on the first
 // broken property.
 //
-// The input sequence is fixed. The run always covers the first kMinIterations inputs, then keeps
-// going through the same sequence until about kBudgetS seconds have passed (so the sanitizer
-// tree, ~20x slower, stays quick); THX_FUZZ_ITERATIONS=N runs exactly N inputs. Mutations: bit
+// The input sequence is fixed. The run always covers the first min_iterations inputs (3000 here,
+// 4000 for VRPN), then keeps going through the same sequence until about 2 s have passed, at most
+// 200k inputs (so the sanitizer tree, ~20x slower, stays quick); THX_FUZZ_ITERATIONS=N runs
+// exactly N inputs. Mutations: bit
 // flips, random bytes, big-endian "interesting" 32- and 64-bit words (lengths, counts), the
 // target's dictionary tokens, separators of text formats, inserts, deletes, duplications,
 // truncations and splices with other seeds.
