@@ -44,7 +44,8 @@ std::map<std::string, double> parseParams(const Field& field, const tex::Generat
   std::map<std::string, double> params;
   for (const auto& [name, value] : field.entries()) {
     const auto p = std::find_if(spec.params.begin(), spec.params.end(),
-                                [&name = name](const tex::GeneratorParam& gp) { return gp.name == name; });
+                                // init-capture: clang 14 (the fuzz tree) cannot capture a binding
+                                [&n = name](const tex::GeneratorParam& gp) { return gp.name == n; });
     params[name] = p != spec.params.end() ? value.number(rangeOf(*p)) : value.number(positiveUpTo(10.0, "m"));
   }
   return params;

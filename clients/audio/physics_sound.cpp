@@ -1,7 +1,5 @@
 #include "clients/audio/physics_sound.hpp"
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -238,25 +236,19 @@ std::int64_t PhysicsStreams::firstUtime() const {
 
 PhysicsStreams readPhysicsStreams(const std::string& path) {
   PhysicsStreams s;
-  lcm::LogFile log(path, "r");
-  if (!log.good()) throw thx_msgs::LogError(path + ": cannot open as an LCM log file");
-  long n = 0;
-  auto decode = [&](const lcm::LogEvent& e, auto& m) {
-    if (e.datalen < 0 || thx_msgs::try_decode(e.data, std::size_t(e.datalen), m) < 0)
-      throw thx_msgs::LogError(thx_msgs::LogPosition{path, n, e.channel, e.timestamp}.where() + ": does not decode as " +
-                               std::decay_t<decltype(m)>::getTypeName() + " (wrong type or corrupt)");
-  };
-  while (const lcm::LogEvent* e = log.readNextEvent()) {
-    ++n;
-    if (e->channel == thx_msgs::kChannelPhysicsPoses) {
-      decode(*e, s.poses.emplace_back());
-    } else if (e->channel == thx_msgs::kChannelPhysicsImpact) {
-      decode(*e, s.impacts.emplace_back());
-    } else if (e->channel == thx_msgs::kChannelPhysicsContacts) {
-      decode(*e, s.contacts.emplace_back());
-    } else if (e->channel == thx_msgs::kChannelHello) {
+  thx_msgs::LogReader log(path);
+  thx_msgs::LogRecord e;
+  while (log.next(e)) {
+    const thx_msgs::LogPosition at{path, log.events(), e.channel, e.timestamp_us};
+    if (e.channel == thx_msgs::kChannelPhysicsPoses) {
+      thx_msgs::decodeLogRecord(e, at, s.poses.emplace_back());
+    } else if (e.channel == thx_msgs::kChannelPhysicsImpact) {
+      thx_msgs::decodeLogRecord(e, at, s.impacts.emplace_back());
+    } else if (e.channel == thx_msgs::kChannelPhysicsContacts) {
+      thx_msgs::decodeLogRecord(e, at, s.contacts.emplace_back());
+    } else if (e.channel == thx_msgs::kChannelHello) {
       thx_msgs::hello_t h;
-      decode(*e, h);
+      thx_msgs::decodeLogRecord(e, at, h);
       s.hellos.push_back({h.utime, h.scene_name});
     }
   }

@@ -14,14 +14,14 @@
 namespace thx::physclient {
 
 SessionClock sessionClockOf(const std::string& session_path) {
-  lcm::LogFile log(session_path, "r");
-  if (!log.good()) throw PenPathError(session_path + ": cannot open as an LCM log file");
-  while (const lcm::LogEvent* e = log.readNextEvent()) {
-    if (e->channel != "THX_DEVICE_STATE") continue;
+  thx_msgs::LogReader log(session_path);
+  thx_msgs::LogRecord e;
+  while (log.next(e)) {
+    if (e.channel != "THX_DEVICE_STATE") continue;
     thx_msgs::device_state_t s;
-    if (e->datalen < 0 || thx_msgs::try_decode(e->data, std::size_t(e->datalen), s) < 0)
+    if (thx_msgs::try_decode(e.data.data(), e.data.size(), s) < 0)
       throw PenPathError(session_path + ": first THX_DEVICE_STATE event does not decode as device_state_t");
-    return {s.utime, e->timestamp};
+    return {s.utime, e.timestamp_us};
   }
   throw PenPathError(session_path + ": no THX_DEVICE_STATE event; expected a session log from `hapticd --record`");
 }
@@ -55,11 +55,8 @@ void RecordSink::contacts(const PhysicsScene& scene, const std::vector<LastingCo
 
 void writeCombinedLog(const std::string& session_path, const std::vector<RecordedEvent>& physics,
                       const std::string& out_path) {
-  std::unique_ptr<lcm::LogFile> in;
-  if (!session_path.empty()) {
-    in = std::make_unique<lcm::LogFile>(session_path, "r");
-    if (!in->good()) throw thx::Error(thx::Error::Kind::Io, session_path + ": cannot open as an LCM log file");
-  }
+  std::unique_ptr<thx_msgs::LogReader> in;
+  if (!session_path.empty()) in = std::make_unique<thx_msgs::LogReader>(session_path);
   lcm::LogFile out(out_path, "w");
   if (!out.good()) throw thx::Error(thx::Error::Kind::Io, "--record " + out_path + ": cannot create the log file");
   std::int64_t eventnum = 0;
@@ -80,10 +77,10 @@ void writeCombinedLog(const std::string& session_path, const std::vector<Recorde
             std::int32_t(physics[next].data.size()));
   };
   if (in)
-    while (const lcm::LogEvent* e = in->readNextEvent()) {
-      if (e->channel.rfind("THX_PHYSICS_", 0) == 0) continue;  // an earlier recording's: replaced
-      physicsBefore(e->timestamp);
-      write(e->timestamp, e->channel, e->data, e->datalen);
+    for (thx_msgs::LogRecord e; in->next(e);) {
+      if (e.channel.rfind("THX_PHYSICS_", 0) == 0) continue;  // an earlier recording's: replaced
+      physicsBefore(e.timestamp_us);
+      write(e.timestamp_us, e.channel, e.data.data(), std::int32_t(e.data.size()));
     }
   for (; next < physics.size(); ++next)  // after the session's last event
     write(physics[next].timestamp_us, physics[next].channel, physics[next].data.data(),

@@ -83,6 +83,21 @@ const Candidate* SessionHeader::find(std::string_view surface) const {
   return nullptr;
 }
 
+std::string shownText(std::string_view s) {
+  constexpr std::size_t kMaxShown = 100;
+  std::string out;
+  for (std::size_t i = 0; i < s.size() && i < kMaxShown; ++i) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c >= 32 && c < 127) {
+      out += static_cast<char>(c);
+    } else {
+      static const char* d = "0123456789abcdef";
+      out += {'\\', 'x', d[c >> 4], d[c & 15]};
+    }
+  }
+  return s.size() > kMaxShown ? out + "..." : out;
+}
+
 bool isToken(std::string_view s) { return !s.empty() && std::all_of(s.begin(), s.end(), tokenChar); }
 
 bool isHeaderValue(std::string_view s) {
@@ -92,17 +107,17 @@ bool isHeaderValue(std::string_view s) {
 
 void checkHeader(const SessionHeader& h, const std::string& where) {
   if (!isToken(h.participant)) {
-    fail(where, "participant", "expected letters, digits or _-.+, got '" + h.participant + "'");
+    fail(where, "participant", "expected letters, digits or _-.+, got '" + shownText(h.participant) + "'");
   }
   if (!isHeaderValue(h.software)) {
     fail(where, "software", "expected a version text (letters, digits, _-.+:/ and inner spaces), got '" +
-                                h.software + "'");
+                                shownText(h.software) + "'");
   }
   if (h.surfaces.empty()) fail(where, "surfaces", "expected at least one surface");
   for (std::size_t i = 0; i < h.surfaces.size(); ++i) {
     const Candidate& c = h.surfaces[i];
     if (!isToken(c.name) || !isToken(c.family)) {
-      fail(where, "surfaces", "expected NAME=FAMILY of letters, digits or _-.+, got '" + c.name + "=" + c.family + "'");
+      fail(where, "surfaces", "expected NAME=FAMILY of letters, digits or _-.+, got '" + shownText(c.name + "=" + c.family) + "'");
     }
     for (std::size_t j = 0; j < i; ++j) {
       if (h.surfaces[j].name == c.name) fail(where, "surfaces", "surface '" + c.name + "' is listed twice");
@@ -110,8 +125,8 @@ void checkHeader(const SessionHeader& h, const std::string& where) {
   }
   for (const auto& [key, value] : h.extra) {
     if (!isToken(key) || !isHeaderValue(value)) {
-      fail(where, key, "expected a key of letters, digits or _-.+ and a value of those, ':', '/' and inner "
-                       "spaces, got '" + key + ": " + value + "'");
+      fail(where, shownText(key), "expected a key of letters, digits or _-.+ and a value of those, ':', '/' and "
+                                  "inner spaces, got '" + shownText(key + ": " + value) + "'");
     }
   }
 }

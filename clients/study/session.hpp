@@ -103,6 +103,9 @@ struct Session {
 // letters, digits and "_-.+" (header values may also hold spaces, ':' and '/').
 bool isToken(std::string_view s);
 bool isHeaderValue(std::string_view s);
+// Text from a file as an error message quotes it: printable ASCII kept, any other byte as \xNN (a
+// NUL would end what() there and hide the rest of the message), at most 100 characters then "...".
+std::string shownText(std::string_view s);
 
 // The format's rules (docs/study.md §2). `where` names the place for messages ("s.csv:9", or
 // "s.csv: header"). Throw SessionError.

@@ -37,7 +37,7 @@ std::string place(const std::string& source, int line) { return source + ":" + s
 [[noreturn]] void fieldError(const std::string& where, std::string_view field, const std::string& expected,
                              std::string_view got) {
   throw SessionError(where + ": field '" + std::string(field) + "': expected " + expected + ", got '" +
-                     std::string(got) + "'");
+                     shownText(got) + "'");
 }
 
 template <class T>
@@ -110,7 +110,7 @@ void parseHeaderValue(SessionHeader& h, std::string_view key, std::string_view v
     }
   } else {
     for (const auto& [k, v] : h.extra) {
-      if (k == key) throw SessionError(where + ": header key '" + std::string(key) + "' appears twice");
+      if (k == key) throw SessionError(where + ": header key '" + shownText(key) + "' appears twice");
     }
     h.extra.emplace_back(key, value);
   }
@@ -124,18 +124,35 @@ std::string columnLine() {
   return s;
 }
 
+namespace {
+
+std::string headerText(const SessionHeader& h) {
+  std::string s = std::string(kSessionMagic) + "\n# format: " + std::to_string(kSessionFormat) +
+                  "\n# study: " + std::string(studyName(h.study)) + "\n# participant: " + h.participant +
+                  "\n# seed: " + std::to_string(h.seed) + "\n# software: " + h.software + "\n# surfaces:";
+  for (const Candidate& c : h.surfaces) s += ' ' + c.name + '=' + c.family;
+  s += '\n';
+  for (const auto& [key, value] : h.extra) s += "# " + key + ": " + value + '\n';
+  return s + columnLine() + '\n';
+}
+
+std::string rowText(const TrialRow& row) {
+  std::string s = std::to_string(row.trial) + ',' + row.surface + ',' + std::string(representationName(row.representation)) +
+                  ',' + (row.cues.sound ? '1' : '0') + ',' + (row.cues.ball ? '1' : '0') + ',' +
+                  (row.cues.pen ? '1' : '0') + ',' + row.answer + ',' +
+                  (row.correct ? (*row.correct ? "1" : "0") : "") + ',' + (row.time_s ? numberField(*row.time_s) : "");
+  for (const std::optional<int>& r : row.ratings) s += ',' + (r ? std::to_string(*r) : "");
+  return s + '\n';
+}
+
+}  // namespace
+
 SessionWriter::SessionWriter(const std::string& path, const SessionHeader& header)
     : path_(path), header_(header), rules_(header_) {
   checkHeader(header_, path_ + ": header");
   out_.open(path_, std::ios::binary | std::ios::trunc);
   if (!out_) throw Error(Error::Kind::Io, path_ + ": cannot create the session file: " + std::strerror(errno));
-  out_ << kSessionMagic << "\n# format: " << kSessionFormat << "\n# study: " << studyName(header_.study)
-       << "\n# participant: " << header_.participant << "\n# seed: " << header_.seed
-       << "\n# software: " << header_.software << "\n# surfaces:";
-  for (const Candidate& c : header_.surfaces) out_ << ' ' << c.name << '=' << c.family;
-  out_ << '\n';
-  for (const auto& [key, value] : header_.extra) out_ << "# " << key << ": " << value << '\n';
-  out_ << columnLine() << '\n';
+  out_ << headerText(header_);
   line_ = 8 + static_cast<int>(header_.extra.size());
   flushOrThrow();
 }
@@ -143,12 +160,7 @@ SessionWriter::SessionWriter(const std::string& path, const SessionHeader& heade
 void SessionWriter::append(const TrialRow& row) {
   ++line_;
   rules_.check(row, place(path_, line_));
-  std::string s = std::to_string(row.trial) + ',' + row.surface + ',' + std::string(representationName(row.representation)) +
-                  ',' + (row.cues.sound ? '1' : '0') + ',' + (row.cues.ball ? '1' : '0') + ',' +
-                  (row.cues.pen ? '1' : '0') + ',' + row.answer + ',' +
-                  (row.correct ? (*row.correct ? "1" : "0") : "") + ',' + (row.time_s ? numberField(*row.time_s) : "");
-  for (const std::optional<int>& r : row.ratings) s += ',' + (r ? std::to_string(*r) : "");
-  out_ << s << '\n';
+  out_ << rowText(row);
   flushOrThrow();
 }
 
@@ -160,6 +172,18 @@ void SessionWriter::flushOrThrow() {
 void writeSession(const std::string& path, const Session& session) {
   SessionWriter w(path, session.header);
   for (const TrialRow& r : session.trials) w.append(r);
+}
+
+std::string formatSession(const Session& session, const std::string& name) {
+  checkHeader(session.header, name + ": header");
+  std::string text = headerText(session.header);
+  RowRules rules(session.header);
+  int line = 8 + static_cast<int>(session.header.extra.size());
+  for (const TrialRow& r : session.trials) {
+    rules.check(r, place(name, ++line));
+    text += rowText(r);
+  }
+  return text;
 }
 
 Session readSession(const std::string& path) {
@@ -190,7 +214,7 @@ Session parseSession(std::string_view text, const std::string& source) {
     const std::string_view l = lines[i];
     const auto colon = l.find(": ");
     if (l.size() < 3 || l[1] != ' ' || colon == std::string_view::npos) {
-      throw SessionError(where + ": expected a header line '# key: value', got '" + std::string(l) + "'");
+      throw SessionError(where + ": expected a header line '# key: value', got '" + shownText(l) + "'");
     }
     const std::string_view key = l.substr(2, colon - 2), value = l.substr(colon + 2);
     bool* once = key == "format"        ? &has_format
@@ -200,7 +224,7 @@ Session parseSession(std::string_view text, const std::string& source) {
                  : key == "software"    ? &has_software
                  : key == "surfaces"    ? &has_surfaces
                                         : nullptr;
-    if (once && *once) throw SessionError(where + ": header key '" + std::string(key) + "' appears twice");
+    if (once && *once) throw SessionError(where + ": header key '" + shownText(key) + "' appears twice");
     if (key == "format") {
       int f = 0;
       if (!parseWhole(value, f) || f != kSessionFormat) {
@@ -221,7 +245,7 @@ Session parseSession(std::string_view text, const std::string& source) {
   const std::vector<std::string> names = columns();
   if (i >= lines.size() || lines[i] != columnLine()) {
     throw SessionError(place(source, int(i + 1)) + ": expected the column line '" + columnLine() + "', got '" +
-                       (i < lines.size() ? std::string(lines[i]) : std::string("end of file")) + "'");
+                       (i < lines.size() ? shownText(lines[i]) : std::string("end of file")) + "'");
   }
   RowRules rules(s.header);
   for (++i; i < lines.size(); ++i) {

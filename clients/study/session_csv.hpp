@@ -37,6 +37,9 @@ class SessionWriter {
 
 // Writes a whole session through SessionWriter.
 void writeSession(const std::string& path, const Session& session);
+// The text writeSession() writes, checked by the same rules; `name` stands for the file in
+// messages. The header and each row are formatted by the same functions the writer uses.
+std::string formatSession(const Session& session, const std::string& name);
 
 // Throws SessionError naming `source`, the line and the field; thx::Error (Io) if unreadable.
 Session readSession(const std::string& path);

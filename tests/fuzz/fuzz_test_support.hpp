@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tests/fuzz/short_run.hpp"
+#include "tests/fuzz/format_short_run.hpp"
 
 namespace thx::fuzz::test {
 

@@ -9,11 +9,11 @@
 // A failure prints its iteration and input as hex, which reproduces it anywhere.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+#include "tests/fuzz/short_run.hpp"
 #include "tests/vrpn/fuzz_decoder_body.hpp"
 #include "tests/vrpn/transcripts.hpp"
 
@@ -73,16 +73,7 @@ std::vector<Bytes> seeds() {
   return {captured, everyMessageType(), Bytes{1}, Bytes{0}};
 }
 
-struct Rng {
-  std::uint64_t s = 0x2545f4914f6cdd1dull;
-  std::uint64_t next() {
-    s ^= s << 13;
-    s ^= s >> 7;
-    s ^= s << 17;
-    return s;
-  }
-  std::size_t below(std::size_t n) { return n == 0 ? 0 : std::size_t(next() % n); }
-};
+using thx::fuzz::Rng;  // the same fixed-seed generator as every short fuzz run
 
 constexpr std::uint32_t kInterestingWords[] = {
     0,     1,    7,    8,   23,  24,         25,         31,         32,         63999,      64000,      64001,
@@ -175,23 +166,8 @@ TEST(FuzzDecoder, EveryMessageTypeSeedIsDeliveredWhole) {
 }
 
 TEST(FuzzDecoder, ShortRun) {
-  constexpr int kMinIterations = 4000;
-  constexpr int kMaxIterations = 200000;
-  constexpr double kBudgetS = 2.0;
-  const char* fixed = std::getenv("THX_VRPN_FUZZ_ITERATIONS");
-  const int exact = fixed ? std::atoi(fixed) : 0;
-
   const std::vector<Bytes> pool = seeds();
-  Rng rng;
-  const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  int i = 0;
-  for (; exact > 0 ? i < exact : (i < kMinIterations || (i < kMaxIterations && elapsed() < kBudgetS)); ++i) {
-    Bytes input = pool[rng.below(pool.size())];
-    mutate(input, rng, pool);
-    if (const auto failure = fuzz::fuzzDecoderOnce(input)) {
-      FAIL() << "iteration " << i << ": " << *failure << "\ninput: " << harness::hexOf(input);
-    }
-  }
-  std::printf("%d inputs in %.2f s\n", i, elapsed());
+  thx::fuzz::runMutated(
+      "vrpn decoder", pool, [&](Bytes& b, Rng& rng) { mutate(b, rng, pool); }, &fuzz::fuzzDecoderOnce,
+      "THX_VRPN_FUZZ_ITERATIONS", 4000);
 }

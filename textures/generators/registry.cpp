@@ -58,7 +58,8 @@ gen::Params resolveParams(const GeneratorSpec& spec, const std::map<std::string,
   const std::string source = "generator " + spec.kind;
   for (const auto& [name, value] : given) {
     const bool known = std::any_of(spec.params.begin(), spec.params.end(),
-                                   [&name = name](const GeneratorParam& p) { return p.name == name; });
+                                   // init-capture: clang 14 (the fuzz tree) cannot capture a binding
+                                   [&n = name](const GeneratorParam& p) { return p.name == n; });
     if (!known) {
       throw TextureError(source, "unknown parameter '" + name + "'", name + "=" + gen::formatNumber(value),
                          "one of: " + joinNames(spec.params, [](const GeneratorParam& p) { return p.name; }));

@@ -6,6 +6,7 @@
 #include <climits>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -189,7 +190,7 @@ struct string_layout<client_force_t> {
 
 // Walks an encoded message by its layout. Returns the number of bytes it spans (fingerprint
 // included), or -1 when the buffer is too short or a string length is outside [1, bytes left]
-// or the string lacks its terminating NUL.
+// or the string lacks its terminating NUL or holds another NUL before it.
 template <std::size_t N>
 std::ptrdiff_t layout_extent(const void* data, std::size_t size, const int (&segments)[N]) noexcept {
   const auto* b = static_cast<const std::uint8_t*>(data);
@@ -206,6 +207,9 @@ std::ptrdiff_t layout_extent(const void* data, std::size_t size, const int (&seg
     pos += 4;
     if (u == 0 || u > 0x7fffffffu || u > size - pos) return -1;  // also rejects negative int32
     if (b[pos + u - 1] != 0) return -1;
+    // An embedded NUL would survive decode (std::string keeps it) but not encode (strlen), so the
+    // message would change on its way through: refused (found by tests/fuzz, docs/fuzzing.md).
+    if (std::memchr(b + pos, 0, u - 1) != nullptr) return -1;
     pos += u;
   }
   return static_cast<std::ptrdiff_t>(pos);

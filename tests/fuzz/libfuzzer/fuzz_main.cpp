@@ -1,5 +1,5 @@
 // libFuzzer entry point for one file-format fuzz body (built once per body with
-// -DTHX_FUZZ_FORMATS=ON and clang; tests/fuzz/CMakeLists.txt names the header and the function).
+// -DTHX_FUZZ=ON and clang; tests/fuzz/CMakeLists.txt names the header and the function).
 // A broken property aborts with its description; the long-run commands are in
 // docs/fuzzing_formats.md.
 #include <cstdio>

@@ -1,0 +1,14 @@
+// libFuzzer entry point for the log_reader fuzz target (built only with -DTHX_FUZZ=ON and clang; the
+// long-run command is in docs/fuzzing.md). A broken property aborts with its description.
+#include <cstdio>
+#include <cstdlib>
+
+#include "tests/fuzz/log_reader_body.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (auto failure = thx::fuzz::log_reader::fuzzOnce(std::span(data, size))) {
+    std::fprintf(stderr, "log_reader: property broken: %s\n", failure->c_str());
+    std::abort();
+  }
+  return 0;
+}
