@@ -228,7 +228,7 @@ TEST_F(BadFiles, EachGivesItsOwnClearError) {
       {"missing.png", {"missing.png", "cannot open file", "No such file"}},
       {"empty.png", {"not a PNG file", "only 0 bytes", "signature"}},
       {"text.png", {"not a PNG file", "wrong signature"}},
-      {"truncated.png", {"truncated or corrupt", "libpng"}},
+      {"truncated.png", {"truncated or corrupt", "chunk 'IDAT'", "but 930 follow"}},
       {"corrupt.png", {"truncated or corrupt", "libpng: IDAT"}},
       {"gray.png", {"wrong channel count", "1 channel (grayscale)", "3 channels (RGB normal map) or 4"}},
       {"gray_alpha.png", {"wrong channel count", "2 channels"}},
