@@ -75,4 +75,18 @@ LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/default.yaml --mode rel
   && echo "frames: $OUT/visual/frame_0000.png ... frame_0003.png" || echo "visual-client failed"
 
 echo
+echo "== user studies: three simulated participants per study on the shipped surfaces (scenes/study/), then the analysis -> $OUT/study/ (about 30 s)"
+SR="$BUILD/clients/study/study-run"
+mkdir -p "$OUT/study"
+rm -f "$OUT"/study/*.csv
+for p in 1 2 3; do
+  for m in identification relief_vs_normal; do
+    "$SR" --manifest "scenes/study/$m.yaml" --participant "S0$p" --seed "$p" --simulate \
+      --out "$OUT/study/S0${p}_$m.csv" > /dev/null || echo "study-run failed ($m, participant S0$p)"
+  done
+done
+"$BUILD/clients/study/study-analyze" --out "$OUT/study" "$OUT"/study/*.csv > /dev/null \
+  && echo "sessions: $OUT/study/*.csv; tables and plots: $OUT/study/study.md" || echo "study-analyze failed"
+
+echo
 echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."
