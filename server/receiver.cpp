@@ -8,6 +8,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 #include <thx_msgs/client_force_t.hpp>
+#include <thx_msgs/lcm_subscribe.hpp>
 #include <thx_msgs/protocol.hpp>
 
 #include "rt/clock.hpp"
@@ -22,11 +23,20 @@ constexpr std::int64_t kDefaultTimeoutNs = 50'000'000;  // 50 ms: a few physics 
 
 Receiver::Receiver(lcm::LCM& lcm, rt::LatestSlot<ClientForce>& slot, double max_force_n)
     : lcm_(lcm), lcms_{&lcm}, slot_(slot), table_(max_force_n, kDefaultTimeoutNs) {
-  lcm_.subscribe(thx_msgs::kChannelClientForce, &Receiver::onClientForce, this);
+  listen(lcm_);
+}
+
+void Receiver::listen(lcm::LCM& lcm) {
+  if (!thx_msgs::subscribeUntyped(lcm, thx_msgs::kChannelClientForce, &Receiver::onClientForce, this)) {
+    std::fprintf(stderr,
+                 "hapticd: warning: LCM could not listen for %s (its receive socket did not bind: is the port "
+                 "held by another program?): client forces sent there are not felt\n",
+                 thx_msgs::kChannelClientForce);
+  }
 }
 
 void Receiver::listenAlsoOn(lcm::LCM& control) {
-  control.subscribe(thx_msgs::kChannelClientForce, &Receiver::onClientForce, this);
+  listen(control);
   lcms_.push_back(&control);
 }
 

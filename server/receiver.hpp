@@ -44,6 +44,7 @@ class Receiver {
   void onClientForce(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
 
  private:
+  void listen(lcm::LCM& lcm);  // THX_CLIENT_FORCE on `lcm`; warns when LCM cannot
   void run();
   void publishSum(std::int64_t now_ns);
   void drain();  // handles whatever is queued on every LCM, without waiting

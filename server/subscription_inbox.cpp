@@ -1,6 +1,9 @@
 #include "server/subscription_inbox.hpp"
 
+#include <cstdio>
+
 #include <lcm/lcm-cpp.hpp>
+#include <thx_msgs/lcm_subscribe.hpp>
 #include <thx_msgs/protocol.hpp>
 
 #include "rt/clock.hpp"
@@ -20,12 +23,16 @@ void SubscriptionInbox::attach(lcm::LCM& lcm) {
   Attached a;
   a.lcm = &lcm;
   // Untyped: the bytes come from any process on the bus (docs/messages.md §7.3).
-  a.subs[0] = lcm.subscribe(thx_msgs::kChannelSubscribe, &SubscriptionInbox::onRequest, this);
-  a.subs[1] = lcm.subscribe(thx_msgs::kChannelHeartbeat, &SubscriptionInbox::onHeartbeat, this);
-  a.subs[2] = lcm.subscribe(thx_msgs::kChannelCommand, &SubscriptionInbox::onCommand, this);
   // A burst of clients (all re-subscribing after a restart) must not be cut at LCM's default 30.
-  for (lcm::Subscription* sub : a.subs) {
-    if (sub) sub->setQueueCapacity(512);
+  constexpr int kQueue = 512;
+  a.subs[0] = thx_msgs::subscribeUntyped(lcm, thx_msgs::kChannelSubscribe, &SubscriptionInbox::onRequest, this, kQueue);
+  a.subs[1] = thx_msgs::subscribeUntyped(lcm, thx_msgs::kChannelHeartbeat, &SubscriptionInbox::onHeartbeat, this, kQueue);
+  a.subs[2] = thx_msgs::subscribeUntyped(lcm, thx_msgs::kChannelCommand, &SubscriptionInbox::onCommand, this, kQueue);
+  if (!a.subs[0] || !a.subs[1] || !a.subs[2]) {
+    std::fprintf(stderr,
+                 "hapticd: warning: LCM could not listen for %s, %s and %s (its receive socket did not bind: is "
+                 "the port held by another program?): clients cannot subscribe there\n",
+                 thx_msgs::kChannelSubscribe, thx_msgs::kChannelHeartbeat, thx_msgs::kChannelCommand);
   }
   attached_.push_back(a);
 }

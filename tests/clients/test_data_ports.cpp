@@ -5,14 +5,18 @@
 // instance that only publishes; and hapticd as a process handing out, recycling and refusing
 // ports, checked by what it replies, never by how many messages arrive.
 #include <dirent.h>
+#include <netinet/in.h>
 #include <poll.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <thread>
 
+#include <thx_msgs/lcm_subscribe.hpp>
 #include <thx_msgs/protocol.hpp>
 
 #include "base/error.hpp"
@@ -336,6 +340,92 @@ TEST_F(DataPortsLoopback, HapticdHandsOutRecyclesAndRefusesPorts) {
   kill(b, SIGTERM);
   finishProbe(b, 30);
   EXPECT_EQ(stopServer(), 0) << serverLog();
+}
+
+// A UDP socket bound without SO_REUSEADDR, as every LCM publisher's ephemeral send socket is:
+// while it lives, LCM cannot bind a receive socket to its port.
+class PortHolder {
+ public:
+  explicit PortHolder(int port) : fd_(::socket(AF_INET, SOCK_DGRAM, 0)) {
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(std::uint16_t(port));
+    a.sin_addr.s_addr = htonl(INADDR_ANY);
+    held_ = fd_ >= 0 && ::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+  }
+  ~PortHolder() { release(); }
+  bool held() const { return held_; }
+  void release() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+
+ private:
+  int fd_;
+  bool held_ = false;
+};
+
+struct Ignore {
+  void on(const lcm::ReceiveBuffer*, const std::string&) {}
+};
+
+// LCM's C++ subscribe() returns a Subscription even when its receive socket did not bind (and the
+// first setQueueCapacity() on it would read through null); subscribeUntyped says nullptr. Once the
+// port is free, the same LCM binds on the next subscribe.
+TEST_F(DataPortsLoopback, ASubscriptionOnAPortAnotherProgramHoldsIsNull) {
+  if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
+  PortHolder holder(basePort() + 34);
+  ASSERT_TRUE(holder.held());
+  lcm::LCM lcm(portUrl(basePort() + 34));
+  ASSERT_TRUE(lcm.good());
+  Ignore ignore;
+  EXPECT_EQ(thx_msgs::subscribeUntyped(lcm, "THX_TEST", &Ignore::on, &ignore, 64), nullptr);
+  holder.release();
+  EXPECT_NE(thx_msgs::subscribeUntyped(lcm, "THX_TEST", &Ignore::on, &ignore, 64), nullptr);
+}
+
+// The CI failure this guards: a server names a data URL whose port another program holds. The kit
+// does not crash; it counts a link error naming the URL and the cause, and stays pending for data.
+TEST_F(DataPortsLoopback, AClientWhoseDataPortIsHeldNamesItAndGoesOn) {
+  if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
+  const int p = basePort();
+  PortHolder holder(p + 35);
+  ASSERT_TRUE(holder.held());
+  lcm::LCM bus(url_), server_bus(url_);
+  ASSERT_TRUE(bus.good() && server_bus.good());
+  struct Requests {
+    std::vector<thx_msgs::subscribe_request_t> got;
+    void on(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+      thx_msgs::subscribe_request_t r;
+      if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, r) > 0) got.push_back(r);
+    }
+  } requests;
+  ASSERT_NE(thx_msgs::subscribeUntyped(server_bus, thx_msgs::kChannelSubscribe, &Requests::on, &requests), nullptr);
+  thx::client::Client client(bus, "held");
+  client.subscribe("DEVICE_STATE", 100);
+  auto until = [&](const std::function<bool()>& done) {
+    for (int k = 0; k < 1000 && !done(); ++k) {
+      client.poll(1);
+      server_bus.handleTimeout(0);
+    }
+    return done();
+  };
+  ASSERT_TRUE(until([&] { return !requests.got.empty(); }));
+  thx_msgs::subscribe_reply_t a{};
+  a.server_instance = 7;
+  a.request_seq = requests.got.back().seq;
+  a.client_id = "held";
+  a.stream = "DEVICE_STATE";
+  a.action = requests.got.back().action;
+  a.accepted = 1;
+  a.rate_hz = 100;
+  a.channel = "THX_DEVICE_STATE.held";
+  a.heartbeat_timeout_us = 2'000'000;
+  a.data_url = portUrl(p + 35);
+  server_bus.publish(thx_msgs::kChannelSubscribeReply, &a);
+  ASSERT_TRUE(until([&] { return client.counters().link_errors > 0; }));
+  EXPECT_NE(client.lastLinkError().find(portUrl(p + 35)), std::string::npos) << client.lastLinkError();
+  EXPECT_NE(client.lastLinkError().find("did not bind"), std::string::npos) << client.lastLinkError();
 }
 
 }  // namespace

@@ -15,10 +15,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "tests/support/flat_json.hpp"
+#include "tests/support/port_block.hpp"
 #include "tests/support/process.hpp"
 
 namespace thx::test {
@@ -53,8 +55,8 @@ class HapticdProcessTest : public ::testing::Test {
     // busy cores. LCM asks for more only when the URL says so (capped by net.core.rmem_max).
     // hapticd takes the ports after the bus for its control port (+1) and its clients' data ports
     // (+2 .. +1 + --max-clients, docs/clients.md §6): each test gets a block of 40 ports.
-    const int block = ((::getpid() % 562) * 2 + n % 2);  // 0..1123
-    url_ = "udpm://239.255.76.67:" + std::to_string(20000 + block * 40) + "?ttl=0&recv_buf_size=4194304";
+    ports_ = std::make_unique<PortBlock>(unsigned(::getpid()) * 2u + unsigned(n));
+    url_ = "udpm://239.255.76.67:" + std::to_string(ports_->firstPort()) + "?ttl=0&recv_buf_size=4194304";
   }
   void TearDown() override {
     for (pid_t p : children_) {
@@ -66,6 +68,7 @@ class HapticdProcessTest : public ::testing::Test {
       kill(server_, SIGKILL);
       waitpid(server_, nullptr, 0);
     }
+    ports_.reset();  // every process that used them is gone
     std::error_code ec;
     // Kept for a look when something failed, or when THX_KEEP_TEST_DIR is set.
     if (!HasFailure() && !std::getenv("THX_KEEP_TEST_DIR")) fs::remove_all(dir_, ec);
@@ -161,6 +164,7 @@ class HapticdProcessTest : public ::testing::Test {
   }
 
   fs::path dir_;
+  std::unique_ptr<PortBlock> ports_;
   std::string url_;
   pid_t server_ = -1;
   std::vector<pid_t> children_;

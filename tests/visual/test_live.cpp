@@ -10,6 +10,7 @@
 #include <iterator>
 
 #include "clients/visual/live_view.hpp"
+#include "tests/support/port_block.hpp"
 
 namespace thx::visual {
 namespace {
@@ -86,7 +87,8 @@ TEST(VisualLive, WithoutAServerTheSceneAtRest) {
   const std::string client = THX_VISUAL_CLIENT, scene = std::string(THX_SOURCE_DIR) + "/scenes/marble_bricks.yaml";
   const std::string common = " --scene " + scene + " --size 160x90 --elevation 60 --distance 0.08";
   // A bus port of this test's own (ttl=0): no hapticd answers there.
-  const std::string url = "'udpm://239.255.76.67:" + std::to_string(31000 + ::getpid() % 2000) + "?ttl=0'";
+  const thx::test::PortBlock ports(unsigned(::getpid()));
+  const std::string url = "'udpm://239.255.76.67:" + std::to_string(ports.firstPort()) + "?ttl=0'";
   const std::string live = "LP_NUM_THREADS=2 " + client + common + " --live --out " + (dir / "live").string() +
                            " --format ppm --lcm-url " + url + " --connect-timeout 0.3 2>" + (dir / "err.txt").string();
   ASSERT_EQ(std::system(live.c_str()), 0) << live;

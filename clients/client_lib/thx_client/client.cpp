@@ -8,6 +8,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 #include <type_traits>
+#include <thx_msgs/lcm_subscribe.hpp>
 #include <thx_msgs/protocol.hpp>
 
 #include "thx_client/commands.hpp"
@@ -36,12 +37,14 @@ Client::Client(lcm::LCM& lcm, ClientOptions options)
   }
   if (options_.heartbeat_ns > 0) heartbeat_period_ns_ = options_.heartbeat_ns;
   // Untyped subscriptions + try_decode everywhere: a corrupt datagram must not take us down.
-  hello_sub_ = lcm_.subscribe(thx_msgs::kChannelHello, &Client::onHelloBytes, this);
-  reply_sub_ = lcm_.subscribe(thx_msgs::kChannelSubscribeReply, &Client::onReplyBytes, this);
   // Every client sees every reply on the bus: keep room for a burst of them.
-  if (reply_sub_) reply_sub_->setQueueCapacity(256);
-  command_reply_sub_ = lcm_.subscribe(thx_msgs::kChannelCommandReply, &Client::onCommandReplyBytes, this);
-  if (command_reply_sub_) command_reply_sub_->setQueueCapacity(256);
+  hello_sub_ = thx_msgs::subscribeUntyped(lcm_, thx_msgs::kChannelHello, &Client::onHelloBytes, this);
+  reply_sub_ = thx_msgs::subscribeUntyped(lcm_, thx_msgs::kChannelSubscribeReply, &Client::onReplyBytes, this, 256);
+  command_reply_sub_ =
+      thx_msgs::subscribeUntyped(lcm_, thx_msgs::kChannelCommandReply, &Client::onCommandReplyBytes, this, 256);
+  if (!hello_sub_ || !reply_sub_ || !command_reply_sub_)
+    linkProblem("LCM could not listen on the bus for the server's hello and replies (its receive socket did not "
+                "bind: is the port held by another program?)");
 }
 
 Client::Client(lcm::LCM& lcm, std::string client_id) : Client(lcm, [&] {
@@ -295,12 +298,18 @@ void Client::listen(Entry& e, const std::string& channel, const std::string& dat
   e.status.channel = channel;
   e.status.data_url = data_url;
   e.data_lcm = target;
-  e.data_sub = target->subscribe(channel, &Client::onDataBytes, this);
   // A batch stream must lose nothing: after a stall of the server's publisher (or of this
   // process) its batches come in a burst, so it may queue one second of them (issue 17: bursts
   // of ~400 overflowed 64 at 64 clients on two busy cores).
   const double burst = e.status.batch ? e.status.granted_hz : 0.0;
-  if (e.data_sub) e.data_sub->setQueueCapacity(int(std::max<double>(options_.data_queue_capacity, burst)));
+  e.data_sub = thx_msgs::subscribeUntyped(*target, channel, &Client::onDataBytes, this,
+                                          int(std::max<double>(options_.data_queue_capacity, burst)));
+  if (!e.data_sub) {
+    // Nothing will arrive: the silence check asks again later, and LCM tries the bind again then.
+    linkProblem("cannot listen for " + channel + " on '" + (data_url.empty() ? std::string("the bus") : data_url) +
+                "': LCM's receive socket did not bind (is the port held by another program?)");
+    e.data_lcm = nullptr;
+  }
 }
 
 // The LCM a reply's data_url names: the bus for "", else DataLink's. A new URL (the server

@@ -19,6 +19,7 @@
 #include <thx_msgs/physics_contacts_t.hpp>
 #include <thx_msgs/physics_impact_t.hpp>
 #include <thx_msgs/physics_poses_t.hpp>
+#include <thx_msgs/lcm_subscribe.hpp>
 #include <thx_msgs/protocol.hpp>
 
 #include "rt/clock.hpp"
@@ -53,8 +54,7 @@ class Subscriber {
   // queue_capacity: LCM's queue for this channel (its default, 30, drops bursts of impacts).
   explicit Subscriber(lcm::LCM& lcm, std::string channel = BroadcastChannel<M>::name, int queue_capacity = 64)
       : lcm_(lcm), channel_(std::move(channel)) {
-    sub_ = lcm_.subscribe(channel_, &Subscriber::onBytes, this);
-    if (sub_) sub_->setQueueCapacity(queue_capacity);
+    sub_ = thx_msgs::subscribeUntyped(lcm_, channel_, &Subscriber::onBytes, this, queue_capacity);
   }
   ~Subscriber() {
     if (sub_) lcm_.unsubscribe(sub_);
@@ -69,6 +69,8 @@ class Subscriber {
   std::uint64_t received() const { return value_.count(); }
   std::uint64_t undecodable() const { return undecodable_.load(); }
   const std::string& channel() const { return channel_; }
+  // False when LCM could not subscribe (its receive socket did not bind): nothing will arrive.
+  bool listening() const { return sub_ != nullptr; }
 
   // Public for LCM's callback.
   void onBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
