@@ -145,7 +145,10 @@ void PhysicsExcitation::objectContact(const thx_msgs::physics_contacts_t& m, int
   const ContactTravel t = contactTravel(tangential(vec(m.v_slip_world[k])).norm(), tangential(vec(m.v_world[k]) - vb).norm(),
                                         object_contacts_);
   const double force = t.weight * std::max(0.0, m.f_normal[k]);
-  if (!(t.speed_m_per_s > 0.0) || !(m.window > 0.0) || !(force > 0.0)) {
+  // A window longer than the physics client's slowest contact rate (1 Hz), or values that are not
+  // finite, are not a contact this can read (the bytes come from the network).
+  const bool readable = std::isfinite(t.speed_m_per_s) && std::isfinite(force) && m.window > 0.0 && m.window <= 1.0;
+  if (!readable || !(t.speed_m_per_s > 0.0) || !(force > 0.0)) {
     st.moving = false;  // at rest (or no push): exactly silent, and the next motion fades in
     return;
   }
@@ -172,7 +175,10 @@ void PhysicsExcitation::objectContact(const thx_msgs::physics_contacts_t& m, int
 void PhysicsExcitation::contacts(const thx_msgs::physics_contacts_t& m, const PoseLookup& poses,
                                  const StrikeSink& sink) {
   // A gap in the reports (no contact lasted meanwhile): every walk starts anew.
-  if (m.sim_time - m.window > last_sim_time_ + 1e-9) states_.clear(), rubs_.clear();
+  if (m.sim_time - m.window > last_sim_time_ + 1e-9) {
+    states_.clear();
+    rubs_.clear();
+  }
   last_sim_time_ = m.sim_time;
   const Eigen::Vector3d ng = vec(m.n_geometric_world).normalized();
   std::set<int> present;

@@ -32,13 +32,16 @@ class ObjectContactReplay : public thx::test::SessionTest {
 };
 
 TEST_F(ObjectContactReplay, ABallSlidingOnABlockSoundsOnBothInTheOfflineRender) {
-  ASSERT_EQ(recordSession(kScene, "--duration 0.4"), 0);
+  // 0.3 s of physics with contact reports at 200 Hz: few reports, so the renders stay quick in the
+  // sanitizer tree (each report locates the contact point in both meshes).
+  ASSERT_EQ(recordSession(kScene, "--duration 0.3"), 0);
   ASSERT_EQ(run(std::string(THX_PHYSICS_CLIENT) + " --scene " + kScene + " --replay-log " + path("session.lcm") +
-                " --record " + path("combined.lcm") + " --no-lcm --quiet > " + path("physics.out")),
+                " --duration 0.3 --contact-rate 200 --record " + path("combined.lcm") + " --no-lcm --quiet > " +
+                path("physics.out")),
             0)
       << fileBytes(path("physics.out"));
 
-  // The ball (0) on the block (1): reported every step, first sliding, then (almost) rolling.
+  // The ball (0) on the block (1): reported every 5 ms, first sliding, then (almost) rolling.
   std::size_t reports = 0, sliding = 0, rolling = 0;
   double max_force = 0.0;
   thx_msgs::forEachLogMessage<thx_msgs::physics_contacts_t>(
@@ -55,7 +58,7 @@ TEST_F(ObjectContactReplay, ABallSlidingOnABlockSoundsOnBothInTheOfflineRender) 
       });
   std::printf("[measured] ball on block: %zu reports, %zu sliding (slip > 5 cm/s), %zu rolling (slip < 1 cm/s), "
               "normal force up to %.4g N\n", reports, sliding, rolling, max_force);
-  ASSERT_GT(reports, 100u) << fileBytes(path("physics.out"));
+  ASSERT_GT(reports, 40u) << fileBytes(path("physics.out"));
   EXPECT_GT(sliding, 0u);
   EXPECT_GT(rolling, 0u);
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "clients/audio/live_scene.hpp"
@@ -169,8 +170,15 @@ TEST(ObjectContacts, AtRestTheContactIsExactlySilent) {
     EXPECT_EQ(r.strikes, 0u) << v;
     EXPECT_TRUE(r.samples.empty()) << v;
   }
-  // Moving without a push: silent too.
+  // Moving without a push: silent too; and reports no physics client sends (a window above 1 s,
+  // a speed or a force that is not finite) make nothing.
   EXPECT_TRUE(render(rubbing(0.5 * y, 0.5 * y, 0.0)).samples.empty());
+  PhysicsStreams odd = rubbing(0.5 * y, 0.5 * y, 10.0);
+  odd.contacts.resize(3);
+  odd.contacts[0].window = 2.0;
+  odd.contacts[1].v_slip_world[0][1] = std::numeric_limits<double>::infinity();
+  odd.contacts[2].f_normal[0] = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(render(odd).samples.empty());
   // An impact with the contact at rest afterwards sounds as the impact alone, to the bit.
   PhysicsStreams with_rest = rubbing(kZero, kZero, 50.0), impact_only;
   thx_msgs::physics_impact_t hit{};
