@@ -26,7 +26,7 @@ using test::twoBalls;
 using test::twoBallPoses;
 
 constexpr double kFs = 44100.0;
-constexpr int kReports = 100;  // 0.1 s of contact at the physics client's 1 kHz reports
+constexpr int kReports = 40;  // 40 ms of contact at the physics client's 1 kHz reports
 
 const Eigen::Vector3d kZero(0, 0, 0);
 
