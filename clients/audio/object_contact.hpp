@@ -13,8 +13,9 @@ struct ObjectContactOptions {
   // noise is quieter than sliding, about -12 dB here; not a measured value).
   double rolling_share = 0.25;
   // Below this travel speed the contact is at rest: no force at all (exact silence), so the
-  // physics engine's resting jitter makes no sound.
-  double min_speed_m_per_s = 1e-3;
+  // physics engine's settling makes no sound (a ball set down on a block moved at up to 2 mm/s
+  // for its first 15 ms in Bullet; docs/audio.md §10a).
+  double min_speed_m_per_s = 5e-3;
 };
 
 // How fast the profile is read and how loud: from the slip speed |v_slip| (a's contact point

@@ -4,7 +4,8 @@
 // ball_on_block.yaml) and records the physics streams into it, audio-client renders the combined
 // log with and without the object-contact path (--no-object-contacts). The log holds lasting
 // contacts of the ball on the block that slide and then roll; the render sounds them, adds to the
-// sound's energy what the impacts alone do not, and gives the same bytes twice.
+// sound's energy what the impacts alone do not, and gives the same bytes twice. A ball resting on
+// the block (ball_resting_on_block.yaml) is reported in contact all along and adds nothing.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,9 +22,32 @@
 namespace {
 
 const std::string kScene = std::string(THX_TEST_DATA_DIR) + "/scenes/ball_on_block.yaml";
+const std::string kResting = std::string(THX_TEST_DATA_DIR) + "/scenes/ball_resting_on_block.yaml";
 
 class ObjectContactReplay : public thx::test::SessionTest {
  protected:
+  // hapticd records 0.3 s of `scene` in lock-step; physics-client replays it with contact reports
+  // at 200 Hz (few reports, so the renders stay quick in the sanitizer tree: each report locates
+  // the contact point in both meshes) into combined.lcm.
+  void simulate(const std::string& scene) {
+    ASSERT_EQ(recordSession(scene, "--duration 0.3"), 0);
+    ASSERT_EQ(run(std::string(THX_PHYSICS_CLIENT) + " --scene " + scene + " --replay-log " + path("session.lcm") +
+                  " --duration 0.3 --contact-rate 200 --record " + path("combined.lcm") + " --no-lcm --quiet > " +
+                  path("physics.out")),
+              0)
+        << fileBytes(path("physics.out"));
+  }
+  // audio-client renders combined.lcm with `options` to `wav` (small meshes and few modes: quick in
+  // the sanitizer tree, both bodies keep audible modes); its output.
+  std::string audio(const std::string& scene, const std::string& options, const std::string& wav) {
+    const std::string out = path(wav + ".out");
+    EXPECT_EQ(run(std::string(THX_AUDIO_CLIENT) + " --scene " + scene + " --replay-log " + path("combined.lcm") +
+                  " --slab-cells 2 --modes 12 --object-elements tet4 --no-pen --cache-dir " + path("cache") + options +
+                  " --wav " + path(wav) + " > " + out + " 2>&1"),
+              0)
+        << fileBytes(out);
+    return fileBytes(out);
+  }
   // audio-client's summary: the number after `label` on its physics line (-1: not found).
   static double number(const std::string& out, const std::string& label) {
     const std::size_t at = out.find(label);
@@ -32,14 +56,8 @@ class ObjectContactReplay : public thx::test::SessionTest {
 };
 
 TEST_F(ObjectContactReplay, ABallSlidingOnABlockSoundsOnBothInTheOfflineRender) {
-  // 0.3 s of physics with contact reports at 200 Hz: few reports, so the renders stay quick in the
-  // sanitizer tree (each report locates the contact point in both meshes).
-  ASSERT_EQ(recordSession(kScene, "--duration 0.3"), 0);
-  ASSERT_EQ(run(std::string(THX_PHYSICS_CLIENT) + " --scene " + kScene + " --replay-log " + path("session.lcm") +
-                " --duration 0.3 --contact-rate 200 --record " + path("combined.lcm") + " --no-lcm --quiet > " +
-                path("physics.out")),
-            0)
-      << fileBytes(path("physics.out"));
+  simulate(kScene);
+  if (HasFatalFailure()) return;
 
   // The ball (0) on the block (1): reported every 5 ms, first sliding, then (almost) rolling.
   std::size_t reports = 0, sliding = 0, rolling = 0;
@@ -62,16 +80,8 @@ TEST_F(ObjectContactReplay, ABallSlidingOnABlockSoundsOnBothInTheOfflineRender) 
   EXPECT_GT(sliding, 0u);
   EXPECT_GT(rolling, 0u);
 
-  // Small meshes and few modes: quick in the sanitizer tree (both bodies keep audible modes).
-  const std::string render = std::string(THX_AUDIO_CLIENT) + " --scene " + kScene + " --replay-log " + path("combined.lcm") +
-                             " --slab-cells 2 --modes 12 --object-elements tet4 --no-pen --cache-dir " + path("cache");
-  const auto audio = [&](const std::string& options, const std::string& wav) {
-    const std::string out = path(wav + ".out");
-    EXPECT_EQ(run(render + options + " --wav " + path(wav) + " > " + out + " 2>&1"), 0) << fileBytes(out);
-    return fileBytes(out);
-  };
-  const std::string with = audio("", "with.wav"), again = audio("", "again.wav"),
-                    without = audio(" --no-object-contacts", "without.wav");
+  const std::string with = audio(kScene, "", "with.wav"), again = audio(kScene, "", "again.wav"),
+                    without = audio(kScene, " --no-object-contacts", "without.wav");
   std::printf("%s%s", with.c_str(), without.c_str());
   const double segments = number(with, "relief impulses, ");
   EXPECT_GT(segments, 0.5 * double(reports)) << with;
@@ -85,6 +95,26 @@ TEST_F(ObjectContactReplay, ABallSlidingOnABlockSoundsOnBothInTheOfflineRender) 
   // Deterministic: the same log, the same bytes.
   EXPECT_EQ(fileBytes(path("with.wav")), fileBytes(path("again.wav")));
   EXPECT_NE(fileBytes(path("with.wav")), fileBytes(path("without.wav")));
+}
+
+// The ball set down at rest on the block: the pair is reported all along, but nothing moves at the
+// contact (beyond the engine's settling, below the rest threshold), so this path adds nothing:
+// the render is the same bytes with it and without it.
+TEST_F(ObjectContactReplay, ABallRestingOnABlockAddsNothing) {
+  simulate(kResting);
+  if (HasFatalFailure()) return;
+  std::size_t reports = 0;
+  thx_msgs::forEachLogMessage<thx_msgs::physics_contacts_t>(path("combined.lcm"), thx_msgs::kChannelPhysicsContacts,
+                                                             [&](const auto& m, const auto&) {
+                                                               for (int k = 0; k < m.num_contacts; ++k)
+                                                                 reports += m.body_a[k] == 0 && m.body_b[k] == 1;
+                                                             });
+  std::printf("[measured] ball resting on the block: %zu reports\n", reports);
+  ASSERT_GT(reports, 40u) << fileBytes(path("physics.out"));
+  const std::string with = audio(kResting, "", "with.wav"), without = audio(kResting, " --no-object-contacts", "without.wav");
+  std::printf("%s", with.c_str());
+  EXPECT_EQ(number(with, "relief impulses, "), 0.0) << with;
+  EXPECT_EQ(fileBytes(path("with.wav")), fileBytes(path("without.wav")));
 }
 
 }  // namespace
