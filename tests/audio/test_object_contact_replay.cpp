@@ -55,7 +55,7 @@ class ObjectContactReplay : public thx::test::SessionTest {
   }
 };
 
-TEST_F(ObjectContactReplay, ABallSlidingOnABlockSoundsOnBothInTheOfflineRender) {
+TEST_F(ObjectContactReplay, ABallSlidingOnABlockSoundsInTheOfflineRender) {
   simulate(kScene);
   if (HasFatalFailure()) return;
 
