@@ -44,7 +44,9 @@ along the distance travelled, scaled by the normal force. The physics client's s
 (the impulse on both bodies' modes at the contact point, over a Hertz contact time from both
 sides: an object on the surface, two objects, an object on the pen at its tip), rolling and
 sliding objects' texel paths (Eq. 5 on a normal map; on a relief map the change of the object's
-normal momentum between contact reports), on the surface and the object. Live and offline play
+normal momentum between contact reports), on the surface and the object; two objects rolling
+or sliding on each other (the micro level: the roughness read along the contact's travel, scaled
+by the normal force, on both objects, quieter when rolling). Live and offline play
 the same excitations through the same code.
 
 Live (the default; docs/audio.md "Live audio"): hapticd's CONTACT stream, batched (every servo
@@ -85,7 +87,9 @@ displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS).
   --scenes-dir DIR       where a switched-to scene NAME.yaml is found (offline default: --scene's
                          folder; live default: scenes)
   --no-pen               the slab alone sounds (not the pen's own modes)
-  --no-micro             no micro-level roughness (meso impulses only)
+  --no-micro             no micro-level roughness (meso impulses only; no object contacts either)
+  --no-object-contacts   no sound from lasting contacts between two objects (rolling or sliding
+                         on each other: the micro level on both, docs/audio.md §10a)
   --object-elements E    tet10 (default) or tet4: the moving objects' elements
   --allow-different-scene  play although hapticd runs another scene, or the log's hellos give the
                          scene another texture fingerprint (a warning)
@@ -114,7 +118,7 @@ struct Options {
   std::optional<double> pen_mass;
   LiveOptions live;
   std::optional<double> playout_ms;
-  bool no_pen = false, no_micro = false;
+  bool no_pen = false, no_micro = false, no_object_contacts = false;
   ElementOrder object_order = ElementOrder::Quadratic;
   std::optional<std::string> scenes_dir;
 };
@@ -146,6 +150,7 @@ Options parse(const std::vector<std::string>& args) {
     else if (a == "--scenes-dir") o.scenes_dir = value();
     else if (a == "--no-pen") o.no_pen = true;
     else if (a == "--no-micro") o.no_micro = true;
+    else if (a == "--no-object-contacts") o.no_object_contacts = true;
     else if (a == "--object-elements") {
       const std::string e = value();
       if (e != "tet4" && e != "tet10") throw thx::UsageError("--object-elements: expected tet4 or tet10, got '" + e + "'");
@@ -170,6 +175,14 @@ Options parse(const std::vector<std::string>& args) {
   if (o.scene.empty()) throw thx::UsageError("--scene: missing");
   if (!o.log.empty() && o.wav.empty()) throw thx::UsageError("--wav: missing (--replay-log renders to a WAV)");
   return o;
+}
+
+// The raw (not normalised) energy of the physics streams' modal displacements: the sum of their
+// squares over the sample rate (m² s), comparable between renders of different lengths.
+double energyOf(const std::vector<double>& x, double sample_rate_hz) {
+  double e = 0.0;
+  for (double v : x) e += v * v;
+  return e / sample_rate_hz;
 }
 
 // One scene as the offline render plays it: the surface (texture, slab, modes) and the pen the
@@ -251,13 +264,14 @@ int runOffline(const Options& o) {
     PhysicsSoundOptions po;
     po.sample_rate_hz = o.slab.sample_rate_hz;
     po.tail_s = o.tail;
+    po.object_contacts.enabled = !o.no_micro && !o.no_object_contacts;
     const std::int64_t origin = path.empty() ? physics.firstUtime() : path.front().utime;
     const PhysicsRender pr = renderPhysicsStreams(physics, sounding(first_name), sounding, origin, po);
     r.samples = mixSessionSound(r.samples, r.raw_peak / so.peak, pr.samples, so.peak);
     std::printf("audio-client: %s: physics: %zu impacts (%zu between two objects; contact %.3g-%.3g ms), %zu meso "
-                "impulses, %zu relief impulses, scenes:",
+                "impulses, %zu relief impulses, %zu object-contact segments, physics energy %.4g m2 s, scenes:",
                 o.log.c_str(), pr.impacts, pr.object_impacts, pr.min_contact_s * 1e3, pr.max_contact_s * 1e3,
-                pr.meso_impulses, pr.relief_impulses);
+                pr.meso_impulses, pr.relief_impulses, pr.object_contact_segments, energyOf(pr.samples, o.slab.sample_rate_hz));
     for (const std::string& n : pr.scenes) std::printf(" %s", n.c_str());
     std::printf("\n");
   }
@@ -297,6 +311,7 @@ int run(Options o) {
   l.scene_settings.pen_mass_kg = o.pen_mass;
   l.scene_settings.pen_modes = !o.no_pen;
   l.scene_settings.micro = !o.no_micro;
+  l.scene_settings.object_contacts = !o.no_object_contacts;
   l.scene_settings.object_order = o.object_order;
   if (o.scenes_dir) l.scenes_dir = *o.scenes_dir;
   const double playout_ms = o.playout_ms ? *o.playout_ms : 1e3 / l.batch_hz + 1e3 * double(l.block_frames) / o.slab.sample_rate_hz;

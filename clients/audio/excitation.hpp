@@ -24,7 +24,8 @@ enum class ExcitationKind : std::uint8_t {
                 // at one sample, each mode's share times the Hertz pulse factor of pulse_s
                 // (contact_pulse.hpp; 0: an ideal impulse) (impacts, objects' texel paths)
   Micro = 2,    // the micro level's force over one servo segment (fractal_roughness.hpp's microForce
-                // from s0, f0 to s1, f1) along `impulse` (a unit direction) at a node, on the samples
+                // from s0, f0 to s1, f1) along `impulse` (a unit direction) at a node (the pen's
+                // scrape) or, when point_count > 0, at a point (two objects rubbing), on the samples
                 // after time_ns's up to end_ns's, rendered by the callback sample by sample
 };
 
@@ -39,7 +40,8 @@ struct ExcitationEvent {
   ExcitationKind kind = ExcitationKind::Impulse;
   std::int32_t node = 0;             // node of the body's mesh
   double impulse[3] = {0, 0, 0};     // N s, in the body's mesh frame (Micro: a unit direction)
-  // Point: the nodes and weights of the point (ModalBody::weightsAt), the contact time.
+  // Point (and a Micro event at a point): the nodes and weights of the point (ModalBody::weightsAt),
+  // the contact time.
   std::int32_t point_nodes[kMaxPointNodes] = {};
   double point_weights[kMaxPointNodes] = {};
   std::int32_t point_count = 0;

@@ -57,6 +57,8 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
 
   const RoughnessOptions roughness = sceneRoughness(sound.scene);
   pen.micro = s.micro && roughness.amplitude > 0.0;
+  ObjectContactOptions rubs;
+  rubs.enabled = pen.micro && s.object_contacts;  // the same profile as the pen's micro level
   live->synth = std::make_unique<SynthScene>(std::move(bodies), s.slab.sample_rate_hz, s.max_block, generation,
                                              pen.micro ? std::make_shared<const RoughnessProfile>(roughness) : nullptr);
   if (sound.scene.audio.mute) {  // audio.mute: no sources, the callback plays zeros (live_synth.hpp)
@@ -70,7 +72,7 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   po.meso = sound.map().isRelief() ? MesoSource::ContactNormals : MesoSource::TexelWalk;
   live->sources.push_back(std::make_unique<PenSource>(sound.map(), sound.slab, po, pen, generation, s.playout_delay_ns));
   live->sources.push_back(
-      std::make_unique<PhysicsSource>(*live->physics, live->object_bodies, generation, s.playout_delay_ns, pen.pen_body));
+      std::make_unique<PhysicsSource>(*live->physics, live->object_bodies, generation, s.playout_delay_ns, pen.pen_body, rubs));
   return live;
 }
 

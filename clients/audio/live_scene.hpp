@@ -22,6 +22,7 @@ struct LiveSceneSettings {
   std::optional<double> pen_mass_kg;  // unset: the scene's simulated device mass
   bool pen_modes = true;              // the pen's own modes sound (else the slab and objects only)
   bool micro = true;                  // the micro level (the scene's surface.roughness)
+  bool object_contacts = true;        // two objects rubbing (the micro level too: needs `micro`)
   ElementOrder object_order = ElementOrder::Quadratic;  // the moving objects' meshes
   std::size_t max_block = 4096;
   std::int64_t playout_delay_ns = 0;

@@ -46,11 +46,12 @@ Eigen::Isometry3d worldToBody(const thx_msgs::physics_poses_t& p, std::size_t b,
 
 }  // namespace
 
-PhysicsExcitation::PhysicsExcitation(const SoundingScene& scene, double min_normal_dot)
-    : scene_(scene), min_normal_dot_(min_normal_dot), last_sim_time_(-kInf) {}
+PhysicsExcitation::PhysicsExcitation(const SoundingScene& scene, double min_normal_dot, ObjectContactOptions object_contacts)
+    : scene_(scene), min_normal_dot_(min_normal_dot), last_sim_time_(-kInf), object_contacts_(object_contacts) {}
 
 void PhysicsExcitation::reset() {
   states_.clear();
+  rubs_.clear();
   last_sim_time_ = -kInf;
 }
 
@@ -62,6 +63,13 @@ bool PhysicsExcitation::strike(int body, std::int64_t utime, double delay_s, con
   s.utime = utime;
   s.delay_s = delay_s;
   s.pulse_s = pulse_s;
+  return strike(s, p, J, poses, sink);
+}
+
+bool PhysicsExcitation::strike(BodyStrike s, const Eigen::Vector3d& p, const Eigen::Vector3d& J, const PoseLookup& poses,
+                               const StrikeSink& sink) const {
+  const int body = s.body;
+  const std::int64_t utime = s.utime;
   if (body == thx_msgs::physics_impact_t::BODY_SURFACE) {
     s.body = -1;
     s.modal = scene_.surface.get();
@@ -119,14 +127,71 @@ void PhysicsExcitation::strikePair(int object, std::int64_t utime, const Eigen::
   if (s || o) ++counter;
 }
 
+// Two objects rubbing: the roughness force over the report's window, read along the contact's
+// travel (object_contact.hpp), +n on a and -n on b at the contact point, each in its own frame.
+void PhysicsExcitation::objectContact(const thx_msgs::physics_contacts_t& m, int k, const PoseLookup& poses,
+                                      const StrikeSink& sink) {
+  const int a = m.body_a[k], b = m.body_b[k];
+  RubState& st = rubs_[{a, b}];
+  const Eigen::Vector3d p = vec(m.p_world[k]), n = vec(m.n_world[k]).normalized();
+  const auto tangential = [&](const Eigen::Vector3d& v) -> Eigen::Vector3d { return v - v.dot(n) * n; };
+  // b's material at the contact point, from its newest pose (none: at rest, a fixed obstacle).
+  Eigen::Vector3d vb = Eigen::Vector3d::Zero();
+  const thx_msgs::physics_poses_t* pose = poses ? poses(m.utime) : nullptr;
+  if (pose && b < pose->num_bodies) {
+    const std::size_t i = std::size_t(b);
+    vb = vec(pose->v_world[i]) + vec(pose->w_world[i]).cross(p - vec(pose->p_world[i]));
+  }
+  const ContactTravel t = contactTravel(tangential(vec(m.v_slip_world[k])).norm(), tangential(vec(m.v_world[k]) - vb).norm(),
+                                        object_contacts_);
+  const double force = t.weight * std::max(0.0, m.f_normal[k]);
+  // A window longer than the physics client's slowest contact rate (1 Hz), or values that are not
+  // finite, are not a contact this can read (the bytes come from the network).
+  const bool readable = std::isfinite(t.speed_m_per_s) && std::isfinite(force) && m.window > 0.0 && m.window <= 1.0;
+  if (!readable || !(t.speed_m_per_s > 0.0) || !(force > 0.0)) {
+    st.moving = false;  // at rest (or no push): exactly silent, and the next motion fades in
+    return;
+  }
+  BodyStrike s;
+  s.micro = true;
+  s.utime = m.utime - std::llround(m.window * 1e6);
+  s.end_utime = m.utime;
+  s.s0 = st.distance_m;
+  s.s1 = st.distance_m + t.speed_m_per_s * m.window;
+  s.f0 = st.moving ? st.force_n : 0.0;  // a contact that starts moving fades in over its first window
+  s.f1 = force;
+  st.distance_m = s.s1;
+  st.moving = true;
+  st.force_n = force;
+  BodyStrike on_a = s, on_b = s;
+  on_a.body = a;
+  on_b.body = b;
+  const bool sa = strike(on_a, p, n, poses, sink);
+  const bool sb = strike(on_b, p, -n, poses, sink);
+  counts_.strikes += std::size_t(sa) + std::size_t(sb);
+  if (sa || sb) ++counts_.object_contact_segments;
+}
+
 void PhysicsExcitation::contacts(const thx_msgs::physics_contacts_t& m, const PoseLookup& poses,
                                  const StrikeSink& sink) {
   // A gap in the reports (no contact lasted meanwhile): every walk starts anew.
-  if (m.sim_time - m.window > last_sim_time_ + 1e-9) states_.clear();
+  if (m.sim_time - m.window > last_sim_time_ + 1e-9) {
+    states_.clear();
+    rubs_.clear();
+  }
   last_sim_time_ = m.sim_time;
   const Eigen::Vector3d ng = vec(m.n_geometric_world).normalized();
   std::set<int> present;
+  std::set<std::pair<int, int>> rubbing;
   const int n = std::clamp(m.num_contacts, 0, int(thx_msgs::physics_contacts_t::MAX_CONTACTS));
+  // Two objects first: their segments start a window before the report, before its texels.
+  for (int k = 0; k < n && object_contacts_.enabled; ++k) {
+    if (m.body_a[k] < 0 || m.body_b[k] < 0) continue;
+    rubbing.insert({m.body_a[k], m.body_b[k]});
+    objectContact(m, k, poses, sink);
+  }
+  for (auto it = rubs_.begin(); it != rubs_.end();)  // a contact that ended
+    it = rubbing.count(it->first) ? std::next(it) : rubs_.erase(it);
   for (int k = 0; k < n; ++k) {
     const int a = m.body_a[k];
     if (m.body_b[k] != thx_msgs::physics_contacts_t::BODY_SURFACE || a < 0 || !(m.mass_a[k] > 0.0)) continue;

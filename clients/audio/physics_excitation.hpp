@@ -7,7 +7,9 @@
 //     striking each other ring both) and the pen (at its tip);
 //   - lasting contacts of an object on a normal map: Eq. 5 at every texel entered (the object
 //     +dp, the surface -dp), at the texel's entry time;
-//   - on a relief map: the change of the object's normal momentum between two reports.
+//   - on a relief map: the change of the object's normal momentum between two reports;
+//   - lasting contacts between two objects: the micro level's roughness force over each report's
+//     window (object_contact.hpp), +n on a and -n on b at the contact point (a force segment).
 // Each strike is given in its body's frame: the surface slab's (plane-local, wrapped into the
 // texture's one span, depth clamped into the slab), an object's (from the newest pose at or
 // before the event, moved on by its velocities) or the pen's (its tip node).
@@ -16,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -24,6 +27,7 @@
 #include <thx_msgs/physics_poses_t.hpp>
 
 #include "clients/audio/modal_body.hpp"
+#include "clients/audio/object_contact.hpp"
 #include "scenes/scene.hpp"
 #include "textures/plane_mapping.hpp"
 
@@ -55,6 +59,13 @@ struct BodyStrike {
   Eigen::Vector3d point{0, 0, 0};
   Eigen::Vector3d impulse{0, 0, 0};  // N s
   double pulse_s = 0.0;          // the Hertz contact time (0: an ideal impulse)
+  // A micro-level force segment instead (a lasting contact between two objects): `impulse` is a
+  // unit direction; the force of the roughness profile (microForce, fractal_roughness.hpp) from
+  // distance s0 and force f0 at utime to s1, f1 at end_utime, on the samples after utime's up to
+  // end_utime's.
+  bool micro = false;
+  std::int64_t end_utime = 0;
+  double s0 = 0.0, s1 = 0.0, f0 = 0.0, f1 = 0.0;
 };
 
 // The newest poses message at or before a time (nullptr: none).
@@ -66,13 +77,15 @@ struct PhysicsExcitationCounts {
   std::size_t impacts = 0, meso_impulses = 0, relief_impulses = 0;  // excitations that sounded
   std::size_t strikes = 0;                                          // body strikes that sounded
   std::size_t object_impacts = 0;                                   // impacts between two objects that sounded
+  std::size_t object_contact_segments = 0;  // reports of a lasting contact between two objects that sounded
   double min_contact_s = 0, max_contact_s = 0;                      // the impacts' Hertz times
 };
 
 class PhysicsExcitation {
  public:
   // `scene` must outlive this.
-  explicit PhysicsExcitation(const SoundingScene& scene, double min_normal_dot = 0.05);
+  explicit PhysicsExcitation(const SoundingScene& scene, double min_normal_dot = 0.05,
+                             ObjectContactOptions object_contacts = {});
 
   void impact(const thx_msgs::physics_impact_t& m, const PoseLookup& poses, const StrikeSink& sink);
   void contacts(const thx_msgs::physics_contacts_t& m, const PoseLookup& poses, const StrikeSink& sink);
@@ -89,15 +102,27 @@ class PhysicsExcitation {
     bool has_vn = false;
     double vn = 0.0;
   };
+  // One strike (its body, times, pulse and micro fields set) at p along J (world frame).
+  bool strike(BodyStrike s, const Eigen::Vector3d& p, const Eigen::Vector3d& J, const PoseLookup& poses,
+              const StrikeSink& sink) const;
   bool strike(int body, std::int64_t utime, double delay_s, const Eigen::Vector3d& p, const Eigen::Vector3d& J,
               double pulse_s, const PoseLookup& poses, const StrikeSink& sink) const;
+  void objectContact(const thx_msgs::physics_contacts_t& m, int k, const PoseLookup& poses, const StrikeSink& sink);
   void strikePair(int object, std::int64_t utime, const Eigen::Vector3d& p, const Eigen::Vector3d& dp,
                   const PoseLookup& poses, const StrikeSink& sink, std::size_t& counter);
 
   const SoundingScene& scene_;
   double min_normal_dot_;
   std::map<int, PathState> states_;
+  // A lasting contact between two objects: where its roughness read is, the force it ended on.
+  struct RubState {
+    double distance_m = 0.0;
+    bool moving = false;  // the previous report made a segment
+    double force_n = 0.0;
+  };
+  std::map<std::pair<int, int>, RubState> rubs_;
   double last_sim_time_;
+  ObjectContactOptions object_contacts_;
   PhysicsExcitationCounts counts_;
 };
 

@@ -12,6 +12,7 @@
 #include <thx_msgs/log_reader.hpp>
 
 #include "clients/audio/contact_pulse.hpp"
+#include "clients/audio/fractal_roughness.hpp"
 #include "clients/audio/meso_impulses.hpp"
 #include "clients/audio/resonator_bank.hpp"
 #include "clients/audio/scene_bodies.hpp"
@@ -31,6 +32,15 @@ struct Strike {
   std::vector<double> gains;
 };
 
+// A micro-level force segment (two objects rubbing): its force samples, each struck as
+// gains x force / fs on the samples after `start` (as the scrape's micro level, scrape_synthesis.cpp).
+struct ForceSegment {
+  std::int64_t start;
+  int scene, body;
+  std::vector<double> gains;  // per unit force
+  std::vector<double> force;  // N, on samples start + 1 ...
+};
+
 class Renderer {
  public:
   Renderer(const PhysicsStreams& s, const SoundingScene& first, const std::function<SoundingScene(const std::string&)>& scene_for,
@@ -47,7 +57,13 @@ class Renderer {
   }
 
   PhysicsRender run() {
-    for (const SoundingScene& sc : scenes_) excitations_.push_back(std::make_unique<PhysicsExcitation>(sc, o_.min_normal_dot));
+    ObjectContactOptions oc = o_.object_contacts;
+    for (const SoundingScene& sc : scenes_) {
+      const RoughnessOptions r = sceneRoughness(sc.scene);
+      oc.enabled = o_.object_contacts.enabled && r.amplitude > 0.0;
+      excitations_.push_back(std::make_unique<PhysicsExcitation>(sc, o_.min_normal_dot, oc));
+      profiles_.push_back(oc.enabled ? std::make_unique<RoughnessProfile>(r) : nullptr);
+    }
     for (const auto& m : streams_.impacts) {
       const std::size_t seg = segmentAt(m.utime);
       excitations_[std::size_t(switches_[seg].scene)]->impact(m, poseLookup(seg), sink(seg));
@@ -67,6 +83,7 @@ class Renderer {
       out_.relief_impulses += c.relief_impulses;
       out_.strikes += c.strikes;
       out_.object_impacts += c.object_impacts;
+      out_.object_contact_segments += c.object_contact_segments;
       if (c.impacts == 0) continue;
       out_.min_contact_s = first ? c.min_contact_s : std::min(out_.min_contact_s, c.min_contact_s);
       out_.max_contact_s = std::max(out_.max_contact_s, c.max_contact_s);
@@ -111,6 +128,7 @@ class Renderer {
   StrikeSink sink(std::size_t segment) {
     return [this, segment](const BodyStrike& b) {
       std::vector<double> g = b.modal->gainsAt(b.point, b.impulse);
+      if (b.micro) return forceSegment(segment, b, std::move(g));
       if (b.pulse_s > 0)
         for (std::size_t i = 0; i < g.size(); ++i)
           g[i] *= halfSinePulseFactor(2.0 * std::numbers::pi * b.modal->modes().frequency_hz[i], b.pulse_s);
@@ -120,18 +138,42 @@ class Renderer {
     };
   }
 
+  // A segment's force samples from the scene's roughness profile (microForce); kept unless all 0.
+  bool forceSegment(std::size_t segment, const BodyStrike& b, std::vector<double> gains) {
+    const int scene = switches_[segment].scene;
+    const RoughnessProfile* profile = profiles_[std::size_t(scene)].get();
+    const std::int64_t start = sampleAt(b.utime), end = sampleAt(b.end_utime);
+    if (!profile || end <= start || std::all_of(gains.begin(), gains.end(), [](double x) { return x == 0.0; })) return false;
+    std::vector<double> force(std::size_t(end - start), 0.0);
+    microForce(*profile, b.s0, b.s1, b.f0, b.f1, force);
+    if (std::all_of(force.begin(), force.end(), [](double x) { return x == 0.0; })) return false;
+    segments_.push_back({start, scene, b.body, std::move(gains), std::move(force)});
+    return true;
+  }
+
   PhysicsRender render() {
     std::stable_sort(strikes_.begin(), strikes_.end(), [](const Strike& x, const Strike& y) {
       return std::tie(x.scene, x.body, x.sample) < std::tie(y.scene, y.body, y.sample);
     });
+    std::stable_sort(segments_.begin(), segments_.end(), [](const ForceSegment& x, const ForceSegment& y) {
+      return std::tie(x.scene, x.body, x.start) < std::tie(y.scene, y.body, y.start);
+    });
     std::int64_t last = 0;
     for (const Strike& s : strikes_) last = std::max(last, s.sample);
-    const std::size_t total = strikes_.empty() ? 0 : std::size_t(last) + std::size_t(std::ceil(o_.tail_s * o_.sample_rate_hz)) + 1;
+    for (const ForceSegment& s : segments_) last = std::max(last, s.start + std::int64_t(s.force.size()));
+    const bool any = !strikes_.empty() || !segments_.empty();
+    const std::size_t total = any ? std::size_t(last) + std::size_t(std::ceil(o_.tail_s * o_.sample_rate_hz)) + 1 : 0;
     out_.samples.assign(total, 0.0);
     std::vector<double> buffer;
-    for (std::size_t k = 0; k < strikes_.size();) {
-      const SoundingScene& sc = scenes_[std::size_t(strikes_[k].scene)];
-      const int id = strikes_[k].body;
+    std::size_t k = 0, g = 0;
+    while (k < strikes_.size() || g < segments_.size()) {
+      // The next body (in scene, body order) with strikes or force segments.
+      const bool from_strike = g == segments_.size() ||
+                               (k < strikes_.size() && std::tie(strikes_[k].scene, strikes_[k].body) <=
+                                                           std::tie(segments_[g].scene, segments_[g].body));
+      const int scene = from_strike ? strikes_[k].scene : segments_[g].scene;
+      const int id = from_strike ? strikes_[k].body : segments_[g].body;
+      const SoundingScene& sc = scenes_[std::size_t(scene)];
       const ModalBody& body = id == -1 ? *sc.surface : id == -2 ? *sc.pen : *sc.objects[std::size_t(id)];
       if (std::find(out_.scenes.begin(), out_.scenes.end(), sc.name) == out_.scenes.end()) out_.scenes.push_back(sc.name);
       ResonatorBank bank(o_.sample_rate_hz, body.size());
@@ -139,20 +181,58 @@ class Renderer {
         throw std::runtime_error(sc.name + ": a mode of " + body.mesh().name + " is not below Nyquist at " +
                                  std::to_string(o_.sample_rate_hz) + " Hz");
       buffer.assign(total, 0.0);
-      std::size_t end = k;
-      while (end < strikes_.size() && strikes_[end].scene == strikes_[k].scene && strikes_[end].body == strikes_[k].body) ++end;
-      std::size_t done = 0;
-      for (; k < end; ++k) {
-        const Strike& s = strikes_[k];
-        const std::size_t until = std::min(std::size_t(s.sample), total);
-        if (until > done) bank.render(std::span<double>(buffer).subspan(done, until - done));
-        done = std::max(done, until);
-        bank.strike(s.gains);
-      }
-      if (total > done) bank.render(std::span<double>(buffer).subspan(done, total - done));
+      const auto same = [&](const auto& x) { return x.scene == scene && x.body == id; };
+      std::size_t k_end = k, g_end = g;
+      while (k_end < strikes_.size() && same(strikes_[k_end])) ++k_end;
+      while (g_end < segments_.size() && same(segments_[g_end])) ++g_end;
+      renderBody(bank, std::span<const Strike>(strikes_).subspan(k, k_end - k),
+                 std::span<const ForceSegment>(segments_).subspan(g, g_end - g), buffer);
+      k = k_end;
+      g = g_end;
       for (std::size_t i = 0; i < total; ++i) out_.samples[i] += buffer[i];
     }
     return std::move(out_);
+  }
+
+  // One body's strikes (each before the sample it falls on) and force segments (sample by sample
+  // while one runs: every sample first strikes the sum of gains x force / fs, then is rendered).
+  void renderBody(ResonatorBank& bank, std::span<const Strike> strikes, std::span<const ForceSegment> segments,
+                  std::vector<double>& buffer) const {
+    const std::size_t total = buffer.size();
+    std::vector<const ForceSegment*> active;
+    std::vector<double> g(bank.size(), 0.0);
+    std::size_t done = 0, k = 0, s = 0;
+    const auto firstOwned = [](const ForceSegment& x) { return std::size_t(x.start) + 1; };
+    while (done < total) {
+      for (; k < strikes.size() && std::size_t(strikes[k].sample) <= done; ++k) bank.strike(strikes[k].gains);
+      for (; s < segments.size() && firstOwned(segments[s]) <= done; ++s) active.push_back(&segments[s]);
+      if (active.empty()) {
+        std::size_t until = total;
+        if (k < strikes.size()) until = std::min(until, std::size_t(strikes[k].sample));
+        if (s < segments.size()) until = std::min(until, firstOwned(segments[s]));
+        bank.render(std::span<double>(buffer).subspan(done, until - done));
+        done = until;
+        continue;
+      }
+      std::fill(g.begin(), g.end(), 0.0);
+      bool struck = false;
+      for (std::size_t a = 0; a < active.size();) {
+        const ForceSegment& x = *active[a];
+        const std::size_t n = done - firstOwned(x);
+        const double j = n < x.force.size() ? x.force[n] / o_.sample_rate_hz : 0.0;
+        if (j != 0.0) {
+          for (std::size_t i = 0; i < g.size(); ++i) g[i] += x.gains[i] * j;
+          struck = true;
+        }
+        if (n + 1 >= x.force.size())
+          active.erase(active.begin() + std::ptrdiff_t(a));
+        else
+          ++a;
+      }
+      if (struck) bank.strike(g);
+      bank.render(std::span<double>(buffer).subspan(done, 1));
+      ++done;
+    }
   }
 
   const PhysicsStreams& streams_;
@@ -162,7 +242,9 @@ class Renderer {
   std::vector<SoundingScene> scenes_;
   std::vector<Segment> switches_;
   std::vector<Strike> strikes_;
+  std::vector<ForceSegment> segments_;
   std::vector<std::unique_ptr<PhysicsExcitation>> excitations_;  // by scene
+  std::vector<std::unique_ptr<RoughnessProfile>> profiles_;       // by scene; null: no micro level there
   std::size_t last_segment_ = 0;
   PhysicsRender out_;
 };

@@ -7,7 +7,9 @@
 //     opposite, on the object;
 //   - lasting contacts on a relief map: the change of the object's momentum along the plane's
 //     normal between two contact reports, m (v_k - v_{k-1}) . n_g (the relief pushing the body up
-//     or catching it, without the static support), on both sides.
+//     or catching it, without the static support), on both sides;
+//   - lasting contacts between two objects: the micro level's roughness force (the scene's
+//     surface.roughness profile) over each report's window, on both objects, opposite.
 // The strikes come from PhysicsExcitation (physics_excitation.hpp, the live client's too); they
 // are collected per body with their sample times, then every body's resonator bank is rendered
 // in one pass: the same streams give the same samples.
@@ -79,6 +81,9 @@ struct PhysicsSoundOptions {
   double sample_rate_hz = 44100.0;
   double tail_s = 0.5;            // rendered after the last strike
   double min_normal_dot = 0.05;   // Eq. 5's floor of n_g . n_s (meso_impulses.hpp)
+  // Lasting contacts between two objects (the micro level, object_contact.hpp); a scene whose
+  // surface.roughness amplitude is 0 has none.
+  ObjectContactOptions object_contacts;
 };
 
 struct PhysicsRender {
@@ -86,6 +91,7 @@ struct PhysicsRender {
   std::size_t impacts = 0, meso_impulses = 0, relief_impulses = 0;  // excitations applied (non-zero)
   std::size_t strikes = 0;                  // body strikes (an impact strikes up to two bodies)
   std::size_t object_impacts = 0;           // impacts between two objects (of `impacts`)
+  std::size_t object_contact_segments = 0; // reports of two objects rubbing that sounded (micro level)
   double min_contact_s = 0, max_contact_s = 0;  // the impacts' Hertz durations
   std::vector<std::string> scenes;          // the scenes that sounded, in order of first use
 };

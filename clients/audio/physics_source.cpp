@@ -9,8 +9,8 @@ constexpr std::size_t kPosesKept = 256;
 }
 
 PhysicsSource::PhysicsSource(const SoundingScene& scene, std::vector<int> object_bodies, std::uint32_t generation,
-                             std::int64_t playout_delay_ns, int pen_body)
-    : excitation_(scene),
+                             std::int64_t playout_delay_ns, int pen_body, ObjectContactOptions object_contacts)
+    : excitation_(scene, /*min_normal_dot=*/0.05, object_contacts),
       object_bodies_(std::move(object_bodies)),
       pen_body_(pen_body),
       generation_(generation),
@@ -42,7 +42,11 @@ StrikeSink PhysicsSource::eventSink(std::int64_t source_ns, std::int64_t receipt
     e.receipt_ns = receipt_ns;
     e.generation = generation_;
     e.body = std::uint16_t(body);
-    e.kind = ExcitationKind::Point;
+    e.kind = s.micro ? ExcitationKind::Micro : ExcitationKind::Point;
+    if (s.micro) {  // a force segment (two objects rubbing): the callback reads the roughness
+      e.end_ns = s.end_utime * 1000 + delay_ns_;
+      e.s0 = s.s0, e.s1 = s.s1, e.f0 = s.f0, e.f1 = s.f1;
+    }
     for (int i = 0; i < 3; ++i) e.impulse[i] = s.impulse[i];
     e.point_count = w.count;
     for (int c = 0; c < w.count; ++c) {

@@ -8,7 +8,8 @@
 // frame, the contact time; the callback sums the gains as ModalBody::gainsAt does.
 // Objects' frames come from the newest THX_PHYSICS_POSES at or before the event (the last 256
 // messages are kept). Impacts with the pen strike the pen's body at its tip; the pen's lasting
-// contacts are skipped (its scrape comes from hapticd's CONTACT).
+// contacts are skipped (its scrape comes from hapticd's CONTACT). Two objects rubbing give Micro
+// events at a point on each (the roughness force over the report's window, object_contact.hpp).
 // Timing: a strike sounds at its time on the physics client's clock, as the offline render places
 // it (an impact's utime plus half its contact time, a texel's entry time, a relief report's utime),
 // plus the playout delay. A contacts message's texels lie up to its window (1 / contact rate,
@@ -25,9 +26,10 @@ namespace thx::audio {
 class PhysicsSource final : public ExcitationSource {
  public:
   // `scene` must outlive this. object_bodies[k]: the SynthScene body of scene.objects[k] (-1:
-  // silent); the surface is body 0; pen_body: the pen's (-1: silent).
+  // silent); the surface is body 0; pen_body: the pen's (-1: silent). object_contacts.enabled
+  // needs a SynthScene with a roughness profile (its Micro events are refused otherwise).
   PhysicsSource(const SoundingScene& scene, std::vector<int> object_bodies, std::uint32_t generation,
-                std::int64_t playout_delay_ns, int pen_body = -1);
+                std::int64_t playout_delay_ns, int pen_body = -1, ObjectContactOptions object_contacts = {});
   PhysicsSource(const PhysicsSource&) = delete;  // lookup_ points at this
   PhysicsSource& operator=(const PhysicsSource&) = delete;
 

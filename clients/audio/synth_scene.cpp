@@ -39,6 +39,25 @@ void SynthScene::strikeNode(Voice& v, std::int32_t node, const double (&j)[3]) {
   v.bank.strike(v.g);
 }
 
+bool SynthScene::validPoint(const Voice& v, const std::int32_t* nodes, std::int32_t count) const {
+  if (count <= 0 || count > kMaxPointNodes) return false;
+  for (int c = 0; c < count; ++c)
+    if (nodes[c] < 0 || std::size_t(nodes[c]) >= v.nodes) return false;
+  return true;
+}
+
+void SynthScene::pointGains(Voice& v, const std::int32_t* nodes, const double* weights, std::int32_t count,
+                            const double (&j)[3]) {
+  const std::size_t m = v.g.size();
+  std::fill(v.g.begin(), v.g.end(), 0.0);
+  // The sum of ModalBody::gainsAt, in its order.
+  for (int c = 0; c < count; ++c) {
+    const double* row = v.shapes.data() + std::size_t(3 * nodes[c]) * m;
+    const double w = weights[c];
+    for (std::size_t k = 0; k < m; ++k) v.g[k] += w * (row[k] * j[0] + row[m + k] * j[1] + row[2 * m + k] * j[2]);
+  }
+}
+
 bool SynthScene::strike(const ExcitationEvent& e, std::int64_t micro_samples) {
   if (e.body >= voices_.size()) return false;
   Voice& v = voices_[e.body];
@@ -48,31 +67,29 @@ bool SynthScene::strike(const ExcitationEvent& e, std::int64_t micro_samples) {
       strikeNode(v, e.node, e.impulse);
       return true;
     case ExcitationKind::Point: {
-      if (e.point_count <= 0 || e.point_count > kMaxPointNodes) return false;
-      for (int c = 0; c < e.point_count; ++c)
-        if (e.point_nodes[c] < 0 || std::size_t(e.point_nodes[c]) >= v.nodes) return false;
+      if (!validPoint(v, e.point_nodes, e.point_count)) return false;
+      pointGains(v, e.point_nodes, e.point_weights, e.point_count, e.impulse);
       const std::size_t m = v.g.size();
-      std::fill(v.g.begin(), v.g.end(), 0.0);
-      // The sum of ModalBody::gainsAt, in its order.
-      for (int c = 0; c < e.point_count; ++c) {
-        const double* row = v.shapes.data() + std::size_t(3 * e.point_nodes[c]) * m;
-        const double w = e.point_weights[c];
-        for (std::size_t k = 0; k < m; ++k)
-          v.g[k] += w * (row[k] * e.impulse[0] + row[m + k] * e.impulse[1] + row[2 * m + k] * e.impulse[2]);
-      }
       if (e.pulse_s > 0)
         for (std::size_t k = 0; k < m; ++k) v.g[k] *= halfSinePulseFactor(v.omega[k], e.pulse_s);
       v.bank.strike(v.g);
       return true;
     }
     case ExcitationKind::Micro: {
-      if (!roughness_ || e.node < 0 || std::size_t(e.node) >= v.nodes || segment_count_ >= kMaxSegments) return false;
+      if (!roughness_ || segment_count_ >= kMaxSegments) return false;
+      if (e.point_count > 0 ? !validPoint(v, e.point_nodes, e.point_count) : (e.node < 0 || std::size_t(e.node) >= v.nodes))
+        return false;
       const std::int64_t count =
           micro_samples >= 0 ? micro_samples : std::llround(double(e.end_ns - e.time_ns) * 1e-9 * sample_rate_hz_);
       if (count <= 0) return true;  // no sample after the start's up to the end's
       Segment& s = segments_[segment_count_++];
       s.body = e.body;
       s.node = e.node;
+      s.point_count = e.point_count;
+      for (int c = 0; c < e.point_count; ++c) {
+        s.point_nodes[c] = e.point_nodes[c];
+        s.point_weights[c] = e.point_weights[c];
+      }
       for (int i = 0; i < 3; ++i) s.direction[i] = e.impulse[i];
       s.wait = 1;  // the segment owns the samples after this one
       s.n = 0;
@@ -113,7 +130,16 @@ void SynthScene::render(std::span<float> out) {
         continue;
       }
       const double j = microForceAt(*roughness_, s.level, s.s0, s.s1, s.f0, s.f1, s.n, s.count) / sample_rate_hz_;
-      if (j != 0.0) strikeNode(voices_[s.body], s.node, {s.direction[0] * j, s.direction[1] * j, s.direction[2] * j});
+      if (j != 0.0) {
+        const double impulse[3] = {s.direction[0] * j, s.direction[1] * j, s.direction[2] * j};
+        Voice& v = voices_[s.body];
+        if (s.point_count > 0) {
+          pointGains(v, s.point_nodes, s.point_weights, s.point_count, impulse);
+          v.bank.strike(v.g);
+        } else {
+          strikeNode(v, s.node, impulse);
+        }
+      }
       if (++s.n == s.count)
         segments_[k] = segments_[--segment_count_];  // done (order does not matter: strikes add)
       else

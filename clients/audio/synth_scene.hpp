@@ -8,7 +8,8 @@
 // Events (excitation.hpp): an Impulse is projected from its node's row of shapes; a Point sums
 // its nodes' rows with their shape-function weights, as ModalBody::gainsAt does, each mode's
 // share times the Hertz pulse factor P(omega tau) (contact_pulse.hpp); a Micro event starts a
-// force segment: from the next sample on, every sample strikes force / fs (microForce's sample n,
+// force segment at a node or, with point nodes and weights, at a point (two objects rubbing): from
+// the next sample on, every sample strikes force / fs (microForce's sample n,
 // fractal_roughness.hpp, read from the scene's roughness profile) before it is rendered, so
 // render() goes sample by sample while a segment lasts (as the offline render does).
 #include <Eigen/Core>
@@ -74,15 +75,21 @@ class SynthScene {
     std::size_t nodes = 0;
     std::vector<double> omega;   // rad/s, for the Hertz pulse factor
   };
-  // A Micro event's force segment in progress.
+  // A Micro event's force segment in progress (at a node, or at a point: point_count > 0).
   struct Segment {
     std::uint16_t body = 0;
     std::int32_t node = 0;
+    std::int32_t point_nodes[kMaxPointNodes] = {};
+    double point_weights[kMaxPointNodes] = {};
+    std::int32_t point_count = 0;
     double direction[3] = {0, 0, 0};
     std::size_t wait = 0, n = 0, count = 0, level = 0;
     double s0 = 0, s1 = 0, f0 = 0, f1 = 0;
   };
   void strikeNode(Voice& v, std::int32_t node, const double (&impulse)[3]);
+  // v.g = the sum over the point's nodes of weight x (shape . impulse), ModalBody::gainsAt's order.
+  void pointGains(Voice& v, const std::int32_t* nodes, const double* weights, std::int32_t count, const double (&impulse)[3]);
+  bool validPoint(const Voice& v, const std::int32_t* nodes, std::int32_t count) const;
   void renderVoices(std::span<float> out);
 
   std::vector<Voice> voices_;

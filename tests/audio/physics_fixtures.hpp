@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the physics-sound and live tests: the marble scene with its marble made a 10 cm steel
-// ball (audible modes) on a small slab, the ball's pose, an impact, a texel path.
+// ball (audible modes) on a small slab, the ball's pose, an impact, a texel path; two audible
+// balls apart from the surface and their poses.
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -84,6 +85,63 @@ inline physics_contacts_t pathMessage(std::int64_t utime, double sim_time, const
     t.v_world[0] = 0.3;
     m.path.push_back(t);
   }
+  return m;
+}
+
+// Two audible balls floating apart from the surface: a steel ball of 10 cm (body 0, at the origin)
+// and one of 13 cm (body 1, on +x), so their loudest modes lie apart (Tet4, 16 modes each; audible:
+// 13.6-14.9 kHz and 10.5-14.7 kHz; a sphere's frequencies go as 1/r).
+inline const SoundingScene& twoBalls() {
+  static const SoundingScene s = [] {
+    thx::scene::Scene scene = testScene().scene;
+    thx::scene::SceneObject big = scene.objects.at(0);
+    big.name = "big";
+    big.radius_m = 0.13;
+    big.mass_kg = big.material.density_kg_per_m3 * 4.0 / 3.0 * std::numbers::pi * std::pow(0.13, 3);
+    scene.objects.push_back(big);
+    BodyOptions o;
+    o.object_order = ElementOrder::Linear;
+    o.modal.elastic_modes = 16;
+    return soundingScene("two_balls", scene, false, o, testScene().surface);
+  }();
+  return s;
+}
+
+constexpr double kGap = 0.23;  // between the centres: the balls touch at x = 0.1
+
+inline thx_msgs::physics_poses_t twoBallPoses() {
+  thx_msgs::physics_poses_t p{};
+  p.num_bodies = 2;
+  for (int b = 0; b < 2; ++b) {
+    p.p_world[b][2] = 0.3;
+    p.q_world[b][0] = 1.0;
+  }
+  p.p_world[1][0] = kGap;
+  return p;
+}
+
+// A contacts report of the two balls touching at (0.1, 0, 0.3), n from ball 1 to ball 0 (-x),
+// over the millisecond before `utime`: ball 0's contact point slips at `slip` relative to ball 1's,
+// its centre moves at `v_a`, the normal force is `f_normal`.
+inline physics_contacts_t rubMessage(std::int64_t utime, const Eigen::Vector3d& slip, const Eigen::Vector3d& v_a,
+                                     double f_normal) {
+  physics_contacts_t m{};
+  m.utime = utime;
+  m.sim_time = double(utime) * 1e-6;
+  m.window = 1e-3;
+  m.n_geometric_world[2] = 1.0;
+  m.num_contacts = 1;
+  m.body_a[0] = 0;
+  m.body_b[0] = 1;
+  m.mass_a[0] = twoBalls().scene.objects.at(0).mass_kg;
+  m.p_world[0][0] = 0.1;
+  m.p_world[0][2] = 0.3;
+  m.n_world[0][0] = -1.0;
+  for (int a = 0; a < 3; ++a) {
+    m.v_slip_world[0][a] = slip[a];
+    m.v_world[0][a] = v_a[a];
+  }
+  m.f_normal[0] = f_normal;
   return m;
 }
 

@@ -1,6 +1,6 @@
 // The live audio callback (LiveSynth::process) never allocates: impulses struck mid-block, Point
 // events with a Hertz pulse factor, micro-level force segments running across blocks on two
-// bodies, late events, events of an old scene dropped, a new scene taken through the handoff, the
+// bodies (at a node, and at a point as two objects rubbing give them), late events, events of an old scene dropped, a new scene taken through the handoff, the
 // budget shed and grown, a re-anchor after a stall, all with the allocation counter of the
 // servo's tests.
 #include <gtest/gtest.h>
@@ -88,6 +88,13 @@ TEST(LiveNoAllocation, TheCallbackAllocatesNothing) {
     }
     if (k % 7 == 0) {
       ASSERT_TRUE(synth.queue().push(point(t + period / 3, 1)));
+    }
+    if (k % 5 == 0) {  // a micro segment at a point of the pen's tip element (two objects rubbing)
+      ExcitationEvent rub = micro(t + period / 5, period, 1, 1, 0);
+      const ExcitationEvent at = point(0, 1);
+      rub.point_count = at.point_count;
+      for (int c = 0; c < at.point_count; ++c) rub.point_nodes[c] = at.point_nodes[c], rub.point_weights[c] = at.point_weights[c];
+      ASSERT_TRUE(synth.queue().push(rub));
     }
     if (k % 10 == 0) {
       ASSERT_TRUE(synth.queue().push(strike(t - 5 * period, 1, 2)));  // late

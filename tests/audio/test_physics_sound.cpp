@@ -190,38 +190,6 @@ TEST(PhysicsSound, ReadsThePhysicsStreamsOfALog) {
   std::remove(file.c_str());
 }
 
-// Two audible balls floating apart from the surface: a steel ball of 10 cm (body 0, at the origin)
-// and one of 13 cm (body 1, on +x), so their loudest modes lie apart (Tet4, 16 modes each; audible:
-// 13.6-14.9 kHz and 10.5-14.7 kHz; a sphere's frequencies go as 1/r).
-const SoundingScene& twoBalls() {
-  static const SoundingScene s = [] {
-    thx::scene::Scene scene = testScene().scene;
-    thx::scene::SceneObject big = scene.objects.at(0);
-    big.name = "big";
-    big.radius_m = 0.13;
-    big.mass_kg = big.material.density_kg_per_m3 * 4.0 / 3.0 * std::numbers::pi * std::pow(0.13, 3);
-    scene.objects.push_back(big);
-    BodyOptions o;
-    o.object_order = ElementOrder::Linear;
-    o.modal.elastic_modes = 16;
-    return soundingScene("two_balls", scene, false, o, testScene().surface);
-  }();
-  return s;
-}
-
-constexpr double kGap = 0.23;  // between the centres: the balls touch at x = 0.1
-
-thx_msgs::physics_poses_t twoBallPoses() {
-  thx_msgs::physics_poses_t p{};
-  p.num_bodies = 2;
-  for (int b = 0; b < 2; ++b) {
-    p.p_world[b][2] = 0.3;
-    p.q_world[b][0] = 1.0;
-  }
-  p.p_world[1][0] = kGap;
-  return p;
-}
-
 // Ball 0 strikes ball 1 head-on: n from b (ball 1) to a (ball 0) is -x.
 physics_impact_t ballOnBall(double impulse) {
   physics_impact_t m{};
