@@ -219,7 +219,9 @@ TEST(Observation, BoxPickupsAreTheNearestSurfaceNodesWithTheirFacesNormals) {
     EXPECT_LT((ps[std::size_t(k)].normal - normal[k]).norm(), 1e-12) << k;
     expected.segment<3>(3 * ps[std::size_t(k)].node) += 0.25 * normal[k];
   }
-  EXPECT_LT((observationVector(mesh) - expected).cwiseAbs().maxCoeff(), 1e-15);
+  // Weighted by the box's surface, 2 (0.4 x 0.3 + 0.4 x 0.2 + 0.3 x 0.2) = 0.52 m^2.
+  EXPECT_NEAR(surfaceArea(mesh), 0.52, 1e-14);
+  EXPECT_LT((observationVector(mesh) - 0.52 * expected).cwiseAbs().maxCoeff(), 1e-15);
 }
 
 TEST(Observation, HeldNodesAreNeverPickups) {
@@ -228,9 +230,40 @@ TEST(Observation, HeldNodesAreNeverPickups) {
     EXPECT_FALSE(slab.clamped[std::size_t(p.node)]);
     EXPECT_NEAR(std::fabs(p.normal.z()), 1.0, 1e-12);  // on the top or bottom face
   }
+  // Targets 1 and 2 on the top and bottom faces (docs/audio.md §9a's table).
+  EXPECT_NEAR(pickups(slab)[0].normal.z(), 1.0, 1e-12);
+  EXPECT_NEAR(pickups(slab)[1].normal.z(), -1.0, 1e-12);
+  // A slab like the shipped one (Tet10, 2 layers): targets 3 and 4 on the +x and -y sides when
+  // free; held, on the free top-face nodes next to those sides.
+  for (bool clamp : {false, true}) {
+    const TetMesh shipped = slabMesh("slab", 0.2, 0.2, 0.01, {6, 6, 2}, ElementOrder::Quadratic, clamp);
+    const std::vector<Pickup> ps = pickups(shipped);
+    if (!clamp) {
+      EXPECT_NEAR(ps[2].normal.x(), 1.0, 1e-12);
+      EXPECT_NEAR(ps[3].normal.y(), -1.0, 1e-12);
+    } else {
+      EXPECT_NEAR(ps[2].normal.z(), 1.0, 1e-12);
+      EXPECT_NEAR(shipped.nodes[std::size_t(ps[2].node)].x(), 0.1 - 0.2 / 12, 1e-12);
+      EXPECT_NEAR(std::fabs(ps[3].normal.z()), 1.0, 1e-12);
+      EXPECT_NEAR(shipped.nodes[std::size_t(ps[3].node)].y(), -0.1 + 0.2 / 12, 1e-12);
+    }
+  }
   TetMesh held = slab;
   std::fill(held.clamped.begin(), held.clamped.end(), char(1));
   EXPECT_THROW(pickups(held), ModalError);
+}
+
+// The shipped pen (axis z, tip at -z): targets 1 and 2 on its end faces, 3 and 4 on its side,
+// 3 above the middle and 4 towards the tip.
+TEST(Observation, ThePensPickupsAreOnBothEndsAndItsSide) {
+  const TetMesh& mesh = penScene().mesh;
+  const std::vector<Pickup> ps = pickups(mesh);
+  ASSERT_EQ(ps.size(), 4u);
+  EXPECT_NEAR(ps[0].normal.z(), 1.0, 1e-9);
+  EXPECT_NEAR(ps[1].normal.z(), -1.0, 1e-9);
+  for (int k : {2, 3}) EXPECT_NEAR(ps[std::size_t(k)].normal.z(), 0.0, 1e-9) << k;
+  EXPECT_GT(mesh.nodes[std::size_t(ps[2].node)].z(), 0.0);
+  EXPECT_LT(mesh.nodes[std::size_t(ps[3].node)].z(), 0.0);
 }
 
 // Hand-made modes: each audible mode's column is u (w . u), so a strike J at a node drives it by
