@@ -3,6 +3,9 @@
 // C = alpha M + beta K, so d = (alpha + beta omega^2) / 2 and omega_d = omega sqrt(1 - xi^2)),
 // the audible band, the psychoacoustic merge of modes closer than the frequency-discrimination
 // threshold (Raghuvanshi & Lin 2006; docs/audio.md §8.6) and truncation to a mode budget.
+// Each mode is heard through the body's listener w (observation.hpp), and a merge sums the modes'
+// contributions, not their shapes, so the result does not depend on the basis the eigensolver
+// chose inside a repeated eigenvalue's subspace (docs/audio.md §9a).
 #include <Eigen/Core>
 #include <vector>
 
@@ -20,7 +23,9 @@ struct AudibleOptions {
   // max(merge_abs_hz, merge_rel * f) (pure-tone difference limens, docs/audio.md §8.6).
   double merge_abs_hz = 2.0;
   double merge_rel = 0.003;
-  int max_modes = 0;  // keep at most this many (the lowest) after merging; 0 = all
+  // Keep at most this many (the lowest) after merging; 0 = all. Copies of a repeated mode are
+  // kept or dropped together (the cut moves below them), so the sound stays basis-invariant.
+  int max_modes = 0;
 };
 
 struct AudibleModes {
@@ -28,17 +33,24 @@ struct AudibleModes {
   std::vector<double> decay_per_s;   // d: the envelope is exp(-d t)
   std::vector<double> damping_ratio; // xi = d / omega
   std::vector<int> members;          // FEM modes merged into this one (1 = not merged)
-  // Mesh DOFs x modes: the sum of the members' M-orthonormal shapes, so the modal impulse of a
-  // force J at a node is shapes.row(dof) * J, the sum of the members' own.
+  // Mesh DOFs x modes: the observed shape of each, sum over its members m of u_m (w . u_m) with
+  // u_m M-orthonormal, so a force (impulse) J at a node drives it by shapes.row(dof) * J =
+  // sum_m (J . u_m)(w . u_m): what the listener hears of that strike per unit modal response.
+  // For the members spanning a subspace that is J^T P w with P = U U^T, whatever basis U.
   Eigen::MatrixXd shapes;
   int dropped_overdamped = 0, dropped_out_of_band = 0, merged_away = 0, truncated = 0;
 
   std::size_t size() const { return frequency_hz.size(); }
 };
 
+// Two modes this close (relative) are copies of one repeated eigenvalue (a symmetry's degenerate
+// subspace; the solver's copies agree to ~1e-11): never split between groups or by truncation.
+inline constexpr double kRepeatedModeRel = 1e-7;
+
 // The discrimination threshold at frequency f.
 double mergeThresholdHz(const AudibleOptions& options, double f_hz);
 
+// Throws std::invalid_argument when solution.observation does not hold one value per mode.
 AudibleModes audibleModes(const ModalSolution& solution, const ElasticMaterial& material, const AudibleOptions& options);
 
 }  // namespace thx::audio

@@ -102,7 +102,7 @@ Live:
   --block N              frames per callback block (default 256, at most 4096)
   --output MODE          auto (a device, else timer + WAV; default), device, timer
   --audio-api API        alsa, pulse or jack (default: ALSA, then PulseAudio)
-  --gain G               output = clamp(G x, -1, 1), x the modal displacement sum in m (default 8e4)
+  --gain G               output = clamp(G x, -1, 1), x what the bodies' listeners hear, m^3 (default 5e6)
   --fixed-budget         synthesise every mode always (no quality scaling under load)
   --duration S           stop after S seconds (default: at SIGINT/SIGTERM)
   --stats-json FILE      latency (contact -> callback block) and counters at the end

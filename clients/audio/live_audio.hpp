@@ -24,7 +24,7 @@ struct LiveOptions {
   std::string output = "auto";       // auto (a device, else timer + WAV), device, timer
   std::string audio_api;             // "" = ALSA then PulseAudio; alsa, pulse, jack
   std::string wav;                   // where the timer output's sound goes ("" = none)
-  double gain = 8e4;                 // output = clamp(gain x, -1, 1), x in m
+  double gain = 5e6;                 // output = clamp(gain x, -1, 1), x the listeners' sum in m^3 (docs/audio.md §9a)
   bool adapt_budget = true;
   ModeBudgetOptions budget;
   double duration_s = 0.0;           // 0 = until SIGINT/SIGTERM

@@ -9,6 +9,7 @@
 #include "clients/audio/fem_assembly.hpp"
 #include "clients/audio/modal_cache.hpp"
 #include "clients/audio/modal_error.hpp"
+#include "clients/audio/observation.hpp"
 
 namespace thx::audio {
 namespace {
@@ -80,12 +81,16 @@ ModalSolution analyse(const TetMesh& mesh, const ElasticMaterial& material, cons
   if (!(settings.shift_hz > 0))
     throw ModalError(mesh.name + ": shift " + numberText(settings.shift_hz) + " Hz: expected > 0 (sigma = -(2 pi f)^2)");
 
+  // The listener first: a mesh with nowhere to listen fails before any solve.
+  const Eigen::VectorXd w = observationVector(mesh);
+
   std::uint64_t key = 0;
   std::string cache_path;
   if (options.cache_dir) {
     key = modalCacheKey(mesh, material, settings);
     cache_path = modalCachePath(*options.cache_dir, key);
     if (auto cached = readModalCache(cache_path, key, options.progress)) {
+      cached->observation = cached->shapes.transpose() * w;
       cached->total_s = secondsSince(t_start);
       say("modes read from the cache " + cache_path);
       return *cached;
@@ -126,6 +131,7 @@ ModalSolution analyse(const TetMesh& mesh, const ElasticMaterial& material, cons
                                 : " for a held body (is it held at enough nodes?)"));
   }
   takeModes(r, rigid, sys.free_dof, s);
+  s.observation = s.shapes.transpose() * w;
   if (options.cache_dir) {
     writeModalCache(cache_path, key, s);
     s.cache_file = cache_path;

@@ -30,6 +30,10 @@ struct ModalSolution {
   Eigen::VectorXd rigid_hz;          // their frequencies (sqrt of |lambda|, signed by lambda)
   Eigen::VectorXd omega_rad_per_s;   // elastic, ascending
   Eigen::MatrixXd shapes;            // mesh_dofs x modes, M-orthonormal, 0 at clamped DOFs
+  // w . u_i of each elastic mode, w the mesh's listener (observation.hpp). Filled by analyse()
+  // from the mesh, also for a solution read from the cache (which stores only the shapes), so
+  // another choice of w never needs a new cache file. audibleModes() requires it.
+  Eigen::VectorXd observation;
   // How it was obtained.
   bool from_cache = false;
   std::string cache_file;
@@ -46,7 +50,8 @@ struct AnalysisOptions {
 };
 
 // Throws ModalError naming mesh.name and the cause: bad material, degenerate tet, failed or
-// unconverged solve, or a rigid-mode count other than 6 (free) or 0 (clamped).
+// unconverged solve, or a rigid-mode count other than 6 (free) or 0 (clamped), or no surface node
+// free to move (nowhere to listen).
 ModalSolution analyse(const TetMesh& mesh, const ElasticMaterial& material, const ModalSettings& settings,
                       const AnalysisOptions& options = {});
 

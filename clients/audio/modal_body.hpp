@@ -1,7 +1,8 @@
 #pragma once
 // One sounding body: its mesh and its audible modes, and the gain of every mode for a force at
-// any point of it. A force (or impulse) J at point x excites mode i by u_i(x) . J, with u_i the
-// M-orthonormal mode shape (docs/audio.md §9); u_i(x) is interpolated from the nodes of the tet
+// any point of it. A force (or impulse) J at point x drives mode i by c_i(x) . J, with c_i the
+// audible mode's column (audible_modes.hpp: sum over its members of u_m (w . u_m), u_m the
+// M-orthonormal shape and w the body's listener, docs/audio.md §9-§9a); c_i(x) is interpolated from the nodes of the tet
 // containing x with the element's own shape functions (linear for Tet4, quadratic for Tet10), so
 // a point between nodes gets neither the nearest node's value nor a smeared one.
 #include <Eigen/Core>
@@ -22,7 +23,7 @@ class ModalBody {
   const AudibleModes& modes() const { return modes_; }
   std::size_t size() const { return modes_.size(); }
 
-  // gains[i] = u_i(point) . direction, in the body's (mesh's) frame. A point outside the mesh
+  // gains[i] = c_i(point) . direction, in the body's (mesh's) frame. A point outside the mesh
   // (a contact point a little off a curved surface, a slab struck at the texture's edge) is
   // taken at the nearest point of the mesh. `direction` is not normalised: pass the impulse to get modal
   // impulses. gains.size() must be size().

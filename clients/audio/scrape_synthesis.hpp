@@ -48,12 +48,12 @@ struct ScrapeRender {
   std::vector<float> samples;
   std::size_t impulses = 0;       // meso impulses applied (texels entered, or relief ticks)
   std::size_t nonzero_impulses = 0;  // of which not exactly 0
-  double raw_peak = 0.0;          // peak of the modal displacement sum before normalising
+  double raw_peak = 0.0;          // peak of the listeners' sum (docs/audio.md §9a) before normalising
   double raw_rms = 0.0;           // its RMS over the whole render
   double slab_peak = 0.0, pen_peak = 0.0;  // each body's share before normalising
   double micro_rms_n = 0.0;       // RMS micro force over the samples in contact
   std::size_t micro_samples = 0;  // the samples in contact that RMS is over
-  std::vector<double> displacement;  // the modal displacement sum before normalising
+  std::vector<double> displacement;  // the listeners' sum before normalising
 };
 
 // The excitation alone, sample by sample (PenScrape's, pen_scrape.hpp): the impulse (N s, on the

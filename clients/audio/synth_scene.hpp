@@ -32,7 +32,7 @@ struct SoundingBody {
   std::string name;
   std::vector<double> frequency_hz;  // ascending (the budget drops from the end: the highest)
   std::vector<double> decay_per_s;
-  Eigen::MatrixXd shapes;            // mesh DOFs (3 node + axis) x modes
+  Eigen::MatrixXd shapes;            // mesh DOFs (3 node + axis) x modes: AudibleModes::shapes (listener included)
 };
 
 class SynthScene {
@@ -56,7 +56,8 @@ class SynthScene {
   bool strike(const ExcitationEvent& event, std::int64_t micro_samples = -1);
   static constexpr std::size_t kMaxSegments = 16;
   std::size_t activeSegments() const { return segment_count_; }
-  // Writes the sum of every body's modal displacements.
+  // Writes the sum of every body's modal displacements (with AudibleModes columns: what its
+  // listener hears, docs/audio.md §9a).
   void render(std::span<float> out);
   // At most `total` modes in all, shared among the bodies in proportion to their modes.
   void setBudget(std::size_t total);

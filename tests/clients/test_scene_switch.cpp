@@ -138,7 +138,7 @@ TEST_F(SceneSwitch, AClientSwitchesTheSceneAndABrokenOneIsRefusedWhileTheOldOneR
   const auto render = [&](const std::string& wav) {
     return shellStatus(std::string("cd '") + THX_SOURCE_DIR + "' && '" + THX_AUDIO_CLIENT +
                        "' --scene scenes/default.yaml --scenes-dir '" + scenes.string() + "' --replay-log '" + record +
-                       "' --wav '" + path(wav) + "' --slab-cells 2 --slab-layers 1 --modes 8 --no-pen --tail 0.05 --cache-dir '" +
+                       "' --wav '" + path(wav) + "' --slab-cells 2 --modes 8 --no-pen --tail 0.05 --cache-dir '" +
                        path("cache") + "' >'" + path(wav + ".out") + "' 2>&1");
   };
   ASSERT_EQ(render("a.wav"), 0) << slurp(path("a.wav.out"));
