@@ -4,23 +4,34 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
+#include <span>
 #include <stdexcept>
 
 namespace thx::audio {
 
-ModalBody::ModalBody(TetMesh mesh, AudibleModes modes) : mesh_(std::move(mesh)), modes_(std::move(modes)) {
-  if (modes_.size() > 0 && modes_.shapes.rows() != mesh_.dofCount())
-    throw std::invalid_argument("ModalBody " + mesh_.name + ": mode shapes have " + std::to_string(modes_.shapes.rows()) +
-                                " rows, the mesh " + std::to_string(mesh_.dofCount()) + " DOFs");
-  inverse_.reserve(mesh_.tets.size());
-  for (const auto& t : mesh_.tets) {
-    Eigen::Matrix3d e;
-    for (int c = 0; c < 3; ++c) e.col(c) = mesh_.nodes[std::size_t(t[std::size_t(c + 1)])] - mesh_.nodes[std::size_t(t[0])];
-    inverse_.push_back(e.inverse());
-  }
+namespace {
+
+// The three corners of a tet other than corner `skip`, in corner order (as the faces were always
+// walked), and the same sorted (the key that finds a face's other tet).
+std::array<int, 3> faceCorners(const std::array<int, 10>& t, int skip) {
+  std::array<int, 3> f{};
+  int n = 0;
+  for (int c = 0; c < 4; ++c)
+    if (c != skip) f[std::size_t(n++)] = t[std::size_t(c)];
+  return f;
 }
 
-namespace {
+std::array<int, 3> sortedFace(const std::array<int, 10>& t, int skip) {
+  std::array<int, 3> f = faceCorners(t, skip);
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+// Squared distance from p to an axis-aligned box (0 inside): a lower bound for anything in it.
+double squaredDistanceToBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
+}
 
 // The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection, §5.1.5).
 Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -46,6 +57,38 @@ Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3
 
 }  // namespace
 
+ModalBody::ModalBody(TetMesh mesh, AudibleModes modes) : mesh_(std::move(mesh)), modes_(std::move(modes)) {
+  if (modes_.size() > 0 && modes_.shapes.rows() != mesh_.dofCount())
+    throw std::invalid_argument("ModalBody " + mesh_.name + ": mode shapes have " + std::to_string(modes_.shapes.rows()) +
+                                " rows, the mesh " + std::to_string(mesh_.dofCount()) + " DOFs");
+  inverse_.reserve(mesh_.tets.size());
+  tet_boxes_.reserve(mesh_.tets.size());
+  auto boxOf = [&](std::span<const int> corners, double pad) {
+    Box b{mesh_.nodes[std::size_t(corners[0])], mesh_.nodes[std::size_t(corners[0])]};
+    for (int c : corners) b.lo = b.lo.cwiseMin(mesh_.nodes[std::size_t(c)]), b.hi = b.hi.cwiseMax(mesh_.nodes[std::size_t(c)]);
+    const double margin = pad * (b.hi - b.lo).maxCoeff();
+    b.lo.array() -= margin;
+    b.hi.array() += margin;
+    return b;
+  };
+  std::map<std::array<int, 3>, int> face_count;
+  for (const auto& t : mesh_.tets) {
+    Eigen::Matrix3d e;
+    for (int c = 0; c < 3; ++c) e.col(c) = mesh_.nodes[std::size_t(t[std::size_t(c + 1)])] - mesh_.nodes[std::size_t(t[0])];
+    inverse_.push_back(e.inverse());
+    tet_boxes_.push_back(boxOf(std::span<const int>(t.data(), 4), 1e-9));
+    for (int skip = 0; skip < 4; ++skip) ++face_count[sortedFace(t, skip)];
+  }
+  for (std::size_t k = 0; k < mesh_.tets.size(); ++k)
+    for (int skip = 0; skip < 4; ++skip) {
+      if (face_count[sortedFace(mesh_.tets[k], skip)] != 1) continue;
+      Face f{int(k), faceCorners(mesh_.tets[k], skip), {}};
+      f.box = boxOf(f.corners, 0.0);
+      boundary_.push_back(f);
+    }
+}
+
+
 ModalBody::Location ModalBody::locate(const Eigen::Vector3d& point) const {
   auto barycentric = [&](std::size_t k, const Eigen::Vector3d& x) {
     const Eigen::Vector3d b = inverse_[k] * (x - mesh_.nodes[std::size_t(mesh_.tets[k][0])]);
@@ -53,6 +96,7 @@ ModalBody::Location ModalBody::locate(const Eigen::Vector3d& point) const {
   };
   Location at;
   for (std::size_t k = 0; k < mesh_.tets.size(); ++k) {
+    if (squaredDistanceToBox(point, tet_boxes_[k].lo, tet_boxes_[k].hi) > 0.0) continue;
     const Eigen::Vector4d bary = barycentric(k, point);
     if (bary.minCoeff() >= -1e-12) {  // inside (or on a face): the first such tet will do
       at.tet = int(k);
@@ -60,21 +104,18 @@ ModalBody::Location ModalBody::locate(const Eigen::Vector3d& point) const {
       return at;
     }
   }
-  // Outside: the nearest point of the mesh, found on the faces of its tets.
+  // Outside: the nearest point of the mesh, which lies on a boundary face (the first nearest in
+  // tet order); a face whose box is no nearer than the best so far cannot win.
   at.inside = false;
   double best = std::numeric_limits<double>::infinity();
   Eigen::Vector3d nearest = point;
-  for (std::size_t k = 0; k < mesh_.tets.size(); ++k) {
-    const auto& t = mesh_.tets[k];
-    for (int skip = 0; skip < 4; ++skip) {
-      int f[3], n = 0;
-      for (int c = 0; c < 4; ++c)
-        if (c != skip) f[n++] = t[std::size_t(c)];
-      const Eigen::Vector3d q = closestOnTriangle(point, mesh_.nodes[std::size_t(f[0])], mesh_.nodes[std::size_t(f[1])],
-                                                  mesh_.nodes[std::size_t(f[2])]);
-      const double d = (q - point).squaredNorm();
-      if (d < best) best = d, nearest = q, at.tet = int(k);
-    }
+  for (const Face& f : boundary_) {
+    if (squaredDistanceToBox(point, f.box.lo, f.box.hi) >= best) continue;
+    const Eigen::Vector3d q = closestOnTriangle(point, mesh_.nodes[std::size_t(f.corners[0])],
+                                                mesh_.nodes[std::size_t(f.corners[1])],
+                                                mesh_.nodes[std::size_t(f.corners[2])]);
+    const double d = (q - point).squaredNorm();
+    if (d < best) best = d, nearest = q, at.tet = f.tet;
   }
   const Eigen::Vector4d bary = barycentric(std::size_t(at.tet), nearest).cwiseMax(0.0);
   at.barycentric = bary / bary.sum();

@@ -52,6 +52,32 @@ TEST(ModalBody, InterpolatesLinearFieldsExactlyAndQuadraticOnesWithTet10) {
   }
 }
 
+// A point outside the box is taken at the box's nearest point (each coordinate clamped to the
+// box): the gain there is the field's, whichever boundary face the search lands on, for points
+// off a face, an edge or a corner. (locate searches the boundary faces only, pruned by their boxes.)
+TEST(ModalBody, OutsideTheMeshTheGainIsTheNearestPointsOnTheBoundary) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> ux(-0.05, 0.05), uy(-0.04, 0.04), uz(-0.03, 0.03), ud(-1, 1);
+  const Eigen::Vector3d half(0.02, 0.015, 0.01);
+  int outside = 0;
+  for (ElementOrder order : {ElementOrder::Linear, ElementOrder::Quadratic}) {
+    const ModalBody body = fieldBody(order);
+    for (int k = 0; k < 300; ++k) {
+      const Eigen::Vector3d p(ux(rng), uy(rng), uz(rng)), d(ud(rng), ud(rng), ud(rng));
+      const Eigen::Vector3d nearest = p.cwiseMax(-half).cwiseMin(half);
+      const bool is_outside = (nearest - p).squaredNorm() > 0.0;
+      outside += is_outside;
+      EXPECT_EQ(body.locate(p).inside, !is_outside) << p.transpose();
+      const std::vector<double> g = body.gainsAt(p, d);
+      EXPECT_NEAR(g[0], linearField(nearest * 50.0).dot(d), 1e-12) << "order " << int(order) << " at " << p.transpose();
+      if (order == ElementOrder::Quadratic) {
+        EXPECT_NEAR(g[1], quadraticField(nearest * 50.0).dot(d), 1e-12);
+      }
+    }
+  }
+  EXPECT_GT(outside, 300);  // most of the draws: off faces, edges and corners
+}
+
 TEST(ModalBody, AtANodeTheGainIsTheNodesShape) {
   TetMesh mesh = slabMesh("slab", 0.2, 0.2, 0.01, {3, 3, 1}, ElementOrder::Quadratic, false);
   ModalSettings s;
