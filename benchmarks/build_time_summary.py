@@ -74,7 +74,9 @@ def main():
     phases = []
     for line in read(os.path.join(out, "make_test.log")).splitlines():
         stamp, _, text = line.partition(" ")
-        if text.startswith("cmake --build ") or ("ctest " in text and text.startswith("cd ")):
+        text = text.strip()  # the sanitizer tree's ctest line is a continuation, tab first
+        if text.startswith("cmake --build ") or text.startswith("ctest --output-on-failure") or (
+                "ctest " in text and text.startswith("cd ")):
             phases.append((float(stamp), text[:60]))
     if phases and end:
         lines.append("phases (wall):")
