@@ -35,7 +35,11 @@ build-asan: setup $(BUILD_ASAN)/CMakeCache.txt
 demo: build
 	./demo.sh $(BUILD)
 
-test: build build-asan
+# The tests need only their own executables and the programs they run (target thx_tests,
+# tests/CMakeLists.txt): the benchmarks and the tools no test runs are not built here.
+test: setup $(BUILD)/CMakeCache.txt $(BUILD_ASAN)/CMakeCache.txt
+	cmake --build $(BUILD) -j$(JOBS) --target thx_tests
+	cmake --build $(BUILD_ASAN) -j$(JOBS) --target thx_tests
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) -LE slow
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 		ctest --output-on-failure -j$(JOBS) -LE slow
