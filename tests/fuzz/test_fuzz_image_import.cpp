@@ -7,7 +7,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "tests/fuzz/fuzz_test_support.hpp"
+#include "tests/fuzz/seed_writer.hpp"
+#include "tests/fuzz/short_run.hpp"
 #include "tests/fuzz/image_import_body.hpp"
 #include "tests/textures/bump_images.hpp"
 
@@ -40,6 +41,14 @@ std::vector<std::uint8_t> encoded(const std::string& ext, int alpha) {
   return out;
 }
 
+// A grey w x h image through OpenCV's encoder for `ext` (`params` as imencode takes them).
+std::vector<std::uint8_t> grey(const std::string& ext, int w, int h, const std::vector<int>& params = {}) {
+  const cv::Mat mat(h, w, CV_8UC3, cv::Scalar(128, 128, 255));
+  std::vector<std::uint8_t> out;
+  EXPECT_TRUE(cv::imencode(ext, mat, out, params)) << ext;
+  return out;
+}
+
 // A TGA of the bump: type 2 (raw) or type 10 (run-length coded, one pixel per raw packet).
 std::vector<std::uint8_t> tga(bool rle, int channels) {
   const std::vector<std::uint8_t> rgb = tex::test::bumpRgb(kN, false, channels == 4 ? 200 : -1);
@@ -58,17 +67,17 @@ std::vector<std::uint8_t> tga(bool rle, int channels) {
 }  // namespace
 
 TEST(FuzzImageImport, WriteSeedCorpusWhenAsked) {
-  test::writeSeedsWhenAsked(kTarget, {withMode(0, encoded(".jpg", -1)), withMode(0, encoded(".bmp", -1)),
+  writeSeedsWhenAsked({withMode(0, encoded(".jpg", -1)), withMode(0, encoded(".bmp", -1)),
                                       withMode(2, encoded(".tiff", 100)), withMode(0, encoded(".webp", -1)),
                                       withMode(1, tga(false, 3)), withMode(5, tga(true, 4))});
 }
 
-TEST(FuzzImageImport, SeedsHoldTheProperties) { test::expectSeedsHold(&fuzzImageImportOnce, kTarget); }
+TEST(FuzzImageImport, SeedsHoldTheProperties) { expectSeedsHold(kTarget, &fuzzImageImportOnce); }
 
 TEST(FuzzImageImport, CorpusReachesEveryDecoder) {
   // Guards the corpus's value: one seed per decoder, each imported.
   std::set<tex::ImageFormat> formats;
-  for (const Bytes& seed : test::corpusOf(kTarget)) {
+  for (const Bytes& seed : loadCorpus(kTarget)) {
     const std::string name = (seed[0] & 1) ? "seed.tga" : "seed.img";
     const tex::DecodedImage d = tex::decodeImage(name, std::vector<unsigned char>(seed.begin() + 1, seed.end()));
     formats.insert(d.format);
@@ -76,7 +85,35 @@ TEST(FuzzImageImport, CorpusReachesEveryDecoder) {
   EXPECT_EQ(formats.size(), 5u);  // JPEG, BMP, TIFF, WebP, TGA
 }
 
-TEST(FuzzImageImport, ShortRun) { test::expectShortRun(&fuzzImageImportOnce, kTarget, 300); }
+TEST(FuzzImageImport, ShortRun) { shortRun(kTarget, &fuzzImageImportOnce, 300); }
+
+TEST(FuzzImageImport, MaxPixelsIsReadFromEveryHeader) {
+  // The importer's maximum pixel count (texturetool import --max-pixels; the fuzz body's bound) is
+  // read from each format's header before decoding: 48 x 20 = 960 pixels, refused at 959.
+  std::vector<std::pair<std::string, std::vector<std::uint8_t>>> files = {
+      {"a.jpg", grey(".jpg", 48, 20)},
+      {"a.bmp", grey(".bmp", 48, 20)},
+      {"a.tiff", grey(".tiff", 48, 20)},
+      {"lossy.webp", grey(".webp", 48, 20, {cv::IMWRITE_WEBP_QUALITY, 90})},
+      {"lossless.webp", grey(".webp", 48, 20, {cv::IMWRITE_WEBP_QUALITY, 101})},
+      {"a.png", grey(".png", 48, 20)},
+      {"a.tga", {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 48, 0, 20, 0, 24, 0}}};
+  files.back().second.resize(18 + 48 * 20 * 3, 0x80);
+  for (const auto& [name, bytes] : files) {
+    const std::vector<unsigned char> b(bytes.begin(), bytes.end());
+    try {
+      tex::decodeImage(name, b, 959);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const tex::TextureError& e) {
+      EXPECT_EQ(e.source(), name);
+      EXPECT_EQ(e.problem(), "image too large") << name;
+      EXPECT_EQ(e.value(), "48x20 = 960 pixels in its header") << name;  // refused before decoding
+    }
+    const tex::DecodedImage d = tex::decodeImage(name, b, 960);
+    EXPECT_EQ(d.image.width, 48) << name;
+    EXPECT_EQ(d.image.height, 20) << name;
+  }
+}
 
 TEST(FuzzImageImport, TgaPixelMemoryIsBoundedByTheFile) {
   // A 16384^2 run-length TGA header with one packet: refused as truncated from the packet walk,

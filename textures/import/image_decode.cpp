@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "textures/import/image_size.hpp"
 #include "textures/import/tga_decode.hpp"
 #include "textures/texture_error.hpp"
 #include "textures/texture_map.hpp"
@@ -160,6 +161,14 @@ void checkSize(const std::string& path, const RawImage& image) {
   }
 }
 
+[[noreturn]] void tooLarge(const std::string& path, std::int64_t width, std::int64_t height, const char* whose,
+                          std::int64_t max_pixels) {
+  throw TextureError(path, "image too large",
+                     std::to_string(width) + "x" + std::to_string(height) + " = " + std::to_string(width * height) +
+                         " pixels " + whose,
+                     "at most " + std::to_string(max_pixels) + " pixels");
+}
+
 }  // namespace
 
 const char* toString(ImageFormat format) {
@@ -174,26 +183,34 @@ const char* toString(ImageFormat format) {
   return "unknown";
 }
 
-DecodedImage decodeImage(const std::string& path, const std::vector<unsigned char>& bytes) {
+DecodedImage decodeImage(const std::string& path, const std::vector<unsigned char>& bytes, std::int64_t max_pixels) {
   if (bytes.empty()) throw TextureError(path, "empty file", "0 bytes", kKnownFormats);
   DecodedImage decoded;
   decoded.format = detect(path, bytes);
   checkComplete(path, decoded.format, bytes);
+  if (const auto size = headerSize(decoded.format, bytes); size && size->width * size->height > max_pixels)
+    tooLarge(path, size->width, size->height, "in its header", max_pixels);
   if (decoded.format == ImageFormat::Tga) {
     decoded.image = decodeTga(path, bytes);
   } else {
     decoded.image = decodeWithOpenCv(path, decoded.format, bytes);
   }
   checkSize(path, decoded.image);
+  if (std::int64_t(decoded.image.width) * decoded.image.height > max_pixels)
+    tooLarge(path, decoded.image.width, decoded.image.height, "decoded", max_pixels);
   return decoded;
 }
 
-DecodedImage readImage(const std::string& path) {
+DecodedImage readImage(const std::string& path, std::int64_t max_pixels) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw TextureError(path, "cannot open file", std::strerror(errno), std::string("a readable image: ") + kKnownFormats);
   const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (!bytes.empty() && detect(path, bytes) == ImageFormat::Png) return {readPng(path), ImageFormat::Png};
-  return decodeImage(path, bytes);
+  if (!bytes.empty() && detect(path, bytes) == ImageFormat::Png) {
+    if (const auto size = headerSize(ImageFormat::Png, bytes); size && size->width * size->height > max_pixels)
+      tooLarge(path, size->width, size->height, "in its header", max_pixels);
+    return {readPng(path), ImageFormat::Png};
+  }
+  return decodeImage(path, bytes, max_pixels);
 }
 
 }  // namespace thx::tex
