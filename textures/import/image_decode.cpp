@@ -161,11 +161,10 @@ void checkSize(const std::string& path, const RawImage& image) {
   }
 }
 
-[[noreturn]] void tooLarge(const std::string& path, std::int64_t width, std::int64_t height, const char* whose,
-                          std::int64_t max_pixels) {
+[[noreturn]] void tooLarge(const std::string& path, const HeaderSize& size, const char* whose, std::int64_t max_pixels) {
   throw TextureError(path, "image too large",
-                     std::to_string(width) + "x" + std::to_string(height) + " = " + std::to_string(width * height) +
-                         " pixels " + whose,
+                     std::to_string(size.width) + "x" + std::to_string(size.height) + " = " +
+                         std::to_string(size.pixels()) + " pixels " + whose,
                      "at most " + std::to_string(max_pixels) + " pixels");
 }
 
@@ -188,16 +187,16 @@ DecodedImage decodeImage(const std::string& path, const std::vector<unsigned cha
   DecodedImage decoded;
   decoded.format = detect(path, bytes);
   checkComplete(path, decoded.format, bytes);
-  if (const auto size = headerSize(decoded.format, bytes); size && size->width * size->height > max_pixels)
-    tooLarge(path, size->width, size->height, "in its header", max_pixels);
+  if (const auto size = headerSize(decoded.format, bytes); size && size->pixels() > std::uint64_t(max_pixels))
+    tooLarge(path, *size, "in its header", max_pixels);
   if (decoded.format == ImageFormat::Tga) {
     decoded.image = decodeTga(path, bytes);
   } else {
     decoded.image = decodeWithOpenCv(path, decoded.format, bytes);
   }
   checkSize(path, decoded.image);
-  if (std::int64_t(decoded.image.width) * decoded.image.height > max_pixels)
-    tooLarge(path, decoded.image.width, decoded.image.height, "decoded", max_pixels);
+  const HeaderSize decoded_size{std::uint32_t(decoded.image.width), std::uint32_t(decoded.image.height)};
+  if (decoded_size.pixels() > std::uint64_t(max_pixels)) tooLarge(path, decoded_size, "decoded", max_pixels);
   return decoded;
 }
 
@@ -206,8 +205,8 @@ DecodedImage readImage(const std::string& path, std::int64_t max_pixels) {
   if (!file) throw TextureError(path, "cannot open file", std::strerror(errno), std::string("a readable image: ") + kKnownFormats);
   const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   if (!bytes.empty() && detect(path, bytes) == ImageFormat::Png) {
-    if (const auto size = headerSize(ImageFormat::Png, bytes); size && size->width * size->height > max_pixels)
-      tooLarge(path, size->width, size->height, "in its header", max_pixels);
+    if (const auto size = headerSize(ImageFormat::Png, bytes); size && size->pixels() > std::uint64_t(max_pixels))
+      tooLarge(path, *size, "in its header", max_pixels);
     return {readPng(path), ImageFormat::Png};
   }
   return decodeImage(path, bytes, max_pixels);

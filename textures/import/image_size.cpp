@@ -54,7 +54,8 @@ std::optional<HeaderSize> bmp(const Bytes& b) {
   }
   if (!has(b, 18, 8)) return std::nullopt;
   // Signed: a negative height is a top-down image of that many rows.
-  return HeaderSize{std::llabs(std::int32_t(le32(b, 18))), std::llabs(std::int32_t(le32(b, 22)))};
+  const auto side = [&](std::size_t at) { return std::uint32_t(std::llabs(std::int32_t(le32(b, at)))); };
+  return HeaderSize{side(18), side(22)};
 }
 
 // The first image file directory's ImageWidth (256) and ImageLength (257), SHORT or LONG.
@@ -66,18 +67,17 @@ std::optional<HeaderSize> tiff(const Bytes& b) {
   const std::size_t ifd = u32(4);
   if (!has(b, ifd, 2)) return std::nullopt;
   const std::size_t entries = u16(ifd);
-  std::int64_t width = -1, height = -1;
+  std::optional<std::uint32_t> width, height;
   for (std::size_t k = 0; k < entries; ++k) {
     const std::size_t e = ifd + 2 + 12 * k;
     if (!has(b, e, 12)) return std::nullopt;
     const std::uint32_t tag = u16(e), type = u16(e + 2);
     if (tag != 256 && tag != 257) continue;
     if (type != 3 && type != 4) return std::nullopt;
-    const std::int64_t value = type == 3 ? u16(e + 8) : u32(e + 8);
-    (tag == 256 ? width : height) = value;
+    (tag == 256 ? width : height) = type == 3 ? u16(e + 8) : u32(e + 8);
   }
-  if (width < 0 || height < 0) return std::nullopt;
-  return HeaderSize{width, height};
+  if (!width || !height) return std::nullopt;
+  return HeaderSize{*width, *height};
 }
 
 std::optional<HeaderSize> webp(const Bytes& b) {

@@ -11,7 +11,9 @@
 namespace thx::tex {
 
 struct HeaderSize {
-  std::int64_t width = 0, height = 0;
+  std::uint32_t width = 0, height = 0;
+  // Exact: both sides are below 2^32, so the product fits 64 bits.
+  std::uint64_t pixels() const { return std::uint64_t(width) * height; }
 };
 
 // Width and height from the header of `format` (PNG IHDR, the first JPEG frame header, BMP's info
