@@ -131,6 +131,16 @@ TEST(FuzzImageImport, HeaderSidesNearTwoToTheThirtyTwoAreRefused) {
   EXPECT_EQ(refusal("huge.png", png), "huge.png|image too large|4294967295x4294967295 = 18446744065119617025 pixels in its header");
 }
 
+TEST(FuzzImageImport, AWebPWithoutAnImageHeaderNeverReachesAnotherDecoder) {
+  // Found by libFuzzer (out of memory, 2 M executions into the second session's run):
+  // regress-webp-read-as-dicom is RIFF/WEBP with a broken first chunk and "DICM" at byte 128, so
+  // OpenCV handed it to GDCM's DICOM reader, which allocated from a length field. Refused first.
+  const Bytes seed = readBytes(fuzzDir() / "corpus" / "image_import" / "regress-webp-read-as-dicom");
+  EXPECT_FALSE(fuzzImageImportOnce(seed));
+  const std::vector<unsigned char> file(seed.begin() + 1, seed.end());
+  EXPECT_EQ(refusal("a.img", file), "a.img|corrupt WebP header|no VP8, VP8L or VP8X image header at byte 12");
+}
+
 TEST(FuzzImageImport, TgaPixelMemoryIsBoundedByTheFile) {
   // A 16384^2 run-length TGA header with one packet: refused as truncated from the packet walk,
   // before stb_image allocates 768 MiB.

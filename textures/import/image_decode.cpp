@@ -187,8 +187,15 @@ DecodedImage decodeImage(const std::string& path, const std::vector<unsigned cha
   DecodedImage decoded;
   decoded.format = detect(path, bytes);
   checkComplete(path, decoded.format, bytes);
-  if (const auto size = headerSize(decoded.format, bytes); size && size->pixels() > std::uint64_t(max_pixels))
-    tooLarge(path, *size, "in its header", max_pixels);
+  const auto size = headerSize(decoded.format, bytes);
+  // OpenCV picks its decoder from the bytes, not from us: a RIFF/WEBP file whose first chunk is
+  // not VP8, VP8L or VP8X fails libwebp's check and falls through to any other decoder whose
+  // signature it holds (found by fuzzing: "DICM" at byte 128 reached GDCM's DICOM reader, which
+  // allocated gigabytes from a length field). So a WebP must have a header we can read.
+  if (!size && decoded.format == ImageFormat::WebP)
+    throw TextureError(path, "corrupt WebP header", "no VP8, VP8L or VP8X image header at byte 12",
+                       "a WebP file (RIFF, WEBP, then a VP8, VP8L or VP8X chunk)");
+  if (size && size->pixels() > std::uint64_t(max_pixels)) tooLarge(path, *size, "in its header", max_pixels);
   if (decoded.format == ImageFormat::Tga) {
     decoded.image = decodeTga(path, bytes);
   } else {
