@@ -9,7 +9,8 @@
 // or end marker, since some decoders fill a short file with grey instead of failing), a decoder
 // failure, a sample type other than 8 or 16 bits, a size outside [2, 16384] per side, more pixels
 // than `max_pixels` (checked from the header before decoding where the header says, and on the
-// decoded image in any case; `texturetool import --max-pixels`).
+// decoded image in any case; `texturetool import --max-pixels`), a WebP without an image header
+// (OpenCV chooses its decoder from the bytes, and would pass it to another one).
 #include <cstdint>
 #include <string>
 #include <vector>
