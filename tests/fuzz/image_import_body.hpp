@@ -5,12 +5,17 @@
 //
 // Input: byte 0 picks the mode (bit 0: the file is named fuzz.tga, so a TGA header is read as
 // TGA; bits 1-2: alpha ignored, height or depth; bit 3: DirectX green), the rest is the file.
-// OpenCV's pixel limit is lowered to kFuzzMaxPixels for the process (OPENCV_IO_MAX_IMAGE_PIXELS,
-// set before the first decode; the importer keeps a value already set): a JPEG header may claim
-// up to 16384^2 pixels in a few bytes and OpenCV allocates them before decoding. Properties:
+// Images are decoded with the importer's own maximum pixel count (`texturetool import
+// --max-pixels`) at kFuzzMaxPixels, 256 x 256: a few bytes of header may declare up to 16384^2
+// pixels, and decoding, importing and saving a large image cost milliseconds to seconds per input
+// (page faults and clearing, mostly) and no more code; the seeds are 8 x 8. OpenCV's own pixel
+// limit is lowered to the same value for the process (OPENCV_IO_MAX_IMAGE_PIXELS, set before the
+// first decode; the importer keeps a value already set), for a header our check cannot read.
+// Properties:
 //  1. a refused file raises TextureError naming the file;
 //  2. an accepted image is consistent (each side in [2, 16384], 1-4 channels, 8 or 16 bits,
-//     samples matching, each within the bit depth); a TGA has the size its header gives;
+//     samples matching, each within the bit depth), of at most kFuzzMaxPixels pixels; a TGA has
+//     the size its header gives;
 //  3. the import refuses with a TextureError naming the file, or gives a map of the image's size
 //     whose warnings name the file and whose saved form (encodeTexture) loads again with the
 //     Reject policy to the same size, representation and depth codes.
@@ -22,7 +27,7 @@
 #include <string>
 
 #include "tests/fuzz/raw_image_checks.hpp"
-#include "tests/fuzz/format_short_run.hpp"
+#include "tests/fuzz/failure.hpp"
 #include "textures/import/image_decode.hpp"
 #include "textures/import/normal_import.hpp"
 #include "textures/texture_error.hpp"
@@ -30,13 +35,14 @@
 
 namespace thx::fuzz {
 
-inline constexpr long kFuzzMaxPixels = 1 << 22;
+inline constexpr long kFuzzMaxPixels = 1 << 16;
 
 namespace import_detail {
 
 inline Failure checkDecoded(const tex::DecodedImage& d, std::span<const std::uint8_t> file) {
   const tex::RawImage& img = d.image;
   if (Failure f = checkRawImage(img)) return f;
+  if (std::int64_t(img.width) * img.height > kFuzzMaxPixels) return std::string("accepted more pixels than the maximum");
   if (d.format == tex::ImageFormat::Tga &&
       (img.width != (file[12] | file[13] << 8) || img.height != (file[14] | file[15] << 8)))
     return std::string("TGA decoded to another size than its header's");
@@ -82,7 +88,7 @@ inline Failure fuzzImageImportOnce(std::span<const std::uint8_t> data) {
   const std::string source = (mode & 1) ? "fuzz.tga" : "fuzz.img";
   tex::DecodedImage decoded;
   try {
-    decoded = tex::decodeImage(source, std::vector<unsigned char>(file.begin(), file.end()));
+    decoded = tex::decodeImage(source, std::vector<unsigned char>(file.begin(), file.end()), kFuzzMaxPixels);
   } catch (const tex::TextureError& e) {
     if (e.source() != source) return "TextureError with source '" + e.source() + "'";
     return mustName(e.what(), source, "image refusal");

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "clients/audio/modal_cache.hpp"
-#include "tests/fuzz/format_short_run.hpp"
+#include "tests/fuzz/failure.hpp"
 
 namespace thx::fuzz {
 

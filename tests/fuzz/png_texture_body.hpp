@@ -22,7 +22,7 @@
 #include <string>
 
 #include "tests/fuzz/raw_image_checks.hpp"
-#include "tests/fuzz/format_short_run.hpp"
+#include "tests/fuzz/failure.hpp"
 #include "textures/png_io.hpp"
 #include "textures/texture_error.hpp"
 #include "textures/texture_io.hpp"

@@ -4,7 +4,7 @@
 // per channel and pixel, each within the bit depth.
 #include <string>
 
-#include "tests/fuzz/format_short_run.hpp"
+#include "tests/fuzz/failure.hpp"
 #include "textures/png_io.hpp"
 #include "textures/texture_map.hpp"
 

@@ -25,7 +25,7 @@
 
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
-#include "tests/fuzz/format_short_run.hpp"
+#include "tests/fuzz/failure.hpp"
 #include "textures/generators.hpp"
 #include "textures/texture_io.hpp"
 

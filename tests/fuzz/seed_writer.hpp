@@ -3,6 +3,7 @@
 // corpora in tests/fuzz/corpus/<target>/ were made (docs/fuzzing.md). Skipped otherwise.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -21,6 +22,17 @@ inline void writeSeedsWhenAsked(const std::vector<std::pair<std::string, Bytes>>
     f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     ASSERT_TRUE(f.good()) << dir << "/" << name;
   }
+}
+
+// Seeds without names of their own are written as seed-00, seed-01, ...
+inline void writeSeedsWhenAsked(const std::vector<Bytes>& seeds) {
+  std::vector<std::pair<std::string, Bytes>> named;
+  for (std::size_t k = 0; k < seeds.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "seed-%02zu", k);
+    named.emplace_back(name, seeds[k]);
+  }
+  writeSeedsWhenAsked(named);
 }
 
 }  // namespace thx::fuzz

@@ -4,7 +4,8 @@
 
 #include <cstring>
 
-#include "tests/fuzz/fuzz_test_support.hpp"
+#include "tests/fuzz/seed_writer.hpp"
+#include "tests/fuzz/short_run.hpp"
 #include "tests/fuzz/modal_cache_body.hpp"
 
 using namespace thx;
@@ -60,18 +61,18 @@ std::string refusal(const std::vector<std::uint8_t>& file) {
 }  // namespace
 
 TEST(FuzzModalCache, WriteSeedCorpusWhenAsked) {
-  test::writeSeedsWhenAsked(kTarget, {withMode(1, audio::encodeModalCache(kKey, smallSolution(6, 4, 3))),
+  writeSeedsWhenAsked({withMode(1, audio::encodeModalCache(kKey, smallSolution(6, 4, 3))),
                                       withMode(1, audio::encodeModalCache(kKey, smallSolution(0, 3, 2))),
                                       withMode(0, audio::encodeModalCache(kKey, smallSolution(0, 2, 0))),
                                       withMode(3, audio::encodeModalCache(kKey, smallSolution(6, 2, 1)))});
 }
 
-TEST(FuzzModalCache, SeedsHoldTheProperties) { test::expectSeedsHold(&fuzzModalCacheOnce, kTarget); }
+TEST(FuzzModalCache, SeedsHoldTheProperties) { expectSeedsHold(kTarget, &fuzzModalCacheOnce); }
 
 TEST(FuzzModalCache, CorpusFilesAreAccepted) {
   // Guards the corpus's value: the checksummed seeds must reach the round trip.
   int accepted = 0;
-  for (const Bytes& seed : test::corpusOf(kTarget)) {
+  for (const Bytes& seed : loadCorpus(kTarget)) {
     std::uint64_t key = 0;
     std::memcpy(&key, seed.data() + 1 + 16, 8);
     accepted += audio::decodeModalCache(std::span(seed).subspan(1), key, "seed").has_value();
@@ -79,7 +80,7 @@ TEST(FuzzModalCache, CorpusFilesAreAccepted) {
   EXPECT_EQ(accepted, 4);
 }
 
-TEST(FuzzModalCache, ShortRun) { test::expectShortRun(&fuzzModalCacheOnce, kTarget, 2000); }
+TEST(FuzzModalCache, ShortRun) { shortRun(kTarget, &fuzzModalCacheOnce, 2000); }
 
 TEST(FuzzModalCache, EncodeDecodeRoundTrip) {
   const audio::ModalSolution s = smallSolution(6, 5, 4);

@@ -2,7 +2,8 @@
 // memory a PNG header can ask for.
 #include <gtest/gtest.h>
 
-#include "tests/fuzz/fuzz_test_support.hpp"
+#include "tests/fuzz/seed_writer.hpp"
+#include "tests/fuzz/short_run.hpp"
 #include "tests/fuzz/png_texture_body.hpp"
 #include "textures/generators.hpp"
 
@@ -60,14 +61,14 @@ std::vector<Bytes> generatedSeeds() {
 
 }  // namespace
 
-TEST(FuzzPngTexture, WriteSeedCorpusWhenAsked) { test::writeSeedsWhenAsked(kTarget, generatedSeeds()); }
+TEST(FuzzPngTexture, WriteSeedCorpusWhenAsked) { writeSeedsWhenAsked(generatedSeeds()); }
 
-TEST(FuzzPngTexture, SeedsHoldTheProperties) { test::expectSeedsHold(&fuzzPngTextureOnce, kTarget); }
+TEST(FuzzPngTexture, SeedsHoldTheProperties) { expectSeedsHold(kTarget, &fuzzPngTextureOnce); }
 
 TEST(FuzzPngTexture, CorpusReachesTheTextureRoundTrip) {
   // Guards the corpus's value: seeds that stopped loading as textures would leave that path unfuzzed.
   int textures = 0;
-  for (const Bytes& seed : test::corpusOf(kTarget)) {
+  for (const Bytes& seed : loadCorpus(kTarget)) {
     try {
       tex::LoadOptions load;
       if (seed[0] & 2) load.green = tex::GreenConvention::DirectX;
@@ -79,7 +80,7 @@ TEST(FuzzPngTexture, CorpusReachesTheTextureRoundTrip) {
   EXPECT_GE(textures, 4);
 }
 
-TEST(FuzzPngTexture, ShortRun) { test::expectShortRun(&fuzzPngTextureOnce, kTarget, 300); }
+TEST(FuzzPngTexture, ShortRun) { shortRun(kTarget, &fuzzPngTextureOnce, 300); }
 
 TEST(FuzzPngTexture, RefusesPixelDataTheFileCannotHold) {
   // A 16384^2 RGBA 16-bit header (2 GiB of pixels) with a few bytes of data: refused from the
@@ -101,7 +102,7 @@ TEST(FuzzPngTexture, RefusesPixelDataTheFileCannotHold) {
 TEST(FuzzPngTexture, RefusesAChunkLongerThanTheFile) {
   // Found by the short run: a tEXt chunk stating 1.3 GB in a 213-byte file made libpng allocate and
   // clear 1.3 GB (3 s) before failing. The input is corpus/png_texture/regress-text-chunk-length.
-  const Bytes seed = readBytes(test::fuzzDir() / "corpus" / "png_texture" / "regress-text-chunk-length");
+  const Bytes seed = readBytes(fuzzDir() / "corpus" / "png_texture" / "regress-text-chunk-length");
   Bytes file(seed.begin() + 1, seed.end());
   png_detail::fixChunkCrcs(file);
   try {

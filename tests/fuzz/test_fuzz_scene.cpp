@@ -1,7 +1,7 @@
 // Scene files: the fuzz body's seeds and short run (scene_body.hpp), and the size cap on scene text.
 #include <gtest/gtest.h>
 
-#include "tests/fuzz/fuzz_test_support.hpp"
+#include "tests/fuzz/short_run.hpp"
 #include "tests/fuzz/scene_body.hpp"
 
 using namespace thx;
@@ -11,18 +11,18 @@ namespace {
 const std::string kTarget = "scene";
 }
 
-TEST(FuzzScene, SeedsHoldTheProperties) { test::expectSeedsHold(&fuzzSceneOnce, kTarget); }
+TEST(FuzzScene, SeedsHoldTheProperties) { expectSeedsHold(kTarget, &fuzzSceneOnce); }
 
 TEST(FuzzScene, CorpusScenesAreAccepted) {
   // Guards the corpus's value: every seed is a valid scene (the shipped ones at a small texture
   // size, and two naming the fixture's texture and path files), so mutations start deep.
-  for (const Bytes& seed : test::corpusOf(kTarget)) {
+  for (const Bytes& seed : loadCorpus(kTarget)) {
     const std::string text(seed.begin(), seed.end());
     EXPECT_NO_THROW(scene::parseScene(text, kSceneSource, scene_detail::sceneDir().string())) << text;
   }
 }
 
-TEST(FuzzScene, ShortRun) { test::expectShortRun(&fuzzSceneOnce, kTarget, 300); }
+TEST(FuzzScene, ShortRun) { shortRun(kTarget, &fuzzSceneOnce, 300); }
 
 TEST(FuzzScene, RefusesTextAboveTheSceneCap) {
   const std::string text = "name: big\n# " + std::string(1 << 20, 'x') + "\n";

@@ -265,3 +265,22 @@ TEST_F(TextureTool, ImportHelpAndBadInput) {
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(has(r.err, "expected none, height or depth")) << r.err;
 }
+
+TEST_F(TextureTool, ImportMaxPixels) {
+  EXPECT_TRUE(has(run("import --help").out, "--max-pixels N")) << "help documents the option";
+  writeTga(path("ok.tga"), 32, 32, 3, bumpRgb(32, false));
+  ToolRun r = run("import " + path("ok.tga") + " " + path("x.png") + " --max-pixels 1023");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(has(r.err, path("ok.tga"))) << r.err;
+  EXPECT_TRUE(has(r.err, "image too large")) << r.err;
+  EXPECT_TRUE(has(r.err, "32x32 = 1024 pixels in its header")) << r.err;
+  EXPECT_TRUE(has(r.err, "at most 1023 pixels")) << r.err;
+  EXPECT_FALSE(fs::exists(path("x.png")));
+  r = run("import " + path("ok.tga") + " " + path("x.png") + " --max-pixels 1024");
+  EXPECT_EQ(r.status, 0) << r.err;
+  for (const char* bad : {"3", "268435457", "many"}) {
+    r = run("import " + path("ok.tga") + " " + path("y.png") + " --max-pixels " + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_TRUE(has(r.err, "--max-pixels")) << r.err;
+  }
+}

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "textures/import/image_size.hpp"
 #include "textures/import/tga_decode.hpp"
 #include "textures/texture_error.hpp"
 #include "textures/texture_map.hpp"
@@ -160,6 +161,13 @@ void checkSize(const std::string& path, const RawImage& image) {
   }
 }
 
+[[noreturn]] void tooLarge(const std::string& path, const HeaderSize& size, const char* whose, std::int64_t max_pixels) {
+  throw TextureError(path, "image too large",
+                     std::to_string(size.width) + "x" + std::to_string(size.height) + " = " +
+                         std::to_string(size.pixels()) + " pixels " + whose,
+                     "at most " + std::to_string(max_pixels) + " pixels");
+}
+
 }  // namespace
 
 const char* toString(ImageFormat format) {
@@ -174,26 +182,41 @@ const char* toString(ImageFormat format) {
   return "unknown";
 }
 
-DecodedImage decodeImage(const std::string& path, const std::vector<unsigned char>& bytes) {
+DecodedImage decodeImage(const std::string& path, const std::vector<unsigned char>& bytes, std::int64_t max_pixels) {
   if (bytes.empty()) throw TextureError(path, "empty file", "0 bytes", kKnownFormats);
   DecodedImage decoded;
   decoded.format = detect(path, bytes);
   checkComplete(path, decoded.format, bytes);
+  const auto size = headerSize(decoded.format, bytes);
+  // OpenCV picks its decoder from the bytes, not from us: a RIFF/WEBP file whose first chunk is
+  // not VP8, VP8L or VP8X fails libwebp's check and falls through to any other decoder whose
+  // signature it holds (found by fuzzing: "DICM" at byte 128 reached GDCM's DICOM reader, which
+  // allocated gigabytes from a length field). So a WebP must have a header we can read.
+  if (!size && decoded.format == ImageFormat::WebP)
+    throw TextureError(path, "corrupt WebP header", "no VP8, VP8L or VP8X image header at byte 12",
+                       "a WebP file (RIFF, WEBP, then a VP8, VP8L or VP8X chunk)");
+  if (size && size->pixels() > std::uint64_t(max_pixels)) tooLarge(path, *size, "in its header", max_pixels);
   if (decoded.format == ImageFormat::Tga) {
     decoded.image = decodeTga(path, bytes);
   } else {
     decoded.image = decodeWithOpenCv(path, decoded.format, bytes);
   }
   checkSize(path, decoded.image);
+  const HeaderSize decoded_size{std::uint32_t(decoded.image.width), std::uint32_t(decoded.image.height)};
+  if (decoded_size.pixels() > std::uint64_t(max_pixels)) tooLarge(path, decoded_size, "decoded", max_pixels);
   return decoded;
 }
 
-DecodedImage readImage(const std::string& path) {
+DecodedImage readImage(const std::string& path, std::int64_t max_pixels) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw TextureError(path, "cannot open file", std::strerror(errno), std::string("a readable image: ") + kKnownFormats);
   const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (!bytes.empty() && detect(path, bytes) == ImageFormat::Png) return {readPng(path), ImageFormat::Png};
-  return decodeImage(path, bytes);
+  if (!bytes.empty() && detect(path, bytes) == ImageFormat::Png) {
+    if (const auto size = headerSize(ImageFormat::Png, bytes); size && size->pixels() > std::uint64_t(max_pixels))
+      tooLarge(path, *size, "in its header", max_pixels);
+    return {readPng(path), ImageFormat::Png};
+  }
+  return decodeImage(path, bytes, max_pixels);
 }
 
 }  // namespace thx::tex

@@ -166,7 +166,7 @@ TextureMap importNormalMap(const DecodedImage& decoded, const std::string& sourc
 }
 
 TextureMap importNormalMapFile(const std::string& path, const ImportOptions& options, ImportReport* report) {
-  return importNormalMap(readImage(path), path, options, report);
+  return importNormalMap(readImage(path, options.max_pixels), path, options, report);
 }
 
 }  // namespace thx::tex

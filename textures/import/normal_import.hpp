@@ -30,6 +30,9 @@ struct ImportOptions {
   AlphaMeaning alpha = AlphaMeaning::None;
   std::optional<double> alpha_scale_m;  // metres from alpha 0 to full alpha; required unless alpha None
   double extent_m = 0.0;                // physical width of the image, metres; 0 = unknown
+  // Files of more pixels are refused, from the header where it says (image_decode.hpp); for the
+  // file reader (importNormalMapFile): a DecodedImage was already checked by its decodeImage.
+  std::int64_t max_pixels = kMaxImagePixels;
 };
 
 // Above these a map's normals are "far from unit length": more than kFarFromUnitFraction of its

@@ -33,6 +33,12 @@ int runImport(const Args& args) {
     options.extent_m = parseNumber("--extent", *e);
     if (!(options.extent_m > 0.0)) throw UsageError("--extent: must be > 0 metres");
   }
+  if (const auto m = args.get("--max-pixels")) {
+    const int n = parseInt("--max-pixels", *m);
+    if (n < kMinTextureSide * kMinTextureSide || n > kMaxImagePixels)
+      throw UsageError("--max-pixels: '" + *m + "'; expected 4 (2 x 2) to 268435456 (16384 x 16384)");
+    options.max_pixels = n;
+  }
   SaveOptions save;
   save.bit_depth = parseBits(args.get("--bits"), 16);
   save.green = GreenConvention::OpenGL;

@@ -89,7 +89,7 @@ its normals; relief maps are also darkened with depth). Bad texels are repaired,
 )";
 
 const char* kImportHelp = R"(usage: texturetool import IN OUT [--green opengl|directx] [--alpha none|height|depth]
-                        [--alpha-scale M] [--extent M] [--bits 8|16]
+                        [--alpha-scale M] [--extent M] [--bits 8|16] [--max-pixels N]
 
 Converts a normal map made elsewhere into this project's PNG (RGB = normal, OpenGL green; RGBA
 adds alpha = depth into the surface, with its maximum depth in metres recorded in the file).
@@ -109,6 +109,10 @@ not its name. RGB holds the normal as (n + 1)/2 per channel; every normal is ren
                           required with --alpha height|depth
   --extent M              physical width of the image in metres (recorded in OUT; optional)
   --bits 8|16             bits per channel of OUT (default 16)
+  --max-pixels N          refuse IN if it has more than N pixels (width x height; default and
+                          at most 268435456 = 16384 x 16384, at least 4). Read from the file's
+                          header before decoding where the header says (every format here), so a
+                          small file that declares a huge image costs no memory.
 
 Warnings (on stderr; the file is still written):
   - the alpha is constant although --alpha height|depth was given (an RGBA normal map whose
@@ -121,7 +125,7 @@ Warnings (on stderr; the file is still written):
 
 Errors name the file: unknown format, truncated or corrupt file, grayscale input (use
 from-height), --alpha height|depth on an image without alpha or without --alpha-scale, size
-outside [2, 16384] per side, samples other than 8 or 16 bits.
+outside [2, 16384] per side or above --max-pixels, samples other than 8 or 16 bits.
 )";
 
 const char* kMainHelp = R"(usage: texturetool COMMAND [ARGS...]
@@ -150,7 +154,7 @@ const std::vector<Command>& commands() {
       {"smooth", "Gaussian smoothing", kSmoothHelp, runSmooth, {{"--sigma"}, {"--address"}, {"--bits"}, {"--green"}}},
       {"preview", "shaded picture", kPreviewHelp, runPreview, {{"--azimuth"}, {"--elevation"}, {"--green"}}},
       {"import", "other image formats to our PNG", kImportHelp, runImport,
-       {{"--green"}, {"--alpha"}, {"--alpha-scale"}, {"--extent"}, {"--bits"}}},
+       {{"--green"}, {"--alpha"}, {"--alpha-scale"}, {"--extent"}, {"--bits"}, {"--max-pixels"}}},
   };
   return list;
 }
