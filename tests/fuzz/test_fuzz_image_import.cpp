@@ -141,6 +141,22 @@ TEST(FuzzImageImport, AWebPWithoutAnImageHeaderNeverReachesAnotherDecoder) {
   EXPECT_EQ(refusal("a.img", file), "a.img|corrupt WebP header|no VP8, VP8L or VP8X image header at byte 12");
 }
 
+TEST(FuzzImageImport, AFileWithADicomSignatureNeverReachesGdcm) {
+  // Found by libFuzzer (an abort in GDCM, 0.84 M executions into the third session's run):
+  // regress-webp-vp8l-read-as-dicom is RIFF/WEBP with a VP8L header we read but libwebp refuses,
+  // and "DICM" at byte 128, so OpenCV tried GDCM's DICOM reader next, which asserted.
+  const Bytes seed = readBytes(fuzzDir() / "corpus" / "image_import" / "regress-webp-vp8l-read-as-dicom");
+  EXPECT_FALSE(fuzzImageImportOnce(seed));
+  const std::vector<unsigned char> file(seed.begin() + 1, seed.end());
+  EXPECT_EQ(refusal("a.img", file), "a.img|not a plain WebP file|a DICOM signature (\"DICM\") at byte 128, which "
+                                    "OpenCV would hand to its DICOM reader");
+  // The same signature in a PNG is refused alike, whatever its format.
+  std::vector<unsigned char> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  png.resize(132, 0);
+  png[128] = 'D', png[129] = 'I', png[130] = 'C', png[131] = 'M';
+  EXPECT_EQ(refusal("b.png", png).rfind("b.png|not a plain PNG file|", 0), 0u) << refusal("b.png", png);
+}
+
 TEST(FuzzImageImport, TgaPixelMemoryIsBoundedByTheFile) {
   // A 16384^2 run-length TGA header with one packet: refused as truncated from the packet walk,
   // before stb_image allocates 768 MiB.

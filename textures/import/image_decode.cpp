@@ -195,6 +195,14 @@ DecodedImage decodeImage(const std::string& path, const std::vector<unsigned cha
   if (!size && decoded.format == ImageFormat::WebP)
     throw TextureError(path, "corrupt WebP header", "no VP8, VP8L or VP8X image header at byte 12",
                        "a WebP file (RIFF, WEBP, then a VP8, VP8L or VP8X chunk)");
+  // A header we can read is not enough: libwebp may still refuse the chunk (a VP8L stream with a
+  // bad signature byte, found by fuzzing), and then the same fall-through happens, with GDCM
+  // asserting. Every decoder OpenCV has looks for its signature at byte 0, where ours already
+  // is, except DICOM's "DICM" at byte 128: a file holding it there is refused before OpenCV.
+  if (decoded.format != ImageFormat::Tga && startsWith(bytes, {'D', 'I', 'C', 'M'}, 128))
+    throw TextureError(path, std::string("not a plain ") + toString(decoded.format) + " file",
+                       "a DICOM signature (\"DICM\") at byte 128, which OpenCV would hand to its DICOM reader",
+                       std::string("a ") + toString(decoded.format) + " file without \"DICM\" at byte 128");
   if (size && size->pixels() > std::uint64_t(max_pixels)) tooLarge(path, *size, "in its header", max_pixels);
   if (decoded.format == ImageFormat::Tga) {
     decoded.image = decodeTga(path, bytes);
