@@ -2,11 +2,11 @@
 // A block of UDP ports that no other test of this machine is using, for a test's own LCM bus
 // (udpm, ttl=0) and the ports hapticd takes after it (control +1, client data +2 ..).
 //
-// Two rules, each learnt from a failed CI run:
+// Two rules:
 // - Below Linux's ephemeral range (net.ipv4.ip_local_port_range, 32768..60999 by default): every
 //   LCM publisher binds an ephemeral UDP port, without SO_REUSEADDR, and when one of them had
 //   taken a data port of a test, that test's client could not bind it ("bind: Address already in
-//   use").
+//   use"; a failed CI run).
 // - Reserved with an flock on a file per block, held until the test ends: tests running side by
 //   side (ctest -j) never share a block, whatever their pids.
 #include <fcntl.h>

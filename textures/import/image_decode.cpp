@@ -188,17 +188,14 @@ DecodedImage decodeImage(const std::string& path, const std::vector<unsigned cha
   decoded.format = detect(path, bytes);
   checkComplete(path, decoded.format, bytes);
   const auto size = headerSize(decoded.format, bytes);
-  // OpenCV picks its decoder from the bytes, not from us: a RIFF/WEBP file whose first chunk is
-  // not VP8, VP8L or VP8X fails libwebp's check and falls through to any other decoder whose
-  // signature it holds (found by fuzzing: "DICM" at byte 128 reached GDCM's DICOM reader, which
-  // allocated gigabytes from a length field). So a WebP must have a header we can read.
+  // A WebP's size is bounded from its image header (the VP8, VP8L or VP8X chunk), so it must have one.
   if (!size && decoded.format == ImageFormat::WebP)
     throw TextureError(path, "corrupt WebP header", "no VP8, VP8L or VP8X image header at byte 12",
                        "a WebP file (RIFF, WEBP, then a VP8, VP8L or VP8X chunk)");
-  // A header we can read is not enough: libwebp may still refuse the chunk (a VP8L stream with a
-  // bad signature byte, found by fuzzing), and then the same fall-through happens, with GDCM
-  // asserting. Every decoder OpenCV has looks for its signature at byte 0, where ours already
-  // is, except DICOM's "DICM" at byte 128: a file holding it there is refused before OpenCV.
+  // OpenCV picks its decoder from the bytes, not from our detection: a file its decoder refuses
+  // (a WebP chunk libwebp rejects) falls through to any other decoder whose signature it holds.
+  // All of them look at byte 0, where the format's own signature already is, except DICOM's
+  // "DICM" at byte 128 (found by fuzzing twice: GDCM allocated gigabytes, then asserted).
   if (decoded.format != ImageFormat::Tga && startsWith(bytes, {'D', 'I', 'C', 'M'}, 128))
     throw TextureError(path, std::string("not a plain ") + toString(decoded.format) + " file",
                        "a DICOM signature (\"DICM\") at byte 128, which OpenCV would hand to its DICOM reader",
