@@ -5,7 +5,9 @@
 #include <functional>
 #include <variant>
 
+#include "clients/study/ball_percept.hpp"
 #include "clients/study/button_protocol.hpp"
+#include "clients/study/sound_percept.hpp"
 #include "device/sim_phantom.hpp"
 #include "scenes/scene_loader.hpp"
 #include "server/prepared_scene.hpp"
@@ -14,8 +16,8 @@
 namespace thx::study {
 
 Cue cueOf(int feature) {
-  if (feature == kSoundSpeed || feature == kSoundDamping) return Cue::Sound;
-  if (feature == kBallSlope || feature == kBallFriction) return Cue::Ball;
+  if (feature == kSoundPitch || feature == kSoundRing) return Cue::Sound;
+  if (feature == kBallShake || feature == kBallSlip) return Cue::Ball;
   return Cue::Pen;
 }
 
@@ -61,24 +63,17 @@ Percept measureSurface(const std::string& scene_path, const Cues& cues) {
   Percept p;
   const scene::SceneSurface surf = scene::buildSceneSurface(sc);
   p.representation = surf.map->isRelief() ? Representation::Relief : Representation::Normal;
-  const scene::Material& mat = sc.surface.material;
   if (cues.sound) {
-    p.features[kSoundSpeed] = std::log10(std::sqrt(mat.youngs_modulus_pa / mat.density_kg_per_m3));
-    p.features[kSoundDamping] = std::log10(1.0 + mat.rayleigh_alpha_per_s);
+    if (const std::optional<SoundPercept> heard = hearSurface(scene_path)) {
+      p.features[kSoundPitch] = heard->pitch_log10_hz;
+      p.features[kSoundRing] = heard->ring_log10_s;
+    }
   }
   if (cues.ball) {
-    // RMS slope of the sampled normal over a 64 x 64 grid of the surface (what the ball rolls on).
-    const int n = 64;
-    double sum = 0.0;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) {
-        const double x = ((i + 0.5) / n - 0.5) * sc.surface.size_m.x();
-        const double y = ((j + 0.5) / n - 0.5) * sc.surface.size_m.y();
-        const Eigen::Vector3d nl = surf.surface.at(x, y).n_local;
-        sum += (nl.x() * nl.x() + nl.y() * nl.y()) / std::max(1e-6, nl.z() * nl.z());
-      }
-    p.features[kBallSlope] = std::log10(std::max(1e-4, std::sqrt(sum / (n * n))));
-    p.features[kBallFriction] = mat.friction;
+    if (const std::optional<BallPercept> seen = watchBall(sc)) {
+      p.features[kBallShake] = seen->shake_log10;
+      p.features[kBallSlip] = seen->slip;
+    }
   }
   // The pen: what the servo renders along the exploration stroke, whatever the cues; without
   // the pen's force there is nothing to feel (below 0.05 N mean, no feature).

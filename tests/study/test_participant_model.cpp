@@ -22,22 +22,22 @@ TEST(SurfacePercept, RemovedCuesCarryNothing) {
   EXPECT_GT(*all.features[kPenLateral], -1.0);  // the lateral force is above a tenth of the normal
 
   const Percept no_sound = measureSurface(scene, Cues{false, true, true});
-  EXPECT_FALSE(no_sound.features[kSoundSpeed]);
-  EXPECT_FALSE(no_sound.features[kSoundDamping]);
+  EXPECT_FALSE(no_sound.features[kSoundPitch]);
+  EXPECT_FALSE(no_sound.features[kSoundRing]);
   EXPECT_EQ(no_sound.features[kPenLateral], all.features[kPenLateral]);  // lock-step: the same run
   // Without the pen's force the servo renders (nearly) nothing: no feature, measured.
   const Percept no_pen = measureSurface(scene, Cues{true, true, false});
   EXPECT_FALSE(no_pen.features[kPenLateral]);
   EXPECT_FALSE(no_pen.features[kPenNormalVar]);
-  EXPECT_EQ(no_pen.features[kBallSlope], all.features[kBallSlope]);
+  EXPECT_EQ(no_pen.features[kBallShake], all.features[kBallShake]);
 
   // What the simulated session derives instead of rendering again (lock-step: the same numbers).
   const auto same = [](const Percept& a, const Percept& b) { return a.features == b.features; };
   EXPECT_TRUE(same(withoutSoundOrBall(all, Cues{false, true, true}), no_sound));
   const Percept no_ball = withoutSoundOrBall(all, Cues{true, false, true});
-  EXPECT_FALSE(no_ball.features[kBallSlope]);
-  EXPECT_FALSE(no_ball.features[kBallFriction]);
-  EXPECT_EQ(no_ball.features[kSoundSpeed], all.features[kSoundSpeed]);
+  EXPECT_FALSE(no_ball.features[kBallShake]);
+  EXPECT_FALSE(no_ball.features[kBallSlip]);
+  EXPECT_EQ(no_ball.features[kSoundPitch], all.features[kSoundPitch]);
 }
 
 TEST(SurfacePercept, ButtonPressesThroughTheSimulatedDeviceDecode) {
@@ -135,10 +135,10 @@ TEST(ParticipantModel, RemovingACueLowersAccuracy) {
 TEST(ParticipantModel, ACueThatAloneSeparatesGoesToChance) {
   Percept a, b;
   for (int f = 0; f < kFeatureCount; ++f) a.features[std::size_t(f)] = b.features[std::size_t(f)] = 1.0;
-  b.features[kSoundSpeed] = 1.0 + 10 * kFeatureJnd[kSoundSpeed];
+  b.features[kSoundPitch] = 1.0 + 10 * kFeatureJnd[kSoundPitch];
   Percept a_mute = a;
-  a_mute.features[kSoundSpeed].reset();
-  a_mute.features[kSoundDamping].reset();
+  a_mute.features[kSoundPitch].reset();
+  a_mute.features[kSoundRing].reset();
   SimulatedParticipant p(5);
   int with = 0, without = 0;
   for (int i = 0; i < 400; ++i) {

@@ -55,7 +55,7 @@ TEST(SceneStage, VariantsRemoveThePenForceTheBallOrTheSoundOnly) {
   // Rendered as hapticd prepares it: the variant with every cue "on" gives no pen force at all.
   const Percept p = measureSurface(dir.file("bricks_large.nopen.yaml"), Cues{});
   EXPECT_FALSE(p.features[kPenLateral]);
-  EXPECT_EQ(p.features[kBallSlope], measureSurface(orig, Cues{}).features[kBallSlope]);
+  EXPECT_EQ(p.features[kBallShake], measureSurface(orig, Cues{}).features[kBallShake]);
 }
 
 TEST(SceneStage, ReliefVsNormalStagesBothVersionsWithoutVariants) {
