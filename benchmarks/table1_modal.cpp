@@ -15,7 +15,7 @@
 
 namespace thx::bench::table1 {
 
-int runModalChild(const std::string& scene_path, const std::string& kind, int size) {
+int runModalChild(const std::string& scene_path, const std::string& kind, int size, int layers) {
   try {
     if (kind == "idle") {
       std::printf("0 0 0 0 0\n");
@@ -35,6 +35,7 @@ int runModalChild(const std::string& scene_path, const std::string& kind, int si
     } else if (kind == "fem-slab" || kind == "fem-mesh") {
       audio::SceneMeshOptions o;
       o.slab_cells = size;
+      o.slab_layers = kind == "fem-slab" ? layers : kMeshLayers;
       o.pen = false;
       o.order = kind == "fem-slab" ? audio::ElementOrder::Quadratic : audio::ElementOrder::Linear;
       const audio::SceneBody body = audio::slabBody(sc, o);
@@ -53,7 +54,8 @@ int runModalChild(const std::string& scene_path, const std::string& kind, int si
   }
 }
 
-ModalProbe probeModal(const std::string& self, const std::string& scene_path, const std::string& kind, int size) {
+ModalProbe probeModal(const std::string& self, const std::string& scene_path, const std::string& kind, int size,
+                      int layers) {
   ModalProbe p;
   p.kind = kind;
   p.size = size;
@@ -62,14 +64,14 @@ ModalProbe probeModal(const std::string& self, const std::string& scene_path, co
     p.error = "pipe failed";
     return p;
   }
-  const std::string size_text = std::to_string(size);
+  const std::string size_text = std::to_string(size), layers_text = std::to_string(layers);
   const pid_t pid = fork();
   if (pid == 0) {
     dup2(fd[1], STDOUT_FILENO);
     close(fd[0]);
     close(fd[1]);
-    execl(self.c_str(), self.c_str(), "--modal-child", kind.c_str(), size_text.c_str(), "--scene", scene_path.c_str(),
-          static_cast<char*>(nullptr));
+    execl(self.c_str(), self.c_str(), "--modal-child", kind.c_str(), size_text.c_str(), layers_text.c_str(), "--scene",
+          scene_path.c_str(), static_cast<char*>(nullptr));
     std::printf("error cannot run %s\n", self.c_str());
     std::fflush(stdout);
     _exit(127);
@@ -96,13 +98,13 @@ ModalProbe probeModal(const std::string& self, const std::string& scene_path, co
 
 long long femMeshNodeDofs(int cells) {
   const long long side = cells + 1;
-  return 3 * 2 * side * side;  // two node layers (one cell through the thickness)
+  return 3 * (kMeshLayers + 1) * side * side;
 }
 
 long long femMeshDofs(bool held, int cells) {
   if (!held) return femMeshNodeDofs(cells);
   const long long inner = cells - 1;  // clampedEdges holds every node on the four side faces
-  return 3 * 2 * inner * inner;
+  return 3 * (kMeshLayers + 1) * inner * inner;
 }
 
 double PowerFit::at(double x) const { return a * std::pow(x, b); }

@@ -4,9 +4,9 @@
 // solve's alone; an idle child (kind "idle": the same program, nothing solved) gives the baseline
 // the table subtracts. Kinds, all of the scene's surface (size, thickness, material, held or free):
 //   spring    the spring-mass lattice (clients/audio/spring_mass.hpp), SIZE nodes per side
-//   fem-slab  the audio client's slab: Tet10, SIZE cells per side, one through the thickness
-//   fem-mesh  a mesh's FEM: Tet4, SIZE cells per side (the mesh's (SIZE+1)² vertices on top), one
-//             through the thickness
+//   fem-slab  the audio client's slab: Tet10, SIZE cells per side, LAYERS through the thickness
+//   fem-mesh  a mesh's FEM: Tet4, SIZE cells per side (the mesh's (SIZE+1)² vertices on top),
+//             kMeshLayers through the thickness (LAYERS is ignored)
 // Every solve asks for kModes elastic modes at a 20 Hz shift, as the audio client does.
 #include <string>
 #include <vector>
@@ -14,6 +14,10 @@
 namespace thx::bench::table1 {
 
 inline constexpr int kModes = 40;  // the audio client's default (clients/audio/surface_sound.hpp)
+// One Tet4 cell through the thickness: the thinnest volume mesh with the mesh's vertices on top,
+// so the meshes' memory is a lower bound. Pinned here, not taken from the audio client's default,
+// because femMeshDofs counts DOFs without building the mesh and must agree with what is solved.
+inline constexpr int kMeshLayers = 1;
 
 struct ModalProbe {
   std::string kind;
@@ -30,10 +34,11 @@ struct ModalProbe {
 
 // The child's side: solves one case of the scene and prints one line for the parent. Returns
 // the exit status.
-int runModalChild(const std::string& scene_path, const std::string& kind, int size);
+int runModalChild(const std::string& scene_path, const std::string& kind, int size, int layers);
 
 // The parent's side: re-executes `self` with --modal-child and reads the line back.
-ModalProbe probeModal(const std::string& self, const std::string& scene_path, const std::string& kind, int size);
+ModalProbe probeModal(const std::string& self, const std::string& scene_path, const std::string& kind, int size,
+                      int layers);
 
 // The number of free DOFs of the scene's fem-mesh at `cells` per side (without building it).
 long long femMeshDofs(bool held, int cells);
