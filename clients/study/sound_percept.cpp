@@ -28,7 +28,7 @@ int strikeNode(const audio::TetMesh& mesh) {
   double best_d = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < mesh.nodes.size(); ++i) {
     const Eigen::Vector3d& p = mesh.nodes[i];
-    if (p.z() < top - 1e-9 || mesh.clamped[i]) continue;
+    if (p.z() < top - 1e-9 || (i < mesh.clamped.size() && mesh.clamped[i])) continue;
     const double d = (p.head<2>() - target).squaredNorm();
     if (d < best_d) best_d = d, best = int(i);
   }
