@@ -11,8 +11,9 @@
 //    lateral force over the mean normal force, and the normal force's RMS variation over its mean.
 // A cue that is removed carries nothing, because nothing reaches the participant, not because a
 // flag says so: the NAME.nosound scene is muted (no samples), NAME.noball has no ball to watch,
-// NAME.nopen is rendered with zero stiffness (no force to feel). measureSurface with a cue off
-// renders the same way.
+// NAME.nopen is rendered with zero stiffness (no force to feel). measureSurface given the pen
+// off renders it with zero stiffness too; given the sound or the ball off, it leaves their
+// features out without hearing or watching.
 #include <array>
 #include <cstdint>
 #include <optional>
