@@ -19,4 +19,6 @@ TextureError::TextureError(std::string source, std::string problem, std::string 
       value_(std::move(value)),
       expected_(std::move(expected)) {}
 
+std::string texelName(int i, int j) { return "texel (" + std::to_string(i) + ", " + std::to_string(j) + ")"; }
+
 }  // namespace thx::tex

@@ -21,4 +21,7 @@ class TextureError : public thx::Error {
   std::string source_, problem_, value_, expected_;
 };
 
+// "texel (i, j)", as every texture message names a texel.
+std::string texelName(int i, int j);
+
 }  // namespace thx::tex

@@ -32,7 +32,6 @@ bool parseDouble(const std::string& s, double& out) {
   return end && *end == '\0' && std::isfinite(out);
 }
 
-std::string texelName(int i, int j) { return "texel (" + std::to_string(i) + ", " + std::to_string(j) + ")"; }
 
 const char* channelDescription(int channels) {
   switch (channels) {

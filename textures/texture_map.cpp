@@ -8,7 +8,6 @@
 namespace thx::tex {
 
 namespace {
-std::string texelName(int i, int j) { return "texel (" + std::to_string(i) + ", " + std::to_string(j) + ")"; }
 
 std::int16_t toSnorm16(float c) {
   const float clamped = std::fmax(-1.0f, std::fmin(1.0f, c));

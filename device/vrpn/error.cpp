@@ -1,5 +1,8 @@
 #include "device/vrpn/error.hpp"
 
+#include <cstring>
+#include <string>
+
 namespace thx::vrpn {
 
 std::string_view toString(ErrorCode code) {
@@ -34,6 +37,10 @@ std::string_view toString(ErrorCode code) {
       return "peer closed";
   }
   return "unknown error";
+}
+
+Error socketError(std::string_view call, int err) {
+  return Error{ErrorCode::kSocket, std::string(call) + ": " + std::strerror(err)};
 }
 
 }  // namespace thx::vrpn

@@ -36,6 +36,9 @@ struct Error {
   std::string reason;
 };
 
+// A failed socket call: kSocket, the call's name and strerror(err).
+Error socketError(std::string_view call, int err);
+
 // Value or Error (std::expected is C++23).
 template <class T>
 class Result {

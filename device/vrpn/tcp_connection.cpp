@@ -17,10 +17,6 @@ namespace thx::vrpn {
 
 namespace {
 
-Error socketError(std::string_view call, int err) {
-  return Error{ErrorCode::kSocket, std::string(call) + ": " + std::strerror(err)};
-}
-
 bool setNonBlocking(int fd) {
   const int flags = ::fcntl(fd, F_GETFL, 0);
   return flags >= 0 && ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) == 0;

@@ -14,10 +14,6 @@ namespace thx::vrpn {
 
 namespace {
 
-Error socketError(std::string_view call, int err) {
-  return Error{ErrorCode::kSocket, std::string(call) + ": " + std::strerror(err)};
-}
-
 Result<sockaddr_in> resolve(std::string_view host, std::uint16_t port) {
   addrinfo hints{};
   hints.ai_family = AF_INET;

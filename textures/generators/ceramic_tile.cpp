@@ -16,7 +16,7 @@ namespace thx::tex::gen {
 
 namespace {
 
-constexpr std::uint64_t kSalt = 0x74696c65;  // "tile"
+constexpr std::uint64_t kTileSalt = 0x74696c65;  // "tile"
 
 // The edge profile across one axis: 0 in the grout, rising along a half cosine over the bevel,
 // 1 on the face; db = its derivative along the distance from the edge line.
@@ -40,7 +40,7 @@ TextureMap makeCeramicTile(const Params& p, int size, std::uint64_t seed) {
   }
   const std::int64_t n = periodsIn(extent, tile_req);
   const double tile = extent / double(n), g = grout / 2.0, texel = extent / size;
-  const FractalNoise glaze(extent, tile, 2, undulation, 0.5, 3.0 * texel, seed, kSalt);
+  const FractalNoise glaze(extent, tile, 2, undulation, 0.5, 3.0 * texel, seed, kTileSalt);
   return rasterize(size, extent, [&](double x, double y) {
     SurfacePoint s = glaze(x, y);
     const double u = x - (std::floor(x / tile) + 0.5) * tile, v = y - (std::floor(y / tile) + 0.5) * tile;

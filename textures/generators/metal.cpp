@@ -20,12 +20,12 @@ namespace thx::tex::gen {
 
 namespace {
 
-constexpr std::uint64_t kSalt = 0x6d65746c;  // "metl"
+constexpr std::uint64_t kMetalSalt = 0x6d65746c;  // "metl"
 
 SurfacePoint scratches(double x, double y, double band, std::int64_t bands, double length, double depth,
                        std::uint64_t seed) {
   const auto k = std::int64_t(std::floor(y / band));
-  auto rnd = [&](std::uint64_t salt) { return random01(seed, wrapIndex(k, bands), 0, kSalt + salt); };
+  auto rnd = [&](std::uint64_t salt) { return random01(seed, wrapIndex(k, bands), 0, kMetalSalt + salt); };
   const double centre = (double(k) + 0.2 + 0.6 * rnd(1)) * band;
   const double half_width = band * (0.2 + 0.25 * rnd(2)) / 2.0;
   const double wavelength = length * (0.5 + rnd(3)), phase = 2.0 * kPi * rnd(4);
@@ -86,8 +86,8 @@ TextureMap makeMetal(const Params& p, int size, std::uint64_t seed) {
   const int kind = int(pattern);
   // Dent sites and sizes, tabulated only for the hammered pattern.
   const std::int64_t dent_n = kind == 2 ? periodsIn(extent, p.at("dent_spacing")) : 1;
-  const VoronoiSites dent_sites(extent / double(dent_n), dent_n, 0.4, seed, kSalt + 32);
-  const Lattice dent_sizes(dent_n, seed, kSalt + 34);
+  const VoronoiSites dent_sites(extent / double(dent_n), dent_n, 0.4, seed, kMetalSalt + 32);
+  const Lattice dent_sizes(dent_n, seed, kMetalSalt + 34);
   const double ddepth = p.at("dent_depth");
   return rasterize(size, extent, [&](double x, double y) {
     SurfacePoint s = sdepth > 0.0 ? scratches(x, y, band, bands, length, sdepth, seed) : SurfacePoint{};

@@ -12,7 +12,7 @@ namespace thx::tex::gen {
 
 namespace {
 
-constexpr std::uint64_t kSalt = 0x706f7263;  // "porc"
+constexpr std::uint64_t kPorcelainSalt = 0x706f7263;  // "porc"
 
 TextureMap makePorcelain(const Params& p, int size, std::uint64_t seed) {
   const double extent = p.at("extent"), amplitude = p.at("undulation"), wavelength = p.at("undulation_wavelength");
@@ -29,7 +29,7 @@ TextureMap makePorcelain(const Params& p, int size, std::uint64_t seed) {
   return rasterizeCrackedNoise(
       size, {.extent = extent, .wavelength = wavelength, .amplitude = amplitude, .gain = 0.5, .octaves = 2,
              .min_wavelength = 3.0 * extent / size, .crack_cell_request = cell_req, .jitter = 0.8, .crack_width = width,
-             .crack_depth = depth, .seed = seed, .salt = kSalt});
+             .crack_depth = depth, .seed = seed, .salt = kPorcelainSalt});
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ namespace thx::tex::gen {
 
 namespace {
 
-constexpr std::uint64_t kSalt = 0x73746f6e;  // "ston"
+constexpr std::uint64_t kStoneSalt = 0x73746f6e;  // "ston"
 
 TextureMap makeStone(const Params& p, int size, std::uint64_t seed) {
   const double extent = p.at("extent"), amplitude = p.at("roughness"), wavelength = p.at("roughness_wavelength");
@@ -35,7 +35,7 @@ TextureMap makeStone(const Params& p, int size, std::uint64_t seed) {
   return rasterizeCrackedNoise(
       size, {.extent = extent, .wavelength = wavelength, .amplitude = amplitude, .gain = gain, .octaves = int(octaves_f),
              .min_wavelength = 3.0 * extent / size, .crack_cell_request = spacing_req, .jitter = 0.9, .crack_width = width,
-             .crack_depth = depth, .seed = seed, .salt = kSalt});
+             .crack_depth = depth, .seed = seed, .salt = kStoneSalt});
 }
 
 }  // namespace
