@@ -22,7 +22,7 @@
 
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_stamp.hpp"
-#include "benchmarks/plot.hpp"
+#include "tools/report/plot.hpp"
 #include "clients/audio/audible_modes.hpp"
 #include "clients/audio/modal_analysis.hpp"
 #include "clients/audio/resonator_bank.hpp"

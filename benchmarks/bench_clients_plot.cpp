@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/plot.hpp"
+#include "tools/report/plot.hpp"
 
 namespace {
 

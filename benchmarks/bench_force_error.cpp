@@ -29,7 +29,7 @@
 #include "benchmarks/bench_stamp.hpp"
 #include "benchmarks/exact_surfaces.hpp"
 #include "benchmarks/mesh_closest.hpp"
-#include "benchmarks/plot.hpp"
+#include "tools/report/plot.hpp"
 #include "server/mesh_god_object.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/triangle_bvh.hpp"

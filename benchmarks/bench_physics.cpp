@@ -36,7 +36,7 @@
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_physics_grounds.hpp"
 #include "benchmarks/bench_stamp.hpp"
-#include "benchmarks/plot.hpp"
+#include "tools/report/plot.hpp"
 #include "clients/physics/bullet_convert.hpp"
 
 namespace thx::bench {

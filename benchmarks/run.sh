@@ -260,10 +260,10 @@ run_table1() {
 }
 
 run_report() {
-  need "$BIN/bench_report" || return 1
-  say "part report: docs/report.md from docs/results/ (measures nothing)"
+  need "$BUILD/tools/report/bench_report" || return 1
+  say "part report: docs/report.md from docs/results/ (tools/report/bench_report; measures nothing)"
   # From the root, so the report names its sources as docs/results/..., not this checkout's path.
-  (cd "$ROOT" && "$BIN/bench_report" --results docs/results --out docs/report.md --pictures docs/report)
+  (cd "$ROOT" && "$BUILD/tools/report/bench_report" --results docs/results --out docs/report.md --pictures docs/report)
 }
 
 for part in "${PARTS[@]}"; do

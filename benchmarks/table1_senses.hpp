@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "benchmarks/bench_rig.hpp"
-#include "benchmarks/table1_table.hpp"
+#include "tools/report/table1_table.hpp"
 
 namespace thx::bench::table1 {
 

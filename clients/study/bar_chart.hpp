@@ -1,7 +1,7 @@
 #pragma once
 // Grouped bar charts with error bars, for study-analyze's plots (ID rate per cue condition,
-// ratings per representation). benchmarks/plot.hpp draws scatter and line plots for the
-// benchmarks and is not built in every tree; this one draws bars. OpenCV imgproc into a
+// ratings per representation). tools/report/plot.hpp (thx_plot) draws scatter and line plots
+// for the benchmarks and the report; this one draws bars. OpenCV imgproc into a
 // cv::Mat, written as PNG through thx::tex::writePng.
 #include <cstdint>
 #include <string>

@@ -1,4 +1,4 @@
-// bench_report (benchmarks/bench_report.cpp) run as a process on the small results files in
+// bench_report (tools/report/bench_report.cpp) run as a process on the small results files in
 // tests/data/report/: every section, its picture and machine line, the picks the readings compute
 // from the fixture's numbers, a missing file marked "not measured", a malformed one refused naming
 // the file and the field.

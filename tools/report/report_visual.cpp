@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <map>
 
-#include "benchmarks/report_sections.hpp"
+#include "tools/report/report_sections.hpp"
 
 namespace thx::bench::report {
 

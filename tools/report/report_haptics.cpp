@@ -5,7 +5,7 @@
 #include <map>
 #include <set>
 
-#include "benchmarks/report_sections.hpp"
+#include "tools/report/report_sections.hpp"
 
 namespace thx::bench::report {
 

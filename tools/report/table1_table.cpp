@@ -1,4 +1,4 @@
-#include "benchmarks/table1_table.hpp"
+#include "tools/report/table1_table.hpp"
 
 #include <cstdio>
 #include <sstream>

@@ -6,7 +6,7 @@
 #include <map>
 #include <tuple>
 
-#include "benchmarks/report_sections.hpp"
+#include "tools/report/report_sections.hpp"
 
 namespace thx::bench::report {
 

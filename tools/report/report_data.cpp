@@ -1,4 +1,4 @@
-#include "benchmarks/report_data.hpp"
+#include "tools/report/report_data.hpp"
 
 #include <algorithm>
 #include <cmath>

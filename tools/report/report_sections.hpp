@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "base/error.hpp"
-#include "benchmarks/report_data.hpp"
+#include "tools/report/report_data.hpp"
 
 namespace thx::bench::report {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/plot.hpp"
+#include "tools/report/plot.hpp"
 
 namespace thx::bench::report {
 

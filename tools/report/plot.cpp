@@ -1,4 +1,4 @@
-#include "benchmarks/plot.hpp"
+#include "tools/report/plot.hpp"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -189,7 +189,7 @@ void writePlotPng(const std::string& path, const std::vector<PlotPanel>& panels,
       raw.samples[o + 2] = row[x][0];
     }
   }
-  raw.text["Software"] = "texhaptics benchmarks/plot.cpp";
+  raw.text["Software"] = "texhaptics tools/report/plot.cpp";
   tex::writePng(path, raw);
 }
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <map>
 
-#include "benchmarks/report_sections.hpp"
+#include "tools/report/report_sections.hpp"
 
 namespace thx::bench::report {
 
