@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "base/elapsed.hpp"
 #include "benchmarks/bench_physics_grounds.hpp"
 #include "clients/visual/frame_renderer.hpp"
 #include "clients/visual/mesh_builders.hpp"
@@ -72,10 +73,6 @@ Timing timeRenderTicks(Renderer& r, const std::vector<dev::DeviceState>& path, i
   out.median_s = median(medians);
   out.p99_s = quantile(all, 0.99);
   return out;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // The scene's surface as a height field in bench_physics' frame (centred square, z up): bilinear

@@ -12,15 +12,12 @@
 #include <numeric>
 #include <vector>
 
+#include "base/elapsed.hpp"
 #include "base/number_text.hpp"
 #include "clients/audio/modal_error.hpp"
 
 namespace thx::audio {
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::string arpackMessage(const char* routine, a_int info) {
   switch (info) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "base/elapsed.hpp"
 #include "base/number_text.hpp"
 #include "clients/audio/arpack_eigensolver.hpp"
 #include "clients/audio/fem_assembly.hpp"
@@ -12,13 +13,6 @@
 #include "clients/audio/observation.hpp"
 
 namespace thx::audio {
-namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
 
 double signedHz(double lambda) {
   return std::copysign(std::sqrt(std::fabs(lambda)), lambda) / (2.0 * std::numbers::pi);

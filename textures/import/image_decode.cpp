@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "textures/import/byte_fields.hpp"
 #include "textures/import/image_size.hpp"
 #include "textures/import/tga_decode.hpp"
 #include "textures/texture_error.hpp"
@@ -31,10 +32,7 @@ bool startsWith(const std::vector<unsigned char>& b, std::initializer_list<int> 
   return true;
 }
 
-std::uint32_t le32(const std::vector<unsigned char>& b, std::size_t at) {
-  return std::uint32_t(b[at]) | std::uint32_t(b[at + 1]) << 8 | std::uint32_t(b[at + 2]) << 16 |
-         std::uint32_t(b[at + 3]) << 24;
-}
+using bytes::le32;
 
 bool endsWithTga(const std::string& path) {
   if (path.size() < 4) return false;

@@ -2,17 +2,19 @@
 
 #include <cstdlib>
 
+#include "textures/import/byte_fields.hpp"
+
 namespace thx::tex {
 
 namespace {
 
-using Bytes = std::vector<unsigned char>;
+using bytes::Bytes;
+using bytes::be16;
+using bytes::be32;
+using bytes::le16;
+using bytes::le32;
 
 bool has(const Bytes& b, std::size_t at, std::size_t n) { return at <= b.size() && n <= b.size() - at; }
-std::uint32_t be16(const Bytes& b, std::size_t at) { return std::uint32_t(b[at]) << 8 | b[at + 1]; }
-std::uint32_t le16(const Bytes& b, std::size_t at) { return b[at] | std::uint32_t(b[at + 1]) << 8; }
-std::uint32_t be32(const Bytes& b, std::size_t at) { return be16(b, at) << 16 | be16(b, at + 2); }
-std::uint32_t le32(const Bytes& b, std::size_t at) { return le16(b, at) | le16(b, at + 2) << 16; }
 
 std::optional<HeaderSize> png(const Bytes& b) {
   if (!has(b, 16, 8)) return std::nullopt;
