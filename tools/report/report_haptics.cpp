@@ -11,19 +11,19 @@ namespace thx::bench::report {
 
 namespace {
 
-struct Row {
+struct ForceErrorRow {
   std::string surface, variant;
   int size = 0;
   double rel_rms = 0, ns = 0;
 };
 
-std::vector<Row> readRows(const ResultsFile& f, bool only_mesh) {
-  std::vector<Row> rows;
+std::vector<ForceErrorRow> readRows(const ResultsFile& f, bool only_mesh) {
+  std::vector<ForceErrorRow> rows;
   const nlohmann::json& results = array(f, f.json, "", "results");
   for (std::size_t i = 0; i < results.size(); ++i) {
     const std::string w = at("", "results", i);
     const nlohmann::json& r = results[i];
-    Row row{text(f, r, w, "surface"), text(f, r, w, "variant"), int(number(f, r, w, "size")),
+    ForceErrorRow row{text(f, r, w, "surface"), text(f, r, w, "variant"), int(number(f, r, w, "size")),
             number(f, r, w, "rel_rms"), number(f, r, w, "ns_per_tick")};
     if (only_mesh && row.variant != "mesh") continue;
     rows.push_back(row);
@@ -31,7 +31,7 @@ std::vector<Row> readRows(const ResultsFile& f, bool only_mesh) {
   return rows;
 }
 
-std::string label(const Row& r) { return r.variant + " " + std::to_string(r.size) + "²"; }
+std::string label(const ForceErrorRow& r) { return r.variant + " " + std::to_string(r.size) + "²"; }
 
 }  // namespace
 
@@ -48,10 +48,10 @@ Section hapticsSection(const std::filesystem::path& dir) {
       "the relief as a grid mesh under the god object (`mesh`). Definitions: docs/benchmarks.md §2 and §2c.";
   const auto main = readResults(dir, "bench_force_error.json");
   if (!main) return notMeasured(s, dir, "bench_force_error.json");
-  std::vector<Row> rows = readRows(*main, false);
+  std::vector<ForceErrorRow> rows = readRows(*main, false);
   s.machine_lines.push_back(machineLine(*main));
   if (const auto mesh = readResults(dir, "bench_force_error_mesh.json")) {
-    const std::vector<Row> m = readRows(*mesh, true);
+    const std::vector<ForceErrorRow> m = readRows(*mesh, true);
     rows.insert(rows.end(), m.begin(), m.end());
     s.machine_lines.push_back(machineLine(*mesh));
   }
@@ -59,7 +59,7 @@ Section hapticsSection(const std::filesystem::path& dir) {
 
   std::vector<std::string> surfaces, variants;
   std::set<int> sizes;
-  for (const Row& r : rows) {
+  for (const ForceErrorRow& r : rows) {
     if (std::find(surfaces.begin(), surfaces.end(), r.surface) == surfaces.end()) surfaces.push_back(r.surface);
     if (std::find(variants.begin(), variants.end(), r.variant) == variants.end()) variants.push_back(r.variant);
     sizes.insert(r.size);
@@ -75,8 +75,8 @@ Section hapticsSection(const std::filesystem::path& dir) {
   t += "\n" + rule + "\n";
   for (const std::string& surface : surfaces) {
     for (const std::string& variant : variants) {
-      std::map<int, const Row*> cells;
-      for (const Row& r : rows) {
+      std::map<int, const ForceErrorRow*> cells;
+      for (const ForceErrorRow& r : rows) {
         if (r.surface == surface && r.variant == variant) cells[r.size] = &r;
       }
       if (cells.empty()) continue;
@@ -92,12 +92,12 @@ Section hapticsSection(const std::filesystem::path& dir) {
 
   // Reading: the servo tick is 1 ms, so the cost column decides only between close errors.
   double worst_ns = 0;
-  for (const Row& r : rows) worst_ns = std::max(worst_ns, r.ns);
+  for (const ForceErrorRow& r : rows) worst_ns = std::max(worst_ns, r.ns);
   std::string reading = "Every configuration measured costs at most " + num(worst_ns) + " ns per tick, " +
                         percent(worst_ns / 1e6, 2) + " of the 1 ms servo tick, so on this machine accuracy decides.";
   for (const std::string& surface : surfaces) {
     std::vector<Option> options;
-    for (const Row& r : rows) {
+    for (const ForceErrorRow& r : rows) {
       if (r.surface == surface) options.push_back({label(r), r.ns, r.rel_rms});
     }
     reading += " On `" + surface + "`";
@@ -115,7 +115,7 @@ Section hapticsSection(const std::filesystem::path& dir) {
   // A user who does not know their surface's shape: each configuration by its worse surface.
   std::map<std::string, Option> overall;
   std::map<std::string, std::size_t> seen;
-  for (const Row& r : rows) {
+  for (const ForceErrorRow& r : rows) {
     Option& o = overall[label(r)];
     o.label = label(r);
     o.cost = std::max(o.cost, r.ns);
@@ -147,7 +147,7 @@ Section hapticsSection(const std::filesystem::path& dir) {
       ser.label = variants[v];
       ser.color = palette(v);
       ser.marker = Marker(v % 3);
-      for (const Row& r : rows) {
+      for (const ForceErrorRow& r : rows) {
         if (r.surface != surface || r.variant != variants[v]) continue;
         ser.x.push_back(r.ns);
         ser.y.push_back(100 * r.rel_rms);

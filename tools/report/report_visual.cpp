@@ -10,7 +10,7 @@ namespace thx::bench::report {
 
 namespace {
 
-struct Row {
+struct FrameRow {
   std::string config, group, resolution;
   double ms = 0, texel = 0, lsb = 0;
 };
@@ -54,7 +54,7 @@ Section visualSection(const std::filesystem::path& dir) {
   if (!f) return notMeasured(s, dir, "bench_visual.json");
   s.machine_lines.push_back(machineLine(*f));
 
-  std::vector<Row> rows;
+  std::vector<FrameRow> rows;
   std::vector<std::string> configs, groups, resolutions;
   const auto remember = [](std::vector<std::string>& v, const std::string& x) {
     if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
@@ -87,7 +87,7 @@ Section visualSection(const std::filesystem::path& dir) {
     t += "| " + c + " |";
     for (const std::string& res : resolutions) {
       const auto it =
-          std::find_if(rows.begin(), rows.end(), [&](const Row& r) { return r.config == c && r.resolution == res; });
+          std::find_if(rows.begin(), rows.end(), [&](const FrameRow& r) { return r.config == c && r.resolution == res; });
       t += it == rows.end() ? " – | – | – |" : " " + num(it->ms) + " | " + percent(it->texel) + " | " + num(it->lsb) + " |";
     }
     t += "\n";
@@ -99,7 +99,7 @@ Section visualSection(const std::filesystem::path& dir) {
   for (const std::string& res : resolutions) {
     std::vector<Option> options;
     std::map<std::string, double> lsb;
-    for (const Row& r : rows) {
+    for (const FrameRow& r : rows) {
       if (r.resolution != res) continue;
       // Equal shares (shadows change colour, not texels) go to the cheaper configuration.
       options.push_back({r.config, r.ms, r.texel});
@@ -138,7 +138,7 @@ Section visualSection(const std::filesystem::path& dir) {
       a.filled = ri == 0;
       a.connect = false;
       PlotSeries b = a;
-      for (const Row& r : rows) {
+      for (const FrameRow& r : rows) {
         if (r.resolution != resolutions[ri] || r.group != groups[gi]) continue;
         a.x.push_back(r.ms);
         a.y.push_back(100 * r.texel);
