@@ -7,6 +7,7 @@
 #include <memory>
 #include <thx_msgs/protocol.hpp>
 
+#include "base/error.hpp"
 #include "tests/support/fake_server.hpp"
 #include "thx_client/client.hpp"
 
@@ -249,11 +250,12 @@ TEST_F(ClientTest, BadArgumentsAreClearErrors) {
   try {
     Client c(lcm_, o);
     FAIL() << "accepted an invalid client id";
-  } catch (const std::invalid_argument& e) {
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), Error::Kind::Config);
     EXPECT_NE(std::string(e.what()).find("client_id 'has space'"), std::string::npos) << e.what();
   }
   auto c = makeClient();
-  EXPECT_THROW(c->subscribe("FORCES", 10.0), std::invalid_argument);
-  EXPECT_THROW(c->subscribe("DEVICE_STATE", 10.0, true), std::invalid_argument);
-  EXPECT_THROW(c->subscribe("DEVICE_STATE", 0.0), std::invalid_argument);
+  EXPECT_THROW(c->subscribe("FORCES", 10.0), Error);
+  EXPECT_THROW(c->subscribe("DEVICE_STATE", 10.0, true), Error);
+  EXPECT_THROW(c->subscribe("DEVICE_STATE", 0.0), Error);
 }

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <ctime>
 #include <lcm/lcm-cpp.hpp>
-#include <stdexcept>
 #include <type_traits>
 #include <thx_msgs/lcm_subscribe.hpp>
 #include <thx_msgs/protocol.hpp>
 
+#include "base/error.hpp"
 #include "thx_client/commands.hpp"
 
 namespace thx::client {
@@ -33,7 +33,8 @@ const char* toString(SubscriptionState s) {
 Client::Client(lcm::LCM& lcm, ClientOptions options)
     : lcm_(lcm), options_(std::move(options)), clock_(options_.clock ? options_.clock : Clock(monotonicNs)) {
   if (!thx_msgs::is_valid_client_id(options_.client_id)) {
-    throw std::invalid_argument("client_id '" + options_.client_id + "': expected 1 to 32 characters of [A-Za-z0-9_-]");
+    throw thx::Error(thx::Error::Kind::Config,
+                     "client_id '" + options_.client_id + "': expected 1 to 32 characters of [A-Za-z0-9_-]");
   }
   if (options_.heartbeat_ns > 0) heartbeat_period_ns_ = options_.heartbeat_ns;
   // Untyped subscriptions + try_decode everywhere: a corrupt datagram must not take us down.
@@ -65,13 +66,13 @@ Client::~Client() {
 
 void Client::subscribe(std::string_view stream, double rate_hz, bool batch) {
   if (!thx_msgs::is_known_stream(stream)) {
-    throw std::invalid_argument("stream '" + std::string(stream) + "': expected DEVICE_STATE, CONTACT or SERVO_STATS");
+    throw thx::Error(thx::Error::Kind::Config, "stream '" + std::string(stream) + "': expected DEVICE_STATE, CONTACT or SERVO_STATS");
   }
   if (batch && !thx_msgs::stream_supports_batch(stream)) {
-    throw std::invalid_argument("stream '" + std::string(stream) + "': only CONTACT can be batched");
+    throw thx::Error(thx::Error::Kind::Config, "stream '" + std::string(stream) + "': only CONTACT can be batched");
   }
   if (!std::isfinite(rate_hz) || rate_hz <= 0.0) {
-    throw std::invalid_argument("rate " + std::to_string(rate_hz) + " Hz: expected a finite number > 0");
+    throw thx::Error(thx::Error::Kind::Config, "rate " + std::to_string(rate_hz) + " Hz: expected a finite number > 0");
   }
   auto it = entries_.find(stream);
   if (it == entries_.end()) it = entries_.emplace(std::string(stream), Entry{}).first;
@@ -223,8 +224,7 @@ void Client::trackScene(const thx_msgs::hello_t& h) {
 }
 
 std::int64_t Client::sendCommand(std::int32_t action, std::string_view argument) {
-  if (const std::string problem = commandArgumentProblem(action, argument); !problem.empty())
-    throw std::invalid_argument(problem);
+  requireSendable(action, argument);
   thx_msgs::server_command_t c{};
   c.utime = clock_() / 1000;
   c.seq = ++command_seq_;

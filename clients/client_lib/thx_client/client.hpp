@@ -107,7 +107,7 @@ struct SceneChange {
 
 class Client {
  public:
-  // Throws std::invalid_argument when options.client_id breaks the protocol's rules.
+  // Throws thx::Error (Config) when options.client_id breaks the protocol's rules.
   Client(lcm::LCM& lcm, ClientOptions options);
   Client(lcm::LCM& lcm, std::string client_id);  // default options
   ~Client();  // unsubscribes politely (the server would forget us after its timeout anyway)
@@ -116,7 +116,7 @@ class Client {
 
   // Asks for a stream ("DEVICE_STATE", "CONTACT", "SERVO_STATS") at rate_hz; batch only for
   // CONTACT. Asking again for the same stream replaces the request. The request goes out at the
-  // next poll()/service(). Throws std::invalid_argument on an unknown stream or a bad rate.
+  // next poll()/service(). Throws thx::Error (Config) on an unknown stream or a bad rate.
   void subscribe(std::string_view stream, double rate_hz, bool batch = false);
   void unsubscribe(std::string_view stream);
 
@@ -155,8 +155,8 @@ class Client {
   // Sends server_command_t{action, argument} now and returns its seq (the reply's request_seq;
   // 1, 2, ... per Client). Never resent: a command need not be idempotent (a second load ramps the
   // force down and up again), so a lost command or reply is the caller's timeout. Throws
-  // std::invalid_argument when the argument cannot go out (commandArgumentProblem: too long, or
-  // not a scene name for ACTION_LOAD_SCENE). ClientApp::command() sends and waits.
+  // thx::Error (Config) when the argument cannot go out (requireSendable: too long, or not a scene
+  // name for ACTION_LOAD_SCENE). ClientApp::command() sends and waits.
   std::int64_t sendCommand(std::int32_t action, std::string_view argument = {});
   // The reply to command `seq` once it arrived, handed over once (then forgotten). The replies of
   // the 64 newest commands are kept; older ones are dropped.
