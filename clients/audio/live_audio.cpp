@@ -113,7 +113,7 @@ int runLive(const LiveOptions& o) {
   physics_poses.onMessage([&](const thx_msgs::physics_poses_t& m, std::int64_t t) { feed.physicsPoses(m, t); });
   physics_contacts.onMessage([&](const thx_msgs::physics_contacts_t& m, std::int64_t t) { feed.physicsContacts(m, t); });
   physics_impacts.onMessage([&](const thx_msgs::physics_impact_t& m, std::int64_t t) { feed.physicsImpact(m, t); });
-  app.client().subscribe("CONTACT", o.batch_hz, /*batch=*/true);
+  app.client().subscribe(thx_msgs::Stream::Contact, o.batch_hz, /*batch=*/true);
   const std::optional<thx_msgs::hello_t> hello = app.waitForServer();
   if (!hello) return 0;  // stopped while waiting
   std::uint64_t scene_changes_seen = app.client().sceneChanges();

@@ -1,6 +1,8 @@
 // A complete hapticd client on the kit (docs/clients.md §5): the pen at 60 Hz, every contact
-// sample batched, the physics client's object poses, a 30 Hz loop that prints what it has.
+// sample batched, the physics client's object poses, a 30 Hz loop that prints what it has, and at
+// the end each stream's state and how many messages it brought.
 // usage: thx-minimal-client [LCM_URL]
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -13,8 +15,8 @@ int main(int argc, char** argv) {
   try {
     thx::client::ClientApp app("minimal", url);  // signals, LCM (with the route hint), heartbeats
     auto& client = app.client();
-    client.subscribe("DEVICE_STATE", 60.0);              // the latest pen state, 60 times a second
-    client.subscribe("CONTACT", 100.0, /*batch=*/true);  // all 1000 samples/s, 10 per message
+    client.subscribe(thx_msgs::Stream::DeviceState, 60.0);               // the latest pen state, 60 times a second
+    client.subscribe(thx_msgs::Stream::Contact, 100.0, /*batch=*/true);  // all 1000 samples/s, 10 per message
     long touching = 0;
     client.onContactBatch([&](const thx_msgs::contact_batch_t& b, std::int64_t /*receipt_ns*/) {
       for (const thx_msgs::contact_t& s : b.samples) touching += s.in_contact;  // e.g. feed audio here
@@ -34,7 +36,8 @@ int main(int argc, char** argv) {
       return t.tick < 150;  // 5 s
     });
     for (const auto& st : client.status())
-      std::printf("\n%s: %s at %g Hz %s", st.stream.c_str(), toString(st.state), st.granted_hz, st.reason.c_str());
+      std::printf("\n%s: %s at %g Hz, %llu messages %s", thx_msgs::stream_name(st.stream), toString(st.state),
+                  st.granted_hz, (unsigned long long)st.messages, st.reason.c_str());
     std::printf("\n");
     return 0;
   } catch (const thx::Error& e) {

@@ -9,7 +9,7 @@ namespace thx::phys {
 
 ReliefPlaneShape::ReliefPlaneShape(const tex::TexturedSurface& surface) : surface_(surface) {
   if (!surface.usesRelief())
-    throw std::invalid_argument("ReliefPlaneShape: the textured surface is not read as a relief map "
+    throw std::logic_error("ReliefPlaneShape: the textured surface is not read as a relief map "
                                 "(expected a relief map with use_relief = true)");
   m_shapeType = CUSTOM_CONCAVE_SHAPE_TYPE;
 }

@@ -19,7 +19,8 @@ class ReliefPlaneShape : public btConcaveShape {
   // clamp), so the plane is unbounded in practice; 1 km keeps Bullet's float AABB arithmetic sane.
   static constexpr double kLateralHalfExtent_m = 1000.0;
 
-  // `surface` must read the map as relief (usesRelief()); throws std::invalid_argument otherwise.
+  // `surface` must read the map as relief (usesRelief()); throws std::logic_error otherwise (a
+  // caller's bug: PhysicsWorld::addReliefPlane's callers check usesRelief()).
   explicit ReliefPlaneShape(const tex::TexturedSurface& surface);
 
   const tex::TexturedSurface& surface() const { return surface_; }

@@ -112,7 +112,7 @@ int runOnline(const Options& o, SceneFollower& sim) {
   thx::client::ClientApp app(ao);
   thx::client::Client& client = app.client();
   double state_hz = o.state_hz.value_or(sim.rates().rate_hz);
-  client.subscribe("DEVICE_STATE", state_hz);
+  client.subscribe(thx_msgs::Stream::DeviceState, state_hz);
   LcmSinkOptions so;
   so.client_id = o.client_id;
   so.server = &client;
@@ -188,7 +188,8 @@ int runOnline(const Options& o, SceneFollower& sim) {
     // The pen force belongs to the old scene: let go of the pen before anything else.
     lcm_sink.release(sim.physics().penTip());
     if (!sim.follow(*client.serverScene(), server)) continue;  // back on this scene already
-    if (!o.state_hz && sim.rates().rate_hz != state_hz) client.subscribe("DEVICE_STATE", state_hz = sim.rates().rate_hz);
+    if (!o.state_hz && sim.rates().rate_hz != state_hz)
+      client.subscribe(thx_msgs::Stream::DeviceState, state_hz = sim.rates().rate_hz);
     if (!o.quiet)
       std::fprintf(stderr, "physics-client: %s switched to scene '%s': following with %s (%zu objects, %g Hz; switch %d)\n",
                    server.c_str(), sim.identity().name.c_str(), sim.file().c_str(), sim.physics().scene().objects.size(),

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <optional>
+
 #include <thx_msgs/protocol.hpp>
 
 #include "base/cli_number.hpp"
@@ -32,6 +34,7 @@ Exit status: 0 data received, 1 refused / nothing received / LCM unavailable, 2 
 ProbeOptions parseProbeOptions(const std::vector<std::string>& args) {
   using cli::parseNumber;
   ProbeOptions o;
+  std::string stream;
   bool have_rate = false, have_duration = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -43,7 +46,7 @@ ProbeOptions parseProbeOptions(const std::vector<std::string>& args) {
       o.help = true;
       return o;
     } else if (a == "--stream") {
-      o.stream = value();
+      stream = value();
     } else if (a == "--rate") {
       o.rate_hz = parseNumber(a, value(), {0, 1e6, true, "Hz"});
       have_rate = true;
@@ -66,9 +69,10 @@ ProbeOptions parseProbeOptions(const std::vector<std::string>& args) {
       throw UsageError("unknown argument '" + a + "'");
     }
   }
-  if (o.stream.empty()) throw UsageError("--stream NAME is required");
-  if (!thx_msgs::is_known_stream(o.stream))
-    throw UsageError("--stream: expected DEVICE_STATE, CONTACT or SERVO_STATS, got '" + o.stream + "'");
+  if (stream.empty()) throw UsageError("--stream NAME is required");
+  const std::optional<thx_msgs::Stream> parsed = thx_msgs::parse_stream(stream);
+  if (!parsed) throw UsageError("--stream: expected " + std::string(thx_msgs::kStreamNames) + ", got '" + stream + "'");
+  o.stream = *parsed;
   if (o.batch && !thx_msgs::stream_supports_batch(o.stream)) throw UsageError("--batch works with --stream CONTACT only");
   if (!have_rate) throw UsageError("--rate HZ is required");
   if (!have_duration) throw UsageError("--duration S is required");

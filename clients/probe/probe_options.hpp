@@ -9,7 +9,7 @@
 namespace thx::client {
 
 struct ProbeOptions {
-  std::string stream;
+  thx_msgs::Stream stream = thx_msgs::Stream::DeviceState;  // --stream NAME (required)
   double rate_hz = 0.0;
   double duration_s = 0.0;
   std::string json;

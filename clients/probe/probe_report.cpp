@@ -31,7 +31,7 @@ void writeProbeJson(const std::string& path, const ProbeResult& r) {
                "  \"cpu_window_s\": %.6f,\n  \"window_wall_s\": %.6f,\n  \"cpu_total_s\": %.6f,\n"
                "  \"error\": \"%s\"\n"
                "}\n",
-               r.options.stream.c_str(), r.options.batch ? "true" : "false", r.options.client_id.c_str(),
+               thx_msgs::stream_name(r.options.stream), r.options.batch ? "true" : "false", r.options.client_id.c_str(),
                r.options.rate_hz, r.status.granted_hz, toString(r.status.state), escaped(r.status.reason).c_str(),
                r.status.channel.c_str(), r.options.duration_s, (unsigned long long)s.messages, s.span_s,
                s.achieved_rate_hz,
@@ -51,7 +51,7 @@ void writeProbeJson(const std::string& path, const ProbeResult& r) {
 
 void printProbeSummary(std::FILE* out, const ProbeResult& r) {
   const StreamReport& s = r.report;
-  std::fprintf(out, "probe-client %s%s: asked %.6g Hz, granted %.6g Hz (%s)%s%s\n", r.options.stream.c_str(),
+  std::fprintf(out, "probe-client %s%s: asked %.6g Hz, granted %.6g Hz (%s)%s%s\n", thx_msgs::stream_name(r.options.stream),
                r.options.batch ? " (batched)" : "", r.options.rate_hz, r.status.granted_hz, toString(r.status.state),
                r.status.reason.empty() ? "" : ": ", r.status.reason.c_str());
   std::fprintf(out, "  messages   %llu in %.3f s = %.3f Hz (%+.2f %%)\n", (unsigned long long)s.messages, s.span_s,

@@ -95,10 +95,10 @@ void drawPanel(cv::Mat& img, const BarPanel& p, int x0, int w, int h) {
 void writeBarChartPng(const std::string& path, const std::vector<BarPanel>& panels, const std::string& caption,
                       int panel_width, int panel_height) {
   for (const BarPanel& p : panels) {
-    if (!(p.y_max > 0)) throw std::invalid_argument("writeBarChartPng: panel '" + p.title + "': y_max must be > 0");
+    if (!(p.y_max > 0)) throw std::logic_error("writeBarChartPng: panel '" + p.title + "': y_max must be > 0");
     for (const BarSeries& s : p.series) {
       if (s.values.size() != p.categories.size() || (!s.errors.empty() && s.errors.size() != p.categories.size())) {
-        throw std::invalid_argument("writeBarChartPng: series '" + s.label + "' does not have one value per category");
+        throw std::logic_error("writeBarChartPng: series '" + s.label + "' does not have one value per category");
       }
     }
   }

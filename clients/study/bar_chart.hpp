@@ -24,7 +24,8 @@ struct BarPanel {
 };
 
 // Panels side by side. Throws thx::tex::TextureError when the file cannot be written,
-// std::invalid_argument when a series has another count than the categories.
+// std::logic_error (a caller's bug) when a series has another count than the categories or
+// y_max is not > 0.
 void writeBarChartPng(const std::string& path, const std::vector<BarPanel>& panels, const std::string& caption,
                       int panel_width = 560, int panel_height = 440);
 

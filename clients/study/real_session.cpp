@@ -81,7 +81,7 @@ Representation representationOf(const std::string& scene_path) {
 
 Session runRealSession(const StudyManifest& m, const RealSessionOptions& o) {
   ClientApp app("study-run", o.lcm_url.empty() ? std::string(thx_msgs::kDefaultLcmUrl) : o.lcm_url, 10.0);
-  app.client().subscribe("DEVICE_STATE", 250.0);
+  app.client().subscribe(thx_msgs::Stream::DeviceState, 250.0);
   if (!app.waitForServer()) throw Error(Error::Kind::Io, "stopped by a signal before hapticd answered");
   ButtonSource button{app, ButtonProtocol(ButtonProtocolConfig{o.long_press_s, 0.02})};
   Console console;

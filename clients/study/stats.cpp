@@ -43,7 +43,7 @@ Summary summarize(std::span<const double> x) {
 }
 
 double twoSidedP(double t, double df) {
-  if (!(df > 0)) throw std::invalid_argument("twoSidedP: degrees of freedom must be > 0");
+  if (!(df > 0)) throw std::logic_error("twoSidedP: degrees of freedom must be > 0");
   if (std::isinf(t)) return 0.0;
   const boost::math::students_t dist(df);
   return 2.0 * boost::math::cdf(boost::math::complement(dist, std::fabs(t)));
@@ -69,7 +69,7 @@ std::optional<TTest> welchT(std::span<const double> a, std::span<const double> b
 }
 
 std::optional<TTest> pairedT(std::span<const double> a, std::span<const double> b) {
-  if (a.size() != b.size()) throw std::invalid_argument("pairedT: the two samples differ in size");
+  if (a.size() != b.size()) throw std::logic_error("pairedT: the two samples differ in size");
   std::vector<double> d(a.size());
   for (std::size_t i = 0; i < a.size(); ++i) d[i] = a[i] - b[i];
   const Summary sd = summarize(d);
@@ -94,7 +94,8 @@ std::size_t ConfusionMatrix::index(const std::string& label) const {
   for (std::size_t i = 0; i < labels_.size(); ++i) {
     if (labels_[i] == label) return i;
   }
-  throw std::invalid_argument("ConfusionMatrix: unknown label '" + label + "'");
+  // The session reader refuses a surface or answer outside the header's list (SessionError).
+  throw std::logic_error("ConfusionMatrix: unknown label '" + label + "'");
 }
 
 void ConfusionMatrix::add(const std::string& truth, const std::string& answer) {

@@ -23,7 +23,8 @@ struct TTest {
   double mean_difference = 0;   // mean(a) - mean(b) (paired: mean of a[i] - b[i])
 };
 
-// Two-sided p of a t statistic with df degrees of freedom (df > 0, may be fractional).
+// Two-sided p of a t statistic with df degrees of freedom (df > 0, may be fractional; else
+// std::logic_error: a caller's bug, the tests here derive df from at least two values).
 double twoSidedP(double t, double df);
 
 // Independent samples, equal variances assumed (pooled): df = na + nb - 2. nullopt when a
@@ -31,7 +32,7 @@ double twoSidedP(double t, double df);
 std::optional<TTest> studentT(std::span<const double> a, std::span<const double> b);
 // Independent samples, unequal variances: df by Welch–Satterthwaite. nullopt as studentT.
 std::optional<TTest> welchT(std::span<const double> a, std::span<const double> b);
-// Paired samples a[i], b[i] (same size, else std::invalid_argument): df = n - 1. nullopt for
+// Paired samples a[i], b[i] (same size, else std::logic_error: a caller's bug): df = n - 1. nullopt for
 // fewer than two pairs or differences without spread.
 std::optional<TTest> pairedT(std::span<const double> a, std::span<const double> b);
 
@@ -42,7 +43,7 @@ std::optional<double> cohensD(std::span<const double> a, std::span<const double>
 class ConfusionMatrix {
  public:
   explicit ConfusionMatrix(std::vector<std::string> labels);
-  // Throws std::invalid_argument for a label not in the list.
+  // Throws std::logic_error for a label not in the list (a caller's bug: check labels first).
   void add(const std::string& truth, const std::string& answer);
   const std::vector<std::string>& labels() const { return labels_; }
   int count(std::size_t truth, std::size_t answer) const { return counts_[truth * labels_.size() + answer]; }

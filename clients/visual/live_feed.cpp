@@ -18,7 +18,7 @@ client::AppOptions appOptions(const std::string& lcm_url, double connect_timeout
 LiveFeed::LiveFeed(const std::string& lcm_url, double rate_hz, double connect_timeout_s, const client::SceneIdentity& mine,
                    bool allow_different_scene)
     : app_(appOptions(lcm_url, connect_timeout_s, mine, allow_different_scene)), poses_(app_.lcm()) {
-  app_.client().subscribe("DEVICE_STATE", rate_hz);
+  app_.client().subscribe(thx_msgs::Stream::DeviceState, rate_hz);
 }
 
 std::optional<thx_msgs::hello_t> LiveFeed::connect(std::string& why) {

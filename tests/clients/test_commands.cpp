@@ -131,8 +131,8 @@ TEST_F(Commands, ArgumentsThatCannotGoOutAreRefusedBeforeSending) {
     const std::string e = errorOf([&] { app_.loadScene(bad); });
     EXPECT_NE(e.find("invalid scene name '" + bad + "'"), std::string::npos) << e;
   }
-  EXPECT_THROW(app_.client().sendCommand(Cmd::ACTION_LOAD_SCENE, "../x"), std::invalid_argument);
-  EXPECT_THROW(app_.client().sendCommand(Cmd::ACTION_RESET_FAULTS, std::string(300, 'x')), std::invalid_argument);
+  EXPECT_THROW(app_.client().sendCommand(Cmd::ACTION_LOAD_SCENE, "../x"), thx::Error);
+  EXPECT_THROW(app_.client().sendCommand(Cmd::ACTION_RESET_FAULTS, std::string(300, 'x')), thx::Error);
   EXPECT_NE(errorOf([&] { app_.command(Cmd::ACTION_RESET_FAULTS, std::string(300, 'x'), 1.0); })
                 .find("a command argument of 300 characters: expected fewer than 200"),
             std::string::npos);

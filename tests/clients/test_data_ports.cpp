@@ -241,7 +241,7 @@ TEST_F(DataPortsLoopback, TheKitSendsToTheControlUrlAndListensOnTheDataUrlTheSer
   control.subscribe(thx_msgs::kChannelSubscribe, &Requests::on, &on_control);
 
   thx::client::Client client(bus, "kit");
-  client.subscribe("DEVICE_STATE", 100);
+  client.subscribe(thx_msgs::Stream::DeviceState, 100);
   auto until = [&](const std::function<bool()>& done) {
     for (int k = 0; k < 1000 && !done(); ++k) {
       client.poll(1);
@@ -287,7 +287,7 @@ TEST_F(DataPortsLoopback, TheKitSendsToTheControlUrlAndListensOnTheDataUrlTheSer
   reply(on_control.got.back(), 11, p + 2);
   ASSERT_TRUE(until([&] { return client.allActive(); }));
   EXPECT_EQ(client.dataUrl(), portUrl(p + 2));
-  EXPECT_EQ(client.status("DEVICE_STATE")->data_url, portUrl(p + 2));
+  EXPECT_EQ(client.status(thx_msgs::Stream::DeviceState)->data_url, portUrl(p + 2));
   // Data on the bus or another port does not reach it; data on its port does.
   stateOn(bus, 1);
   stateOn(data2, 2);
@@ -402,7 +402,7 @@ TEST_F(DataPortsLoopback, AClientWhoseDataPortIsHeldNamesItAndGoesOn) {
   } requests;
   ASSERT_NE(thx_msgs::subscribeUntyped(server_bus, thx_msgs::kChannelSubscribe, &Requests::on, &requests), nullptr);
   thx::client::Client client(bus, "held");
-  client.subscribe("DEVICE_STATE", 100);
+  client.subscribe(thx_msgs::Stream::DeviceState, 100);
   auto until = [&](const std::function<bool()>& done) {
     for (int k = 0; k < 1000 && !done(); ++k) {
       client.poll(1);

@@ -20,6 +20,26 @@ TEST(MessagesProtocol, StreamChannels) {
   EXPECT_EQ(stream_channel(thx_msgs::kStreamContact, false, ""), "");
 }
 
+// The typed streams: each name once, back and forth; what a user may type and what not.
+TEST(MessagesProtocol, TypedStreams) {
+  using thx_msgs::Stream;
+  EXPECT_STREQ(thx_msgs::stream_name(Stream::DeviceState), "DEVICE_STATE");
+  EXPECT_STREQ(thx_msgs::stream_name(Stream::Contact), "CONTACT");
+  EXPECT_STREQ(thx_msgs::stream_name(Stream::ServoStats), "SERVO_STATS");
+  EXPECT_STREQ(thx_msgs::stream_name(static_cast<Stream>(7)), "");
+  for (Stream s : thx_msgs::kStreams) {
+    EXPECT_EQ(thx_msgs::parse_stream(thx_msgs::stream_name(s)), s);
+    EXPECT_TRUE(thx_msgs::is_known_stream(thx_msgs::stream_name(s)));
+    EXPECT_NE(std::string(thx_msgs::kStreamNames).find(thx_msgs::stream_name(s)), std::string::npos);
+    EXPECT_EQ(thx_msgs::stream_supports_batch(s), thx_msgs::stream_supports_batch(thx_msgs::stream_name(s)));
+  }
+  for (const char* bad : {"", "device_state", "CONTACT_BATCH", "FORCES", " CONTACT"}) {
+    EXPECT_FALSE(thx_msgs::parse_stream(bad)) << bad;
+  }
+  EXPECT_EQ(stream_channel(Stream::Contact, true, "audio"), "THX_CONTACT_BATCH.audio");
+  EXPECT_EQ(stream_channel(Stream::DeviceState, true, "audio"), "");
+}
+
 TEST(MessagesProtocol, LongestChannelFitsLcm) {
   const std::string id(thx_msgs::kMaxClientIdLength, 'x');
   ASSERT_TRUE(thx_msgs::is_valid_client_id(id));

@@ -82,9 +82,8 @@ LoopStats ClientApp::runPaced(double rate_hz, const std::function<bool(const rt:
 
 std::optional<thx_msgs::server_command_reply_t> ClientApp::command(std::int32_t action, const std::string& argument,
                                                                  double timeout_s) {
+  requireSendable(action, argument);
   const std::string what = describeCommand(action, argument);
-  if (const std::string problem = commandArgumentProblem(action, argument); !problem.empty())
-    throw thx::Error(thx::Error::Kind::Config, "cannot send '" + what + "': " + problem);
   const auto hello = client_->latestHello();
   const std::string server = hello && !hello->server_name.empty() ? hello->server_name : std::string("hapticd");
   // An older server ignores what it does not know: say so now instead of after the timeout.

@@ -5,7 +5,7 @@
 // (grid deadlines, realign after an overrun, no catch-up burst). A complete client:
 //
 //   thx::client::ClientApp app("visual");  // or ClientApp(AppOptions{...}), ClientApp(id, url, timeout)
-//   app.client().subscribe("DEVICE_STATE", 60.0);
+//   app.client().subscribe(thx_msgs::Stream::DeviceState, 60.0);
 //   app.waitForServer();
 //   app.runPaced(60.0, [&](const thx::rt::TickTiming&) {
 //     if (auto s = app.client().latestDeviceState()) draw(*s);

@@ -11,6 +11,7 @@
 #include <thx_msgs/lcm_subscribe.hpp>
 #include <thx_msgs/protocol.hpp>
 
+#include "base/error.hpp"
 #include "thx_client/commands.hpp"
 
 namespace thx::client {
@@ -33,7 +34,8 @@ const char* toString(SubscriptionState s) {
 Client::Client(lcm::LCM& lcm, ClientOptions options)
     : lcm_(lcm), options_(std::move(options)), clock_(options_.clock ? options_.clock : Clock(monotonicNs)) {
   if (!thx_msgs::is_valid_client_id(options_.client_id)) {
-    throw std::invalid_argument("client_id '" + options_.client_id + "': expected 1 to 32 characters of [A-Za-z0-9_-]");
+    throw thx::Error(thx::Error::Kind::Config,
+                     "client_id '" + options_.client_id + "': expected 1 to 32 characters of [A-Za-z0-9_-]");
   }
   if (options_.heartbeat_ns > 0) heartbeat_period_ns_ = options_.heartbeat_ns;
   // Untyped subscriptions + try_decode everywhere: a corrupt datagram must not take us down.
@@ -63,20 +65,18 @@ Client::~Client() {
   if (command_reply_sub_) lcm_.unsubscribe(command_reply_sub_);
 }
 
-void Client::subscribe(std::string_view stream, double rate_hz, bool batch) {
-  if (!thx_msgs::is_known_stream(stream)) {
-    throw std::invalid_argument("stream '" + std::string(stream) + "': expected DEVICE_STATE, CONTACT or SERVO_STATS");
-  }
-  if (batch && !thx_msgs::stream_supports_batch(stream)) {
-    throw std::invalid_argument("stream '" + std::string(stream) + "': only CONTACT can be batched");
-  }
+void Client::subscribe(thx_msgs::Stream stream, double rate_hz, bool batch) {
+  const std::string name = thx_msgs::stream_name(stream);
+  if (name.empty())
+    throw std::logic_error("Client::subscribe: " + std::to_string(int(stream)) + " is not a thx_msgs::Stream");
+  if (batch && !thx_msgs::stream_supports_batch(stream))
+    throw thx::Error(thx::Error::Kind::Config, "stream " + name + ": only CONTACT can be batched");
   if (!std::isfinite(rate_hz) || rate_hz <= 0.0) {
-    throw std::invalid_argument("rate " + std::to_string(rate_hz) + " Hz: expected a finite number > 0");
+    throw thx::Error(thx::Error::Kind::Config,
+                     "stream " + name + ": rate " + std::to_string(rate_hz) + " Hz: expected a finite number > 0");
   }
-  auto it = entries_.find(stream);
-  if (it == entries_.end()) it = entries_.emplace(std::string(stream), Entry{}).first;
-  Entry& e = it->second;
-  e.status.stream = std::string(stream);
+  Entry& e = entries_[stream];
+  e.status.stream = stream;
   e.status.requested_hz = rate_hz;
   e.status.batch = batch;
   requestAgain(e);
@@ -84,7 +84,7 @@ void Client::subscribe(std::string_view stream, double rate_hz, bool batch) {
   if (next_heartbeat_ns_ == 0) next_heartbeat_ns_ = clock_();
 }
 
-void Client::unsubscribe(std::string_view stream) {
+void Client::unsubscribe(thx_msgs::Stream stream) {
   auto it = entries_.find(stream);
   if (it == entries_.end()) return;
   sendRequest(it->second, Req::ACTION_UNSUBSCRIBE);
@@ -158,7 +158,7 @@ void Client::sendRequest(Entry& e, std::int32_t action) {
   r.utime = clock_() / 1000;
   r.seq = ++seq_;
   r.client_id = options_.client_id;
-  r.stream = e.status.stream;
+  r.stream = thx_msgs::stream_name(e.status.stream);
   r.action = action;
   r.rate_hz = e.status.requested_hz;
   r.batch = e.status.batch;
@@ -223,8 +223,7 @@ void Client::trackScene(const thx_msgs::hello_t& h) {
 }
 
 std::int64_t Client::sendCommand(std::int32_t action, std::string_view argument) {
-  if (const std::string problem = commandArgumentProblem(action, argument); !problem.empty())
-    throw std::invalid_argument(problem);
+  requireSendable(action, argument);
   thx_msgs::server_command_t c{};
   c.utime = clock_() / 1000;
   c.seq = ++command_seq_;
@@ -267,7 +266,9 @@ void Client::onReplyBytes(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   if (r.client_id != options_.client_id) return;  // another client's answer
   ++counters_.replies;
   if (r.action != Req::ACTION_SUBSCRIBE) return;
-  auto it = entries_.find(r.stream);
+  const std::optional<thx_msgs::Stream> stream = thx_msgs::parse_stream(r.stream);
+  if (!stream) return;  // not one we ask for
+  auto it = entries_.find(*stream);
   if (it == entries_.end() || r.request_seq < it->second.params_seq) return;  // stale
   if (r.server_instance != server_instance_) serverChanged(r.server_instance);
   Entry& e = it->second;
@@ -344,7 +345,7 @@ void Client::onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& chan
   }
   if (!e) return;
   const std::int64_t now = clock_();
-  const std::string stream = e->status.stream;
+  const thx_msgs::Stream stream = e->status.stream;
   // Decodes into `m` (false and reported when the bytes do not decode as `type`).
   auto decode = [&](auto& m) {
     if (thx_msgs::try_decode(rbuf->data, rbuf->data_size, m) >= 0) return true;
@@ -357,16 +358,16 @@ void Client::onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& chan
     ++e->status.messages;
     value.deliver(m, now);
   };
-  if (stream == thx_msgs::kStreamDeviceState) {
+  if (stream == thx_msgs::Stream::DeviceState) {
     thx_msgs::device_state_t m;
     if (decode(m)) deliver(state_, m);
-  } else if (stream == thx_msgs::kStreamContact && e->status.batch) {
+  } else if (stream == thx_msgs::Stream::Contact && e->status.batch) {
     thx_msgs::contact_batch_t m;
     if (!decode(m)) return;
     if (m.server_instance != server_instance_) serverChanged(m.server_instance);
     newest_contact_from_batch_ = true;
     deliver(batch_, m);
-  } else if (stream == thx_msgs::kStreamContact) {
+  } else if (stream == thx_msgs::Stream::Contact) {
     thx_msgs::contact_t m;
     if (!decode(m)) return;
     newest_contact_from_batch_ = false;
@@ -402,7 +403,7 @@ std::vector<StreamStatus> Client::status() const {
   return out;
 }
 
-std::optional<StreamStatus> Client::status(std::string_view stream) const {
+std::optional<StreamStatus> Client::status(thx_msgs::Stream stream) const {
   auto it = entries_.find(stream);
   if (it == entries_.end()) return std::nullopt;
   return it->second.status;

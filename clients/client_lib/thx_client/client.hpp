@@ -3,7 +3,7 @@
 //
 //   lcm::LCM lcm(thx_msgs::kDefaultLcmUrl);
 //   thx::client::Client c(lcm, "visual");
-//   c.subscribe("DEVICE_STATE", 60.0);
+//   c.subscribe(thx_msgs::Stream::DeviceState, 60.0);
 //   for (;;) { c.poll(5); if (auto s = c.latestDeviceState()) draw(*s); }
 //
 // The client asks for its streams on THX_SUBSCRIBE, resends unanswered requests, listens on the
@@ -36,6 +36,7 @@
 #include <thx_msgs/contact_t.hpp>
 #include <thx_msgs/device_state_t.hpp>
 #include <thx_msgs/hello_t.hpp>
+#include <thx_msgs/protocol.hpp>
 #include <thx_msgs/server_command_reply_t.hpp>
 #include <thx_msgs/servo_stats_t.hpp>
 
@@ -62,7 +63,7 @@ enum class SubscriptionState { Pending, Active, Refused };
 const char* toString(SubscriptionState s);
 
 struct StreamStatus {
-  std::string stream;
+  thx_msgs::Stream stream = thx_msgs::Stream::DeviceState;  // thx_msgs::stream_name(stream) to print it
   bool batch = false;
   double requested_hz = 0.0;
   SubscriptionState state = SubscriptionState::Pending;
@@ -107,18 +108,19 @@ struct SceneChange {
 
 class Client {
  public:
-  // Throws std::invalid_argument when options.client_id breaks the protocol's rules.
+  // Throws thx::Error (Config) when options.client_id breaks the protocol's rules.
   Client(lcm::LCM& lcm, ClientOptions options);
   Client(lcm::LCM& lcm, std::string client_id);  // default options
   ~Client();  // unsubscribes politely (the server would forget us after its timeout anyway)
   Client(const Client&) = delete;
   Client& operator=(const Client&) = delete;
 
-  // Asks for a stream ("DEVICE_STATE", "CONTACT", "SERVO_STATS") at rate_hz; batch only for
-  // CONTACT. Asking again for the same stream replaces the request. The request goes out at the
-  // next poll()/service(). Throws std::invalid_argument on an unknown stream or a bad rate.
-  void subscribe(std::string_view stream, double rate_hz, bool batch = false);
-  void unsubscribe(std::string_view stream);
+  // Asks for a stream (thx_msgs::Stream: DeviceState, Contact, ServoStats) at rate_hz; batch only
+  // for Contact. Asking again for the same stream replaces the request. The request goes out at
+  // the next poll()/service(). Throws thx::Error (Config) on batch for another stream or a rate
+  // that is not a finite number > 0; std::logic_error on a value outside the enum (a cast).
+  void subscribe(thx_msgs::Stream stream, double rate_hz, bool batch = false);
+  void unsubscribe(thx_msgs::Stream stream);
 
   // Waits up to timeout_ms for traffic, handles everything queued (callbacks run here), then
   // does the timed work (service()). Returns the number of LCM messages handled, < 0 on error.
@@ -147,7 +149,7 @@ class Client {
   std::optional<thx_msgs::hello_t> latestHello() const { return hello_.latest(); }
 
   std::vector<StreamStatus> status() const;
-  std::optional<StreamStatus> status(std::string_view stream) const;
+  std::optional<StreamStatus> status(thx_msgs::Stream stream) const;
   bool allActive() const;  // every requested stream granted
   std::int64_t serverInstance() const { return server_instance_; }
 
@@ -155,8 +157,8 @@ class Client {
   // Sends server_command_t{action, argument} now and returns its seq (the reply's request_seq;
   // 1, 2, ... per Client). Never resent: a command need not be idempotent (a second load ramps the
   // force down and up again), so a lost command or reply is the caller's timeout. Throws
-  // std::invalid_argument when the argument cannot go out (commandArgumentProblem: too long, or
-  // not a scene name for ACTION_LOAD_SCENE). ClientApp::command() sends and waits.
+  // thx::Error (Config) when the argument cannot go out (requireSendable: too long, or not a scene
+  // name for ACTION_LOAD_SCENE). ClientApp::command() sends and waits.
   std::int64_t sendCommand(std::int32_t action, std::string_view argument = {});
   // The reply to command `seq` once it arrived, handed over once (then forgotten). The replies of
   // the 64 newest commands are kept; older ones are dropped.
@@ -223,7 +225,7 @@ class Client {
   DataLink data_;              // this client's own data port, when the server names one
   ClientOptions options_;
   Clock clock_;
-  std::map<std::string, Entry, std::less<>> entries_;  // by stream
+  std::map<thx_msgs::Stream, Entry> entries_;
   lcm::Subscription* hello_sub_ = nullptr;
   lcm::Subscription* reply_sub_ = nullptr;
   lcm::Subscription* command_reply_sub_ = nullptr;

@@ -43,4 +43,9 @@ std::string commandArgumentProblem(std::int32_t action, std::string_view argumen
   return {};
 }
 
+void requireSendable(std::int32_t action, std::string_view argument) {
+  if (const std::string problem = commandArgumentProblem(action, argument); !problem.empty())
+    throw thx::Error(thx::Error::Kind::Config, "cannot send '" + describeCommand(action, argument) + "': " + problem);
+}
+
 }  // namespace thx::client

@@ -24,6 +24,9 @@ int protocolVersionFor(std::int32_t action);
 // characters or more, or for ACTION_LOAD_SCENE a name that is not a scene name (isValidSceneName:
 // a file stem, never a path). The server checks again; this catches mistakes before the network.
 std::string commandArgumentProblem(std::int32_t action, std::string_view argument);
+// Throws thx::Error (Config) "cannot send 'load scene 'x y'': invalid scene name ..." when
+// commandArgumentProblem finds one (Client::sendCommand and ClientApp::command, before anything goes out).
+void requireSendable(std::int32_t action, std::string_view argument);
 
 // The server refused a command (reply.accepted false): what() names the command, the server and
 // its reason, e.g. "hapticd@lab1 refused to load scene 'x': scenes/x.yaml:3:1: ...". Nothing

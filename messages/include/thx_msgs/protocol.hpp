@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -59,6 +60,32 @@ inline constexpr std::string_view kStreamContactBatch = "CONTACT_BATCH";
 
 inline constexpr std::string_view kChannelPrefix = "THX_";
 
+// The same three streams as a type, for code: the client kit's subscribe() takes a Stream, so a
+// misspelt stream does not compile. The wire carries stream_name(); parse_stream() reads a name a
+// user typed (probe-client --stream), and kStreamNames lists the valid ones for its error.
+enum class Stream { DeviceState, Contact, ServoStats };
+inline constexpr Stream kStreams[] = {Stream::DeviceState, Stream::Contact, Stream::ServoStats};
+inline constexpr char kStreamNames[] = "DEVICE_STATE, CONTACT or SERVO_STATS";
+
+// "DEVICE_STATE", "CONTACT", "SERVO_STATS" (the kStream* above, NUL-terminated); "" for a value
+// outside the enum (only a cast makes one).
+constexpr const char* stream_name(Stream s) noexcept {
+  switch (s) {
+    case Stream::DeviceState: return kStreamDeviceState.data();
+    case Stream::Contact: return kStreamContact.data();
+    case Stream::ServoStats: return kStreamServoStats.data();
+  }
+  return "";
+}
+
+// The stream `name` names, exactly as on the wire (case matters); nullopt for anything else.
+constexpr std::optional<Stream> parse_stream(std::string_view name) noexcept {
+  for (Stream s : kStreams) {
+    if (name == stream_name(s)) return s;
+  }
+  return std::nullopt;
+}
+
 // ---- Strings --------------------------------------------------------------------------------
 // client_id and source tags end up in channel names and logs: short, plain ASCII.
 inline constexpr std::size_t kMaxClientIdLength = 32;
@@ -102,6 +129,7 @@ inline bool is_known_stream(std::string_view stream) noexcept {
 
 // Only CONTACT has a batched form (contact_batch_t).
 inline bool stream_supports_batch(std::string_view stream) noexcept { return stream == kStreamContact; }
+constexpr bool stream_supports_batch(Stream stream) noexcept { return stream == Stream::Contact; }
 
 // The per-client channel a subscription is published on: "THX_<STREAM>.<client_id>", with
 // STREAM = CONTACT_BATCH for a batched CONTACT subscription. The server sends this string in
@@ -116,6 +144,9 @@ inline std::string stream_channel(std::string_view stream, bool batch, std::stri
   ch += '.';
   ch += client_id;
   return ch;
+}
+inline std::string stream_channel(Stream stream, bool batch, std::string_view client_id) {
+  return stream_channel(std::string_view(stream_name(stream)), batch, client_id);
 }
 
 // ---- Decoding untrusted bytes ---------------------------------------------------------------
