@@ -54,7 +54,7 @@ int run(int argc, char** argv) {
   std::vector<int> meshes{256, 512};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
+    if (i + 1 >= argc) throw UsageError(a + " needs a value");
     const std::string val = argv[++i];
     if (a == "--scene") scene_path = val;
     else if (a == "--size") size = int(cli::parseInteger(a, val, 2, 8192));
@@ -63,7 +63,7 @@ int run(int argc, char** argv) {
     else if (a == "--csv") csv = val;
     else if (a == "--json") json = val;
     else if (a == "--md") md = val;
-    else throw UsageError("unknown option '" + a + "' (see --help)");
+    else throw UsageError("unknown option '" + a + "'");
   }
   const bench::SceneTexture st = bench::loadSceneTexture(scene_path, size);
   const bench::PlacedSurface placed(st.scene, st.map(), true);

@@ -108,7 +108,7 @@ Options parse(int argc, char** argv) {
       o.frames = 3, o.steps = 200, o.reps = 1, o.passes = 1, o.slab_cells = 4;
       o.fem_mesh_sizes = {8, 12, 16};
       o.width = 640, o.height = 360;
-    } else throw UsageError("unknown option '" + a + "' (--help lists them)");
+    } else throw UsageError("unknown option '" + a + "'");
   }
   if (o.spring_nodes == 0) o.spring_nodes = 2 * o.slab_cells + 1;
   return o;

@@ -4,11 +4,11 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "base/cli_number.hpp"
+#include "base/program_main.hpp"
 #include "textures/texture_fingerprint.hpp"
 #include "thx_client/app.hpp"
 #include "thx_client/commands.hpp"
@@ -52,10 +52,7 @@ Options parse(const std::vector<std::string>& args) {
       if (i + 1 >= args.size()) throw thx::UsageError(a + " needs a value");
       return args[++i];
     };
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      std::exit(0);
-    } else if (a == "--lcm-url") {
+    if (a == "--lcm-url") {
       o.lcm_url = value();
     } else if (a == "--client-id") {
       o.client_id = value();
@@ -104,12 +101,9 @@ int run(const Options& o) {
 
 }  // namespace
 
+// Usage errors, no server, a refusal with hapticd's reason and a timeout are thx::Errors.
 int main(int argc, char** argv) {
   thx::client::installStopSignals();
-  try {
-    return run(parse(std::vector<std::string>(argv + 1, argv + argc)));
-  } catch (const thx::Error& e) {  // usage, no server, a refusal with hapticd's reason, a timeout
-    std::fprintf(stderr, "hapticctl: %s%s\n", e.what(), e.kind() == thx::Error::Kind::Usage ? " (see hapticctl --help)" : "");
-    return thx::exitStatus(e);
-  }
+  return thx::runProgram("hapticctl", kHelp, argc, argv,
+                         [](const std::vector<std::string>& args) { return run(parse(args)); });
 }

@@ -8,7 +8,9 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "base/program_main.hpp"
 #include "clients/physics_client/driver.hpp"
 #include "clients/physics_client/lcm_io.hpp"
 #include "clients/physics_client/options.hpp"
@@ -218,15 +220,9 @@ int run(const Options& o) {
 
 }  // namespace
 
+// Scene, texture, pen path, LCM and usage errors are thx::Errors naming their source.
 int main(int argc, char** argv) {
   thx::client::installStopSignals();
-  try {
-    const Options o = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
-    if (o.help) return std::fputs(kHelp, stdout), 0;
-    return run(o);
-  } catch (const thx::Error& e) {  // scene, texture, pen path, LCM and usage errors name their source
-    std::fprintf(stderr, "physics-client: %s%s\n", e.what(),
-                 e.kind() == thx::Error::Kind::Usage ? " (see physics-client --help)" : "");
-    return thx::exitStatus(e);
-  }
+  return thx::runProgram("physics-client", kHelp, argc, argv,
+                         [](const std::vector<std::string>& args) { return run(parseOptions(args)); });
 }

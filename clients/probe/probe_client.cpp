@@ -4,7 +4,10 @@
 
 #include <cstdio>
 #include <optional>
+#include <string>
+#include <vector>
 
+#include "base/program_main.hpp"
 #include "probe_options.hpp"
 #include "probe_report.hpp"
 #include "thx_client/app.hpp"
@@ -105,9 +108,8 @@ ProbeResult probe(const ProbeOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const ProbeOptions o = parseProbeOptions(std::vector<std::string>(argv + 1, argv + argc));
-    if (o.help) return std::fputs(kProbeHelp, stdout), 0;
+  return thx::runProgram("probe-client", kProbeHelp, argc, argv, [](const std::vector<std::string>& args) {
+    const ProbeOptions o = parseProbeOptions(args);
     const ProbeResult r = probe(o);
     writeProbeJson(o.json, r);
     if (!o.quiet && o.json != "-") printProbeSummary(stdout, r);
@@ -116,8 +118,5 @@ int main(int argc, char** argv) {
       return 1;
     }
     return 0;
-  } catch (const thx::Error& e) {
-    std::fprintf(stderr, "probe-client: %s%s\n", e.what(), e.kind() == thx::Error::Kind::Usage ? " (see --help)" : "");
-    return thx::exitStatus(e);
-  }
+  });
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "base/error.hpp"
+#include "base/program_main.hpp"
 #include "clients/study/analyze_run.hpp"
 
 namespace {
@@ -37,18 +38,14 @@ file, line and field), 2 a command-line mistake.
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return thx::runProgram("study-analyze", kHelp, argc, argv, [](const std::vector<std::string>& args) {
     std::string out_dir = "study-results";
     std::vector<std::string> files;
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if (a == "--help" || a == "-h") {
-        std::fputs(kHelp, stdout);
-        return 0;
-      }
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      const std::string& a = args[i];
       if (a == "--out") {
-        if (i + 1 >= argc) throw thx::UsageError("--out: expected a folder after it");
-        out_dir = argv[++i];
+        if (i + 1 >= args.size()) throw thx::UsageError("--out: expected a folder after it");
+        out_dir = args[++i];
       } else if (a.rfind("--", 0) == 0) {
         throw thx::UsageError("unknown option '" + a + "'");
       } else {
@@ -60,9 +57,5 @@ int main(int argc, char** argv) {
     std::printf("study-analyze: %d identification and %d relief-vs-normal sessions; wrote %zu files to %s\n",
                 out.identification_sessions, out.rating_sessions, out.files.size(), out_dir.c_str());
     return 0;
-  } catch (const thx::Error& e) {
-    std::fprintf(stderr, "study-analyze: %s\n", e.what());
-    if (e.kind() == thx::Error::Kind::Usage) std::fprintf(stderr, "(see study-analyze --help)\n");
-    return thx::exitStatus(e);
-  }
+  });
 }

@@ -4,9 +4,11 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "base/cli_number.hpp"
 #include "base/error.hpp"
+#include "base/program_main.hpp"
 #include "clients/study/real_session.hpp"
 #include "clients/study/scene_stage.hpp"
 #include "clients/study/simulated_session.hpp"
@@ -62,35 +64,31 @@ exit status: 0 done, 1 an error (bad manifest, a scene hapticd refused, no hapti
 command-line mistake.
 )";
 
-std::string need(int& i, int argc, char** argv, const std::string& opt) {
-  if (i + 1 >= argc) throw thx::UsageError(opt + ": expected a value after it");
-  return argv[++i];
+std::string need(std::size_t& i, const std::vector<std::string>& args, const std::string& opt) {
+  if (i + 1 >= args.size()) throw thx::UsageError(opt + ": expected a value after it");
+  return args[++i];
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return thx::runProgram("study-run", kHelp, argc, argv, [](const std::vector<std::string>& args) {
     std::string manifest_path, participant, out, lcm_url, stage_dir, visual_client;
     std::optional<std::uint64_t> seed;
     bool simulate = false;
     double noise = 1.0, long_press = 0.8;
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if (a == "--help" || a == "-h") {
-        std::fputs(kHelp, stdout);
-        return 0;
-      }
-      if (a == "--manifest") manifest_path = need(i, argc, argv, a);
-      else if (a == "--participant") participant = need(i, argc, argv, a);
-      else if (a == "--seed") seed = std::uint64_t(thx::cli::parseInteger(a, need(i, argc, argv, a), 0, std::numeric_limits<long long>::max()));
-      else if (a == "--out") out = need(i, argc, argv, a);
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      const std::string& a = args[i];
+      if (a == "--manifest") manifest_path = need(i, args, a);
+      else if (a == "--participant") participant = need(i, args, a);
+      else if (a == "--seed") seed = std::uint64_t(thx::cli::parseInteger(a, need(i, args, a), 0, std::numeric_limits<long long>::max()));
+      else if (a == "--out") out = need(i, args, a);
       else if (a == "--simulate") simulate = true;
-      else if (a == "--stage") stage_dir = need(i, argc, argv, a);
-      else if (a == "--noise") noise = thx::cli::parseNumber(a, need(i, argc, argv, a), {0.0, 100.0, false, "JND"});
-      else if (a == "--lcm-url") lcm_url = need(i, argc, argv, a);
-      else if (a == "--visual-client") visual_client = need(i, argc, argv, a);
-      else if (a == "--long-press") long_press = thx::cli::parseNumber(a, need(i, argc, argv, a), {0.1, 10.0, false, "s"});
+      else if (a == "--stage") stage_dir = need(i, args, a);
+      else if (a == "--noise") noise = thx::cli::parseNumber(a, need(i, args, a), {0.0, 100.0, false, "JND"});
+      else if (a == "--lcm-url") lcm_url = need(i, args, a);
+      else if (a == "--visual-client") visual_client = need(i, args, a);
+      else if (a == "--long-press") long_press = thx::cli::parseNumber(a, need(i, args, a), {0.1, 10.0, false, "s"});
       else throw thx::UsageError("unknown option '" + a + "'");
     }
     if (manifest_path.empty()) throw thx::UsageError("--manifest: required");
@@ -135,9 +133,5 @@ int main(int argc, char** argv) {
     if (m.study == thx::study::Study::Identification) std::printf(" (%d correct)", correct);
     std::printf("\n");
     return 0;
-  } catch (const thx::Error& e) {
-    std::fprintf(stderr, "study-run: %s\n", e.what());
-    if (e.kind() == thx::Error::Kind::Usage) std::fprintf(stderr, "(see study-run --help)\n");
-    return thx::exitStatus(e);
-  }
+  });
 }

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "base/program_main.hpp"
 #include "clients/visual/frame_renderer.hpp"
 #include "clients/visual/headless_context.hpp"
 #include "clients/visual/image_writer.hpp"
@@ -104,21 +105,6 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const Options o = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
-    if (o.help) {
-      std::fputs(kHelp, stdout);
-      return 0;
-    }
-    return run(o);
-  } catch (const thx::UsageError& e) {
-    std::fprintf(stderr, "visual-client: %s (see --help)\n", e.what());
-    return 2;
-  } catch (const thx::Error& e) {
-    std::fprintf(stderr, "visual-client: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "visual-client: %s\n", e.what());
-    return 1;
-  }
+  return thx::runProgram("visual-client", kHelp, argc, argv,
+                         [](const std::vector<std::string>& args) { return run(parseOptions(args)); });
 }

@@ -7,6 +7,7 @@
 #include <variant>
 #include <vector>
 
+#include "base/program_main.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_surface.hpp"
 #include "textures/texture_fingerprint.hpp"
@@ -94,36 +95,9 @@ void printSummary(const scene::Scene& s, const scene::SceneSurface& built, doubl
               s.rates.servo_hz, s.rates.physics_hz, s.rates.visual_hz, s.rates.audio_hz, s.rates.audio_feed_hz);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  bool check_only = false;
-  std::string texture_out;
-  std::vector<std::string> files;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      return 0;
-    } else if (a == "--check") {
-      check_only = true;
-    } else if (a == "--texture-out") {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "scene-info: --texture-out needs a file name\n");
-        return 2;
-      }
-      texture_out = argv[++i];
-    } else if (a.rfind("--", 0) == 0) {
-      std::fprintf(stderr, "scene-info: unknown option '%s' (see scene-info --help)\n", a.c_str());
-      return 2;
-    } else {
-      files.push_back(a);
-    }
-  }
-  if (files.empty() || (!texture_out.empty() && files.size() != 1)) {
-    std::fputs(kHelp, stderr);
-    return 2;
-  }
+// Each file loaded and summarised (or only checked); its error printed as "error: ..." and the
+// next file read. Returns 1 if any had an error.
+int reportScenes(const std::vector<std::string>& files, bool check_only, const std::string& texture_out) {
   int status = 0;
   for (const std::string& file : files) {
     try {
@@ -155,4 +129,31 @@ int main(int argc, char** argv) {
     }
   }
   return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return thx::runProgram("scene-info", kHelp, argc, argv, [](const std::vector<std::string>& args) {
+    bool check_only = false;
+    std::string texture_out;
+    std::vector<std::string> files;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      const std::string& a = args[i];
+      if (a == "--check") {
+        check_only = true;
+      } else if (a == "--texture-out") {
+        if (i + 1 >= args.size()) throw UsageError("--texture-out needs a file name");
+        texture_out = args[++i];
+      } else if (a.rfind("--", 0) == 0) {
+        throw UsageError("unknown option '" + a + "'");
+      } else {
+        files.push_back(a);
+      }
+    }
+    if (files.empty()) throw UsageError("expected at least one SCENE.yaml");
+    if (!texture_out.empty() && files.size() != 1)
+      throw UsageError("--texture-out writes the texture of one scene, got " + std::to_string(files.size()));
+    return reportScenes(files, check_only, texture_out);
+  });
 }

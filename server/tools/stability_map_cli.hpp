@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "base/error.hpp"
 #include "server/tools/stability_map_sweep.hpp"
 
 namespace thx::srv::stab {
@@ -22,11 +23,10 @@ struct CliOptions {
 
 extern const char* const kHelpText;
 
-// Throws UsageError with a message naming the option and what it expects.
-struct UsageError {
-  std::string message;
-};
-// Returns false after printing --help (the caller exits 0).
+using thx::UsageError;
+
+// Throws thx::UsageError with a message naming the option and what it expects. Returns false
+// after printing --help (the caller exits 0).
 bool parseCommandLine(int argc, char** argv, CliOptions& options);
 
 // "none", "crease", "passivity+smoothing", "all", ... (any order of the parts).

@@ -4,10 +4,12 @@
 
 #include <chrono>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
+#include "base/program_main.hpp"
 #include "server/tools/stability_map_cli.hpp"
 #include "server/tools/stability_map_heatmap.hpp"
 #include "server/tools/stability_map_output.hpp"
@@ -46,10 +48,7 @@ class Progress {
 // --trace: every tick of the one selected cell, truth beside the servo's record.
 int runTrace(const CliOptions& o, const CellParams& cell) {
   std::ofstream out(o.trace_path);
-  if (!out) {
-    std::fprintf(stderr, "stability-map: %s: cannot open for writing\n", o.trace_path.c_str());
-    return 1;
-  }
+  if (!out) throw thx::Error(thx::Error::Kind::Io, o.trace_path + ": cannot open for writing");
   out << "t_s,x_true_m,y_true_m,z_true_m,vx_true_m_per_s,vz_true_m_per_s,x_read_m,z_read_m,fx_out_n,fy_out_n,"
          "fz_out_n,fx_render_n,fz_render_n,depth_m,num_planes,recovering,pc_damping_ns_per_m,pc_energy_j,"
          "safety_flags,motor_work_j,kinetic_energy_j,proxy_x_m,proxy_z_m\n";
@@ -71,16 +70,11 @@ int runTrace(const CliOptions& o, const CellParams& cell) {
 
 int run(const CliOptions& o) {
   const std::vector<CellParams> cells = enumerateCells(o.axes);
-  if (cells.empty()) {
-    std::fprintf(stderr, "stability-map: the axes select no cell\n");
-    return 2;
-  }
+  if (cells.empty()) throw UsageError("the axes select no cell");
   if (!o.trace_path.empty()) {
-    if (cells.size() != 1) {
-      std::fprintf(stderr, "stability-map: --trace needs the axes to select exactly one cell, they select %zu\n",
-                   cells.size());
-      return 2;
-    }
+    if (cells.size() != 1)
+      throw UsageError("--trace needs the axes to select exactly one cell, they select " +
+                       std::to_string(cells.size()));
     return runTrace(o, cells.front());
   }
   std::filesystem::create_directories(o.out_dir);
@@ -116,17 +110,9 @@ int run(const CliOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CliOptions options;
-  try {
-    if (!parseCommandLine(argc, argv, options)) return 0;
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "stability-map: %s (see stability-map --help)\n", e.message.c_str());
-    return 2;
-  }
-  try {
+  return thx::runProgram("stability-map", kHelpText, argc, argv, [&](const std::vector<std::string>&) {
+    CliOptions options;
+    if (!parseCommandLine(argc, argv, options)) return 0;  // --help (runProgram answers it first)
     return run(options);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "stability-map: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

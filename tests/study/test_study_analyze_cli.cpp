@@ -97,7 +97,7 @@ TEST(StudyAnalyzeCli, ErrorsAreClear) {
   const std::vector<std::string> files = writeAll(dir);
   CliRun r = analyze(dir, {});
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(r.err, "study-analyze: expected at least one session file\n(see study-analyze --help)\n");
+  EXPECT_EQ(r.err, "study-analyze: expected at least one session file\n(study-analyze --help lists the options)\n");
   r = analyze(dir, {"--bins", "3", files[0]});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("unknown option '--bins'"), std::string::npos);

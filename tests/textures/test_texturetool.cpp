@@ -89,6 +89,11 @@ TEST_F(TextureTool, HelpAndUsageErrors) {
   r = run("generate sine --size many --out x.png");
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(has(r.err, "'many'")) << r.err;
+  EXPECT_TRUE(has(r.err, "texturetool generate: ")) << r.err;  // base/program_main.hpp's shape
+  EXPECT_TRUE(has(r.err, "\n(texturetool generate --help lists the options)\n")) << r.err;
+  r = run("generate sine --colour red --help");  // help answers before anything is parsed
+  EXPECT_EQ(r.status, 0);
+  EXPECT_TRUE(has(r.out, "--param")) << r.out;
 }
 
 TEST_F(TextureTool, GenerateListShowsEveryKindWithRanges) {
@@ -203,6 +208,8 @@ TEST_F(TextureTool, SmoothKeepsBitDepthAndChecksSigma) {
   r = run("smooth " + path("missing.png") + " " + path("s3.png") + " --sigma 1");
   EXPECT_EQ(r.status, 1);
   EXPECT_TRUE(has(r.err, "missing.png")) << r.err;
+  EXPECT_EQ(r.err.rfind("texturetool smooth: ", 0), 0u) << r.err;
+  EXPECT_FALSE(has(r.err, "--help")) << r.err;  // not a usage error: no pointer to the help
 }
 
 TEST_F(TextureTool, ImportATgaNormalMapWithDirectXGreen) {

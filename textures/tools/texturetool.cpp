@@ -1,10 +1,9 @@
 // texturetool: make, inspect, convert and smooth texture files (see `texturetool --help`).
 #include <cstdio>
-#include <exception>
 #include <string>
 #include <vector>
 
-#include "textures/texture_error.hpp"
+#include "base/program_main.hpp"
 #include "textures/tools/cli.hpp"
 
 namespace thx::tex::cli {
@@ -161,6 +160,9 @@ const std::vector<Command>& commands() {
 
 }  // namespace thx::tex::cli
 
+// The shape of thx::runProgram (base/program_main.hpp) with a help per command: no command is a
+// usage error with the command list; `help CMD`, or -h/--help anywhere after CMD, prints CMD's help;
+// a command's errors are "texturetool CMD: message" with exit status 2 (usage) or 1.
 int main(int argc, char** argv) {
   using namespace thx::tex::cli;
   const std::vector<std::string> args(argv + 1, argv + argc);
@@ -178,25 +180,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "texturetool: unknown command '%s'\n\n%s", name.c_str(), kMainHelp);
     return 2;
   }
-  if (help) {
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (help || thx::helpRequested(rest)) {
     std::fputs(command->help, stdout);
     return 0;
   }
-  try {
-    const Args parsed = parseArgs(std::vector<std::string>(args.begin() + 1, args.end()), command->options);
-    if (parsed.has("--help")) {
-      std::fputs(command->help, stdout);
-      return 0;
-    }
-    return command->run(parsed);
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "texturetool %s: %s\n(see: texturetool help %s)\n", command->name, e.what(), command->name);
-    return 2;
-  } catch (const thx::tex::TextureError& e) {
-    std::fprintf(stderr, "texturetool %s: error: %s\n", command->name, e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "texturetool %s: error: %s\n", command->name, e.what());
-    return 1;
-  }
+  return thx::reportErrors(std::string("texturetool ") + command->name,
+                           [&] { return command->run(parseArgs(rest, command->options)); });
 }

@@ -4,10 +4,10 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "base/error.hpp"
+#include "base/program_main.hpp"
 #include "tools/report/plot.hpp"
 #include "tools/report/report_sections.hpp"
 
@@ -70,13 +70,13 @@ void writeSection(std::ofstream& md, std::size_t i, const Section& s, const fs::
   md << "**Reading (computed from the table):** " << s.reading << "\n\n";
 }
 
-int run(int argc, char** argv) {
+int run(const std::vector<std::string>& args) {
   fs::path results = "docs/results", out = "docs/report.md", pictures;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
     const auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw thx::UsageError("option " + a + " needs a value (see --help)");
-      return argv[++i];
+      if (i + 1 >= args.size()) throw thx::UsageError("option " + a + " needs a value");
+      return args[++i];
     };
     if (a == "--results") {
       results = value();
@@ -85,7 +85,7 @@ int run(int argc, char** argv) {
     } else if (a == "--pictures") {
       pictures = value();
     } else {
-      throw thx::UsageError("unknown option '" + a + "' (see --help)");
+      throw thx::UsageError("unknown option '" + a + "'");
     }
   }
   if (!fs::is_directory(results)) {
@@ -133,20 +133,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-// --help anywhere prints the help and exits 0 before anything is parsed; a thx::Error is printed
-// as "bench_report: what" and gives the exit status (2 for usage, 1 otherwise).
-int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view a = argv[i];
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      return 0;
-    }
-  }
-  try {
-    return run(argc, argv);
-  } catch (const thx::Error& e) {
-    std::fprintf(stderr, "bench_report: %s\n", e.what());
-    return thx::exitStatus(e);
-  }
-}
+int main(int argc, char** argv) { return thx::runProgram("bench_report", kHelp, argc, argv, run); }
