@@ -12,7 +12,7 @@ double mergeThresholdHz(const AudibleOptions& o, double f_hz) { return std::max(
 
 AudibleModes audibleModes(const ModalSolution& s, const ElasticMaterial& m, const AudibleOptions& o) {
   if (s.observation.size() != s.omega_rad_per_s.size())
-    throw std::invalid_argument("audibleModes: " + std::to_string(s.observation.size()) + " observation values for " +
+    throw std::logic_error("audibleModes: " + std::to_string(s.observation.size()) + " observation values for " +
                                 std::to_string(s.omega_rad_per_s.size()) + " modes (analyse() fills them)");
   const double two_pi = 2.0 * std::numbers::pi;
   const double max_hz = std::min(o.max_hz, 0.5 * o.sample_rate_hz);

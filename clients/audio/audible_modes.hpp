@@ -50,7 +50,8 @@ inline constexpr double kRepeatedModeRel = 1e-7;
 // The discrimination threshold at frequency f.
 double mergeThresholdHz(const AudibleOptions& options, double f_hz);
 
-// Throws std::invalid_argument when solution.observation does not hold one value per mode.
+// Throws std::logic_error (a caller's mistake) when solution.observation does not hold one value
+// per mode.
 AudibleModes audibleModes(const ModalSolution& solution, const ElasticMaterial& material, const AudibleOptions& options);
 
 }  // namespace thx::audio

@@ -24,7 +24,7 @@ TimerOutput::TimerOutput(double sample_rate_hz, std::size_t block_frames, BlockC
       callback_(std::move(callback)),
       block_(std::make_unique<AudioBlock>()) {
   if (block_frames < 1 || block_frames > kMaxBlockFrames)
-    throw std::invalid_argument("block of " + std::to_string(block_frames) + " frames: expected 1.." +
+    throw std::logic_error("block of " + std::to_string(block_frames) + " frames: expected 1.." +
                                 std::to_string(kMaxBlockFrames));
   if (capture_blocks > 0) capture_ = std::make_unique<rt::SpscRing<AudioBlock>>(capture_blocks);
 }

@@ -33,7 +33,8 @@ struct AudioBlock {
 
 class TimerOutput {
  public:
-  // block_frames in [1, kMaxBlockFrames]; capture_blocks > 0 keeps that many blocks for capture().
+  // block_frames in [1, kMaxBlockFrames] (else std::logic_error: the command line checks --block);
+  // capture_blocks > 0 keeps that many blocks for capture().
   TimerOutput(double sample_rate_hz, std::size_t block_frames, BlockCallback callback, std::size_t capture_blocks = 0);
   ~TimerOutput();  // stops
   void start();

@@ -26,8 +26,9 @@ struct HertzSide {
   double mass_kg = std::numeric_limits<double>::infinity();    // infinity: fixed or kinematic
 };
 
-// tau in seconds. Throws std::invalid_argument unless approach_speed > 0, some side has a
-// finite radius, a finite modulus and a finite mass (otherwise there is no Hertz contact).
+// tau in seconds. Throws thx::Error (Config) unless approach_speed > 0, some side has a finite
+// radius, a finite modulus and a finite mass (otherwise there is no Hertz contact: the caller
+// strikes an ideal impulse instead).
 double hertzContactDuration(const HertzSide& a, const HertzSide& b, double approach_speed_m_per_s);
 
 // P(omega * tau) above (signed: beyond x = 3 pi the mode rings in opposite phase).

@@ -14,11 +14,11 @@ namespace thx::audio {
 RoughnessProfile::RoughnessProfile(const RoughnessOptions& o) : options_(o) {
   const std::size_t n = o.length;
   if (n < 4 || (n & (n - 1)) != 0)
-    throw std::invalid_argument("roughness length: expected a power of two >= 4, got " + std::to_string(n));
+    throw std::logic_error("roughness length: expected a power of two >= 4, got " + std::to_string(n));
   if (!(o.spacing_m > 0.0))
-    throw std::invalid_argument("roughness spacing: expected > 0 m, got " + std::to_string(o.spacing_m));
+    throw std::logic_error("roughness spacing: expected > 0 m, got " + std::to_string(o.spacing_m));
   if (!(o.beta >= 0.0 && o.beta <= 4.0))
-    throw std::invalid_argument("roughness beta: expected a number in [0, 4], got " + std::to_string(o.beta));
+    throw std::logic_error("roughness beta: expected a number in [0, 4], got " + std::to_string(o.beta));
 
   // Exact amplitudes k^(-beta/2) with random phases: the slope is exactly -beta, the realisation
   // set by the seed. mt19937_64's output sequence is fixed by the standard (unlike the

@@ -31,8 +31,8 @@ struct RoughnessOptions {
 
 class RoughnessProfile {
  public:
-  // Throws std::invalid_argument on a length that is not a power of two >= 4, a spacing <= 0 or
-  // beta outside [0, 4].
+  // Throws std::logic_error (a caller's mistake: the scene loader checks a scene's roughness) on
+  // a length that is not a power of two >= 4, a spacing <= 0 or beta outside [0, 4].
   explicit RoughnessProfile(const RoughnessOptions& options);
 
   // The profile at a travelled distance (m), periodic, linearly interpolated; unit RMS at level 0.

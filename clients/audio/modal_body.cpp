@@ -59,7 +59,7 @@ Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3
 
 ModalBody::ModalBody(TetMesh mesh, AudibleModes modes) : mesh_(std::move(mesh)), modes_(std::move(modes)) {
   if (modes_.size() > 0 && modes_.shapes.rows() != mesh_.dofCount())
-    throw std::invalid_argument("ModalBody " + mesh_.name + ": mode shapes have " + std::to_string(modes_.shapes.rows()) +
+    throw std::logic_error("ModalBody " + mesh_.name + ": mode shapes have " + std::to_string(modes_.shapes.rows()) +
                                 " rows, the mesh " + std::to_string(mesh_.dofCount()) + " DOFs");
   inverse_.reserve(mesh_.tets.size());
   tet_boxes_.reserve(mesh_.tets.size());

@@ -17,7 +17,8 @@ namespace thx::audio {
 
 class ModalBody {
  public:
-  // `modes.shapes` has one row per DOF of `mesh` (audibleModes of analyse(mesh, ...)).
+  // `modes.shapes` has one row per DOF of `mesh` (audibleModes of analyse(mesh, ...)); else
+  // std::logic_error (a caller's mistake).
   ModalBody(TetMesh mesh, AudibleModes modes);
 
   const TetMesh& mesh() const { return mesh_; }

@@ -104,7 +104,7 @@ void PhysicsExcitation::impact(const thx_msgs::physics_impact_t& m, const PoseLo
   double tau = 0.0;
   try {
     tau = hertzContactDuration(hertzSide(scene_.scene, m.body_a), hertzSide(scene_.scene, m.body_b), m.v_approach);
-  } catch (const std::invalid_argument&) {
+  } catch (const thx::Error&) {
     tau = 0.0;  // no elastic side to set a duration (the pen on a rigid body): an ideal impulse
   }
   const Eigen::Vector3d J = m.impulse * vec(m.n_world), p = vec(m.p_world);

@@ -37,8 +37,8 @@ void fft(std::vector<std::complex<double>>& x) {
 
 Spectrogram stft(std::span<const float> samples, double sample_rate_hz, const StftOptions& o) {
   if (o.window < 2 || (o.window & (o.window - 1)) != 0)
-    throw std::invalid_argument("STFT window " + std::to_string(o.window) + ": expected a power of two >= 2");
-  if (o.hop == 0) throw std::invalid_argument("STFT hop 0: expected >= 1");
+    throw std::logic_error("STFT window " + std::to_string(o.window) + ": expected a power of two >= 2");
+  if (o.hop == 0) throw std::logic_error("STFT hop 0: expected >= 1");
   Spectrogram s;
   s.sample_rate_hz = sample_rate_hz;
   s.window = o.window;
@@ -67,7 +67,7 @@ Spectrogram stft(std::span<const float> samples, double sample_rate_hz, const St
 }
 
 double logSpectralDistance(const Spectrogram& a, const Spectrogram& b, double floor_db) {
-  if (a.frames != b.frames || a.bins != b.bins) throw std::invalid_argument("spectrograms of different shapes");
+  if (a.frames != b.frames || a.bins != b.bins) throw std::logic_error("spectrograms of different shapes");
   const float peak = *std::max_element(a.db.begin(), a.db.end());
   const double floor_at = double(peak) - floor_db;
   double total = 0;

@@ -27,7 +27,8 @@ struct Spectrogram {
 };
 
 // Frame i covers samples [i hop, i hop + window), zero past the end; at least one frame.
-// Throws std::invalid_argument on a window that is not a power of two or a zero hop.
+// Throws std::logic_error (a caller's mistake: wav-spectrogram checks its options) on a window
+// that is not a power of two or a zero hop.
 Spectrogram stft(std::span<const float> samples, double sample_rate_hz, const StftOptions& options);
 
 // Log-spectral distance in dB between two spectrograms of the same shape: per frame, the RMS

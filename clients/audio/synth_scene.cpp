@@ -18,12 +18,12 @@ SynthScene::SynthScene(std::vector<SoundingBody> bodies, double sample_rate_hz, 
   for (SoundingBody& b : bodies) {
     const std::size_t m = b.frequency_hz.size();
     if (std::size_t(b.shapes.cols()) != m || b.shapes.rows() % 3 != 0)
-      throw std::invalid_argument("sounding body '" + b.name + "': " + std::to_string(m) + " modes but a shape matrix of " +
+      throw std::logic_error("sounding body '" + b.name + "': " + std::to_string(m) + " modes but a shape matrix of " +
                                   std::to_string(b.shapes.rows()) + " x " + std::to_string(b.shapes.cols()));
     Voice v{b.name, ResonatorBank(sample_rate_hz, m), {}, std::vector<double>(m, 0.0), std::size_t(b.shapes.rows() / 3), {}};
     for (double f : b.frequency_hz) v.omega.push_back(2.0 * std::numbers::pi * f);
     if (!v.bank.setModes(b.frequency_hz, b.decay_per_s))
-      throw std::invalid_argument("sounding body '" + b.name + "': a mode frequency outside (0, Nyquist) or a negative decay");
+      throw std::logic_error("sounding body '" + b.name + "': a mode frequency outside (0, Nyquist) or a negative decay");
     v.shapes.resize(std::size_t(b.shapes.rows()) * m);
     for (Eigen::Index r = 0; r < b.shapes.rows(); ++r)
       for (std::size_t k = 0; k < m; ++k) v.shapes[std::size_t(r) * m + k] = b.shapes(r, Eigen::Index(k));

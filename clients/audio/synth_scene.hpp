@@ -37,8 +37,9 @@ struct SoundingBody {
 
 class SynthScene {
  public:
-  // max_block: the longest block render() is given. Throws std::invalid_argument when a body's
-  // modes do not fit the bank (a frequency at or above Nyquist, sizes that differ).
+  // max_block: the longest block render() is given. Throws std::logic_error (a caller's mistake:
+  // AudibleModes are in band) when a body's modes do not fit the bank (a frequency at or above
+  // Nyquist, sizes that differ).
   // roughness: the profile Micro events read (none: they are refused).
   SynthScene(std::vector<SoundingBody> bodies, double sample_rate_hz, std::size_t max_block, std::uint32_t generation,
              std::shared_ptr<const RoughnessProfile> roughness = nullptr);

@@ -187,7 +187,7 @@ TEST(Observation, AModeIsHeardAsItsDriveTimesItsObservation) {
   EXPECT_LT((merged.shapes.col(0) - sum).cwiseAbs().maxCoeff(), 1e-15);
   // No observation values: refused, not guessed.
   s.observation.resize(0);
-  EXPECT_THROW(audibleModes(s, m, o), std::invalid_argument);
+  EXPECT_THROW(audibleModes(s, m, o), std::logic_error);
 }
 
 }  // namespace

@@ -169,13 +169,13 @@ TEST(FractalRoughness, SameSeedSameProfileOtherSeedAnother) {
 TEST(FractalRoughness, BadOptionsAreRefused) {
   RoughnessOptions o;
   o.length = 1000;
-  EXPECT_THROW(RoughnessProfile{o}, std::invalid_argument);
+  EXPECT_THROW(RoughnessProfile{o}, std::logic_error);
   o = {};
   o.spacing_m = 0;
-  EXPECT_THROW(RoughnessProfile{o}, std::invalid_argument);
+  EXPECT_THROW(RoughnessProfile{o}, std::logic_error);
   o = {};
   o.beta = -1;
-  EXPECT_THROW(RoughnessProfile{o}, std::invalid_argument);
+  EXPECT_THROW(RoughnessProfile{o}, std::logic_error);
 }
 
 }  // namespace

@@ -41,8 +41,8 @@ TEST(TimerOutput, CallsTheCallbackBlockAfterBlockAndCapturesItsBlocks) {
 }
 
 TEST(TimerOutput, RejectsABlockLargerThanItsBuffer) {
-  EXPECT_THROW(TimerOutput(48000.0, kMaxBlockFrames + 1, [](std::span<float>, std::int64_t) {}), std::invalid_argument);
-  EXPECT_THROW(TimerOutput(48000.0, 0, [](std::span<float>, std::int64_t) {}), std::invalid_argument);
+  EXPECT_THROW(TimerOutput(48000.0, kMaxBlockFrames + 1, [](std::span<float>, std::int64_t) {}), std::logic_error);
+  EXPECT_THROW(TimerOutput(48000.0, 0, [](std::span<float>, std::int64_t) {}), std::logic_error);
 }
 
 }  // namespace
