@@ -21,7 +21,7 @@
 #include "benchmarks/table1_modal.hpp"
 #include "benchmarks/table1_senses.hpp"
 #include "benchmarks/table1_table.hpp"
-#include "clients/audio/scene_bodies.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
 #include "clients/visual/headless_context.hpp"
 
 namespace {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "clients/audio/modal_error.hpp"
-#include "clients/audio/observation.hpp"
-#include "clients/audio/scene_bodies.hpp"
+#include "clients/audio/analysis/modal_error.hpp"
+#include "clients/audio/analysis/observation.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
 #include "scenes/scene_loader.hpp"
 #include "tests/audio/basis_fixtures.hpp"
 #include "tests/audio/modal_fixtures.hpp"

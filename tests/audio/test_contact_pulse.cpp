@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include "base/error.hpp"
-#include "clients/audio/contact_pulse.hpp"
-#include "clients/audio/resonator_bank.hpp"
+#include "clients/audio/synthesis/contact_pulse.hpp"
+#include "clients/audio/synthesis/resonator_bank.hpp"
 #include "scenes/materials.hpp"
 
 namespace {

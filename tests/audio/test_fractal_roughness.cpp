@@ -1,4 +1,4 @@
-// Micro-level roughness (clients/audio/fractal_roughness.hpp): a 1/f^beta profile read along the
+// Micro-level roughness (clients/audio/synthesis/fractal_roughness.hpp): a 1/f^beta profile read along the
 // travelled distance, scaled by the normal force.
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include <unsupported/Eigen/FFT>
 
-#include "clients/audio/fractal_roughness.hpp"
+#include "clients/audio/synthesis/fractal_roughness.hpp"
 
 namespace thx::audio {
 namespace {

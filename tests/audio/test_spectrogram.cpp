@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "base/error.hpp"
-#include "clients/audio/spectrogram_image.hpp"
-#include "clients/audio/stft.hpp"
-#include "clients/audio/wav_file.hpp"
+#include "clients/audio/spectrogram/spectrogram_image.hpp"
+#include "clients/audio/spectrogram/stft.hpp"
+#include "clients/audio/spectrogram/wav_file.hpp"
 #include "tests/audio/wav_fixture.hpp"
 #include "textures/png_io.hpp"
 

@@ -1,4 +1,4 @@
-// The timer-driven callback that stands in for a sound device (clients/audio/audio_output.hpp):
+// The timer-driven callback that stands in for a sound device (clients/audio/live/audio_output.hpp):
 // it calls the callback block after block with the block's size and a start time that grows,
 // and its captured blocks carry what the callback wrote. Nothing about timing is asserted.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <chrono>
 #include <thread>
 
-#include "clients/audio/audio_output.hpp"
+#include "clients/audio/live/audio_output.hpp"
 
 namespace thx::audio {
 namespace {
