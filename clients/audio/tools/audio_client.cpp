@@ -21,6 +21,7 @@
 #include "clients/audio/offline/scrape_synthesis.hpp"
 #include "clients/audio/synthesis/sounding_scene.hpp"
 #include "clients/audio/synthesis/surface_sound.hpp"
+#include "clients/audio/tools/tool_main.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
 #include "textures/smoothing.hpp"
@@ -322,20 +323,6 @@ int run(Options o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  for (const std::string& a : args)
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      return 0;
-    }
-  try {
-    return run(parse(args));
-  } catch (const thx::Error& e) {
-    std::fprintf(stderr, "audio-client: %s\n", e.what());
-    if (e.kind() == thx::Error::Kind::Usage) std::fprintf(stderr, "(audio-client --help lists the options)\n");
-    return thx::exitStatus(e);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "audio-client: %s\n", e.what());
-    return 1;
-  }
+  return thx::audio::runTool("audio-client", kHelp, argc, argv,
+                             [](const std::vector<std::string>& args) { return run(parse(args)); });
 }

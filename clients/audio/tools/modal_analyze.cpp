@@ -8,6 +8,7 @@
 #include "clients/audio/analysis/audible_modes.hpp"
 #include "clients/audio/analysis/scene_bodies.hpp"
 #include "clients/audio/tools/modal_options.hpp"
+#include "clients/audio/tools/tool_main.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace {
@@ -88,19 +89,8 @@ int runScene(const ModalOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const ModalOptions o = parseModalOptions(std::vector<std::string>(argv + 1, argv + argc));
-    if (o.help) {
-      std::fputs(kModalHelp, stdout);
-      return 0;
-    }
+  return runTool("modal-analyze", kModalHelp, argc, argv, [](const std::vector<std::string>& args) {
+    const ModalOptions o = parseModalOptions(args);
     return o.scene.empty() ? run(o) : runScene(o);
-  } catch (const thx::Error& e) {
-    std::fprintf(stderr, "modal-analyze: %s\n", e.what());
-    if (e.kind() == thx::Error::Kind::Usage) std::fprintf(stderr, "(modal-analyze --help lists the options)\n");
-    return thx::exitStatus(e);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "modal-analyze: %s\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -1,7 +1,8 @@
 #pragma once
-// The shape every audio command-line program shares: -h/--help prints the help text and exits 0
-// before anything is parsed; a thx::Error is printed as "NAME: message" (usage errors with a
-// pointer to --help) and becomes the exit status 2 (usage) or 1; any other exception exits 1.
+// The shape every audio command-line program shares (modal-analyze, audio-client,
+// wav-spectrogram): -h/--help prints the help text and exits 0 before anything is parsed; a
+// thx::Error is printed as "NAME: message" (usage errors with a pointer to --help) and becomes the
+// exit status 2 (usage) or 1; any other exception exits 1.
 #include <cstdio>
 #include <exception>
 #include <string>
