@@ -17,8 +17,8 @@
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_stamp.hpp"
 #include "benchmarks/child_reply.hpp"
-#include "clients/audio/modal_analysis.hpp"
-#include "clients/audio/scene_bodies.hpp"
+#include "clients/audio/analysis/modal_analysis.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
 #include "scenes/materials.hpp"
 
 namespace {
@@ -36,7 +36,7 @@ thread), and the peak resident set of a child process that does only that solve.
   steel bar 0.3 x 0.02 x 0.01 m, free: modes 7-12 vs converged 3D (574.3 ... 3887.6 Hz)
   steel plate 0.3 x 0.3 x 0.005 m, free: modes 1-6 vs Kirchhoff (Leissa, nu = 0.29)
   steel sphere, free: T2 x5 and S2 x5 vs Lamb
-Then the shipped scenes' sounding bodies (meshed as clients/audio/scene_bodies.cpp does, Tet10), at
+Then the shipped scenes' sounding bodies (meshed as clients/audio/analysis/scene_bodies.cpp does, Tet10), at
 their shipped mesh size and finer, each against its finest mesh (the reference; the next-finest row
 shows how far that one still moves): the surface slab (0.2 x 0.2 x 0.01 m brick, free: the first
 30 elastic modes), the pen (plastic cylinder r 5 mm x 12 cm), the marble (glass sphere r 8 mm), a
@@ -379,7 +379,7 @@ int main(int argc, char** argv) {
   }
 
   if (part == "all" || part == "objects") {
-    md_objects << (cases.empty() ? "\n\n" : "\n") << "The shipped scenes' sounding bodies, Tet10, meshed as `clients/audio/scene_bodies.cpp` does "
+    md_objects << (cases.empty() ? "\n\n" : "\n") << "The shipped scenes' sounding bodies, Tet10, meshed as `clients/audio/analysis/scene_bodies.cpp` does "
                   "(**bold**: the size it uses), each against its finest mesh (the reference row; the row above it "
                   "shows how much the last refinement still moved). Error: the largest relative error of the first "
                   "N elastic modes, in ascending order, against the reference's. Frequencies scale as 1/size, so one "

@@ -22,11 +22,11 @@
 
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_stamp.hpp"
+#include "clients/audio/analysis/audible_modes.hpp"
+#include "clients/audio/analysis/modal_analysis.hpp"
+#include "clients/audio/spectrogram/stft.hpp"
+#include "clients/audio/synthesis/resonator_bank.hpp"
 #include "tools/report/plot.hpp"
-#include "clients/audio/audible_modes.hpp"
-#include "clients/audio/modal_analysis.hpp"
-#include "clients/audio/resonator_bank.hpp"
-#include "clients/audio/stft.hpp"
 #include "scenes/materials.hpp"
 
 namespace {
@@ -37,7 +37,7 @@ using thx::bench::loadAverage;
 
 const char* const kHelp = R"(usage: bench_audio_synth [--prefix PATH] [--md FILE] [--quick] [--sizes LIST]
 
-Modal synthesis speed against error (clients/audio/resonator_bank.hpp, docs/audio.md §3):
+Modal synthesis speed against error (clients/audio/synthesis/resonator_bank.hpp, docs/audio.md §3):
   speed        modes synthesised in real time per core at 44.1 kHz (thread CPU time), for the bare
                kernel and the full path (1000 impulses/s, each projected on every mode from a mode
                shape and struck between renders), float and double; "reference" is the loop before

@@ -20,8 +20,8 @@
 #include "benchmarks/bench_stamp.hpp"
 #include "benchmarks/table1_modal.hpp"
 #include "benchmarks/table1_senses.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
 #include "tools/report/table1_table.hpp"
-#include "clients/audio/scene_bodies.hpp"
 #include "clients/visual/headless_context.hpp"
 
 namespace {

@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "benchmarks/child_reply.hpp"
-#include "clients/audio/modal_analysis.hpp"
-#include "clients/audio/scene_bodies.hpp"
-#include "clients/audio/spring_mass.hpp"
+#include "clients/audio/analysis/modal_analysis.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
+#include "clients/audio/analysis/spring_mass.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace thx::bench::table1 {

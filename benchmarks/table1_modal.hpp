@@ -3,7 +3,7 @@
 // program re-executed with --modal-child), so its peak resident set (wait4's ru_maxrss) is that
 // solve's alone; an idle child (kind "idle": the same program, nothing solved) gives the baseline
 // the table subtracts. Kinds, all of the scene's surface (size, thickness, material, held or free):
-//   spring    the spring-mass lattice (clients/audio/spring_mass.hpp), SIZE nodes per side
+//   spring    the spring-mass lattice (clients/audio/analysis/spring_mass.hpp), SIZE nodes per side
 //   fem-slab  the audio client's slab: Tet10, SIZE cells per side, LAYERS through the thickness
 //   fem-mesh  a mesh's FEM: Tet4, SIZE cells per side (the mesh's (SIZE+1)² vertices on top),
 //             kMeshLayers through the thickness (LAYERS is ignored)
@@ -13,7 +13,7 @@
 
 namespace thx::bench::table1 {
 
-inline constexpr int kModes = 40;  // the audio client's default (clients/audio/surface_sound.hpp)
+inline constexpr int kModes = 40;  // the audio client's default (clients/audio/synthesis/surface_sound.hpp)
 // One Tet4 cell through the thickness: the thinnest volume mesh with the mesh's vertices on top,
 // so the meshes' memory is a lower bound. Pinned here, not taken from the audio client's default,
 // because femMeshDofs counts DOFs without building the mesh and must agree with what is solved.

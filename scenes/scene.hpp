@@ -37,7 +37,7 @@ struct TextureSource {
 // four side faces.
 enum class SlabSupport { Free, ClampedEdges };
 
-// Micro-level roughness of the surface for sound (clients/audio/fractal_roughness.hpp).
+// Micro-level roughness of the surface for sound (clients/audio/synthesis/fractal_roughness.hpp).
 struct Roughness {
   double beta = 1.0;        // power spectrum ∝ 1/f^beta along the travelled distance
   double amplitude = 0.03;  // RMS micro force per newton of normal force

@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
-#include "clients/audio/resonator_bank.hpp"
-#include "clients/audio/surface_sound.hpp"
+#include "clients/audio/synthesis/resonator_bank.hpp"
+#include "clients/audio/synthesis/surface_sound.hpp"
 
 namespace thx::study {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The sound cue as a simulated participant hears it: the audio client's own synthesis
-// (clients/audio/surface_sound.hpp: the surface slab's modal analysis of the scene's material,
+// (clients/audio/synthesis/surface_sound.hpp: the surface slab's modal analysis of the scene's material,
 // its audible modes, the resonator bank) struck once, 2 s of it rendered, and two things read off
 // the samples (docs/study.md §6.1):
 //  - pitch: log10 of the RMS frequency of the sound (its spectrum's second moment, from the

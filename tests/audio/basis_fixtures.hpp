@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "clients/audio/audio_output.hpp"
-#include "clients/audio/modal_body.hpp"
-#include "clients/audio/resonator_bank.hpp"
-#include "clients/audio/wav_file.hpp"
+#include "clients/audio/analysis/modal_body.hpp"
+#include "clients/audio/live/audio_output.hpp"
+#include "clients/audio/spectrogram/wav_file.hpp"
+#include "clients/audio/synthesis/resonator_bank.hpp"
 
 namespace thx::audio::test {
 

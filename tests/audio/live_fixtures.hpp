@@ -6,10 +6,10 @@
 
 #include <thx_msgs/contact_batch_t.hpp>
 
-#include "clients/audio/audible_modes.hpp"
-#include "clients/audio/scene_bodies.hpp"
-#include "clients/audio/synth_scene.hpp"
-#include "clients/audio/tet_mesh.hpp"
+#include "clients/audio/analysis/audible_modes.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
+#include "clients/audio/analysis/tet_mesh.hpp"
+#include "clients/audio/synthesis/synth_scene.hpp"
 #include "rt/clock.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 #include "textures/texture_map.hpp"

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "clients/audio/elastic_material.hpp"
-#include "clients/audio/modal_analysis.hpp"
+#include "clients/audio/analysis/elastic_material.hpp"
+#include "clients/audio/analysis/modal_analysis.hpp"
 #include "scenes/materials.hpp"
 
 namespace thx::audio::test {

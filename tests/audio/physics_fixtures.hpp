@@ -12,7 +12,8 @@
 #include <thx_msgs/physics_impact_t.hpp>
 #include <thx_msgs/physics_poses_t.hpp>
 
-#include "clients/audio/physics_sound.hpp"
+#include "clients/audio/offline/physics_sound.hpp"
+#include "clients/audio/synthesis/sounding_scene.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace thx::audio::test {

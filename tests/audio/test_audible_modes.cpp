@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "clients/audio/audible_modes.hpp"
+#include "clients/audio/analysis/audible_modes.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
 namespace thx::audio {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "clients/audio/modal_error.hpp"
-#include "clients/audio/observation.hpp"
-#include "clients/audio/scene_bodies.hpp"
+#include "clients/audio/analysis/modal_error.hpp"
+#include "clients/audio/analysis/observation.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
 #include "scenes/scene_loader.hpp"
 #include "tests/audio/basis_fixtures.hpp"
 #include "tests/audio/modal_fixtures.hpp"
@@ -187,7 +187,7 @@ TEST(Observation, AModeIsHeardAsItsDriveTimesItsObservation) {
   EXPECT_LT((merged.shapes.col(0) - sum).cwiseAbs().maxCoeff(), 1e-15);
   // No observation values: refused, not guessed.
   s.observation.resize(0);
-  EXPECT_THROW(audibleModes(s, m, o), std::invalid_argument);
+  EXPECT_THROW(audibleModes(s, m, o), std::logic_error);
 }
 
 }  // namespace

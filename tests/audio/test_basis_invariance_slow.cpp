@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "clients/audio/scene_bodies.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
 #include "scenes/scene_loader.hpp"
 #include "tests/audio/basis_fixtures.hpp"
 

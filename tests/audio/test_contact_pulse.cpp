@@ -6,8 +6,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "clients/audio/contact_pulse.hpp"
-#include "clients/audio/resonator_bank.hpp"
+#include "base/error.hpp"
+#include "clients/audio/synthesis/contact_pulse.hpp"
+#include "clients/audio/synthesis/resonator_bank.hpp"
 #include "scenes/materials.hpp"
 
 namespace {
@@ -67,8 +68,8 @@ TEST(ContactPulse, ShorterForFasterAndHarderContacts) {
   // A steel surface is harder than brick: shorter.
   EXPECT_LT(hertzContactDuration(marble, groundOf("steel"), 0.3), hertzContactDuration(marble, brick, 0.3));
   // No elastic, curved, massive side: no Hertz contact.
-  EXPECT_THROW(hertzContactDuration(HertzSide{}, groundOf("steel"), 0.3), std::invalid_argument);
-  EXPECT_THROW(hertzContactDuration(marble, brick, 0.0), std::invalid_argument);
+  EXPECT_THROW(hertzContactDuration(HertzSide{}, groundOf("steel"), 0.3), thx::Error);
+  EXPECT_THROW(hertzContactDuration(marble, brick, 0.0), thx::Error);
 }
 
 // The resonator driven by the sampled half-sine force against one strike of J P(w tau) at the

@@ -6,7 +6,7 @@
 #include <thread>
 #include <vector>
 
-#include "clients/audio/excitation.hpp"
+#include "clients/audio/synthesis/excitation.hpp"
 
 namespace thx::audio {
 namespace {

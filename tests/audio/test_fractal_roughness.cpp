@@ -1,4 +1,4 @@
-// Micro-level roughness (clients/audio/fractal_roughness.hpp): a 1/f^beta profile read along the
+// Micro-level roughness (clients/audio/synthesis/fractal_roughness.hpp): a 1/f^beta profile read along the
 // travelled distance, scaled by the normal force.
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include <unsupported/Eigen/FFT>
 
-#include "clients/audio/fractal_roughness.hpp"
+#include "clients/audio/synthesis/fractal_roughness.hpp"
 
 namespace thx::audio {
 namespace {
@@ -169,13 +169,13 @@ TEST(FractalRoughness, SameSeedSameProfileOtherSeedAnother) {
 TEST(FractalRoughness, BadOptionsAreRefused) {
   RoughnessOptions o;
   o.length = 1000;
-  EXPECT_THROW(RoughnessProfile{o}, std::invalid_argument);
+  EXPECT_THROW(RoughnessProfile{o}, std::logic_error);
   o = {};
   o.spacing_m = 0;
-  EXPECT_THROW(RoughnessProfile{o}, std::invalid_argument);
+  EXPECT_THROW(RoughnessProfile{o}, std::logic_error);
   o = {};
   o.beta = -1;
-  EXPECT_THROW(RoughnessProfile{o}, std::invalid_argument);
+  EXPECT_THROW(RoughnessProfile{o}, std::logic_error);
 }
 
 }  // namespace

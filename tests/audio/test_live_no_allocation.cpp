@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "clients/audio/live_synth.hpp"
+#include "clients/audio/live/live_synth.hpp"
 #include "tests/audio/live_fixtures.hpp"
 #include "tests/support/allocation_counter.hpp"
 

@@ -14,13 +14,13 @@
 #include <numbers>
 #include <vector>
 
-#include "clients/audio/excitation_feed.hpp"
-#include "clients/audio/live_synth.hpp"
-#include "clients/audio/pen_source.hpp"
-#include "clients/audio/physics_source.hpp"
-#include "clients/audio/live_scene.hpp"
-#include "clients/audio/physics_sound.hpp"
-#include "clients/audio/scrape_synthesis.hpp"
+#include "clients/audio/live/excitation_feed.hpp"
+#include "clients/audio/live/live_scene.hpp"
+#include "clients/audio/live/live_synth.hpp"
+#include "clients/audio/live/pen_source.hpp"
+#include "clients/audio/live/physics_source.hpp"
+#include "clients/audio/offline/physics_sound.hpp"
+#include "clients/audio/offline/scrape_synthesis.hpp"
 #include "tests/audio/live_fixtures.hpp"
 #include "tests/audio/physics_fixtures.hpp"
 

@@ -1,11 +1,11 @@
-// Eq. 5 meso impulses over a texel path (clients/audio/meso_impulses.hpp).
+// Eq. 5 meso impulses over a texel path (clients/audio/synthesis/meso_impulses.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <vector>
 
-#include "clients/audio/meso_impulses.hpp"
+#include "clients/audio/synthesis/meso_impulses.hpp"
 
 namespace thx::audio {
 namespace {

@@ -1,7 +1,7 @@
 // The meso impulses' walk (the real-time form, mesoImpulsesAlong) never allocates.
 #include <gtest/gtest.h>
 
-#include "clients/audio/meso_impulses.hpp"
+#include "clients/audio/synthesis/meso_impulses.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace thx::audio {

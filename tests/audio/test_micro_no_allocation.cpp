@@ -4,8 +4,8 @@
 
 #include <array>
 
-#include "clients/audio/fractal_roughness.hpp"
-#include "clients/audio/relief_impulses.hpp"
+#include "clients/audio/synthesis/fractal_roughness.hpp"
+#include "clients/audio/synthesis/relief_impulses.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace thx::audio {

@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "clients/audio/modal_analysis.hpp"
+#include "clients/audio/analysis/modal_analysis.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
 namespace thx::audio {

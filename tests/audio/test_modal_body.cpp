@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "clients/audio/modal_body.hpp"
+#include "clients/audio/analysis/modal_body.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
 namespace {

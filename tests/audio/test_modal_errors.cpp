@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "clients/audio/modal_analysis.hpp"
-#include "clients/audio/modal_cache.hpp"
-#include "clients/audio/modal_error.hpp"
+#include "clients/audio/analysis/modal_analysis.hpp"
+#include "clients/audio/analysis/modal_cache.hpp"
+#include "clients/audio/analysis/modal_error.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 #include "tests/support/error_text.hpp"
 

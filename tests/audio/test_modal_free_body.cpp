@@ -4,8 +4,8 @@
 
 #include <cstdio>
 
-#include "clients/audio/fem_assembly.hpp"
-#include "clients/audio/modal_analysis.hpp"
+#include "clients/audio/analysis/fem_assembly.hpp"
+#include "clients/audio/analysis/modal_analysis.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
 namespace thx::audio {

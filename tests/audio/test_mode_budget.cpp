@@ -1,4 +1,4 @@
-// The per-block mode budget (clients/audio/mode_budget.hpp) as a pure policy, and in the callback
+// The per-block mode budget (clients/audio/live/mode_budget.hpp) as a pure policy, and in the callback
 // (LiveSynth) with a fake clock whose block cost follows the modes synthesised: load sheds the
 // highest modes, room brings them back, all deterministic.
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include <memory>
 #include <vector>
 
-#include "clients/audio/live_synth.hpp"
-#include "clients/audio/mode_budget.hpp"
+#include "clients/audio/live/live_synth.hpp"
+#include "clients/audio/live/mode_budget.hpp"
 #include "tests/audio/live_fixtures.hpp"
 
 namespace thx::audio {

@@ -11,11 +11,11 @@
 #include <limits>
 #include <vector>
 
-#include "clients/audio/live_scene.hpp"
-#include "clients/audio/object_contact.hpp"
-#include "clients/audio/physics_source.hpp"
-#include "clients/audio/surface_sound.hpp"
-#include "clients/audio/synth_scene.hpp"
+#include "clients/audio/live/live_scene.hpp"
+#include "clients/audio/live/physics_source.hpp"
+#include "clients/audio/synthesis/object_contact.hpp"
+#include "clients/audio/synthesis/surface_sound.hpp"
+#include "clients/audio/synthesis/synth_scene.hpp"
 #include "tests/audio/physics_fixtures.hpp"
 
 namespace thx::audio {

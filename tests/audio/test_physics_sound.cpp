@@ -13,10 +13,10 @@
 #include <thx_msgs/hello_t.hpp>
 #include <thx_msgs/log_reader.hpp>
 
-#include "clients/audio/contact_pulse.hpp"
-#include "clients/audio/physics_sound.hpp"
-#include "tests/audio/physics_fixtures.hpp"
+#include "clients/audio/offline/physics_sound.hpp"
+#include "clients/audio/synthesis/contact_pulse.hpp"
 #include "scenes/scene_loader.hpp"
+#include "tests/audio/physics_fixtures.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The physics client's streams live (clients/audio/physics_source.hpp): every strike of the
+// The physics client's streams live (clients/audio/live/physics_source.hpp): every strike of the
 // shared PhysicsExcitation as a Point event on its SynthScene body, at its time plus the playout
 // delay; impacts on both bodies with their Hertz contact time; the texel walk carried across
 // messages and restarted when the body loses contact; the pen's entries, object pairs and
@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "clients/audio/contact_pulse.hpp"
-#include "clients/audio/physics_source.hpp"
+#include "clients/audio/live/physics_source.hpp"
+#include "clients/audio/synthesis/contact_pulse.hpp"
 #include "tests/audio/physics_fixtures.hpp"
 
 namespace thx::audio {

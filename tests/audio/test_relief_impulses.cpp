@@ -1,10 +1,10 @@
-// Relief-map impulses from the contact's normal tick by tick (clients/audio/relief_impulses.hpp).
+// Relief-map impulses from the contact's normal tick by tick (clients/audio/synthesis/relief_impulses.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "clients/audio/relief_impulses.hpp"
+#include "clients/audio/synthesis/relief_impulses.hpp"
 
 namespace thx::audio {
 namespace {

@@ -5,7 +5,7 @@
 #include <numbers>
 #include <vector>
 
-#include "clients/audio/resonator_bank.hpp"
+#include "clients/audio/synthesis/resonator_bank.hpp"
 
 namespace thx::audio {
 namespace {

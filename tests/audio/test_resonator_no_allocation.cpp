@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "clients/audio/resonator_bank.hpp"
+#include "clients/audio/synthesis/resonator_bank.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace thx::audio {

@@ -1,10 +1,10 @@
-// What a shipped scene asks the modal analysis for (clients/audio/scene_bodies.hpp).
+// What a shipped scene asks the modal analysis for (clients/audio/analysis/scene_bodies.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <string>
 
-#include "clients/audio/scene_bodies.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace thx::audio {

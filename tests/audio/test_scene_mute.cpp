@@ -8,10 +8,10 @@
 #include <fstream>
 #include <limits>
 
-#include "clients/audio/excitation_feed.hpp"
-#include "clients/audio/live_scene.hpp"
-#include "clients/audio/live_synth.hpp"
-#include "clients/audio/scene_mute.hpp"
+#include "clients/audio/live/excitation_feed.hpp"
+#include "clients/audio/live/live_scene.hpp"
+#include "clients/audio/live/live_synth.hpp"
+#include "clients/audio/offline/scene_mute.hpp"
 #include "tests/audio/live_fixtures.hpp"
 #include "tests/support/temp_dir.hpp"
 

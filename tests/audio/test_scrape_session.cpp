@@ -1,4 +1,4 @@
-// The pen's scrape across hapticd's scene switches (clients/audio/scrape_session.hpp): a session
+// The pen's scrape across hapticd's scene switches (clients/audio/offline/scrape_session.hpp): a session
 // on a flat scene, then, after a hello naming a grooved one, on that scene's surface and pen.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "clients/audio/scrape_session.hpp"
+#include "clients/audio/offline/scrape_session.hpp"
 #include "tests/audio/live_fixtures.hpp"
 
 namespace thx::audio {

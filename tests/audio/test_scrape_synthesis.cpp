@@ -1,4 +1,4 @@
-// The pen's scrape rendered offline (clients/audio/scrape_synthesis.hpp) on a small slab.
+// The pen's scrape rendered offline (clients/audio/offline/scrape_synthesis.hpp) on a small slab.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
-#include "clients/audio/scene_bodies.hpp"
-#include "clients/audio/scrape_synthesis.hpp"
+#include "clients/audio/analysis/scene_bodies.hpp"
+#include "clients/audio/offline/scrape_synthesis.hpp"
 #include "tests/audio/live_fixtures.hpp"
 
 namespace thx::audio {

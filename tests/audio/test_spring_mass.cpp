@@ -1,4 +1,4 @@
-// The spring-mass lattice (clients/audio/spring_mass.hpp) against closed forms: a chain of N free
+// The spring-mass lattice (clients/audio/analysis/spring_mass.hpp) against closed forms: a chain of N free
 // masses held at both ends has omega_j = 2 sqrt(k/m) sin(j pi / (2 (N + 1))); a free chain of N
 // masses omega_j = 2 sqrt(k/m) sin(j pi / (2 N)) with j = 0 the rigid translation; a held
 // rectangular lattice the sum of two chains' squared frequencies.
@@ -9,8 +9,8 @@
 #include <numbers>
 #include <vector>
 
-#include "clients/audio/modal_error.hpp"
-#include "clients/audio/spring_mass.hpp"
+#include "clients/audio/analysis/modal_error.hpp"
+#include "clients/audio/analysis/spring_mass.hpp"
 #include "scenes/materials.hpp"
 
 namespace thx::audio {

@@ -1,4 +1,4 @@
-// The timer-driven callback that stands in for a sound device (clients/audio/audio_output.hpp):
+// The timer-driven callback that stands in for a sound device (clients/audio/live/audio_output.hpp):
 // it calls the callback block after block with the block's size and a start time that grows,
 // and its captured blocks carry what the callback wrote. Nothing about timing is asserted.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <chrono>
 #include <thread>
 
-#include "clients/audio/audio_output.hpp"
+#include "clients/audio/live/audio_output.hpp"
 
 namespace thx::audio {
 namespace {
@@ -41,8 +41,8 @@ TEST(TimerOutput, CallsTheCallbackBlockAfterBlockAndCapturesItsBlocks) {
 }
 
 TEST(TimerOutput, RejectsABlockLargerThanItsBuffer) {
-  EXPECT_THROW(TimerOutput(48000.0, kMaxBlockFrames + 1, [](std::span<float>, std::int64_t) {}), std::invalid_argument);
-  EXPECT_THROW(TimerOutput(48000.0, 0, [](std::span<float>, std::int64_t) {}), std::invalid_argument);
+  EXPECT_THROW(TimerOutput(48000.0, kMaxBlockFrames + 1, [](std::span<float>, std::int64_t) {}), std::logic_error);
+  EXPECT_THROW(TimerOutput(48000.0, 0, [](std::span<float>, std::int64_t) {}), std::logic_error);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 #pragma once
-// One fuzzing step for the modal cache reader (clients/audio/modal_cache.hpp, layout in
+// One fuzzing step for the modal cache reader (clients/audio/analysis/modal_cache.hpp, layout in
 // docs/audio.md §2). Shared by the libFuzzer target and the short run in test_fuzz_modal_cache.cpp.
 //
 // Input: byte 0 picks the mode (bit 0: rewrite the trailing checksum to match, so mutations reach
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "clients/audio/modal_cache.hpp"
+#include "clients/audio/analysis/modal_cache.hpp"
 #include "tests/fuzz/failure.hpp"
 
 namespace thx::fuzz {

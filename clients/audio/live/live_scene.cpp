@@ -1,0 +1,79 @@
+#include "clients/audio/live/live_scene.hpp"
+
+#include <filesystem>
+
+#include "clients/audio/synthesis/sounding_scene.hpp"
+
+namespace thx::audio {
+
+std::vector<ExcitationSource*> LiveScene::sourcePointers() const {
+  std::vector<ExcitationSource*> out;
+  for (const auto& s : sources) out.push_back(s.get());
+  return out;
+}
+
+SoundingBody soundingBody(std::string name, const AudibleModes& modes) {
+  return SoundingBody{std::move(name), modes.frequency_hz, modes.decay_per_s, modes.shapes};
+}
+
+SoundingBody surfaceBody(const SurfaceSound& sound) { return soundingBody(sound.slab.name, sound.modes); }
+
+std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const LiveSceneSettings& s,
+                                          std::uint32_t generation) {
+  auto live = std::make_unique<LiveScene>();
+  live->generation = generation;
+  live->sound = std::make_unique<SurfaceSound>(buildSurfaceSound(scene_file, s.slab));
+  const SurfaceSound& sound = *live->sound;
+  std::vector<SoundingBody> bodies;
+  bodies.push_back(surfaceBody(sound));
+
+  PenSourceBodies pen;
+  PenSound p;
+  if (s.pen_modes) {
+    p = buildPenSound(sound.scene, s.slab);
+    if (p.modes.size() > 0) {
+      pen.pen_body = int(bodies.size());
+      pen.tip_node = p.tip_node;
+      pen.tilt_deg = p.tilt_deg;
+      bodies.push_back(soundingBody("pen", p.modes));
+    }
+  }
+  live->pen_body = pen.pen_body;
+
+  // The moving objects, meshed and analysed as the offline render does (sounding_scene.hpp).
+  const BodyOptions bo = bodyOptions(s.slab, s.object_order);
+  live->physics = std::make_unique<SoundingScene>(soundingScene(std::filesystem::path(scene_file).stem().string(), sound.scene,
+                                                                sound.map().isRelief(), bo,
+                                                                std::make_shared<const ModalBody>(sound.slab, sound.modes)));
+  setPenBody(*live->physics, p);  // impacts with the pen ring the pen's body
+  for (const auto& object : live->physics->objects) {
+    if (!object || object->size() == 0) {
+      live->object_bodies.push_back(-1);
+      continue;
+    }
+    live->object_bodies.push_back(int(bodies.size()));
+    bodies.push_back(soundingBody(object->mesh().name, object->modes()));
+  }
+
+  const RoughnessOptions roughness = sceneRoughness(sound.scene);
+  pen.micro = s.micro && roughness.amplitude > 0.0;
+  ObjectContactOptions rubs;
+  rubs.enabled = pen.micro && s.object_contacts;  // the same profile as the pen's micro level
+  live->synth = std::make_unique<SynthScene>(std::move(bodies), s.slab.sample_rate_hz, s.max_block, generation,
+                                             pen.micro ? std::make_shared<const RoughnessProfile>(roughness) : nullptr);
+  if (sound.scene.audio.mute) {  // audio.mute: no sources, the callback plays zeros (live_synth.hpp)
+    live->synth->setMuted(true);
+    return live;
+  }
+  PenScrapeOptions po;
+  po.servo_hz = sound.scene.rates.servo_hz;
+  po.pen_mass_kg = s.pen_mass_kg ? *s.pen_mass_kg : sound.scene.device.sim.device_mass_kg;
+  po.surface_size_m = sound.scene.surface.size_m;
+  po.meso = sound.map().isRelief() ? MesoSource::ContactNormals : MesoSource::TexelWalk;
+  live->sources.push_back(std::make_unique<PenSource>(sound.map(), sound.slab, po, pen, generation, s.playout_delay_ns));
+  live->sources.push_back(
+      std::make_unique<PhysicsSource>(*live->physics, live->object_bodies, generation, s.playout_delay_ns, pen.pen_body, rubs));
+  return live;
+}
+
+}  // namespace thx::audio

@@ -1,0 +1,55 @@
+#pragma once
+// One scene as the live client plays it: the surface's sound (texture, slab, modes), the pen's
+// and the moving objects' modes, the SynthScene the callback plays and the excitation sources
+// that feed it. Built whole in the feed thread at the start and on every scene switch; the
+// SynthScene goes to the callback (LiveSynth), the rest stays with the feed.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "clients/audio/live/pen_source.hpp"
+#include "clients/audio/live/physics_source.hpp"
+#include "clients/audio/synthesis/excitation.hpp"
+#include "clients/audio/synthesis/surface_sound.hpp"
+#include "clients/audio/synthesis/synth_scene.hpp"
+
+namespace thx::audio {
+
+struct LiveSceneSettings {
+  SlabSettings slab;
+  std::optional<double> pen_mass_kg;  // unset: the scene's simulated device mass
+  bool pen_modes = true;              // the pen's own modes sound (else the slab and objects only)
+  bool micro = true;                  // the micro level (the scene's surface.roughness)
+  bool object_contacts = true;        // two objects rubbing (the micro level too: needs `micro`)
+  ElementOrder object_order = ElementOrder::Quadratic;  // the moving objects' meshes
+  std::size_t max_block = 4096;
+  std::int64_t playout_delay_ns = 0;
+};
+
+struct LiveScene {
+  std::uint32_t generation = 0;
+  std::unique_ptr<SurfaceSound> sound;     // the sources point into it
+  std::unique_ptr<SoundingScene> physics;  // the surface and the moving objects as ModalBodies
+  std::unique_ptr<SynthScene> synth;       // taken by LiveSynth::offerScene
+  std::vector<std::unique_ptr<ExcitationSource>> sources;
+  int pen_body = -1;               // the pen's SynthScene body (-1: no pen modes)
+  std::vector<int> object_bodies;  // by objects[] index (-1: fixed, or no audible mode)
+  std::vector<ExcitationSource*> sourcePointers() const;
+};
+
+// Bodies: the surface slab (0), the pen (device.pen, when it has audible modes), each moving
+// object with audible modes. Sources: the pen (hapticd's CONTACT: meso or relief impulses and the
+// micro level on the slab and the pen) and the physics client's streams (impacts, texel paths,
+// relief momentum changes on the slab and the objects). A muted scene (audio.mute) has the same
+// bodies, no sources and a muted SynthScene: the callback plays zeros while it is current.
+std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const LiveSceneSettings& settings,
+                                          std::uint32_t generation);
+
+// The surface's modes as a sounding body.
+SoundingBody surfaceBody(const SurfaceSound& sound);
+// Any body's modes as a sounding body.
+SoundingBody soundingBody(std::string name, const AudibleModes& modes);
+
+}  // namespace thx::audio
