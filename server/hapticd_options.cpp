@@ -256,13 +256,13 @@ std::string vrpnAddress(const HapticdOptions& o, const std::string& scene_vrpn_a
 }
 
 ScenePolicy scenePolicy(const HapticdOptions& o) {
-  ScenePolicy policy;
-  policy.stiffness_fraction = o.stiffness_fraction;
-  policy.crease = o.crease;
-  policy.passivity = o.passivity;
-  policy.strict_stability = o.strict_stability;
-  if (o.paper_loop) policy.paper_loop_plane_hz = o.plane_rate_hz.value_or(kPaperPlaneRateHz);
-  return policy;
+  std::optional<double> paper_loop_plane_hz;
+  if (o.paper_loop) paper_loop_plane_hz = o.plane_rate_hz.value_or(kPaperPlaneRateHz);
+  return {.stiffness_fraction = o.stiffness_fraction,
+          .crease = o.crease,
+          .passivity = o.passivity,
+          .strict_stability = o.strict_stability,
+          .paper_loop_plane_hz = paper_loop_plane_hz};
 }
 
 SceneSwitcherOptions sceneSwitcherOptions(const HapticdOptions& o) {
