@@ -1,13 +1,15 @@
 #include "server/data_ports.hpp"
 
-#include <stdexcept>
+#include <string>
+
+#include "base/error.hpp"
 
 namespace thx::srv {
 
 DataPorts::DataPorts(UdpmUrl bus, int first, int last) : bus_(std::move(bus)), first_(first), last_(last) {
   if (first < 1 || last > 65535 || last < first) {
-    throw std::invalid_argument("data ports " + std::to_string(first) + "-" + std::to_string(last) +
-                                ": expected FIRST-LAST with 1 <= FIRST <= LAST <= 65535");
+    throw thx::Error(thx::Error::Kind::Config, "data ports " + std::to_string(first) + "-" + std::to_string(last) +
+                                                   ": expected FIRST-LAST with 1 <= FIRST <= LAST <= 65535");
   }
   for (int p = first; p <= last; ++p) free_.push_back(p);
 }

@@ -21,8 +21,8 @@ namespace thx::srv {
 
 class DataPorts {
  public:
-  // Ports first..last (inclusive) on `bus`'s group and query. Throws std::invalid_argument when
-  // the range is empty or outside 1..65535.
+  // Ports first..last (inclusive) on `bus`'s group and query. Throws thx::Error (Config) when
+  // the range is empty or outside 1..65535 (hapticd checks --data-ports before: server/port_plan.hpp).
   DataPorts(UdpmUrl bus, int first, int last);
 
   // The port `client_id` holds, else the free port released longest ago (then the lowest never

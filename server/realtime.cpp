@@ -2,6 +2,7 @@
 
 #include "base/error.hpp"
 
+#include <malloc.h>
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
@@ -50,6 +51,15 @@ RealtimeReport makeThreadRealtime(const RealtimeOptions& options) {
     throw thx::Error(thx::Error::Kind::Io, "real-time setup failed (--require-rt): " + report.warnings.front());
   }
   return report;
+}
+
+void prepareProcessForLockedMemory() {
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, 512 * 1024);
+  pthread_setattr_default_np(&attr);
+  pthread_attr_destroy(&attr);
+  mallopt(M_ARENA_MAX, 1);
 }
 
 }  // namespace thx::srv

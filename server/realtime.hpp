@@ -26,6 +26,13 @@ struct RealtimeReport {
   std::vector<std::string> warnings;  // what failed and what to do about it
 };
 
+// For a process that locks its memory, before its threads start: every thread (its own, LCM's
+// GLib thread) gets a 512 KiB stack instead of glibc's 8 MiB default (under mlockall(MCL_FUTURE)
+// each stack is locked in full, so 8 MiB stacks cost 8 MB of RAM each), and malloc one arena
+// (per-thread arenas reserve 64 MiB of address space each, which mlockall counts as locked even
+// though it is never touched).
+void prepareProcessForLockedMemory();
+
 // Applies the options to the calling thread. Throws std::runtime_error when `require` is set
 // and a step failed (the message says which and why).
 RealtimeReport makeThreadRealtime(const RealtimeOptions& options);

@@ -1,8 +1,13 @@
 #include "server/scene_device.hpp"
 
+#include <cmath>
 #include <variant>
 
 #include "device/device_specs.hpp"
+#include "device/replay_device.hpp"
+#include "device/sim_phantom.hpp"
+#include "device/vrpn/vrpn_client_device.hpp"
+#include "server/session_log.hpp"
 #include "scenes/scene_frames.hpp"
 
 namespace thx::srv {
@@ -72,6 +77,31 @@ ServoRigConfig servoRigConfigFor(const scene::Scene& s) {
   c.flight_record_ticks = std::size_t(s.rates.servo_hz);  // one second of ticks
   c.ring_records = 1024;  // 1 s of ticks: the publisher drains every 0.5 ms
   return c;
+}
+
+SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device_option,
+                            const std::string& vrpn_address, bool lockstep) {
+  const std::int64_t period_ns = std::int64_t(std::llround(1.0 / scene.rates.servo_hz * 1e9));
+  SceneDevice d;
+  if (device_option.rfind("replay:", 0) == 0) {
+    dev::ReplayOptions ro;
+    ro.period_ns = period_ns;
+    ro.lockstep = lockstep;
+    auto replay = std::make_unique<dev::ReplayDevice>(loadSessionTrajectory(device_option.substr(7)),
+                                                      deviceSpecFor(scene), ro);
+    d.replay = replay.get();
+    d.device = std::move(replay);
+  } else if (vrpn_address.empty()) {
+    auto sim = std::make_unique<dev::SimPhantom>(simConfigFor(scene, lockstep), handScriptFor(scene));
+    d.sim = sim.get();
+    d.device = std::move(sim);
+  } else {
+    vrpn::VrpnClientOptions vo;
+    vo.period_ns = period_ns;
+    vo.request_rate_hz = scene.rates.servo_hz;  // a fresh pose every tick
+    d.device = std::make_unique<vrpn::VrpnClientDevice>(vrpn_address, deviceSpecFor(scene), vo);
+  }
+  return d;
 }
 
 }  // namespace thx::srv

@@ -1,12 +1,21 @@
 #pragma once
 // From a scene to the server's parts: the device spec, the simulated PHANToM and its hand
-// script, the renderer's configuration. Scenes know nothing of devices and devices nothing of
+// script, hapticd's device, the renderer's configuration. Scenes know nothing of devices and devices nothing of
 // scenes; this is the one place that translates.
+#include <memory>
+#include <string>
+
 #include "device/hand_script.hpp"
+#include "device/haptic_device.hpp"
 #include "device/sim_config.hpp"
 #include "scenes/scene.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/servo_rig.hpp"
+
+namespace thx::dev {
+class SimPhantom;
+class ReplayDevice;
+}  // namespace thx::dev
 
 namespace thx::srv {
 
@@ -18,6 +27,18 @@ dev::SimPhantomConfig simConfigFor(const scene::Scene& scene, bool lockstep);
 
 // Reads path files (device/hand_script.hpp); throws dev::HandScriptError naming file and line.
 dev::HandScript handScriptFor(const scene::Scene& scene);
+
+// hapticd's device: the replay of a recorded session (`device_option` "replay:FILE", paced at the
+// scene's servo rate), a VRPN client of `vrpn_address` when that is set, else the scene's simulated
+// PHANToM and hand script. `sim` and `replay` point into `device` when it is one of them. Throws
+// thx::Error naming the file or address.
+struct SceneDevice {
+  std::unique_ptr<dev::HapticDevice> device;
+  dev::SimPhantom* sim = nullptr;
+  dev::ReplayDevice* replay = nullptr;
+};
+SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device_option,
+                            const std::string& vrpn_address, bool lockstep);
 
 RendererConfig rendererConfigFor(const scene::Scene& scene);
 

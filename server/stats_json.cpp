@@ -132,4 +132,18 @@ void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& c
   }
 }
 
+void addServoSummary(RunSummary& s, const ServoRig& rig) {
+  const Servo& servo = rig.servo();
+  s.ticks = servo.counters().ticks;
+  s.servo = servo.counters();
+  s.missed_policy = servo.missedTickPolicy().counters();
+  s.missed_mode = rig.config().missed_mode;
+  s.safety = rig.safety().counters();
+  s.passivity_active_ticks = rig.passivity().activeTicks();
+  s.passivity_dissipated_j = rig.passivity().dissipatedEnergy();
+  s.crease = rig.config().renderer.crease_handling;
+  s.passivity = rig.config().passivity;
+  s.stiffness_n_per_m = rig.config().renderer.stiffness_n_per_m;
+}
+
 }  // namespace thx::srv

@@ -11,6 +11,7 @@
 #include "server/realtime.hpp"
 #include "server/safety.hpp"
 #include "server/servo.hpp"
+#include "server/servo_rig.hpp"
 
 namespace thx::srv {
 
@@ -39,6 +40,11 @@ struct RunSummary {
   std::string flight_dir;  // --flight-dir
   std::string last_flight_dump;
 };
+
+// The servo's part of a summary: its ticks and counters, its missed-tick policy's, the safety
+// stage's and the passivity controller's, and the rig's wiring (crease, passivity, stiffness: the
+// first scene's).
+void addServoSummary(RunSummary& s, const ServoRig& rig);
 
 // Throws std::runtime_error if the file cannot be written.
 void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyHistogram& compute,

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/error.hpp"
+
 namespace thx::srv {
 
 namespace {
@@ -16,20 +18,23 @@ constexpr double kBarycentricTol = 1e-9;  // relative: a hit on a shared edge be
 // barycentric tolerance accepts is never outside its leaf's box.
 constexpr double kBoxPadRel = 1e-6;
 constexpr double kBoxPadAbs = 1e-12;  // metres
+
+// A mesh the hierarchy cannot be built on (it comes from a scene's textured mesh).
+thx::Error meshError(const std::string& what) { return thx::Error(thx::Error::Kind::Config, "TriangleBvh: " + what); }
 }  // namespace
 
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh, int leaf_size) : mesh_(&mesh), leaf_size_(std::max(1, leaf_size)) {
   const std::size_t n = mesh.triangles.size();
-  if (n == 0) throw std::invalid_argument("TriangleBvh: the mesh has no triangles");
-  if (n >= std::numeric_limits<std::uint32_t>::max() / 2) throw std::invalid_argument("TriangleBvh: too many triangles");
+  if (n == 0) throw meshError("the mesh has no triangles");
+  if (n >= std::numeric_limits<std::uint32_t>::max() / 2) throw meshError("too many triangles");
   planes_.resize(n);
   std::vector<Eigen::Vector3d> centroids(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& tri = mesh.triangles[i];
     for (std::uint32_t v : tri) {
       if (v >= mesh.vertices.size()) {
-        throw std::invalid_argument("TriangleBvh: triangle " + std::to_string(i) + " uses vertex " + std::to_string(v) +
-                                    " of " + std::to_string(mesh.vertices.size()));
+        throw meshError("triangle " + std::to_string(i) + " uses vertex " + std::to_string(v) + " of " +
+                        std::to_string(mesh.vertices.size()));
       }
     }
     const Eigen::Vector3d& p0 = mesh.vertices[tri[0]];
@@ -39,7 +44,7 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh, int leaf_size) : mesh_(&mesh)
     const double len = cross.norm();
     const double scale = std::max({(p1 - p0).squaredNorm(), (p2 - p0).squaredNorm(), (p2 - p1).squaredNorm()});
     if (!(len > 1e-12 * scale) || !std::isfinite(len)) {
-      throw std::invalid_argument("TriangleBvh: triangle " + std::to_string(i) + " is degenerate (zero area)");
+      throw meshError("triangle " + std::to_string(i) + " is degenerate (zero area)");
     }
     planes_[i].n = cross / len;
     planes_[i].d = planes_[i].n.dot(p0);

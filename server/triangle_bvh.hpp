@@ -31,7 +31,7 @@ class TriangleBvh {
   };
 
   // Leaves hold at most `leaf_size` triangles. The mesh must outlive the hierarchy. Throws
-  // std::invalid_argument on an empty mesh, a vertex index out of range or a degenerate
+  // thx::Error (Config) on an empty mesh, a vertex index out of range or a degenerate
   // (zero-area) triangle.
   explicit TriangleBvh(const TriangleMesh& mesh, int leaf_size = 4);
 

@@ -1,12 +1,14 @@
 #include "server/triangle_mesh.hpp"
 
-#include <stdexcept>
 #include <string>
+
+#include "base/error.hpp"
 
 namespace thx::srv {
 
 TriangleMesh reliefGridMesh(const tex::TexturedSurface& surface, int n) {
-  if (n < 1 || n > 4096) throw std::invalid_argument("reliefGridMesh: n = " + std::to_string(n) + ", expected 1..4096");
+  if (n < 1 || n > 4096)
+    throw thx::Error(thx::Error::Kind::Config, "reliefGridMesh: n = " + std::to_string(n) + ", expected 1..4096");
   TriangleMesh m;
   const Eigen::Vector2d size = surface.mapping().size_m;
   const std::size_t side = std::size_t(n) + 1;

@@ -23,7 +23,7 @@ struct TriangleMesh {
 // N x N quads over the map's rectangle, each vertex on the surface the senses share (z = height
 // the surface samples there: -depth for a relief), each quad split along the same diagonal as
 // the visual client's `mesh:N` (clients/visual/mesh_builders.cpp): (r,c),(r,c+1),(r+1,c+1) and
-// (r,c),(r+1,c+1),(r+1,c). Throws std::invalid_argument for n < 1 or n > 4096.
+// (r,c),(r+1,c+1),(r+1,c). Throws thx::Error (Config) for n < 1 or n > 4096.
 TriangleMesh reliefGridMesh(const tex::TexturedSurface& surface, int n);
 
 }  // namespace thx::srv

@@ -439,4 +439,15 @@ void VrpnServer::run() {
   s.clients.clear();
 }
 
+std::string describe(const VrpnServerStatus& s) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%llu clients served, %llu dropped, %llu refused, %llu force commands (%llu refused), %llu reports "
+                "skipped for slow readers, %llu Plane2 ignored",
+                (unsigned long long)s.accepted, (unsigned long long)s.drops, (unsigned long long)s.refused,
+                (unsigned long long)s.commands, (unsigned long long)s.refused_commands,
+                (unsigned long long)s.reports_skipped, (unsigned long long)s.plane2_ignored);
+  return line;
+}
+
 }  // namespace thx::srv

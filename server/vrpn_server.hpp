@@ -106,6 +106,10 @@ struct VrpnServerStatus {
   std::string last_error;
 };
 
+// One line for a log: "N clients served, N dropped, N refused, N force commands (N refused), N
+// reports skipped for slow readers, N Plane2 ignored".
+std::string describe(const VrpnServerStatus& status);
+
 class VrpnServer {
  public:
   // `effects` may be null: force commands are then refused with Force_Error 3.

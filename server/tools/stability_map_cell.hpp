@@ -49,7 +49,7 @@ struct HandParams {
 };
 HandParams defaultHand();    // scenes/default.yaml (= SimPhantomConfig defaults)
 HandParams lightGripHand();  // docs/stability.md: fingertips only, holding the pen loosely
-// "default" or "light"; throws std::invalid_argument otherwise.
+// "default" or "light"; throws thx::Error (Config) otherwise.
 HandParams handByName(const std::string& name);
 
 struct CellSetup {

@@ -15,7 +15,7 @@ constexpr std::size_t kRingRecords = 8;  // drained every tick, as hapticd's pub
 SimRig::SimRig(const tex::TexturedSurface& surface, const dev::SimPhantomConfig& sim, dev::HandScript script,
                const RigOptions& options)
     : period_s_(double(sim.servo_period_ns) * 1e-9) {
-  if (!sim.lockstep) throw std::invalid_argument("SimRig: the simulated device must run lock-step");
+  if (!sim.lockstep) throw std::logic_error("SimRig: the simulated device must run lock-step");
   device_ = std::make_unique<dev::SimPhantom>(sim, std::move(script));
   ServoRigConfig c;
   c.renderer.stiffness_n_per_m = options.stiffness_n_per_m;

@@ -46,7 +46,7 @@ std::vector<CellParams> enumerateCells(const SweepAxes& a) {
 
 std::vector<CellResult> runSweep(const std::vector<CellParams>& cells, const CellSetup& setup, int threads,
                                  const ProgressFn& progress) {
-  if (threads < 1) throw std::invalid_argument("runSweep: threads must be >= 1");
+  if (threads < 1) throw std::logic_error("runSweep: threads must be >= 1");
   // Maps first, on this thread: a few hundred texels square each, shared read-only afterwards.
   std::map<std::pair<double, bool>, ValleyMap> maps;
   for (const CellParams& c : cells) {

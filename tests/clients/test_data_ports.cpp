@@ -64,8 +64,8 @@ TEST(DataPorts, DistinctPortsRecycledOldestFirstAndARefusalWhenAllAreHeld) {
   EXPECT_EQ(ports.acquire("e"), 7669);
   EXPECT_EQ(ports.url(7669), "udpm://239.255.76.67:7669?ttl=1");  // the bus's group and ttl
   ports.release("nobody");                                        // harmless
-  EXPECT_THROW(DataPorts(bus(), 7700, 7699), std::invalid_argument);
-  EXPECT_THROW(DataPorts(bus(), 0, 10), std::invalid_argument);
+  EXPECT_THROW(DataPorts(bus(), 7700, 7699), thx::Error);
+  EXPECT_THROW(DataPorts(bus(), 0, 10), thx::Error);
 }
 
 // The table hands ports out with the first grant, names them in data_url, and takes them back

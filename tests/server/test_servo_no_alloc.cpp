@@ -4,6 +4,7 @@
 // across V-valleys, with client forces, a fault and a client's fault reset.
 #include <gtest/gtest.h>
 
+#include "server/servo_runner.hpp"
 #include "tests/server/servo_fixture.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -40,4 +41,27 @@ TEST(ServoRealtime, NoAllocationInTheTick) {
   EXPECT_EQ(rig.servo().counters().faults, 2u);
   EXPECT_GT(rig.safety().counters().continuous_limited, 0u);
   EXPECT_EQ(rig.servo().missedTickPolicy().counters().ride_throughs, 1u);
+}
+
+// The run loop around the tick (server/servo_runner.hpp) adds no allocation either: its steps,
+// the lock-step back-pressure check, the stop and the whole ramp-down.
+TEST(ServoRealtime, NoAllocationInTheRunLoop) {
+  test::ServoRig rig([](std::int64_t tick, dev::DeviceState& s) {
+    s.p_world = Eigen::Vector3d(0.0, 0.0, tick < 500 ? 0.002 - 0.00001 * double(tick) : -0.003);
+  });
+  srv::ServoRunnerOptions o;
+  o.lockstep = true;
+  o.stop_tick = 3000;
+  srv::ServoRunner runner(rig.servo(), rig.ring(), o);
+  for (int k = 0; k < 10; ++k) runner.step();  // settle outside the measurement
+  rig.drain();
+  const long before = test::g_allocations.load();
+  int steps = 0;
+  for (srv::ServoRunner::Step s = runner.step(); s != srv::ServoRunner::Step::Finished && steps < 100000;
+       s = runner.step(), ++steps) {
+    rig.drain();
+  }
+  EXPECT_EQ(test::g_allocations.load() - before, 0);
+  EXPECT_TRUE(rig.servo().finished());
+  EXPECT_GT(runner.ticks(), 3000);
 }

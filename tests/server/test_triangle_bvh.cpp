@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include "base/error.hpp"
 #include "server/triangle_bvh.hpp"
 #include "server/triangle_mesh.hpp"
 #include "tests/server/mesh_fixtures.hpp"
@@ -99,13 +100,13 @@ TEST(TriangleBvh, OnlyFrontEntriesAndSkippedTriangles) {
 
 TEST(TriangleBvh, RejectsBadMeshes) {
   srv::TriangleMesh empty;
-  EXPECT_THROW(TriangleBvh{empty}, std::invalid_argument);
+  EXPECT_THROW(TriangleBvh{empty}, thx::Error);
   srv::TriangleMesh bad = test::gridMesh(1, 0.01, [](double, double) { return 0.0; });
   bad.triangles[0][2] = 99;
-  EXPECT_THROW(TriangleBvh{bad}, std::invalid_argument);
+  EXPECT_THROW(TriangleBvh{bad}, thx::Error);
   srv::TriangleMesh flat = test::gridMesh(1, 0.01, [](double, double) { return 0.0; });
   flat.triangles[0] = {0, 1, 1};
-  EXPECT_THROW(TriangleBvh{flat}, std::invalid_argument);
+  EXPECT_THROW(TriangleBvh{flat}, thx::Error);
 }
 
 TEST(ReliefGridMesh, VerticesOnTheSampledReliefFacesUp) {
@@ -130,5 +131,5 @@ TEST(ReliefGridMesh, VerticesOnTheSampledReliefFacesUp) {
   EXPECT_EQ(mesh.vertices.front(), Eigen::Vector3d(-0.01, -0.01, mesh.vertices.front().z()));
   const TriangleBvh bvh(mesh);
   for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) EXPECT_GT(bvh.plane(i).n.z(), 0.0) << i;
-  EXPECT_THROW(srv::reliefGridMesh(surface, 0), std::invalid_argument);
+  EXPECT_THROW(srv::reliefGridMesh(surface, 0), thx::Error);
 }
