@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "base/program_main.hpp"
 #include "device/replay_device.hpp"
 #include "device/sim_phantom.hpp"
 #include "scenes/scene_loader.hpp"
@@ -190,22 +191,9 @@ int main(int argc, char** argv) {
   sa.sa_handler = onSignal;
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
-  thx::srv::HapticdOptions options;
-  try {
-    options = thx::srv::parseHapticdOptions(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const thx::UsageError& e) {
-    std::fprintf(stderr, "hapticd: %s (see hapticd --help)\n", e.what());
-    return 2;
-  }
-  if (options.help) {
-    std::fputs(thx::srv::hapticdHelp(), stdout);
-    return 0;
-  }
-  thx::srv::prepareProcessForLockedMemory();  // small thread stacks, one malloc arena
-  try {
-    return run(options);
-  } catch (const thx::Error& e) {  // scene, texture, hand script, device, files: each names its source
-    std::fprintf(stderr, "hapticd: %s\n", e.what());
-  }
-  return 1;
+  return thx::runProgram("hapticd", thx::srv::hapticdHelp(), argc, argv, [](const std::vector<std::string>& args) {
+    const thx::srv::HapticdOptions options = thx::srv::parseHapticdOptions(args);
+    thx::srv::prepareProcessForLockedMemory();  // small thread stacks, one malloc arena
+    return run(options);  // scene, texture, hand script, device, files: each error names its source
+  });
 }

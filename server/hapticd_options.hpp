@@ -35,7 +35,7 @@ struct ListenAddress {
 };
 
 struct HapticdOptions {
-  bool help = false;  // -h/--help: print hapticdHelp() and exit 0 (nothing else is checked)
+  bool help = false;  // -h/--help seen: parsing stopped there (hapticd's main answers it first, thx::runProgram)
   std::string scene;
   std::string scenes_dir;  // empty: the folder of `scene`
   std::string device;      // empty: the scene's

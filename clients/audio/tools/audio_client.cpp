@@ -21,7 +21,7 @@
 #include "clients/audio/offline/scrape_synthesis.hpp"
 #include "clients/audio/synthesis/sounding_scene.hpp"
 #include "clients/audio/synthesis/surface_sound.hpp"
-#include "clients/audio/tools/tool_main.hpp"
+#include "base/program_main.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
 #include "textures/smoothing.hpp"
@@ -323,6 +323,6 @@ int run(Options o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return thx::audio::runTool("audio-client", kHelp, argc, argv,
+  return thx::runProgram("audio-client", kHelp, argc, argv,
                              [](const std::vector<std::string>& args) { return run(parse(args)); });
 }

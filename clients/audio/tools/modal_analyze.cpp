@@ -8,7 +8,7 @@
 #include "clients/audio/analysis/audible_modes.hpp"
 #include "clients/audio/analysis/scene_bodies.hpp"
 #include "clients/audio/tools/modal_options.hpp"
-#include "clients/audio/tools/tool_main.hpp"
+#include "base/program_main.hpp"
 #include "scenes/scene_loader.hpp"
 
 namespace {
@@ -89,7 +89,7 @@ int runScene(const ModalOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return runTool("modal-analyze", kModalHelp, argc, argv, [](const std::vector<std::string>& args) {
+  return thx::runProgram("modal-analyze", kModalHelp, argc, argv, [](const std::vector<std::string>& args) {
     const ModalOptions o = parseModalOptions(args);
     return o.scene.empty() ? run(o) : runScene(o);
   });

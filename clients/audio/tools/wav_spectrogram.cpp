@@ -8,7 +8,7 @@
 #include "clients/audio/spectrogram/spectrogram_image.hpp"
 #include "clients/audio/spectrogram/stft.hpp"
 #include "clients/audio/spectrogram/wav_file.hpp"
-#include "clients/audio/tools/tool_main.hpp"
+#include "base/program_main.hpp"
 
 namespace {
 
@@ -68,7 +68,7 @@ Options parse(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return runTool("wav-spectrogram", kHelp, argc, argv, [](const std::vector<std::string>& args) {
+  return thx::runProgram("wav-spectrogram", kHelp, argc, argv, [](const std::vector<std::string>& args) {
     const Options o = parse(args);
     const MonoSound sound = readMonoSound(o.in);
     const Spectrogram s = stft(sound.samples, sound.sample_rate_hz, o.stft);
