@@ -76,9 +76,8 @@ void SceneSwitcher::work() {
     job_.reset();
     loading_ = true;
     lock.unlock();
-    load(name);
+    load(name);  // ends the load (loading_ false) under the lock that publishes its outcome
     lock.lock();
-    loading_ = false;
   }
 }
 
@@ -109,7 +108,10 @@ void SceneSwitcher::load(const std::string& name) {
     handoff_.offer(&offered_->swap);  // Idle: the last swap was reclaimed before this job began
     outcome.swap = ++offers_;
   }
+  // The outcome and the end of the load under one lock: a client answered by poll() may ask
+  // again at once, and begin() must not find this load still under way.
   outcome_ = std::move(outcome);
+  loading_ = false;
 }
 
 void SceneSwitcher::reclaim(std::unique_lock<std::mutex>& lock) {
