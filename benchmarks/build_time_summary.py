@@ -60,7 +60,9 @@ def main():
 
     lines = []
     start, end = read(os.path.join(out, "start")), read(os.path.join(out, "end"))
-    tm = read(os.path.join(out, "make_test.time")).split()
+    # GNU time writes "Command exited with non-zero status N" before its numbers when make fails.
+    time_lines = read(os.path.join(out, "make_test.time")).splitlines()
+    tm = time_lines[-1].split() if time_lines else []
     rc = read(os.path.join(out, "make_test.rc"), "?")
     if start and end and len(tm) >= 2:
         lines.append(f"make test: exit {rc}, wall {int(end) - int(start)} s, "
