@@ -13,10 +13,10 @@ TEST(MesoNoAllocation, WalkAllocatesNothing) {
   MesoSurface surface{&map, tex::Address::Wrap, {0, 0, 1}, 0.02, 0.05};
   MesoState state;
   double sum = 0;
-  const long before = test::t_allocations;
+  const long before = thx::test::t_allocations;
   const std::size_t n = mesoImpulsesAlong(surface, state, {0.01, 0.5}, {0.99, 0.5}, {0.5, 0, 0},
                                           [&](const MesoImpulse& m) { sum += m.impulse.z(); });
-  EXPECT_EQ(test::t_allocations - before, 0);
+  EXPECT_EQ(thx::test::t_allocations - before, 0);
   EXPECT_EQ(n, 63u);
   EXPECT_NEAR(sum, 0.0, 1e-12);  // in and out of the tilted column: equal and opposite
 }

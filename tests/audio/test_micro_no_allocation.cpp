@@ -17,11 +17,11 @@ TEST(MicroNoAllocation, ReadingTheProfileAndReliefImpulsesAllocateNothing) {
   const RoughnessProfile profile(o);
   std::array<double, 64> out{};
   const ReliefTick a{true, {0, 0, 1}, {0, 0, 1}, {0.1, 0, 0}}, b{true, {0, 0, 1}, {0.3, 0, 1}, {0.1, 0, 0}};
-  const long before = test::t_allocations;
+  const long before = thx::test::t_allocations;
   microForce(profile, 0.0, 1e-3, 1.0, 2.0, out);           // 1.6 entries per sample: level 1
   microForce(profile, 1e-3, 1.1e-3, 2.0, 2.0, out);        // level 0
   const double j = reliefImpulse(a, b, 0.045);
-  EXPECT_EQ(test::t_allocations - before, 0);
+  EXPECT_EQ(thx::test::t_allocations - before, 0);
   EXPECT_NE(out[10], 0.0);
   EXPECT_NE(j, 0.0);
 }

@@ -15,7 +15,7 @@ TEST(ResonatorNoAllocation, SetStrikeAndRenderAllocateNothing) {
   ResonatorBank bank(44100.0, 512);
   std::vector<float> block(256);
   std::vector<double> block_d(256);
-  const long before = test::t_allocations;
+  const long before = thx::test::t_allocations;
   ASSERT_TRUE(bank.setModes(f, d));
   for (int b = 0; b < 50; ++b) {
     bank.setBudget(b % 2 ? 100 : 300);  // quality scaling under load
@@ -24,7 +24,7 @@ TEST(ResonatorNoAllocation, SetStrikeAndRenderAllocateNothing) {
     bank.render(block);
     bank.render(block_d);
   }
-  EXPECT_EQ(test::t_allocations - before, 0);
+  EXPECT_EQ(thx::test::t_allocations - before, 0);
   EXPECT_NE(block[0], 0.0f);  // it did render something
 }
 
@@ -33,7 +33,7 @@ TEST(ResonatorNoAllocation, TheFloatBankAndAForcedInstructionSetAllocateNothing)
   for (std::size_t k = 0; k < f.size(); ++k) f[k] = 50.0 + 60.0 * double(k), d[k] = 2.0 + 0.1 * double(k), g[k] = 1e-3;
   ResonatorBankFloat bank(44100.0, 512);
   std::vector<float> block(700);  // longer than the kernel's block: rendered in pieces
-  const long before = test::t_allocations;
+  const long before = thx::test::t_allocations;
   ASSERT_TRUE(bank.setIsa(Isa::Default));
   ASSERT_TRUE(bank.setModes(f, d));
   for (int b = 0; b < 20; ++b) {
@@ -41,7 +41,7 @@ TEST(ResonatorNoAllocation, TheFloatBankAndAForcedInstructionSetAllocateNothing)
     bank.strike(g);
     bank.render(block);
   }
-  EXPECT_EQ(test::t_allocations - before, 0);
+  EXPECT_EQ(thx::test::t_allocations - before, 0);
   EXPECT_NE(block[0], 0.0f);
 }
 

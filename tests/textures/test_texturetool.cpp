@@ -29,8 +29,8 @@ struct ToolRun {
 class TextureTool : public ::testing::Test {
  protected:
   void SetUp() override {
-    tool_ = fs::read_symlink("/proc/self/exe").parent_path() / ".." / ".." / "textures" / "texturetool";
-    if (!fs::exists(tool_)) GTEST_SKIP() << "texturetool not built at " << tool_;
+    tool_ = THX_TEXTURETOOL;  // tests/textures/CMakeLists.txt: built before this test
+    ASSERT_TRUE(fs::exists(tool_)) << "texturetool not built at " << tool_;
     dir_ = fs::temp_directory_path() / ("thx_texturetool_test_" + std::to_string(::getpid()) + "_" +
                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
