@@ -7,7 +7,7 @@
 #include "clients/audio/analysis/audible_modes.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_audible_modes {
 namespace {
 
 using test::relativeError;
@@ -97,4 +97,4 @@ TEST(AudibleModes, OverdampedModesAreDropped) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_audible_modes

@@ -15,7 +15,7 @@
 #include "tests/audio/basis_fixtures.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_basis_invariance {
 namespace {
 
 using namespace test;
@@ -191,4 +191,4 @@ TEST(Observation, AModeIsHeardAsItsDriveTimesItsObservation) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_basis_invariance

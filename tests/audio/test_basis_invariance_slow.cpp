@@ -11,7 +11,7 @@
 #include "scenes/scene_loader.hpp"
 #include "tests/audio/basis_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_basis_invariance_slow {
 namespace {
 
 TEST(BasisInvarianceSlow, ThePenSoundsTheSameFromCholmodAndLdltSolves) {
@@ -22,4 +22,4 @@ TEST(BasisInvarianceSlow, ThePenSoundsTheSameFromCholmodAndLdltSolves) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_basis_invariance_slow

@@ -11,6 +11,8 @@
 #include "clients/audio/synthesis/resonator_bank.hpp"
 #include "scenes/materials.hpp"
 
+namespace test_contact_pulse {
+
 namespace {
 
 using namespace thx::audio;
@@ -110,3 +112,5 @@ TEST(ContactPulse, ModeRingsAsIfStruckByThePulsesSpectrumAtItsCentre) {
 }
 
 }  // namespace
+
+}  // namespace test_contact_pulse

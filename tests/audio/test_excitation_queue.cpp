@@ -8,7 +8,7 @@
 
 #include "clients/audio/synthesis/excitation.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_excitation_queue {
 namespace {
 
 ExcitationEvent event(std::int64_t t) {
@@ -95,4 +95,4 @@ TEST(ExcitationQueue, TwoThreadsHandOverEveryEventInOrder) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_excitation_queue

@@ -11,7 +11,7 @@
 
 #include "clients/audio/synthesis/fractal_roughness.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_fractal_roughness {
 namespace {
 
 std::vector<double> powerSpectrum(const std::vector<double>& x) {
@@ -179,4 +179,4 @@ TEST(FractalRoughness, BadOptionsAreRefused) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_fractal_roughness

@@ -12,7 +12,7 @@
 #include "tests/audio/live_fixtures.hpp"
 #include "tests/support/allocation_counter.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_live_no_allocation {
 namespace {
 
 // A Point event on the pen (body 1): its tip's element, a 50 µs Hertz pulse.
@@ -125,4 +125,4 @@ TEST(LiveNoAllocation, TheCallbackAllocatesNothing) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_live_no_allocation

@@ -24,7 +24,7 @@
 #include "tests/audio/live_fixtures.hpp"
 #include "tests/audio/physics_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_live_pipeline {
 namespace {
 
 constexpr double kRate = 48000.0;  // 48 samples per servo tick: the tick times fall on samples
@@ -74,7 +74,7 @@ struct Pipeline {
                                                   setup.micro ? std::make_shared<const RoughnessProfile>(roughness()) : nullptr));
   }
   static PenScrapeOptions penOptions(MesoSource meso) {
-    PenScrapeOptions p = thx::audio::penOptions();
+    PenScrapeOptions p = test_live_pipeline::penOptions();
     p.meso = meso;
     return p;
   }
@@ -340,4 +340,4 @@ TEST(LivePipeline, ANewSubscriptionsBatchesArePlayedThoughTheirSeqStartsAgain) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_live_pipeline

@@ -21,6 +21,8 @@
 #include "tests/support/rendered_sound.hpp"
 #include "thx_msgs/log_reader.hpp"
 
+namespace test_marble_onsets {
+
 namespace {
 
 const std::string kScene = std::string(THX_SOURCE_DIR) + "/scenes/marble_rolling_bricks.yaml";
@@ -122,3 +124,5 @@ TEST_F(MarbleOnBricks, BadOptionsAndLogsAreNamed) {
 }
 
 }  // namespace
+
+}  // namespace test_marble_onsets

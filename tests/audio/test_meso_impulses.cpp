@@ -7,7 +7,7 @@
 
 #include "clients/audio/synthesis/meso_impulses.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_meso_impulses {
 namespace {
 
 // A bumpy map: every texel's normal tilted by a deterministic pseudo-random amount.
@@ -101,4 +101,4 @@ TEST(MesoImpulses, BoundedAsTheNormalsBecomePerpendicular) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_meso_impulses

@@ -4,7 +4,7 @@
 #include "clients/audio/synthesis/meso_impulses.hpp"
 #include "tests/support/allocation_counter.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_meso_no_allocation {
 namespace {
 
 TEST(MesoNoAllocation, WalkAllocatesNothing) {
@@ -22,4 +22,4 @@ TEST(MesoNoAllocation, WalkAllocatesNothing) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_meso_no_allocation

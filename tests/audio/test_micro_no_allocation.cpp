@@ -8,7 +8,7 @@
 #include "clients/audio/synthesis/relief_impulses.hpp"
 #include "tests/support/allocation_counter.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_micro_no_allocation {
 namespace {
 
 TEST(MicroNoAllocation, ReadingTheProfileAndReliefImpulsesAllocateNothing) {
@@ -27,4 +27,4 @@ TEST(MicroNoAllocation, ReadingTheProfileAndReliefImpulsesAllocateNothing) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_micro_no_allocation

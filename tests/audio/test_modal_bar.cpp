@@ -8,7 +8,7 @@
 #include "clients/audio/analysis/modal_analysis.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_modal_bar {
 namespace {
 
 using test::relativeError;
@@ -40,4 +40,4 @@ TEST(ModalBar, Tet4ConvergesFromAboveAsTheMeshRefines) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_modal_bar

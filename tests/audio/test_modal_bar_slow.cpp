@@ -6,7 +6,7 @@
 #include "clients/audio/analysis/modal_analysis.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_modal_bar_slow {
 namespace {
 
 using test::relativeError;
@@ -39,4 +39,4 @@ TEST(ModalBarSlow, Tet4ConvergesFromAboveQuadratically) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_modal_bar_slow

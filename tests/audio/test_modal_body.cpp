@@ -7,6 +7,8 @@
 #include "clients/audio/analysis/modal_body.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
+namespace test_modal_body {
+
 namespace {
 
 using namespace thx::audio;
@@ -103,3 +105,5 @@ TEST(ModalBody, AtANodeTheGainIsTheNodesShape) {
 }
 
 }  // namespace
+
+}  // namespace test_modal_body

@@ -12,7 +12,7 @@
 #include "tests/audio/modal_fixtures.hpp"
 #include "tests/support/error_text.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_modal_errors {
 namespace {
 
 using test::steel;
@@ -122,4 +122,4 @@ TEST_F(ModalCacheTest, DamagedFileIsReportedAndSolvedAgain) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_modal_errors

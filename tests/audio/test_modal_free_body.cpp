@@ -8,7 +8,7 @@
 #include "clients/audio/analysis/modal_analysis.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_modal_free_body {
 namespace {
 
 using test::relativeError;
@@ -112,4 +112,4 @@ TEST(ModalFreeBody, HeldSlabHasNoRigidModesAndItsEdgesStayPut) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_modal_free_body

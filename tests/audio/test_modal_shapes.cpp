@@ -8,7 +8,7 @@
 #include "clients/audio/analysis/modal_analysis.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_modal_shapes {
 namespace {
 
 using test::relativeError;
@@ -38,4 +38,4 @@ TEST(ModalShapes, SphereT2AndS2WithinTwoPercentWithMultiplicityFive) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_modal_shapes

@@ -3,7 +3,7 @@
 
 #include "tests/audio/modal_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_modal_shapes_slow {
 namespace {
 
 TEST(ModalShapesSlow, Plate16AllEightModesWithinOneAndAHalfPercentOfKirchhoff) { test::expectPlateNearKirchhoff(16, 8); }
@@ -12,4 +12,4 @@ TEST(ModalShapesSlow, Plate16AllEightModesWithinOneAndAHalfPercentOfKirchhoff) {
 TEST(ModalShapesSlow, Plate30AllEightModesWithinOneAndAHalfPercentOfKirchhoff) { test::expectPlateNearKirchhoff(30, 8); }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_modal_shapes_slow

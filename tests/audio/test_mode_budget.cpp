@@ -10,7 +10,7 @@
 #include "clients/audio/live/mode_budget.hpp"
 #include "tests/audio/live_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_mode_budget {
 namespace {
 
 constexpr std::int64_t kPeriod = 1'000'000;  // 1 ms blocks
@@ -109,4 +109,4 @@ TEST(ModeBudgetInCallback, FakeClockCostShedsTheHighestModesAndSettles) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_mode_budget

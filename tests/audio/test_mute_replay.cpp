@@ -19,6 +19,8 @@
 #include "tests/support/rendered_sound.hpp"
 #include "thx_msgs/log_reader.hpp"
 
+namespace test_mute_replay {
+
 namespace {
 
 // 128² grooves (ceramic), one stroke across them at 0.1 m/s: 1.2 s in contact after a 0.3 s hold.
@@ -124,3 +126,5 @@ TEST_F(MuteReplay, AMutedSceneIsExactSilenceAndTheSoundComesBackAfterIt) {
 }
 
 }  // namespace
+
+}  // namespace test_mute_replay

@@ -19,6 +19,8 @@
 #include "thx_msgs/log_reader.hpp"
 #include "thx_msgs/protocol.hpp"
 
+namespace test_object_contact_replay {
+
 namespace {
 
 const std::string kScene = std::string(THX_TEST_DATA_DIR) + "/scenes/ball_on_block.yaml";
@@ -118,3 +120,5 @@ TEST_F(ObjectContactReplay, ABallRestingOnABlockAddsNothing) {
 }
 
 }  // namespace
+
+}  // namespace test_object_contact_replay

@@ -18,7 +18,7 @@
 #include "clients/audio/synthesis/synth_scene.hpp"
 #include "tests/audio/physics_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_object_contacts {
 namespace {
 
 using test::rubMessage;
@@ -245,4 +245,4 @@ TEST(ObjectContacts, LiveMicroEventsPlayAsTheOfflineRender) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_object_contacts

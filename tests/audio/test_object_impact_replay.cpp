@@ -15,6 +15,8 @@
 #include "thx_msgs/log_reader.hpp"
 #include "thx_msgs/protocol.hpp"
 
+namespace test_object_impact_replay {
+
 namespace {
 
 const std::string kScene = std::string(THX_TEST_DATA_DIR) + "/scenes/balls_collide.yaml";
@@ -61,3 +63,5 @@ TEST_F(ObjectImpactReplay, ABallStrikingABallSoundsInTheOfflineRender) {
 }
 
 }  // namespace
+
+}  // namespace test_object_impact_replay

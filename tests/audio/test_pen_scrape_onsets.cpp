@@ -17,6 +17,8 @@
 #include "tests/support/rendered_sound.hpp"
 #include "thx_msgs/log_reader.hpp"
 
+namespace test_pen_scrape_onsets {
+
 namespace {
 
 const std::string kScene = std::string(THX_TEST_DATA_DIR) + "/scenes/pen_stroke_bricks.yaml";
@@ -82,3 +84,5 @@ TEST_F(PenScrapeOnsets, OnsetsInTheWavComeAtTheMortarCrossingsOfTheStroke) {
 }
 
 }  // namespace
+
+}  // namespace test_pen_scrape_onsets

@@ -18,6 +18,8 @@
 #include "scenes/scene_loader.hpp"
 #include "tests/audio/physics_fixtures.hpp"
 
+namespace test_physics_sound {
+
 namespace {
 
 using namespace thx::audio;
@@ -321,3 +323,5 @@ TEST(PhysicsSound, AnImpactWithThePenRingsThePenAtItsTip) {
 }
 
 }  // namespace
+
+}  // namespace test_physics_sound

@@ -13,7 +13,7 @@
 #include "clients/audio/synthesis/contact_pulse.hpp"
 #include "tests/audio/physics_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_physics_source {
 namespace {
 
 using test::testScene;
@@ -157,4 +157,4 @@ TEST(PhysicsSource, WithoutAPoseOrAudibleModesOnlyTheSurfaceSounds) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_physics_source

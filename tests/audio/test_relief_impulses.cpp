@@ -6,7 +6,7 @@
 
 #include "clients/audio/synthesis/relief_impulses.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_relief_impulses {
 namespace {
 
 ReliefTick tick(const Eigen::Vector3d& normal, const Eigen::Vector3d& velocity) {
@@ -49,4 +49,4 @@ TEST(ReliefImpulses, NoContactNoImpulseAndGrazingNormalsStayBounded) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_relief_impulses

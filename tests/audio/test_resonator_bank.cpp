@@ -7,7 +7,7 @@
 
 #include "clients/audio/synthesis/resonator_bank.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_resonator_bank {
 namespace {
 
 constexpr double kRate = 44100.0;
@@ -129,4 +129,4 @@ TEST(ResonatorBank, RefusesModesItCannotRepresent) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_resonator_bank

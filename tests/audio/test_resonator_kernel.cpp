@@ -9,7 +9,7 @@
 
 #include "clients/audio/synthesis/resonator_bank.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_resonator_kernel {
 namespace {
 
 constexpr double kRate = 44100.0;
@@ -129,4 +129,4 @@ TEST(ResonatorKernel, RefusesAnUnsupportedInstructionSetAndKeepsItsOwn) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_resonator_kernel

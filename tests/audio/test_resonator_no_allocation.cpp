@@ -6,7 +6,7 @@
 #include "clients/audio/synthesis/resonator_bank.hpp"
 #include "tests/support/allocation_counter.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_resonator_no_allocation {
 namespace {
 
 TEST(ResonatorNoAllocation, SetStrikeAndRenderAllocateNothing) {
@@ -46,4 +46,4 @@ TEST(ResonatorNoAllocation, TheFloatBankAndAForcedInstructionSetAllocateNothing)
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_resonator_no_allocation

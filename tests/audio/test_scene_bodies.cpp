@@ -7,7 +7,7 @@
 #include "clients/audio/analysis/scene_bodies.hpp"
 #include "scenes/scene_loader.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_scene_bodies {
 namespace {
 
 std::string scenePath(const std::string& name) { return std::string(THX_SOURCE_DIR) + "/scenes/" + name + ".yaml"; }
@@ -92,4 +92,4 @@ TEST(SceneBodies, FixedObstaclesAreSkipped) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_scene_bodies

@@ -15,7 +15,7 @@
 #include "tests/audio/live_fixtures.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_scene_mute {
 namespace {
 
 constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min(), kMax = std::numeric_limits<std::int64_t>::max();
@@ -132,4 +132,4 @@ TEST(SceneMute, TheLiveClientPlaysZerosForAMutedSceneAndSoundAfterSwitchingBack)
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_scene_mute

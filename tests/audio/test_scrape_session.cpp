@@ -11,7 +11,7 @@
 #include "clients/audio/offline/scrape_session.hpp"
 #include "tests/audio/live_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_scrape_session {
 namespace {
 
 // 1 s at 0.1 m/s along u from u = 0.3, v = 0.41 (ticks 1000-2000, utime = tick ms), no normal
@@ -115,4 +115,4 @@ TEST(ScrapeSession, TheOldSurfaceRingsOnAfterASwitchToAFlatOne) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_scrape_session

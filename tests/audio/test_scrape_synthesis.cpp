@@ -10,7 +10,7 @@
 #include "clients/audio/offline/scrape_synthesis.hpp"
 #include "tests/audio/live_fixtures.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_scrape_synthesis {
 namespace {
 
 using test::steel;
@@ -156,4 +156,4 @@ TEST(ScrapeSynthesis, ReliefImpulsesFromTheContactNormal) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_scrape_synthesis

@@ -18,7 +18,7 @@
 #include "tests/audio/wav_fixture.hpp"
 #include "textures/png_io.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_spectrogram {
 namespace {
 
 constexpr double kRate = 44100.0;
@@ -113,4 +113,4 @@ TEST(WavSpectrogram, ErrorsNameTheFile) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_spectrogram

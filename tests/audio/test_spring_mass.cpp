@@ -13,7 +13,7 @@
 #include "clients/audio/analysis/spring_mass.hpp"
 #include "scenes/materials.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_spring_mass {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -114,4 +114,4 @@ TEST(SpringMass, BadInputIsRefusedWithTheObjectNamed) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_spring_mass

@@ -9,7 +9,7 @@
 
 #include "clients/audio/live/audio_output.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_timer_output {
 namespace {
 
 TEST(TimerOutput, CallsTheCallbackBlockAfterBlockAndCapturesItsBlocks) {
@@ -46,4 +46,4 @@ TEST(TimerOutput, RejectsABlockLargerThanItsBuffer) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_timer_output

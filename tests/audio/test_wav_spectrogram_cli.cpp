@@ -11,7 +11,7 @@
 #include "tests/support/temp_dir.hpp"
 #include "textures/png_io.hpp"
 
-namespace thx::audio {
+namespace thx::audio::test_wav_spectrogram_cli {
 namespace {
 
 namespace fs = std::filesystem;
@@ -65,4 +65,4 @@ TEST_F(WavSpectrogramCli, ABadCommandLineExitsTwo) {
 }
 
 }  // namespace
-}  // namespace thx::audio
+}  // namespace thx::audio::test_wav_spectrogram_cli

@@ -7,6 +7,8 @@
 
 #include <functional>
 
+namespace test_base {
+
 using namespace thx;
 
 namespace {
@@ -56,3 +58,5 @@ TEST(JsonText, EscapesQuotesBackslashesAndControlCharacters) {
   EXPECT_EQ(json::escaped(std::string("x\ny\x01", 4)), "x\\u000ay\\u0001");
   EXPECT_EQ(json::quoted("scenes/default.yaml"), "\"scenes/default.yaml\"");
 }
+
+}  // namespace test_base

@@ -11,6 +11,8 @@
 #include "base/error.hpp"
 #include "base/program_main.hpp"
 
+namespace test_program_main {
+
 namespace {
 
 struct Outcome {
@@ -125,3 +127,5 @@ TEST(ProgramMain, ReportErrorsAloneNamesTheCommand) {
   EXPECT_EQ(o.err, "tool smooth: --sigma: required\n(tool smooth --help lists the options)\n");
   EXPECT_EQ(captured([] { return thx::reportErrors("tool", [] { return 0; }); }).status, 0);
 }
+
+}  // namespace test_program_main

@@ -11,6 +11,8 @@
 #include "tests/support/fake_server.hpp"
 #include "thx_client/client.hpp"
 
+namespace test_client {
+
 using namespace thx;
 using client::Client;
 using client::SubscriptionState;
@@ -272,3 +274,5 @@ TEST_F(ClientTest, BadArgumentsAreClearErrors) {
   EXPECT_THROW(c->subscribe(static_cast<thx_msgs::Stream>(7), 10.0), std::logic_error);
   EXPECT_TRUE(c->status().empty());  // nothing was asked for
 }
+
+}  // namespace test_client

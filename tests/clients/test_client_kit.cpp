@@ -16,6 +16,8 @@
 #include "thx_client/scene_check.hpp"
 #include "thx_client/subscriber.hpp"
 
+namespace test_client_kit {
+
 using namespace thx::client;
 
 namespace {
@@ -174,3 +176,5 @@ TEST_F(ClientKit, WaitForServerStopsAClientOnAnotherSceneUnlessToldToDiffer) {
     }
   }
 }
+
+}  // namespace test_client_kit

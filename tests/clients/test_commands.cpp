@@ -17,6 +17,8 @@
 #include "thx_client/commands.hpp"
 #include "thx_client/stop_signal.hpp"
 
+namespace test_commands {
+
 using namespace thx;
 using client::ClientApp;
 using client::CommandRefused;
@@ -197,3 +199,5 @@ TEST_F(Commands, DescribeCommandNamesEachAction) {
   EXPECT_EQ(client::protocolVersionFor(Cmd::ACTION_LOAD_SCENE), 3);
   EXPECT_EQ(client::protocolVersionFor(9), 0);  // unknown: the server decides
 }
+
+}  // namespace test_commands

@@ -27,6 +27,8 @@
 #include "tests/clients/recording_sink.hpp"
 #include "tests/support/hapticd_harness.hpp"
 
+namespace test_data_ports {
+
 namespace {
 
 using namespace thx::test;
@@ -429,3 +431,5 @@ TEST_F(DataPortsLoopback, AClientWhoseDataPortIsHeldNamesItAndGoesOn) {
 }
 
 }  // namespace
+
+}  // namespace test_data_ports

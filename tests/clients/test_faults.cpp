@@ -16,6 +16,8 @@
 
 #include "tests/support/hapticd_harness.hpp"
 
+namespace test_faults {
+
 namespace {
 
 using namespace thx::test;
@@ -296,3 +298,5 @@ TEST_F(HapticdFaults, NoMulticastRouteInAFreshNetworkNamespace) {
   EXPECT_GT(jsonNumber(slurp(path("p2.json")), "messages"), 0);
   EXPECT_NE(out.find("hapticd2=0"), std::string::npos) << slurp(path("hd2.err"));
 }
+
+}  // namespace test_faults

@@ -13,6 +13,8 @@
 
 #include "tests/support/hapticd_harness.hpp"
 
+namespace test_load {
+
 namespace {
 
 using namespace thx::test;
@@ -69,3 +71,5 @@ TEST_F(HapticdLoad, ProbesAt1000And250And60HzAreGrantedTheirRatesTogether) {
                {"p60", "DEVICE_STATE", 60.0, false}},
               3.0);
 }
+
+}  // namespace test_load

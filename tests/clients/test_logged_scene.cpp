@@ -21,6 +21,8 @@
 #include "thx_client/logged_scene.hpp"
 #include "thx_msgs/protocol.hpp"
 
+namespace test_logged_scene {
+
 namespace {
 
 using namespace thx::client;
@@ -145,3 +147,5 @@ TEST(LoggedScene, ReplayingClientsRefuseALogOfAnotherTexture) {
 }
 
 }  // namespace
+
+}  // namespace test_logged_scene

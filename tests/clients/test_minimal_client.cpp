@@ -11,6 +11,8 @@
 #include "tests/support/hapticd_harness.hpp"
 #include "thx_msgs/protocol.hpp"
 
+namespace test_minimal_client {
+
 namespace {
 
 using namespace thx::test;
@@ -87,3 +89,5 @@ TEST(MinimalClientQuote, DocsQuoteIsTheExampleSource) {
 }
 
 }  // namespace
+
+}  // namespace test_minimal_client

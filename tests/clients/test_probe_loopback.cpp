@@ -5,6 +5,8 @@
 // not available (no multicast route).
 #include "tests/support/hapticd_harness.hpp"
 
+namespace test_probe_loopback {
+
 namespace {
 
 using namespace thx::test;
@@ -70,3 +72,5 @@ TEST(ProbeClientCli, HelpAndBadCommandLines) {
   EXPECT_EQ(shellStatus(p + "--stream CONTACT --rate -1 --duration 1 --json x 2>/dev/null"), 2);
   EXPECT_EQ(shellStatus(p + "--stream CONTACT --rate 10 --duration 1 --json x --client-id 'a b' 2>/dev/null"), 2);
 }
+
+}  // namespace test_probe_loopback

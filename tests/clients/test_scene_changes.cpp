@@ -13,6 +13,8 @@
 #include "tests/support/fake_server.hpp"
 #include "thx_client/client.hpp"
 
+namespace test_scene_changes {
+
 using namespace thx;
 using client::Client;
 using client::SceneChange;
@@ -137,3 +139,5 @@ TEST_F(SceneChanges, TwoSwitchesBetweenPollsCountTwiceAndLeaveTheNewest) {
   ASSERT_EQ(changes_.size(), 2u);
   EXPECT_EQ(changes_[1].from.name, "vvalley");
 }
+
+}  // namespace test_scene_changes

@@ -10,6 +10,8 @@
 
 #include "thx_client/scene_check.hpp"
 
+namespace test_scene_check {
+
 namespace {
 
 using namespace thx::client;
@@ -153,3 +155,5 @@ TEST_F(SceneLookup, ArgumentIsAPathOrAName) {
 }
 
 }  // namespace
+
+}  // namespace test_scene_check

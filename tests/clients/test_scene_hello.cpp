@@ -13,6 +13,8 @@
 #include "thx_client/scene_check.hpp"
 #include "thx_msgs/protocol.hpp"
 
+namespace test_scene_hello {
+
 namespace {
 
 using namespace thx;
@@ -63,3 +65,5 @@ TEST_F(SceneHello, HapticdAnnouncesItsSceneAndAClientOnAnotherSceneIsToldBoth) {
 }
 
 }  // namespace
+
+}  // namespace test_scene_hello

@@ -19,6 +19,8 @@
 #include "tests/support/hapticd_harness.hpp"
 #include "thx_msgs/protocol.hpp"
 
+namespace test_scene_switch {
+
 namespace {
 
 using namespace thx;
@@ -188,3 +190,5 @@ TEST_F(SceneSwitch, HapticctlSwitchesTheSceneAndThePhysicsClientFollows) {
 }
 
 }  // namespace
+
+}  // namespace test_scene_switch

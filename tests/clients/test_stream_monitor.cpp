@@ -3,6 +3,8 @@
 
 #include "thx_client/stream_monitor.hpp"
 
+namespace test_stream_monitor {
+
 using thx::client::StreamMonitor;
 
 TEST(StreamMonitor, RateLatencyGapsAndDuplicatesOfALatestValueStream) {
@@ -82,3 +84,5 @@ TEST(StreamMonitor, AServerRestartIsNotADuplicate) {
   EXPECT_EQ(r.samples, 40u);
   EXPECT_EQ(r.samples_missing, 0u);
 }
+
+}  // namespace test_stream_monitor

@@ -8,6 +8,8 @@
 #include "recording_sink.hpp"
 #include "server/subscriptions.hpp"
 
+namespace test_subscriptions {
+
 using namespace thx;
 using test::request;
 using test::runTicks;
@@ -289,3 +291,5 @@ TEST(Subscriptions, NothingIsComputedWithoutSubscribers) {
   ASSERT_TRUE(t.handleRequest(request("mon", "SERVO_STATS", 1), 0).accepted);
   EXPECT_FALSE(t.wantsTicks());  // stats need no per-tick messages
 }
+
+}  // namespace test_subscriptions

@@ -10,6 +10,8 @@
 
 #include "device/hand_script.hpp"
 
+namespace test_hand_script {
+
 using namespace thx::dev;
 
 namespace {
@@ -253,3 +255,5 @@ TEST(HandPathCsv, LoadedPathDrivesAScript) {
   EXPECT_NEAR(s.duration(), 0.2 + 2 * o.approach_s + 2 * o.force_ramp_s + 0.5, kEps);
   EXPECT_TRUE(s.sampleLocal(0.2 + o.approach_s + o.force_ramp_s + 0.25).p_m.isApprox(Eigen::Vector3d(0.01, 0, 0)));
 }
+
+}  // namespace test_hand_script

@@ -12,6 +12,8 @@
 
 #include "device/sim_phantom.hpp"
 
+namespace test_sim_no_alloc {
+
 
 
 using namespace thx::dev;
@@ -53,3 +55,5 @@ TEST(SimNoAlloc, TheCounterWorks) {
   ::operator delete(probe);
   EXPECT_EQ(thx::test::g_allocations.load() - before, 1);
 }
+
+}  // namespace test_sim_no_alloc

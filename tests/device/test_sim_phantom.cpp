@@ -8,6 +8,8 @@
 
 #include "device/sim_phantom.hpp"
 
+namespace test_sim_phantom {
+
 using namespace thx::dev;
 
 namespace {
@@ -383,3 +385,5 @@ TEST(SimPhantom, PacedModeFollowsTheMonotonicClock) {
     sim.write(DeviceCommand{});
   }
 }
+
+}  // namespace test_sim_phantom

@@ -23,6 +23,8 @@
 
 #include "device/sim_phantom.hpp"
 
+namespace test_sim_stability {
+
 using namespace thx::dev;
 
 namespace {
@@ -136,3 +138,5 @@ TEST(SimStability, SamplingRateIsWhatDestabilises) {
   EXPECT_GT(servo.late.peakToPeakM(), 5.0 * servo.early.peakToPeakM());
   EXPECT_LT(device.late.peakToPeakM(), 0.5 * device.early.peakToPeakM());
 }
+
+}  // namespace test_sim_stability

@@ -12,6 +12,8 @@
 #include "tests/fuzz/image_import_body.hpp"
 #include "tests/textures/bump_images.hpp"
 
+namespace test_fuzz_image_import {
+
 using namespace thx;
 using namespace thx::fuzz;
 
@@ -163,3 +165,5 @@ TEST(FuzzImageImport, TgaPixelMemoryIsBoundedByTheFile) {
   std::vector<unsigned char> b = {0, 0, 10, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x40, 0, 0x40, 24, 0, 0xff, 1, 2, 3};
   EXPECT_EQ(refusal("huge.tga", b).rfind("huge.tga|truncated TGA file|", 0), 0u) << refusal("huge.tga", b);
 }
+
+}  // namespace test_fuzz_image_import

@@ -11,7 +11,7 @@
 #include "tests/fuzz/short_run.hpp"
 #include "tests/messages/message_fixtures.hpp"
 
-namespace thx::fuzz {
+namespace thx::fuzz::test_fuzz_lcm_messages {
 namespace {
 
 using namespace thx_msgs;
@@ -115,4 +115,4 @@ TEST(FuzzLcmMessages, AStringWithAnEmbeddedNulIsRefused) {
 TEST(FuzzLcmMessages, ShortRun) { shortRun("lcm_messages", &lcm_messages::fuzzOnce); }
 
 }  // namespace
-}  // namespace thx::fuzz
+}  // namespace thx::fuzz::test_fuzz_lcm_messages

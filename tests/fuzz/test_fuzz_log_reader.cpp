@@ -13,7 +13,7 @@
 #include "tests/messages/message_fixtures.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace thx::fuzz {
+namespace thx::fuzz::test_fuzz_log_reader {
 namespace {
 
 using namespace thx_msgs;
@@ -182,4 +182,4 @@ TEST(FuzzLogReader, AnEmptyFileIsAnEmptyLog) {
 TEST(FuzzLogReader, ShortRun) { shortRun("log_reader", &log_reader::fuzzOnce); }
 
 }  // namespace
-}  // namespace thx::fuzz
+}  // namespace thx::fuzz::test_fuzz_log_reader

@@ -8,6 +8,8 @@
 #include "tests/fuzz/short_run.hpp"
 #include "tests/fuzz/modal_cache_body.hpp"
 
+namespace test_fuzz_modal_cache {
+
 using namespace thx;
 using namespace thx::fuzz;
 
@@ -122,3 +124,5 @@ TEST(FuzzModalCache, RefusesValuesBehindAValidChecksum) {
   std::memcpy(f.data() + f.size() - 8, &sum2, 8);
   EXPECT_NE(refusal(f).find("mode shape is not finite"), std::string::npos);
 }
+
+}  // namespace test_fuzz_modal_cache

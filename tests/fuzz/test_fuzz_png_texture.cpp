@@ -7,6 +7,8 @@
 #include "tests/fuzz/png_texture_body.hpp"
 #include "textures/generators.hpp"
 
+namespace test_fuzz_png_texture {
+
 using namespace thx;
 using namespace thx::fuzz;
 
@@ -124,3 +126,5 @@ TEST(FuzzPngTexture, BoundKeepsHighlyCompressedImages) {
   EXPECT_LT(png.size() * 100, flat.samples.size());
   EXPECT_EQ(tex::decodePng(png, "flat.png").samples, flat.samples);
 }
+
+}  // namespace test_fuzz_png_texture

@@ -4,6 +4,8 @@
 #include "tests/fuzz/short_run.hpp"
 #include "tests/fuzz/scene_body.hpp"
 
+namespace test_fuzz_scene {
+
 using namespace thx;
 using namespace thx::fuzz;
 
@@ -35,3 +37,5 @@ TEST(FuzzScene, RefusesTextAboveTheSceneCap) {
     EXPECT_EQ(e.value(), std::to_string(text.size()) + " bytes");
   }
 }
+
+}  // namespace test_fuzz_scene

@@ -12,7 +12,7 @@
 #include "tests/study/study_fixtures.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace thx::fuzz {
+namespace thx::fuzz::test_fuzz_session_csv {
 namespace {
 
 // One session of each study (study_fixtures.hpp), one with extra header lines and optional fields
@@ -83,4 +83,4 @@ TEST(FuzzSessionCsv, ErrorsQuoteTheFileSafely) {
 TEST(FuzzSessionCsv, ShortRun) { shortRun("session_csv", &session_csv::fuzzOnce); }
 
 }  // namespace
-}  // namespace thx::fuzz
+}  // namespace thx::fuzz::test_fuzz_session_csv

@@ -5,6 +5,8 @@
 
 #include "message_fixtures.hpp"
 
+namespace test_protocol {
+
 using namespace thx_test;
 using thx_msgs::stream_channel;
 
@@ -115,3 +117,5 @@ TEST(MessagesProtocol, Constants) {
     all |= f;
   }
 }
+
+}  // namespace test_protocol

@@ -7,6 +7,8 @@
 
 #include "message_fixtures.hpp"
 
+namespace test_pubsub {
+
 using namespace thx_test;
 
 namespace {
@@ -144,3 +146,5 @@ TEST(MessagesPubSub, WrongTypeOnChannelIsRejected) {
   EXPECT_TRUE(sink.got.empty());
   EXPECT_EQ(sink.failures, 2);
 }
+
+}  // namespace test_pubsub

@@ -11,6 +11,8 @@
 
 #include "message_fixtures.hpp"
 
+namespace test_robustness {
+
 using namespace thx_test;
 
 namespace {
@@ -236,3 +238,5 @@ TEST(MessagesDecode, RandomBitFlipsNeverCrash) {
     EXPECT_GT(ok, 0) << e.name;  // flips in plain numbers decode fine
   }
 }
+
+}  // namespace test_robustness

@@ -8,6 +8,8 @@
 
 #include "message_fixtures.hpp"
 
+namespace test_roundtrip {
+
 using namespace thx_test;
 
 namespace {
@@ -173,3 +175,5 @@ TEST(MessagesEncodedSize, StringTypes) {
   const auto ack = make_server_command_reply(0);
   EXPECT_EQ(ack.getEncodedSize(), 45 + strings({&ack.client_id, &ack.reason}));
 }
+
+}  // namespace test_roundtrip

@@ -15,7 +15,7 @@
 #include "clients/physics/contact_solver.hpp"
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_box_friction {
 namespace {
 
 constexpr double kDt = 1e-3, kHalf = 0.01, kMass = 0.05;
@@ -117,4 +117,4 @@ TEST(BoxFrictionRealSlope, BulletsOwnContactsStillSlideAtGSinMinusMuCos) {
 }
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_box_friction

@@ -11,7 +11,7 @@
 #include "clients/physics/conforming_contact.hpp"
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_conforming_contact {
 namespace {
 
 constexpr double kBall = 0.005;   // m, the ball's radius and the cap's
@@ -90,4 +90,4 @@ TEST(ConformingContact, NoneWhereTheReliefDoesNotConform) {
 }
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_conforming_contact

@@ -8,7 +8,7 @@
 
 #include "clients/physics/contact_selection.hpp"
 
-namespace thx::phys {
+namespace thx::phys::test_contact_selection {
 namespace {
 
 ReliefCandidate at(double x, double y, double depth) {
@@ -161,4 +161,4 @@ TEST(SnapToBasins, PlateausAndSingleCandidatesStay) {
 }
 
 }  // namespace
-}  // namespace thx::phys
+}  // namespace thx::phys::test_contact_selection

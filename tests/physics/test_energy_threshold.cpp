@@ -15,7 +15,7 @@
 
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_energy_threshold {
 namespace {
 
 constexpr double kDt = 1e-3, kRadius = 0.005, kMass = 0.01, kExtent = 0.1;
@@ -104,4 +104,4 @@ INSTANTIATE_TEST_SUITE_P(Representation, EnergyThreshold, ::testing::Values(Mode
                          [](const auto& p) { return std::string(name(p.param)); });
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_energy_threshold

@@ -6,7 +6,7 @@
 
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_hard_cases {
 namespace {
 
 const BodyMaterial kPlane{1.0, 0.0, 0.0}, kBall{0.5, 0.0, 0.0};
@@ -307,4 +307,4 @@ TEST(GrazingNormals, ClampedNormalKeepsItsAzimuth) {
 }
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_hard_cases

@@ -9,7 +9,7 @@
 #include "clients/physics/bullet_convert.hpp"
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_normal_map_rolling {
 namespace {
 
 constexpr double kRadius = 0.01, kMass = 0.05, kDt = 1e-3;
@@ -130,4 +130,4 @@ TEST(TiltedNormalMapFrames, RotatedPlaneGivesTheSameRolling) {
 }
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_normal_map_rolling

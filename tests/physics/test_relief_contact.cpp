@@ -9,7 +9,7 @@
 #include "clients/physics/relief_collision.hpp"
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_relief_contact {
 namespace {
 
 constexpr double kDt = 1e-3;
@@ -154,4 +154,4 @@ TEST(ReliefShapes, UnregisteredShapeFindsNoContacts) {
 }
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_relief_contact

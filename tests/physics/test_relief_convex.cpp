@@ -8,7 +8,7 @@
 
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_relief_convex {
 namespace {
 
 constexpr double kRadius = 0.01, kMass = 0.05, kExtent = 0.1, kH = 1e-3, kW = 0.03;
@@ -74,4 +74,4 @@ TEST(ConvexRelief, EscapeSpeedOfA1cmBallMatchesTheEnergyThreshold) {
 }
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_relief_convex

@@ -7,7 +7,7 @@
 
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_rest_drift {
 namespace {
 
 constexpr double kRadius = 0.01, kMass = 0.05;
@@ -110,4 +110,4 @@ INSTANTIATE_TEST_SUITE_P(TimeStep, RestDrift, ::testing::Values(1e-3, 1.0 / 60.0
                          [](const auto& p) { return p.param < 0.01 ? "1kHz" : "60Hz"; });
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_rest_drift

@@ -13,7 +13,7 @@
 #include "clients/physics/bullet_convert.hpp"
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_rest_silence {
 namespace {
 
 constexpr double kSilent = 1e-5;  // m/s: 0.01 mm/s
@@ -158,4 +158,4 @@ INSTANTIATE_TEST_SUITE_P(TimeStep, RestSilence, ::testing::Values(1e-3, 1.0 / 60
                          [](const auto& p) { return p.param < 0.01 ? "1kHz" : "60Hz"; });
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_rest_silence

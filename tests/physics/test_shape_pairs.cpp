@@ -23,7 +23,7 @@
 #include "clients/physics/bullet_convert.hpp"
 #include "physics_fixtures.hpp"
 
-namespace thx::phys::test {
+namespace thx::phys::test::test_shape_pairs {
 namespace {
 
 constexpr double kMargin = 0.5e-3;
@@ -321,4 +321,4 @@ TEST(ShapePairs, CapsuleAndCylinderSideBySide) {
 }
 
 }  // namespace
-}  // namespace thx::phys::test
+}  // namespace thx::phys::test::test_shape_pairs

@@ -10,7 +10,7 @@
 
 #include "clients/physics/underside.hpp"
 
-namespace thx::phys {
+namespace thx::phys::test_underside {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -221,4 +221,4 @@ TEST(Underside, ContactPointOnRoundPartsFacesMinusN) {
 }
 
 }  // namespace
-}  // namespace thx::phys
+}  // namespace thx::phys::test_underside

@@ -12,6 +12,8 @@
 #include "clients/physics_client/pose_csv.hpp"
 #include "scenes/scene_loader.hpp"
 
+namespace test_cli {
+
 namespace {
 
 using namespace thx::physclient;
@@ -129,3 +131,5 @@ TEST(PhysicsClientCli, ScenesDirDefaultsToTheSceneFilesFolder) {
   EXPECT_EQ(parseOptions({"--scene", "lab/vvalley.yaml", "--scenes-dir", "other"}).scenesDir(), "other");
   EXPECT_EQ(parseOptions({"--scene", "vvalley", "--scenes-dir", "other"}).scenesDir(), "other");
 }
+
+}  // namespace test_cli

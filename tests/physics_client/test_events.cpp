@@ -10,6 +10,8 @@
 #include "scenes/scene_loader.hpp"
 #include "thx_msgs/protocol.hpp"
 
+namespace test_events {
+
 namespace {
 
 using namespace thx::physclient;
@@ -136,3 +138,5 @@ TEST(PhysicsClientEvents, ContactsMessageBoundsPairsButNotPaths) {
 }
 
 }  // namespace
+
+}  // namespace test_events

@@ -19,6 +19,8 @@
 #include "tests/support/fake_server.hpp"
 #include "tests/support/hapticd_harness.hpp"
 
+namespace test_follow_online {
+
 namespace {
 
 using namespace thx::test;
@@ -171,3 +173,5 @@ TEST_F(PhysicsClientFollows, AllowDifferentSceneKeepsItsOwnAndSaysSoOnce) {
   EXPECT_EQ(jsonField(json, "scene_name"), "alpha");
   EXPECT_EQ(jsonNumber(json, "scene_switches"), 0);
 }
+
+}  // namespace test_follow_online

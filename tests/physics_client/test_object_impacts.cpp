@@ -11,6 +11,8 @@
 #include "clients/physics_client/physics_scene.hpp"
 #include "scenes/scene_loader.hpp"
 
+namespace test_object_impacts {
+
 namespace {
 
 using namespace thx::physclient;
@@ -80,3 +82,5 @@ TEST(ObjectImpacts, TwoBallsGiveOneImpactWithBothIdsAndTheExchangedMomentum) {
 }
 
 }  // namespace
+
+}  // namespace test_object_impacts

@@ -17,6 +17,8 @@
 #include "clients/physics_client/physics_scene.hpp"
 #include "scenes/scene_loader.hpp"
 
+namespace test_obstacle_contacts {
+
 namespace {
 
 using namespace thx::physclient;
@@ -160,3 +162,5 @@ TEST(PhysicsClientObstacle, BlockStopsAtACylinderPost) {
 }
 
 }  // namespace
+
+}  // namespace test_obstacle_contacts

@@ -12,6 +12,8 @@
 
 #include "tests/support/hapticd_harness.hpp"
 
+namespace test_online {
+
 namespace {
 
 using namespace thx::test;
@@ -48,3 +50,5 @@ TEST_F(PhysicsClientOnline, PhysicsClientFollowsTheDeviceAndHapticdTakesItsForce
   EXPECT_TRUE(std::isfinite(f));
   EXPECT_LE(f, 7.9 + 1e-9);  // the device's peak: the safety stage held
 }
+
+}  // namespace test_online

@@ -15,6 +15,8 @@
 #include "scenes/scene_loader.hpp"
 #include "tests/support/sanitized_build.hpp"
 
+namespace test_push {
+
 namespace {
 
 using namespace thx::physclient;
@@ -143,3 +145,5 @@ TEST(PhysicsClientPush, EveryShippedSceneRuns) {
 }
 
 }  // namespace
+
+}  // namespace test_push

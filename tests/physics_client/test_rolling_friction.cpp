@@ -19,6 +19,8 @@
 #include "clients/physics_client/physics_scene.hpp"
 #include "scenes/scene_loader.hpp"
 
+namespace test_rolling_friction {
+
 namespace {
 
 using namespace thx::physclient;
@@ -163,3 +165,5 @@ TEST(RollingAndSpinningFriction, SceneFieldErrorsNameTheFieldAndTheValue) {
 }
 
 }  // namespace
+
+}  // namespace test_rolling_friction

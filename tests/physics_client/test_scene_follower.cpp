@@ -14,6 +14,8 @@
 #include "clients/physics_client/scene_follower.hpp"
 #include "tests/physics_client/small_scenes.hpp"
 
+namespace test_scene_follower {
+
 namespace {
 
 using namespace thx::physclient;
@@ -140,3 +142,5 @@ TEST(RunSummaryOverScenes, CountsAddMaximaStayTheMeanIsWeighted) {
   EXPECT_EQ(s.pose_reports, 9);
   EXPECT_EQ(s.scene_name, "beta");
 }
+
+}  // namespace test_scene_follower

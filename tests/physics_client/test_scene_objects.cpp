@@ -4,6 +4,8 @@
 
 #include "scenes/scene_loader.hpp"
 
+namespace test_scene_objects {
+
 namespace {
 
 using namespace thx::scene;
@@ -72,3 +74,5 @@ TEST(SceneObjects, ErrorsNameLineFieldAndValue) {
 }
 
 }  // namespace
+
+}  // namespace test_scene_objects

@@ -21,6 +21,8 @@
 #include "sanitizer.hpp"
 #include "scenes/scene_loader.hpp"
 
+namespace test_scene_outcomes {
+
 namespace {
 
 using namespace thx::physclient;
@@ -256,3 +258,5 @@ TEST(ShippedSceneOutcome, ZigzagBallsStayInTheChannelAndRollDownTheStreet) {
 }
 
 }  // namespace
+
+}  // namespace test_scene_outcomes

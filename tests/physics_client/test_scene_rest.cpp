@@ -3,8 +3,8 @@
 // contact's reported slip stay below 0.01 mm/s over the half second after its rest time
 // (docs/physics.md, "Rest"). The scenes are found in scenes/*.yaml, so a new scene must be
 // listed: in kRestBy (with the time by which it is at rest) or, while it is not silent yet, in
-// kOpen. Built twice: physics_client_test_scene_rest checks the scenes that rest within a few
-// simulated seconds on spheres (fast under the sanitizer too); physics_client_test_scene_rest_slow
+// kOpen. Built twice: in physics_client_tests it checks the scenes that rest within a few
+// simulated seconds on spheres (fast under the sanitizer too); in physics_client_slow_tests
 // (THX_SCENE_REST_SLOW, ctest label `slow`) the boxes on a relief (letter_blocks: a box
 // rasterises ~300x slower under ASan) and the zig-zag street (13 s).
 #include <gtest/gtest.h>
@@ -18,6 +18,8 @@
 
 #include "clients/physics_client/physics_scene.hpp"
 #include "scenes/scene_loader.hpp"
+
+namespace test_scene_rest {
 
 namespace {
 
@@ -117,3 +119,5 @@ TEST(ShippedSceneRestList, EverySceneIsCheckedOrListedOpen) {
 #endif
 
 }  // namespace
+
+}  // namespace test_scene_rest

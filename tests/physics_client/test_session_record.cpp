@@ -20,6 +20,8 @@
 #include "scenes/scene_loader.hpp"
 #include "thx_msgs/protocol.hpp"
 
+namespace test_session_record {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -178,3 +180,5 @@ TEST_F(SessionRecord, RecordNeedsAnOfflinePenAndAWritableFile) {
 }
 
 }  // namespace
+
+}  // namespace test_session_record

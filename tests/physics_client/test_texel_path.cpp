@@ -16,6 +16,8 @@
 #include "scenes/scene_loader.hpp"
 #include "thx_msgs/protocol.hpp"
 
+namespace test_texel_path {
+
 namespace {
 
 using namespace thx::physclient;
@@ -150,3 +152,5 @@ TEST(TexelPath, MessageCarriesEveryTexelAndDecodes) {
 }
 
 }  // namespace
+
+}  // namespace test_texel_path

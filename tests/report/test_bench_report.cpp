@@ -12,6 +12,8 @@
 #include "tests/support/process.hpp"
 #include "tests/support/temp_dir.hpp"
 
+namespace test_bench_report {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -203,3 +205,5 @@ TEST(BenchReport, HelpAndUsageErrors) {
 }
 
 }  // namespace
+
+}  // namespace test_bench_report

@@ -4,6 +4,8 @@
 
 #include "rt/clock.hpp"
 
+namespace test_clock {
+
 using namespace thx::rt;
 
 TEST(VirtualClock, SleepingJumpsToTheDeadlineAndNeverBack) {
@@ -33,3 +35,5 @@ TEST(MonotonicClock, AgreesWithTheFreeFunction) {
   EXPECT_LE(a, b);
   EXPECT_LE(b, c);
 }
+
+}  // namespace test_clock

@@ -8,6 +8,8 @@
 
 #include "rt/handoff.hpp"
 
+namespace test_handoff {
+
 using thx::rt::Handoff;
 using State = Handoff<int>::State;
 
@@ -88,3 +90,5 @@ TEST(Handoff, TheReplacedObjectIsFreedOnlyAfterTheRtThreadIsDone) {
   EXPECT_EQ(rt_current, current.get());
   EXPECT_GE(sum.load(), 0);
 }
+
+}  // namespace test_handoff

@@ -8,6 +8,8 @@
 
 #include "rt/latest_slot.hpp"
 
+namespace test_latest_slot {
+
 using thx::rt::LatestSlot;
 
 namespace {
@@ -82,3 +84,5 @@ TEST(LatestSlot, AConcurrentReaderNeverSeesATornOrOlderValue) {
   EXPECT_FALSE(backwards);
   EXPECT_EQ(last, kWrites);  // the final value is always read once the writer is done
 }
+
+}  // namespace test_latest_slot

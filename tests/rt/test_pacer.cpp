@@ -4,6 +4,8 @@
 
 #include "rt/pacer.hpp"
 
+namespace test_pacer {
+
 using namespace thx::rt;
 
 namespace {
@@ -70,3 +72,5 @@ TEST(Pacer, MonotonicClockSleepsUntilTheDeadline) {
     EXPECT_GE(clock.nowNs(), t.deadline_ns);
   }
 }
+
+}  // namespace test_pacer

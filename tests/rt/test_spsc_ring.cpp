@@ -6,6 +6,8 @@
 
 #include "rt/spsc_ring.hpp"
 
+namespace test_spsc_ring {
+
 using thx::rt::SpscRing;
 
 TEST(SpscRing, CapacityRoundsUpToAPowerOfTwo) {
@@ -78,3 +80,5 @@ TEST(SpscRing, ConcurrentRecordsArriveInOrderOrAreCountedAsDropped) {
   EXPECT_TRUE(in_order);
   EXPECT_EQ(received + ring.dropped(), kRecords);
 }
+
+}  // namespace test_spsc_ring

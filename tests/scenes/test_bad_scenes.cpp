@@ -9,6 +9,8 @@
 
 #include "scenes/scene_loader.hpp"
 
+namespace test_bad_scenes {
+
 namespace {
 
 using thx::scene::SceneError;
@@ -214,3 +216,5 @@ TEST(LoadScene, MissingSceneFile) {
 TEST(LoadScene, DirectoryIsNotASceneFile) { EXPECT_THROW(thx::scene::loadScene(kDir), SceneError); }
 
 }  // namespace
+
+}  // namespace test_bad_scenes

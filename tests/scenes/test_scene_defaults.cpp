@@ -7,6 +7,8 @@
 
 #include "scenes/scene_loader.hpp"
 
+namespace test_scene_defaults {
+
 namespace {
 
 using namespace thx::scene;
@@ -213,3 +215,5 @@ TEST(SceneValues, FileTextureKeepsTheFilesRepresentationUnlessAsked) {
 }
 
 }  // namespace
+
+}  // namespace test_scene_defaults

@@ -9,6 +9,8 @@
 
 #include "scenes/scene_loader.hpp"
 
+namespace test_scene_robustness {
+
 namespace {
 
 using namespace thx::scene;
@@ -89,3 +91,5 @@ objects:
 }
 
 }  // namespace
+
+}  // namespace test_scene_robustness

@@ -8,6 +8,8 @@
 
 #include "scenes/scene_loader.hpp"
 
+namespace test_scene_sound_fields {
+
 namespace {
 
 using namespace thx::scene;
@@ -142,3 +144,5 @@ TEST(SceneSoundFields, CustomMaterialsStandBesideTheTable) {
 }
 
 }  // namespace
+
+}  // namespace test_scene_sound_fields

@@ -11,6 +11,8 @@
 #include "textures/smoothing.hpp"
 #include "textures/texture_fingerprint.hpp"
 
+namespace test_scene_surface {
+
 namespace {
 
 using namespace thx;
@@ -95,3 +97,5 @@ TEST(SceneSurface, ShippedScenesHaveDistinctFingerprintsUnlessTheirSurfacesAreEq
 }
 
 }  // namespace
+
+}  // namespace test_scene_surface

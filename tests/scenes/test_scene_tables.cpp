@@ -11,6 +11,8 @@
 #include "scenes/scene_frames.hpp"
 #include "scenes/vrpn_address.hpp"
 
+namespace test_scene_tables {
+
 namespace {
 
 using namespace thx::scene;
@@ -137,3 +139,5 @@ TEST(SceneFrames, PlaneMappingFollowsTheSurface) {
 }
 
 }  // namespace
+
+}  // namespace test_scene_tables

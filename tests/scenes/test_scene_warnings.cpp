@@ -3,6 +3,8 @@
 
 #include "scenes/scene_loader.hpp"
 
+namespace test_scene_warnings {
+
 namespace {
 
 using namespace thx::scene;
@@ -79,3 +81,5 @@ TEST(SceneWarnings, AudioFedFasterThanTheServo) {
 }
 
 }  // namespace
+
+}  // namespace test_scene_warnings

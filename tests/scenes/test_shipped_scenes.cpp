@@ -9,6 +9,8 @@
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
 
+namespace test_shipped_scenes {
+
 namespace {
 
 using namespace thx::scene;
@@ -103,3 +105,5 @@ TEST(ShippedScenes, VValleyPressesIntoAValleyFloor) {
 TEST(ShippedScenes, VValleyTextureBuilds) { expectTextureBuilds(loadScene(kScenes + "vvalley.yaml")); }
 
 }  // namespace
+
+}  // namespace test_shipped_scenes

@@ -14,6 +14,8 @@
 #include "scenes/scene_lookup.hpp"
 #include "scenes/surface_texture.hpp"
 
+namespace test_study_scenes {
+
 namespace {
 
 using namespace thx::scene;
@@ -154,3 +156,5 @@ TEST(StudyScenes, SceneNamesAreUniqueAndAllListed) {
 }
 
 }  // namespace
+
+}  // namespace test_study_scenes

@@ -12,6 +12,8 @@
 #include "textures/smoothing.hpp"
 #include "textures/texture_io.hpp"
 
+namespace test_surface_texture {
+
 namespace {
 
 using namespace thx::scene;
@@ -160,3 +162,5 @@ TEST(SurfaceTexture, TextureErrorsComeBackLocatedInTheScene) {
 }
 
 }  // namespace
+
+}  // namespace test_surface_texture

@@ -6,6 +6,8 @@
 
 #include "server/tools/stability_map_sweep.hpp"
 
+namespace slow_stability_map {
+
 using namespace thx::srv::stab;
 
 namespace {
@@ -45,3 +47,5 @@ TEST(StabilityMapSlow, CreaseHandlingLeavesNoUnstableCellAtFullStiffness) {
     }
   }
 }
+
+}  // namespace slow_stability_map

@@ -9,6 +9,8 @@
 #include "server/vrpn_effect_commands.hpp"
 #include "tests/support/allocation_counter.hpp"
 
+namespace test_external_effects {
+
 using namespace thx;
 using namespace thx::srv;
 
@@ -384,3 +386,5 @@ TEST(VrpnEffectCommands, CustomEffectsOtherThanBuzzAreRefused) {
   ASSERT_TRUE(applyCustomEffect(e, c, limits()).applied);
   EXPECT_FALSE(e.buzz.on);
 }
+
+}  // namespace test_external_effects

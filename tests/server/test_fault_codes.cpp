@@ -9,6 +9,8 @@
 
 #include "tests/server/fault_pipeline.hpp"
 
+namespace test_fault_codes {
+
 using namespace thx;
 using D = thx_msgs::device_state_t;
 
@@ -131,3 +133,5 @@ TEST_F(FaultCodes, EveryFaultIsRaisedWhereItHappensAndReachesA60HzSubscriber) {
   EXPECT_EQ(mask, bit(D::FAULT_FORCE_BUDGET) | bit(D::FAULT_NONFINITE_FORCE) | bit(D::FAULT_DEVICE_IO) |
                       bit(D::FAULT_MISSED_TICKS));
 }
+
+}  // namespace test_fault_codes

@@ -10,6 +10,8 @@
 #include "server/subscription_inbox.hpp"
 #include "tests/server/fault_pipeline.hpp"
 
+namespace test_fault_reporting {
+
 using namespace thx;
 using test::FaultPipeline;
 using D = thx_msgs::device_state_t;
@@ -162,3 +164,5 @@ TEST(FaultReporting, CommandBytesAreDecodedSafely) {
   EXPECT_EQ(got.commands[0].msg.client_id, "study");
   EXPECT_EQ(inbox.undecodable(), 3u);
 }
+
+}  // namespace test_fault_reporting

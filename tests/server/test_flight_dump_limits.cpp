@@ -10,6 +10,8 @@
 #include "server/flight_dump_limits.hpp"
 #include "server/flight_recorder.hpp"
 
+namespace test_flight_dump_limits {
+
 namespace fs = std::filesystem;
 using namespace thx::srv;
 
@@ -109,3 +111,5 @@ TEST_F(FlightDumpLimitsTest, BadLimitsAreRefusedNamingTheField) {
   }
   EXPECT_THROW(FlightDumpGate(FlightDumpLimits{}, 0.0), thx::Error);
 }
+
+}  // namespace test_flight_dump_limits

@@ -8,6 +8,8 @@
 
 #include "server/halfspace_projection.hpp"
 
+namespace test_halfspace_projection {
+
 using namespace thx::srv;
 
 namespace {
@@ -78,3 +80,5 @@ TEST(HalfspaceProjection, IsOneLipschitzSoForcesAreContinuous) {
     }
   }
 }
+
+}  // namespace test_halfspace_projection

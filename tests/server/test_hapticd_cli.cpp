@@ -12,6 +12,8 @@
 
 #include "tests/support/hapticd_harness.hpp"
 
+namespace test_hapticd_cli {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -212,3 +214,5 @@ TEST_F(Hapticd, UnreachableVrpnDeviceKeepsTheServerRunningWithTheForceOff) {
   EXPECT_GT(jsonNumber(json, "invalid_readings"), 100) << json;
   EXPECT_EQ(jsonNumber(json, "max_force_n"), 0.0) << json;
 }
+
+}  // namespace test_hapticd_cli

@@ -9,6 +9,8 @@
 #include "device/device_specs.hpp"
 #include "server/hapticd_options.hpp"
 
+namespace test_hapticd_options {
+
 namespace {
 
 using thx::srv::HapticdOptions;
@@ -256,3 +258,5 @@ TEST(HapticdOptions, ConvertsIntoThePartsOptions) {
   EXPECT_DOUBLE_EQ(vso.limits.peak_force_n, spec.peak_force_n);
   EXPECT_DOUBLE_EQ(vso.limits.max_stiffness_n_per_m, spec.max_stiffness_n_per_m);
 }
+
+}  // namespace test_hapticd_options

@@ -16,6 +16,8 @@
 #include "server/session_log.hpp"
 #include "tests/support/hapticd_harness.hpp"
 
+namespace test_hapticd_record_replay {
+
 namespace fs = std::filesystem;
 using thx_msgs::contact_t;
 
@@ -145,3 +147,5 @@ TEST_F(HapticdRecordReplay, BadReplayAndRecordFilesAreClearErrors) {
   EXPECT_NE(err_.find("--record /nonexistent/dir/x.lcm: cannot create"), std::string::npos) << err_;
   EXPECT_EQ(run("--scene scenes/default.yaml --device replay:"), 2);
 }
+
+}  // namespace test_hapticd_record_replay

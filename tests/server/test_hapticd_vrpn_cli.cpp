@@ -21,6 +21,8 @@
 #include "device/device_specs.hpp"
 #include "tests/support/hapticd_harness.hpp"
 
+namespace test_hapticd_vrpn_cli {
+
 namespace fs = std::filesystem;
 using namespace thx::vrpn;
 using namespace std::chrono_literals;
@@ -219,3 +221,5 @@ TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
     EXPECT_EQ(std::stoi(m[2]), flag ? 0 : 3);
   }
 }
+
+}  // namespace test_hapticd_vrpn_cli

@@ -11,6 +11,8 @@
 #include "tests/server/mesh_fixtures.hpp"
 #include "tests/support/allocation_counter.hpp"
 
+namespace test_mesh_god_object {
+
 using namespace thx;
 using srv::MeshGodObject;
 
@@ -220,3 +222,5 @@ TEST(MeshGodObject, NoAllocationPerTick) {
   r.reset();
   EXPECT_EQ(test::g_allocations.load() - before, 0);
 }
+
+}  // namespace test_mesh_god_object

@@ -10,6 +10,8 @@
 #include "rt/pacer.hpp"
 #include "server/missed_tick_policy.hpp"
 
+namespace test_missed_tick_policy {
+
 using namespace thx;
 using srv::MissedTickAction;
 using srv::MissedTickDecision;
@@ -238,3 +240,5 @@ TEST(MissedTickPolicy, ABadConfigurationIsRefusedNamingTheField) {
   c.min_success_rate = 1.5;
   EXPECT_THROW(MissedTickPolicy{c}, thx::Error);
 }
+
+}  // namespace test_missed_tick_policy

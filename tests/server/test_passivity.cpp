@@ -18,6 +18,8 @@
 #include "device/device_specs.hpp"
 #include "server/passivity.hpp"
 
+namespace test_passivity {
+
 using namespace thx;
 using srv::PassivityConfig;
 using srv::PassivityController;
@@ -409,3 +411,5 @@ TEST(Passivity, QuantisationDeadbandIgnoresOneCountToggles) {
   EXPECT_EQ(run(srv::quantisationDeadband(spec, kT)), 0u);
   EXPECT_NEAR(srv::quantisationDeadband(spec, kT), 1.001 * q / kT, 1e-12);
 }
+
+}  // namespace test_passivity

@@ -10,6 +10,8 @@
 #include "textures/generators.hpp"
 #include "tests/support/sanitized_build.hpp"
 
+namespace test_proxy_renderer {
+
 using namespace thx;
 using srv::ProxyRenderer;
 using srv::RendererConfig;
@@ -373,3 +375,5 @@ TEST(ProxyRenderer, ACoarselySampledSmoothBumpIsNotARidge) {
     EXPECT_EQ(a.force_world, b.force_world) << k;
   }
 }
+
+}  // namespace test_proxy_renderer

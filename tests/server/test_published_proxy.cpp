@@ -9,6 +9,8 @@
 
 #include "tests/server/fault_pipeline.hpp"
 
+namespace test_published_proxy {
+
 using namespace thx;
 using D = thx_msgs::device_state_t;
 
@@ -91,3 +93,5 @@ TEST_F(PublishedProxy, FreeAboveTheSurface) {
 }
 
 }  // namespace
+
+}  // namespace test_published_proxy

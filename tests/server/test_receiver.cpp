@@ -11,6 +11,8 @@
 #include "server/client_force_table.hpp"
 #include "server/receiver.hpp"
 
+namespace test_receiver {
+
 using namespace thx;
 
 namespace {
@@ -82,3 +84,5 @@ TEST(Receiver, ForcesOverLcmReachTheServoSlotAndGarbageIsCounted) {
   EXPECT_EQ(receiver.undecodable(), 1u);
   EXPECT_EQ(receiver.counters().accepted, 1u);
 }
+
+}  // namespace test_receiver

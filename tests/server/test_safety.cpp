@@ -17,6 +17,8 @@
 #include "device/device_specs.hpp"
 #include "server/safety.hpp"
 
+namespace test_safety {
+
 using namespace thx;
 using srv::SafetyConfig;
 using srv::SafetyStage;
@@ -489,3 +491,5 @@ TEST(Safety, ApplyDoesNotAllocate) {
   ::operator delete(probe);
   EXPECT_EQ(thx::test::g_allocations.load(), before + 1);
 }
+
+}  // namespace test_safety

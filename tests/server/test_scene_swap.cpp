@@ -10,6 +10,8 @@
 #include "tests/server/servo_fixture.hpp"
 #include "tests/support/allocation_counter.hpp"
 
+namespace test_scene_swap {
+
 using namespace thx;
 
 namespace {
@@ -159,3 +161,5 @@ TEST(SceneSwap, TwoSwapsInARowEachCompleteAndCount) {
   EXPECT_EQ(swaps, 2u);
   EXPECT_EQ(&rig.renderer().surface(), b.texture.surface.get());
 }
+
+}  // namespace test_scene_swap

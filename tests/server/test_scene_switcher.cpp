@@ -22,6 +22,8 @@
 #include "tests/server/fake_device.hpp"
 #include "tests/support/allocation_counter.hpp"
 
+namespace test_scene_switcher {
+
 using namespace thx;
 namespace fs = std::filesystem;
 using Cmd = thx_msgs::server_command_t;
@@ -278,3 +280,5 @@ TEST(SceneSwitcher, AServerWithoutALoaderRefusesSwitches) {
   EXPECT_FALSE(reply->accepted);
   EXPECT_EQ(reply->reason, "this server cannot switch scenes");
 }
+
+}  // namespace test_scene_switcher

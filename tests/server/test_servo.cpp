@@ -9,6 +9,8 @@
 
 #include "tests/server/servo_fixture.hpp"
 
+namespace test_servo {
+
 using namespace thx;
 using test::ServoRig;
 
@@ -192,3 +194,5 @@ TEST(Servo, ShutdownRampsTheForceToZero) {
   EXPECT_EQ(rig.device.writes().back().norm(), 0.0);
   EXPECT_NEAR(ticks, 200, 2);  // ramp_out_s = 0.2 s
 }
+
+}  // namespace test_servo

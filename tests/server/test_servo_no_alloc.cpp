@@ -8,6 +8,8 @@
 #include "tests/server/servo_fixture.hpp"
 #include "tests/support/allocation_counter.hpp"
 
+namespace test_servo_no_alloc {
+
 using namespace thx;
 
 TEST(ServoRealtime, NoAllocationInTheTick) {
@@ -65,3 +67,5 @@ TEST(ServoRealtime, NoAllocationInTheRunLoop) {
   EXPECT_TRUE(rig.servo().finished());
   EXPECT_GT(runner.ticks(), 3000);
 }
+
+}  // namespace test_servo_no_alloc

@@ -17,6 +17,8 @@
 #include "tests/server/servo_fixture.hpp"
 #include "tests/support/servo_inputs.hpp"
 
+namespace test_servo_runner {
+
 namespace {
 
 using thx::srv::ServoRunner;
@@ -226,3 +228,5 @@ TEST(ServoRunner, ADeviceThatCannotOpenEndsTheThreadWithItsReasonAndNoTick) {
   EXPECT_EQ(runner.error(), "cannot open the device: no answer from Phantom0@nowhere");
   EXPECT_EQ(runner.ticks(), 0);
 }
+
+}  // namespace test_servo_runner

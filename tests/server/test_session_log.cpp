@@ -12,6 +12,8 @@
 #include "device/replay_device.hpp"
 #include "server/session_log.hpp"
 
+namespace test_session_log {
+
 using namespace thx;
 namespace fs = std::filesystem;
 
@@ -204,3 +206,5 @@ TEST(SessionLog, AnUnwritablePathIsRefusedAtOnce) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/s.lcm"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace test_session_log

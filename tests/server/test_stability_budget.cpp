@@ -9,6 +9,8 @@
 #include "device/device_specs.hpp"
 #include "server/stability_budget.hpp"
 
+namespace test_stability_budget {
+
 using namespace thx;
 using srv::BoundPolicy;
 using srv::StabilityBudget;
@@ -193,3 +195,5 @@ TEST(StabilityBudget, MalformedInputIsRejectedNamingTheField) {
   negative_b.physical_damping_ns_per_m = -1.0;
   EXPECT_TRUE(contains(rejection(negative_b, request(0.5)), "physical_damping_ns_per_m = -1"));
 }
+
+}  // namespace test_stability_budget

@@ -21,6 +21,8 @@
 #include "textures/generators.hpp"
 #include "tests/support/sanitized_build.hpp"
 
+namespace test_stability_cells {
+
 using namespace thx;
 using namespace thx::srv::stab;
 
@@ -474,3 +476,5 @@ TEST(StabilityCells, MismatchedValleyMapIsRefused) {
   EXPECT_THROW(simulateCell(cell(60, 1.0, 1.0, true, "none"), v, CellSetup{}), thx::Error);
   EXPECT_THROW(simulateCell(cell(40, 1.0, 1.0, true, "smoothing"), v, CellSetup{}), thx::Error);
 }
+
+}  // namespace test_stability_cells

@@ -12,6 +12,8 @@
 #include "tests/server/mesh_fixtures.hpp"
 #include "textures/generators.hpp"
 
+namespace test_triangle_bvh {
+
 using namespace thx;
 using srv::TriangleBvh;
 
@@ -133,3 +135,5 @@ TEST(ReliefGridMesh, VerticesOnTheSampledReliefFacesUp) {
   for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) EXPECT_GT(bvh.plane(i).n.z(), 0.0) << i;
   EXPECT_THROW(srv::reliefGridMesh(surface, 0), thx::Error);
 }
+
+}  // namespace test_triangle_bvh

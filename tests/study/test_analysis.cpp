@@ -9,7 +9,7 @@
 #include "tests/study/study_fixtures.hpp"
 #include "tests/support/error_text.hpp"
 
-namespace thx::study {
+namespace thx::study::test_analysis {
 namespace {
 
 using test::errorOf;
@@ -158,4 +158,4 @@ TEST(StudyAnalysis, TablesCarryTheNumbers) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_analysis

@@ -6,7 +6,7 @@
 
 #include "clients/study/button_protocol.hpp"
 
-namespace thx::study {
+namespace thx::study::test_button_protocol {
 namespace {
 
 // Feeds 1 kHz samples: each pair is (buttons, duration in ms); returns the events with their tick.
@@ -50,4 +50,4 @@ TEST(ButtonProtocol, LongPressTimeIsConfigurable) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_button_protocol

@@ -6,7 +6,7 @@
 #include "clients/study/participant_model.hpp"
 #include "clients/study/study_manifest.hpp"
 
-namespace thx::study {
+namespace thx::study::test_participant_model {
 namespace {
 
 const std::string kIdent = THX_TEST_DATA_DIR "/study/identification/manifest.yaml";
@@ -173,4 +173,4 @@ TEST(ParticipantModel, SameSeedSameAnswersAndRatingsOnTheirScales) {
 #endif
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_participant_model

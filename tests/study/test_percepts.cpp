@@ -16,7 +16,7 @@
 #include "scenes/scene_loader.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace thx::study {
+namespace thx::study::test_percepts {
 namespace {
 
 const std::string kBricks = THX_TEST_DATA_DIR "/study/identification/bricks_small.yaml";
@@ -125,4 +125,4 @@ TEST(BallPercept, NoBallNothingToWatch) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_percepts

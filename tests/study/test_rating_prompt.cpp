@@ -5,7 +5,7 @@
 
 #include "clients/study/rating_prompt.hpp"
 
-namespace thx::study {
+namespace thx::study::test_rating_prompt {
 namespace {
 
 TEST(RatingPrompt, ReasksUntilTheAnswerIsOnTheScale) {
@@ -23,4 +23,4 @@ TEST(RatingPrompt, ReasksUntilTheAnswerIsOnTheScale) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_rating_prompt

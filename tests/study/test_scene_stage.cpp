@@ -11,7 +11,7 @@
 #include "scenes/scene_surface.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace thx::study {
+namespace thx::study::test_scene_stage {
 namespace {
 
 const std::string kData = THX_TEST_DATA_DIR "/study";
@@ -70,4 +70,4 @@ TEST(SceneStage, ReliefVsNormalStagesBothVersionsWithoutVariants) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_scene_stage

@@ -10,7 +10,7 @@
 #include "tests/support/error_text.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace thx::study {
+namespace thx::study::test_session_csv {
 namespace {
 
 using test::errorOf;
@@ -225,4 +225,4 @@ TEST(SessionCsv, CueConditionNames) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_session_csv

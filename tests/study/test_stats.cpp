@@ -8,7 +8,7 @@
 
 #include "clients/study/stats.hpp"
 
-namespace thx::study {
+namespace thx::study::test_stats {
 namespace {
 
 // Student (1908), "The probable error of a mean", Biometrika 6(1), p. 20: additional hours of
@@ -125,4 +125,4 @@ TEST(Stats, ConfusionMatrixCounts) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_stats

@@ -10,7 +10,7 @@
 #include "tests/support/temp_dir.hpp"
 #include "textures/png_io.hpp"
 
-namespace thx::study {
+namespace thx::study::test_study_analyze_cli {
 namespace {
 
 struct CliRun {
@@ -126,4 +126,4 @@ TEST(StudyAnalyzeCli, ErrorsAreClear) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_study_analyze_cli

@@ -7,7 +7,7 @@
 #include "clients/study/study_manifest.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace thx::study {
+namespace thx::study::test_study_manifest {
 namespace {
 
 const std::string kData = THX_TEST_DATA_DIR "/study";
@@ -86,4 +86,4 @@ TEST(StudyManifest, MissingFileIsNamed) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_study_manifest

@@ -11,7 +11,7 @@
 #include "tests/support/process.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace thx::study {
+namespace thx::study::test_study_run_e2e {
 namespace {
 
 const std::string kData = THX_TEST_DATA_DIR "/study";
@@ -147,4 +147,4 @@ TEST(StudyRunE2e, UsageAndErrors) {
 #endif
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_study_run_e2e

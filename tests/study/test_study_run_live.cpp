@@ -13,7 +13,7 @@
 #include "clients/study/session_csv.hpp"
 #include "tests/support/hapticd_harness.hpp"
 
-namespace thx::test {
+namespace thx::test::test_study_run_live {
 namespace {
 
 struct StudyRunLive : HapticdProcessTest {};
@@ -65,4 +65,4 @@ TEST_F(StudyRunLive, Study1BesideHapticd) {
 }
 
 }  // namespace
-}  // namespace thx::test
+}  // namespace thx::test::test_study_run_live

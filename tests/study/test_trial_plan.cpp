@@ -8,7 +8,7 @@
 
 #include "clients/study/trial_plan.hpp"
 
-namespace thx::study {
+namespace thx::study::test_trial_plan {
 namespace {
 
 StudyManifest manifest(Study study, int n) {
@@ -106,4 +106,4 @@ TEST(TrialPlan, ReliefVsNormalSplit) {
 }
 
 }  // namespace
-}  // namespace thx::study
+}  // namespace thx::study::test_trial_plan

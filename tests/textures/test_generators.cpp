@@ -12,6 +12,8 @@
 #include "textures/generators.hpp"
 #include "textures/texture_error.hpp"
 
+namespace test_generators {
+
 using namespace thx::tex;
 
 namespace {
@@ -481,3 +483,5 @@ TEST(SurfaceGenerators, FineLatticesAreHashedDeterministically) {
   EXPECT_TRUE(identical(a, b));
   EXPECT_GT(a.maxDepth(), 0.0);
 }
+
+}  // namespace test_generators

@@ -9,6 +9,8 @@
 #include "textures/height_normals.hpp"
 #include "textures/texture_error.hpp"
 
+namespace test_height_normals {
+
 using namespace thx::tex;
 
 namespace {
@@ -218,3 +220,5 @@ TEST(HeightNormals, BadSizesAndTexelSizesAreRefused) {
     EXPECT_NE(std::string(e.what()).find("texel size along y"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace test_height_normals

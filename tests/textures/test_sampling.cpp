@@ -8,6 +8,8 @@
 #include "textures/plane_mapping.hpp"
 #include "textures/sampling.hpp"
 
+namespace test_sampling {
+
 using namespace thx::tex;
 
 namespace {
@@ -142,3 +144,5 @@ TEST(PlaneMapping, UvAndWorldRoundTrip) {
   EXPECT_DOUBLE_EQ(m.texelSize(map).x(), 0.005);
   EXPECT_DOUBLE_EQ(m.texelSize(map).y(), 0.005);
 }
+
+}  // namespace test_sampling

@@ -12,6 +12,8 @@
 #include "textures/smoothing.hpp"
 #include "textures/texture_error.hpp"
 
+namespace test_smoothing {
+
 using namespace thx::tex;
 
 namespace {
@@ -242,3 +244,5 @@ TEST(Smoothing, BadSigmaIsRefused) {
     }
   }
 }
+
+}  // namespace test_smoothing

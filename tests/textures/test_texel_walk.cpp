@@ -9,6 +9,8 @@
 
 #include "textures/sampling.hpp"
 
+namespace test_texel_walk {
+
 using namespace thx::tex;
 
 namespace {
@@ -149,3 +151,5 @@ TEST(TexelWalk, UnwrappedDiagonalEntriesIncreaseAndMatchTheGridLines) {
   });
   EXPECT_LT(pi, 0);  // went past the left edge without wrapping
 }
+
+}  // namespace test_texel_walk

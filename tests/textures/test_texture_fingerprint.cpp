@@ -9,6 +9,8 @@
 #include "textures/generators.hpp"
 #include "textures/texture_fingerprint.hpp"
 
+namespace test_texture_fingerprint {
+
 namespace {
 
 using namespace thx::tex;
@@ -134,3 +136,5 @@ TEST(TextureFingerprint, IgnoresWhatNoSenseReads) {
 }
 
 }  // namespace
+
+}  // namespace test_texture_fingerprint

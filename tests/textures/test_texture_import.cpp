@@ -17,6 +17,8 @@
 #include "textures/import/normal_import.hpp"
 #include "textures/texture_error.hpp"
 
+namespace test_texture_import {
+
 using namespace thx::tex;
 using namespace thx::tex::test;
 namespace fs = std::filesystem;
@@ -254,3 +256,5 @@ TEST_F(TextureImport, BadInputNamesTheFile) {
   e = errorOf([&] { importNormalMapFile(rgba, options); });
   EXPECT_NE(e.find("alpha scale out of range"), std::string::npos) << e;
 }
+
+}  // namespace test_texture_import

@@ -15,6 +15,8 @@
 #include "textures/texture_error.hpp"
 #include "textures/texture_io.hpp"
 
+namespace test_texture_io {
+
 using namespace thx::tex;
 namespace fs = std::filesystem;
 
@@ -281,3 +283,5 @@ TEST(TextureMapValidation, RejectsBadSizesAndValues) {
   map.setDepth(0, 0, -1.0);
   EXPECT_FLOAT_EQ(map.depth(0, 0), 0.0f);
 }
+
+}  // namespace test_texture_io

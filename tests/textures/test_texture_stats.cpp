@@ -6,6 +6,8 @@
 #include "textures/generators.hpp"
 #include "textures/texture_stats.hpp"
 
+namespace test_texture_stats {
+
 using namespace thx::tex;
 
 // 90° V-valleys: every wall is 45° steep, the depth ramps uniformly between ridge and floor.
@@ -38,3 +40,5 @@ TEST(TextureStats, CountsTexelsSteeperThanTheThreshold) {
   EXPECT_NE(text.find("normal"), std::string::npos) << text;
   EXPECT_EQ(text.find("max depth"), std::string::npos) << text;  // normal maps have no depth
 }
+
+}  // namespace test_texture_stats

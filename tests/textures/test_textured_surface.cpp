@@ -5,6 +5,8 @@
 
 #include "textures/textured_surface.hpp"
 
+namespace test_textured_surface {
+
 using namespace thx::tex;
 
 namespace {
@@ -66,3 +68,5 @@ TEST(TexturedSurface, WrappedReliefRepeatsItsNormalsEverywhere) {
   EXPECT_TRUE(s.texelPoint(5, 1).n_local.isApprox(tilted, 1e-4));
   EXPECT_NEAR(s.texelPoint(5, 1).q_local.z(), -double(map.depth(1, 1)), 1e-9);
 }
+
+}  // namespace test_textured_surface

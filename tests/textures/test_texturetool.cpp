@@ -15,6 +15,8 @@
 #include "textures/png_io.hpp"
 #include "textures/texture_io.hpp"
 
+namespace test_texturetool {
+
 using namespace thx::tex;
 using namespace thx::tex::test;
 namespace fs = std::filesystem;
@@ -291,3 +293,5 @@ TEST_F(TextureTool, ImportMaxPixels) {
     EXPECT_TRUE(has(r.err, "--max-pixels")) << r.err;
   }
 }
+
+}  // namespace test_texturetool

@@ -7,7 +7,7 @@
 #include "clients/visual/scene_objects.hpp"
 #include "tests/visual/visual_fixture.hpp"
 
-namespace thx::visual::testing {
+namespace thx::visual::testing::test_depth_reference {
 namespace {
 
 // Nearest positive distance along the unit ray to the sphere, or infinity.
@@ -82,4 +82,4 @@ TEST(VisualDepthReference, SphereInABedJointIsHiddenByTheJointsWalls) {
 }
 
 }  // namespace
-}  // namespace thx::visual::testing
+}  // namespace thx::visual::testing::test_depth_reference

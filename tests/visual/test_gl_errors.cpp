@@ -10,7 +10,7 @@
 #include "clients/visual/gl_error.hpp"
 #include "tests/visual/visual_fixture.hpp"
 
-namespace thx::visual {
+namespace thx::visual::test_gl_errors {
 namespace {
 
 std::string messageOf(const std::function<void()>& f) {
@@ -87,4 +87,4 @@ TEST(VisualGlErrors, CommandLineMistakesNameOptionAndValue) {
 }
 
 }  // namespace
-}  // namespace thx::visual
+}  // namespace thx::visual::test_gl_errors

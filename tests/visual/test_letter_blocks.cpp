@@ -6,7 +6,7 @@
 #include "scenes/scene_loader.hpp"
 #include "tests/visual/visual_fixture.hpp"
 
-namespace thx::visual::testing {
+namespace thx::visual::testing::test_letter_blocks {
 namespace {
 
 TEST(VisualLetterBlocks, NamesGiveGlyphs) {
@@ -59,4 +59,4 @@ TEST(VisualLetterBlocks, TheGlyphIsOnTheTopFace) {
 }
 
 }  // namespace
-}  // namespace thx::visual::testing
+}  // namespace thx::visual::testing::test_letter_blocks

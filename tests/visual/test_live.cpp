@@ -12,7 +12,7 @@
 #include "clients/visual/live_view.hpp"
 #include "tests/support/port_block.hpp"
 
-namespace thx::visual {
+namespace thx::visual::test_live {
 namespace {
 
 namespace fs = std::filesystem;
@@ -103,4 +103,4 @@ TEST(VisualLive, WithoutAServerTheSceneAtRest) {
 }
 
 }  // namespace
-}  // namespace thx::visual
+}  // namespace thx::visual::test_live

@@ -11,7 +11,7 @@
 #include "tests/support/hapticd_harness.hpp"
 #include "thx_client/app.hpp"
 
-namespace thx::test {
+namespace thx::test::test_live_hapticd {
 namespace {
 
 struct VisualLiveHapticd : HapticdProcessTest {
@@ -116,4 +116,4 @@ TEST_F(VisualLiveHapticd, InAWindowUnderXvfb) {
 }
 
 }  // namespace
-}  // namespace thx::test
+}  // namespace thx::test::test_live_hapticd

@@ -10,7 +10,7 @@
 
 #include "clients/visual/max_mipmap.hpp"
 
-namespace thx::visual {
+namespace thx::visual::test_max_mipmap {
 namespace {
 
 tex::TextureMap randomRelief(int w, int h, unsigned seed) {
@@ -124,4 +124,4 @@ TEST(VisualMaxMipmap, NearestCellsAreTexels) {
 }
 
 }  // namespace
-}  // namespace thx::visual
+}  // namespace thx::visual::test_max_mipmap

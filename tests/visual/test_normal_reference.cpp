@@ -2,7 +2,7 @@
 // sampler (issue 15): one directional light, no ambient or specular, every pixel away from edges.
 #include "tests/visual/visual_fixture.hpp"
 
-namespace thx::visual::testing {
+namespace thx::visual::testing::test_normal_reference {
 namespace {
 
 void expectWithinOneLsb(const OwnedSurface& s, const CameraPlacement& camera) {
@@ -46,4 +46,4 @@ TEST(VisualNormalReference, SeamOfAWrappedMapIsSampledAcrossTheBorder) {
 }
 
 }  // namespace
-}  // namespace thx::visual::testing
+}  // namespace thx::visual::testing::test_normal_reference

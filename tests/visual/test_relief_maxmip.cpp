@@ -6,7 +6,7 @@
 // steps over. The bounds are the values measured with Mesa 22.3.6 llvmpipe plus a margin.
 #include "tests/visual/visual_fixture.hpp"
 
-namespace thx::visual::testing {
+namespace thx::visual::testing::test_relief_maxmip {
 namespace {
 
 constexpr ReliefSteps kMaxMip{16, 6, 0, ReliefSearch::MaxMip};
@@ -84,4 +84,4 @@ TEST(VisualReliefMaxMip, ClampedBricksAtTheBorder) {
 }
 
 }  // namespace
-}  // namespace thx::visual::testing
+}  // namespace thx::visual::testing::test_relief_maxmip

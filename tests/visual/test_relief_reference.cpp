@@ -6,7 +6,7 @@
 // deterministic, so a change beyond them is a change in the shader or the reference.
 #include "tests/visual/visual_fixture.hpp"
 
-namespace thx::visual::testing {
+namespace thx::visual::testing::test_relief_reference {
 namespace {
 
 struct Bound {
@@ -58,4 +58,4 @@ TEST(VisualReliefReference, MoreStepsGetCloserToTheExactHit) {
 }
 
 }  // namespace
-}  // namespace thx::visual::testing
+}  // namespace thx::visual::testing::test_relief_reference

@@ -17,7 +17,7 @@
 #include "clients/visual/replay_frames.hpp"
 #include "server/session_log.hpp"
 
-namespace thx::visual {
+namespace thx::visual::test_replay {
 namespace {
 
 namespace fs = std::filesystem;
@@ -192,4 +192,4 @@ TEST(VisualReplay, TwoRunsOfACombinedSessionAreIdenticalAndTheMarbleMoves) {
 }
 
 }  // namespace
-}  // namespace thx::visual
+}  // namespace thx::visual::test_replay

@@ -14,7 +14,7 @@
 #include "tests/support/sanitized_build.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace thx::test {
+namespace thx::test::test_sanitizer_tls {
 namespace {
 
 TEST(SanitizerDefaults, ARenderingProgramRecordsNoDynamicTls) {
@@ -35,4 +35,4 @@ TEST(SanitizerDefaults, ARenderingProgramRecordsNoDynamicTls) {
 }
 
 }  // namespace
-}  // namespace thx::test
+}  // namespace thx::test::test_sanitizer_tls

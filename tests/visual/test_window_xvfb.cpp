@@ -9,6 +9,8 @@
 #include <iterator>
 #include <string>
 
+namespace test_window_xvfb {
+
 namespace {
 
 std::string slurp(const std::string& path) {
@@ -45,3 +47,5 @@ TEST(VisualWindow, NoDisplayIsAClearError) {
 }
 
 }  // namespace
+
+}  // namespace test_window_xvfb

@@ -5,6 +5,8 @@
 #include "device/vrpn/addressing.hpp"
 #include "tests/vrpn/transcripts.hpp"
 
+namespace test_addressing {
+
 using namespace thx::vrpn;
 using thx::vrpn::transcript::hex;
 namespace tx = thx::vrpn::transcript;
@@ -70,3 +72,5 @@ TEST(Addressing, LobRequestChecks) {
   EXPECT_TRUE(parseLobRequest(bytes(longest + '\0')));
   EXPECT_FALSE(parseLobRequest(bytes("h" + longest)));  // 256 bytes of text, no room for the NUL
 }
+
+}  // namespace test_addressing

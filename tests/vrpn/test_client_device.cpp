@@ -22,6 +22,8 @@
 #include "device/vrpn/tracker_messages.hpp"
 #include "device/vrpn/vrpn_client_device.hpp"
 
+namespace test_client_device {
+
 using namespace thx;
 using namespace thx::vrpn;
 using namespace std::chrono_literals;
@@ -569,3 +571,5 @@ TEST(VrpnClientDevice, AServerAtTheAskedRateGivesNoWarning) {
   EXPECT_EQ(st.fresh_for_ns, 20'000'000);
   EXPECT_GT(st.observed_report_hz, 100.0);
 }
+
+}  // namespace test_client_device

@@ -6,6 +6,8 @@
 
 #include "device/vrpn/cookie.hpp"
 
+namespace test_cookie {
+
 using namespace thx::vrpn;
 
 namespace {
@@ -90,3 +92,5 @@ TEST(Cookie, WrongSizeDrops) {
   longer.push_back(0);
   EXPECT_EQ(checkCookie(longer).error().code, ErrorCode::kBadCookie);
 }
+
+}  // namespace test_cookie

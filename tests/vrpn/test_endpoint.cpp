@@ -9,6 +9,8 @@
 #include "tests/vrpn/endpoint_harness.hpp"
 #include "tests/vrpn/transcripts.hpp"
 
+namespace test_endpoint {
+
 using namespace thx::vrpn;
 using namespace thx::vrpn::harness;
 using thx::vrpn::transcript::hex;
@@ -417,3 +419,5 @@ TEST(Endpoint, TwoEndpointsTalk) {
   EXPECT_EQ(server.state(), Endpoint::State::kConnected);
   EXPECT_EQ(client.state(), Endpoint::State::kConnected);
 }
+
+}  // namespace test_endpoint

@@ -7,6 +7,8 @@
 #include "device/vrpn/frame_decoder.hpp"
 #include "tests/vrpn/transcripts.hpp"
 
+namespace test_frame_decoder {
+
 using namespace thx::vrpn;
 using thx::vrpn::transcript::hex;
 namespace tx = thx::vrpn::transcript;
@@ -210,3 +212,5 @@ TEST(FrameDecoder, GoodMessagesBeforeABadOneAreDelivered) {
   ASSERT_TRUE(d.error);
   EXPECT_EQ(d.error->code, ErrorCode::kLengthTooLarge);
 }
+
+}  // namespace test_frame_decoder

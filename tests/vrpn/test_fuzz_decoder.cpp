@@ -17,6 +17,8 @@
 #include "tests/vrpn/fuzz_decoder_body.hpp"
 #include "tests/vrpn/transcripts.hpp"
 
+namespace test_fuzz_decoder {
+
 using namespace thx::vrpn;
 using thx::vrpn::transcript::hex;
 namespace tx = thx::vrpn::transcript;
@@ -171,3 +173,5 @@ TEST(FuzzDecoder, ShortRun) {
       "vrpn decoder", pool, [&](Bytes& b, Rng& rng) { mutate(b, rng, pool); }, &fuzz::fuzzDecoderOnce,
       "THX_VRPN_FUZZ_ITERATIONS", 4000);
 }
+
+}  // namespace test_fuzz_decoder

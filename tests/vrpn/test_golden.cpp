@@ -15,6 +15,8 @@
 #include "device/vrpn/tracker_messages.hpp"
 #include "tests/vrpn/transcripts.hpp"
 
+namespace test_golden {
+
 using namespace thx::vrpn;
 using thx::vrpn::transcript::hex;
 namespace tx = thx::vrpn::transcript;
@@ -176,3 +178,5 @@ TEST(Golden, ForcePlaneFromSphereClient) {
 
   EXPECT_EQ(frame(d.header, body(expected)), captured);
 }
+
+}  // namespace test_golden

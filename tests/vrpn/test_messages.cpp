@@ -13,6 +13,8 @@
 #include "device/vrpn/tracker_messages.hpp"
 #include "tests/vrpn/transcripts.hpp"
 
+namespace test_messages {
+
 using namespace thx::vrpn;
 using thx::vrpn::transcript::hex;
 
@@ -257,3 +259,5 @@ TEST(BaseMessages, TextDecodesShortBodiesUpToTheNul) {
   EXPECT_EQ(TextMessage::decode(hex("00 00 00 00 00 00 00")).error().code, ErrorCode::kPayloadSize);
   EXPECT_EQ(TextMessage::decode(Bytes(1033, 0)).error().code, ErrorCode::kPayloadSize);
 }
+
+}  // namespace test_messages

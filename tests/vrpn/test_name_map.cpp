@@ -6,6 +6,8 @@
 #include "device/vrpn/limits.hpp"
 #include "device/vrpn/name_map.hpp"
 
+namespace test_name_map {
+
 using namespace thx::vrpn;
 
 TEST(NameMap, LocalIdsAreDenseStableAndIdempotent) {
@@ -92,3 +94,5 @@ TEST(NameMap, RemoteIdsOutOfRangeAreErrors) {
   }
   EXPECT_TRUE(m.defineRemote(kMaxNames - 1, "x"));
 }
+
+}  // namespace test_name_map

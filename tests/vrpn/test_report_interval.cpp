@@ -4,6 +4,8 @@
 
 #include "device/vrpn/report_interval.hpp"
 
+namespace test_report_interval {
+
 using thx::vrpn::ReportInterval;
 
 namespace {
@@ -63,3 +65,5 @@ TEST(VrpnReportInterval, AClockThatStepsBackCountsAsZero) {
   r.add(5 * kMs);
   EXPECT_EQ(r.medianNs(), 0);
 }
+
+}  // namespace test_report_interval

@@ -9,6 +9,8 @@
 
 #include "tests/vrpn/served_rig.hpp"
 
+namespace test_server_interop {
+
 using namespace thx;
 using namespace thx::vrpn;
 using namespace thx::vrpn::test;
@@ -232,3 +234,5 @@ TEST(VrpnServerInterop, NoReportsWhileTheServoHasNoValidReading) {
   c.pumpFor(200ms);
   EXPECT_EQ(c.pos_quats, before);
 }
+
+}  // namespace test_server_interop

@@ -9,6 +9,8 @@
 
 #include "tests/vrpn/served_rig.hpp"
 
+namespace test_server_loopback {
+
 using namespace thx;
 using namespace thx::vrpn;
 using namespace thx::vrpn::test;
@@ -307,3 +309,5 @@ TEST(VrpnServerLoopback, MalformedInputDropsOnlyTheOffenderWhileTheServoRuns) {
   // test_servo_no_alloc's, deterministically.
   EXPECT_TRUE(eventually([&] { return rig.ticks.load() > ticks_before; }));
 }
+
+}  // namespace test_server_loopback

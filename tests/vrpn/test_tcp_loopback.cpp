@@ -19,6 +19,8 @@
 #include "device/vrpn/tracker_messages.hpp"
 #include "tests/vrpn/endpoint_harness.hpp"
 
+namespace test_tcp_loopback {
+
 using namespace thx::vrpn;
 using namespace thx::vrpn::harness;
 
@@ -239,3 +241,5 @@ TEST(TcpLoopback, ConnectionRefusedIsASocketError) {
       {c.get()}, [](TcpConnection&, const Event&) {}, [&] { return !c->open(); }));
   EXPECT_EQ(c->closeReason()->code, ErrorCode::kSocket);
 }
+
+}  // namespace test_tcp_loopback

@@ -9,6 +9,8 @@
 #include "device/vrpn/tracker_transform_messages.hpp"
 #include "tests/vrpn/transcripts.hpp"
 
+namespace test_tracker_transform_messages {
+
 using namespace thx::vrpn;
 using thx::vrpn::transcript::hex;
 
@@ -134,3 +136,5 @@ TEST(VrpnTrackerTransform, ReplyFramesAreByteExact) {
   ASSERT_TRUE(appendFrame(request, Header{0, TimeValue{1, 2}, 3, 9, 0}, body(TrackerRequestWorkspace{})));
   EXPECT_EQ(request, hex("00 00 00 18  00 00 00 01  00 00 00 02  00 00 00 03  00 00 00 09  00 00 00 00"));
 }
+
+}  // namespace test_tracker_transform_messages
