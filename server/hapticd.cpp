@@ -19,6 +19,7 @@
 #include "device/sim_phantom.hpp"
 #include "scenes/scene_loader.hpp"
 #include "server/hapticd_options.hpp"
+#include "server/multicast_path.hpp"
 #include "server/process_memory.hpp"
 #include "server/receiver.hpp"
 #include "server/scene_device.hpp"
@@ -75,6 +76,7 @@ int run(const thx::srv::HapticdOptions& o) {
       std::fprintf(stderr, "hapticd: warning: %s; the servo runs without publishing\n", e.what());
     }
   }
+  if (lcm && !o.quiet) std::fprintf(stderr, "hapticd: %s\n", srv::describeMulticastPath(o.lcm_url).c_str());
   if (lcm && ports.control_port > 0) {
     try {
       control_lcm = thx_msgs::openLcm(ports.controlUrl());

@@ -45,7 +45,10 @@ publishes device and contact state over LCM.
   --max-clients N       clients served at once (default 32); more are refused (docs/clients.md)
   --max-rate HZ         highest rate granted to one subscription (default: the servo rate)
   --max-bandwidth MB/S  total bandwidth of all subscriptions (default 8 MB/s); more is refused
-  --heartbeat-timeout S forget a client after S seconds without a heartbeat (default 2)
+  --heartbeat-timeout S suspend a client after S seconds without a heartbeat (default 2)
+  --client-grace S      keep a suspended client's streams, port and sequences S seconds more,
+                        then forget it (default 10; 0: forget at the timeout). A cable pulled and
+                        put back within the grace is served again at once (docs/clients.md §6)
   --no-crease           crease handling off (one plane, re-planned every tick; the recovery
                         rule and the passivity controller stay)
   --paper-loop          the source paper's own loop: one plane per graphics frame (--plane-rate),
@@ -167,6 +170,10 @@ HapticdOptions parseHapticdOptions(const std::vector<std::string>& args) {
       const double t = number(a, value());
       if (t < 0.05 || t > 3600) usage("--heartbeat-timeout must be in [0.05, 3600] s");
       o.limits.heartbeat_timeout_ns = std::int64_t(std::llround(t * 1e9));
+    } else if (a == "--client-grace") {
+      const double t = number(a, value());
+      if (!(t >= 0 && t <= 3600)) usage("--client-grace must be in [0, 3600] s");
+      o.limits.client_grace_ns = std::int64_t(std::llround(t * 1e9));
     } else if (a == "--no-crease") {
       o.crease = false;
     } else if (a == "--no-passivity") {

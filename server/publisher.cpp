@@ -248,11 +248,26 @@ void Publisher::applyControl(std::int64_t now_ns) {
       }
     }
   }
-  for (const std::string& id : table_.expire(now_ns)) {
+  const std::vector<std::string> forgotten = table_.expire(now_ns);
+  if (options_.log_subscriptions) {
+    for (const SubscriptionTable::ClientChange& c : table_.takeChanges()) {
+      if (c.back) {
+        std::fprintf(stderr, "hapticd: client %s is back after %.3g s of silence: served as before\n",
+                     c.client_id.c_str(), double(c.silent_ns) * 1e-9);
+      } else {
+        std::fprintf(stderr, "hapticd: client %s: no heartbeat for %.3g s; its streams and port are kept %.3g s more\n",
+                     c.client_id.c_str(), double(options_.limits.heartbeat_timeout_ns) * 1e-9,
+                     double(options_.limits.client_grace_ns) * 1e-9);
+      }
+    }
+  } else {
+    table_.takeChanges();
+  }
+  for (const std::string& id : forgotten) {
     expired_.fetch_add(1, std::memory_order_relaxed);
     if (options_.log_subscriptions) {
       std::fprintf(stderr, "hapticd: client %s forgotten: no heartbeat for %.3g s\n", id.c_str(),
-                   double(options_.limits.heartbeat_timeout_ns) * 1e-9);
+                   double(options_.limits.heartbeat_timeout_ns + options_.limits.client_grace_ns) * 1e-9);
     }
   }
 }

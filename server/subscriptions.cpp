@@ -80,8 +80,11 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
 
   if (req.action == Req::ACTION_UNSUBSCRIBE) {
     if (client_it != clients_.end()) {
-      client_it->second.subs.erase(req.stream);
-      client_it->second.last_seen_ns = now_ns;
+      if (auto sub = client_it->second.subs.find(req.stream); sub != client_it->second.subs.end()) {
+        retire(sub->second);
+        client_it->second.subs.erase(sub);
+      }
+      heardFrom(client_it->second, client_it->first, now_ns);
       if (client_it->second.subs.empty()) forget(client_it);
       recount();
     }
@@ -155,11 +158,13 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
     data_port = *port;
   }
   Client& client = clients_[req.client_id];
-  client.last_seen_ns = now_ns;
+  if (new_client) client.last_seen_ns = now_ns;
+  heardFrom(client, req.client_id, now_ns);
   client.data_port = data_port;
   // A resend of the same subscription (a lost reply) keeps its schedule and batch sequence.
   const bool same = old && old->kind == kind && old->rate_hz == rate && old->channel == channel;
   if (!same) {
+    if (old) retire(*old);  // a batch replacing a batch on its channel continues its sequence
     Subscription s;
     s.kind = kind;
     s.channel = channel;
@@ -171,6 +176,10 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
       s.max_samples = max_samples;
       s.batch.server_instance = limits_.server_instance;
       s.batch.samples.reserve(max_samples);  // allocated once, reused for every batch
+      if (auto r = retired_batch_seq_.find(channel); r != retired_batch_seq_.end()) {
+        s.batch.seq = r->second;  // the sequence goes on where this channel's last batch left it
+        retired_batch_seq_.erase(r);
+      }
     }
     client.subs[req.stream] = std::move(s);
   }
@@ -186,8 +195,30 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
 }
 
 void SubscriptionTable::forget(std::map<std::string, Client>::iterator it) {
+  for (const auto& [stream, sub] : it->second.subs) retire(sub);
   if (ports_) ports_->release(it->first);
   clients_.erase(it);
+}
+
+void SubscriptionTable::retire(const Subscription& s) {
+  if (s.kind != StreamKind::ContactBatch || s.batch.seq == 0) return;
+  if (retired_batch_seq_.size() >= kMaxRetiredChannels) retired_batch_seq_.clear();
+  retired_batch_seq_[s.channel] = s.batch.seq;
+}
+
+void SubscriptionTable::heardFrom(Client& client, const std::string& id, std::int64_t now_ns) {
+  if (client.suspended) {
+    client.suspended = false;
+    ++counters_.resumed_clients;
+    changes_.push_back({id, true, now_ns - client.last_seen_ns});
+  }
+  client.last_seen_ns = std::max(client.last_seen_ns, now_ns);
+}
+
+std::vector<SubscriptionTable::ClientChange> SubscriptionTable::takeChanges() {
+  std::vector<ClientChange> out;
+  out.swap(changes_);
+  return out;
 }
 
 bool SubscriptionTable::heartbeat(const thx_msgs::heartbeat_t& hb, std::int64_t now_ns) {
@@ -197,22 +228,28 @@ bool SubscriptionTable::heartbeat(const thx_msgs::heartbeat_t& hb, std::int64_t 
     return false;
   }
   ++counters_.heartbeats;
-  it->second.last_seen_ns = std::max(it->second.last_seen_ns, now_ns);
+  heardFrom(it->second, it->first, now_ns);
   return true;
 }
 
 std::vector<std::string> SubscriptionTable::expire(std::int64_t now_ns) {
   std::vector<std::string> gone;
   for (auto it = clients_.begin(); it != clients_.end();) {
-    if (now_ns - it->second.last_seen_ns > limits_.heartbeat_timeout_ns) {
+    const std::int64_t silent_ns = now_ns - it->second.last_seen_ns;
+    if (silent_ns > limits_.heartbeat_timeout_ns + limits_.client_grace_ns) {
       gone.push_back(it->first);
       const auto next = std::next(it);
       forget(it);
       it = next;
       ++counters_.expired_clients;
-    } else {
-      ++it;
+      continue;
     }
+    if (silent_ns > limits_.heartbeat_timeout_ns && !it->second.suspended) {
+      it->second.suspended = true;
+      ++counters_.suspended_clients;
+      changes_.push_back({it->first, false, silent_ns});
+    }
+    ++it;
   }
   if (!gone.empty()) recount();
   return gone;

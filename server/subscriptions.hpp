@@ -34,6 +34,12 @@ struct SubscriptionLimits {
   int max_clients = 32;                     // clients with at least one subscription
   double max_bandwidth_bytes_per_s = 8e6;   // sum of the estimates below over all subscriptions
   std::int64_t heartbeat_timeout_ns = 2'000'000'000;
+  // A client silent past the heartbeat timeout is suspended for this long more before it is
+  // forgotten (docs/clients.md §6, "A pulled cable"): its grants, data port and batch sequence stay and its streams
+  // keep flowing, so a cable pulled and put back within the grace is served again as soon as
+  // packets pass, with nothing to ask again. A heartbeat or request resumes it. 0: forgotten at
+  // the timeout.
+  std::int64_t client_grace_ns = 10'000'000'000;
   double stats_window_s = 1.0;              // SERVO_STATS is computed per window: at most 1/window Hz
   std::int64_t server_instance = 1;         // echoed in replies and batches
 };
@@ -74,6 +80,8 @@ struct SubscriptionCounters {
   std::uint64_t heartbeats = 0;
   std::uint64_t unknown_heartbeats = 0;  // from a client with no subscription (e.g. after a restart)
   std::uint64_t expired_clients = 0;
+  std::uint64_t suspended_clients = 0;   // silent past the heartbeat timeout, within the grace
+  std::uint64_t resumed_clients = 0;     // heard from again while suspended
   std::uint64_t batch_samples = 0;
 };
 
@@ -95,8 +103,17 @@ class SubscriptionTable {
   thx_msgs::subscribe_reply_t handleRequest(const thx_msgs::subscribe_request_t& req, std::int64_t now_ns);
   // Returns false when the client is unknown (no subscriptions); the heartbeat is then ignored.
   bool heartbeat(const thx_msgs::heartbeat_t& hb, std::int64_t now_ns);
-  // Forgets clients silent for longer than the heartbeat timeout; returns their ids.
+  // Suspends clients silent for longer than the heartbeat timeout, and forgets those silent for
+  // longer than the timeout and the grace; returns the forgotten ids.
   std::vector<std::string> expire(std::int64_t now_ns);
+  // A client suspended (silent past the heartbeat timeout) or back (heard from while suspended),
+  // with how long it had been silent: what changed since the last call, for hapticd's log.
+  struct ClientChange {
+    std::string client_id;
+    bool back = false;
+    std::int64_t silent_ns = 0;
+  };
+  std::vector<ClientChange> takeChanges();
 
   // True when some subscription needs per-tick data (DEVICE_STATE, CONTACT, CONTACT batch):
   // the publisher builds the tick's messages only then.
@@ -135,10 +152,18 @@ class SubscriptionTable {
   };
   struct Client {
     std::int64_t last_seen_ns = 0;
+    bool suspended = false;
     int data_port = 0;                         // DataPorts; 0: the bus
     std::map<std::string, Subscription> subs;  // by stream name
   };
   void forget(std::map<std::string, Client>::iterator it);  // erases, and frees its data port
+  void heardFrom(Client& client, const std::string& id, std::int64_t now_ns);
+  // A batch subscription's sequence outlives it: a client that subscribes again on the same
+  // channel (after being forgotten, or unsubscribing) continues it, so what it receives after
+  // the gap counts as new (docs/messages.md, contact_batch_t). Bounded: the map is cleared when
+  // it would hold more than kMaxRetiredChannels channels.
+  void retire(const Subscription& s);
+  static constexpr std::size_t kMaxRetiredChannels = 4096;
 
   thx_msgs::subscribe_reply_t refuse(thx_msgs::subscribe_reply_t reply, std::string reason);
   bool due(Subscription& s, double index);
@@ -149,6 +174,8 @@ class SubscriptionTable {
   SubscriptionLimits limits_;
   DataPorts* ports_ = nullptr;
   std::map<std::string, Client> clients_;
+  std::map<std::string, std::int64_t> retired_batch_seq_;  // by channel
+  std::vector<ClientChange> changes_;
   int tick_subscriptions_ = 0;
   std::int64_t stats_windows_ = 0;
   SubscriptionCounters counters_;

@@ -75,6 +75,7 @@ TEST(DataPorts, DistinctPortsRecycledOldestFirstAndARefusalWhenAllAreHeld) {
 TEST(DataPorts, TableGrantsRecyclesAndRefuses) {
   thx::srv::SubscriptionLimits limits;
   limits.heartbeat_timeout_ns = 1'000'000'000;
+  limits.client_grace_ns = 0;
   thx::srv::SubscriptionTable table(limits);
   DataPorts ports(bus(), 7669, 7670);
   table.useDataPorts(&ports);

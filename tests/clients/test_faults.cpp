@@ -66,15 +66,19 @@ int urlPort(const std::string& url) {
 
 TEST_F(HapticdFaults, KilledClientIsForgottenAndOthersAreStillServed) {
   if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
-  startServer({"--heartbeat-timeout", "0.5"});
+  startServer({"--heartbeat-timeout", "0.5", "--client-grace", "0.5"});
   const pid_t victim = startProbe("victim", {"--stream", "DEVICE_STATE", "--rate", "1000", "--duration", "30"});
   const pid_t steady = startProbe("steady", {"--stream", "CONTACT", "--batch", "--rate", "100", "--duration", "3"});
   ASSERT_TRUE(serverLogHas("client victim: DEVICE_STATE at 1000 Hz", 30)) << serverLog();
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   kill(victim, SIGKILL);
   EXPECT_EQ(finishProbe(victim, 5), 128 + SIGKILL);
-  // Forgotten after the heartbeat timeout (0.5 s; the margin is for the sanitizer build).
-  EXPECT_TRUE(serverLogHas("hapticd: client victim forgotten: no heartbeat for 0.5 s", 10)) << serverLog();
+  // Suspended after the heartbeat timeout (0.5 s), forgotten after the grace (0.5 s more; the
+  // margin is for the sanitizer build).
+  EXPECT_TRUE(serverLogHas("hapticd: client victim: no heartbeat for 0.5 s; its streams and port are kept 0.5 s more", 10))
+      << serverLog();
+  EXPECT_TRUE(serverLogHas("hapticd: client victim forgotten: no heartbeat for 1 s", 10)) << serverLog();
+  EXPECT_EQ(serverLog().find("client victim is back"), std::string::npos) << serverLog();
 
   EXPECT_EQ(finishProbe(steady, 60), 0) << slurp(path("steady.err"));
   expectStreamFlowed(probeJson("steady"));

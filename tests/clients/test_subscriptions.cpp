@@ -170,8 +170,10 @@ TEST(Subscriptions, BandwidthLimitRefusesWhatWouldExceedIt) {
   EXPECT_GT(granted, 4);
 }
 
-TEST(Subscriptions, SilentClientsAreForgottenAfterTheHeartbeatTimeout) {
-  srv::SubscriptionTable t(limits());  // 2 s
+TEST(Subscriptions, WithoutAGraceSilentClientsAreForgottenAtTheHeartbeatTimeout) {
+  srv::SubscriptionLimits l = limits();  // 2 s
+  l.client_grace_ns = 0;
+  srv::SubscriptionTable t(l);
   ASSERT_TRUE(t.handleRequest(request("alive", "DEVICE_STATE", 100), 0).accepted);
   ASSERT_TRUE(t.handleRequest(request("silent", "DEVICE_STATE", 100), 0).accepted);
   thx_msgs::heartbeat_t hb{};
@@ -199,6 +201,95 @@ TEST(Subscriptions, SilentClientsAreForgottenAfterTheHeartbeatTimeout) {
   // A request is a sign of life too.
   EXPECT_TRUE(t.handleRequest(request("alive", "DEVICE_STATE", 100), 7 * kSec).accepted);
   EXPECT_TRUE(t.expire(8 * kSec).empty());
+}
+
+// A client silent past the timeout is suspended, not forgotten: its stream keeps flowing (a
+// pulled cable put back is served at once) until the grace ends.
+TEST(Subscriptions, ASilentClientIsSuspendedThenForgottenAfterTheGrace) {
+  srv::SubscriptionLimits l = limits();  // 2 s
+  l.client_grace_ns = 3 * kSec;
+  srv::SubscriptionTable t(l);
+  ASSERT_TRUE(t.handleRequest(request("silent", "DEVICE_STATE", 100), 0).accepted);
+  EXPECT_TRUE(t.expire(2 * kSec).empty());
+  EXPECT_TRUE(t.takeChanges().empty());  // exactly the timeout is still alive
+  EXPECT_TRUE(t.expire(2 * kSec + 1).empty());
+  const auto changes = t.takeChanges();
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_EQ(changes[0].client_id, "silent");
+  EXPECT_FALSE(changes[0].back);
+  EXPECT_EQ(changes[0].silent_ns, 2 * kSec + 1);
+  EXPECT_EQ(t.counters().suspended_clients, 1u);
+  EXPECT_TRUE(t.expire(4 * kSec).empty());
+  EXPECT_TRUE(t.takeChanges().empty());  // suspended once, not at every check
+  test::RecordingSink sink;
+  runTicks(t, sink, 0, 100);
+  EXPECT_EQ(sink.statesOn("THX_DEVICE_STATE.silent"), 10u);  // still served
+  EXPECT_EQ(t.numClients(), 1);
+  EXPECT_TRUE(t.expire(5 * kSec).empty());  // timeout + grace: still kept
+  EXPECT_EQ(t.expire(5 * kSec + 1), std::vector<std::string>{"silent"});
+  EXPECT_EQ(t.numClients(), 0);
+  EXPECT_EQ(t.counters().expired_clients, 1u);
+}
+
+// Heard from again within the grace (a heartbeat here, or a request), the client is served as
+// before: the same grant and the same batch sequence, nothing to ask again.
+TEST(Subscriptions, ASuspendedClientHeardFromAgainIsServedAsBefore) {
+  srv::SubscriptionTable t(limits());  // 2 s, and the default grace (10 s)
+  ASSERT_TRUE(t.handleRequest(request("audio", "CONTACT", 100.0, true), 0).accepted);
+  test::RecordingSink sink;
+  runTicks(t, sink, 0, 1000);
+  ASSERT_FALSE(sink.batches.empty());
+  const std::int64_t last_seq = sink.batches.back().second.seq;
+  EXPECT_TRUE(t.expire(3 * kSec).empty());
+  ASSERT_EQ(t.takeChanges().size(), 1u);  // suspended
+  runTicks(t, sink, 1000, 1000);          // the outage: batches go out, nobody hears them
+  thx_msgs::heartbeat_t hb{};
+  hb.client_id = "audio";
+  EXPECT_TRUE(t.heartbeat(hb, 4 * kSec));
+  const auto changes = t.takeChanges();
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_TRUE(changes[0].back);
+  EXPECT_EQ(changes[0].silent_ns, 4 * kSec);
+  EXPECT_EQ(t.counters().resumed_clients, 1u);
+  EXPECT_TRUE(t.expire(5 * kSec).empty());
+  EXPECT_TRUE(t.takeChanges().empty());  // alive again: not suspended anew
+  std::int64_t seq = 0;
+  for (const auto& [channel, b] : sink.batches) {
+    EXPECT_EQ(b.seq, seq + 1) << "one sequence through the outage";
+    seq = b.seq;
+  }
+  EXPECT_GT(seq, last_seq);
+}
+
+// Forgotten and subscribed again, a batch channel goes on with its sequence: what arrives after
+// the gap is new data to the client, not a repeat (docs/messages.md, contact_batch_t).
+TEST(Subscriptions, ABatchSequenceGoesOnWhenAForgottenClientSubscribesAgain) {
+  srv::SubscriptionLimits l = limits();
+  l.client_grace_ns = 0;
+  srv::SubscriptionTable t(l);
+  ASSERT_TRUE(t.handleRequest(request("audio", "CONTACT", 100.0, true), 0).accepted);
+  test::RecordingSink sink;
+  runTicks(t, sink, 0, 500);
+  ASSERT_FALSE(sink.batches.empty());
+  // The next batch sent, from `first_tick` on, is the one after the last batch sent so far.
+  auto expectTheSequenceGoesOn = [&](std::int64_t first_tick, const char* after) {
+    SCOPED_TRACE(after);
+    const std::int64_t last = sink.batches.back().second.seq;
+    const std::size_t n = sink.batches.size();
+    runTicks(t, sink, first_tick, 500);
+    ASSERT_GT(sink.batches.size(), n);
+    EXPECT_EQ(sink.batches[n].second.seq, last + 1);
+  };
+  ASSERT_EQ(t.expire(3 * kSec), std::vector<std::string>{"audio"});
+  ASSERT_TRUE(t.handleRequest(request("audio", "CONTACT", 100.0, true, 2), 3 * kSec).accepted);
+  expectTheSequenceGoesOn(3000, "forgotten, then subscribed again");
+  Req unsub = request("audio", "CONTACT", 100.0, true, 3);
+  unsub.action = Req::ACTION_UNSUBSCRIBE;
+  ASSERT_TRUE(t.handleRequest(unsub, 3 * kSec).accepted);
+  ASSERT_TRUE(t.handleRequest(request("audio", "CONTACT", 100.0, true, 4), 3 * kSec).accepted);
+  expectTheSequenceGoesOn(3500, "unsubscribed, then subscribed again");
+  ASSERT_TRUE(t.handleRequest(request("audio", "CONTACT", 50.0, true, 5), 3 * kSec).accepted);
+  expectTheSequenceGoesOn(4000, "a new rate on the channel");
 }
 
 // Batching: every tick's sample reaches a 100 Hz client, in order, exactly once.

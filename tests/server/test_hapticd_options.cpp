@@ -51,6 +51,7 @@ TEST(HapticdOptions, DefaultsAreTheDocumentedOnes) {
   EXPECT_EQ(o.limits.max_clients, 32);
   EXPECT_DOUBLE_EQ(o.limits.max_bandwidth_bytes_per_s, 8e6);
   EXPECT_EQ(o.limits.heartbeat_timeout_ns, 2'000'000'000);
+  EXPECT_EQ(o.limits.client_grace_ns, 10'000'000'000);
   EXPECT_FALSE(o.max_rate_given);
   EXPECT_TRUE(o.crease);
   EXPECT_TRUE(o.passivity);
@@ -109,7 +110,8 @@ TEST(HapticdOptions, FilesDeviceAndRunOptions) {
 TEST(HapticdOptions, TransportAndClientOptions) {
   const HapticdOptions o = parse({"--lcm-url", "udpm://239.255.76.67:7000?ttl=0", "--control-port", "7100",
                                   "--data-ports", "7200-7203", "--io-priority", "30", "--max-clients", "4",
-                                  "--max-rate", "250", "--max-bandwidth", "2.5", "--heartbeat-timeout", "0.5"});
+                                  "--max-rate", "250", "--max-bandwidth", "2.5", "--heartbeat-timeout", "0.5",
+                                  "--client-grace", "0"});
   EXPECT_EQ(o.lcm_url, "udpm://239.255.76.67:7000?ttl=0");
   EXPECT_EQ(o.control_port, "7100");
   EXPECT_EQ(o.data_ports, "7200-7203");
@@ -122,6 +124,7 @@ TEST(HapticdOptions, TransportAndClientOptions) {
   EXPECT_TRUE(o.max_rate_given);
   EXPECT_DOUBLE_EQ(o.limits.max_bandwidth_bytes_per_s, 2.5e6);
   EXPECT_EQ(o.limits.heartbeat_timeout_ns, 500'000'000);
+  EXPECT_EQ(o.limits.client_grace_ns, 0);
   const HapticdOptions off = parse({"--no-lcm", "--control-port", "off", "--data-ports", "off"});
   EXPECT_TRUE(off.no_lcm);
   EXPECT_EQ(off.ports.control_port, 0);
@@ -177,6 +180,7 @@ TEST(HapticdOptions, ErrorsNameTheOptionTheValueAndWhatWasExpected) {
       {{"--scene", "x", "--max-rate", "0"}, "--max-rate must be > 0"},
       {{"--scene", "x", "--max-bandwidth", "0"}, "--max-bandwidth must be > 0"},
       {{"--scene", "x", "--heartbeat-timeout", "0.01"}, "--heartbeat-timeout must be in [0.05, 3600] s"},
+      {{"--scene", "x", "--client-grace", "-1"}, "--client-grace must be in [0, 3600] s"},
       {{"--scene", "x", "--missed-policy", "foo"}, "--missed-policy: expected 'ride-through' or 'disengage', got 'foo'"},
       {{"--scene", "x", "--plane-rate", "0"}, "--plane-rate: expected a rate > 0 Hz"},
       {{"--scene", "x", "--stiffness-fraction", "2"}, "--stiffness-fraction must be in (0, 1]"},

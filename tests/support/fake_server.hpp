@@ -33,6 +33,7 @@ class FakeServer : public srv::MessageSink {
           srv::SubscriptionLimits l;
           l.server_instance = instance;
           l.max_clients = max_clients;
+          l.client_grace_ns = 0;  // forgets a silent client at the timeout (hapticd --client-grace 0)
           return l;
         }()),
         instance_(instance) {
