@@ -22,6 +22,9 @@
 #              docs/table1.md; THX_TABLE1_MESH_SIZES the Tet4 slabs measured for the meshes' memory
 #              fit (24,32,48,64,96,128,256,512: both mesh cells measured, the 512² one needs about
 #              8 GB and 7 min; leave 512 out to extrapolate it); about 10 min)
+#              or clients_lan (issue 31: hapticd and 32 probe-clients on a virtual LAN of network
+#              namespaces, on one host and on two others, and host 2's cable pulled for 2 s;
+#              THX_CLIENTS_LAN_SECONDS per run (20); about 1.5 min; needs root)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
@@ -203,6 +206,15 @@ run_clients() {
   return $rc
 }
 
+run_clients_lan() {
+  need "$BIN/bench_clients_lan" && need "$HAPTICD" && need "$BUILD/clients/probe/probe-client" || return 1
+  say "part 5c: 32 clients on one host and on two others of a virtual LAN, and a pulled cable (about 1.5 min)"
+  "$BIN/bench_clients_lan" --hapticd "$HAPTICD" --probe "$BUILD/clients/probe/probe-client" \
+    --scene "$ROOT/scenes/default.yaml" --seconds "${THX_CLIENTS_LAN_SECONDS:-20}" --workdir "$WORK" \
+    --json "$RESULTS/bench_clients_lan.json" --md "$WORK/bench_clients_lan.md" || return 1
+  splice bench_clients_lan "$WORK/bench_clients_lan.md"
+}
+
 run_physics() {
   need "$BIN/bench_physics" || return 1
   say "part 6: physics, time per step / memory / outcome error of five ground representations (about 1.5 min)"
@@ -268,14 +280,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | physics | visual | visual_servo | audio | audio-live | load | table1 | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | table1 | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients physics visual visual_servo audio audio-live load table1 report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load table1 report)"
       exit 2
       ;;
   esac
