@@ -72,14 +72,16 @@ def main():
         lines.append(f"load average (1 min) during the run: mean {sum(loads) / len(loads):.1f}, "
                      f"min {min(loads):.1f}, max {max(loads):.1f} ({len(loads)} samples)")
 
-    # Phases: make echoes each recipe line before it runs it; every line of the log has its time.
+    # Phases: make echoes each recipe line before it runs it, and the test recipe says "make test:"
+    # where the sanitizer tree's tests start beside the optimised tree's build and where each of the
+    # two ends; every line of the log has its time.
     phases = []
     for line in read(os.path.join(out, "make_test.log")).splitlines():
         stamp, _, text = line.partition(" ")
-        text = text.strip()  # the sanitizer tree's ctest line is a continuation, tab first
+        text = text.strip()  # a continuation line of a recipe starts with a tab
         if text.startswith("cmake --build ") or text.startswith("ctest --output-on-failure") or (
-                "ctest " in text and text.startswith("cd ")):
-            phases.append((float(stamp), text[:60]))
+                "ctest " in text and text.startswith("cd ")) or text.startswith("make test: "):
+            phases.append((float(stamp), text[:90]))
     if phases and end:
         lines.append("phases (wall):")
         bounds = [p[0] for p in phases[1:]] + [float(end)]
