@@ -37,23 +37,32 @@ demo: build
 
 # The tests need only their own executables and the programs they run (target thx_tests,
 # tests/CMakeLists.txt): the benchmarks and the tools no test runs are not built here.
-# The sanitizer tree builds first; its tests then run while the optimised tree builds. A third of
-# their time is the real-time tests that ctest runs alone (RUN_SERIAL: alone among the tests, not
-# on the machine), which leave the cores mostly idle, and the compiles fill them (docs/build.md).
-# Their output goes to build-asan/ctest.log and is printed once both are done.
+# The two trees' builds and tests overlap so that no core waits (docs/build.md). The real-time
+# tests (label serial, which ctest runs alone) mostly wait on the clock, and the sanitizer tree's
+# other tests are mostly computing: the sanitizer tree builds first; its real-time tests run while
+# the optimised tree builds; then its other tests run beside all of the optimised tree's. A
+# real-time test thus runs beside a compile or beside computing tests, never beside another
+# real-time test. The sanitizer tree's output goes to build-asan/ctest_*.log and is printed after
+# each step; make test stops after a step if anything in it failed.
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+SANITIZER_CTEST = cd $(BUILD_ASAN) && $(SANITIZER_ENV) ctest --output-on-failure -j$(JOBS)
 
 test: setup $(BUILD)/CMakeCache.txt $(BUILD_ASAN)/CMakeCache.txt
 	cmake --build $(BUILD_ASAN) -j$(JOBS) --target thx_tests
-	@echo "make test: the sanitizer tree's tests run while the optimised tree builds (their output: $(BUILD_ASAN)/ctest.log)"
-	@cd $(BUILD_ASAN) && $(SANITIZER_ENV) ctest --output-on-failure -j$(JOBS) -LE slow > ctest.log 2>&1 & tests=$$!; \
+	@echo "make test: the sanitizer tree's real-time tests run while the optimised tree builds (their output: $(BUILD_ASAN)/ctest_serial.log)"
+	@$(SANITIZER_CTEST) -L serial -LE slow > ctest_serial.log 2>&1 & tests=$$!; \
 	  cmake --build $(BUILD) -j$(JOBS) --target thx_tests; built=$$?; \
-	  echo "make test: the optimised tree is built (exit $$built); waiting for the sanitizer tree's tests"; \
 	  wait $$tests; tested=$$?; \
-	  echo "make test: the sanitizer tree's tests are done (exit $$tested); their output:"; \
-	  cat $(BUILD_ASAN)/ctest.log; \
+	  echo "make test: the optimised tree is built (exit $$built); the sanitizer tree's real-time tests are done (exit $$tested):"; \
+	  cat $(BUILD_ASAN)/ctest_serial.log; \
 	  test $$built -eq 0 && test $$tested -eq 0
-	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) -LE slow
+	@echo "make test: the optimised tree's tests run beside the sanitizer tree's other tests (their output: $(BUILD_ASAN)/ctest_other.log)"
+	@$(SANITIZER_CTEST) -LE 'slow|serial' > ctest_other.log 2>&1 & tests=$$!; \
+	  (cd $(BUILD) && ctest --output-on-failure -j$(JOBS) -LE slow); optimised=$$?; \
+	  wait $$tests; sanitized=$$?; \
+	  echo "make test: the optimised tree's tests are done (exit $$optimised); the sanitizer tree's other tests are done (exit $$sanitized):"; \
+	  cat $(BUILD_ASAN)/ctest_other.log; \
+	  test $$optimised -eq 0 && test $$sanitized -eq 0
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN)
