@@ -27,8 +27,7 @@ void TextMessage::encode(ByteWriter& w) const {
 
 Result<TextMessage> TextMessage::decode(std::span<const std::uint8_t> payload) {
   if (payload.size() < 8 || payload.size() > 8 + kTextBufferSize)
-    return Error{ErrorCode::kPayloadSize, std::string(kTypeName) + " body is " + std::to_string(payload.size()) +
-                                              " bytes, expected 8.." + std::to_string(8 + kTextBufferSize)};
+    return sizeError(kTypeName, payload.size(), "8.." + std::to_string(8 + kTextBufferSize));
   ByteReader r(payload);
   TextMessage m;
   m.severity = r.u32();

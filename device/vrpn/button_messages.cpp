@@ -30,8 +30,7 @@ void ButtonStates::encode(ByteWriter& w) const {
 
 Result<ButtonStates> ButtonStates::decode(std::span<const std::uint8_t> payload) {
   if (payload.size() < 4)
-    return Error{ErrorCode::kPayloadSize,
-                 std::string(kTypeName) + " body is " + std::to_string(payload.size()) + " bytes, expected at least 4"};
+    return sizeError(kTypeName, payload.size(), "at least 4");
   ByteReader r(payload);
   const std::int32_t n = r.i32();
   if (n < 0 || std::size_t(n) > kMaxButtons)

@@ -117,8 +117,7 @@ void ForceCustomEffect::encode(ByteWriter& w) const {
 
 Result<ForceCustomEffect> ForceCustomEffect::decode(std::span<const std::uint8_t> payload) {
   if (payload.size() < 8)
-    return Error{ErrorCode::kPayloadSize,
-                 std::string(kTypeName) + " body is " + std::to_string(payload.size()) + " bytes, expected at least 8"};
+    return sizeError(kTypeName, payload.size(), "at least 8");
   ByteReader r(payload);
   ForceCustomEffect m;
   m.effect_id = r.u32();
