@@ -7,7 +7,7 @@ JOBS       ?= 2
 
 help:
 	@echo "make demo   install what is missing, build, run the main job on the default scene"
-	@echo "make test   install what is missing, build, run every test, then again under ASan+UBSan"
+	@echo "make test   install what is missing, build, run every test in an optimised build and under ASan+UBSan"
 
 setup:
 	@./setup.sh

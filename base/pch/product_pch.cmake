@@ -9,8 +9,9 @@
 # THX_WERROR) stops the build where a target's flags and its header's differ, instead of g++ parsing
 # silently, or compiling with the header's rule.
 # A source file with options of its own (resonator_kernel.cpp: -O3 -ffp-contract=off) is compiled
-# without the header: with it, g++ took the header's -ffp-contract and fused the AVX-512 kernel's
-# multiply-adds, and ResonatorKernel.EveryVariantMatchesTheScalarReference caught it. GCC only: clang
+# without the header: with it, the AVX-512 kernel no longer matched the scalar reference bit for
+# bit (the header's options won over the file's), and ResonatorKernel.EveryVariantMatchesTheScalar-
+# Reference caught it. GCC only: clang
 # checks a header's flags differently, and the fuzz build (THX_FUZZ, clang) gives libraries flags of
 # their own.
 option(THX_PRODUCT_PCH "Precompiled header of Eigen and the standard library for product code" ON)
