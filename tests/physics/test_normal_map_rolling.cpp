@@ -35,11 +35,10 @@ Rolled rollBall(double angle_deg, double friction, bool plane_first, double dt =
   ball = &w.addSphere(kRadius, kMass, at(0, 0, kRadius), m);
   if (!plane_first) w.addNormalMapPlane(s.surface, plane);
   Rolled r;
-  double v1 = 0.0, t = 0.0;
+  double v1 = 0.0;
   const int n1 = int(std::lround(t1 / dt)), n2 = int(std::lround(t2 / dt));
   for (int k = 1; k <= n2; ++k) {
     w.step(dt);
-    t += dt;
     r.z_error = std::max(r.z_error, std::fabs(positionOf(*ball).z() - kRadius));
     r.v_max = std::max(r.v_max, velocityOf(*ball).norm());
     if (k == n1) v1 = velocityOf(*ball).x();

@@ -87,7 +87,7 @@ TEST(VisualLive, WithoutAServerTheSceneAtRest) {
   const std::string client = THX_VISUAL_CLIENT, scene = std::string(THX_SOURCE_DIR) + "/scenes/marble_bricks.yaml";
   const std::string common = " --scene " + scene + " --size 160x90 --elevation 60 --distance 0.08";
   // A bus port of this test's own (ttl=0): no hapticd answers there.
-  const thx::test::PortBlock ports(unsigned(::getpid()));
+  const thx::test::PortBlock ports{static_cast<unsigned>(::getpid())};  // braces: clang read () as a declaration
   const std::string url = "'udpm://239.255.76.67:" + std::to_string(ports.firstPort()) + "?ttl=0'";
   const std::string live = "LP_NUM_THREADS=2 " + client + common + " --live --out " + (dir / "live").string() +
                            " --format ppm --lcm-url " + url + " --connect-timeout 0.3 2>" + (dir / "err.txt").string();
