@@ -1,1 +1,0 @@
-// The object that owns the tests' shared precompiled header (tests/CMakeLists.txt); no code.
