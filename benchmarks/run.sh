@@ -25,6 +25,9 @@
 #              or clients_lan (issue 31: hapticd and 32 probe-clients on a virtual LAN of network
 #              namespaces, on one host and on two others, and host 2's cable pulled for 2 s;
 #              THX_CLIENTS_LAN_SECONDS per run (20); about 1.5 min; needs root)
+#              or mesh_force (issue 28: the textured mesh renderer's force error against exact displaced
+#              spheres and cylinders by triangle count and frame, force turns across edges, render
+#              cost up to 500,000 triangles; about 2 min; its tables go to docs/meshes.md)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
@@ -262,6 +265,14 @@ run_visual_servo() {
   splice bench_visual_servo "$WORK/bench_visual_servo.md" "$ROOT/docs/visual.md"
 }
 
+run_mesh_force() {
+  need "$BIN/bench_mesh_force" || return 1
+  say "part mesh_force: textured meshes, force error and render cost against triangles (about 2 min)"
+  "$BIN/bench_mesh_force" --json "$RESULTS/bench_mesh_force.json" --csv "$RESULTS/bench_mesh_force.csv" \
+    --png "$RESULTS/bench_mesh_force.png" --md "$WORK/bench_mesh_force.md" > /dev/null || return 1
+  splice bench_mesh_force "$WORK/bench_mesh_force.md" "$ROOT/docs/meshes.md"
+}
+
 run_table1() {
   need "$BIN/bench_table1" || return 1
   say "part table1: the paper's Table 1 on one surface, normal / relief / mesh 256² / mesh 512² (about 10 min, 8 GB)"
@@ -280,14 +291,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | table1 | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | table1 | mesh_force | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load table1 report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load table1 mesh_force report)"
       exit 2
       ;;
   esac

@@ -34,11 +34,27 @@
 
 namespace thx::srv {
 
+inline constexpr int kGodObjectMaxSweeps = 6;
+inline constexpr int kGodObjectMaxConstraints = 3;
+inline constexpr double kGodObjectStandoffM = 1e-9;  // 6e-7 N at 600 N/m: far below any force we resolve
+
+// One tick of the god object (steps 1-2 above), in the mesh's frame: from the last proxy toward the
+// tip. The renderer of textured meshes (textured_mesh_renderer.hpp) takes the same step and reads
+// the constraint triangles to shade and texture them.
+struct GodObjectStep {
+  Eigen::Vector3d proxy = Eigen::Vector3d::Zero();
+  std::array<Halfspace, kMaxHalfspaces> planes{};  // [0, count): the constraints, kStandoffM outside
+  std::array<std::uint32_t, kGodObjectMaxConstraints> triangles{};  // their triangles
+  int count = 0;
+  int sweeps = 0;
+};
+GodObjectStep moveGodObject(const TriangleBvh& bvh, const Eigen::Vector3d& proxy, const Eigen::Vector3d& tip);
+
 class MeshGodObject {
  public:
-  static constexpr int kMaxSweeps = 6;
-  static constexpr int kMaxConstraints = 3;
-  static constexpr double kStandoffM = 1e-9;  // 6e-7 N at 600 N/m: far below any force we resolve
+  static constexpr int kMaxSweeps = kGodObjectMaxSweeps;
+  static constexpr int kMaxConstraints = kGodObjectMaxConstraints;
+  static constexpr double kStandoffM = kGodObjectStandoffM;
 
   // The mesh is in `mapping`'s plane frame. Only stiffness and damping of `config` apply.
   MeshGodObject(const TriangleBvh& bvh, const tex::PlaneMapping& mapping, const RendererConfig& config);

@@ -39,6 +39,25 @@ void ProxyRenderer::reset() {
   held_ticks_left_ = 0;
 }
 
+void ProxyRenderer::moveFrame(const Eigen::Isometry3d& old_to_new) {
+  const Eigen::Matrix3d r = old_to_new.linear();
+  auto movePlanes = [&](LocalPlanes& p) {
+    for (int i = 0; i < p.count; ++i) {
+      Halfspace& h = p.h[std::size_t(i)];
+      p.q[std::size_t(i)] = old_to_new * p.q[std::size_t(i)];
+      h.n = r * h.n;
+      h.d = h.n.dot(p.q[std::size_t(i)]);
+    }
+  };
+  proxy_local_ = old_to_new * proxy_local_;
+  movePlanes(prev_planes_);
+  movePlanes(prev_active_);
+  movePlanes(held_plane_);
+  e_rendered_prev_ = r * e_rendered_prev_;
+  recovery_offset_ = r * recovery_offset_;
+  derive();
+}
+
 ProxyRenderer::LocalPlanes ProxyRenderer::singlePlaneAt(const tex::SurfacePoint& s, double x, double y) const {
   LocalPlanes p;
   p.q[0] = Eigen::Vector3d(x, y, s.height_m);

@@ -26,6 +26,7 @@
 // the new one over `recovery_ticks` ticks (VRPN's rule, which stock VRPN servers leave disabled).
 // Contact loss with a large force ramps out the same way.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 
 #include "device/haptic_device.hpp"
@@ -89,6 +90,13 @@ class ProxyRenderer {
   // it at a tick boundary with the force ramped to zero), then reset(). Real-time safe; the
   // surface must outlive its use as with the constructor's.
   void retarget(const tex::TexturedSurface& surface, const RendererConfig& config);
+
+  // The surface's plane frame moved (a chart that follows the contact on a curved mesh,
+  // textured_mesh_renderer.hpp): what the renderer remembers in plane-local coordinates (proxy,
+  // last planes, recovery) is carried into the new frame by old_to_new, and the surface's derived
+  // sizes are read again. The surface object itself (same address) must already hold the new
+  // mapping. Real-time safe.
+  void moveFrame(const Eigen::Isometry3d& old_to_new);
 
   const RendererConfig& config() const { return config_; }
   const tex::TexturedSurface& surface() const { return *surface_; }

@@ -38,6 +38,16 @@ class TriangleBvh {
   // The first front-face entry of a -> b, skipping the `n_skip` triangles in `skip`.
   Hit firstEntry(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const std::uint32_t* skip = nullptr,
                  int n_skip = 0) const;
+  struct Nearest {
+    bool found = false;
+    std::uint32_t triangle = 0;
+    Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+    double distance = 0.0;
+  };
+  // The triangle closest to p within max_distance (ties to the lower index). The textured mesh
+  // renderer asks it where the proxy stands beyond the edge of the face that holds it.
+  Nearest nearest(const Eigen::Vector3d& p, double max_distance) const;
+
   // The primitive test on one triangle (the same one firstEntry applies; tests compare the
   // hierarchy against it applied to every triangle).
   bool entersTriangle(std::uint32_t triangle, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double& t) const;
@@ -57,9 +67,15 @@ class TriangleBvh {
     std::uint32_t count = 0;           // leaf: triangles; 0 = inner node
   };
   std::uint32_t build(std::vector<Eigen::Vector3d>& centroids, std::uint32_t begin, std::uint32_t end, int depth);
+  // A query segment a -> b with its reciprocal direction (per axis; `parallel` where b - a is 0).
+  struct Segment {
+    Eigen::Vector3d a = Eigen::Vector3d::Zero();
+    Eigen::Vector3d inv_d = Eigen::Vector3d::Zero();
+    std::array<bool, 3> parallel{};
+  };
+  static Segment segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
   // Entry parameter of a + t (b - a) into the node's box within [0, t_max]; false if it misses.
-  static bool boxEntry(const Node& node, const Eigen::Vector3d& a, const Eigen::Vector3d& d, double t_max,
-                       double& t_enter);
+  static bool boxEntry(const Node& node, const Segment& s, double t_max, double& t_enter);
 
   const TriangleMesh* mesh_;
   int leaf_size_;

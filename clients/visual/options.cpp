@@ -1,6 +1,7 @@
 #include "clients/visual/options.hpp"
 
 #include "base/cli_number.hpp"
+#include "clients/visual/builtin_meshes.hpp"
 #include "thx_msgs/protocol.hpp"
 
 namespace thx::visual {
@@ -76,6 +77,20 @@ Camera and light (angles in the plane's frame):
   --fov DEG              vertical field of view (default 40)
   --light-elevation DEG  (default 50)    --light-azimuth DEG (default -135)
   --ambient A            (default 0.15)  --specular S (default 0.15)
+
+Textured meshes (issue 28; docs/visual.md "Textured meshes"):
+  --surface-mesh SHAPE   draw a built-in textured mesh instead of the plane, with the scene's texture
+                         in its tangent frames (--mode normal or relief, --search linear), headless
+                         (--screenshot or --frames); no objects, no pen. SHAPE, of size s = 0.25 x
+                         the plane's larger side (5 cm on a 20 cm plane), centred where the camera
+                         looks (--target 0,0):
+                           sphere    radius s, 128 x 64 segments
+                           cylinder  an open tube, radius s, height 2 s, 128 x 32
+                           torus     radii s and 0.4 s, 128 x 48
+                           bowl      radius s, height 0.8 s, wall 0.08 s (turned, 128 segments)
+                           vase      height 2.4 s, widest radius s, wall 0.06 s (turned, 128)
+  --surface-mesh-tile M  metres one texture tile spans on the mesh (default: the plane's width,
+                         the texture at the scene's scale; rounded to whole tiles around the shape)
 
 Objects:
   --pen X,Y              the pen's tip at surface-local X,Y, on the surface (default: where the
@@ -159,12 +174,26 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (a == "--verbose") o.verbose = true;
     else if (a == "--window-screenshot") o.window_screenshot = value(), o.window = true;
     else if (a == "--window-frames") o.window_frames = int(cli::parseInteger(a, value(), 1, 1000000)), o.window = true;
+    else if (a == "--surface-mesh") {
+      o.surface_mesh = value();
+      if (!isBuiltInMesh(o.surface_mesh))
+        throw UsageError(a + ": expected " + kBuiltInMeshShapes + ", got '" + o.surface_mesh + "'");
+    } else if (a == "--surface-mesh-tile") o.surface_mesh_tile_m = cli::parseNumber(a, value(), {0, 100, true, "m"});
     else throw UsageError("unknown option '" + a + "'");
   }
   if (o.help) return o;
   if (o.scene.empty()) throw UsageError("--scene FILE is required");
   if (o.lcm_url.empty()) o.lcm_url = thx_msgs::kDefaultLcmUrl;
   const bool replay = !o.replay_log.empty();
+  if (o.surface_mesh_tile_m > 0 && o.surface_mesh.empty()) throw UsageError("--surface-mesh-tile M needs --surface-mesh SHAPE");
+  if (!o.surface_mesh.empty()) {
+    if (o.window || replay || o.live) throw UsageError("--surface-mesh draws headless: with --screenshot FILE or --frames N --out DIR");
+    if (o.render.mode == SurfaceMode::Mesh)
+      throw UsageError("--surface-mesh: --mode normal or relief (mesh:N displaces the plane's grid)");
+    if (o.render.steps.search == ReliefSearch::MaxMip)
+      throw UsageError("--surface-mesh: --search linear (the max-mipmap walk is the plane's)");
+    if (o.pen_xy) throw UsageError("--surface-mesh draws no pen: not with --pen");
+  }
   if (o.live) {
     if (replay || !o.screenshot.empty()) throw UsageError("--live draws live frames: not with --replay-log or --screenshot");
     if (int(o.window) + int(!o.out_dir.empty()) != 1) throw UsageError("--live needs exactly one of --out DIR and --window");
@@ -186,6 +215,12 @@ CameraPlacement cameraPlacement(const Options& o, const scene::Scene& scene) {
   CameraPlacement placement = o.camera;
   if (!o.distance_given) placement.distance_m = 1.25 * scene.surface.size_m.maxCoeff();
   return placement;
+}
+
+double surfaceMeshSize(const scene::Scene& scene) { return 0.25 * scene.surface.size_m.maxCoeff(); }
+
+double surfaceMeshTile(const Options& o, const scene::Scene& scene) {
+  return o.surface_mesh_tile_m > 0 ? o.surface_mesh_tile_m : scene.surface.size_m.x();
 }
 
 }  // namespace thx::visual

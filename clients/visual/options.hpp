@@ -44,10 +44,16 @@ struct Options {
   bool window = false;   // --window
   int window_frames = 0;  // --window-frames N
   std::string window_screenshot;  // --window-screenshot FILE
+  std::string surface_mesh;       // --surface-mesh SHAPE (builtin_meshes.hpp): drawn instead of the plane
+  double surface_mesh_tile_m = 0.0;  // --surface-mesh-tile M; 0: the scene's plane's width
 };
 
 Options parseOptions(const std::vector<std::string>& args);
 // The camera of the command line; --distance defaults to 1.25 x the plane's larger side.
 CameraPlacement cameraPlacement(const Options& o, const scene::Scene& scene);
+// --surface-mesh's size and tile for the scene: radius 0.25 x the plane's larger side; tile
+// --surface-mesh-tile, else the plane's width (the texture at the scale the scene gives it).
+double surfaceMeshSize(const scene::Scene& scene);
+double surfaceMeshTile(const Options& o, const scene::Scene& scene);
 
 }  // namespace thx::visual

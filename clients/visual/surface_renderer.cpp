@@ -2,6 +2,7 @@
 
 #include "clients/visual/gl_error.hpp"
 #include "clients/visual/shader_sources.hpp"
+#include "clients/visual/shading_uniforms.hpp"
 
 namespace thx::visual {
 
@@ -34,9 +35,6 @@ void SurfaceRenderer::draw(const Camera& camera) const {
   program_->use();
   texture_->bind(GL_TEXTURE0, GL_TEXTURE1);
   const ShaderProgram& p = *program_;
-  glUniform1i(p.uniform("u_texels"), 0);
-  glUniform1i(p.uniform("u_depths"), 1);
-  glUniform2i(p.uniform("u_texels_size"), map.width(), map.height());
   glUniform2f(p.uniform("u_plane_size"), float(mapping.size_m.x()), float(mapping.size_m.y()));
   glUniform1i(p.uniform("u_wrap"), wrap);
   glUniform1i(p.uniform("u_bilinear"), surface_.sampling().filter == tex::Filter::Bilinear);
@@ -44,14 +42,7 @@ void SurfaceRenderer::draw(const Camera& camera) const {
   glUniformMatrix4fv(p.uniform("u_plane_to_clip"), 1, GL_FALSE, plane_to_clip.data());
   glUniform3fv(p.uniform("u_camera_local"), 1, eye_local.data());
   glUniform3fv(p.uniform("u_light_local"), 1, light_local.data());
-  glUniform3fv(p.uniform("u_albedo"), 1, settings_.plane_albedo.data());
-  glUniform1f(p.uniform("u_ambient"), float(settings_.light.ambient));
-  glUniform1f(p.uniform("u_specular"), float(settings_.light.specular));
-  // A normal map read as relief has no depth: the search then stops on the plane at once.
-  glUniform1f(p.uniform("u_max_depth"), surface_.usesRelief() ? float(map.maxDepth()) : 0.0f);
-  glUniform1i(p.uniform("u_linear_steps"), settings_.steps.linear);
-  glUniform1i(p.uniform("u_binary_steps"), settings_.steps.binary);
-  glUniform1i(p.uniform("u_shadow_steps"), settings_.steps.shadow);
+  setShadingUniforms(p, settings_, map, surface_.usesRelief());
   if (maxmip_) {
     maxmip_texture_->bind(GL_TEXTURE2);
     glUniform1i(p.uniform("u_maxmip"), 2);

@@ -5,10 +5,12 @@
 #include <vector>
 
 #include "base/program_main.hpp"
+#include "clients/visual/builtin_meshes.hpp"
 #include "clients/visual/frame_renderer.hpp"
 #include "clients/visual/headless_context.hpp"
 #include "clients/visual/image_writer.hpp"
 #include "clients/visual/live_client.hpp"
+#include "clients/visual/mesh_frame_renderer.hpp"
 #include "clients/visual/options.hpp"
 #include "clients/visual/replay_frames.hpp"
 #include "clients/visual/scene_objects.hpp"
@@ -52,6 +54,43 @@ int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurfa
   return 0;
 }
 
+// --surface-mesh: a built-in textured mesh instead of the plane, centred on the plane's origin (the
+// camera's default target), the scene's texture wrapped on it in its tangent frames.
+int drawSurfaceMesh(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
+                    const CameraPlacement& placement) {
+  const mesh::GeneratedMesh shape = builtInMesh(o.surface_mesh, surfaceMeshSize(scene), surfaceMeshTile(o, scene));
+  MeshSurface mesh;
+  mesh.mesh = &shape.mesh;
+  mesh.tile_m = shape.tile_used_m;
+  mesh.map = &surface.map();
+  mesh.filter = surface.sampling().filter;
+  mesh.use_relief = surface.usesRelief();
+  const Eigen::Isometry3d& plane = surface.mapping().plane_to_world;
+  mesh.mesh_to_world = plane * Eigen::Translation3d(-boundsCentre(shape.mesh));
+  HeadlessContext context;
+  if (!o.quiet)
+    std::fprintf(stderr, "visual-client: %s, %zu triangles, tile %.4g x %.4g m; %s\n", shape.mesh.source.c_str(),
+                 shape.mesh.triangles.size(), mesh.tile_m.x(), mesh.tile_m.y(), context.description().c_str());
+  MeshFrameRenderer renderer(mesh, o.render, o.width, o.height);
+  if (!o.screenshot.empty()) {
+    renderer.render(Camera(placement, plane, o.width, o.height));
+    writeImage(o.screenshot, renderer.framebuffer().readColour(), o.png_level);
+    if (!o.quiet)
+      std::fprintf(stderr, "visual-client: wrote %s (%s, %s)\n", o.screenshot.c_str(), o.surface_mesh.c_str(),
+                   modeName(o.render).c_str());
+    return 0;
+  }
+  std::filesystem::create_directories(o.out_dir);
+  for (int f = 0; f < o.frames; ++f) {
+    CameraPlacement p = placement;
+    p.azimuth_deg += f * o.orbit_deg_per_frame;
+    renderer.render(Camera(p, plane, o.width, o.height));
+    writeImage(framePath(o, f), renderer.framebuffer().readColour(), o.png_level);
+  }
+  if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %d frames to %s\n", o.frames, o.out_dir.c_str());
+  return 0;
+}
+
 int run(const Options& o) {
   const scene::Scene scene = scene::loadScene(o.scene);
   scene::SurfaceTextureOptions texture_options;
@@ -60,6 +99,7 @@ int run(const Options& o) {
 
   if (o.live) return runLive(o);
   const CameraPlacement placement = cameraPlacement(o, scene);
+  if (!o.surface_mesh.empty()) return drawSurfaceMesh(o, scene, surface.surface, placement);
 
   if (!o.replay_log.empty()) {
     // The recording's hellos name the scene's texture fingerprint: it must be this one's.

@@ -1,5 +1,6 @@
 // The mesh god object: exact plane force on a flat mesh, the constrained proxy in a V valley (two
-// planes) and a corner (three), no pop-through across edges and vertices, no allocation per tick.
+// planes) and a corner (three), no pop-through across edges and vertices, no allocation per tick
+// (its own and, at the end, the textured mesh renderer's built on it).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -7,7 +8,9 @@
 #include <numbers>
 #include <random>
 
+#include "meshes/mesh_generators.hpp"
 #include "server/mesh_god_object.hpp"
+#include "server/textured_mesh_renderer.hpp"
 #include "tests/server/mesh_fixtures.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -221,6 +224,33 @@ TEST(MeshGodObject, NoAllocationPerTick) {
   }
   r.reset();
   EXPECT_EQ(test::g_allocations.load() - before, 0);
+}
+
+TEST(TexturedMeshRenderer, NoAllocationPerTick) {
+  // The textured renderer on a relief-mapped sphere: strokes across edges, seams and the pole.
+  const mesh::GeneratedMesh g = mesh::sphere(0.03, 24, 12, 0.01);
+  const srv::TriangleMesh geometry = srv::geometryOf(g.mesh);
+  const srv::TriangleBvh bvh(geometry);
+  tex::TextureMap map(16, 16, tex::Representation::Relief, 2e-4);
+  for (int j = 0; j < 16; ++j) {
+    for (int i = 0; i < 16; ++i) {
+      map.setNormal(i, j, Eigen::Vector3f(0.1f * float(i % 3), -0.05f * float(j % 2), 1.0f));
+      map.setDepth(i, j, 1e-5 * ((i + j) % 7));
+    }
+  }
+  srv::TexturedMeshRenderer r(g.mesh, bvh, {&map, {}, true}, Eigen::Isometry3d::Identity(), config(1.0));
+  r.render({0.0, 0.0, 0.05}, Eigen::Vector3d::Zero());
+  const long before = test::g_allocations.load();
+  int contact = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const double t = k / 3000.0, rho = 0.032 - 0.003 * std::min(1.0, 20 * t);  // from outside to 1 mm deep
+    const Eigen::Vector3d dir(std::cos(9 * t) * std::sin(0.2 + 2.8 * t), std::sin(9 * t) * std::sin(0.2 + 2.8 * t),
+                              std::cos(0.2 + 2.8 * t));
+    contact += r.render(rho * dir, Eigen::Vector3d(0, 0, -0.02)).in_contact ? 1 : 0;
+  }
+  r.reset();
+  EXPECT_EQ(test::g_allocations.load() - before, 0);
+  EXPECT_GT(contact, 2000);
 }
 
 }  // namespace test_mesh_god_object

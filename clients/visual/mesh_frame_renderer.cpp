@@ -1,0 +1,27 @@
+#include "clients/visual/mesh_frame_renderer.hpp"
+
+#include "clients/visual/gl_error.hpp"
+
+namespace thx::visual {
+
+MeshFrameRenderer::MeshFrameRenderer(const MeshSurface& surface, const RenderSettings& settings, int width,
+                                     int height)
+    : settings_(settings), framebuffer_(width, height, settings.hit_buffer), surface_renderer_(surface, settings) {}
+
+void MeshFrameRenderer::render(const Camera& camera) {
+  framebuffer_.bind();
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  // FrameRenderer's background and "no hit" marks.
+  glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (settings_.hit_buffer) {
+    const float none[4] = {-1.0f, -1.0f, -1.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 1, none);
+  }
+  surface_renderer_.draw(camera);
+  glFinish();
+  checkGl("MeshFrameRenderer::render");
+}
+
+}  // namespace thx::visual

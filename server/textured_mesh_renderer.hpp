@@ -1,0 +1,136 @@
+#pragma once
+// Haptic rendering of a textured triangle mesh (issue 28): the texture renderer of the plane
+// (proxy_renderer.hpp, with its crease handling, sided ridges and recovery rule) carried onto any
+// curved surface through the mesh's interpolated tangent frames (meshes/textured_mesh.hpp).
+//
+// One tick, in the mesh's frame:
+//   1. geometry: the god object on the flat triangles (mesh_god_object.hpp: swept, never through
+//      a face, up to three faces held at an inside corner) finds the faces that hold the pen. A
+//      thin plate cannot be popped through: the faces are on the side the pen came from. A tip
+//      just outside the flat triangles but under the smooth surface they stand for (Phong's
+//      triangles bulge out by up to `bulge()`) is held by the nearest face.
+//   2. where on the smooth surface: the anchor, the point whose interpolated normal runs through
+//      the texture's proxy of the last tick (the tip when contact begins): a few fixed-point steps
+//      from the held face, walking onto the faces that continue it smoothly. The god object's own
+//      proxy jumps at a convex edge (by depth x tan of the edge's angle); the anchor does not,
+//      because the frames are continuous.
+//   3. texture, one held face (a smooth surface, the common case): a chart, the plane tangent to
+//      the surface at the anchor with the texture laid on it at the mesh's local scale (metres per
+//      uv along the tangent and bitangent), follows the contact; the plane renderer renders the
+//      texture on it with its state carried from the last tick's chart (ProxyRenderer::moveFrame).
+//      The texel planes it holds at a groove's floor or a ridge span a few texels, where the
+//      chart and the curved surface agree to (texel)^2 / (2 x radius of curvature).
+//      Several held faces (an inside corner of the mesh): each face's textured plane at the
+//      anchor (the sampled normal turned into the face's frame, through the surface point moved
+//      in by the relief depth) and the tip pulled to the point closest to it outside all of them;
+//      the chart's renderer starts afresh when one face holds again.
+//   Without a texture: the smooth surface's plane at the anchor, per held face.
+// FrameMode: the vertex frames interpolated, the point on Phong's curved triangle (the default: the
+// smooth surface the normals describe), or interpolated on the flat triangle, or the face's own
+// frame (CHAI3D 3.3's: the frame jumps at every edge; a baseline for the benchmark).
+//
+// Real-time safe: render() allocates nothing, takes no lock; its work is the god object's bounded
+// sweeps, a bounded walk across edges (kAnchorSteps x kMaxHops faces) and the plane renderer's
+// tick. Built once before the servo runs (the constructor allocates the edge table and measures
+// Phong's bulge, in time linear in the triangles). The mesh, hierarchy and map must outlive it.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "meshes/textured_mesh.hpp"
+#include "server/mesh_god_object.hpp"
+#include "server/proxy_renderer.hpp"
+#include "server/triangle_bvh.hpp"
+#include "textures/sampling.hpp"
+#include "textures/texture_map.hpp"
+#include "textures/textured_surface.hpp"
+
+namespace thx::srv {
+
+// The flat triangles of a textured mesh, for its hierarchy (allocates).
+TriangleMesh geometryOf(const mesh::TexturedMesh& mesh);
+
+struct MeshTexture {
+  const tex::TextureMap* map = nullptr;  // nullptr: the smooth (shaded) surface, no texture
+  tex::SampleOptions sampling;
+  bool use_relief = false;  // read the map's depth as a displacement along the normal
+};
+
+// Where the last tick's anchor was (for the contact messages).
+struct MeshContact {
+  bool valid = false;
+  std::uint32_t triangle = 0;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+  mesh::SurfaceFrame frame;  // mesh frame
+};
+
+class TexturedMeshRenderer {
+ public:
+  // `bvh` must be built over geometryOf(mesh). `config` as for the plane renderer (stiffness,
+  // damping, crease handling and its angle, sided ridges, recovery; not the paper's loop).
+  TexturedMeshRenderer(const mesh::TexturedMesh& mesh, const TriangleBvh& bvh, const MeshTexture& texture,
+                       const Eigen::Isometry3d& mesh_to_world, const RendererConfig& config,
+                       mesh::FrameMode frames = mesh::FrameMode::InterpolatedPhong);
+  TexturedMeshRenderer(const TexturedMeshRenderer&) = delete;  // the chart renderer points at chart_
+  TexturedMeshRenderer& operator=(const TexturedMeshRenderer&) = delete;
+
+  RenderOutput render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world);
+  void reset();  // forget the proxy: the next tick's tip is the proxy (call it with the tip outside)
+
+  const RendererConfig& config() const { return config_; }
+  const MeshContact& lastContact() const { return contact_; }
+  int lastSweeps() const { return last_sweeps_; }
+  // How far Phong's triangles rise above the flat ones at most (0 in the other frame modes).
+  double bulge() const { return bulge_m_; }
+
+ private:
+  // Steps of the anchor's fixed point, from last tick's anchor: it converges in one or two where
+  // the curvature radius is large against the depth; it stops when the foot moves less than the
+  // tolerance (far below a texel; 6e-8 N at 600 N/m).
+  static constexpr int kAnchorSteps = 4;
+  static constexpr double kAnchorToleranceM = 1e-10;
+  // Faces crossed at most per walk (locate): a tick's motion crosses one or two.
+  static constexpr int kMaxHops = 8;
+  // Faces within this angle continue each other smoothly (meshes/textured_mesh.hpp's default
+  // crease angle, 60 degrees: their vertex frames are shared).
+  static constexpr double kSmoothNeighbourCos = 0.5;
+
+  // The anchor for `from` (mesh frame), starting at `previous` (last tick's anchor) or else on the
+  // held face `held` at the point nearest `start`.
+  MeshContact anchor(std::uint32_t held, const MeshContact* previous, const Eigen::Vector3d& start,
+                     const Eigen::Vector3d& from) const;
+  // The face and barycentric coordinates of the point x near face `triangle` (updated in place),
+  // walking across edges only onto faces that continue `held` smoothly.
+  void locate(const Eigen::Vector3d& x, std::uint32_t held, std::uint32_t& triangle, Eigen::Vector3d& barycentric) const;
+  // The textured (or smooth) plane at an anchor; the sampled normal and relief depth.
+  Halfspace planeAt(const MeshContact& at, Eigen::Vector3d& n_sampled, double& relief_depth) const;
+  // The chart at an anchor: the tangent plane with the texture at the face's local scale.
+  tex::PlaneMapping chartAt(const MeshContact& at) const;
+  RenderOutput renderOnChart(const MeshContact& at, const Eigen::Vector3d& tip, const Eigen::Vector3d& v);
+  RenderOutput renderPlanes(const std::uint32_t* held, int count, const Eigen::Vector3d& from, const Eigen::Vector3d& tip,
+                            const Eigen::Vector3d& v);
+  void fillContact(RenderOutput& out, const MeshContact& at, const Eigen::Vector3d& n_sampled, double relief) const;
+
+  const mesh::TexturedMesh* mesh_;
+  const TriangleBvh* bvh_;
+  MeshTexture texture_;
+  Eigen::Isometry3d mesh_to_world_;
+  Eigen::Isometry3d world_to_mesh_;
+  RendererConfig config_;
+  mesh::FrameMode frames_;
+  double bulge_m_ = 0.0;
+
+  bool have_proxy_ = false;
+  Eigen::Vector3d proxy_ = Eigen::Vector3d::Zero();          // the god object's, on the flat faces
+  bool have_texture_proxy_ = false;
+  Eigen::Vector3d texture_proxy_ = Eigen::Vector3d::Zero();  // the rendered proxy of the last tick
+  tex::TexturedSurface chart_;                               // the plane renderer's surface ...
+  ProxyRenderer chart_renderer_;                             // ... and the renderer on it
+  bool chart_valid_ = false;  // chart_renderer_'s state belongs to chart_ (one face held last tick)
+  std::vector<mesh::Triangle> neighbours_;  // mesh::triangleNeighbours: the walk's edges
+  MeshContact contact_;
+  int last_sweeps_ = 0;
+};
+
+}  // namespace thx::srv

@@ -1,0 +1,79 @@
+// visual-client --surface-mesh (issue 28): a built-in textured mesh drawn instead of the plane,
+// headless; the command line refuses what the mesh does not draw, naming the option.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "clients/visual/options.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace thx::visual::test_mesh_client {
+namespace {
+
+std::string messageOf(const std::vector<std::string>& args) {
+  try {
+    parseOptions(args);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(VisualMeshClient, CommandLineMistakesNameTheOption) {
+  const std::vector<std::string> shot{"--scene", "s.yaml", "--screenshot", "x.png", "--surface-mesh"};
+  const auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> a = shot;
+    a.insert(a.end(), more.begin(), more.end());
+    return messageOf(a);
+  };
+  EXPECT_EQ(with({"cube"}), "--surface-mesh: expected sphere|cylinder|torus|bowl|vase, got 'cube'");
+  EXPECT_EQ(with({"vase", "--mode", "mesh:16"}), "--surface-mesh: --mode normal or relief (mesh:N displaces the plane's grid)");
+  EXPECT_EQ(with({"vase", "--search", "maxmip"}), "--surface-mesh: --search linear (the max-mipmap walk is the plane's)");
+  EXPECT_EQ(with({"vase", "--pen", "0,0"}), "--surface-mesh draws no pen: not with --pen");
+  EXPECT_EQ(messageOf({"--scene", "s.yaml", "--window", "--surface-mesh", "torus"}),
+            "--surface-mesh draws headless: with --screenshot FILE or --frames N --out DIR");
+  EXPECT_EQ(messageOf({"--scene", "s.yaml", "--screenshot", "x.png", "--surface-mesh-tile", "0.1"}),
+            "--surface-mesh-tile M needs --surface-mesh SHAPE");
+  const Options ok = parseOptions({"--scene", "s.yaml", "--screenshot", "x.png", "--surface-mesh", "bowl",
+                                   "--surface-mesh-tile", "0.05", "--mode", "normal"});
+  EXPECT_EQ(ok.surface_mesh, "bowl");
+  EXPECT_DOUBLE_EQ(ok.surface_mesh_tile_m, 0.05);
+  EXPECT_NE(std::string(kHelp).find("--surface-mesh SHAPE"), std::string::npos);
+}
+
+// A binary PPM's pixel (x, y) as r, g, b.
+std::array<int, 3> ppmPixel(const std::string& ppm, int x, int y) {
+  std::istringstream in(ppm);
+  std::string magic;
+  int w = 0, h = 0, max = 0;
+  in >> magic >> w >> h >> max;
+  in.get();
+  const std::size_t at = std::size_t(in.tellg()) + (std::size_t(y) * std::size_t(w) + std::size_t(x)) * 3;
+  EXPECT_EQ(magic, "P6");
+  EXPECT_LT(at + 2, ppm.size());
+  return {(unsigned char)ppm[at], (unsigned char)ppm[at + 1], (unsigned char)ppm[at + 2]};
+}
+
+TEST(VisualMeshClient, DrawsTheMeshWhereTheCameraLooks) {
+  const test::TempDir dir("visual_mesh_client");
+  const std::string scene = std::string(THX_SOURCE_DIR) + "/scenes/marble_bricks.yaml";
+  for (const char* shape : {"sphere", "vase"}) {
+    const std::string out = dir.file(std::string(shape) + ".ppm");
+    const std::string cmd = std::string("LP_NUM_THREADS=2 ") + THX_VISUAL_CLIENT + " --scene " + scene +
+                            " --surface-mesh " + shape + " --screenshot " + out + " --size 96x64 --quiet";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::ifstream f(out, std::ios::binary);
+    const std::string ppm((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    // The background (FrameRenderer's clear colour, 0.08 0.09 0.11) in the corner, the lit mesh
+    // in the middle.
+    EXPECT_EQ(ppmPixel(ppm, 1, 1), (std::array<int, 3>{20, 23, 28})) << shape;
+    EXPECT_GT(ppmPixel(ppm, 48, 32)[0], 60) << shape;
+  }
+}
+
+}  // namespace
+}  // namespace thx::visual::test_mesh_client
