@@ -7,6 +7,7 @@
 #include <random>
 
 #include "base/error.hpp"
+#include "meshes/textured_mesh.hpp"
 #include "server/triangle_bvh.hpp"
 #include "server/triangle_mesh.hpp"
 #include "tests/server/mesh_fixtures.hpp"
@@ -68,44 +69,41 @@ TEST(TriangleBvh, EqualsBruteForceOnRandomSegments) {
 }
 
 TEST(TriangleBvh, NearestEqualsBruteForce) {
-  // The nearest triangle within a distance (the textured mesh renderer's question where the proxy
-  // stands beyond the edge of its face): the same distance as every triangle tried in turn, and
-  // nothing beyond the bound.
+  // The nearest triangle within a distance (the textured mesh renderer's question where the pen
+  // stands over the flat faces): the same triangle and distance as every triangle tried in turn
+  // with the same closest-point function (mesh::closestBarycentric, tested against a sampled
+  // search in tests/meshes/), and nothing beyond the bound. Ties go to the lower index.
   const srv::TriangleMesh mesh = test::gridMesh(12, 0.01, bumpy);
   const TriangleBvh bvh(mesh);
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> xy(-0.012, 0.012), z(-0.006, 0.006);
-  int found = 0;
+  int found = 0, beyond = 0;
   for (int i = 0; i < 1000; ++i) {
     const Eigen::Vector3d p(xy(rng), xy(rng), z(rng));
     double best = std::numeric_limits<double>::infinity();
+    std::uint32_t best_t = 0;
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
       const auto& tri = mesh.triangles[t];
       const auto& v = mesh.vertices;
-      for (int k = 0; k <= 60; ++k) {  // a fine sampling bounds the distance from above ...
-        for (int l = 0; k + l <= 60; ++l) {
-          const double a = k / 60.0, b = l / 60.0;
-          best = std::min(best, ((1 - a - b) * v[tri[0]] + a * v[tri[1]] + b * v[tri[2]] - p).norm());
-        }
-      }
+      const Eigen::Vector3d b = mesh::closestBarycentric(v[tri[0]], v[tri[1]], v[tri[2]], p);
+      const double d2 = (b.x() * v[tri[0]] + b.y() * v[tri[1]] + b.z() * v[tri[2]] - p).squaredNorm();
+      if (d2 < best) best = d2, best_t = t;
     }
+    best = std::sqrt(best);
     const double bound = i % 2 ? 0.003 : 1.0;
     const TriangleBvh::Nearest n = bvh.nearest(p, bound);
-    if (best > bound + 1e-5) {
+    if (best > bound) {
       EXPECT_FALSE(n.found);
+      ++beyond;
       continue;
     }
-    if (!n.found) continue;  // the sampled distance is above the true one, within the bound's margin
+    ASSERT_TRUE(n.found);
     ++found;
-    // ... so the answer is no farther than the sampled best, and its point is on its triangle.
-    EXPECT_LE(n.distance, best + 1e-15);
-    EXPECT_GT(n.distance, best - 2e-5);  // sampling at 1/60 of a ~2 mm triangle
-    const auto& tri = mesh.triangles[n.triangle];
-    const Eigen::Vector3d q = n.barycentric.x() * mesh.vertices[tri[0]] + n.barycentric.y() * mesh.vertices[tri[1]] +
-                              n.barycentric.z() * mesh.vertices[tri[2]];
-    EXPECT_NEAR((q - p).norm(), n.distance, 1e-15);
+    EXPECT_EQ(n.triangle, best_t);
+    EXPECT_NEAR(n.distance, best, 1e-15);
   }
   EXPECT_GT(found, 400);
+  EXPECT_GT(beyond, 10);  // the bound is exercised too
 }
 
 TEST(TriangleBvh, VerticalSegmentsThroughVerticesAndEdgesHitExactlyOnce) {
