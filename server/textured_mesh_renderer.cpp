@@ -7,13 +7,6 @@
 namespace thx::srv {
 namespace {
 
-// The chart renderer's surface before any texture is bound: never rendered (an untextured mesh
-// renders its smooth planes), but the plane renderer reads its texel size when it is built.
-const tex::TextureMap& placeholderMap() {
-  static const tex::TextureMap map(2, 2, tex::Representation::Normal);
-  return map;
-}
-
 // How far Phong's triangles stand off the flat ones, at most over the centroids and the edges'
 // midpoints, with a margin: where a tip outside the flat faces may still be under the surface.
 double phongBulge(const mesh::TexturedMesh& mesh) {
@@ -50,16 +43,19 @@ TexturedMeshRenderer::TexturedMeshRenderer(const mesh::TexturedMesh& mesh, const
       config_(config),
       frames_(frames),
       bulge_m_(frames == mesh::FrameMode::InterpolatedPhong ? phongBulge(mesh) : 0.0),
-      chart_(texture.map ? *texture.map : placeholderMap(), tex::PlaneMapping{}, texture.sampling,
-             texture.use_relief),
-      chart_renderer_(chart_, config),
-      neighbours_(mesh::triangleNeighbours(mesh)) {}
+      neighbours_(mesh::triangleNeighbours(mesh)) {
+  // Only a textured mesh renders on a chart; an untextured one has its smooth planes.
+  if (texture.map) {
+    chart_ = tex::TexturedSurface(*texture.map, tex::PlaneMapping{}, texture.sampling, texture.use_relief);
+    chart_renderer_.emplace(chart_, config);
+  }
+}
 
 void TexturedMeshRenderer::reset() {
   have_proxy_ = false;
   have_texture_proxy_ = false;
   chart_valid_ = false;
-  chart_renderer_.reset();
+  if (chart_renderer_) chart_renderer_->reset();
   contact_ = {};
   last_sweeps_ = 0;
 }
@@ -175,12 +171,12 @@ RenderOutput TexturedMeshRenderer::renderOnChart(const MeshContact& at, const Ei
   const Eigen::Isometry3d old_chart = chart_.mapping().plane_to_world;
   chart_ = tex::TexturedSurface(*texture_.map, m, texture_.sampling, texture_.use_relief);
   if (chart_valid_) {
-    chart_renderer_.moveFrame(m.plane_to_world.inverse() * old_chart);
+    chart_renderer_->moveFrame(m.plane_to_world.inverse() * old_chart);
   } else {
-    chart_renderer_.retarget(chart_, config_);
+    chart_renderer_->retarget(chart_, config_);
   }
   chart_valid_ = true;
-  RenderOutput out = chart_renderer_.render(tip, v);
+  RenderOutput out = chart_renderer_->render(tip, v);
   // The plane renderer reports where the tip projects onto its chart; the anchor's point, uv and
   // face say where on the mesh that is.
   out.p_proj_world = at.frame.point;

@@ -36,6 +36,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "meshes/textured_mesh.hpp"
@@ -125,10 +126,10 @@ class TexturedMeshRenderer {
   Eigen::Vector3d proxy_ = Eigen::Vector3d::Zero();          // the god object's, on the flat faces
   bool have_texture_proxy_ = false;
   Eigen::Vector3d texture_proxy_ = Eigen::Vector3d::Zero();  // the rendered proxy of the last tick
-  tex::TexturedSurface chart_;                               // the plane renderer's surface ...
-  ProxyRenderer chart_renderer_;                             // ... and the renderer on it
-  bool chart_valid_ = false;  // chart_renderer_'s state belongs to chart_ (one face held last tick)
   std::vector<mesh::Triangle> neighbours_;  // mesh::triangleNeighbours: the walk's edges
+  tex::TexturedSurface chart_;                   // the plane renderer's surface ...
+  std::optional<ProxyRenderer> chart_renderer_;  // ... and the renderer on it (textured meshes only)
+  bool chart_valid_ = false;  // chart_renderer_'s state belongs to chart_ (one face held last tick)
   MeshContact contact_;
   int last_sweeps_ = 0;
 };
