@@ -1,7 +1,7 @@
 #!/bin/sh
 # The main job on the default scene: hapticd with the simulated PHANToM in real time, a scripted
-# stroke across the bricks and a press, then a press into a steep V-valley; each prints its
-# summary. Then physics-client next to hapticd: the pen pushes a ball out of its dimple. Then the
+# stroke across the bricks and a press, then a press into a steep V-valley, then strokes inside a
+# bowl of bricks (a textured mesh); each prints its summary. Then physics-client next to hapticd: the pen pushes a ball out of its dimple. Then the
 # pen's scrape over the bricks and a marble rolling over them, each as a WAV with its spectrogram.
 # Then the texture gallery with shaded previews.
 # Usage: ./demo.sh [BUILD_DIR]   (make demo builds first, then calls this)
@@ -25,6 +25,11 @@ echo "== hapticd, real time: stroke across the bricks, then a press (about 8 s)"
 echo
 echo "== hapticd, real time: a press into a 60 degree V-valley, crease handling on (about 4 s)"
 "$HD" --scene scenes/vvalley.yaml --stats-json "$OUT/hapticd_vvalley.json" --flight-dir "$OUT"
+
+echo
+echo "== hapticd, real time: a bowl of bricks, a textured mesh (scenes/brick_bowl.yaml): a stroke down its inside wall,"
+echo "   half a circle round it, a press (about 13 s)"
+"$HD" --scene scenes/brick_bowl.yaml --stats-json "$OUT/hapticd_brick_bowl.json" --flight-dir "$OUT"
 
 echo
 echo "== physics: hapticd + physics-client, the simulated pen pushes a ball out of its dimple (about 6 s)"
@@ -75,6 +80,15 @@ LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/default.yaml --mode rel
   && echo "frames: $OUT/visual/frame_0000.png ... frame_0003.png" || echo "visual-client failed"
 
 echo
+echo "== visual: the bowl of bricks, relief mapping in the mesh's tangent frames: 4 frames around it, then the pen's"
+echo "   recorded strokes one frame per second (a lock-step recording of the scene) -> $OUT/visual_bowl/, $OUT/visual_bowl_pen/"
+"$HD" --scene scenes/brick_bowl.yaml --lockstep --no-lcm --record "$OUT/bowl_session.lcm" --quiet > /dev/null
+LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/brick_bowl.yaml --mode relief --frames 4 --out "$OUT/visual_bowl" --quiet \
+  && LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/brick_bowl.yaml --mode relief --replay-log "$OUT/bowl_session.lcm" \
+    --rate 1 --out "$OUT/visual_bowl_pen" --quiet \
+  && echo "frames: $OUT/visual_bowl/frame_0000.png ... frame_0003.png, $OUT/visual_bowl_pen/frame_*.png" || echo "visual-client failed"
+
+echo
 echo "== user studies: three simulated participants per study on the shipped surfaces (scenes/study/), then the analysis -> $OUT/study/ (about 30 s)"
 SR="$BUILD/clients/study/study-run"
 mkdir -p "$OUT/study"
@@ -89,4 +103,4 @@ done
   && echo "sessions: $OUT/study/*.csv; tables and plots: $OUT/study/study.md" || echo "study-analyze failed"
 
 echo
-echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."
+echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."

@@ -136,7 +136,7 @@ HandScript::HandScript(std::vector<HandStep> steps, HandScriptOptions options) :
   Eigen::Vector3d cursor = start_m_;
   for (std::size_t i = 0; i < steps.size(); ++i) {
     if (const auto* hold = std::get_if<HandHold>(&steps[i]))
-      addBlend(cursor, cursor, 0.0, 0.0, hold->duration_s);
+      addBlend(cursor, cursor, 0.0, 0.0, hold->duration_s, 0.0, 0.0);
     else
       addContactStep(steps[i], cursor);
   }
@@ -145,7 +145,8 @@ HandScript::HandScript(std::vector<HandStep> steps, HandScriptOptions options) :
   for (const Segment& s : segments_) starts_s_.push_back(s.t0_s);
 }
 
-void HandScript::addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, double f0, double f1, double d_s) {
+void HandScript::addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, double f0, double f1, double d_s,
+                          double c0, double c1) {
   if (!(d_s > 0.0)) return;
   Segment s;
   s.kind = Segment::Kind::Blend;
@@ -155,6 +156,8 @@ void HandScript::addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, 
   s.p1_m = p1;
   s.f0_n = f0;
   s.f1_n = f1;
+  s.c0 = c0;
+  s.c1 = c1;
   segments_.push_back(s);
   duration_s_ += d_s;
 }
@@ -169,12 +172,13 @@ void HandScript::addContactStep(const HandStep& step, Eigen::Vector3d& cursor) {
 
   const double hop_m = (above_start - cursor).norm();
   if (hop_m > 0.0)
-    addBlend(cursor, above_start, 0.0, 0.0, std::max(hop_m / options_.transit_speed_m_per_s, options_.min_transit_s));
-  addBlend(above_start, at_start, 0.0, 0.0, options_.approach_s);
-  addBlend(at_start, at_start, 0.0, ends.start_force_n, options_.force_ramp_s);
+    addBlend(cursor, above_start, 0.0, 0.0, std::max(hop_m / options_.transit_speed_m_per_s, options_.min_transit_s),
+             0.0, 0.0);
+  addBlend(above_start, at_start, 0.0, 0.0, options_.approach_s, 0.0, 1.0);
+  addBlend(at_start, at_start, 0.0, ends.start_force_n, options_.force_ramp_s, 1.0, 1.0);
 
   if (const auto* press = std::get_if<HandPress>(&step)) {
-    addBlend(at_start, at_start, press->force_n, press->force_n, press->duration_s);
+    addBlend(at_start, at_start, press->force_n, press->force_n, press->duration_s, 1.0, 1.0);
   } else if (const auto* stroke = std::get_if<HandStroke>(&step)) {
     const double length_m = (stroke->to_m - stroke->from_m).norm();
     const double cruise_s = length_m / stroke->speed_m_per_s;
@@ -204,29 +208,56 @@ void HandScript::addContactStep(const HandStep& step, Eigen::Vector3d& cursor) {
     duration_s_ += s.duration_s;
   }
 
-  addBlend(at_end, at_end, ends.end_force_n, 0.0, options_.force_ramp_s);
-  addBlend(at_end, above_end, 0.0, 0.0, options_.approach_s);
+  addBlend(at_end, at_end, ends.end_force_n, 0.0, options_.force_ramp_s, 1.0, 1.0);
+  addBlend(at_end, above_end, 0.0, 0.0, options_.approach_s, 1.0, 0.0);
   cursor = above_end;
 }
 
-HandTarget HandScript::sampleLocal(double t_s) const {
+HandTarget HandScript::sampleLocal(double t_s, const SurfaceHeight* height) const {
   HandTarget out;
+  double c = 0.0, c_rate = 0.0;  // hovering, unless a segment says otherwise
   // NaN and times before the start sample the start; after the end the hand hovers.
   if (segments_.empty() || !(t_s > 0.0)) {
     out.p_m = start_m_;  // every script starts hovering, no push
-    return out;
-  }
-  if (t_s >= duration_s_) {
+  } else if (t_s >= duration_s_) {
     out.p_m = end_m_;
-    return out;
+  } else {
+    const auto it = std::upper_bound(starts_s_.begin(), starts_s_.end(), t_s);
+    const std::size_t i = std::size_t(it - starts_s_.begin()) - 1;
+    out = sampleSegment(segments_[i], t_s, c, c_rate);
   }
-  const auto it = std::upper_bound(starts_s_.begin(), starts_s_.end(), t_s);
-  const std::size_t i = std::size_t(it - starts_s_.begin()) - 1;
-  return sampleSegment(segments_[i], t_s);
+  if (height) followSurface(out, c, c_rate, *height);
+  return out;
 }
 
-HandTarget HandScript::sample(double t_s, const Eigen::Isometry3d& plane_to_world) const {
-  HandTarget local = sampleLocal(t_s);
+void HandScript::followSurface(HandTarget& target, double c, double c_rate, const SurfaceHeight& height) const {
+  const double hover_z = options_.hover_height_m + height.top();
+  if (c == 0.0 && c_rate == 0.0) {  // hovering: no need to know the surface
+    target.p_m.z() = hover_z;
+    target.v_m_per_s.z() = 0.0;
+    return;
+  }
+  // Nothing under the point: the plane z = 0 of the script's frame.
+  const auto heightAt = [&height](const Eigen::Vector2d& xy) {
+    double z = 0.0;
+    return height.heightAt(xy, z) ? z : 0.0;
+  };
+  const Eigen::Vector2d xy = target.p_m.head<2>();
+  const double h = heightAt(xy);
+  // dh/dt along the horizontal motion, only where the target is (partly) on the surface.
+  double h_rate = 0.0;
+  const Eigen::Vector2d v_xy = target.v_m_per_s.head<2>();
+  const double speed = v_xy.norm();
+  if (c > 0.0 && speed > 0.0) {
+    const Eigen::Vector2d step = (kHeightSlopeStepM / speed) * v_xy;
+    h_rate = speed * (heightAt(xy + step) - heightAt(xy - step)) / (2.0 * kHeightSlopeStepM);
+  }
+  target.p_m.z() = hover_z + c * (h - hover_z);
+  target.v_m_per_s.z() = c_rate * (h - hover_z) + c * h_rate;
+}
+
+HandTarget HandScript::sample(double t_s, const Eigen::Isometry3d& plane_to_world, const SurfaceHeight* height) const {
+  HandTarget local = sampleLocal(t_s, height);
   HandTarget world;
   world.p_m = plane_to_world * local.p_m;
   world.v_m_per_s = plane_to_world.linear() * local.v_m_per_s;
@@ -235,17 +266,22 @@ HandTarget HandScript::sample(double t_s, const Eigen::Isometry3d& plane_to_worl
   return world;
 }
 
-HandTarget HandScript::sampleSegment(const Segment& s, double t_s) const {
+HandTarget HandScript::sampleSegment(const Segment& s, double t_s, double& c, double& c_rate) const {
   const double tau = std::clamp(t_s - s.t0_s, 0.0, s.duration_s);
   HandTarget out;
   double force_n = s.f0_n;
+  c = s.c0;  // Stroke and Path: 1
+  c_rate = 0.0;
   switch (s.kind) {
     case Segment::Kind::Blend: {
       const double u = tau / s.duration_s;
       const double w = minJerk(u);
+      const double w_rate = minJerkRate(u) / s.duration_s;
       out.p_m = s.p0_m + w * (s.p1_m - s.p0_m);
-      out.v_m_per_s = (minJerkRate(u) / s.duration_s) * (s.p1_m - s.p0_m);
+      out.v_m_per_s = w_rate * (s.p1_m - s.p0_m);
       force_n = s.f0_n + w * (s.f1_n - s.f0_n);
+      c = s.c0 + w * (s.c1 - s.c0);
+      c_rate = w_rate * (s.c1 - s.c0);
       break;
     }
     case Segment::Kind::Stroke: {

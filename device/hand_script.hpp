@@ -21,8 +21,24 @@
 // During contact the target height is 0 (the surface plane): on a wall of stiffness K the
 // steady contact force is push * K / (K + hand_stiffness), the hand's spring pulling back.
 //
+// A curved surface (a SurfaceHeight, surface_height.hpp, passed to sample()/sampleLocal()): the
+// same steps, with (x, y) in the surface pose's frame and the push along its -z, but the target
+// heights follow the surface: in contact (the force ramps and the body) z = h(x, y), the
+// surface's height under the point seen from above (0 where nothing is under it: off the
+// surface's footprint the hand presses toward the frame's z = 0); hovering (the start, transits,
+// holds, the end) z = hover = hover_height_m + top(), above the surface's highest point, so a
+// transit never cuts through it; descend and ascend blend between the two with the same
+// minimum-jerk weight w as on the plane: z = hover + w (h - hover) at the step's point. The
+// target velocity's z is the derivative of that: the blend's rate times (h - hover), plus, in
+// contact, the rate of change of h along the horizontal motion (a central difference of h over
+// +-kHeightSlopeStepM along the horizontal velocity, times the speed), so the hand's damper
+// follows the surface instead of dragging. Timing, x, y, the push and the horizontal velocity
+// are those of the plane. Without a height source (nullptr) the samples are the plane's, bit for
+// bit as before height sources existed.
+//
 // sample() and sampleLocal() are real-time safe: binary search over prebuilt segments, no
-// allocation, no exceptions. Construction and loadPathCsv() allocate and may throw.
+// allocation, no exceptions; with a height source, at most three heightAt() calls per sample
+// (none while hovering). Construction and loadPathCsv() allocate and may throw.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -33,6 +49,7 @@
 #include <vector>
 
 #include "base/error.hpp"
+#include "device/surface_height.hpp"
 
 namespace thx::dev {
 
@@ -112,8 +129,13 @@ class HandScript {
   double duration() const { return duration_s_; }
   const HandScriptOptions& options() const { return options_; }
 
-  HandTarget sampleLocal(double t_s) const;
-  HandTarget sample(double t_s, const Eigen::Isometry3d& plane_to_world) const;
+  // The half-width of the central difference that gives dh/dt in contact over a height source.
+  static constexpr double kHeightSlopeStepM = 2e-4;
+
+  // `height` (optional, not owned): the curved surface the contact follows (see the top of this
+  // header); nullptr: the plane z = 0.
+  HandTarget sampleLocal(double t_s, const SurfaceHeight* height = nullptr) const;
+  HandTarget sample(double t_s, const Eigen::Isometry3d& plane_to_world, const SurfaceHeight* height = nullptr) const;
 
  private:
   struct Segment {
@@ -125,16 +147,25 @@ class HandScript {
     Eigen::Vector3d p1_m = Eigen::Vector3d::Zero();
     double f0_n = 0.0;  // Blend: from f0 to f1; Stroke: f0 throughout
     double f1_n = 0.0;
+    // Blend: how far the ends are in contact (1: on the surface, 0: hovering), blended as the
+    // position; Stroke and Path: in contact throughout. Only a height source reads it.
+    double c0 = 1.0;
+    double c1 = 1.0;
     double speed_m_per_s = 0.0;  // Stroke
     double ramp_s = 0.0;         // Stroke
     std::size_t path_begin = 0;  // Path: samples_[path_begin, path_end)
     std::size_t path_end = 0;
   };
 
-  void addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, double f0, double f1, double d_s);
+  // c0, c1: the ends' contact weights (Segment).
+  void addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, double f0, double f1, double d_s, double c0,
+                double c1);
   void addContactStep(const HandStep& step, Eigen::Vector3d& cursor);
-  HandTarget sampleSegment(const Segment& s, double t_s) const;
+  // The plane's target, and the contact weight c and its rate dc/dt at that instant.
+  HandTarget sampleSegment(const Segment& s, double t_s, double& c, double& c_rate) const;
   HandTarget samplePath(const Segment& s, double tau_s) const;
+  // Moves a plane target onto the surface (the top of this header).
+  void followSurface(HandTarget& target, double c, double c_rate, const SurfaceHeight& height) const;
 
   HandScriptOptions options_;
   std::vector<Segment> segments_;

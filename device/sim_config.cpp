@@ -54,6 +54,8 @@ void validate(const SimPhantomConfig& c) {
   if (!c.plane_to_world.matrix().allFinite() ||
       !(c.plane_to_world.linear().transpose() * c.plane_to_world.linear()).isIdentity(1e-9))
     fail("plane_to_world", "not a rigid transform", "a finite rotation and translation", "a non-orthonormal matrix");
+  if (c.surface_height && !std::isfinite(c.surface_height->top()))
+    fail("surface_height", "top not finite", "a surface whose highest point is finite", num(c.surface_height->top()));
   if (!(c.watchdog_decay >= 0.0 && c.watchdog_decay <= 1.0))
     fail("watchdog_decay", "out of range", "a factor in [0, 1]", num(c.watchdog_decay));
   if (c.watchdog_hold_ticks < 0)

@@ -8,6 +8,7 @@
 
 #include "device/device_specs.hpp"
 #include "device/haptic_device.hpp"
+#include "device/surface_height.hpp"
 
 namespace thx::dev {
 
@@ -47,6 +48,9 @@ struct SimPhantomConfig {
   // a 600 N/m wall) and hold the pen above the floor of a deep valley.
   double hand_push_normal_stiffness_fraction = 0.1;
   Eigen::Isometry3d plane_to_world = Eigen::Isometry3d::Identity();  // local z = outward normal
+  // A curved surface the hand's script follows (hand_script.hpp): heights in plane_to_world's
+  // frame (the script's). Not owned: it must outlive the device. nullptr: the plane z = 0.
+  const SurfaceHeight* surface_height = nullptr;
 
   // Device watchdog: with no write() for a device tick the last output is held x decay^n for
   // n = 1..hold ticks, then zero.

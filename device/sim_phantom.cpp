@@ -39,7 +39,8 @@ SimPhantom::SimPhantom(SimPhantomConfig config, HandScript script, rt::Clock* cl
 
 void SimPhantom::open() {
   body_ = SimBodyState{};
-  body_.x_m = script_.sample(0.0, config_.plane_to_world).p_m;  // at rest where the hand hovers
+  // At rest where the hand hovers.
+  body_.x_m = script_.sample(0.0, config_.plane_to_world, config_.surface_height).p_m;
   step_index_ = 0;
   held_ = DeviceCommand{};
   fresh_ = false;
@@ -49,7 +50,7 @@ void SimPhantom::open() {
   last_delivered_m_ = last_count_m_;
   truth_ = SimTruth{};
   truth_.p_world_m = body_.x_m;
-  truth_.hand_target_world = script_.sample(0.0, config_.plane_to_world);
+  truth_.hand_target_world = script_.sample(0.0, config_.plane_to_world, config_.surface_height);
   pacer_.start();
   open_ = true;
 }
@@ -108,7 +109,7 @@ void SimPhantom::integratePeriod(double& work_j, bool& saturated) {
   Eigen::Vector3d motor_n = planes ? Eigen::Vector3d::Zero() : motorForce(body_, watchdog_gain_, saturated);
   for (int k = 0; k < steps_per_tick_; ++k) {
     if (planes) motor_n = motorForce(body_, watchdog_gain_, saturated);
-    const HandTarget target = script_.sample(timeS(), config_.plane_to_world);
+    const HandTarget target = script_.sample(timeS(), config_.plane_to_world, config_.surface_height);
     work_j += dynamics_.step(body_, motor_n, target);
     ++step_index_;
   }
@@ -133,7 +134,7 @@ DeviceState SimPhantom::read() {
   last_count_m_ = count_m;
 
   const double t_s = timeS();
-  const HandTarget target = script_.sample(t_s, config_.plane_to_world);
+  const HandTarget target = script_.sample(t_s, config_.plane_to_world, config_.surface_height);
   out.p_world = count_m;
   out.v_world = v_estimate;
   out.buttons = target.pressing ? 1u : 0u;

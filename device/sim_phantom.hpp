@@ -8,7 +8,8 @@
 // One device tick (read() returns at the tick's deadline):
 //  1. wait for the tick on the Pacer (VirtualClock in lock-step: returns at once);
 //  2. integrate every device period since the previous tick: 1 + timing.missed periods of
-//     steps_per_tick steps each, the hand target sampled from the script at every step;
+//     steps_per_tick steps each, the hand target sampled from the script at every step (on
+//     config.surface_height's surface when one is given: hand_script.hpp);
 //  3. motors over a period: the command of the last write() if one arrived since the previous
 //     period started, otherwise the watchdog's hold: x decay^n for n = 1..hold periods, then
 //     zero. The output is clipped to the spec's peak force (the motors saturate), direction kept;

@@ -114,4 +114,21 @@ std::string parseExistingFile(const Field& field, const std::string& what) {
   return resolved;
 }
 
+FileOrGenerator parseFileOrGenerator(const Field& field, const std::vector<std::string>& keys, const std::string& what,
+                                     const std::string& expected) {
+  if (field.isNull()) field.fail("missing value", expected);
+  field.expectKeys(keys);
+  FileOrGenerator source{field.find("file"), field.find("generator")};
+  if (source.file && source.generator) field.fail("both file and generator given", "exactly one of them", "");
+  if (!source.file && !source.generator) field.fail("no " + what + " source", expected, "");
+  return source;
+}
+
+void refuseKeys(const Field& field, std::initializer_list<const char*> keys, const std::string& only_to,
+                const std::string& with) {
+  for (const char* key : keys)
+    if (auto extra = field.find(key))
+      extra->fail("applies only to " + only_to, "no '" + std::string(key) + "' with " + with, "");
+}
+
 }  // namespace thx::scene::detail

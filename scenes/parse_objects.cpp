@@ -90,6 +90,9 @@ std::vector<SceneObject> parseObjects(const std::optional<Field>& field, const S
   std::vector<SceneObject> objects;
   if (!field) return objects;
   const std::vector<Field> items = field->items();
+  if (surface.mesh && !items.empty())
+    items.front().fail("objects on a mesh surface are not simulated yet (physics-client simulates the plane; issue 29)",
+                       "no objects with surface.mesh", "");
   const Eigen::Isometry3d world_to_plane = toIsometry(surface.pose).inverse();
   for (std::size_t i = 0; i < items.size(); ++i) {
     SceneObject object = parseObject(items[i]);

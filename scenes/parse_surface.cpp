@@ -1,5 +1,5 @@
-// surface: size, pose, texture, representation, max_depth or max_depth_fraction, green, sampling,
-// material, smoothing_sigma.
+// surface: size, pose, mesh, texture, representation, max_depth or max_depth_fraction, green,
+// sampling, material, smoothing_sigma.
 #include "scenes/scene_sections.hpp"
 #include "textures/smoothing.hpp"
 
@@ -52,22 +52,15 @@ tex::SampleOptions parseSampling(const Field& field) {
 }
 
 TextureSource parseTexture(const Field& field, const Surface& surface) {
-  const std::string expected = "{file: PATH} or {generator: KIND, size: N, seed: S, params: {...}}";
-  if (field.isNull()) field.fail("missing value", expected);
-  field.expectKeys({"file", "generator", "size", "seed", "params"});
-  const auto file = field.find("file");
-  const auto generator = field.find("generator");
-  if (file && generator) field.fail("both file and generator given", "exactly one of them", "");
-  if (!file && !generator) field.fail("no texture source", expected, "");
-
+  const FileOrGenerator given =
+      parseFileOrGenerator(field, {"file", "generator", "size", "seed", "params"}, "texture",
+                           "{file: PATH} or {generator: KIND, size: N, seed: S, params: {...}}");
   TextureSource source;
   source.where = field.location();
-  if (file) {
-    for (const char* key : {"size", "seed", "params"})
-      if (auto extra = field.find(key))
-        extra->fail("applies only to generator textures", "no '" + std::string(key) + "' with file:", "");
+  if (given.file) {
+    refuseKeys(field, {"size", "seed", "params"}, "generator textures", "file:");
     source.kind = TextureSource::Kind::File;
-    source.file = parseExistingFile(*file, "texture file (PNG)");
+    source.file = parseExistingFile(*given.file, "texture file (PNG)");
   } else {
     source.kind = TextureSource::Kind::Generator;
     source.generator = parseGenerator(field, surface);
@@ -101,10 +94,11 @@ Roughness parseRoughness(const Field& field) {
 Surface parseSurface(const Field& field) {
   if (field.isNull()) field.fail("missing value", "a mapping with at least size and texture");
   field.expectKeys({"size", "pose", "texture", "representation", "max_depth", "max_depth_fraction", "green",
-                    "sampling", "material", "smoothing_sigma", "thickness", "held", "roughness"});
+                    "sampling", "material", "smoothing_sigma", "thickness", "held", "roughness", "mesh"});
   Surface s;
   s.size_m = field.at("size", "[x, y] in metres").vector2(positiveUpTo(10.0, "m"));
   if (auto p = field.find("pose")) s.pose = parsePose(*p);
+  if (auto m = field.find("mesh")) s.mesh = parseMesh(*m, s);
   if (auto r = field.find("representation"))
     s.representation = r->choice<tex::Representation>(
         {{"normal", tex::Representation::Normal}, {"relief", tex::Representation::Relief}});

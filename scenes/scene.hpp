@@ -3,6 +3,7 @@
 // the dynamic objects and the update rates. loadScene() (scene_loader.hpp) fills every default,
 // so consumers never look for a missing value. The file format is docs/scenes.md. SI units.
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -44,9 +45,30 @@ struct Roughness {
   double spacing_m = 1e-5;  // finest roughness step (wavelength 2x this)
 };
 
+// surface.mesh: the surface as a textured triangle mesh instead of the plane (docs/scenes.md,
+// "surface.mesh"; built by scenes/scene_mesh.hpp). The surface's pose places the mesh's own
+// coordinates in the world, and its size is then one texture tile in metres.
+enum class MeshProjection { None, Planar, Cylindrical, Spherical };  // uv for a file without them
+
+struct MeshSource {
+  enum class Kind { File, Generator };
+  Kind kind = Kind::Generator;
+  std::string generator;  // Kind::Generator: a name of meshes/builtin_shapes.hpp
+  double size_m = 0.05;   // Kind::Generator: the shape's radius (builtin_shapes.hpp)
+  int segments = 128;     // Kind::Generator: divisions around its axis
+  std::string file;       // Kind::File: OBJ, PLY, glTF 2.0 or STL, resolved against the scene's directory
+  double unit_m = 1.0;    // Kind::File: metres per file unit
+  MeshProjection projection = MeshProjection::None;  // Kind::File
+  std::size_t max_triangles = 1'000'000;  // a mesh with more is refused
+  bool closed = false;    // every edge must be shared by exactly two triangles
+  SourceLocation where;   // of `mesh:` in the scene file, for errors found when building it
+};
+
 struct Surface {
   Eigen::Vector2d size_m{0.2, 0.2};  // the texture spans this rectangle once, centred on the pose
+                                     // (on a mesh: one texture tile, metres per uv unit)
   Pose pose;
+  std::optional<MeshSource> mesh;  // the surface is this mesh; none: the plane
   TextureSource texture;
   // Generator textures default to Relief. For a file, nullopt means "whatever the file holds"
   // (RGB -> normal, RGBA -> relief).

@@ -88,4 +88,12 @@ Scene loadScene(const std::string& path) {
   return parseScene(text.str(), path, dir.empty() ? std::string(".") : dir);
 }
 
+void requirePlaneSurface(const Scene& scene, const std::string& program) {
+  if (!scene.surface.mesh) return;
+  throw SceneError(scene.surface.mesh->where, "surface.mesh",
+                   program + " simulates and sounds a textured plane; a mesh surface is felt by hapticd and drawn by "
+                             "visual-client (physics and sound on meshes: issue 29)",
+                   "a scene without surface.mesh");
+}
+
 }  // namespace thx::scene

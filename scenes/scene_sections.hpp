@@ -19,9 +19,23 @@ Pen parsePen(const Field& field);
 // A file that must exist when the scene is loaded; returns the resolved path.
 std::string parseExistingFile(const Field& field, const std::string& what);
 
+// A source given by exactly one of `file:` and `generator:` (a texture, a mesh), in a mapping of
+// `keys`; `what` names it ("texture", "mesh"), `expected` is the form for a message.
+struct FileOrGenerator {
+  std::optional<Field> file, generator;
+};
+FileOrGenerator parseFileOrGenerator(const Field& field, const std::vector<std::string>& keys, const std::string& what,
+                                     const std::string& expected);
+// The keys of `field` that apply only to the other kind of source are errors: "applies only to
+// `only_to`", expected "no 'KEY' with `with`".
+void refuseKeys(const Field& field, std::initializer_list<const char*> keys, const std::string& only_to,
+                const std::string& with);
+
 Rates parseRates(const std::optional<Field>& field);
 Audio parseAudio(const std::optional<Field>& field);
 Surface parseSurface(const Field& field);
+// surface.mesh; `surface` has its size (a generated mesh tiles the texture in squares of it).
+MeshSource parseMesh(const Field& field, const Surface& surface);
 tex::GenerateRequest parseGenerator(const Field& texture, const Surface& surface);
 // Script positions are checked against the surface, forces against the device model.
 Device parseDevice(const std::optional<Field>& field, const Surface& surface);

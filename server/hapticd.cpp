@@ -17,8 +17,11 @@
 #include "base/program_main.hpp"
 #include "device/replay_device.hpp"
 #include "device/sim_phantom.hpp"
+#include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
 #include "server/hapticd_options.hpp"
+#include "server/mesh_scene.hpp"
+#include "server/mesh_surface_height.hpp"
 #include "server/multicast_path.hpp"
 #include "server/process_memory.hpp"
 #include "server/receiver.hpp"
@@ -44,7 +47,18 @@ int run(const thx::srv::HapticdOptions& o) {
     return 1;
   }
   const double period_s = 1.0 / sc.rates.servo_hz;
-  const srv::SceneDevice chosen = srv::makeSceneDevice(sc, o.device, vrpn_address, o.lockstep);
+  // A mesh scene's mesh, built once for the scene's renderer and the simulated hand, whose script
+  // presses and strokes on the mesh under its points (device/surface_height.hpp). Both outlive the
+  // device, which is destroyed first.
+  const std::shared_ptr<const srv::MeshGeometry> mesh = sc.surface.mesh ? srv::buildMeshGeometry(sc) : nullptr;
+  std::unique_ptr<srv::MeshSurfaceHeight> hand_surface;
+  if (mesh) {
+    hand_surface = std::make_unique<srv::MeshSurfaceHeight>(
+        mesh->bvh, scene::planeMapping(sc.surface).plane_to_world.inverse() * mesh->scene_mesh.mesh_to_world);
+    const bool simulated = o.device.rfind("replay:", 0) != 0 && vrpn_address.empty();
+    if (simulated) srv::checkScriptOnMesh(sc, *hand_surface);
+  }
+  const srv::SceneDevice chosen = srv::makeSceneDevice(sc, o.device, vrpn_address, o.lockstep, hand_surface.get());
   const dev::SimPhantom* sim = chosen.sim;
   const dev::ReplayDevice* replay = chosen.replay;
   if (replay && !o.quiet)
@@ -53,7 +67,7 @@ int run(const thx::srv::HapticdOptions& o) {
   dev::HapticDevice& device = *chosen.device;
   const dev::DeviceSpec& spec = device.spec();
 
-  std::unique_ptr<srv::PreparedScene> first = srv::prepareScene(sc, o.scene, spec, srv::scenePolicy(o));
+  std::unique_ptr<srv::PreparedScene> first = srv::prepareScene(sc, o.scene, spec, srv::scenePolicy(o), mesh);
   // Above the bound is the normal case with a real device (its vendor maximum counts on the hand's
   // damping): said in words with --verbose only; --strict-stability makes it an error (thrown above).
   if (o.verbose) {
@@ -63,7 +77,7 @@ int run(const thx::srv::HapticdOptions& o) {
   srv::ServoRigConfig wiring = first->wiring;
   wiring.missed_mode = o.missed_mode;
   const std::size_t texture_bytes = first->surface.map->bytes();  // the first scene's
-  srv::ServoRig rig(device, first->surface.surface, wiring);
+  srv::ServoRig rig(device, first->surface.surface, wiring, first->mesh_renderer.get());
   srv::Servo& servo = rig.servo();
   rt::SpscRing<srv::TickRecord>& ring = rig.ring();
 

@@ -93,12 +93,13 @@ void PassivityController::sumInFlight() {
 }
 
 Eigen::Vector3d PassivityController::deadbanded(const Eigen::Vector3d& velocity_reading_m_per_s) const {
-  // Quantisation dead band (header): a reading that toggled by one encoder count is not motion the
-  // loop can be blamed for.
-  Eigen::Vector3d v = velocity_reading_m_per_s;
-  for (int k = 0; k < 3; ++k) {
-    if (std::fabs(v[k]) <= config_.velocity_deadband_m_per_s) v[k] = 0.0;
-  }
+  // Quantisation dead band (header): a reading that toggled by at most one encoder count on every
+  // axis is not motion the loop can be blamed for. A pen that moves is observed whole: zeroing
+  // only its slow components would book the work along its fast axis and drop the work along the
+  // slow one, which on a slope (a pen sliding down a curved mesh, the force mostly along the slow
+  // axis) read as energy the loop never made.
+  const Eigen::Vector3d& v = velocity_reading_m_per_s;
+  if (v.cwiseAbs().maxCoeff() <= config_.velocity_deadband_m_per_s) return Eigen::Vector3d::Zero();
   return v;
 }
 

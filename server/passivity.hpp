@@ -50,8 +50,10 @@
 // count; the finite-difference velocity toggles by +-q/T and the observer books K q^2 / 2 of
 // "generated" energy per toggle (real for the quantised path, 0.3 um of true motion). Unchecked,
 // the controller sat at its bound and turned the toggling into a 0.3 N, 250 Hz ripple on a pen
-// at rest (docs/stability.md, bug B). Velocity components within one count per period are
-// therefore treated as zero, for observing and for damping; a real oscillation moves more. The
+// at rest (docs/stability.md, bug B). A reading within one count per period on every axis is
+// therefore treated as zero, for observing and for damping; a real oscillation moves more. A
+// reading beyond it on any axis is taken whole: zeroing only the slow components of a moving pen
+// dropped the work along them, which on a slope read as generated energy (bug D). The
 // band also hides slow real motion (< one count per tick) from the observer, where a sampled
 // wall generates least (K dx^2 / 2 per tick), so it is opt-in: hapticd sets it from the device's
 // resolution (quantisationDeadband), fromSpec() leaves it off.
@@ -78,7 +80,7 @@ struct PassivityConfig {
   double max_reservoir_j = 1e-3;      // slack above the stored spring energy
   double stored_energy_stiffness_n_per_m = 0.0;  // rendered K; 0: the VE stores nothing
   int output_delay_ticks = 0;         // 0..kMaxOutputDelayTicks
-  double velocity_deadband_m_per_s = 0.0;  // per axis; 0 = off; quantisationDeadband() for hapticd
+  double velocity_deadband_m_per_s = 0.0;  // on every axis at once; 0 = off; quantisationDeadband() for hapticd
   bool enabled = true;
 
   // max_damping_ns_per_m = the device's max damping (its recommended limit for stable damping);

@@ -17,7 +17,11 @@ thx::Error configError(const std::string& path, const std::string& what) {
 }  // namespace
 
 std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::string& path,
-                                            const dev::DeviceSpec& spec, const ScenePolicy& policy) {
+                                            const dev::DeviceSpec& spec, const ScenePolicy& policy,
+                                            std::shared_ptr<const MeshGeometry> mesh) {
+  if (sc.surface.mesh && policy.paper_loop_plane_hz)
+    throw configError(path, "--paper-loop renders a plane per graphics frame; this scene's surface is a mesh "
+                            "(surface.mesh): run it without --paper-loop");
   auto p = std::make_unique<PreparedScene>();
   p->path = path;
   p->warnings = sc.warnings;
@@ -44,9 +48,21 @@ std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::s
   // the servo thread, as the controller's constructor would.
   servoPassivityConfig(spec, p->wiring.period_s, rc.stiffness_n_per_m, policy.passivity).validate();
 
+  if (sc.surface.mesh) {
+    try {
+      p->mesh = mesh ? std::move(mesh) : buildMeshGeometry(sc);
+    } catch (const scene::SceneError&) {
+      throw;  // names the scene file, line and field already
+    } catch (const thx::Error& e) {
+      throw configError(path, std::string("surface.mesh: ") + e.what());
+    }
+    p->mesh_renderer = buildMeshRenderer(*p->mesh, p->surface.surface, rc);
+  }
+
   p->swap.surface = &p->surface.surface;
   p->swap.renderer = rc;
   p->swap.stored_energy_stiffness_n_per_m = rc.stiffness_n_per_m;
+  p->swap.mesh = p->mesh_renderer.get();
   return p;
 }
 

@@ -12,6 +12,7 @@
 #include "device/haptic_device.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_surface.hpp"
+#include "server/mesh_scene.hpp"
 #include "server/servo.hpp"
 #include "server/servo_rig.hpp"
 #include "server/stability_budget.hpp"
@@ -31,18 +32,23 @@ struct ScenePolicy {
 
 struct PreparedScene {
   std::string path;                   // the scene file
-  scene::SceneSurface surface;        // owned: the servo renders surface.surface
+  scene::SceneSurface surface;        // owned: the servo renders surface.surface (or its map on the mesh)
   ServoRigConfig wiring;              // servoRigConfigFor() with the policy applied
   StabilityBudget budget;             // ok (a failing budget throws); its message is a note
   std::vector<std::string> warnings;  // the loader's
-  SurfaceSwap swap;                   // points into `surface`: a PreparedScene never moves
+  // A mesh scene (surface.mesh): the mesh and the renderer the servo runs on it; else both null.
+  std::shared_ptr<const MeshGeometry> mesh;
+  std::unique_ptr<TexturedMeshRenderer> mesh_renderer;
+  SurfaceSwap swap;                   // points into `surface` and `mesh_renderer`: a PreparedScene never moves
 };
 
 // Builds the scene `scene` (loaded from `path`) for a device with `spec`. Throws thx::Error
-// naming the scene file: the texture's errors, a smoothing the server cannot do, a stability
-// budget the policy refuses.
+// naming the scene file: the texture's errors, the mesh's, a smoothing the server cannot do, a
+// stability budget the policy refuses, the paper's loop on a mesh. `mesh`: the scene's mesh if the
+// caller has built it already (hapticd does, for the simulated hand), else it is built here.
 std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& scene, const std::string& path,
-                                            const dev::DeviceSpec& spec, const ScenePolicy& policy);
+                                            const dev::DeviceSpec& spec, const ScenePolicy& policy,
+                                            std::shared_ptr<const MeshGeometry> mesh = nullptr);
 
 // A scene to switch to while `running` runs on its device: loads `path` (scene errors carry
 // file:line), refuses what a switch cannot change (the device model, the servo rate: they need a

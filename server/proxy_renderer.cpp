@@ -225,6 +225,8 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
   out.uv = at_tip.uv;
   out.texel = tex::texelOf(surface_->map(), at_tip.uv, surface_->sampling().address);
   out.n_geom_world = surface_->directionToWorld(Eigen::Vector3d::UnitZ());
+  out.tangent_world = surface_->directionToWorld(Eigen::Vector3d::UnitX());
+  out.bitangent_world = surface_->directionToWorld(Eigen::Vector3d::UnitY());
   out.n_sampled_world = surface_->directionToWorld(at_tip.n_local);
   out.relief_depth_m = -at_tip.height_m;
   out.v_tangent_world = surface_->directionToWorld(Eigen::Vector3d(v.x(), v.y(), 0.0));

@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <cstdint>
 
 #include "device/haptic_device.hpp"
 #include "server/halfspace_projection.hpp"
@@ -78,6 +79,13 @@ struct RenderOutput {
   unsigned active_mask = 0;       // planes touching the proxy
   double f_normal_n = 0.0;        // force along planes[0].n_world (> 0 pushes out)
   Eigen::Vector3d v_tangent_world = Eigen::Vector3d::Zero();
+  // Where on the surface p_proj is: a textured mesh's triangle and barycentric coordinates (-1
+  // and 0 on the plane), and the tangent frame there with n_geom_world (increasing u and v; the
+  // plane's x and y axes on the plane).
+  std::int32_t triangle = -1;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+  Eigen::Vector3d tangent_world = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d bitangent_world = Eigen::Vector3d::UnitY();
 };
 
 class ProxyRenderer {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <variant>
 
+#include "base/number_text.hpp"
 #include "device/device_specs.hpp"
 #include "device/replay_device.hpp"
 #include "device/sim_phantom.hpp"
@@ -42,7 +43,37 @@ dev::SimPhantomConfig simConfigFor(const scene::Scene& s, bool lockstep) {
   return c;
 }
 
-dev::HandScript handScriptFor(const scene::Scene& s) {
+namespace {
+
+// Every point of the script's contact steps (a stroke every millimetre), with its step's index.
+template <class Fn>
+void forEachContactPoint(const scene::Scene& scene, Fn fn) {
+  for (std::size_t i = 0; i < scene.device.script.size(); ++i) {
+    const scene::ScriptStep& step = scene.device.script[i];
+    if (const auto* p = std::get_if<scene::PressStep>(&step)) fn(i, p->position_m);
+    if (const auto* st = std::get_if<scene::StrokeStep>(&step)) {
+      const int n = std::max(1, int(std::ceil((st->to_m - st->from_m).norm() / 1e-3)));
+      for (int k = 0; k <= n; ++k) fn(i, Eigen::Vector2d(st->from_m + (st->to_m - st->from_m) * (double(k) / n)));
+    }
+    if (const auto* f = std::get_if<scene::PathFileStep>(&step)) {
+      for (const dev::PathSample& s : dev::HandScript::loadPathCsv(f->path).samples) fn(i, s.p_m);
+    }
+  }
+}
+
+}  // namespace
+
+dev::HandScript handScriptFor(const scene::Scene& s, const dev::SurfaceHeight* hand_surface) {
+  dev::HandScriptOptions options;
+  if (hand_surface) {
+    double deepest = 0.0;  // below the hover height over the top
+    forEachContactPoint(s, [&](std::size_t, const Eigen::Vector2d& p) {
+      double z = 0.0;
+      if (!hand_surface->heightAt(p, z)) z = 0.0;  // as the script takes it (device/hand_script.hpp)
+      deepest = std::max(deepest, hand_surface->top() + options.hover_height_m - z);
+    });
+    options.approach_s = std::max(options.approach_s, deepest / kHandApproachSpeedMPerS);
+  }
   std::vector<dev::HandStep> steps;
   steps.reserve(s.device.script.size());
   for (const scene::ScriptStep& step : s.device.script) {
@@ -58,7 +89,7 @@ dev::HandScript handScriptFor(const scene::Scene& s) {
       steps.emplace_back(std::in_place_type<dev::HandPath>, std::move(path));
     }
   }
-  return dev::HandScript(std::move(steps));
+  return dev::HandScript(std::move(steps), options);
 }
 
 RendererConfig rendererConfigFor(const scene::Scene& s) {
@@ -80,7 +111,7 @@ ServoRigConfig servoRigConfigFor(const scene::Scene& s) {
 }
 
 SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device_option,
-                            const std::string& vrpn_address, bool lockstep) {
+                            const std::string& vrpn_address, bool lockstep, const dev::SurfaceHeight* hand_surface) {
   const std::int64_t period_ns = std::int64_t(std::llround(1.0 / scene.rates.servo_hz * 1e9));
   SceneDevice d;
   if (device_option.rfind("replay:", 0) == 0) {
@@ -92,7 +123,9 @@ SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device
     d.replay = replay.get();
     d.device = std::move(replay);
   } else if (vrpn_address.empty()) {
-    auto sim = std::make_unique<dev::SimPhantom>(simConfigFor(scene, lockstep), handScriptFor(scene));
+    dev::SimPhantomConfig config = simConfigFor(scene, lockstep);
+    config.surface_height = hand_surface;
+    auto sim = std::make_unique<dev::SimPhantom>(config, handScriptFor(scene, hand_surface));
     d.sim = sim.get();
     d.device = std::move(sim);
   } else {
@@ -102,6 +135,17 @@ SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device
     d.device = std::make_unique<vrpn::VrpnClientDevice>(vrpn_address, deviceSpecFor(scene), vo);
   }
   return d;
+}
+
+void checkScriptOnMesh(const scene::Scene& scene, const dev::SurfaceHeight& hand_surface) {
+  forEachContactPoint(scene, [&](std::size_t step, const Eigen::Vector2d& p) {
+    double z = 0.0;
+    if (hand_surface.heightAt(p, z)) return;
+    throw Error(Error::Kind::Config,
+                scene.source + ": device.script[" + std::to_string(step) + "]: no part of the mesh lies under [" +
+                    numberText(p.x()) + ", " + numberText(p.y()) +
+                    "] (surface frame, seen from above): expected points over the mesh (scene-info prints its box)");
+  });
 }
 
 }  // namespace thx::srv

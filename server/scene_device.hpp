@@ -8,6 +8,7 @@
 #include "device/hand_script.hpp"
 #include "device/haptic_device.hpp"
 #include "device/sim_config.hpp"
+#include "device/surface_height.hpp"
 #include "scenes/scene.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/servo_rig.hpp"
@@ -26,7 +27,12 @@ dev::DeviceSpec deviceSpecFor(const scene::Scene& scene);
 dev::SimPhantomConfig simConfigFor(const scene::Scene& scene, bool lockstep);
 
 // Reads path files (device/hand_script.hpp); throws dev::HandScriptError naming file and line.
-dev::HandScript handScriptFor(const scene::Scene& scene);
+// On a mesh (`hand_surface`, a mesh scene's heights) the hand comes down from above the mesh's
+// top onto each contact step: the descent and ascent take long enough that the hand moves at
+// kHandApproachSpeed on average, as it does over the plane's hover height (5 mm in 0.2 s) at the
+// least, so a deep bowl is not struck at speed.
+inline constexpr double kHandApproachSpeedMPerS = 0.05;
+dev::HandScript handScriptFor(const scene::Scene& scene, const dev::SurfaceHeight* hand_surface = nullptr);
 
 // hapticd's device: the replay of a recorded session (`device_option` "replay:FILE", paced at the
 // scene's servo rate), a VRPN client of `vrpn_address` when that is set, else the scene's simulated
@@ -37,8 +43,16 @@ struct SceneDevice {
   dev::SimPhantom* sim = nullptr;
   dev::ReplayDevice* replay = nullptr;
 };
+// `hand_surface`: a mesh scene's heights for the simulated hand (SimPhantomConfig::surface_height;
+// it must outlive the device), nullptr on the plane.
 SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device_option,
-                            const std::string& vrpn_address, bool lockstep);
+                            const std::string& vrpn_address, bool lockstep,
+                            const dev::SurfaceHeight* hand_surface = nullptr);
+
+// A mesh scene's script against its mesh: every point a press, stroke or path step touches must
+// have the mesh under it (seen from above in the surface frame), or the hand would press on
+// nothing. Throws thx::Error (Config) naming the scene file, the step and the point.
+void checkScriptOnMesh(const scene::Scene& scene, const dev::SurfaceHeight& hand_surface);
 
 RendererConfig rendererConfigFor(const scene::Scene& scene);
 

@@ -21,9 +21,11 @@ void put(double (&dst)[3], const Eigen::Vector3d& v) {
 }  // namespace
 
 Servo::Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityController& passivity,
-             SafetyStage& safety, FlightRecorder& recorder, rt::SpscRing<TickRecord>& out, const ServoConfig& config)
+             SafetyStage& safety, FlightRecorder& recorder, rt::SpscRing<TickRecord>& out, const ServoConfig& config,
+             TexturedMeshRenderer* mesh)
     : device_(device),
       renderer_(renderer),
+      mesh_(mesh),
       passivity_(passivity),
       safety_(safety),
       recorder_(recorder),
@@ -66,7 +68,7 @@ const TickRecord& Servo::tick() {
   RenderOutput out;  // no planes unless rendered
   if (r.valid) {
     invalid_run_ = 0;
-    out = renderer_.render(state.p_world, state.v_world);
+    out = mesh_ ? mesh_->render(state.p_world, state.v_world) : renderer_.render(state.p_world, state.v_world);
     f_render = out.force_world;
     r.in_contact = out.in_contact;
     r.recovering = out.recovering;
@@ -85,13 +87,22 @@ const TickRecord& Servo::tick() {
     r.relief_depth_m = out.relief_depth_m;
     r.f_normal_n = out.f_normal_n;
     put(r.v_tangent_world, out.v_tangent_world);
+    r.triangle = out.triangle;
+    put(r.barycentric, out.barycentric);
+    put(r.tangent_world, out.tangent_world);
+    put(r.bitangent_world, out.bitangent_world);
     for (int i = 0; i < out.num_planes; ++i) {
       put(r.plane_n_world[i], out.planes[std::size_t(i)].n_world);
       r.plane_d_m[i] = out.planes[std::size_t(i)].d_m;
     }
   } else {
     ++counters_.invalid_readings;
-    renderer_.reset();  // the proxy's history means nothing across a bad reading
+    // The proxy's history means nothing across a bad reading.
+    if (mesh_) {
+      mesh_->reset();
+    } else {
+      renderer_.reset();
+    }
     // One fault per episode: a device that stays invalid (an unreachable VRPN server) would
     // otherwise fault, and dump a flight record, on every tick. The force stays off meanwhile:
     // nothing is rendered for an invalid reading (f_env below).
@@ -229,7 +240,8 @@ double Servo::stepSceneSwitch() {
   ++switch_tick_;
   if (switch_phase_ == SwitchPhase::RampDown) {
     if (switch_tick_ < n) return 1.0 - smooth(switch_tick_);
-    renderer_.retarget(*swap_next_->surface, swap_next_->renderer);
+    mesh_ = swap_next_->mesh;
+    if (mesh_ == nullptr) renderer_.retarget(*swap_next_->surface, swap_next_->renderer);
     passivity_.setStoredEnergyStiffness(swap_next_->stored_energy_stiffness_n_per_m);
     passivity_.reset();
     swap_next_ = nullptr;

@@ -9,6 +9,9 @@
 //    (client forces; fault resets; external effects, see external_effects.hpp).
 //  - Pipeline: read -> render (texture proxy) + client force + external effects (VRPN apps) ->
 //    passivity controller -> safety stage -> write. Safety is always last and always on.
+//  - Render: the plane's renderer (proxy_renderer.hpp, the fast path), or, while the scene's
+//    surface is a textured mesh, that scene's mesh renderer (textured_mesh_renderer.hpp), built
+//    and owned off this thread like the scene's texture. One branch chooses; nothing else differs.
 //  - Missed-cycle policy: the pacer realigns to the next period (no catch-up burst); while the
 //    servo is away the device holds its last force with decay (its own watchdog). What a gap
 //    does then is MissedTickPolicy's decision (server/missed_tick_policy.hpp): ride through it
@@ -23,7 +26,9 @@
 //    its builder, server/scene_switcher.hpp) is taken at a tick boundary; the scene's force (the
 //    texture's and the clients') ramps down over scene_ramp_ticks, the renderer is retargeted at
 //    zero force, the force ramps up again. Taking, retargeting and completing the handoff neither
-//    allocate nor free: the builder frees the old surface once the handoff says it is done.
+//    allocate nor free: the builder frees the old surface once the handoff says it is done. A mesh
+//    scene's renderer starts without a proxy: a pen inside the new mesh's solid at the swap feels
+//    nothing until it leaves it (a god object never starts inside), so no force can jump.
 #include <cstdint>
 
 #include "device/haptic_device.hpp"
@@ -37,6 +42,7 @@
 #include "server/proxy_renderer.hpp"
 #include "server/safety.hpp"
 #include "rt/spsc_ring.hpp"
+#include "server/textured_mesh_renderer.hpp"
 #include "server/tick_record.hpp"
 
 namespace thx::srv {
@@ -58,6 +64,10 @@ struct SurfaceSwap {
   const tex::TexturedSurface* surface = nullptr;
   RendererConfig renderer;
   double stored_energy_stiffness_n_per_m = 0.0;  // the passivity observer's K (the renderer's)
+  // A mesh scene: its renderer, fresh (never rendered), owned by the builder like `surface`; the
+  // servo renders it instead of the plane until the next swap. nullptr: the plane's renderer,
+  // retargeted at `surface` with `renderer`.
+  TexturedMeshRenderer* mesh = nullptr;
 };
 
 // What a client (the physics client) asks the servo to add to the rendered force.
@@ -106,8 +116,10 @@ struct ServoCounters {
 
 class Servo {
  public:
+  // `mesh`: the first scene's mesh renderer (a mesh scene), else nullptr: the plane's `renderer`.
   Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityController& passivity, SafetyStage& safety,
-        FlightRecorder& recorder, rt::SpscRing<TickRecord>& out, const ServoConfig& config);
+        FlightRecorder& recorder, rt::SpscRing<TickRecord>& out, const ServoConfig& config,
+        TexturedMeshRenderer* mesh = nullptr);
 
   // One tick. Returns this tick's record (valid until the next call).
   const TickRecord& tick();
@@ -131,6 +143,8 @@ class Servo {
   const LatencyHistogram& wakeHistogram() const { return wake_hist_; }
   const ServoCounters& counters() const { return counters_; }
   const MissedTickPolicy& missedTickPolicy() const { return missed_policy_; }
+  // The mesh renderer in use (a mesh scene), else nullptr (the plane). Servo thread, or stopped.
+  const TexturedMeshRenderer* meshRenderer() const { return mesh_; }
 
  private:
   std::uint32_t latchFaults(std::uint32_t faults);
@@ -140,6 +154,7 @@ class Servo {
 
   dev::HapticDevice& device_;
   ProxyRenderer& renderer_;
+  TexturedMeshRenderer* mesh_ = nullptr;  // renders instead of renderer_ while set
   PassivityController& passivity_;
   SafetyStage& safety_;
   FlightRecorder& recorder_;

@@ -15,14 +15,17 @@ ServoConfig servoConfigFor(const dev::DeviceSpec& spec, const ServoRigConfig& c)
 }
 }  // namespace
 
-ServoRig::ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surface, const ServoRigConfig& config)
+ServoRig::ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surface, const ServoRigConfig& config,
+                   TexturedMeshRenderer* mesh)
     : config_(config),
+      mesh_(mesh),
       renderer_(surface, config.renderer),
       passivity_(passivityFor(device.spec(), config)),
       safety_(SafetyConfig::fromSpec(device.spec(), config.period_s)),
       recorder_(config.flight_record_ticks),
       ring_(config.ring_records),
-      servo_(device, renderer_, passivity_, safety_, recorder_, ring_, servoConfigFor(device.spec(), config)) {}
+      servo_(device, renderer_, passivity_, safety_, recorder_, ring_, servoConfigFor(device.spec(), config),
+             mesh) {}
 
 const TickRecord& ServoRig::tickAndDrain() {
   const TickRecord& r = servo_.tick();
@@ -38,6 +41,7 @@ void ServoRig::drain() {
 
 void ServoRig::reset() {
   renderer_.reset();
+  if (mesh_) mesh_->reset();
   passivity_.reset();
   safety_.reset();
   drain();

@@ -6,7 +6,7 @@
 // Construction allocates (renderer scratch, flight recorder, ring); tick() and tickAndDrain() do
 // not (servo.hpp's contract; tests/server/test_servo_no_alloc.cpp). Not copyable or movable: the
 // Servo holds references to its neighbours. The device and the surface belong to the caller and
-// must outlive the rig.
+// must outlive the rig, and so must a mesh scene's renderer (mesh_scene.hpp) given to it.
 #include <cstddef>
 
 #include "device/haptic_device.hpp"
@@ -41,7 +41,10 @@ struct ServoRigConfig {
 
 class ServoRig {
  public:
-  ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surface, const ServoRigConfig& config);
+  // `mesh`: a mesh scene's renderer, which the servo renders instead of the plane's (servo.hpp);
+  // `surface` then only seeds the plane's renderer, unused until a switch to a plane scene.
+  ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surface, const ServoRigConfig& config,
+           TexturedMeshRenderer* mesh = nullptr);
   ServoRig(const ServoRig&) = delete;
   ServoRig& operator=(const ServoRig&) = delete;
 
@@ -51,7 +54,7 @@ class ServoRig {
   const TickRecord& tickAndDrain();
   // Empties the tick ring. Real-time safe.
   void drain();
-  // Renderer, passivity and safety back to their state after construction, the ring emptied
+  // Renderers, passivity and safety back to their state after construction, the ring emptied
   // (the device and the servo's counters are not touched).
   void reset();
 
@@ -69,6 +72,7 @@ class ServoRig {
 
  private:
   ServoRigConfig config_;
+  TexturedMeshRenderer* mesh_;  // the first scene's, if a mesh scene (not owned)
   ProxyRenderer renderer_;
   PassivityController passivity_;
   SafetyStage safety_;

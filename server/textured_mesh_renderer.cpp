@@ -117,7 +117,12 @@ Halfspace TexturedMeshRenderer::planeAt(const MeshContact& at, Eigen::Vector3d& 
   relief_depth = 0.0;
   if (texture_.map) {
     const tex::Sample s = tex::sample(*texture_.map, {f.uv.x(), f.uv.y()}, texture_.sampling);
-    const Eigen::Vector3d n = s.normal.cast<double>();
+    Eigen::Vector3d n = s.normal.cast<double>();
+    if (texture_.normals_made_for_m.minCoeff() > 0.0) {  // as on the chart (TexturedSurface::setNormalsMadeFor)
+      const Eigen::Vector2d scale = texture_.normals_made_for_m.cwiseQuotient(localScale(at));
+      n.x() *= scale.x();
+      n.y() *= scale.y();
+    }
     // The texture's tangent frame is the surface's: +x along +u, +y along +v, +z out.
     n_sampled = (n.x() * f.tangent + n.y() * f.bitangent + n.z() * f.normal).normalized();
     if (texture_.use_relief) relief_depth = double(s.depth);
@@ -126,8 +131,14 @@ Halfspace TexturedMeshRenderer::planeAt(const MeshContact& at, Eigen::Vector3d& 
   return Halfspace{n_sampled, n_sampled.dot(q)};
 }
 
-tex::PlaneMapping TexturedMeshRenderer::chartAt(const MeshContact& at) const {
-  // Metres per uv along the frame's tangent and bitangent, from the face's texture mapping.
+bool TexturedMeshRenderer::smoothlyJoined(const std::uint32_t* held, int count) const {
+  for (int i = 0; i < count; ++i)
+    for (int j = i + 1; j < count; ++j)
+      if (bvh_->plane(held[i]).n.dot(bvh_->plane(held[j]).n) < kSmoothNeighbourCos) return false;
+  return true;
+}
+
+Eigen::Vector2d TexturedMeshRenderer::localScale(const MeshContact& at) const {
   const mesh::Triangle& t = mesh_->triangles[at.triangle];
   const Eigen::Vector3d e1 = mesh_->positions[t[1]] - mesh_->positions[t[0]];
   const Eigen::Vector3d e2 = mesh_->positions[t[2]] - mesh_->positions[t[0]];
@@ -143,6 +154,13 @@ tex::PlaneMapping TexturedMeshRenderer::chartAt(const MeshContact& at) const {
   // tile (the texture is then flat to the pen there, which is what such a face can show).
   if (!(sx > 0.0) || !std::isfinite(sx)) sx = 1.0;
   if (!(sy > 0.0) || !std::isfinite(sy)) sy = 1.0;
+  return {sx, sy};
+}
+
+tex::PlaneMapping TexturedMeshRenderer::chartAt(const MeshContact& at) const {
+  const mesh::SurfaceFrame& f = at.frame;
+  const Eigen::Vector2d scale = localScale(at);
+  const double sx = scale.x(), sy = scale.y();
   tex::PlaneMapping m;
   m.size_m = {sx, sy};
   Eigen::Matrix3d axes;
@@ -160,9 +178,17 @@ void TexturedMeshRenderer::fillContact(RenderOutput& out, const MeshContact& at,
   out.p_proj_world = f.point;
   out.uv = {f.uv.x(), f.uv.y()};
   if (texture_.map) out.texel = tex::texelOf(*texture_.map, out.uv, texture_.sampling.address);
-  out.n_geom_world = bvh_->plane(at.triangle).n;
   out.n_sampled_world = n_sampled;
   out.relief_depth_m = relief;
+  fillPlace(out, at);
+}
+
+void TexturedMeshRenderer::fillPlace(RenderOutput& out, const MeshContact& at) const {
+  out.triangle = std::int32_t(at.triangle);
+  out.barycentric = at.barycentric;
+  out.n_geom_world = at.frame.normal;  // the smooth surface's, at the anchor
+  out.tangent_world = at.frame.tangent;
+  out.bitangent_world = at.frame.bitangent;
 }
 
 RenderOutput TexturedMeshRenderer::renderOnChart(const MeshContact& at, const Eigen::Vector3d& tip,
@@ -170,6 +196,7 @@ RenderOutput TexturedMeshRenderer::renderOnChart(const MeshContact& at, const Ei
   const tex::PlaneMapping m = chartAt(at);
   const Eigen::Isometry3d old_chart = chart_.mapping().plane_to_world;
   chart_ = tex::TexturedSurface(*texture_.map, m, texture_.sampling, texture_.use_relief);
+  chart_.setNormalsMadeFor(texture_.normals_made_for_m);
   if (chart_valid_) {
     chart_renderer_->moveFrame(m.plane_to_world.inverse() * old_chart);
   } else {
@@ -180,7 +207,7 @@ RenderOutput TexturedMeshRenderer::renderOnChart(const MeshContact& at, const Ei
   // The plane renderer reports where the tip projects onto its chart; the anchor's point, uv and
   // face say where on the mesh that is.
   out.p_proj_world = at.frame.point;
-  out.n_geom_world = bvh_->plane(at.triangle).n;
+  fillPlace(out, at);
   return out;
 }
 
@@ -234,7 +261,10 @@ RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, cons
   RenderOutput out;
   out.p_proj_world = tip;
   out.proxy_world = tip;
+  // Away from the mesh no place on it is meant: no triangle (-1), no frame.
   out.n_geom_world = Eigen::Vector3d::Zero();
+  out.tangent_world = Eigen::Vector3d::Zero();
+  out.bitangent_world = Eigen::Vector3d::Zero();
   out.n_sampled_world = Eigen::Vector3d::Zero();
   if (!tip.allFinite()) {
     // Nothing sensible to render from a non-finite tip; the safety stage handles the fault.
@@ -262,6 +292,12 @@ RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, cons
     }
   }
 
+  // Faces held at a gentle concave edge (the inside of a bowl or a pipe: every edge there is an
+  // inside crease of a few degrees) continue each other smoothly: one smooth surface, rendered on
+  // the chart with its texture's crease handling. Only faces that meet at a crease (the inside
+  // corner of a room) are rendered as several textured planes.
+  if (count > 1 && smoothlyJoined(held.data(), count)) count = 1;
+
   const Eigen::Vector3d from = have_texture_proxy_ ? texture_proxy_ : tip;
   if (count == 0) {
     chart_valid_ = false;
@@ -281,6 +317,8 @@ RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, cons
   out.proxy_world = mesh_to_world_ * out.proxy_world;
   out.p_proj_world = mesh_to_world_ * out.p_proj_world;
   out.n_geom_world = r * out.n_geom_world;
+  out.tangent_world = r * out.tangent_world;
+  out.bitangent_world = r * out.bitangent_world;
   out.n_sampled_world = r * out.n_sampled_world;
   out.v_tangent_world = r * out.v_tangent_world;
   for (int i = 0; i < out.num_planes; ++i) {

@@ -20,7 +20,9 @@
 //      texture on it with its state carried from the last tick's chart (ProxyRenderer::moveFrame).
 //      The texel planes it holds at a groove's floor or a ridge span a few texels, where the
 //      chart and the curved surface agree to (texel)^2 / (2 x radius of curvature).
-//      Several held faces (an inside corner of the mesh): each face's textured plane at the
+//      Faces held at a gentle concave edge (within kSmoothNeighbourCos: the inside of a bowl)
+//      are one smooth surface and rendered so. Several held faces at a crease (an inside
+//      corner of the mesh): each face's textured plane at the
 //      anchor (the sampled normal turned into the face's frame, through the surface point moved
 //      in by the relief depth) and the tip pulled to the point closest to it outside all of them;
 //      the chart's renderer starts afresh when one face holds again.
@@ -56,6 +58,10 @@ struct MeshTexture {
   const tex::TextureMap* map = nullptr;  // nullptr: the smooth (shaded) surface, no texture
   tex::SampleOptions sampling;
   bool use_relief = false;  // read the map's depth as a displacement along the normal
+  // The texture tile (metres per uv) the map's normals were made for (the scene's surface.size):
+  // where the mesh's uv lays the texture at another local scale, its normals are turned to match
+  // the depth as laid there (TexturedSurface::setNormalsMadeFor). Zero: taken as they are.
+  Eigen::Vector2d normals_made_for_m = Eigen::Vector2d::Zero();
 };
 
 // Where the last tick's anchor was (for the contact messages).
@@ -106,12 +112,18 @@ class TexturedMeshRenderer {
   void locate(const Eigen::Vector3d& x, std::uint32_t held, std::uint32_t& triangle, Eigen::Vector3d& barycentric) const;
   // The textured (or smooth) plane at an anchor; the sampled normal and relief depth.
   Halfspace planeAt(const MeshContact& at, Eigen::Vector3d& n_sampled, double& relief_depth) const;
+  // The held faces' normals all within kSmoothNeighbourCos of each other: one smooth surface.
+  bool smoothlyJoined(const std::uint32_t* held, int count) const;
+  // Metres per uv along the anchor's tangent and bitangent (its face's texture mapping).
+  Eigen::Vector2d localScale(const MeshContact& at) const;
   // The chart at an anchor: the tangent plane with the texture at the face's local scale.
   tex::PlaneMapping chartAt(const MeshContact& at) const;
   RenderOutput renderOnChart(const MeshContact& at, const Eigen::Vector3d& tip, const Eigen::Vector3d& v);
   RenderOutput renderPlanes(const std::uint32_t* held, int count, const Eigen::Vector3d& from, const Eigen::Vector3d& tip,
                             const Eigen::Vector3d& v);
   void fillContact(RenderOutput& out, const MeshContact& at, const Eigen::Vector3d& n_sampled, double relief) const;
+  // Where on the mesh (triangle, barycentric) and its smooth frame there, in the mesh's frame.
+  void fillPlace(RenderOutput& out, const MeshContact& at) const;
 
   const mesh::TexturedMesh* mesh_;
   const TriangleBvh* bvh_;

@@ -81,6 +81,10 @@ void toContact(const TickRecord& r, thx_msgs::contact_t& c) {
   c.f_normal = r.f_normal_n;
   for (int k = 0; k < 3; ++k) c.f_normal_world[k] = r.f_normal_n * r.plane_n_world[0][k];
   copy(c.v_tangent_world, r.v_tangent_world);
+  c.triangle = r.triangle;
+  copy(c.barycentric, r.barycentric);
+  copy(c.tangent_world, r.tangent_world);
+  copy(c.bitangent_world, r.bitangent_world);
 }
 
 }  // namespace thx::srv

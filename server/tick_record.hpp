@@ -44,6 +44,10 @@ struct TickRecord {
   double v_tangent_world[3] = {};
   double plane_n_world[4][3] = {};
   double plane_d_m[4] = {};
+  std::int32_t triangle = -1;  // RenderOutput::triangle (a mesh's; -1 on the plane)
+  double barycentric[3] = {};
+  double tangent_world[3] = {1, 0, 0};
+  double bitangent_world[3] = {0, 1, 0};
   // forces, N, world frame, in pipeline order
   double f_render[3] = {};   // texture proxy spring
   double f_client[3] = {};   // from clients (physics: pen-object contact)

@@ -47,7 +47,7 @@ class TexturedSurface {
     p.uv = mapping_.uvOfLocal({x_local, y_local});
     const Sample s = sample(*map_, p.uv, sampling_);
     p.n_local = flatBeyondClampedEdge(p.uv.u, p.uv.v) ? Eigen::Vector3d::UnitZ()
-                                                      : s.normal.cast<double>().normalized();  // float sums are off by ~1e-8
+                                                      : slopeScaled(s.normal.cast<double>()).normalized();  // float sums are off by ~1e-8
     p.height_m = use_relief_ ? -double(s.depth) : 0.0;
     return p;
   }
@@ -74,7 +74,18 @@ class TexturedSurface {
   // address mode): flat beyond a clamped relief's border.
   Eigen::Vector3d texelNormal(long long i, long long j, int ri, int rj) const {
     const bool flat = use_relief_ && sampling_.address == Address::Clamp && (ri != i || rj != j);
-    return flat ? Eigen::Vector3d::UnitZ() : map_->normal(ri, rj).cast<double>().normalized();
+    return flat ? Eigen::Vector3d::UnitZ() : slopeScaled(map_->normal(ri, rj).cast<double>()).normalized();
+  }
+
+  // The map's normals were made for a texture spanning `made_for_m` (its tile on the scene,
+  // docs/scenes.md); this surface lays it over mapping().size_m. Where the two differ (a mesh's
+  // chart where its uv squeezes or stretches the texture, textured_mesh_renderer.hpp) the normals
+  // are turned to the slopes of the relief as laid here: slope x made_for / size along each axis,
+  // so the normals keep matching the depth. Off (the plane: its size is what the normals are for)
+  // until called; a non-positive size turns it off.
+  void setNormalsMadeFor(const Eigen::Vector2d& made_for_m) {
+    rescaled_ = made_for_m.x() > 0.0 && made_for_m.y() > 0.0 && mapping_.size_m.x() > 0.0 && mapping_.size_m.y() > 0.0;
+    if (rescaled_) slope_scale_ = made_for_m.cwiseQuotient(mapping_.size_m);
   }
 
   Eigen::Vector3d toLocal(const Eigen::Vector3d& p_world) const { return world_to_plane_ * p_world; }
@@ -96,6 +107,14 @@ class TexturedSurface {
   bool flatBeyondClampedEdge(double u, double v) const {
     return use_relief_ && sampling_.address == Address::Clamp && (u < 0.0 || u > 1.0 || v < 0.0 || v > 1.0);
   }
+  // A normal (not yet unit) with its slopes scaled (setNormalsMadeFor).
+  Eigen::Vector3d slopeScaled(Eigen::Vector3d n) const {
+    if (rescaled_) {
+      n.x() *= slope_scale_.x();
+      n.y() *= slope_scale_.y();
+    }
+    return n;
+  }
   static long long toIndex(double s) {
     constexpr double kLimit = 1e9;
     return (long long)std::floor(std::fmax(-kLimit, std::fmin(kLimit, s)));
@@ -106,6 +125,8 @@ class TexturedSurface {
   Eigen::Isometry3d world_to_plane_ = Eigen::Isometry3d::Identity();
   SampleOptions sampling_;
   bool use_relief_ = false;
+  bool rescaled_ = false;
+  Eigen::Vector2d slope_scale_{1.0, 1.0};
 };
 
 }  // namespace thx::tex

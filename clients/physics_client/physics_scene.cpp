@@ -10,6 +10,7 @@
 
 #include "clients/physics/bullet_convert.hpp"
 #include "scenes/scene_frames.hpp"
+#include "scenes/scene_loader.hpp"
 #include "textures/smoothing.hpp"
 
 namespace thx::physclient {
@@ -48,7 +49,7 @@ bool aIsFirst(int id0, int id1) {
 PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
     : scene_(scene),
       options_(options),
-      scene_surface_(buildSurface(scene)) {
+      scene_surface_((scene::requirePlaneSurface(scene, "physics-client"), buildSurface(scene))) {
   world_ = std::make_unique<phys::PhysicsWorld>(options.world);
   const phys::BodyMaterial plane_material = materialOf(scene.surface.material);
   plane_ = surface().usesRelief() ? &world_->addReliefPlane(surface(), plane_material)

@@ -6,9 +6,12 @@ namespace thx::visual {
 
 MeshFrameRenderer::MeshFrameRenderer(const MeshSurface& surface, const RenderSettings& settings, int width,
                                      int height)
-    : settings_(settings), framebuffer_(width, height, settings.hit_buffer), surface_renderer_(surface, settings) {}
+    : settings_(settings),
+      framebuffer_(width, height, settings.hit_buffer),
+      surface_renderer_(surface, settings),
+      mesh_to_world_rotation_(surface.mesh_to_world.linear()) {}
 
-void MeshFrameRenderer::render(const Camera& camera) {
+void MeshFrameRenderer::render(const Camera& camera, const std::vector<ObjectInstance>& objects) {
   framebuffer_.bind();
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -18,6 +21,12 @@ void MeshFrameRenderer::render(const Camera& camera) {
   if (settings_.hit_buffer) {
     const float none[4] = {-1.0f, -1.0f, -1.0f, 0.0f};
     glClearBufferfv(GL_COLOR, 1, none);
+  }
+  if (!objects.empty()) {
+    glEnable(GL_CULL_FACE);
+    object_renderer_.draw(objects, camera, mesh_to_world_rotation_ * lightDirectionLocal(settings_.light),
+                          settings_.light);
+    glDisable(GL_CULL_FACE);
   }
   surface_renderer_.draw(camera);
   glFinish();

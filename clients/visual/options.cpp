@@ -1,7 +1,7 @@
 #include "clients/visual/options.hpp"
 
 #include "base/cli_number.hpp"
-#include "clients/visual/builtin_meshes.hpp"
+#include "meshes/builtin_shapes.hpp"
 #include "thx_msgs/protocol.hpp"
 
 namespace thx::visual {
@@ -72,7 +72,8 @@ Surface:
 Camera and light (angles in the plane's frame):
   --elevation DEG        camera above the plane (default 35, 1..90)
   --azimuth DEG          camera around the plane's normal (default -90: looking towards +y)
-  --distance M           from the target (default 1.25 x the plane's larger side)
+  --distance M           from the target (default 1.25 x the plane's larger side; a mesh scene:
+                         1.3 x the mesh's largest side)
   --target X,Y           surface-local point looked at (default 0,0)
   --fov DEG              vertical field of view (default 40)
   --light-elevation DEG  (default 50)    --light-azimuth DEG (default -135)
@@ -176,8 +177,8 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (a == "--window-frames") o.window_frames = int(cli::parseInteger(a, value(), 1, 1000000)), o.window = true;
     else if (a == "--surface-mesh") {
       o.surface_mesh = value();
-      if (!isBuiltInMesh(o.surface_mesh))
-        throw UsageError(a + ": expected " + kBuiltInMeshShapes + ", got '" + o.surface_mesh + "'");
+      if (!mesh::isBuiltInShape(o.surface_mesh))
+        throw UsageError(a + ": expected " + mesh::kBuiltInShapes + ", got '" + o.surface_mesh + "'");
     } else if (a == "--surface-mesh-tile") o.surface_mesh_tile_m = cli::parseNumber(a, value(), {0, 100, true, "m"});
     else throw UsageError("unknown option '" + a + "'");
   }

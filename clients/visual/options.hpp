@@ -44,7 +44,7 @@ struct Options {
   bool window = false;   // --window
   int window_frames = 0;  // --window-frames N
   std::string window_screenshot;  // --window-screenshot FILE
-  std::string surface_mesh;       // --surface-mesh SHAPE (builtin_meshes.hpp): drawn instead of the plane
+  std::string surface_mesh;       // --surface-mesh SHAPE (meshes/builtin_shapes.hpp): drawn instead of the plane
   double surface_mesh_tile_m = 0.0;  // --surface-mesh-tile M; 0: the scene's plane's width
 };
 

@@ -4,8 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "base/error.hpp"
 #include "base/program_main.hpp"
-#include "clients/visual/builtin_meshes.hpp"
+#include "meshes/builtin_shapes.hpp"
 #include "clients/visual/frame_renderer.hpp"
 #include "clients/visual/headless_context.hpp"
 #include "clients/visual/image_writer.hpp"
@@ -16,6 +17,7 @@
 #include "clients/visual/scene_objects.hpp"
 #include "clients/visual/window_presenter.hpp"
 #include "scenes/scene_loader.hpp"
+#include "scenes/scene_mesh.hpp"
 #include "scenes/scene_surface.hpp"
 #include "thx_client/logged_scene.hpp"
 #include "textures/smoothing.hpp"
@@ -54,40 +56,100 @@ int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurfa
   return 0;
 }
 
-// --surface-mesh: a built-in textured mesh instead of the plane, centred on the plane's origin (the
-// camera's default target), the scene's texture wrapped on it in its tangent frames.
-int drawSurfaceMesh(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
-                    const CameraPlacement& placement) {
-  const mesh::GeneratedMesh shape = builtInMesh(o.surface_mesh, surfaceMeshSize(scene), surfaceMeshTile(o, scene));
-  MeshSurface mesh;
-  mesh.mesh = &shape.mesh;
-  mesh.tile_m = shape.tile_used_m;
+// A textured mesh instead of the plane, the scene's texture wrapped on it in its tangent frames:
+// the scene's own (surface.mesh, placed by its pose) or --surface-mesh's built-in shape (centred on
+// the plane's origin, the camera's default target). Immovable: `surface` points at `shape`.
+struct MeshView {
+  mesh::TexturedMesh shape;
+  MeshSurface surface;
+  std::string name;
+  Eigen::Isometry3d orbit_frame = Eigen::Isometry3d::Identity();  // the camera's: the plane's, or the scene mesh's centre
+  CameraPlacement placement;
+};
+
+void buildMeshView(MeshView& view, const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
+                   const CameraPlacement& placement) {
+  MeshSurface& mesh = view.surface;
+  view.orbit_frame = surface.mapping().plane_to_world;
+  view.placement = placement;
+  if (!o.surface_mesh.empty()) {
+    mesh::GeneratedMesh built = mesh::builtInShape(o.surface_mesh, surfaceMeshSize(scene), surfaceMeshTile(o, scene));
+    view.shape = std::move(built.mesh);
+    mesh.tile_m = built.tile_used_m;
+    mesh.mesh_to_world = surface.mapping().plane_to_world * Eigen::Translation3d(-mesh::boundsCentre(view.shape));
+    view.name = o.surface_mesh;
+  } else {
+    scene::SceneMesh built = scene::buildSceneMesh(scene);
+    view.shape = std::move(built.mesh);
+    mesh.tile_m = built.tile_m;
+    mesh.mesh_to_world = built.mesh_to_world;
+    view.name = "surface.mesh";
+    // The camera orbits the mesh's centre, in the mesh's frame, from where the whole mesh is seen.
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& p : view.shape.positions) box.extend(p);
+    view.orbit_frame = built.mesh_to_world * Eigen::Translation3d(box.center());
+    if (!o.distance_given) view.placement.distance_m = 1.3 * box.sizes().maxCoeff();
+  }
+  mesh.mesh = &view.shape;
   mesh.map = &surface.map();
   mesh.filter = surface.sampling().filter;
   mesh.use_relief = surface.usesRelief();
-  const Eigen::Isometry3d& plane = surface.mapping().plane_to_world;
-  mesh.mesh_to_world = plane * Eigen::Translation3d(-boundsCentre(shape.mesh));
-  HeadlessContext context;
   if (!o.quiet)
-    std::fprintf(stderr, "visual-client: %s, %zu triangles, tile %.4g x %.4g m; %s\n", shape.mesh.source.c_str(),
-                 shape.mesh.triangles.size(), mesh.tile_m.x(), mesh.tile_m.y(), context.description().c_str());
-  MeshFrameRenderer renderer(mesh, o.render, o.width, o.height);
+    std::fprintf(stderr, "visual-client: %s, %zu triangles, tile %.4g x %.4g m\n", view.shape.source.c_str(),
+                 view.shape.triangles.size(), mesh.tile_m.x(), mesh.tile_m.y());
+}
+
+// Orbit frames or a screenshot of the mesh alone.
+int drawSurfaceMesh(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
+                    const CameraPlacement& placement) {
+  HeadlessContext context;
+  if (!o.quiet) std::fprintf(stderr, "visual-client: %s\n", context.description().c_str());
+  MeshView view;
+  buildMeshView(view, o, scene, surface, placement);
+  const Eigen::Isometry3d& plane = view.orbit_frame;
+  MeshFrameRenderer renderer(view.surface, o.render, o.width, o.height);
   if (!o.screenshot.empty()) {
-    renderer.render(Camera(placement, plane, o.width, o.height));
+    renderer.render(Camera(view.placement, plane, o.width, o.height));
     writeImage(o.screenshot, renderer.framebuffer().readColour(), o.png_level);
     if (!o.quiet)
-      std::fprintf(stderr, "visual-client: wrote %s (%s, %s)\n", o.screenshot.c_str(), o.surface_mesh.c_str(),
+      std::fprintf(stderr, "visual-client: wrote %s (%s, %s)\n", o.screenshot.c_str(), view.name.c_str(),
                    modeName(o.render).c_str());
     return 0;
   }
   std::filesystem::create_directories(o.out_dir);
   for (int f = 0; f < o.frames; ++f) {
-    CameraPlacement p = placement;
+    CameraPlacement p = view.placement;
     p.azimuth_deg += f * o.orbit_deg_per_frame;
     renderer.render(Camera(p, plane, o.width, o.height));
     writeImage(framePath(o, f), renderer.framebuffer().readColour(), o.png_level);
   }
   if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %d frames to %s\n", o.frames, o.out_dir.c_str());
+  return 0;
+}
+
+// A recorded session on a mesh scene, frame by frame: the mesh and the pen (tip, proxy) where the
+// recording put it. (A mesh scene has no objects: physics on meshes is issue 29.)
+int replayOnMesh(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
+                 const CameraPlacement& placement) {
+  std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz);
+  if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
+  HeadlessContext context;
+  MeshView view;
+  buildMeshView(view, o, scene, surface, placement);
+  MeshFrameRenderer renderer(view.surface, o.render, o.width, o.height);
+  const Camera camera(view.placement, view.orbit_frame, o.width, o.height);
+  std::filesystem::create_directories(o.out_dir);
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    std::vector<ObjectInstance> pen;
+    if (!o.no_pen)
+      pen = penWithProxy(surface, surface.toLocal(frames[f].tip_world), surface.toLocal(frames[f].proxy_world),
+                         frames[f].proxy_held);
+    renderer.render(camera, pen);
+    writeImage(framePath(o, int(f)), renderer.framebuffer().readColour(), o.png_level);
+  }
+  if (!o.quiet)
+    std::fprintf(stderr, "visual-client: wrote %zu frames of %s on the mesh to %s\n", frames.size(),
+                 o.replay_log.c_str(), o.out_dir.c_str());
   return 0;
 }
 
@@ -97,15 +159,23 @@ int run(const Options& o) {
   texture_options.smooth = &tex::smoothTexture;
   const scene::SceneSurface surface = scene::buildSceneSurface(scene, texture_options);
 
+  if (o.live && scene.surface.mesh)
+    throw Error(Error::Kind::Config, o.scene + ": surface.mesh: live frames draw the plane; a mesh scene is drawn "
+                                               "from a recording (--replay-log LOG) or as orbit frames (--frames N --out DIR)");
   if (o.live) return runLive(o);
   const CameraPlacement placement = cameraPlacement(o, scene);
-  if (!o.surface_mesh.empty()) return drawSurfaceMesh(o, scene, surface.surface, placement);
-
   if (!o.replay_log.empty()) {
     // The recording's hellos name the scene's texture fingerprint: it must be this one's.
     client::checkLoggedScene(client::loggedScenes(o.replay_log), {surface.scene_name, surface.fingerprint}, o.replay_log,
                              false, false);
+    if (scene.surface.mesh) return replayOnMesh(o, scene, surface.surface, placement);
     return replay(o, scene, surface.surface, placement);
+  }
+  if (!o.surface_mesh.empty() || scene.surface.mesh) {
+    if (o.window)
+      throw Error(Error::Kind::Config, o.scene + ": surface.mesh: a mesh scene is drawn headless (--frames N --out DIR, "
+                                                 "--screenshot FILE or --replay-log LOG); --window shows planes only");
+    return drawSurfaceMesh(o, scene, surface.surface, placement);
   }
   std::vector<ObjectInstance> objects;
   if (!o.no_objects) objects = objectsAtRest(scene);

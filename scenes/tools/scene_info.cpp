@@ -9,6 +9,7 @@
 
 #include "base/program_main.hpp"
 #include "scenes/scene_loader.hpp"
+#include "scenes/scene_mesh.hpp"
 #include "scenes/scene_surface.hpp"
 #include "textures/texture_fingerprint.hpp"
 #include "textures/smoothing.hpp"
@@ -46,6 +47,25 @@ double scriptDuration(const scene::Device& device) {
   return total;
 }
 
+// surface.mesh: built (read, checked, frames) to report it, as hapticd and visual-client will.
+void printMesh(const scene::Scene& s) {
+  const scene::MeshSource& m = *s.surface.mesh;
+  const auto t0 = std::chrono::steady_clock::now();
+  const scene::SceneMesh built = scene::buildSceneMesh(s);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : built.mesh.positions) box.extend(p);
+  if (m.kind == scene::MeshSource::Kind::Generator)
+    std::printf("mesh:            generator %s, size %.4g m, %d segments\n", m.generator.c_str(), m.size_m, m.segments);
+  else
+    std::printf("mesh:            file %s, %.4g m per unit\n", m.file.c_str(), m.unit_m);
+  std::printf("                 %zu triangles, %zu vertices%s; box [%.4g, %.4g] x [%.4g, %.4g] x [%.4g, %.4g] m (mesh frame);"
+              " texture tile %.4g x %.4g m (built in %.0f ms)\n",
+              built.mesh.triangles.size(), built.mesh.positions.size(), m.closed ? ", closed" : "", box.min().x(),
+              box.max().x(), box.min().y(), box.max().y(), box.min().z(), box.max().z(), built.tile_m.x(),
+              built.tile_m.y(), ms);
+}
+
 void printSummary(const scene::Scene& s, const scene::SceneSurface& built, double build_ms) {
   const scene::Surface& surf = s.surface;
   const tex::TextureMap& map = *built.map;
@@ -60,6 +80,7 @@ void printSummary(const scene::Scene& s, const scene::SceneSurface& built, doubl
   } else {
     std::printf("texture:         file %s (loaded in %.0f ms)\n", surf.texture.file.c_str(), build_ms);
   }
+  if (surf.mesh) printMesh(s);
   std::printf("sampling:        %s, %s; smoothing sigma %.3g texels\n",
               surf.sampling.filter == tex::Filter::Bilinear ? "bilinear" : "nearest",
               surf.sampling.address == tex::Address::Wrap ? "wrap" : "clamp", surf.smoothing_sigma_texels);

@@ -90,7 +90,7 @@ TEST(Subscriptions, RatesAboveTheLimitAreGrantedTheLimitWithAReason) {
   EXPECT_DOUBLE_EQ(r.rate_hz, 1.0);
   EXPECT_NE(r.reason.find("SERVO_STATS window"), std::string::npos) << r.reason;
 
-  // A batch must fit one datagram: 205 samples at most, so at least 1000/205 Hz.
+  // A batch must fit one datagram: 165 samples at most, so at least 1000/165 Hz.
   r = t.handleRequest(request("b", "CONTACT", 1.0, true), 0);
   EXPECT_TRUE(r.accepted);
   const double floor_hz = 1000.0 / double(thx_msgs::max_unfragmented_batch_samples(r.channel.size()));
@@ -150,10 +150,11 @@ TEST(Subscriptions, TooManyClientsIsRefusedUntilOneLeaves) {
 
 TEST(Subscriptions, BandwidthLimitRefusesWhatWouldExceedIt) {
   srv::SubscriptionTable t(limits());  // 2 MB/s
-  // A full-rate batch costs ~318 kB/s of samples: six fit, the seventh does not.
+  // A full-rate batch costs ~394 kB/s of samples, a full-rate device state ~260 kB/s: three
+  // batches and two device states fit in 2 MB/s, the third device state does not.
   int granted = 0;
   thx_msgs::subscribe_reply_t last;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 3; ++k) {
     last = t.handleRequest(request("a" + std::to_string(k), "CONTACT", 1000.0, true), 0);
     granted += last.accepted;
   }
@@ -167,7 +168,7 @@ TEST(Subscriptions, BandwidthLimitRefusesWhatWouldExceedIt) {
   EXPECT_LE(t.bandwidth(), 2e6);
   // A replacement is measured without what it replaces, so asking again is not refused.
   EXPECT_TRUE(t.handleRequest(request("a0", "CONTACT", 1000.0, true), 0).accepted);
-  EXPECT_GT(granted, 4);
+  EXPECT_EQ(granted, 5);
 }
 
 TEST(Subscriptions, WithoutAGraceSilentClientsAreForgottenAtTheHeartbeatTimeout) {

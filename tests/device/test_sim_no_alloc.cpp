@@ -20,10 +20,22 @@ using namespace thx::dev;
 
 namespace {
 
-long allocationsDuringTicks(OutputMode mode, const SimFaults& faults) {
+// A bump under the script (device/surface_height.hpp): the hand's script samples it every step.
+class Bump final : public SurfaceHeight {
+ public:
+  bool heightAt(const Eigen::Vector2d& xy, double& z_m) const override {
+    if (xy.squaredNorm() > 1e-3) return false;
+    z_m = 0.01 * (1.0 - 1e3 * xy.squaredNorm());
+    return true;
+  }
+  double top() const override { return 0.01; }
+};
+
+long allocationsDuringTicks(OutputMode mode, const SimFaults& faults, const SurfaceHeight* height = nullptr) {
   SimPhantomConfig c;
   c.output_mode = mode;
   c.faults = faults;
+  c.surface_height = height;
   const HandScript script({HandPress{{0.0, 0.0}, 1.0, 0.3}, HandStroke{{0.0, 0.0}, {0.02, 0.0}, 0.05, 1.0}});
   SimPhantom sim(c, script);
   sim.open();
@@ -46,6 +58,11 @@ TEST(SimNoAlloc, ReadAndWriteNeverAllocate) {
   const SimFaults faults{100, 5, 200, 5};
   EXPECT_EQ(allocationsDuringTicks(OutputMode::Force, faults), 0);
   EXPECT_EQ(allocationsDuringTicks(OutputMode::Planes, faults), 0);
+}
+
+TEST(SimNoAlloc, ReadAndWriteNeverAllocateOnACurvedSurface) {
+  const Bump bump;
+  EXPECT_EQ(allocationsDuringTicks(OutputMode::Force, SimFaults{}, &bump), 0);
 }
 
 TEST(SimNoAlloc, TheCounterWorks) {

@@ -83,6 +83,10 @@ inline thx_msgs::contact_t make_contact(int k) {
   m.f_normal = val(k, 90);
   fill(m.f_normal_world, k, 91);
   fill(m.v_tangent_world, k, 95);
+  m.triangle = std::int32_t(ival(k, 98) & 0x7fffffff);
+  fill(m.barycentric, k, 99);
+  fill(m.tangent_world, k, 102);
+  fill(m.bitangent_world, k, 105);
   return m;
 }
 inline void expect_eq(const thx_msgs::contact_t& a, const thx_msgs::contact_t& b) {
@@ -104,6 +108,10 @@ inline void expect_eq(const thx_msgs::contact_t& a, const thx_msgs::contact_t& b
   EXPECT_EQ(a.f_normal, b.f_normal);
   expect_array_eq(a.f_normal_world, b.f_normal_world, "f_normal_world");
   expect_array_eq(a.v_tangent_world, b.v_tangent_world, "v_tangent_world");
+  EXPECT_EQ(a.triangle, b.triangle);
+  expect_array_eq(a.barycentric, b.barycentric, "barycentric");
+  expect_array_eq(a.tangent_world, b.tangent_world, "tangent_world");
+  expect_array_eq(a.bitangent_world, b.bitangent_world, "bitangent_world");
 }
 
 inline thx_msgs::contact_batch_t make_contact_batch(int k, int num_samples) {

@@ -86,7 +86,7 @@ TEST(MessagesPubSub, EmptyBatch) {
   check_pubsub(make_contact_batch(3, 0), thx_msgs::stream_channel(thx_msgs::kStreamContact, true, "audio"));
 }
 
-// 1000 samples = one second of ticks: 318 kB, larger than one UDP datagram (fine on memq;
+// 1000 samples = one second of ticks: 394 kB, larger than one UDP datagram (fine on memq;
 // on udpm LCM would fragment it, see docs/messages.md).
 TEST(MessagesPubSub, ThousandSampleBatch) {
   const thx_msgs::contact_batch_t batch = make_contact_batch(4, 1000);

@@ -43,6 +43,7 @@ const std::map<std::string, RestBy> kRestBy = {
 // Not silent yet (docs/physics.md, "Known gaps"), each with what was measured.
 const std::map<std::string, const char*> kOpen = {
     {"marble_rolling_bricks", "rolls on across the joints by design (the audio client's onset check, no rolling friction)"},
+    {"brick_bowl", "a mesh surface: physics-client refuses it (physics on meshes is issue 29)"},
 };
 #ifdef THX_SCENE_REST_SLOW
 constexpr bool kSlowBuild = true;

@@ -56,6 +56,15 @@ struct ScenesFolder {
                             "  type: sim\n  model: phantom_omni\n  stiffness_fraction: 0.4\n"));
     write("fast_servo", sceneText("tilted", "{extent: 0.2, angle_deg: 0, direction_deg: 0}", "normal", kDesktop) +
                             "rates:\n  servo_hz: 2000\n");
+    // Mesh scenes (surface.mesh): a small bowl, and one whose mesh is over its triangle bound
+    // (line 7: the mesh).
+    const std::string bowl_texture = "  texture: {generator: bricks, size: 64, params: {extent: 0.04}}\n";
+    write("bowl", "version: 1\nname: bowl\nsurface:\n  size: [0.04, 0.04]\n" + bowl_texture +
+                      "  pose: {position: [0, 0, -0.04]}\n  mesh: {generator: bowl, size: 0.05, segments: 16}\ndevice:\n" +
+                      kDesktop);
+    write("big_bowl", "version: 1\nname: big bowl\nsurface:\n  size: [0.04, 0.04]\n" + bowl_texture +
+                          "  pose: {position: [0, 0, -0.04]}\n  mesh: {generator: bowl, size: 0.05, max_triangles: 1000}\n"
+                          "device:\n" + kDesktop);
   }
   ~ScenesFolder() {
     std::error_code ec;
@@ -206,6 +215,48 @@ TEST(SceneSwitcher, ABrokenSceneIsRefusedWithTheLoadersFileAndLineAndTheOldScene
   const std::optional<Reply> good = server.tickUntilAnswered();
   ASSERT_TRUE(good.has_value());
   EXPECT_TRUE(good->accepted) << good->reason;
+}
+
+// A mesh scene is built on the loader's thread (mesh, hierarchy, renderer) and handed over like a
+// texture: the servo renders the mesh from the swap on, without allocating or freeing.
+TEST(SceneSwitcher, AMeshSceneIsBuiltOffTheServoThreadAndRenderedFromTheSwapOn) {
+  ScenesFolder folder;
+  SwitchingServer server(folder);
+  server.ticks(10);
+  ASSERT_EQ(server.rig.servo().meshRenderer(), nullptr);
+  ASSERT_FALSE(server.send("bowl").has_value());
+  const std::optional<Reply> reply = server.tickUntilAnswered();
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_TRUE(reply->accepted) << reply->reason;
+  EXPECT_EQ(server.last.scene_swaps, 1u);
+  ASSERT_NE(server.rig.servo().meshRenderer(), nullptr);
+  EXPECT_DOUBLE_EQ(server.rig.servo().meshRenderer()->config().stiffness_n_per_m, 400.0);  // 0.4 x 1000 N/m
+  EXPECT_EQ(server.servo_allocations, 0);
+  EXPECT_EQ(server.servo_frees, 0);
+  // And back to a plane scene.
+  ASSERT_FALSE(server.send("valley").has_value());
+  const std::optional<Reply> back = server.tickUntilAnswered();
+  ASSERT_TRUE(back.has_value());
+  EXPECT_TRUE(back->accepted) << back->reason;
+  EXPECT_EQ(server.rig.servo().meshRenderer(), nullptr);
+  EXPECT_EQ(server.servo_allocations, 0);
+  EXPECT_EQ(server.servo_frees, 0);
+}
+
+TEST(SceneSwitcher, AMeshOverItsBoundIsRefusedNamingTheSceneLineAndTheOldSceneKeepsRunning) {
+  ScenesFolder folder;
+  SwitchingServer server(folder);
+  const tex::TexturedSurface* before = &server.rig.renderer().surface();
+  ASSERT_FALSE(server.send("big_bowl").has_value());
+  const std::optional<Reply> reply = server.tickUntilAnswered();
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_FALSE(reply->accepted);
+  EXPECT_NE(reply->reason.find("big_bowl.yaml:7:"), std::string::npos) << reply->reason;
+  EXPECT_NE(reply->reason.find("more than the limit of 1000"), std::string::npos) << reply->reason;
+  server.ticks(300);
+  EXPECT_EQ(server.last.scene_swaps, 0u);
+  EXPECT_EQ(server.rig.servo().meshRenderer(), nullptr);
+  EXPECT_EQ(&server.rig.renderer().surface(), before);
 }
 
 TEST(SceneSwitcher, WhatASwitchCannotChangeIsRefusedAndNamed) {

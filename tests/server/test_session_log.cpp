@@ -181,6 +181,24 @@ TEST(SessionLog, BadFilesGiveErrorsThatNameTheProblem) {
   EXPECT_NE(m2.find("event 1 (THX_DEVICE_STATE): does not decode as device_state_t"), std::string::npos) << m2;
   fs::remove(wrong);
 
+  // One recorded by a build with another layout of device_state_t (its fingerprint before
+  // proxy_world was added, docs/messages.md §6): said to be from another protocol version.
+  const std::string older = tempPath("older.lcm");
+  {
+    lcm::LogFile log(older, "w");
+    std::uint8_t bytes[196] = {0x91, 0x6e, 0xef, 0x9d, 0x70, 0x65, 0x8d, 0x17};
+    lcm::LogEvent e{};
+    e.timestamp = 1;
+    e.channel = "THX_DEVICE_STATE";
+    e.datalen = sizeof bytes;
+    e.data = bytes;
+    log.writeEvent(&e);
+  }
+  const std::string m3 = message(older);
+  EXPECT_NE(m3.find("event 1 (THX_DEVICE_STATE): does not decode as device_state_t"), std::string::npos) << m3;
+  EXPECT_NE(m3.find("another protocol version; record it again"), std::string::npos) << m3;
+  fs::remove(older);
+
   // A log without device states (e.g. recorded with lcm-logger from other channels).
   const std::string other = tempPath("other.lcm");
   {

@@ -1,6 +1,7 @@
 // TexturedSurface beyond a clamped border: a normal map's virtual slope continues, a relief is
 // flat there (edge depth, the plane's normal), both for the interpolated reading (at) and for
-// texel centres (texelPoint), which the physics relief collision reads.
+// texel centres (texelPoint), which the physics relief collision reads. And a map laid at another
+// size than its normals were made for (setNormalsMadeFor): its slopes follow the size it is laid at.
 #include <gtest/gtest.h>
 
 #include "textures/textured_surface.hpp"
@@ -67,6 +68,22 @@ TEST(TexturedSurface, WrappedReliefRepeatsItsNormalsEverywhere) {
   EXPECT_TRUE(s.at(0.05, 0.0).n_local.isApprox(tilted, 1e-4));
   EXPECT_TRUE(s.texelPoint(5, 1).n_local.isApprox(tilted, 1e-4));
   EXPECT_NEAR(s.texelPoint(5, 1).q_local.z(), -double(map.depth(1, 1)), 1e-9);
+}
+
+// Laid at 0.04 m but made for 0.08 m along x and 0.02 m along y: the slopes double along x and
+// halve along y, the depth stays; without the call, or with a zero size, the map's normals.
+TEST(TexturedSurface, NormalsFollowTheSizeTheMapIsLaidAt) {
+  const TextureMap map = tiltedRelief(Representation::Relief);
+  TexturedSurface s = surfaceOf(map, Address::Wrap, true);
+  const SurfacePoint before = s.at(0.005, 0.003);
+  s.setNormalsMadeFor({0.08, 0.02});
+  const SurfacePoint after = s.at(0.005, 0.003);
+  const Eigen::Vector3d expected = Eigen::Vector3d(0.3 * 2.0, 0.1 * 0.5, 0.95).normalized();
+  EXPECT_TRUE(after.n_local.isApprox(expected, 1e-4)) << after.n_local.transpose();  // the map stores its normals quantised
+  EXPECT_EQ(after.height_m, before.height_m);
+  EXPECT_TRUE(s.texelPoint(1, 2).n_local.isApprox(expected, 1e-4));
+  s.setNormalsMadeFor({0.0, 0.0});
+  EXPECT_TRUE(s.at(0.005, 0.003).n_local.isApprox(before.n_local, 1e-12));
 }
 
 }  // namespace test_textured_surface

@@ -1,5 +1,7 @@
 // visual-client --surface-mesh (issue 28): a built-in textured mesh drawn instead of the plane,
-// headless; the command line refuses what the mesh does not draw, naming the option.
+// headless; the command line refuses what the mesh does not draw, naming the option. A mesh scene
+// (surface.mesh) is drawn from its own mesh, a recorded session of it with the pen, and --window
+// or --live refuse it by name.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -72,6 +74,43 @@ TEST(VisualMeshClient, DrawsTheMeshWhereTheCameraLooks) {
     // in the middle.
     EXPECT_EQ(ppmPixel(ppm, 1, 1), (std::array<int, 3>{20, 23, 28})) << shape;
     EXPECT_GT(ppmPixel(ppm, 48, 32)[0], 60) << shape;
+  }
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+TEST(VisualMeshClient, AMeshSceneIsDrawnFromItsOwnMeshAndItsRecordingWithThePen) {
+  const test::TempDir dir("visual_mesh_scene");
+  const std::string scene = std::string(THX_SOURCE_DIR) + "/scenes/brick_bowl.yaml";
+  const std::string vc = std::string("LP_NUM_THREADS=2 ") + THX_VISUAL_CLIENT + " --scene " + scene;
+  // The bowl from above its rim: the background in the corner, the lit bowl in the middle.
+  const std::string shot = dir.file("bowl.ppm");
+  ASSERT_EQ(std::system((vc + " --screenshot " + shot + " --size 96x64 --quiet").c_str()), 0);
+  const std::string ppm = slurp(shot);
+  EXPECT_EQ(ppmPixel(ppm, 1, 1), (std::array<int, 3>{20, 23, 28}));
+  EXPECT_GT(ppmPixel(ppm, 48, 32)[0], 40);
+  // A recording of the scene, two frames a second of its first 1.5 s: the pen hovers over the rim
+  // and comes down, drawn beside the bowl.
+  const std::string log = dir.file("bowl.lcm");
+  const std::string hd = std::string(THX_HAPTICD) + " --scene " + scene + " --lockstep --no-lcm --no-mlock --quiet --duration 1.5 --record " +
+                         log + " --flight-dir " + dir.file("") + " > /dev/null";
+  ASSERT_EQ(std::system(hd.c_str()), 0) << hd;
+  ASSERT_EQ(std::system((vc + " --replay-log " + log + " --rate 2 --format ppm --size 96x64 --out " + dir.file("frames") +
+                         " --quiet").c_str()),
+            0);
+  const std::string first = slurp(dir.file("frames/frame_0000.ppm")), last = slurp(dir.file("frames/frame_0002.ppm"));
+  ASSERT_FALSE(first.empty());
+  ASSERT_FALSE(last.empty());
+  EXPECT_NE(first, last);  // the pen moved
+  // --window and --live draw planes only.
+  for (const char* mode : {"--window --window-frames 1", "--live --out " }) {
+    const std::string cmd = vc + " " + mode + (std::string(mode).rfind("--live", 0) == 0 ? dir.file("live") : "") +
+                            " --quiet 2> " + dir.file("err.txt");
+    EXPECT_NE(std::system(cmd.c_str()), 0) << cmd;
+    EXPECT_NE(slurp(dir.file("err.txt")).find("surface.mesh"), std::string::npos) << slurp(dir.file("err.txt"));
   }
 }
 

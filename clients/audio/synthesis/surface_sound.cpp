@@ -32,6 +32,7 @@ AudibleOptions audibleOptions(const SlabSettings& o) {
 SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& o,
                                const std::function<void(const scene::SceneSurface&)>& check_surface) {
   scene::Scene scene = scene::loadScene(scene_file);
+  scene::requirePlaneSurface(scene, "audio-client");
   scene::SurfaceTextureOptions to;
   to.smooth = tex::smoothTexture;
   scene::SceneSurface surface = scene::buildSceneSurface(scene, to);

@@ -54,6 +54,7 @@ int run(const ModalOptions& o) {
 // One line per body of the scene: what it is, how many modes it has in the band, the lowest ones.
 int runScene(const ModalOptions& o) {
   const thx::scene::Scene scene = thx::scene::loadScene(o.scene);
+  thx::scene::requirePlaneSurface(scene, "modal-analyze");
   SceneMeshOptions mo;
   mo.slab_thickness_m = o.slab_thickness;
   if (o.clamp_edges) mo.clamp_slab = true;

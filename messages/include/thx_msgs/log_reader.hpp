@@ -156,10 +156,21 @@ class LogReader {
 };
 
 // Decodes a record as M; throws LogError naming the event and the type when it does not decode.
+// A record whose fingerprint (its first 8 bytes) is not this build's M says so: a log recorded by
+// a build with another layout of M (another protocol version, docs/messages.md §2) is not corrupt,
+// only to be recorded again.
 template <class M>
 void decodeLogRecord(const LogRecord& r, const LogPosition& at, M& out) {
-  if (try_decode(r.data.data(), r.data.size(), out) < 0)
-    throw LogError(at.where() + ": does not decode as " + M::getTypeName() + " (wrong type or corrupt)");
+  if (try_decode(r.data.data(), r.data.size(), out) >= 0) return;
+  std::uint64_t hash = 0;
+  if (r.data.size() >= 8) {
+    for (int i = 0; i < 8; ++i) hash = (hash << 8) | static_cast<std::uint8_t>(r.data[std::size_t(i)]);
+  }
+  if (r.data.size() >= 8 && hash != static_cast<std::uint64_t>(M::getHash()))
+    throw LogError(at.where() + ": does not decode as " + M::getTypeName() +
+                   " (wrong type, or recorded by a build with another layout of it: another protocol version; "
+                   "record it again with this build)");
+  throw LogError(at.where() + ": does not decode as " + M::getTypeName() + " (wrong type or corrupt)");
 }
 
 // Calls fn(message, position) for every event on `channel`, in file order. Throws LogError when

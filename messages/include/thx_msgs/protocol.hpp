@@ -261,7 +261,7 @@ inline std::size_t contact_batch_encoded_size(std::size_t n) noexcept {
   return kBatchHeaderBytes + n * static_cast<std::size_t>(contact_sample_encoded_size());
 }
 // The most samples a batch may carry and still go out over udpm as one datagram on a channel
-// of `channel_length` characters (205 for every valid channel name).
+// of `channel_length` characters (165 for every valid channel name, 166 up to 46 characters).
 inline std::size_t max_unfragmented_batch_samples(std::size_t channel_length = kMaxChannelLength) noexcept {
   const std::size_t overhead = channel_length + 1 + kBatchHeaderBytes;
   if (overhead >= kLcmShortMessageMaxSize) return 0;

@@ -1,0 +1,56 @@
+#include "scenes/scene_mesh.hpp"
+
+#include "meshes/builtin_shapes.hpp"
+#include "meshes/mesh_check.hpp"
+#include "meshes/mesh_import.hpp"
+#include "scenes/scene_frames.hpp"
+
+namespace thx::scene {
+
+namespace {
+
+mesh::UvProjection toImport(MeshProjection p) {
+  switch (p) {
+    case MeshProjection::Planar: return mesh::UvProjection::Planar;
+    case MeshProjection::Cylindrical: return mesh::UvProjection::Cylindrical;
+    case MeshProjection::Spherical: return mesh::UvProjection::Spherical;
+    case MeshProjection::None: break;
+  }
+  return mesh::UvProjection::None;
+}
+
+}  // namespace
+
+SceneMesh buildSceneMesh(const Scene& scene) {
+  if (!scene.surface.mesh) throw SceneError({scene.source, 0, 0}, "surface.mesh", "the scene's surface is a plane");
+  const MeshSource& source = *scene.surface.mesh;
+  mesh::MeshLimits limits;
+  limits.max_triangles = source.max_triangles;
+  limits.require_closed = source.closed;
+  SceneMesh out;
+  out.mesh_to_world = toIsometry(scene.surface.pose);
+  try {
+    if (source.kind == MeshSource::Kind::Generator) {
+      mesh::GeneratedMesh shape =
+          mesh::builtInShape(source.generator, source.size_m, scene.surface.size_m.x(), source.segments);
+      mesh::checkMesh(shape.mesh, limits);
+      out.mesh = std::move(shape.mesh);
+      out.tile_m = shape.tile_used_m;
+    } else {
+      mesh::ImportOptions options;
+      options.unit_m = source.unit_m;
+      options.projection = toImport(source.projection);
+      options.tile_m = scene.surface.size_m.x();
+      options.limits = limits;
+      out.mesh = mesh::importMesh(source.file, options);
+      out.tile_m = scene.surface.size_m;
+    }
+  } catch (const SceneError&) {
+    throw;
+  } catch (const thx::Error& e) {
+    throw SceneError(source.where, "surface.mesh", e.what());
+  }
+  return out;
+}
+
+}  // namespace thx::scene
