@@ -11,7 +11,7 @@
 
 namespace thx::mesh {
 
-// "sphere|cylinder|torus|bowl|vase", for help texts and errors.
+// "sphere|cylinder|torus|bowl|vase|box|room|plate", for help texts and errors.
 extern const char* const kBuiltInShapes;
 // 128 segments around: a silhouette of a 5 cm radius is then within 0.15 mm of the circle.
 constexpr int kDefaultShapeSegments = 128;
@@ -23,7 +23,10 @@ bool isBuiltInShape(const std::string& shape);
 //   torus     major radius s, minor radius 0.4 s, n x 3n/8
 //   bowl      radius s, height 0.8 s, wall 0.08 s, turned with n segments (profile 3n/8 samples)
 //   vase      height 2.4 s, widest radius s, wall 0.06 s, turned with n segments (profile n/2)
-// Every shape stands on z = 0 or (sphere, torus) is centred on the origin.
+//   box       a cube of side 2 s, each face n/16 x n/16 cells (at least 1)
+//   room      the inside of that cube (its faces face inward: three meet at each inside corner)
+//   plate     2 s x 2 s, 0.05 s thick (1 mm for s = 2 cm), cells as the box's
+// Bowl, vase and cylinder stand on z = 0; the others are centred on the origin.
 GeneratedMesh builtInShape(const std::string& shape, double size_m, double tile_m,
                            int segments = kDefaultShapeSegments);
 

@@ -24,7 +24,7 @@ std::vector<std::pair<std::string, std::string>> shapeChoices() {
 
 MeshSource parseMesh(const Field& field, const Surface& surface) {
   const FileOrGenerator given = parseFileOrGenerator(
-      field, {"generator", "size", "segments", "file", "unit", "projection", "max_triangles", "closed"}, "mesh",
+      field, {"generator", "size", "segments", "file", "unit", "projection", "max_triangles", "closed", "pose"}, "mesh",
       "{generator: SHAPE, size: m} or {file: PATH}");
   const auto& file = given.file;
   const auto& generator = given.generator;
@@ -53,6 +53,7 @@ MeshSource parseMesh(const Field& field, const Surface& surface) {
                                                 {"spherical", MeshProjection::Spherical}});
   }
   if (auto t = field.find("max_triangles")) m.max_triangles = std::size_t(t->integer(1, kMaxTrianglesLimit, "triangles"));
+  if (auto p = field.find("pose")) m.pose = parsePose(*p);
   if (auto c = field.find("closed"))
     m.closed = c->choice<bool>({{"true", true}, {"false", false}});
   return m;

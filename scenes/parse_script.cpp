@@ -11,7 +11,7 @@ constexpr double kMaxStepDurationS = 3600.0;
 constexpr double kMaxStrokeSpeedMPerS = 2.0;  // faster than any hand stroke
 
 // Positions are surface-local and must lie on the textured rectangle the scene defines. On a mesh
-// they are (x, y) in the mesh's frame: hapticd checks that the mesh lies under each when it builds
+// they are (x, y) in the surface frame: hapticd checks that the mesh lies under each when it builds
 // the scene (server/prepared_scene.hpp), as the mesh is not read here.
 Eigen::Vector2d parsePoint(const Field& field, const Surface& surface) {
   const Eigen::Vector2d p = field.vector2(closedRange(-100.0, 100.0, "m"));

@@ -46,8 +46,8 @@ struct Roughness {
 };
 
 // surface.mesh: the surface as a textured triangle mesh instead of the plane (docs/scenes.md,
-// "surface.mesh"; built by scenes/scene_mesh.hpp). The surface's pose places the mesh's own
-// coordinates in the world, and its size is then one texture tile in metres.
+// "surface.mesh"; built by scenes/scene_mesh.hpp). The mesh's pose places it in the surface frame,
+// the surface's pose that frame in the world; the surface's size is then one texture tile in metres.
 enum class MeshProjection { None, Planar, Cylindrical, Spherical };  // uv for a file without them
 
 struct MeshSource {
@@ -61,6 +61,9 @@ struct MeshSource {
   MeshProjection projection = MeshProjection::None;  // Kind::File
   std::size_t max_triangles = 1'000'000;  // a mesh with more is refused
   bool closed = false;    // every edge must be shared by exactly two triangles
+  // The mesh in the surface frame (the surface's pose places that frame in the world, and the
+  // simulated hand's script works in it): a cylinder laid on its side, a sphere's pole turned away.
+  Pose pose;
   SourceLocation where;   // of `mesh:` in the scene file, for errors found when building it
 };
 

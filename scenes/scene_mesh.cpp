@@ -28,7 +28,7 @@ SceneMesh buildSceneMesh(const Scene& scene) {
   limits.max_triangles = source.max_triangles;
   limits.require_closed = source.closed;
   SceneMesh out;
-  out.mesh_to_world = toIsometry(scene.surface.pose);
+  out.mesh_to_world = toIsometry(scene.surface.pose) * toIsometry(source.pose);
   try {
     if (source.kind == MeshSource::Kind::Generator) {
       mesh::GeneratedMesh shape =

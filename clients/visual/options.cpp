@@ -90,6 +90,8 @@ Textured meshes (issue 28; docs/visual.md "Textured meshes"):
                            torus     radii s and 0.4 s, 128 x 48
                            bowl      radius s, height 0.8 s, wall 0.08 s (turned, 128 segments)
                            vase      height 2.4 s, widest radius s, wall 0.06 s (turned, 128)
+                           box       a cube of side 2 s, 8 x 8 cells a face; room: its inside
+                           plate     2 s x 2 s, 0.05 s thick
   --surface-mesh-tile M  metres one texture tile spans on the mesh (default: the plane's width,
                          the texture at the scene's scale; rounded to whole tiles around the shape)
 

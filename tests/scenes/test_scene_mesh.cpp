@@ -67,7 +67,7 @@ TEST(SceneMesh, BadSections) {
   expectError(sceneWith("{generator: bowl, size: 0.06, file: cube.obj}"), "surface.mesh", {"both file and generator"});
   expectError(sceneWith("{size: 0.06}"), "surface.mesh", {"no mesh source", "{generator: SHAPE, size: m} or {file: PATH}"});
   expectError(sceneWith("{generator: bwol, size: 0.06}"), "surface.mesh.generator",
-              {"did you mean 'bowl'?", "sphere, cylinder, torus, bowl, vase", "got 'bwol'"});
+              {"did you mean 'bowl'?", "sphere, cylinder, torus, bowl, vase, box, room, plate", "got 'bwol'"});
   expectError(sceneWith("{generator: bowl}"), "surface.mesh.size", {"missing required field"});
   expectError(sceneWith("{generator: bowl, size: 0.06, unit: 0.001}"), "surface.mesh.unit", {"only to mesh files"});
   expectError(sceneWith("{file: cube.obj, segments: 64}"), "surface.mesh.segments", {"only to generated meshes"});
@@ -113,6 +113,16 @@ TEST(SceneMesh, PosePlacesTheMesh) {
                                   "", "[0.04, 0.04]\n  pose: {position: [0, 0, -0.04], rpy_deg: [0, 0, 90]}"));
   const SceneMesh m = buildSceneMesh(s);
   EXPECT_TRUE((m.mesh_to_world * Eigen::Vector3d(1, 0, 0)).isApprox(Eigen::Vector3d(0, 1, -0.04), 1e-12));
+}
+
+// The mesh's own pose places it in the surface frame, the surface's that frame in the world.
+TEST(SceneMesh, TheMeshsPoseIsWithinTheSurfaceFrame) {
+  const Scene s = parse(sceneWith("{generator: cylinder, size: 0.03, segments: 16, pose: {position: [-0.03, 0, 0], rpy_deg: [0, 90, 0]}}",
+                                  "", "[0.04, 0.04]\n  pose: {position: [0, 0, -0.05]}"));
+  const SceneMesh m = buildSceneMesh(s);
+  // The tube's axis (its z) runs along the surface frame's x, from x = -0.03; the frame sits 5 cm down.
+  EXPECT_TRUE((m.mesh_to_world.linear() * Eigen::Vector3d::UnitZ()).isApprox(Eigen::Vector3d::UnitX(), 1e-12));
+  EXPECT_TRUE((m.mesh_to_world * Eigen::Vector3d::Zero()).isApprox(Eigen::Vector3d(-0.03, 0, -0.05), 1e-12));
 }
 
 TEST(SceneMesh, FileScaledByItsUnit) {

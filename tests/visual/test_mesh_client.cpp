@@ -32,7 +32,7 @@ TEST(VisualMeshClient, CommandLineMistakesNameTheOption) {
     a.insert(a.end(), more.begin(), more.end());
     return messageOf(a);
   };
-  EXPECT_EQ(with({"cube"}), "--surface-mesh: expected sphere|cylinder|torus|bowl|vase, got 'cube'");
+  EXPECT_EQ(with({"cube"}), "--surface-mesh: expected sphere|cylinder|torus|bowl|vase|box|room|plate, got 'cube'");
   EXPECT_EQ(with({"vase", "--mode", "mesh:16"}), "--surface-mesh: --mode normal or relief (mesh:N displaces the plane's grid)");
   EXPECT_EQ(with({"vase", "--search", "maxmip"}), "--surface-mesh: --search linear (the max-mipmap walk is the plane's)");
   EXPECT_EQ(with({"vase", "--pen", "0,0"}), "--surface-mesh draws no pen: not with --pen");
