@@ -1,12 +1,13 @@
 #pragma once
 // One fuzzing step for mesh files: importMeshFromMemory (meshes/mesh_import.hpp) of the bytes as
-// OBJ or PLY, so Assimp's reader for that format (the only one the import registers), for PLY
-// first our rewrite (meshes/ply_guard.hpp), then the flattening, the mesh check, a projection
-// and the vertex frames. Shared by the libFuzzer target and the short run in
+// OBJ, PLY, STL or glTF 2.0, so Assimp's reader for that format (the only one the import
+// registers), for PLY first our rewrite (meshes/ply_guard.hpp), then the flattening, the mesh
+// check, a projection and the vertex frames. Shared by the libFuzzer target and the short run in
 // test_fuzz_mesh_import.cpp.
 //
-// Input: byte 0 picks the mode (bit 0: PLY, else OBJ; bit 1: a planar projection for a file
-// without texture coordinates; bit 2: require a closed surface), the rest is the file. At most
+// Input: byte 0 picks the mode (bits 0 and 3: the format, 0 OBJ, 1 PLY, 8 STL, 9 glTF; bit 1: a
+// planar projection for a file without texture coordinates; bit 2: require a closed surface),
+// the rest is the file (a glTF with its buffers embedded as data: URIs: nothing is read beside it). At most
 // kFuzzMaxTriangles triangles are accepted (MeshLimits::max_triangles, checked before the
 // triangles are copied): a few bytes of OBJ make a triangle, and more of them reach no other code.
 // Properties:
@@ -29,6 +30,12 @@
 namespace thx::fuzz {
 
 inline constexpr std::size_t kFuzzMaxTriangles = 4096;
+
+// The format hint a mode byte picks (bits 0 and 3).
+inline std::string meshFuzzFormat(std::uint8_t mode) {
+  static const char* const kFormats[4] = {"obj", "ply", "stl", "gltf"};
+  return kFormats[(mode & 1) | ((mode & 8) >> 2)];
+}
 
 namespace mesh_detail {
 
@@ -58,7 +65,7 @@ inline Failure checkImported(const mesh::TexturedMesh& m, const mesh::MeshLimits
 inline Failure fuzzMeshImportOnce(std::span<const std::uint8_t> data) {
   if (data.empty()) return std::nullopt;
   const std::uint8_t mode = data[0];
-  const std::string format = (mode & 1) ? "ply" : "obj";
+  const std::string format = meshFuzzFormat(mode);
   const std::string source = "fuzz." + format;
   mesh::ImportOptions options;
   options.limits.max_triangles = kFuzzMaxTriangles;

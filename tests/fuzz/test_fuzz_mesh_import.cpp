@@ -1,10 +1,11 @@
-// Mesh files (OBJ and PLY through Assimp): the fuzz body's seeds and short run
+// Mesh files (OBJ, PLY, STL and glTF 2.0 through Assimp): the fuzz body's seeds and short run
 // (mesh_import_body.hpp), and the bounds on what a file's numbers can make the import allocate.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <map>
 
 #include "tests/fuzz/mesh_import_body.hpp"
 #include "tests/fuzz/seed_writer.hpp"
@@ -40,8 +41,8 @@ std::string dataFile(const std::string& name) {
   return std::string(b.begin(), b.end());
 }
 
-// The test files of tests/data/meshes/ in OBJ and PLY (mode 0: OBJ, 1: PLY, +2: planar
-// projection, +4: closed), one without texture coordinates, and a binary PLY.
+// The test files of tests/data/meshes/ in OBJ, PLY, STL and glTF (mode 0: OBJ, 1: PLY, 8: STL,
+// 9: glTF; +2: planar projection, +4: closed), one without texture coordinates, and a binary PLY.
 std::vector<std::pair<std::string, Bytes>> seeds() {
   const std::string cube_ply = dataFile("cube.ply");
   std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
@@ -58,7 +59,9 @@ std::vector<std::pair<std::string, Bytes>> seeds() {
           {"obj_lines_only", withMode(0, dataFile("lines_only.obj"))},
           {"obj_no_uv_planar", withMode(2, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")},
           {"ply_cube", withMode(5, cube_ply)},
-          {"ply_binary_triangle", withMode(1, binary)}};
+          {"ply_binary_triangle", withMode(1, binary)},
+          {"stl_cube_planar", withMode(8 | 2 | 4, dataFile("cube.stl"))},
+          {"gltf_tetra", withMode(9 | 4, dataFile("tetra.gltf"))}};
 }
 
 // What the import says about `text` read as `hint`: "accepted" or the error's message.
@@ -87,22 +90,23 @@ TEST(FuzzMeshImport, CheckedInSeedsAreTheGeneratedOnes) {
 
 TEST(FuzzMeshImport, SeedsHoldTheProperties) { expectSeedsHold(kTarget, &fuzzMeshImportOnce); }
 
-TEST(FuzzMeshImport, CorpusReachesBothReadersAndTheFrames) {
-  // Guards the corpus's value: OBJ and PLY seeds (ASCII and binary) that import whole, so
-  // mutations start past the readers, in the check and the frames.
-  int obj = 0, ply = 0;
+TEST(FuzzMeshImport, CorpusReachesEveryReaderAndTheFrames) {
+  // Guards the corpus's value: OBJ, PLY (ASCII and binary), STL and glTF seeds that import whole,
+  // so mutations start past the readers, in the check and the frames.
+  std::map<std::string, int> whole;
   for (const Bytes& seed : loadCorpus(kTarget)) {
-    const bool is_ply = seed[0] & 1;
     mesh::ImportOptions o;
     if (seed[0] & 2) o.projection = mesh::UvProjection::Planar;
     try {
-      mesh::importMeshFromMemory(seed.data() + 1, seed.size() - 1, is_ply ? "ply" : "obj", "seed", o);
-      ++(is_ply ? ply : obj);
+      mesh::importMeshFromMemory(seed.data() + 1, seed.size() - 1, meshFuzzFormat(seed[0]), "seed", o);
+      ++whole[meshFuzzFormat(seed[0])];
     } catch (const Error&) {  // the seeds of refusals
     }
   }
-  EXPECT_EQ(obj, 2);
-  EXPECT_EQ(ply, 2);
+  EXPECT_EQ(whole["obj"], 2);
+  EXPECT_EQ(whole["ply"], 2);
+  EXPECT_EQ(whole["stl"], 1);
+  EXPECT_EQ(whole["gltf"], 1);
 }
 
 TEST(FuzzMeshImport, ShortRun) { shortRun(kTarget, &fuzzMeshImportOnce, 300); }
