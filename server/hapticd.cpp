@@ -17,11 +17,9 @@
 #include "base/program_main.hpp"
 #include "device/replay_device.hpp"
 #include "device/sim_phantom.hpp"
-#include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
 #include "server/hapticd_options.hpp"
 #include "server/mesh_scene.hpp"
-#include "server/mesh_surface_height.hpp"
 #include "server/multicast_path.hpp"
 #include "server/process_memory.hpp"
 #include "server/receiver.hpp"
@@ -53,8 +51,7 @@ int run(const thx::srv::HapticdOptions& o) {
   const std::shared_ptr<const srv::MeshGeometry> mesh = sc.surface.mesh ? srv::buildMeshGeometry(sc) : nullptr;
   std::unique_ptr<srv::MeshSurfaceHeight> hand_surface;
   if (mesh) {
-    hand_surface = std::make_unique<srv::MeshSurfaceHeight>(
-        mesh->bvh, scene::planeMapping(sc.surface).plane_to_world.inverse() * mesh->scene_mesh.mesh_to_world);
+    hand_surface = srv::handSurfaceFor(sc, *mesh);
     const bool simulated = o.device.rfind("replay:", 0) != 0 && vrpn_address.empty();
     if (simulated) srv::checkScriptOnMesh(sc, *hand_surface);
   }

@@ -1,5 +1,7 @@
 #include "server/mesh_scene.hpp"
 
+#include "scenes/scene_frames.hpp"
+
 namespace thx::srv {
 
 MeshGeometry::MeshGeometry(scene::SceneMesh built)
@@ -7,6 +9,11 @@ MeshGeometry::MeshGeometry(scene::SceneMesh built)
 
 std::shared_ptr<const MeshGeometry> buildMeshGeometry(const scene::Scene& scene) {
   return std::make_shared<const MeshGeometry>(scene::buildSceneMesh(scene));
+}
+
+std::unique_ptr<MeshSurfaceHeight> handSurfaceFor(const scene::Scene& scene, const MeshGeometry& mesh) {
+  return std::make_unique<MeshSurfaceHeight>(
+      mesh.bvh, scene::planeMapping(scene.surface).plane_to_world.inverse() * mesh.scene_mesh.mesh_to_world);
 }
 
 std::unique_ptr<TexturedMeshRenderer> buildMeshRenderer(const MeshGeometry& geometry,

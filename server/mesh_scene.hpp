@@ -8,6 +8,7 @@
 
 #include "scenes/scene.hpp"
 #include "scenes/scene_mesh.hpp"
+#include "server/mesh_surface_height.hpp"
 #include "server/textured_mesh_renderer.hpp"
 #include "server/triangle_bvh.hpp"
 #include "server/triangle_mesh.hpp"
@@ -28,6 +29,10 @@ struct MeshGeometry {
 
 // Throws scene::SceneError (surface.mesh) for the mesh's errors, thx::Error for the hierarchy's.
 std::shared_ptr<const MeshGeometry> buildMeshGeometry(const scene::Scene& scene);
+
+// The simulated hand's heights over the scene's mesh, seen from above in the surface frame (the
+// frame its script works in, device/hand_script.hpp). The mesh must outlive it.
+std::unique_ptr<MeshSurfaceHeight> handSurfaceFor(const scene::Scene& scene, const MeshGeometry& mesh);
 
 // The servo's renderer for the mesh with `surface`'s texture map and sampling (its plane mapping is
 // not used), relief read as displacement when the surface uses it. Both must outlive the renderer.

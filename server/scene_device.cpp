@@ -68,8 +68,8 @@ dev::HandScript handScriptFor(const scene::Scene& s, const dev::SurfaceHeight* h
   if (hand_surface) {
     double deepest = 0.0;  // below the hover height over the top
     forEachContactPoint(s, [&](std::size_t, const Eigen::Vector2d& p) {
-      double z = 0.0;
-      if (!hand_surface->heightAt(p, z)) z = 0.0;  // as the script takes it (device/hand_script.hpp)
+      double z = 0.0;  // stays 0 where nothing is under p, as the script takes it (device/hand_script.hpp)
+      hand_surface->heightAt(p, z);
       deepest = std::max(deepest, hand_surface->top() + options.hover_height_m - z);
     });
     options.approach_s = std::max(options.approach_s, deepest / kHandApproachSpeedMPerS);

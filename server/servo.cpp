@@ -97,12 +97,7 @@ const TickRecord& Servo::tick() {
     }
   } else {
     ++counters_.invalid_readings;
-    // The proxy's history means nothing across a bad reading.
-    if (mesh_) {
-      mesh_->reset();
-    } else {
-      renderer_.reset();
-    }
+    resetRenderer();  // the proxy's history means nothing across a bad reading
     // One fault per episode: a device that stays invalid (an unreachable VRPN server) would
     // otherwise fault, and dump a flight record, on every tick. The force stays off meanwhile:
     // nothing is rendered for an invalid reading (f_env below).
@@ -220,6 +215,14 @@ const TickRecord& Servo::tick() {
   }
   out_.push(r);
   return r;
+}
+
+void Servo::resetRenderer() {
+  if (mesh_) {
+    mesh_->reset();
+  } else {
+    renderer_.reset();
+  }
 }
 
 // None -> (a swap offered) RampDown: gain 1 - s(k/N), k = 1..N-1 -> at k = N the renderer takes

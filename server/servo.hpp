@@ -145,6 +145,8 @@ class Servo {
   const MissedTickPolicy& missedTickPolicy() const { return missed_policy_; }
   // The mesh renderer in use (a mesh scene), else nullptr (the plane). Servo thread, or stopped.
   const TexturedMeshRenderer* meshRenderer() const { return mesh_; }
+  // The renderer in use forgets its proxy (after a bad reading; a rig's reset). Servo thread, or stopped.
+  void resetRenderer();
 
  private:
   std::uint32_t latchFaults(std::uint32_t faults);

@@ -18,7 +18,6 @@ ServoConfig servoConfigFor(const dev::DeviceSpec& spec, const ServoRigConfig& c)
 ServoRig::ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surface, const ServoRigConfig& config,
                    TexturedMeshRenderer* mesh)
     : config_(config),
-      mesh_(mesh),
       renderer_(surface, config.renderer),
       passivity_(passivityFor(device.spec(), config)),
       safety_(SafetyConfig::fromSpec(device.spec(), config.period_s)),
@@ -40,8 +39,7 @@ void ServoRig::drain() {
 }
 
 void ServoRig::reset() {
-  renderer_.reset();
-  if (mesh_) mesh_->reset();
+  servo_.resetRenderer();
   passivity_.reset();
   safety_.reset();
   drain();

@@ -54,7 +54,7 @@ class ServoRig {
   const TickRecord& tickAndDrain();
   // Empties the tick ring. Real-time safe.
   void drain();
-  // Renderers, passivity and safety back to their state after construction, the ring emptied
+  // The renderer in use, passivity and safety back to their state after construction, the ring emptied
   // (the device and the servo's counters are not touched).
   void reset();
 
@@ -72,7 +72,6 @@ class ServoRig {
 
  private:
   ServoRigConfig config_;
-  TexturedMeshRenderer* mesh_;  // the first scene's, if a mesh scene (not owned)
   ProxyRenderer renderer_;
   PassivityController passivity_;
   SafetyStage safety_;

@@ -118,11 +118,8 @@ Halfspace TexturedMeshRenderer::planeAt(const MeshContact& at, Eigen::Vector3d& 
   if (texture_.map) {
     const tex::Sample s = tex::sample(*texture_.map, {f.uv.x(), f.uv.y()}, texture_.sampling);
     Eigen::Vector3d n = s.normal.cast<double>();
-    if (texture_.normals_made_for_m.minCoeff() > 0.0) {  // as on the chart (TexturedSurface::setNormalsMadeFor)
-      const Eigen::Vector2d scale = texture_.normals_made_for_m.cwiseQuotient(localScale(at));
-      n.x() *= scale.x();
-      n.y() *= scale.y();
-    }
+    if (texture_.normals_made_for_m.minCoeff() > 0.0)  // as on the chart (TexturedSurface::setNormalsMadeFor)
+      n = tex::scaleSlopes(n, texture_.normals_made_for_m.cwiseQuotient(localScale(at)));
     // The texture's tangent frame is the surface's: +x along +u, +y along +v, +z out.
     n_sampled = (n.x() * f.tangent + n.y() * f.bitangent + n.z() * f.normal).normalized();
     if (texture_.use_relief) relief_depth = double(s.depth);

@@ -31,6 +31,12 @@ struct SurfacePoint {
   TexCoord uv;
 };
 
+// A tangent-frame normal (not yet unit) whose slopes are multiplied by `scale` along x and y: the
+// relief's normal when the map is laid at 1 / scale of the size its normals were made for.
+inline Eigen::Vector3d scaleSlopes(const Eigen::Vector3d& n, const Eigen::Vector2d& scale) {
+  return {n.x() * scale.x(), n.y() * scale.y(), n.z()};
+}
+
 class TexturedSurface {
  public:
   TexturedSurface() = default;
@@ -108,13 +114,7 @@ class TexturedSurface {
     return use_relief_ && sampling_.address == Address::Clamp && (u < 0.0 || u > 1.0 || v < 0.0 || v > 1.0);
   }
   // A normal (not yet unit) with its slopes scaled (setNormalsMadeFor).
-  Eigen::Vector3d slopeScaled(Eigen::Vector3d n) const {
-    if (rescaled_) {
-      n.x() *= slope_scale_.x();
-      n.y() *= slope_scale_.y();
-    }
-    return n;
-  }
+  Eigen::Vector3d slopeScaled(const Eigen::Vector3d& n) const { return rescaled_ ? scaleSlopes(n, slope_scale_) : n; }
   static long long toIndex(double s) {
     constexpr double kLimit = 1e9;
     return (long long)std::floor(std::fmax(-kLimit, std::fmin(kLimit, s)));

@@ -18,6 +18,7 @@ namespace thx::physclient {
 namespace {
 
 scene::SceneSurface buildSurface(const scene::Scene& scene) {
+  scene::requirePlaneSurface(scene, "physics-client");
   scene::SurfaceTextureOptions options;
   options.smooth = tex::smoothTexture;
   return scene::buildSceneSurface(scene, options);
@@ -49,7 +50,7 @@ bool aIsFirst(int id0, int id1) {
 PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
     : scene_(scene),
       options_(options),
-      scene_surface_((scene::requirePlaneSurface(scene, "physics-client"), buildSurface(scene))) {
+      scene_surface_(buildSurface(scene)) {
   world_ = std::make_unique<phys::PhysicsWorld>(options.world);
   const phys::BodyMaterial plane_material = materialOf(scene.surface.material);
   plane_ = surface().usesRelief() ? &world_->addReliefPlane(surface(), plane_material)

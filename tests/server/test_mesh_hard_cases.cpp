@@ -13,10 +13,8 @@
 #include <memory>
 
 #include "device/sim_phantom.hpp"
-#include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
 #include "server/mesh_scene.hpp"
-#include "server/mesh_surface_height.hpp"
 #include "server/prepared_scene.hpp"
 #include "server/scene_device.hpp"
 #include "server/servo_rig.hpp"
@@ -36,8 +34,7 @@ class MeshCase {
     std::ofstream(path_) << yaml;
     scene_ = scene::loadScene(path_);
     mesh_ = srv::buildMeshGeometry(scene_);
-    height_ = std::make_unique<srv::MeshSurfaceHeight>(
-        mesh_->bvh, scene::planeMapping(scene_.surface).plane_to_world.inverse() * mesh_->scene_mesh.mesh_to_world);
+    height_ = srv::handSurfaceFor(scene_, *mesh_);
     srv::checkScriptOnMesh(scene_, *height_);
     device_ = srv::makeSceneDevice(scene_, "", "", /*lockstep=*/true, height_.get());
     prepared_ = srv::prepareScene(scene_, path_, device_.device->spec(), srv::ScenePolicy{}, mesh_);
