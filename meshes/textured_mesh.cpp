@@ -289,6 +289,22 @@ void triangleFrame(const TexturedMesh& mesh, std::uint32_t triangle, Eigen::Vect
   handedness = f.handedness;
 }
 
+Eigen::Vector2d metresPerUv(const TexturedMesh& mesh, std::uint32_t triangle, const SurfaceFrame& frame) {
+  const Triangle& t = mesh.triangles[triangle];
+  const Eigen::Vector3d e1 = mesh.positions[t[1]] - mesh.positions[t[0]];
+  const Eigen::Vector3d e2 = mesh.positions[t[2]] - mesh.positions[t[0]];
+  const Eigen::Vector2d d1 = mesh.uvs[t[1]] - mesh.uvs[t[0]], d2 = mesh.uvs[t[2]] - mesh.uvs[t[0]];
+  const double r = d1.x() * d2.y() - d2.x() * d1.y();
+  double sx = 1.0, sy = 1.0;
+  if (std::fabs(r) > 0.0) {
+    sx = ((e1 * d2.y() - e2 * d1.y()) / r).dot(frame.tangent);
+    sy = ((e2 * d1.x() - e1 * d2.x()) / r).dot(frame.bitangent);
+  }
+  if (!(sx > 0.0) || !std::isfinite(sx)) sx = 1.0;
+  if (!(sy > 0.0) || !std::isfinite(sy)) sy = 1.0;
+  return {sx, sy};
+}
+
 SurfaceFrame frameAt(const TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b, FrameMode mode) {
   const Triangle& t = mesh.triangles[triangle];
   SurfaceFrame f;

@@ -80,6 +80,14 @@ enum class FrameMode {
 SurfaceFrame frameAt(const TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
                      FrameMode mode = FrameMode::InterpolatedPhong);
 
+// Metres per uv unit along the frame's tangent and bitangent on this triangle (its texture
+// mapping: d position / d uv, projected on the frame's axes): the scale the texture is laid at
+// there. A triangle whose mapping folds against the frame, or is degenerate, has no meaningful
+// scale: 1 m per uv unit on that axis. The haptic chart (server/textured_mesh_renderer.hpp) and
+// the visual client's shaders and CPU reference read the texture at this scale, so what is felt
+// and what is seen agree. Real-time safe.
+Eigen::Vector2d metresPerUv(const TexturedMesh& mesh, std::uint32_t triangle, const SurfaceFrame& frame);
+
 // The triangle's own frame (FrameMode::PerTriangle): unit normal, unit +u direction in its plane.
 void triangleFrame(const TexturedMesh& mesh, std::uint32_t triangle, Eigen::Vector3d& normal,
                    Eigen::Vector3d& tangent, double& handedness);

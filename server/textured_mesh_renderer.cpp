@@ -136,22 +136,7 @@ bool TexturedMeshRenderer::smoothlyJoined(const std::uint32_t* held, int count) 
 }
 
 Eigen::Vector2d TexturedMeshRenderer::localScale(const MeshContact& at) const {
-  const mesh::Triangle& t = mesh_->triangles[at.triangle];
-  const Eigen::Vector3d e1 = mesh_->positions[t[1]] - mesh_->positions[t[0]];
-  const Eigen::Vector3d e2 = mesh_->positions[t[2]] - mesh_->positions[t[0]];
-  const Eigen::Vector2d d1 = mesh_->uvs[t[1]] - mesh_->uvs[t[0]], d2 = mesh_->uvs[t[2]] - mesh_->uvs[t[0]];
-  const double r = d1.x() * d2.y() - d2.x() * d1.y();
-  const mesh::SurfaceFrame& f = at.frame;
-  double sx = 1.0, sy = 1.0;
-  if (std::fabs(r) > 0.0) {
-    sx = ((e1 * d2.y() - e2 * d1.y()) / r).dot(f.tangent);
-    sy = ((e2 * d1.x() - e1 * d2.x()) / r).dot(f.bitangent);
-  }
-  // A face whose texture mapping folds against its frame has no meaningful scale: one metre per
-  // tile (the texture is then flat to the pen there, which is what such a face can show).
-  if (!(sx > 0.0) || !std::isfinite(sx)) sx = 1.0;
-  if (!(sy > 0.0) || !std::isfinite(sy)) sy = 1.0;
-  return {sx, sy};
+  return mesh::metresPerUv(*mesh_, at.triangle, at.frame);
 }
 
 tex::PlaneMapping TexturedMeshRenderer::chartAt(const MeshContact& at) const {

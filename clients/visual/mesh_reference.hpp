@@ -5,8 +5,9 @@
 // Per pixel: the first front face along camera.pixelRay() (MeshRayCaster), the frame at that
 // point interpolated as the shader interpolates it (mesh::frameAt, FrameMode::Interpolated: the
 // flat triangle's point, the vertex frames barycentrically, no Phong), and then the plane's
-// reference in that point's tangent plane (MeshSurface::tangentPlane: x along the tangent, y along
-// the bitangent, z along the normal, uv scaled by the tile): the textures library's sample there
+// reference in that point's tangent plane (MeshSurface::chartAt: x along the tangent, y along the
+// bitangent, z along the normal, uv scaled by the face's metres per uv, the normals' slopes turned
+// from the stated tile to that scale, as the haptic chart): the textures library's sample there
 // turned into the mesh frame (n.x T + n.y B + n.z N, so intensity = max(n . l, 0)); for relief the
 // view ray's exact first crossing of the bilinear depth field (firstReliefCrossing) below that
 // plane, which is the shader's tangent-space march solved exactly, and the exact shadow ray

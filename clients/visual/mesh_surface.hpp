@@ -16,9 +16,11 @@ namespace thx::visual {
 
 struct MeshSurface {
   const mesh::TexturedMesh* mesh = nullptr;  // with frames (hasFrames()); must outlive the users
-  // Metres per uv unit along u and v (GeneratedMesh::tile_used_m): what turns the relief's depth
-  // in metres into a step in uv. One value per mesh: where a chart stretches (a sphere towards
-  // its poles, a lathe's narrow parts) the parallax is that of the stated tile.
+  // Metres per uv unit along u and v (GeneratedMesh::tile_used_m): the tile the map's normals
+  // were made for. Where the mesh's uv lays the texture at another scale (a sphere towards its
+  // poles, a lathe's narrow parts, a file's uneven uv), each face is drawn at its own scale
+  // (mesh::metresPerUv: the relief's parallax) with the normals turned to the slopes as laid
+  // there (TexturedSurface::setNormalsMadeFor), as the haptic renderer feels it.
   Eigen::Vector2d tile_m{0.05, 0.05};
   const tex::TextureMap* map = nullptr;  // must outlive the users
   tex::Filter filter = tex::Filter::Bilinear;
@@ -34,6 +36,15 @@ struct MeshSurface {
     tex::PlaneMapping mapping;
     mapping.size_m = tile_m;
     return tex::TexturedSurface(*map, mapping, sampling(), use_relief);
+  }
+  // The tangent plane at a face laid at `metres_per_uv` (mesh::metresPerUv), the normals turned
+  // from tile_m's slopes to that scale's.
+  tex::TexturedSurface chartAt(const Eigen::Vector2d& metres_per_uv) const {
+    tex::PlaneMapping mapping;
+    mapping.size_m = metres_per_uv;
+    tex::TexturedSurface chart(*map, mapping, sampling(), use_relief);
+    chart.setNormalsMadeFor(tile_m);
+    return chart;
   }
 };
 

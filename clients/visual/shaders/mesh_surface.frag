@@ -7,8 +7,13 @@
 // the normal renormalised, the tangent made orthogonal to it (Gram-Schmidt) and renormalised, the
 // bitangent = handedness * N x T. The texture's tangent-space normal n becomes
 // n.x T + n.y B + n.z N. Relief (MODE_RELIEF) marches the view ray below the tangent plane at the
-// pixel's point, in "tangent metres" (x along T, y along B: uv scaled by the mesh's metres per uv
-// unit, u_tile; depth along -N), with the plane's linear then binary search and its shadow ray.
+// pixel's point, in "tangent metres" (x along T, y along B: uv scaled by the face's metres per uv
+// unit; depth along -N), with the plane's linear then binary search and its shadow ray.
+// The face's metres per uv (thx::mesh::metresPerUv) come from the screen derivatives of the
+// position and the uv: both are affine in the same barycentric coordinates, so dP/duv is exact
+// whatever the perspective. The map's normals were made for u_tile; where the face lays the
+// texture at another scale their slopes are turned by u_tile / scale, as the haptic chart turns
+// them (TexturedSurface::setNormalsMadeFor), so what is seen is what is felt.
 // Sampling follows textures/sampling.hpp (surface.frag explains it); the texture always wraps.
 in vec3 v_position;  // mesh frame, metres
 in vec3 v_normal;
@@ -21,7 +26,7 @@ layout(location = 1) out vec4 o_hit;  // u, v (tiles, wrapped), depth (m) of the
 uniform sampler2D u_texels;  // RGBA32F: tangent normal xyz, depth in metres in w
 uniform sampler2D u_depths;  // R32F: depth in metres, GL_REPEAT, filtered as the scene samples
 uniform ivec2 u_texels_size;
-uniform vec2 u_tile;         // metres per uv unit along u and v
+uniform vec2 u_tile;         // metres per uv unit the map's normals were made for
 uniform bool u_bilinear;
 uniform mat4 u_mesh_to_clip;
 uniform vec3 u_camera_mesh;
@@ -36,6 +41,9 @@ uniform int u_shadow_steps;  // 0 = no self-shadowing
 
 // The pixel's uv, reduced to [0, 1): tangent-plane positions xy are measured from it.
 vec2 g_uv0;
+// The face's metres per uv unit along T and B, and the slope factor u_tile / g_scale.
+vec2 g_scale;
+vec2 g_slope;
 // The light in the pixel's tangent frame (x along T, y along B, z along N).
 vec3 g_light_t;
 
@@ -61,7 +69,10 @@ vec4 sampleMap(vec2 uv) {
   return mix(mix(texel(i, j), texel(i + 1, j), f.x), mix(texel(i, j + 1), texel(i + 1, j + 1), f.x), f.y);
 }
 
-vec2 uvOfTangent(vec2 xy) { return g_uv0 + xy / u_tile; }
+vec2 uvOfTangent(vec2 xy) { return g_uv0 + xy / g_scale; }
+
+// The map's normal (not unit) with its slopes as laid on this face.
+vec3 laidNormal(vec4 s) { return vec3(s.xy * g_slope, s.z); }
 
 // The search loops' depth: one hardware-filtered fetch (surface.frag's depthAt).
 float depthAt(vec2 xy) {
@@ -121,6 +132,19 @@ void main() {
   // The corners of a triangle share one handedness (buildVertexFrames splits a mirrored chart).
   vec3 B = (v_tangent.w < 0.0 ? -1.0 : 1.0) * cross(N, T);
   g_uv0 = v_uv - floor(v_uv);
+  {
+    vec3 dpx = dFdx(v_position), dpy = dFdy(v_position);
+    vec2 dux = dFdx(v_uv), duy = dFdy(v_uv);
+    float det = dux.x * duy.y - duy.x * dux.y;
+    // d position / d u and / d v projected on the pixel's frame, (dpx duy.y - dpy dux.y) / det . T
+    // and (dpy dux.x - dpx duy.x) / det . B; a mapping that folds against the frame has no
+    // meaningful scale: 1 m per uv unit there (thx::mesh::metresPerUv).
+    g_scale = det != 0.0 ? vec2(dot(dpx, T) * duy.y - dot(dpy, T) * dux.y, dot(dpy, B) * dux.x - dot(dpx, B) * duy.x) / det
+                         : vec2(1.0);
+    if (!(g_scale.x > 0.0)) g_scale.x = 1.0;
+    if (!(g_scale.y > 0.0)) g_scale.y = 1.0;
+    g_slope = u_tile / g_scale;
+  }
   vec3 view_dir = normalize(v_position - u_camera_mesh);
 #ifdef MODE_RELIEF
   g_light_t = vec3(dot(u_light_mesh, T), dot(u_light_mesh, B), dot(u_light_mesh, N));
@@ -132,16 +156,16 @@ void main() {
   float depth = intersectRelief(xy_per_depth);
   vec3 hit = vec3(xy_per_depth * depth, -depth);
   float lit = lightReaches(hit);
-  vec3 n_t = normalize(sampleMap(uvOfTangent(hit.xy)).xyz);
-  vec3 n = normalize(T * n_t.x + B * n_t.y + N * n_t.z);
+  vec3 n_t = normalize(laidNormal(sampleMap(uvOfTangent(hit.xy))));
+  vec3 n = T * n_t.x + B * n_t.y + N * n_t.z;  // unit: T, B, N are orthonormal
   o_colour = vec4(shade(n, view_dir, lit), 1.0);
   // The depth buffer gets the relief, not the triangles (as the plane's relief mode).
   vec4 clip = u_mesh_to_clip * vec4(v_position + T * hit.x + B * hit.y + N * hit.z, 1.0);
   gl_FragDepth = clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
   o_hit = vec4(uvOfTangent(hit.xy), depth, 1.0);
 #else
-  vec3 n_t = normalize(sampleMap(g_uv0).xyz);
-  vec3 n = normalize(T * n_t.x + B * n_t.y + N * n_t.z);
+  vec3 n_t = normalize(laidNormal(sampleMap(g_uv0)));
+  vec3 n = T * n_t.x + B * n_t.y + N * n_t.z;  // unit: T, B, N are orthonormal
   o_colour = vec4(shade(n, view_dir, 1.0), 1.0);
   o_hit = vec4(g_uv0, 0.0, 1.0);
 #endif
