@@ -178,16 +178,19 @@ tex::TextureMap CurvedSurface::bake(int width, int height) {
   for (int j = 0; j < height; ++j) {
     for (int i = 0; i < width; ++i) {
       const Eigen::Vector2d c = centre(i, j);
-      const Eigen::Vector3d n0 = normal(c.x(), c.y());
-      Eigen::Vector3d t = base(c.x() + e, c.y()) - base(c.x() - e, c.y());
+      const Eigen::Vector3d t = base(c.x() + e, c.y()) - base(c.x() - e, c.y());
       Eigen::Vector3d n_local(0, 0, 1);
       if (t.norm() > 1e-12) {  // zero at a sphere's pole
-        t = (t - n0 * n0.dot(t)).normalized();
-        const Eigen::Vector3d b = n0.cross(t);
-        const Eigen::Vector3d sx = surface(c.x() + e, c.y()) - surface(c.x() - e, c.y());
-        const Eigen::Vector3d sy = surface(c.x(), c.y() + e) - surface(c.x(), c.y() - e);
-        const Eigen::Vector3d n = sx.cross(sy).normalized();
-        n_local = {n.dot(t), n.dot(b), n.dot(n0)};
+        // The depth's slopes per metre of the smooth surface along its tangent and bitangent: a
+        // relief map's normals are the gradient of its own depth, so its texel planes meet where
+        // the depth bends (a ridge's two walls exactly at the ridge). The displaced surface's 3D
+        // normal differs by the factor R / (R + z) at depth z (the walls converge with the
+        // normals), which would move a ridge by (texel lever) x z / R on a flat chart.
+        const double lt = t.norm();
+        const double lb = (base(c.x(), c.y() + e) - base(c.x(), c.y() - e)).norm();
+        const double gx = (z(c.x() + e, c.y()) - z(c.x() - e, c.y())) / lt;
+        const double gy = (z(c.x(), c.y() + e) - z(c.x(), c.y() - e)) / lb;
+        n_local = Eigen::Vector3d(-gx, -gy, 1.0).normalized();
       }
       map.setNormal(i, j, n_local.cast<float>());
       map.setDepth(i, j, -z(c.x(), c.y()));

@@ -1,9 +1,12 @@
 #pragma once
 // Ground truth for the textured-mesh force benchmark (bench_mesh_force, issue 28): a sphere and a
 // cylinder carrying an analytic height field (sine bumps, V-grooves) on their smooth surface, the
-// relief map baked from that field in the surface's tangent space (as a normal map for a curved
-// mesh is made), and the exact penalty force of a probe under the displaced surface,
-// F = k (q - p) with q the closest point of the displaced surface to p.
+// relief map baked from that field in the surface's tangent space, and the exact penalty force of a
+// probe under the displaced surface, F = k (q - p) with q the closest point of the displaced
+// surface to p. The map's normals are its depth's gradient per metre of the smooth surface (a
+// relief map's own convention: its texel planes meet where its depth bends), not the displaced
+// surface's 3D normals, which tilt by a further factor R / (R + z) at depth z; the truth is the
+// displaced surface itself, so the difference is part of the measured error.
 //
 // Parameters: (X, Y) metres of arc on the smooth surface, X along the texture's u, Y along v;
 // the displaced surface is base(X, Y) + z(X, Y) normal(X, Y), z = h(X, Y) - h_top <= 0 (the mesh
@@ -41,7 +44,8 @@ class CurvedSurface {
   virtual Eigen::Vector3d closest(const Eigen::Vector3d& p) const = 0;
 
   // The relief map of `width` x `height` texels (texel centres give h_top, as the plane's
-  // generators do), normals those of the displaced surface in the frame (d/dX, d/dY, normal).
+  // generators do), normals (-dz/ds_t, -dz/ds_b, 1) normalised, s_t and s_b the smooth surface's
+  // arc lengths along d/dX and d/dY.
   tex::TextureMap bake(int width, int height);
   // The generated mesh of about `triangles` triangles with this surface's texture mapping.
   virtual mesh::GeneratedMesh tessellate(int triangles) const = 0;
