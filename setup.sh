@@ -19,7 +19,7 @@ PACKAGES="
   libyaml-cpp-dev nlohmann-json3-dev
   liblcm-dev liblcm-bin libglib2.0-dev
   libbullet-dev
-  libassimp-dev
+  libassimp-dev libgmsh-dev
   libarpack2-dev libsuitesparse-dev libsndfile1-dev librtaudio-dev libasound2-dev
   googletest libgtest-dev libbenchmark-dev
   libboost-math-dev

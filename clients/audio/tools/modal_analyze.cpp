@@ -1,4 +1,5 @@
 // modal-analyze: one object's audible modes, offline (see kModalHelp in modal_options.cpp).
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -31,7 +32,15 @@ void writeCsv(const std::string& path, const AudibleModes& modes) {
 }
 
 int run(const ModalOptions& o) {
-  const TetMesh mesh = buildMesh(o);
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!o.quiet && o.shape == ShapeKind::Mesh)
+    std::fprintf(stderr, "modal-analyze: %s: filling the surface with tetrahedra (Gmsh)\n", o.mesh.c_str());
+  std::size_t triangles = 0;
+  const TetMesh mesh = buildMesh(o, &triangles);
+  if (!o.quiet && o.shape == ShapeKind::Mesh)
+    std::fprintf(stderr, "modal-analyze: %s: %zu surface triangles, %zu tetrahedra, %zu nodes in %.2f s\n", o.mesh.c_str(),
+                 triangles, mesh.tets.size(), mesh.nodes.size(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   AnalysisOptions ao;
   ao.cache_dir = o.cache_dir;
   if (!o.quiet) ao.progress = [](const std::string& line) { std::fprintf(stderr, "modal-analyze: %s\n", line.c_str()); };

@@ -5,13 +5,18 @@
 
 #include "base/cli_number.hpp"
 #include "base/error.hpp"
+#include "clients/audio/analysis/surface_tetrahedra.hpp"
+#include "meshes/builtin_shapes.hpp"
+#include "meshes/mesh_import.hpp"
 
 namespace thx::audio {
 
 const char* const kModalHelp = R"(usage: modal-analyze --shape SHAPE [dimensions] [options]
+       modal-analyze --mesh FILE|BUILTIN [mesh options] [options]
        modal-analyze --scene FILE [options]
 
-Offline modal analysis of one object: a structured tetrahedral mesh, linear elasticity with
+Offline modal analysis of one object: a structured tetrahedral mesh (or the solid inside a closed
+triangle mesh, filled with tetrahedra by Gmsh), linear elasticity with
 consistent mass, K x = lambda M x solved by ARPACK in shift-invert mode (negative shift, sparse
 Cholesky of K - sigma M), the 6 rigid-body modes of a free body dropped, Rayleigh damping from the
 material, the audible band, the psychoacoustic merge of close modes and truncation. Prints one
@@ -38,6 +43,16 @@ Shape (SI units):
   --clamp-edges          slab or scene: hold the slab's four side faces (default: a free
                          body, or the scene's surface.held)
   --name NAME            the object's name in messages (default: the shape)
+
+Mesh (any closed triangle mesh; docs/audio.md, "Modes of a closed triangle mesh"):
+  --mesh FILE|BUILTIN    a mesh file (OBJ, PLY, glTF 2.0, STL) or a built-in shape (sphere,
+                         cylinder, torus, bowl, vase, box, room, plate; docs/meshes.md): the solid
+                         it encloses, tetrahedralised by Gmsh (3D Delaunay, optimised); it must be
+                         closed and consistently wound
+  --mesh-unit U          metres per file unit (default 1; 0.001 for a file in millimetres)
+  --radius R             a built-in shape's size (its radius; default 0.05 m)
+  --segments N           a built-in shape's divisions around its axis (default 48)
+  --max-edge M           longest tetrahedron edge inside (default: sized from the surface)
 
 Material (scenes' materials table, docs/scenes.md; any value can be overridden):
   --material NAME        default steel
@@ -133,6 +148,16 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
         if (c != double(int(c))) throw UsageError("--cells: expected whole numbers, got " + std::to_string(c));
         o.cells.push_back(int(c));
       }
+    } else if (a == "--mesh") {
+      o.mesh = value();
+      o.shape = ShapeKind::Mesh;
+      shape_given = true;
+    } else if (a == "--mesh-unit") {
+      o.mesh_unit = cli::parseNumber(a, value(), {0, 1e3, true, "m"});
+    } else if (a == "--segments") {
+      o.segments = int(cli::parseInteger(a, value(), 8, 4096));
+    } else if (a == "--max-edge") {
+      o.max_edge = cli::parseNumber(a, value(), length);
     } else if (a == "--element") {
       const std::string v = value();
       if (v == "tet10") o.order = ElementOrder::Quadratic;
@@ -197,8 +222,9 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
     }
   }
   if (o.help) return o;
-  if (!o.scene.empty() && shape_given) throw UsageError("--scene and --shape: give one of them");
-  if (o.scene.empty() && !shape_given) throw UsageError("--shape: missing (box, slab, sphere or cylinder), or --scene FILE");
+  if (!o.scene.empty() && shape_given) throw UsageError("--scene and --shape or --mesh: give one of them");
+  if (o.scene.empty() && !shape_given)
+    throw UsageError("--shape: missing (box, slab, sphere or cylinder), or --mesh FILE, or --scene FILE");
   const scene::Material* m = scene::findMaterial(material);
   if (!m) {
     std::string names;
@@ -215,6 +241,13 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
 
   if (!no_cache) o.cache_dir = cache_dir ? *cache_dir : defaultModalCacheDir();
   if (!o.scene.empty()) return o;
+  if (o.shape == ShapeKind::Mesh) {
+    if (!o.cells.empty()) throw UsageError("--cells: a mesh's tetrahedra come from Gmsh; give --max-edge instead");
+    if (o.clamp_edges) throw UsageError("--clamp-edges: only a slab can be held at its edges");
+    if (o.radius <= 0) o.radius = 0.05;
+    if (o.name.empty()) o.name = o.mesh;
+    return o;
+  }
   const bool boxy = o.shape == ShapeKind::Box || o.shape == ShapeKind::Slab;
   if (boxy && o.size.minCoeff() <= 0) throw UsageError("--size: missing (X,Y,Z in metres) for a box or slab");
   if (!boxy && o.radius <= 0) throw UsageError("--radius: missing for a sphere or cylinder");
@@ -231,8 +264,24 @@ ModalOptions parseModalOptions(const std::vector<std::string>& args) {
   return o;
 }
 
-TetMesh buildMesh(const ModalOptions& o) {
+TetMesh buildMesh(const ModalOptions& o, std::size_t* surface_triangles) {
   switch (o.shape) {
+    case ShapeKind::Mesh: {
+      mesh::TexturedMesh surface;
+      if (mesh::isBuiltInShape(o.mesh)) {
+        surface = mesh::builtInShape(o.mesh, o.radius, o.radius, o.segments).mesh;
+      } else {
+        mesh::ImportOptions io;
+        io.unit_m = o.mesh_unit;
+        io.projection = mesh::UvProjection::Planar;  // texture coordinates play no part in the modes
+        surface = mesh::importMesh(o.mesh, io);
+      }
+      if (surface_triangles) *surface_triangles = surface.triangles.size();
+      TetrahedraSettings ts;
+      ts.order = o.order;
+      ts.max_edge_m = o.max_edge;
+      return tetrahedraOfSurface(o.name, surface, ts);
+    }
     case ShapeKind::Box:
     case ShapeKind::Slab: {
       GridCells c;

@@ -16,7 +16,7 @@ namespace thx::audio {
 
 extern const char* const kModalHelp;
 
-enum class ShapeKind { Box, Slab, Sphere, Cylinder };
+enum class ShapeKind { Box, Slab, Sphere, Cylinder, Mesh };
 
 struct ModalOptions {
   bool help = false;
@@ -29,6 +29,10 @@ struct ModalOptions {
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box edges / slab extent_x, extent_y, thickness
   double radius = 0.0, length = 0.0;
   std::vector<int> cells;
+  std::string mesh;        // --mesh: a mesh file or a built-in shape's name
+  double mesh_unit = 1.0;  // metres per file unit
+  int segments = 48;       // a built-in shape's divisions around its axis
+  double max_edge = 0.0;   // Gmsh's longest tetrahedron edge; 0 = from the surface
   ElementOrder order = ElementOrder::Quadratic;
   bool clamp_edges = false;  // a slab shape, or a scene's slab (overrides surface.held)
   ElasticMaterial material;
@@ -40,7 +44,8 @@ struct ModalOptions {
 };
 
 ModalOptions parseModalOptions(const std::vector<std::string>& args);
-// The mesh the options describe (ModalError on a bad shape).
-TetMesh buildMesh(const ModalOptions& options);
+// The mesh the options describe (ModalError on a bad shape); for --mesh, the surface's triangle
+// count in *surface_triangles when given.
+TetMesh buildMesh(const ModalOptions& options, std::size_t* surface_triangles = nullptr);
 
 }  // namespace thx::audio
