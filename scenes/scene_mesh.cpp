@@ -1,5 +1,7 @@
 #include "scenes/scene_mesh.hpp"
 
+#include "base/fnv1a64.hpp"
+
 #include "meshes/builtin_shapes.hpp"
 #include "meshes/mesh_check.hpp"
 #include "meshes/mesh_import.hpp"
@@ -51,6 +53,28 @@ SceneMesh buildSceneMesh(const Scene& scene) {
     throw SceneError(source.where, "surface.mesh", e.what());
   }
   return out;
+}
+
+std::uint64_t meshSceneFingerprint(std::uint64_t texture_fingerprint, const mesh::TexturedMesh& mesh,
+                                   const Eigen::Isometry3d& mesh_to_world, const Eigen::Vector2d& tile_m) {
+  Fnv1a64 h;
+  h.tag("thx.mesh.v1");
+  h.le(texture_fingerprint);
+  h.i32(std::int32_t(mesh.positions.size()));
+  h.i32(std::int32_t(mesh.triangles.size()));
+  for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
+    for (int c = 0; c < 3; ++c) h.quantised(mesh.positions[k][c]);
+    for (int c = 0; c < 2; ++c) h.quantised(k < mesh.uvs.size() ? mesh.uvs[k][c] : 0.0);
+  }
+  for (const mesh::Triangle& t : mesh.triangles)
+    for (std::uint32_t v : t) h.i32(std::int32_t(v));
+  const Eigen::Matrix3d r = mesh_to_world.linear();
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) h.quantised(r(row, col));
+  for (int k = 0; k < 3; ++k) h.quantised(mesh_to_world.translation()(k));
+  h.quantised(tile_m.x());
+  h.quantised(tile_m.y());
+  return h.value();
 }
 
 }  // namespace thx::scene

@@ -6,6 +6,7 @@
 // texture (scene_surface.hpp), wrapped through the mesh's texture coordinates.
 // Configuration time only: reads files, allocates, throws.
 #include <Eigen/Geometry>
+#include <cstdint>
 
 #include "meshes/textured_mesh.hpp"
 #include "scenes/scene.hpp"
@@ -23,5 +24,18 @@ struct SceneMesh {
 // Requires scene.surface.mesh. Throws SceneError located at the scene's `mesh:` field, quoting
 // the mesh reader's or the checks' message (which names the file and the element).
 SceneMesh buildSceneMesh(const Scene& scene);
+
+// What hello_t.texture_fingerprint carries for a mesh scene: the scene surface's texture
+// fingerprint (scene_surface.hpp) hashed with the mesh as every sense reads it, so two hosts whose
+// mesh files (or generators) differ see different fingerprints. FNV-1a 64 (base/fnv1a64.hpp) over
+// the tag "thx.mesh.v1"; the texture fingerprint (uint64); the position and triangle counts
+// (int32); every position x, y, z and every uv u, v (quantised to 1e-12); every triangle's three
+// vertex indices (int32); mesh_to_world's rotation row by row and its translation; the tile u, v.
+// The positions and uv are those after the vertex frames were built (a split vertex counts twice).
+std::uint64_t meshSceneFingerprint(std::uint64_t texture_fingerprint, const mesh::TexturedMesh& mesh,
+                                   const Eigen::Isometry3d& mesh_to_world, const Eigen::Vector2d& tile_m);
+inline std::uint64_t meshSceneFingerprint(std::uint64_t texture_fingerprint, const SceneMesh& m) {
+  return meshSceneFingerprint(texture_fingerprint, m.mesh, m.mesh_to_world, m.tile_m);
+}
 
 }  // namespace thx::scene

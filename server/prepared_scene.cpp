@@ -58,6 +58,8 @@ std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::s
     }
     p->mesh_renderer = buildMeshRenderer(*p->mesh, p->surface.surface, rc);
   }
+  p->fingerprint =
+      p->mesh ? scene::meshSceneFingerprint(p->surface.fingerprint, p->mesh->scene_mesh) : p->surface.fingerprint;
 
   p->swap.surface = &p->surface.surface;
   p->swap.renderer = rc;

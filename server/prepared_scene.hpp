@@ -4,6 +4,7 @@
 // stability budget checked. hapticd prepares its first scene here and every scene a client
 // switches to (server/scene_switcher.hpp), so a switched-to scene is held to exactly the checks
 // of a scene given at start. Configuration time only: allocates, reads files, throws.
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -39,6 +40,9 @@ struct PreparedScene {
   // A mesh scene (surface.mesh): the mesh and the renderer the servo runs on it; else both null.
   std::shared_ptr<const MeshGeometry> mesh;
   std::unique_ptr<TexturedMeshRenderer> mesh_renderer;
+  // hello_t.texture_fingerprint: the surface's texture fingerprint, hashed with the mesh for a
+  // mesh scene (scene::meshSceneFingerprint).
+  std::uint64_t fingerprint = 0;
   SurfaceSwap swap;                   // points into `surface` and `mesh_renderer`: a PreparedScene never moves
 };
 

@@ -103,7 +103,7 @@ void SceneSwitcher::load(const std::string& name) {
     }
     outcome.ok = true;
     outcome.scene_name = next->surface.scene_name;
-    outcome.fingerprint = next->surface.fingerprint;
+    outcome.fingerprint = next->fingerprint;
     offered_ = std::move(next);
     handoff_.offer(&offered_->swap);  // Idle: the last swap was reclaimed before this job began
     outcome.swap = ++offers_;

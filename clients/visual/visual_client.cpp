@@ -129,13 +129,19 @@ int drawSurfaceMesh(const Options& o, const scene::Scene& scene, const tex::Text
 
 // A recorded session on a mesh scene, frame by frame: the mesh and the pen (tip, proxy) where the
 // recording put it. (A mesh scene has no objects: physics on meshes is issue 29.)
-int replayOnMesh(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
+int replayOnMesh(const Options& o, const scene::Scene& scene, const scene::SceneSurface& scene_surface,
                  const CameraPlacement& placement) {
+  const tex::TexturedSurface& surface = scene_surface.surface;
+  MeshView view;
+  buildMeshView(view, o, scene, surface, placement);
+  // The recording's hellos name the mesh scene's fingerprint: the texture's hashed with the mesh.
+  const std::uint64_t fingerprint =
+      scene::meshSceneFingerprint(scene_surface.fingerprint, view.shape, view.surface.mesh_to_world, view.surface.tile_m);
+  client::checkLoggedScene(client::loggedScenes(o.replay_log), {scene_surface.scene_name, fingerprint}, o.replay_log,
+                           false, false);
   std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz);
   if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
   HeadlessContext context;
-  MeshView view;
-  buildMeshView(view, o, scene, surface, placement);
   MeshFrameRenderer renderer(view.surface, o.render, o.width, o.height);
   const Camera camera(view.placement, view.orbit_frame, o.width, o.height);
   std::filesystem::create_directories(o.out_dir);
@@ -165,10 +171,10 @@ int run(const Options& o) {
   if (o.live) return runLive(o);
   const CameraPlacement placement = cameraPlacement(o, scene);
   if (!o.replay_log.empty()) {
+    if (scene.surface.mesh) return replayOnMesh(o, scene, surface, placement);
     // The recording's hellos name the scene's texture fingerprint: it must be this one's.
     client::checkLoggedScene(client::loggedScenes(o.replay_log), {surface.scene_name, surface.fingerprint}, o.replay_log,
                              false, false);
-    if (scene.surface.mesh) return replayOnMesh(o, scene, surface.surface, placement);
     return replay(o, scene, surface.surface, placement);
   }
   if (!o.surface_mesh.empty() || scene.surface.mesh) {

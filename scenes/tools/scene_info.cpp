@@ -48,7 +48,8 @@ double scriptDuration(const scene::Device& device) {
 }
 
 // surface.mesh: built (read, checked, frames) to report it, as hapticd and visual-client will.
-void printMesh(const scene::Scene& s) {
+// Prints the mesh; returns its fingerprint with the texture's (what hapticd's hello carries).
+std::uint64_t printMesh(const scene::Scene& s, std::uint64_t texture_fingerprint) {
   const scene::MeshSource& m = *s.surface.mesh;
   const auto t0 = std::chrono::steady_clock::now();
   const scene::SceneMesh built = scene::buildSceneMesh(s);
@@ -64,6 +65,7 @@ void printMesh(const scene::Scene& s) {
               built.mesh.triangles.size(), built.mesh.positions.size(), m.closed ? ", closed" : "", box.min().x(),
               box.max().x(), box.min().y(), box.max().y(), box.min().z(), box.max().z(), built.tile_m.x(),
               built.tile_m.y(), ms);
+  return scene::meshSceneFingerprint(texture_fingerprint, built);
 }
 
 void printSummary(const scene::Scene& s, const scene::SceneSurface& built, double build_ms) {
@@ -80,15 +82,19 @@ void printSummary(const scene::Scene& s, const scene::SceneSurface& built, doubl
   } else {
     std::printf("texture:         file %s (loaded in %.0f ms)\n", surf.texture.file.c_str(), build_ms);
   }
-  if (surf.mesh) printMesh(s);
+  const std::uint64_t fingerprint = surf.mesh ? printMesh(s, built.fingerprint) : built.fingerprint;
   std::printf("sampling:        %s, %s; smoothing sigma %.3g texels\n",
               surf.sampling.filter == tex::Filter::Bilinear ? "bilinear" : "nearest",
               surf.sampling.address == tex::Address::Wrap ? "wrap" : "clamp", surf.smoothing_sigma_texels);
   const tex::TextureStats stats = tex::computeStats(map);
   std::printf("%s", tex::formatStats(stats).c_str());
   std::printf("memory:          %.2f MiB of texels\n", double(map.bytes()) / (1024.0 * 1024.0));
-  std::printf("fingerprint:     %s (hello_t.texture_fingerprint; docs/scenes.md)\n",
-              tex::formatFingerprint(built.fingerprint).c_str());
+  if (surf.mesh)
+    std::printf("fingerprint:     %s (hello_t.texture_fingerprint: the texture's %s with the mesh; docs/scenes.md)\n",
+                tex::formatFingerprint(fingerprint).c_str(), tex::formatFingerprint(built.fingerprint).c_str());
+  else
+    std::printf("fingerprint:     %s (hello_t.texture_fingerprint; docs/scenes.md)\n",
+                tex::formatFingerprint(built.fingerprint).c_str());
   const scene::Device& dev = s.device;
   std::printf("device:          %s %s: peak %.3g N, continuous %.3g N; stiffness %.3g N/m (%.2f of max), damping %.3g N*s/m\n",
               scene::toString(dev.type), dev.model.name.c_str(), dev.model.peak_force_n, dev.model.continuous_force_n,

@@ -108,6 +108,24 @@ TEST(SceneMesh, BuildsTheGeneratedShapeOnTheScenesTile) {
   EXPECT_TRUE(m.mesh_to_world.isApprox(Eigen::Isometry3d::Identity()));
 }
 
+// hello_t's fingerprint of a mesh scene: the texture's hashed with the mesh, so two hosts whose
+// meshes differ (a file edited on one, another tessellation, another pose) do not agree.
+TEST(SceneMesh, TheFingerprintFollowsTheMeshItsPoseAndTheTexture) {
+  const SceneMesh a = buildSceneMesh(parse(sceneWith("{generator: sphere, size: 0.05, segments: 32}")));
+  const std::uint64_t texture = 0x0123456789abcdefULL;
+  const std::uint64_t fp = meshSceneFingerprint(texture, a);
+  EXPECT_EQ(meshSceneFingerprint(texture, buildSceneMesh(parse(sceneWith("{generator: sphere, size: 0.05, segments: 32}")))), fp);
+  EXPECT_NE(fp, texture);
+  EXPECT_NE(meshSceneFingerprint(texture + 1, a), fp);
+  EXPECT_NE(meshSceneFingerprint(texture, buildSceneMesh(parse(sceneWith("{generator: sphere, size: 0.05, segments: 36}")))), fp);
+  EXPECT_NE(meshSceneFingerprint(texture, buildSceneMesh(parse(sceneWith(
+                                              "{generator: sphere, size: 0.05, segments: 32, pose: {position: [0, 0, 0.001]}}")))),
+            fp);
+  SceneMesh moved_uv = a;
+  moved_uv.mesh.uvs[7].x() += 1e-9;  // one texture coordinate, a nanometre's worth of a tile
+  EXPECT_NE(meshSceneFingerprint(texture, moved_uv), fp);
+}
+
 TEST(SceneMesh, PosePlacesTheMesh) {
   const Scene s = parse(sceneWith("{generator: bowl, size: 0.06, segments: 16}",
                                   "", "[0.04, 0.04]\n  pose: {position: [0, 0, -0.04], rpy_deg: [0, 0, 90]}"));

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -105,6 +106,21 @@ TEST(VisualMeshClient, AMeshSceneIsDrawnFromItsOwnMeshAndItsRecordingWithThePen)
   ASSERT_FALSE(first.empty());
   ASSERT_FALSE(last.empty());
   EXPECT_NE(first, last);  // the pen moved
+  // The same scene on another host with another bowl (64 segments around, not 128): same name, same
+  // texture, another mesh, so the recording's fingerprint is not this scene's and the replay is refused.
+  std::filesystem::create_directories(dir.file("other/paths"));
+  std::filesystem::copy_file(std::string(THX_SOURCE_DIR) + "/scenes/paths/bowl_wall_half_circle.csv",
+                             dir.file("other/paths/bowl_wall_half_circle.csv"));
+  std::string text = slurp(scene);
+  const std::size_t at = text.find("segments: 128");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 13, "segments: 64 ");
+  std::ofstream(dir.file("other/brick_bowl.yaml")) << text;
+  const std::string other = std::string("LP_NUM_THREADS=2 ") + THX_VISUAL_CLIENT + " --scene " + dir.file("other/brick_bowl.yaml") +
+                            " --replay-log " + log + " --rate 2 --format ppm --size 96x64 --out " + dir.file("other_frames") +
+                            " --quiet 2> " + dir.file("other_err.txt");
+  EXPECT_NE(std::system(other.c_str()), 0) << other;
+  EXPECT_NE(slurp(dir.file("other_err.txt")).find("fingerprint"), std::string::npos) << slurp(dir.file("other_err.txt"));
   // --window and --live draw planes only.
   for (const char* mode : {"--window --window-frames 1", "--live --out " }) {
     const std::string cmd = vc + " " + mode + (std::string(mode).rfind("--live", 0) == 0 ? dir.file("live") : "") +
