@@ -45,7 +45,7 @@ void PassivityConfig::validate() const {
   requireNonNegative("max_damping_ns_per_m", max_damping_ns_per_m, "a finite number >= 0 N s/m");
   requireNonNegative("max_force_n", max_force_n, "a finite number >= 0 N");
   requireNonNegative("max_reservoir_j", max_reservoir_j, "a finite energy >= 0 J");
-  requireNonNegative("velocity_deadband_m_per_s", velocity_deadband_m_per_s, "a finite speed >= 0 m/s");
+  requireNonNegative("quantisation_play_m", quantisation_play_m, "a finite length >= 0 m");
   requireNonNegative("stored_energy_stiffness_n_per_m", stored_energy_stiffness_n_per_m,
                      "a finite stiffness >= 0 N/m (0: the environment stores no energy)");
   if (output_delay_ticks < 0 || output_delay_ticks > kMaxOutputDelayTicks) {
@@ -66,6 +66,7 @@ void PassivityController::reset() {
   in_flight_j_ = 0.0;
   alpha_ns_per_m_ = 0.0;
   controller_force_n_.setZero();
+  play_lag_m_.setZero();
 }
 
 PassivityController::InFlight& PassivityController::newest() {
@@ -92,28 +93,35 @@ void PassivityController::sumInFlight() {
   }
 }
 
-Eigen::Vector3d PassivityController::deadbanded(const Eigen::Vector3d& velocity_reading_m_per_s) const {
-  // Quantisation dead band (header): a reading that toggled by at most one encoder count on every
-  // axis is not motion the loop can be blamed for. A pen that moves is observed whole: zeroing
-  // only its slow components would book the work along its fast axis and drop the work along the
-  // slow one, which on a slope (a pen sliding down a curved mesh, the force mostly along the slow
-  // axis) read as energy the loop never made.
-  const Eigen::Vector3d& v = velocity_reading_m_per_s;
-  if (v.cwiseAbs().maxCoeff() <= config_.velocity_deadband_m_per_s) return Eigen::Vector3d::Zero();
+Eigen::Vector3d PassivityController::played(const Eigen::Vector3d& velocity_reading_m_per_s, bool commit) {
+  // The play operator (header): the observed position moves only where the reading has left the
+  // band of one count around it, and then by what lies beyond the band.
+  const double w = config_.quantisation_play_m;
+  if (!(w > 0.0)) return velocity_reading_m_per_s;
+  const double t = config_.period_s;
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  Eigen::Vector3d lag = play_lag_m_;
+  for (int k = 0; k < 3; ++k) {
+    const double e = lag[k] + velocity_reading_m_per_s[k] * t;
+    const double held = std::clamp(e, -w, w);
+    v[k] = (e - held) / t;
+    lag[k] = held;
+  }
+  if (commit && v.allFinite() && lag.allFinite()) play_lag_m_ = lag;
   return v;
 }
 
 void PassivityController::observeHeldPeriods(const Eigen::Vector3d& pen_velocity_m_per_s, double held_periods) {
   if (!(held_periods > 0.0)) return;
   const InFlight& due = in_flight_[static_cast<std::size_t>(oldest_)];
-  const double held_j = -due.force_n.dot(deadbanded(pen_velocity_m_per_s)) * config_.period_s * held_periods;
+  const double held_j = -due.force_n.dot(played(pen_velocity_m_per_s, false)) * config_.period_s * held_periods;
   if (std::isfinite(held_j)) observed_j_ += held_j;  // apply() caps the reservoir next
 }
 
 Eigen::Vector3d PassivityController::apply(const Eigen::Vector3d& force_on_pen_n,
                                            const Eigen::Vector3d& velocity_reading_m_per_s) {
   const double t = config_.period_s;
-  const Eigen::Vector3d pen_velocity_m_per_s = deadbanded(velocity_reading_m_per_s);
+  const Eigen::Vector3d pen_velocity_m_per_s = played(velocity_reading_m_per_s, true);
   const InFlight& due = in_flight_[static_cast<std::size_t>(oldest_)];
   const double still_in_flight_j = in_flight_j_ - due.predicted_j;
   alpha_ns_per_m_ = 0.0;
@@ -135,7 +143,12 @@ Eigen::Vector3d PassivityController::apply(const Eigen::Vector3d& force_on_pen_n
   }
   observed_j_ = std::min(observed_j_, cap_j);
 
-  const double predicted_j = observed_j_ + still_in_flight_j + predicted_ve_j;
+  // Motion the play still holds back (under a count per axis) that went into the force: the
+  // reading says the environment has absorbed it; counting it keeps the first count of a motion on
+  // one axis from reading as generation while another axis's motion already passes. Never
+  // negative, so a toggle or a motion out of the force adds nothing.
+  const double held_back_j = std::max(0.0, -force_on_pen_n.dot(play_lag_m_));
+  const double predicted_j = observed_j_ + still_in_flight_j + predicted_ve_j + (std::isfinite(held_back_j) ? held_back_j : 0.0);
   double credit_j = 0.0;
   if (enabled_ && predicted_j < 0.0) {
     const double v2 = pen_velocity_m_per_s.squaredNorm();
@@ -168,19 +181,17 @@ void PassivityController::recordAppliedForce(const Eigen::Vector3d& applied_forc
   sumInFlight();
 }
 
-double quantisationDeadband(const dev::DeviceSpec& spec, double period_s) {
-  if (!std::isfinite(spec.position_resolution_m) || !(spec.position_resolution_m > 0.0) || !(period_s > 0.0)) {
-    return 0.0;
-  }
-  // One count per period, plus a hair so a one-count step is inside the band despite rounding.
-  return 1.001 * spec.position_resolution_m / period_s;
+double quantisationPlay(const dev::DeviceSpec& spec) {
+  if (!std::isfinite(spec.position_resolution_m) || !(spec.position_resolution_m > 0.0)) return 0.0;
+  // One count, plus a hair so a one-count toggle stays inside the play despite rounding.
+  return 1.001 * spec.position_resolution_m;
 }
 
 PassivityConfig servoPassivityConfig(const dev::DeviceSpec& spec, double period_s,
                                      double rendered_stiffness_n_per_m, bool enabled) {
   PassivityConfig c = PassivityConfig::fromSpec(spec, period_s, rendered_stiffness_n_per_m);
   c.enabled = enabled;
-  c.velocity_deadband_m_per_s = quantisationDeadband(spec, period_s);
+  c.quantisation_play_m = quantisationPlay(spec);
   return c;
 }
 

@@ -46,17 +46,24 @@
 // answers. K = 0 (unknown) makes the cap absolute, and then any press storing more than the slack
 // is partly damped on release.
 //
-// Quantisation dead band. A pen at rest on an encoder count boundary toggles its reading by one
+// Quantisation play. A pen at rest on an encoder count boundary toggles its reading by one
 // count; the finite-difference velocity toggles by +-q/T and the observer books K q^2 / 2 of
 // "generated" energy per toggle (real for the quantised path, 0.3 um of true motion). Unchecked,
 // the controller sat at its bound and turned the toggling into a 0.3 N, 250 Hz ripple on a pen
-// at rest (docs/stability.md, bug B). A reading within one count per period on every axis is
-// therefore treated as zero, for observing and for damping; a real oscillation moves more. A
-// reading beyond it on any axis is taken whole: zeroing only the slow components of a moving pen
-// dropped the work along them, which on a slope read as generated energy (bug D). The
-// band also hides slow real motion (< one count per tick) from the observer, where a sampled
-// wall generates least (K dx^2 / 2 per tick), so it is opt-in: hapticd sets it from the device's
-// resolution (quantisationDeadband), fromSpec() leaves it off.
+// at rest (docs/stability.md, bug B). The observer therefore reads the pen through a play
+// (backlash) operator of one count per axis: the observed position stays put while the reading
+// is within a count of it, and is dragged along a count behind once the reading moves further.
+// A toggle moves nothing; a motion in one direction passes whole after its first count, however
+// slowly it goes and on every axis, so a pen sliding down a slope feeds the spring as it should
+// (bug D), and the same motion reads the same at any servo rate. Until issue 30 the band was one
+// count per *period* on the velocity: at 2 and 4 kHz it hid every motion slower than 2 or 4
+// counts per millisecond, and the controller acted on the default scene for 79 and 333 ticks of a
+// lock-step run (0 with the play). The controller's prediction also counts the motion the play
+// holds back where it went into the force (at most a count per axis times the force; never
+// negative), so that the first count of a motion on one axis, held back while another axis's
+// already passes, does not read as generation. The play hides up to a count of travel at each
+// reversal, so it is opt-in: hapticd sets it from the device's resolution (quantisationPlay),
+// fromSpec() leaves it off.
 //
 // No reset on contact loss. A full reset would forgive energy the loop has just created: a pen
 // bouncing on a wall gains energy at each contact, and resetting at each lift-off would let the
@@ -80,7 +87,7 @@ struct PassivityConfig {
   double max_reservoir_j = 1e-3;      // slack above the stored spring energy
   double stored_energy_stiffness_n_per_m = 0.0;  // rendered K; 0: the VE stores nothing
   int output_delay_ticks = 0;         // 0..kMaxOutputDelayTicks
-  double velocity_deadband_m_per_s = 0.0;  // on every axis at once; 0 = off; quantisationDeadband() for hapticd
+  double quantisation_play_m = 0.0;  // per axis, the play operator's width; 0 = off; quantisationPlay() for hapticd
   bool enabled = true;
 
   // max_damping_ns_per_m = the device's max damping (its recommended limit for stable damping);
@@ -91,11 +98,11 @@ struct PassivityConfig {
   void validate() const;  // throws thx::Error naming field, value and expectation
 };
 
-// One encoder count per period for this device, for PassivityConfig::velocity_deadband_m_per_s.
-double quantisationDeadband(const dev::DeviceSpec& spec, double period_s);
+// One encoder count of this device (and a hair), for PassivityConfig::quantisation_play_m.
+double quantisationPlay(const dev::DeviceSpec& spec);
 
 // The configuration hapticd runs (and the tools that reproduce it): fromSpec() plus the
-// quantisation dead band, with the controller on or off.
+// quantisation play, with the controller on or off.
 PassivityConfig servoPassivityConfig(const dev::DeviceSpec& spec, double period_s,
                                      double rendered_stiffness_n_per_m, bool enabled);
 
@@ -139,7 +146,9 @@ class PassivityController {
     double predicted_j = 0.0;
   };
   InFlight& newest();
-  Eigen::Vector3d deadbanded(const Eigen::Vector3d& velocity_m_per_s) const;
+  // The velocity the observer reads: the reading's displacement this period through the play
+  // operator (header); `commit` moves the operator (apply), else it is only looked at.
+  Eigen::Vector3d played(const Eigen::Vector3d& velocity_reading_m_per_s, bool commit);
   void push(const Eigen::Vector3d& force_n, const Eigen::Vector3d& velocity_m_per_s,
             double predicted_j);
   void sumInFlight();
@@ -153,6 +162,7 @@ class PassivityController {
   double in_flight_j_ = 0.0;
   double alpha_ns_per_m_ = 0.0;
   Eigen::Vector3d controller_force_n_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d play_lag_m_ = Eigen::Vector3d::Zero();  // reading - observed position, per axis in [-w, w]
   std::uint64_t active_ticks_ = 0;
   double dissipated_j_ = 0.0;
 };

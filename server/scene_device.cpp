@@ -104,7 +104,7 @@ ServoRigConfig servoRigConfigFor(const scene::Scene& s) {
   c.renderer = rendererConfigFor(s);
   c.period_s = 1.0 / s.rates.servo_hz;
   c.passivity = true;
-  c.quantisation_deadband = true;
+  c.quantisation_play = true;
   c.flight_record_ticks = std::size_t(s.rates.servo_hz);  // one second of ticks
   c.ring_records = 1024;  // 1 s of ticks: the publisher drains every 0.5 ms
   return c;

@@ -57,7 +57,7 @@ void checkScriptOnMesh(const scene::Scene& scene, const dev::SurfaceHeight& hand
 RendererConfig rendererConfigFor(const scene::Scene& scene);
 
 // hapticd's servo wiring for the scene (server/servo_rig.hpp): its renderer, its servo period,
-// the passivity controller on with the quantisation dead band, one second of flight record, a
+// the passivity controller on with the quantisation play, one second of flight record, a
 // 1024-record (1 s) tick ring.
 ServoRigConfig servoRigConfigFor(const scene::Scene& scene);
 

@@ -5,7 +5,7 @@ namespace thx::srv {
 namespace {
 PassivityConfig passivityFor(const dev::DeviceSpec& spec, const ServoRigConfig& c) {
   PassivityConfig p = servoPassivityConfig(spec, c.period_s, c.renderer.stiffness_n_per_m, c.passivity);
-  if (!c.quantisation_deadband) p.velocity_deadband_m_per_s = 0.0;  // PassivityConfig::fromSpec()'s
+  if (!c.quantisation_play) p.quantisation_play_m = 0.0;  // PassivityConfig::fromSpec()'s
   return p;
 }
 ServoConfig servoConfigFor(const dev::DeviceSpec& spec, const ServoRigConfig& c) {

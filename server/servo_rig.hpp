@@ -25,9 +25,9 @@ struct ServoRigConfig {
   RendererConfig renderer;      // its stiffness is also the passivity observer's stored-energy K
   double period_s = 1e-3;       // the servo period (passivity and safety are tuned to it)
   bool passivity = true;        // the controller acts (the observer always runs)
-  // hapticd's velocity dead band of one encoder count per tick (quantisationDeadband()); off,
-  // the controller is PassivityConfig::fromSpec() as it stands (the servo's unit tests).
-  bool quantisation_deadband = true;
+  // hapticd's quantisation play of one encoder count (quantisationPlay()); off, the controller
+  // is PassivityConfig::fromSpec() as it stands (the servo's unit tests).
+  bool quantisation_play = true;
   std::size_t flight_record_ticks = 1000;  // hapticd: one second of ticks
   std::size_t ring_records = 1024;         // hapticd: 1 s of ticks, drained every 0.5 ms
   // What a gap in the servo's ticks does (server/missed_tick_policy.hpp); the rig sets

@@ -26,7 +26,7 @@ SimRig::SimRig(const tex::TexturedSurface& surface, const dev::SimPhantomConfig&
   c.renderer.sided_ridges = options.sided_ridges;
   c.period_s = period_s_;
   c.passivity = options.passivity;
-  c.quantisation_deadband = true;  // as hapticd
+  c.quantisation_play = true;  // as hapticd
   c.flight_record_ticks = kFlightRecordTicks;
   c.ring_records = kRingRecords;
   rig_ = std::make_unique<ServoRig>(*device_, surface, c);

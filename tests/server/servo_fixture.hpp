@@ -1,6 +1,6 @@
 #pragma once
 // A servo wired as hapticd wires it (server/servo_rig.hpp) around a V-valley relief map, driven by
-// a scripted FakeDevice. The passivity controller runs without hapticd's quantisation dead band
+// a scripted FakeDevice. The passivity controller runs without hapticd's quantisation play
 // (the fake device's positions are exact).
 #include <memory>
 

@@ -22,14 +22,14 @@ struct GeneratedSurface {
   std::unique_ptr<tex::TexturedSurface> surface;
 };
 
-// A 1 kHz servo at `stiffness_n_per_m`: passivity on without hapticd's quantisation dead band (a
+// A 1 kHz servo at `stiffness_n_per_m`: passivity on without hapticd's quantisation play (a
 // test device's positions are exact), one second of flight record, a 4096-record ring.
 inline srv::ServoRigConfig unitTestWiring(double stiffness_n_per_m, bool crease = true) {
   srv::ServoRigConfig c;
   c.renderer.stiffness_n_per_m = stiffness_n_per_m;
   c.renderer.crease_handling = crease;
   c.period_s = 1e-3;
-  c.quantisation_deadband = false;
+  c.quantisation_play = false;
   c.flight_record_ticks = 1000;
   c.ring_records = 4096;
   return c;
