@@ -1,5 +1,6 @@
 #include "server/missed_tick_policy.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -17,9 +18,14 @@ namespace {
 }  // namespace
 
 MissedTickPolicyConfig MissedTickPolicyConfig::fromSpec(const dev::DeviceSpec& spec,
-                                                        double rendered_stiffness_n_per_m, MissedTickMode mode) {
+                                                        double rendered_stiffness_n_per_m, MissedTickMode mode,
+                                                        double period_s) {
   MissedTickPolicyConfig c;
   c.mode = mode;
+  if (std::isfinite(period_s) && period_s > 0.0) {
+    c.max_stall_ticks = int(std::clamp(std::lround(kMaxStallS / period_s), 1L, 100000L));
+    c.window_ticks = int(std::clamp(std::lround(kWindowS / period_s), 1L, long(kMaxMissedWindowTicks)));
+  }
   if (std::isfinite(rendered_stiffness_n_per_m) && rendered_stiffness_n_per_m > 0.0 &&
       std::isfinite(spec.continuous_force_n) && spec.continuous_force_n > 0.0) {
     c.max_jump_m = spec.continuous_force_n / rendered_stiffness_n_per_m;

@@ -61,9 +61,15 @@ struct MissedTickPolicyConfig {
   int hold_ticks = 2;
   int legacy_max_missed_ticks = 3;  // DisengageOnGap
 
-  // hapticd's: max_jump_m = continuous force / rendered stiffness (Desktop at 600 N/m: 2.0 mm).
+  // hapticd's: max_jump_m = continuous force / rendered stiffness (Desktop at 600 N/m: 2.0 mm);
+  // the longest gap and the success-rate window in time, kMaxStallS and kWindowS at any servo
+  // period (20 and 100 ticks at 1 kHz, 80 and 400 at 4 kHz), so a scheduler hiccup of a given
+  // length is decided alike at every rate (issue 30: counted in ticks, two 3 ms stalls 10 ms
+  // apart were a success-rate fault at 4 kHz and nothing at 1 kHz).
+  static constexpr double kMaxStallS = 0.020;
+  static constexpr double kWindowS = 0.100;
   static MissedTickPolicyConfig fromSpec(const dev::DeviceSpec& spec, double rendered_stiffness_n_per_m,
-                                         MissedTickMode mode);
+                                         MissedTickMode mode, double period_s = 1e-3);
   void validate() const;  // throws thx::Error naming the field, its value and what was expected
 };
 

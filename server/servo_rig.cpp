@@ -10,7 +10,7 @@ PassivityConfig passivityFor(const dev::DeviceSpec& spec, const ServoRigConfig& 
 }
 ServoConfig servoConfigFor(const dev::DeviceSpec& spec, const ServoRigConfig& c) {
   ServoConfig s = c.servo;
-  s.missed = MissedTickPolicyConfig::fromSpec(spec, c.renderer.stiffness_n_per_m, c.missed_mode);
+  s.missed = MissedTickPolicyConfig::fromSpec(spec, c.renderer.stiffness_n_per_m, c.missed_mode, c.period_s);
   return s;
 }
 }  // namespace

@@ -227,6 +227,38 @@ TEST(MissedTickPolicy, HapticdsJumpBoundIsTheContinuousForceOverTheStiffness) {
   EXPECT_NEAR(c.max_jump_m, 0.00198, 1e-5);
 }
 
+// Issue 30: hapticd's stall bound and success-rate window are times, so the same hiccups of the
+// scheduler (two 3 ms stalls 10 ms apart, then a 10 ms one) are ridden through at 1 kHz and at
+// 4 kHz alike. Counted in ticks (20 and 100 at every rate), at 4 kHz the two short stalls were 24
+// of the last 100 periods (a success-rate fault) and the long one 40 periods (a long stall).
+TEST(MissedTickPolicy, TheSameStallsInTimeAreDecidedAlikeAtEveryServoRate) {
+  const dev::DeviceSpec desktop = dev::phantomDesktopSpec();
+  for (double hz : {1000.0, 4000.0}) {
+    const double period = 1.0 / hz;
+    const MissedTickPolicyConfig c = MissedTickPolicyConfig::fromSpec(desktop, 600.0, MissedTickMode::RideThrough, period);
+    EXPECT_EQ(c.max_stall_ticks, int(std::lround(0.020 * hz)));
+    EXPECT_EQ(c.window_ticks, int(std::lround(0.100 * hz)));
+    MissedTickPolicy policy(c);
+    auto ticks = [&](double seconds) { return std::int64_t(std::lround(seconds * hz)); };
+    auto serve = [&](double seconds) {
+      for (std::int64_t k = 0; k < ticks(seconds); ++k) EXPECT_EQ(policy.observe(0, Eigen::Vector3d::Zero(), true).action, MissedTickAction::Run);
+    };
+    serve(0.2);
+    EXPECT_EQ(policy.observe(ticks(0.003), Eigen::Vector3d::Zero(), true).action, MissedTickAction::RideThrough) << hz;
+    serve(0.010);
+    EXPECT_EQ(policy.observe(ticks(0.003), Eigen::Vector3d::Zero(), true).action, MissedTickAction::RideThrough) << hz;
+    serve(0.2);
+    EXPECT_EQ(policy.observe(ticks(0.010), Eigen::Vector3d::Zero(), true).action, MissedTickAction::RideThrough) << hz;
+    serve(0.2);
+    EXPECT_EQ(policy.counters().ride_throughs, 3u) << hz;
+    EXPECT_EQ(policy.counters().success_rate + policy.counters().long_stalls, 0u) << hz;
+  }
+  // The 1 kHz defaults are the numbers the policy had before (docs/hapticd.md).
+  const MissedTickPolicyConfig at1k = MissedTickPolicyConfig::fromSpec(desktop, 600.0, MissedTickMode::RideThrough);
+  EXPECT_EQ(at1k.max_stall_ticks, MissedTickPolicyConfig{}.max_stall_ticks);
+  EXPECT_EQ(at1k.window_ticks, MissedTickPolicyConfig{}.window_ticks);
+}
+
 TEST(MissedTickPolicy, ABadConfigurationIsRefusedNamingTheField) {
   MissedTickPolicyConfig c = defaults();
   c.window_ticks = 0;
