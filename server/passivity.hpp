@@ -57,7 +57,7 @@
 // slowly it goes and on every axis, so a pen sliding down a slope feeds the spring as it should
 // (bug D), and the same motion reads the same at any servo rate. Until issue 30 the band was one
 // count per *period* on the velocity: at 2 and 4 kHz it hid every motion slower than 2 or 4
-// counts per millisecond, and the controller acted on the default scene for 79 and 333 ticks of a
+// counts per millisecond, and the controller acted on the default scene for 79 and 315 ticks of a
 // lock-step run (0 with the play). The controller's prediction also counts the motion the play
 // holds back where it went into the force (at most a count per axis times the force; never
 // negative), so that the first count of a motion on one axis, held back while another axis's

@@ -443,7 +443,7 @@ TEST(Passivity, QuantisationPlayKeepsEveryAxisOfAMovingPen) {
 // as the same absorbed energy (the true work within a count of travel on each axis). The band of one count per *period* it replaces hid any motion slower than a count per
 // tick, which at 4 kHz is 4 counts per millisecond: this slide (0.4 and 0.2 counts per tick there)
 // read as no motion at all, and the default scene's lock-step run had the controller active for
-// 333 ticks at 4 kHz (0 with the play).
+// 315 ticks at 4 kHz (0 with the play).
 TEST(Passivity, TheSameSlowSlideReadsTheSameAtEveryServoRate) {
   const dev::DeviceSpec spec = desktop();
   const double q = spec.position_resolution_m;
