@@ -16,11 +16,11 @@ const char* const kModalHelp = R"(usage: modal-analyze --shape SHAPE [dimensions
        modal-analyze --scene FILE [options]
 
 Offline modal analysis of one object: a structured tetrahedral mesh (or the solid inside a closed
-triangle mesh, filled with tetrahedra by Gmsh), linear elasticity with
-consistent mass, K x = lambda M x solved by ARPACK in shift-invert mode (negative shift, sparse
-Cholesky of K - sigma M), the 6 rigid-body modes of a free body dropped, Rayleigh damping from the
-material, the audible band, the psychoacoustic merge of close modes and truncation. Prints one
-line per audible mode; results are cached (docs/audio.md), so a second run is fast.
+triangle mesh, filled with tetrahedra by Gmsh), linear elasticity with consistent mass,
+K x = lambda M x solved by ARPACK in shift-invert mode (negative shift, sparse Cholesky of
+K - sigma M), the 6 rigid-body modes of a free body dropped, Rayleigh damping from the material,
+the audible band, the psychoacoustic merge of close modes and truncation. Prints one line per
+audible mode; results are cached (docs/audio.md), so a second run is fast.
 
 Scene:
   --scene FILE           analyse a scene's surface slab (surface.thickness, surface.held), each
@@ -84,8 +84,9 @@ Output:
   --quiet                no progress lines on stderr
   -h, --help             this text
 
-Example: the free-free steel bar of docs/audio.md
+Examples: the free-free steel bar of docs/audio.md; a ceramic vase of 4,968 triangles
   modal-analyze --shape box --size 0.3,0.02,0.01 --cells 30,2,1 --modes 6
+  modal-analyze --mesh vase --radius 0.05 --segments 46 --material ceramic
 )";
 
 namespace {
