@@ -29,8 +29,9 @@ SceneMesh buildSceneMesh(const Scene& scene);
 // fingerprint (scene_surface.hpp) hashed with the mesh as every sense reads it, so two hosts whose
 // mesh files (or generators) differ see different fingerprints. FNV-1a 64 (base/fnv1a64.hpp) over
 // the tag "thx.mesh.v1"; the texture fingerprint (uint64); the position and triangle counts
-// (int32); every position x, y, z and every uv u, v (quantised to 1e-12); every triangle's three
-// vertex indices (int32); mesh_to_world's rotation row by row and its translation; the tile u, v.
+// (int32); for each vertex in turn its position x, y, z and its uv u, v (quantised to 1e-12);
+// every triangle's three vertex indices (int32); mesh_to_world's rotation row by row and its
+// translation; the tile u, v.
 // The positions and uv are those after the vertex frames were built (a split vertex counts twice).
 std::uint64_t meshSceneFingerprint(std::uint64_t texture_fingerprint, const mesh::TexturedMesh& mesh,
                                    const Eigen::Isometry3d& mesh_to_world, const Eigen::Vector2d& tile_m);
