@@ -147,8 +147,9 @@ Eigen::Vector3d PassivityController::apply(const Eigen::Vector3d& force_on_pen_n
   // reading says the environment has absorbed it; counting it keeps the first count of a motion on
   // one axis from reading as generation while another axis's motion already passes. Never
   // negative, so a toggle or a motion out of the force adds nothing.
+  // (Finite: the force was checked above and the play only keeps finite lags.)
   const double held_back_j = std::max(0.0, -force_on_pen_n.dot(play_lag_m_));
-  const double predicted_j = observed_j_ + still_in_flight_j + predicted_ve_j + (std::isfinite(held_back_j) ? held_back_j : 0.0);
+  const double predicted_j = observed_j_ + still_in_flight_j + predicted_ve_j + held_back_j;
   double credit_j = 0.0;
   if (enabled_ && predicted_j < 0.0) {
     const double v2 = pen_velocity_m_per_s.squaredNorm();

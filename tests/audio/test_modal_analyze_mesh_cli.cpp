@@ -25,10 +25,10 @@ class ModalAnalyzeMeshCli : public ::testing::Test {
   std::string path(const std::string& name) const { return dir_.file(name); }
   int run(std::vector<std::string> args) {
     args.insert(args.begin(), tool_.string());
-    const int status = thx::test::reap(thx::test::spawnIn("", args, path("out.txt"), path("err.txt")), 120.0);
-    out_ = thx::test::slurp(path("out.txt"));
-    err_ = thx::test::slurp(path("err.txt"));
-    return status;
+    thx::test::ToolRun r = thx::test::runTool(args, dir_.path(), 120.0);
+    out_ = std::move(r.out);
+    err_ = std::move(r.err);
+    return r.status;
   }
   fs::path tool_;
   thx::test::TempDir dir_{"thx_modal_analyze_mesh"};

@@ -26,10 +26,10 @@ class WavSpectrogramCli : public ::testing::Test {
   // Runs the tool; its exit status, with stdout and stderr in out_ and err_.
   int run(std::vector<std::string> args) {
     args.insert(args.begin(), tool_.string());
-    const int status = thx::test::reap(thx::test::spawnIn("", args, path("out.txt"), path("err.txt")), 30.0);
-    out_ = thx::test::slurp(path("out.txt"));
-    err_ = thx::test::slurp(path("err.txt"));
-    return status;
+    thx::test::ToolRun r = thx::test::runTool(args, dir_.path(), 30.0);
+    out_ = std::move(r.out);
+    err_ = std::move(r.err);
+    return r.status;
   }
   fs::path tool_;
   thx::test::TempDir dir_{"thx_wav_spectrogram"};

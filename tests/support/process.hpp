@@ -101,6 +101,22 @@ inline int reap(pid_t pid, double timeout_s) {
   }
 }
 
+// A command-line program run to its end: its exit status (reap()'s) and what it wrote.
+struct ToolRun {
+  int status = -1;
+  std::string out, err;
+};
+// Runs argv with stdout and stderr in `dir`'s out.txt and err.txt (overwritten), for at most
+// timeout_s, and reads them back.
+inline ToolRun runTool(const std::vector<std::string>& argv, const std::filesystem::path& dir, double timeout_s) {
+  const std::string out = (dir / "out.txt").string(), err = (dir / "err.txt").string();
+  ToolRun r;
+  r.status = reap(spawnIn("", argv, out, err), timeout_s);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
 // Polls `done` every 20 ms for up to timeout_s; its last answer.
 inline bool waitUntil(const std::function<bool()>& done, double timeout_s) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);

@@ -157,11 +157,8 @@ TetMesh tetrahedraOfSurface(const std::string& name, const mesh::TexturedMesh& s
   } catch (...) {
     throw cannotFill(who, "no reason given");
   }
-  out.clamped.assign(out.nodes.size(), 0);
-  if (settings.order == ElementOrder::Quadratic) {
-    addEdgeMidpoints(out);
-    out.clamped.assign(out.nodes.size(), 0);
-  }
+  if (settings.order == ElementOrder::Quadratic) addEdgeMidpoints(out);
+  out.clamped.assign(out.nodes.size(), 0);  // a free body
   return out;
 }
 
