@@ -45,22 +45,15 @@ double distanceForBias(double r, const StepContext& step) {
 
 }  // namespace
 
-void applyNormalMap(btManifoldPoint& point, bool plane_is_b, const Eigen::Isometry3d& plane_to_world,
-                    const tex::TexturedSurface& surface, const btCollisionObject& other,
-                    const NormalMapOptions& options, const StepContext& step) {
-  // Sample where the contact lies on the plane (the plane-side point).
-  const btVector3& on_plane = plane_is_b ? point.m_positionWorldOnB : point.m_positionWorldOnA;
-  const Eigen::Vector3d p_local = plane_to_world.inverse() * toEigen(on_plane);
-  const Eigen::Vector3d n_local = clampedSampledNormal(surface, p_local.x(), p_local.y(), options.max_tilt_deg);
-  const Eigen::Vector3d n_world = plane_to_world.linear() * n_local;
+void steerContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector3d& n_world,
+                  const Eigen::Vector3d& n_geometric, const btCollisionObject& other, bool hold_height,
+                  const StepContext& step) {
+  // m_normalWorldOnB points from B towards A: the surface's normal if the surface is B, else reversed.
+  point.m_normalWorldOnB = toBt(surface_is_b ? n_world : Eigen::Vector3d(-n_world));
 
-  // m_normalWorldOnB points from B towards A: the plane's normal if the plane is B, else reversed.
-  point.m_normalWorldOnB = toBt(plane_is_b ? n_world : Eigen::Vector3d(-n_world));
-
-  const Eigen::Vector3d n_geometric = plane_to_world.linear().col(2);
   const btCollisionShape* shape = other.getCollisionShape();
   const bool sphere = shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE;
-  const Eigen::Vector3d on_object = toEigen(plane_is_b ? point.m_positionWorldOnA : point.m_positionWorldOnB);
+  const Eigen::Vector3d on_object = toEigen(surface_is_b ? point.m_positionWorldOnA : point.m_positionWorldOnB);
   // For a sphere the solver's normal row sees only the centre's velocity (the lever arm is along
   // n_s); for other shapes the contact point's.
   const Eigen::Vector3d v_ref =
@@ -74,13 +67,25 @@ void applyNormalMap(btManifoldPoint& point, bool plane_is_b, const Eigen::Isomet
     point.m_positionWorldOnA = q;
     point.m_positionWorldOnB = q;
   }
-  if (options.hold_height) {
-    const double d_g = double(point.m_distance1);  // Bullet's gap along the plane's own normal
+  if (hold_height) {
+    const double d_g = double(point.m_distance1);  // Bullet's gap along the geometry's own normal
     const double b_g = d_g < 0.0 ? -step.erp * d_g / step.dt_s : -d_g / step.dt_s;
     const Eigen::Vector3d v_t = v_ref - v_ref.dot(n_geometric) * n_geometric;
     const double required = b_g * n_world.dot(n_geometric) + v_t.dot(n_world);
     point.m_distance1 = static_cast<btScalar>(distanceForBias(required, step));
   }
+}
+
+void applyNormalMap(btManifoldPoint& point, bool plane_is_b, const Eigen::Isometry3d& plane_to_world,
+                    const tex::TexturedSurface& surface, const btCollisionObject& other,
+                    const NormalMapOptions& options, const StepContext& step) {
+  // Sample where the contact lies on the plane (the plane-side point).
+  const btVector3& on_plane = plane_is_b ? point.m_positionWorldOnB : point.m_positionWorldOnA;
+  const Eigen::Vector3d p_local = plane_to_world.inverse() * toEigen(on_plane);
+  const Eigen::Vector3d n_local = clampedSampledNormal(surface, p_local.x(), p_local.y(), options.max_tilt_deg);
+  const Eigen::Vector3d n_world = plane_to_world.linear() * n_local;
+
+  steerContact(point, plane_is_b, n_world, plane_to_world.linear().col(2), other, options.hold_height, step);
 }
 
 }  // namespace thx::phys

@@ -36,6 +36,15 @@ struct StepContext {
 Eigen::Vector3d clampedSampledNormal(const tex::TexturedSurface& surface, double x_local, double y_local,
                                      double max_tilt_deg);
 
+// The rule once the steering normal is known, shared by the plane and the mesh
+// (mesh_contact.hpp): `point`'s normal becomes n_world (unit, from the surface towards `other`);
+// a sphere's points move to c - r n_world (Eq. 2); with hold_height, the distance is set so that
+// the solver keeps the object on the geometry, whose unit normal there is n_geometric (the
+// plane's; the flat triangle's on a mesh), as explained under applyNormalMap.
+void steerContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector3d& n_world,
+                  const Eigen::Vector3d& n_geometric, const btCollisionObject& other, bool hold_height,
+                  const StepContext& step);
+
 // Rewrites `point` of a manifold in which the textured plane is body B (`plane_is_b`) or body A.
 // `plane_to_world` is the plane body's world transform (the surface's local frame); `other` is the
 // object touching the plane.

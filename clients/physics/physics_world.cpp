@@ -1,18 +1,23 @@
 #include "clients/physics/physics_world.hpp"
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/contact_solver.hpp"
 #include "clients/physics/relief_collision.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/scaled_convex_collision.hpp"
+
+#include "base/error.hpp"
 
 namespace thx::phys {
 
@@ -66,6 +71,36 @@ btRigidBody& PhysicsWorld::addBody(std::unique_ptr<btCollisionShape> shape, doub
   shapes_.push_back(std::move(shape));
   bodies_.push_back(std::move(body));
   return *bodies_.back();
+}
+
+struct PhysicsWorld::TriangleArrays {
+  std::vector<int> indices;
+  std::vector<btScalar> vertices;
+  std::unique_ptr<btTriangleIndexVertexArray> array;
+};
+
+btRigidBody& PhysicsWorld::addTexturedMesh(const mesh::TexturedMesh& mesh, const Eigen::Isometry3d& pose,
+                                           const BodyMaterial& material, const MeshContactOptions& options) {
+  if (mesh.triangles.empty() || !mesh.hasFrames())
+    throw thx::Error(thx::Error::Kind::Config, "mesh " + mesh.source + ": no triangles or no vertex frames; expected a built textured mesh");
+  if (mesh.triangles.size() > std::size_t(std::numeric_limits<int>::max() / 3) ||
+      mesh.positions.size() > std::size_t(std::numeric_limits<int>::max()))
+    throw thx::Error(thx::Error::Kind::Config, "mesh " + mesh.source + ": too many triangles for Bullet's int indices");
+  auto arrays = std::make_unique<TriangleArrays>();
+  arrays->indices.reserve(3 * mesh.triangles.size());
+  for (const mesh::Triangle& t : mesh.triangles)
+    for (std::uint32_t v : t) arrays->indices.push_back(int(v));
+  arrays->vertices.reserve(3 * mesh.positions.size());
+  for (const Eigen::Vector3d& p : mesh.positions)
+    for (int k = 0; k < 3; ++k) arrays->vertices.push_back(narrow(p[k]));
+  arrays->array = std::make_unique<btTriangleIndexVertexArray>(
+      int(mesh.triangles.size()), arrays->indices.data(), int(3 * sizeof(int)), int(mesh.positions.size()),
+      arrays->vertices.data(), int(3 * sizeof(btScalar)));
+  auto shape = std::make_unique<btBvhTriangleMeshShape>(arrays->array.get(), true);
+  triangle_arrays_.push_back(std::move(arrays));
+  btRigidBody& body = addBody(std::move(shape), 0.0, pose, material);
+  world_->addTexturedMesh(&body, &mesh, options);
+  return body;
 }
 
 btRigidBody& PhysicsWorld::addPlainPlane(const Eigen::Isometry3d& plane_to_world, const BodyMaterial& material) {

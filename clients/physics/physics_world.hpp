@@ -69,6 +69,12 @@ class PhysicsWorld {
   btRigidBody& addNormalMapPlane(const tex::TexturedSurface& surface, const BodyMaterial& material,
                                  const NormalMapOptions& options = {});
   btRigidBody& addReliefPlane(const tex::TexturedSurface& surface, const BodyMaterial& material);
+  // A static textured mesh (meshes/textured_mesh.hpp, frames built) at `pose` (the mesh's frame
+  // in the world): Bullet's btBvhTriangleMeshShape over its triangles, each contact steered by the
+  // smooth surface and the texture (mesh_contact.hpp). The mesh and any texture in `options`
+  // must outlive this world.
+  btRigidBody& addTexturedMesh(const mesh::TexturedMesh& mesh, const Eigen::Isometry3d& pose,
+                               const BodyMaterial& material, const MeshContactOptions& options = {});
   // Any static collision shape (heightfield, mesh ...), for comparisons; the world owns it.
   btRigidBody& addStaticShape(std::unique_ptr<btCollisionShape> shape, const Eigen::Isometry3d& pose,
                               const BodyMaterial& material);
@@ -96,6 +102,9 @@ class PhysicsWorld {
   std::unique_ptr<btDbvtBroadphase> broadphase_;
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
   std::unique_ptr<TexturedWorld> world_;
+  struct TriangleArrays;  // a mesh's vertices and indices as Bullet reads them (declared before
+                          // shapes_: the shapes that read them go first)
+  std::vector<std::unique_ptr<TriangleArrays>> triangle_arrays_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
 };

@@ -22,41 +22,78 @@ void TexturedWorld::removeNormalMapPlane(const btCollisionObject* plane) {
   std::erase_if(planes_, [&](const NormalMapPlane& p) { return p.body == plane; });
 }
 
+void TexturedWorld::addTexturedMesh(const btCollisionObject* body, const mesh::TexturedMesh* mesh,
+                                    const MeshContactOptions& options) {
+  std::erase_if(meshes_, [&](const TexturedMeshBody& m) { return m.body == body; });
+  meshes_.push_back({body, ContactMesh(*mesh), options});
+}
+
 void TexturedWorld::performDiscreteCollisionDetection() {
   btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
   rewritten_ = 0;
   rewriteNormalMapContacts();
+  rewriteMeshContacts();
   if ((getSolverInfo().m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) == 0) return;
   btDispatcher* dispatcher = getDispatcher();
   for (int m = 0; m < dispatcher->getNumManifolds(); ++m)
     alignFrictionWithSlip(*dispatcher->getManifoldByIndexInternal(m), double(getDispatchInfo().m_timeStep));
 }
 
-void TexturedWorld::rewriteNormalMapContacts() {
-  if (planes_.empty()) return;
+StepContext TexturedWorld::stepContext() {
   StepContext step;
   step.dt_s = double(getDispatchInfo().m_timeStep);
   step.erp = double(getSolverInfo().m_erp);
   step.split_penetration_threshold =
       getSolverInfo().m_splitImpulse ? double(getSolverInfo().m_splitImpulsePenetrationThreshold) : -1e30;
-  btDispatcher* dispatcher = getDispatcher();
-  const int count = dispatcher->getNumManifolds();
-  for (int m = 0; m < count; ++m) {
-    btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
-    for (const NormalMapPlane& plane : planes_) {
+  return step;
+}
+
+namespace {
+
+// Calls rewrite(point, surface_is_b, surface_to_world, surface, other) for every contact point of
+// every manifold that touches one of `surfaces` (each manifold is rewritten by the first surface
+// in it); returns the number of points.
+template <class Surfaces, class Rewrite>
+long long rewriteContactsWith(btDispatcher& dispatcher, const Surfaces& surfaces, Rewrite rewrite) {
+  long long rewritten = 0;
+  for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
+    btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
+    for (const auto& surface : surfaces) {
       // The manifold's A/B order is fixed by the algorithm that made it, not by insertion order.
-      const bool plane_is_b = manifold->getBody1() == plane.body;
-      if (!plane_is_b && manifold->getBody0() != plane.body) continue;
-      const btCollisionObject* other = plane_is_b ? manifold->getBody0() : manifold->getBody1();
-      const Eigen::Isometry3d plane_to_world = toEigen(plane.body->getWorldTransform());
+      const bool surface_is_b = manifold->getBody1() == surface.body;
+      if (!surface_is_b && manifold->getBody0() != surface.body) continue;
+      const btCollisionObject* other = surface_is_b ? manifold->getBody0() : manifold->getBody1();
+      const Eigen::Isometry3d surface_to_world = toEigen(surface.body->getWorldTransform());
       for (int k = 0; k < manifold->getNumContacts(); ++k) {
-        applyNormalMap(manifold->getContactPoint(k), plane_is_b, plane_to_world, *plane.surface, *other,
-                       plane.options, step);
-        ++rewritten_;
+        rewrite(manifold->getContactPoint(k), surface_is_b, surface_to_world, surface, *other);
+        ++rewritten;
       }
       break;
     }
   }
+  return rewritten;
+}
+
+}  // namespace
+
+void TexturedWorld::rewriteMeshContacts() {
+  if (meshes_.empty()) return;
+  const StepContext step = stepContext();
+  rewritten_ += rewriteContactsWith(*getDispatcher(), meshes_,
+                                    [&](btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                                        const TexturedMeshBody& mesh, const btCollisionObject& other) {
+                                      applyMeshContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
+                                    });
+}
+
+void TexturedWorld::rewriteNormalMapContacts() {
+  if (planes_.empty()) return;
+  const StepContext step = stepContext();
+  rewritten_ += rewriteContactsWith(*getDispatcher(), planes_,
+                                    [&](btManifoldPoint& point, bool plane_is_b, const Eigen::Isometry3d& plane_to_world,
+                                        const NormalMapPlane& plane, const btCollisionObject& other) {
+                                      applyNormalMap(point, plane_is_b, plane_to_world, *plane.surface, other, plane.options, step);
+                                    });
 }
 
 void TexturedWorld::solveConstraints(btContactSolverInfo& info) {

@@ -3,7 +3,7 @@
 //
 // Normal-map mode lives here: performDiscreteCollisionDetection() runs Bullet's own collision
 // detection, then rewrites every manifold point touching a registered normal-mapped plane
-// (normal_map_contact.hpp) before the solver runs. Doing it here rather than in
+// (normal_map_contact.hpp) or textured mesh (mesh_contact.hpp) before the solver runs. Doing it here rather than in
 // gContactAddedCallback reaches every point on every step, including points Bullet keeps from
 // earlier steps, and sees world positions after refreshContactPoints (docs/design.md §7 fact 7).
 //
@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "clients/physics/mesh_contact.hpp"
 #include "clients/physics/normal_map_contact.hpp"
 #include "clients/physics/rest_detector.hpp"
 #include "textures/textured_surface.hpp"
@@ -31,6 +32,10 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
   void addNormalMapPlane(const btCollisionObject* plane, const tex::TexturedSurface* surface,
                          const NormalMapOptions& options = {});
   void removeNormalMapPlane(const btCollisionObject* plane);
+  // `body` is a static body whose shape is `mesh`'s triangles in order (one part), its frame the
+  // mesh's; its contacts are steered by mesh_contact.hpp. The mesh (and any texture in
+  // `options`) must outlive the registration.
+  void addTexturedMesh(const btCollisionObject* body, const mesh::TexturedMesh* mesh, const MeshContactOptions& options);
 
   // Bullet's detection, then the normal-map rewrite, then (with the solver's
   // SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) every point's friction along its slip
@@ -51,7 +56,14 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
     const tex::TexturedSurface* surface;
     NormalMapOptions options;
   };
+  struct TexturedMeshBody {
+    const btCollisionObject* body;
+    ContactMesh mesh;
+    MeshContactOptions options;
+  };
   void rewriteNormalMapContacts();
+  void rewriteMeshContacts();
+  StepContext stepContext();
   void updateActivationState(btScalar time_step) override;
   // Bullet's island manager wakes every body that shares a manifold with an active kinematic
   // body, even a manifold with no contact point (the pen's bounding box near a resting ball): a
@@ -60,6 +72,7 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
   void solveConstraints(btContactSolverInfo& info) override;
 
   std::vector<NormalMapPlane> planes_;
+  std::vector<TexturedMeshBody> meshes_;
   long long rewritten_ = 0;
   RestOptions rest_;
   std::unordered_map<const btRigidBody*, RestDetector> rest_detectors_;

@@ -1,0 +1,76 @@
+#pragma once
+// Contacts with a static textured mesh (issue 29): Bullet collides an object with the mesh's flat
+// triangles (btBvhTriangleMeshShape), then each manifold point is steered as on the textured
+// plane (normal_map_contact.hpp), with the normal of the surface the mesh stands for:
+//  - the vertex frames interpolated at the contact (mesh::FrameMode::Interpolated: the normal
+//    that shades the mesh and that the pen feels), so a ball rolls over the triangles' edges of
+//    a tessellated bowl as on the smooth bowl instead of being knocked at each one;
+//  - with a texture, its sampled normal turned into that frame (x along the tangent, y along the
+//    bitangent: the haptic renderer's rule, server/textured_mesh_renderer.cpp), its tilt from
+//    the smooth normal clamped as on the plane;
+//  - for a sphere, the points moved to c - r n (Eq. 2), and with hold_height the distance set so
+//    that the solver keeps the object on the flat triangle (its own normal) while the push
+//    follows the steered normal.
+// The triangle is the one Bullet reports in the manifold point (its index on the mesh's side:
+// btConvexConcaveCollisionAlgorithm stores it as m_index0 or m_index1), the place on it the
+// mesh-side point's barycentric coordinates. A ball is one contact with the smooth surface,
+// whichever triangles Bullet found it on (at a vertex it touches several, and each would clamp
+// the place to its own border): every point of its manifold is moved to the foot of its centre
+// on the smooth surface, found by walking across the triangles' edges from Bullet's triangle,
+// and its gap is measured there to Phong's surface (mesh::FrameMode::InterpolatedPhong), not to
+// the flat triangle: a ball rolling fast over a tessellated sphere's convex edges would
+// otherwise turn about each edge at its own radius and hop from edge to edge.
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+#include <BulletCollision/NarrowPhaseCollision/btManifoldPoint.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "clients/physics/normal_map_contact.hpp"
+#include "meshes/textured_mesh.hpp"
+#include "textures/sampling.hpp"
+#include "textures/texture_map.hpp"
+
+namespace thx::phys {
+
+struct MeshContactOptions {
+  // nullptr: the smooth surface only. The map must outlive the world.
+  const tex::TextureMap* texture = nullptr;
+  tex::SampleOptions sampling;
+  // The texture tile (metres per uv) the map's normals were made for; where the mesh lays the
+  // texture at another scale its slopes are turned to match (as on the haptic chart). Zero: as
+  // they are.
+  Eigen::Vector2d normals_made_for_m = Eigen::Vector2d::Zero();
+  // false: Bullet's own contact (the flat triangle's normal), for comparisons.
+  bool smooth = true;
+  double max_tilt_deg = 75.0;  // as NormalMapOptions::max_tilt_deg, from the smooth normal
+  bool hold_height = true;     // as NormalMapOptions::hold_height, on the flat triangle
+};
+
+// The steering normal at barycentric b of `triangle` (mesh frame, unit, outward as the mesh is
+// wound): the interpolated normal, turned by the texture if there is one.
+Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
+                                  const MeshContactOptions& options);
+
+// A mesh with what the contacts walk on (built once; allocates).
+struct ContactMesh {
+  explicit ContactMesh(const mesh::TexturedMesh& m) : mesh(&m), neighbours(mesh::triangleNeighbours(m)) {}
+  const mesh::TexturedMesh* mesh;
+  std::vector<mesh::Triangle> neighbours;
+};
+
+// The triangle and barycentric coordinates of the foot of a ball's centre c (mesh frame) on the
+// smooth surface, from a triangle near it; `side` is -1 where the ball is behind the winding.
+void smoothFoot(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
+                Eigen::Vector3d& barycentric);
+
+// Rewrites `point` of a manifold in which the mesh is body B (`mesh_is_b`) or body A. The normal
+// is oriented towards the object as Bullet found it (a bowl's inside is touched against the
+// mesh's winding). A point whose triangle index is out of range is left as Bullet made it.
+void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                      const ContactMesh& mesh, const btCollisionObject& other,
+                      const MeshContactOptions& options, const StepContext& step = {});
+
+}  // namespace thx::phys

@@ -1,0 +1,202 @@
+// A ball on a static tessellated mesh (clients/physics/mesh_contact.hpp) against the analytic
+// answers of the smooth surface the mesh stands for (issue 29):
+//  - rolling without slipping in a spherical bowl of radius R, a ball of radius r swings with the
+//    period 2 pi sqrt(7 (R - r) / (5 g)) for small swings;
+//  - rolling off the top of a sphere from rest, it leaves the surface where
+//    cos(theta) = 10/17 cos(theta_0) (theta_0 its start, from the top).
+#include <gtest/gtest.h>
+
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
+
+#include <cstdio>
+
+#include "base/error.hpp"
+#include "clients/physics/bullet_convert.hpp"
+#include "meshes/mesh_generators.hpp"
+#include "physics_fixtures.hpp"
+
+namespace thx::phys::test::test_mesh_rolling {
+namespace {
+
+constexpr double kBallRadius = 0.01, kBallMass = 0.05, kDt = 1e-3;
+
+Eigen::Isometry3d placedAt(const Eigen::Vector3d& p) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = p;
+  return t;
+}
+
+// Sum of the normal impulses the last step applied between `ball` and anything.
+double normalImpulse(PhysicsWorld& w, const btRigidBody& ball) {
+  double total = 0.0;
+  btDispatcher* d = w.world().getDispatcher();
+  for (int m = 0; m < d->getNumManifolds(); ++m) {
+    const btPersistentManifold* manifold = d->getManifoldByIndexInternal(m);
+    if (manifold->getBody0() != &ball && manifold->getBody1() != &ball) continue;
+    for (int k = 0; k < manifold->getNumContacts(); ++k) total += double(manifold->getContactPoint(k).m_appliedImpulse);
+  }
+  return total;
+}
+
+// A UV sphere mesh of `radius` (`segments` around, half as many rings) at the origin, in a world.
+struct SphereScene {
+  mesh::GeneratedMesh sphere;
+  PhysicsWorld world;
+  SphereScene(int segments, bool smooth, double radius) : sphere(mesh::sphere(radius, segments, segments / 2, 0.01)) {
+    MeshContactOptions options;
+    options.smooth = smooth;
+    world.addTexturedMesh(sphere.mesh, Eigen::Isometry3d::Identity(), {1.0, 0.0, 0.0}, options);
+  }
+};
+
+struct Swing {
+  double period_s = 0.0;
+  int periods = 0;
+};
+
+// The ball released at rest theta_0 up the inside of a sphere of radius R (the bowl), for
+// `seconds`; the period from the times it crosses the bottom moving in +x.
+Swing swingInBowl(int segments, bool smooth, double bowl_radius, double theta0_deg, double seconds) {
+  SphereScene scene(segments, smooth, bowl_radius);
+  PhysicsWorld& w = scene.world;
+  const double l = bowl_radius - kBallRadius, th = deg(theta0_deg);
+  btRigidBody& ball = w.addSphere(kBallRadius, kBallMass, placedAt({l * std::sin(th), 0.0, -l * std::cos(th)}),
+                                  {1.0, 0.0, 0.0});
+  std::vector<double> crossings;
+  double x_last = positionOf(ball).x();
+  const int steps = int(std::lround(seconds / kDt));
+  for (int k = 1; k <= steps; ++k) {
+    w.step(kDt);
+    const double x = positionOf(ball).x();
+    if (x_last < 0.0 && x >= 0.0) crossings.push_back(kDt * (k - 1 + (-x_last) / (x - x_last)));
+    x_last = x;
+  }
+  Swing s;
+  s.periods = int(crossings.size()) - 1;
+  if (s.periods > 0) s.period_s = (crossings.back() - crossings.front()) / s.periods;
+  return s;
+}
+
+struct Departure {
+  double theta_deg = 0.0;  // from the top, where the normal impulse first vanished
+  bool left = false;
+};
+
+Departure rollOffSphere(int segments, bool smooth, double sphere_radius, double theta0_deg, double friction) {
+  SphereScene scene(segments, smooth, sphere_radius);
+  PhysicsWorld& w = scene.world;
+  const double l = sphere_radius + kBallRadius, th = deg(theta0_deg);
+  // Off the x axis by a little so the ball does not roll along one ring of vertices.
+  const Eigen::Vector3d dir = Eigen::Vector3d(std::cos(0.3), std::sin(0.3), 0.0);
+  btRigidBody& ball = w.addSphere(kBallRadius, kBallMass, placedAt(l * (std::sin(th) * dir + std::cos(th) * Eigen::Vector3d::UnitZ())),
+                                  {friction, 0.0, 0.0});
+  // The last step that pushed the ball is where it left (it may lift off a facet's edge for a
+  // step before that and land again).
+  Departure d;
+  for (int k = 1; k <= 3000; ++k) {
+    w.step(kDt);
+    const Eigen::Vector3d c = positionOf(ball);
+    const double theta = std::atan2(std::hypot(c.x(), c.y()), c.z()) * 180.0 / kPi;
+    if (normalImpulse(w, ball) > 0.0) {
+      d.theta_deg = theta;
+      d.left = false;
+    } else if (theta > 90.0) {
+      d.left = true;
+      break;
+    }
+  }
+  return d;
+}
+
+double swingPeriod(double bowl_radius) { return 2.0 * kPi * std::sqrt(7.0 * (bowl_radius - kBallRadius) / (5.0 * kG)); }
+
+TEST(MeshRolling, ABallInATessellatedSphericalBowlSwingsAtTheSmoothBowlsRollingPeriod) {
+  // 128 x 64 triangles' strips (16,128 triangles), R = 10 cm, a 1 cm ball 5 degrees up the wall.
+  const double R = 0.1, expected = swingPeriod(R);
+  const Swing smooth = swingInBowl(128, true, R, 5.0, 4.0);
+  ASSERT_GE(smooth.periods, 4);
+  std::printf("bowl, 128 segments: smooth %.5f s, expected %.5f s (%+.2f %%)\n", smooth.period_s, expected,
+              100.0 * (smooth.period_s / expected - 1.0));
+  EXPECT_NEAR(smooth.period_s, expected, 0.01 * expected);
+  // Bullet's own contact with the flat triangles (the baseline): knocked at every edge.
+  const Swing flat = swingInBowl(128, false, R, 5.0, 4.0);
+  std::printf("bowl, 128 segments: flat triangles %.5f s (%+.2f %%)\n", flat.period_s, 100.0 * (flat.period_s / expected - 1.0));
+  EXPECT_GT(std::fabs(flat.period_s / expected - 1.0), 0.03);
+}
+
+TEST(MeshRolling, ABallRollingOffATessellatedSphereLeavesWhereCosThetaIsTenSeventeenths) {
+  // From rest 1 degree off the top, friction 10 (slipping starts only at 53.3 degrees, where the
+  // normal force has nearly gone).
+  const double expected = std::acos(10.0 / 17.0 * std::cos(deg(1.0))) * 180.0 / kPi;  // 53.97
+  for (int segments : {64, 128}) {
+    const Departure smooth = rollOffSphere(segments, true, 0.1, 1.0, 10.0);
+    ASSERT_TRUE(smooth.left) << segments;
+    std::printf("sphere, %d segments: left at %.2f deg, expected %.2f\n", segments, smooth.theta_deg, expected);
+    EXPECT_NEAR(smooth.theta_deg, expected, 1.0) << segments;
+    // The flat triangles' contact: the centre turns about each convex edge at the ball's radius,
+    // so the ball hops off edges and leaves early.
+    const Departure flat = rollOffSphere(segments, false, 0.1, 1.0, 10.0);
+    ASSERT_TRUE(flat.left) << segments;
+    std::printf("sphere, %d segments: flat triangles left at %.2f deg\n", segments, flat.theta_deg);
+    EXPECT_LT(flat.theta_deg, expected - 3.0) << segments;
+  }
+}
+
+// The texture on a mesh steers a ball as the same texture on the plane does: a uniformly tilted
+// normal map laid on a box's flat top rolls a ball at 5/7 g tan(theta) along the texture's +u.
+TEST(MeshRolling, ATiltedTextureOnAMeshsFlatFaceRollsABallAtFiveSeventhsGTanTheta) {
+  const double angle = 10.0;
+  const tex::TextureMap map = tiltedMap(angle, 64, 0.2);
+  const mesh::GeneratedMesh slab = mesh::box({0.4, 0.4, 0.02}, 0.05, 0.2);
+  PhysicsWorld w;
+  MeshContactOptions options;
+  options.texture = &map;
+  w.addTexturedMesh(slab.mesh, Eigen::Isometry3d::Identity(), {1.0, 0.0, 0.0}, options);
+  btRigidBody& ball = w.addSphere(kBallRadius, kBallMass, placedAt({0.0, 0.0, 0.01 + kBallRadius}), {1.0, 0.0, 0.0});
+  // +u on the top face, where the ball starts.
+  const ContactMesh contact(slab.mesh);
+  std::uint32_t top = 0;
+  double best = 1e9;
+  for (std::uint32_t t = 0; t < slab.mesh.triangles.size(); ++t) {
+    const Eigen::Vector3d b = mesh::closestBarycentric(slab.mesh, t, {0.0, 0.0, 0.01});
+    const mesh::SurfaceFrame f = mesh::frameAt(slab.mesh, t, b, mesh::FrameMode::Interpolated);
+    const double d = (f.point - Eigen::Vector3d(0.0, 0.0, 0.01)).norm() + (f.normal.z() < 0.99 ? 1.0 : 0.0);
+    if (d < best) best = d, top = t;
+  }
+  const Eigen::Vector3d downhill =
+      mesh::frameAt(slab.mesh, top, mesh::closestBarycentric(slab.mesh, top, {0.0, 0.0, 0.01}), mesh::FrameMode::Interpolated).tangent;
+  double v1 = 0.0, z_error = 0.0;
+  for (int k = 1; k <= 500; ++k) {
+    w.step(kDt);
+    z_error = std::max(z_error, std::fabs(positionOf(ball).z() - 0.01 - kBallRadius));
+    if (k == 100) v1 = velocityOf(ball).dot(downhill);
+  }
+  const double accel = (velocityOf(ball).dot(downhill) - v1) / 0.4;
+  const double expected = 5.0 / 7.0 * kG * std::tan(deg(angle));
+  std::printf("tilted texture on a mesh: %.4f m/s^2, expected %.4f\n", accel, expected);
+  EXPECT_NEAR(accel, expected, 0.01 * expected);
+  EXPECT_LT((velocityOf(ball) - velocityOf(ball).dot(downhill) * downhill).norm(), 1e-3 * velocityOf(ball).norm())
+      << "it rolls along the texture's slope";
+  EXPECT_LT(z_error, 5e-5) << "the flat face keeps the ball's height";
+}
+
+TEST(MeshRolling, AMeshWithoutFramesIsRefusedNamingIt) {
+  mesh::TexturedMesh raw;
+  raw.source = "raw.obj";
+  raw.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  raw.uvs = {{0, 0}, {1, 0}, {0, 1}};
+  raw.triangles = {{0, 1, 2}};
+  PhysicsWorld w;
+  try {
+    w.addTexturedMesh(raw, Eigen::Isometry3d::Identity(), {});
+    FAIL() << "a mesh without vertex frames was accepted";
+  } catch (const thx::Error& e) {
+    EXPECT_EQ(e.kind(), thx::Error::Kind::Config);
+    EXPECT_NE(std::string(e.what()).find("mesh raw.obj"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("vertex frames"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(w.world().getNumCollisionObjects(), 0) << "nothing half-added";
+}
+
+}  // namespace
+}  // namespace thx::phys::test::test_mesh_rolling
