@@ -171,16 +171,23 @@ EdgeRow measureEdges(const bench::CurvedSurface& s, const Tessellation& t, const
 struct CostRow {
   std::size_t triangles = 0, bytes = 0;
   double build_ms = 0, p50_us = 0, p99_us = 0, max_us = 0, contact_share = 0;
+  // The same stroke with every sweep asked of the hierarchy (TexturedMeshRenderer::useLocalSet).
+  double hierarchy_p50_us = 0, hierarchy_p99_us = 0;
 };
 
 // The textured sphere stroked in contact, 1 mm under the smooth surface at 50 mm/s along a
 // wavy path round the equator; every render() timed.
-CostRow measureCost(const bench::CurvedSurface& s, const tex::TextureMap& map, int triangles, int ticks) {
-  const Tessellation t(s, triangles);
+struct StrokeTimes {
+  double p50_us = 0, p99_us = 0, max_us = 0, contact_share = 0;
+};
+
+StrokeTimes timeStroke(const bench::CurvedSurface& s, const tex::TextureMap& map, const Tessellation& t, int ticks,
+                       bool local_set) {
   srv::RendererConfig rc;
   rc.stiffness_n_per_m = kK;
   srv::TexturedMeshRenderer r(t.generated.mesh, *t.bvh, {&map, {tex::Filter::Bilinear, tex::Address::Wrap}, true},
                               Eigen::Isometry3d::Identity(), rc);
+  r.useLocalSet(local_set);
   auto path = [&](int k) -> Eigen::Vector3d {
     const double X = 5e-5 * k, Y = M_PI / 2 * s.radius() + 0.01 * std::sin(X / 0.03);
     return s.base(X, Y) - 1e-3 * s.normal(X, Y);
@@ -198,14 +205,30 @@ CostRow measureCost(const bench::CurvedSurface& s, const tex::TextureMap& map, i
     contact += out.in_contact ? 1 : 0;
   }
   std::sort(us.begin(), us.end());
+  StrokeTimes times;
+  times.p50_us = us[us.size() / 2];
+  times.p99_us = us[std::size_t(0.99 * double(us.size()))];
+  times.max_us = us.back();
+  times.contact_share = double(contact) / ticks;
+  return times;
+}
+
+CostRow measureCost(const bench::CurvedSurface& s, const tex::TextureMap& map, int triangles, int ticks) {
+  const Tessellation t(s, triangles);
+  // The hierarchy alone first, then the default (the local set): the same mesh, already in
+  // memory for both.
+  const StrokeTimes hierarchy = timeStroke(s, map, t, ticks, false);
+  const StrokeTimes local = timeStroke(s, map, t, ticks, true);
   CostRow row;
   row.triangles = t.triangles();
   row.bytes = t.bytes();
   row.build_ms = t.build_ms;
-  row.p50_us = us[us.size() / 2];
-  row.p99_us = us[std::size_t(0.99 * double(us.size()))];
-  row.max_us = us.back();
-  row.contact_share = double(contact) / ticks;
+  row.p50_us = local.p50_us;
+  row.p99_us = local.p99_us;
+  row.max_us = local.max_us;
+  row.contact_share = local.contact_share;
+  row.hierarchy_p50_us = hierarchy.p50_us;
+  row.hierarchy_p99_us = hierarchy.p99_us;
   return row;
 }
 
@@ -300,18 +323,20 @@ int run(int argc, char** argv) {
   const std::string stamp = bench::fmt("%s, %s build, %s", bench::isoNow().c_str(), bench::buildType(),
                                        bench::machineSummary().c_str());
   std::string c = "table,surface,triangles,frame,rel_rms,rel_median,rel_max,over_20pct,no_contact,probes,ns_per_tick,"
-                  "largest_step_deg,natural_step_deg,bytes,build_ms,p50_us,p99_us,max_us,contact_share\n";
+                  "largest_step_deg,natural_step_deg,bytes,build_ms,p50_us,p99_us,max_us,contact_share,hierarchy_p50_us,"
+                  "hierarchy_p99_us\n";
   for (const ErrorRow& r : errors) {
-    c += bench::fmt("error,%s,%zu,%s,%.6g,%.6g,%.6g,%d,%d,%d,%.1f,,,,,,,,\n", r.surface.c_str(), r.triangles, r.mode.c_str(),
+    c += bench::fmt("error,%s,%zu,%s,%.6g,%.6g,%.6g,%d,%d,%d,%.1f,,,,,,,,,,\n", r.surface.c_str(), r.triangles, r.mode.c_str(),
                     r.rel_rms, r.rel_median, r.rel_max, r.over_20, r.no_contact, r.probes, r.ns_per_tick);
   }
   for (const EdgeRow& r : edges) {
-    c += bench::fmt("edges,sphere+untextured,%zu,%s,,,,,,,,%.5g,%.5g,,,,,,\n", r.triangles, r.mode.c_str(), r.largest_step_deg,
+    c += bench::fmt("edges,sphere+untextured,%zu,%s,,,,,,,,%.5g,%.5g,,,,,,,,\n", r.triangles, r.mode.c_str(), r.largest_step_deg,
                     r.natural_step_deg);
   }
   for (const CostRow& r : costs) {
-    c += bench::fmt("cost,sphere+sine,%zu,interpolated+phong,,,,,,,,,,%zu,%.1f,%.3f,%.3f,%.3f,%.4f\n", r.triangles, r.bytes,
-                    r.build_ms, r.p50_us, r.p99_us, r.max_us, r.contact_share);
+    c += bench::fmt("cost,sphere+sine,%zu,interpolated+phong,,,,,,,,,,%zu,%.1f,%.3f,%.3f,%.3f,%.4f,%.3f,%.3f\n", r.triangles,
+                    r.bytes, r.build_ms, r.p50_us, r.p99_us, r.max_us, r.contact_share, r.hierarchy_p50_us,
+                    r.hierarchy_p99_us);
   }
   if (!csv.empty()) bench::writeTextFile(csv, c);
   if (!json.empty()) {
@@ -336,8 +361,9 @@ int run(int argc, char** argv) {
     for (std::size_t i = 0; i < costs.size(); ++i) {
       const CostRow& r = costs[i];
       j += bench::fmt("    {\"triangles\": %zu, \"bytes\": %zu, \"build_ms\": %.1f, \"p50_us\": %.3f, \"p99_us\": %.3f, "
-                      "\"max_us\": %.3f, \"contact_share\": %.4f}%s\n",
-                      r.triangles, r.bytes, r.build_ms, r.p50_us, r.p99_us, r.max_us, r.contact_share,
+                      "\"max_us\": %.3f, \"contact_share\": %.4f, \"hierarchy_p50_us\": %.3f, \"hierarchy_p99_us\": %.3f}%s\n",
+                      r.triangles, r.bytes, r.build_ms, r.p50_us, r.p99_us, r.max_us, r.contact_share, r.hierarchy_p50_us,
+                      r.hierarchy_p99_us,
                       i + 1 < costs.size() ? "," : "");
     }
     j += "  ]\n}\n";
@@ -361,11 +387,15 @@ int run(int argc, char** argv) {
     for (const EdgeRow& r : edges) {
       t += bench::fmt("| %zu | %s | %.3f° | %.3f° |\n", r.triangles, r.mode.c_str(), r.largest_step_deg, r.natural_step_deg);
     }
-    t += "\n**Render cost** (textured sphere, interpolated + Phong, stroked 1 mm deep at 50 mm/s; every `render()` timed):\n\n";
-    t += "| triangles | mesh + BVH | build | p50 | p99 | max | in contact |\n|---:|---:|---:|---:|---:|---:|---:|\n";
+    t += "\n**Render cost** (textured sphere, interpolated + Phong, stroked 1 mm deep at 50 mm/s; every `render()` timed; "
+         "the sweeps from the leaves around the pen, the default, and from the hierarchy every time, the same stroke just "
+         "before):\n\n";
+    t += "| triangles | mesh + BVH | build | p50 | p99 | max | in contact | hierarchy only: p50 | p99 |\n"
+         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const CostRow& r : costs) {
-      t += bench::fmt("| %zu | %.1f MB | %.0f ms | %.2f µs | %.2f µs | %.1f µs | %.1f %% |\n", r.triangles, double(r.bytes) / 1e6,
-                      r.build_ms, r.p50_us, r.p99_us, r.max_us, 100 * r.contact_share);
+      t += bench::fmt("| %zu | %.1f MB | %.0f ms | %.2f µs | %.2f µs | %.1f µs | %.1f %% | %.2f µs | %.2f µs |\n", r.triangles,
+                      double(r.bytes) / 1e6, r.build_ms, r.p50_us, r.p99_us, r.max_us, 100 * r.contact_share,
+                      r.hierarchy_p50_us, r.hierarchy_p99_us);
     }
     bench::writeTextFile(md, t);
   }
@@ -399,12 +429,16 @@ int run(int argc, char** argv) {
     p50.label = "p50", p50.color = {60, 120, 200};
     p99.label = "p99", p99.color = {200, 60, 40}, p99.marker = bench::Marker::Square;
     double cmin = 1e9, cmax = 0;
+    bench::PlotSeries p99_hierarchy;
+    p99_hierarchy.label = "p99, hierarchy only", p99_hierarchy.color = {150, 150, 150};
+    p99_hierarchy.marker = bench::Marker::Square;
     for (const CostRow& r : costs) {
       p50.x.push_back(double(r.triangles)), p50.y.push_back(r.p50_us);
       p99.x.push_back(double(r.triangles)), p99.y.push_back(r.p99_us);
-      cmin = std::min(cmin, r.p50_us), cmax = std::max(cmax, r.p99_us);
+      p99_hierarchy.x.push_back(double(r.triangles)), p99_hierarchy.y.push_back(r.hierarchy_p99_us);
+      cmin = std::min(cmin, r.p50_us), cmax = std::max({cmax, r.p99_us, r.hierarchy_p99_us});
     }
-    cost.series = {p50, p99};
+    cost.series = {p50, p99, p99_hierarchy};
     if (!costs.empty()) {
       cost.x_min = double(costs.front().triangles) / 1.5, cost.x_max = double(costs.back().triangles) * 1.5;
       cost.y_min = cmin / 1.5, cost.y_max = cmax * 1.5;

@@ -14,25 +14,30 @@ namespace {
 // at 500,000 triangles). Exact: an entry within the prefix is the first of the whole segment, and
 // the split is half-open (a plane crossed exactly at the split point enters in the rest).
 constexpr double kPrefixM = 1e-5;
-TriangleBvh::Hit firstEntry(const TriangleBvh& bvh, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                            const std::uint32_t* skip, int n_skip) {
+TriangleBvh::Hit sweep(const TriangleBvh& bvh, const LocalTriangleSet* local, const Eigen::Vector3d& a,
+                       const Eigen::Vector3d& b, const std::uint32_t* skip, int n_skip) {
+  return local ? local->firstEntry(a, b, skip, n_skip) : bvh.firstEntry(a, b, skip, n_skip);
+}
+TriangleBvh::Hit firstEntry(const TriangleBvh& bvh, const LocalTriangleSet* local, const Eigen::Vector3d& a,
+                            const Eigen::Vector3d& b, const std::uint32_t* skip, int n_skip) {
   const double len = (b - a).norm();
-  if (!(len > 2 * kPrefixM)) return bvh.firstEntry(a, b, skip, n_skip);
+  if (!(len > 2 * kPrefixM)) return sweep(bvh, local, a, b, skip, n_skip);
   const double split = kPrefixM / len;
   const Eigen::Vector3d m = a + split * (b - a);
-  TriangleBvh::Hit hit = bvh.firstEntry(a, m, skip, n_skip);
+  TriangleBvh::Hit hit = sweep(bvh, local, a, m, skip, n_skip);
   if (hit.hit) {
     hit.t *= split;
     return hit;
   }
-  hit = bvh.firstEntry(m, b, skip, n_skip);
+  hit = sweep(bvh, local, m, b, skip, n_skip);
   if (hit.hit) hit.t = split + hit.t * (1.0 - split);
   return hit;
 }
 
 }  // namespace
 
-GodObjectStep moveGodObject(const TriangleBvh& bvh, const Eigen::Vector3d& proxy, const Eigen::Vector3d& tip) {
+GodObjectStep moveGodObject(const TriangleBvh& bvh, const Eigen::Vector3d& proxy, const Eigen::Vector3d& tip,
+                            const LocalTriangleSet* local) {
   std::array<Halfspace, kMaxHalfspaces> planes{};
   std::array<std::uint32_t, kGodObjectMaxConstraints> ids{};
   int count = 0;
@@ -42,7 +47,8 @@ GodObjectStep moveGodObject(const TriangleBvh& bvh, const Eigen::Vector3d& proxy
     ++sweeps;
     // The first sweep re-enters the face the proxy stands on (a prefix finds it); the later ones
     // slide along held faces, short already.
-    const TriangleBvh::Hit hit = count == 0 ? firstEntry(bvh, p, goal, ids.data(), count) : bvh.firstEntry(p, goal, ids.data(), count);
+    const TriangleBvh::Hit hit =
+        count == 0 ? firstEntry(bvh, local, p, goal, ids.data(), count) : sweep(bvh, local, p, goal, ids.data(), count);
     if (!hit.hit) {
       p = goal;
       break;

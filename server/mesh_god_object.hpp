@@ -28,6 +28,7 @@
 #include <array>
 #include <cstdint>
 
+#include "server/local_triangle_set.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/triangle_bvh.hpp"
 #include "textures/plane_mapping.hpp"
@@ -48,7 +49,9 @@ struct GodObjectStep {
   int count = 0;
   int sweeps = 0;
 };
-GodObjectStep moveGodObject(const TriangleBvh& bvh, const Eigen::Vector3d& proxy, const Eigen::Vector3d& tip);
+// With `local`, every sweep is asked of it (the same answers, local_triangle_set.hpp).
+GodObjectStep moveGodObject(const TriangleBvh& bvh, const Eigen::Vector3d& proxy, const Eigen::Vector3d& tip,
+                            const LocalTriangleSet* local = nullptr);
 
 class MeshGodObject {
  public:

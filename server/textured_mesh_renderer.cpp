@@ -43,7 +43,8 @@ TexturedMeshRenderer::TexturedMeshRenderer(const mesh::TexturedMesh& mesh, const
       config_(config),
       frames_(frames),
       bulge_m_(frames == mesh::FrameMode::InterpolatedPhong ? phongBulge(mesh) : 0.0),
-      neighbours_(mesh::triangleNeighbours(mesh)) {
+      neighbours_(mesh::triangleNeighbours(mesh)),
+      local_(bvh) {
   // Only a textured mesh renders on a chart; an untextured one has its smooth planes.
   if (texture.map) {
     chart_ = tex::TexturedSurface(*texture.map, tex::PlaneMapping{}, texture.sampling, texture.use_relief);
@@ -58,6 +59,7 @@ void TexturedMeshRenderer::reset() {
   if (chart_renderer_) chart_renderer_->reset();
   contact_ = {};
   last_sweeps_ = 0;
+  local_.reset();
 }
 
 void TexturedMeshRenderer::locate(const Eigen::Vector3d& x, std::uint32_t held, std::uint32_t& triangle,
@@ -261,9 +263,10 @@ RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, cons
 
   // 1. The god object on the flat faces; a tip just outside them but under Phong's surface is
   // held by the nearest face.
-  const GodObjectStep step = moveGodObject(*bvh_, proxy_, tip);
+  const GodObjectStep step = moveGodObject(*bvh_, proxy_, tip, use_local_ ? &local_ : nullptr);
   proxy_ = step.proxy;
   last_sweeps_ = step.sweeps;
+  if (use_local_) local_.advance(proxy_);
   std::array<std::uint32_t, kGodObjectMaxConstraints> held = step.triangles;
   int count = step.count;
   if (count == 0 && bulge_m_ > 0.0) {

@@ -32,7 +32,8 @@
 // frame (CHAI3D 3.3's: the frame jumps at every edge; a baseline for the benchmark).
 //
 // Real-time safe: render() allocates nothing, takes no lock; its work is the god object's bounded
-// sweeps, a bounded walk across edges (kAnchorSteps x kMaxHops faces) and the plane renderer's
+// sweeps (from the leaves around the pen, gathered ahead of it a bounded step per tick:
+// local_triangle_set.hpp), a bounded walk across edges (kAnchorSteps x kMaxHops faces) and the plane renderer's
 // tick. Built once before the servo runs (the constructor allocates the edge table and measures
 // Phong's bulge, in time linear in the triangles). The mesh, hierarchy and map must outlive it.
 #include <Eigen/Core>
@@ -42,6 +43,7 @@
 #include <vector>
 
 #include "meshes/textured_mesh.hpp"
+#include "server/local_triangle_set.hpp"
 #include "server/mesh_god_object.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/triangle_bvh.hpp"
@@ -87,6 +89,10 @@ class TexturedMeshRenderer {
 
   const RendererConfig& config() const { return config_; }
   const MeshContact& lastContact() const { return contact_; }
+  // The god object's sweeps from the leaves around the pen (local_triangle_set.hpp; the default)
+  // or from the hierarchy every time: the same answers, for tests and benchmarks.
+  void useLocalSet(bool on) { use_local_ = on; }
+  const LocalTriangleSet& localSet() const { return local_; }
   int lastSweeps() const { return last_sweeps_; }
   // How far Phong's triangles rise above the flat ones at most (0 in the other frame modes).
   double bulge() const { return bulge_m_; }
@@ -144,6 +150,8 @@ class TexturedMeshRenderer {
   bool chart_valid_ = false;  // chart_renderer_'s state belongs to chart_ (one face held last tick)
   MeshContact contact_;
   int last_sweeps_ = 0;
+  LocalTriangleSet local_;
+  bool use_local_ = true;
 };
 
 }  // namespace thx::srv

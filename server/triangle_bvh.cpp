@@ -101,8 +101,8 @@ std::size_t TriangleBvh::bytes() const {
   return nodes_.size() * sizeof(Node) + order_.size() * sizeof(order_[0]) + planes_.size() * sizeof(planes_[0]);
 }
 
-TriangleBvh::Segment TriangleBvh::segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  Segment s;
+SweepSegment sweepSegment(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  SweepSegment s;
   s.a = a;
   for (int k = 0; k < 3; ++k) {
     const double d = b[k] - a[k];
@@ -112,35 +112,25 @@ TriangleBvh::Segment TriangleBvh::segment(const Eigen::Vector3d& a, const Eigen:
   return s;
 }
 
-bool TriangleBvh::boxEntry(const Node& node, const Segment& s, double t_max, double& t_enter) {
-  // Slabs with the reciprocal direction computed once per query (three divisions per box were a
-  // third of a tick's BVH time, bench_mesh_force). Multiplying by the reciprocal rounds slightly
-  // differently from dividing, so the slab interval is widened by kSlabSlack: a box is never
-  // missed, and its entry never overestimated, by that rounding; the triangles decide exactly.
-  constexpr double kSlabSlack = 1e-12;
-  double t0 = 0.0, t1 = t_max;
-  for (int k = 0; k < 3; ++k) {
-    const double lo = node.lo[std::size_t(k)], hi = node.hi[std::size_t(k)];
-    if (s.parallel[std::size_t(k)]) {
-      if (s.a[k] < lo || s.a[k] > hi) return false;
-      continue;
-    }
-    double ta = (lo - s.a[k]) * s.inv_d[k], tb = (hi - s.a[k]) * s.inv_d[k];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta - kSlabSlack);
-    t1 = std::min(t1, tb + kSlabSlack);
-    if (t0 > t1) return false;
+double TriangleBvh::typicalLeafExtent() const {
+  std::vector<double> extents;
+  for (const Node& node : nodes_) {
+    if (node.count == 0) continue;
+    double e = 0.0;
+    for (std::size_t k = 0; k < 3; ++k) e = std::max(e, node.hi[k] - node.lo[k]);
+    extents.push_back(e);
   }
-  t_enter = t0;
-  return true;
+  std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2), extents.end());
+  return extents[extents.size() / 2];
 }
 
-bool TriangleBvh::entersTriangle(std::uint32_t triangle, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                 double& t) const {
+bool TriangleBvh::entersTriangleBy(std::uint32_t triangle, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                   double t_max, double& t) const {
   const Halfspace& h = planes_[triangle];
   const double sa = h.n.dot(a) - h.d, sb = h.n.dot(b) - h.d;
   if (!(sa >= 0.0 && sb < 0.0)) return false;  // not entering through the front
   const double s = sa / (sa - sb);
+  if (s > t_max) return false;
   const auto& tri = mesh_->triangles[triangle];
   const Eigen::Vector3d& p0 = mesh_->vertices[tri[0]];
   const Eigen::Vector3d e1 = mesh_->vertices[tri[1]] - p0, e2 = mesh_->vertices[tri[2]] - p0;
@@ -159,7 +149,7 @@ TriangleBvh::Hit TriangleBvh::firstEntry(const Eigen::Vector3d& a, const Eigen::
   Hit best;
   if (!a.allFinite() || !b.allFinite()) return best;
   const Eigen::Vector3d d = b - a;
-  const Segment seg = segment(a, b);
+  const SweepSegment seg = sweepSegment(a, b);
   double best_t = std::numeric_limits<double>::infinity();
   std::uint32_t best_tri = 0;
   // Entry parameter kept with each node, so a node farther than a hit found meanwhile is dropped.
@@ -167,7 +157,7 @@ TriangleBvh::Hit TriangleBvh::firstEntry(const Eigen::Vector3d& a, const Eigen::
   std::array<double, kMaxDepth + 2> stack_t;
   int sp = 0;
   double t_root = 0.0;
-  if (!boxEntry(nodes_[0], seg, 1.0, t_root)) return best;
+  if (!slabEntry(nodes_[0].lo, nodes_[0].hi, seg, 1.0, t_root)) return best;
   stack[0] = 0;
   stack_t[0] = t_root;
   sp = 1;
@@ -181,7 +171,7 @@ TriangleBvh::Hit TriangleBvh::firstEntry(const Eigen::Vector3d& a, const Eigen::
         bool skipped = false;
         for (int s = 0; s < n_skip; ++s) skipped = skipped || skip[s] == tri;
         double t = 0.0;
-        if (skipped || !entersTriangle(tri, a, b, t)) continue;
+        if (skipped || !entersTriangleBy(tri, a, b, best_t, t)) continue;
         if (t < best_t || (t == best_t && tri < best_tri)) {
           best_t = t;
           best_tri = tri;
@@ -192,8 +182,8 @@ TriangleBvh::Hit TriangleBvh::firstEntry(const Eigen::Vector3d& a, const Eigen::
     const std::uint32_t left = std::uint32_t(&node - nodes_.data()) + 1, right = node.first_or_right;
     const double t_max = std::min(1.0, best_t);
     double tl = 0.0, tr = 0.0;
-    const bool hl = boxEntry(nodes_[left], seg, t_max, tl);
-    const bool hr = boxEntry(nodes_[right], seg, t_max, tr);
+    const bool hl = slabEntry(nodes_[left].lo, nodes_[left].hi, seg, t_max, tl);
+    const bool hr = slabEntry(nodes_[right].lo, nodes_[right].hi, seg, t_max, tr);
     // The nearer child on top, so its hits prune the farther one.
     if (hl && hr && tl < tr) {
       stack[std::size_t(sp)] = right, stack_t[std::size_t(sp++)] = tr;
