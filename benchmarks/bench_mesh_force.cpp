@@ -402,7 +402,7 @@ int run(int argc, char** argv) {
   if (!png.empty()) {
     bench::PlotPanel err, cost;
     err.title = "Force error against triangles", err.x_label = "triangles", err.y_label = "RMS force error (%)";
-    cost.title = "Render cost against triangles", cost.x_label = "triangles", cost.y_label = "µs per tick";
+    cost.title = "Render cost against triangles", cost.x_label = "triangles", cost.y_label = "microseconds per tick";
     const bench::Rgb colours[] = {{200, 60, 40}, {60, 120, 200}, {40, 150, 70}};
     const bench::Marker markers[] = {bench::Marker::Circle, bench::Marker::Square, bench::Marker::Triangle};
     double ymin = 1e9, ymax = 0, xmin = 1e9, xmax = 0;

@@ -28,6 +28,9 @@
 #              or mesh_force (issue 28: the textured mesh renderer's force error against exact displaced
 #              spheres and cylinders by triangle count and frame, force turns across edges, render
 #              cost up to 500,000 triangles; about 2 min; its tables go to docs/meshes.md)
+#              or physics_mesh (issue 29: a ball swinging in and rolling off tessellated spheres
+#              against the smooth sphere's answers, smooth contacts and Bullet's flat ones, by
+#              tessellation; about 10 s; its table goes to docs/physics.md)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
@@ -86,6 +89,15 @@ splice() {
     !skip { print }
   ' "$DOC" > "$DOC.tmp" && mv "$DOC.tmp" "$DOC"
   say "updated the $name table in ${DOC#"$ROOT"/}"
+}
+
+# A benchmark that writes its results into RESULTS (NAME.json, .csv, .png) and one table, spliced
+# into DOC between NAME's markers.
+bench_with_table() {
+  local name=$1 doc=$2
+  "$BIN/$name" --json "$RESULTS/$name.json" --csv "$RESULTS/$name.csv" --png "$RESULTS/$name.png" \
+    --md "$WORK/$name.md" > /dev/null || return 1
+  splice "$name" "$WORK/$name.md" "$doc"
 }
 
 run_render() {
@@ -268,9 +280,13 @@ run_visual_servo() {
 run_mesh_force() {
   need "$BIN/bench_mesh_force" || return 1
   say "part mesh_force: textured meshes, force error and render cost against triangles (about 2 min)"
-  "$BIN/bench_mesh_force" --json "$RESULTS/bench_mesh_force.json" --csv "$RESULTS/bench_mesh_force.csv" \
-    --png "$RESULTS/bench_mesh_force.png" --md "$WORK/bench_mesh_force.md" > /dev/null || return 1
-  splice bench_mesh_force "$WORK/bench_mesh_force.md" "$ROOT/docs/meshes.md"
+  bench_with_table bench_mesh_force "$ROOT/docs/meshes.md"
+}
+
+run_physics_mesh() {
+  need "$BIN/bench_physics_mesh" || return 1
+  say "part physics_mesh: balls on tessellated spheres against the smooth sphere's answers (about 10 s)"
+  bench_with_table bench_physics_mesh "$ROOT/docs/physics.md"
 }
 
 run_table1() {
@@ -291,14 +307,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | table1 | mesh_force | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | table1 | mesh_force | physics_mesh | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load table1 mesh_force report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load table1 mesh_force physics_mesh report)"
       exit 2
       ;;
   esac

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <unordered_map>
+
+#include "meshes/position_key.hpp"
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
@@ -39,6 +42,12 @@ Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
   return clampTilt(turned, f.normal, options.max_tilt_deg);
 }
 
+ContactMesh::ContactMesh(const mesh::TexturedMesh& m) : mesh(&m), neighbours(mesh::triangleNeighbours(m)) {
+  std::unordered_map<mesh::PositionBits, int, mesh::PositionHash> fan;
+  for (const mesh::Triangle& t : m.triangles)
+    for (std::uint32_t v : t) max_hops = std::max(max_hops, 16 + ++fan[mesh::bitsOf(m.positions[v])]);
+}
+
 void smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
                 Eigen::Vector3d& barycentric) {
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
@@ -46,10 +55,10 @@ void smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
   // x; walk to the triangle that holds x; again from there (as the haptic anchor does,
   // server/textured_mesh_renderer.cpp). A ball's radius is large against a triangle's turn, so two or
   // three rounds settle it.
-  constexpr int kRounds = 4, kMaxHops = 16;
+  constexpr int kRounds = 4;
   for (int round = 0; round < kRounds; ++round) {
     const Eigen::Vector3d n = side * mesh::frameAt(mesh, triangle, barycentric, mesh::FrameMode::Interpolated).normal;
-    for (int hop = 0; hop < kMaxHops; ++hop) {
+    for (int hop = 0; hop < contact_mesh.max_hops; ++hop) {
       const mesh::Triangle& t = mesh.triangles[triangle];
       const Eigen::Vector3d& p0 = mesh.positions[t[0]];
       const Eigen::Vector3d e1 = mesh.positions[t[1]] - p0, e2 = mesh.positions[t[2]] - p0;

@@ -56,9 +56,12 @@ Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
 
 // A mesh with what the contacts walk on (built once; allocates).
 struct ContactMesh {
-  explicit ContactMesh(const mesh::TexturedMesh& m) : mesh(&m), neighbours(mesh::triangleNeighbours(m)) {}
+  explicit ContactMesh(const mesh::TexturedMesh& m);
   const mesh::TexturedMesh* mesh;
   std::vector<mesh::Triangle> neighbours;
+  // Edges a walk may cross: enough to go round the largest fan of triangles at one position (a
+  // UV sphere's pole: Bullet may report a point on the far side of it from the ball).
+  int max_hops = 16;
 };
 
 // The triangle and barycentric coordinates of the foot of a ball's centre c (mesh frame) on the

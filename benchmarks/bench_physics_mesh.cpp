@@ -1,0 +1,196 @@
+// Speed against error of Bullet bodies on tessellated curved meshes (issue 29; docs/physics.md
+// "Textured meshes"): a ball swinging inside a UV sphere of radius 10 cm (the bowl) and a ball
+// rolling off its top, against the smooth sphere's analytic answers (the rolling period
+// 2 pi sqrt(7 (R - r) / 5 g); departure at cos(theta) = 10/17 cos(theta_0)), by tessellation,
+// with the contacts steered by the smooth surface (clients/physics/mesh_contact.hpp) and with
+// Bullet's own contacts on the flat triangles (the baseline); and the cost of a step. Measures
+// only; nothing asserted (tests/physics/test_mesh_rolling.cpp holds the analytic answers).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "base/cli_number.hpp"
+#include "base/error.hpp"
+#include "benchmarks/bench_help.hpp"
+#include "benchmarks/bench_rig.hpp"
+#include "benchmarks/bench_stamp.hpp"
+#include "tests/physics/mesh_rolling_scenes.hpp"
+#include "tools/report/plot.hpp"
+
+namespace {
+
+using namespace thx;
+using namespace thx::phys::test::mesh_rolling;
+
+constexpr const char* kHelp = R"(usage: bench_physics_mesh [--segments N,N,...] [--seconds S] [--quick]
+                          [--json F] [--csv F] [--md F] [--png F]
+
+A 1 cm, 50 g ball on UV spheres of radius 10 cm tessellated with N segments around and N/2
+rings (meshes/mesh_generators.hpp), at 1 ms steps:
+  bowl:     released 5 degrees up the inside; its swing period against the rolling period
+            2 pi sqrt(7 (R - r) / (5 g)) = 0.71208 s, over the run's whole periods;
+  roll-off: released at rest 1 degree off the top, friction 10; where it leaves (its last step
+            with a normal impulse) against cos(theta) = 10/17 cos(1 deg): 53.97 degrees.
+Each with the contacts steered by the smooth surface (the default of
+PhysicsWorld::addTexturedMesh) and with Bullet's own contacts on the flat triangles; and the
+wall-clock time of a step in the bowl (one ball, the mesh static).
+
+  --segments LIST   tessellations (default 16,24,32,48,64,96,128,192,256)
+  --seconds S       simulated time of each bowl run (default 4)
+  --quick           a short run (3 tessellations, 2 s)
+  --json/--csv/--md/--png F   results
+)";
+
+struct Row {
+  int segments = 0;
+  std::size_t triangles = 0;
+  double period_smooth = 0, period_flat = 0;  // relative error
+  double leave_smooth = 0, leave_flat = 0;    // degrees, signed
+  bool left_smooth = false, left_flat = false;
+  double us_smooth = 0, us_flat = 0;
+};
+
+std::vector<int> parseList(const std::string& option, const std::string& text) {
+  std::vector<int> out;
+  for (std::size_t a = 0; a <= text.size();) {
+    std::size_t b = text.find(',', a);
+    if (b == std::string::npos) b = text.size();
+    out.push_back(int(cli::parseInteger(option, text.substr(a, b - a), 6, 2048)));
+    a = b + 1;
+  }
+  return out;
+}
+
+int run(int argc, char** argv) {
+  std::vector<int> segments{16, 24, 32, 48, 64, 96, 128, 192, 256};
+  double seconds = 4.0;
+  std::string json, csv, md, png;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--quick") {
+      segments = {32, 64, 128};
+      seconds = 2.0;
+      continue;
+    }
+    if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
+    const std::string v = argv[++i];
+    if (a == "--segments") segments = parseList(a, v);
+    else if (a == "--seconds") seconds = cli::parseNumber(a, v, {0.5, 600.0, false, "s"});
+    else if (a == "--json") json = v;
+    else if (a == "--csv") csv = v;
+    else if (a == "--md") md = v;
+    else if (a == "--png") png = v;
+    else throw UsageError("unknown option " + a + " (see --help)");
+  }
+
+  constexpr double kR = 0.1, kTheta0 = 1.0, kSwing0 = 5.0, kFriction = 10.0;
+  const double period = swingPeriod(kR), leave = departureDeg(kTheta0);
+  std::vector<Row> rows;
+  std::fprintf(stderr, "bench_physics_mesh:");
+  for (int n : segments) {
+    std::fprintf(stderr, " %d", n);
+    Row r;
+    r.segments = n;
+    r.triangles = mesh::sphere(kR, n, n / 2, 0.01).mesh.triangles.size();
+    const Swing smooth = swingInBowl(n, true, kR, kSwing0, seconds), flat = swingInBowl(n, false, kR, kSwing0, seconds);
+    r.period_smooth = smooth.periods > 0 ? smooth.period_s / period - 1.0 : NAN;
+    r.period_flat = flat.periods > 0 ? flat.period_s / period - 1.0 : NAN;
+    r.us_smooth = smooth.us_per_step, r.us_flat = flat.us_per_step;
+    const Departure ds = rollOffSphere(n, true, kR, kTheta0, kFriction), df = rollOffSphere(n, false, kR, kTheta0, kFriction);
+    r.left_smooth = ds.left, r.left_flat = df.left;
+    r.leave_smooth = ds.theta_deg - leave, r.leave_flat = df.theta_deg - leave;
+    rows.push_back(r);
+  }
+  std::fprintf(stderr, "\n");
+
+  const std::string stamp = bench::fmt("%s, %s build, %s", bench::isoNow().c_str(), bench::buildType(),
+                                       bench::machineSummary().c_str());
+  if (!csv.empty()) {
+    std::string c = "segments,triangles,period_error_smooth,period_error_flat,departure_error_deg_smooth,"
+                    "departure_error_deg_flat,us_per_step_smooth,us_per_step_flat\n";
+    for (const Row& r : rows)
+      c += bench::fmt("%d,%zu,%.6g,%.6g,%.4f,%.4f,%.2f,%.2f\n", r.segments, r.triangles, r.period_smooth, r.period_flat,
+                      r.leave_smooth, r.leave_flat, r.us_smooth, r.us_flat);
+    bench::writeTextFile(csv, c);
+  }
+  if (!json.empty()) {
+    std::string j = "{\n  \"benchmark\": \"balls on tessellated spheres against the smooth sphere's answers\",\n";
+    j += bench::fmt("  \"measured\": \"%s\",\n  \"exact_period_s\": %.6f,\n  \"exact_departure_deg\": %.4f,\n  \"rows\": [\n",
+                    stamp.c_str(), period, leave);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const Row& r = rows[i];
+      j += bench::fmt("    {\"segments\": %d, \"triangles\": %zu, \"period_error_smooth\": %.6g, \"period_error_flat\": %.6g, "
+                      "\"departure_error_deg_smooth\": %.4f, \"departure_error_deg_flat\": %.4f, \"left_smooth\": %s, "
+                      "\"left_flat\": %s, \"us_per_step_smooth\": %.2f, \"us_per_step_flat\": %.2f}%s\n",
+                      r.segments, r.triangles, r.period_smooth, r.period_flat, r.leave_smooth, r.leave_flat,
+                      r.left_smooth ? "true" : "false", r.left_flat ? "true" : "false", r.us_smooth, r.us_flat,
+                      i + 1 < rows.size() ? "," : "");
+    }
+    j += "  ]\n}\n";
+    bench::writeTextFile(json, j);
+  }
+  if (!md.empty()) {
+    std::string t = "Measured " + stamp + ". A 1 cm, 50 g ball, 1 ms steps, UV spheres of radius 10 cm (N segments, N/2 rings). ";
+    t += bench::fmt("Bowl: released 5° up the inside, period against 2π √(7 (R − r) / 5g) = %.5f s. Roll-off: from rest 1° off "
+                    "the top, friction 10, where it leaves against cos θ = 10/17 cos 1° (%.2f°). Smooth: the contacts steered by "
+                    "the smooth surface (the default); flat: Bullet's own on the triangles.\n\n",
+                    period, leave);
+    t += "| segments | triangles | bowl period, smooth | flat | roll-off, smooth | flat | µs per step, smooth | flat |\n"
+         "|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const Row& r : rows) {
+      auto angle = [](bool left, double e) { return left ? bench::fmt("%+.2f°", e) : std::string("stayed on"); };
+      t += bench::fmt("| %d | %zu | %+.2f %% | %+.2f %% | %s | %s | %.1f | %.1f |\n", r.segments, r.triangles,
+                      100 * r.period_smooth, 100 * r.period_flat, angle(r.left_smooth, r.leave_smooth).c_str(),
+                      angle(r.left_flat, r.leave_flat).c_str(), r.us_smooth, r.us_flat);
+    }
+    bench::writeTextFile(md, t);
+  }
+  if (!png.empty()) {
+    bench::PlotPanel period_panel, leave_panel, cost_panel;
+    period_panel.title = "Bowl: swing period error", period_panel.x_label = "triangles", period_panel.y_label = "|error| %";
+    leave_panel.title = "Roll-off: departure angle error", leave_panel.x_label = "triangles", leave_panel.y_label = "|error| degrees";
+    cost_panel.title = "Cost of a step (one ball)", cost_panel.x_label = "triangles", cost_panel.y_label = "microseconds per step";
+    auto series = [](const char* label, bench::Rgb color, bench::Marker marker) {
+      bench::PlotSeries s;
+      s.label = label, s.color = color, s.marker = marker;
+      return s;
+    };
+    bench::PlotSeries ps = series("smooth contact", {60, 120, 200}, bench::Marker::Circle),
+                      pf = series("flat triangles (Bullet)", {200, 60, 40}, bench::Marker::Square);
+    bench::PlotSeries ls = ps, lf = pf, cs = ps, cf = pf;
+    double e_min = 1e9, e_max = 0, a_min = 1e9, a_max = 0, c_min = 1e9, c_max = 0;
+    for (const Row& r : rows) {
+      const double x = double(r.triangles);
+      // Log axes: an error of exactly zero is drawn at the axis floor.
+      const double es = std::max(1e-3, 100 * std::fabs(r.period_smooth)), ef = std::max(1e-3, 100 * std::fabs(r.period_flat));
+      const double as = std::max(1e-2, std::fabs(r.leave_smooth)), af = std::max(1e-2, std::fabs(r.leave_flat));
+      if (std::isfinite(es)) ps.x.push_back(x), ps.y.push_back(es), e_min = std::min(e_min, es), e_max = std::max(e_max, es);
+      if (std::isfinite(ef)) pf.x.push_back(x), pf.y.push_back(ef), e_min = std::min(e_min, ef), e_max = std::max(e_max, ef);
+      if (r.left_smooth) ls.x.push_back(x), ls.y.push_back(as), a_min = std::min(a_min, as), a_max = std::max(a_max, as);
+      if (r.left_flat) lf.x.push_back(x), lf.y.push_back(af), a_min = std::min(a_min, af), a_max = std::max(a_max, af);
+      cs.x.push_back(x), cs.y.push_back(r.us_smooth), cf.x.push_back(x), cf.y.push_back(r.us_flat);
+      c_min = std::min({c_min, r.us_smooth, r.us_flat}), c_max = std::max({c_max, r.us_smooth, r.us_flat});
+    }
+    period_panel.series = {ps, pf};
+    leave_panel.series = {ls, lf};
+    cost_panel.series = {cs, cf};
+    for (bench::PlotPanel* p : {&period_panel, &leave_panel, &cost_panel}) {
+      p->x_min = double(rows.front().triangles) / 1.5, p->x_max = double(rows.back().triangles) * 1.5;
+    }
+    period_panel.y_min = e_min / 2, period_panel.y_max = e_max * 2;
+    leave_panel.y_min = a_min / 2, leave_panel.y_max = a_max * 2;
+    cost_panel.y_min = c_min / 1.5, cost_panel.y_max = c_max * 1.5;
+    bench::writePlotPng(png, {period_panel, leave_panel, cost_panel},
+                        "bench_physics_mesh: balls on tessellated spheres, speed against error (" + stamp + ")", 520, 460);
+  }
+  for (const Row& r : rows)
+    std::printf("%4d segments %6zu triangles: bowl %+.2f %% (flat %+.2f %%), roll-off %+.2f deg (flat %+.2f deg), %.1f us/step\n",
+                r.segments, r.triangles, 100 * r.period_smooth, 100 * r.period_flat, r.leave_smooth, r.leave_flat, r.us_smooth);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return bench::benchMain(argc, argv, kHelp, "bench_physics_mesh", run); }
