@@ -23,8 +23,9 @@ namespace {
 
 using namespace thx;
 using namespace thx::phys::test::mesh_rolling;
+using thx::phys::test::kPi;
 
-constexpr const char* kHelp = R"(usage: bench_physics_mesh [--segments N,N,...] [--seconds S] [--quick]
+constexpr const char* kHelp = R"(usage: bench_physics_mesh [--segments N,N,...] [--seconds S] [--texture-segments N] [--quick]
                           [--json F] [--csv F] [--md F] [--png F]
 
 A 1 cm, 50 g ball on UV spheres of radius 10 cm tessellated with N segments around and N/2
@@ -35,13 +36,25 @@ rings (meshes/mesh_generators.hpp), at 1 ms steps:
             with a normal impulse) against cos(theta) = 10/17 cos(1 deg): 53.97 degrees.
 Each with the contacts steered by the smooth surface (the default of
 PhysicsWorld::addTexturedMesh) and with Bullet's own contacts on the flat triangles; and the
-wall-clock time of a step in the bowl (one ball, the mesh static).
+wall-clock time of a step in the bowl (one ball, the mesh static). Then both scenes on one
+tessellation with a fine texture: sine bumps 2.5 mm apart (tests/physics/mesh_rolling_scenes.hpp)
+whose steepest slope s is 0.005 to 0.1, against the same scene untextured; the departure's change
+beside atan(s), the most the texture can tilt the surface.
 
   --segments LIST   tessellations (default 16,24,32,48,64,96,128,192,256)
   --seconds S       simulated time of each bowl run (default 4)
+  --texture-segments N  the tessellation of the textured runs (default 128)
   --quick           a short run (3 tessellations, 2 s)
   --json/--csv/--md/--png F   results
 )";
+
+struct TexturedRow {
+  double slope = 0;
+  double period_change = 0;  // relative to the untextured run
+  int periods = 0;
+  double leave_change_deg = 0;
+  bool left = false;
+};
 
 struct Row {
   int segments = 0;
@@ -66,6 +79,7 @@ std::vector<int> parseList(const std::string& option, const std::string& text) {
 int run(int argc, char** argv) {
   std::vector<int> segments{16, 24, 32, 48, 64, 96, 128, 192, 256};
   double seconds = 4.0;
+  int texture_segments = 128;
   std::string json, csv, md, png;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -78,6 +92,7 @@ int run(int argc, char** argv) {
     const std::string v = argv[++i];
     if (a == "--segments") segments = parseList(a, v);
     else if (a == "--seconds") seconds = cli::parseNumber(a, v, {0.5, 600.0, false, "s"});
+    else if (a == "--texture-segments") texture_segments = int(cli::parseInteger(a, v, 6, 2048));
     else if (a == "--json") json = v;
     else if (a == "--csv") csv = v;
     else if (a == "--md") md = v;
@@ -103,6 +118,23 @@ int run(int argc, char** argv) {
     r.leave_smooth = ds.theta_deg - leave, r.leave_flat = df.theta_deg - leave;
     rows.push_back(r);
   }
+  std::fprintf(stderr, ", textured:");
+  std::vector<TexturedRow> textured;
+  const Swing plain_swing = swingInBowl(texture_segments, true, kR, kSwing0, seconds);
+  const Departure plain_leave = rollOffSphere(texture_segments, true, kR, kTheta0, kFriction);
+  for (double slope : {0.005, 0.01, 0.02, 0.05, 0.1}) {
+    std::fprintf(stderr, " %g", slope);
+    const tex::TextureMap map = sineBumps(slope);
+    const Swing sw = swingInBowl(texture_segments, true, kR, kSwing0, seconds, &map);
+    const Departure d = rollOffSphere(texture_segments, true, kR, kTheta0, kFriction, &map);
+    TexturedRow t;
+    t.slope = slope;
+    t.periods = sw.periods;
+    t.period_change = sw.periods > 0 && plain_swing.periods > 0 ? sw.period_s / plain_swing.period_s - 1.0 : NAN;
+    t.left = d.left && plain_leave.left;
+    t.leave_change_deg = d.theta_deg - plain_leave.theta_deg;
+    textured.push_back(t);
+  }
   std::fprintf(stderr, "\n");
 
   const std::string stamp = bench::fmt("%s, %s build, %s", bench::isoNow().c_str(), bench::buildType(),
@@ -113,6 +145,10 @@ int run(int argc, char** argv) {
     for (const Row& r : rows)
       c += bench::fmt("%d,%zu,%.6g,%.6g,%.4f,%.4f,%.2f,%.2f\n", r.segments, r.triangles, r.period_smooth, r.period_flat,
                       r.leave_smooth, r.leave_flat, r.us_smooth, r.us_flat);
+    c += "\ntextured_segments,slope,period_change,periods,departure_change_deg,slope_angle_deg\n";
+    for (const TexturedRow& t : textured)
+      c += bench::fmt("%d,%g,%.6g,%d,%.4f,%.4f\n", texture_segments, t.slope, t.period_change, t.periods, t.leave_change_deg,
+                      std::atan(t.slope) * 180.0 / kPi);
     bench::writeTextFile(csv, c);
   }
   if (!json.empty()) {
@@ -127,6 +163,14 @@ int run(int argc, char** argv) {
                       r.segments, r.triangles, r.period_smooth, r.period_flat, r.leave_smooth, r.leave_flat,
                       r.left_smooth ? "true" : "false", r.left_flat ? "true" : "false", r.us_smooth, r.us_flat,
                       i + 1 < rows.size() ? "," : "");
+    }
+    j += bench::fmt("  ],\n  \"textured_segments\": %d,\n  \"textured\": [\n", texture_segments);
+    for (std::size_t i = 0; i < textured.size(); ++i) {
+      const TexturedRow& t = textured[i];
+      j += bench::fmt("    {\"slope\": %g, \"period_change\": %.6g, \"periods\": %d, \"departure_change_deg\": %.4f, "
+                      "\"left\": %s, \"slope_angle_deg\": %.4f}%s\n",
+                      t.slope, t.period_change, t.periods, t.leave_change_deg, t.left ? "true" : "false",
+                      std::atan(t.slope) * 180.0 / kPi, i + 1 < textured.size() ? "," : "");
     }
     j += "  ]\n}\n";
     bench::writeTextFile(json, j);
@@ -145,6 +189,14 @@ int run(int argc, char** argv) {
                       100 * r.period_smooth, 100 * r.period_flat, angle(r.left_smooth, r.leave_smooth).c_str(),
                       angle(r.left_flat, r.leave_flat).c_str(), r.us_smooth, r.us_flat);
     }
+    t += bench::fmt("\nWith a fine texture (%d segments, smooth contact): sine bumps 2.5 mm apart, steepest slope s, against the "
+                    "same scene untextured.\n\n",
+                    texture_segments);
+    t += "| slope s | atan s | roll-off: departure moved | bowl: period changed | whole periods |\n|---:|---:|---:|---:|---:|\n";
+    for (const TexturedRow& r : textured)
+      t += bench::fmt("| %g | %.2f° | %s | %+.2f %% | %d |\n", r.slope, std::atan(r.slope) * 180.0 / kPi,
+                      r.left ? bench::fmt("%+.2f°", r.leave_change_deg).c_str() : "stayed on", 100 * r.period_change,
+                      r.periods);
     bench::writeTextFile(md, t);
   }
   if (!png.empty()) {

@@ -37,15 +37,31 @@ inline double normalImpulse(PhysicsWorld& w, const btRigidBody& ball) {
 }
 
 // A UV sphere mesh of `radius` (`segments` around, half as many rings) at the origin, in a world.
+// With `texture`, the map is laid at one tile per kTileM of arc (its normals made for that tile).
+inline constexpr double kTileM = 0.01;
 struct SphereScene {
   mesh::GeneratedMesh sphere;
   PhysicsWorld world;
-  SphereScene(int segments, bool smooth, double radius) : sphere(mesh::sphere(radius, segments, segments / 2, 0.01)) {
+  SphereScene(int segments, bool smooth, double radius, const tex::TextureMap* texture = nullptr)
+      : sphere(mesh::sphere(radius, segments, segments / 2, kTileM)) {
     MeshContactOptions options;
     options.smooth = smooth;
+    options.texture = texture;
+    options.normals_made_for_m = Eigen::Vector2d::Constant(kTileM);
     world.addTexturedMesh(sphere.mesh, Eigen::Isometry3d::Identity(), {1.0, 0.0, 0.0}, options);
   }
 };
+
+// Sine bumps (textures/generators/sine.cpp) of period kTileM / 4 whose steepest slope is `slope`
+// (amplitude x 2 pi / period), one tile of 256 texels.
+inline tex::TextureMap sineBumps(double slope) {
+  tex::GenerateRequest r;
+  r.kind = "sine";
+  r.size = 256;
+  const double period = kTileM / 4.0;
+  r.params = {{"amplitude", slope * period / (2.0 * kPi)}, {"period", period}, {"extent", kTileM}};
+  return tex::generate(r);
+}
 
 struct Swing {
   double period_s = 0.0;
@@ -55,8 +71,9 @@ struct Swing {
 
 // The ball released at rest theta_0 up the inside of a sphere of radius R (the bowl), for
 // `seconds`; the period from the times it crosses the bottom moving in +x.
-inline Swing swingInBowl(int segments, bool smooth, double bowl_radius, double theta0_deg, double seconds) {
-  SphereScene scene(segments, smooth, bowl_radius);
+inline Swing swingInBowl(int segments, bool smooth, double bowl_radius, double theta0_deg, double seconds,
+                         const tex::TextureMap* texture = nullptr) {
+  SphereScene scene(segments, smooth, bowl_radius, texture);
   PhysicsWorld& w = scene.world;
   const double l = bowl_radius - kBallRadius, th = deg(theta0_deg);
   btRigidBody& ball = w.addSphere(kBallRadius, kBallMass, placedAt({l * std::sin(th), 0.0, -l * std::cos(th)}),
@@ -83,8 +100,9 @@ struct Departure {
   bool left = false;
 };
 
-inline Departure rollOffSphere(int segments, bool smooth, double sphere_radius, double theta0_deg, double friction) {
-  SphereScene scene(segments, smooth, sphere_radius);
+inline Departure rollOffSphere(int segments, bool smooth, double sphere_radius, double theta0_deg, double friction,
+                               const tex::TextureMap* texture = nullptr) {
+  SphereScene scene(segments, smooth, sphere_radius, texture);
   PhysicsWorld& w = scene.world;
   const double l = sphere_radius + kBallRadius, th = deg(theta0_deg);
   // Off the x axis by a little so the ball does not roll along one ring of vertices.

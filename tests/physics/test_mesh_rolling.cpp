@@ -49,6 +49,28 @@ TEST(MeshRolling, ABallRollingOffATessellatedSphereLeavesWhereCosThetaIsTenSeven
   }
 }
 
+// A fine texture moves the sphere's answers by less than its own slope: the departure by less
+// than atan(s), the most it tilts the surface; the bowl's period by under 1 % while s stays well
+// under the swing's own slope (5 degrees: 0.087). Steeper bumps trap the ball in the bumps, as a
+// point-sampled normal map makes them (docs/physics.md).
+TEST(MeshRolling, AFineTextureMovesTheAnswersByLessThanItsSlope) {
+  const Departure plain = rollOffSphere(128, true, 0.1, 1.0, 10.0);
+  const Swing plain_swing = swingInBowl(128, true, 0.1, 5.0, 4.0);
+  for (double slope : {0.02, 0.1}) {
+    const tex::TextureMap map = sineBumps(slope);
+    const Departure d = rollOffSphere(128, true, 0.1, 1.0, 10.0, &map);
+    ASSERT_TRUE(d.left) << slope;
+    const double bound = std::atan(slope) * 180.0 / kPi;
+    std::printf("sine bumps, slope %.2f: departure moved %+.2f deg (atan %.2f deg)\n", slope, d.theta_deg - plain.theta_deg, bound);
+    EXPECT_LT(std::fabs(d.theta_deg - plain.theta_deg), bound) << slope;
+  }
+  const tex::TextureMap fine = sineBumps(0.02);
+  const Swing swing = swingInBowl(128, true, 0.1, 5.0, 4.0, &fine);
+  ASSERT_GE(swing.periods, 4);
+  std::printf("sine bumps, slope 0.02: bowl period changed %+.3f %%\n", 100.0 * (swing.period_s / plain_swing.period_s - 1.0));
+  EXPECT_NEAR(swing.period_s, plain_swing.period_s, 0.01 * plain_swing.period_s);
+}
+
 // The texture on a mesh steers a ball as the same texture on the plane does: a uniformly tilted
 // normal map laid on a box's flat top rolls a ball at 5/7 g tan(theta) along the texture's +u.
 TEST(MeshRolling, ATiltedTextureOnAMeshsFlatFaceRollsABallAtFiveSeventhsGTanTheta) {
