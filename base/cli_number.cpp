@@ -39,4 +39,15 @@ long long parseInteger(std::string_view option, std::string_view text, long long
   return v;
 }
 
+std::vector<int> parseIntegerList(std::string_view option, std::string_view text, int min, int max) {
+  std::vector<int> out;
+  for (std::size_t a = 0; a <= text.size();) {
+    std::size_t b = text.find(',', a);
+    if (b == std::string_view::npos) b = text.size();
+    out.push_back(int(parseInteger(option, text.substr(a, b - a), min, max)));
+    a = b + 1;
+  }
+  return out;
+}
+
 }  // namespace thx::cli

@@ -4,6 +4,7 @@
 //   --rate: expected a number in [10, 10000] Hz, got 'fast'
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace thx::cli {
 
@@ -16,5 +17,7 @@ struct Range {
 double parseNumber(std::string_view option, std::string_view text, const Range& range = {});
 // A whole number in [min, max].
 long long parseInteger(std::string_view option, std::string_view text, long long min, long long max);
+// A comma-separated list of whole numbers, each in [min, max] ("500,2000,5000").
+std::vector<int> parseIntegerList(std::string_view option, std::string_view text, int min, int max);
 
 }  // namespace thx::cli

@@ -60,16 +60,6 @@ const ModeInfo kModes[] = {{mesh::FrameMode::PerTriangle, "per-triangle"},
                            {mesh::FrameMode::Interpolated, "interpolated"},
                            {mesh::FrameMode::InterpolatedPhong, "interpolated+phong"}};
 
-std::vector<int> parseList(const std::string& option, const std::string& text) {
-  std::vector<int> out;
-  for (std::size_t a = 0; a <= text.size();) {
-    std::size_t b = text.find(',', a);
-    if (b == std::string::npos) b = text.size();
-    out.push_back(int(cli::parseInteger(option, text.substr(a, b - a), 8, 4'000'000)));
-    a = b + 1;
-  }
-  return out;
-}
 
 // A tessellated surface with its hierarchy, ready for renderers.
 struct Tessellation {
@@ -247,8 +237,8 @@ int run(int argc, char** argv) {
     }
     if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
     const std::string v = argv[++i];
-    if (a == "--triangles") triangle_counts = parseList(a, v);
-    else if (a == "--cost-triangles") cost_counts = parseList(a, v);
+    if (a == "--triangles") triangle_counts = cli::parseIntegerList(a, v, 8, 4'000'000);
+    else if (a == "--cost-triangles") cost_counts = cli::parseIntegerList(a, v, 8, 4'000'000);
     else if (a == "--texels") texels = int(cli::parseInteger(a, v, 16, 8192));
     else if (a == "--probes") probes_per_depth = int(cli::parseInteger(a, v, 1, 100000));
     else if (a == "--cost-ticks") cost_ticks = int(cli::parseInteger(a, v, 100, 10'000'000));

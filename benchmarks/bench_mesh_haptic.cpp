@@ -32,16 +32,6 @@ contact, 0.5 mm under the surface at 50 mm/s (benchmarks/mesh_haptic_time.hpp).
 Prints the CSV to stdout when no file is given.
 )";
 
-std::vector<int> parseList(const std::string& option, const std::string& text) {
-  std::vector<int> out;
-  for (std::size_t a = 0; a <= text.size();) {
-    std::size_t b = text.find(',', a);
-    if (b == std::string::npos) b = text.size();
-    out.push_back(int(cli::parseInteger(option, text.substr(a, b - a), 1, 4096)));
-    a = b + 1;
-  }
-  return out;
-}
 
 void write(const std::string& path, const std::string& text) {
   if (path.empty()) return;
@@ -58,7 +48,7 @@ int run(int argc, char** argv) {
     const std::string val = argv[++i];
     if (a == "--scene") scene_path = val;
     else if (a == "--size") size = int(cli::parseInteger(a, val, 2, 8192));
-    else if (a == "--meshes") meshes = parseList(a, val);
+    else if (a == "--meshes") meshes = cli::parseIntegerList(a, val, 1, 4096);
     else if (a == "--passes") passes = int(cli::parseInteger(a, val, 1, 100));
     else if (a == "--csv") csv = val;
     else if (a == "--json") json = val;

@@ -65,16 +65,6 @@ struct Row {
   double us_smooth = 0, us_flat = 0;
 };
 
-std::vector<int> parseList(const std::string& option, const std::string& text) {
-  std::vector<int> out;
-  for (std::size_t a = 0; a <= text.size();) {
-    std::size_t b = text.find(',', a);
-    if (b == std::string::npos) b = text.size();
-    out.push_back(int(cli::parseInteger(option, text.substr(a, b - a), 6, 2048)));
-    a = b + 1;
-  }
-  return out;
-}
 
 int run(int argc, char** argv) {
   std::vector<int> segments{16, 24, 32, 48, 64, 96, 128, 192, 256};
@@ -90,7 +80,7 @@ int run(int argc, char** argv) {
     }
     if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
     const std::string v = argv[++i];
-    if (a == "--segments") segments = parseList(a, v);
+    if (a == "--segments") segments = cli::parseIntegerList(a, v, 6, 2048);
     else if (a == "--seconds") seconds = cli::parseNumber(a, v, {0.5, 600.0, false, "s"});
     else if (a == "--texture-segments") texture_segments = int(cli::parseInteger(a, v, 6, 2048));
     else if (a == "--json") json = v;

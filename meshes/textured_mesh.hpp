@@ -80,6 +80,13 @@ enum class FrameMode {
 SurfaceFrame frameAt(const TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
                      FrameMode mode = FrameMode::InterpolatedPhong);
 
+// A texture's tangent-space direction n (textures/texture_map.hpp: +x = +u, +y = +v, +z out) in
+// the frame's axes, unit: how the haptic chart, the physics contacts and the shaders read a
+// texel's normal on a mesh. Real-time safe.
+inline Eigen::Vector3d fromTangentSpace(const SurfaceFrame& frame, const Eigen::Vector3d& n) {
+  return (n.x() * frame.tangent + n.y() * frame.bitangent + n.z() * frame.normal).normalized();
+}
+
 // Metres per uv unit along the frame's tangent and bitangent on this triangle (its texture
 // mapping: d position / d uv, projected on the frame's axes): the scale the texture is laid at
 // there. A triangle whose mapping folds against the frame, or is degenerate, has no meaningful

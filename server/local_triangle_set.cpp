@@ -34,26 +34,13 @@ TriangleBvh::Hit LocalTriangleSet::firstEntry(const Eigen::Vector3d& a, const Ei
   }
   ++local_answers_;
   const SweepSegment seg = sweepSegment(a, b);
-  double best_t = std::numeric_limits<double>::infinity();
-  std::uint32_t best_tri = 0;
-  int best_leaf = -1;
+  TriangleBvh::Best best;
   auto scan = [&](int i) {
     double t_enter = 0.0;
-    if (!slabEntry(region.leaf_lo[std::size_t(i)], region.leaf_hi[std::size_t(i)], seg, std::min(1.0, best_t), t_enter))
+    if (!slabEntry(region.leaf_lo[std::size_t(i)], region.leaf_hi[std::size_t(i)], seg, std::min(1.0, best.t), t_enter))
       return;
-    const std::uint32_t first = region.first[std::size_t(i)], end = first + region.count[std::size_t(i)];
-    for (std::uint32_t slot = first; slot < end; ++slot) {
-      const std::uint32_t tri = bvh_->leafTriangle(slot);
-      bool skipped = false;
-      for (int s = 0; s < n_skip; ++s) skipped = skipped || skip[s] == tri;
-      double t = 0.0;
-      if (skipped || !bvh_->entersTriangleBy(tri, a, b, best_t, t)) continue;
-      if (t < best_t || (t == best_t && tri < best_tri)) {
-        best_t = t;
-        best_tri = tri;
-        best_leaf = i;
-      }
-    }
+    if (bvh_->enterLeaf(region.first[std::size_t(i)], region.count[std::size_t(i)], a, b, skip, n_skip, best))
+      hint_leaf_ = i;
   };
   // The leaf of the last answer first: the proxy re-enters the face it stands on, and once that
   // entry is known every box and plane farther along is passed over. The order changes which
@@ -62,15 +49,7 @@ TriangleBvh::Hit LocalTriangleSet::firstEntry(const Eigen::Vector3d& a, const Ei
   if (hint >= 0) scan(hint);
   for (int i = 0; i < region.leaves; ++i)
     if (i != hint) scan(i);
-  if (best_leaf >= 0) hint_leaf_ = best_leaf;
-  TriangleBvh::Hit best;
-  if (best_t <= 1.0) {
-    best.hit = true;
-    best.t = best_t;
-    best.triangle = best_tri;
-    best.point = a + best_t * (b - a);
-  }
-  return best;
+  return TriangleBvh::hitOf(best, a, b);
 }
 
 void LocalTriangleSet::startGathering(const Eigen::Vector3d& centre) {

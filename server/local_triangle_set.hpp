@@ -15,8 +15,8 @@
 // their boxes' largest side: a region a leaf across, about ten leaves; measured against one and
 // two leaves across, docs/meshes.md) and halves whenever a region holds more than kMaxLeaves.
 //
-// Real-time safe: the constructor allocates nothing beyond its fixed arrays; firstEntry() and
-// advance() allocate nothing, take no lock, and their work is bounded (kMaxLeaves leaves, or the
+// Real-time safe once built: the constructor allocates (the leaves' extents, to size the region;
+// built off the servo thread with its renderer); firstEntry() and advance() allocate nothing, take no lock, and their work is bounded (kMaxLeaves leaves, or the
 // hierarchy's sweep; kNodesPerTick nodes).
 #include <Eigen/Core>
 #include <array>

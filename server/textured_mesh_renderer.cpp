@@ -122,8 +122,7 @@ Halfspace TexturedMeshRenderer::planeAt(const MeshContact& at, Eigen::Vector3d& 
     Eigen::Vector3d n = s.normal.cast<double>();
     if (texture_.normals_made_for_m.minCoeff() > 0.0)  // as on the chart (TexturedSurface::setNormalsMadeFor)
       n = tex::scaleSlopes(n, texture_.normals_made_for_m.cwiseQuotient(localScale(at)));
-    // The texture's tangent frame is the surface's: +x along +u, +y along +v, +z out.
-    n_sampled = (n.x() * f.tangent + n.y() * f.bitangent + n.z() * f.normal).normalized();
+    n_sampled = mesh::fromTangentSpace(f, n);
     if (texture_.use_relief) relief_depth = double(s.depth);
   }
   const Eigen::Vector3d q = f.point - relief_depth * f.normal;

@@ -144,43 +144,59 @@ bool TriangleBvh::entersTriangleBy(std::uint32_t triangle, const Eigen::Vector3d
   return true;
 }
 
+bool TriangleBvh::enterLeaf(std::uint32_t first, std::uint32_t count, const Eigen::Vector3d& a,
+                            const Eigen::Vector3d& b, const std::uint32_t* skip, int n_skip, Best& best) const {
+  bool changed = false;
+  for (std::uint32_t k = first; k < first + count; ++k) {
+    const std::uint32_t tri = order_[k];
+    bool skipped = false;
+    for (int s = 0; s < n_skip; ++s) skipped = skipped || skip[s] == tri;
+    double t = 0.0;
+    if (skipped || !entersTriangleBy(tri, a, b, best.t, t)) continue;
+    if (t < best.t || (t == best.t && tri < best.triangle)) {
+      best.t = t;
+      best.triangle = tri;
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+TriangleBvh::Hit TriangleBvh::hitOf(const Best& best, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  Hit hit;
+  if (best.t <= 1.0) {
+    hit.hit = true;
+    hit.t = best.t;
+    hit.triangle = best.triangle;
+    hit.point = a + best.t * (b - a);
+  }
+  return hit;
+}
+
 TriangleBvh::Hit TriangleBvh::firstEntry(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const std::uint32_t* skip,
                                          int n_skip) const {
-  Hit best;
-  if (!a.allFinite() || !b.allFinite()) return best;
-  const Eigen::Vector3d d = b - a;
+  if (!a.allFinite() || !b.allFinite()) return Hit{};
   const SweepSegment seg = sweepSegment(a, b);
-  double best_t = std::numeric_limits<double>::infinity();
-  std::uint32_t best_tri = 0;
+  Best best;
   // Entry parameter kept with each node, so a node farther than a hit found meanwhile is dropped.
   std::array<std::uint32_t, kMaxDepth + 2> stack;
   std::array<double, kMaxDepth + 2> stack_t;
   int sp = 0;
   double t_root = 0.0;
-  if (!slabEntry(nodes_[0].lo, nodes_[0].hi, seg, 1.0, t_root)) return best;
+  if (!slabEntry(nodes_[0].lo, nodes_[0].hi, seg, 1.0, t_root)) return Hit{};
   stack[0] = 0;
   stack_t[0] = t_root;
   sp = 1;
   while (sp > 0) {
     --sp;
-    if (stack_t[std::size_t(sp)] > best_t) continue;
+    if (stack_t[std::size_t(sp)] > best.t) continue;
     const Node& node = nodes_[stack[std::size_t(sp)]];
     if (node.count > 0) {
-      for (std::uint32_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
-        const std::uint32_t tri = order_[k];
-        bool skipped = false;
-        for (int s = 0; s < n_skip; ++s) skipped = skipped || skip[s] == tri;
-        double t = 0.0;
-        if (skipped || !entersTriangleBy(tri, a, b, best_t, t)) continue;
-        if (t < best_t || (t == best_t && tri < best_tri)) {
-          best_t = t;
-          best_tri = tri;
-        }
-      }
+      enterLeaf(node.first_or_right, node.count, a, b, skip, n_skip, best);
       continue;
     }
     const std::uint32_t left = std::uint32_t(&node - nodes_.data()) + 1, right = node.first_or_right;
-    const double t_max = std::min(1.0, best_t);
+    const double t_max = std::min(1.0, best.t);
     double tl = 0.0, tr = 0.0;
     const bool hl = slabEntry(nodes_[left].lo, nodes_[left].hi, seg, t_max, tl);
     const bool hr = slabEntry(nodes_[right].lo, nodes_[right].hi, seg, t_max, tr);
@@ -193,13 +209,7 @@ TriangleBvh::Hit TriangleBvh::firstEntry(const Eigen::Vector3d& a, const Eigen::
       if (hr) stack[std::size_t(sp)] = right, stack_t[std::size_t(sp++)] = tr;
     }
   }
-  if (best_t <= 1.0) {
-    best.hit = true;
-    best.t = best_t;
-    best.triangle = best_tri;
-    best.point = a + best_t * d;
-  }
-  return best;
+  return hitOf(best, a, b);
 }
 
 TriangleBvh::Nearest TriangleBvh::nearest(const Eigen::Vector3d& p, double max_distance) const {

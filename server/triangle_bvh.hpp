@@ -71,6 +71,20 @@ class TriangleBvh {
   // (zero-area) triangle.
   explicit TriangleBvh(const TriangleMesh& mesh, int leaf_size = 4);
 
+  // What a sweep keeps while it looks: the least entry parameter so far and its triangle.
+  struct Best {
+    double t = std::numeric_limits<double>::infinity();
+    std::uint32_t triangle = 0;
+  };
+  // The triangles of one leaf (slots first .. first + count - 1) tested against a -> b, skipping
+  // the `n_skip` triangles in `skip`: `best` keeps the least entry, ties to the lower triangle;
+  // true if this leaf changed it. The hierarchy's sweep and the local set's (local_triangle_set.hpp)
+  // both test their leaves so, which is why their answers are the same.
+  bool enterLeaf(std::uint32_t first, std::uint32_t count, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                 const std::uint32_t* skip, int n_skip, Best& best) const;
+  // The hit of a sweep a -> b that kept `best` (none if nothing was entered within [0, 1]).
+  static Hit hitOf(const Best& best, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
   // The first front-face entry of a -> b, skipping the `n_skip` triangles in `skip`.
   Hit firstEntry(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const std::uint32_t* skip = nullptr,
                  int n_skip = 0) const;
@@ -87,8 +101,8 @@ class TriangleBvh {
   // An incremental box query, so that its work can be spread over servo ticks
   // (local_triangle_set.hpp): startWalk(box), then stepWalk(budget, on_leaf) visits at most
   // `budget` nodes per call and calls on_leaf(first slot, count, lo, hi) for every leaf whose box
-  // meets the query box (closed boxes); it returns true once every node is visited. The leaf's
-  // triangles are leafTriangle(first) .. leafTriangle(first + count - 1).
+  // meets the query box (closed boxes); it returns true once every node is visited. A leaf is
+  // swept with enterLeaf(first, count, ...).
   struct BoxWalk {
     std::array<double, 3> lo{}, hi{};
     std::array<std::uint32_t, kMaxDepth + 2> stack{};
@@ -120,7 +134,6 @@ class TriangleBvh {
     }
     return walk.sp == 0;
   }
-  std::uint32_t leafTriangle(std::uint32_t slot) const { return order_[slot]; }
   // The median over the leaves of their boxes' largest side (the local set's scale).
   double typicalLeafExtent() const;
 

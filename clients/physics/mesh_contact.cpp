@@ -1,34 +1,18 @@
 #include "clients/physics/mesh_contact.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <numbers>
-#include <unordered_map>
-
-#include "meshes/position_key.hpp"
-
 #include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
 #include "clients/physics/bullet_convert.hpp"
+#include "meshes/position_key.hpp"
 #include "textures/textured_surface.hpp"
 
 namespace thx::phys {
 
-namespace {
-
-// n tilted at most max_tilt_deg from the unit vector `axis`, keeping its azimuth about it.
-Eigen::Vector3d clampTilt(const Eigen::Vector3d& n, const Eigen::Vector3d& axis, double max_tilt_deg) {
-  const double max_tilt = std::clamp(max_tilt_deg, 0.0, 90.0) * std::numbers::pi / 180.0;
-  const double along = n.dot(axis);
-  if (along >= std::cos(max_tilt)) return n;
-  const Eigen::Vector3d lateral = n - along * axis;
-  const double length = lateral.norm();
-  if (!(length > 0.0)) return axis;
-  return std::cos(max_tilt) * axis + std::sin(max_tilt) * (lateral / length);
-}
-
-}  // namespace
 
 Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
                                   const MeshContactOptions& options) {
@@ -38,8 +22,7 @@ Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
   Eigen::Vector3d n = s.normal.cast<double>();
   if (options.normals_made_for_m.minCoeff() > 0.0)
     n = tex::scaleSlopes(n, options.normals_made_for_m.cwiseQuotient(mesh::metresPerUv(mesh, triangle, f)));
-  const Eigen::Vector3d turned = (n.x() * f.tangent + n.y() * f.bitangent + n.z() * f.normal).normalized();
-  return clampTilt(turned, f.normal, options.max_tilt_deg);
+  return clampTilt(mesh::fromTangentSpace(f, n), f.normal, options.max_tilt_deg);
 }
 
 ContactMesh::ContactMesh(const mesh::TexturedMesh& m) : mesh(&m), neighbours(mesh::triangleNeighbours(m)) {

@@ -12,16 +12,19 @@
 
 namespace thx::phys {
 
+Eigen::Vector3d clampTilt(const Eigen::Vector3d& n, const Eigen::Vector3d& axis, double max_tilt_deg) {
+  const double max_tilt = std::clamp(max_tilt_deg, 0.0, 90.0) * std::numbers::pi / 180.0;
+  const double along = n.dot(axis);
+  if (along >= std::cos(max_tilt)) return n;
+  const Eigen::Vector3d lateral = n - along * axis;
+  const double length = lateral.norm();
+  if (!(length > 0.0)) return axis;
+  return std::cos(max_tilt) * axis + lateral * (std::sin(max_tilt) / length);
+}
+
 Eigen::Vector3d clampedSampledNormal(const tex::TexturedSurface& surface, double x_local, double y_local,
                                      double max_tilt_deg) {
-  Eigen::Vector3d n = surface.at(x_local, y_local).n_local;
-  const double max_tilt = std::clamp(max_tilt_deg, 0.0, 90.0) * std::numbers::pi / 180.0;
-  const double min_z = std::cos(max_tilt);
-  if (n.z() >= min_z) return n;
-  const double lateral = std::hypot(n.x(), n.y());
-  if (lateral <= 0.0) return Eigen::Vector3d::UnitZ();
-  const double s = std::sin(max_tilt) / lateral;
-  return {n.x() * s, n.y() * s, min_z};
+  return clampTilt(surface.at(x_local, y_local).n_local, Eigen::Vector3d::UnitZ(), max_tilt_deg);
 }
 
 namespace {

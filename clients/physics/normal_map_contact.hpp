@@ -32,6 +32,10 @@ struct StepContext {
   double split_penetration_threshold = -0.04;  // deeper than this Bullet corrects by split impulse
 };
 
+// n (unit) tilted at most max_tilt_deg from the unit vector `axis`, keeping its azimuth about it
+// (90 leaves it as it is); a normal straight across the axis becomes the axis.
+Eigen::Vector3d clampTilt(const Eigen::Vector3d& n, const Eigen::Vector3d& axis, double max_tilt_deg);
+
 // The sampled normal at plane-local (x, y), clamped to max_tilt, in the plane frame.
 Eigen::Vector3d clampedSampledNormal(const tex::TexturedSurface& surface, double x_local, double y_local,
                                      double max_tilt_deg);
