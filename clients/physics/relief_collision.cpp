@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "clients/physics/box_relief_contacts.hpp"
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/conforming_contact.hpp"
 #include "clients/physics/contact_selection.hpp"
@@ -56,33 +57,42 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   if (!underside) return;
 
   const double threshold = double(manifold->getContactBreakingThreshold());
-  // Reused between steps so a resting object costs no allocation per step.
-  thread_local std::vector<ReliefCandidate> candidates;
-  candidates.clear();
-  const RasterStats raster = rasterizeRelief(plane.surface(), *underside, threshold, candidates);
-  // A ball in a relief of its own curvature: contacts by position, one measure
-  // (conforming_contact.hpp). Otherwise the deepest and the spread points.
-  std::array<std::size_t, kMaxReliefContacts> chosen{};
-  std::size_t n = 0;
-  const bool conforming = underside->kind == Underside::Kind::Sphere && raster.stride == 1 && !candidates.empty() &&
-                          (n = selectConformingContacts(plane.surface(), *underside, candidates, chosen)) > 0;
-  if (!conforming) n = selectReliefContacts(candidates, chosen);
-  // Round objects roll on their contacts: locate them within their texels (relief_raster.hpp).
-  // A sphere touches at the bottoms of basins (contact_selection.hpp); a capsule or cylinder
-  // lying flat touches along a line of equal depths, so only its deepest point is refined.
-  if (conforming) {
-    // Texel centres with their own normals, already measured: nothing to refine or snap.
-  } else if (n > 0 && underside->kind == Underside::Kind::Sphere) {
-    const std::array<std::size_t, kMaxReliefContacts> spread = chosen;
-    snapToBasins(candidates, raster.stride, std::span(chosen.data(), n));
-    for (std::size_t k = 0; k < n; ++k)
-      if (k == 0 || chosen[k] != spread[k]) candidates[chosen[k]] = refineDeepest(plane.surface(), *underside, candidates[chosen[k]]);
-  } else if (n > 0 && underside->kind == Underside::Kind::Box) {
+  ChosenReliefContacts chosen;
+  bool conforming = false;
+  if (underside->kind == Underside::Kind::Box && boxReliefContacts(plane.surface(), *underside, threshold, chosen)) {
     // A box stands on the tops of the bumps under it: its spread points go to their basins'
-    // bottoms (a flat relief leaves its corners). Not refined: its faces are flat.
-    snapToBasins(candidates, raster.stride, std::span(chosen.data(), n));
-  } else if (n > 0) {
-    candidates[chosen[0]] = refineDeepest(plane.surface(), *underside, candidates[chosen[0]]);
+    // bottoms (a flat relief leaves its corners). Not refined: its faces are flat. The rule of
+    // the branch below, computed row by row (box_relief_contacts.hpp).
+  } else {
+    // Reused between steps so a resting object costs no allocation per step.
+    thread_local std::vector<ReliefCandidate> candidates;
+    candidates.clear();
+    const RasterStats raster = rasterizeRelief(plane.surface(), *underside, threshold, candidates);
+    // A ball in a relief of its own curvature: contacts by position, one measure
+    // (conforming_contact.hpp). Otherwise the deepest and the spread points.
+    std::array<std::size_t, kMaxReliefContacts> picked{};
+    std::size_t n = 0;
+    conforming = underside->kind == Underside::Kind::Sphere && raster.stride == 1 && !candidates.empty() &&
+                 (n = selectConformingContacts(plane.surface(), *underside, candidates, picked)) > 0;
+    if (!conforming) n = selectReliefContacts(candidates, picked);
+    // Round objects roll on their contacts: locate them within their texels (relief_raster.hpp).
+    // A sphere touches at the bottoms of basins (contact_selection.hpp); a capsule or cylinder
+    // lying flat touches along a line of equal depths, so only its deepest point is refined.
+    if (conforming) {
+      // Texel centres with their own normals, already measured: nothing to refine or snap.
+    } else if (n > 0 && underside->kind == Underside::Kind::Sphere) {
+      const std::array<std::size_t, kMaxReliefContacts> spread = picked;
+      snapToBasins(candidates, raster.stride, std::span(picked.data(), n));
+      for (std::size_t k = 0; k < n; ++k)
+        if (k == 0 || picked[k] != spread[k]) candidates[picked[k]] = refineDeepest(plane.surface(), *underside, candidates[picked[k]]);
+    } else if (n > 0 && underside->kind == Underside::Kind::Box) {
+      // A box whose footprint is visited with a stride (a huge box): the same rule on the texels visited.
+      snapToBasins(candidates, raster.stride, std::span(picked.data(), n));
+    } else if (n > 0) {
+      candidates[picked[0]] = refineDeepest(plane.surface(), *underside, candidates[picked[0]]);
+    }
+    for (std::size_t k = 0; k < n; ++k) chosen.contacts[k] = candidates[picked[k]];
+    chosen.count = n;
   }
 
   // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
@@ -91,8 +101,8 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   // point with the same normal maps to the same q = c - r n, see contactOnObject.)
   std::array<Eigen::Vector3d, kMaxReliefContacts> added;
   std::size_t added_count = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const ReliefCandidate& c = candidates[chosen[k]];
+  for (std::size_t k = 0; k < chosen.count; ++k) {
+    const ReliefCandidate& c = chosen.contacts[k];
     const Eigen::Vector3d n_world = world_from_plane.linear() * c.n_local;
     const Eigen::Vector3d lowest = c.p_surface + c.depth * Eigen::Vector3d::UnitZ();  // plane frame
     const Eigen::Vector3d q = contactOnObject(*underside, lowest, c.n_local);

@@ -26,23 +26,32 @@ Eigen::AlignedBox2d touchingFootprint(const Underside& shape, const Eigen::Align
 
 }  // namespace
 
-RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
-                            std::vector<ReliefCandidate>& out) {
-  RasterStats stats;
+FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m) {
+  FootprintTexels f;
   const Eigen::AlignedBox3d bounds = planeBounds(shape);
   // The relief never rises above the plane (z <= 0): an object whose bottom is higher than the
   // threshold cannot touch it, whatever the texture holds.
-  if (bounds.min().z() > threshold_m) return stats;
+  if (bounds.min().z() > threshold_m) return f;
   const Eigen::AlignedBox2d foot = touchingFootprint(shape, bounds, threshold_m);
-
   long long ia = 0, ja = 0, ib = 0, jb = 0;
   surface.texelContaining(foot.min().x(), foot.min().y(), ia, ja);
   surface.texelContaining(foot.max().x(), foot.max().y(), ib, jb);
-  const long long i0 = std::min(ia, ib), i1 = std::max(ia, ib);
-  const long long j0 = std::min(ja, jb), j1 = std::max(ja, jb);
-  const long long count = (i1 - i0 + 1) * (j1 - j0 + 1);
+  f.empty = false;
+  f.i0 = std::min(ia, ib), f.i1 = std::max(ia, ib);
+  f.j0 = std::min(ja, jb), f.j1 = std::max(ja, jb);
+  const long long count = (f.i1 - f.i0 + 1) * (f.j1 - f.j0 + 1);
   if (count > kMaxFootprintTexels)
-    stats.stride = (long long)std::ceil(std::sqrt(double(count) / double(kMaxFootprintTexels)));
+    f.stride = (long long)std::ceil(std::sqrt(double(count) / double(kMaxFootprintTexels)));
+  return f;
+}
+
+RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
+                            std::vector<ReliefCandidate>& out) {
+  RasterStats stats;
+  const FootprintTexels f = footprintTexels(surface, shape, threshold_m);
+  if (f.empty) return stats;
+  const long long i0 = f.i0, i1 = f.i1, j0 = f.j0, j1 = f.j1;
+  stats.stride = f.stride;
 
   // Texel centres step linearly with the (unwrapped) index: read the first one from the surface
   // (one place for the mapping convention), then step by the texel size; +i is +x, +j is -y.

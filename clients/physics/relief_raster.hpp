@@ -20,6 +20,16 @@ struct RasterStats {
   long long stride = 1;
 };
 
+// The texels an object's footprint covers (unwrapped indices, inclusive), with the stride that
+// bounds their number; `empty` when the object is too high to touch the relief at all. Every
+// rasteriser starts from it, so they all visit the same texels.
+struct FootprintTexels {
+  bool empty = true;
+  long long i0 = 0, i1 = -1, j0 = 0, j1 = -1;
+  long long stride = 1;
+};
+FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m);
+
 // Appends candidates to `out` (not cleared). `surface` must read the map as relief.
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
                             std::vector<ReliefCandidate>& out);

@@ -1,0 +1,131 @@
+// A box on a relief: the row-by-row rule (box_relief_contacts.hpp) chooses the contacts the
+// general rule chooses (rasterise every texel, select, snap to basins), on flat, bumpy and
+// bricked reliefs, in every pose a box can rest or tumble in, both address modes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "clients/physics/box_relief_contacts.hpp"
+#include "physics_fixtures.hpp"
+#include "textures/height_normals.hpp"
+
+namespace thx::phys::test::test_box_relief_contacts {
+namespace {
+
+constexpr double kExtent = 0.125;     // 256 texels of 0.49 mm: the 1024² benchmark's texel
+constexpr double kThreshold = 3.46e-4;  // the box's manifold breaking threshold in the worlds
+
+enum class Relief { Flat, Bumps, Bricks };
+
+SurfaceHolder reliefOf(Relief kind, tex::Address address) {
+  const int n = 256;
+  const double d = kExtent / n;
+  tex::HeightField field;
+  field.width = field.height = n;
+  field.heights_m.assign(std::size_t(n) * n, 0.0);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = (i + 0.5) * d, y = (j + 0.5) * d;
+      double h = 0.0;
+      if (kind == Relief::Bumps) h = 4e-4 * std::sin(2 * M_PI * x / 0.007) * std::sin(2 * M_PI * y / 0.011);
+      // Bricks 12 x 6 mm with 1 mm joints 0.6 mm deep: flat tops, steps at the joints.
+      if (kind == Relief::Bricks) h = std::fmod(x, 0.012) < 0.001 || std::fmod(y, 0.006) < 0.001 ? -6e-4 : 0.0;
+      field.heights_m[std::size_t(j) * n + std::size_t(i)] = h;
+    }
+  tex::ReliefFromHeightOptions o;
+  o.texel_m = {d, d};
+  o.address = address;
+  return holdSurface(tex::reliefFromHeight(field, o), kExtent, true, address);
+}
+
+std::string describe(const ChosenReliefContacts& c) {
+  std::string s = std::to_string(c.count) + " contacts:";
+  for (std::size_t k = 0; k < c.count; ++k)
+    s += " (" + std::to_string(c.contacts[k].i) + "," + std::to_string(c.contacts[k].j) + ")";
+  return s;
+}
+
+// Same texels, same points and normals to the bit, depths equal to rounding.
+void expectSameContacts(const ChosenReliefContacts& rows, const ChosenReliefContacts& general, const std::string& where) {
+  ASSERT_EQ(rows.count, general.count) << where << "\n rows " << describe(rows) << "\n general " << describe(general);
+  for (std::size_t k = 0; k < rows.count; ++k) {
+    const ReliefCandidate &a = rows.contacts[k], &b = general.contacts[k];
+    ASSERT_TRUE(a.i == b.i && a.j == b.j) << where << " contact " << k << "\n rows " << describe(rows) << "\n general "
+                                          << describe(general);
+    EXPECT_EQ(a.p_surface, b.p_surface) << where;
+    EXPECT_EQ(a.n_local, b.n_local) << where;
+    EXPECT_NEAR(a.depth, b.depth, 1e-15) << where;
+  }
+}
+
+// A box of half side `half` turned by `turn`, its lowest corner `sink` below the relief's top (z = 0).
+Underside boxAt(const Eigen::Vector2d& xy, const Eigen::Matrix3d& turn, double half, double sink) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = turn;
+  const double reach = (turn.cwiseAbs() * Eigen::Vector3d::Constant(half)).z();
+  pose.translation() = Eigen::Vector3d(xy.x(), xy.y(), reach - sink);
+  return Underside::box(pose, Eigen::Vector3d::Constant(half));
+}
+
+TEST(BoxReliefContacts, ChoosesTheGeneralRulesContactsInRandomPoses) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int compared = 0, touching = 0;
+  for (tex::Address address : {tex::Address::Clamp, tex::Address::Wrap}) {
+    for (Relief kind : {Relief::Flat, Relief::Bumps, Relief::Bricks}) {
+      const SurfaceHolder s = reliefOf(kind, address);
+      for (int k = 0; k < 120; ++k) {
+        // Anywhere on the map and across its edge (the wrap seam, the clamped border), tilted
+        // up to 40° (some poses a resting box has, most a tumbling one), sunk up to 0.4 mm.
+        const Eigen::Vector2d xy(0.07 * unit(rng), 0.07 * unit(rng));
+        const double tilt = 0.7 * std::fabs(unit(rng)), yaw = M_PI * unit(rng);
+        const Eigen::Vector3d axis = Eigen::Vector3d(unit(rng), unit(rng), 0.0).normalized();
+        const Eigen::Matrix3d turn =
+            (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(tilt, axis)).toRotationMatrix();
+        const Underside box = boxAt(xy, turn, 0.004 + 0.008 * std::fabs(unit(rng)), 4e-4 * std::fabs(unit(rng)));
+        ChosenReliefContacts rows;
+        ASSERT_TRUE(boxReliefContacts(s.surface, box, kThreshold, rows));
+        const ChosenReliefContacts general = generalBoxReliefContacts(s.surface, box, kThreshold);
+        expectSameContacts(rows, general, "pose " + std::to_string(k) + " relief " + std::to_string(int(kind)));
+        ++compared;
+        touching += rows.count > 0;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 720);
+  EXPECT_GT(touching, 600);  // the poses do touch
+}
+
+TEST(BoxReliefContacts, ALevelBoxAndANearlyLevelOneGetTheGeneralRulesCorners) {
+  // The resting box of the benchmark: level to float rounding. Axis-aligned, every texel under
+  // it is equally deep and its side faces stand vertical: the first texel in scan order is the
+  // deepest for both rules.
+  const SurfaceHolder s = reliefOf(Relief::Flat, tex::Address::Clamp);
+  for (double tilt : {0.0, 1e-9, 1e-6, 1e-3}) {
+    for (double yaw : {0.0, 0.3}) {
+      const Eigen::Matrix3d turn = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(tilt, Eigen::Vector3d(0.6, 0.8, 0.0)))
+                                       .toRotationMatrix();
+      const Underside box = boxAt({0.013, 0.007}, turn, 0.0105, 1e-8);
+      ChosenReliefContacts rows;
+      ASSERT_TRUE(boxReliefContacts(s.surface, box, kThreshold, rows));
+      expectSameContacts(rows, generalBoxReliefContacts(s.surface, box, kThreshold),
+                         "tilt " + std::to_string(tilt) + " yaw " + std::to_string(yaw));
+      EXPECT_EQ(rows.count, 4u);  // its four corners
+    }
+  }
+}
+
+TEST(BoxReliefContacts, ABoxAboveTheReliefHasNoneAndAHugeOneIsLeftToTheGeneralRule) {
+  const SurfaceHolder s = reliefOf(Relief::Bumps, tex::Address::Wrap);
+  ChosenReliefContacts rows;
+  ASSERT_TRUE(boxReliefContacts(s.surface, boxAt({0, 0}, Eigen::Matrix3d::Identity(), 0.01, -0.002), kThreshold, rows));
+  EXPECT_EQ(rows.count, 0u);
+  // More texels under it than kMaxFootprintTexels: visited with a stride, by the general rule.
+  EXPECT_FALSE(boxReliefContacts(s.surface, boxAt({0, 0}, Eigen::Matrix3d::Identity(), 0.2, 1e-4), kThreshold, rows));
+}
+
+}  // namespace
+}  // namespace thx::phys::test::test_box_relief_contacts
