@@ -24,59 +24,94 @@ struct RowSlab {
   double s_row = 0.0, ux = 0.0, h = 0.0;
 };
 
+// What the rows share: per axis of the box, and the reciprocals every row divides by (a division
+// per slab and row cost more than the texels it saved).
 struct BoxSlabs {
+  struct Axis {
+    Eigen::Vector3d u;
+    double h = 0.0;
+    bool vertical = false;
+    double enter = 0.0;   // the face a vertical line enters through: -h or +h along u
+    double inv_uz = 0.0;  // 1 / u.z
+    double b = 0.0;       // lo(x) and hi(x) slope: -u.x / u.z
+    double inv_ux_dx = 0.0;  // a vertical slab: 1 / (u.x dx), 0 if u.x dx = 0
+    double inv_b_dx = 0.0;   // 1 / (b dx), 0 if b = 0
+  };
+  std::array<Axis, 3> axis;
+  std::array<std::array<double, 3>, 3> inv_db{};  // 1 / (b_k - b_m), 0 where equal or vertical
   Eigen::Vector3d centre;
-  std::array<Eigen::Vector3d, 3> axes;
-  Eigen::Vector3d half;
+  double dx, inv_dx;
 
-  explicit BoxSlabs(const Underside& box)
-      : centre(box.plane_from_object.translation()), half(box.half_extents) {
-    for (int k = 0; k < 3; ++k) axes[std::size_t(k)] = box.plane_from_object.linear().col(k);
+  BoxSlabs(const Underside& box, double texel_dx) : centre(box.plane_from_object.translation()), dx(texel_dx), inv_dx(1.0 / texel_dx) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      Axis& a = axis[k];
+      a.u = box.plane_from_object.linear().col(Eigen::Index(k));
+      a.h = box.half_extents[Eigen::Index(k)];
+      a.vertical = std::fabs(a.u.z()) < kParallel;
+      if (a.vertical) {
+        a.inv_ux_dx = std::fabs(a.u.x()) >= kParallel ? 1.0 / (a.u.x() * dx) : 0.0;
+        continue;
+      }
+      // Along the line the coordinate changes by u.z per metre of z: it enters the slab at the
+      // face its normal turns down to.
+      a.enter = a.u.z() > 0.0 ? -a.h : a.h;
+      a.inv_uz = 1.0 / a.u.z();
+      a.b = -a.u.x() * a.inv_uz;
+      a.inv_b_dx = a.b * dx != 0.0 ? 1.0 / (a.b * dx) : 0.0;
+    }
+    for (std::size_t k = 0; k < 3; ++k)
+      for (std::size_t m = 0; m < 3; ++m) {
+        const Axis &p = axis[k], &q = axis[m];
+        inv_db[k][m] = k != m && !p.vertical && !q.vertical && p.b != q.b ? 1.0 / (p.b - q.b) : 0.0;
+      }
   }
   // The slabs along the row at y. The coordinate along axis u of (x, y, 0) is s_row + ux x.
   std::array<RowSlab, 3> row(double y) const {
     std::array<RowSlab, 3> slabs;
     for (std::size_t k = 0; k < 3; ++k) {
-      const Eigen::Vector3d& u = axes[k];
+      const Axis& a = axis[k];
       RowSlab& s = slabs[k];
-      s.h = half[Eigen::Index(k)];
-      s.ux = u.x();
-      s.s_row = (y - centre.y()) * u.y() - centre.z() * u.z() - centre.x() * u.x();
-      s.vertical = std::fabs(u.z()) < kParallel;
-      if (s.vertical) {
+      s.h = a.h;
+      s.ux = a.u.x();
+      s.s_row = (y - centre.y()) * a.u.y() - centre.z() * a.u.z() - centre.x() * a.u.x();
+      s.vertical = a.vertical;
+      if (a.vertical) {
         s.a_lo = -kInf, s.a_hi = kInf, s.b = 0.0;
         continue;
       }
-      // Along the line the coordinate changes by u.z per metre of z: it enters the slab at the
-      // face its normal turns down to.
-      const double enter = u.z() > 0.0 ? -s.h : s.h;
-      s.a_lo = (enter - s.s_row) / u.z();
-      s.a_hi = (-enter - s.s_row) / u.z();
-      s.b = -u.x() / u.z();
+      s.a_lo = (a.enter - s.s_row) * a.inv_uz;
+      s.a_hi = (-a.enter - s.s_row) * a.inv_uz;
+      s.b = a.b;
     }
     return slabs;
   }
 };
 
 // The columns [first, last] of a row whose texel centres (x = x0 + gi dx) lie within every
-// vertical slab; empty (first > last) where none does.
-void clipToVerticalSlabs(const std::array<RowSlab, 3>& row, double x0, double dx, long long& first, long long& last) {
-  for (const RowSlab& s : row) {
+// vertical slab, widened by one each way against rounding (texelDepth settles them); empty
+// (first > last) where none does.
+void clipToVerticalSlabs(const BoxSlabs& box, const std::array<RowSlab, 3>& row, double x0, long long& first,
+                         long long& last) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    const RowSlab& s = row[k];
     if (!s.vertical) continue;
     // |s_row + ux (x0 + gi dx)| <= h, i.e. -h <= s_row + ux x0 + (ux dx) gi <= h.
-    const double c0 = s.s_row + s.ux * x0, c1 = s.ux * dx;
-    if (c1 == 0.0) {
+    const double c0 = s.s_row + s.ux * x0;
+    const double inv_c1 = box.axis[k].inv_ux_dx;
+    if (!(std::fabs(s.ux) >= kParallel)) {  // the slab's faces run along the row: all of it or none
       if (std::fabs(c0) > s.h) first = 1, last = 0;
       continue;
     }
-    double g_a = (-s.h - c0) / c1, g_b = (s.h - c0) / c1;
+    double g_a = (-s.h - c0) * inv_c1, g_b = (s.h - c0) * inv_c1;
     if (g_a > g_b) std::swap(g_a, g_b);
-    first = std::max(first, (long long)std::ceil(std::max(g_a, -1.0)));
-    last = std::min(last, (long long)std::floor(std::min(g_b, double(last) + 1.0)));
+    // Clamped before the conversion: a slab nearly along the row puts its bounds far away.
+    const double span_end = double(last) + 2.0;
+    first = std::max(first, (long long)std::floor(std::clamp(g_a, -2.0, span_end)) - 1);
+    last = std::min(last, (long long)std::ceil(std::clamp(g_b, -2.0, span_end)) + 1);
   }
 }
 
-// A touching texel kept for the selection: a row run's end or the deepest.
+// A touching texel kept for the selection: a run's end, a level stretch's end or the deepest.
 ReliefCandidate keptTexel(long long i, long long j, double x, double y, double height, double depth) {
   ReliefCandidate c;
   c.p_surface = Eigen::Vector3d(x, y, height);
@@ -90,10 +125,61 @@ bool scanOrderBefore(const ReliefCandidate& a, const ReliefCandidate& b) {
   return a.j != b.j ? a.j < b.j : a.i < b.i;
 }
 
+// A row of the footprint: its slabs and the columns its vertical slabs leave.
+struct FootprintRow {
+  std::array<RowSlab, 3> slabs;
+  long long first_col = 0, last_col = -1;
+  bool any_vertical = false;
+  double y = 0.0;
+  int rj = 0;
+};
+
+// The box's depth at one texel centre: lowest z minus the relief's height, +inf where the box is
+// absent or not within the threshold. Every depth of this path comes from here, so a texel reads
+// the same whichever way it is reached (a row's loop, a level stretch's ends, the basin walk).
+double texelDepth(const FootprintRow& row, long long gi, double x, double height, double threshold_m) {
+  if (gi < row.first_col || gi > row.last_col) return kInf;
+  const std::array<RowSlab, 3>& s = row.slabs;
+  if (row.any_vertical)
+    for (const RowSlab& v : s)
+      if (v.vertical && !(std::fabs(v.s_row + v.ux * x) <= v.h)) return kInf;
+  const double lo = std::max(std::max(s[0].a_lo + s[0].b * x, s[1].a_lo + s[1].b * x), s[2].a_lo + s[2].b * x);
+  const double hi = std::min(std::min(s[0].a_hi + s[0].b * x, s[1].a_hi + s[1].b * x), s[2].a_hi + s[2].b * x);
+  const double d = lo - height;
+  return lo <= hi && d < threshold_m ? d : kInf;
+}
+
+// On a level stretch of a row (one relief height) the depth is convex in x (the largest of the
+// lower faces' planes, less a constant) and the box present on an interval: the texels that
+// touch are one interval, bounded by half-lines. Their ends in columns, widened by one texel each
+// way against rounding (the caller settles them on texelDepth).
+void touchingInterval(const BoxSlabs& box, const FootprintRow& row, double x0, double height, double threshold_m,
+                      double& lo, double& hi) {
+  // c0 + c1 gi <= 0 (or < 0: the same up to the widening) for gi within [lo, hi]; inv_c1 = 1 / c1.
+  auto bound = [&](double c0, double c1, double inv_c1) {
+    if (c1 > 0.0) hi = std::min(hi, -c0 * inv_c1);
+    else if (c1 < 0.0) lo = std::max(lo, -c0 * inv_c1);
+    else if (c0 > 0.0) lo = kInf, hi = -kInf;
+  };
+  for (std::size_t k = 0; k < 3; ++k) {
+    const RowSlab& p = row.slabs[k];
+    if (p.vertical) continue;
+    bound(p.a_lo + p.b * x0 - height - threshold_m, p.b * box.dx, box.axis[k].inv_b_dx);  // within the threshold
+    for (std::size_t m = 0; m < 3; ++m) {
+      const RowSlab& q = row.slabs[m];
+      if (q.vertical || m == k) continue;
+      // enters before q's exit: (a_lo_p - a_hi_q) + (b_p - b_q) x <= 0
+      const double inv_db = box.inv_db[k][m];
+      bound(p.a_lo - q.a_hi + (p.b - q.b) * x0, (p.b - q.b) * box.dx, inv_db * box.inv_dx);
+    }
+  }
+  lo = std::floor(lo) - 1.0, hi = std::ceil(hi) + 1.0;
+}
+
 }  // namespace
 
 bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box, double threshold_m,
-                       ChosenReliefContacts& out) {
+                       ChosenReliefContacts& out, const ReliefLevelRuns* level_runs) {
   out = ChosenReliefContacts{};
   const FootprintTexels f = footprintTexels(surface, box, threshold_m);
   if (f.empty) return true;
@@ -108,66 +194,135 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   // stepped from it exactly as rasterizeRelief steps them: the same coordinates to the bit.
   const Eigen::Vector3d first = surface.texelPoint(f.i0, f.j0).q_local;
   const bool relief = surface.usesRelief();
+  auto xOf = [&](long long gi) { return first.x() + double(gi) * texel.x(); };
 
   // Reused between steps: a resting box costs no allocation per step.
-  thread_local std::vector<double> depth;  // per footprint texel; +inf where it does not touch
-  thread_local std::vector<int> columns;   // resolved column of each footprint column
+  thread_local std::vector<double> depth;          // per footprint texel: texelDepth, NaN = not read yet
+  thread_local std::vector<int> columns;           // resolved column of each footprint column
+  thread_local std::vector<long long> straight_to;  // last footprint column resolving to consecutive columns
+  thread_local std::vector<FootprintRow> rows;
   thread_local std::vector<ReliefCandidate> kept;
-  depth.assign(std::size_t(ni * nj), kInf);
+  // The grid has a border of +inf around the footprint: the basin walk needs no bounds check.
+  const long long pitch = ni + 2;
+  depth.assign(std::size_t(pitch * (nj + 2)), std::numeric_limits<double>::quiet_NaN());
+  for (long long gi = 0; gi < pitch; ++gi) depth[std::size_t(gi)] = depth[std::size_t((nj + 1) * pitch + gi)] = kInf;
+  for (long long gj = 1; gj <= nj; ++gj) depth[std::size_t(gj * pitch)] = depth[std::size_t(gj * pitch + ni + 1)] = kInf;
   columns.resize(std::size_t(ni));
+  straight_to.resize(std::size_t(ni));
   for (long long gi = 0; gi < ni; ++gi) columns[std::size_t(gi)] = tex::resolveIndex(f.i0 + gi, map.width(), address);
+  for (long long gi = ni - 1; gi >= 0; --gi)
+    straight_to[std::size_t(gi)] =
+        gi + 1 < ni && columns[std::size_t(gi + 1)] == columns[std::size_t(gi)] + 1 ? straight_to[std::size_t(gi + 1)] : gi;
+  rows.resize(std::size_t(nj));
   kept.clear();
 
-  const BoxSlabs slabs(box);
-  double deepest = kInf;
-  long long deepest_cell = -1;
-  for (long long gj = 0; gj < nj; ++gj) {
-    const double y = first.y() - double(gj) * texel.y();
-    const long long j = f.j0 + gj;
-    const int rj = tex::resolveIndex(j, map.height(), address);
-    const std::array<RowSlab, 3> row = slabs.row(y);
-    double* const depth_row = depth.data() + gj * ni;
-    // The row's depths first (a tight loop, no branch on the data), then its runs.
-    long long first_col = 0, last_col = ni - 1;
-    clipToVerticalSlabs(row, first.x(), texel.x(), first_col, last_col);
-    const int* const column = columns.data();
-    for (long long gi = first_col; gi <= last_col; ++gi) {
-      const double x = first.x() + double(gi) * texel.x();
-      const double lo = std::max(std::max(row[0].a_lo + row[0].b * x, row[1].a_lo + row[1].b * x),
-                                 row[2].a_lo + row[2].b * x);
-      const double hi = std::min(std::min(row[0].a_hi + row[0].b * x, row[1].a_hi + row[1].b * x),
-                                 row[2].a_hi + row[2].b * x);
-      const double height = relief ? -double(map.depth(column[gi], rj)) : 0.0;
-      const double d = lo - height;
-      depth_row[gi] = lo <= hi && d < threshold_m ? d : kInf;
+  auto heightAt = [&](long long gi, int rj) {
+    return relief ? -double(map.depth(columns[std::size_t(gi)], rj)) : 0.0;
+  };
+  // The depth of a footprint texel, read once.
+  auto depthAt = [&](long long gi, long long gj) {
+    double& d = depth[std::size_t((gj + 1) * pitch + gi + 1)];
+    if (std::isnan(d)) {
+      const FootprintRow& row = rows[std::size_t(gj)];
+      d = texelDepth(row, gi, xOf(gi), heightAt(gi, row.rj), threshold_m);
     }
+    return d;
+  };
+
+  const BoxSlabs slabs(box, texel.x());
+  double deepest = kInf;
+  long long deepest_i = -1, deepest_j = -1;
+  for (long long gj = 0; gj < nj; ++gj) {
+    FootprintRow& row = rows[std::size_t(gj)];
+    row.y = first.y() - double(gj) * texel.y();
+    row.rj = tex::resolveIndex(f.j0 + gj, map.height(), address);
+    row.slabs = slabs.row(row.y);
+    row.first_col = 0, row.last_col = ni - 1;
+    row.any_vertical = slabs.axis[0].vertical || slabs.axis[1].vertical || slabs.axis[2].vertical;
+    clipToVerticalSlabs(slabs, row.slabs, first.x(), row.first_col, row.last_col);
     auto keep = [&](long long gi) {
-      const double height = relief ? -double(map.depth(columns[std::size_t(gi)], rj)) : 0.0;
-      kept.push_back(keptTexel(f.i0 + gi, j, first.x() + double(gi) * texel.x(), y, height, depth_row[gi]));
+      kept.push_back(keptTexel(f.i0 + gi, f.j0 + gj, xOf(gi), row.y, heightAt(gi, row.rj), depthAt(gi, gj)));
     };
-    long long run_start = -1;
-    for (long long gi = 0; gi <= ni; ++gi) {
-      const bool touches = gi < ni && depth_row[gi] < kInf;
-      if (touches) {
-        if (run_start < 0) run_start = gi;
-        if (depth_row[gi] < deepest) deepest = depth_row[gi], deepest_cell = gj * ni + gi;
-      } else if (run_start >= 0) {
-        keep(run_start);
-        if (gi - 1 != run_start) keep(gi - 1);
-        run_start = -1;
+    auto consider = [&](long long gi) {  // in scan order within the row: the first of equals stays
+      const double d = depthAt(gi, gj);
+      if (d < deepest) deepest = d, deepest_i = gi, deepest_j = gj;
+    };
+    long long run_start = -1;  // the touching run open on this row (texel by texel)
+    auto closeRun = [&](long long last) {
+      if (run_start < 0) return;
+      keep(run_start);
+      if (last != run_start) keep(last);
+      run_start = -1;
+    };
+    // The column where a level stretch of at least kLevelStretchMin texels ends, if one starts
+    // at gi (consecutive texels of one height), else gi - 1.
+    auto stretchFrom = [&](long long gi) {
+      if (level_runs == nullptr) return gi - 1;
+      const long long same = level_runs->levelAlong(columns[std::size_t(gi)], row.rj);
+      const long long to = std::min({gi + same - 1, straight_to[std::size_t(gi)], row.last_col});
+      return to - gi + 1 >= kLevelStretchMin ? to : gi - 1;
+    };
+    double* const depth_row = depth.data() + (gj + 1) * pitch + 1;
+    for (long long gi = row.first_col; gi <= row.last_col;) {
+      const long long level_to = stretchFrom(gi);
+      if (level_to >= gi) {
+        // A level stretch: its touching interval's ends and the texels next to where its
+        // faces' planes cross (the only places a convex depth can be least) are read; the
+        // stretch's inside needs no reading.
+        closeRun(gi - 1);
+        const double height = heightAt(gi, row.rj);
+        double lo = double(gi), hi = double(level_to);
+        touchingInterval(slabs, row, first.x(), height, threshold_m, lo, hi);
+        long long a = (long long)std::clamp(lo, double(gi), double(level_to) + 1.0);
+        long long b = (long long)std::clamp(hi, double(gi) - 1.0, double(level_to));
+        while (a <= b && !(depthAt(a, gj) < kInf)) ++a;
+        while (b >= a && !(depthAt(b, gj) < kInf)) --b;
+        if (a <= b) {
+          std::array<long long, 8> at{};
+          std::size_t n_at = 0;
+          at[n_at++] = a;
+          for (std::size_t k = 0; k < 3; ++k)
+            for (std::size_t m = k + 1; m < 3; ++m) {
+              if (slabs.inv_db[k][m] == 0.0) continue;  // parallel planes or a vertical slab: no crossing
+              const RowSlab &p = row.slabs[k], &q = row.slabs[m];
+              const double cross = ((q.a_lo - p.a_lo) * slabs.inv_db[k][m] - first.x()) * slabs.inv_dx;
+              if (!(cross > double(a) && cross < double(b))) continue;
+              at[n_at++] = (long long)std::floor(cross);
+              at[n_at++] = (long long)std::floor(cross) + 1;
+            }
+          at[n_at++] = b;
+          for (std::size_t q = 1; q < n_at; ++q)  // in scan order (a handful: insertion)
+            for (std::size_t r = q; r > 0 && at[r] < at[r - 1]; --r) std::swap(at[r], at[r - 1]);
+          for (std::size_t q = 0; q < n_at; ++q) consider(at[q]);
+          keep(a);
+          if (b != a) keep(b);
+        }
+        gi = level_to + 1;
+        continue;
+      }
+      // Texel by texel up to where a level stretch starts: their depths in a tight loop (no
+      // texel of this stretch of the row has been read), then their runs.
+      long long end = gi;
+      while (end < row.last_col && stretchFrom(end + 1) < end + 1) ++end;
+      for (long long g = gi; g <= end; ++g) depth_row[g] = texelDepth(row, g, xOf(g), heightAt(g, row.rj), threshold_m);
+      for (; gi <= end; ++gi) {
+        if (depth_row[gi] < kInf) {
+          if (run_start < 0) run_start = gi;
+          consider(gi);
+        } else {
+          closeRun(gi - 1);
+        }
       }
     }
+    closeRun(row.last_col);
   }
   if (kept.empty()) return true;
-  // The deepest texel joins the runs' ends in scan order, so that among equally deep texels the
+  // The deepest texel joins the kept ones in scan order, so that among equally deep texels the
   // selection takes the first in scan order, as the general rule does.
   {
-    const long long gi = deepest_cell % ni, gj = deepest_cell / ni;
-    const long long j = f.j0 + gj;
-    const double height =
-        relief ? -double(map.depth(columns[std::size_t(gi)], tex::resolveIndex(j, map.height(), address))) : 0.0;
-    const ReliefCandidate deepest_texel = keptTexel(f.i0 + gi, j, first.x() + double(gi) * texel.x(),
-                                                    first.y() - double(gj) * texel.y(), height, deepest);
+    const long long j = f.j0 + deepest_j;
+    const ReliefCandidate deepest_texel = keptTexel(f.i0 + deepest_i, j, xOf(deepest_i), rows[std::size_t(deepest_j)].y,
+                                                    heightAt(deepest_i, rows[std::size_t(deepest_j)].rj), deepest);
     const auto at = std::lower_bound(kept.begin(), kept.end(), deepest_texel, scanOrderBefore);
     if (at == kept.end() || at->i != deepest_texel.i || at->j != deepest_texel.j) kept.insert(at, deepest_texel);
   }
@@ -175,20 +330,20 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   std::array<std::size_t, kMaxReliefContacts> chosen{};
   const std::size_t n = selectReliefContacts(kept, chosen);
 
-  // snapToBasins on the depth grid: each chosen texel walks to its lowest neighbour (8 around,
-  // the first of equals in scan order) while that is deeper; it moves there unless an earlier
-  // chosen texel ended in the same place.
+  // snapToBasins, reading depths as the walk needs them: each chosen texel walks to its lowest
+  // neighbour (8 around, the first of equals in scan order) while that is deeper; it moves there
+  // unless an earlier chosen texel ended in the same place.
   std::array<long long, kMaxReliefContacts> cell{};
   for (std::size_t c = 0; c < n; ++c) {
     long long gi = kept[chosen[c]].i - f.i0, gj = kept[chosen[c]].j - f.j0;
     for (;;) {
       long long next_i = gi, next_j = gj;
-      double next_depth = depth[std::size_t(gj * ni + gi)];
+      double next_depth = depthAt(gi, gj);
       for (long long dj = -1; dj <= 1; ++dj)
         for (long long di = -1; di <= 1; ++di) {
+          // The border reads +inf: never deeper.
           const long long a = gi + di, b = gj + dj;
-          if (a < 0 || b < 0 || a >= ni || b >= nj) continue;
-          const double v = depth[std::size_t(b * ni + a)];
+          const double v = depthAt(a, b);
           if (v < next_depth) next_i = a, next_j = b, next_depth = v;
         }
       if (next_i == gi && next_j == gj) break;
@@ -202,12 +357,10 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   for (std::size_t c = 0; c < n; ++c) {
     const long long gi = cell[c] % ni, gj = cell[c] / ni;
     const long long i = f.i0 + gi, j = f.j0 + gj;
-    const int ri = columns[std::size_t(gi)], rj = tex::resolveIndex(j, map.height(), address);
-    const double height = relief ? -double(map.depth(ri, rj)) : 0.0;
+    const FootprintRow& row = rows[std::size_t(gj)];
     ReliefCandidate& contact = out.contacts[c];
-    contact = keptTexel(i, j, first.x() + double(gi) * texel.x(), first.y() - double(gj) * texel.y(), height,
-                        depth[std::size_t(cell[c])]);
-    contact.n_local = surface.texelNormal(i, j, ri, rj);
+    contact = keptTexel(i, j, xOf(gi), row.y, heightAt(gi, row.rj), depthAt(gi, gj));
+    contact.n_local = surface.texelNormal(i, j, columns[std::size_t(gi)], row.rj);
   }
   out.count = n;
   return true;

@@ -24,6 +24,7 @@
 #include <cstddef>
 
 #include "clients/physics/contact_selection.hpp"
+#include "clients/physics/relief_level_runs.hpp"
 #include "clients/physics/relief_raster.hpp"
 #include "clients/physics/underside.hpp"
 #include "textures/textured_surface.hpp"
@@ -36,10 +37,15 @@ struct ChosenReliefContacts {
   RasterStats raster;
 };
 
+// A level stretch at least this long is read at its ends (and where the box's faces cross over
+// it); a shorter one texel by texel.
+inline constexpr long long kLevelStretchMin = 4;
+
 // The box's (Underside::Kind::Box) contacts, or false where this path does not apply (a footprint
-// visited with a stride: the general rule handles it). `surface` reads the map as relief.
+// visited with a stride: the general rule handles it). `surface` reads the map as relief;
+// `level_runs`, built from its map, lets level stretches be skipped (nullptr: every texel read).
 bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box, double threshold_m,
-                       ChosenReliefContacts& out);
+                       ChosenReliefContacts& out, const ReliefLevelRuns* level_runs = nullptr);
 
 // The general rule on the same box (rasterizeRelief, selectReliefContacts, snapToBasins), for
 // tests and benchmarks that compare the two.

@@ -59,7 +59,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   const double threshold = double(manifold->getContactBreakingThreshold());
   ChosenReliefContacts chosen;
   bool conforming = false;
-  if (underside->kind == Underside::Kind::Box && boxReliefContacts(plane.surface(), *underside, threshold, chosen)) {
+  if (underside->kind == Underside::Kind::Box && boxReliefContacts(plane.surface(), *underside, threshold, chosen, &plane.levelRuns())) {
     // A box stands on the tops of the bumps under it: its spread points go to their basins'
     // bottoms (a flat relief leaves its corners). Not refined: its faces are flat. The rule of
     // the branch below, computed row by row (box_relief_contacts.hpp).

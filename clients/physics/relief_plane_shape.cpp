@@ -7,7 +7,8 @@
 
 namespace thx::phys {
 
-ReliefPlaneShape::ReliefPlaneShape(const tex::TexturedSurface& surface) : surface_(surface) {
+ReliefPlaneShape::ReliefPlaneShape(const tex::TexturedSurface& surface)
+    : surface_(surface), level_runs_(surface.map()) {
   if (!surface.usesRelief())
     throw std::logic_error("ReliefPlaneShape: the textured surface is not read as a relief map "
                                 "(expected a relief map with use_relief = true)");

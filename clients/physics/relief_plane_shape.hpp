@@ -9,6 +9,7 @@
 // surface mapping's plane_to_world (PhysicsWorld::addReliefPlane does).
 #include <BulletCollision/CollisionShapes/btConcaveShape.h>
 
+#include "clients/physics/relief_level_runs.hpp"
 #include "textures/textured_surface.hpp"
 
 namespace thx::phys {
@@ -24,6 +25,8 @@ class ReliefPlaneShape : public btConcaveShape {
   explicit ReliefPlaneShape(const tex::TexturedSurface& surface);
 
   const tex::TexturedSurface& surface() const { return surface_; }
+  // Where the relief stays level along its rows (a box's contact search skips those stretches).
+  const ReliefLevelRuns& levelRuns() const { return level_runs_; }
 
   void getAabb(const btTransform& t, btVector3& aabb_min, btVector3& aabb_max) const override;
   void processAllTriangles(btTriangleCallback* callback, const btVector3& aabb_min,
@@ -35,6 +38,7 @@ class ReliefPlaneShape : public btConcaveShape {
 
  private:
   tex::TexturedSurface surface_;
+  ReliefLevelRuns level_runs_;
   btVector3 scaling_{1, 1, 1};
 };
 

@@ -76,6 +76,7 @@ TEST(BoxReliefContacts, ChoosesTheGeneralRulesContactsInRandomPoses) {
   for (tex::Address address : {tex::Address::Clamp, tex::Address::Wrap}) {
     for (Relief kind : {Relief::Flat, Relief::Bumps, Relief::Bricks}) {
       const SurfaceHolder s = reliefOf(kind, address);
+      const ReliefLevelRuns level(*s.map);
       for (int k = 0; k < 120; ++k) {
         // Anywhere on the map and across its edge (the wrap seam, the clamped border), tilted
         // up to 40° (some poses a resting box has, most a tumbling one), sunk up to 0.4 mm.
@@ -85,10 +86,14 @@ TEST(BoxReliefContacts, ChoosesTheGeneralRulesContactsInRandomPoses) {
         const Eigen::Matrix3d turn =
             (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(tilt, axis)).toRotationMatrix();
         const Underside box = boxAt(xy, turn, 0.004 + 0.008 * std::fabs(unit(rng)), 4e-4 * std::fabs(unit(rng)));
-        ChosenReliefContacts rows;
+        // Texel by texel, and with the level stretches read at their ends.
+        ChosenReliefContacts rows, stretches;
         ASSERT_TRUE(boxReliefContacts(s.surface, box, kThreshold, rows));
+        ASSERT_TRUE(boxReliefContacts(s.surface, box, kThreshold, stretches, &level));
         const ChosenReliefContacts general = generalBoxReliefContacts(s.surface, box, kThreshold);
-        expectSameContacts(rows, general, "pose " + std::to_string(k) + " relief " + std::to_string(int(kind)));
+        const std::string where = "pose " + std::to_string(k) + " relief " + std::to_string(int(kind));
+        expectSameContacts(rows, general, where + ", texel by texel");
+        expectSameContacts(stretches, general, where + ", level stretches");
         ++compared;
         touching += rows.count > 0;
       }
@@ -103,19 +108,36 @@ TEST(BoxReliefContacts, ALevelBoxAndANearlyLevelOneGetTheGeneralRulesCorners) {
   // it is equally deep and its side faces stand vertical: the first texel in scan order is the
   // deepest for both rules.
   const SurfaceHolder s = reliefOf(Relief::Flat, tex::Address::Clamp);
+  const ReliefLevelRuns level(*s.map);
   for (double tilt : {0.0, 1e-9, 1e-6, 1e-3}) {
     for (double yaw : {0.0, 0.3}) {
       const Eigen::Matrix3d turn = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
                                     Eigen::AngleAxisd(tilt, Eigen::Vector3d(0.6, 0.8, 0.0)))
                                        .toRotationMatrix();
       const Underside box = boxAt({0.013, 0.007}, turn, 0.0105, 1e-8);
-      ChosenReliefContacts rows;
+      ChosenReliefContacts rows, stretches;
       ASSERT_TRUE(boxReliefContacts(s.surface, box, kThreshold, rows));
-      expectSameContacts(rows, generalBoxReliefContacts(s.surface, box, kThreshold),
-                         "tilt " + std::to_string(tilt) + " yaw " + std::to_string(yaw));
+      ASSERT_TRUE(boxReliefContacts(s.surface, box, kThreshold, stretches, &level));
+      const ChosenReliefContacts general = generalBoxReliefContacts(s.surface, box, kThreshold);
+      const std::string where = "tilt " + std::to_string(tilt) + " yaw " + std::to_string(yaw);
+      expectSameContacts(rows, general, where + ", texel by texel");
+      expectSameContacts(stretches, general, where + ", level stretches");
       EXPECT_EQ(rows.count, 4u);  // its four corners
     }
   }
+}
+
+TEST(BoxReliefContacts, LevelRunsCountEqualDepthsAlongARowUpToItsEdge) {
+  tex::HeightField field;
+  field.width = 6, field.height = 2;
+  field.heights_m = {0, 0, 0, -1e-3, -1e-3, 0,  // two stretches and a lone texel
+                     0, 0, 0, 0, 0, 0};         // one stretch: it stops at the edge, no wrap
+  tex::ReliefFromHeightOptions o;
+  o.texel_m = {1e-3, 1e-3};
+  const ReliefLevelRuns runs(tex::reliefFromHeight(field, o));
+  const std::vector<long long> want = {3, 2, 1, 2, 1, 1, 6, 5, 4, 3, 2, 1};
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(runs.levelAlong(i, j), want[std::size_t(j * 6 + i)]) << i << "," << j;
 }
 
 TEST(BoxReliefContacts, ABoxAboveTheReliefHasNoneAndAHugeOneIsLeftToTheGeneralRule) {
