@@ -90,9 +90,6 @@ std::vector<SceneObject> parseObjects(const std::optional<Field>& field, const S
   std::vector<SceneObject> objects;
   if (!field) return objects;
   const std::vector<Field> items = field->items();
-  if (surface.mesh && !items.empty())
-    items.front().fail("objects on a mesh surface are not simulated yet (physics-client simulates the plane; issue 29)",
-                       "no objects with surface.mesh", "");
   const Eigen::Isometry3d world_to_plane = toIsometry(surface.pose).inverse();
   for (std::size_t i = 0; i < items.size(); ++i) {
     SceneObject object = parseObject(items[i]);
@@ -101,8 +98,9 @@ std::vector<SceneObject> parseObjects(const std::optional<Field>& field, const S
         items[i].find("name")->fail("duplicate object name (also objects[" + std::to_string(j) + "], line " +
                                         std::to_string(items[j].find("name")->location().line) + ")",
                                     "a name no other object uses");
+    // Below the plane is a mistake on a plane surface; on a mesh (a bowl's inside) it is normal.
     const double height = (world_to_plane * object.pose.position_m).z();
-    if (height < 0.0)
+    if (height < 0.0 && !surface.mesh)
       items[i]
           .find("position")
           ->warn("object '" + object.name + "' starts " + formatNumber(-height) + " m below the surface plane");

@@ -58,6 +58,14 @@ class TexturedSurface {
     return p;
   }
 
+  // The unwrapped texel index containing continuous texel coordinate s (u x width, or
+  // (1 - v) x height), clamped to +-1e9 texels so the integer conversion stays defined. A mesh's
+  // contacts count their texels with it too (clients/physics_client/mesh_ground.hpp).
+  static long long toIndex(double s) {
+    constexpr double kLimit = 1e9;
+    return (long long)std::floor(std::fmax(-kLimit, std::fmin(kLimit, s)));
+  }
+
   // Unwrapped index of the texel containing plane-local (x, y). Coordinates beyond +-1e9 texels
   // are clamped (nothing physical lives there) so the integer conversion stays defined.
   void texelContaining(double x_local, double y_local, long long& i, long long& j) const {
@@ -115,10 +123,6 @@ class TexturedSurface {
   }
   // A normal (not yet unit) with its slopes scaled (setNormalsMadeFor).
   Eigen::Vector3d slopeScaled(const Eigen::Vector3d& n) const { return rescaled_ ? scaleSlopes(n, slope_scale_) : n; }
-  static long long toIndex(double s) {
-    constexpr double kLimit = 1e9;
-    return (long long)std::floor(std::fmax(-kLimit, std::fmin(kLimit, s)));
-  }
 
   const TextureMap* map_ = nullptr;
   PlaneMapping mapping_;

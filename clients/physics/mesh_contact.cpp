@@ -14,15 +14,19 @@
 namespace thx::phys {
 
 
+Eigen::Vector3d meshTextureNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const mesh::SurfaceFrame& f,
+                                  Eigen::Vector3d n_tangent, const MeshContactOptions& options) {
+  if (options.normals_made_for_m.minCoeff() > 0.0)
+    n_tangent = tex::scaleSlopes(n_tangent, options.normals_made_for_m.cwiseQuotient(mesh::metresPerUv(mesh, triangle, f)));
+  return clampTilt(mesh::fromTangentSpace(f, n_tangent), f.normal, options.max_tilt_deg);
+}
+
 Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
                                   const MeshContactOptions& options) {
   const mesh::SurfaceFrame f = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::Interpolated);
   if (!options.texture) return f.normal;
   const tex::Sample s = tex::sample(*options.texture, {f.uv.x(), f.uv.y()}, options.sampling);
-  Eigen::Vector3d n = s.normal.cast<double>();
-  if (options.normals_made_for_m.minCoeff() > 0.0)
-    n = tex::scaleSlopes(n, options.normals_made_for_m.cwiseQuotient(mesh::metresPerUv(mesh, triangle, f)));
-  return clampTilt(mesh::fromTangentSpace(f, n), f.normal, options.max_tilt_deg);
+  return meshTextureNormal(mesh, triangle, f, s.normal.cast<double>(), options);
 }
 
 ContactMesh::ContactMesh(const mesh::TexturedMesh& m) : mesh(&m), neighbours(mesh::triangleNeighbours(m)) {

@@ -49,6 +49,11 @@ struct MeshContactOptions {
   bool hold_height = true;     // as NormalMapOptions::hold_height, on the flat triangle
 };
 
+// A texture normal n_tangent (tangent space) turned into the mesh frame at frame f on `triangle`:
+// its slopes rescaled to the tile laid there, its tilt from f.normal clamped (unit).
+Eigen::Vector3d meshTextureNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const mesh::SurfaceFrame& f,
+                                  Eigen::Vector3d n_tangent, const MeshContactOptions& options);
+
 // The steering normal at barycentric b of `triangle` (mesh frame, unit, outward as the mesh is
 // wound): the interpolated normal, turned by the texture if there is one.
 Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,

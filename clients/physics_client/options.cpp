@@ -14,7 +14,8 @@ namespace thx::physclient {
 const char* const kHelp = R"(usage: physics-client --scene FILE|NAME [options]
 
 Simulates the scene's objects with Bullet on its textured plane (normal or relief, as the scene
-says), with the pen as a kinematic body following hapticd's device. The pen's contacts become a
+says) or its textured mesh (surface.mesh: the smooth surface, its contacts turned by the texture's
+normals), with the pen as a kinematic body following hapticd's device. The pen's contacts become a
 force sent back to hapticd (client_force_t); object poses and contact events are published for
 the audio and visual clients (docs/physics.md, docs/messages.md).
 

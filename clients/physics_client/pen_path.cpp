@@ -89,6 +89,10 @@ std::vector<PenSample> loadPenCsv(const std::string& path) {
 }
 
 std::vector<PenSample> penPathFromScript(const PhysicsScene& scene, double dt_s) {
+  if (scene.meshGround() != nullptr)
+    throw PenPathError(scene.scene().source +
+                       ": device.script: --pen-script follows the script on the plane; on a mesh surface (surface.mesh) "
+                       "record hapticd's pen (`hapticd --lockstep --record FILE`) and pass --replay-log FILE");
   const tex::TexturedSurface& surface = scene.surface();
   std::vector<PenSample> out;
   double t = 0.0;

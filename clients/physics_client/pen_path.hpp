@@ -33,7 +33,8 @@ std::vector<PenSample> loadPenCsv(const std::string& path);
 std::vector<PenSample> parsePenCsv(const std::string& text, const std::string& source);
 
 // The scene's hand script (press, stroke, hold) as a kinematic tip path on the surface, sampled
-// every dt_s. path_file steps are not supported (PenPathError). Empty script: empty path.
+// every dt_s. path_file steps are not supported, nor a mesh surface (PenPathError: hapticd's hand
+// follows a mesh, this path the plane). Empty script: empty path.
 std::vector<PenSample> penPathFromScript(const PhysicsScene& scene, double dt_s);
 
 class PenPath {

@@ -210,11 +210,15 @@ int runOnline(const Options& o, SceneFollower& sim) {
 int run(const Options& o) {
   SceneFollower sim(o);
   const PhysicsScene& scene = sim.physics();
-  if (!o.quiet)
-    std::fprintf(stderr, "physics-client: %s: %zu objects on a %s plane (%dx%d texels), pen %s\n", o.scene.c_str(),
-                 scene.scene().objects.size(), scene.surface().usesRelief() ? "relief" : "normal-mapped",
+  if (!o.quiet) {
+    const std::string ground =
+        scene.meshGround() ? "mesh of " + std::to_string(scene.meshGround()->sceneMesh().mesh.triangles.size()) + " triangles"
+                           : "plane";
+    std::fprintf(stderr, "physics-client: %s: %zu objects on a %s %s (%dx%d texels), pen %s\n", o.scene.c_str(),
+                 scene.scene().objects.size(), scene.surface().usesRelief() ? "relief" : "normal-mapped", ground.c_str(),
                  scene.surface().map().width(), scene.surface().map().height(),
                  o.pen.shape == PenShape::None ? "off" : o.pen.shape == PenShape::Sphere ? "sphere" : "capsule");
+  }
   return o.offline() ? runOffline(o, sim) : runOnline(o, sim);
 }
 

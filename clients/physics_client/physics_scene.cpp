@@ -11,6 +11,7 @@
 #include "clients/physics/bullet_convert.hpp"
 #include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
+#include "scenes/scene_mesh.hpp"
 #include "textures/smoothing.hpp"
 
 namespace thx::physclient {
@@ -18,7 +19,6 @@ namespace thx::physclient {
 namespace {
 
 scene::SceneSurface buildSurface(const scene::Scene& scene) {
-  scene::requirePlaneSurface(scene, "physics-client");
   scene::SurfaceTextureOptions options;
   options.smooth = tex::smoothTexture;
   return scene::buildSceneSurface(scene, options);
@@ -53,8 +53,15 @@ PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
       scene_surface_(buildSurface(scene)) {
   world_ = std::make_unique<phys::PhysicsWorld>(options.world);
   const phys::BodyMaterial plane_material = materialOf(scene.surface.material);
-  plane_ = surface().usesRelief() ? &world_->addReliefPlane(surface(), plane_material)
-                                  : &world_->addNormalMapPlane(surface(), plane_material);
+  if (scene.surface.mesh) {
+    mesh_ = std::make_unique<MeshGround>(scene, surface());
+    // hapticd's hello names a mesh scene by the texture and the mesh together.
+    scene_surface_.fingerprint = scene::meshSceneFingerprint(scene_surface_.fingerprint, mesh_->sceneMesh());
+    plane_ = &mesh_->addTo(*world_, plane_material);
+  } else {
+    plane_ = surface().usesRelief() ? &world_->addReliefPlane(surface(), plane_material)
+                                    : &world_->addNormalMapPlane(surface(), plane_material);
+  }
   plane_->setUserIndex(kBodySurface);
 
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -164,10 +171,13 @@ void PhysicsScene::collectContacts(double dt_s) {
     int points = 0;
     double impulse = 0.0;
     Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+    int mesh_triangle = -1;  // on a mesh surface: the triangle of the first touching point
     for (int k = 0; k < manifold->getNumContacts(); ++k) {
       const btManifoldPoint& pt = manifold->getContactPoint(k);
       if (double(pt.getDistance()) > kTouchDistance_m && pt.getAppliedImpulse() <= 0) continue;
       ++points;
+      if (mesh_ && mesh_triangle < 0 && (id0 == kBodySurface || id1 == kBodySurface))
+        mesh_triangle = id0 == kBodySurface ? pt.m_index0 : pt.m_index1;
       const Eigen::Vector3d n_bt = phys::toEigen(pt.m_normalWorldOnB);
       impulse += double(pt.getAppliedImpulse());
       n += sign * n_bt;
@@ -202,9 +212,14 @@ void PhysicsScene::collectContacts(double dt_s) {
     const Eigen::Vector3d rel = pointVelocity(ra, ida) - pointVelocity(rb, idb);
     const Eigen::Vector3d slip = rel - rel.dot(n) * n;
 
-    const bool on_surface = idb == kBodySurface;
+    // A mesh contact whose triangle Bullet did not name (it always does for a triangle mesh)
+    // counts as an object-object contact rather than a texel of nowhere.
+    const std::size_t triangles = mesh_ ? mesh_->sceneMesh().mesh.triangles.size() : 0;
+    const bool on_surface = idb == kBodySurface && (!mesh_ || (mesh_triangle >= 0 && std::size_t(mesh_triangle) < triangles));
     Texel texel;
-    if (on_surface) {
+    if (on_surface && mesh_) {
+      mesh_->texelOf(mesh_->on(std::uint32_t(mesh_triangle), p).uv, texel.i, texel.j);
+    } else if (on_surface) {
       const Eigen::Vector3d local = surface().toLocal(p);
       surface().texelContaining(local.x(), local.y(), texel.i, texel.j);
     }
@@ -244,7 +259,7 @@ void PhysicsScene::collectContacts(double dt_s) {
     c.v_world = (ra && ida >= 0) ? phys::velocityOf(*ra) : (ida == kBodyPen ? v_pen : Eigen::Vector3d::Zero());
     c.impulse_sum_ns += impulse;
     c.window_s += dt_s;
-    if (on_surface) extendPath(key, oa, dt_s, c);
+    if (on_surface) extendPath(key, oa, dt_s, std::uint32_t(std::max(mesh_triangle, 0)), c);
   }
 
   // Pairs that stopped touching forget their path, so a new touch starts a new one.
@@ -266,7 +281,17 @@ void PhysicsScene::collectContacts(double dt_s) {
   pen_force_.sent_world = sent;
 }
 
-void PhysicsScene::extendPath(const PairKey& key, const btCollisionObject* a, double dt_s, LastingContact& c) {
+void PhysicsScene::extendPath(const PairKey& key, const btCollisionObject* a, double dt_s, std::uint32_t triangle,
+                              LastingContact& c) {
+  if (mesh_) {
+    const MeshGround::Place foot = mesh_->footOf(phys::toEigen(a->getWorldTransform().getOrigin()), triangle);
+    const auto last = last_path_point_.find(key);
+    extendMeshPath(a, last == last_path_point_.end() ? nullptr : &last->second, foot, dt_s, c);
+    PathPoint& point = last_path_point_[key];
+    point.p_world = foot.p_world;
+    point.uv = foot.uv;
+    return;
+  }
   const tex::TexturedSurface& s = surface();
   // The point under a's centre of mass: it moves with the body, not with the sampled normal
   // (docs/physics.md, "Texel paths").
@@ -297,7 +322,46 @@ void PhysicsScene::extendPath(const PairKey& key, const btCollisionObject* a, do
       return true;
     });
   }
-  last_path_point_[key] = {xy, uv};
+  last_path_point_[key] = {xy, Eigen::Vector3d::Zero(), uv};
+}
+
+void PhysicsScene::extendMeshPath(const btCollisionObject* a, const PathPoint* from, const MeshGround::Place& to,
+                                  double dt_s, LastingContact& c) {
+  auto add = [&](long long i, long long j, double t_s, const Eigen::Vector3d& v_world) {
+    if (c.path.size() >= LastingContact::kMaxPath) return ++c.path_dropped, void();
+    c.path.push_back({i, j, t_s, mesh_->texelNormalWorld(i, j, to), v_world});
+  };
+  const tex::TextureMap& map = surface().map();
+  if (from == nullptr) {  // a new touch: the texel it starts on, with the body's velocity
+    long long i = 0, j = 0;
+    mesh_->texelOf(to.uv, i, j);
+    const btRigidBody* body = btRigidBody::upcast(a);
+    add(i, j, sim_time_, body ? phys::velocityOf(*body) : Eigen::Vector3d::Zero());
+    return;
+  }
+  const Eigen::Vector3d& from_world = from->p_world;
+  const tex::TexCoord& from_uv = from->uv;
+  const Eigen::Vector3d v_world = (to.p_world - from_world) / dt_s;
+  // Texels the foot can have crossed at the texture's scale here (and two for rounding): a uv step
+  // longer than that jumped a seam of the mesh's uv (a lathe's u from 1 back to 0), where the
+  // path starts again in the texel it lands in.
+  const double moved = (to.p_world - from_world).norm();
+  const double du = std::fabs(to.uv.u - from_uv.u) * map.width(), dv = std::fabs(to.uv.v - from_uv.v) * map.height();
+  const double can_u = 2.0 * moved / (to.metres_per_uv.x() / map.width()) + 2.0;
+  const double can_v = 2.0 * moved / (to.metres_per_uv.y() / map.height()) + 2.0;
+  if (!(du <= can_u && dv <= can_v)) {
+    long long i = 0, j = 0;
+    mesh_->texelOf(to.uv, i, j);
+    add(i, j, sim_time_, v_world);
+    return;
+  }
+  const double t0 = sim_time_ - dt_s;
+  bool first = true;  // the walk starts in the texel the path entered at an earlier step
+  tex::walkCells(map, from_uv, to.uv, [&](long long i, long long j, double t_enter) {
+    if (!first) add(i, j, t0 + t_enter * dt_s, v_world);
+    first = false;
+    return true;
+  });
 }
 
 std::vector<LastingContact> PhysicsScene::takeContacts() {

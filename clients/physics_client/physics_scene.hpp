@@ -7,6 +7,8 @@
 //  - impacts (pairs that start touching with an approach speed) and lasting contacts (per
 //    touching pair: point, normal, slip velocity, normal force, the texels entered).
 // Body ids: i >= 0 = scene.objects[i]; kBodySurface = the plane; kBodyPen = the pen.
+// A mesh scene's surface (surface.mesh) is its mesh (mesh_ground.hpp): contacts on it carry the
+// texel under them through the mesh's uv, and paths follow the foot of a body's centre on it.
 // SI units, world frame. Not real-time code (construction allocates; a step allocates only when
 // a new pair starts touching).
 #include <Eigen/Core>
@@ -19,6 +21,7 @@
 #include <vector>
 
 #include "clients/physics/physics_world.hpp"
+#include "clients/physics_client/mesh_ground.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_surface.hpp"
 #include "textures/textured_surface.hpp"
@@ -133,20 +136,29 @@ class PhysicsScene {
   // The surface with its scene name and fingerprint, to compare with hapticd's hello_t.
   const scene::SceneSurface& sceneSurface() const { return scene_surface_; }
   const scene::Scene& scene() const { return scene_; }
+  // The surface's mesh in a mesh scene; nullptr on the plane.
+  const MeshGround* meshGround() const { return mesh_.get(); }
   phys::PhysicsWorld& world() { return *world_; }
 
  private:
   using PairKey = std::pair<const btCollisionObject*, const btCollisionObject*>;
   void placePen(double dt_s);
   void collectContacts(double dt_s);
-  // Appends to `c` every texel the path of a (on the surface) entered in this step.
-  void extendPath(const PairKey& key, const btCollisionObject* a, double dt_s, LastingContact& c);
+  // Appends to `c` every texel the path of a (on the surface) entered in this step; on a mesh,
+  // `triangle` is one the pair touches.
+  void extendPath(const PairKey& key, const btCollisionObject* a, double dt_s, std::uint32_t triangle, LastingContact& c);
+  struct PathPoint;
+  // The walk of a mesh path from its last point (nullptr: a new touch) to `to` (extendPath's
+  // part on a mesh).
+  void extendMeshPath(const btCollisionObject* a, const PathPoint* from, const MeshGround::Place& to, double dt_s,
+                      LastingContact& c);
   int idOf(const btCollisionObject* o) const;
   Eigen::Vector3d penCentreFor(const Eigen::Vector3d& tip) const;
 
   scene::Scene scene_;
   SimOptions options_;
   scene::SceneSurface scene_surface_;
+  std::unique_ptr<MeshGround> mesh_;  // before world_: the world reads its mesh and texture
   std::unique_ptr<phys::PhysicsWorld> world_;
   btRigidBody* plane_ = nullptr;
   btRigidBody* pen_ = nullptr;
@@ -159,7 +171,8 @@ class PhysicsScene {
   std::vector<Impact> impacts_;
   std::map<PairKey, LastingContact> contacts_;        // accumulating since takeContacts()
   struct PathPoint {
-    Eigen::Vector2d xy_local = Eigen::Vector2d::Zero();
+    Eigen::Vector2d xy_local = Eigen::Vector2d::Zero();  // the plane
+    Eigen::Vector3d p_world = Eigen::Vector3d::Zero();   // a mesh: the foot of a's centre
     tex::TexCoord uv;
   };
   std::map<PairKey, PathPoint> last_path_point_;     // per touching surface pair: its path point a step ago

@@ -29,6 +29,20 @@ using namespace thx::visual;
 
 std::string framePath(const Options& o, int f) { return visual::framePath(o.out_dir, f, o.frame_format); }
 
+// What a recorded frame shows: the scene's objects where the recording's physics poses put them,
+// and the pen (tip, proxy), unless the options leave either out.
+std::vector<ObjectInstance> replayedObjects(const Options& o, const scene::Scene& scene,
+                                            const tex::TexturedSurface& surface, const ReplayFrame& frame) {
+  std::vector<ObjectInstance> objects;
+  if (!o.no_objects) objects = objectsAt(scene, frame.bodies);
+  if (!o.no_pen) {
+    const std::vector<ObjectInstance> pen = penWithProxy(surface, surface.toLocal(frame.tip_world),
+                                                         surface.toLocal(frame.proxy_world), frame.proxy_held);
+    objects.insert(objects.end(), pen.begin(), pen.end());
+  }
+  return objects;
+}
+
 // A recorded session frame by frame: the pen (tip, proxy) where the recording put it, the objects
 // at the recorded physics poses (at rest before the first, or when the log has none).
 int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
@@ -40,14 +54,7 @@ int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurfa
   const Camera camera(placement, surface.mapping().plane_to_world, o.width, o.height);
   std::filesystem::create_directories(o.out_dir);
   for (std::size_t f = 0; f < frames.size(); ++f) {
-    std::vector<ObjectInstance> objects;
-    if (!o.no_objects) objects = objectsAt(scene, frames[f].bodies);
-    if (!o.no_pen) {
-      const std::vector<ObjectInstance> pen = penWithProxy(surface, surface.toLocal(frames[f].tip_world),
-                                                           surface.toLocal(frames[f].proxy_world), frames[f].proxy_held);
-      objects.insert(objects.end(), pen.begin(), pen.end());
-    }
-    renderer.render(camera, objects);
+    renderer.render(camera, replayedObjects(o, scene, surface, frames[f]));
     writeImage(framePath(o, int(f)), renderer.framebuffer().readColour(), o.png_level);
   }
   if (!o.quiet)
@@ -99,7 +106,8 @@ void buildMeshView(MeshView& view, const Options& o, const scene::Scene& scene, 
                  view.shape.triangles.size(), mesh.tile_m.x(), mesh.tile_m.y());
 }
 
-// Orbit frames or a screenshot of the mesh alone.
+// Orbit frames or a screenshot of the mesh, with the scene's objects where it places them (not
+// on --surface-mesh's shape, which is not the scene's).
 int drawSurfaceMesh(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
                     const CameraPlacement& placement) {
   HeadlessContext context;
@@ -108,8 +116,10 @@ int drawSurfaceMesh(const Options& o, const scene::Scene& scene, const tex::Text
   buildMeshView(view, o, scene, surface, placement);
   const Eigen::Isometry3d& plane = view.orbit_frame;
   MeshFrameRenderer renderer(view.surface, o.render, o.width, o.height);
+  std::vector<ObjectInstance> objects;
+  if (!o.no_objects && o.surface_mesh.empty()) objects = objectsAtRest(scene);
   if (!o.screenshot.empty()) {
-    renderer.render(Camera(view.placement, plane, o.width, o.height));
+    renderer.render(Camera(view.placement, plane, o.width, o.height), objects);
     writeImage(o.screenshot, renderer.framebuffer().readColour(), o.png_level);
     if (!o.quiet)
       std::fprintf(stderr, "visual-client: wrote %s (%s, %s)\n", o.screenshot.c_str(), view.name.c_str(),
@@ -120,15 +130,15 @@ int drawSurfaceMesh(const Options& o, const scene::Scene& scene, const tex::Text
   for (int f = 0; f < o.frames; ++f) {
     CameraPlacement p = view.placement;
     p.azimuth_deg += f * o.orbit_deg_per_frame;
-    renderer.render(Camera(p, plane, o.width, o.height));
+    renderer.render(Camera(p, plane, o.width, o.height), objects);
     writeImage(framePath(o, f), renderer.framebuffer().readColour(), o.png_level);
   }
   if (!o.quiet) std::fprintf(stderr, "visual-client: wrote %d frames to %s\n", o.frames, o.out_dir.c_str());
   return 0;
 }
 
-// A recorded session on a mesh scene, frame by frame: the mesh and the pen (tip, proxy) where the
-// recording put it. (A mesh scene has no objects: physics on meshes is issue 29.)
+// A recorded session on a mesh scene, frame by frame: the mesh, the scene's objects where
+// physics-client's poses in the recording put them (a combined session), and the pen (tip, proxy).
 int replayOnMesh(const Options& o, const scene::Scene& scene, const scene::SceneSurface& scene_surface,
                  const CameraPlacement& placement) {
   const tex::TexturedSurface& surface = scene_surface.surface;
@@ -146,11 +156,7 @@ int replayOnMesh(const Options& o, const scene::Scene& scene, const scene::Scene
   const Camera camera(view.placement, view.orbit_frame, o.width, o.height);
   std::filesystem::create_directories(o.out_dir);
   for (std::size_t f = 0; f < frames.size(); ++f) {
-    std::vector<ObjectInstance> pen;
-    if (!o.no_pen)
-      pen = penWithProxy(surface, surface.toLocal(frames[f].tip_world), surface.toLocal(frames[f].proxy_world),
-                         frames[f].proxy_held);
-    renderer.render(camera, pen);
+    renderer.render(camera, replayedObjects(o, scene, surface, frames[f]));
     writeImage(framePath(o, int(f)), renderer.framebuffer().readColour(), o.png_level);
   }
   if (!o.quiet)

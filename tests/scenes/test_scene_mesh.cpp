@@ -82,9 +82,13 @@ TEST(SceneMesh, BadSections) {
   expectError(sceneWith("{generator: sphere, size: 0.05, colour: red}"), "surface.mesh.colour", {"unknown field"});
 }
 
-TEST(SceneMesh, ObjectsWaitForPhysicsOnMeshes) {
-  expectError(sceneWith("{generator: bowl, size: 0.06}", "objects:\n  - {name: b, shape: sphere, radius: 0.01, mass: 0.01}\n"),
-              "objects[0]", {"not simulated yet", "issue 29"});
+TEST(SceneMesh, ObjectsOnAMeshSurfaceParseBelowItsFramesPlaneWithoutAWarning) {
+  // A marble in a bowl sits below the surface frame's z = 0 (the bowl's rim is above it).
+  const Scene s = parse(sceneWith("{generator: bowl, size: 0.06}",
+                                  "objects:\n  - {name: b, shape: sphere, radius: 0.01, mass: 0.01, position: [0, 0, -0.01]}\n"));
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.objects[0].name, "b");
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
 }
 
 // On a mesh the script's points are in the mesh's frame, not on the texture's rectangle.
@@ -172,16 +176,16 @@ TEST(SceneMesh, MeshErrorsAreLocatedAtTheMeshField) {
 TEST(SceneMesh, PlaneOnlyProgramsRefuseAMeshByName) {
   const Scene s = parse(sceneWith("{generator: bowl, size: 0.06}"));
   try {
-    requirePlaneSurface(s, "physics-client");
+    requirePlaneSurface(s, "audio-client");
     FAIL() << "no error";
   } catch (const SceneError& e) {
     EXPECT_EQ(e.field(), "surface.mesh");
     EXPECT_NE(std::string(e.what()).find("m.yaml:6:"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("physics-client"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("audio-client"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("hapticd"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(requirePlaneSurface(parse("version: 1\nname: p\nsurface: {size: [0.2, 0.2], texture: {generator: bricks, size: 16}}\n"),
-                                      "physics-client"));
+                                      "audio-client"));
 }
 
 }  // namespace

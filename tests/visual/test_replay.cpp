@@ -191,5 +191,30 @@ TEST(VisualReplay, TwoRunsOfACombinedSessionAreIdenticalAndTheMarbleMoves) {
   EXPECT_FALSE(slurp(c / "frame_0001.ppm") == slurp(c / "frame_0000.ppm")) << "the marble did not move";
 }
 
+TEST(VisualReplay, ACombinedSessionOnAMeshSceneDrawsItsMarbleWhereThePosesPutIt) {
+  // The bowl of bricks, coarse, with marble_bricks' marble where the combined session has it.
+  const fs::path scene = scratch("marble_in_a_bowl.yaml");
+  std::ofstream(scene) << "version: 1\nname: marble in a bowl\nsurface:\n  size: [0.04, 0.04]\n"
+                          "  mesh: {generator: bowl, size: 0.06, segments: 32, closed: true}\n"
+                          "  pose: {position: [0.0, 0.0, -0.04], rpy_deg: [0.0, 0.0, 0.0]}\n"
+                          "  texture: {generator: bricks, size: 64, params: {extent: 0.04}}\n"
+                          "objects:\n  - {name: marble, shape: sphere, radius: 0.01, mass: 0.02, position: [0.03, -0.01, 0.00578]}\n";
+  const std::string log = recordCombinedSession();
+  const auto run = [&](const fs::path& out, const std::string& extra) {
+    const std::string cmd = "LP_NUM_THREADS=2 " + std::string(THX_VISUAL_CLIENT) + " --scene " + scene.string() +
+                            " --replay-log " + log + " --out " + out.string() +
+                            " --rate 1.2 --size 160x90 --format ppm --quiet --elevation 70 --distance 0.12" + extra;
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  };
+  const fs::path with = scratch("mesh_marble"), without = scratch("mesh_no_objects");
+  run(with, "");
+  run(without, " --no-objects");
+  // t = 0 and 0.833 s, where the marble has rolled 13 mm; the pen stands still.
+  ASSERT_TRUE(fs::exists(with / "frame_0001.ppm"));
+  EXPECT_FALSE(slurp(with / "frame_0001.ppm") == slurp(with / "frame_0000.ppm")) << "the marble did not move";
+  EXPECT_TRUE(slurp(without / "frame_0001.ppm") == slurp(without / "frame_0000.ppm"));
+  EXPECT_FALSE(slurp(with / "frame_0000.ppm") == slurp(without / "frame_0000.ppm")) << "no marble drawn";
+}
+
 }  // namespace
 }  // namespace thx::visual::test_replay

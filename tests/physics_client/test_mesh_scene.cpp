@@ -1,0 +1,197 @@
+// physics-client on a mesh scene (surface.mesh, issue 29): a marble dropped into a bowl of bricks
+// rolls inside it, never through it, with texel paths that follow the foot of its centre through
+// the bowl's uv; the pen pushes it; the scene is named by hapticd's mesh fingerprint.
+#include <gtest/gtest.h>
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "clients/physics/bullet_convert.hpp"
+#include "clients/physics_client/physics_scene.hpp"
+#include "scenes/scene_loader.hpp"
+#include "scenes/scene_mesh.hpp"
+#include "scenes/scene_surface.hpp"
+#include "textures/smoothing.hpp"
+
+namespace test_mesh_scene {
+
+namespace {
+
+using namespace thx::physclient;
+
+// The shipped bowl of bricks (scenes/brick_bowl.yaml) at a coarser tessellation and texture, with
+// a steel marble held above its wall. Inside, the bowl is half an ellipsoid: semi-axes 55.2 mm
+// across and 43.2 mm deep, its floor 4.8 mm above the bowl's frame (meshes/mesh_generators.cpp).
+const std::string kScene = R"(version: 1
+name: marble in a bowl
+surface:
+  size: [0.04, 0.04]
+  mesh: {generator: bowl, size: 0.06, segments: 64, closed: true}
+  pose: {position: [0.0, 0.0, -0.04], rpy_deg: [0.0, 0.0, 0.0]}
+  texture:
+    generator: bricks
+    size: 128
+    params: {extent: 0.04, brick_length: 0.02, brick_height: 0.01, mortar: 0.0015, mortar_depth: 0.0008}
+  representation: relief
+  material: ceramic
+objects:
+  - name: marble
+    shape: sphere
+    radius: 0.006
+    mass: 0.007
+    material: steel
+    position: [0.02, 0.005, -0.012]
+rates: {physics_hz: 1000}
+)";
+
+constexpr double kInsideA = 0.0552, kInsideB = 0.0432, kRimZ = 0.048, kFloorZ = 0.0048, kBowlZ = -0.04;
+constexpr double kRadius = 0.006;
+
+// Where a ball's centre is against the bowl's inside: < 1 within the ellipsoid shrunk by the ball
+// (a ball resting on the inside has about 1), > 1 beyond it (through the wall).
+double insideMeasure(const Eigen::Vector3d& c) {
+  const double a = kInsideA - kRadius, b = kInsideB - kRadius;
+  const double z = c.z() - kBowlZ;
+  const double r2 = c.x() * c.x() + c.y() * c.y();
+  const double below_rim = std::max(0.0, kRimZ - z);
+  return r2 / (a * a) + below_rim * below_rim / (b * b);
+}
+
+// The triangle nearest p_world, by looking at every one (the test's own answer, slow and sure).
+std::uint32_t nearestTriangle(const thx::scene::SceneMesh& m, const Eigen::Vector3d& p_world) {
+  const Eigen::Vector3d p = m.mesh_to_world.inverse() * p_world;
+  std::uint32_t best = 0;
+  double best_d = 1e300;
+  for (std::uint32_t t = 0; t < m.mesh.triangles.size(); ++t) {
+    const Eigen::Vector3d b = thx::mesh::closestBarycentric(m.mesh, t, p);
+    const auto& tri = m.mesh.triangles[t];
+    const Eigen::Vector3d q = b[0] * m.mesh.positions[tri[0]] + b[1] * m.mesh.positions[tri[1]] + b[2] * m.mesh.positions[tri[2]];
+    if ((q - p).squaredNorm() < best_d) best_d = (q - p).squaredNorm(), best = t;
+  }
+  return best;
+}
+
+bool fourNeighbours(const Texel& a, const Texel& b) { return std::llabs(a.i - b.i) + std::llabs(a.j - b.j) == 1; }
+
+PhysicsScene makeScene(PenShape pen = PenShape::None) {
+  SimOptions options;
+  options.pen.shape = pen;
+  return PhysicsScene(thx::scene::parseScene(kScene, "marble_in_a_bowl.yaml", "."), options);
+}
+
+TEST(MeshScene, AMarbleDroppedInABowlRollsInsideItAndNeverThroughIt) {
+  PhysicsScene sim = makeScene();
+  ASSERT_NE(sim.meshGround(), nullptr);
+  double lowest = 1.0, highest_after_landing = -1.0, worst_inside = 0.0;
+  int touching_steps = 0;
+  bool landed = false;
+  for (int k = 0; k < 2000; ++k) {
+    sim.step(1e-3);
+    const BodyState b = sim.body(0);
+    bool touching = false;
+    for (const LastingContact& c : sim.takeContacts()) touching = touching || (c.body_a == 0 && c.body_b == kBodySurface);
+    touching_steps += touching;
+    landed = landed || touching;
+    lowest = std::min(lowest, b.p_world.z());
+    if (landed) {
+      highest_after_landing = std::max(highest_after_landing, b.p_world.z());
+      worst_inside = std::max(worst_inside, insideMeasure(b.p_world));
+    }
+  }
+  ASSERT_TRUE(landed);
+  EXPECT_GT(touching_steps, 1500);  // it rolls: on the surface nearly all the time
+  // Down through the floor's middle region: the centre comes within 3 mm of resting on the floor.
+  EXPECT_LT(lowest, kBowlZ + kFloorZ + kRadius + 0.003);
+  EXPECT_GT(lowest, kBowlZ + kFloorZ + kRadius - 0.0005);  // and never sinks into it
+  // Inside the wall at every step (a measure of 1 is the wall itself; 1.02 allows the facets).
+  EXPECT_LT(worst_inside, 1.02);
+  // No energy from the contacts: it climbs no higher than it landed from.
+  EXPECT_LT(highest_after_landing, -0.012 + 0.001);
+}
+
+TEST(MeshScene, TexelPathsFollowTheFootOfTheMarblesCentreThroughTheBowlsUv) {
+  PhysicsScene sim = makeScene();
+  const MeshGround& ground = *sim.meshGround();
+  std::size_t texels = 0, restarts = 0, steps_with_path = 0;
+  std::optional<std::uint32_t> near;
+  for (int k = 0; k < 1500; ++k) {
+    sim.step(1e-3);
+    for (const LastingContact& c : sim.takeContacts()) {
+      if (c.body_a != 0 || c.body_b != kBodySurface || c.path.empty()) continue;
+      ++steps_with_path;
+      // From the last foot's triangle (the marble moves about a triangle a step at most); the
+      // first from the triangle nearest the contact.
+      if (!near) near = nearestTriangle(ground.sceneMesh(), c.p_world);
+      const MeshGround::Place foot = ground.footOf(sim.body(0).p_world, *near);
+      near = foot.triangle;
+      const thx::scene::SceneMesh& m = ground.sceneMesh();
+      Eigen::Vector3d smooth = m.mesh_to_world.linear() *
+                               thx::mesh::frameAt(m.mesh, foot.triangle, foot.barycentric, thx::mesh::FrameMode::Interpolated).normal;
+      if (smooth.dot(sim.body(0).p_world - foot.p_world) < 0.0) smooth = -smooth;  // the inside is behind the winding
+      EXPECT_EQ(c.path_dropped, 0);
+      EXPECT_DOUBLE_EQ(c.mass_a_kg, 0.007);
+      for (std::size_t q = 0; q < c.path.size(); ++q) {
+        const Texel& t = c.path[q];
+        ++texels;
+        EXPECT_NEAR(t.n_world.norm(), 1.0, 1e-9);
+        // The texel's normal leans from the smooth surface's at the marble by the bricks' slopes,
+        // clamped at 75° (the contacts' rule), and towards the marble's side of the wall.
+        EXPECT_GT(t.n_world.dot(smooth), std::cos(76.0 * M_PI / 180.0)) << "step " << k;
+        if (q > 0) {
+          if (!fourNeighbours(c.path[q - 1], t)) ++restarts;  // a seam of the lathe's u
+          EXPECT_GE(t.t_s, c.path[q - 1].t_s);
+        }
+      }
+      // The last texel is the one under the foot of the centre now.
+      long long i = 0, j = 0;
+      ground.texelOf(foot.uv, i, j);
+      EXPECT_LE(std::llabs(c.path.back().i - i) + std::llabs(c.path.back().j - j), 1) << "step " << k;
+    }
+  }
+  EXPECT_GT(steps_with_path, 200u);
+  EXPECT_GT(texels, 500u);   // the bricks' 0.3 mm texels: many per centimetre rolled
+  EXPECT_LE(restarts, 4u);  // only where the path crossed the u seam
+}
+
+TEST(MeshScene, ThePenPushesTheMarbleAndFeelsIt) {
+  PhysicsScene sim = makeScene(PenShape::Sphere);
+  for (int k = 0; k < 1000; ++k) sim.step(1e-3);  // it rolls about the floor (nothing damps it)
+  // The pen (a 4 mm sphere) comes at the rolling marble from -x at its height, 0.1 mm closer
+  // every step, from 2 mm apart: it touches within 20 steps and goes on pushing.
+  bool felt = false;
+  double push_x = 0.0;
+  for (int k = 0; k <= 60; ++k) {
+    const BodyState m = sim.body(0);
+    const double gap = 0.002 - 1e-4 * k;
+    sim.setPenTip(m.p_world - Eigen::Vector3d(kRadius + 0.004 + gap, 0.0, 0.004));
+    sim.step(1e-3);
+    if (sim.penForce().in_contact) {
+      felt = felt || sim.penForce().raw_world.norm() > 1e-3;
+      push_x = std::min(push_x, sim.penForce().raw_world.x());  // the marble pushes the pen back (-x)
+    }
+  }
+  EXPECT_TRUE(felt);
+  EXPECT_LT(push_x, -1e-3);
+}
+
+TEST(MeshScene, TheSceneIsNamedByHapticdsMeshFingerprint) {
+  const thx::scene::Scene scene = thx::scene::parseScene(kScene, "marble_in_a_bowl.yaml", ".");
+  SimOptions options;
+  options.pen.shape = PenShape::None;
+  const PhysicsScene sim(scene, options);
+  thx::scene::SurfaceTextureOptions texture;
+  texture.smooth = thx::tex::smoothTexture;
+  const std::uint64_t plane_fingerprint = thx::scene::buildSceneSurface(scene, texture).fingerprint;
+  EXPECT_EQ(sim.sceneSurface().fingerprint,
+            thx::scene::meshSceneFingerprint(plane_fingerprint, thx::scene::buildSceneMesh(scene)));
+  EXPECT_NE(sim.sceneSurface().fingerprint, plane_fingerprint);
+}
+
+}  // namespace
+
+}  // namespace test_mesh_scene
