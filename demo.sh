@@ -3,7 +3,9 @@
 # stroke across the bricks and a press, then a press into a steep V-valley, then strokes inside a
 # bowl of bricks (a textured mesh); each prints its summary. Then physics-client next to hapticd: the pen pushes a ball out of its dimple. Then the
 # pen's scrape over the bricks and a marble rolling over them, each as a WAV with its spectrogram.
-# Then the texture gallery with shaded previews.
+# Then the texture gallery with shaded previews, frames of the default scene and of the bowl, three
+# marbles rolling in the bowl (physics-client on a lock-step recording of the pen, frames of the
+# combined session), and the user studies.
 # Usage: ./demo.sh [BUILD_DIR]   (make demo builds first, then calls this)
 set -eu
 BUILD=${1:-build}
@@ -89,6 +91,17 @@ LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/brick_bowl.yaml --mode 
   && echo "frames: $OUT/visual_bowl/frame_0000.png ... frame_0003.png, $OUT/visual_bowl_pen/frame_*.png" || echo "visual-client failed"
 
 echo
+echo "== physics on a mesh: three marbles roll down the bowl of bricks and the pen strokes through them"
+echo "   (scenes/marble_bowl.yaml): the pen recorded in lock-step, physics-client on that recording, one frame"
+echo "   every half second of the combined session -> $OUT/visual_marble_bowl/"
+"$HD" --scene scenes/marble_bowl.yaml --lockstep --no-lcm --record "$OUT/marble_bowl_pen.lcm" --quiet > /dev/null
+"$PC" --scene scenes/marble_bowl.yaml --replay-log "$OUT/marble_bowl_pen.lcm" --record "$OUT/marble_bowl_session.lcm" \
+  --quiet > "$OUT/marble_bowl.txt" 2>&1 && grep -E "^  (red|green|blue) " "$OUT/marble_bowl.txt" || echo "physics-client failed"
+LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/marble_bowl.yaml --mode relief --replay-log "$OUT/marble_bowl_session.lcm" \
+  --rate 2 --out "$OUT/visual_marble_bowl" --quiet \
+  && echo "frames: $OUT/visual_marble_bowl/frame_*.png" || echo "visual-client failed"
+
+echo
 echo "== user studies: three simulated participants per study on the shipped surfaces (scenes/study/), then the analysis -> $OUT/study/ (about 30 s)"
 SR="$BUILD/clients/study/study-run"
 mkdir -p "$OUT/study"
@@ -103,4 +116,4 @@ done
   && echo "sessions: $OUT/study/*.csv; tables and plots: $OUT/study/study.md" || echo "study-analyze failed"
 
 echo
-echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."
+echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png, $OUT/visual_marble_bowl/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."

@@ -129,6 +129,28 @@ TEST(ShippedSceneOutcome, MarbleSettlesInTheBedJointAndStays) {
   EXPECT_LT(reach(m), 0.1 - 0.006);
 }
 
+// The three marbles roll down the bowl's inside wall and meet on its floor (the bowl's frame is
+// the surface frame: the floor's centre at (0, 0), 4.8 mm up; a marble resting there has its
+// centre 10.8 mm up). On the way they stay inside the bowl.
+TEST(ShippedSceneOutcome, MarblesRollDownTheBowlAndMeetOnItsFloor) {
+  const SceneRun r = runScene("marble_bowl.yaml", 3.0, kSanitized ? 128 : 0);
+  constexpr double kFloorCentreZ = 0.0048 + 0.006;
+  for (const char* name : {"red", "green", "blue"}) {
+    const Track& m = r.tracks.at(name);
+    const Sample end = m.back();
+    double lowest = 1.0;
+    for (const Sample& s : m) lowest = std::min(lowest, s.local.z());
+    std::printf("[measured] %s ends %.1f mm from the floor's centre, its centre %.2f mm above resting on the floor "
+                "there; lowest %.2f mm above; %.2g m/s at the end\n",
+                name, end.local.head<2>().norm() * 1e3, (end.local.z() - kFloorCentreZ) * 1e3,
+                (lowest - kFloorCentreZ) * 1e3, end.speed);
+    EXPECT_LT(end.local.head<2>().norm(), 0.012) << name;  // the three touch: within two radii of the centre
+    EXPECT_LT(end.local.z() - kFloorCentreZ, 0.001) << name;
+    EXPECT_GT(lowest - kFloorCentreZ, -0.0005) << name;  // never into the floor
+    EXPECT_LT(reach(m), 0.055) << name;                   // inside the bowl (55.2 mm inside radius)
+  }
+}
+
 // The dimple ball passes over dimples (through the middle of at least one other than the last)
 // and ends trapped in one: near its centre, below the plane, no longer moving.
 TEST(ShippedSceneOutcome, DimpleBallCrossesDimplesAndIsCaughtInOne) {
