@@ -21,11 +21,27 @@ Eigen::Vector3d meshTextureNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
   return clampTilt(mesh::fromTangentSpace(f, n_tangent), f.normal, options.max_tilt_deg);
 }
 
+double ballPatchRadius(double radius_m, double depth_m) {
+  return depth_m > 0.0 && radius_m > 0.0 ? std::sqrt(2.0 * radius_m * depth_m) : 0.0;
+}
+
 Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
-                                  const MeshContactOptions& options) {
+                                  const MeshContactOptions& options, double patch_radius_m) {
   const mesh::SurfaceFrame f = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::Interpolated);
   if (!options.texture) return f.normal;
-  const tex::Sample s = tex::sample(*options.texture, {f.uv.x(), f.uv.y()}, options.sampling);
+  const tex::TexCoord uv{f.uv.x(), f.uv.y()};
+  if (options.pyramid != nullptr && patch_radius_m > 0.0) {
+    // The patch's width in texels along the texture's more squeezed axis here (where a lathe's u
+    // closes to a point, thousands): the level that averages that many.
+    const Eigen::Vector2d metres_per_uv = mesh::metresPerUv(mesh, triangle, f);
+    const double texels = 2.0 * patch_radius_m *
+                          std::max(options.texture->width() / metres_per_uv.x(), options.texture->height() / metres_per_uv.y());
+    if (texels > 1.0) {
+      const Eigen::Vector3d n = options.pyramid->normal(uv, std::log2(texels), options.sampling.address);
+      return meshTextureNormal(mesh, triangle, f, n, options);
+    }
+  }
+  const tex::Sample s = tex::sample(*options.texture, uv, options.sampling);
   return meshTextureNormal(mesh, triangle, f, s.normal.cast<double>(), options);
 }
 
@@ -87,16 +103,18 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
   const double side = n_face.dot(towards_object) < 0.0 ? -1.0 : 1.0;  // -1: touched from behind (a bowl's inside)
 
   Eigen::Vector3d n_geometric = side * n_face;
+  double patch_radius = 0.0;  // only a ball's patch is known: other shapes read one point
   const btCollisionShape* shape = other.getCollisionShape();
   if (shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
     const double r = double(static_cast<const btSphereShape*>(shape)->getRadius());
+    if (options.texture) patch_radius = ballPatchRadius(r, options.texture->maxDepth());
     const Eigen::Vector3d c = world_to_mesh * toEigen(other.getWorldTransform().getOrigin());
     smoothFoot(contact_mesh, c, side, triangle, b);
     const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
     n_geometric = side * smooth.normal;
     point.m_distance1 = static_cast<btScalar>(n_geometric.dot(c - smooth.point) - r);
   }
-  const Eigen::Vector3d n = side * meshContactNormal(mesh, triangle, b, options);
+  const Eigen::Vector3d n = side * meshContactNormal(mesh, triangle, b, options, patch_radius);
   steerContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n_geometric, other,
                options.hold_height, step);
 }

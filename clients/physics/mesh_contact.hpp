@@ -31,6 +31,7 @@
 #include "clients/physics/normal_map_contact.hpp"
 #include "meshes/textured_mesh.hpp"
 #include "textures/sampling.hpp"
+#include "textures/slope_pyramid.hpp"
 #include "textures/texture_map.hpp"
 
 namespace thx::phys {
@@ -43,6 +44,10 @@ struct MeshContactOptions {
   // texture at another scale its slopes are turned to match (as on the haptic chart). Zero: as
   // they are.
   Eigen::Vector2d normals_made_for_m = Eigen::Vector2d::Zero();
+  // The texture's slopes box-filtered (textures/slope_pyramid.hpp), built from `texture`: with a
+  // relief map, a ball's contact reads the texture averaged over its contact patch instead of at
+  // one point (meshContactNormal). nullptr: always at one point. It must outlive the world.
+  const tex::SlopePyramid* pyramid = nullptr;
   // false: Bullet's own contact (the flat triangle's normal), for comparisons.
   bool smooth = true;
   double max_tilt_deg = 75.0;  // as NormalMapOptions::max_tilt_deg, from the smooth normal
@@ -55,9 +60,17 @@ Eigen::Vector3d meshTextureNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
                                   Eigen::Vector3d n_tangent, const MeshContactOptions& options);
 
 // The steering normal at barycentric b of `triangle` (mesh frame, unit, outward as the mesh is
-// wound): the interpolated normal, turned by the texture if there is one.
+// wound): the interpolated normal, turned by the texture if there is one. A relief read by a body
+// whose contact patch has radius patch_radius_m (a ball: sqrt(2 r depth), what it can reach of
+// the relief's depth) is read through options.pyramid over the patch's texels, where the patch
+// spans more than one: a ball bridges features narrower than its patch. Only one point's normal
+// otherwise (a normal map has no depth to reach into; the plane's relief is rasterised instead,
+// relief_raster.hpp).
 Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
-                                  const MeshContactOptions& options);
+                                  const MeshContactOptions& options, double patch_radius_m = 0.0);
+// A ball's contact patch on a relief of depth `depth_m`: the radius within which its surface comes
+// within the relief's depth of its lowest point, sqrt(2 r depth) (0 without depth).
+double ballPatchRadius(double radius_m, double depth_m);
 
 // A mesh with what the contacts walk on (built once; allocates).
 struct ContactMesh {

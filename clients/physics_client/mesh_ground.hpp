@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 
 #include "clients/physics/mesh_contact.hpp"
 #include "clients/physics/physics_world.hpp"
@@ -24,7 +25,8 @@ class MeshGround {
 
   const scene::SceneMesh& sceneMesh() const { return scene_mesh_; }
   // The mesh as a static body of `world`, its contacts steered by the texture's normals (a relief
-  // map's too: on a mesh its depth is felt by the pen, not simulated; docs/physics.md).
+  // map's too, averaged over a ball's contact patch: on a mesh its depth is felt by the pen, not
+  // simulated; docs/physics.md).
   btRigidBody& addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const;
 
   struct Place {
@@ -50,6 +52,7 @@ class MeshGround {
   const tex::TexturedSurface* texture_;
   scene::SceneMesh scene_mesh_;
   phys::ContactMesh contact_mesh_;
+  std::optional<tex::SlopePyramid> pyramid_;  // a relief's: what a ball's patch reads
   phys::MeshContactOptions options_;
 };
 
