@@ -13,6 +13,7 @@ namespace thx::physclient {
 Driver::Driver(PhysicsScene& scene, EventSink& sink, const DriverOptions& options)
     : scene_(scene), sink_(sink), options_(options) {
   summary_.scene_name = scene_.sceneSurface().scene_name;
+  summary_.mesh_surface = scene_.meshGround() != nullptr;
   for (const BodyState& b : scene_.bodies()) {
     ObjectSummary o;
     o.name = scene_.scene().objects[std::size_t(b.id)].name;
@@ -190,12 +191,17 @@ void printSummary(std::FILE* out, const RunSummary& s) {
       continue;
     }
     const Eigen::Vector3d d = o.end_world - o.start_world;
-    std::fprintf(out,
-                 "  %-12s moved %.1f mm (%+.1f, %+.1f, %+.1f) mm to (%+.4f, %+.4f, %+.4f) m, on the surface (%+.4f, %+.4f) m "
-                 "h %+.2f mm; max speed %.3f m/s, end %.2g m/s\n",
+    // On a plane: where on it and how high above it; on a mesh: where in its frame (the bowl's).
+    char where[128];
+    if (s.mesh_surface)
+      std::snprintf(where, sizeof where, "in the surface frame (%+.4f, %+.4f, %+.4f) m", o.end_local.x(), o.end_local.y(),
+                    o.end_local.z());
+    else
+      std::snprintf(where, sizeof where, "on the surface (%+.4f, %+.4f) m h %+.2f mm", o.end_local.x(), o.end_local.y(),
+                    o.end_local.z() * 1e3);
+    std::fprintf(out, "  %-12s moved %.1f mm (%+.1f, %+.1f, %+.1f) mm to (%+.4f, %+.4f, %+.4f) m, %s; max speed %.3f m/s, end %.2g m/s\n",
                  o.name.c_str(), d.norm() * 1e3, d.x() * 1e3, d.y() * 1e3, d.z() * 1e3, o.end_world.x(), o.end_world.y(),
-                 o.end_world.z(), o.end_local.x(), o.end_local.y(), o.end_local.z() * 1e3, o.max_speed_m_per_s,
-                 o.end_speed_m_per_s);
+                 o.end_world.z(), where, o.max_speed_m_per_s, o.end_speed_m_per_s);
   }
 }
 

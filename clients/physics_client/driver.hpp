@@ -39,7 +39,7 @@ struct ObjectSummary {
   bool fixed = false;
   Eigen::Vector3d start_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d end_world = Eigen::Vector3d::Zero();
-  Eigen::Vector3d end_local = Eigen::Vector3d::Zero();  // surface frame: x, y along the plane, h above it
+  Eigen::Vector3d end_local = Eigen::Vector3d::Zero();  // surface frame: x, y along the plane, h above it (a mesh's frame)
   double max_speed_m_per_s = 0.0;
   double end_speed_m_per_s = 0.0;
   std::vector<Touch> touched;  // other scene objects (not the plane, not the pen), in order of first touch
@@ -47,6 +47,7 @@ struct ObjectSummary {
 
 struct RunSummary {
   std::string scene_name;               // the scene simulated (at the end, after switches)
+  bool mesh_surface = false;            // its surface is a mesh: end_local is in its frame, not on a plane
   std::int64_t scene_switches = 0;      // online: hapticd's scene switches followed (a rebuild each)
   std::int64_t steps = 0;
   double sim_time_s = 0.0;
