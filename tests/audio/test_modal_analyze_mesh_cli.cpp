@@ -71,5 +71,23 @@ TEST_F(ModalAnalyzeMeshCli, AnOpenMeshOrAMissingFileIsNamedAndExitsOne) {
   EXPECT_NE(err_.find("--max-edge"), std::string::npos) << err_;
 }
 
+// --scene on a mesh scene: its surface is the solid the scene's mesh encloses (a coarse bowl: the
+// cap at 48 segments is test_surface_tetrahedra.cpp's); an open mesh is refused naming the scene
+// and what to change.
+TEST_F(ModalAnalyzeMeshCli, AMeshScenesSurfaceIsTheSolidItsMeshEncloses) {
+  const std::string surface = "surface:\n  size: [0.04, 0.04]\n  texture: {generator: bricks, size: 32}\n  material: ceramic\n";
+  std::ofstream(path("bowl.yaml")) << "version: 1\nname: bowl\n" << surface
+                                   << "  mesh: {generator: bowl, size: 0.06, segments: 12, closed: true}\n";
+  ASSERT_EQ(run({"--scene", path("bowl.yaml"), "--modes", "6", "--no-cache", "--quiet"}), 0) << err_;
+  EXPECT_NE(out_.find("surface      ceramic"), std::string::npos) << out_;
+  EXPECT_NE(out_.find("pen "), std::string::npos) << out_;
+  // An open tube has no inside.
+  std::ofstream(path("tube.yaml")) << "version: 1\nname: tube\n" << surface
+                                   << "  mesh: {generator: cylinder, size: 0.02, segments: 16}\n";
+  EXPECT_EQ(run({"--scene", path("tube.yaml"), "--modes", "6", "--no-cache", "--quiet"}), 1);
+  EXPECT_NE(err_.find("tube.yaml"), std::string::npos) << err_;
+  EXPECT_NE(err_.find("closed surface of a solid"), std::string::npos) << err_;
+}
+
 }  // namespace
 }  // namespace thx::audio::test_modal_analyze_mesh_cli

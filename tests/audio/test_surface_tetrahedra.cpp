@@ -10,9 +10,12 @@
 
 #include "clients/audio/analysis/modal_analysis.hpp"
 #include "clients/audio/analysis/modal_error.hpp"
+#include "clients/audio/analysis/scene_mesh_body.hpp"
 #include "clients/audio/analysis/surface_tetrahedra.hpp"
 #include "meshes/mesh_generators.hpp"
 #include "meshes/mesh_import.hpp"
+#include "scenes/scene_loader.hpp"
+#include "scenes/scene_mesh.hpp"
 #include "tests/audio/modal_fixtures.hpp"
 
 // Gmsh 4.8.4 leaks its boundary recovery's work (about 3.3 MB in 9 blocks, allocated in
@@ -192,6 +195,31 @@ TEST(SurfaceTetrahedra, MoreTetrahedraThanTheLimitAreRefused) {
   } catch (const ModalError& e) {
     EXPECT_NE(std::string(e.what()).find("more than the limit of 10"), std::string::npos) << e.what();
   }
+}
+
+// A mesh scene's surface body (scene_mesh_body.hpp): the scene's built-in shape at no more than
+// kSoundSegments divisions, in the frame the scene mesh is built in, the surface's material.
+TEST(SurfaceTetrahedra, AMeshScenesSurfaceIsSoundedAtNoMoreThan48Segments) {
+  const scene::Scene fine = scene::parseScene(
+      "version: 1\nname: bowl\nsurface:\n  size: [0.04, 0.04]\n  texture: {generator: bricks, size: 32}\n"
+      "  material: ceramic\n  pose: {position: [0, 0, -0.04]}\n"
+      "  mesh: {generator: bowl, size: 0.06, segments: 64, closed: true}\n",
+      "bowl.yaml", ".");
+  const MeshSurfaceBody b = meshSurfaceBody(fine, ElementOrder::Linear);
+  scene::Scene coarse = fine;
+  coarse.surface.mesh->segments = kSoundSegments;
+  EXPECT_EQ(b.surface_triangles, scene::buildSceneMesh(coarse).mesh.triangles.size());
+  EXPECT_LT(b.surface_triangles, scene::buildSceneMesh(fine).mesh.triangles.size());
+  EXPECT_EQ(b.body.note, "sounded at 48 segments (the scene's mesh: 64)");
+  EXPECT_EQ(b.body.material.name, "ceramic");
+  EXPECT_EQ(b.body.mesh.name, "surface");
+  EXPECT_NEAR(b.mesh_to_world.translation().z(), -0.04, 1e-12);
+  // Its nodes in the bowl's own frame: on z = 0 at the bottom, up to the rim's 0.8 x 0.06 (and the
+  // rim's rounding).
+  double low = 1.0, high = -1.0;
+  for (const Eigen::Vector3d& x : b.body.mesh.nodes) low = std::min(low, x.z()), high = std::max(high, x.z());
+  EXPECT_NEAR(low, 0.0, 1e-9);
+  EXPECT_NEAR(high, 0.048 + 0.5 * 0.0048, 1e-3);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "base/error.hpp"
 #include "clients/audio/analysis/audible_modes.hpp"
 #include "clients/audio/analysis/scene_bodies.hpp"
+#include "clients/audio/analysis/scene_mesh_body.hpp"
 #include "clients/audio/tools/modal_options.hpp"
 #include "base/program_main.hpp"
 #include "scenes/scene_loader.hpp"
@@ -63,7 +64,6 @@ int run(const ModalOptions& o) {
 // One line per body of the scene: what it is, how many modes it has in the band, the lowest ones.
 int runScene(const ModalOptions& o) {
   const thx::scene::Scene scene = thx::scene::loadScene(o.scene);
-  thx::scene::requirePlaneSurface(scene, "modal-analyze");
   SceneMeshOptions mo;
   mo.slab_thickness_m = o.slab_thickness;
   if (o.clamp_edges) mo.clamp_slab = true;
@@ -76,7 +76,10 @@ int runScene(const ModalOptions& o) {
   std::printf("# %s: %s\n", o.scene.c_str(), scene.name.c_str());
   std::printf("%-12s %-10s %7s %7s %9s %8s  %s\n", "body", "material", "DOFs", "audible", "time_s", "source",
               "lowest audible frequencies (Hz)");
-  for (const SceneBody& b : sceneBodies(scene, mo)) {
+  std::vector<SceneBody> bodies = sceneBodies(scene, mo);
+  // A mesh scene's surface is the solid its mesh encloses (Gmsh), not the slab.
+  if (scene.surface.mesh) bodies.front() = meshSurfaceBody(scene, mo.order).body;
+  for (const SceneBody& b : bodies) {
     const ModalSolution s = analyse(b.mesh, b.material, o.settings, ao);
     const AudibleModes modes = audibleModes(s, b.material, o.audible);
     total_s += s.total_s;

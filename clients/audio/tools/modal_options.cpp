@@ -23,10 +23,12 @@ the audible band, the psychoacoustic merge of close modes and truncation. Prints
 audible mode; results are cached (docs/audio.md), so a second run is fast.
 
 Scene:
-  --scene FILE           analyse a scene's surface slab (surface.thickness, surface.held), each
-                         moving object and the pen (device.pen) (Tet10, the scene's materials;
-                         fixed obstacles skipped, a capsule as a cylinder of its overall length);
-                         prints one summary line per body
+  --scene FILE           analyse a scene's surface slab (surface.thickness, surface.held), or on
+                         a mesh scene (surface.mesh) the solid its closed mesh encloses (Gmsh; a
+                         built-in shape at no more than 48 segments), each moving object and the
+                         pen (device.pen) (Tet10, the scene's materials; fixed obstacles skipped, a
+                         capsule as a cylinder of its overall length); prints one summary line per
+                         body
   --slab-thickness M     the surface slab's thickness (default: the scene's surface.thickness)
   --slab-cells N         slab cells per side, in the plane (default 20)
   --slab-layers N        slab cells through the thickness (default 2)
