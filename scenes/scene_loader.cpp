@@ -91,8 +91,9 @@ Scene loadScene(const std::string& path) {
 void requirePlaneSurface(const Scene& scene, const std::string& program) {
   if (!scene.surface.mesh) return;
   throw SceneError(scene.surface.mesh->where, "surface.mesh",
-                   program + " sounds a textured plane; a mesh surface is felt by hapticd, simulated by physics-client "
-                             "and drawn by visual-client (sound on meshes: issue 29)",
+                   program + " sounds a textured plane; a mesh surface is felt by hapticd, simulated by physics-client, "
+                             "drawn by visual-client and sounded offline by audio-client from a recording (its physics "
+                             "contacts; the rest of sound on meshes: issue 29)",
                    "a scene without surface.mesh");
 }
 

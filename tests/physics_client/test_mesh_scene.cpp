@@ -18,6 +18,7 @@
 #include "clients/physics/mesh_contact.hpp"
 #include "scenes/scene_surface.hpp"
 #include "textures/slope_pyramid.hpp"
+#include "tests/support/bowl_scene.hpp"
 #include "textures/smoothing.hpp"
 
 namespace test_mesh_scene {
@@ -26,22 +27,9 @@ namespace {
 
 using namespace thx::physclient;
 
-// The shipped bowl of bricks (scenes/brick_bowl.yaml) at a coarser tessellation and texture, with
-// a steel marble held above its wall. Inside, the bowl is half an ellipsoid: semi-axes 55.2 mm
-// across and 43.2 mm deep, its floor 4.8 mm above the bowl's frame (meshes/mesh_generators.cpp).
-const std::string kScene = R"(version: 1
-name: marble in a bowl
-surface:
-  size: [0.04, 0.04]
-  mesh: {generator: bowl, size: 0.06, segments: 64, closed: true}
-  pose: {position: [0.0, 0.0, -0.04], rpy_deg: [0.0, 0.0, 0.0]}
-  texture:
-    generator: bricks
-    size: 128
-    params: {extent: 0.04, brick_length: 0.02, brick_height: 0.01, mortar: 0.0015, mortar_depth: 0.0008}
-  representation: relief
-  material: ceramic
-objects:
+// The shipped bowl of bricks at a coarser tessellation and texture, with a steel marble held above
+// its wall.
+const std::string kScene = thx::test::bowlOfBricksScene("marble in a bowl", 64, 128, R"(objects:
   - name: marble
     shape: sphere
     radius: 0.006
@@ -49,7 +37,7 @@ objects:
     material: steel
     position: [0.02, 0.005, -0.012]
 rates: {physics_hz: 1000}
-)";
+)");
 
 constexpr double kInsideA = 0.0552, kInsideB = 0.0432, kRimZ = 0.048, kFloorZ = 0.0048, kBowlZ = -0.04;
 constexpr double kRadius = 0.006;

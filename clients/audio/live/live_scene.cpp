@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "clients/audio/synthesis/sounding_scene.hpp"
+#include "scenes/scene_loader.hpp"
 
 namespace thx::audio {
 
@@ -22,6 +23,8 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
                                           std::uint32_t generation) {
   auto live = std::make_unique<LiveScene>();
   live->generation = generation;
+  // The live pen's scrape strikes the slab's top face: a mesh scene is rendered offline only.
+  scene::requirePlaneSurface(scene::loadScene(scene_file), "audio-client live");
   live->sound = std::make_unique<SurfaceSound>(buildSurfaceSound(scene_file, s.slab));
   const SurfaceSound& sound = *live->sound;
   std::vector<SoundingBody> bodies;

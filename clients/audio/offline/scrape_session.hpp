@@ -22,6 +22,9 @@ struct ScrapeSurface {
   const AudibleModes* modes = nullptr;
   const PenModes* pen = nullptr;  // null: the slab alone sounds
   ScrapeOptions options;          // its mass, surface size, meso source, roughness
+  // A mesh scene: the scrape strikes the slab's top face, which a mesh has not; its stretches
+  // stay silent (issue 29).
+  bool silent = false;
 };
 
 struct TimedScrapeSample {

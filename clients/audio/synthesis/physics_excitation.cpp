@@ -70,7 +70,13 @@ bool PhysicsExcitation::strike(BodyStrike s, const Eigen::Vector3d& p, const Eig
                                const StrikeSink& sink) const {
   const int body = s.body;
   const std::int64_t utime = s.utime;
-  if (body == thx_msgs::physics_impact_t::BODY_SURFACE) {
+  if (body == thx_msgs::physics_impact_t::BODY_SURFACE && scene_.surface_mesh_to_world) {
+    s.body = -1;
+    s.modal = scene_.surface.get();
+    const Eigen::Isometry3d to_mesh = scene_.surface_mesh_to_world->inverse();
+    s.point = to_mesh * p;
+    s.impulse = to_mesh.linear() * J;
+  } else if (body == thx_msgs::physics_impact_t::BODY_SURFACE) {
     s.body = -1;
     s.modal = scene_.surface.get();
     s.point = scene_.mapping.toLocal(p);

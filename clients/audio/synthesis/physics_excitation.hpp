@@ -11,17 +11,19 @@
 //   - lasting contacts between two objects: the micro level's roughness force over each report's
 //     window (object_contact.hpp), +n on a and -n on b at the contact point (a force segment).
 // Each strike is given in its body's frame: the surface slab's (plane-local, wrapped into the
-// texture's one span, depth clamped into the slab), an object's (from the newest pose at or
+// texture's one span, depth clamped into the slab) or a mesh scene's surface's (the mesh's frame), an object's (from the newest pose at or
 // before the event, moved on by its velocities) or the pen's (its tip node).
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <thx_msgs/physics_contacts_t.hpp>
 #include <thx_msgs/physics_impact_t.hpp>
 #include <thx_msgs/physics_poses_t.hpp>
@@ -41,6 +43,9 @@ struct SoundingScene {
   bool relief = false;     // the surface texture is a relief map (else a normal map)
   double slab_thickness_m = 0.01;
   std::shared_ptr<const ModalBody> surface;
+  // A mesh scene: the surface body is the solid its mesh encloses, in the mesh's frame, placed
+  // in the world by this (strikes are moved into it, not wrapped into a slab).
+  std::optional<Eigen::Isometry3d> surface_mesh_to_world;
   std::vector<std::shared_ptr<const ModalBody>> objects;  // by objects[] index; null for fixed ones
   // The pen's own modes (the scrape's, device.pen; null: the pen is silent here). Impacts with the
   // pen strike it at its tip node, the impulse turned into its frame (axis +z from the tip, tilted

@@ -1,6 +1,7 @@
 #include "clients/audio/synthesis/sounding_scene.hpp"
 
 #include "clients/audio/analysis/scene_bodies.hpp"
+#include "clients/audio/analysis/scene_mesh_body.hpp"
 #include "scenes/scene_frames.hpp"
 
 namespace thx::audio {
@@ -26,7 +27,8 @@ BodyOptions bodyOptions(const SlabSettings& slab, ElementOrder object_order) {
 }
 
 SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, bool relief, const BodyOptions& o,
-                            std::shared_ptr<const ModalBody> surface) {
+                            std::shared_ptr<const ModalBody> surface,
+                            std::optional<Eigen::Isometry3d> surface_mesh_to_world) {
   SoundingScene s;
   s.name = name;
   s.scene = scene;
@@ -35,6 +37,12 @@ SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, 
   s.slab_thickness_m = o.slab_thickness_m.value_or(scene.surface.thickness_m);
   if (surface) {
     s.surface = std::move(surface);
+    s.surface_mesh_to_world = surface_mesh_to_world;
+  } else if (scene.surface.mesh) {
+    MeshSurfaceBody body = meshSurfaceBody(scene);
+    body.body.mesh.name = "surface (" + body.body.material.name + ")";
+    s.surface = analysedBody(body.body.mesh, body.body.material, o);
+    s.surface_mesh_to_world = body.mesh_to_world;
   } else {
     SceneMeshOptions so;
     so.slab_thickness_m = o.slab_thickness_m;

@@ -34,9 +34,11 @@ struct BodyOptions {
 BodyOptions bodyOptions(const SlabSettings& slab, ElementOrder object_order);
 
 // Meshes and analyses the scene's moving objects (scene_bodies.hpp) and, unless `surface` is
-// given, its surface slab.
+// given, its surface slab (a mesh scene's: the solid its mesh encloses). A given surface of a
+// mesh scene comes with its mesh's place in the world (SurfaceSound::mesh_to_world).
 SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, bool relief, const BodyOptions& options,
-                            std::shared_ptr<const ModalBody> surface = nullptr);
+                            std::shared_ptr<const ModalBody> surface = nullptr,
+                            std::optional<Eigen::Isometry3d> surface_mesh_to_world = std::nullopt);
 
 // The scrape's pen (buildPenSound) as the pen the physics client's impacts strike; a pen without
 // audible modes (or --no-pen's empty one) leaves it silent there.

@@ -1,5 +1,8 @@
 #include "clients/audio/synthesis/surface_sound.hpp"
 
+#include "clients/audio/analysis/scene_mesh_body.hpp"
+#include "scenes/scene_mesh.hpp"
+
 #include <cstdio>
 
 #include "clients/audio/analysis/modal_analysis.hpp"
@@ -32,10 +35,11 @@ AudibleOptions audibleOptions(const SlabSettings& o) {
 SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& o,
                                const std::function<void(const scene::SceneSurface&)>& check_surface) {
   scene::Scene scene = scene::loadScene(scene_file);
-  scene::requirePlaneSurface(scene, "audio-client");
   scene::SurfaceTextureOptions to;
   to.smooth = tex::smoothTexture;
   scene::SceneSurface surface = scene::buildSceneSurface(scene, to);
+  // hapticd's hello names a mesh scene by its texture and its mesh (as felt, at its own segments).
+  if (scene.surface.mesh) surface.fingerprint = scene::meshSceneFingerprint(surface.fingerprint, scene::buildSceneMesh(scene));
   if (check_surface) check_surface(surface);
 
   const ElasticMaterial material = scene.surface.material;
@@ -44,10 +48,18 @@ SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings
   mo.clamp_slab = o.clamp_edges;
   mo.slab_cells = o.cells;
   mo.slab_layers = o.layers;
-  TetMesh slab = slabBody(scene, mo).mesh;
+  std::optional<Eigen::Isometry3d> mesh_to_world;
+  TetMesh slab;
+  if (scene.surface.mesh) {
+    MeshSurfaceBody body = meshSurfaceBody(scene);
+    slab = std::move(body.body.mesh);
+    mesh_to_world = body.mesh_to_world;
+  } else {
+    slab = slabBody(scene, mo).mesh;
+  }
   slab.name = "surface (" + scene.surface.material.name + ")";
   AudibleModes modes = audibleModes(analyse(slab, material, modalSettings(o), analysisOptions(o)), material, audibleOptions(o));
-  return SurfaceSound{std::move(scene), std::move(surface), std::move(slab), std::move(modes)};
+  return SurfaceSound{std::move(scene), std::move(surface), std::move(slab), std::move(modes), mesh_to_world};
 }
 
 PenSound buildPenSound(const scene::Scene& scene, const SlabSettings& o) {

@@ -2,6 +2,7 @@
 // A scene's surface as it sounds: its texture (smoothed as hapticd smooths it), the surface slab's
 // mesh and its audible modes (modal analysis of the scene's surface material, cached as
 // modal-analyze caches). Shared by the offline render and the live client.
+#include <Eigen/Geometry>
 #include <functional>
 #include <optional>
 #include <string>
@@ -31,14 +32,18 @@ struct SlabSettings {
 
 struct SurfaceSound {
   scene::Scene scene;
-  scene::SceneSurface surface;  // the texture, its scene name and fingerprint (as hapticd's hello names them)
-  TetMesh slab;
+  scene::SceneSurface surface;  // the texture, its scene name and fingerprint (as hapticd's hello names them: a mesh scene's hashes its mesh too)
+  TetMesh slab;                 // a mesh scene's: the solid its mesh encloses (scene_mesh_body.hpp)
   AudibleModes modes;
+  // A mesh scene (surface.mesh): `slab` is in the mesh's frame, placed in the world by this. The
+  // pen's scrape knows the slab's top face only: on a mesh it is not rendered yet (issue 29).
+  std::optional<Eigen::Isometry3d> mesh_to_world;
   const tex::TextureMap& map() const { return *surface.map; }
 };
 
 // Throws thx::Error naming the scene file or the cause. `check_surface` (if given) sees the
 // texture as soon as it is built, before the slab's modal analysis: it may throw to refuse it.
+// A mesh scene's surface is the solid its closed mesh encloses (Gmsh; an open mesh is refused).
 SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& settings,
                                const std::function<void(const scene::SceneSurface&)>& check_surface = {});
 
