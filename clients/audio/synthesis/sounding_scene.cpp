@@ -1,7 +1,7 @@
 #include "clients/audio/synthesis/sounding_scene.hpp"
 
 #include "clients/audio/analysis/scene_bodies.hpp"
-#include "clients/audio/analysis/scene_mesh_body.hpp"
+#include "scenes/scene_loader.hpp"
 #include "scenes/scene_frames.hpp"
 
 namespace thx::audio {
@@ -38,12 +38,8 @@ SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, 
   if (surface) {
     s.surface = std::move(surface);
     s.surface_mesh_to_world = surface_mesh_to_world;
-  } else if (scene.surface.mesh) {
-    MeshSurfaceBody body = meshSurfaceBody(scene);
-    body.body.mesh.name = "surface (" + body.body.material.name + ")";
-    s.surface = analysedBody(body.body.mesh, body.body.material, o);
-    s.surface_mesh_to_world = body.mesh_to_world;
   } else {
+    scene::requirePlaneSurface(scene, "audio-client");  // a mesh scene's surface comes from SurfaceSound
     SceneMeshOptions so;
     so.slab_thickness_m = o.slab_thickness_m;
     so.clamp_slab = o.clamp_slab;

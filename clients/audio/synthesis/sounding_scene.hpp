@@ -34,8 +34,9 @@ struct BodyOptions {
 BodyOptions bodyOptions(const SlabSettings& slab, ElementOrder object_order);
 
 // Meshes and analyses the scene's moving objects (scene_bodies.hpp) and, unless `surface` is
-// given, its surface slab (a mesh scene's: the solid its mesh encloses). A given surface of a
-// mesh scene comes with its mesh's place in the world (SurfaceSound::mesh_to_world).
+// given, its surface slab. A mesh scene's surface must be given (SurfaceSound: the solid its mesh
+// encloses), with its mesh's place in the world (SurfaceSound::mesh_to_world); without it the
+// scene is refused by name.
 SoundingScene soundingScene(const std::string& name, const scene::Scene& scene, bool relief, const BodyOptions& options,
                             std::shared_ptr<const ModalBody> surface = nullptr,
                             std::optional<Eigen::Isometry3d> surface_mesh_to_world = std::nullopt);

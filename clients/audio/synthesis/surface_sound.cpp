@@ -1,6 +1,5 @@
 #include "clients/audio/synthesis/surface_sound.hpp"
 
-#include "clients/audio/analysis/scene_mesh_body.hpp"
 #include "scenes/scene_mesh.hpp"
 
 #include <cstdio>
@@ -33,8 +32,10 @@ AudibleOptions audibleOptions(const SlabSettings& o) {
 }
 
 SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& o,
-                               const std::function<void(const scene::SceneSurface&)>& check_surface) {
+                               const std::function<void(const scene::SceneSurface&)>& check_surface,
+                               const MeshBodyBuilder& mesh_body) {
   scene::Scene scene = scene::loadScene(scene_file);
+  if (!mesh_body) scene::requirePlaneSurface(scene, "audio-client");
   scene::SurfaceTextureOptions to;
   to.smooth = tex::smoothTexture;
   scene::SceneSurface surface = scene::buildSceneSurface(scene, to);
@@ -51,7 +52,7 @@ SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings
   std::optional<Eigen::Isometry3d> mesh_to_world;
   TetMesh slab;
   if (scene.surface.mesh) {
-    MeshSurfaceBody body = meshSurfaceBody(scene);
+    MeshSurfaceBody body = mesh_body(scene);
     slab = std::move(body.body.mesh);
     mesh_to_world = body.mesh_to_world;
   } else {

@@ -10,6 +10,7 @@
 #include "clients/audio/analysis/audible_modes.hpp"
 #include "clients/audio/analysis/modal_analysis.hpp"
 #include "clients/audio/analysis/scene_bodies.hpp"
+#include "clients/audio/analysis/scene_mesh_body.hpp"
 #include "clients/audio/analysis/tet_mesh.hpp"
 #include "clients/audio/synthesis/fractal_roughness.hpp"
 #include "scenes/scene.hpp"
@@ -41,11 +42,18 @@ struct SurfaceSound {
   const tex::TextureMap& map() const { return *surface.map; }
 };
 
+// How a mesh scene's surface body is made (meshSurfaceBody, scene_mesh_body.hpp: Gmsh, library
+// thx_audio_tetra). Handed in by the programs that sound meshes, so that this library, the live
+// client and their tests do not link Gmsh.
+using MeshBodyBuilder = std::function<MeshSurfaceBody(const scene::Scene&)>;
+
 // Throws thx::Error naming the scene file or the cause. `check_surface` (if given) sees the
 // texture as soon as it is built, before the slab's modal analysis: it may throw to refuse it.
-// A mesh scene's surface is the solid its closed mesh encloses (Gmsh; an open mesh is refused).
+// A mesh scene's surface is the body `mesh_body` makes of it (the solid its closed mesh encloses);
+// without one, a mesh scene is refused by name (scene::requirePlaneSurface).
 SurfaceSound buildSurfaceSound(const std::string& scene_file, const SlabSettings& settings,
-                               const std::function<void(const scene::SceneSurface&)>& check_surface = {});
+                               const std::function<void(const scene::SceneSurface&)>& check_surface = {},
+                               const MeshBodyBuilder& mesh_body = {});
 
 // How the slab's settings analyse any body (modes, cache, progress, band).
 ModalSettings modalSettings(const SlabSettings& settings);

@@ -216,7 +216,10 @@ int runOffline(const Options& o) {
       const std::string warning = thx::client::checkLoggedScene(logged, {name, s.fingerprint}, o.log, o.live.allow_different_scene);
       if (!warning.empty()) std::fprintf(stderr, "audio-client: warning: %s\n", warning.c_str());
     };
-    auto sc = std::make_unique<OfflineScene>(OfflineScene{buildSurfaceSound(file_of(name), o.slab, check), {}, {}, {}, nullptr});
+    // Offline, a mesh scene sounds as the solid its mesh encloses (Gmsh: this program links it).
+    const MeshBodyBuilder mesh_body = [](const thx::scene::Scene& s) { return meshSurfaceBody(s); };
+    auto sc = std::make_unique<OfflineScene>(
+        OfflineScene{buildSurfaceSound(file_of(name), o.slab, check, mesh_body), {}, {}, {}, nullptr});
     const thx::scene::Scene& scene = sc->surface.scene;
     if (!o.no_pen) sc->pen = buildPenSound(scene, o.slab);
     sc->pen_view = PenModes{&sc->pen.mesh, &sc->pen.modes, sc->pen.tip_node, sc->pen.tilt_deg};
