@@ -16,12 +16,11 @@ constexpr double kParallel = 1e-12;
 
 // One pair of the box's opposite faces along the current row of texel centres (plane frame,
 // y fixed): where a vertical line at x enters and leaves the slab between them,
-// lo(x) = a_lo + b x and hi(x) = a_hi + b x. A slab whose faces stand vertical bounds no z
-// (a_lo = -inf, a_hi = +inf, b = 0) but x: |s_row + ux x| <= h, an interval of the row.
+// lo(x) = a_lo + b x and hi(x) = a_hi + b x. A slab whose faces stand vertical (BoxSlabs::Axis)
+// bounds no z (a_lo = -inf, a_hi = +inf, b = 0) but x: |s_row + u.x x| <= h, an interval of the row.
 struct RowSlab {
   double a_lo = 0.0, a_hi = 0.0, b = 0.0;
-  bool vertical = false;
-  double s_row = 0.0, ux = 0.0, h = 0.0;
+  double s_row = 0.0;  // the coordinate along the axis of (0, y, 0)
 };
 
 // What the rows share: per axis of the box, and the reciprocals every row divides by (a division
@@ -38,6 +37,7 @@ struct BoxSlabs {
     double inv_b_dx = 0.0;   // 1 / (b dx), 0 if b = 0
   };
   std::array<Axis, 3> axis;
+  bool any_vertical = false;
   std::array<std::array<double, 3>, 3> inv_db{};  // 1 / (b_k - b_m), 0 where equal or vertical
   Eigen::Vector3d centre;
   double dx, inv_dx;
@@ -48,6 +48,7 @@ struct BoxSlabs {
       a.u = box.plane_from_object.linear().col(Eigen::Index(k));
       a.h = box.half_extents[Eigen::Index(k)];
       a.vertical = std::fabs(a.u.z()) < kParallel;
+      any_vertical = any_vertical || a.vertical;
       if (a.vertical) {
         a.inv_ux_dx = std::fabs(a.u.x()) >= kParallel ? 1.0 / (a.u.x() * dx) : 0.0;
         continue;
@@ -65,16 +66,13 @@ struct BoxSlabs {
         inv_db[k][m] = k != m && !p.vertical && !q.vertical && p.b != q.b ? 1.0 / (p.b - q.b) : 0.0;
       }
   }
-  // The slabs along the row at y. The coordinate along axis u of (x, y, 0) is s_row + ux x.
+  // The slabs along the row at y. The coordinate along axis u of (x, y, 0) is s_row + u.x x.
   std::array<RowSlab, 3> row(double y) const {
     std::array<RowSlab, 3> slabs;
     for (std::size_t k = 0; k < 3; ++k) {
       const Axis& a = axis[k];
       RowSlab& s = slabs[k];
-      s.h = a.h;
-      s.ux = a.u.x();
       s.s_row = (y - centre.y()) * a.u.y() - centre.z() * a.u.z() - centre.x() * a.u.x();
-      s.vertical = a.vertical;
       if (a.vertical) {
         s.a_lo = -kInf, s.a_hi = kInf, s.b = 0.0;
         continue;
@@ -93,16 +91,15 @@ struct BoxSlabs {
 void clipToVerticalSlabs(const BoxSlabs& box, const std::array<RowSlab, 3>& row, double x0, long long& first,
                          long long& last) {
   for (std::size_t k = 0; k < 3; ++k) {
-    const RowSlab& s = row[k];
-    if (!s.vertical) continue;
+    const BoxSlabs::Axis& a = box.axis[k];
+    if (!a.vertical) continue;
     // |s_row + ux (x0 + gi dx)| <= h, i.e. -h <= s_row + ux x0 + (ux dx) gi <= h.
-    const double c0 = s.s_row + s.ux * x0;
-    const double inv_c1 = box.axis[k].inv_ux_dx;
-    if (!(std::fabs(s.ux) >= kParallel)) {  // the slab's faces run along the row: all of it or none
-      if (std::fabs(c0) > s.h) first = 1, last = 0;
+    const double c0 = row[k].s_row + a.u.x() * x0;
+    if (!(std::fabs(a.u.x()) >= kParallel)) {  // the slab's faces run along the row: all of it or none
+      if (std::fabs(c0) > a.h) first = 1, last = 0;
       continue;
     }
-    double g_a = (-s.h - c0) * inv_c1, g_b = (s.h - c0) * inv_c1;
+    double g_a = (-a.h - c0) * a.inv_ux_dx, g_b = (a.h - c0) * a.inv_ux_dx;
     if (g_a > g_b) std::swap(g_a, g_b);
     // Clamped before the conversion: a slab nearly along the row puts its bounds far away.
     const double span_end = double(last) + 2.0;
@@ -129,7 +126,6 @@ bool scanOrderBefore(const ReliefCandidate& a, const ReliefCandidate& b) {
 struct FootprintRow {
   std::array<RowSlab, 3> slabs;
   long long first_col = 0, last_col = -1;
-  bool any_vertical = false;
   double y = 0.0;
   int rj = 0;
 };
@@ -137,12 +133,13 @@ struct FootprintRow {
 // The box's depth at one texel centre: lowest z minus the relief's height, +inf where the box is
 // absent or not within the threshold. Every depth of this path comes from here, so a texel reads
 // the same whichever way it is reached (a row's loop, a level stretch's ends, the basin walk).
-double texelDepth(const FootprintRow& row, long long gi, double x, double height, double threshold_m) {
+double texelDepth(const BoxSlabs& box, const FootprintRow& row, long long gi, double x, double height,
+                  double threshold_m) {
   if (gi < row.first_col || gi > row.last_col) return kInf;
   const std::array<RowSlab, 3>& s = row.slabs;
-  if (row.any_vertical)
-    for (const RowSlab& v : s)
-      if (v.vertical && !(std::fabs(v.s_row + v.ux * x) <= v.h)) return kInf;
+  if (box.any_vertical)
+    for (std::size_t k = 0; k < 3; ++k)
+      if (box.axis[k].vertical && !(std::fabs(s[k].s_row + box.axis[k].u.x() * x) <= box.axis[k].h)) return kInf;
   const double lo = std::max(std::max(s[0].a_lo + s[0].b * x, s[1].a_lo + s[1].b * x), s[2].a_lo + s[2].b * x);
   const double hi = std::min(std::min(s[0].a_hi + s[0].b * x, s[1].a_hi + s[1].b * x), s[2].a_hi + s[2].b * x);
   const double d = lo - height;
@@ -163,11 +160,11 @@ void touchingInterval(const BoxSlabs& box, const FootprintRow& row, double x0, d
   };
   for (std::size_t k = 0; k < 3; ++k) {
     const RowSlab& p = row.slabs[k];
-    if (p.vertical) continue;
+    if (box.axis[k].vertical) continue;
     bound(p.a_lo + p.b * x0 - height - threshold_m, p.b * box.dx, box.axis[k].inv_b_dx);  // within the threshold
     for (std::size_t m = 0; m < 3; ++m) {
       const RowSlab& q = row.slabs[m];
-      if (q.vertical || m == k) continue;
+      if (box.axis[m].vertical || m == k) continue;
       // enters before q's exit: (a_lo_p - a_hi_q) + (b_p - b_q) x <= 0
       const double inv_db = box.inv_db[k][m];
       bound(p.a_lo - q.a_hi + (p.b - q.b) * x0, (p.b - q.b) * box.dx, inv_db * box.inv_dx);
@@ -216,6 +213,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   rows.resize(std::size_t(nj));
   kept.clear();
 
+  const BoxSlabs slabs(box, texel.x());
   auto heightAt = [&](long long gi, int rj) {
     return relief ? -double(map.depth(columns[std::size_t(gi)], rj)) : 0.0;
   };
@@ -224,12 +222,11 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
     double& d = depth[std::size_t((gj + 1) * pitch + gi + 1)];
     if (std::isnan(d)) {
       const FootprintRow& row = rows[std::size_t(gj)];
-      d = texelDepth(row, gi, xOf(gi), heightAt(gi, row.rj), threshold_m);
+      d = texelDepth(slabs, row, gi, xOf(gi), heightAt(gi, row.rj), threshold_m);
     }
     return d;
   };
 
-  const BoxSlabs slabs(box, texel.x());
   double deepest = kInf;
   long long deepest_i = -1, deepest_j = -1;
   for (long long gj = 0; gj < nj; ++gj) {
@@ -238,7 +235,6 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
     row.rj = tex::resolveIndex(f.j0 + gj, map.height(), address);
     row.slabs = slabs.row(row.y);
     row.first_col = 0, row.last_col = ni - 1;
-    row.any_vertical = slabs.axis[0].vertical || slabs.axis[1].vertical || slabs.axis[2].vertical;
     clipToVerticalSlabs(slabs, row.slabs, first.x(), row.first_col, row.last_col);
     auto keep = [&](long long gi) {
       kept.push_back(keptTexel(f.i0 + gi, f.j0 + gj, xOf(gi), row.y, heightAt(gi, row.rj), depthAt(gi, gj)));
@@ -304,7 +300,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
       // texel of this stretch of the row has been read), then their runs.
       long long end = gi;
       while (end < row.last_col && stretchFrom(end + 1) < end + 1) ++end;
-      for (long long g = gi; g <= end; ++g) depth_row[g] = texelDepth(row, g, xOf(g), heightAt(g, row.rj), threshold_m);
+      for (long long g = gi; g <= end; ++g) depth_row[g] = texelDepth(slabs, row, g, xOf(g), heightAt(g, row.rj), threshold_m);
       for (; gi <= end; ++gi) {
         if (depth_row[gi] < kInf) {
           if (run_start < 0) run_start = gi;
