@@ -101,7 +101,7 @@ LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/marble_bowl.yaml --mode
   --rate 2 --out "$OUT/visual_marble_bowl" --quiet \
   && echo "frames: $OUT/visual_marble_bowl/frame_*.png" || echo "visual-client failed"
 echo "   and heard: the bowl's own modes (the solid its mesh encloses, Gmsh; about 10 s the first time) struck where"
-echo "   the marbles and the pen touch it; the pen's scrape on a mesh is not rendered yet"
+echo "   the marbles and the pen touch it, and where the pen scrapes it"
 "$AC" --scene scenes/marble_bowl.yaml --replay-log "$OUT/marble_bowl_session.lcm" --wav "$OUT/marble_bowl.wav" \
   > "$OUT/marble_bowl_audio.txt" 2>&1 \
   && "$WS" "$OUT/marble_bowl.wav" "$OUT/marble_bowl_spectrogram.png" --title "marbles in the bowl of bricks (scenes/marble_bowl.yaml)" \

@@ -91,9 +91,9 @@ Scene loadScene(const std::string& path) {
 void requirePlaneSurface(const Scene& scene, const std::string& program) {
   if (!scene.surface.mesh) return;
   throw SceneError(scene.surface.mesh->where, "surface.mesh",
-                   program + " sounds a textured plane; a mesh surface is felt by hapticd, simulated by physics-client, "
-                             "drawn by visual-client and sounded offline by audio-client from a recording (its physics "
-                             "contacts; the rest of sound on meshes: issue 29)",
+                   program + " sounds a textured plane only; a mesh surface is felt by hapticd, simulated by "
+                             "physics-client, drawn by visual-client and sounded by the audio-client program (live and "
+                             "offline), which fills the mesh with tetrahedra (Gmsh)",
                    "a scene without surface.mesh");
 }
 

@@ -18,9 +18,10 @@ Scene loadScene(const std::string& path);
 // file's size before reading it).
 Scene parseScene(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir);
 
-// For the programs that hear the plane only (audio-client): throws
+// For the code that hears the plane only (the audio libraries without a mesh's tetrahedra): throws
 // SceneError at the scene's `mesh:` if its surface is a mesh, naming `program` and what to run
-// instead. Textured meshes are felt (hapticd), simulated (physics-client) and drawn (visual-client).
+// instead. Textured meshes are felt (hapticd), simulated (physics-client), drawn (visual-client)
+// and sounded (the audio-client program, which links Gmsh).
 void requirePlaneSurface(const Scene& scene, const std::string& program);
 
 }  // namespace thx::scene

@@ -3,7 +3,6 @@
 #include <filesystem>
 
 #include "clients/audio/synthesis/sounding_scene.hpp"
-#include "scenes/scene_loader.hpp"
 
 namespace thx::audio {
 
@@ -23,9 +22,7 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
                                           std::uint32_t generation) {
   auto live = std::make_unique<LiveScene>();
   live->generation = generation;
-  // The live pen's scrape strikes the slab's top face: a mesh scene is rendered offline only.
-  scene::requirePlaneSurface(scene::loadScene(scene_file), "audio-client live");
-  live->sound = std::make_unique<SurfaceSound>(buildSurfaceSound(scene_file, s.slab));
+  live->sound = std::make_unique<SurfaceSound>(buildSurfaceSound(scene_file, s.slab, {}, s.mesh_body));
   const SurfaceSound& sound = *live->sound;
   std::vector<SoundingBody> bodies;
   bodies.push_back(surfaceBody(sound));
@@ -47,7 +44,8 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   const BodyOptions bo = bodyOptions(s.slab, s.object_order);
   live->physics = std::make_unique<SoundingScene>(soundingScene(std::filesystem::path(scene_file).stem().string(), sound.scene,
                                                                 sound.map().isRelief(), bo,
-                                                                std::make_shared<const ModalBody>(sound.slab, sound.modes)));
+                                                                std::make_shared<const ModalBody>(sound.slab, sound.modes),
+                                                                sound.mesh_to_world));
   setPenBody(*live->physics, p);  // impacts with the pen ring the pen's body
   for (const auto& object : live->physics->objects) {
     if (!object || object->size() == 0) {
@@ -73,6 +71,7 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   po.pen_mass_kg = s.pen_mass_kg ? *s.pen_mass_kg : sound.scene.device.sim.device_mass_kg;
   po.surface_size_m = sound.scene.surface.size_m;
   po.meso = sound.map().isRelief() ? MesoSource::ContactNormals : MesoSource::TexelWalk;
+  po.mesh_to_world = sound.mesh_to_world;  // a mesh scene: the pen strikes its solid's surface
   live->sources.push_back(std::make_unique<PenSource>(sound.map(), sound.slab, po, pen, generation, s.playout_delay_ns));
   live->sources.push_back(
       std::make_unique<PhysicsSource>(*live->physics, live->object_bodies, generation, s.playout_delay_ns, pen.pen_body, rubs));

@@ -26,6 +26,9 @@ struct LiveSceneSettings {
   ElementOrder object_order = ElementOrder::Quadratic;  // the moving objects' meshes
   std::size_t max_block = 4096;
   std::int64_t playout_delay_ns = 0;
+  // How a mesh scene's surface body is made (surface_sound.hpp; the audio-client program hands in
+  // Gmsh's); without it a mesh scene is refused by name.
+  MeshBodyBuilder mesh_body;
 };
 
 struct LiveScene {

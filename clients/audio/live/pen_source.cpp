@@ -41,10 +41,15 @@ void PenSource::penContact(const thx_msgs::contact_t& c, std::int64_t receipt_ns
     e.kind = kind;
     return e;
   };
-  // The slab gets -J along its +z, the pen +J along the surface normal (its frame).
+  // The surface body gets -J along the node's direction (the slab: its +z; a mesh solid: the
+  // node's outward normal), the pen +J along the surface normal (its frame).
+  const ScrapeSites& sites = scrape_.sites();
   auto both = [&](ExcitationEvent e, int slab_node, double j) {
     e.node = slab_node;
-    e.impulse[2] = -j;
+    if (sites.onMesh())
+      for (int i = 0; i < 3; ++i) e.impulse[i] = -j * sites.direction(slab_node)[i];
+    else
+      e.impulse[2] = -j;
     sink.push(e);
     if (bodies_.pen_body < 0) return;
     e.body = std::uint16_t(bodies_.pen_body);

@@ -3,7 +3,8 @@
 // through the same PenScrape as the offline render (pen_scrape.hpp), to events on both sides of
 // the contact, as the offline render excites them (scrape_synthesis.hpp):
 //  - each meso impulse J (Eq. 5 at a texel entered on a normal map, the contact normal's change on
-//    a relief map): -J along +z at the slab's node (body 0), +J along the surface normal at the
+//    a relief map): -J at the surface body's node (body 0) along its direction (the slab's +z, a
+//    mesh solid's outward normal: scrape_sites.hpp), +J along the surface normal at the
 //    pen's tip (the pen's body, its axis tilted from the normal);
 //  - each segment in contact with a normal force: a Micro event on each of the two bodies (the
 //    force of the roughness profile, rendered by the callback sample by sample).

@@ -44,7 +44,6 @@ ScrapeSessionRender renderScrapeSession(std::span<const TimedScrapeSample> sampl
   double micro_power = 0.0;
   for (const Stretch& st : stretches(samples, hellos, first_scene)) {
     const ScrapeSurface& surface = surface_for(st.scene);
-    if (surface.silent) continue;
     ScrapeOptions o = surface.options;
     o.sample_rate_hz = session.sample_rate_hz;
     o.servo_hz = session.servo_hz;  // hapticd's servo keeps its rate across switches

@@ -21,10 +21,7 @@ struct ScrapeSurface {
   const TetMesh* slab = nullptr;
   const AudibleModes* modes = nullptr;
   const PenModes* pen = nullptr;  // null: the slab alone sounds
-  ScrapeOptions options;          // its mass, surface size, meso source, roughness
-  // A mesh scene: the scrape strikes the slab's top face, which a mesh has not; its stretches
-  // stay silent (issue 29).
-  bool silent = false;
+  ScrapeOptions options;          // its mass, surface size, meso source, roughness (a mesh scene: its solid's place)
 };
 
 struct TimedScrapeSample {

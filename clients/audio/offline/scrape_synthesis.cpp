@@ -46,6 +46,7 @@ PenScrapeOptions penScrapeOptions(const ScrapeOptions& o) {
   p.pen_mass_kg = o.pen_mass_kg;
   p.surface_size_m = o.surface_size_m;
   p.meso = o.meso;
+  p.mesh_to_world = o.mesh_to_world;
   return p;
 }
 
@@ -60,16 +61,18 @@ ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& sla
   const double last_s = double(path.back().tick - first_tick) / o.servo_hz;
   const std::size_t total = std::size_t(std::ceil((last_s + o.tail_s) * o.sample_rate_hz)) + 1;
   e.impulse_ns.assign(total, 0.0);
-  const SlabTopFace top_face(slab, o.surface_size_m);
-  e.slab_node.assign(total, top_face.nearest({0.5, 0.5}));
-  if (slab.nodes.empty()) return e;
+  if (slab.nodes.empty()) {
+    e.slab_node.assign(total, 0);
+    return e;
+  }
+  PenScrape scrape(map, slab, penScrapeOptions(o));
+  e.slab_node.assign(total, scrape.sites().initial());
 
   const bool micro = o.roughness.amplitude > 0.0;
   const RoughnessProfile profile(micro ? o.roughness : RoughnessOptions{});
   std::vector<double> force;
   double micro_power = 0.0;
   std::size_t micro_samples = 0;
-  PenScrape scrape(map, slab, penScrapeOptions(o));
   for (const ScrapeSample& s : path) {
     e.impulses += scrape.next(
         s,
@@ -106,11 +109,20 @@ ScrapeRender scrapeDisplacement(const tex::TextureMap& map, const TetMesh& slab,
   out.micro_samples = e.micro_samples;
   const std::size_t total = e.impulse_ns.size();
 
-  // The slab receives -J along its top face's normal (+z): the gain of each mode at each node.
+  // The body receives -J along the node's direction (the slab's top face: +z): the gain of each
+  // mode at each node.
   std::vector<double> slab_gain(slab.nodes.size() * modes.size());
-  for (std::size_t n = 0; n < slab.nodes.size(); ++n)
-    for (std::size_t i = 0; i < modes.size(); ++i)
-      slab_gain[n * modes.size() + i] = -modes.shapes(Eigen::Index(3 * n + 2), Eigen::Index(i));
+  if (o.mesh_to_world) {
+    const ScrapeSites sites = ScrapeSites::meshSurface(slab, *o.mesh_to_world);
+    for (std::size_t n = 0; n < slab.nodes.size(); ++n)
+      for (std::size_t i = 0; i < modes.size(); ++i)
+        slab_gain[n * modes.size() + i] =
+            -modes.shapes.block(Eigen::Index(3 * n), Eigen::Index(i), 3, 1).col(0).dot(sites.direction(int(n)));
+  } else {
+    for (std::size_t n = 0; n < slab.nodes.size(); ++n)
+      for (std::size_t i = 0; i < modes.size(); ++i)
+        slab_gain[n * modes.size() + i] = -modes.shapes(Eigen::Index(3 * n + 2), Eigen::Index(i));
+  }
   std::vector<double> slab_out(total, 0.0);
   renderBody(modes, slab_gain, e.slab_node, e.impulse_ns, o.sample_rate_hz, modes.size(), slab_out);
 

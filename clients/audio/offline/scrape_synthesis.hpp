@@ -1,12 +1,13 @@
 #pragma once
 // The pen scraping the surface, offline (docs/audio.md §5): the pen tip's contact samples (one per
 // servo tick, as hapticd's CONTACT stream records them) excite, on both sides of the contact, the
-// surface slab's modes (at the top-face node nearest the tip) and the pen's own modes (at its tip):
+// surface body's modes (the slab's top-face node nearest the tip, or a mesh solid's surface node:
+// scrape_sites.hpp) and the pen's own modes (at its tip):
 //  - meso level: Eq. 5 impulses at every texel entered (normal maps, meso_impulses.hpp), or the
 //    tick-to-tick change of the contact normal (relief maps, relief_impulses.hpp);
 //  - micro level: fractal roughness read along the travelled distance, scaled by the normal
 //    force, as a force sample by sample (fractal_roughness.hpp).
-// The pen receives +J along the surface normal, the slab -J. Deterministic: the same path gives
+// The pen receives +J along the surface normal, the body -J. Deterministic: the same path gives
 // the same samples.
 #include <cstdint>
 #include <optional>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "clients/audio/analysis/audible_modes.hpp"
 #include "clients/audio/analysis/tet_mesh.hpp"
@@ -42,6 +44,9 @@ struct ScrapeOptions {
   double tail_s = 0.5;              // rendered after the last sample, for the ring-out
   std::optional<std::int64_t> origin_tick;  // the tick at sample 0 (unset: the path's first)
   double peak = 0.5;                // output normalised to this peak (unless silent)
+  // A mesh scene: `slab` is the solid its mesh encloses, in the mesh's frame, placed in the world
+  // by this; struck at its surface nodes along their outward normals (scrape_sites.hpp).
+  std::optional<Eigen::Isometry3d> mesh_to_world;
 };
 
 struct ScrapeRender {
@@ -58,7 +63,7 @@ struct ScrapeRender {
 
 // The excitation alone, sample by sample (PenScrape's, pen_scrape.hpp): the impulse (N s, on the
 // pen along n_g; the slab gets the opposite) applied at each sample, meso and micro (a force F
-// contributes F/fs), and the slab's top-face node under the tip. A segment from tick a to tick b
+// contributes F/fs), and the surface body's node under the tip. A segment from tick a to tick b
 // owns the samples after a's up to b's: its micro force over them, its meso impulses at b's.
 // Both vectors have the render's length.
 struct ScrapeExcitation {
@@ -74,8 +79,8 @@ ScrapeExcitation scrapeExcitation(const tex::TextureMap& map, const TetMesh& sla
 // The options of the pen's PenScrape.
 PenScrapeOptions penScrapeOptions(const ScrapeOptions& options);
 
-// `slab` is the surface's mesh (slabMesh: top face at z = 0, centred on the origin) and `modes`
-// its audible modes (shapes over slab's DOFs). scrapeDisplacement leaves `samples` empty and the
+// `slab` is the surface's body (slabMesh: top face at z = 0, centred on the origin; or a mesh
+// scene's solid, options.mesh_to_world) and `modes` its audible modes (shapes over slab's DOFs). scrapeDisplacement leaves `samples` empty and the
 // sum in `displacement`; normaliseScrape fills `samples`, raw_peak and raw_rms from it;
 // renderScrape does both.
 ScrapeRender scrapeDisplacement(const tex::TextureMap& map, const TetMesh& slab, const AudibleModes& modes,

@@ -36,8 +36,8 @@ struct SurfaceSound {
   scene::SceneSurface surface;  // the texture, its scene name and fingerprint (as hapticd's hello names them: a mesh scene's hashes its mesh too)
   TetMesh slab;                 // a mesh scene's: the solid its mesh encloses (scene_mesh_body.hpp)
   AudibleModes modes;
-  // A mesh scene (surface.mesh): `slab` is in the mesh's frame, placed in the world by this. The
-  // pen's scrape knows the slab's top face only: on a mesh it is not rendered yet (issue 29).
+  // A mesh scene (surface.mesh): `slab` is in the mesh's frame, placed in the world by this (the
+  // pen's scrape strikes its surface nodes: synthesis/scrape_sites.hpp).
   std::optional<Eigen::Isometry3d> mesh_to_world;
   const tex::TextureMap& map() const { return *surface.map; }
 };

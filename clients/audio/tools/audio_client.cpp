@@ -48,7 +48,10 @@ sliding objects' texel paths (Eq. 5 on a normal map; on a relief map the change 
 normal momentum between contact reports), on the surface and the object; two objects rolling
 or sliding on each other (the micro level: the roughness read along the contact's travel, scaled
 by the normal force, on both objects, quieter when rolling). Live and offline play
-the same excitations through the same code.
+the same excitations through the same code. A mesh surface (surface.mesh) sounds as the solid its
+mesh encloses, filled with tetrahedra by Gmsh (a built-in shape at no more than 48 segments): the
+pen strikes its surface node nearest the tip along that node's outward normal, the physics
+client's contacts strike it at their points.
 
 Live (the default; docs/audio.md "Live audio"): hapticd's CONTACT stream, batched (every servo
 tick), through the client kit, and the physics client's THX_PHYSICS_POSES/IMPACT/CONTACTS. The
@@ -237,12 +240,11 @@ int runOffline(const Options& o) {
     sc->scrape.modes = &sc->surface.modes;
     sc->scrape.pen = o.no_pen ? nullptr : &sc->pen_view;
     sc->slab_body = std::make_shared<const ModalBody>(sc->surface.slab, sc->surface.modes);
-    if (sc->surface.mesh_to_world) {
-      sc->scrape.silent = true;
-      std::printf("audio-client: %s: a mesh surface: the physics client's contacts strike the solid its mesh encloses; "
-                  "the pen's scrape on a mesh is not rendered yet (issue 29)\n",
+    so.mesh_to_world = sc->surface.mesh_to_world;  // a mesh scene: the scrape strikes its solid's surface
+    if (sc->surface.mesh_to_world)
+      std::printf("audio-client: %s: a mesh surface: the pen and the physics client's contacts strike the solid its mesh "
+                  "encloses\n",
                   name.c_str());
-    }
     slot = std::move(sc);
     return *slot;
   };
@@ -324,6 +326,7 @@ int run(Options o) {
   l.scene_settings.micro = !o.no_micro;
   l.scene_settings.object_contacts = !o.no_object_contacts;
   l.scene_settings.object_order = o.object_order;
+  l.scene_settings.mesh_body = [](const thx::scene::Scene& s) { return meshSurfaceBody(s); };  // Gmsh: this program links it
   if (o.scenes_dir) l.scenes_dir = *o.scenes_dir;
   const double playout_ms = o.playout_ms ? *o.playout_ms : 1e3 / l.batch_hz + 1e3 * double(l.block_frames) / o.slab.sample_rate_hz;
   l.scene_settings.playout_delay_ns = std::int64_t(std::llround(playout_ms * 1e6));
