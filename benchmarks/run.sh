@@ -31,6 +31,10 @@
 #              or physics_mesh (issue 29: a ball swinging in and rolling off tessellated spheres
 #              against the smooth sphere's answers, smooth contacts and Bullet's flat ones, by
 #              tessellation; about 10 s; its table goes to docs/physics.md)
+#              or textured_pair (issue 29: a grooved block on a grooved plane, the force that starts
+#              it sliding along and across the grooves in both orders of the pair and beside a plain
+#              block, and the cost of a step, at 64, 128 and 256 texels; about 2 min; its table goes
+#              to docs/physics.md)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
@@ -289,6 +293,14 @@ run_physics_mesh() {
   bench_with_table bench_physics_mesh "$ROOT/docs/physics.md"
 }
 
+run_textured_pair() {
+  need "$BIN/bench_textured_pair" || return 1
+  say "part textured_pair: a grooved block on a grooved plane, the force to slide it each way (about 2 min)"
+  "$BIN/bench_textured_pair" --json "$RESULTS/bench_textured_pair.json" --csv "$RESULTS/bench_textured_pair.csv" \
+    --md "$WORK/bench_textured_pair.md" > /dev/null || return 1
+  splice bench_textured_pair "$WORK/bench_textured_pair.md" "$ROOT/docs/physics.md"
+}
+
 run_table1() {
   need "$BIN/bench_table1" || return 1
   say "part table1: the paper's Table 1 on one surface, normal / relief / mesh 256² / mesh 512² (about 10 min, 8 GB)"
@@ -307,14 +319,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | table1 | mesh_force | physics_mesh | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | table1 | mesh_force | physics_mesh | textured_pair | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load table1 mesh_force physics_mesh report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load table1 mesh_force physics_mesh textured_pair report)"
       exit 2
       ;;
   esac

@@ -135,6 +135,16 @@ btRigidBody& PhysicsWorld::addBox(const Eigen::Vector3d& half_extents_m, double 
   return addBody(std::move(shape), mass_kg, pose, material);
 }
 
+btRigidBody& PhysicsWorld::addTexturedBox(const Eigen::Vector3d& half_extents_m, double mass_kg,
+                                          const Eigen::Isometry3d& pose, const BodyMaterial& material,
+                                          const FaceTexture& texture) {
+  face_textures_.push_back(std::make_unique<FaceTexture>(texture));
+  auto shape = std::make_unique<btBoxShape>(toBt(half_extents_m));
+  shape->setMargin(narrow(std::min(options_.convex_margin_m, 0.5 * half_extents_m.minCoeff())));
+  attachFaceTexture(*shape, *face_textures_.back());
+  return addBody(std::move(shape), mass_kg, pose, material);
+}
+
 btRigidBody& PhysicsWorld::addCapsule(double radius_m, double half_length_m, double mass_kg,
                                       const Eigen::Isometry3d& pose, const BodyMaterial& material) {
   return addBody(std::make_unique<btCapsuleShapeZ>(narrow(radius_m), narrow(2.0 * half_length_m)), mass_kg, pose,

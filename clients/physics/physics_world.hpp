@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "clients/physics/normal_map_contact.hpp"
+#include "clients/physics/textured_box.hpp"
 #include "clients/physics/textured_world.hpp"
 #include "textures/textured_surface.hpp"
 
@@ -84,6 +85,10 @@ class PhysicsWorld {
   btRigidBody& addSphere(double radius_m, double mass_kg, const Eigen::Isometry3d& pose, const BodyMaterial& material);
   btRigidBody& addBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
                       const BodyMaterial& material);
+  // A box whose faces carry a relief map (textured_box.hpp; the map must outlive this world): on a
+  // relief plane both textures shape the contact; elsewhere it collides as the plain box.
+  btRigidBody& addTexturedBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
+                              const BodyMaterial& material, const FaceTexture& texture);
   btRigidBody& addCapsule(double radius_m, double half_length_m, double mass_kg, const Eigen::Isometry3d& pose,
                           const BodyMaterial& material);
   btRigidBody& addCylinder(double radius_m, double half_length_m, double mass_kg, const Eigen::Isometry3d& pose,
@@ -105,6 +110,7 @@ class PhysicsWorld {
   struct TriangleArrays;  // a mesh's vertices and indices as Bullet reads them (declared before
                           // shapes_: the shapes that read them go first)
   std::vector<std::unique_ptr<TriangleArrays>> triangle_arrays_;
+  std::vector<std::unique_ptr<FaceTexture>> face_textures_;  // the textured boxes' (their shapes point here)
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
 };

@@ -16,6 +16,7 @@
 #include "clients/physics/contact_selection.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/relief_raster.hpp"
+#include "clients/physics/textured_box.hpp"
 
 namespace thx::phys {
 
@@ -40,6 +41,120 @@ std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen:
   }
 }
 
+namespace {
+
+// Adds the chosen contacts (deepest first) to the result's manifold (relief_collision.hpp's
+// convention).
+void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside& underside, const ReliefPlaneShape& plane,
+                       const Eigen::Isometry3d& world_from_plane, bool conforming, double threshold,
+                       btManifoldResult* result) {
+  // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
+  // within the breaking threshold of the new one. The chosen points come deepest first, so a
+  // later point that close is skipped instead: the deeper one must win. (For a sphere every
+  // point with the same normal maps to the same q = c - r n, see contactOnObject.)
+  std::array<Eigen::Vector3d, kMaxReliefContacts> added;
+  std::size_t added_count = 0;
+  for (const ReliefCandidate& c : chosen) {
+    const Eigen::Vector3d n_world = world_from_plane.linear() * c.n_local;
+    const Eigen::Vector3d lowest = c.p_surface + c.depth * Eigen::Vector3d::UnitZ();  // plane frame
+    const Eigen::Vector3d q = contactOnObject(underside, lowest, c.n_local);
+    // Signed distance of the contact point from the texel's tangent plane, along its normal:
+    // for a box this is depth * n_z, for a round part the gap of the round surface itself (a
+    // fringe texel of a capsule's end cap then reports the cap's real gap, not the fringe's).
+    // On a CONVEX relief (a bump) the tangent plane of a texel away from the point of contact
+    // lies above the relief and cuts into a round object cresting it, by about
+    // (R + r) s^2 / (2 R^2) at distance s (R: the relief's curvature radius): measured 55 µm of
+    // lift and +1.4 % energy for a 1 cm ball cresting a 1 mm bump, its escape speed 4 % low.
+    // The relief's own height under the contact point (bilinear, one sample) is not fooled by
+    // the curvature; the vertical gap there, projected on n, is used when it is the larger.
+    // Flat reliefs give the same value both ways, concave spots keep the tangent-plane gap.
+    const double gap_below_q = q.z() - plane.surface().at(q.x(), q.y()).height_m;
+    const double distance = conforming ? c.depth : std::max((q - c.p_surface).dot(c.n_local), gap_below_q * c.n_local.z());
+    const Eigen::Vector3d on_object = world_from_plane * q;
+    bool duplicate = false;
+    for (std::size_t a = 0; a < added_count; ++a)
+      duplicate = duplicate || (added[a] - on_object).squaredNorm() < threshold * threshold;
+    if (duplicate) continue;
+    added[added_count++] = on_object;
+    const Eigen::Vector3d on_relief = on_object - distance * n_world;
+    result->addContactPoint(toBt(n_world), toBt(on_relief), static_cast<btScalar>(distance));
+  }
+}
+
+// Which group of a textured box's contacts a normal (plane frame) falls in: 0 within 6° of the
+// plane's normal, else 1-4 by the quarter of the plane its tilt leans towards (centred on +x, +y,
+// -x, -y). Contacts on walls that face each other land in different groups, so each group's four
+// points hold the box from its own side (one manifold of four points chose the deepest and the
+// most spread points, all on the walls facing one way, and the grooved block walked off them).
+std::size_t normalGroup(const Eigen::Vector3d& n) {
+  const double tilt = std::hypot(n.x(), n.y());
+  if (tilt < 0.1) return 0;
+  if (std::fabs(n.x()) >= std::fabs(n.y())) return n.x() > 0.0 ? 1 : 3;
+  return n.y() > 0.0 ? 2 : 4;
+}
+
+}  // namespace
+
+void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapper& object,
+                                                    const btCollisionObjectWrapper& relief, const ReliefPlaneShape& plane,
+                                                    const Underside& underside, const FaceTexture& faces, double threshold,
+                                                    const Eigen::Isometry3d& world_from_plane, btManifoldResult* result) {
+  // Reused between steps so a resting box costs no allocation per step.
+  thread_local std::vector<ReliefCandidate> candidates, group;
+  thread_local std::vector<std::size_t> group_index, taken;
+  candidates.clear();
+  taken.clear();
+  const RasterStats raster = rasterizeRelief(plane.surface(), underside, threshold, candidates, &faces);
+  for (std::size_t g = 0; g < kNormalGroups; ++g) {
+    btPersistentManifold* manifold = g == 0 ? manifoldFor(object.getCollisionObject(), relief.getCollisionObject())
+                                            : groupManifold(g, object.getCollisionObject(), relief.getCollisionObject());
+    manifold->clearManifold();
+    result->setPersistentManifold(manifold);
+    group.clear();
+    group_index.clear();
+    for (std::size_t k = 0; k < candidates.size(); ++k)
+      if (normalGroup(candidates[k].n_local) == g) group.push_back(candidates[k]), group_index.push_back(k);
+    std::array<std::size_t, kMaxReliefContacts> picked{};
+    const std::size_t n = selectReliefContacts(group, picked);
+    for (std::size_t k = 0; k < n; ++k) picked[k] = group_index[picked[k]];
+    // Each to the bottom of its basin in the pair's depth, where the two surfaces' normals agree.
+    snapToBasins(candidates, raster.stride, std::span(picked.data(), n));
+    // A basin another group's point went to already holds a contact.
+    std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (std::find(taken.begin(), taken.end(), picked[k]) != taken.end()) continue;
+      taken.push_back(picked[k]);
+      chosen[count++] = candidates[picked[k]];
+    }
+    addReliefContacts(std::span(chosen.data(), count), underside, plane, world_from_plane, false, threshold, result);
+  }
+  result->setPersistentManifold(manifoldFor(object.getCollisionObject(), relief.getCollisionObject()));
+}
+
+btPersistentManifold* ReliefCollisionAlgorithm::groupManifold(std::size_t g, const btCollisionObject* object,
+                                                             const btCollisionObject* relief) {
+  btPersistentManifold*& m = groups_[g - 1];
+  if (!m) m = m_dispatcher->getNewManifold(object, relief);
+  return m;
+}
+
+void ReliefCollisionAlgorithm::clearGroupManifolds() {
+  for (btPersistentManifold* m : groups_)
+    if (m) m->clearManifold();
+}
+
+ReliefCollisionAlgorithm::~ReliefCollisionAlgorithm() {
+  for (btPersistentManifold* m : groups_)
+    if (m) m_dispatcher->releaseManifold(m);
+}
+
+void ReliefCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
+  ManifoldAlgorithm::getAllContactManifolds(manifolds);
+  for (btPersistentManifold* m : groups_)
+    if (m) manifolds.push_back(m);
+}
+
 void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                                 const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
                                                 btManifoldResult* result) {
@@ -57,6 +172,13 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   if (!underside) return;
 
   const double threshold = double(manifold->getContactBreakingThreshold());
+  // A box with a relief on its faces (textured_box.hpp): its own rule, one manifold per group of
+  // normals.
+  if (const FaceTexture* box_faces = faceTextureOf(*object->getCollisionShape())) {
+    texturedBoxCollision(*object, *relief, plane, *underside, *box_faces, threshold, world_from_plane, result);
+    return;
+  }
+  clearGroupManifolds();
   ChosenReliefContacts chosen;
   bool conforming = false;
   if (underside->kind == Underside::Kind::Box && boxReliefContacts(plane.surface(), *underside, threshold, chosen, &plane.levelRuns())) {
@@ -95,38 +217,8 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     chosen.count = n;
   }
 
-  // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
-  // within the breaking threshold of the new one. The chosen points come deepest first, so a
-  // later point that close is skipped instead: the deeper one must win. (For a sphere every
-  // point with the same normal maps to the same q = c - r n, see contactOnObject.)
-  std::array<Eigen::Vector3d, kMaxReliefContacts> added;
-  std::size_t added_count = 0;
-  for (std::size_t k = 0; k < chosen.count; ++k) {
-    const ReliefCandidate& c = chosen.contacts[k];
-    const Eigen::Vector3d n_world = world_from_plane.linear() * c.n_local;
-    const Eigen::Vector3d lowest = c.p_surface + c.depth * Eigen::Vector3d::UnitZ();  // plane frame
-    const Eigen::Vector3d q = contactOnObject(*underside, lowest, c.n_local);
-    // Signed distance of the contact point from the texel's tangent plane, along its normal:
-    // for a box this is depth * n_z, for a round part the gap of the round surface itself (a
-    // fringe texel of a capsule's end cap then reports the cap's real gap, not the fringe's).
-    // On a CONVEX relief (a bump) the tangent plane of a texel away from the point of contact
-    // lies above the relief and cuts into a round object cresting it, by about
-    // (R + r) s^2 / (2 R^2) at distance s (R: the relief's curvature radius): measured 55 µm of
-    // lift and +1.4 % energy for a 1 cm ball cresting a 1 mm bump, its escape speed 4 % low.
-    // The relief's own height under the contact point (bilinear, one sample) is not fooled by
-    // the curvature; the vertical gap there, projected on n, is used when it is the larger.
-    // Flat reliefs give the same value both ways, concave spots keep the tangent-plane gap.
-    const double gap_below_q = q.z() - plane.surface().at(q.x(), q.y()).height_m;
-    const double distance = conforming ? c.depth : std::max((q - c.p_surface).dot(c.n_local), gap_below_q * c.n_local.z());
-    const Eigen::Vector3d on_object = world_from_plane * q;
-    bool duplicate = false;
-    for (std::size_t a = 0; a < added_count; ++a)
-      duplicate = duplicate || (added[a] - on_object).squaredNorm() < threshold * threshold;
-    if (duplicate) continue;
-    added[added_count++] = on_object;
-    const Eigen::Vector3d on_relief = on_object - distance * n_world;
-    result->addContactPoint(toBt(n_world), toBt(on_relief), static_cast<btScalar>(distance));
-  }
+  addReliefContacts(std::span(chosen.contacts.data(), chosen.count), *underside, plane, world_from_plane, conforming,
+                    threshold, result);
 }
 
 void registerReliefCollision(btCollisionDispatcher& dispatcher) {

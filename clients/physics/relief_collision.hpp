@@ -17,6 +17,8 @@
 #include <optional>
 
 #include "clients/physics/manifold_algorithm.hpp"
+#include "clients/physics/relief_plane_shape.hpp"
+#include "clients/physics/textured_box.hpp"
 #include "clients/physics/underside.hpp"
 
 namespace thx::phys {
@@ -27,8 +29,11 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
                            const btCollisionObjectWrapper* body1, bool swapped)
       : ManifoldAlgorithm(ci, body0, body1), swapped_(swapped) {}
 
+  ~ReliefCollisionAlgorithm() override;
+
   void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                         const btDispatcherInfo& info, btManifoldResult* result) override;
+  void getAllContactManifolds(btManifoldArray& manifolds) override;
 
   struct CreateFunc : btCollisionAlgorithmCreateFunc {
     explicit CreateFunc(bool swapped) { m_swapped = swapped; }
@@ -40,7 +45,18 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   };
 
  private:
+  // A textured box's contacts come in up to kNormalGroups groups by their normals' tilt, each in
+  // its own manifold of at most four points (relief_collision.cpp, normalGroup); group 0 is the
+  // pair's own manifold.
+  static constexpr std::size_t kNormalGroups = 5;
+  void texturedBoxCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& relief,
+                            const ReliefPlaneShape& plane, const Underside& underside, const FaceTexture& faces,
+                            double threshold, const Eigen::Isometry3d& world_from_plane, btManifoldResult* result);
+  btPersistentManifold* groupManifold(std::size_t g, const btCollisionObject* object, const btCollisionObject* relief);
+  void clearGroupManifolds();
+
   bool swapped_ = false;  // true: body0 is the relief plane, body1 the object
+  btPersistentManifold* groups_[kNormalGroups - 1] = {};
 };
 
 // The shapes the relief algorithm understands, seen from the plane; nullopt for any other shape.

@@ -46,7 +46,7 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 }
 
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
-                            std::vector<ReliefCandidate>& out) {
+                            std::vector<ReliefCandidate>& out, const FaceTexture* box_faces) {
   RasterStats stats;
   const FootprintTexels f = footprintTexels(surface, shape, threshold_m);
   if (f.empty) return stats;
@@ -60,19 +60,36 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   const Eigen::Vector2d texel = surface.mapping().texelSize(map);
   const Eigen::Vector3d first = surface.texelPoint(i0, j0).q_local;
   const bool relief = surface.usesRelief();
+  const bool textured = box_faces != nullptr && shape.kind == Underside::Kind::Box;
+  const Eigen::Isometry3d object_from_plane = shape.plane_from_object.inverse();
+  const Eigen::Matrix3d& to_plane = shape.plane_from_object.linear();
+  const Eigen::Vector3d down_object = -to_plane.row(2).transpose();  // the plane's -z in the object frame
   for (long long j = j0; j <= j1; j += stats.stride) {
     const double y = first.y() - double(j - j0) * texel.y();
     const int rj = tex::resolveIndex(j, map.height(), address);
     for (long long i = i0; i <= i1; i += stats.stride) {
       ++stats.texels_visited;
       const double x = first.x() + double(i - i0) * texel.x();
-      const std::optional<double> z = lowestZ(shape, x, y);
+      std::optional<double> z = lowestZ(shape, x, y);
       if (!z) continue;
       const int ri = tex::resolveIndex(i, map.width(), address);
       const double height = relief ? -double(map.depth(ri, rj)) : 0.0;
+      if (!textured) {
+        const double depth = *z - height;
+        if (depth < threshold_m)
+          out.push_back({Eigen::Vector3d(x, y, height), surface.texelNormal(i, j, ri, rj), depth, i, j});
+        continue;
+      }
+      const FacePoint face =
+          faceTextureAt(*box_faces, shape.half_extents, object_from_plane * Eigen::Vector3d(x, y, *z), down_object);
+      const double down = -face.sign * to_plane(2, face.axis);  // the face's outward normal against the plane's -z
+      Eigen::Vector3d n = surface.texelNormal(i, j, ri, rj);
+      if (down > kSteepestTexturedFaceCos) {
+        *z += face.recess_m / down;
+        n = (n - to_plane * face.normal_object).normalized();
+      }
       const double depth = *z - height;
-      if (depth < threshold_m)
-        out.push_back({Eigen::Vector3d(x, y, height), surface.texelNormal(i, j, ri, rj), depth, i, j});
+      if (depth < threshold_m) out.push_back({Eigen::Vector3d(x, y, height), n, depth, i, j});
     }
   }
   return stats;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "clients/physics/contact_selection.hpp"
+#include "clients/physics/textured_box.hpp"
 #include "clients/physics/underside.hpp"
 #include "textures/textured_surface.hpp"
 
@@ -30,9 +31,14 @@ struct FootprintTexels {
 };
 FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m);
 
-// Appends candidates to `out` (not cleared). `surface` must read the map as relief.
+// Appends candidates to `out` (not cleared). `surface` must read the map as relief. A box whose
+// faces carry a relief (`box_faces`, textured_box.hpp): the box's surface over each texel is its
+// lowest face pushed inwards by that face's relief depth (along the vertical; a point on a face
+// steeper than kSteepestTexturedFaceCos reads the face turned most towards the plane:
+// faceTextureAt), and the candidate's normal is the mean of the plane's and the box's (turned to
+// face the plane's way).
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
-                            std::vector<ReliefCandidate>& out);
+                            std::vector<ReliefCandidate>& out, const FaceTexture* box_faces = nullptr);
 
 // Sub-texel refinement of a round object's deepest contact. The texel-centre minimum is off the
 // true tangent point by up to half a texel, and its normal with it: at a dimple's bottom the

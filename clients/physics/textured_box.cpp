@@ -1,0 +1,56 @@
+#include "clients/physics/textured_box.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace thx::phys {
+
+FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
+                        const Eigen::Vector3d& toward) {
+  FacePoint f;
+  double best = -1.0;
+  for (int a = 0; a < 3; ++a) best = std::max(best, std::fabs(p[a]) / half[a]);
+  double along = -std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (std::fabs(p[a]) / half[a] < best * (1.0 - 1e-9)) continue;  // not on this face
+    const double sign = p[a] < 0.0 ? -1.0 : 1.0;
+    if (sign * toward[a] > along) along = sign * toward[a], f.axis = a, f.sign = sign;
+  }
+  // A point on a face standing over the plane (a side, near the bottom's edge) takes the texture
+  // of the face turned most towards it, read at the point's place over that face: the bottom's
+  // grooves cut through its edge.
+  if (along <= kSteepestTexturedFaceCos && toward.squaredNorm() > 0.0) {
+    int a_best = 0;
+    for (int a = 1; a < 3; ++a)
+      if (std::fabs(toward[a]) > std::fabs(toward[a_best])) a_best = a;
+    f.axis = a_best;
+    f.sign = toward[a_best] < 0.0 ? -1.0 : 1.0;
+  }
+  const int a = f.axis, b = (a + 1) % 3, c = (a + 2) % 3;
+  const tex::Sample s = tex::sample(*texture.map, {p[b] / texture.tile_m, p[c] / texture.tile_m}, texture.sampling);
+  f.recess_m = double(s.depth);
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  n[b] = double(s.normal.x());
+  n[c] = double(s.normal.y());
+  n[a] = f.sign * double(s.normal.z());
+  f.normal_object = n.normalized();
+  return f;
+}
+
+namespace {
+// Marks a shape whose user pointer is a FaceTexture ("TBOX").
+constexpr int kFaceTextureTag = 0x54424f58;
+}  // namespace
+
+void attachFaceTexture(btCollisionShape& box, const FaceTexture& texture) {
+  box.setUserPointer(const_cast<FaceTexture*>(&texture));
+  box.setUserIndex(kFaceTextureTag);
+}
+
+const FaceTexture* faceTextureOf(const btCollisionShape& shape) {
+  if (shape.getShapeType() != BOX_SHAPE_PROXYTYPE || shape.getUserIndex() != kFaceTextureTag) return nullptr;
+  return static_cast<const FaceTexture*>(shape.getUserPointer());
+}
+
+}  // namespace thx::phys

@@ -1,0 +1,70 @@
+#pragma once
+// A grooved block on a grooved plane (issue 29, two textured bodies; clients/physics/textured_box.hpp):
+// V-grooves along y, 4 mm apart and 1 mm deep (walls at atan(2 D / P) = 26.6°), on a relief plane
+// and on the faces of a 2 x 2 x 1 cm, 50 g block (friction 0.3) set half a period over, so its
+// ridges sit in the plane's grooves; or a plain block of the same size. Shared by
+// tests/physics/test_textured_box.cpp and benchmarks/bench_textured_pair.cpp.
+#include <cmath>
+#include <memory>
+
+#include "clients/physics/bullet_convert.hpp"
+#include "clients/physics/textured_box.hpp"
+#include "tests/physics/physics_fixtures.hpp"
+
+namespace thx::phys::test::grooved_block {
+
+inline constexpr double kPeriod = 0.004, kDepth = 0.001;  // walls at atan(2 D / P) = 26.6°
+inline constexpr double kExtent = 0.04, kMass = 0.05, kDt = 1e-3;
+inline const Eigen::Vector3d kHalf(0.01, 0.01, 0.005);
+
+// V-grooves along y: ridges at x = k P, floors half way between.
+inline double vGrooves(double x, double) { return -kDepth * 2.0 * std::fabs(x / kPeriod - std::round(x / kPeriod)); }
+
+inline constexpr double kFriction = 0.3;
+// The force that starts the block sliding, over its weight: along the grooves (or a plain block
+// either way) friction alone; across them, up a wall with friction: tan(wall + atan(mu)).
+inline double alongForce() { return kFriction; }
+inline double acrossForce() { return std::tan(std::atan(2 * kDepth / kPeriod) + std::atan(kFriction)); }
+
+struct Scene {
+  SurfaceHolder plane;
+  tex::TextureMap block_map;
+  std::unique_ptr<PhysicsWorld> world;
+  btRigidBody* block = nullptr;
+
+  // The block's ridges over the plane's floors (x = P/2), a little above where they fit; both
+  // textures `texels` on a side over 4 cm. block_first: the block is added to the world first, so
+  // Bullet hands the pair to the relief algorithm in the other order.
+  Scene(bool textured, bool block_first, int texels = 128, const WorldOptions& options = {})
+      : plane(holdSurface(heightMap(texels, kExtent, vGrooves), kExtent, true)),
+        block_map(heightMap(texels, kExtent, vGrooves)),
+        world(std::make_unique<PhysicsWorld>(options)) {
+    const BodyMaterial plane_material{1.0, 0.0, 0.0};  // Bullet multiplies frictions: the block's decides
+    const BodyMaterial block_material{kFriction, 0.0, 0.0};
+    const Eigen::Isometry3d pose = at(0.5 * kPeriod, 0.0, kHalf.z() - (textured ? kDepth : 0.0) + 2e-4);
+    FaceTexture faces;
+    faces.map = &block_map;
+    faces.tile_m = kExtent;
+    auto add_block = [&] {
+      block = textured ? &world->addTexturedBox(kHalf, kMass, pose, block_material, faces)
+                       : &world->addBox(kHalf, kMass, pose, block_material);
+    };
+    if (block_first) add_block();
+    world->addReliefPlane(plane.surface, plane_material);
+    if (!block_first) add_block();
+    for (int k = 0; k < 100; ++k) world->step(kDt);  // settle
+  }
+
+  // Pushed by a horizontal force for `seconds`: how far the block's centre moved.
+  Eigen::Vector3d push(const Eigen::Vector3d& force_over_weight, double seconds) {
+    const Eigen::Vector3d start = positionOf(*block);
+    block->activate(true);
+    for (int k = 0; k < int(std::lround(seconds / kDt)); ++k) {
+      block->applyCentralForce(toBt(Eigen::Vector3d(force_over_weight * kMass * kG)));
+      world->step(kDt);
+    }
+    return positionOf(*block) - start;
+  }
+};
+
+}  // namespace thx::phys::test::grooved_block

@@ -1,0 +1,92 @@
+// A box whose faces carry a relief, on a relief plane (issue 29, "Textured objects";
+// clients/physics/textured_box.hpp): V-grooves under a block grooved the same way and set half a
+// period over, so its ridges sit in the plane's grooves. Both textures shape the contact: the
+// block slides along the grooves and not across them, where a plain block of the same size rides
+// the ridges' tops either way.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "clients/physics/textured_box.hpp"
+#include "tests/physics/grooved_block_scene.hpp"
+
+namespace thx::phys::test::test_textured_box {
+namespace {
+
+using namespace grooved_block;
+
+TEST(TexturedBox, AGroovedBlockSitsInTheGroovesOfAGroovedPlane) {
+  Scene textured(true, false), plain(false, false);
+  // The textured block's face sinks to the grooves' floor (its ridges fit the plane's floors),
+  // the plain one rests on the ridges' tops.
+  // Within the bilinear rounding of the two V's creases (0.31 mm texels: up to half a texel of a
+  // 0.5 slope each, 78 µm).
+  EXPECT_NEAR(positionOf(*textured.block).z(), kHalf.z() - kDepth, 1.6e-4);
+  EXPECT_NEAR(positionOf(*plain.block).z(), kHalf.z(), 1.6e-4);
+  EXPECT_NEAR(positionOf(*textured.block).x(), 0.5 * kPeriod, 1.6e-4);
+  const Eigen::Vector3d up = toEigen(textured.block->getWorldTransform().getBasis().getColumn(2));
+  EXPECT_GT(up.z(), std::cos(deg(0.5)));
+}
+
+TEST(TexturedBox, AGroovedBlockSlidesAlongTheGroovesAndNotAcrossThem) {
+  // Half the weight, sideways: more than friction (0.3) alone resists, less than a 26.6° wall
+  // with it (tan(26.6° + 16.7°) = 0.94).
+  ASSERT_LT(alongForce(), 0.5);
+  ASSERT_GT(acrossForce(), 0.5);
+  Scene along(true, false), across(true, false), plain_across(false, false);
+  const Eigen::Vector3d a = along.push({0.0, 0.5, 0.0}, 0.2);
+  const Eigen::Vector3d c = across.push({0.5, 0.0, 0.0}, 0.2);
+  const Eigen::Vector3d p = plain_across.push({0.5, 0.0, 0.0}, 0.2);
+  // Along: (0.5 - 0.3) g for 0.2 s is 39 mm.
+  EXPECT_NEAR(a.y(), 0.5 * (0.5 - 0.3) * kG * 0.04, 0.1 * 0.0392) << a.transpose();
+  EXPECT_LT(std::fabs(a.x()), 3e-4) << a.transpose();
+  // Across it stays in its grooves (it settles onto the walls by a fraction of a millimetre; see
+  // docs/physics.md "Textured objects" for the force that moves it on).
+  EXPECT_LT(c.norm(), 0.25 * kPeriod) << c.transpose();
+  EXPECT_GT(p.x(), 0.5 * 0.5 * (0.5 - 0.3) * kG * 0.04) << p.transpose();
+  // Twice the wall's share: it climbs out across the grooves.
+  Scene hard(true, false);
+  EXPECT_GT(hard.push({1.3, 0.0, 0.0}, 0.2).x(), kPeriod);
+}
+
+TEST(TexturedBox, EitherOrderOfThePairGivesTheSameMotion) {
+  Scene block_first(true, true), plane_first(true, false);
+  const Eigen::Vector3d a = block_first.push({0.5, 0.5, 0.0}, 0.2);
+  const Eigen::Vector3d b = plane_first.push({0.5, 0.5, 0.0}, 0.2);
+  EXPECT_LT((a - b).norm(), 1e-9) << a.transpose() << " / " << b.transpose();
+  EXPECT_GT(a.y(), 0.01);
+}
+
+TEST(TexturedBox, TheFaceTextureIsReadOnTheFaceAPointLiesOn) {
+  const tex::TextureMap map = heightMap(128, kExtent, vGrooves);
+  FaceTexture faces;
+  faces.map = &map;
+  faces.tile_m = kExtent;
+  // On the bottom face (-z): u along x, v along y; a floor of the grooves at x = P/2 lies 1 mm in.
+  FacePoint f = faceTextureAt(faces, kHalf, {0.5 * kPeriod, 0.003, -kHalf.z()});
+  EXPECT_EQ(f.axis, 2);
+  EXPECT_EQ(f.sign, -1.0);
+  EXPECT_NEAR(f.recess_m, kDepth, 8e-5);  // the crease's bilinear rounding
+  // On a wall rising towards +x the relief's outward normal leans to +x, down, out of the box.
+  f = faceTextureAt(faces, kHalf, {0.25 * kPeriod, 0.003, -kHalf.z()});
+  EXPECT_NEAR(f.recess_m, 0.5 * kDepth, 2e-5);
+  EXPECT_NEAR(f.normal_object.x(), std::sin(std::atan(2 * kDepth / kPeriod)), 1e-3) << f.normal_object.transpose();
+  EXPECT_LT(f.normal_object.z(), -0.8);
+  // On the +x side face: u along y, v along z, its outward normal +x.
+  f = faceTextureAt(faces, kHalf, {kHalf.x(), 0.0, 0.001});
+  EXPECT_EQ(f.axis, 0);
+  EXPECT_EQ(f.sign, 1.0);
+  EXPECT_GT(f.normal_object.x(), 0.8);
+  // Just above the bottom's edge on that side, seen from a plane below (a slightly tilted box's
+  // vertical line enters here): the bottom's texture, whose grooves cut through the edge.
+  f = faceTextureAt(faces, kHalf, {kHalf.x(), 0.003, -kHalf.z() + 1e-5}, {0.0, 0.0, -1.0});
+  EXPECT_EQ(f.axis, 2);
+  EXPECT_EQ(f.sign, -1.0);
+  EXPECT_NEAR(f.recess_m, kDepth, 1e-4);  // a floor half way between two texel centres
+  // On the bottom's edge itself, the face turned towards the plane.
+  f = faceTextureAt(faces, kHalf, {kHalf.x(), 0.003, -kHalf.z()}, {0.0, 0.0, -1.0});
+  EXPECT_EQ(f.axis, 2);
+}
+
+}  // namespace
+}  // namespace thx::phys::test::test_textured_box
