@@ -108,7 +108,6 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
   for (std::size_t g = 0; g < kNormalGroups; ++g) {
     btPersistentManifold* manifold = g == 0 ? manifoldFor(object.getCollisionObject(), relief.getCollisionObject())
                                             : groupManifold(g, object.getCollisionObject(), relief.getCollisionObject());
-    manifold->clearManifold();
     result->setPersistentManifold(manifold);
     group.clear();
     group_index.clear();
@@ -128,6 +127,13 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
       chosen[count++] = candidates[picked[k]];
     }
     addReliefContacts(std::span(chosen.data(), count), underside, plane, world_from_plane, false, threshold, result);
+    // The points of earlier steps stay, each replaced by a new one within the breaking threshold
+    // of it (keeping its impulse to start the solver from) or dropped once its gap or slide
+    // exceeds that threshold; Bullet keeps the four that span the most area. Cleared every step
+    // as the other shapes' are (a rolling ball's cached points inject energy; a box does not
+    // roll), the deepest texels, chosen afresh, stayed 10-60 µm deep, and the grooved block
+    // crept up the plane's walls under 0.58 of its weight at 128 texels, against 0.78 kept.
+    result->refreshContactPoints();
   }
   result->setPersistentManifold(manifoldFor(object.getCollisionObject(), relief.getCollisionObject()));
 }
@@ -162,7 +168,10 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());
   result->setPersistentManifold(manifold);
-  manifold->clearManifold();
+  // A textured box keeps its points between steps (texturedBoxCollision); everything else starts
+  // afresh (relief_collision.hpp).
+  const FaceTexture* box_faces = faceTextureOf(*object->getCollisionShape());
+  if (!box_faces) manifold->clearManifold();
 
   const auto& plane = static_cast<const ReliefPlaneShape&>(*relief->getCollisionShape());
   const Eigen::Isometry3d world_from_plane = toEigen(relief->getWorldTransform());
@@ -174,7 +183,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   const double threshold = double(manifold->getContactBreakingThreshold());
   // A box with a relief on its faces (textured_box.hpp): its own rule, one manifold per group of
   // normals.
-  if (const FaceTexture* box_faces = faceTextureOf(*object->getCollisionShape())) {
+  if (box_faces) {
     texturedBoxCollision(*object, *relief, plane, *underside, *box_faces, threshold, world_from_plane, result);
     return;
   }

@@ -5,7 +5,9 @@
 // picks at most 4 contacts (contact_selection.hpp) and reports them with the relief normals
 // there. Its manifold is cleared at the start of every step: cached points fixed to a rolling
 // ball's surface rotate behind the centre and inject energy (docs/design.md §7 fact 4), and the
-// rasteriser finds every contact afresh anyway.
+// rasteriser finds every contact afresh anyway. A box with a relief on its faces
+// (textured_box.hpp) is the exception: its contacts, grouped by normal into up to five manifolds,
+// are kept between steps and merged with the new ones (relief_collision.cpp, texturedBoxCollision).
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher
 // hands the pair in): normal = relief normal in world frame, pointing from the relief to the

@@ -7,6 +7,7 @@
 // is the plane's relief height minus the box's surface there, the box's face pushed inwards by its
 // own relief's depth. Contacts are chosen among those texels as for a plain box (the deepest, the
 // spread points, each moved to the bottom of its basin: where the depth of the pair is deepest),
+// in one manifold per group of normals, kept between steps (relief_collision.hpp),
 // and each takes the mean of the two surfaces' normals there (equal where the two surfaces touch
 // at a basin's bottom, a stationary point of the pair's depth; where a crest presses on the other
 // body's wall it leans half as much as the wall: the normal of whichever surface bends less there
