@@ -32,13 +32,6 @@ namespace {
 using thx::test::ProcRun;
 using HapticdVrpn = thx::test::HapticdProcessTest;
 
-// A port nobody listens on right now (bind to 0, read it, close).
-std::uint16_t freePort() {
-  Result<UniqueFd> l = listenTcp("127.0.0.1", 0);
-  EXPECT_TRUE(l);
-  return localPort(l->get());
-}
-
 }  // namespace
 
 TEST_F(HapticdVrpn, BadListenAddressIsAUsageError) {
@@ -64,7 +57,7 @@ TEST_F(HapticdVrpn, APortInUseIsAClearErrorNotACrash) {
 }
 
 TEST_F(HapticdVrpn, ServesItsSimulatedPhantomToAVrpnClient) {
-  const std::uint16_t port = freePort();
+  const std::uint16_t port = sparePort();
   ProcRun server;
   std::atomic<bool> server_done{false};
   std::thread proc([&] {
@@ -121,7 +114,7 @@ TEST_F(HapticdVrpn, ServesItsSimulatedPhantomToAVrpnClient) {
 // Our client device against hapticd's server over the UDP request form, the simulated PHANToM
 // behind it: the client reads the moving pen and its plane commands reach the server.
 TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
-  const std::uint16_t port = freePort();
+  const std::uint16_t port = sparePort();
   ProcRun server;
   std::atomic<bool> server_done{false};
   std::thread proc([&] {
@@ -173,7 +166,7 @@ TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
   EXPECT_NE(help.out.find("--vrpn-plane2"), std::string::npos) << help.out;
   for (const bool flag : {false, true}) {
     SCOPED_TRACE(flag ? "--vrpn-plane2" : "default");
-    const std::uint16_t port = freePort();
+    const std::uint16_t port = sparePort(flag ? 1 : 0);
     ProcRun server;
     std::thread proc([&] {
       server = run("--scene scenes/default.yaml --device sim --duration 2 --no-lcm --no-mlock --vrpn-listen " +

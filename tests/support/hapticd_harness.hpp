@@ -76,6 +76,13 @@ class HapticdProcessTest : public ::testing::Test {
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
+  // A port of the test's own block that hapticd does not take by default (its bus, control and
+  // 32 client data ports are the block's first 34), for --vrpn-listen: k = 0, 1, .. counts down
+  // from the block's last. Below the ephemeral range, so no client's own socket can hold it (a
+  // port read from a socket bound to 0 is ephemeral: a VRPN client retrying while hapticd started
+  // could take it, and hapticd failed to listen under load).
+  std::uint16_t sparePort(int k = 0) const { return std::uint16_t(ports_->firstPort() + PortBlock::kSize - 1 - k); }
+
   // Runs `hapticd ARGS` (shell words) to completion; stdout and stderr go to out.txt / err.txt in
   // the scratch directory and come back in the result.
   ProcRun run(const std::string& args) const {
