@@ -108,6 +108,22 @@ echo "   the marbles and the pen touch it, and where the pen scrapes it"
   && echo "sound: $OUT/marble_bowl.wav, its spectrogram: $OUT/marble_bowl_spectrogram.png" || echo "audio-client failed"
 
 echo
+echo "== textured objects: a grooved block on a grooved plane (scenes/grooved_block.yaml), both reliefs in the contact:"
+echo "   the pen pushes it along the grooves (it slides, staying in them), then across (it climbs from groove to groove);"
+echo "   recorded in lock-step, physics-client on the recording, frames every half second -> $OUT/visual_grooved_block/, and heard"
+GB=scenes/grooved_block.yaml
+"$HD" --scene "$GB" --lockstep --no-lcm --record "$OUT/grooved_block_pen.lcm" --quiet > /dev/null
+"$PC" --scene "$GB" --replay-log "$OUT/grooved_block_pen.lcm" --record "$OUT/grooved_block_session.lcm" \
+  --quiet > "$OUT/grooved_block.txt" 2>&1 && grep -E "^  block " "$OUT/grooved_block.txt" || echo "physics-client failed"
+LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene "$GB" --mode relief --replay-log "$OUT/grooved_block_session.lcm" \
+  --rate 2 --out "$OUT/visual_grooved_block" --quiet \
+  && echo "frames: $OUT/visual_grooved_block/frame_*.png" || echo "visual-client failed"
+"$AC" --scene "$GB" --replay-log "$OUT/grooved_block_session.lcm" --wav "$OUT/grooved_block.wav" \
+  > "$OUT/grooved_block_audio.txt" 2>&1 \
+  && "$WS" "$OUT/grooved_block.wav" "$OUT/grooved_block_spectrogram.png" --title "a grooved block pushed on a grooved plane (scenes/grooved_block.yaml)" \
+  && echo "sound: $OUT/grooved_block.wav, its spectrogram: $OUT/grooved_block_spectrogram.png" || echo "audio-client failed"
+
+echo
 echo "== user studies: three simulated participants per study on the shipped surfaces (scenes/study/), then the analysis -> $OUT/study/ (about 30 s)"
 SR="$BUILD/clients/study/study-run"
 mkdir -p "$OUT/study"
@@ -122,4 +138,4 @@ done
   && echo "sessions: $OUT/study/*.csv; tables and plots: $OUT/study/study.md" || echo "study-analyze failed"
 
 echo
-echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png, $OUT/visual_marble_bowl/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."
+echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png, $OUT/visual_marble_bowl/*.png, $OUT/visual_grooved_block/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."

@@ -53,7 +53,7 @@ std::map<std::string, double> parseParams(const Field& field, const tex::Generat
 
 }  // namespace
 
-tex::GenerateRequest parseGenerator(const Field& texture, const Surface& surface) {
+tex::GenerateRequest parseGenerator(const Field& texture, const Surface& surface, const std::string& size_name) {
   const Field kind_field = *texture.find("generator");
   const tex::GeneratorSpec& spec = parseKind(kind_field);
   tex::GenerateRequest request;
@@ -76,7 +76,7 @@ tex::GenerateRequest parseGenerator(const Field& texture, const Surface& surface
     request.params[kExtent] = side;
   } else if (std::fabs(extent->second - side) > 1e-9 * side) {
     texture.find("params")->find(kExtent)->warn(
-        "extent " + formatNumber(extent->second) + " m differs from surface.size " + formatNumber(side) +
+        "extent " + formatNumber(extent->second) + " m differs from " + size_name + " " + formatNumber(side) +
         " m: features appear scaled by " + formatNumber(side / extent->second) + " and normals no longer match depth");
   }
   return request;

@@ -51,9 +51,29 @@ void parseDimensions(const Field& field, SceneObject& object) {
   }
 }
 
+// objects[].texture and texture_tile: a relief map on a box's faces (issue 29).
+ObjectTexture parseObjectTexture(const Field& field, const SceneObject& object) {
+  const Field texture = *field.find("texture");
+  if (object.shape != Shape::Box)
+    texture.fail("only a box carries a texture", "no texture on a " + std::string(toString(object.shape)), "");
+  ObjectTexture out;
+  out.tile_m = object.size_m.maxCoeff();
+  const auto params = texture.find("params");
+  const auto extent = params ? params->find("extent") : std::nullopt;
+  if (auto tile = field.find("texture_tile"))
+    out.tile_m = tile->number(positiveUpTo(10.0, "m"));
+  else if (extent)
+    out.tile_m = extent->number(positiveUpTo(10.0, "m"));
+  // A generated texture spans one tile of the face, as the surface's spans surface.size.
+  Surface face;
+  face.size_m = Eigen::Vector2d::Constant(out.tile_m);
+  out.source = parseTexture(texture, face, "texture_tile");
+  return out;
+}
+
 SceneObject parseObject(const Field& field) {
   field.expectKeys({"name", "shape", "radius", "size", "length", "mass", "material", "position", "rpy_deg", "velocity",
-                    "angular_velocity", "fixed"});
+                    "angular_velocity", "fixed", "texture", "texture_tile"});
   if (field.isNull()) field.fail("missing value", "a mapping with name, shape, its dimensions, mass and position");
   SceneObject object;
   object.name = field.at("name", "a unique object name").text();
@@ -81,6 +101,11 @@ SceneObject parseObject(const Field& field) {
   if (auto v = field.find("velocity")) object.velocity_m_per_s = v->vector3(closedRange(-100.0, 100.0, "m/s"));
   if (auto w = field.find("angular_velocity"))
     object.angular_velocity_rad_per_s = w->vector3(closedRange(-1000.0, 1000.0, "rad/s"));
+  if (field.find("texture")) {
+    object.texture = parseObjectTexture(field, object);
+  } else if (auto tile = field.find("texture_tile")) {
+    tile->fail("a texture tile without a texture", "texture: {generator: KIND, ...} or {file: PATH} beside it", "");
+  }
   return object;
 }
 

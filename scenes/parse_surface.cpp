@@ -51,23 +51,6 @@ tex::SampleOptions parseSampling(const Field& field) {
   return options;
 }
 
-TextureSource parseTexture(const Field& field, const Surface& surface) {
-  const FileOrGenerator given =
-      parseFileOrGenerator(field, {"file", "generator", "size", "seed", "params"}, "texture",
-                           "{file: PATH} or {generator: KIND, size: N, seed: S, params: {...}}");
-  TextureSource source;
-  source.where = field.location();
-  if (given.file) {
-    refuseKeys(field, {"size", "seed", "params"}, "generator textures", "file:");
-    source.kind = TextureSource::Kind::File;
-    source.file = parseExistingFile(*given.file, "texture file (PNG)");
-  } else {
-    source.kind = TextureSource::Kind::Generator;
-    source.generator = parseGenerator(field, surface);
-  }
-  return source;
-}
-
 // The slab under the texture: a thickness that is not positive is an error of its own wording.
 std::optional<double> parseThickness(const Field& field) {
   const auto t = field.find("thickness");
@@ -90,6 +73,23 @@ Roughness parseRoughness(const Field& field) {
 }
 
 }  // namespace
+
+TextureSource parseTexture(const Field& field, const Surface& surface, const std::string& size_name) {
+  const FileOrGenerator given =
+      parseFileOrGenerator(field, {"file", "generator", "size", "seed", "params"}, "texture",
+                           "{file: PATH} or {generator: KIND, size: N, seed: S, params: {...}}");
+  TextureSource source;
+  source.where = field.location();
+  if (given.file) {
+    refuseKeys(field, {"size", "seed", "params"}, "generator textures", "file:");
+    source.kind = TextureSource::Kind::File;
+    source.file = parseExistingFile(*given.file, "texture file (PNG)");
+  } else {
+    source.kind = TextureSource::Kind::Generator;
+    source.generator = parseGenerator(field, surface, size_name);
+  }
+  return source;
+}
 
 Surface parseSurface(const Field& field) {
   if (field.isNull()) field.fail("missing value", "a mapping with at least size and texture");

@@ -147,6 +147,13 @@ struct Device {
 
 enum class Shape { Sphere, Box, Capsule, Cylinder };
 
+// objects[].texture (issue 29): a relief map on every face of a box, spanning tile_m on each
+// (clients/physics/textured_box.hpp lays it out). Built by buildObjectTexture (surface_texture.hpp).
+struct ObjectTexture {
+  TextureSource source;  // a generator's extent defaults to tile_m
+  double tile_m = 0.02;  // texture_tile; default: the generator's extent, else the box's longest edge
+};
+
 struct SceneObject {
   std::string name;
   Shape shape = Shape::Sphere;
@@ -159,6 +166,7 @@ struct SceneObject {
   Eigen::Vector3d velocity_m_per_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity_rad_per_s = Eigen::Vector3d::Zero();  // world frame
   bool fixed = false;  // a static obstacle (walls, bumpers): never moves, mass_kg = 0
+  std::optional<ObjectTexture> texture;  // box only
 };
 
 struct Rates {

@@ -36,7 +36,11 @@ Audio parseAudio(const std::optional<Field>& field);
 Surface parseSurface(const Field& field);
 // surface.mesh; `surface` has its size (a generated mesh tiles the texture in squares of it).
 MeshSource parseMesh(const Field& field, const Surface& surface);
-tex::GenerateRequest parseGenerator(const Field& texture, const Surface& surface);
+// `size_name` names surface.size_m in warnings (an object's texture passes "texture_tile").
+tex::GenerateRequest parseGenerator(const Field& texture, const Surface& surface,
+                                    const std::string& size_name = "surface.size");
+// A texture given by file or generator; a generator's extent defaults to surface.size_m.x().
+TextureSource parseTexture(const Field& field, const Surface& surface, const std::string& size_name = "surface.size");
 // Script positions are checked against the surface, forces against the device model.
 Device parseDevice(const std::optional<Field>& field, const Surface& surface);
 std::vector<ScriptStep> parseScript(const Field& field, const Surface& surface, const DeviceModel& model);

@@ -79,4 +79,20 @@ tex::TextureMap buildSurfaceTexture(const Scene& scene, const SurfaceTextureOpti
   }
 }
 
+tex::TextureMap buildObjectTexture(const Scene& scene, std::size_t index, const SurfaceTextureOptions& options) {
+  const SceneObject& object = scene.objects.at(index);
+  const TextureSource& source = object.texture.value().source;
+  try {
+    if (source.kind == TextureSource::Kind::Generator) return tex::generate(source.generator);
+    tex::LoadOptions load;
+    load.bad_texels = options.bad_texels;
+    load.representation = tex::Representation::Relief;
+    return tex::loadTexture(source.file, load, options.report);
+  } catch (const tex::TextureError& e) {
+    throw SceneError(source.where, "objects[" + std::to_string(index) + "].texture",
+                     "object '" + object.name + "': " + e.what() +
+                         " (a box's texture must be a relief map: RGBA, the depth in alpha)");
+  }
+}
+
 }  // namespace thx::scene

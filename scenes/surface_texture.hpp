@@ -22,4 +22,9 @@ struct SurfaceTextureOptions {
 // Throws SceneError (located at the scene's `texture:` field) wrapping any texture error.
 tex::TextureMap buildSurfaceTexture(const Scene& scene, const SurfaceTextureOptions& options = {});
 
+// scene.objects[index]'s face texture (objects[].texture), always a relief map: a file holding
+// only normals is refused (a box's texture shapes contacts through its depth). Throws SceneError
+// located at the object's `texture:`, naming the object. Requires that object to have a texture.
+tex::TextureMap buildObjectTexture(const Scene& scene, std::size_t index, const SurfaceTextureOptions& options = {});
+
 }  // namespace thx::scene

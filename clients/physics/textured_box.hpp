@@ -21,8 +21,10 @@
 // T, B and outward N).
 //
 // What a textured box does not do yet: its texture shapes contacts with a relief plane only (on a
-// plain or normal-mapped plane, a mesh, another object, the coarse box collides); a normal map
-// (no depth) on an object is refused where objects are built.
+// plain or normal-mapped plane, a mesh, another object, the coarse box collides: on a mesh the
+// pair's depth would need both reliefs on the mesh's chart, docs/physics.md "Textured objects");
+// a normal map (no depth) on an object is refused where objects are built
+// (scene::buildObjectTexture). The visual client draws the same layout (meshes/textured_box_mesh.hpp).
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>

@@ -12,6 +12,7 @@
 #include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_mesh.hpp"
+#include "scenes/surface_texture.hpp"
 #include "textures/smoothing.hpp"
 
 namespace thx::physclient {
@@ -75,7 +76,15 @@ PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
         body = &world_->addSphere(o.radius_m, mass, pose, material);
         break;
       case scene::Shape::Box:
-        body = &world_->addBox(0.5 * o.size_m, mass, pose, material);
+        if (o.texture) {
+          object_textures_.push_back(std::make_unique<tex::TextureMap>(scene::buildObjectTexture(scene, i)));
+          phys::FaceTexture faces;
+          faces.map = object_textures_.back().get();
+          faces.tile_m = o.texture->tile_m;
+          body = &world_->addTexturedBox(0.5 * o.size_m, mass, pose, material, faces);
+        } else {
+          body = &world_->addBox(0.5 * o.size_m, mass, pose, material);
+        }
         break;
       case scene::Shape::Capsule:
         body = &world_->addCapsule(o.radius_m, 0.5 * o.length_m, mass, pose, material);

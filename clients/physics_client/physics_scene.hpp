@@ -159,6 +159,7 @@ class PhysicsScene {
   SimOptions options_;
   scene::SceneSurface scene_surface_;
   std::unique_ptr<MeshGround> mesh_;  // before world_: the world reads its mesh and texture
+  std::vector<std::unique_ptr<tex::TextureMap>> object_textures_;  // before world_: textured boxes read them
   std::unique_ptr<phys::PhysicsWorld> world_;
   btRigidBody* plane_ = nullptr;
   btRigidBody* pen_ = nullptr;

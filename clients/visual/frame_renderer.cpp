@@ -23,7 +23,13 @@ void FrameRenderer::render(const Camera& camera, const std::vector<ObjectInstanc
     glClearBufferfv(GL_COLOR, 1, none);
   }
   const Eigen::Vector3d light_world = surface_.mapping().directionToWorld(lightDirectionLocal(settings_.light));
-  object_renderer_.draw(objects, camera, light_world, settings_.light);
+  if (textured_objects_ && !textured_objects_->empty()) {
+    textured_objects_->draw(objects, camera, light_world);
+    glEnable(GL_CULL_FACE);
+    object_renderer_.draw(untexturedObjects(objects), camera, light_world, settings_.light);
+  } else {
+    object_renderer_.draw(objects, camera, light_world, settings_.light);
+  }
   // The plane is seen from both sides in mesh mode's grazing views: no culling for it.
   glDisable(GL_CULL_FACE);
   surface_renderer_.draw(camera);

@@ -72,6 +72,7 @@ void printCounts(const char* prefix, const LiveCounts& c) {
 int liveHeadless(const Options& o, LiveFeed& feed, std::unique_ptr<LoadedScene> loaded, bool connected) {
   HeadlessContext context;
   auto renderer = std::make_unique<FrameRenderer>(loaded->surface.surface, o.render, o.width, o.height);
+  renderer->setTexturedObjects(loaded->scene);
   std::filesystem::create_directories(o.out_dir);
   LiveCounts counts;
   auto draw = [&](const LiveView& view) {
@@ -98,6 +99,7 @@ int liveHeadless(const Options& o, LiveFeed& feed, std::unique_ptr<LoadedScene> 
       renderer.reset();
       loaded = std::move(next);
       renderer = std::make_unique<FrameRenderer>(loaded->surface.surface, o.render, o.width, o.height);
+      renderer->setTexturedObjects(loaded->scene);
       last.reset();
       ++counts.scene_switches;
     }

@@ -23,9 +23,11 @@ void MeshFrameRenderer::render(const Camera& camera, const std::vector<ObjectIns
     glClearBufferfv(GL_COLOR, 1, none);
   }
   if (!objects.empty()) {
+    const Eigen::Vector3d light_world = mesh_to_world_rotation_ * lightDirectionLocal(settings_.light);
+    const bool textured = textured_objects_ && !textured_objects_->empty();
+    if (textured) textured_objects_->draw(objects, camera, light_world);
     glEnable(GL_CULL_FACE);
-    object_renderer_.draw(objects, camera, mesh_to_world_rotation_ * lightDirectionLocal(settings_.light),
-                          settings_.light);
+    object_renderer_.draw(textured ? untexturedObjects(objects) : objects, camera, light_world, settings_.light);
     glDisable(GL_CULL_FACE);
   }
   surface_renderer_.draw(camera);

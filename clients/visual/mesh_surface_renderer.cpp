@@ -27,11 +27,16 @@ MeshSurfaceRenderer::MeshSurfaceRenderer(const MeshSurface& surface, const Rende
 }
 
 void MeshSurfaceRenderer::draw(const Camera& camera) const {
+  draw(camera, surface_.mesh_to_world, lightDirectionLocal(settings_.light));
+}
+
+void MeshSurfaceRenderer::draw(const Camera& camera, const Eigen::Isometry3d& mesh_to_world,
+                               const Eigen::Vector3d& light_direction_mesh) const {
   const tex::TextureMap& map = *surface_.map;
-  const Eigen::Isometry3d world_to_mesh = surface_.mesh_to_world.inverse();
-  const Eigen::Matrix4f mesh_to_clip = (camera.viewProjection() * surface_.mesh_to_world.matrix()).cast<float>();
+  const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
+  const Eigen::Matrix4f mesh_to_clip = (camera.viewProjection() * mesh_to_world.matrix()).cast<float>();
   const Eigen::Vector3f eye_mesh = (world_to_mesh * camera.eyeWorld()).cast<float>();
-  const Eigen::Vector3f light_mesh = lightDirectionLocal(settings_.light).cast<float>();
+  const Eigen::Vector3f light_mesh = light_direction_mesh.cast<float>();
   const Eigen::Vector2f tile = surface_.tile_m.cast<float>();
 
   program_->use();

@@ -20,6 +20,9 @@ class MeshSurfaceRenderer {
   // draw, or an incomplete MeshSurface. The light's angles are read in the mesh's frame.
   MeshSurfaceRenderer(const MeshSurface& surface, const RenderSettings& settings);
   void draw(const Camera& camera) const;
+  // The mesh placed at `mesh_to_world` instead of the surface's own place, lit from `light_mesh`
+  // (unit, towards the light, in the mesh's frame): a moving textured object.
+  void draw(const Camera& camera, const Eigen::Isometry3d& mesh_to_world, const Eigen::Vector3d& light_mesh) const;
 
  private:
   MeshSurface surface_;

@@ -19,6 +19,11 @@ struct ObjectInstance {
   Eigen::Affine3d model = Eigen::Affine3d::Identity();  // unit shape -> world (includes scale)
   Eigen::Vector3f albedo{0.8f, 0.8f, 0.8f};
   char letter = 0;  // a letter block (box): this glyph (glyphs.hpp) on its ±z faces; 0 = none
+  // A textured box (scene.objects[i].texture): i, and the body's pose (model without the scale).
+  // A frame renderer given the scene's textured objects draws it through TexturedObjectRenderer
+  // (textured_object_renderer.hpp); ObjectRenderer draws it as a plain box.
+  int textured_object = -1;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
 };
 
 class ObjectRenderer {

@@ -25,6 +25,7 @@ ObjectInstance instance(UnitShape shape, const Eigen::Isometry3d& pose, const Ei
   ObjectInstance o;
   o.shape = shape;
   o.model = Eigen::Affine3d(pose.matrix()) * Eigen::Scaling(scale);
+  o.pose = pose;
   o.albedo = albedo;
   return o;
 }
@@ -46,6 +47,7 @@ std::vector<ObjectInstance> objectsAt(const scene::Scene& scene, const std::vect
       case scene::Shape::Box:
         out.push_back(instance(UnitShape::Box, pose, o.size_m, albedo));
         out.back().letter = blockLetter(o.name);
+        if (o.texture) out.back().textured_object = int(i);
         break;
       case scene::Shape::Cylinder:
         out.push_back(instance(UnitShape::Cylinder, pose, {o.radius_m, o.radius_m, o.length_m}, albedo));

@@ -51,6 +51,7 @@ int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurfa
   if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
   HeadlessContext context;
   FrameRenderer renderer(surface, o.render, o.width, o.height);
+  renderer.setTexturedObjects(scene);
   const Camera camera(placement, surface.mapping().plane_to_world, o.width, o.height);
   std::filesystem::create_directories(o.out_dir);
   for (std::size_t f = 0; f < frames.size(); ++f) {
@@ -116,6 +117,7 @@ int drawSurfaceMesh(const Options& o, const scene::Scene& scene, const tex::Text
   buildMeshView(view, o, scene, surface, placement);
   const Eigen::Isometry3d& plane = view.orbit_frame;
   MeshFrameRenderer renderer(view.surface, o.render, o.width, o.height);
+  renderer.setTexturedObjects(scene);
   std::vector<ObjectInstance> objects;
   if (!o.no_objects && o.surface_mesh.empty()) objects = objectsAtRest(scene);
   if (!o.screenshot.empty()) {
@@ -153,6 +155,7 @@ int replayOnMesh(const Options& o, const scene::Scene& scene, const scene::Scene
   if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
   HeadlessContext context;
   MeshFrameRenderer renderer(view.surface, o.render, o.width, o.height);
+  renderer.setTexturedObjects(scene);
   const Camera camera(view.placement, view.orbit_frame, o.width, o.height);
   std::filesystem::create_directories(o.out_dir);
   for (std::size_t f = 0; f < frames.size(); ++f) {
@@ -206,6 +209,7 @@ int run(const Options& o) {
   HeadlessContext context;
   if (!o.quiet) std::fprintf(stderr, "visual-client: %s\n", context.description().c_str());
   FrameRenderer renderer(surface.surface, o.render, o.width, o.height);
+  renderer.setTexturedObjects(scene);
 
   if (!o.screenshot.empty()) {
     renderer.render(Camera(placement, surface.surface.mapping().plane_to_world, o.width, o.height), objects);

@@ -114,9 +114,19 @@ void printSummary(const scene::Scene& s, const scene::SceneSurface& built, doubl
                 m.name.c_str(), m.density_kg_per_m3, m.youngs_modulus_pa, m.poisson_ratio, m.rayleigh_alpha_per_s,
                 m.rayleigh_beta_s);
   std::printf("objects:         %zu\n", s.objects.size());
-  for (const scene::SceneObject& o : s.objects) {
-    std::printf("  %-12s %s, %.4g kg, %s\n", o.name.c_str(), scene::toString(o.shape), o.mass_kg,
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    const scene::SceneObject& o = s.objects[i];
+    std::printf("  %-12s %s, %.4g kg, %s", o.name.c_str(), scene::toString(o.shape), o.mass_kg,
                 o.material.name.c_str());
+    if (o.texture) {
+      // Built here so that a texture that cannot be built is reported now, not by a client.
+      const tex::TextureMap faces = scene::buildObjectTexture(s, i);
+      std::printf("; faces textured: %s %dx%d relief, %.4g mm deep, %.4g m a tile",
+                  o.texture->source.kind == scene::TextureSource::Kind::File ? o.texture->source.file.c_str()
+                                                                              : o.texture->source.generator.kind.c_str(),
+                  faces.width(), faces.height(), 1e3 * faces.maxDepth(), o.texture->tile_m);
+    }
+    std::printf("\n");
   }
   std::printf("rates:           servo %d Hz, physics %d Hz, visual %d Hz, audio %d Hz (fed at %d Hz)\n",
               s.rates.servo_hz, s.rates.physics_hz, s.rates.visual_hz, s.rates.audio_hz, s.rates.audio_feed_hz);

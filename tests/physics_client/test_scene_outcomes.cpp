@@ -11,12 +11,14 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "clients/physics_client/driver.hpp"
+#include "clients/physics_client/pen_path.hpp"
 #include "clients/physics_client/physics_scene.hpp"
 #include "sanitizer.hpp"
 #include "scenes/scene_loader.hpp"
@@ -67,12 +69,15 @@ struct SceneRun {
 // ~300x slower than in RelWithDebInfo: 140 s for the letter blocks at full size.
 using thx::physclient::test::kSanitized;
 
-// texture_size > 0 replaces the generated texture's size (same pattern, coarser texels).
-SceneRun runScene(const std::string& file, double seconds, int texture_size = 0) {
+// texture_size > 0 replaces the generated texture's size (same pattern, coarser texels). With
+// with_pen the pen follows the scene's hand script (penPathFromScript), as `--pen-script` does.
+SceneRun runScene(const std::string& file, double seconds, int texture_size = 0, bool with_pen = false) {
   SceneRun r;
   r.scene = thx::scene::loadScene(kScenes + file);
   if (texture_size > 0) r.scene.surface.texture.generator.size = texture_size;
   PhysicsScene sim(r.scene, SimOptions{});
+  std::optional<PenPath> pen;
+  if (with_pen) pen.emplace(penPathFromScript(sim, 1e-3));
   TrackSink sink;
   DriverOptions d;
   d.rate_hz = r.scene.rates.physics_hz;
@@ -80,7 +85,8 @@ SceneRun runScene(const std::string& file, double seconds, int texture_size = 0)
   d.contact_hz = std::min(d.rate_hz, double(r.scene.rates.audio_feed_hz));
   Driver driver(sim, sink, d);
   const auto steps = std::int64_t(std::llround(seconds * d.rate_hz));
-  for (std::int64_t k = 0; k < steps; ++k) driver.step(std::nullopt);
+  for (std::int64_t k = 0; k < steps; ++k)
+    driver.step(pen ? std::optional<Eigen::Vector3d>(pen->at(double(k) * driver.dt())) : std::nullopt);
   driver.flush();
   r.summary = driver.summary();
   r.tracks = std::move(sink.tracks);
@@ -149,6 +155,40 @@ TEST(ShippedSceneOutcome, MarblesRollDownTheBowlAndMeetOnItsFloor) {
     EXPECT_GT(lowest - kFloorCentreZ, -0.0005) << name;  // never into the floor
     EXPECT_LT(reach(m), 0.055) << name;                   // inside the bowl (55.2 mm inside radius)
   }
+}
+
+// Sample of a track at time t (the last at or before it).
+Sample at(const Track& tr, double t) {
+  Sample s = tr.front();
+  for (const Sample& x : tr)
+    if (x.t <= t) s = x;
+  return s;
+}
+
+// The grooved block rests in the grooved plane's grooves, its own in theirs (both reliefs in the
+// contact); the pen pushes it along the grooves, where it slides and stays in them, then across,
+// where it climbs out over their rims (scenes/grooved_block.yaml).
+TEST(ShippedSceneOutcome, GroovedBlockSlidesAlongTheGroovesAndClimbsOutAcrossThem) {
+  const SceneRun r = runScene("grooved_block.yaml", kSanitized ? 2.8 : 4.2, 0, true);
+  const Track& b = r.tracks.at("block");
+  const double depth = param(r.scene, "depth"), period = param(r.scene, "period");
+  const Sample rest = at(b, 0.4), along = at(b, 2.2), end = b.back();
+  double highest_across = 0.0;
+  for (const Sample& s : b)
+    if (s.t > 2.2) highest_across = std::max(highest_across, s.local.z());
+  std::printf("[measured] grooved block rests %.3f mm lower than on the rims; along: moved %.2f mm along y, %.3f mm "
+              "across, %.3f mm up; across: moved %.2f mm along x, rose up to %.3f mm\n",
+              (0.5 * r.scene.objects[0].size_m.z() - rest.local.z()) * 1e3, (along.local.y() - rest.local.y()) * 1e3,
+              (along.local.x() - rest.local.x()) * 1e3, (along.local.z() - rest.local.z()) * 1e3,
+              (end.local.x() - along.local.x()) * 1e3, (highest_across - rest.local.z()) * 1e3);
+  // In the grooves: its face 0.8 mm below the plane's rims, within the texels' rounding.
+  EXPECT_NEAR(rest.local.z(), 0.5 * r.scene.objects[0].size_m.z() - depth, 0.1 * depth);
+  EXPECT_GT(along.local.y() - rest.local.y(), 0.01);        // pushed along ...
+  EXPECT_LT(std::fabs(along.local.x() - rest.local.x()), 0.05 * period);  // ... straight, in its grooves
+  EXPECT_LT(std::fabs(along.local.z() - rest.local.z()), 0.05 * depth);
+  if (kSanitized) return;  // the push across takes minutes under the sanitizers
+  EXPECT_GT(end.local.x() - along.local.x(), 2 * period);   // pushed across ...
+  EXPECT_GT(highest_across - rest.local.z(), 0.5 * depth);  // ... over the rims
 }
 
 // The dimple ball passes over dimples (through the middle of at least one other than the last)

@@ -67,6 +67,11 @@ inline double meanDepthError(const ReferenceImage& reference, const FloatImage& 
   return n ? sum / n : 1e9;
 }
 
+// The binary search's last interval: the GPU's hit lies within it of the exact one.
+inline double finalInterval(const tex::TextureMap& map, const ReliefSteps& steps) {
+  return map.maxDepth() / (steps.linear * std::exp2(steps.binary));
+}
+
 struct MeshComparison {
   PixelStats stats;
   double mean_depth_error_m = 0;

@@ -179,11 +179,6 @@ TEST(VisualMeshReference, ATextureSqueezedByTheUvIsSeenAtTheSlopeItIsLaidAt) {
   expectTiltedMapShading(0.5);
 }
 
-// The binary search's last interval: the GPU's hit lies within it of the exact one.
-double finalInterval(const tex::TextureMap& map, const ReliefSteps& steps) {
-  return map.maxDepth() / (steps.linear * std::exp2(steps.binary));
-}
-
 // Pixels whose GPU hit lies deeper than half the relief: the march went down, not only along.
 double deepFraction(const MeshFrame& frame, double max_depth_m) {
   int deep = 0, on = 0;
