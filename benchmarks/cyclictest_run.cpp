@@ -49,13 +49,15 @@ bool parseCyclictestHistogram(const std::string& text, Latency& l) {
   return true;
 }
 
-Job startCyclictest(const std::string& exe, int seconds, const std::string& workdir, const std::string& tag) {
+Job startCyclictest(const std::string& exe, int seconds, const std::string& workdir, const std::string& tag,
+                    int interval_us) {
   Job j;
   j.out = workdir + "/lat_cyclictest_" + tag + ".hist";
   j.log = workdir + "/lat_cyclictest_" + tag + ".log";
   std::remove(j.out.c_str());
   std::remove(j.log.c_str());
-  j.argv = {exe, "-m", "-p", "80", "-i", "1000", "-l", std::to_string(seconds * 1000), "-q", "-h", "10000",
+  const long long loops = (long long)seconds * 1000000LL / interval_us;
+  j.argv = {exe, "-m", "-p", "80", "-i", std::to_string(interval_us), "-l", std::to_string(loops), "-q", "-h", "10000",
             "--histfile=" + j.out};
   j.pid = spawn(j.argv, j.log);
   return j;

@@ -1,6 +1,6 @@
 #pragma once
 // cyclictest (Debian rt-tests) as the latency benchmarks run it (bench_latency, bench_load): started
-// at SCHED_FIFO 80 with a 1 ms interval and a 1 us histogram file, watched for its FIFO thread,
+// at SCHED_FIFO 80 with a 1 ms interval (bench_load: the servo's period) and a 1 us histogram file, watched for its FIFO thread,
 // its histogram read back into quantiles.
 #include <sys/types.h>
 
@@ -33,8 +33,10 @@ struct Job {
   std::string log, out;  // out: histogram file (cyclictest) or stats JSON (hapticd)
 };
 
-// cyclictest -m -p 80 -i 1000 for `seconds`, histogram to WORKDIR/lat_cyclictest_TAG.hist.
-Job startCyclictest(const std::string& exe, int seconds, const std::string& workdir, const std::string& tag);
+// cyclictest -m -p 80 -i INTERVAL for `seconds`, histogram to WORKDIR/lat_cyclictest_TAG.hist;
+// the interval in microseconds (1000: the 1 kHz servo's period).
+Job startCyclictest(const std::string& exe, int seconds, const std::string& workdir, const std::string& tag,
+                    int interval_us = 1000);
 // Watches cyclictest for its SCHED_FIFO thread (policy 1) during its first two seconds. If it
 // ends meanwhile, `ended` receives its exit status (it has been reaped).
 bool sawFifo(pid_t pid, std::optional<int>& ended);

@@ -14,6 +14,11 @@
 #              or load (hapticd's full-force share beside stress-ng and cyclictest, old and new
 #              missed-tick policy; THX_LOAD_SECONDS per run (25), THX_LOAD_LOADS (none,cpu2,cpu2+vm),
 #              THX_LOAD_ROUNDS (1); about 3 min a round; needs stress-ng, Debian stress-ng, in setup.sh)
+#              or rates (issue 30: the same at servo rates of 1, 2 and 4 kHz, ride-through only,
+#              cyclictest at the servo's period, loads none and cpu2; THX_RATES_SECONDS per run (15),
+#              THX_RATES (1000,2000,4000), THX_RATES_LOADS (none,cpu2); about 1.5 min; then the
+#              texture's force error against the servo rate (bench_rate_texture, seconds); both
+#              tables go to docs/hapticd.md)
 #              or visual_servo (hapticd's wake latency alone and beside visual-client --live, servo
 #              SCHED_FIFO and normal, LP_NUM_THREADS 2 and 1; THX_VISUAL_SERVO_SECONDS per run (20);
 #              about 2.5 min; needs xvfb-run and setpriv; its table goes to docs/visual.md)
@@ -187,6 +192,27 @@ run_load() {
   return $rc
 }
 
+run_rates() {
+  need "$BIN/bench_load" && need "$BIN/bench_rate_texture" && need "$HAPTICD" || return 1
+  local ct sn
+  ct=$(command -v cyclictest || true)
+  sn=$(command -v stress-ng || true)
+  if [ -z "$ct" ] || [ -z "$sn" ]; then
+    say "cyclictest or stress-ng not found: install rt-tests and stress-ng (./setup.sh); skipping part rates"
+    return 1
+  fi
+  say "part rates: hapticd at 1, 2 and 4 kHz beside cyclictest at the same period, idle and loaded"
+  "$BIN/bench_load" --hapticd "$HAPTICD" --scene "$ROOT/benchmarks/scenes/load_press.yaml" \
+    --seconds "${THX_RATES_SECONDS:-15}" --rates "${THX_RATES:-1000,2000,4000}" --policies ride-through \
+    --loads "${THX_RATES_LOADS:-none,cpu2}" --cyclictest "$ct" --stress-ng "$sn" --workdir "$WORK" \
+    --json "$RESULTS/bench_rates.json" --csv "$RESULTS/bench_rates.csv" --md "$WORK/bench_rates.md"
+  local rc=$?
+  [ -s "$WORK/bench_rates.md" ] && splice bench_rates "$WORK/bench_rates.md" "$ROOT/docs/hapticd.md"
+  say "part rates: the texture's force error against the servo rate"
+  bench_with_table bench_rate_texture "$ROOT/docs/hapticd.md" || rc=1
+  return $rc
+}
+
 run_clients() {
   need "$BIN/bench_clients" && need "$HAPTICD" && need "$BUILD/clients/probe/probe-client" || return 1
   say "part 5: 16 clients against hapticd (60 s), and hapticd alone before and after (30 s each)"
@@ -319,14 +345,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | table1 | mesh_force | physics_mesh | textured_pair | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | table1 | mesh_force | physics_mesh | textured_pair | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load table1 mesh_force physics_mesh textured_pair report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates table1 mesh_force physics_mesh textured_pair report)"
       exit 2
       ;;
   esac
