@@ -56,6 +56,7 @@ struct Row {
   std::string load, policy, stress_command, hapticd_command;
   int round = 1;
   int rate_hz = 1000;  // the servo's
+  int spin_us = 0;     // hapticd --spin-us
   bench::Latency cyclictest;
   bool hapticd_ok = false, hapticd_fifo = false;
   double wake_p99_us = 0, wake_max_us = 0;
@@ -140,7 +141,7 @@ void stopStress(pid_t pid) {
   test::waitExit(pid);
 }
 
-Row runOne(const std::string& hapticd, const std::string& scene, int rate_hz, const std::string& cyclictest,
+Row runOne(const std::string& hapticd, const std::string& scene, int rate_hz, int spin_us, const std::string& cyclictest,
            const std::string& stress_ng, const Load& load, const std::string& policy, int seconds, int round,
            const std::string& workdir) {
   Row row;
@@ -148,9 +149,11 @@ Row runOne(const std::string& hapticd, const std::string& scene, int rate_hz, co
   row.policy = policy;
   row.round = round;
   row.rate_hz = rate_hz;
-  const std::string tag = load.name + "_" + policy + "_" + std::to_string(rate_hz) + "hz_" + std::to_string(round);
-  std::fprintf(stderr, "bench_load: load %s, policy %s, servo %d Hz, round %d (%d s)\n", load.name.c_str(),
-               policy.c_str(), rate_hz, round, seconds);
+  row.spin_us = spin_us;
+  const std::string tag = load.name + "_" + policy + "_" + std::to_string(rate_hz) + "hz_spin" + std::to_string(spin_us) +
+                          "_" + std::to_string(round);
+  std::fprintf(stderr, "bench_load: load %s, policy %s, servo %d Hz, spin %d us, round %d (%d s)\n", load.name.c_str(),
+               policy.c_str(), rate_hz, spin_us, round, seconds);
   const pid_t stress = startStress(stress_ng, load, seconds, workdir, row);
 
   bench::Job h;
@@ -160,6 +163,7 @@ Row runOne(const std::string& hapticd, const std::string& scene, int rate_hz, co
   std::remove(h.log.c_str());
   h.argv = {hapticd, "--scene", scene, "--duration", std::to_string(seconds), "--missed-policy", policy,
             "--no-lcm", "--quiet", "--stats-json", h.out, "--flight-dir", workdir};
+  if (spin_us > 0) h.argv.insert(h.argv.end(), {"--spin-us", std::to_string(spin_us)});
   h.pid = bench::spawn(h.argv, h.log);
   row.hapticd_command = test::commandLine(h.argv);
   const bench::Job c =
@@ -184,15 +188,15 @@ std::string pct(double share) { return bench::fmt("%.2f %%", 100.0 * share); }
 
 std::string csvOf(const std::vector<Row>& rows) {
   std::string csv =
-      "load,policy,round,servo_hz,cyclictest_ok,cyclictest_fifo,cyclictest_p99_us,cyclictest_max_us,hapticd_ok,hapticd_fifo,"
+      "load,policy,round,servo_hz,spin_us,cyclictest_ok,cyclictest_fifo,cyclictest_p99_us,cyclictest_max_us,hapticd_ok,hapticd_fifo,"
       "wake_p99_us,wake_max_us,ticks,missed_ticks,disengages,ride_throughs,long_stalls,jumps,success_rate_drops,"
       "full_force_ticks,service_ticks,service_missed_ticks,full_force_share,contact_ticks,contact_full_force_share,"
       "passivity_active_ticks,goal,stress_command,note\n";
   for (const Row& r : rows) {
     csv += bench::fmt(
-        "%s,%s,%d,%d,%s,%s,%.0f,%.0f,%s,%s,%.1f,%.1f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%.5f,%llu,%.5f,"
+        "%s,%s,%d,%d,%d,%s,%s,%.0f,%.0f,%s,%s,%.1f,%.1f,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%.5f,%llu,%.5f,"
         "%llu,\"%s\",\"%s\",\"%s\"\n",
-        r.load.c_str(), r.policy.c_str(), r.round, r.rate_hz, r.cyclictest.ok ? "true" : "false",
+        r.load.c_str(), r.policy.c_str(), r.round, r.rate_hz, r.spin_us, r.cyclictest.ok ? "true" : "false",
         r.cyclictest.fifo ? "true" : "false", r.cyclictest.p99_us, r.cyclictest.max_us, r.hapticd_ok ? "true" : "false",
         r.hapticd_fifo ? "true" : "false", r.wake_p99_us, r.wake_max_us, (unsigned long long)r.ticks,
         (unsigned long long)r.missed, (unsigned long long)r.disengages, (unsigned long long)r.ride_throughs,
@@ -212,7 +216,7 @@ std::string jsonOf(const std::vector<Row>& rows, int seconds, const std::string&
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     js += bench::fmt(
-        "    {\"load\": \"%s\", \"policy\": \"%s\", \"round\": %d, \"servo_hz\": %d, \"stress_command\": \"%s\", "
+        "    {\"load\": \"%s\", \"policy\": \"%s\", \"round\": %d, \"servo_hz\": %d, \"spin_us\": %d, \"stress_command\": \"%s\", "
         "\"cyclictest\": {\"ok\": %s, \"sched_fifo\": %s, \"p50_us\": %.0f, \"p99_us\": %.0f, \"max_us\": %.0f}, "
         "\"hapticd\": {\"ok\": %s, \"sched_fifo\": %s, \"wake_p99_us\": %.1f, \"wake_max_us\": %.1f, \"ticks\": %llu, "
         "\"missed_ticks\": %llu, \"disengages\": %llu, \"ride_throughs\": %llu, \"long_stalls\": %llu, \"jumps\": %llu, "
@@ -220,7 +224,7 @@ std::string jsonOf(const std::vector<Row>& rows, int seconds, const std::string&
         "\"service_missed_ticks\": %llu, \"full_force_share\": %.5f, \"contact_ticks\": %llu, "
         "\"contact_full_force_share\": %.5f, \"passivity_active_ticks\": %llu, \"command\": \"%s\"}, "
         "\"goal\": \"%s\", \"note\": \"%s\"}%s\n",
-        r.load.c_str(), r.policy.c_str(), r.round, r.rate_hz, r.stress_command.c_str(), r.cyclictest.ok ? "true" : "false",
+        r.load.c_str(), r.policy.c_str(), r.round, r.rate_hz, r.spin_us, r.stress_command.c_str(), r.cyclictest.ok ? "true" : "false",
         r.cyclictest.fifo ? "true" : "false", r.cyclictest.p50_us, r.cyclictest.p99_us, r.cyclictest.max_us,
         r.hapticd_ok ? "true" : "false", r.hapticd_fifo ? "true" : "false", r.wake_p99_us, r.wake_max_us,
         (unsigned long long)r.ticks, (unsigned long long)r.missed, (unsigned long long)r.disengages,
@@ -240,23 +244,24 @@ std::string markdownOf(const std::vector<Row>& rows, int seconds, const std::str
       "%d s per run. Full force: device periods from the first engagement to the shutdown request, missed "
       "periods included, in which the safety stage passed the force at gain 1 (no engage, ramp, rate "
       "limit or disengagement). In contact: of the served ticks in contact. Passivity: ticks the passivity "
-      "controller acted. cyclictest runs at the servo's period. Goal: ≥ 99 %% of the device periods whenever "
+      "controller acted. Spin: hapticd --spin-us (the last microseconds before each tick busy-waited). "
+      "cyclictest runs at the servo's period. Goal: ≥ 99 %% of the device periods whenever "
       "cyclictest's p99 in the same window is under 1 ms at 1 kHz (issue 12), under half the period above it "
       "(issue 30).\n\n",
       seconds);
-  md += "| round | servo Hz | load | missed-tick policy | cyclictest p99 / max µs | hapticd wake p99 / max µs | "
+  md += "| round | servo Hz | spin µs | load | missed-tick policy | cyclictest p99 / max µs | hapticd wake p99 / max µs | "
         "missed ticks | disengages | gaps ridden through | full force | full force in contact | passivity | goal |\n";
-  md += "|---|---:|---|---|---|---|---|---|---|---|---|---:|---|\n";
+  md += "|---|---:|---:|---|---|---|---|---|---|---|---|---|---:|---|\n";
   for (const Row& r : rows) {
     const std::string ct = r.cyclictest.ok ? bench::fmt("%.0f / %.0f", r.cyclictest.p99_us, r.cyclictest.max_us)
                                            : std::string("failed");
     if (!r.hapticd_ok) {
-      md += bench::fmt("| %d | %d | %s | %s | %s | — | — | — | — | — | — | — | %s |\n", r.round, r.rate_hz,
-                       r.load.c_str(), r.policy.c_str(), ct.c_str(), r.note.c_str());
+      md += bench::fmt("| %d | %d | %d | %s | %s | %s | — | — | — | — | — | — | — | %s |\n", r.round, r.rate_hz,
+                       r.spin_us, r.load.c_str(), r.policy.c_str(), ct.c_str(), r.note.c_str());
       continue;
     }
-    md += bench::fmt("| %d | %d | %s | %s | %s | %.0f / %.0f | %llu | %llu | %llu | %s | %s | %llu | %s |\n", r.round,
-                     r.rate_hz, r.load.c_str(), r.policy.c_str(), ct.c_str(), r.wake_p99_us, r.wake_max_us,
+    md += bench::fmt("| %d | %d | %d | %s | %s | %s | %.0f / %.0f | %llu | %llu | %llu | %s | %s | %llu | %s |\n", r.round,
+                     r.rate_hz, r.spin_us, r.load.c_str(), r.policy.c_str(), ct.c_str(), r.wake_p99_us, r.wake_max_us,
                      (unsigned long long)r.missed, (unsigned long long)r.disengages,
                      (unsigned long long)r.ride_throughs, pct(r.fullShare()).c_str(), pct(r.contactShare()).c_str(),
                      (unsigned long long)r.passivity_active, r.goal().c_str());
@@ -265,7 +270,7 @@ std::string markdownOf(const std::vector<Row>& rows, int seconds, const std::str
   bool first = true;
   for (const Row& r : rows) {
     if (r.stress_command.empty() || r.policy != rows.front().policy || r.rate_hz != rows.front().rate_hz ||
-        r.round != 1)
+        r.spin_us != rows.front().spin_us || r.round != 1)
       continue;
     md += std::string(first ? "" : "; ") + "`" + r.load + "`: `" + r.stress_command + "`";
     first = false;
@@ -300,12 +305,13 @@ the same window, with the old missed-tick policy (disengage) and the new one (ri
                    WORKDIR with its `servo_hz: 1000` replaced and `integration_hz: 10000` raised to
                    25 x the rate (at least 10000); cyclictest runs at the servo's period
   --policies LIST  missed-tick policies, of: disengage, ride-through (default both)
+  --spins LIST     hapticd --spin-us values, microseconds (default 0: hapticd sleeps to each tick)
 benchmarks/run.sh BUILD_DIR load runs it as docs/benchmarks.md shows; BUILD_DIR rates at 1, 2 and 4 kHz
 as docs/hapticd.md shows.
 )");
   std::string hapticd, scene = bench::sourceDir() + "/benchmarks/scenes/load_press.yaml", cyclictest = "cyclictest",
                        stress_ng = "stress-ng", workdir = ".", json_path, csv_path, md_path, loads = "none,cpu2,cpu2+vm",
-                       rates_text = "1000", policies_text = "disengage,ride-through";
+                       rates_text = "1000", policies_text = "disengage,ride-through", spins_text = "0";
   int seconds = 25, rounds = 1;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], val = argv[i + 1];
@@ -316,6 +322,7 @@ as docs/hapticd.md shows.
     else if (a == "--rounds") rounds = std::max(1, std::atoi(val.c_str()));
     else if (a == "--rates") rates_text = val;
     else if (a == "--policies") policies_text = val;
+    else if (a == "--spins") spins_text = val;
     else if (a == "--cyclictest") cyclictest = val;
     else if (a == "--stress-ng") stress_ng = val;
     else if (a == "--workdir") workdir = val;
@@ -367,16 +374,29 @@ as docs/hapticd.md shows.
     policies.push_back(p);
   }
 
+  std::vector<int> spins;
+  std::stringstream spin_list(spins_text);
+  for (std::string v; std::getline(spin_list, v, ',');) {
+    const int us = std::atoi(v.c_str());
+    if (us < 0 || us > 10000 || v.find_first_not_of("0123456789") != std::string::npos) {
+      std::fprintf(stderr, "bench_load: --spins: '%s'; expected microseconds in 0..10000\n", v.c_str());
+      return 2;
+    }
+    spins.push_back(us);
+  }
+
   std::vector<Row> rows;
   const std::string load_avg = loadAverage();
   try {
     for (int round = 1; round <= rounds; ++round) {
       for (const int rate : rates) {
         const std::string rate_scene = sceneAtRate(scene, rate, workdir);
-        for (const Load& load : chosen) {
-          for (const std::string& policy : policies) {
-            rows.push_back(
-                runOne(hapticd, rate_scene, rate, cyclictest, stress_ng, load, policy, seconds, round, workdir));
+        for (const int spin : spins) {
+          for (const Load& load : chosen) {
+            for (const std::string& policy : policies) {
+              rows.push_back(runOne(hapticd, rate_scene, rate, spin, cyclictest, stress_ng, load, policy, seconds, round,
+                                    workdir));
+            }
           }
         }
       }
@@ -389,9 +409,9 @@ as docs/hapticd.md shows.
     return 1;
   }
   for (const Row& r : rows) {
-    std::fprintf(stderr, "bench_load: %5d Hz %-8s %-12s cyclictest p99 %5.0f us, wake p99 %6.1f us, missed %4llu, "
+    std::fprintf(stderr, "bench_load: %5d Hz spin %4d us %-8s %-12s cyclictest p99 %5.0f us, wake p99 %6.1f us, missed %4llu, "
                  "disengages %3llu, passivity %4llu, full force %s\n",
-                 r.rate_hz, r.load.c_str(), r.policy.c_str(), r.cyclictest.p99_us, r.wake_p99_us, (unsigned long long)r.missed,
+                 r.rate_hz, r.spin_us, r.load.c_str(), r.policy.c_str(), r.cyclictest.p99_us, r.wake_p99_us, (unsigned long long)r.missed,
                  (unsigned long long)r.disengages, (unsigned long long)r.passivity_active, pct(r.fullShare()).c_str());
     if (!r.hapticd_ok || !r.cyclictest.ok) return 1;
   }

@@ -15,8 +15,9 @@
 #              missed-tick policy; THX_LOAD_SECONDS per run (25), THX_LOAD_LOADS (none,cpu2,cpu2+vm),
 #              THX_LOAD_ROUNDS (1); about 3 min a round; needs stress-ng, Debian stress-ng, in setup.sh)
 #              or rates (issue 30: the same at servo rates of 1, 2 and 4 kHz, ride-through only,
-#              cyclictest at the servo's period, loads none and cpu2; THX_RATES_SECONDS per run (15),
-#              THX_RATES (1000,2000,4000), THX_RATES_LOADS (none,cpu2); about 1.5 min; then the
+#              cyclictest at the servo's period, loads none and cpu2, hapticd sleeping to each tick and
+#              spinning its last 150 us; THX_RATES_SECONDS per run (15), THX_RATES (1000,2000,4000),
+#              THX_RATES_LOADS (none,cpu2), THX_RATES_SPINS (0,150); about 3.5 min; then the
 #              texture's force error against the servo rate (bench_rate_texture, seconds); both
 #              tables go to docs/hapticd.md)
 #              or visual_servo (hapticd's wake latency alone and beside visual-client --live, servo
@@ -204,6 +205,7 @@ run_rates() {
   say "part rates: hapticd at 1, 2 and 4 kHz beside cyclictest at the same period, idle and loaded"
   "$BIN/bench_load" --hapticd "$HAPTICD" --scene "$ROOT/benchmarks/scenes/load_press.yaml" \
     --seconds "${THX_RATES_SECONDS:-15}" --rates "${THX_RATES:-1000,2000,4000}" --policies ride-through \
+    --spins "${THX_RATES_SPINS:-0,150}" \
     --loads "${THX_RATES_LOADS:-none,cpu2}" --cyclictest "$ct" --stress-ng "$sn" --workdir "$WORK" \
     --json "$RESULTS/bench_rates.json" --csv "$RESULTS/bench_rates.csv" --md "$WORK/bench_rates.md"
   local rc=$?

@@ -28,6 +28,9 @@ struct SimPhantomConfig {
   OutputMode output_mode = OutputMode::Force;
 
   std::int64_t servo_period_ns = 1'000'000;  // the device's tick
+  // Real time: the last spin_ns before each tick spent in a busy wait instead of asleep
+  // (rt::Pacer; hapticd --spin-us). Ignored in lock-step; clamped below the period.
+  std::int64_t spin_ns = 0;
   int integration_hz = 10'000;               // integration_hz * period must be a whole number >= 10
 
   double encoder_resolution_m = 2.3e-5;  // position quantum per axis

@@ -32,7 +32,7 @@ SimPhantom::SimPhantom(SimPhantomConfig config, HandScript script, rt::Clock* cl
       script_(std::move(script)),
       owned_clock_(makeClock(config_.lockstep, clock)),
       clock_(clock ? clock : owned_clock_.get()),
-      pacer_(*clock_, config_.servo_period_ns),
+      pacer_(*clock_, config_.servo_period_ns, config_.spin_ns),
       dynamics_(config_),
       steps_per_tick_(dev::stepsPerTick(config_)),
       period_s_(double(config_.servo_period_ns) * 1e-9) {}

@@ -16,4 +16,12 @@ void MonotonicClock::sleepUntilNs(std::int64_t t_ns) {
   }
 }
 
+void MonotonicClock::spinUntilNs(std::int64_t t_ns) {
+  while (monotonicNowNs() < t_ns) {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();  // tells the core (and a hypervisor) that this is a spin
+#endif
+  }
+}
+
 }  // namespace thx::rt

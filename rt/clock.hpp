@@ -22,6 +22,9 @@ class Clock {
   virtual std::int64_t nowNs() = 0;
   // Returns when nowNs() >= t_ns. Real-time safe: no allocation, no locks.
   virtual void sleepUntilNs(std::int64_t t_ns) = 0;
+  // The same, without giving up the CPU (a busy wait on the clock): the Pacer's last stretch
+  // before a deadline when asked to spin. By default it sleeps.
+  virtual void spinUntilNs(std::int64_t t_ns) { sleepUntilNs(t_ns); }
 };
 
 // CLOCK_MONOTONIC with clock_nanosleep(TIMER_ABSTIME): absolute deadlines never drift.
@@ -29,6 +32,7 @@ class MonotonicClock final : public Clock {
  public:
   std::int64_t nowNs() override;
   void sleepUntilNs(std::int64_t t_ns) override;
+  void spinUntilNs(std::int64_t t_ns) override;
 };
 
 // Lock-step time: sleepUntilNs jumps to the deadline; advance() models compute time in tests.

@@ -20,7 +20,12 @@ TickTiming Pacer::wait() {
     t.missed = skipped;
     total_missed_ += skipped;
   }
-  clock_.sleepUntilNs(next_deadline_ns_);
+  if (spin_ns_ > 0) {
+    clock_.sleepUntilNs(next_deadline_ns_ - spin_ns_);
+    clock_.spinUntilNs(next_deadline_ns_);
+  } else {
+    clock_.sleepUntilNs(next_deadline_ns_);
+  }
   now = clock_.nowNs();
   t.tick = next_tick_;
   t.deadline_ns = next_deadline_ns_;

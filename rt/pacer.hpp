@@ -24,7 +24,12 @@ struct TickTiming {
 
 class Pacer {
  public:
-  Pacer(Clock& clock, std::int64_t period_ns) : clock_(clock), period_ns_(period_ns) {}
+  // spin_ns > 0: wait() sleeps until spin_ns before each deadline and spends the rest in a busy
+  // wait (Clock::spinUntilNs). A kernel that wakes a sleeping thread late (a VM's idle vCPU) then
+  // makes it late only by what exceeds spin_ns, at the cost of spin_ns of CPU every period. Clamped
+  // to [0, period_ns).
+  Pacer(Clock& clock, std::int64_t period_ns, std::int64_t spin_ns = 0)
+      : clock_(clock), period_ns_(period_ns), spin_ns_(spin_ns < 0 ? 0 : spin_ns >= period_ns ? period_ns - 1 : spin_ns) {}
 
   // The first deadline is one period after now.
   void start();
@@ -32,11 +37,13 @@ class Pacer {
   TickTiming wait();
 
   std::int64_t periodNs() const { return period_ns_; }
+  std::int64_t spinNs() const { return spin_ns_; }
   std::int64_t totalMissed() const { return total_missed_; }
 
  private:
   Clock& clock_;
   std::int64_t period_ns_;
+  std::int64_t spin_ns_;
   std::int64_t next_deadline_ns_ = 0;
   std::int64_t next_tick_ = 0;
   std::int64_t total_missed_ = 0;

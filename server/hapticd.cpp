@@ -55,7 +55,8 @@ int run(const thx::srv::HapticdOptions& o) {
     const bool simulated = o.device.rfind("replay:", 0) != 0 && vrpn_address.empty();
     if (simulated) srv::checkScriptOnMesh(sc, *hand_surface);
   }
-  const srv::SceneDevice chosen = srv::makeSceneDevice(sc, o.device, vrpn_address, o.lockstep, hand_surface.get());
+  const srv::SceneDevice chosen =
+      srv::makeSceneDevice(sc, o.device, vrpn_address, o.lockstep, hand_surface.get(), o.spin_ns);
   const dev::SimPhantom* sim = chosen.sim;
   const dev::ReplayDevice* replay = chosen.replay;
   if (replay && !o.quiet)

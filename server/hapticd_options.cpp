@@ -67,6 +67,11 @@ publishes device and contact state over LCM.
                         (default: warn; the vendor maximum already assumes a damping hand)
   --require-rt          fail if SCHED_FIFO or mlockall cannot be had (default: warn and go on)
   --cpu N               pin the servo thread to CPU N
+  --spin-us US          real time: the servo's device waits out the last US microseconds before
+                        each tick in a busy loop instead of asleep (default 0: it sleeps); a kernel
+                        that wakes a sleeping thread late (a VM's idle CPU) then makes the tick late
+                        only by what exceeds US, for US of CPU every period (clamped below the
+                        period; docs/hapticd.md)
   --no-mlock            do not lock memory
   --mlock-eager         fault in and lock every mapped page at start (whole shared libraries);
                         default: lock pages as they are first touched (MCL_ONFAULT)
@@ -201,6 +206,10 @@ HapticdOptions parseHapticdOptions(const std::vector<std::string>& args) {
       o.rt.require = true;
     } else if (a == "--cpu") {
       o.rt.cpu = int(number(a, value()));
+    } else if (a == "--spin-us") {
+      const double us = number(a, value());
+      if (!(us >= 0 && us <= 10000)) usage("--spin-us: expected microseconds in [0, 10000], got " + args[i]);
+      o.spin_ns = std::int64_t(std::llround(us * 1e3));
     } else if (a == "--no-mlock") {
       o.rt.lock_memory = false;
     } else if (a == "--mlock-eager") {

@@ -41,6 +41,7 @@ struct HapticdOptions {
   std::string device;      // empty: the scene's
   std::optional<double> duration_s;
   bool lockstep = false;
+  std::int64_t spin_ns = 0;  // --spin-us: the device pacer's busy wait before each tick (real time)
   std::string stats_json;
   std::string record;  // --record FILE
   std::string lcm_url = thx_msgs::kDefaultLcmUrl;

@@ -111,7 +111,8 @@ ServoRigConfig servoRigConfigFor(const scene::Scene& s) {
 }
 
 SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device_option,
-                            const std::string& vrpn_address, bool lockstep, const dev::SurfaceHeight* hand_surface) {
+                            const std::string& vrpn_address, bool lockstep, const dev::SurfaceHeight* hand_surface,
+                            std::int64_t spin_ns) {
   const std::int64_t period_ns = std::int64_t(std::llround(1.0 / scene.rates.servo_hz * 1e9));
   SceneDevice d;
   if (device_option.rfind("replay:", 0) == 0) {
@@ -125,12 +126,14 @@ SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device
   } else if (vrpn_address.empty()) {
     dev::SimPhantomConfig config = simConfigFor(scene, lockstep);
     config.surface_height = hand_surface;
+    config.spin_ns = spin_ns;
     auto sim = std::make_unique<dev::SimPhantom>(config, handScriptFor(scene, hand_surface));
     d.sim = sim.get();
     d.device = std::move(sim);
   } else {
     vrpn::VrpnClientOptions vo;
     vo.period_ns = period_ns;
+    vo.spin_ns = lockstep ? 0 : spin_ns;
     vo.request_rate_hz = scene.rates.servo_hz;  // a fresh pose every tick
     d.device = std::make_unique<vrpn::VrpnClientDevice>(vrpn_address, deviceSpecFor(scene), vo);
   }

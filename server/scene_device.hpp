@@ -45,9 +45,11 @@ struct SceneDevice {
 };
 // `hand_surface`: a mesh scene's heights for the simulated hand (SimPhantomConfig::surface_height;
 // it must outlive the device), nullptr on the plane.
+// `spin_ns`: the simulated or VRPN device's pacer busy-waits the last spin_ns of each period
+// (rt::Pacer; hapticd --spin-us), in real time only.
 SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device_option,
                             const std::string& vrpn_address, bool lockstep,
-                            const dev::SurfaceHeight* hand_surface = nullptr);
+                            const dev::SurfaceHeight* hand_surface = nullptr, std::int64_t spin_ns = 0);
 
 // A mesh scene's script against its mesh: every point a press, stroke or path step touches must
 // have the mesh under it (seen from above in the surface frame), or the hand would press on

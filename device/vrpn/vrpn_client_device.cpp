@@ -129,7 +129,7 @@ VrpnClientDevice::VrpnClientDevice(std::string address, dev::DeviceSpec spec, Vr
     : address_text_(std::move(address)),
       spec_(std::move(spec)),
       options_(options),
-      pacer_(options_.clock ? *options_.clock : own_clock_, options_.period_ns) {}
+      pacer_(options_.clock ? *options_.clock : own_clock_, options_.period_ns, options_.spin_ns) {}
 
 VrpnClientDevice::~VrpnClientDevice() { close(); }
 

@@ -61,6 +61,7 @@ namespace thx::vrpn {
 
 struct VrpnClientOptions {
   std::int64_t period_ns = 1'000'000;  // servo period read() paces at
+  std::int64_t spin_ns = 0;            // the last spin_ns of each period busy-waited (rt::Pacer)
   rt::Clock* clock = nullptr;         // paces read(); nullptr = an internal MonotonicClock
   std::chrono::nanoseconds staleness{std::chrono::milliseconds(5)};
   std::chrono::nanoseconds reconnect_interval{std::chrono::seconds(2)};

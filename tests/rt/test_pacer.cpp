@@ -1,6 +1,9 @@
 // The servo's timing policy on a virtual clock: grid deadlines, late ticks, realignment after
-// overruns (no catch-up burst), missed-tick accounting.
+// overruns (no catch-up burst), missed-tick accounting; the spin before a deadline.
 #include <gtest/gtest.h>
+
+#include <utility>
+#include <vector>
 
 #include "rt/pacer.hpp"
 
@@ -71,6 +74,64 @@ TEST(Pacer, MonotonicClockSleepsUntilTheDeadline) {
     EXPECT_GE(t.wake_ns, t.deadline_ns);
     EXPECT_GE(clock.nowNs(), t.deadline_ns);
   }
+}
+
+// A clock that records how the pacer waits: a sleep, then a spin, each to its target.
+class RecordingClock final : public Clock {
+ public:
+  std::int64_t nowNs() override { return now_; }
+  void sleepUntilNs(std::int64_t t) override {
+    calls.push_back({'s', t});
+    if (t > now_) now_ = t;
+  }
+  void spinUntilNs(std::int64_t t) override {
+    calls.push_back({'p', t});
+    if (t > now_) now_ = t;
+  }
+  std::vector<std::pair<char, std::int64_t>> calls;
+
+ private:
+  std::int64_t now_ = 0;
+};
+
+TEST(Pacer, SpinsTheLastStretchBeforeEachDeadline) {
+  RecordingClock clock;
+  Pacer pacer(clock, 250'000, 100'000);  // 4 kHz, the last 100 us spun
+  EXPECT_EQ(pacer.spinNs(), 100'000);
+  pacer.start();
+  const TickTiming t = pacer.wait();
+  EXPECT_EQ(t.deadline_ns, 250'000);
+  EXPECT_EQ(t.wake_latency_ns, 0);
+  ASSERT_EQ(clock.calls.size(), 2u);
+  EXPECT_EQ(clock.calls[0], std::make_pair('s', std::int64_t(150'000)));
+  EXPECT_EQ(clock.calls[1], std::make_pair('p', std::int64_t(250'000)));
+  // Without a spin it only sleeps, as before; a spin of a period or more is clamped below it.
+  RecordingClock plain;
+  Pacer sleeper(plain, 250'000);
+  sleeper.start();
+  sleeper.wait();
+  ASSERT_EQ(plain.calls.size(), 1u);
+  EXPECT_EQ(plain.calls[0], std::make_pair('s', std::int64_t(250'000)));
+  EXPECT_EQ(Pacer(plain, 250'000, 400'000).spinNs(), 249'999);
+  EXPECT_EQ(Pacer(plain, 250'000, -5).spinNs(), 0);
+}
+
+TEST(Pacer, MonotonicClockSpinsToTheDeadline) {
+  // Behaviour only (never a timing bound).
+  MonotonicClock clock;
+  Pacer pacer(clock, 200'000, 150'000);
+  pacer.start();
+  for (int k = 0; k < 5; ++k) {
+    const TickTiming t = pacer.wait();
+    EXPECT_GE(t.wake_ns, t.deadline_ns);
+    EXPECT_GE(clock.nowNs(), t.deadline_ns);
+  }
+  // A virtual clock's spin jumps like its sleep: lock-step never busy-waits.
+  VirtualClock virtual_clock;
+  Pacer lockstep(virtual_clock, 250'000, 100'000);
+  lockstep.start();
+  EXPECT_EQ(lockstep.wait().deadline_ns, 250'000);
+  EXPECT_EQ(virtual_clock.nowNs(), 250'000);
 }
 
 }  // namespace test_pacer

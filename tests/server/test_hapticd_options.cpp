@@ -43,6 +43,7 @@ TEST(HapticdOptions, DefaultsAreTheDocumentedOnes) {
   EXPECT_EQ(o.device, "");
   EXPECT_FALSE(o.duration_s);
   EXPECT_FALSE(o.lockstep);
+  EXPECT_EQ(o.spin_ns, 0);
   EXPECT_EQ(o.stats_json, "");
   EXPECT_EQ(o.record, "");
   EXPECT_EQ(o.lcm_url, thx_msgs::kDefaultLcmUrl);
@@ -151,6 +152,7 @@ TEST(HapticdOptions, RenderingAndRealTimeOptions) {
   EXPECT_EQ(o.flight_limits.max_files, 3u);
   EXPECT_DOUBLE_EQ(o.flight_limits.min_interval_s, 0.0);
   EXPECT_EQ(parse({"--missed-policy", "ride-through"}).missed_mode, thx::srv::MissedTickMode::RideThrough);
+  EXPECT_EQ(parse({"--spin-us", "150"}).spin_ns, 150'000);
 }
 
 TEST(HapticdOptions, VrpnServerOptions) {
@@ -177,6 +179,7 @@ TEST(HapticdOptions, ErrorsNameTheOptionTheValueAndWhatWasExpected) {
       {{"--scene", "x", "--duration", "abc"}, "--duration: expected a number, got 'abc'"},
       {{"--scene", "x", "--io-priority", "80"}, "--io-priority: expected a whole number 0..79 (below the servo's 80), got 80"},
       {{"--scene", "x", "--max-clients", "0"}, "--max-clients must be a whole number >= 1"},
+      {{"--scene", "x", "--spin-us", "-3"}, "--spin-us: expected microseconds in [0, 10000], got -3"},
       {{"--scene", "x", "--max-rate", "0"}, "--max-rate must be > 0"},
       {{"--scene", "x", "--max-bandwidth", "0"}, "--max-bandwidth must be > 0"},
       {{"--scene", "x", "--heartbeat-timeout", "0.01"}, "--heartbeat-timeout must be in [0.05, 3600] s"},
