@@ -64,10 +64,10 @@ TEST(Pacer, OverrunRealignsToTheNextGridPointWithoutBurst) {
   EXPECT_EQ(next.missed, 0);
 }
 
-TEST(Pacer, MonotonicClockSleepsUntilTheDeadline) {
-  // Behaviour only (never a timing bound): after wait() the clock is at or past the deadline.
+// Behaviour only (never a timing bound): after each wait() the clock is at or past the deadline.
+void expectWakesAtOrAfterEachDeadline(std::int64_t spin_ns) {
   MonotonicClock clock;
-  Pacer pacer(clock, 200'000);
+  Pacer pacer(clock, 200'000, spin_ns);
   pacer.start();
   for (int k = 0; k < 5; ++k) {
     const TickTiming t = pacer.wait();
@@ -75,6 +75,8 @@ TEST(Pacer, MonotonicClockSleepsUntilTheDeadline) {
     EXPECT_GE(clock.nowNs(), t.deadline_ns);
   }
 }
+
+TEST(Pacer, MonotonicClockSleepsUntilTheDeadline) { expectWakesAtOrAfterEachDeadline(0); }
 
 // A clock that records how the pacer waits: a sleep, then a spin, each to its target.
 class RecordingClock final : public Clock {
@@ -117,15 +119,7 @@ TEST(Pacer, SpinsTheLastStretchBeforeEachDeadline) {
 }
 
 TEST(Pacer, MonotonicClockSpinsToTheDeadline) {
-  // Behaviour only (never a timing bound).
-  MonotonicClock clock;
-  Pacer pacer(clock, 200'000, 150'000);
-  pacer.start();
-  for (int k = 0; k < 5; ++k) {
-    const TickTiming t = pacer.wait();
-    EXPECT_GE(t.wake_ns, t.deadline_ns);
-    EXPECT_GE(clock.nowNs(), t.deadline_ns);
-  }
+  expectWakesAtOrAfterEachDeadline(150'000);
   // A virtual clock's spin jumps like its sleep: lock-step never busy-waits.
   VirtualClock virtual_clock;
   Pacer lockstep(virtual_clock, 250'000, 100'000);
