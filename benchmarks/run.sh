@@ -174,15 +174,21 @@ run_latency() {
   return $rc
 }
 
-run_load() {
-  need "$BIN/bench_load" && need "$HAPTICD" || return 1
-  local ct sn
+# Sets ct and sn (the caller's locals) to cyclictest and stress-ng, or says what to install and
+# fails, naming part $1.
+load_tools() {
   ct=$(command -v cyclictest || true)
   sn=$(command -v stress-ng || true)
   if [ -z "$ct" ] || [ -z "$sn" ]; then
-    say "cyclictest or stress-ng not found: install rt-tests and stress-ng (./setup.sh); skipping part load"
+    say "cyclictest or stress-ng not found: install rt-tests and stress-ng (./setup.sh); skipping part $1"
     return 1
   fi
+}
+
+run_load() {
+  need "$BIN/bench_load" && need "$HAPTICD" || return 1
+  local ct sn
+  load_tools load || return 1
   say "part load: hapticd's full-force share beside stress-ng and cyclictest, old and new missed-tick policy"
   "$BIN/bench_load" --hapticd "$HAPTICD" --scene "$ROOT/benchmarks/scenes/load_press.yaml" \
     --seconds "${THX_LOAD_SECONDS:-25}" --loads "${THX_LOAD_LOADS:-none,cpu2,cpu2+vm}" --rounds "${THX_LOAD_ROUNDS:-1}" --cyclictest "$ct" \
@@ -196,12 +202,7 @@ run_load() {
 run_rates() {
   need "$BIN/bench_load" && need "$BIN/bench_rate_texture" && need "$HAPTICD" || return 1
   local ct sn
-  ct=$(command -v cyclictest || true)
-  sn=$(command -v stress-ng || true)
-  if [ -z "$ct" ] || [ -z "$sn" ]; then
-    say "cyclictest or stress-ng not found: install rt-tests and stress-ng (./setup.sh); skipping part rates"
-    return 1
-  fi
+  load_tools rates || return 1
   say "part rates: hapticd at 1, 2 and 4 kHz beside cyclictest at the same period, idle and loaded"
   "$BIN/bench_load" --hapticd "$HAPTICD" --scene "$ROOT/benchmarks/scenes/load_press.yaml" \
     --seconds "${THX_RATES_SECONDS:-15}" --rates "${THX_RATES:-1000,2000,4000}" --policies ride-through \
