@@ -1,5 +1,6 @@
 #include "benchmarks/cyclictest_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -46,7 +47,14 @@ bool parseCyclictestHistogram(const std::string& text, Latency& l) {
   l.p50_us = q(0.5);
   l.p99_us = q(0.99);
   l.p999_us = q(0.999);
+  l.bins = std::move(bins);
   return true;
+}
+
+std::uint64_t countAtLeastUs(const Latency& l, int us) {
+  std::uint64_t n = l.overflows;
+  for (std::size_t i = std::size_t(std::max(us, 0)); i < l.bins.size(); ++i) n += l.bins[i];
+  return n;
 }
 
 Job startCyclictest(const std::string& exe, int seconds, const std::string& workdir, const std::string& tag,

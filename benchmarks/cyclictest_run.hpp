@@ -21,7 +21,11 @@ struct Latency {
   std::string note;
   std::uint64_t count = 0, overflows = 0;
   double min_us = 0, avg_us = 0, p50_us = 0, p99_us = 0, p999_us = 0, max_us = 0;
+  std::vector<std::uint64_t> bins;  // cyclictest's histogram: samples per whole microsecond
 };
+
+// The samples `us` microseconds late or more (the histogram's overflows count as such).
+std::uint64_t countAtLeastUs(const Latency& l, int us);
 
 // cyclictest --histfile: "# Histogram" then "NNNNNN CCCCCC" per microsecond, then "# Total:",
 // "# Min Latencies:", "# Avg Latencies:", "# Max Latencies:", "# Histogram Overflows:".

@@ -20,6 +20,10 @@
 #              THX_RATES_LOADS (none,cpu2), THX_RATES_SPINS (0,150); about 3.5 min; then the
 #              texture's force error against the servo rate (bench_rate_texture, seconds); both
 #              tables go to docs/hapticd.md)
+#              or devices (issue 30: 1, 2 and 4 simulated devices under one servo clock beside
+#              cyclictest, the group's compute against one device's, and each device's force in the
+#              group against alone in lock-step; THX_DEVICES_SECONDS per count (15), THX_DEVICES
+#              (1,2,4); about 1 min; its table goes to docs/hapticd.md)
 #              or visual_servo (hapticd's wake latency alone and beside visual-client --live, servo
 #              SCHED_FIFO and normal, LP_NUM_THREADS 2 and 1; THX_VISUAL_SERVO_SECONDS per run (20);
 #              about 2.5 min; needs xvfb-run and setpriv; its table goes to docs/visual.md)
@@ -216,6 +220,19 @@ run_rates() {
   return $rc
 }
 
+run_devices() {
+  need "$BIN/bench_devices" || return 1
+  local ct
+  ct=$(command -v cyclictest || echo none)
+  [ "$ct" = none ] && say "cyclictest not found (Debian rt-tests, ./setup.sh): part devices runs without it"
+  say "part devices: ${THX_DEVICES:-1,2,4} simulated devices under one servo clock beside cyclictest"
+  "$BIN/bench_devices" --counts "${THX_DEVICES:-1,2,4}" --seconds "${THX_DEVICES_SECONDS:-15}" --cyclictest "$ct" \
+    --workdir "$WORK" --json "$RESULTS/bench_devices.json" --md "$WORK/bench_devices.md" > /dev/null
+  local rc=$?
+  [ -s "$WORK/bench_devices.md" ] && splice bench_devices "$WORK/bench_devices.md" "$ROOT/docs/hapticd.md"
+  return $rc
+}
+
 run_clients() {
   need "$BIN/bench_clients" && need "$HAPTICD" && need "$BUILD/clients/probe/probe-client" || return 1
   say "part 5: 16 clients against hapticd (60 s), and hapticd alone before and after (30 s each)"
@@ -348,14 +365,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | table1 | mesh_force | physics_mesh | textured_pair | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | table1 | mesh_force | physics_mesh | textured_pair | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates table1 mesh_force physics_mesh textured_pair report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices table1 mesh_force physics_mesh textured_pair report)"
       exit 2
       ;;
   esac

@@ -12,6 +12,9 @@
 //  - If write() is not called for a tick (the servo missed it), the device holds the last output
 //    with decay for a couple of ticks, then outputs zero (its own watchdog).
 //  - open() and close() run outside the real-time loop and may throw DeviceError.
+//  - Several devices under one servo clock (server/servo_group.hpp): the group waits for the tick
+//    and reads each device with readTick(), which returns at once with the state for that tick.
+//    A device that can be read so says so with sharesClock(); the group refuses the others.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
@@ -83,6 +86,16 @@ class HapticDevice {
   virtual void close() = 0;
   virtual DeviceState read() = 0;
   virtual void write(const DeviceCommand& command) = 0;
+  // The state at a tick another clock paced (`timing`: the group's tick, deadline, wake and missed
+  // periods); does not wait. Same contract as read() otherwise. Only where sharesClock(): the
+  // default answers an invalid reading, which the servo treats as a faulty device.
+  virtual bool sharesClock() const { return false; }
+  virtual DeviceState readTick(const rt::TickTiming& timing) {
+    DeviceState s;
+    s.timing = timing;
+    s.valid = false;
+    return s;
+  }
 };
 
 }  // namespace thx::dev

@@ -117,12 +117,21 @@ void SimPhantom::integratePeriod(double& work_j, bool& saturated) {
 }
 
 DeviceState SimPhantom::read() {
+  if (!open_) {
+    DeviceState out;
+    out.valid = false;
+    return out;
+  }
+  return readTick(pacer_.wait());
+}
+
+DeviceState SimPhantom::readTick(const rt::TickTiming& timing) {
   DeviceState out;
+  out.timing = timing;
   if (!open_) {
     out.valid = false;
     return out;
   }
-  out.timing = pacer_.wait();
   const std::int64_t periods = 1 + out.timing.missed;
 
   double work_j = 0.0;

@@ -72,6 +72,10 @@ class SimPhantom final : public HapticDevice {
   void close() override;
   // Not open: returns at once with valid = false.
   DeviceState read() override;
+  // The same at a tick a group's clock paced (server/servo_group.hpp): integrates 1 + missed
+  // periods as read() does; this device's own pacer is not used.
+  bool sharesClock() const override { return true; }
+  DeviceState readTick(const rt::TickTiming& timing) override;
   // Not open: ignored. Non-finite forces are rendered as zero (counted in truth()).
   void write(const DeviceCommand& command) override;
 

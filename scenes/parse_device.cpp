@@ -1,4 +1,5 @@
-// device: type, model, address, stiffness_fraction, damping, sim, script.
+// device: type, model, address, stiffness_fraction, damping, sim, script; devices: a list of them, each
+// with a name (issue 30).
 #include "scenes/scene_sections.hpp"
 #include "scenes/vrpn_address.hpp"
 
@@ -48,14 +49,28 @@ void rejectForVrpn(const std::optional<Field>& field) {
                      "no '" + field->path() + "' with type: vrpn (a real device is moved by a real hand)");
 }
 
-}  // namespace
+// A device's name as VRPN carries it (a sender name) and a client reads it: letters, digits,
+// '_', '-', '.', at most 64 characters.
+std::string parseDeviceName(const Field& field) {
+  const std::string name = field.text();
+  bool ok = name.size() <= 64;
+  for (const char c : name)
+    ok = ok && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.');
+  if (!ok) field.fail("not a device name", "at most 64 letters, digits, '_', '-' or '.', e.g. 'Phantom1' or 'left_hand'");
+  return name;
+}
 
-Device parseDevice(const std::optional<Field>& field, const Surface& surface) {
+Device parseOneDevice(const std::optional<Field>& field, const Surface& surface, bool named) {
   Device d;
   d.model = *findDeviceModel("phantom_desktop");
   d.pen.material = *findMaterial("plastic");
   if (!field) return d;
-  field->expectKeys({"type", "model", "address", "stiffness_fraction", "damping", "sim", "script", "pen"});
+  if (named)
+    field->expectKeys({"name", "type", "model", "address", "stiffness_fraction", "damping", "sim", "script", "pen"});
+  else
+    field->expectKeys({"type", "model", "address", "stiffness_fraction", "damping", "sim", "script", "pen"});
+  if (named)
+    if (auto n = field->find("name")) d.name = parseDeviceName(*n);
   if (auto p = field->find("pen")) d.pen = parsePen(*p);
   if (auto t = field->find("type"))
     d.type = t->choice<DeviceType>({{"sim", DeviceType::Sim}, {"vrpn", DeviceType::Vrpn}});
@@ -85,6 +100,40 @@ Device parseDevice(const std::optional<Field>& field, const Surface& surface) {
     if (auto s = field->find("script")) d.script = parseScript(*s, surface, d.model);
   }
   return d;
+}
+
+}  // namespace
+
+Device parseDevice(const std::optional<Field>& field, const Surface& surface) {
+  return parseOneDevice(field, surface, false);
+}
+
+std::vector<Device> parseDevices(const Field& field, const Surface& surface) {
+  const std::vector<Field> items = field.items();
+  if (items.empty()) field.fail("no devices", "a list of one device or more (or a single `device:` section)");
+  if (items.size() > kMaxSceneDevices)
+    field.fail("too many devices", "at most " + std::to_string(kMaxSceneDevices) + " (one servo clock's limit)",
+               std::to_string(items.size()) + " devices");
+  std::vector<Device> devices;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::string default_name = "Phantom" + std::to_string(i);
+    Device d = parseOneDevice(items[i], surface, true);
+    if (!items[i].has("name")) d.name = default_name;
+    for (std::size_t j = 0; j < devices.size(); ++j) {
+      const auto where = [&](std::size_t k) {
+        const std::optional<Field> n = items[k].find("name");
+        return "devices[" + std::to_string(k) + "], line " + std::to_string((n ? *n : items[k]).location().line);
+      };
+      if (devices[j].name == d.name)
+        (items[i].has("name") ? *items[i].find("name") : items[i])
+            .fail("duplicate device name '" + d.name + "' (also " + where(j) + ")", "a name no other device uses");
+      if (d.type == DeviceType::Vrpn && devices[j].type == DeviceType::Vrpn && devices[j].address == d.address)
+        items[i].find("address")->fail("VRPN address given twice (also devices[" + std::to_string(j) + "])",
+                                        "one device per address: each PHANToM has its own name or server");
+    }
+    devices.push_back(std::move(d));
+  }
+  return devices;
 }
 
 }  // namespace thx::scene::detail

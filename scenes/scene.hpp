@@ -133,6 +133,9 @@ struct HoldStep {
 using ScriptStep = std::variant<PressStep, StrokeStep, PathFileStep, HoldStep>;
 
 struct Device {
+  // The name a client and VRPN know the device by: `devices[i].name`, by default Phantom<i>
+  // (a `device:` section is Phantom0).
+  std::string name = "Phantom0";
   DeviceType type = DeviceType::Sim;
   DeviceModel model;                // a copy of the table row (device_models.hpp)
   std::string address;              // VRPN only, e.g. "Phantom0@localhost:3883"
@@ -189,13 +192,23 @@ struct Scene {
   std::string source;    // the file (or in-memory source name) it was read from
   std::string base_dir;  // relative paths in the scene resolved against this
   Surface surface;
-  Device device;
+  Device device;  // the only device (`device:`), or the first of `devices:`
+  // Issue 30: the devices a `devices:` list gives after its first, in order (empty for `device:`).
+  std::vector<Device> other_devices;
   std::vector<SceneObject> objects;
   Rates rates;
   Audio audio;
   std::vector<Material> custom_materials;  // the scene's `materials:` (beside the table's)
   std::vector<std::string> warnings;  // non-fatal issues, each "file:line:col: field: message"
 };
+
+// One servo clock serves at most this many devices (srv::ServoGroup::kMaxDevices).
+inline constexpr std::size_t kMaxSceneDevices = 16;
+inline std::size_t deviceCount(const Scene& scene) { return 1 + scene.other_devices.size(); }
+// Device i of deviceCount(scene): 0 is scene.device.
+inline const Device& deviceAt(const Scene& scene, std::size_t i) {
+  return i == 0 ? scene.device : scene.other_devices.at(i - 1);
+}
 
 const char* toString(DeviceType type);
 const char* toString(Shape shape);

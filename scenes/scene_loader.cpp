@@ -28,9 +28,12 @@ YAML::Node parseYaml(const std::string& text, const std::string& source) {
 
 Scene parseRoot(const Field& root, const std::string& source, const std::string& base_dir,
                 std::vector<Material>& custom_materials) {
-  const std::string top = "a mapping with version, name, surface and optionally description, device, objects, rates, audio, materials";
+  const std::string top =
+      "a mapping with version, name, surface and optionally description, device or devices, objects, rates, audio, "
+      "materials";
   if (root.isNull()) root.fail("empty scene", top, "");
-  root.expectKeys({"version", "name", "description", "surface", "device", "objects", "rates", "audio", "materials"});
+  root.expectKeys(
+      {"version", "name", "description", "surface", "device", "devices", "objects", "rates", "audio", "materials"});
 
   Scene scene;
   scene.source = source;
@@ -47,7 +50,15 @@ Scene parseRoot(const Field& root, const std::string& source, const std::string&
   custom_materials = detail::parseCustomMaterials(root.find("materials"));
   scene.custom_materials = custom_materials;
   scene.surface = detail::parseSurface(root.at("surface", "a mapping with at least size and texture"));
-  scene.device = detail::parseDevice(root.find("device"), scene.surface);
+  if (const auto list = root.find("devices")) {
+    if (root.has("device"))
+      list->fail("both `device` and `devices`", "one of them: `device:` for one device, `devices:` for a list", "");
+    std::vector<Device> devices = detail::parseDevices(*list, scene.surface);
+    scene.device = devices.front();
+    scene.other_devices.assign(devices.begin() + 1, devices.end());
+  } else {
+    scene.device = detail::parseDevice(root.find("device"), scene.surface);
+  }
   scene.objects = detail::parseObjects(root.find("objects"), scene.surface);
   return scene;
 }

@@ -43,6 +43,9 @@ tex::GenerateRequest parseGenerator(const Field& texture, const Surface& surface
 TextureSource parseTexture(const Field& field, const Surface& surface, const std::string& size_name = "surface.size");
 // Script positions are checked against the surface, forces against the device model.
 Device parseDevice(const std::optional<Field>& field, const Surface& surface);
+// `devices:` (issue 30): one device or more, at most kMaxSceneDevices, names and VRPN addresses
+// distinct; each a `device:` section with an optional name (default Phantom<i>).
+std::vector<Device> parseDevices(const Field& field, const Surface& surface);
 std::vector<ScriptStep> parseScript(const Field& field, const Surface& surface, const DeviceModel& model);
 std::vector<SceneObject> parseObjects(const std::optional<Field>& field, const Surface& surface);
 

@@ -19,6 +19,13 @@ thx::Error configError(const std::string& path, const std::string& what) {
 std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::string& path,
                                             const dev::DeviceSpec& spec, const ScenePolicy& policy,
                                             std::shared_ptr<const MeshGeometry> mesh) {
+  if (scene::deviceCount(sc) > 1) {
+    std::string names;
+    for (std::size_t i = 0; i < scene::deviceCount(sc); ++i) names += (i ? ", " : "") + scene::deviceAt(sc, i).name;
+    throw configError(path, "devices: the scene lists " + std::to_string(scene::deviceCount(sc)) + " devices (" + names +
+                                "); hapticd serves one device per scene so far: give one `device:`, or run one "
+                                "hapticd per device");
+  }
   if (sc.surface.mesh && policy.paper_loop_plane_hz)
     throw configError(path, "--paper-loop renders a plane per graphics frame; this scene's surface is a mesh "
                             "(surface.mesh): run it without --paper-loop");

@@ -33,8 +33,7 @@ Servo::Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityContro
       config_(config),
       missed_policy_(config.missed) {}
 
-const TickRecord& Servo::tick() {
-  const dev::DeviceState state = device_.read();
+const TickRecord& Servo::step(const dev::DeviceState& state) {
   const std::int64_t t0 = monotonicNs();
 
   TickRecord& r = record_;

@@ -2,7 +2,8 @@
 // The servo tick: hapticd's hard-real-time heart. THIS FILE AND servo.cpp ARE THE REAL-TIME PATH.
 //
 // Contract of tick() (docs/design.md §4 rules 1-3):
-//  - One blocking device read, one device write; nothing else blocks. No allocation, no lock, no
+//  - One blocking device read (tickAt(): a read that does not block, the group's clock having
+//    waited: servo_group.hpp), one device write; nothing else blocks. No allocation, no lock, no
 //    logging, no system call except the device's pacing sleep (a test proves "no allocation").
 //  - Data leaves only through the SPSC ring (publisher), the flight recorder and the device
 //    snapshot slot (the VRPN server's reports); data enters only through latest-value slots
@@ -122,7 +123,11 @@ class Servo {
         TexturedMeshRenderer* mesh = nullptr);
 
   // One tick. Returns this tick's record (valid until the next call).
-  const TickRecord& tick();
+  const TickRecord& tick() { return step(device_.read()); }
+  // One tick at a time another clock paced (several devices under one clock: servo_group.hpp):
+  // the device is read with readTick(timing), which does not wait; the rest is tick()'s.
+  const TickRecord& tickAt(const rt::TickTiming& timing) { return step(device_.readTick(timing)); }
+  const dev::HapticDevice& device() const { return device_; }
 
   void requestShutdown() { safety_.requestShutdown(); }
   bool finished() const { return safety_.shutdownComplete(); }
@@ -149,6 +154,7 @@ class Servo {
   void resetRenderer();
 
  private:
+  const TickRecord& step(const dev::DeviceState& state);  // the tick after the device's reading
   std::uint32_t latchFaults(std::uint32_t faults);
   double stepSceneSwitch();  // this tick's scene gain; swaps the renderer at zero force
   void writeSnapshot(const TickRecord& r, const dev::DeviceState& state, const RenderOutput& out,

@@ -163,9 +163,11 @@ void VrpnClientDevice::close() {
   status_.connected = false;
 }
 
-dev::DeviceState VrpnClientDevice::read() {
+dev::DeviceState VrpnClientDevice::read() { return readTick(pacer_.wait()); }
+
+dev::DeviceState VrpnClientDevice::readTick(const rt::TickTiming& timing) {
   dev::DeviceState s;
-  s.timing = pacer_.wait();
+  s.timing = timing;
   sample_slot_.readIfNewer(last_sample_, sample_seq_);
   const Sample& m = last_sample_;
   const std::int64_t now = monotonic_.nowNs();

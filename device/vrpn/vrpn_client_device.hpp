@@ -123,6 +123,9 @@ class VrpnClientDevice final : public dev::HapticDevice {
   void open() override;
   void close() override;
   dev::DeviceState read() override;
+  // The newest state at a tick a group's clock paced (server/servo_group.hpp); does not wait.
+  bool sharesClock() const override { return true; }
+  dev::DeviceState readTick(const rt::TickTiming& timing) override;
   void write(const dev::DeviceCommand& command) override;
 
   VrpnClientStatus status() const;

@@ -95,15 +95,20 @@ void printSummary(const scene::Scene& s, const scene::SceneSurface& built, doubl
   else
     std::printf("fingerprint:     %s (hello_t.texture_fingerprint; docs/scenes.md)\n",
                 tex::formatFingerprint(built.fingerprint).c_str());
-  const scene::Device& dev = s.device;
-  std::printf("device:          %s %s: peak %.3g N, continuous %.3g N; stiffness %.3g N/m (%.2f of max), damping %.3g N*s/m\n",
-              scene::toString(dev.type), dev.model.name.c_str(), dev.model.peak_force_n, dev.model.continuous_force_n,
-              dev.stiffnessNPerM(), dev.stiffness_fraction, dev.damping_ns_per_m);
-  if (dev.type == scene::DeviceType::Vrpn) {
-    std::printf("address:         %s\n", dev.address.c_str());
-  } else {
-    std::printf("script:          %zu step(s), %.2f s\n", dev.script.size(), scriptDuration(dev));
+  if (scene::deviceCount(s) > 1) std::printf("devices:         %zu (`devices:`)\n", scene::deviceCount(s));
+  for (std::size_t i = 0; i < scene::deviceCount(s); ++i) {
+    const scene::Device& d = scene::deviceAt(s, i);
+    if (scene::deviceCount(s) > 1) std::printf("%s:\n", d.name.c_str());
+    std::printf("device:          %s %s: peak %.3g N, continuous %.3g N; stiffness %.3g N/m (%.2f of max), damping %.3g N*s/m\n",
+                scene::toString(d.type), d.model.name.c_str(), d.model.peak_force_n, d.model.continuous_force_n,
+                d.stiffnessNPerM(), d.stiffness_fraction, d.damping_ns_per_m);
+    if (d.type == scene::DeviceType::Vrpn) {
+      std::printf("address:         %s\n", d.address.c_str());
+    } else {
+      std::printf("script:          %zu step(s), %.2f s\n", d.script.size(), scriptDuration(d));
+    }
   }
+  const scene::Device& dev = s.device;
   std::printf("sound:           slab %.4g m thick, held %s; roughness beta %.3g, amplitude %.3g, spacing %.3g m;"
               " pen %.4g x r %.4g m, %s, tilt %.3g deg%s\n",
               surf.thickness_m, scene::toString(surf.held), surf.roughness.beta, surf.roughness.amplitude,

@@ -54,6 +54,9 @@ struct ScenesFolder {
                               "  type: sim\n  model: phantom_desktop\n  stiffness_fraction: 7\n"));
     write("omni", sceneText("tilted", "{extent: 0.2, angle_deg: 0, direction_deg: 0}", "normal",
                             "  type: sim\n  model: phantom_omni\n  stiffness_fraction: 0.4\n"));
+    // Two devices (issue 30): hapticd serves one device per scene so far.
+    write("two_pens", "version: 1\nname: two pens\nsurface:\n  size: [0.2, 0.2]\n  texture: {generator: bricks, size: 64}\n"
+                      "devices:\n  - {name: left}\n  - {name: right}\n");
     write("fast_servo", sceneText("tilted", "{extent: 0.2, angle_deg: 0, direction_deg: 0}", "normal", kDesktop) +
                             "rates:\n  servo_hz: 2000\n");
     // Mesh scenes (surface.mesh): a small bowl, and one whose mesh is over its triangle bound
@@ -267,6 +270,7 @@ TEST(SceneSwitcher, WhatASwitchCannotChangeIsRefusedAndNamed) {
   };
   for (const Case& c : {Case{"omni", "device.model 'phantom_omni' differs from the running device's 'phantom_desktop'"},
                         Case{"fast_servo", "rates.servo_hz = 2000 differs from the running servo's 1000 Hz"},
+                        Case{"two_pens", "the scene lists 2 devices (left, right); hapticd serves one device per scene"},
                         Case{"nosuch", "no file"}}) {
     SCOPED_TRACE(c.scene);
     ASSERT_FALSE(server.send(c.scene).has_value());

@@ -4,6 +4,12 @@
 // across V-valleys, with client forces, a fault and a client's fault reset.
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <vector>
+
+#include "device/sim_phantom.hpp"
+#include "rt/clock.hpp"
+#include "server/servo_group.hpp"
 #include "server/servo_runner.hpp"
 #include "tests/server/servo_fixture.hpp"
 #include "tests/support/allocation_counter.hpp"
@@ -66,6 +72,53 @@ TEST(ServoRealtime, NoAllocationInTheRunLoop) {
   EXPECT_EQ(test::g_allocations.load() - before, 0);
   EXPECT_TRUE(rig.servo().finished());
   EXPECT_GT(runner.ticks(), 3000);
+}
+
+// Several devices under one clock (server/servo_group.hpp): the group's tick, each simulated
+// PHANToM read at the group's tick (readTick) and the ramp-down add no allocation.
+TEST(ServoRealtime, NoAllocationInTheGroupTick) {
+  test::GeneratedSurface texture(test::ServoRigInputs::vvalley(), /*relief=*/true);
+  struct Member {
+    Member(const tex::TexturedSurface& surface, double y)
+        : device(simConfig(), script(y)), rig(device, surface, test::unitTestWiring(800.0)) {
+      device.open();
+    }
+    static dev::SimPhantomConfig simConfig() {
+      dev::SimPhantomConfig c;
+      c.lockstep = true;
+      return c;
+    }
+    static dev::HandScript script(double y) {
+      dev::HandStroke s;
+      s.from_m = {-0.01, y};
+      s.to_m = {0.01, y};
+      s.speed_m_per_s = 0.04;
+      s.force_n = 1.5;
+      return dev::HandScript({s});
+    }
+    dev::SimPhantom device;
+    srv::ServoRig rig;
+  };
+  std::vector<std::unique_ptr<Member>> members;
+  rt::VirtualClock clock;
+  srv::ServoGroup group(clock, 1'000'000);
+  for (int i = 0; i < 3; ++i) {
+    members.push_back(std::make_unique<Member>(*texture.surface, -0.02 + 0.02 * i));
+    group.add(members.back()->rig.servo());
+  }
+  group.start();
+  const auto tickAndDrain = [&] {
+    group.tick();
+    for (auto& m : members) m->rig.drain();
+  };
+  for (int k = 0; k < 10; ++k) tickAndDrain();
+  const long before = test::g_allocations.load();
+  for (int k = 0; k < 1500; ++k) tickAndDrain();
+  group.requestShutdown();
+  for (int k = 0; k < 5000 && !group.finished(); ++k) tickAndDrain();
+  EXPECT_EQ(test::g_allocations.load() - before, 0);
+  EXPECT_TRUE(group.finished());
+  for (auto& m : members) EXPECT_GT(m->rig.servo().counters().contact_ticks, 500u);
 }
 
 }  // namespace test_servo_no_alloc
