@@ -28,16 +28,21 @@ using namespace thx::vrpn;
 
 namespace {
 
-struct Client {
-  std::unique_ptr<TcpConnection> conn;
-  std::string peer;  // for log lines
+// What a client has of one served device: its sender id on the connection, its report rate.
+struct ClientDevice {
   std::int32_t sender = kNoId;
-  bool connected = false;
-  std::int64_t opened_ns = 0;
   double rate_hz = 0.0;
   std::int64_t next_report_ns = 0;
   std::uint32_t buttons_sent = 0;
   bool told_plane2_ignored = false;
+};
+
+struct Client {
+  std::unique_ptr<TcpConnection> conn;
+  std::string peer;  // for log lines
+  std::vector<ClientDevice> devices;  // one per served device, in the server's order
+  bool connected = false;
+  std::int64_t opened_ns = 0;
 };
 
 std::string describe(const vrpn::Error& e) { return std::string(toString(e.code)) + ": " + e.reason; }
@@ -57,10 +62,8 @@ bool reportable(const DeviceSnapshot& d) {
 
 }  // namespace
 
-struct VrpnServer::Impl {
-  UniqueFd listen_fd;
-  UniqueFd udp_fd;
-  std::vector<Client> clients;
+// The server's side of one served device.
+struct ServedState {
   ExternalEffects effects;
   bool effects_touched = false;  // something was commanded since the last reset
   DeviceSnapshot snap;
@@ -69,15 +72,38 @@ struct VrpnServer::Impl {
   std::uint32_t buttons = 0;  // from the newest valid snapshot
 };
 
+struct VrpnServer::Impl {
+  UniqueFd listen_fd;
+  UniqueFd udp_fd;
+  std::vector<Client> clients;
+  std::vector<ServedState> devices;
+};
+
 VrpnServer::VrpnServer(const rt::LatestSlot<DeviceSnapshot>& snapshots, ExternalEffectRenderer* effects,
                        VrpnServerOptions options)
-    : snapshots_(snapshots), effects_(effects), options_(std::move(options)) {}
+    : VrpnServer(std::vector<VrpnServedDevice>{{options.device_name, &snapshots, effects}}, options) {}
+
+VrpnServer::VrpnServer(std::vector<VrpnServedDevice> devices, VrpnServerOptions options)
+    : devices_(std::move(devices)), options_(std::move(options)) {
+  const auto refuse = [](const std::string& what) {
+    throw thx::Error(thx::Error::Kind::Config, "VRPN server: " + what);
+  };
+  if (devices_.empty() || devices_.size() > kMaxDevices)
+    refuse("serves 1 to " + std::to_string(kMaxDevices) + " devices, asked for " + std::to_string(devices_.size()));
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    if (devices_[i].name.empty()) refuse("device " + std::to_string(i) + " has no name");
+    if (!devices_[i].snapshots) refuse("device '" + devices_[i].name + "' has no snapshot slot");
+    for (std::size_t j = 0; j < i; ++j)
+      if (devices_[j].name == devices_[i].name) refuse("two devices named '" + devices_[i].name + "'");
+  }
+}
 
 VrpnServer::~VrpnServer() { stop(); }
 
 void VrpnServer::start() {
   if (thread_.joinable()) return;
   auto impl = std::make_unique<Impl>();
+  impl->devices.resize(devices_.size());
   const std::string where = options_.listen_ip + ":" + std::to_string(options_.port);
   Result<UniqueFd> l = listenTcp(options_.listen_ip, options_.port);
   if (!l) throw thx::Error(thx::Error::Kind::Io, "--vrpn-listen " + where + ": cannot listen on TCP: " + l.error().reason);
@@ -141,7 +167,12 @@ void VrpnServer::run() {
     Client c;
     c.conn = std::make_unique<TcpConnection>(std::move(fd));
     Endpoint& ep = c.conn->endpoint();
-    c.sender = ep.addSender(options_.device_name);
+    for (const VrpnServedDevice& d : devices_) {
+      ClientDevice cd;
+      cd.sender = ep.addSender(d.name);
+      cd.rate_hz = default_rate;
+      c.devices.push_back(cd);
+    }
     for (std::string_view n :
          {Ping::kTypeName, Pong::kTypeName, TextMessage::kTypeName, TrackerPosQuat::kTypeName,
           TrackerVelocity::kTypeName, TrackerUpdateRate::kTypeName, TrackerResetOrigin::kTypeName,
@@ -153,93 +184,98 @@ void VrpnServer::run() {
       ep.addType(n);
     c.peer = std::move(peer);
     c.opened_ns = clock.nowNs();
-    c.rate_hz = default_rate;
     s.clients.push_back(std::move(c));
     bump(&VrpnServerStatus::accepted);
   };
 
-  auto writeEffects = [&] {
-    if (effects_) effects_->commandSlot().write(s.effects);
-    s.effects_touched = true;
+  auto writeEffects = [&](std::size_t k) {
+    if (devices_[k].effects) devices_[k].effects->commandSlot().write(s.devices[k].effects);
+    s.devices[k].effects_touched = true;
   };
 
-  auto sendText = [&](Client& c, TextMessage::Severity severity, std::string text) {
+  auto sendText = [&](Client& c, std::size_t k, TextMessage::Severity severity, std::string text) {
     TextMessage t;
     t.severity = severity;
     t.text = std::move(text);
     if (t.text.size() > 1000) t.text.resize(1000);
-    c.conn->endpoint().sendMessage(c.sender, t);
+    c.conn->endpoint().sendMessage(c.devices[k].sender, t);
   };
 
-  auto buttonStates = [&] {
+  auto buttonStates = [&](std::size_t k) {
     ButtonStates b;
-    for (int i = 0; i < options_.num_buttons; ++i) b.states.push_back((s.buttons >> i) & 1u);
+    for (int i = 0; i < options_.num_buttons; ++i) b.states.push_back((s.devices[k].buttons >> i) & 1u);
     return b;
   };
 
   // A force command's verdict: refusals get Force_Error 0 plus the reason; clamps a warning.
-  auto answer = [&](Client& c, const CommandVerdict& v) {
+  auto answer = [&](Client& c, std::size_t k, const CommandVerdict& v) {
     bump(&VrpnServerStatus::commands);
     if (!v.problem.empty()) {
       bump(&VrpnServerStatus::refused_commands);
-      c.conn->endpoint().sendMessage(c.sender, ForceError{0});
-      sendText(c, TextMessage::kError, "hapticd: " + v.problem);
+      c.conn->endpoint().sendMessage(c.devices[k].sender, ForceError{0});
+      sendText(c, k, TextMessage::kError, "hapticd: " + v.problem);
       return;
     }
-    if (!v.note.empty()) sendText(c, TextMessage::kWarning, "hapticd: " + v.note);
-    if (v.applied) writeEffects();
+    if (!v.note.empty()) sendText(c, k, TextMessage::kWarning, "hapticd: " + v.note);
+    if (v.applied) writeEffects(k);
   };
 
   auto handle = [&](Client& c, const UserMessage& m) {
     Endpoint& ep = c.conn->endpoint();
     const std::string_view t = m.type_name;
+    std::size_t k = 0;  // the served device the message is addressed to (its sender name)
+    while (k < c.devices.size() && c.devices[k].sender != m.sender) ++k;
+    if (k == c.devices.size()) return;  // none of ours ("VRPN Control", a client's own sender)
+    ClientDevice& cd = c.devices[k];
+    ServedState& sd = s.devices[k];
+    const std::int32_t sender = cd.sender;
     if (t == Ping::kTypeName) {
-      ep.sendMessage(c.sender, Pong{});
-      ep.sendMessage(c.sender, buttonStates());
+      ep.sendMessage(sender, Pong{});
+      ep.sendMessage(sender, buttonStates(k));
     } else if (t == TrackerUpdateRate::kTypeName) {
       Result<TrackerUpdateRate> r = TrackerUpdateRate::decode(m.payload);
       if (!r) return ep.drop(r.error());
       if (!std::isfinite(r->hz) || r->hz <= 0.0) {
-        sendText(c, TextMessage::kError,
+        sendText(c, k, TextMessage::kError,
                  "hapticd: set_update_rate " + std::to_string(r->hz) + " Hz refused: expected a rate > 0");
         return;
       }
-      c.rate_hz = std::clamp(r->hz, 1.0, options_.max_report_hz);
-      if (c.rate_hz != r->hz)
-        sendText(c, TextMessage::kWarning,
+      cd.rate_hz = std::clamp(r->hz, 1.0, options_.max_report_hz);
+      if (cd.rate_hz != r->hz)
+        sendText(c, k, TextMessage::kWarning,
                  "hapticd: set_update_rate " + std::to_string(r->hz) + " Hz clamped to " +
-                     std::to_string(c.rate_hz) + " Hz");
-      c.next_report_ns = clock.nowNs();
+                     std::to_string(cd.rate_hz) + " Hz");
+      cd.next_report_ns = clock.nowNs();
     } else if (t == TrackerResetOrigin::kTypeName) {
-      sendText(c, TextMessage::kWarning, "hapticd: Reset_Origin is not supported by this device; ignored");
+      sendText(c, k, TextMessage::kWarning, "hapticd: Reset_Origin is not supported by this device; ignored");
     } else if (t == TrackerRequestToRoom::kTypeName) {
       // Reports are already in the device frame: the tracker-to-room transform is the identity.
       Result<TrackerRequestToRoom> r = TrackerRequestToRoom::decode(m.payload);
       if (!r) return ep.drop(r.error());
-      ep.sendMessage(c.sender, TrackerToRoom{});
+      ep.sendMessage(sender, TrackerToRoom{});
       bump(&VrpnServerStatus::tracker_requests);
     } else if (t == TrackerRequestUnitToSensor::kTypeName) {
       // One sensor, the stylus, and the reports are of that sensor itself: the identity.
       Result<TrackerRequestUnitToSensor> r = TrackerRequestUnitToSensor::decode(m.payload);
       if (!r) return ep.drop(r.error());
-      ep.sendMessage(c.sender, TrackerUnitToSensor{});
+      ep.sendMessage(sender, TrackerUnitToSensor{});
       bump(&VrpnServerStatus::tracker_requests);
     } else if (t == TrackerRequestWorkspace::kTypeName) {
       Result<TrackerRequestWorkspace> r = TrackerRequestWorkspace::decode(m.payload);
       if (!r) return ep.drop(r.error());
-      ep.sendMessage(c.sender, TrackerWorkspace{options_.workspace_min, options_.workspace_max});
+      ep.sendMessage(sender, TrackerWorkspace{options_.workspace_min, options_.workspace_max});
       bump(&VrpnServerStatus::tracker_requests);
     } else if (t == ForcePlane::kTypeName || t == ForcePlane2::kTypeName || t == ForceField::kTypeName ||
                t == ForceCustomEffect::kTypeName) {
-      if (!effects_) {
-        ep.sendMessage(c.sender, ForceError{3});
-        sendText(c, TextMessage::kError, "hapticd: this server renders no force effects");
+      if (!devices_[k].effects) {
+        ep.sendMessage(sender, ForceError{3});
+        sendText(c, k, TextMessage::kError, "hapticd: this server renders no force effects");
         return;
       }
       if (t == ForcePlane::kTypeName) {
         Result<ForcePlane> r = ForcePlane::decode(m.payload);
         if (!r) return ep.drop(r.error());
-        answer(c, applyPlane(s.effects, *r, options_.limits));
+        answer(c, k, applyPlane(sd.effects, *r, options_.limits));
       } else if (t == ForcePlane2::kTypeName) {
         Result<ForcePlane2> r = ForcePlane2::decode(m.payload);
         if (!r) return ep.drop(r.error());
@@ -247,30 +283,31 @@ void VrpnServer::run() {
           // As a stock HDAPI PHANToM (docs/vrpn.md §9): sample clients send placeholder Plane2
           // values with every report, which must not add forces the app never meant.
           bump(&VrpnServerStatus::plane2_ignored);
-          if (!c.told_plane2_ignored)
-            sendText(c, TextMessage::kWarning,
+          if (!cd.told_plane2_ignored)
+            sendText(c, k, TextMessage::kWarning,
                      "hapticd: Plane2 (surface texture, buzz, adhesion) is ignored, as by a stock HDAPI "
                      "PHANToM; start hapticd with --vrpn-plane2 to render it");
-          c.told_plane2_ignored = true;
+          cd.told_plane2_ignored = true;
           return;
         }
-        answer(c, applyPlane2(s.effects, *r, options_.limits));
+        answer(c, k, applyPlane2(sd.effects, *r, options_.limits));
       } else if (t == ForceField::kTypeName) {
         Result<ForceField> r = ForceField::decode(m.payload);
         if (!r) return ep.drop(r.error());
-        answer(c, applyField(s.effects, *r, options_.limits));
+        answer(c, k, applyField(sd.effects, *r, options_.limits));
       } else {
         Result<ForceCustomEffect> r = ForceCustomEffect::decode(m.payload);
         if (!r) return ep.drop(r.error());
-        answer(c, applyCustomEffect(s.effects, *r, options_.limits));
+        answer(c, k, applyCustomEffect(sd.effects, *r, options_.limits));
       }
     }
     // Our own report types coming back from a client are ignored, like a stock server does.
   };
 
-  auto sendReports = [&](Client& c) {
+  auto sendReports = [&](Client& c, std::size_t k) {
     Endpoint& ep = c.conn->endpoint();
-    const DeviceSnapshot& d = s.snap;
+    const ClientDevice& cd = c.devices[k];
+    const DeviceSnapshot& d = s.devices[k].snap;
     TrackerPosQuat pq;
     TrackerVelocity vel;
     ForceReport force;
@@ -282,22 +319,23 @@ void VrpnServer::run() {
       scp.pos[std::size_t(i)] = d.scp_world[i];
     }
     for (int i = 0; i < 4; ++i) pq.quat[std::size_t(i)] = d.q_world_xyzw[i];
-    vel.vel_quat_dt = 1.0 / c.rate_hz;
-    ep.sendMessage(c.sender, pq);
-    ep.sendMessage(c.sender, vel);
-    ep.sendMessage(c.sender, force);
-    ep.sendMessage(c.sender, scp);
+    vel.vel_quat_dt = 1.0 / cd.rate_hz;
+    ep.sendMessage(cd.sender, pq);
+    ep.sendMessage(cd.sender, vel);
+    ep.sendMessage(cd.sender, force);
+    ep.sendMessage(cd.sender, scp);
     bump(&VrpnServerStatus::reports);
   };
 
-  auto sendButtonEdges = [&](Client& c) {
-    const std::uint32_t now_buttons = s.buttons;
+  auto sendButtonEdges = [&](Client& c, std::size_t k) {
+    ClientDevice& cd = c.devices[k];
+    const std::uint32_t now_buttons = s.devices[k].buttons;
     for (int i = 0; i < options_.num_buttons && i < 32; ++i) {
       const std::uint32_t bit = 1u << i;
-      if ((now_buttons ^ c.buttons_sent) & bit)
-        c.conn->endpoint().sendMessage(c.sender, ButtonChange{i, (now_buttons & bit) ? 1 : 0});
+      if ((now_buttons ^ cd.buttons_sent) & bit)
+        c.conn->endpoint().sendMessage(cd.sender, ButtonChange{i, (now_buttons & bit) ? 1 : 0});
     }
-    c.buttons_sent = now_buttons;
+    cd.buttons_sent = now_buttons;
   };
 
   std::vector<pollfd> fds;
@@ -306,7 +344,9 @@ void VrpnServer::run() {
     std::int64_t now = clock.nowNs();
     std::int64_t wait_ns = 10'000'000;
     for (const Client& c : s.clients)
-      if (c.connected) wait_ns = std::min(wait_ns, std::max<std::int64_t>(0, c.next_report_ns - now));
+      if (c.connected)
+        for (const ClientDevice& cd : c.devices)
+          wait_ns = std::min(wait_ns, std::max<std::int64_t>(0, cd.next_report_ns - now));
     fds.clear();
     fds.push_back({s.listen_fd.get(), POLLIN, 0});
     fds.push_back({s.udp_fd.get(), POLLIN, 0});
@@ -353,9 +393,12 @@ void VrpnServer::run() {
       }
     }
 
-    if (snapshots_.readIfNewer(s.snap, s.snap_seq)) {
-      s.snap_reportable = reportable(s.snap);
-      if (s.snap_reportable) s.buttons = s.snap.buttons;  // an invalid reading's buttons mean nothing
+    for (std::size_t k = 0; k < devices_.size(); ++k) {
+      ServedState& sd = s.devices[k];
+      if (devices_[k].snapshots->readIfNewer(sd.snap, sd.snap_seq)) {
+        sd.snap_reportable = reportable(sd.snap);
+        if (sd.snap_reportable) sd.buttons = sd.snap.buttons;  // an invalid reading's buttons mean nothing
+      }
     }
     now = clock.nowNs();
     std::size_t backlog = 0;
@@ -364,9 +407,11 @@ void VrpnServer::run() {
       while (std::optional<Event> ev = c.conn->endpoint().poll()) {
         if (const auto* con = std::get_if<Connected>(&*ev)) {
           c.connected = true;
-          c.next_report_ns = now;
-          c.buttons_sent = s.buttons;
-          c.conn->endpoint().sendMessage(c.sender, buttonStates());
+          for (std::size_t k = 0; k < c.devices.size(); ++k) {
+            c.devices[k].next_report_ns = now;
+            c.devices[k].buttons_sent = s.devices[k].buttons;
+            c.conn->endpoint().sendMessage(c.devices[k].sender, buttonStates(k));
+          }
           log("client connected: " + c.peer + (con->peer.minor_differs ? " (different VRPN minor version)" : ""));
         } else if (const auto* m = std::get_if<UserMessage>(&*ev)) {
           handle(c, *m);
@@ -378,20 +423,22 @@ void VrpnServer::run() {
         continue;
       }
       if (c.connected) {
-        sendButtonEdges(c);
-        if (now >= c.next_report_ns) {
+        for (std::size_t k = 0; k < c.devices.size(); ++k) {
+          ClientDevice& cd = c.devices[k];
+          sendButtonEdges(c, k);
+          if (now < cd.next_report_ns) continue;
           // Nothing to report without a valid reading. A client that is behind skips reports
           // (the next one carries the newer state anyway) rather than growing its queue to the
           // bound and being dropped.
-          if (s.snap_reportable) {
+          if (s.devices[k].snap_reportable) {
             if (c.conn->endpoint().pendingOutput().size() > options_.report_backlog_bytes)
               bump(&VrpnServerStatus::reports_skipped);
             else
-              sendReports(c);
+              sendReports(c, k);
           }
-          const std::int64_t period = std::int64_t(1e9 / c.rate_hz);
-          c.next_report_ns += period;
-          if (c.next_report_ns < now) c.next_report_ns = now + period;  // fell behind: no burst
+          const std::int64_t period = std::int64_t(1e9 / cd.rate_hz);
+          cd.next_report_ns += period;
+          if (cd.next_report_ns < now) cd.next_report_ns = now + period;  // fell behind: no burst
         }
       }
       if (c.conn->wantsWrite()) c.conn->pump();
@@ -417,12 +464,13 @@ void VrpnServer::run() {
     // stuck in the handshake (or a port scanner) must not hold a plane after the app left.
     const int handshaken =
         int(std::count_if(s.clients.begin(), s.clients.end(), [](const Client& c) { return c.connected; }));
-    if (handshaken == 0 && s.effects_touched) {
-      resetEffects(s.effects);
-      writeEffects();
-      s.effects_touched = false;
+    for (std::size_t k = 0; k < devices_.size(); ++k) {
+      if (handshaken > 0 || !s.devices[k].effects_touched) continue;
+      resetEffects(s.devices[k].effects);
+      writeEffects(k);
+      s.devices[k].effects_touched = false;
       bump(&VrpnServerStatus::effect_resets);
-      log("last client gone: all force effects reset");
+      log("last client gone: all force effects of " + devices_[k].name + " reset");
     }
     std::lock_guard lock(status_mutex_);
     status_.clients = int(s.clients.size());
@@ -431,9 +479,10 @@ void VrpnServer::run() {
   }
 
   // Shutting down: tell the servo nothing is commanded any more.
-  if (s.effects_touched) {
-    resetEffects(s.effects);
-    if (effects_) effects_->commandSlot().write(s.effects);
+  for (std::size_t k = 0; k < devices_.size(); ++k) {
+    if (!s.devices[k].effects_touched) continue;
+    resetEffects(s.devices[k].effects);
+    if (devices_[k].effects) devices_[k].effects->commandSlot().write(s.devices[k].effects);
   }
   for (Client& c : s.clients) c.conn->close(vrpn::Error{ErrorCode::kPeerClosed, "server shutting down"});
   s.clients.clear();

@@ -2,6 +2,13 @@
 // VrpnServer: hapticd's device served to VRPN apps as a PHANToM (issue 4; `hapticd --vrpn-listen`).
 // One I/O thread; nothing here runs on, or waits for, the servo thread.
 //
+// Several devices (issue 30): each served device has its own name (Phantom0, Phantom1, ...),
+// snapshot slot and effect renderer; one connection carries them all (a stock client opens one
+// connection per host and port for every device it names there). Everything below holds per
+// device: a client's report rate, button edges and effects are those of the name it addresses,
+// and a name's effects are reset when the last client leaves. Messages from a sender that is none
+// of the served names are ignored.
+//
 // What a client sees (docs/vrpn.md §9, one name for three device kinds, default "Phantom0"):
 //  - Tracker: `Pos_Quat` and `Velocity` (sensor 0, metres, the device frame) at the client's
 //    report rate: report_hz by default, changed per client by `set_update_rate` (clamped to
@@ -53,6 +60,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "rt/latest_slot.hpp"
 #include "server/external_effects.hpp"
@@ -110,11 +118,24 @@ struct VrpnServerStatus {
 // reports skipped for slow readers, N Plane2 ignored".
 std::string describe(const VrpnServerStatus& status);
 
+// One device as the server offers it.
+struct VrpnServedDevice {
+  std::string name;                                       // its sender name
+  const rt::LatestSlot<DeviceSnapshot>* snapshots = nullptr;  // its servo's (Servo::publishSnapshots)
+  ExternalEffectRenderer* effects = nullptr;              // null: its force commands get Force_Error 3
+};
+
 class VrpnServer {
  public:
-  // `effects` may be null: force commands are then refused with Force_Error 3.
+  // At most this many names (ServoGroup::kMaxDevices).
+  static constexpr std::size_t kMaxDevices = 16;
+  // One device, named options.device_name. `effects` may be null: force commands are then
+  // refused with Force_Error 3.
   VrpnServer(const rt::LatestSlot<DeviceSnapshot>& snapshots, ExternalEffectRenderer* effects,
              VrpnServerOptions options);
+  // Several devices (options.device_name unused). Throws thx::Error (Config) for none, more than
+  // kMaxDevices, an empty or repeated name, or a device without a snapshot slot.
+  VrpnServer(std::vector<VrpnServedDevice> devices, VrpnServerOptions options);
   ~VrpnServer();
   VrpnServer(const VrpnServer&) = delete;
   VrpnServer& operator=(const VrpnServer&) = delete;
@@ -131,8 +152,7 @@ class VrpnServer {
   struct Impl;
   void run();
 
-  const rt::LatestSlot<DeviceSnapshot>& snapshots_;
-  ExternalEffectRenderer* effects_;
+  std::vector<VrpnServedDevice> devices_;
   VrpnServerOptions options_;
   std::uint16_t bound_port_ = 0;
   std::unique_ptr<Impl> impl_;

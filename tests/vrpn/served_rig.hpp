@@ -134,18 +134,17 @@ struct ServedRigInputs {
   ::thx::test::GeneratedSurface texture;
 };
 
-// The servo pipeline as hapticd wires it (server/servo_rig.hpp), ticking on its own thread, with
-// a VRPN server.
-struct ServedRig : ServedRigInputs, srv::ServoRig {
-  explicit ServedRig(srv::VrpnServerOptions options = {}, std::uint16_t port = 0, bool pen_valid = true)
+// A held pen behind the servo pipeline as hapticd wires it (server/servo_rig.hpp), its VRPN
+// effects renderer attached and its snapshots published for a VRPN server; startTicking() runs the
+// servo on a thread of its own until the pen is destroyed.
+struct ServedPen : ServedRigInputs, srv::ServoRig {
+  explicit ServedPen(bool pen_valid = true)
       : ServedRigInputs(pen_valid), srv::ServoRig(pen, *texture.surface, ::thx::test::unitTestWiring(500.0)) {
     servo().attachExternalEffects(&effects);
-    options.port = port;
-    options.log = false;
-    options.limits.max_stiffness_n_per_m = pen.spec().max_stiffness_n_per_m;
-    options.limits.peak_force_n = pen.spec().peak_force_n;
-    server = std::make_unique<srv::VrpnServer>(servo().publishSnapshots(), &effects, options);
-    server->start();
+    snapshots = &servo().publishSnapshots();
+  }
+  ~ServedPen() { stopTicking(); }
+  void startTicking() {
     pen.open();
     thread = std::thread([this] {
       while (!stop.load()) {
@@ -155,21 +154,44 @@ struct ServedRig : ServedRigInputs, srv::ServoRig {
       }
     });
   }
-  ~ServedRig() {
+  void stopTicking() {
     stop.store(true);
-    thread.join();
+    if (thread.joinable()) thread.join();
+  }
+  // The effect limits of this pen's device, as hapticd gives them to its VRPN server.
+  void limit(srv::VrpnServerOptions& options) const {
+    options.limits.max_stiffness_n_per_m = pen.spec().max_stiffness_n_per_m;
+    options.limits.peak_force_n = pen.spec().peak_force_n;
+  }
+
+  srv::ExternalEffectRenderer effects{1e-3};
+  const rt::LatestSlot<srv::DeviceSnapshot>* snapshots = nullptr;
+  std::atomic<bool> stop{false};
+  std::atomic<std::int64_t> ticks{0};
+  std::int64_t max_missed = 0;  // written by the servo thread, read after stopTicking()
+  std::thread thread;
+};
+
+// One served pen with a VRPN server of its own, named Phantom0.
+struct ServedRig : ServedPen {
+  explicit ServedRig(srv::VrpnServerOptions options = {}, std::uint16_t port = 0, bool pen_valid = true)
+      : ServedPen(pen_valid) {
+    options.port = port;
+    options.log = false;
+    limit(options);
+    server = std::make_unique<srv::VrpnServer>(*snapshots, &effects, options);
+    server->start();
+    startTicking();
+  }
+  ~ServedRig() {
+    stopTicking();
     server->stop();
   }
   std::uint16_t port() const { return server->port(); }
   std::string tcpAddress() const { return "Phantom0@tcp://127.0.0.1:" + std::to_string(port()); }
   std::string lobAddress() const { return "Phantom0@127.0.0.1:" + std::to_string(port()); }
 
-  srv::ExternalEffectRenderer effects{1e-3};
   std::unique_ptr<srv::VrpnServer> server;
-  std::atomic<bool> stop{false};
-  std::atomic<std::int64_t> ticks{0};
-  std::int64_t max_missed = 0;  // written by the servo thread, read after join
-  std::thread thread;
 };
 
 inline vrpn::VrpnClientOptions fastClient() {
@@ -182,11 +204,14 @@ inline vrpn::VrpnClientOptions fastClient() {
 
 // A raw protocol client: the test controls every byte and reads what the server sends.
 struct RawClient {
-  explicit RawClient(std::uint16_t port) {
+  // `names`: the device names it registers (the server's messages from other names are skipped);
+  // send() speaks as the first, sendAs() as any.
+  explicit RawClient(std::uint16_t port, const std::vector<std::string>& names = {"Phantom0"}) {
     Result<UniqueFd> fd = connectTcp("127.0.0.1", port);
     EXPECT_TRUE(fd) << fd.error().reason;
     conn = std::make_unique<TcpConnection>(std::move(fd).value());
-    sender = conn->endpoint().addSender("Phantom0");
+    for (const std::string& n : names) senders[n] = conn->endpoint().addSender(n);
+    sender = senders.at(names.front());
     // Registered before the handshake, so the server's messages of these types are delivered.
     for (std::string_view t : {Ping::kTypeName, Pong::kTypeName, TrackerPosQuat::kTypeName, ButtonStates::kTypeName,
                                ButtonChange::kTypeName, ForceError::kTypeName, TextMessage::kTypeName,
@@ -212,10 +237,11 @@ struct RawClient {
       if (const auto* m = std::get_if<UserMessage>(&*ev)) {
         const std::string type(m->type_name);
         ++counts[type];
+        ++counts_of[std::string(m->sender_name)][type];
         last_payload[type].assign(m->payload.begin(), m->payload.end());
         if (m->type_name == TrackerPosQuat::kTypeName) {
           ++pos_quats;
-          if (auto r = TrackerPosQuat::decode(m->payload)) last_pos = *r;
+          if (auto r = TrackerPosQuat::decode(m->payload)) last_pos = last_pos_of[std::string(m->sender_name)] = *r;
         } else if (m->type_name == ButtonStates::kTypeName) {
           ++button_states;
         } else if (m->type_name == ButtonChange::kTypeName) {
@@ -240,6 +266,10 @@ struct RawClient {
   void send(const M& m) {
     conn->endpoint().sendMessage(sender, m);
   }
+  template <class M>
+  void sendAs(const std::string& name, const M& m) {
+    conn->endpoint().sendMessage(senders.at(name), m);
+  }
 
   std::unique_ptr<TcpConnection> conn;
   std::int32_t sender;
@@ -251,12 +281,28 @@ struct RawClient {
   std::vector<std::int32_t> force_errors;
   std::vector<std::string> texts;
   std::map<std::string, int> counts;  // every message, by type name
+  std::map<std::string, std::map<std::string, int>> counts_of;  // by sender name, then type name
+  std::map<std::string, TrackerPosQuat> last_pos_of;           // by sender name
+  std::map<std::string, std::int32_t> senders;                 // our ids of the names registered
   std::map<std::string, std::vector<std::uint8_t>> last_payload;
 };
 
 // Handshake done and pinged (like a stock Remote's first mainloop).
 inline void registered(RawClient& c) {
   if (c.waitConnected()) c.send(Ping{});
+}
+
+// What our client device sends as a Plane message: 100 N/m with the pen 1 mm inside, 0.1 N up
+// (below the safety stage's 0.2 N engage threshold, so a missed-tick fault on a loaded machine
+// only delays the force, see safety.hpp).
+inline dev::DeviceCommand planeCommandAbove(const Eigen::Vector3d& pen) {
+  dev::DeviceCommand cmd;
+  cmd.forces_enabled = true;
+  cmd.num_planes = 1;
+  cmd.planes[0].n_world = Eigen::Vector3d::UnitZ();
+  cmd.planes[0].d_m = pen.z() + 0.001;
+  cmd.planes[0].k_n_per_m = 100.0;
+  return cmd;
 }
 
 inline ForcePlane ceilingAbove(const Eigen::Vector3d& pen, double depth_m, float kspring) {

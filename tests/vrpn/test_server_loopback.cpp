@@ -55,15 +55,7 @@ TEST(VrpnServerLoopback, APlaneSentByOurClientIsFeltByTheServedDevice) {
     VrpnClientDevice client(lob ? rig.lobAddress() : rig.tcpAddress(), dev::phantomDesktopSpec(), fastClient());
     client.open();
     ASSERT_TRUE(eventually([&] { return client.status().connected; })) << client.status().last_error;
-    // The client device sends planes[0] as a Plane message: 100 N/m, pen 1 mm inside -> 0.1 N up
-    // (below the safety stage's 0.2 N engage threshold, so a missed-tick fault on a loaded
-    // machine only delays the force, see safety.hpp).
-    dev::DeviceCommand cmd;
-    cmd.forces_enabled = true;
-    cmd.num_planes = 1;
-    cmd.planes[0].n_world = Eigen::Vector3d::UnitZ();
-    cmd.planes[0].d_m = pen.z() + 0.001;
-    cmd.planes[0].k_n_per_m = 100.0;
+    dev::DeviceCommand cmd = planeCommandAbove(pen);
     client.write(cmd);
     EXPECT_TRUE(eventually([&] { return std::abs(rig.pen.force().z() - 0.1) < 1e-3; }))
         << "force felt: " << rig.pen.force().transpose();
