@@ -128,6 +128,7 @@ class Servo {
   // the device is read with readTick(timing), which does not wait; the rest is tick()'s.
   const TickRecord& tickAt(const rt::TickTiming& timing) { return step(device_.readTick(timing)); }
   const dev::HapticDevice& device() const { return device_; }
+  dev::HapticDevice& device() { return device_; }  // to open and close it, outside the tick
 
   void requestShutdown() { safety_.requestShutdown(); }
   bool finished() const { return safety_.shutdownComplete(); }

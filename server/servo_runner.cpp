@@ -11,23 +11,45 @@ std::int64_t stopTickAfter(double duration_s, double rate_hz) {
 }
 
 ServoRunner::ServoRunner(Servo& servo, const rt::SpscRing<TickRecord>& ring, const ServoRunnerOptions& options)
-    : servo_(servo), ring_(ring), options_(options) {}
+    : servo_(&servo), rings_{&ring}, options_(options) {}
+
+ServoRunner::ServoRunner(ServoGroup& group, std::vector<const rt::SpscRing<TickRecord>*> rings,
+                         const ServoRunnerOptions& options)
+    : group_(&group), rings_(std::move(rings)), options_(options) {}
+
+bool ServoRunner::readerBehind() const {
+  for (const rt::SpscRing<TickRecord>* ring : rings_)
+    if (ring->size() + 2 >= ring->capacity()) return true;
+  return false;
+}
 
 ServoRunner::~ServoRunner() { join(); }
 
 ServoRunner::Step ServoRunner::step() {
-  if (servo_.finished()) return Step::Finished;
-  if (options_.lockstep && ring_.size() + 2 >= ring_.capacity()) return Step::WaitingForReader;
-  const TickRecord& r = servo_.tick();
+  if (finished()) return Step::Finished;
+  if (options_.lockstep && readerBehind()) return Step::WaitingForReader;
+  std::int64_t tick = 0, deadline_ns = 0;
+  if (group_) {
+    const rt::TickTiming& t = group_->tick().timing;
+    tick = t.tick;
+    deadline_ns = t.deadline_ns;
+  } else {
+    const TickRecord& r = servo_->tick();
+    tick = r.tick;
+    deadline_ns = r.deadline_ns;
+  }
   const std::int64_t n = ticks_.load(std::memory_order_relaxed);
-  if (n == 0) first_deadline_ns_ = r.deadline_ns;
-  last_deadline_ns_ = r.deadline_ns;
+  if (n == 0) first_deadline_ns_ = deadline_ns;
+  last_deadline_ns_ = deadline_ns;
   ticks_.store(n + 1, std::memory_order_relaxed);
   const bool stop = stop_requested_.load(std::memory_order_relaxed) ||
                     (options_.stop_flag && options_.stop_flag->load(std::memory_order_relaxed)) ||
-                    (options_.stop_tick >= 0 && r.tick >= options_.stop_tick);
+                    (options_.stop_tick >= 0 && tick >= options_.stop_tick);
   if (!shutting_down_ && stop) {
-    servo_.requestShutdown();
+    if (group_)
+      group_->requestShutdown();
+    else
+      servo_->requestShutdown();
     shutting_down_ = true;
   }
   return Step::Ticked;
@@ -40,24 +62,41 @@ void ServoRunner::run() {
 }
 
 void ServoRunner::start(dev::HapticDevice& device, const RealtimeOptions& rt) {
-  thread_ = std::thread([this, &device, rt] {
-    try {
-      realtime_ = makeThreadRealtime(rt);
-    } catch (const std::exception& e) {
-      error_ = e.what();
-      done_.store(true);
-      return;
-    }
-    try {
-      device.open();
-    } catch (const std::exception& e) {
-      error_ = std::string("cannot open the device: ") + e.what();
-      done_.store(true);
-      return;
-    }
-    run();
+  thread_ = std::thread([this, &device, rt] { openAndRun(rt, &device); });
+}
+
+void ServoRunner::start(const RealtimeOptions& rt) {
+  thread_ = std::thread([this, rt] { openAndRun(rt, nullptr); });
+}
+
+void ServoRunner::openAndRun(const RealtimeOptions& rt, dev::HapticDevice* device) {
+  try {
+    realtime_ = makeThreadRealtime(rt);
+  } catch (const std::exception& e) {
+    error_ = e.what();
     done_.store(true);
-  });
+    return;
+  }
+  int opening = 0;
+  try {
+    if (device) {
+      device->open();
+    } else if (group_) {
+      for (; opening < group_->size(); ++opening) group_->member(opening).device().open();
+      group_->start();
+    } else {
+      servo_->device().open();
+    }
+  } catch (const std::exception& e) {
+    error_ = (group_ ? "cannot open device " + std::to_string(opening) + ": " : std::string("cannot open the device: ")) +
+             e.what();
+    if (group_)
+      for (int i = 0; i < opening; ++i) group_->member(i).device().close();
+    done_.store(true);
+    return;
+  }
+  run();
+  done_.store(true);
 }
 
 void ServoRunner::join() {

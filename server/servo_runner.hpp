@@ -1,7 +1,7 @@
 #pragma once
-// The servo run loop: ticks a Servo (server/servo.hpp) from the device's first deadline to the
-// end of its ramp-down, on a real-time thread of its own (hapticd: start()) or on the caller's
-// (tests: step(), run()).
+// The servo run loop: ticks a Servo (server/servo.hpp), or several devices' servos under one
+// clock (server/servo_group.hpp), from the first deadline to the end of the ramp-down, on a
+// real-time thread of its own (hapticd: start()) or on the caller's (tests: step(), run()).
 //
 // Real-time contract of the loop (docs/hapticd.md, "the servo tick never blocks"):
 // - Each tick may: read the device (its blocking read is the pacing sleep), compute, write the
@@ -11,7 +11,7 @@
 //   the device's I/O. What can fail or block (making the thread real-time, device.open()) happens
 //   before the first tick; its errors are read after join(), never reported from the loop.
 // - Lock-step back-pressure: under lock-step (a virtual clock, not real time) the loop does not
-//   tick while the ring holds capacity - 2 records or more; run() sleeps 100 us and looks again, so
+//   tick while the ring (a group: any member's ring) holds capacity - 2 records or more; run() sleeps 100 us and looks again, so
 //   the ring's reader (the publisher, and --record behind it) never misses a tick. It sleeps, not
 //   yields: a yielding SCHED_FIFO thread gives its core only to threads of its own priority or
 //   higher, so with two lock-step runs on two cores neither publisher (an ordinary thread under
@@ -23,11 +23,13 @@
 #include <cstdint>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "device/haptic_device.hpp"
 #include "rt/spsc_ring.hpp"
 #include "server/realtime.hpp"
 #include "server/servo.hpp"
+#include "server/servo_group.hpp"
 #include "server/tick_record.hpp"
 
 namespace thx::srv {
@@ -48,6 +50,9 @@ class ServoRunner {
 
   // `ring` is the one the servo pushes its records into (ServoRig::ring()). Both outlive the runner.
   ServoRunner(Servo& servo, const rt::SpscRing<TickRecord>& ring, const ServoRunnerOptions& options);
+  // Several devices: the group's ticks; `rings` are its members' (ServoRig::ring()), in any order.
+  // The group and the rings outlive the runner.
+  ServoRunner(ServoGroup& group, std::vector<const rt::SpscRing<TickRecord>*> rings, const ServoRunnerOptions& options);
   ~ServoRunner();  // joins the thread start() began
   ServoRunner(const ServoRunner&) = delete;
   ServoRunner& operator=(const ServoRunner&) = delete;
@@ -61,6 +66,9 @@ class ServoRunner {
   // The servo thread: makes itself real-time (`rt`), opens the device (so its clock starts only
   // now: locking memory takes milliseconds, which would count as missed ticks), then run().
   void start(dev::HapticDevice& device, const RealtimeOptions& rt);
+  // The same with the servo's own device, or for a group: every member's device opened in order
+  // (those opened are closed again if one fails), then the group's clock started.
+  void start(const RealtimeOptions& rt);
   bool done() const { return done_.load(); }  // the thread has ended: finished, or did not start
   void join();
   // After join(): why the servo did not run ("" when it did), and what the real-time setup got.
@@ -73,8 +81,13 @@ class ServoRunner {
   double deviceTimeS(double period_s) const { return double(last_deadline_ns_ - first_deadline_ns_) * 1e-9 + period_s; }
 
  private:
-  Servo& servo_;
-  const rt::SpscRing<TickRecord>& ring_;
+  bool finished() const { return group_ ? group_->finished() : servo_->finished(); }
+  bool readerBehind() const;
+  void openAndRun(const RealtimeOptions& rt, dev::HapticDevice* device);
+
+  Servo* servo_ = nullptr;  // one device, or
+  ServoGroup* group_ = nullptr;  // several
+  std::vector<const rt::SpscRing<TickRecord>*> rings_;
   ServoRunnerOptions options_;
   std::atomic<bool> stop_requested_{false};
   std::atomic<bool> done_{false};

@@ -74,8 +74,9 @@ TEST(ServoRealtime, NoAllocationInTheRunLoop) {
   EXPECT_GT(runner.ticks(), 3000);
 }
 
-// Several devices under one clock (server/servo_group.hpp): the group's tick, each simulated
-// PHANToM read at the group's tick (readTick) and the ramp-down add no allocation.
+// Several devices under one clock (server/servo_group.hpp): the run loop over the group, the
+// group's tick, each simulated PHANToM read at the group's tick (readTick) and the ramp-down add
+// no allocation.
 TEST(ServoRealtime, NoAllocationInTheGroupTick) {
   test::GeneratedSurface texture(test::ServoRigInputs::vvalley(), /*relief=*/true);
   struct Member {
@@ -107,15 +108,19 @@ TEST(ServoRealtime, NoAllocationInTheGroupTick) {
     group.add(members.back()->rig.servo());
   }
   group.start();
-  const auto tickAndDrain = [&] {
-    group.tick();
+  srv::ServoRunnerOptions o;
+  o.lockstep = true;
+  o.stop_tick = 1500;
+  srv::ServoRunner runner(group, {&members[0]->rig.ring(), &members[1]->rig.ring(), &members[2]->rig.ring()}, o);
+  const auto stepAndDrain = [&] {
+    const srv::ServoRunner::Step s = runner.step();
     for (auto& m : members) m->rig.drain();
+    return s;
   };
-  for (int k = 0; k < 10; ++k) tickAndDrain();
+  for (int k = 0; k < 10; ++k) stepAndDrain();
   const long before = test::g_allocations.load();
-  for (int k = 0; k < 1500; ++k) tickAndDrain();
-  group.requestShutdown();
-  for (int k = 0; k < 5000 && !group.finished(); ++k) tickAndDrain();
+  for (int k = 0; k < 10000 && stepAndDrain() != srv::ServoRunner::Step::Finished; ++k) {
+  }
   EXPECT_EQ(test::g_allocations.load() - before, 0);
   EXPECT_TRUE(group.finished());
   for (auto& m : members) EXPECT_GT(m->rig.servo().counters().contact_ticks, 500u);

@@ -11,6 +11,8 @@
 
 #include "device/device_specs.hpp"
 #include "device/sim_phantom.hpp"
+#include "rt/clock.hpp"
+#include "server/servo_group.hpp"
 #include "server/servo_runner.hpp"
 #include "server/safety.hpp"
 #include "server/servo_rig.hpp"
@@ -227,6 +229,120 @@ TEST(ServoRunner, ADeviceThatCannotOpenEndsTheThreadWithItsReasonAndNoTick) {
   EXPECT_TRUE(runner.done());
   EXPECT_EQ(runner.error(), "cannot open the device: no answer from Phantom0@nowhere");
   EXPECT_EQ(runner.ticks(), 0);
+}
+
+// Several devices under one clock (server/servo_group.hpp): the same loop over the group.
+namespace {
+
+struct LockstepGroup {
+  LockstepGroup() : group(clock, 1'000'000) {
+    for (auto& m : members) group.add(m.rig.servo());
+  }
+  std::vector<const thx::rt::SpscRing<TickRecord>*> rings() { return {&members[0].rig.ring(), &members[1].rig.ring()}; }
+  thx::rt::VirtualClock clock;
+  LockstepRig members[2]{LockstepRig(16), LockstepRig(16)};  // rings of 16 records
+  thx::srv::ServoGroup group;
+};
+
+}  // namespace
+
+TEST(ServoRunner, AGroupWaitsForTheReaderOfAnyMembersRing) {
+  LockstepGroup g;
+  g.group.start();
+  ServoRunner runner(g.group, g.rings(), lockstep());
+  const std::size_t capacity = g.members[0].rig.ring().capacity();
+  for (std::size_t k = 0; k + 2 < capacity; ++k) {
+    ASSERT_EQ(runner.step(), Step::Ticked) << k;
+    g.members[0].drain();  // member 0's reader keeps up, member 1's does not
+  }
+  EXPECT_EQ(runner.step(), Step::WaitingForReader);
+  g.members[1].drain();
+  EXPECT_EQ(runner.step(), Step::Ticked);
+  EXPECT_EQ(g.members[0].rig.ring().dropped() + g.members[1].rig.ring().dropped(), 0u);
+}
+
+TEST(ServoRunner, OnItsOwnThreadAGroupOpensEveryDeviceAndItsReadersMissNoTick) {
+  LockstepGroup g;
+  for (auto& m : g.members) m.device.close();  // start() opens them on the servo thread
+  ServoRunner runner(g.group, g.rings(), lockstep(/*stop_tick=*/400));
+  thx::srv::RealtimeOptions rt;
+  rt.fifo = false;
+  rt.lock_memory = false;
+  runner.start(rt);
+  std::vector<std::int64_t> seen[2];
+  const auto take = [&] {
+    for (int i = 0; i < 2; ++i)
+      for (const TickRecord& rec : g.members[i].drain()) seen[i].push_back(rec.tick);
+  };
+  while (!runner.done()) {
+    take();
+    std::this_thread::yield();
+  }
+  runner.join();
+  take();
+  EXPECT_EQ(runner.error(), "");
+  EXPECT_TRUE(g.group.finished());
+  EXPECT_GT(runner.ticks(), 400);
+  for (int i = 0; i < 2; ++i) {
+    ASSERT_EQ(std::int64_t(seen[i].size()), runner.ticks()) << "device " << i;
+    for (std::size_t k = 1; k < seen[i].size(); ++k) ASSERT_EQ(seen[i][k], seen[i][k - 1] + 1) << k;
+  }
+}
+
+namespace {
+
+// A device that could be read at a group's tick but cannot be opened; counts its closes.
+class UnopenableSharedDevice final : public thx::dev::HapticDevice {
+ public:
+  const thx::dev::DeviceSpec& spec() const override { return spec_; }
+  thx::dev::OutputMode outputMode() const override { return thx::dev::OutputMode::Force; }
+  void open() override { throw std::runtime_error("no answer from Phantom1@nowhere"); }
+  void close() override {}
+  thx::dev::DeviceState read() override { return {}; }
+  void write(const thx::dev::DeviceCommand&) override {}
+  bool sharesClock() const override { return true; }
+
+ private:
+  thx::dev::DeviceSpec spec_ = thx::dev::phantomDesktopSpec();
+};
+
+// The simulated PHANToM, counting the closes start() makes after another device failed.
+class CountingSim final : public thx::dev::HapticDevice {
+ public:
+  const thx::dev::DeviceSpec& spec() const override { return sim.spec(); }
+  thx::dev::OutputMode outputMode() const override { return sim.outputMode(); }
+  void open() override { sim.open(); ++opens; }
+  void close() override { sim.close(); ++closes; }
+  thx::dev::DeviceState read() override { return sim.read(); }
+  void write(const thx::dev::DeviceCommand& c) override { sim.write(c); }
+  bool sharesClock() const override { return true; }
+  thx::dev::DeviceState readTick(const thx::rt::TickTiming& t) override { return sim.readTick(t); }
+  thx::dev::SimPhantom sim{LockstepRig::simConfig()};
+  int opens = 0, closes = 0;
+};
+
+}  // namespace
+
+TEST(ServoRunner, AGroupDeviceThatCannotOpenEndsTheThreadNamingItAndClosesTheOthers) {
+  thx::test::GeneratedSurface texture(thx::test::ServoRigInputs::vvalley(), /*relief=*/true);
+  CountingSim good;
+  UnopenableSharedDevice bad;
+  thx::srv::ServoRig good_rig(good, *texture.surface, LockstepRig::wiring(16));
+  thx::srv::ServoRig bad_rig(bad, *texture.surface, LockstepRig::wiring(16));
+  thx::rt::VirtualClock clock;
+  thx::srv::ServoGroup group(clock, 1'000'000);
+  group.add(good_rig.servo());
+  group.add(bad_rig.servo());
+  ServoRunner runner(group, {&good_rig.ring(), &bad_rig.ring()}, lockstep(10));
+  thx::srv::RealtimeOptions rt;
+  rt.fifo = false;
+  rt.lock_memory = false;
+  runner.start(rt);
+  runner.join();
+  EXPECT_EQ(runner.error(), "cannot open device 1: no answer from Phantom1@nowhere");
+  EXPECT_EQ(runner.ticks(), 0);
+  EXPECT_EQ(good.opens, 1);
+  EXPECT_EQ(good.closes, 1);
 }
 
 }  // namespace test_servo_runner
