@@ -5,12 +5,16 @@
 
 namespace thx::srv {
 
-ClientForceTable::ClientForceTable(double max_force_n, std::int64_t default_timeout_ns)
-    : max_force_n_(max_force_n), default_timeout_ns_(default_timeout_ns) {}
+ClientForceTable::ClientForceTable(double max_force_n, std::int64_t default_timeout_ns, int device)
+    : max_force_n_(max_force_n), default_timeout_ns_(default_timeout_ns), device_(device) {}
 
 bool ClientForceTable::accept(const thx_msgs::client_force_t& m, std::int64_t now_ns) {
   if (!thx_msgs::is_valid_client_id(m.client_id) || !thx_msgs::is_valid_source_tag(m.source)) {
     ++counters_.bad_ids;
+    return false;
+  }
+  if (m.device != device_) {
+    ++counters_.other_device;
     return false;
   }
   const Eigen::Vector3d f(m.f_world[0], m.f_world[1], m.f_world[2]);

@@ -20,6 +20,7 @@ struct ClientForceCounters {
   std::uint64_t bad_values = 0;    // non-finite or above the force limit
   std::uint64_t bad_ids = 0;       // client id or source tag not allowed by the protocol
   std::uint64_t table_full = 0;    // more senders than kMaxEntries
+  std::uint64_t other_device = 0;  // client_force_t.device names a device this table is not for
   std::uint64_t expired = 0;
 };
 
@@ -29,7 +30,8 @@ class ClientForceTable {
 
   // Forces above max_force_n (the device's peak force) are refused, not clamped: a client asking
   // for more than the device can give is broken. default_timeout_ns applies when timeout_us <= 0.
-  ClientForceTable(double max_force_n, std::int64_t default_timeout_ns);
+  // `device`: the index (hello_t.device_names) of the device whose forces this table sums.
+  ClientForceTable(double max_force_n, std::int64_t default_timeout_ns, int device = 0);
 
   // Returns true if the message was accepted. `now_ns`: the receiver's monotonic clock.
   bool accept(const thx_msgs::client_force_t& message, std::int64_t now_ns);
@@ -38,6 +40,7 @@ class ClientForceTable {
   int liveEntries() const;
   const ClientForceCounters& counters() const { return counters_; }
   double maxForceN() const { return max_force_n_; }
+  int device() const { return device_; }
 
  private:
   struct Entry {
@@ -49,6 +52,7 @@ class ClientForceTable {
   };
   double max_force_n_;
   std::int64_t default_timeout_ns_;
+  int device_;
   std::array<Entry, kMaxEntries> entries_;
   ClientForceCounters counters_;
 };

@@ -98,6 +98,7 @@ int run(const thx::srv::HapticdOptions& o) {
   }
   srv::PublisherOptions po = srv::publisherOptions(o, sc.rates.servo_hz);
   po.device_name = vrpn_address.empty() ? "sim" : vrpn_address;
+  po.device_names = sc.device.name;
   po.scene_name = first->surface.scene_name;
   po.texture_fingerprint = first->fingerprint;
   po.simulated_device = sim != nullptr || replay != nullptr;

@@ -403,6 +403,7 @@ thx_msgs::hello_t Publisher::hello(std::int64_t utime) const {
   h.scene_name = scene_name_;
   h.texture_fingerprint = static_cast<std::int64_t>(texture_fingerprint_);  // the same 64 bits
   h.control_url = options_.control_url;
+  h.device_names = options_.device_names;
   return h;
 }
 

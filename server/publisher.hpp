@@ -44,6 +44,9 @@ struct PublisherOptions {
   FlightDumpLimits flight_limits;  // --flight-max, --flight-interval (server/flight_dump_limits.hpp)
   bool simulated_device = false;
   std::string device_name = "sim";  // hello_t.device
+  // hello_t.device_names: the one device's name (the scene's `device`: Phantom0, or its name in a
+  // `devices:` list). Every message this publisher sends is of device 0.
+  std::string device_names = "Phantom0";
   std::string scene_name;           // hello_t.scene_name (scene::sceneName)
   std::uint64_t texture_fingerprint = 0;  // hello_t.texture_fingerprint (scene::SceneSurface)
   bool log_subscriptions = false;    // one stderr line per subscription change, refusal, expiry

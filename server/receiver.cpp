@@ -82,6 +82,9 @@ void Receiver::onClientForce(const lcm::ReceiveBuffer* rbuf, const std::string&)
   } else if (after.bad_values != before.bad_values) {
     std::snprintf(buf, sizeof buf, "client_force_t from %s/%s: force (%g, %g, %g) N is not finite or above the device's peak %g N",
                   m.client_id.c_str(), m.source.c_str(), m.f_world[0], m.f_world[1], m.f_world[2], table_.maxForceN());
+  } else if (after.other_device != before.other_device) {
+    std::snprintf(buf, sizeof buf, "client_force_t from %s/%s: device %d; this server has one device, index %d",
+                  m.client_id.c_str(), m.source.c_str(), int(m.device), table_.device());
   } else if (after.table_full != before.table_full) {
     std::snprintf(buf, sizeof buf, "client_force_t from %s/%s: already %d senders, the most the server keeps",
                   m.client_id.c_str(), m.source.c_str(), ClientForceTable::kMaxEntries);

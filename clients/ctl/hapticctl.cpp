@@ -76,8 +76,8 @@ Options parse(const std::vector<std::string>& args) {
 }
 
 void printScene(const thx_msgs::hello_t& h) {
-  std::printf("%s (protocol %d), device %s, servo %g Hz, scene '%s' (texture %s)\n", h.server_name.c_str(),
-              h.protocol_version, h.device.c_str(), h.servo_rate_hz, h.scene_name.c_str(),
+  std::printf("%s (protocol %d), device %s [%s], servo %g Hz, scene '%s' (texture %s)\n", h.server_name.c_str(),
+              h.protocol_version, h.device.c_str(), h.device_names.c_str(), h.servo_rate_hz, h.scene_name.c_str(),
               thx::tex::formatFingerprint(static_cast<std::uint64_t>(h.texture_fingerprint)).c_str());
 }
 

@@ -165,11 +165,13 @@ bool TcpConnection::readSome() {
       total += std::size_t(n);
       continue;
     }
-    if (n == 0) {
+    // A reset is how a peer's close reaches us when it still had our data unread (a stock client
+    // exiting while 1 kHz reports were in flight): the peer is gone as after an orderly close.
+    if (n == 0 || (n < 0 && errno == ECONNRESET)) {
       // The endpoint reports the end in stream order, after what was already fed; the socket
       // is done now.
       endpoint_.finishInput();
-      close_reason_ = Error{ErrorCode::kPeerClosed, "peer closed the connection"};
+      close_reason_ = Error{ErrorCode::kPeerClosed, n == 0 ? "peer closed the connection" : "peer reset the connection"};
       fd_.reset();
       return false;
     }

@@ -12,8 +12,9 @@
 //    unpolled input across pumps.
 //  - The connection closes itself (and closes the fd) on the first of: the endpoint dropped
 //    (protocol error), a socket error, or the peer's EOF; closeReason() says which. The endpoint
-//    always ends with a Dropped event: on a socket error at once, on EOF after the messages that
-//    arrived before it (kPeerClosed, or kTruncated if the peer stopped mid-message).
+//    always ends with a Dropped event: on a socket error at once, on EOF (or a reset: a peer that
+//    closed with our data unread) after the messages that arrived before it (kPeerClosed, or
+//    kTruncated if the peer stopped mid-message).
 //  - Waiting is the owner's business: poll(2) on fd() for POLLIN, plus POLLOUT when wantsWrite().
 // IPv4 only. connectTcp() resolves names with getaddrinfo, which may block: call it outside the
 // servo thread.

@@ -48,6 +48,8 @@ TEST_F(SceneHello, HapticdAnnouncesItsSceneAndAClientOnAnotherSceneIsToldBoth) {
   // A client on another host: the scene by name in its own scenes folder, built the same way.
   const std::string scenes = std::string(THX_SOURCE_DIR) + "/scenes";
   EXPECT_EQ(hello.scene_name, "marble_bricks");
+  EXPECT_EQ(hello.protocol_version, thx_msgs::hello_t::PROTOCOL_VERSION);
+  EXPECT_EQ(hello.device_names, "Phantom0");  // the scene's one device (protocol 6)
   const client::SceneIdentity mine = identityOf(client::resolveSceneName(hello.scene_name, scenes));
   EXPECT_EQ(static_cast<std::uint64_t>(hello.texture_fingerprint), mine.texture_fingerprint);
   const client::SceneCheck same = client::checkScene(hello, mine, false);

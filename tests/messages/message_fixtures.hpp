@@ -44,6 +44,7 @@ inline thx_msgs::device_state_t make_device_state(int k) {
   m.fault_mask = (1 << D::FAULT_FORCE_BUDGET) | (1 << D::FAULT_MISSED_TICKS) | (k << 8);
   m.flags_seen = std::int32_t{D::FLAG_MISSED_TICK} | D::FLAG_FAULT | (k << 12);
   fill(m.proxy_world, k, 70);
+  m.device = 3 + k;
   return m;
 }
 inline void expect_eq(const thx_msgs::device_state_t& a, const thx_msgs::device_state_t& b) {
@@ -61,6 +62,7 @@ inline void expect_eq(const thx_msgs::device_state_t& a, const thx_msgs::device_
   EXPECT_EQ(a.fault_mask, b.fault_mask);
   EXPECT_EQ(a.flags_seen, b.flags_seen);
   expect_array_eq(a.proxy_world, b.proxy_world, "proxy_world");
+  EXPECT_EQ(a.device, b.device);
 }
 
 inline thx_msgs::contact_t make_contact(int k) {
@@ -87,6 +89,7 @@ inline thx_msgs::contact_t make_contact(int k) {
   fill(m.barycentric, k, 99);
   fill(m.tangent_world, k, 102);
   fill(m.bitangent_world, k, 105);
+  m.device = 5 + k;
   return m;
 }
 inline void expect_eq(const thx_msgs::contact_t& a, const thx_msgs::contact_t& b) {
@@ -112,6 +115,7 @@ inline void expect_eq(const thx_msgs::contact_t& a, const thx_msgs::contact_t& b
   expect_array_eq(a.barycentric, b.barycentric, "barycentric");
   expect_array_eq(a.tangent_world, b.tangent_world, "tangent_world");
   expect_array_eq(a.bitangent_world, b.bitangent_world, "bitangent_world");
+  EXPECT_EQ(a.device, b.device);
 }
 
 inline thx_msgs::contact_batch_t make_contact_batch(int k, int num_samples) {
@@ -120,6 +124,7 @@ inline thx_msgs::contact_batch_t make_contact_batch(int k, int num_samples) {
   m.seq = 17 + k;
   m.server_instance = ival(k, 3);
   m.next_tick = ival(k, 4);
+  m.device = 2 + k;
   m.num_dropped = 2 + k;
   m.num_samples = num_samples;
   m.samples.reserve(std::size_t(num_samples));
@@ -131,6 +136,7 @@ inline void expect_eq(const thx_msgs::contact_batch_t& a, const thx_msgs::contac
   EXPECT_EQ(a.seq, b.seq);
   EXPECT_EQ(a.server_instance, b.server_instance);
   EXPECT_EQ(a.next_tick, b.next_tick);
+  EXPECT_EQ(a.device, b.device);
   EXPECT_EQ(a.num_dropped, b.num_dropped);
   ASSERT_EQ(a.num_samples, b.num_samples);
   ASSERT_EQ(a.samples.size(), b.samples.size());
@@ -168,6 +174,7 @@ inline thx_msgs::servo_stats_t make_servo_stats(int k) {
   m.fault_ticks = ival(k, 30);
   m.window_fault_ticks = 7 + k;
   m.window_fault_mask = 0x1a + (k << 8);
+  m.device = 7 + k;
   return m;
 }
 inline void expect_eq(const thx_msgs::servo_stats_t& a, const thx_msgs::servo_stats_t& b) {
@@ -197,6 +204,7 @@ inline void expect_eq(const thx_msgs::servo_stats_t& a, const thx_msgs::servo_st
   EXPECT_EQ(a.fault_ticks, b.fault_ticks);
   EXPECT_EQ(a.window_fault_ticks, b.window_fault_ticks);
   EXPECT_EQ(a.window_fault_mask, b.window_fault_mask);
+  EXPECT_EQ(a.device, b.device);
 }
 
 inline thx_msgs::subscribe_request_t make_subscribe_request(int k) {
@@ -282,6 +290,7 @@ inline thx_msgs::hello_t make_hello(int k) {
   m.scene_name = "marble_bricks" + std::to_string(k);
   m.texture_fingerprint = static_cast<std::int64_t>(0xcbf29ce484222325ULL) + ival(k, 8);  // negative too
   m.control_url = "udpm://239.255.76.67:" + std::to_string(7668 + k) + "?ttl=0";
+  m.device_names = "Phantom0,left_hand,pen-" + std::to_string(k);
   return m;
 }
 inline void expect_eq(const thx_msgs::hello_t& a, const thx_msgs::hello_t& b) {
@@ -297,6 +306,7 @@ inline void expect_eq(const thx_msgs::hello_t& a, const thx_msgs::hello_t& b) {
   EXPECT_EQ(a.scene_name, b.scene_name);
   EXPECT_EQ(a.texture_fingerprint, b.texture_fingerprint);
   EXPECT_EQ(a.control_url, b.control_url);
+  EXPECT_EQ(a.device_names, b.device_names);
 }
 
 inline thx_msgs::client_force_t make_client_force(int k) {
@@ -310,6 +320,7 @@ inline thx_msgs::client_force_t make_client_force(int k) {
   fill(m.f_world, k, 10);
   fill(m.tau_world, k, 20);
   fill(m.p_world, k, 30);
+  m.device = 1 + k;
   return m;
 }
 inline void expect_eq(const thx_msgs::client_force_t& a, const thx_msgs::client_force_t& b) {
@@ -322,6 +333,7 @@ inline void expect_eq(const thx_msgs::client_force_t& a, const thx_msgs::client_
   expect_array_eq(a.f_world, b.f_world, "f_world");
   expect_array_eq(a.tau_world, b.tau_world, "tau_world");
   expect_array_eq(a.p_world, b.p_world, "p_world");
+  EXPECT_EQ(a.device, b.device);
 }
 
 inline thx_msgs::server_command_t make_server_command(int k) {

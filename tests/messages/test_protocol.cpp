@@ -103,7 +103,7 @@ TEST(MessagesProtocol, BatchCountConsistency) {
 
 TEST(MessagesProtocol, Constants) {
   EXPECT_EQ(thx_msgs::contact_t::MAX_PLANES, 4);
-  EXPECT_EQ(thx_msgs::hello_t::PROTOCOL_VERSION, 5);
+  EXPECT_EQ(thx_msgs::hello_t::PROTOCOL_VERSION, 6);
   // Flags are distinct single bits.
   using D = thx_msgs::device_state_t;
   const std::int32_t flags[] = {D::FLAG_ENGAGED,  D::FLAG_RAMPING,       D::FLAG_SAFETY_CLAMP,

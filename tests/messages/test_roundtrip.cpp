@@ -128,10 +128,10 @@ TEST(MessagesRoundTrip, DecodedDoublesAreNotStale) {
 
 // The numbers in docs/messages.md. A change here is a wire change: update the doc too.
 TEST(MessagesEncodedSize, FixedSizeTypes) {
-  EXPECT_EQ(thx_msgs::device_state_t{}.getEncodedSize(), 220);
-  EXPECT_EQ(thx_msgs::contact_t{}.getEncodedSize(), 402);
-  EXPECT_EQ(thx_msgs::servo_stats_t{}.getEncodedSize(), 192);
-  EXPECT_EQ(thx_msgs::contact_sample_encoded_size(), 394);  // inside a batch: no fingerprint
+  EXPECT_EQ(thx_msgs::device_state_t{}.getEncodedSize(), 224);
+  EXPECT_EQ(thx_msgs::contact_t{}.getEncodedSize(), 406);
+  EXPECT_EQ(thx_msgs::servo_stats_t{}.getEncodedSize(), 196);
+  EXPECT_EQ(thx_msgs::contact_sample_encoded_size(), 398);  // inside a batch: no fingerprint
 }
 
 TEST(MessagesEncodedSize, BatchIsHeaderPlusSamples) {
@@ -139,18 +139,18 @@ TEST(MessagesEncodedSize, BatchIsHeaderPlusSamples) {
     const thx_msgs::contact_batch_t b = make_contact_batch(0, n);
     EXPECT_EQ(std::size_t(b.getEncodedSize()), thx_msgs::contact_batch_encoded_size(std::size_t(n)));
   }
-  EXPECT_EQ(thx_msgs::kBatchHeaderBytes, 48u);
+  EXPECT_EQ(thx_msgs::kBatchHeaderBytes, 52u);
   // udpm sends channel + 1 + message in one datagram up to 65,499 bytes.
   const std::size_t longest_channel = thx_msgs::stream_channel("CONTACT", true, std::string(32, 'a')).size();
   for (std::size_t ch : {std::size_t(18 + 1), longest_channel, thx_msgs::kMaxChannelLength}) {
     const std::size_t n = thx_msgs::max_unfragmented_batch_samples(ch);
-    EXPECT_EQ(n, ch < 20 ? 166u : 165u) << ch;
+    EXPECT_EQ(n, 164u) << ch;
     EXPECT_LE(ch + 1 + thx_msgs::contact_batch_encoded_size(n), thx_msgs::kLcmShortMessageMaxSize);
     EXPECT_GT(ch + 1 + thx_msgs::contact_batch_encoded_size(n + 1), thx_msgs::kLcmShortMessageMaxSize);
   }
-  EXPECT_EQ(thx_msgs::max_unfragmented_batch_samples(), 165u);
-  EXPECT_EQ(thx_msgs::contact_batch_encoded_size(165), 65058u);
-  EXPECT_EQ(thx_msgs::contact_batch_encoded_size(1000), 394048u);
+  EXPECT_EQ(thx_msgs::max_unfragmented_batch_samples(), 164u);
+  EXPECT_EQ(thx_msgs::contact_batch_encoded_size(164), 65324u);
+  EXPECT_EQ(thx_msgs::contact_batch_encoded_size(1000), 398052u);
 }
 
 // Types with strings: 8 (fingerprint) + fixed fields + (4 + length + 1) per string.
@@ -167,9 +167,10 @@ TEST(MessagesEncodedSize, StringTypes) {
   const auto hb = make_heartbeat(0);
   EXPECT_EQ(hb.getEncodedSize(), 32 + strings({&hb.client_id}));
   const auto hello = make_hello(0);
-  EXPECT_EQ(hello.getEncodedSize(), 68 + strings({&hello.server_name, &hello.device, &hello.scene_name, &hello.control_url}));
+  EXPECT_EQ(hello.getEncodedSize(),
+            68 + strings({&hello.server_name, &hello.device, &hello.scene_name, &hello.control_url, &hello.device_names}));
   const auto cf = make_client_force(0);
-  EXPECT_EQ(cf.getEncodedSize(), 112 + strings({&cf.client_id, &cf.source}));
+  EXPECT_EQ(cf.getEncodedSize(), 116 + strings({&cf.client_id, &cf.source}));
   const auto cmd = make_server_command(0);
   EXPECT_EQ(cmd.getEncodedSize(), 28 + strings({&cmd.client_id, &cmd.argument}));
   const auto ack = make_server_command_reply(0);

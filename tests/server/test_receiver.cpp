@@ -41,6 +41,19 @@ TEST(ClientForceTable, KeepsTheLatestPerSenderAndSums) {
   EXPECT_EQ(t.liveEntries(), 0);
 }
 
+// Protocol 6 (several devices): a table sums the forces for its own device only.
+TEST(ClientForceTable, AForceForAnotherDeviceIsRefusedAndCounted) {
+  srv::ClientForceTable first(7.9, 50 * kMs);  // device 0, as hapticd's one device
+  thx_msgs::client_force_t m = force("physics", "pen", 1, 0.5);
+  m.device = 1;
+  EXPECT_FALSE(first.accept(m, 0));
+  EXPECT_EQ(first.counters().other_device, 1u);
+  EXPECT_EQ(first.liveEntries(), 0);
+  srv::ClientForceTable second(7.9, 50 * kMs, /*device=*/1);
+  EXPECT_TRUE(second.accept(m, 0));
+  EXPECT_NEAR(second.sum(1 * kMs).x(), 0.5, 1e-12);
+}
+
 TEST(ClientForceTable, RefusesBadInputAndBoundsItself) {
   srv::ClientForceTable t(7.9, 50 * kMs);
   EXPECT_FALSE(t.accept(force("physics", "x", 1, 8.5), 0));                    // above the peak force

@@ -73,6 +73,16 @@ bool runUntil(
   return true;
 }
 
+// A raw socket connected to `listener`, and the served side of it.
+void rawPeer(Listener& listener, UniqueFd& raw, std::unique_ptr<TcpConnection>& served) {
+  Result<UniqueFd> connected = connectTcp("127.0.0.1", listener.port);
+  ASSERT_TRUE(connected);
+  raw = std::move(connected).value();
+  ASSERT_TRUE(runUntil(
+      {}, [](TcpConnection&, const Event&) {}, [&] { return served != nullptr; }, listener.fd.get(),
+      [&] { served = listener.accept(); }));
+}
+
 }  // namespace
 
 TEST(TcpLoopback, ServerAndClientExchangeEverything) {
@@ -207,13 +217,9 @@ TEST(TcpLoopback, GarbageFromOneClientDropsOnlyThatClient) {
 
 TEST(TcpLoopback, PeerClosingMidMessageIsTruncation) {
   Listener listener;
-  Result<UniqueFd> connected = connectTcp("127.0.0.1", listener.port);
-  ASSERT_TRUE(connected);
-  UniqueFd raw = std::move(connected).value();
+  UniqueFd raw;
   std::unique_ptr<TcpConnection> served;
-  ASSERT_TRUE(runUntil(
-      {}, [](TcpConnection&, const Event&) {}, [&] { return served != nullptr; }, listener.fd.get(),
-      [&] { served = listener.accept(); }));
+  ASSERT_NO_FATAL_FAILURE(rawPeer(listener, raw, served));
   Bytes partial;
   const Cookie cookie = makeCookie();
   partial.assign(cookie.begin(), cookie.end());
@@ -227,6 +233,29 @@ TEST(TcpLoopback, PeerClosingMidMessageIsTruncation) {
       {served.get()}, [&](TcpConnection&, const Event& ev) { events.push_back(summary(ev)); },
       [&] { return served->endpoint().state() == Endpoint::State::kDropped && !served->open(); }));
   EXPECT_EQ(events, (std::vector<std::string>{"connected log=0 minor_differs=0", "dropped truncated"}));
+}
+
+// A peer that closes with our bytes unread makes its kernel reset the connection (a stock
+// client quitting while 1 kHz reports are in flight): that is the peer's close, not an error.
+TEST(TcpLoopback, APeerThatResetsTheConnectionHasClosedIt) {
+  Listener listener;
+  UniqueFd raw;
+  std::unique_ptr<TcpConnection> served;
+  ASSERT_NO_FATAL_FAILURE(rawPeer(listener, raw, served));
+  const Cookie cookie = makeCookie();
+  ASSERT_EQ(::send(raw.get(), cookie.data(), cookie.size(), MSG_NOSIGNAL), ssize_t(cookie.size()));
+  // The served side handshakes and sends its cookie and descriptions, which the peer never reads.
+  std::vector<std::string> events;
+  const auto collect = [&](TcpConnection&, const Event& ev) { events.push_back(summary(ev)); };
+  ASSERT_TRUE(runUntil({served.get()}, collect, [&] {
+    return served->endpoint().state() == Endpoint::State::kConnected && !served->wantsWrite();
+  }));
+  raw.reset();
+  ASSERT_TRUE(runUntil({served.get()}, collect, [&] { return !served->open(); }));
+  ASSERT_TRUE(served->closeReason().has_value());
+  EXPECT_EQ(served->closeReason()->code, ErrorCode::kPeerClosed);
+  EXPECT_EQ(served->closeReason()->reason, "peer reset the connection");
+  EXPECT_EQ(events, (std::vector<std::string>{"connected log=0 minor_differs=0", "dropped peer closed"}));
 }
 
 TEST(TcpLoopback, ConnectionRefusedIsASocketError) {

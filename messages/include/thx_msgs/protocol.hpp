@@ -197,8 +197,8 @@ template <>
 struct string_layout<hello_t> {
   static constexpr bool has_strings = true;
   // utime seq server_instance start_utime start_unix_us protocol_version servo_rate_hz |
-  // server_name | device | scene_name | texture_fingerprint | control_url
-  static constexpr int segments[] = {52, kString, kString, kString, 8, kString};
+  // server_name | device | scene_name | texture_fingerprint | control_url | device_names
+  static constexpr int segments[] = {52, kString, kString, kString, 8, kString, kString};
 };
 template <>
 struct string_layout<server_command_t> {
@@ -215,8 +215,8 @@ struct string_layout<server_command_reply_t> {
 template <>
 struct string_layout<client_force_t> {
   static constexpr bool has_strings = true;
-  // utime seq ref_tick timeout_us | client_id | source | f_world tau_world p_world
-  static constexpr int segments[] = {32, kString, kString, 72};
+  // utime seq ref_tick timeout_us | client_id | source | f_world tau_world p_world device
+  static constexpr int segments[] = {32, kString, kString, 76};
 };
 
 // Walks an encoded message by its layout. Returns the number of bytes it spans (fingerprint
@@ -251,8 +251,8 @@ std::ptrdiff_t layout_extent(const void* data, std::size_t size, const int (&seg
 inline int contact_sample_encoded_size() noexcept { return contact_t{}._getEncodedSizeNoHash(); }
 
 // Byte offset of contact_batch_t.num_samples in an encoded batch: the fingerprint (8), four
-// int64 fields and num_dropped (tests/messages check this against the generated encoder).
-inline constexpr std::size_t kBatchCountOffset = 8 + 4 * 8 + 4;
+// int64 fields, device and num_dropped (tests/messages check this against the generated encoder).
+inline constexpr std::size_t kBatchCountOffset = 8 + 4 * 8 + 4 + 4;
 // Encoded size of a batch with no samples (fingerprint included).
 inline constexpr std::size_t kBatchHeaderBytes = kBatchCountOffset + 4;
 
