@@ -90,7 +90,7 @@ TEST(Subscriptions, RatesAboveTheLimitAreGrantedTheLimitWithAReason) {
   EXPECT_DOUBLE_EQ(r.rate_hz, 1.0);
   EXPECT_NE(r.reason.find("SERVO_STATS window"), std::string::npos) << r.reason;
 
-  // A batch must fit one datagram: 165 samples at most, so at least 1000/165 Hz.
+  // A batch must fit one datagram: 164 samples at most, so at least 1000/164 Hz.
   r = t.handleRequest(request("b", "CONTACT", 1.0, true), 0);
   EXPECT_TRUE(r.accepted);
   const double floor_hz = 1000.0 / double(thx_msgs::max_unfragmented_batch_samples(r.channel.size()));
