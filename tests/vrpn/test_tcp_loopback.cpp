@@ -250,6 +250,10 @@ TEST(TcpLoopback, APeerThatResetsTheConnectionHasClosedIt) {
   ASSERT_TRUE(runUntil({served.get()}, collect, [&] {
     return served->endpoint().state() == Endpoint::State::kConnected && !served->wantsWrite();
   }));
+  // Closed only once those bytes wait in its receive queue: then its kernel resets the connection
+  // (closed before they arrive, it would close it in order).
+  pollfd readable{raw.get(), POLLIN, 0};
+  ASSERT_EQ(::poll(&readable, 1, 20000), 1);
   raw.reset();
   ASSERT_TRUE(runUntil({served.get()}, collect, [&] { return !served->open(); }));
   ASSERT_TRUE(served->closeReason().has_value());
