@@ -65,12 +65,10 @@ Device parseOneDevice(const std::optional<Field>& field, const Surface& surface,
   d.model = *findDeviceModel("phantom_desktop");
   d.pen.material = *findMaterial("plastic");
   if (!field) return d;
-  if (named)
-    field->expectKeys({"name", "type", "model", "address", "stiffness_fraction", "damping", "sim", "script", "pen"});
-  else
-    field->expectKeys({"type", "model", "address", "stiffness_fraction", "damping", "sim", "script", "pen"});
-  if (named)
-    if (auto n = field->find("name")) d.name = parseDeviceName(*n);
+  std::vector<std::string> keys = {"type", "model", "address", "stiffness_fraction", "damping", "sim", "script", "pen"};
+  if (named) keys.insert(keys.begin(), "name");  // only a `devices:` entry is named
+  field->expectKeys(keys);
+  if (const auto n = named ? field->find("name") : std::nullopt) d.name = parseDeviceName(*n);
   if (auto p = field->find("pen")) d.pen = parsePen(*p);
   if (auto t = field->find("type"))
     d.type = t->choice<DeviceType>({{"sim", DeviceType::Sim}, {"vrpn", DeviceType::Vrpn}});

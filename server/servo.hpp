@@ -129,6 +129,7 @@ class Servo {
   const TickRecord& tickAt(const rt::TickTiming& timing) { return step(device_.readTick(timing)); }
   const dev::HapticDevice& device() const { return device_; }
   dev::HapticDevice& device() { return device_; }  // to open and close it, outside the tick
+  const rt::SpscRing<TickRecord>& ring() const { return out_; }  // where its records go
 
   void requestShutdown() { safety_.requestShutdown(); }
   bool finished() const { return safety_.shutdownComplete(); }

@@ -11,15 +11,15 @@ std::int64_t stopTickAfter(double duration_s, double rate_hz) {
 }
 
 ServoRunner::ServoRunner(Servo& servo, const rt::SpscRing<TickRecord>& ring, const ServoRunnerOptions& options)
-    : servo_(&servo), rings_{&ring}, options_(options) {}
+    : servo_(&servo), ring_(&ring), options_(options) {}
 
-ServoRunner::ServoRunner(ServoGroup& group, std::vector<const rt::SpscRing<TickRecord>*> rings,
-                         const ServoRunnerOptions& options)
-    : group_(&group), rings_(std::move(rings)), options_(options) {}
+ServoRunner::ServoRunner(ServoGroup& group, const ServoRunnerOptions& options) : group_(&group), options_(options) {}
 
 bool ServoRunner::readerBehind() const {
-  for (const rt::SpscRing<TickRecord>* ring : rings_)
-    if (ring->size() + 2 >= ring->capacity()) return true;
+  const auto behind = [](const rt::SpscRing<TickRecord>& ring) { return ring.size() + 2 >= ring.capacity(); };
+  if (!group_) return behind(*ring_);
+  for (int i = 0; i < group_->size(); ++i)
+    if (behind(group_->member(i).ring())) return true;
   return false;
 }
 

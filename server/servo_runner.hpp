@@ -23,7 +23,6 @@
 #include <cstdint>
 #include <string>
 #include <thread>
-#include <vector>
 
 #include "device/haptic_device.hpp"
 #include "rt/spsc_ring.hpp"
@@ -50,9 +49,9 @@ class ServoRunner {
 
   // `ring` is the one the servo pushes its records into (ServoRig::ring()). Both outlive the runner.
   ServoRunner(Servo& servo, const rt::SpscRing<TickRecord>& ring, const ServoRunnerOptions& options);
-  // Several devices: the group's ticks; `rings` are its members' (ServoRig::ring()), in any order.
-  // The group and the rings outlive the runner.
-  ServoRunner(ServoGroup& group, std::vector<const rt::SpscRing<TickRecord>*> rings, const ServoRunnerOptions& options);
+  // Several devices: the group's ticks, back-pressure on its members' rings. The group outlives the
+  // runner.
+  ServoRunner(ServoGroup& group, const ServoRunnerOptions& options);
   ~ServoRunner();  // joins the thread start() began
   ServoRunner(const ServoRunner&) = delete;
   ServoRunner& operator=(const ServoRunner&) = delete;
@@ -87,7 +86,7 @@ class ServoRunner {
 
   Servo* servo_ = nullptr;  // one device, or
   ServoGroup* group_ = nullptr;  // several
-  std::vector<const rt::SpscRing<TickRecord>*> rings_;
+  const rt::SpscRing<TickRecord>* ring_ = nullptr;  // one device's
   ServoRunnerOptions options_;
   std::atomic<bool> stop_requested_{false};
   std::atomic<bool> done_{false};

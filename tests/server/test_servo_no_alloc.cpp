@@ -111,7 +111,7 @@ TEST(ServoRealtime, NoAllocationInTheGroupTick) {
   srv::ServoRunnerOptions o;
   o.lockstep = true;
   o.stop_tick = 1500;
-  srv::ServoRunner runner(group, {&members[0]->rig.ring(), &members[1]->rig.ring(), &members[2]->rig.ring()}, o);
+  srv::ServoRunner runner(group, o);
   const auto stepAndDrain = [&] {
     const srv::ServoRunner::Step s = runner.step();
     for (auto& m : members) m->rig.drain();

@@ -6,7 +6,9 @@
 #include <atomic>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "device/device_specs.hpp"
@@ -201,25 +203,31 @@ TEST(ServoRunner, OnItsOwnThreadALockstepReaderMissesNoTick) {
 
 namespace {
 
-// A device whose open() fails, as a VRPN server that does not answer would.
+// A device whose open() fails, as a VRPN server that does not answer would; `shares_clock`: one a
+// group would take.
 class UnopenableDevice final : public thx::dev::HapticDevice {
  public:
+  explicit UnopenableDevice(std::string reason, bool shares_clock = false)
+      : reason_(std::move(reason)), shares_clock_(shares_clock) {}
   const thx::dev::DeviceSpec& spec() const override { return spec_; }
   thx::dev::OutputMode outputMode() const override { return thx::dev::OutputMode::Force; }
-  void open() override { throw std::runtime_error("no answer from Phantom0@nowhere"); }
+  void open() override { throw std::runtime_error(reason_); }
   void close() override {}
   thx::dev::DeviceState read() override { return {}; }
   void write(const thx::dev::DeviceCommand&) override {}
+  bool sharesClock() const override { return shares_clock_; }
 
  private:
   thx::dev::DeviceSpec spec_ = thx::dev::phantomDesktopSpec();
+  std::string reason_;
+  bool shares_clock_;
 };
 
 }  // namespace
 
 TEST(ServoRunner, ADeviceThatCannotOpenEndsTheThreadWithItsReasonAndNoTick) {
   LockstepRig r(16);
-  UnopenableDevice bad;
+  UnopenableDevice bad("no answer from Phantom0@nowhere");
   ServoRunner runner(r.rig.servo(), r.rig.ring(), lockstep(10));
   thx::srv::RealtimeOptions rt;
   rt.fifo = false;
@@ -238,7 +246,6 @@ struct LockstepGroup {
   LockstepGroup() : group(clock, 1'000'000) {
     for (auto& m : members) group.add(m.rig.servo());
   }
-  std::vector<const thx::rt::SpscRing<TickRecord>*> rings() { return {&members[0].rig.ring(), &members[1].rig.ring()}; }
   thx::rt::VirtualClock clock;
   LockstepRig members[2]{LockstepRig(16), LockstepRig(16)};  // rings of 16 records
   thx::srv::ServoGroup group;
@@ -249,7 +256,7 @@ struct LockstepGroup {
 TEST(ServoRunner, AGroupWaitsForTheReaderOfAnyMembersRing) {
   LockstepGroup g;
   g.group.start();
-  ServoRunner runner(g.group, g.rings(), lockstep());
+  ServoRunner runner(g.group, lockstep());
   const std::size_t capacity = g.members[0].rig.ring().capacity();
   for (std::size_t k = 0; k + 2 < capacity; ++k) {
     ASSERT_EQ(runner.step(), Step::Ticked) << k;
@@ -264,7 +271,7 @@ TEST(ServoRunner, AGroupWaitsForTheReaderOfAnyMembersRing) {
 TEST(ServoRunner, OnItsOwnThreadAGroupOpensEveryDeviceAndItsReadersMissNoTick) {
   LockstepGroup g;
   for (auto& m : g.members) m.device.close();  // start() opens them on the servo thread
-  ServoRunner runner(g.group, g.rings(), lockstep(/*stop_tick=*/400));
+  ServoRunner runner(g.group, lockstep(/*stop_tick=*/400));
   thx::srv::RealtimeOptions rt;
   rt.fifo = false;
   rt.lock_memory = false;
@@ -291,21 +298,6 @@ TEST(ServoRunner, OnItsOwnThreadAGroupOpensEveryDeviceAndItsReadersMissNoTick) {
 
 namespace {
 
-// A device that could be read at a group's tick but cannot be opened; counts its closes.
-class UnopenableSharedDevice final : public thx::dev::HapticDevice {
- public:
-  const thx::dev::DeviceSpec& spec() const override { return spec_; }
-  thx::dev::OutputMode outputMode() const override { return thx::dev::OutputMode::Force; }
-  void open() override { throw std::runtime_error("no answer from Phantom1@nowhere"); }
-  void close() override {}
-  thx::dev::DeviceState read() override { return {}; }
-  void write(const thx::dev::DeviceCommand&) override {}
-  bool sharesClock() const override { return true; }
-
- private:
-  thx::dev::DeviceSpec spec_ = thx::dev::phantomDesktopSpec();
-};
-
 // The simulated PHANToM, counting the closes start() makes after another device failed.
 class CountingSim final : public thx::dev::HapticDevice {
  public:
@@ -326,14 +318,14 @@ class CountingSim final : public thx::dev::HapticDevice {
 TEST(ServoRunner, AGroupDeviceThatCannotOpenEndsTheThreadNamingItAndClosesTheOthers) {
   thx::test::GeneratedSurface texture(thx::test::ServoRigInputs::vvalley(), /*relief=*/true);
   CountingSim good;
-  UnopenableSharedDevice bad;
+  UnopenableDevice bad("no answer from Phantom1@nowhere", /*shares_clock=*/true);
   thx::srv::ServoRig good_rig(good, *texture.surface, LockstepRig::wiring(16));
   thx::srv::ServoRig bad_rig(bad, *texture.surface, LockstepRig::wiring(16));
   thx::rt::VirtualClock clock;
   thx::srv::ServoGroup group(clock, 1'000'000);
   group.add(good_rig.servo());
   group.add(bad_rig.servo());
-  ServoRunner runner(group, {&good_rig.ring(), &bad_rig.ring()}, lockstep(10));
+  ServoRunner runner(group, lockstep(10));
   thx::srv::RealtimeOptions rt;
   rt.fifo = false;
   rt.lock_memory = false;
