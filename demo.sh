@@ -1,7 +1,7 @@
 #!/bin/sh
 # The main job on the default scene: hapticd with the simulated PHANToM in real time, a scripted
 # stroke across the bricks and a press, then a press into a steep V-valley, then strokes inside a
-# bowl of bricks (a textured mesh); each prints its summary. Then physics-client next to hapticd: the pen pushes a ball out of its dimple. Then the
+# bowl of bricks (a textured mesh), then two pens at once; each prints its summary. Then physics-client next to hapticd: the pen pushes a ball out of its dimple. Then the
 # pen's scrape over the bricks and a marble rolling over them, each as a WAV with its spectrogram.
 # Then the texture gallery with shaded previews, frames of the default scene and of the bowl, three
 # marbles rolling in the bowl (physics-client on a lock-step recording of the pen, frames of the
@@ -32,6 +32,11 @@ echo
 echo "== hapticd, real time: a bowl of bricks, a textured mesh (scenes/brick_bowl.yaml): a stroke down its inside wall,"
 echo "   half a circle round it, a press (about 13 s)"
 "$HD" --scene scenes/brick_bowl.yaml --stats-json "$OUT/hapticd_brick_bowl.json" --flight-dir "$OUT"
+
+echo
+echo "== hapticd, real time: two simulated pens on the bricks under one servo clock (scenes/two_pens.yaml):"
+echo "   one strokes the lower courses while the other presses, then strokes the upper ones (about 5 s)"
+"$HD" --scene scenes/two_pens.yaml --stats-json "$OUT/hapticd_two_pens.json" --flight-dir "$OUT"
 
 echo
 echo "== physics: hapticd + physics-client, the simulated pen pushes a ball out of its dimple (about 6 s)"

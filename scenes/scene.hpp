@@ -209,6 +209,14 @@ inline std::size_t deviceCount(const Scene& scene) { return 1 + scene.other_devi
 inline const Device& deviceAt(const Scene& scene, std::size_t i) {
   return i == 0 ? scene.device : scene.other_devices.at(i - 1);
 }
+// The scene as device i alone sees it: `device` is device i and there are no others. hapticd runs
+// every one-device translation (server/scene_device.hpp: spec, simulated hand, renderer) on it.
+inline Scene sceneForDevice(const Scene& scene, std::size_t i) {
+  Scene one = scene;
+  one.device = deviceAt(scene, i);
+  one.other_devices.clear();
+  return one;
+}
 
 const char* toString(DeviceType type);
 const char* toString(Shape shape);

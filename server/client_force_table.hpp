@@ -22,6 +22,17 @@ struct ClientForceCounters {
   std::uint64_t table_full = 0;    // more senders than kMaxEntries
   std::uint64_t other_device = 0;  // client_force_t.device names a device this table is not for
   std::uint64_t expired = 0;
+
+  ClientForceCounters& operator+=(const ClientForceCounters& o) {
+    accepted += o.accepted;
+    stale_seq += o.stale_seq;
+    bad_values += o.bad_values;
+    bad_ids += o.bad_ids;
+    table_full += o.table_full;
+    other_device += o.other_device;
+    expired += o.expired;
+    return *this;
+  }
 };
 
 class ClientForceTable {

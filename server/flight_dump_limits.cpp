@@ -33,13 +33,14 @@ FlightDumpOutcome FlightDumpGate::admit(std::int64_t tick) {
   return FlightDumpOutcome::Written;
 }
 
-FlightDump dumpWithinLimits(FlightRecorder& recorder, FlightDumpGate& gate, const std::string& directory) {
+FlightDump dumpWithinLimits(FlightRecorder& recorder, FlightDumpGate& gate, const std::string& directory,
+                            const std::string& tag) {
   FlightDump d;
   const std::optional<std::int64_t> tick = recorder.pendingTick();
   if (!tick) return d;
   d.outcome = gate.admit(*tick);
   if (d.outcome == FlightDumpOutcome::Written) {
-    d.path = recorder.dumpPending(directory);
+    d.path = recorder.dumpPending(directory, tag);
   } else {
     recorder.discardPending();
   }

@@ -47,7 +47,8 @@ struct FlightDump {
 };
 
 // Writes the recorder's pending flight into `directory` if the gate admits it, else drops it.
-// Throws what FlightRecorder::dumpPending throws.
-FlightDump dumpWithinLimits(FlightRecorder& recorder, FlightDumpGate& gate, const std::string& directory);
+// Throws what FlightRecorder::dumpPending throws. `tag`: FlightRecorder::dumpPending's.
+FlightDump dumpWithinLimits(FlightRecorder& recorder, FlightDumpGate& gate, const std::string& directory,
+                            const std::string& tag = "");
 
 }  // namespace thx::srv

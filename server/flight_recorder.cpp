@@ -53,10 +53,10 @@ std::optional<std::int64_t> FlightRecorder::pendingTick() const {
 
 void FlightRecorder::discardPending() { frozen_.store(false, std::memory_order_release); }
 
-std::string FlightRecorder::dumpPending(const std::string& directory) {
+std::string FlightRecorder::dumpPending(const std::string& directory, const std::string& tag) {
   if (!frozen_.load(std::memory_order_acquire)) return {};
   const Buffer& b = buffers_[1 - active_];
-  const std::string path = directory + "/flight-tick" + std::to_string(frozen_tick_) + "-" + faultName(frozen_fault_) + ".csv";
+  const std::string path = directory + "/flight-" + (tag.empty() ? "" : tag + "-") + "tick" + std::to_string(frozen_tick_) + "-" + faultName(frozen_fault_) + ".csv";
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) {
     frozen_.store(false, std::memory_order_release);  // report once, then keep recording

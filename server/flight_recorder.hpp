@@ -27,7 +27,9 @@ class FlightRecorder {
 
   // Any other thread. Writes the frozen buffer as CSV into `directory` (one file per fault) and
   // returns its path; empty when nothing is pending. Throws std::runtime_error on I/O errors.
-  std::string dumpPending(const std::string& directory);
+  // The file is flight-tick<T>-<fault>.csv, or flight-<tag>-tick<T>-<fault>.csv with a `tag` (the
+  // device's name when a server runs several: two devices may fault at one tick).
+  std::string dumpPending(const std::string& directory, const std::string& tag = "");
   // Any other thread: the tick of the pending flight's fault (none pending: nullopt), and
   // dropping it unwritten (server/flight_dump_limits.hpp) so the next fault can be frozen.
   std::optional<std::int64_t> pendingTick() const;

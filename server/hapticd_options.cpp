@@ -229,6 +229,7 @@ HapticdOptions parseHapticdOptions(const std::vector<std::string>& args) {
       o.vrpn_listen = value();
     } else if (a == "--vrpn-name") {
       o.vrpn_name = value();
+      o.vrpn_name_given = true;
       if (o.vrpn_name.empty() || o.vrpn_name.size() > 95 || o.vrpn_name.find('@') != std::string::npos)
         usage("--vrpn-name: expected 1..95 characters without '@', got '" + o.vrpn_name + "'");
     } else if (a == "--vrpn-report-hz") {

@@ -66,6 +66,7 @@ struct HapticdOptions {
   std::string vrpn_listen;  // --vrpn-listen [ADDR:]PORT as given; empty: no VRPN server
   ListenAddress vrpn_address;  // parsed from it
   std::string vrpn_name = "Phantom0";
+  bool vrpn_name_given = false;  // --vrpn-name seen (a scene with several devices refuses it)
   std::optional<double> vrpn_report_hz;
   int vrpn_max_clients = 16;
   bool vrpn_plane2 = false;

@@ -16,15 +16,52 @@ thx::Error configError(const std::string& path, const std::string& what) {
 
 }  // namespace
 
+namespace {
+
+// Device `i`'s wiring, budget and (on a mesh) renderer. `who`: "" for a scene's only device, else
+// the device's name for the errors.
+PreparedDevice prepareDevice(const scene::Scene& one, const dev::DeviceSpec& spec, const ScenePolicy& policy,
+                             const PreparedScene& p, const std::string& who) {
+  PreparedDevice d;
+  d.wiring = servoRigConfigFor(one);
+  RendererConfig& rc = d.wiring.renderer;
+  if (policy.stiffness_fraction) rc.stiffness_n_per_m = *policy.stiffness_fraction * spec.max_stiffness_n_per_m;
+  rc.crease_handling = policy.crease;
+  d.wiring.passivity = policy.passivity;
+  if (policy.paper_loop_plane_hz) applyPaperLoop(d.wiring, *policy.paper_loop_plane_hz);
+
+  StabilityRequest sr;
+  sr.stiffness_fraction = rc.stiffness_n_per_m / spec.max_stiffness_n_per_m;
+  sr.virtual_damping_ns_per_m = rc.damping_ns_per_m;
+  sr.period_s = d.wiring.period_s;
+  sr.policy = policy.strict_stability ? BoundPolicy::Strict : BoundPolicy::Warn;
+  d.budget = checkStabilityBudget(spec, sr);
+  if (!d.budget.ok) {
+    std::string all;
+    for (const std::string& e : d.budget.errors) all += (all.empty() ? "" : "; ") + e;
+    throw configError(p.path, who.empty() ? all : "device " + who + ": " + all);
+  }
+  // The servo's passivity observer takes the renderer's stiffness as its K: checked here, off
+  // the servo thread, as the controller's constructor would.
+  servoPassivityConfig(spec, d.wiring.period_s, rc.stiffness_n_per_m, policy.passivity).validate();
+  if (p.mesh) d.mesh_renderer = buildMeshRenderer(*p.mesh, p.surface.surface, rc);
+
+  d.swap.surface = &p.surface.surface;
+  d.swap.renderer = rc;
+  d.swap.stored_energy_stiffness_n_per_m = rc.stiffness_n_per_m;
+  d.swap.mesh = d.mesh_renderer.get();
+  return d;
+}
+
+}  // namespace
+
 std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::string& path,
-                                            const dev::DeviceSpec& spec, const ScenePolicy& policy,
+                                            const std::vector<dev::DeviceSpec>& specs, const ScenePolicy& policy,
                                             std::shared_ptr<const MeshGeometry> mesh) {
-  if (scene::deviceCount(sc) > 1) {
-    std::string names;
-    for (std::size_t i = 0; i < scene::deviceCount(sc); ++i) names += (i ? ", " : "") + scene::deviceAt(sc, i).name;
-    throw configError(path, "devices: the scene lists " + std::to_string(scene::deviceCount(sc)) + " devices (" + names +
-                                "); hapticd serves one device per scene so far: give one `device:`, or run one "
-                                "hapticd per device");
+  const std::size_t count = scene::deviceCount(sc);
+  if (specs.size() != count) {
+    throw configError(path, "devices: the scene lists " + std::to_string(count) + " device" + (count == 1 ? "" : "s") +
+                                " and the server runs " + std::to_string(specs.size()));
   }
   if (sc.surface.mesh && policy.paper_loop_plane_hz)
     throw configError(path, "--paper-loop renders a plane per graphics frame; this scene's surface is a mesh "
@@ -33,28 +70,6 @@ std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::s
   p->path = path;
   p->warnings = sc.warnings;
   p->surface = scene::buildSceneSurface(sc);
-  p->wiring = servoRigConfigFor(sc);
-  RendererConfig& rc = p->wiring.renderer;
-  if (policy.stiffness_fraction) rc.stiffness_n_per_m = *policy.stiffness_fraction * spec.max_stiffness_n_per_m;
-  rc.crease_handling = policy.crease;
-  p->wiring.passivity = policy.passivity;
-  if (policy.paper_loop_plane_hz) applyPaperLoop(p->wiring, *policy.paper_loop_plane_hz);
-
-  StabilityRequest sr;
-  sr.stiffness_fraction = rc.stiffness_n_per_m / spec.max_stiffness_n_per_m;
-  sr.virtual_damping_ns_per_m = rc.damping_ns_per_m;
-  sr.period_s = p->wiring.period_s;
-  sr.policy = policy.strict_stability ? BoundPolicy::Strict : BoundPolicy::Warn;
-  p->budget = checkStabilityBudget(spec, sr);
-  if (!p->budget.ok) {
-    std::string all;
-    for (const std::string& e : p->budget.errors) all += (all.empty() ? "" : "; ") + e;
-    throw configError(path, all);
-  }
-  // The servo's passivity observer takes the renderer's stiffness as its K: checked here, off
-  // the servo thread, as the controller's constructor would.
-  servoPassivityConfig(spec, p->wiring.period_s, rc.stiffness_n_per_m, policy.passivity).validate();
-
   if (sc.surface.mesh) {
     try {
       p->mesh = mesh ? std::move(mesh) : buildMeshGeometry(sc);
@@ -63,24 +78,32 @@ std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& sc, const std::s
     } catch (const thx::Error& e) {
       throw configError(path, std::string("surface.mesh: ") + e.what());
     }
-    p->mesh_renderer = buildMeshRenderer(*p->mesh, p->surface.surface, rc);
   }
   p->fingerprint =
       p->mesh ? scene::meshSceneFingerprint(p->surface.fingerprint, p->mesh->scene_mesh) : p->surface.fingerprint;
-
-  p->swap.surface = &p->surface.surface;
-  p->swap.renderer = rc;
-  p->swap.stored_energy_stiffness_n_per_m = rc.stiffness_n_per_m;
-  p->swap.mesh = p->mesh_renderer.get();
+  p->devices.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string who = count == 1 ? std::string() : scene::deviceAt(sc, i).name;
+    p->devices.push_back(prepareDevice(count == 1 ? sc : scene::sceneForDevice(sc, i), specs[i], policy, *p, who));
+  }
   return p;
 }
 
 std::unique_ptr<PreparedScene> prepareSwitch(const std::string& path, const scene::Scene& running,
-                                             const dev::DeviceSpec& spec, const ScenePolicy& policy) {
+                                             const std::vector<dev::DeviceSpec>& specs, const ScenePolicy& policy) {
   const scene::Scene sc = scene::loadScene(path);
-  if (sc.device.model.name != running.device.model.name) {
-    throw configError(path, "device.model '" + sc.device.model.name + "' differs from the running device's '" +
-                                running.device.model.name +
+  const std::size_t count = scene::deviceCount(running);
+  if (scene::deviceCount(sc) != count) {
+    throw configError(path, "the scene lists " + std::to_string(scene::deviceCount(sc)) + " device(s), the running "
+                                "server " + std::to_string(count) +
+                                ": a scene switch keeps the devices; restart hapticd with this scene to change them");
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string& next_model = scene::deviceAt(sc, i).model.name;
+    const std::string& running_model = scene::deviceAt(running, i).model.name;
+    if (next_model == running_model) continue;
+    const std::string field = count == 1 ? "device.model" : "devices[" + std::to_string(i) + "].model";
+    throw configError(path, field + " '" + next_model + "' differs from the running device's '" + running_model +
                                 "': a scene switch keeps the device; restart hapticd with this scene to change it");
   }
   if (sc.rates.servo_hz != running.rates.servo_hz) {
@@ -88,7 +111,7 @@ std::unique_ptr<PreparedScene> prepareSwitch(const std::string& path, const scen
                                 numberText(running.rates.servo_hz) +
                                 " Hz: a scene switch keeps the servo rate; restart hapticd with this scene to change it");
   }
-  return prepareScene(sc, path, spec, policy);
+  return prepareScene(sc, path, specs, policy);
 }
 
 }  // namespace thx::srv

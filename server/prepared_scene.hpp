@@ -31,33 +31,44 @@ struct ScenePolicy {
   std::optional<double> paper_loop_plane_hz;
 };
 
+// One device's part of a prepared scene: what its servo renders the scene with.
+struct PreparedDevice {
+  ServoRigConfig wiring;   // servoRigConfigFor() of the device's view of the scene, the policy applied
+  StabilityBudget budget;  // ok (a failing budget throws); its message is a note
+  // A mesh scene: the renderer this device's servo runs on the mesh (it keeps the device's proxy,
+  // so each device has its own); else null.
+  std::unique_ptr<TexturedMeshRenderer> mesh_renderer;
+  SurfaceSwap swap;  // points into the scene's `surface` and `mesh_renderer`
+};
+
 struct PreparedScene {
   std::string path;                   // the scene file
-  scene::SceneSurface surface;        // owned: the servo renders surface.surface (or its map on the mesh)
-  ServoRigConfig wiring;              // servoRigConfigFor() with the policy applied
-  StabilityBudget budget;             // ok (a failing budget throws); its message is a note
+  scene::SceneSurface surface;        // owned, shared read-only by every device's servo
   std::vector<std::string> warnings;  // the loader's
-  // A mesh scene (surface.mesh): the mesh and the renderer the servo runs on it; else both null.
+  // A mesh scene (surface.mesh): the mesh every device's renderer runs on; else null.
   std::shared_ptr<const MeshGeometry> mesh;
-  std::unique_ptr<TexturedMeshRenderer> mesh_renderer;
   // hello_t.texture_fingerprint: the surface's texture fingerprint, hashed with the mesh for a
   // mesh scene (scene::meshSceneFingerprint).
   std::uint64_t fingerprint = 0;
-  SurfaceSwap swap;                   // points into `surface` and `mesh_renderer`: a PreparedScene never moves
+  // One per scene device (scene::deviceAt order), sized once: a PreparedScene never moves and
+  // its devices never reallocate, so their swaps stay valid while the servos hold them.
+  std::vector<PreparedDevice> devices;
 };
 
-// Builds the scene `scene` (loaded from `path`) for a device with `spec`. Throws thx::Error
-// naming the scene file: the texture's errors, the mesh's, a smoothing the server cannot do, a
-// stability budget the policy refuses, the paper's loop on a mesh. `mesh`: the scene's mesh if the
-// caller has built it already (hapticd does, for the simulated hand), else it is built here.
+// Builds the scene `scene` (loaded from `path`) for its devices, device i having `specs[i]` (one
+// spec per scene device). Throws thx::Error naming the scene file: a spec count that differs from
+// the scene's devices, the texture's errors, the mesh's, a smoothing the server cannot do, a
+// device's stability budget the policy refuses (naming the device when there are several), the
+// paper's loop on a mesh. `mesh`: the scene's mesh if the caller has built it already (hapticd
+// does, for the simulated hand), else it is built here.
 std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& scene, const std::string& path,
-                                            const dev::DeviceSpec& spec, const ScenePolicy& policy,
+                                            const std::vector<dev::DeviceSpec>& specs, const ScenePolicy& policy,
                                             std::shared_ptr<const MeshGeometry> mesh = nullptr);
 
-// A scene to switch to while `running` runs on its device: loads `path` (scene errors carry
-// file:line), refuses what a switch cannot change (the device model, the servo rate: they need a
-// restart), then prepareScene(). Throws thx::Error.
+// A scene to switch to while `running` runs on its devices: loads `path` (scene errors carry
+// file:line), refuses what a switch cannot change (the number of devices, each device's model,
+// the servo rate: they need a restart), then prepareScene(). Throws thx::Error.
 std::unique_ptr<PreparedScene> prepareSwitch(const std::string& path, const scene::Scene& running,
-                                             const dev::DeviceSpec& spec, const ScenePolicy& policy);
+                                             const std::vector<dev::DeviceSpec>& specs, const ScenePolicy& policy);
 
 }  // namespace thx::srv

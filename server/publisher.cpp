@@ -89,22 +89,22 @@ class Publisher::LcmSink : public MessageSink {
   Publisher& p_;
 };
 
-Publisher::Publisher(rt::SpscRing<TickRecord>& ring, const Servo& servo, FlightRecorder& recorder, lcm::LCM* lcm,
-                     const PublisherOptions& options)
-    : ring_(ring),
-      servo_(servo),
-      recorder_(recorder),
-      flight_gate_(options.flight_limits, 1.0 / options.servo_rate_hz),
-      lcm_(lcm),
+Publisher::Publisher(std::vector<PublishedDevice> devices, lcm::LCM* lcm, const PublisherOptions& options)
+    : lcm_(lcm),
       options_(options),
       server_instance_(drawServerInstance()),
       table_([&] {
         SubscriptionLimits l = options.limits;
         l.servo_rate_hz = options.servo_rate_hz;
         l.server_instance = server_instance_;
+        l.devices = int(devices.size());  // the table refuses a count outside 1..16
         return l;
       }()),
-      commands_(options.fault_reset, server_instance_, options.scene_loads) {
+      commands_(options.fault_resets, server_instance_, options.scene_loads) {
+  devices_.reserve(devices.size());
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    devices_.push_back(Device{std::move(devices[i]), int(i), FlightDumpGate(options.flight_limits, 1.0 / options.servo_rate_hz)});
+  }
   server_name_ = "hapticd@" + hostName();
   scene_name_ = options_.scene_name;
   texture_fingerprint_ = options_.texture_fingerprint;
@@ -198,8 +198,10 @@ void Publisher::run() {
     if (lcm_ && now - last_hello_ns_ >= options_.hello_period_ns) publishHello(now);
     applyControl(now);
     answerLoads(now);
-    while (ring_.pop(r)) handleRecord(r, now);
-    dumpFlight();
+    for (Device& d : devices_) {
+      while (d.parts.ring->pop(r)) handleRecord(d, r, now);
+    }
+    for (Device& d : devices_) dumpFlight(d);
     now = monotonicNs();
     if (now - last_stats_ns_ >= 1'000'000'000) publishStats(now);
     clients_.store(table_.numClients(), std::memory_order_relaxed);
@@ -272,32 +274,36 @@ void Publisher::applyControl(std::int64_t now_ns) {
   }
 }
 
-void Publisher::handleRecord(const TickRecord& r, std::int64_t now_ns) {
+void Publisher::handleRecord(Device& device, const TickRecord& r, std::int64_t now_ns) {
   records_.fetch_add(1, std::memory_order_relaxed);
-  // Commands first: a switch this record shows is recorded as a hello before this tick.
-  answerCommands(r, now_ns);
-  if (SessionRecorder* s = options_.session; s && s->ok()) {
-    if (session_hello_due_) s->recordHello(hello(r.deadline_ns / 1000));  // on the ticks' clock
-    session_hello_due_ = false;
-    s->record(r);
-    if (!s->ok()) std::fprintf(stderr, "hapticd: warning: %s\n", s->error().c_str());
+  if (device.index == 0) {
+    // Commands first: a switch this record shows is recorded as a hello before this tick.
+    answerCommands(r, now_ns);
+    if (SessionRecorder* s = options_.session; s && s->ok()) {
+      if (session_hello_due_) s->recordHello(hello(r.deadline_ns / 1000));  // on the ticks' clock
+      session_hello_due_ = false;
+      s->record(r);
+      if (!s->ok()) std::fprintf(stderr, "hapticd: warning: %s\n", s->error().c_str());
+    }
   }
-  ++ticks_seen_;
-  missed_seen_ += std::uint64_t(r.missed);
-  if (r.missed > window_max_missed_) window_max_missed_ = r.missed;
-  if (r.safety_flags & kSafetyClampMask) ++window_clamped_;
+  ++device.ticks_seen;
+  device.missed_seen += std::uint64_t(r.missed);
+  if (r.missed > device.window_max_missed) device.window_max_missed = r.missed;
+  if (r.safety_flags & kSafetyClampMask) ++device.window_clamped;
   if (r.faults) {
-    ++fault_ticks_seen_;
-    ++window_fault_ticks_;
-    window_fault_mask_ |= wireFaultMask(r.faults);
+    ++device.fault_ticks_seen;
+    ++device.window_fault_ticks;
+    device.window_fault_mask |= wireFaultMask(r.faults);
   }
   const double f = std::sqrt(r.f_out[0] * r.f_out[0] + r.f_out[1] * r.f_out[1] + r.f_out[2] * r.f_out[2]);
-  if (f > window_max_force_n_) window_max_force_n_ = f;
+  if (f > device.window_max_force_n) device.window_max_force_n = f;
   if (!lcm_ || !table_.wantsTicks()) return;  // compute a stream only while someone subscribes
   thx_msgs::device_state_t d{};
   thx_msgs::contact_t c{};
-  toDeviceState(r, options_.simulated_device, d);
+  toDeviceState(r, device.parts.simulated, d);
   toContact(r, c);
+  d.device = device.index;
+  c.device = device.index;
   LcmSink sink(*this);
   table_.onTick(d, c, now_ns / 1000, sink);
 }
@@ -346,22 +352,27 @@ void Publisher::sendReplies(std::int64_t now_ns) {
 }
 
 void Publisher::publishStats(std::int64_t now_ns) {
-  const std::uint64_t ticks = ticks_seen_, missed = missed_seen_;
   const double window_s = double(now_ns - last_stats_ns_) * 1e-9;
+  for (Device& d : devices_) publishStats(d, window_s, now_ns);
+  last_stats_ns_ = now_ns;
+}
+
+void Publisher::publishStats(Device& d, double window_s, std::int64_t now_ns) {
+  const std::uint64_t ticks = d.ticks_seen, missed = d.missed_seen;
   if (lcm_) {
     thx_msgs::servo_stats_t s{};
     s.utime = now_ns / 1000;
     s.ticks = std::int64_t(ticks);
     s.missed_ticks = std::int64_t(missed);
-    s.window_ticks = std::int64_t(ticks - last_stats_ticks_);
-    s.window_missed_ticks = std::int64_t(missed - last_stats_missed_);
-    s.window_max_consecutive_missed = window_max_missed_;
-    s.window_clamped_ticks = window_clamped_;
+    s.window_ticks = std::int64_t(ticks - d.last_stats_ticks);
+    s.window_missed_ticks = std::int64_t(missed - d.last_stats_missed);
+    s.window_max_consecutive_missed = d.window_max_missed;
+    s.window_clamped_ticks = d.window_clamped;
     s.window_s = window_s;
     s.rate_nominal_hz = options_.servo_rate_hz;
     s.rate_hz = window_s > 0 ? double(s.window_ticks) / window_s : 0.0;
-    const LatencyHistogram& c = servo_.computeHistogram();
-    const LatencyHistogram& w = servo_.wakeHistogram();
+    const LatencyHistogram& c = d.parts.servo->computeHistogram();
+    const LatencyHistogram& w = d.parts.servo->wakeHistogram();
     s.compute_p50_us = c.quantileUs(0.5);
     s.compute_p99_us = c.quantileUs(0.99);
     s.compute_p999_us = c.quantileUs(0.999);
@@ -370,23 +381,23 @@ void Publisher::publishStats(std::int64_t now_ns) {
     s.wake_p99_us = w.quantileUs(0.99);
     s.wake_p999_us = w.quantileUs(0.999);
     s.wake_max_us = double(w.maxNs()) / 1e3;
-    s.f_max = window_max_force_n_;
-    s.snapshots_dropped = std::int64_t(ring_.dropped());
+    s.f_max = d.window_max_force_n;
+    s.snapshots_dropped = std::int64_t(d.parts.ring->dropped());
     s.rss_bytes = readProcessMemory().rss_bytes;
-    s.fault_ticks = std::int64_t(fault_ticks_seen_);
-    s.window_fault_ticks = window_fault_ticks_;
-    s.window_fault_mask = window_fault_mask_;
+    s.fault_ticks = std::int64_t(d.fault_ticks_seen);
+    s.window_fault_ticks = d.window_fault_ticks;
+    s.window_fault_mask = d.window_fault_mask;
+    s.device = d.index;
     LcmSink sink(*this);
     table_.onStats(s, sink);
   }
-  last_stats_ns_ = now_ns;
-  last_stats_ticks_ = ticks;
-  last_stats_missed_ = missed;
-  window_max_force_n_ = 0.0;
-  window_max_missed_ = 0;
-  window_clamped_ = 0;
-  window_fault_ticks_ = 0;
-  window_fault_mask_ = 0;
+  d.last_stats_ticks = ticks;
+  d.last_stats_missed = missed;
+  d.window_max_force_n = 0.0;
+  d.window_max_missed = 0;
+  d.window_clamped = 0;
+  d.window_fault_ticks = 0;
+  d.window_fault_mask = 0;
 }
 
 thx_msgs::hello_t Publisher::hello(std::int64_t utime) const {
@@ -416,15 +427,16 @@ void Publisher::publishHello(std::int64_t now_ns) {
   last_hello_ns_ = now_ns;
 }
 
-void Publisher::dumpFlight() {
+void Publisher::dumpFlight(Device& device) {
   try {
-    const FlightDump d = dumpWithinLimits(recorder_, flight_gate_, options_.flight_dir);
+    const FlightDump d =
+        dumpWithinLimits(*device.parts.recorder, device.flight_gate, options_.flight_dir, device.parts.flight_tag);
     if (d.outcome == FlightDumpOutcome::OverRate) flight_over_rate_.fetch_add(1);
     if (d.outcome == FlightDumpOutcome::OverCount && flight_over_count_.fetch_add(1) == 0) {
       std::fprintf(stderr,
                    "hapticd: fault: %llu flight records written to %s, the most one run writes (--flight-max); "
                    "further faults are counted, not written\n",
-                   (unsigned long long)flight_gate_.limits().max_files, options_.flight_dir.c_str());
+                   (unsigned long long)device.flight_gate.limits().max_files, options_.flight_dir.c_str());
     }
     if (d.outcome != FlightDumpOutcome::Written) return;
     flight_dumps_.fetch_add(1);

@@ -8,6 +8,11 @@
 // server on THX_HELLO once per second and at once when a client switched the scene, closes a SERVO_STATS window once per second, and writes
 // frozen flight records to files. Nothing is encoded for a stream nobody subscribes to.
 //
+// Several devices (issue 30): it drains every device's ring, each record's messages carry the
+// device's index (protocol 6), a subscription gets each device's messages at its rate
+// (subscriptions.hpp), each device has its own SERVO_STATS window and flight-record limits, and
+// its flight records are named after it. Commands are answered from device 0's records.
+//
 // There is no broadcast: every data message goes to a subscriber's channel.
 #include <atomic>
 #include <cstdint>
@@ -42,10 +47,10 @@ struct PublisherOptions {
   double servo_rate_hz = 1000.0;
   std::string flight_dir = ".";
   FlightDumpLimits flight_limits;  // --flight-max, --flight-interval (server/flight_dump_limits.hpp)
-  bool simulated_device = false;
+  bool simulated_device = false;  // the one device's (the one-device constructor); else PublishedDevice's
   std::string device_name = "sim";  // hello_t.device
-  // hello_t.device_names: the one device's name (the scene's `device`: Phantom0, or its name in a
-  // `devices:` list). Every message this publisher sends is of device 0.
+  // hello_t.device_names: the devices' names, comma-separated in index order (the scene's
+  // `device`: Phantom0; a `devices:` list: its names).
   std::string device_names = "Phantom0";
   std::string scene_name;           // hello_t.scene_name (scene::sceneName)
   std::uint64_t texture_fingerprint = 0;  // hello_t.texture_fingerprint (scene::SceneSurface)
@@ -56,9 +61,9 @@ struct PublisherOptions {
   // Every tick that comes out of the ring is also written here (hapticd --record), and a hello
   // before the first tick and before the first tick on each switched-to scene; not owned.
   SessionRecorder* session = nullptr;
-  // The servo's Servo::faultResetSlot(), written only by the publisher thread (client fault
-  // resets); null: resets are refused. Not owned.
-  rt::LatestSlot<FaultReset>* fault_reset = nullptr;
+  // Every device's Servo::faultResetSlot(), written only by the publisher thread (client fault
+  // resets clear every device's latch: server_commands.hpp); empty: resets are refused. Not owned.
+  std::vector<rt::LatestSlot<FaultReset>*> fault_resets;
   // Loads scenes for client switches (server/scene_switcher.hpp), used only by the publisher
   // thread; null: switches are refused. Not owned.
   SceneLoads* scene_loads = nullptr;
@@ -100,13 +105,28 @@ struct PublisherCounters {
   bool fifo = false;                      // the publisher thread runs SCHED_FIFO (fifo_priority)
 };
 
+// One device the publisher serves. Not owned; each outlives the publisher.
+struct PublishedDevice {
+  rt::SpscRing<TickRecord>* ring = nullptr;  // its servo's tick ring (ServoRig::ring())
+  const Servo* servo = nullptr;              // its latency histograms, for SERVO_STATS
+  FlightRecorder* recorder = nullptr;        // its flight record
+  // Its flight-record files are named flight-<flight_tag>-tick...; "" (one device): flight-tick...
+  std::string flight_tag;
+  bool simulated = false;  // device_state_t's simulated flag for its messages
+};
+
 class Publisher {
  public:
   // lcm may be null (no transport): records are still drained and flight records still dumped.
   // With lcm, the publisher subscribes to THX_SUBSCRIBE, THX_HEARTBEAT and THX_COMMAND on it; whoever calls
   // lcm->handle() (hapticd's receiver thread) delivers them.
+  // `devices`: 1 to 16, device i's messages carrying index i.
+  Publisher(std::vector<PublishedDevice> devices, lcm::LCM* lcm, const PublisherOptions& options);
+  // One device.
   Publisher(rt::SpscRing<TickRecord>& ring, const Servo& servo, FlightRecorder& recorder, lcm::LCM* lcm,
-            const PublisherOptions& options);
+            const PublisherOptions& options)
+      : Publisher(std::vector<PublishedDevice>{{&ring, &servo, &recorder, "", options.simulated_device}}, lcm,
+                  options) {}
   ~Publisher();
 
   void start();
@@ -120,20 +140,35 @@ class Publisher {
   class LcmSink;
   void run();
   void applyControl(std::int64_t now_ns);
-  void handleRecord(const TickRecord& r, std::int64_t now_ns);
+  struct Device;
+  void handleRecord(Device& device, const TickRecord& r, std::int64_t now_ns);
   void answerCommands(const TickRecord& r, std::int64_t now_ns);
   void answerLoads(std::int64_t now_ns);
   void sendReplies(std::int64_t now_ns);  // command_replies_
   void publishStats(std::int64_t now_ns);
+  void publishStats(Device& device, double window_s, std::int64_t now_ns);
   void publishHello(std::int64_t now_ns);
   thx_msgs::hello_t hello(std::int64_t utime) const;  // the announcement of the scene rendered now
-  void dumpFlight();
+  void dumpFlight(Device& device);
   lcm::LCM* dataLcm(int port);  // port 0: lcm_; else the port's send-only LCM (null if it cannot open)
 
-  rt::SpscRing<TickRecord>& ring_;
-  const Servo& servo_;
-  FlightRecorder& recorder_;
-  FlightDumpGate flight_gate_;  // publisher thread only
+  // What the publisher keeps per device; the counters and windows are the publisher thread's.
+  struct Device {
+    PublishedDevice parts;
+    int index = 0;
+    FlightDumpGate flight_gate;  // each device's faults are limited on their own
+    std::uint64_t ticks_seen = 0;   // counted from the records: the servo's own counters are
+    std::uint64_t missed_seen = 0;  // not shared across threads
+    std::uint64_t last_stats_ticks = 0;
+    std::uint64_t last_stats_missed = 0;
+    double window_max_force_n = 0.0;
+    std::int32_t window_max_missed = 0;
+    std::int32_t window_clamped = 0;
+    std::uint64_t fault_ticks_seen = 0;
+    std::int32_t window_fault_ticks = 0;
+    std::int32_t window_fault_mask = 0;
+  };
+  std::vector<Device> devices_;
   lcm::LCM* lcm_;
   PublisherOptions options_;
   std::int64_t server_instance_ = 0;
@@ -157,16 +192,6 @@ class Publisher {
   std::int64_t last_hello_ns_ = 0;
   std::int64_t hello_seq_ = 0;
   bool session_hello_due_ = true;  // --record: a hello goes before the next tick (at start, after a switch)
-  std::uint64_t ticks_seen_ = 0;   // counted from the records: the servo's own counters are
-  std::uint64_t missed_seen_ = 0;  // not shared across threads
-  std::uint64_t last_stats_ticks_ = 0;
-  std::uint64_t last_stats_missed_ = 0;
-  double window_max_force_n_ = 0.0;
-  std::int32_t window_max_missed_ = 0;
-  std::int32_t window_clamped_ = 0;
-  std::uint64_t fault_ticks_seen_ = 0;
-  std::int32_t window_fault_ticks_ = 0;
-  std::int32_t window_fault_mask_ = 0;
   std::atomic<std::uint64_t> commands_answered_{0};
   std::atomic<std::uint64_t> records_{0}, published_{0}, publish_errors_{0}, flight_dumps_{0}, published_bytes_{0},
       hellos_{0}, requests_{0}, refused_{0}, expired_{0};

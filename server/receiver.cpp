@@ -12,6 +12,7 @@
 #include <thx_msgs/protocol.hpp>
 
 #include "rt/clock.hpp"
+#include "base/error.hpp"
 #include "server/realtime.hpp"
 
 namespace thx::srv {
@@ -21,8 +22,15 @@ std::int64_t monotonicNs() { return rt::monotonicNowNs(); }
 constexpr std::int64_t kDefaultTimeoutNs = 50'000'000;  // 50 ms: a few physics steps
 }  // namespace
 
-Receiver::Receiver(lcm::LCM& lcm, rt::LatestSlot<ClientForce>& slot, double max_force_n)
-    : lcm_(lcm), lcms_{&lcm}, slot_(slot), table_(max_force_n, kDefaultTimeoutNs) {
+Receiver::Receiver(lcm::LCM& lcm, std::vector<ForcedDevice> devices) : lcm_(lcm), lcms_{&lcm} {
+  if (devices.empty() || devices.size() > kMaxDevices)
+    throw thx::Error(thx::Error::Kind::Config, "Receiver: " + std::to_string(devices.size()) +
+                                                   " devices; expected 1 to " + std::to_string(kMaxDevices));
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    slots_.push_back(devices[i].slot);
+    tables_.emplace_back(devices[i].max_force_n, kDefaultTimeoutNs, int(i));
+  }
+  was_live_.assign(devices.size(), false);
   listen(lcm_);
 }
 
@@ -52,7 +60,9 @@ void Receiver::stop() {
 
 ClientForceCounters Receiver::counters() const {
   std::lock_guard<std::mutex> lock(table_mutex_);
-  return table_.counters();
+  ClientForceCounters sum = tables_[0].counters();
+  for (std::size_t i = 1; i < tables_.size(); ++i) sum += tables_[i].counters();
+  return sum;
 }
 
 void Receiver::onClientForce(const lcm::ReceiveBuffer* rbuf, const std::string&) {
@@ -63,16 +73,19 @@ void Receiver::onClientForce(const lcm::ReceiveBuffer* rbuf, const std::string&)
     problems_.report(thx_msgs::kChannelClientForce, problem, now);
     return;
   }
+  // A device index out of range goes to device 0's table, which refuses and counts it.
+  const std::size_t device = m.device >= 0 && std::size_t(m.device) < tables_.size() ? std::size_t(m.device) : 0;
+  ClientForceTable& table = tables_[device];
   bool accepted = false;
   ClientForceCounters before, after;
   {
     std::lock_guard<std::mutex> lock(table_mutex_);
-    before = table_.counters();
-    accepted = table_.accept(m, now);
-    after = table_.counters();
+    before = table.counters();
+    accepted = table.accept(m, now);
+    after = table.counters();
   }
   if (accepted) {
-    publishSum(now);
+    publishSum(device, now);
     return;
   }
   // Refusals a sender should hear about (a stale seq is ordinary reordering: counted only).
@@ -81,10 +94,10 @@ void Receiver::onClientForce(const lcm::ReceiveBuffer* rbuf, const std::string&)
     std::snprintf(buf, sizeof buf, "client_force_t with an invalid client_id or source (1 to 32 of [A-Za-z0-9_-], source also '.')");
   } else if (after.bad_values != before.bad_values) {
     std::snprintf(buf, sizeof buf, "client_force_t from %s/%s: force (%g, %g, %g) N is not finite or above the device's peak %g N",
-                  m.client_id.c_str(), m.source.c_str(), m.f_world[0], m.f_world[1], m.f_world[2], table_.maxForceN());
+                  m.client_id.c_str(), m.source.c_str(), m.f_world[0], m.f_world[1], m.f_world[2], table.maxForceN());
   } else if (after.other_device != before.other_device) {
-    std::snprintf(buf, sizeof buf, "client_force_t from %s/%s: device %d; this server has one device, index %d",
-                  m.client_id.c_str(), m.source.c_str(), int(m.device), table_.device());
+    std::snprintf(buf, sizeof buf, "client_force_t from %s/%s: device %d; this server's devices are 0 to %d",
+                  m.client_id.c_str(), m.source.c_str(), int(m.device), int(tables_.size()) - 1);
   } else if (after.table_full != before.table_full) {
     std::snprintf(buf, sizeof buf, "client_force_t from %s/%s: already %d senders, the most the server keeps",
                   m.client_id.c_str(), m.source.c_str(), ClientForceTable::kMaxEntries);
@@ -94,21 +107,25 @@ void Receiver::onClientForce(const lcm::ReceiveBuffer* rbuf, const std::string&)
   problems_.report(thx_msgs::kChannelClientForce, buf, now);
 }
 
-void Receiver::publishSum(std::int64_t now_ns) {
+void Receiver::publishSums(std::int64_t now_ns) {
+  for (std::size_t i = 0; i < tables_.size(); ++i) publishSum(i, now_ns);
+}
+
+void Receiver::publishSum(std::size_t device, std::int64_t now_ns) {
   Eigen::Vector3d sum;
   int live = 0;
   {
     std::lock_guard<std::mutex> lock(table_mutex_);
-    sum = table_.sum(now_ns);
-    live = table_.liveEntries();
+    sum = tables_[device].sum(now_ns);
+    live = tables_[device].liveEntries();
   }
-  if (live == 0 && !was_live_) return;
+  if (live == 0 && !was_live_[device]) return;
   ClientForce f;
   f.force_world_n[0] = sum.x();
   f.force_world_n[1] = sum.y();
   f.force_world_n[2] = sum.z();
-  slot_.write(f);
-  was_live_ = live > 0;
+  slots_[device]->write(f);
+  was_live_[device] = live > 0;
 }
 
 // Asks for each descriptor every time: with tcpq:// it changes on every reconnect and is -1 while
@@ -139,7 +156,7 @@ void Receiver::run() {
     } else if (poll(fds.data(), nfds_t(fds.size()), 10) > 0) {
       drain();
     }
-    publishSum(monotonicNs());
+    publishSums(monotonicNs());
   }
   // What arrived before the stop is still taken (and counted): a client's last message, such as
   // the release a physics client sends on its way out, is not lost to the moment of shutdown.

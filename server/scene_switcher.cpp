@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "base/error.hpp"
 #include "scenes/scene_lookup.hpp"
 
 namespace thx::srv {
@@ -14,13 +15,18 @@ namespace {
 constexpr auto kReclaimPoll = std::chrono::milliseconds(1);
 }  // namespace
 
-SceneSwitcher::SceneSwitcher(rt::Handoff<const SurfaceSwap>& handoff, scene::Scene running, const dev::DeviceSpec& spec,
-                             std::unique_ptr<PreparedScene> first, SceneSwitcherOptions options)
-    : handoff_(handoff),
+SceneSwitcher::SceneSwitcher(std::vector<rt::Handoff<const SurfaceSwap>*> handoffs, scene::Scene running,
+                             std::vector<dev::DeviceSpec> specs, std::unique_ptr<PreparedScene> first,
+                             SceneSwitcherOptions options)
+    : handoffs_(std::move(handoffs)),
       running_(std::move(running)),
-      spec_(spec),
+      specs_(std::move(specs)),
       options_(std::move(options)),
-      current_(std::move(first)) {
+      current_(std::move(first)),
+      reclaimed_(handoffs_.size(), false) {
+  if (handoffs_.size() != specs_.size() || handoffs_.empty() ||
+      (current_ && current_->devices.size() != handoffs_.size()))
+    throw thx::Error(thx::Error::Kind::Config, "SceneSwitcher: one handoff, one spec and one prepared device per device");
   worker_ = std::thread([this] { work(); });
 }
 
@@ -88,7 +94,7 @@ void SceneSwitcher::load(const std::string& name) {
   try {
     const std::string path = scene::resolveSceneName(name, options_.scenes_dir);
     if (!options_.quiet) std::fprintf(stderr, "hapticd: loading scene '%s' (%s)\n", name.c_str(), path.c_str());
-    next = prepareSwitch(path, running_, spec_, options_.policy);
+    next = prepareSwitch(path, running_, specs_, options_.policy);
   } catch (const thx::Error& e) {
     outcome.error = e.what();
   } catch (const std::exception& e) {  // e.g. out of memory for a huge texture: still only a refusal
@@ -98,14 +104,18 @@ void SceneSwitcher::load(const std::string& name) {
   if (next) {
     for (const std::string& w : next->warnings) std::fprintf(stderr, "hapticd: warning: %s\n", w.c_str());
     if (options_.verbose) {
-      for (const std::string& line : budgetReport(next->budget))
-        std::fprintf(stderr, "hapticd: stability budget: %s\n", line.c_str());
+      for (const PreparedDevice& d : next->devices) {
+        for (const std::string& line : budgetReport(d.budget))
+          std::fprintf(stderr, "hapticd: stability budget: %s\n", line.c_str());
+      }
     }
     outcome.ok = true;
     outcome.scene_name = next->surface.scene_name;
     outcome.fingerprint = next->fingerprint;
     offered_ = std::move(next);
-    handoff_.offer(&offered_->swap);  // Idle: the last swap was reclaimed before this job began
+    // Each is Idle: the last swap was reclaimed from every device before this job began.
+    for (std::size_t i = 0; i < handoffs_.size(); ++i) handoffs_[i]->offer(&offered_->devices[i].swap);
+    reclaimed_.assign(handoffs_.size(), false);
     outcome.swap = ++offers_;
   }
   // The outcome and the end of the load under one lock: a client answered by poll() may ask
@@ -115,7 +125,13 @@ void SceneSwitcher::load(const std::string& name) {
 }
 
 void SceneSwitcher::reclaim(std::unique_lock<std::mutex>& lock) {
-  if (!offered_ || !handoff_.reclaim()) return;
+  if (!offered_) return;
+  bool all = true;
+  for (std::size_t i = 0; i < handoffs_.size(); ++i) {
+    if (!reclaimed_[i]) reclaimed_[i] = handoffs_[i]->reclaim();
+    all = all && reclaimed_[i];
+  }
+  if (!all) return;
   std::unique_ptr<PreparedScene> old = std::move(current_);
   current_ = std::move(offered_);
   lock.unlock();

@@ -10,9 +10,9 @@ namespace {
 using Cmd = thx_msgs::server_command_t;
 }  // namespace
 
-ServerCommands::ServerCommands(rt::LatestSlot<FaultReset>* reset_slot, std::int64_t server_instance,
+ServerCommands::ServerCommands(std::vector<rt::LatestSlot<FaultReset>*> reset_slots, std::int64_t server_instance,
                                SceneLoads* scenes)
-    : reset_slot_(reset_slot), scenes_(scenes), server_instance_(server_instance) {
+    : reset_slots_(std::move(reset_slots)), scenes_(scenes), server_instance_(server_instance) {
   pending_.reserve(kMaxPending);
 }
 
@@ -45,11 +45,12 @@ std::optional<thx_msgs::server_command_reply_t> ServerCommands::resetFaults(thx_
     return refuse(reply, "ACTION_RESET_FAULTS takes no argument, got " + std::to_string(cmd.argument.size()) +
                              " characters");
   }
-  if (reset_slot_ == nullptr) return refuse(reply, "this server has no servo to reset");
+  if (reset_slots_.empty()) return refuse(reply, "this server has no servo to reset");
   if (pending_.size() >= kMaxPending) {
     return refuse(reply, "too many commands waiting for the servo (" + std::to_string(kMaxPending) + ")");
   }
-  reset_slot_->write(FaultReset{++reset_seq_});
+  ++reset_seq_;
+  for (rt::LatestSlot<FaultReset>* slot : reset_slots_) slot->write(FaultReset{reset_seq_});
   reply.accepted = true;
   pending_.push_back({reply, reset_seq_});
   return std::nullopt;

@@ -28,9 +28,18 @@ class ServerCommands {
   // Resets waiting for the servo beyond this are refused (a client flooding a stalled servo).
   static constexpr std::size_t kMaxPending = 256;
 
-  // reset_slot: the servo's (Servo::faultResetSlot()); this object must be its only writer.
-  // Null: resets are refused (a server without a servo to reset). scenes: null refuses switches.
-  ServerCommands(rt::LatestSlot<FaultReset>* reset_slot, std::int64_t server_instance, SceneLoads* scenes = nullptr);
+  // reset_slots: every device's servo's (Servo::faultResetSlot()), device 0 first; this object
+  // must be their only writer. A reset clears every device's latch (server_command_t names no
+  // device) and is answered when device 0's record shows it applied: each servo applies it at
+  // its next tick, and the group ticks them together. Empty: resets are refused (a server
+  // without a servo to reset). scenes: null refuses switches.
+  ServerCommands(std::vector<rt::LatestSlot<FaultReset>*> reset_slots, std::int64_t server_instance,
+                 SceneLoads* scenes = nullptr);
+  // One device's slot (null: resets refused).
+  ServerCommands(rt::LatestSlot<FaultReset>* reset_slot, std::int64_t server_instance, SceneLoads* scenes = nullptr)
+      : ServerCommands(reset_slot ? std::vector<rt::LatestSlot<FaultReset>*>{reset_slot}
+                                  : std::vector<rt::LatestSlot<FaultReset>*>{},
+                       server_instance, scenes) {}
 
   // The reply to send now (a refusal), or nothing when the answer waits for the servo.
   std::optional<thx_msgs::server_command_reply_t> handle(const thx_msgs::server_command_t& cmd);
@@ -64,7 +73,7 @@ class ServerCommands {
   std::optional<thx_msgs::server_command_reply_t> loadScene(thx_msgs::server_command_reply_t reply,
                                                              const thx_msgs::server_command_t& cmd);
 
-  rt::LatestSlot<FaultReset>* reset_slot_;
+  std::vector<rt::LatestSlot<FaultReset>*> reset_slots_;
   SceneLoads* scenes_;
   std::optional<PendingLoad> load_;
   std::optional<SceneChange> scene_change_;

@@ -58,7 +58,7 @@ bool SessionRecorder::write(const char* channel, std::int64_t utime, const std::
 
 void SessionRecorder::record(const TickRecord& r) {
   if (!ok()) return;
-  thx_msgs::device_state_t d;
+  thx_msgs::device_state_t d{};  // value-initialised: device 0, the recorder's one device
   toDeviceState(r, simulated_, d);
   if (!have_offset_) {
     unix_offset_us_ = realtimeUs() - d.utime;
@@ -66,7 +66,7 @@ void SessionRecorder::record(const TickRecord& r) {
   }
   encodeInto(d, buffer_);
   if (!write(kSessionDeviceChannel, d.utime, buffer_)) return;
-  thx_msgs::contact_t c;
+  thx_msgs::contact_t c{};
   toContact(r, c);
   encodeInto(c, buffer_);
   if (!write(kSessionContactChannel, c.utime, buffer_)) return;

@@ -84,7 +84,24 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
   std::fprintf(f, "  \"flight_dumps_over_count\": %llu,\n  \"flight_dumps_over_rate\": %llu,\n",
                (unsigned long long)s.publisher.flight_dumps_over_count,
                (unsigned long long)s.publisher.flight_dumps_over_rate);
-  std::fprintf(f, "  \"last_flight_dump\": \"%s\"\n}\n", json::escaped(s.last_flight_dump).c_str());
+  std::fprintf(f, "  \"last_flight_dump\": \"%s\"", json::escaped(s.last_flight_dump).c_str());
+  if (!s.devices.empty()) {
+    std::fprintf(f, ",\n  \"devices\": [\n");
+    for (std::size_t i = 0; i < s.devices.size(); ++i) {
+      const DeviceSummary& d = s.devices[i];
+      std::fprintf(f,
+                   "    {\"name\": \"%s\", \"contact_ticks\": %llu, \"max_force_n\": %.6f, \"faults\": %llu, "
+                   "\"invalid_readings\": %llu, \"full_force_percent\": %.3f, \"disengaged_ticks\": %llu, "
+                   "\"peak_clamped\": %llu, \"passivity_active_ticks\": %llu, \"compute_p99_us\": %.3f}%s\n",
+                   json::escaped(d.name).c_str(), (unsigned long long)d.servo.contact_ticks, d.servo.max_force_n,
+                   (unsigned long long)d.servo.faults, (unsigned long long)d.servo.invalid_readings,
+                   fullForcePercent(d.servo), (unsigned long long)d.missed_policy.disengaged_ticks,
+                   (unsigned long long)d.safety.peak_clamped, (unsigned long long)d.passivity_active_ticks,
+                   d.compute_p99_us, i + 1 < s.devices.size() ? "," : "");
+    }
+    std::fprintf(f, "  ]");
+  }
+  std::fprintf(f, "\n}\n");
   if (std::fclose(f) != 0) throw thx::Error(thx::Error::Kind::Io, "cannot write statistics to " + path);
 }
 
@@ -108,6 +125,15 @@ void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& c
     std::fprintf(out, "  wake latency     p50 %.1f us, p99 %.1f us, max %.1f us\n", wake.quantileUs(0.5),
                  wake.quantileUs(0.99), double(wake.maxNs()) / 1e3);
   }
+  for (const DeviceSummary& d : s.devices) {
+    std::fprintf(out,
+                 "  device %-9s contact %llu ticks; max force %.3f N; faults %llu; full force %.2f %%; peak-clamped "
+                 "%llu; passivity active %llu ticks; its compute p99 %.1f us\n",
+                 d.name.c_str(), (unsigned long long)d.servo.contact_ticks, d.servo.max_force_n,
+                 (unsigned long long)d.servo.faults, fullForcePercent(d.servo), (unsigned long long)d.safety.peak_clamped,
+                 (unsigned long long)d.passivity_active_ticks, d.compute_p99_us);
+  }
+  if (!s.devices.empty()) std::fprintf(out, "  device 0's details:\n");
   std::fprintf(out, "  contact          %llu ticks; max force %.3f N (stiffness %.0f N/m, crease %s, passivity %s)\n",
                (unsigned long long)s.servo.contact_ticks, s.servo.max_force_n, s.stiffness_n_per_m,
                s.crease ? "on" : "off", s.passivity ? "on" : "off");
@@ -130,6 +156,17 @@ void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& c
                  (unsigned long long)s.publisher.flight_dumps_over_count,
                  (unsigned long long)s.publisher.flight_dumps_over_rate);
   }
+}
+
+DeviceSummary deviceSummary(const std::string& name, const ServoRig& rig) {
+  DeviceSummary d;
+  d.name = name;
+  d.servo = rig.servo().counters();
+  d.missed_policy = rig.servo().missedTickPolicy().counters();
+  d.safety = rig.safety().counters();
+  d.passivity_active_ticks = rig.passivity().activeTicks();
+  d.compute_p99_us = rig.servo().computeHistogram().quantileUs(0.99);
+  return d;
 }
 
 void addServoSummary(RunSummary& s, const ServoRig& rig) {

@@ -3,6 +3,7 @@
 // summary printed to the terminal.
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "server/latency_histogram.hpp"
 #include "server/missed_tick_policy.hpp"
@@ -14,6 +15,16 @@
 #include "server/servo_rig.hpp"
 
 namespace thx::srv {
+
+// One device of several (issue 30): its own servo's counters.
+struct DeviceSummary {
+  std::string name;
+  ServoCounters servo;
+  MissedTickCounters missed_policy;
+  SafetyCounters safety;
+  std::uint64_t passivity_active_ticks = 0;
+  double compute_p99_us = 0.0;  // its own part of each tick
+};
 
 struct RunSummary {
   std::string scene;
@@ -39,12 +50,16 @@ struct RunSummary {
   std::uint64_t snapshots_dropped = 0;
   std::string flight_dir;  // --flight-dir
   std::string last_flight_dump;
+  // A scene with several devices: each one, in order (the fields above are then device 0's, and
+  // the tick compute and wake latency the whole group's). Empty for one device.
+  std::vector<DeviceSummary> devices;
 };
 
 // The servo's part of a summary: its ticks and counters, its missed-tick policy's, the safety
 // stage's and the passivity controller's, and the rig's wiring (crease, passivity, stiffness: the
 // first scene's).
 void addServoSummary(RunSummary& s, const ServoRig& rig);
+DeviceSummary deviceSummary(const std::string& name, const ServoRig& rig);
 
 // Throws std::runtime_error if the file cannot be written.
 void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyHistogram& compute,

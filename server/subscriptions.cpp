@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <thx_msgs/protocol.hpp>
 
+#include "base/error.hpp"
+
 namespace thx::srv {
 
 namespace {
@@ -45,7 +47,13 @@ double streamBandwidth(StreamKind kind, double rate_hz, double servo_rate_hz, st
   return bytes;
 }
 
-SubscriptionTable::SubscriptionTable(const SubscriptionLimits& limits) : limits_(limits) {}
+SubscriptionTable::SubscriptionTable(const SubscriptionLimits& limits) : limits_(limits) {
+  if (limits_.devices < 1 || limits_.devices > SubscriptionLimits::kMaxDevices) {
+    throw Error(Error::Kind::Config, "subscription table: devices = " + std::to_string(limits_.devices) +
+                                         ": expected 1 to " + std::to_string(SubscriptionLimits::kMaxDevices));
+  }
+  stats_windows_.assign(std::size_t(limits_.devices), 0);
+}
 
 thx_msgs::subscribe_reply_t SubscriptionTable::refuse(thx_msgs::subscribe_reply_t reply, std::string reason) {
   ++counters_.refused;
@@ -135,7 +143,8 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
     return refuse(reply, "too many clients: " + std::to_string(clients_.size()) + " connected, the limit is " +
                              std::to_string(limits_.max_clients) + " (hapticd --max-clients)");
   }
-  const double need = streamBandwidth(kind, rate, limits_.servo_rate_hz, channel.size());
+  // Every device's messages go out on the channel.
+  const double need = double(limits_.devices) * streamBandwidth(kind, rate, limits_.servo_rate_hz, channel.size());
   double in_use = bandwidth();
   Subscription* old = nullptr;
   if (!new_client) {
@@ -172,13 +181,18 @@ thx_msgs::subscribe_reply_t SubscriptionTable::handleRequest(const Req& req, std
     s.period = kind == StreamKind::ServoStats ? 1.0 / (rate * limits_.stats_window_s) : limits_.servo_rate_hz / rate;
     s.bytes_per_s = need;
     s.data_port = data_port;
+    s.max_samples = max_samples;
+    s.devices.resize(std::size_t(limits_.devices));
     if (kind == StreamKind::ContactBatch) {
-      s.max_samples = max_samples;
-      s.batch.server_instance = limits_.server_instance;
-      s.batch.samples.reserve(max_samples);  // allocated once, reused for every batch
-      if (auto r = retired_batch_seq_.find(channel); r != retired_batch_seq_.end()) {
-        s.batch.seq = r->second;  // the sequence goes on where this channel's last batch left it
-        retired_batch_seq_.erase(r);
+      for (std::size_t d = 0; d < s.devices.size(); ++d) {
+        thx_msgs::contact_batch_t& b = s.devices[d].batch;
+        b.server_instance = limits_.server_instance;
+        b.device = std::int32_t(d);
+        b.samples.reserve(max_samples);  // allocated once, reused for every batch
+        if (auto r = retired_batch_seq_.find({channel, int(d)}); r != retired_batch_seq_.end()) {
+          b.seq = r->second;  // the sequence goes on where this channel's last batch of d left it
+          retired_batch_seq_.erase(r);
+        }
       }
     }
     client.subs[req.stream] = std::move(s);
@@ -201,9 +215,12 @@ void SubscriptionTable::forget(std::map<std::string, Client>::iterator it) {
 }
 
 void SubscriptionTable::retire(const Subscription& s) {
-  if (s.kind != StreamKind::ContactBatch || s.batch.seq == 0) return;
-  if (retired_batch_seq_.size() >= kMaxRetiredChannels) retired_batch_seq_.clear();
-  retired_batch_seq_[s.channel] = s.batch.seq;
+  if (s.kind != StreamKind::ContactBatch) return;
+  for (std::size_t d = 0; d < s.devices.size(); ++d) {
+    if (s.devices[d].batch.seq == 0) continue;
+    if (retired_batch_seq_.size() >= kMaxRetiredChannels * std::size_t(limits_.devices)) retired_batch_seq_.clear();
+    retired_batch_seq_[{s.channel, int(d)}] = s.devices[d].batch.seq;
+  }
 }
 
 void SubscriptionTable::heardFrom(Client& client, const std::string& id, std::int64_t now_ns) {
@@ -255,63 +272,76 @@ std::vector<std::string> SubscriptionTable::expire(std::int64_t now_ns) {
   return gone;
 }
 
-bool SubscriptionTable::due(Subscription& s, double index) {
-  if (s.next_due < 0.0) {
-    s.next_due = index + s.period;
+bool SubscriptionTable::due(const Subscription& s, DeviceSchedule& d, double index) {
+  if (d.next_due < 0.0) {
+    d.next_due = index + s.period;
     // Latest-value streams start at once; a batch first collects a period's worth of samples.
     return s.kind != StreamKind::ContactBatch;
   }
-  if (index + 1e-9 < s.next_due) return false;
-  s.next_due += s.period;
-  if (s.next_due <= index) s.next_due = index + s.period;  // far behind (a gap): no burst
+  if (index + 1e-9 < d.next_due) return false;
+  d.next_due += s.period;
+  if (d.next_due <= index) d.next_due = index + s.period;  // far behind (a gap): no burst
   return true;
 }
 
-void SubscriptionTable::sendBatch(Subscription& s, std::int64_t now_us, MessageSink& sink) {
-  thx_msgs::contact_batch_t& b = s.batch;
+void SubscriptionTable::sendBatch(const Subscription& s, DeviceSchedule& d, std::int64_t now_us, MessageSink& sink) {
+  thx_msgs::contact_batch_t& b = d.batch;
   b.utime = now_us;
   ++b.seq;
-  b.next_tick = s.next_tick;
+  b.next_tick = d.next_tick;
   b.num_samples = std::int32_t(b.samples.size());
   sink.sendTo(s.data_port, s.channel, b);
   b.samples.clear();  // keeps its capacity
   b.num_dropped = 0;
 }
 
-void SubscriptionTable::sendDeviceState(Subscription& s, const thx_msgs::device_state_t& state, MessageSink& sink) {
-  s.flags_seen |= state.flags_seen;
-  s.fault_mask |= state.fault_mask;
-  if (!due(s, double(state.tick))) return;
+void SubscriptionTable::sendDeviceState(const Subscription& s, DeviceSchedule& d,
+                                        const thx_msgs::device_state_t& state, MessageSink& sink) {
+  d.flags_seen |= state.flags_seen;
+  d.fault_mask |= state.fault_mask;
+  if (!due(s, d, double(state.tick))) return;
   thx_msgs::device_state_t out = state;  // fixed size: a copy, no allocation
-  out.flags_seen = s.flags_seen;
-  out.fault_mask = s.fault_mask;
+  out.flags_seen = d.flags_seen;
+  out.fault_mask = d.fault_mask;
   sink.sendTo(s.data_port, s.channel, out);
-  s.flags_seen = 0;
-  s.fault_mask = 0;
+  d.flags_seen = 0;
+  d.fault_mask = 0;
+}
+
+void SubscriptionTable::addSample(const Subscription& s, DeviceSchedule& d, std::int64_t tick,
+                                  const thx_msgs::contact_t& contact, std::int64_t now_us, MessageSink& sink) {
+  if (d.next_tick >= 0 && tick < d.next_tick) return;  // not newer: never sent twice
+  if (d.next_tick >= 0 && tick > d.next_tick) d.batch.num_dropped += std::int32_t(tick - d.next_tick);
+  d.batch.samples.push_back(contact);  // within the capacity reserved at subscription time
+  d.next_tick = tick + 1;
+  ++counters_.batch_samples;
+  const bool on_time = due(s, d, double(tick));
+  if (on_time || d.batch.samples.size() >= s.max_samples) sendBatch(s, d, now_us, sink);
+}
+
+bool SubscriptionTable::served(std::int32_t device) {
+  if (device >= 0 && device < limits_.devices) return true;
+  ++counters_.foreign_device;
+  return false;
 }
 
 void SubscriptionTable::onTick(const thx_msgs::device_state_t& state, const thx_msgs::contact_t& contact,
                                std::int64_t now_us, MessageSink& sink) {
-  const std::int64_t tick = state.tick;
+  if (!served(state.device)) return;
+  const auto device = std::size_t(state.device);
   for (auto& [id, client] : clients_) {
     for (auto& [stream, s] : client.subs) {
+      DeviceSchedule& d = s.devices[device];
       switch (s.kind) {
         case StreamKind::DeviceState:
-          sendDeviceState(s, state, sink);
+          sendDeviceState(s, d, state, sink);
           break;
         case StreamKind::Contact:
-          if (due(s, double(tick))) sink.sendTo(s.data_port, s.channel, contact);
+          if (due(s, d, double(state.tick))) sink.sendTo(s.data_port, s.channel, contact);
           break;
-        case StreamKind::ContactBatch: {
-          if (s.next_tick >= 0 && tick < s.next_tick) break;  // not newer: never sent twice
-          if (s.next_tick >= 0 && tick > s.next_tick) s.batch.num_dropped += std::int32_t(tick - s.next_tick);
-          s.batch.samples.push_back(contact);
-          s.next_tick = tick + 1;
-          ++counters_.batch_samples;
-          const bool on_time = due(s, double(tick));
-          if (on_time || s.batch.samples.size() >= s.max_samples) sendBatch(s, now_us, sink);
+        case StreamKind::ContactBatch:
+          addSample(s, d, state.tick, contact, now_us, sink);
           break;
-        }
         case StreamKind::ServoStats:
           break;
       }
@@ -320,12 +350,16 @@ void SubscriptionTable::onTick(const thx_msgs::device_state_t& state, const thx_
 }
 
 void SubscriptionTable::onStats(thx_msgs::servo_stats_t stats, MessageSink& sink) {
+  if (!served(stats.device)) return;
+  const auto device = std::size_t(stats.device);
   stats.num_clients = numClients();
   stats.num_subscriptions = numSubscriptions();
-  const double window = double(stats_windows_++);
+  const double window = double(stats_windows_[device]++);
   for (auto& [id, client] : clients_) {
     for (auto& [stream, s] : client.subs) {
-      if (s.kind == StreamKind::ServoStats && due(s, window)) sink.sendTo(s.data_port, s.channel, stats);
+      if (s.kind == StreamKind::ServoStats && due(s, s.devices[device], window)) {
+        sink.sendTo(s.data_port, s.channel, stats);
+      }
     }
   }
 }
@@ -333,7 +367,10 @@ void SubscriptionTable::onStats(thx_msgs::servo_stats_t stats, MessageSink& sink
 void SubscriptionTable::flushBatches(std::int64_t now_us, MessageSink& sink) {
   for (auto& [id, client] : clients_) {
     for (auto& [stream, s] : client.subs) {
-      if (s.kind == StreamKind::ContactBatch && !s.batch.samples.empty()) sendBatch(s, now_us, sink);
+      if (s.kind != StreamKind::ContactBatch) continue;
+      for (DeviceSchedule& d : s.devices) {
+        if (!d.batch.samples.empty()) sendBatch(s, d, now_us, sink);
+      }
     }
   }
 }

@@ -11,9 +11,19 @@
 // A DEVICE_STATE message also carries what the ticks it skipped saw: its flags_seen and
 // fault_mask are OR-ed over every tick since the previous message to that subscriber, so a
 // one-tick fault reaches a 60 Hz client.
+//
+// Several devices (protocol 6, issue 30): the publisher hands the table every device's ticks and
+// stats windows, each message carrying its `device` index. A subscription is one grant on one
+// channel, but its schedule is kept per device: at R Hz it gets R Hz of EACH device's messages,
+// each tagged with its device, with flags_seen/fault_mask OR-ed over that device's ticks only, and
+// for CONTACT batches one batch per device (its `device` set, its own next_tick, num_dropped and
+// seq, so a client detects gaps per device). A record of a device the server does not serve is
+// not sent (counted in foreign_device). Its bandwidth estimate is therefore `devices` times one
+// device's (streamBandwidth), and that is what the bandwidth limit weighs.
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <thx_msgs/contact_batch_t.hpp>
@@ -42,6 +52,8 @@ struct SubscriptionLimits {
   std::int64_t client_grace_ns = 10'000'000'000;
   double stats_window_s = 1.0;              // SERVO_STATS is computed per window: at most 1/window Hz
   std::int64_t server_instance = 1;         // echoed in replies and batches
+  int devices = 1;                          // devices served (1..kMaxDevices), indices 0..devices-1
+  static constexpr int kMaxDevices = 16;
 };
 
 enum class StreamKind { DeviceState, Contact, ContactBatch, ServoStats };
@@ -83,14 +95,17 @@ struct SubscriptionCounters {
   std::uint64_t suspended_clients = 0;   // silent past the heartbeat timeout, within the grace
   std::uint64_t resumed_clients = 0;     // heard from again while suspended
   std::uint64_t batch_samples = 0;
+  std::uint64_t foreign_device = 0;      // ticks and stats windows of a device index not served: not sent
 };
 
 // Bytes per second one subscription puts on the wire (LCM payload + channel + LCM's 8-byte
-// header; IP/UDP headers not counted). Used for the bandwidth limit.
+// header; IP/UDP headers not counted), of one device: the table weighs `devices` times this
+// against the bandwidth limit.
 double streamBandwidth(StreamKind kind, double rate_hz, double servo_rate_hz, std::size_t channel_length);
 
 class SubscriptionTable {
  public:
+  // Throws thx::Error (Config) when limits.devices is outside 1..kMaxDevices.
   explicit SubscriptionTable(const SubscriptionLimits& limits);
   // From now on each client gets a data port of its own from `ports` with its first grant (a
   // new client is refused when none is free), named in the reply's data_url, and gives it back
@@ -118,13 +133,15 @@ class SubscriptionTable {
   // True when some subscription needs per-tick data (DEVICE_STATE, CONTACT, CONTACT batch):
   // the publisher builds the tick's messages only then.
   bool wantsTicks() const { return tick_subscriptions_ > 0; }
-  // One servo tick, in tick order. `tick` gaps (ring overflow) count as dropped samples in
-  // batches. Sends what is due to `sink`.
+  // One servo tick of device `state.device` (contact.device is the same), in tick order for that
+  // device. `tick` gaps (ring overflow) count as dropped samples in that device's batches. Sends
+  // what is due to `sink`.
   void onTick(const thx_msgs::device_state_t& state, const thx_msgs::contact_t& contact, std::int64_t now_us,
               MessageSink& sink);
-  // One closed SERVO_STATS window. num_clients/num_subscriptions are filled in here.
+  // One closed SERVO_STATS window of device `stats.device`. num_clients/num_subscriptions are
+  // filled in here.
   void onStats(thx_msgs::servo_stats_t stats, MessageSink& sink);
-  // Sends every batch's remaining samples (at shutdown).
+  // Sends every device's batch's remaining samples (at shutdown).
   void flushBatches(std::int64_t now_us, MessageSink& sink);
 
   int numClients() const { return int(clients_.size()); }
@@ -134,21 +151,27 @@ class SubscriptionTable {
   const SubscriptionLimits& limits() const { return limits_; }
 
  private:
-  struct Subscription {
-    StreamKind kind = StreamKind::DeviceState;
-    std::string channel;
-    double rate_hz = 0.0;
-    double period = 1.0;     // ticks (stats: windows) between messages
+  // What a subscription schedules for one device: every device runs its own ticks and windows.
+  struct DeviceSchedule {
     double next_due = -1.0;  // < 0: send at the first opportunity
-    double bytes_per_s = 0.0;
-    // DEVICE_STATE only: flags_seen and fault_mask of the ticks since the last message
+    // DEVICE_STATE only: flags_seen and fault_mask of this device's ticks since its last message
     std::int32_t flags_seen = 0;
     std::int32_t fault_mask = 0;
     // batches only
     thx_msgs::contact_batch_t batch{};  // value-initialised: lcm-gen structs have no member initialisers
-    std::size_t max_samples = 0;
-    std::int64_t next_tick = -1;  // tick expected next; -1 before the first
+    std::int64_t next_tick = -1;        // tick expected next; -1 before the first
+  };
+  struct Subscription {
+    StreamKind kind = StreamKind::DeviceState;
+    std::string channel;
+    double rate_hz = 0.0;
+    double period = 1.0;  // ticks (stats: windows) between messages
+    double bytes_per_s = 0.0;
+    std::size_t max_samples = 0;  // batches only
     int data_port = 0;            // the client's (DataPorts); 0: the bus
+    // One per device, sized once at subscription time (a batch holds its samples' capacity, so a
+    // fixed array of kMaxDevices would cost 16 batches per subscription).
+    std::vector<DeviceSchedule> devices;
   };
   struct Client {
     std::int64_t last_seen_ns = 0;
@@ -158,26 +181,31 @@ class SubscriptionTable {
   };
   void forget(std::map<std::string, Client>::iterator it);  // erases, and frees its data port
   void heardFrom(Client& client, const std::string& id, std::int64_t now_ns);
-  // A batch subscription's sequence outlives it: a client that subscribes again on the same
-  // channel (after being forgotten, or unsubscribing) continues it, so what it receives after
-  // the gap counts as new (docs/messages.md, contact_batch_t). Bounded: the map is cleared when
-  // it would hold more than kMaxRetiredChannels channels.
+  // A batch subscription's sequences (one per device) outlive it: a client that subscribes again
+  // on the same channel (after being forgotten, or unsubscribing) continues them, so what it
+  // receives after the gap counts as new (docs/messages.md, contact_batch_t). Bounded: the map is
+  // cleared when it would hold more than kMaxRetiredChannels channels' worth of sequences.
   void retire(const Subscription& s);
   static constexpr std::size_t kMaxRetiredChannels = 4096;
+  bool served(std::int32_t device);  // false (and counted in foreign_device) when not
 
   thx_msgs::subscribe_reply_t refuse(thx_msgs::subscribe_reply_t reply, std::string reason);
-  bool due(Subscription& s, double index);
-  void sendDeviceState(Subscription& s, const thx_msgs::device_state_t& state, MessageSink& sink);
-  void sendBatch(Subscription& s, std::int64_t now_us, MessageSink& sink);
+  static bool due(const Subscription& s, DeviceSchedule& d, double index);
+  static void sendDeviceState(const Subscription& s, DeviceSchedule& d, const thx_msgs::device_state_t& state,
+                              MessageSink& sink);
+  // A tick's sample into the device's batch; sends the batch when due or full.
+  void addSample(const Subscription& s, DeviceSchedule& d, std::int64_t tick, const thx_msgs::contact_t& contact,
+                 std::int64_t now_us, MessageSink& sink);
+  static void sendBatch(const Subscription& s, DeviceSchedule& d, std::int64_t now_us, MessageSink& sink);
   void recount();
 
   SubscriptionLimits limits_;
   DataPorts* ports_ = nullptr;
   std::map<std::string, Client> clients_;
-  std::map<std::string, std::int64_t> retired_batch_seq_;  // by channel
+  std::map<std::pair<std::string, int>, std::int64_t> retired_batch_seq_;  // by (channel, device)
   std::vector<ClientChange> changes_;
   int tick_subscriptions_ = 0;
-  std::int64_t stats_windows_ = 0;
+  std::vector<std::int64_t> stats_windows_;  // per device: windows seen so far
   SubscriptionCounters counters_;
 };
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rt/clock.hpp"
+#include "thx_client/logged_devices.hpp"
 #include "thx_msgs/protocol.hpp"
 
 namespace thx::physclient {
@@ -120,6 +121,7 @@ void LcmSink::sendForce(const Eigen::Vector3d& f, const Eigen::Vector3d& p, std:
   m.timeout_us = options_.force_timeout_us;
   m.client_id = options_.client_id;
   m.source = options_.source;
+  m.device = options_.device;
   put3(m.f_world, f);
   put3(m.p_world, p);
   const int rc = options_.server ? options_.server->sendToServer(thx_msgs::kChannelClientForce, m)
@@ -154,12 +156,16 @@ void LcmSink::contacts(const PhysicsScene& scene, const std::vector<LastingConta
   ++counters_.contacts;
 }
 
-std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz) {
+std::string deviceSuffix(int device) { return device == 0 ? "" : " of device " + std::to_string(device); }
+
+std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz, int device) {
   std::vector<PenSample> out;
   std::int64_t first_tick = 0;
   try {
+    const client::LoggedDevice pen = client::loggedDevice(path, device);
     thx_msgs::forEachLogMessage<thx_msgs::device_state_t>(path, "THX_DEVICE_STATE", [&](const thx_msgs::device_state_t& s,
                                                                                        const thx_msgs::LogPosition& at) {
+      if (!pen.takes(s.device)) return;  // another device's pen
       const Eigen::Vector3d p(s.p_world[0], s.p_world[1], s.p_world[2]);
       if (!p.allFinite()) throw PenPathError(at.where() + ": p_world is not finite");
       if (out.empty()) first_tick = s.tick;
@@ -176,8 +182,8 @@ std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz) 
     throw PenPathError(std::string(e.what()) + "; expected an LCM log from `hapticd --record`");
   }
   if (out.size() < 2)
-    throw PenPathError(path + ": " + std::to_string(out.size()) +
-                       " device states; expected a session log with at least 2 THX_DEVICE_STATE events");
+    throw PenPathError(path + ": " + std::to_string(out.size()) + " device states" + deviceSuffix(device) +
+                       "; expected a session log with at least 2 THX_DEVICE_STATE events");
   return out;
 }
 

@@ -35,6 +35,7 @@ struct LcmSinkOptions {
   std::string source = "physics";
   std::int64_t force_timeout_us = 50'000;  // hapticd drops our force this long after the last message
   bool send_force = true;                  // false: offline runs publish events only
+  int device = 0;                          // the device whose pen the force pushes: the one followed
   // Online: forces go where the kit sends requests (the server's control port, which no other
   // client listens on: a 1 kHz force on the bus would wake every client; docs/clients.md §6).
   // Null: on the sink's own LCM (offline, tests). Not owned.
@@ -65,9 +66,12 @@ class LcmSink final : public EventSink {
   std::int64_t force_seq_ = 0, pose_seq_ = 0, impact_seq_ = 0, contact_seq_ = 0;
 };
 
-// The pen of a recorded hapticd session (`hapticd --record FILE`): its THX_DEVICE_STATE events,
-// decoded with try_decode, t = (tick - first tick) / servo_hz. Throws PenPathError naming the
-// file, the event and the problem.
-std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz);
+// The pen of a recorded hapticd session (`hapticd --record FILE`): its THX_DEVICE_STATE events of
+// `device` (client::loggedDevice: every event of a one-device session; another device's pen is not
+// this one's), decoded with try_decode, t = (tick - first tick) / servo_hz. Throws PenPathError
+// naming the file, the event and the problem, thx::Error (Config) when the log names no such device.
+std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz, int device = 0);
+// " of device N" for N > 0, "" for device 0: the words the session readers' errors add.
+std::string deviceSuffix(int device);
 
 }  // namespace thx::physclient

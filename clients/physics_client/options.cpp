@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "base/cli_number.hpp"
+#include "thx_client/devices.hpp"
 #include "thx_client/scene_check.hpp"
 #include "thx_msgs/protocol.hpp"
 
@@ -58,6 +59,11 @@ LCM:
   --no-lcm               offline only: publish nothing
   --client-id ID         1-32 of [A-Za-z0-9_-] (default physics)
   --connect-timeout S    wait this long for the first device state (default 10)
+  --device N             follow hapticd's device N: its index in the hello's device list
+                         (`hapticctl status` prints it; default 0); the other devices' states are
+                         ignored, the force goes to device N; with --replay-log, device N's
+                         recorded states are the pen. An index hapticd does not have is an error
+                         naming its devices
 
   --json FILE            write a run summary (steps, forces, impacts over the whole run; the current
                          scene's name and the scene switches followed; per object of the current
@@ -145,6 +151,8 @@ Options parseOptions(const std::vector<std::string>& args) {
         throw UsageError(a + ": expected 1 to 32 characters of [A-Za-z0-9_-], got '" + o.client_id + "'");
     } else if (a == "--connect-timeout") {
       o.connect_timeout_s = cli::parseNumber(a, value(), {0, 3600, true, "s"});
+    } else if (a == "--device") {
+      o.device = int(cli::parseInteger(a, value(), 0, client::kMaxDevices - 1));
     } else if (a == "--json") {
       o.json = value();
     } else if (a == "--poses-csv") {
@@ -164,6 +172,8 @@ Options parseOptions(const std::vector<std::string>& args) {
     throw UsageError("--no-lcm needs an offline pen (--replay-log, --pen-csv, --pen-script or --no-pen)");
   if (o.no_lcm && o.lcm_url) throw UsageError("--no-lcm and --lcm-url exclude each other");
   if (o.pen_source == PenSource::None && !o.duration_s) throw UsageError("--no-pen needs --duration S");
+  if (o.device != 0 && o.offline() && o.pen_source != PenSource::ReplayLog)
+    throw UsageError("--device N picks hapticd's pen or a --replay-log's: not with --pen-csv, --pen-script or --no-pen");
   if (!o.record.empty() && !o.offline())
     throw UsageError("--record needs an offline pen (--replay-log, --pen-csv, --pen-script or --no-pen): online "
                      "runs step in real time and would not replay the same");

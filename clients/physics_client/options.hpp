@@ -29,6 +29,7 @@ struct Options {
   std::optional<std::string> lcm_url;
   bool no_lcm = false;
   std::string client_id = "physics";
+  int device = 0;  // --device N: the hapticd device whose pen is followed (online and --replay-log)
   PenOptions pen;
   double impact_min_speed = 0.005;
   double connect_timeout_s = 10.0;

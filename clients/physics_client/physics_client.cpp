@@ -46,7 +46,7 @@ int runOffline(const Options& o, SceneFollower& sim) {
   const double dt = 1.0 / d.rate_hz;
   switch (o.pen_source) {
     case PenSource::ReplayLog:
-      path = std::make_unique<PenPath>(loadSessionPen(o.pen_file, scene.scene().rates.servo_hz));
+      path = std::make_unique<PenPath>(loadSessionPen(o.pen_file, scene.scene().rates.servo_hz, o.device));
       break;
     case PenSource::Csv:
       path = std::make_unique<PenPath>(loadPenCsv(o.pen_file));
@@ -76,7 +76,8 @@ int runOffline(const Options& o, SceneFollower& sim) {
   if (!o.record.empty()) {
     if (!std::ofstream(o.record))  // before the run, not after it
       throw thx::Error(thx::Error::Kind::Io, "--record " + o.record + ": cannot create the log file");
-    record = std::make_unique<RecordSink>(o.pen_source == PenSource::ReplayLog ? sessionClockOf(o.pen_file) : SessionClock{});
+    record = std::make_unique<RecordSink>(o.pen_source == PenSource::ReplayLog ? sessionClockOf(o.pen_file, o.device)
+                                                                               : SessionClock{});
     record_tee = std::make_unique<TeeSink>(*sink, *record);
     sink = record_tee.get();
   }
@@ -111,6 +112,7 @@ int runOnline(const Options& o, SceneFollower& sim) {
   ao.connect_timeout_s = o.connect_timeout_s;
   ao.scene = sim.identity();
   ao.allow_different_scene = o.allow_different_scene;
+  ao.client.device = o.device;  // the pen followed; waitForServer refuses an index hapticd does not have
   thx::client::ClientApp app(ao);
   thx::client::Client& client = app.client();
   double state_hz = o.state_hz.value_or(sim.rates().rate_hz);
@@ -118,6 +120,7 @@ int runOnline(const Options& o, SceneFollower& sim) {
   LcmSinkOptions so;
   so.client_id = o.client_id;
   so.server = &client;
+  so.device = o.device;
   LcmSink lcm_sink(app.lcm(), so);
   std::unique_ptr<PoseCsvSink> csv;
   if (!o.poses_csv.empty()) csv = std::make_unique<PoseCsvSink>(o.poses_csv);

@@ -9,21 +9,24 @@
 
 #include "clients/physics_client/lcm_io.hpp"
 #include "clients/physics_client/pen_path.hpp"
+#include "thx_client/logged_devices.hpp"
 #include "thx_msgs/protocol.hpp"
 
 namespace thx::physclient {
 
-SessionClock sessionClockOf(const std::string& session_path) {
+SessionClock sessionClockOf(const std::string& session_path, int device) {
+  const client::LoggedDevice pen = client::loggedDevice(session_path, device);
   thx_msgs::LogReader log(session_path);
   thx_msgs::LogRecord e;
   while (log.next(e)) {
     if (e.channel != "THX_DEVICE_STATE") continue;
     thx_msgs::device_state_t s;
     if (thx_msgs::try_decode(e.data.data(), e.data.size(), s) < 0)
-      throw PenPathError(session_path + ": first THX_DEVICE_STATE event does not decode as device_state_t");
-    return {s.utime, e.timestamp_us};
+      throw PenPathError(session_path + ": a THX_DEVICE_STATE event does not decode as device_state_t");
+    if (pen.takes(s.device)) return {s.utime, e.timestamp_us};
   }
-  throw PenPathError(session_path + ": no THX_DEVICE_STATE event; expected a session log from `hapticd --record`");
+  throw PenPathError(session_path + ": no THX_DEVICE_STATE event" + deviceSuffix(device) +
+                     "; expected a session log from `hapticd --record`");
 }
 
 std::int64_t RecordSink::utimeOf(double sim_time_s) const { return clock_.utime0_us + std::llround(sim_time_s * 1e6); }

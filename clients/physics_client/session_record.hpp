@@ -23,9 +23,10 @@ struct SessionClock {
   std::int64_t timestamp0_us = 0;  // its log event timestamp
 };
 
-// The clock of a session log (`hapticd --record`): its first THX_DEVICE_STATE event. Throws
+// The clock of a session log (`hapticd --record`): its first THX_DEVICE_STATE event of `device`
+// (the pen followed, client::loggedDevice: any event of a one-device session). Throws
 // PenPathError naming the file when there is none.
-SessionClock sessionClockOf(const std::string& session_path);
+SessionClock sessionClockOf(const std::string& session_path, int device = 0);
 
 struct RecordedEvent {
   std::int64_t timestamp_us = 0;

@@ -50,17 +50,17 @@ void receive(const ProbeOptions& o, ProbeResult& result) {
     if (s.state == SubscriptionState::Active && !monitor) monitor.emplace(s.granted_hz);
   });
   client.onDeviceState([&](const thx_msgs::device_state_t& m, std::int64_t now) {
-    if (seen(now)) monitor->onMessage(m.tick, m.utime, now);
+    if (seen(now)) monitor->onMessage(m.tick, m.utime, now, m.device);
   });
   client.onContact([&](const thx_msgs::contact_t& m, std::int64_t now) {
-    if (seen(now)) monitor->onMessage(m.tick, m.utime, now);
+    if (seen(now)) monitor->onMessage(m.tick, m.utime, now, m.device);
   });
   client.onContactBatch([&](const thx_msgs::contact_batch_t& m, std::int64_t now) {
     if (seen(now)) monitor->onBatch(m, now);
   });
   // SERVO_STATS has no tick: its tick count orders it.
   client.onServoStats([&](const thx_msgs::servo_stats_t& m, std::int64_t now) {
-    if (seen(now)) monitor->onMessage(m.ticks, m.utime, now);
+    if (seen(now)) monitor->onMessage(m.ticks, m.utime, now, m.device);
   });
   asked_ns = monotonicNs();
   client.subscribe(o.stream, o.rate_hz, o.batch);

@@ -23,7 +23,7 @@ void writeProbeJson(const std::string& path, const ProbeResult& r) {
                "  \"messages\": %llu,\n  \"span_s\": %.6f,\n  \"achieved_rate_hz\": %.6f,\n"
                "  \"rate_error\": %.6f,\n  \"steady_rate_error\": %.6f,\n"
                "  \"latency_us\": {\"p50\": %.1f, \"p99\": %.1f, \"max\": %.1f},\n"
-               "  \"gaps\": %llu,\n  \"missing\": %llu,\n  \"duplicates\": %llu,\n"
+               "  \"gaps\": %llu,\n  \"missing\": %llu,\n  \"duplicates\": %llu,\n  \"other_device\": %llu,\n"
                "  \"samples\": %llu,\n  \"sample_rate_hz\": %.3f,\n  \"samples_missing\": %llu,\n"
                "  \"samples_dropped_by_server\": %llu,\n  \"samples_out_of_order\": %llu,\n"
                "  \"server_instance\": %lld,\n  \"reconnects\": %llu,\n  \"server_restarts\": %llu,\n"
@@ -39,7 +39,8 @@ void writeProbeJson(const std::string& path, const ProbeResult& r) {
                r.status.granted_hz > 0 && s.steady_rate_hz > 0 ? s.steady_rate_hz / r.status.granted_hz - 1.0 : 0.0,
                s.latency_p50_us,
                s.latency_p99_us, s.latency_max_us, (unsigned long long)s.gaps, (unsigned long long)s.missing,
-               (unsigned long long)s.duplicates, (unsigned long long)s.samples, s.sample_rate_hz,
+               (unsigned long long)s.duplicates, (unsigned long long)r.status.other_device,
+               (unsigned long long)s.samples, s.sample_rate_hz,
                (unsigned long long)s.samples_missing, (unsigned long long)s.samples_dropped,
                (unsigned long long)s.samples_out_of_order, (long long)r.server_instance,
                (unsigned long long)r.reconnects, (unsigned long long)s.restarts, r.admission_s, r.first_message_s,

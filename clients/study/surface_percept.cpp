@@ -45,10 +45,10 @@ void runServo(const std::string& scene_path, const Cues& cues, dev::HandScript s
   dev::SimPhantom device(srv::simConfigFor(sc, /*lockstep=*/true), std::move(script));
   srv::ScenePolicy policy;
   if (!cues.pen) policy.stiffness_fraction = 0.0;  // the pen still moves, nothing pushes back (as NAME.nopen)
-  const auto prepared = srv::prepareScene(sc, scene_path, device.spec(), policy);
-  srv::ServoRig rig(device, prepared->surface.surface, prepared->wiring);
+  const auto prepared = srv::prepareScene(sc, scene_path, {device.spec()}, policy);
+  srv::ServoRig rig(device, prepared->surface.surface, prepared->devices[0].wiring);
   device.open();
-  const double period_s = prepared->wiring.period_s;
+  const double period_s = prepared->devices[0].wiring.period_s;
   const long ticks = long(std::ceil(duration_s / period_s));
   for (long k = 0; k < ticks; ++k)
     if (!each(rig.tickAndDrain(), double(k + 1) * period_s)) return;

@@ -169,7 +169,8 @@ int liveWindow(const Options& o, LiveFeed& feed, std::unique_ptr<LoadedScene> lo
 int runLive(const Options& o) {
   std::unique_ptr<LoadedScene> loaded = loadScene(o.scene);
   LiveFeed feed(o.lcm_url, o.replay_rate_hz, o.connect_timeout_s,
-                client::SceneIdentity{loaded->surface.scene_name, loaded->surface.fingerprint}, o.allow_different_scene);
+                client::SceneIdentity{loaded->surface.scene_name, loaded->surface.fingerprint}, o.allow_different_scene,
+                o.device);
   std::string why;
   const std::optional<thx_msgs::hello_t> hello = feed.connect(why);
   if (!hello) {

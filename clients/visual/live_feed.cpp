@@ -4,20 +4,21 @@ namespace thx::visual {
 
 namespace {
 client::AppOptions appOptions(const std::string& lcm_url, double connect_timeout_s, const client::SceneIdentity& mine,
-                              bool allow_different_scene) {
+                              bool allow_different_scene, int device) {
   client::AppOptions o;
   o.client_id = "visual";
   o.lcm_url = lcm_url;
   o.connect_timeout_s = connect_timeout_s;
   o.scene = mine;
   o.allow_different_scene = allow_different_scene;
+  o.client.device = device;
   return o;
 }
 }  // namespace
 
 LiveFeed::LiveFeed(const std::string& lcm_url, double rate_hz, double connect_timeout_s, const client::SceneIdentity& mine,
-                   bool allow_different_scene)
-    : app_(appOptions(lcm_url, connect_timeout_s, mine, allow_different_scene)), poses_(app_.lcm()) {
+                   bool allow_different_scene, int device)
+    : app_(appOptions(lcm_url, connect_timeout_s, mine, allow_different_scene, device)), poses_(app_.lcm()) {
   app_.client().subscribe(thx_msgs::Stream::DeviceState, rate_hz);
 }
 

@@ -23,12 +23,13 @@ struct LiveCounts {
 class LiveFeed {
  public:
   // `mine`: the scene this client loaded; waitForServer() refuses another (the kit's check)
-  // unless `allow_different_scene` (then a warning on stderr).
+  // unless `allow_different_scene` (then a warning on stderr). `device`: the device whose pen is
+  // drawn (ClientOptions::device); connect() throws when hapticd has no such device.
   LiveFeed(const std::string& lcm_url, double rate_hz, double connect_timeout_s, const client::SceneIdentity& mine,
-           bool allow_different_scene = false);
+           bool allow_different_scene = false, int device = 0);
 
   // Waits for hapticd's hello. nullopt and `why` when none came within the timeout (or a stop
-  // signal came); throws thx::Error when the server runs another scene.
+  // signal came); throws thx::Error when the server runs another scene or has no such device.
   std::optional<thx_msgs::hello_t> connect(std::string& why);
   // Handles the traffic queued now (no wait) and returns what a frame would show.
   LiveView poll();

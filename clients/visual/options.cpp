@@ -27,6 +27,10 @@ says so and draws the scene at rest (one frame DIR/frame_0000, or the window at 
   --duration S           live: stop after S seconds (default 0: until --frames N or Ctrl-C)
   --lcm-url URL          (default )" THX_DEFAULT_LCM_URL R"()
   --connect-timeout S    wait this long for hapticd's hello (default 3)
+  --device N             draw the pen of hapticd's device N: its index in the hello's device list
+                         (`hapticctl status` prints it; default 0); the other devices' pens are
+                         not drawn; an index hapticd does not have is an error naming its
+                         devices. With --replay-log, device N's recorded pen
   --scenes-dir DIR       where a switched-to scene NAME.yaml is found (default scenes)
   --allow-different-scene  run even when hapticd announces another scene or texture (a warning
                          instead of an error) and keep drawing --scene's look when hapticd
@@ -171,6 +175,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (a == "--live") o.live = true;
     else if (a == "--lcm-url") o.lcm_url = value();
     else if (a == "--connect-timeout") o.connect_timeout_s = cli::parseNumber(a, value(), {0, 3600, false, "s"});
+    else if (a == "--device") o.device = int(cli::parseInteger(a, value(), 0, (long long)scene::kMaxSceneDevices - 1));
     else if (a == "--duration") o.duration_s = cli::parseNumber(a, value(), {0, 1e9, false, "s"});
     else if (a == "--scenes-dir") o.scenes_dir = value();
     else if (a == "--allow-different-scene") o.allow_different_scene = true;
@@ -188,6 +193,7 @@ Options parseOptions(const std::vector<std::string>& args) {
   if (o.scene.empty()) throw UsageError("--scene FILE is required");
   if (o.lcm_url.empty()) o.lcm_url = thx_msgs::kDefaultLcmUrl;
   const bool replay = !o.replay_log.empty();
+  if (o.device != 0 && !o.live && !replay) throw UsageError("--device N picks a pen to draw: with --live or --replay-log");
   if (o.surface_mesh_tile_m > 0 && o.surface_mesh.empty()) throw UsageError("--surface-mesh-tile M needs --surface-mesh SHAPE");
   if (!o.surface_mesh.empty()) {
     if (o.window || replay || o.live) throw UsageError("--surface-mesh draws headless: with --screenshot FILE or --frames N --out DIR");

@@ -11,7 +11,8 @@
 
 namespace thx::visual {
 
-std::vector<ReplayFrame> replayFrames(const std::string& log_path, double servo_hz, double rate_hz) {
+std::vector<ReplayFrame> replayFrames(const std::string& log_path, double servo_hz, double rate_hz,
+                                      std::optional<int> device) {
   struct State {
     std::int64_t tick, utime;
     Eigen::Vector3d p, proxy;
@@ -26,6 +27,7 @@ std::vector<ReplayFrame> replayFrames(const std::string& log_path, double servo_
   try {
     thx_msgs::forEachLogMessage<thx_msgs::device_state_t>(
         log_path, "THX_DEVICE_STATE", [&](const thx_msgs::device_state_t& s, const thx_msgs::LogPosition& at) {
+          if (device && s.device != *device) return;  // another pen
           const Eigen::Vector3d p(s.p_world[0], s.p_world[1], s.p_world[2]);
           const Eigen::Vector3d proxy(s.proxy_world[0], s.proxy_world[1], s.proxy_world[2]);
           if (!p.allFinite()) throw Error(Error::Kind::Config, at.where() + ": p_world is not finite");
@@ -50,8 +52,9 @@ std::vector<ReplayFrame> replayFrames(const std::string& log_path, double servo_
     throw Error(Error::Kind::Config, std::string(e.what()) + "; expected a session log (LCM log) from `hapticd --record`");
   }
   if (states.empty())
-    throw Error(Error::Kind::Config,
-                log_path + ": no THX_DEVICE_STATE events; expected a session log (LCM log) from `hapticd --record`");
+    throw Error(Error::Kind::Config, log_path + ": no THX_DEVICE_STATE events" +
+                                         (device ? " of device " + std::to_string(*device) : std::string()) +
+                                         "; expected a session log (LCM log) from `hapticd --record`");
 
   std::vector<ReplayFrame> frames;
   const std::int64_t first = states.front().tick;

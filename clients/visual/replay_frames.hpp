@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,13 @@ struct ReplayFrame {
   std::vector<Eigen::Isometry3d> bodies;  // body i = the scene's objects[i]; empty: no poses yet (at rest)
 };
 
+// The pen is device `device`'s (its index in the recorded hellos' device_names), the other
+// devices' states passed over; nullopt takes every state: a one-device session's
+// (client::loggedDevice says which, thx_client/logged_devices.hpp).
 // Throws thx::Error (Config) naming the file and event: not an LCM log, no THX_DEVICE_STATE
-// events, an event that does not decode, a non-finite position, ticks that do not increase, a
-// physics_poses_t with num_bodies out of range or a non-finite pose.
-std::vector<ReplayFrame> replayFrames(const std::string& log_path, double servo_hz, double rate_hz);
+// events (of that device), an event that does not decode, a non-finite position, ticks that do
+// not increase, a physics_poses_t with num_bodies out of range or a non-finite pose.
+std::vector<ReplayFrame> replayFrames(const std::string& log_path, double servo_hz, double rate_hz,
+                                      std::optional<int> device = std::nullopt);
 
 }  // namespace thx::visual

@@ -19,6 +19,7 @@
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_mesh.hpp"
 #include "scenes/scene_surface.hpp"
+#include "thx_client/logged_devices.hpp"
 #include "thx_client/logged_scene.hpp"
 #include "textures/smoothing.hpp"
 
@@ -43,11 +44,17 @@ std::vector<ObjectInstance> replayedObjects(const Options& o, const scene::Scene
   return objects;
 }
 
+// The recorded pen --device N picks: every state of a one-device session (thx_client/logged_devices.hpp).
+std::optional<int> replayedDevice(const Options& o) {
+  const client::LoggedDevice pen = client::loggedDevice(o.replay_log, o.device);
+  return pen.every ? std::nullopt : std::optional<int>(pen.device);
+}
+
 // A recorded session frame by frame: the pen (tip, proxy) where the recording put it, the objects
 // at the recorded physics poses (at rest before the first, or when the log has none).
 int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
            const CameraPlacement& placement) {
-  std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz);
+  std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz, replayedDevice(o));
   if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
   HeadlessContext context;
   FrameRenderer renderer(surface, o.render, o.width, o.height);
@@ -151,7 +158,7 @@ int replayOnMesh(const Options& o, const scene::Scene& scene, const scene::Scene
       scene::meshSceneFingerprint(scene_surface.fingerprint, view.shape, view.surface.mesh_to_world, view.surface.tile_m);
   client::checkLoggedScene(client::loggedScenes(o.replay_log), {scene_surface.scene_name, fingerprint}, o.replay_log,
                            false, false);
-  std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz);
+  std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz, replayedDevice(o));
   if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
   HeadlessContext context;
   MeshFrameRenderer renderer(view.surface, o.render, o.width, o.height);

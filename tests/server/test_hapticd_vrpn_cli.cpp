@@ -20,6 +20,7 @@
 #include "device/vrpn/vrpn_client_device.hpp"
 #include "device/device_specs.hpp"
 #include "tests/support/hapticd_harness.hpp"
+#include "tests/support/vrpn_reports.hpp"
 
 namespace test_hapticd_vrpn_cli {
 
@@ -65,48 +66,16 @@ TEST_F(HapticdVrpn, ServesItsSimulatedPhantomToAVrpnClient) {
                  std::to_string(port));
     server_done = true;
   });
-  // Connect (retrying while hapticd starts), then read reports while the scripted hand moves,
-  // until hapticd ends: the window is the server's whole run however slowly it starts (the
-  // sanitizer build under load once took most of a fixed 2.5 s window to start).
-  std::unique_ptr<TcpConnection> conn;
-  std::int32_t sender = kNoId;
-  bool connected = false;
-  int reports = 0;
-  double x_min = 1e9, x_max = -1e9;
-  while (!server_done) {
-    if (!conn || !conn->open()) {
-      Result<UniqueFd> fd = connectTcp("127.0.0.1", port);
-      if (!fd) {
-        std::this_thread::sleep_for(20ms);
-        continue;
-      }
-      conn = std::make_unique<TcpConnection>(std::move(fd).value());
-      sender = conn->endpoint().addSender("Phantom0");
-      conn->endpoint().addType(TrackerPosQuat::kTypeName);
-    }
-    pollfd p{conn->fd(), short(POLLIN | (conn->wantsWrite() ? POLLOUT : 0)), 0};
-    ::poll(&p, 1, 5);
-    conn->pump();
-    while (std::optional<Event> ev = conn->endpoint().poll()) {
-      if (std::holds_alternative<Connected>(*ev)) {
-        connected = true;
-        conn->endpoint().sendMessage(sender, Ping{});
-      } else if (const auto* m = std::get_if<UserMessage>(&*ev); m && m->type_name == TrackerPosQuat::kTypeName) {
-        Result<TrackerPosQuat> r = TrackerPosQuat::decode(m->payload);
-        ASSERT_TRUE(r);
-        ++reports;
-        x_min = std::min(x_min, r->pos[0]);
-        x_max = std::max(x_max, r->pos[0]);
-      }
-    }
-  }
-  if (conn) conn->close(Error{ErrorCode::kPeerClosed, "test done"});
+  // Reads reports while the scripted hand moves, until hapticd ends.
+  const thx::test::VrpnReports got = thx::test::readVrpnReports(port, {"Phantom0"}, server_done);
   proc.join();
   // How many reports arrive depends on the scheduler; that they arrive, decode and follow the
   // moving pen does not.
-  EXPECT_TRUE(connected);
-  EXPECT_GT(reports, 0);
-  EXPECT_GT(x_max - x_min, 0.0) << "the scripted stroke moves the pen";
+  const thx::test::SenderReports& pen = got.by_name.at("Phantom0");
+  EXPECT_TRUE(got.connected);
+  EXPECT_GT(pen.reports, 0);
+  EXPECT_EQ(pen.undecodable, 0);
+  EXPECT_GT(pen.x_max - pen.x_min, 0.0) << "the scripted stroke moves the pen";
   EXPECT_EQ(server.status, 0) << server.err;
   EXPECT_NE(server.err.find("1 clients served"), std::string::npos) << server.err;
 }

@@ -37,9 +37,9 @@ class MeshCase {
     height_ = srv::handSurfaceFor(scene_, *mesh_);
     srv::checkScriptOnMesh(scene_, *height_);
     device_ = srv::makeSceneDevice(scene_, "", "", /*lockstep=*/true, height_.get());
-    prepared_ = srv::prepareScene(scene_, path_, device_.device->spec(), srv::ScenePolicy{}, mesh_);
-    rig_ = std::make_unique<srv::ServoRig>(*device_.device, prepared_->surface.surface, prepared_->wiring,
-                                           prepared_->mesh_renderer.get());
+    prepared_ = srv::prepareScene(scene_, path_, {device_.device->spec()}, srv::ScenePolicy{}, mesh_);
+    rig_ = std::make_unique<srv::ServoRig>(*device_.device, prepared_->surface.surface, prepared_->devices[0].wiring,
+                                           prepared_->devices[0].mesh_renderer.get());
     device_.device->open();
   }
   ~MeshCase() { device_.device->close(); }

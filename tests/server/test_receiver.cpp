@@ -9,6 +9,7 @@
 #include <thx_msgs/protocol.hpp>
 
 #include "server/client_force_table.hpp"
+#include "base/error.hpp"
 #include "server/receiver.hpp"
 
 namespace test_receiver {
@@ -25,6 +26,17 @@ thx_msgs::client_force_t force(const std::string& id, const std::string& source,
   return m;
 }
 constexpr std::int64_t kMs = 1'000'000;
+
+// Waits up to a second for `slot` to hold a force whose x is `fx` (the receiver thread writes it).
+bool slotReceives(rt::LatestSlot<srv::ClientForce>& slot, double fx) {
+  srv::ClientForce got;
+  std::uint32_t seq = 0;
+  for (int k = 0; k < 200; ++k) {
+    if (slot.readIfNewer(got, seq) && got.force_world_n[0] == fx) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
 }  // namespace
 
 TEST(ClientForceTable, KeepsTheLatestPerSenderAndSums) {
@@ -85,17 +97,42 @@ TEST(Receiver, ForcesOverLcmReachTheServoSlotAndGarbageIsCounted) {
   lcm.publish(thx_msgs::kChannelClientForce, garbage.data(), unsigned(garbage.size()));
   thx_msgs::client_force_t m = force("physics", "ball", 1, 0.75);
   lcm.publish(thx_msgs::kChannelClientForce, &m);
-  srv::ClientForce got;
-  std::uint32_t seq = 0;
-  bool seen = false;
-  for (int k = 0; k < 200 && !seen; ++k) {
-    seen = slot.readIfNewer(got, seq) && got.force_world_n[0] == 0.75;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  const bool seen = slotReceives(slot, 0.75);
   receiver.stop();
   EXPECT_TRUE(seen);
   EXPECT_EQ(receiver.undecodable(), 1u);
   EXPECT_EQ(receiver.counters().accepted, 1u);
+}
+
+// Several devices (issue 30): each client force reaches the slot of the device it names, and
+// only that one; a device the server does not have is refused and counted.
+TEST(Receiver, EachForceReachesTheDeviceItNames) {
+  lcm::LCM lcm("memq://");
+  ASSERT_TRUE(lcm.good());
+  rt::LatestSlot<srv::ClientForce> left, right;
+  srv::Receiver receiver(lcm, {{&left, 7.9}, {&right, 3.3}});
+  receiver.start();
+  thx_msgs::client_force_t to_right = force("physics", "box", 1, 0.5);
+  to_right.device = 1;
+  lcm.publish(thx_msgs::kChannelClientForce, &to_right);
+  thx_msgs::client_force_t too_strong_for_right = force("physics", "box", 2, 4.0);  // above right's 3.3 N
+  too_strong_for_right.device = 1;
+  lcm.publish(thx_msgs::kChannelClientForce, &too_strong_for_right);
+  thx_msgs::client_force_t nowhere = force("physics", "ghost", 1, 0.25);
+  nowhere.device = 2;
+  lcm.publish(thx_msgs::kChannelClientForce, &nowhere);
+  const bool seen = slotReceives(right, 0.5);
+  for (int k = 0; k < 200 && receiver.counters().other_device + receiver.counters().bad_values < 2; ++k)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  receiver.stop();
+  EXPECT_TRUE(seen);
+  std::uint32_t left_seq = 0;
+  srv::ClientForce left_got;
+  EXPECT_FALSE(left.readIfNewer(left_got, left_seq)) << "nothing was written to the left device's slot";
+  EXPECT_EQ(receiver.counters().accepted, 1u);
+  EXPECT_EQ(receiver.counters().bad_values, 1u);    // right's own peak force applies to right
+  EXPECT_EQ(receiver.counters().other_device, 1u);  // device 2 of two
+  EXPECT_THROW(srv::Receiver(lcm, std::vector<srv::ForcedDevice>{}), thx::Error);
 }
 
 }  // namespace test_receiver

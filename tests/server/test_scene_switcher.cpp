@@ -54,9 +54,12 @@ struct ScenesFolder {
                               "  type: sim\n  model: phantom_desktop\n  stiffness_fraction: 7\n"));
     write("omni", sceneText("tilted", "{extent: 0.2, angle_deg: 0, direction_deg: 0}", "normal",
                             "  type: sim\n  model: phantom_omni\n  stiffness_fraction: 0.4\n"));
-    // Two devices (issue 30): hapticd serves one device per scene so far.
+    // Two devices (issue 30): a switch keeps the running server's devices.
     write("two_pens", "version: 1\nname: two pens\nsurface:\n  size: [0.2, 0.2]\n  texture: {generator: bricks, size: 64}\n"
                       "devices:\n  - {name: left}\n  - {name: right}\n");
+    write("two_valleys", "version: 1\nname: two valleys\nsurface:\n  size: [0.2, 0.2]\n"
+                         "  texture: {generator: vvalley, size: 64, params: {extent: 0.2, angle_deg: 60, period: 0.004}}\n"
+                         "devices:\n  - {name: left, stiffness_fraction: 0.6}\n  - {name: right, stiffness_fraction: 0.3}\n");
     write("fast_servo", sceneText("tilted", "{extent: 0.2, angle_deg: 0, direction_deg: 0}", "normal", kDesktop) +
                             "rates:\n  servo_hz: 2000\n");
     // Mesh scenes (surface.mesh): a small bowl, and one whose mesh is over its triangle bound
@@ -91,9 +94,9 @@ struct SwitchingServer {
   explicit SwitchingServer(const ScenesFolder& folder)
       : device(hover),
         running(scene::loadScene(folder.path("flat"))),
-        first_owner(srv::prepareScene(running, folder.path("flat"), device.spec(), srv::ScenePolicy{})),
+        first_owner(srv::prepareScene(running, folder.path("flat"), {device.spec()}, srv::ScenePolicy{})),
         first(first_owner.get()),
-        rig(device, first->surface.surface, first->wiring),
+        rig(device, first->surface.surface, first->devices[0].wiring),
         switcher(rig.servo().surfaceSwap(), running, device.spec(), std::move(first_owner), options(folder)),
         commands(&rig.servo().faultResetSlot(), 42, &switcher) {}
   static srv::SceneSwitcherOptions options(const ScenesFolder& folder) {
@@ -152,6 +155,63 @@ struct SwitchingServer {
 };
 
 }  // namespace
+
+// Two devices (issue 30): the switch reaches each device's servo with that device's own renderer
+// configuration; the old scene is freed only once every servo has let go of it. Device 1 does not
+// tick until device 0 has switched, so it renders the old scene meanwhile: freed early, the
+// sanitizer tree reports the use after free.
+TEST(SceneSwitcher, EveryDeviceSwitchesAndTheOldSceneOutlivesTheLastOne) {
+  ScenesFolder folder;
+  test::FakeDevice left(hover), right(hover);
+  const scene::Scene running = scene::loadScene(folder.path("two_pens"));
+  auto first = srv::prepareScene(running, folder.path("two_pens"), {left.spec(), right.spec()}, srv::ScenePolicy{});
+  srv::ServoRig rig0(left, first->surface.surface, first->devices[0].wiring);
+  srv::ServoRig rig1(right, first->surface.surface, first->devices[1].wiring);
+  const tex::TexturedSurface* before = &rig1.renderer().surface();
+  srv::SceneSwitcher switcher({&rig0.servo().surfaceSwap(), &rig1.servo().surfaceSwap()}, running,
+                              {left.spec(), right.spec()}, std::move(first), SwitchingServer::options(folder));
+  srv::ServerCommands commands({&rig0.servo().faultResetSlot(), &rig1.servo().faultResetSlot()}, 42, &switcher);
+  Cmd c{};
+  c.seq = 1;
+  c.client_id = "runner";
+  c.action = Cmd::ACTION_LOAD_SCENE;
+  c.argument = "two_valleys";
+  ASSERT_FALSE(commands.handle(c).has_value());
+  std::vector<Reply> done;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (done.empty() && std::chrono::steady_clock::now() < give_up) {
+    commands.pollLoads(done);
+    const srv::TickRecord r = rig0.tickAndDrain();
+    commands.onRecord(r, done);
+    if (done.empty()) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_TRUE(done[0].accepted) << done[0].reason;
+  EXPECT_DOUBLE_EQ(rig0.renderer().config().stiffness_n_per_m, 600.0);  // left: 0.6 x 1000 N/m
+  // Device 1 has not ticked: it still renders the old scene, which must still be there.
+  EXPECT_EQ(&rig1.renderer().surface(), before);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the loader's reclaim polls meanwhile
+  for (int k = 0; k < 500; ++k) rig1.tickAndDrain();
+  EXPECT_NE(&rig1.renderer().surface(), before);
+  EXPECT_EQ(&rig1.renderer().surface(), &rig0.renderer().surface());  // one shared surface
+  EXPECT_DOUBLE_EQ(rig1.renderer().config().stiffness_n_per_m, 300.0);  // right: 0.3 x 1000 N/m
+  EXPECT_EQ(switcher.switchesOffered(), 1u);
+  // A second switch needs both servos done with the first: offered only after device 1's swap.
+  c.seq = 2;
+  c.argument = "two_pens";
+  ASSERT_FALSE(commands.handle(c).has_value());
+  done.clear();
+  const auto give_up_2 = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (done.empty() && std::chrono::steady_clock::now() < give_up_2) {
+    commands.pollLoads(done);
+    commands.onRecord(rig0.tickAndDrain(), done);
+    rig1.tickAndDrain();
+    if (done.empty()) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_TRUE(done[0].accepted) << done[0].reason;
+  EXPECT_EQ(switcher.switchesOffered(), 2u);
+}
 
 TEST(SceneSwitcher, AGoodSceneIsAnsweredWhenTheServoRendersItAndThenAnnounced) {
   ScenesFolder folder;
@@ -270,7 +330,7 @@ TEST(SceneSwitcher, WhatASwitchCannotChangeIsRefusedAndNamed) {
   };
   for (const Case& c : {Case{"omni", "device.model 'phantom_omni' differs from the running device's 'phantom_desktop'"},
                         Case{"fast_servo", "rates.servo_hz = 2000 differs from the running servo's 1000 Hz"},
-                        Case{"two_pens", "the scene lists 2 devices (left, right); hapticd serves one device per scene"},
+                        Case{"two_pens", "the scene lists 2 device(s), the running server 1: a scene switch keeps the devices"},
                         Case{"nosuch", "no file"}}) {
     SCOPED_TRACE(c.scene);
     ASSERT_FALSE(server.send(c.scene).has_value());

@@ -3,6 +3,10 @@
 namespace thx::audio {
 
 void ExcitationFeed::contactBatch(const thx_msgs::contact_batch_t& b, std::int64_t receipt_ns) {
+  if (b.device != device_) {  // another pen's: its seq and ticks are its own
+    ++counters_.other_device;
+    return;
+  }
   ++counters_.batches;
   bool gap = false;
   if (have_batch_ && b.server_instance != server_instance_) {

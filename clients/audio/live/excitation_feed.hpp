@@ -5,6 +5,10 @@
 // instance, a new subscription) and tells the sources when samples were lost; a tick is played
 // once (resent batches and ticks already played are skipped). The live client calls it from the
 // kit's callbacks; tests call it with recorded batches.
+// It plays one pen: the device it follows (protocol 6). A server with several devices sends each
+// device's batches, with a seq of its own, on one channel; the other devices' are counted and
+// skipped before any continuity check, so they are neither gaps nor duplicates, and a sample of
+// another pen never reaches the sources (which keep one pen's path).
 #include <cstdint>
 #include <vector>
 
@@ -35,12 +39,15 @@ struct FeedCounters {
   std::uint64_t restarts = 0;         // a new server_instance
   std::uint64_t duplicates = 0;       // batches whose ticks were all played already (resends)
   std::uint64_t resubscriptions = 0;  // the batch seq started again within one server instance
+  std::uint64_t other_device = 0;     // batches of devices not followed: skipped, not in `batches`
   std::uint64_t physics_poses = 0, physics_contacts = 0, physics_impacts = 0;
 };
 
 class ExcitationFeed {
  public:
-  explicit ExcitationFeed(ExcitationSink& sink) : sink_(sink) {}
+  // `device`: the index (hello_t.device_names) of the pen played; the same as the kit Client's
+  // ClientOptions::device when the batches come through it.
+  explicit ExcitationFeed(ExcitationSink& sink, int device = 0) : sink_(sink), device_(device) {}
 
   // The sources of the scene now playing (not owned; they must outlive their use here). A scene
   // switch replaces them all.
@@ -56,6 +63,7 @@ class ExcitationFeed {
 
  private:
   ExcitationSink& sink_;
+  int device_;
   std::vector<ExcitationSource*> sources_;
   FeedCounters counters_;
   std::int64_t last_seq_ = 0, server_instance_ = 0, last_tick_ = 0;

@@ -25,6 +25,7 @@
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
 #include "textures/smoothing.hpp"
+#include "thx_client/logged_devices.hpp"
 #include "thx_client/logged_scene.hpp"
 #include "thx_msgs/log_reader.hpp"
 
@@ -62,18 +63,18 @@ RtAudio when a sound device exists; when none does, one line says so and a timer
 writes the sound to --wav. Follows hapticd's scene switches (finds NAME.yaml in --scenes-dir).
 
 Offline (--replay-log): deterministic, from a recorded session (`hapticd --record FILE`: one
-contact_t per servo tick on THX_CONTACT). If the log also holds the physics client's streams
-(`physics-client --replay-log SESSION --record FILE`: THX_PHYSICS_POSES/IMPACT/CONTACTS on the
-session's clock), they sound too, on the same clock. A THX_HELLO naming another scene (hapticd
---record writes one at each switch) switches to NAME.yaml (--scenes-dir) from its utime on: the
-pen's CONTACT samples after it scrape that scene's surface and pen (the walk starts afresh), the
-physics streams strike its bodies; bodies struck before ring on. Each scene loaded must have the
-texture fingerprint the log's hellos give it (else an error naming the log, the scene and both
-fingerprints; --allow-different-scene renders anyway, with a warning). While a scene with
-`audio: {mute: true}` runs the output is exact silence (live: from the switch to it, nothing is
-synthesised; offline: the render's samples from its hello to the next unmuted scene's are zeroed);
-the sound comes back with the next unmuted scene. The sum of the modal
-displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS).
+contact_t per servo tick on THX_CONTACT; of several devices, device 0's pen sounds, as live). If
+the log also holds the physics client's streams (`physics-client --replay-log SESSION --record
+FILE`: THX_PHYSICS_POSES/IMPACT/CONTACTS on the session's clock), they sound too, on the same
+clock. A THX_HELLO naming another scene (hapticd --record writes one at each switch) switches to
+NAME.yaml (--scenes-dir) from its utime on: the pen's CONTACT samples after it scrape that scene's
+surface and pen (the walk starts afresh), the physics streams strike its bodies; bodies struck
+before ring on. Each scene loaded must have the texture fingerprint the log's hellos give it (else
+an error naming the log, the scene and both fingerprints; --allow-different-scene renders anyway,
+with a warning). While a scene with `audio: {mute: true}` runs the output is exact silence (live:
+from the switch to it, nothing is synthesised; offline: the render's samples from its hello to the
+next unmuted scene's are zeroed); the sound comes back with the next unmuted scene. The sum of the
+modal displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS).
 
   --scene FILE           the scene hapticd runs (docs/scenes.md)
   --replay-log FILE      offline: hapticd's --record log, or physics-client's --record log (with
@@ -250,8 +251,10 @@ int runOffline(const Options& o) {
   };
 
   std::vector<TimedScrapeSample> path;
+  // One pen scrapes: device 0's, as live through the kit (every sample of a one-device session).
+  const thx::client::LoggedDevice pen = thx::client::loggedDevice(o.log, 0);
   thx_msgs::forEachLogMessage<thx_msgs::contact_t>(o.log, "THX_CONTACT", [&](const thx_msgs::contact_t& c, const auto&) {
-    path.push_back({c.utime, scrapeSample(c)});
+    if (pen.takes(c.device)) path.push_back({c.utime, scrapeSample(c)});
   });
   const PhysicsStreams physics = readPhysicsStreams(o.log);
   if (path.empty() && physics.empty())

@@ -55,6 +55,9 @@ std::optional<thx_msgs::hello_t> ClientApp::waitForServer() {
       if (!check.ok()) throw thx::Error(thx::Error::Kind::Config, check.message);
       if (!check.message.empty()) std::fprintf(stderr, "warning: %s\n", check.message.c_str());
     }
+    // A device the server does not have would deliver nothing: say so now, not after a timeout.
+    if (std::string problem = deviceProblem(*hello, client_->device()); !problem.empty())
+      throw thx::Error(thx::Error::Kind::Config, problem);
     return hello;
   }
   if (stopRequested()) return std::nullopt;

@@ -43,7 +43,8 @@ struct AppOptions {
   std::string client_id;                 // protocol rules: 1-32 of [A-Za-z0-9_-]
   std::string lcm_url = thx_msgs::kDefaultLcmUrl;
   double connect_timeout_s = 10.0;       // waitForServer() gives up after this
-  ClientOptions client;                  // resend, silence, heartbeat (client_id set from above)
+  ClientOptions client;                  // resend, silence, heartbeat, the device followed (client_id
+                                         // set from above)
   // The scene this client loaded: waitForServer() compares it with the server's hello and throws
   // when they differ (unless allow_different_scene: then a warning on stderr). Unset: no check.
   std::optional<SceneIdentity> scene;
@@ -70,7 +71,9 @@ class ClientApp {
 
   // Polls until hapticd's hello arrives and returns it. Throws thx::Error (Io) naming the URL
   // after connect_timeout_s, or (Config) naming both scenes and both fingerprints when the
-  // server runs another scene than options().scene; returns nullopt when a stop signal came first.
+  // server runs another scene than options().scene, or (Config) naming the index and the
+  // hello's device names when it has no device options().client.device (deviceProblem);
+  // returns nullopt when a stop signal came first.
   std::optional<thx_msgs::hello_t> waitForServer();
   // Polls until done() holds (true), the timeout passes or a stop signal arrives (false).
   bool pollUntil(const std::function<bool()>& done, double timeout_s);

@@ -37,6 +37,10 @@ Client::Client(lcm::LCM& lcm, ClientOptions options)
     throw thx::Error(thx::Error::Kind::Config,
                      "client_id '" + options_.client_id + "': expected 1 to 32 characters of [A-Za-z0-9_-]");
   }
+  if (options_.device < 0 || options_.device >= kMaxDevices) {
+    throw thx::Error(thx::Error::Kind::Config, "device " + std::to_string(options_.device) +
+                                                   ": expected a device index 0 to " + std::to_string(kMaxDevices - 1));
+  }
   if (options_.heartbeat_ns > 0) heartbeat_period_ns_ = options_.heartbeat_ns;
   // Untyped subscriptions + try_decode everywhere: a corrupt datagram must not take us down.
   // Every client sees every reply on the bus: keep room for a burst of them.
@@ -352,29 +356,40 @@ void Client::onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& chan
     undecodable(channel, std::decay_t<decltype(m)>::getTypeName(), rbuf->data_size);
     return false;
   };
+  // Any device's message shows the subscription alive (the silence check); only the followed
+  // device's is delivered, the others' are counted (protocol 6: one channel, every device).
+  auto followed = [&](const auto& m) {
+    e->last_data_ns = now;
+    if (m.device == options_.device) return true;
+    ++e->status.other_device;
+    ++counters_.other_device;
+    return false;
+  };
   // Counted before the callback runs: a callback may unsubscribe, which destroys *e.
   auto deliver = [&](auto& value, const auto& m) {
-    e->last_data_ns = now;
     ++e->status.messages;
     value.deliver(m, now);
   };
   if (stream == thx_msgs::Stream::DeviceState) {
     thx_msgs::device_state_t m;
-    if (decode(m)) deliver(state_, m);
+    if (!decode(m)) return;
+    device_states_.store(m);
+    if (followed(m)) deliver(state_, m);
   } else if (stream == thx_msgs::Stream::Contact && e->status.batch) {
     thx_msgs::contact_batch_t m;
     if (!decode(m)) return;
     if (m.server_instance != server_instance_) serverChanged(m.server_instance);
+    if (!followed(m)) return;
     newest_contact_from_batch_ = true;
     deliver(batch_, m);
   } else if (stream == thx_msgs::Stream::Contact) {
     thx_msgs::contact_t m;
-    if (!decode(m)) return;
+    if (!decode(m) || !followed(m)) return;
     newest_contact_from_batch_ = false;
     deliver(contact_, m);
   } else {
     thx_msgs::servo_stats_t m;
-    if (decode(m)) deliver(stats_, m);
+    if (decode(m) && followed(m)) deliver(stats_, m);
   }
 }
 

@@ -19,6 +19,12 @@
 // onSceneChange() when it changes (another client loaded a scene, or the server restarted on
 // another one).
 //
+// It follows one of the server's devices (ClientOptions::device, index 0 by default; protocol 6):
+// on a server with several, each channel carries every device's messages, and only the followed
+// device's reach the callbacks, latest*() and StreamStatus::messages; the others are counted
+// (StreamStatus::other_device, counters().other_device). latestDeviceState(i) keeps every
+// device's newest state for a client of several pens (thx_client/devices.hpp).
+//
 // Threads: poll()/service()/subscribe()/unsubscribe()/status()/sendCommand()/serverScene() belong
 // to one thread (callbacks run in it, inside poll()). latest*() may be called from any thread.
 #include <atomic>
@@ -44,6 +50,7 @@
 #include "thx_client/control_link.hpp"
 #include "thx_client/data_link.hpp"
 #include "thx_client/decode_error.hpp"
+#include "thx_client/devices.hpp"
 #include "thx_client/latest_value.hpp"
 #include "thx_client/scene_check.hpp"
 
@@ -71,7 +78,8 @@ struct StreamStatus {
   std::string channel;       // from the reply
   std::string data_url;      // from the reply: the LCM URL the channel is on ("" = the bus)
   std::string reason;        // refusal, or what the server adjusted
-  std::uint64_t messages = 0;
+  std::uint64_t messages = 0;      // of the followed device: delivered
+  std::uint64_t other_device = 0;  // of other devices on this channel: counted, not delivered
 };
 
 struct ClientOptions {
@@ -83,6 +91,8 @@ struct ClientOptions {
   std::int64_t heartbeat_ns = 0;             // 0: a quarter of the server's heartbeat timeout
   unsigned data_queue_capacity = 64;         // LCM queue per data channel (LCM's default is 30);
                                              // a batch stream's is at least 1 s of its batches
+  int device = 0;                            // the device followed: its index in hello_t.device_names,
+                                             // 0..kMaxDevices-1 (ClientApp::waitForServer checks it)
 };
 
 struct ClientCounters {
@@ -95,6 +105,7 @@ struct ClientCounters {
   std::uint64_t link_errors = 0;  // a control or data URL the server named that could not be opened
   std::uint64_t commands_sent = 0;
   std::uint64_t command_replies = 0;  // replies to commands we sent and were still waiting for
+  std::uint64_t other_device = 0;     // stream messages of devices this client does not follow
 };
 
 // The server's scene changed (serverScene() went from `from` to `to`).
@@ -108,7 +119,8 @@ struct SceneChange {
 
 class Client {
  public:
-  // Throws thx::Error (Config) when options.client_id breaks the protocol's rules.
+  // Throws thx::Error (Config) when options.client_id breaks the protocol's rules or
+  // options.device is not an index 0..kMaxDevices-1.
   Client(lcm::LCM& lcm, ClientOptions options);
   Client(lcm::LCM& lcm, std::string client_id);  // default options
   ~Client();  // unsubscribes politely (the server would forget us after its timeout anyway)
@@ -141,8 +153,12 @@ class Client {
   // A reply changed a stream's status (granted, refused).
   void onStatus(std::function<void(const StreamStatus&)> f) { on_status_ = std::move(f); }
 
-  // Latest values; any thread. latestContact() also covers batches (their newest sample).
+  // Latest values of the followed device; any thread. latestContact() also covers batches (their
+  // newest sample).
   std::optional<thx_msgs::device_state_t> latestDeviceState() const { return state_.latest(); }
+  // The newest DEVICE_STATE of device `index`, followed or not (nullopt for an index never seen
+  // or outside 0..kMaxDevices-1); any thread.
+  std::optional<thx_msgs::device_state_t> latestDeviceState(int index) const { return device_states_.latest(index); }
   std::optional<thx_msgs::contact_t> latestContact() const;
   std::optional<thx_msgs::contact_batch_t> latestContactBatch() const { return batch_.latest(); }
   std::optional<thx_msgs::servo_stats_t> latestServoStats() const { return stats_.latest(); }
@@ -179,6 +195,7 @@ class Client {
   void onSceneChange(std::function<void(const SceneChange&)> f) { on_scene_change_ = std::move(f); }
   const ClientCounters& counters() const { return counters_; }
   const std::string& clientId() const { return options_.client_id; }
+  int device() const { return options_.device; }  // the device followed
   // Sends a message meant for the server alone (THX_COMMAND, THX_CLIENT_FORCE) where it sends its
   // requests and heartbeats: the hello's control URL, which no other client listens on, else the
   // bus. LCM's result (0 = sent).
@@ -245,6 +262,7 @@ class Client {
   std::function<void(const SceneChange&)> on_scene_change_;
 
   LatestValue<thx_msgs::device_state_t> state_;
+  DeviceStateTable device_states_;  // every device's, followed or not
   LatestValue<thx_msgs::contact_t> contact_;
   LatestValue<thx_msgs::contact_batch_t> batch_;
   LatestValue<thx_msgs::servo_stats_t> stats_;

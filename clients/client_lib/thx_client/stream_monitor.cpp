@@ -5,7 +5,30 @@
 
 namespace thx::client {
 
-void StreamMonitor::received(std::int64_t server_utime_us, std::int64_t received_ns) {
+StreamMonitor::Track* StreamMonitor::track(int device) {
+  if (device >= 0 && device < kMaxDevices) return &tracks_[std::size_t(device)];
+  ++r_.outside_devices;
+  return nullptr;
+}
+
+bool StreamMonitor::duplicate(bool older, int device) {
+  if (!older) return false;
+  ++r_.duplicates;
+  ++r_.by_device[std::size_t(device)].duplicates;
+  return true;
+}
+
+void StreamMonitor::gap(int device, std::uint64_t missing) {
+  ++r_.gaps;
+  r_.missing += missing;
+  DeviceCounts& d = r_.by_device[std::size_t(device)];
+  ++d.gaps;
+  d.missing += missing;
+}
+
+void StreamMonitor::received(int device, std::int64_t server_utime_us, std::int64_t received_ns) {
+  any_ = true;
+  ++r_.by_device[std::size_t(device)].messages;
   if (r_.messages == 0) first_ns_ = received_ns;
   last_ns_ = received_ns;
   ++r_.messages;
@@ -16,56 +39,47 @@ void StreamMonitor::received(std::int64_t server_utime_us, std::int64_t received
   latencies_us_.push_back(double(received_ns) / 1e3 - double(server_utime_us));
 }
 
-void StreamMonitor::onMessage(std::int64_t tick, std::int64_t server_utime_us, std::int64_t received_ns) {
-  if (any_ && tick <= last_tick_) {
-    ++r_.duplicates;
-    return;
+void StreamMonitor::onMessage(std::int64_t tick, std::int64_t server_utime_us, std::int64_t received_ns, int device) {
+  Track* t = track(device);
+  if (!t || duplicate(t->any && tick <= t->last_tick, device)) return;
+  if (t->any && rate_hz_ > 0.0) {
+    const double periods = double(server_utime_us - t->last_utime_us) * 1e-6 * rate_hz_;
+    if (periods > 1.5) gap(device, std::uint64_t(std::llround(periods)) - 1);
   }
-  if (any_ && rate_hz_ > 0.0) {
-    const double periods = double(server_utime_us - last_utime_us_) * 1e-6 * rate_hz_;
-    if (periods > 1.5) {
-      ++r_.gaps;
-      r_.missing += std::uint64_t(std::llround(periods)) - 1;
-    }
-  }
-  any_ = true;
-  last_tick_ = tick;
-  last_utime_us_ = server_utime_us;
-  received(server_utime_us, received_ns);
+  t->any = true;
+  t->last_tick = tick;
+  t->last_utime_us = server_utime_us;
+  received(device, server_utime_us, received_ns);
 }
 
 void StreamMonitor::serverRestarted() {
   if (!any_) return;
   any_ = false;
+  for (Track& t : tracks_) t.any = false;
   ++r_.restarts;
 }
 
 void StreamMonitor::onBatch(const thx_msgs::contact_batch_t& b, std::int64_t received_ns) {
   if (any_ && b.server_instance != last_instance_) serverRestarted();
   last_instance_ = b.server_instance;
-  if (any_ && b.seq <= last_seq_) {
-    ++r_.duplicates;
-    return;
-  }
-  if (any_) {
-    if (b.seq > last_seq_ + 1) {
-      ++r_.gaps;
-      r_.missing += std::uint64_t(b.seq - last_seq_ - 1);
-    }
-    // The batch starts where the previous one ended, after the samples the server dropped.
+  Track* t = track(b.device);
+  if (!t || duplicate(t->any && b.seq <= t->last_seq, b.device)) return;
+  if (t->any) {
+    if (b.seq > t->last_seq + 1) gap(b.device, std::uint64_t(b.seq - t->last_seq - 1));
+    // The batch starts where the device's previous one ended, after the samples the server dropped.
     const std::int64_t start = b.next_tick - b.num_samples - b.num_dropped;
-    if (start > last_next_tick_) r_.samples_missing += std::uint64_t(start - last_next_tick_);
+    if (start > t->last_next_tick) r_.samples_missing += std::uint64_t(start - t->last_next_tick);
   }
   for (std::size_t i = 1; i < b.samples.size(); ++i) {
     if (b.samples[i].tick <= b.samples[i - 1].tick) ++r_.samples_out_of_order;
   }
-  any_ = true;
-  last_seq_ = b.seq;
-  last_next_tick_ = b.next_tick;
+  t->any = true;
+  t->last_seq = b.seq;
+  t->last_next_tick = b.next_tick;
   if (r_.messages == 0) first_samples_ = std::uint64_t(b.num_samples);
   r_.samples += std::uint64_t(b.num_samples);
   r_.samples_dropped += std::uint64_t(std::max(0, b.num_dropped));
-  received(b.samples.empty() ? b.utime : b.samples.back().utime, received_ns);
+  received(b.device, b.samples.empty() ? b.utime : b.samples.back().utime, received_ns);
 }
 
 StreamReport StreamMonitor::report() const {

@@ -8,12 +8,24 @@
 // messages' server times longer than 1.5 periods of the granted rate (the server's intervals
 // are whole ticks, within one tick of the period); batches are checked exactly by seq and
 // next_tick.
+// Devices (protocol 6): a server with several sends each device's messages at the granted rate on
+// one channel, all on the one servo clock's ticks, each device counting its own batch seq, so a
+// message is compared with the previous one of its own device only. The rates and latencies are
+// over every message fed in (a kit Client's callbacks feed one device's, the one it follows).
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include <thx_msgs/contact_batch_t.hpp>
 
+#include "thx_client/devices.hpp"
+
 namespace thx::client {
+
+// One device's share of a StreamReport's counts.
+struct DeviceCounts {
+  std::uint64_t messages = 0, duplicates = 0, gaps = 0, missing = 0;
+};
 
 struct StreamReport {
   std::uint64_t messages = 0;
@@ -34,23 +46,37 @@ struct StreamReport {
   double steady_rate_hz = 0.0;
   double sample_rate_hz = 0.0;        // batches: samples after the first batch / span
   double latency_p50_us = 0.0, latency_p99_us = 0.0, latency_max_us = 0.0;
+  std::array<DeviceCounts, kMaxDevices> by_device{};  // messages, duplicates, gaps by device index
+  std::uint64_t outside_devices = 0;  // messages of a device index outside 0..kMaxDevices-1: counted
+                                      // here only (not in messages, rates or latencies)
 };
 
 class StreamMonitor {
  public:
   static constexpr std::int64_t kSettleNs = 2'000'000'000;
   explicit StreamMonitor(double granted_rate_hz) : rate_hz_(granted_rate_hz) {}
-  // A latest-value message: its tick (ordering), server time and receipt time.
-  void onMessage(std::int64_t tick, std::int64_t server_utime_us, std::int64_t received_ns);
-  // A batch; its latency is that of its newest sample. A new server_instance is a restart.
+  // A latest-value message of `device`: its tick (ordering), server time and receipt time.
+  void onMessage(std::int64_t tick, std::int64_t server_utime_us, std::int64_t received_ns, int device = 0);
+  // A batch (of b.device); its latency is that of its newest sample. A new server_instance is a restart.
   void onBatch(const thx_msgs::contact_batch_t& b, std::int64_t received_ns);
   // The server restarted (a new server_instance): ticks and sequences start again, so the next
-  // message is compared with nothing.
+  // message of each device is compared with nothing.
   void serverRestarted();
   StreamReport report() const;
 
  private:
-  void received(std::int64_t server_utime_us, std::int64_t received_ns);
+  // Where one device's previous message left off.
+  struct Track {
+    bool any = false;  // a message since the start or the last restart
+    std::int64_t last_tick = 0, last_utime_us = 0;
+    std::int64_t last_seq = 0, last_next_tick = 0;
+  };
+  // The track of `device` (nullptr, counted in outside_devices, for an index out of range).
+  Track* track(int device);
+  // A duplicate (counted) when the message is not newer than its device's previous one.
+  bool duplicate(bool older, int device);
+  void gap(int device, std::uint64_t missing);
+  void received(int device, std::int64_t server_utime_us, std::int64_t received_ns);
 
   double rate_hz_;
   StreamReport r_;
@@ -58,10 +84,10 @@ class StreamMonitor {
   std::int64_t first_ns_ = 0, last_ns_ = 0;
   std::int64_t first_steady_ns_ = 0;
   std::uint64_t steady_messages_ = 0;  // received from first_ns_ + kSettleNs on
-  std::int64_t last_tick_ = 0, last_utime_us_ = 0;
-  std::int64_t last_seq_ = 0, last_next_tick_ = 0, last_instance_ = 0;
+  std::array<Track, kMaxDevices> tracks_{};
+  std::int64_t last_instance_ = 0;
   std::uint64_t first_samples_ = 0;
-  bool any_ = false;
+  bool any_ = false;  // a message of any device since the start or the last restart
 };
 
 }  // namespace thx::client
