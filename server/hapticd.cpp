@@ -114,7 +114,7 @@ int run(const thx::srv::HapticdOptions& o) {
   po.texture_fingerprint = first->fingerprint;
   po.simulated_device = devices.allSimulated();
   std::unique_ptr<srv::SessionRecorder> session;
-  if (!o.record.empty()) {  // one device (checkOptionsForDevices)
+  if (!o.record.empty()) {  // every device's ticks, each with its index
     session = std::make_unique<srv::SessionRecorder>(o.record, po.simulated_device);  // throws with the path
     po.session = session.get();
   }
@@ -219,8 +219,8 @@ int run(const thx::srv::HapticdOptions& o) {
   for (const auto& r : rigs) dropped += r->ring().dropped();
   if (session) {
     if (!o.quiet)
-      std::fprintf(stderr, "hapticd: recorded %llu ticks to %s\n", (unsigned long long)session->ticks(),
-                   session->path().c_str());
+      std::fprintf(stderr, "hapticd: recorded %llu ticks%s to %s\n", (unsigned long long)session->ticks(),
+                   several ? (" of " + std::to_string(count) + " devices").c_str() : "", session->path().c_str());
     if (dropped > 0)
       std::fprintf(stderr, "hapticd: warning: %s misses %llu ticks the publisher could not keep up with\n",
                    session->path().c_str(), (unsigned long long)dropped);

@@ -58,8 +58,6 @@ void checkOptionsForDevices(const HapticdOptions& o, const scene::Scene& sc) {
     const std::string many = "the scene lists " + std::to_string(count) + " devices: ";
     if (!o.device.empty())
       throw configError(sc, many + "--device replaces a scene's one device; give each device's sim or vrpn in the scene");
-    if (!o.record.empty())
-      throw configError(sc, many + "--record writes one device's session so far; run a one-device scene to record");
     if (o.vrpn_name_given)
       throw configError(sc, many + "--vrpn-name names one device; with several each is served under its scene name");
   }

@@ -36,8 +36,7 @@ struct HapticdDevices {
 dev::DeviceSpec mostCautiousSpec(const std::vector<dev::DeviceSpec>& specs);
 
 // Refuses what the options cannot do with this scene's devices: with several devices, --device
-// (it replaces the one device), --record (a session log holds one device), --vrpn-name (each
-// served name is the device's scene name); --lockstep with any VRPN device. Throws thx::Error
+// (it replaces the one device), --vrpn-name (each served name is the device's scene name); --lockstep with any VRPN device. Throws thx::Error
 // (Config) naming the scene and the option.
 void checkOptionsForDevices(const HapticdOptions& o, const scene::Scene& scene);
 

@@ -198,8 +198,15 @@ void Publisher::run() {
     if (lcm_ && now - last_hello_ns_ >= options_.hello_period_ns) publishHello(now);
     applyControl(now);
     answerLoads(now);
-    for (Device& d : devices_) {
-      while (d.parts.ring->pop(r)) handleRecord(d, r, now);
+    // A record of each device in turn: the session log and the streams see the devices' ticks in
+    // tick order (the group pushes one record per device each tick).
+    for (bool any = true; any;) {
+      any = false;
+      for (Device& d : devices_) {
+        if (!d.parts.ring->pop(r)) continue;
+        handleRecord(d, r, now);
+        any = true;
+      }
     }
     for (Device& d : devices_) dumpFlight(d);
     now = monotonicNs();
@@ -276,15 +283,13 @@ void Publisher::applyControl(std::int64_t now_ns) {
 
 void Publisher::handleRecord(Device& device, const TickRecord& r, std::int64_t now_ns) {
   records_.fetch_add(1, std::memory_order_relaxed);
-  if (device.index == 0) {
-    // Commands first: a switch this record shows is recorded as a hello before this tick.
-    answerCommands(r, now_ns);
-    if (SessionRecorder* s = options_.session; s && s->ok()) {
-      if (session_hello_due_) s->recordHello(hello(r.deadline_ns / 1000));  // on the ticks' clock
-      session_hello_due_ = false;
-      s->record(r);
-      if (!s->ok()) std::fprintf(stderr, "hapticd: warning: %s\n", s->error().c_str());
-    }
+  // Commands first: a switch device 0's record shows is recorded as a hello before this tick.
+  if (device.index == 0) answerCommands(r, now_ns);
+  if (SessionRecorder* s = options_.session; s && s->ok()) {
+    if (session_hello_due_) s->recordHello(hello(r.deadline_ns / 1000));  // on the ticks' clock
+    session_hello_due_ = false;
+    s->record(r, device.index);
+    if (!s->ok()) std::fprintf(stderr, "hapticd: warning: %s\n", s->error().c_str());
   }
   ++device.ticks_seen;
   device.missed_seen += std::uint64_t(r.missed);

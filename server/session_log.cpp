@@ -56,10 +56,11 @@ bool SessionRecorder::write(const char* channel, std::int64_t utime, const std::
   return true;
 }
 
-void SessionRecorder::record(const TickRecord& r) {
+void SessionRecorder::record(const TickRecord& r, int device) {
   if (!ok()) return;
-  thx_msgs::device_state_t d{};  // value-initialised: device 0, the recorder's one device
+  thx_msgs::device_state_t d{};
   toDeviceState(r, simulated_, d);
+  d.device = device;
   if (!have_offset_) {
     unix_offset_us_ = realtimeUs() - d.utime;
     have_offset_ = true;
@@ -68,9 +69,10 @@ void SessionRecorder::record(const TickRecord& r) {
   if (!write(kSessionDeviceChannel, d.utime, buffer_)) return;
   thx_msgs::contact_t c{};
   toContact(r, c);
+  c.device = device;
   encodeInto(c, buffer_);
   if (!write(kSessionContactChannel, c.utime, buffer_)) return;
-  ++ticks_;
+  if (device == 0) ++ticks_;
   if (ticks_ % 1000 == 0) std::fflush(log_->getFilePtr());  // a crash loses at most a second
 }
 
@@ -84,10 +86,41 @@ void SessionRecorder::recordHello(const thx_msgs::hello_t& h) {
   write(kSessionHelloChannel, h.utime, buffer_);
 }
 
-std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path) {
+namespace {
+
+// The devices a log's hellos name (the last hello's list; a log without a hello, or with a
+// protocol-5 hello, holds one).
+std::vector<std::string> loggedDeviceNames(const std::string& path) {
+  std::vector<std::string> names;
+  for (const thx_msgs::hello_t& h : loadSessionHellos(path)) {
+    names.clear();
+    std::string::size_type from = 0;
+    while (from <= h.device_names.size() && !h.device_names.empty()) {
+      const std::string::size_type comma = h.device_names.find(',', from);
+      names.push_back(h.device_names.substr(from, comma == std::string::npos ? std::string::npos : comma - from));
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
+std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path, int device) {
+  const std::vector<std::string> names = loggedDeviceNames(path);
+  const bool several = names.size() > 1;
+  if (device < 0 || (device > 0 && std::size_t(device) >= names.size())) {
+    std::string listed;
+    for (std::size_t i = 0; i < names.size(); ++i) listed += (i ? ", " : "") + std::to_string(i) + " " + names[i];
+    throw thx::Error(thx::Error::Kind::Config, path + ": device " + std::to_string(device) + " is not in this log; it holds " +
+                                                   (names.size() > 1 ? std::to_string(names.size()) + " devices: " + listed
+                                                                     : std::string("one device (0)")));
+  }
   std::vector<dev::ReplaySample> out;
   thx_msgs::forEachLogMessage<thx_msgs::device_state_t>(path, kSessionDeviceChannel, [&](const thx_msgs::device_state_t& d,
                                                                                           const thx_msgs::LogPosition& at) {
+    if (several && d.device != device) return;
     const std::string where = at.where();
     if (!finite(d.p_world, 3) || !finite(d.q_world, 4) || !finite(d.v_world, 3) || !finite(d.w_world, 3))
       throw thx::Error(thx::Error::Kind::Config, where + ": tick " + std::to_string(d.tick) + " holds a non-finite value");

@@ -3,8 +3,9 @@
 // (lcm::LogFile), so the usual LCM tools read them. Used by hapticd's publisher thread
 // (`--record FILE`) and by the replay device (`--device replay:FILE`); never by the servo.
 //
-// A session log holds, for every servo tick, one event on THX_DEVICE_STATE (device_state_t) and
-// one on THX_CONTACT (contact_t), in tick order, and hapticd's hello (THX_HELLO, hello_t: the
+// A session log holds, for every servo tick and every device, one event on THX_DEVICE_STATE
+// (device_state_t) and one on THX_CONTACT (contact_t), their `device` the device's index, in tick
+// order (a tick's devices in index order), and hapticd's hello (THX_HELLO, hello_t: the
 // scene it renders) before the first tick and before the first tick on each switched-to scene,
 // its utime that tick's (so ticks from a hello's utime on belong to its scene). Event timestamps are microseconds since the Unix
 // epoch (CLOCK_REALTIME at recording start + the tick's offset from the first tick), as
@@ -38,16 +39,16 @@ class SessionRecorder {
   SessionRecorder(const SessionRecorder&) = delete;
   SessionRecorder& operator=(const SessionRecorder&) = delete;
 
-  // Appends one tick. After a write error (disk full) recording stops; ok() turns false and
-  // error() says why. Never throws.
-  void record(const TickRecord& r);
+  // Appends one tick of device `device` (hello_t.device_names' index). After a write error (disk
+  // full) recording stops; ok() turns false and error() says why. Never throws.
+  void record(const TickRecord& r, int device = 0);
 
   // Appends a hello (the scene from h.utime on, on the ticks' clock); like record(), never throws.
   void recordHello(const thx_msgs::hello_t& h);
 
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }
-  std::uint64_t ticks() const { return ticks_; }
+  std::uint64_t ticks() const { return ticks_; }  // device 0's ticks recorded
   const std::string& path() const { return path_; }
 
  private:
@@ -63,10 +64,13 @@ class SessionRecorder {
   std::vector<std::uint8_t> buffer_;
 };
 
-// The pen trajectory of a session log (its THX_DEVICE_STATE events), for the replay device.
-// Throws std::runtime_error naming the file, the event number and the problem: unreadable file,
-// no device states, an event that does not decode, a non-finite value, ticks not increasing.
-std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path);
+// The pen trajectory of device `device` in a session log (its THX_DEVICE_STATE events), for the
+// replay device. A log whose hellos name one device (or that has no hello) is one device's whole:
+// its `device` fields are not read (builds before this one left them unset). Throws
+// std::runtime_error naming the file, the event number and the problem: unreadable file, no
+// device states, a device the log does not hold (naming its devices), an event that does not
+// decode, a non-finite value, ticks not increasing.
+std::vector<dev::ReplaySample> loadSessionTrajectory(const std::string& path, int device = 0);
 
 // Every THX_CONTACT event of a session log, in order (to compare sessions). Throws like above.
 std::vector<thx_msgs::contact_t> loadSessionContacts(const std::string& path);

@@ -110,8 +110,15 @@ void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& c
   std::fprintf(out, "hapticd summary (%s, %s)\n", s.scene.c_str(), s.lockstep ? "lock-step" : "real time");
   std::fprintf(out, "  ticks            %llu in %.3f s of device time (%.1f Hz; %.3f s wall)\n",
                (unsigned long long)s.ticks, s.device_time_s, achievedRate(s), s.wall_time_s);
-  std::fprintf(out, "  missed ticks     %llu; faults %llu\n", (unsigned long long)s.servo.missed_ticks,
-               (unsigned long long)s.servo.faults);
+  if (s.devices.empty()) {
+    std::fprintf(out, "  missed ticks     %llu; faults %llu\n", (unsigned long long)s.servo.missed_ticks,
+                 (unsigned long long)s.servo.faults);
+  } else {
+    std::uint64_t faults = 0;
+    for (const DeviceSummary& d : s.devices) faults += d.servo.faults;
+    std::fprintf(out, "  missed ticks     %llu; faults %llu over the %zu devices\n",
+                 (unsigned long long)s.servo.missed_ticks, (unsigned long long)faults, s.devices.size());
+  }
   const MissedTickCounters& m = s.missed_policy;
   std::fprintf(out,
                "  gaps (%s)  %llu ridden through; disengaged for %llu long stalls, %llu jumps, %llu success-rate "
