@@ -1,7 +1,9 @@
 #!/bin/sh
 # The main job on the default scene: hapticd with the simulated PHANToM in real time, a scripted
 # stroke across the bricks and a press, then a press into a steep V-valley, then strokes inside a
-# bowl of bricks (a textured mesh), then two pens at once; each prints its summary. Then physics-client next to hapticd: the pen pushes a ball out of its dimple. Then the
+# bowl of bricks (a textured mesh), then two pens at once; each prints its summary.
+# Two pens also push two balls (physics), scrape the bricks together (audio) and are drawn
+# (visual) from lock-step recordings. Then physics-client next to hapticd: the pen pushes a ball out of its dimple. Then the
 # pen's scrape over the bricks and a marble rolling over them, each as a WAV with its spectrogram.
 # Then the texture gallery with shaded previews, frames of the default scene and of the bowl, three
 # marbles rolling in the bowl (physics-client on a lock-step recording of the pen, frames of the
@@ -51,6 +53,14 @@ wait "$PC_PID" || echo "physics-client failed (see $OUT/physics_push.txt)"
 cat "$OUT/physics_push.txt"
 
 echo
+echo "== physics: two pens, each pushing its own ball out of its dimple (scenes/two_pens_two_balls.yaml): hapticd"
+echo "   records both pens in lock-step, physics-client simulates a pen per device on that recording"
+"$HD" --scene scenes/two_pens_two_balls.yaml --lockstep --no-lcm --no-mlock --record "$OUT/two_pens_two_balls_session.lcm" \
+  --quiet > /dev/null
+"$PC" --scene scenes/two_pens_two_balls.yaml --replay-log "$OUT/two_pens_two_balls_session.lcm" \
+  --record "$OUT/two_pens_two_balls.lcm" --no-lcm --quiet --json "$OUT/two_pens_two_balls.json"
+
+echo
 echo "== audio: the pen scraping the bricks, rendered offline from a lock-step recording of the default scene (2-10 s, the most the first time, when the slab's and the pen's modes are solved)"
 AC="$BUILD/clients/audio/audio-client"
 WS="$BUILD/clients/audio/wav-spectrogram"
@@ -58,6 +68,14 @@ WS="$BUILD/clients/audio/wav-spectrogram"
 "$AC" --scene scenes/default.yaml --replay-log "$OUT/default_session.lcm" --wav "$OUT/pen_scrape.wav"
 "$WS" "$OUT/pen_scrape.wav" "$OUT/pen_scrape_spectrogram.png" --title "pen scraping the bricks (scenes/default.yaml)"
 echo "sound: $OUT/pen_scrape.wav, its spectrogram: $OUT/pen_scrape_spectrogram.png"
+
+echo
+echo "== audio: two pens scraping the bricks at once, mixed (scenes/two_pens.yaml; 1-5 s): hapticd records both in lock-step,"
+echo "   audio-client renders every pen's scrape on the slab's modes and each pen's own"
+"$HD" --scene scenes/two_pens.yaml --lockstep --no-lcm --record "$OUT/two_pens_session.lcm" --quiet > /dev/null
+"$AC" --scene scenes/two_pens.yaml --replay-log "$OUT/two_pens_session.lcm" --wav "$OUT/two_pens.wav"
+"$WS" "$OUT/two_pens.wav" "$OUT/two_pens_spectrogram.png" --title "two pens scraping the bricks at once, mixed (scenes/two_pens.yaml)"
+echo "sound: $OUT/two_pens.wav, its spectrogram: $OUT/two_pens_spectrogram.png"
 
 echo
 echo "== audio: a glass marble rolling over the bricks' bed joints (scenes/marble_rolling_bricks.yaml; 1-3 s)"
@@ -94,6 +112,13 @@ LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/brick_bowl.yaml --mode 
   && LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/brick_bowl.yaml --mode relief --replay-log "$OUT/bowl_session.lcm" \
     --rate 1 --out "$OUT/visual_bowl_pen" --quiet \
   && echo "frames: $OUT/visual_bowl/frame_0000.png ... frame_0003.png, $OUT/visual_bowl_pen/frame_*.png" || echo "visual-client failed"
+
+echo
+echo "== visual: the two pens on the bricks (the audio step's lock-step recording of scenes/two_pens.yaml), every pen"
+echo "   in its own colour (left red/yellow, right blue/cyan), a frame every half second -> $OUT/visual_two_pens/"
+LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/two_pens.yaml --replay-log "$OUT/two_pens_session.lcm" \
+    --rate 2 --elevation 70 --distance 0.16 --out "$OUT/visual_two_pens" --quiet \
+  && echo "frames: $OUT/visual_two_pens/frame_*.png" || echo "visual-client failed"
 
 echo
 echo "== physics on a mesh: three marbles roll down the bowl of bricks and the pen strokes through them"
@@ -143,4 +168,4 @@ done
   && echo "sessions: $OUT/study/*.csv; tables and plots: $OUT/study/study.md" || echo "study-analyze failed"
 
 echo
-echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png, $OUT/visual_marble_bowl/*.png, $OUT/visual_grooved_block/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."
+echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png, $OUT/visual_two_pens/*.png, $OUT/visual_marble_bowl/*.png, $OUT/visual_grooved_block/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."

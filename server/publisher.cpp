@@ -103,7 +103,9 @@ Publisher::Publisher(std::vector<PublishedDevice> devices, lcm::LCM* lcm, const 
       commands_(options.fault_resets, server_instance_, options.scene_loads) {
   devices_.reserve(devices.size());
   for (std::size_t i = 0; i < devices.size(); ++i) {
-    devices_.push_back(Device{std::move(devices[i]), int(i), FlightDumpGate(options.flight_limits, 1.0 / options.servo_rate_hz)});
+    Device& d = devices_.emplace_back(FlightDumpGate(options.flight_limits, 1.0 / options.servo_rate_hz));
+    d.parts = std::move(devices[i]);
+    d.index = int(i);
   }
   server_name_ = "hapticd@" + hostName();
   scene_name_ = options_.scene_name;
@@ -191,23 +193,13 @@ void Publisher::run() {
     rt.lock_memory = false;  // the servo's mlockall covers the process
     fifo_ = makeThreadRealtime(rt).fifo;
   }
-  TickRecord r;
   for (;;) {
     const bool stopping = stop_.load();
     std::int64_t now = monotonicNs();
     if (lcm_ && now - last_hello_ns_ >= options_.hello_period_ns) publishHello(now);
     applyControl(now);
     answerLoads(now);
-    // A record of each device in turn: the session log and the streams see the devices' ticks in
-    // tick order (the group pushes one record per device each tick).
-    for (bool any = true; any;) {
-      any = false;
-      for (Device& d : devices_) {
-        if (!d.parts.ring->pop(r)) continue;
-        handleRecord(d, r, now);
-        any = true;
-      }
-    }
+    drainInTickOrder(stopping, now);
     for (Device& d : devices_) dumpFlight(d);
     now = monotonicNs();
     if (now - last_stats_ns_ >= 1'000'000'000) publishStats(now);
@@ -219,6 +211,31 @@ void Publisher::run() {
       break;
     }
     std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+}
+
+// The devices' records merged by tick (a tick's devices in index order), so the session log and
+// the streams see them in tick order. The group pushes member 0's record, then member 1's, ... so
+// a device's record of a tick may not be in its ring yet while another's is: a record goes out
+// only once every device has one waiting (the earliest first), or at the stop, when the rings
+// hold all there will be.
+void Publisher::drainInTickOrder(bool stopping, std::int64_t now_ns) {
+  for (;;) {
+    for (Device& d : devices_) {
+      if (!d.waiting && d.parts.ring->pop(d.next)) d.waiting = true;
+    }
+    Device* earliest = nullptr;
+    bool every = true;
+    for (Device& d : devices_) {
+      if (!d.waiting) {
+        every = false;
+      } else if (!earliest || d.next.tick < earliest->next.tick) {
+        earliest = &d;
+      }
+    }
+    if (!earliest || (!every && !stopping)) return;
+    earliest->waiting = false;
+    handleRecord(*earliest, earliest->next, now_ns);
   }
 }
 

@@ -141,6 +141,7 @@ class Publisher {
   void run();
   void applyControl(std::int64_t now_ns);
   struct Device;
+  void drainInTickOrder(bool stopping, std::int64_t now_ns);
   void handleRecord(Device& device, const TickRecord& r, std::int64_t now_ns);
   void answerCommands(const TickRecord& r, std::int64_t now_ns);
   void answerLoads(std::int64_t now_ns);
@@ -154,9 +155,12 @@ class Publisher {
 
   // What the publisher keeps per device; the counters and windows are the publisher thread's.
   struct Device {
+    explicit Device(FlightDumpGate gate) : flight_gate(std::move(gate)) {}
     PublishedDevice parts;
     int index = 0;
     FlightDumpGate flight_gate;  // each device's faults are limited on their own
+    TickRecord next;             // popped from its ring, not handled yet (drainInTickOrder)
+    bool waiting = false;
     std::uint64_t ticks_seen = 0;   // counted from the records: the servo's own counters are
     std::uint64_t missed_seen = 0;  // not shared across threads
     std::uint64_t last_stats_ticks = 0;

@@ -22,35 +22,62 @@ Driver::Driver(PhysicsScene& scene, EventSink& sink, const DriverOptions& option
     o.end_local = scene_.surface().toLocal(b.p_world);
     summary_.objects.push_back(o);
   }
+  pens_.resize(std::size_t(scene_.penCount()));
+  summary_.pens.resize(pens_.size());
+  for (std::size_t i = 0; i < pens_.size(); ++i) summary_.pens[i].device = int(i);
 }
 
 void Driver::step(const std::optional<Eigen::Vector3d>& tip_world, std::int64_t ref_tick) {
   if (tip_world) scene_.setPenTip(*tip_world);
-  if (ref_tick >= 0) last_ref_tick_ = ref_tick;
+  if (ref_tick >= 0 && !pens_.empty()) pens_[0].last_ref_tick = ref_tick;
+  stepScene();
+}
+
+void Driver::step(const std::vector<PenInput>& pens) {
+  for (std::size_t i = 0; i < pens.size() && i < pens_.size(); ++i) {
+    if (pens[i].tip_world) scene_.setPenTip(int(i), *pens[i].tip_world);
+    if (pens[i].ref_tick >= 0) pens_[i].last_ref_tick = pens[i].ref_tick;
+  }
+  stepScene();
+}
+
+void Driver::stepScene() {
   scene_.step(dt());
   const double t = scene_.simTime();
   summary_.steps = scene_.steps();
   summary_.sim_time_s = t;
 
-  const PenForce& f = scene_.penForce();
-  const double sent = f.sent_world.norm(), raw = f.raw_world.norm();
-  summary_.max_force_raw_n = std::max(summary_.max_force_raw_n, raw);
-  summary_.max_force_sent_n = std::max(summary_.max_force_sent_n, sent);
-  if (f.in_contact) {
-    ++summary_.pen_contact_steps;
-    force_sum_ += sent;
-    summary_.mean_force_in_contact_n = force_sum_ / double(summary_.pen_contact_steps);
+  for (std::size_t i = 0; i < pens_.size(); ++i) {
+    const PenForce& f = scene_.penForce(int(i));
+    PenState& state = pens_[i];
+    PenSummary& p = summary_.pens[i];
+    const double sent = f.sent_world.norm(), raw = f.raw_world.norm();
+    p.max_force_raw_n = std::max(p.max_force_raw_n, raw);
+    p.max_force_sent_n = std::max(p.max_force_sent_n, sent);
+    summary_.max_force_raw_n = std::max(summary_.max_force_raw_n, raw);
+    summary_.max_force_sent_n = std::max(summary_.max_force_sent_n, sent);
+    if (f.in_contact) {
+      ++p.contact_steps;
+      state.force_sum += sent;
+      p.mean_force_in_contact_n = state.force_sum / double(p.contact_steps);
+      ++summary_.pen_contact_steps;
+      force_sum_ += sent;
+      summary_.mean_force_in_contact_n = force_sum_ / double(summary_.pen_contact_steps);
+    }
+    if (f.clamped) ++p.clamped_steps, ++summary_.clamped_steps;
+    const bool nonzero = sent > 0.0;
+    if (nonzero) ++p.force_steps, ++summary_.force_steps;
+    if (nonzero || state.force_was_nonzero) sink_.penForce(scene_, int(i), f, state.last_ref_tick);
+    state.force_was_nonzero = nonzero;
   }
-  if (f.clamped) ++summary_.clamped_steps;
-  const bool nonzero = sent > 0.0;
-  if (nonzero) ++summary_.force_steps;
-  if (nonzero || force_was_nonzero_) sink_.force(scene_, f, last_ref_tick_);
-  force_was_nonzero_ = nonzero;
 
   const std::vector<Impact>& im = scene_.impacts();
   if (!im.empty()) {
     summary_.impacts += std::int64_t(im.size());
-    for (const Impact& i : im) summary_.pen_impacts += (i.body_a == kBodyPen || i.body_b == kBodyPen);
+    for (const Impact& i : im) {
+      summary_.pen_impacts += (i.body_a == kBodyPen || i.body_b == kBodyPen);
+      if (i.pen >= 0 && std::size_t(i.pen) < summary_.pens.size()) ++summary_.pens[std::size_t(i.pen)].impacts;
+    }
     sink_.impacts(scene_, im);
   }
 
@@ -64,7 +91,9 @@ void Driver::step(const std::optional<Eigen::Vector3d>& tip_world, std::int64_t 
 
   const double eps = 0.25 * dt();
   if (options_.pose_hz > 0 && t + eps >= next_pose_t_) {
-    sink_.poses(scene_, last_ref_tick_, f.sent_world);
+    // physics_poses_t has one pen: the first's (docs/physics.md, "Several pens").
+    const std::int64_t ref_tick = pens_.empty() ? -1 : pens_[0].last_ref_tick;
+    sink_.poses(scene_, ref_tick, scene_.penForce().sent_world);
     ++summary_.pose_reports;
     next_pose_t_ = std::max(next_pose_t_ + 1.0 / options_.pose_hz, t - eps);
   }
@@ -97,12 +126,17 @@ void Driver::noteTouch(int id, int other, double t) {
   touched.push_back({name, t});
 }
 
+namespace {
+// A mean over contact steps carried on: `earlier`'s over its steps, then `current`'s over its.
+double continuedMean(double earlier, std::int64_t earlier_steps, double current, std::int64_t current_steps) {
+  const std::int64_t steps = earlier_steps + current_steps;
+  return steps > 0 ? (earlier * double(earlier_steps) + current * double(current_steps)) / double(steps) : current;
+}
+}  // namespace
+
 RunSummary continuedRun(const RunSummary& earlier, RunSummary current) {
-  const double contact_steps = double(earlier.pen_contact_steps + current.pen_contact_steps);
-  if (contact_steps > 0)
-    current.mean_force_in_contact_n = (earlier.mean_force_in_contact_n * double(earlier.pen_contact_steps) +
-                                       current.mean_force_in_contact_n * double(current.pen_contact_steps)) /
-                                      contact_steps;
+  current.mean_force_in_contact_n = continuedMean(earlier.mean_force_in_contact_n, earlier.pen_contact_steps,
+                                                  current.mean_force_in_contact_n, current.pen_contact_steps);
   current.steps += earlier.steps;
   current.sim_time_s += earlier.sim_time_s;
   current.pen_contact_steps += earlier.pen_contact_steps;
@@ -114,6 +148,16 @@ RunSummary continuedRun(const RunSummary& earlier, RunSummary current) {
   current.pen_impacts += earlier.pen_impacts;
   current.contact_reports += earlier.contact_reports;
   current.pose_reports += earlier.pose_reports;
+  for (std::size_t i = 0; i < current.pens.size() && i < earlier.pens.size(); ++i) {
+    PenSummary& c = current.pens[i];
+    const PenSummary& e = earlier.pens[i];
+    c.mean_force_in_contact_n = continuedMean(e.mean_force_in_contact_n, e.contact_steps, c.mean_force_in_contact_n,
+                                              c.contact_steps);
+    c.contact_steps += e.contact_steps, c.force_steps += e.force_steps, c.clamped_steps += e.clamped_steps;
+    c.max_force_raw_n = std::max(c.max_force_raw_n, e.max_force_raw_n);
+    c.max_force_sent_n = std::max(c.max_force_sent_n, e.max_force_sent_n);
+    c.impacts += e.impacts;
+  }
   return current;
 }
 
@@ -140,7 +184,22 @@ void writeSummaryJson(const std::string& path, const std::string& scene_file, co
                 (long long)s.steps, s.sim_time_s, (long long)s.pen_contact_steps, (long long)s.force_steps,
                 (long long)s.clamped_steps, s.max_force_raw_n, s.max_force_sent_n, s.mean_force_in_contact_n,
                 (long long)s.impacts, (long long)s.pen_impacts, (long long)s.contact_reports, (long long)s.pose_reports);
-  out << b << "  \"objects\": [";
+  out << b;
+  if (s.pens.size() > 1) {  // a one-pen run's summary stays as it was: its pen is the fields above
+    out << "  \"pens\": [";
+    for (std::size_t i = 0; i < s.pens.size(); ++i) {
+      const PenSummary& p = s.pens[i];
+      std::snprintf(b, sizeof b,
+                    "%s\n    {\"device\": %d, \"contact_steps\": %lld, \"force_steps\": %lld, \"clamped_steps\": %lld, "
+                    "\"max_force_raw_n\": %.9g, \"max_force_sent_n\": %.9g, \"mean_force_in_contact_n\": %.9g, "
+                    "\"impacts\": %lld}",
+                    i ? "," : "", p.device, (long long)p.contact_steps, (long long)p.force_steps, (long long)p.clamped_steps,
+                    p.max_force_raw_n, p.max_force_sent_n, p.mean_force_in_contact_n, (long long)p.impacts);
+      out << b;
+    }
+    out << "\n  ],\n";
+  }
+  out << "  \"objects\": [";
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const ObjectSummary& o = s.objects[i];
     out << (i ? ",\n" : "\n") << "    {\"name\": " << quoted(o.name) << ", \"start_world\": " << vec(o.start_world)
@@ -173,6 +232,13 @@ void printSummary(std::FILE* out, const RunSummary& s) {
   std::fprintf(out, "  pen: in contact %lld steps, force sent %lld steps, max |f| %.4f N (raw %.4f N), mean in contact %.4f N, clamped %lld steps\n",
                (long long)s.pen_contact_steps, (long long)s.force_steps, s.max_force_sent_n, s.max_force_raw_n,
                s.mean_force_in_contact_n, (long long)s.clamped_steps);
+  if (s.pens.size() > 1)
+    for (std::size_t i = 0; i < s.pens.size(); ++i) {
+      const PenSummary& p = s.pens[i];
+      std::fprintf(out, "  pen %zu (device %d): in contact %lld steps, force sent %lld steps, max |f| %.4f N (raw %.4f N), mean in contact %.4f N, %lld impacts\n",
+                   i, p.device, (long long)p.contact_steps, (long long)p.force_steps, p.max_force_sent_n, p.max_force_raw_n,
+                   p.mean_force_in_contact_n, (long long)p.impacts);
+    }
   std::fprintf(out, "  events: %lld impacts (%lld with the pen), %lld contact reports, %lld pose reports\n",
                (long long)s.impacts, (long long)s.pen_impacts, (long long)s.contact_reports, (long long)s.pose_reports);
   if (s.hapticd.online)

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rt/clock.hpp"
+#include "thx_client/devices.hpp"
 #include "thx_client/logged_devices.hpp"
 #include "thx_msgs/protocol.hpp"
 
@@ -112,7 +113,7 @@ thx_msgs::physics_contacts_t makeContacts(const PhysicsScene& scene, const std::
 
 LcmSink::LcmSink(lcm::LCM& lcm, LcmSinkOptions options) : lcm_(lcm), options_(std::move(options)) {}
 
-void LcmSink::sendForce(const Eigen::Vector3d& f, const Eigen::Vector3d& p, std::int64_t ref_tick) {
+void LcmSink::sendForce(int pen, const Eigen::Vector3d& f, const Eigen::Vector3d& p, std::int64_t ref_tick) {
   if (!options_.send_force) return;
   thx_msgs::client_force_t m{};
   m.utime = monotonicUs();
@@ -121,7 +122,7 @@ void LcmSink::sendForce(const Eigen::Vector3d& f, const Eigen::Vector3d& p, std:
   m.timeout_us = options_.force_timeout_us;
   m.client_id = options_.client_id;
   m.source = options_.source;
-  m.device = options_.device;
+  m.device = options_.devices.at(std::size_t(pen));
   put3(m.f_world, f);
   put3(m.p_world, p);
   const int rc = options_.server ? options_.server->sendToServer(thx_msgs::kChannelClientForce, m)
@@ -130,11 +131,16 @@ void LcmSink::sendForce(const Eigen::Vector3d& f, const Eigen::Vector3d& p, std:
   ++counters_.forces;
 }
 
-void LcmSink::force(const PhysicsScene& scene, const PenForce& f, std::int64_t ref_tick) {
-  sendForce(f.sent_world, scene.penTip(), ref_tick);
+void LcmSink::penForce(const PhysicsScene& scene, int pen, const PenForce& f, std::int64_t ref_tick) {
+  sendForce(pen, f.sent_world, scene.penTip(pen), ref_tick);
 }
 
-void LcmSink::release(const Eigen::Vector3d& p_world) { sendForce(Eigen::Vector3d::Zero(), p_world, -1); }
+void LcmSink::release(int pen, const Eigen::Vector3d& p_world) { sendForce(pen, Eigen::Vector3d::Zero(), p_world, -1); }
+
+void LcmSink::releaseAll(const PhysicsScene& scene) {
+  for (int pen = 0; pen < scene.penCount() && std::size_t(pen) < options_.devices.size(); ++pen)
+    release(pen, scene.penTip(pen));
+}
 
 void LcmSink::impacts(const PhysicsScene&, const std::vector<Impact>& impacts) {
   for (const Impact& i : impacts) {
@@ -159,32 +165,55 @@ void LcmSink::contacts(const PhysicsScene& scene, const std::vector<LastingConta
 std::string deviceSuffix(int device) { return device == 0 ? "" : " of device " + std::to_string(device); }
 
 std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz, int device) {
-  std::vector<PenSample> out;
+  return loadSessionPens(path, servo_hz, {device}).front();
+}
+
+std::vector<std::vector<PenSample>> loadSessionPens(const std::string& path, double servo_hz,
+                                                    const std::vector<int>& devices) {
+  std::vector<std::vector<PenSample>> out(devices.size());
   std::int64_t first_tick = 0;
+  bool any = false;
   try {
-    const client::LoggedDevice pen = client::loggedDevice(path, device);
+    std::vector<client::LoggedDevice> pens;
+    for (int d : devices) pens.push_back(client::loggedDevice(path, d));
     thx_msgs::forEachLogMessage<thx_msgs::device_state_t>(path, "THX_DEVICE_STATE", [&](const thx_msgs::device_state_t& s,
                                                                                        const thx_msgs::LogPosition& at) {
-      if (!pen.takes(s.device)) return;  // another device's pen
-      const Eigen::Vector3d p(s.p_world[0], s.p_world[1], s.p_world[2]);
-      if (!p.allFinite()) throw PenPathError(at.where() + ": p_world is not finite");
-      if (out.empty()) first_tick = s.tick;
-      if (!out.empty() && s.tick <= out.back().tick)
-        throw PenPathError(at.where() + ": tick " + std::to_string(s.tick) + " does not increase; expected ticks after " +
-                           std::to_string(out.back().tick));
-      PenSample ps;
-      ps.tick = s.tick;
-      ps.t_s = double(s.tick - first_tick) / servo_hz;
-      ps.p_world = p;
-      out.push_back(ps);
+      for (std::size_t k = 0; k < pens.size(); ++k) {
+        if (!pens[k].takes(s.device)) continue;  // another device's pen
+        std::vector<PenSample>& pen = out[k];
+        const Eigen::Vector3d p(s.p_world[0], s.p_world[1], s.p_world[2]);
+        if (!p.allFinite()) throw PenPathError(at.where() + ": p_world is not finite");
+        if (!any) first_tick = s.tick, any = true;
+        if (!pen.empty() && s.tick <= pen.back().tick)
+          throw PenPathError(at.where() + ": tick " + std::to_string(s.tick) + " does not increase; expected ticks after " +
+                             std::to_string(pen.back().tick));
+        PenSample ps;
+        ps.tick = s.tick;
+        ps.t_s = double(s.tick - first_tick) / servo_hz;
+        ps.p_world = p;
+        pen.push_back(ps);
+      }
     });
   } catch (const thx_msgs::LogError& e) {
     throw PenPathError(std::string(e.what()) + "; expected an LCM log from `hapticd --record`");
   }
-  if (out.size() < 2)
-    throw PenPathError(path + ": " + std::to_string(out.size()) + " device states" + deviceSuffix(device) +
-                       "; expected a session log with at least 2 THX_DEVICE_STATE events");
+  for (std::size_t k = 0; k < out.size(); ++k)
+    if (out[k].size() < 2)
+      throw PenPathError(path + ": " + std::to_string(out[k].size()) + " device states" + deviceSuffix(devices[k]) +
+                         "; expected a session log with at least 2 THX_DEVICE_STATE events");
   return out;
+}
+
+int loggedDeviceCount(const std::string& path) {
+  std::size_t most = 1;
+  try {
+    thx_msgs::forEachLogMessage<thx_msgs::hello_t>(
+        path, thx_msgs::kChannelHello,
+        [&](const thx_msgs::hello_t& h, const thx_msgs::LogPosition&) { most = std::max(most, client::deviceNames(h).size()); });
+  } catch (const thx_msgs::LogError& e) {
+    throw PenPathError(std::string(e.what()) + "; expected an LCM log from `hapticd --record`");
+  }
+  return int(most);
 }
 
 }  // namespace thx::physclient

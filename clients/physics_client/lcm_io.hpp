@@ -35,7 +35,8 @@ struct LcmSinkOptions {
   std::string source = "physics";
   std::int64_t force_timeout_us = 50'000;  // hapticd drops our force this long after the last message
   bool send_force = true;                  // false: offline runs publish events only
-  int device = 0;                          // the device whose pen the force pushes: the one followed
+  // Pen i's force goes to device devices[i] (client_force_t.device): the device it follows.
+  std::vector<int> devices = {0};
   // Online: forces go where the kit sends requests (the server's control port, which no other
   // client listens on: a 1 kHz force on the bus would wake every client; docs/clients.md §6).
   // Null: on the sink's own LCM (offline, tests). Not owned.
@@ -50,16 +51,18 @@ struct LcmSinkCounters {
 class LcmSink final : public EventSink {
  public:
   LcmSink(lcm::LCM& lcm, LcmSinkOptions options);
-  void force(const PhysicsScene&, const PenForce& f, std::int64_t ref_tick) override;
+  void penForce(const PhysicsScene&, int pen, const PenForce& f, std::int64_t ref_tick) override;
   void impacts(const PhysicsScene&, const std::vector<Impact>& impacts) override;
   void poses(const PhysicsScene& scene, std::int64_t ref_tick, const Eigen::Vector3d& pen_force) override;
   void contacts(const PhysicsScene& scene, const std::vector<LastingContact>& c, double window_s) override;
-  // A zero force (release), e.g. at exit.
-  void release(const Eigen::Vector3d& p_world);
+  // A zero force (release) for pen `pen`, e.g. at exit.
+  void release(int pen, const Eigen::Vector3d& p_world);
+  // Every pen's release, each at its tip in `scene`.
+  void releaseAll(const PhysicsScene& scene);
   const LcmSinkCounters& counters() const { return counters_; }
 
  private:
-  void sendForce(const Eigen::Vector3d& f, const Eigen::Vector3d& p, std::int64_t ref_tick);
+  void sendForce(int pen, const Eigen::Vector3d& f, const Eigen::Vector3d& p, std::int64_t ref_tick);
   lcm::LCM& lcm_;
   LcmSinkOptions options_;
   LcmSinkCounters counters_;
@@ -71,6 +74,13 @@ class LcmSink final : public EventSink {
 // this one's), decoded with try_decode, t = (tick - first tick) / servo_hz. Throws PenPathError
 // naming the file, the event and the problem, thx::Error (Config) when the log names no such device.
 std::vector<PenSample> loadSessionPen(const std::string& path, double servo_hz, int device = 0);
+// The pens of `devices` (each as loadSessionPen's), on one clock: t = 0 at the first tick of any
+// of them, so pens recorded under one servo clock stay in step.
+std::vector<std::vector<PenSample>> loadSessionPens(const std::string& path, double servo_hz,
+                                                    const std::vector<int>& devices);
+// The devices a session log's hellos name (the hello naming the most; 1 for a log naming none or
+// one): physics-client replays that many pens.
+int loggedDeviceCount(const std::string& path);
 // " of device N" for N > 0, "" for device 0: the words the session readers' errors add.
 std::string deviceSuffix(int device);
 

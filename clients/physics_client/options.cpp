@@ -16,13 +16,13 @@ const char* const kHelp = R"(usage: physics-client --scene FILE|NAME [options]
 
 Simulates the scene's objects with Bullet on its textured plane (normal or relief, as the scene
 says) or its textured mesh (surface.mesh: the smooth surface, its contacts turned by the texture's
-normals), with the pen as a kinematic body following hapticd's device. The pen's contacts become a
-force sent back to hapticd (client_force_t); object poses and contact events are published for
-the audio and visual clients (docs/physics.md, docs/messages.md).
+normals), with a pen per hapticd device, each a kinematic body following its device. Each pen's
+contacts become a force sent back to its own device (client_force_t); object poses and contact
+events are published for the audio and visual clients (docs/physics.md, docs/messages.md).
 
 Online it follows hapticd's scene: when a client switches hapticd to scene NAME (server_command_t
-ACTION_LOAD_SCENE), it releases its pen force, loads NAME.yaml from the scenes folder, checks its
-texture fingerprint against hapticd's (a mismatch stops it, as at the start), and goes on in the
+ACTION_LOAD_SCENE), it releases its pens' forces, loads NAME.yaml from the scenes folder, checks
+its texture fingerprint against hapticd's (a mismatch stops it, as at the start), and goes on in the
 new scene at that scene's rates (unless set below). A scene it cannot find or load there stops it
 too: hapticd found the file in its own folder, so the two folders differ.
 
@@ -39,12 +39,18 @@ too: hapticd found the file in its own folder, so the two folders differ.
   --contact-rate HZ      physics_contacts_t rate (default: the scene's rates.audio_feed_hz, at most --rate)
   --state-rate HZ        DEVICE_STATE subscription rate (default: --rate)
 
-Pen (the device's tip; default: hapticd over LCM):
-  --replay-log FILE      deterministic, no network: the pen of a recorded hapticd session
-                         (`hapticd --record FILE`), stepped in lock-step with its ticks
+Pen (the device's tip; default: hapticd over LCM, a pen for each of its devices):
+  --replay-log FILE      deterministic, no network: the pens of a recorded hapticd session
+                         (`hapticd --record FILE`; one per device its hellos name), stepped in
+                         lock-step with its ticks
+  --device N             simulate only the pen of hapticd's device N (online, or a --replay-log's):
+                         its index in the hello's device list (`hapticctl status` prints it); the
+                         other devices' states are ignored, its force goes to device N. An index
+                         hapticd or the log does not have is an error naming its devices. Without
+                         it: every device's pen
   --pen-csv FILE         deterministic, no network: tip positions, rows `t_s, x_m, y_m, z_m` (world)
-  --pen-script           deterministic, no network: the scene's hand script, followed kinematically
-                         on the surface
+  --pen-script           deterministic, no network: the scene's hand script (its first device's),
+                         followed kinematically on the surface
   --no-pen               deterministic, no network, no pen (objects only); needs --duration
   --pen-shape S          capsule (default; stands on the tip along the plane's normal) | sphere | none
   --pen-radius M         default 0.004
@@ -59,13 +65,9 @@ LCM:
   --no-lcm               offline only: publish nothing
   --client-id ID         1-32 of [A-Za-z0-9_-] (default physics)
   --connect-timeout S    wait this long for the first device state (default 10)
-  --device N             follow hapticd's device N: its index in the hello's device list
-                         (`hapticctl status` prints it; default 0); the other devices' states are
-                         ignored, the force goes to device N; with --replay-log, device N's
-                         recorded states are the pen. An index hapticd does not have is an error
-                         naming its devices
 
-  --json FILE            write a run summary (steps, forces, impacts over the whole run; the current
+  --json FILE            write a run summary (steps, forces, impacts over the whole run, and with
+                         several pens each pen's contact steps, forces and impacts; the current
                          scene's name and the scene switches followed; per object of the current
                          scene: displacement, end position in the world and on the surface,
                          speeds, objects it touched)
@@ -172,7 +174,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     throw UsageError("--no-lcm needs an offline pen (--replay-log, --pen-csv, --pen-script or --no-pen)");
   if (o.no_lcm && o.lcm_url) throw UsageError("--no-lcm and --lcm-url exclude each other");
   if (o.pen_source == PenSource::None && !o.duration_s) throw UsageError("--no-pen needs --duration S");
-  if (o.device != 0 && o.offline() && o.pen_source != PenSource::ReplayLog)
+  if (o.device.value_or(0) != 0 && o.offline() && o.pen_source != PenSource::ReplayLog)
     throw UsageError("--device N picks hapticd's pen or a --replay-log's: not with --pen-csv, --pen-script or --no-pen");
   if (!o.record.empty() && !o.offline())
     throw UsageError("--record needs an offline pen (--replay-log, --pen-csv, --pen-script or --no-pen): online "

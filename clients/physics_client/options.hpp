@@ -29,7 +29,9 @@ struct Options {
   std::optional<std::string> lcm_url;
   bool no_lcm = false;
   std::string client_id = "physics";
-  int device = 0;  // --device N: the hapticd device whose pen is followed (online and --replay-log)
+  // --device N: simulate only the pen of hapticd's device N (online and --replay-log); without it
+  // one pen per device (the hello's device list, a log's hellos).
+  std::optional<int> device;
   PenOptions pen;
   double impact_min_speed = 0.005;
   double connect_timeout_s = 10.0;

@@ -1,5 +1,6 @@
-// physics-client: Bullet bodies on the scene's textured plane, the pen following hapticd's device,
-// its contact force sent back to hapticd, poses and contact events published. `--help`.
+// physics-client: Bullet bodies on the scene's textured plane, a pen following each of hapticd's
+// devices, each pen's contact force sent back to its device, poses and contact events published.
+// `--help`.
 #include <lcm/lcm-cpp.hpp>
 
 #include <algorithm>
@@ -18,7 +19,9 @@
 #include "clients/physics_client/pose_csv.hpp"
 #include "clients/physics_client/scene_follower.hpp"
 #include "clients/physics_client/session_record.hpp"
+#include "rt/clock.hpp"
 #include "thx_client/app.hpp"
+#include "thx_client/devices.hpp"
 #include "thx_client/stop_signal.hpp"
 
 namespace {
@@ -26,6 +29,24 @@ namespace {
 using namespace thx::physclient;
 
 class NullSink final : public EventSink {};
+
+// The devices of a --replay-log whose pens are simulated: --device N's, else every device its
+// hellos name (a one-device log: device 0, every state).
+std::vector<int> replayedDevices(const Options& o) {
+  if (o.device) return {*o.device};
+  std::vector<int> devices(std::size_t(loggedDeviceCount(o.pen_file)));
+  for (std::size_t i = 0; i < devices.size(); ++i) devices[i] = int(i);
+  return devices;
+}
+
+// The tip of device state `s` now: device states arrive in bursts; extrapolating the newest one by
+// its age (same host, same CLOCK_MONOTONIC; at most 20 ms) keeps the pen's motion, and so its
+// velocity, smooth.
+Eigen::Vector3d tipNow(const thx_msgs::device_state_t& s) {
+  const double age_s = std::clamp(double(thx::rt::monotonicNowNs() / 1000 - s.utime) * 1e-6, 0.0, 0.02);
+  return Eigen::Vector3d(s.p_world[0], s.p_world[1], s.p_world[2]) +
+         age_s * Eigen::Vector3d(s.v_world[0], s.v_world[1], s.v_world[2]);
+}
 
 int runOffline(const Options& o, SceneFollower& sim) {
   PhysicsScene& scene = sim.physics();
@@ -42,14 +63,18 @@ int runOffline(const Options& o, SceneFollower& sim) {
     lcm_sink = std::make_unique<LcmSink>(*lcm, so);
     sink = lcm_sink.get();
   }
-  std::unique_ptr<PenPath> path;
+  std::vector<PenPath> paths;  // pen i's path; empty: no pen
   const double dt = 1.0 / d.rate_hz;
   switch (o.pen_source) {
-    case PenSource::ReplayLog:
-      path = std::make_unique<PenPath>(loadSessionPen(o.pen_file, scene.scene().rates.servo_hz, o.device));
+    case PenSource::ReplayLog: {
+      const std::vector<int> devices = replayedDevices(o);
+      for (std::vector<PenSample>& p : loadSessionPens(o.pen_file, scene.scene().rates.servo_hz, devices))
+        paths.emplace_back(std::move(p));
+      sim.setPens(devices);
       break;
+    }
     case PenSource::Csv:
-      path = std::make_unique<PenPath>(loadPenCsv(o.pen_file));
+      paths.emplace_back(loadPenCsv(o.pen_file));
       break;
     case PenSource::Script: {
       std::vector<PenSample> s = penPathFromScript(scene, dt);
@@ -58,7 +83,7 @@ int runOffline(const Options& o, SceneFollower& sim) {
                      o.scene.c_str());
         return 1;
       }
-      path = std::make_unique<PenPath>(std::move(s));
+      paths.emplace_back(std::move(s));
       break;
     }
     default:
@@ -76,24 +101,31 @@ int runOffline(const Options& o, SceneFollower& sim) {
   if (!o.record.empty()) {
     if (!std::ofstream(o.record))  // before the run, not after it
       throw thx::Error(thx::Error::Kind::Io, "--record " + o.record + ": cannot create the log file");
-    record = std::make_unique<RecordSink>(o.pen_source == PenSource::ReplayLog ? sessionClockOf(o.pen_file, o.device)
-                                                                               : SessionClock{});
+    record = std::make_unique<RecordSink>(o.pen_source == PenSource::ReplayLog
+                                              ? sessionClockOf(o.pen_file, sim.penDevices().front())
+                                              : SessionClock{});
     record_tee = std::make_unique<TeeSink>(*sink, *record);
     sink = record_tee.get();
   }
-  const double duration = o.duration_s.value_or(path ? path->duration() + 1.0 : 0.0);
+  double longest = 0.0;
+  std::string samples;  // "3751 samples", or one count per pen
+  for (const PenPath& p : paths) {
+    longest = std::max(longest, p.duration());
+    samples += (samples.empty() ? "" : ", ") + std::to_string(p.size());
+  }
+  const double duration = o.duration_s.value_or(paths.empty() ? 0.0 : longest + 1.0);
   const auto steps = std::int64_t(std::llround(duration * d.rate_hz));
   if (!o.quiet)
-    std::fprintf(stderr, "physics-client: offline, %lld steps of %.3g ms (%.2f s), pen: %s\n", (long long)steps, dt * 1e3,
-                 duration, path ? (std::to_string(path->size()) + " samples").c_str() : "none");
+    std::fprintf(stderr, "physics-client: offline, %lld steps of %.3g ms (%.2f s), %s: %s\n", (long long)steps, dt * 1e3,
+                 duration, paths.size() > 1 ? (std::to_string(paths.size()) + " pens").c_str() : "pen",
+                 paths.empty() ? "none" : (samples + " samples").c_str());
   sim.start(*sink);
   Driver& driver = sim.driver();
+  std::vector<Driver::PenInput> pens(paths.size());
   for (std::int64_t k = 0; k < steps && !thx::client::stopRequested(); ++k) {
-    const double t = double(k) * dt;  // the pen pose the device had at the start of the step
-    if (path)
-      driver.step(path->at(t), path->tickAt(t));
-    else
-      driver.step(std::nullopt);
+    const double t = double(k) * dt;  // the pen poses the devices had at the start of the step
+    for (std::size_t i = 0; i < paths.size(); ++i) pens[i] = {paths[i].at(t), paths[i].tickAt(t)};
+    driver.step(pens);
   }
   driver.flush();
   if (record) {
@@ -112,20 +144,13 @@ int runOnline(const Options& o, SceneFollower& sim) {
   ao.connect_timeout_s = o.connect_timeout_s;
   ao.scene = sim.identity();
   ao.allow_different_scene = o.allow_different_scene;
-  ao.client.device = o.device;  // the pen followed; waitForServer refuses an index hapticd does not have
+  // The device the kit follows (its callbacks, latestDeviceState()); waitForServer refuses an index
+  // hapticd does not have. Every device's newest state is there either way (latestDeviceState(i)).
+  ao.client.device = o.device.value_or(0);
   thx::client::ClientApp app(ao);
   thx::client::Client& client = app.client();
   double state_hz = o.state_hz.value_or(sim.rates().rate_hz);
   client.subscribe(thx_msgs::Stream::DeviceState, state_hz);
-  LcmSinkOptions so;
-  so.client_id = o.client_id;
-  so.server = &client;
-  so.device = o.device;
-  LcmSink lcm_sink(app.lcm(), so);
-  std::unique_ptr<PoseCsvSink> csv;
-  if (!o.poses_csv.empty()) csv = std::make_unique<PoseCsvSink>(o.poses_csv);
-  NullSink null_sink;
-  TeeSink sink(lcm_sink, csv ? static_cast<EventSink&>(*csv) : null_sink);
 
   RunSummary::HapticdLink link;  // what hapticd reports back: ticks where it applied a client force
   link.online = true;
@@ -141,19 +166,38 @@ int runOnline(const Options& o, SceneFollower& sim) {
   const auto hello = app.waitForServer();  // the same scene, or an error naming both
   if (!hello) return 0;                    // stopped
   const std::string server = hello->server_name.empty() ? std::string("hapticd") : hello->server_name;
+  // A pen per device the hello names (a hello naming none: device 0), or --device N's alone.
+  std::vector<int> devices = {ao.client.device};
+  if (!o.device)
+    for (int i = 1; i < int(thx::client::deviceNames(*hello).size()) && i < thx::client::kMaxDevices; ++i)
+      devices.push_back(i);
+  sim.setPens(devices);
+  LcmSinkOptions so;
+  so.client_id = o.client_id;
+  so.server = &client;
+  so.devices = devices;
+  LcmSink lcm_sink(app.lcm(), so);
+  std::unique_ptr<PoseCsvSink> csv;
+  if (!o.poses_csv.empty()) csv = std::make_unique<PoseCsvSink>(o.poses_csv);
+  NullSink null_sink;
+  TeeSink sink(lcm_sink, csv ? static_cast<EventSink&>(*csv) : null_sink);
+
   if (!app.pollUntil([&] { return client.latestDeviceState().has_value(); }, o.connect_timeout_s)) {
     if (app.stopRequested()) return 0;
     throw thx::Error(thx::Error::Kind::Io, "no DEVICE_STATE from hapticd within " + std::to_string(o.connect_timeout_s) +
                                                " s on " + app.options().lcm_url +
                                                " (is hapticd running with LCM? --connect-timeout S)");
   }
-  if (!o.quiet) std::fprintf(stderr, "physics-client: connected; stepping at %g Hz\n", sim.rates().rate_hz);
+  if (!o.quiet)
+    std::fprintf(stderr, "physics-client: connected; stepping at %g Hz, %zu %s\n", sim.rates().rate_hz, devices.size(),
+                 devices.size() == 1 ? "pen" : "pens (one per device)");
 
   sim.start(sink);
   // waitForServer checked the scene of the newest hello: changes after it are switches to follow.
   std::uint64_t scene_changes_seen = client.sceneChanges();
   bool said_keeping = false;
   std::int64_t last_tick = -1;
+  std::vector<Driver::PenInput> pens(devices.size());
   for (;;) {
     // A switch ends the paced loop at a step boundary; the next scene gets a loop of its own rate.
     std::int64_t max_steps = -1;
@@ -176,22 +220,20 @@ int runOnline(const Options& o, SceneFollower& sim) {
                            server.c_str(), client.serverScene()->name.c_str(), sim.identity().name.c_str());
             said_keeping = true;
           }
-          const auto s = client.latestDeviceState();
-          // Device states arrive in bursts; extrapolating the newest one by its age (same host, same
-          // CLOCK_MONOTONIC; at most 20 ms) keeps the pen's motion, and so its velocity, smooth.
-          const double age_s = std::clamp(double(thx::rt::monotonicNowNs() / 1000 - s->utime) * 1e-6, 0.0, 0.02);
-          const Eigen::Vector3d tip = Eigen::Vector3d(s->p_world[0], s->p_world[1], s->p_world[2]) +
-                                      age_s * Eigen::Vector3d(s->v_world[0], s->v_world[1], s->v_world[2]);
-          if (s->tick == last_tick) ++link.stale_steps;
-          last_tick = s->tick;
-          sim.driver().step(tip, s->tick);
+          for (std::size_t i = 0; i < devices.size(); ++i) {
+            const auto s = client.latestDeviceState(devices[i]);  // none yet: the pen stays parked
+            pens[i] = s ? Driver::PenInput{tipNow(*s), s->tick} : Driver::PenInput{};
+          }
+          if (pens[0].ref_tick == last_tick) ++link.stale_steps;  // the followed device's
+          last_tick = pens[0].ref_tick;
+          sim.driver().step(pens);
           return true;
         },
         max_steps);
     link.missed_steps += loop.missed;
     if (!switch_due) break;  // --duration reached, or a stop signal
-    // The pen force belongs to the old scene: let go of the pen before anything else.
-    lcm_sink.release(sim.physics().penTip());
+    // The pen forces belong to the old scene: let go of the pens before anything else.
+    lcm_sink.releaseAll(sim.physics());
     if (!sim.follow(*client.serverScene(), server)) continue;  // back on this scene already
     if (!o.state_hz && sim.rates().rate_hz != state_hz)
       client.subscribe(thx_msgs::Stream::DeviceState, state_hz = sim.rates().rate_hz);
@@ -200,7 +242,7 @@ int runOnline(const Options& o, SceneFollower& sim) {
                    server.c_str(), sim.identity().name.c_str(), sim.file().c_str(), sim.physics().scene().objects.size(),
                    sim.rates().rate_hz, sim.switches());
   }
-  lcm_sink.release(sim.physics().penTip());
+  lcm_sink.releaseAll(sim.physics());
   sim.driver().flush();
   RunSummary summary = sim.summary();
   link.forces_sent = std::int64_t(lcm_sink.counters().forces);

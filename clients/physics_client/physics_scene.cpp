@@ -99,27 +99,38 @@ PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
   }
   v_before_.resize(objects_.size(), Eigen::Vector3d::Zero());
 
+  addPens(options.pens);
+}
+
+void PhysicsScene::addPens(int count) {
   const PenOptions& pen = options_.pen;
-  if (pen.shape != PenShape::None) {
-    // Parked 10 m above the plane until the first pose arrives. Added with mass 0 (so Bullet files
-    // it with the static bodies: it never collides with the plane or the fixed obstacles), then
-    // made kinematic so its velocity comes from its moves.
-    Eigen::Isometry3d parked = surface().mapping().plane_to_world;
-    parked.translation() += 10.0 * surface().mapping().geometricNormalWorld();
-    phys::BodyMaterial pen_material;
-    pen_material.friction = 0.5;
-    pen_material.restitution = 0.0;
-    pen_ = pen.shape == PenShape::Sphere ? &world_->addSphere(pen.radius_m, 0.0, parked, pen_material)
-                                         : &world_->addCapsule(pen.radius_m, 0.5 * pen.length_m, 0.0, parked, pen_material);
-    pen_->setCollisionFlags(pen_->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-    pen_->setActivationState(DISABLE_DEACTIVATION);
-    pen_->setUserIndex(kBodyPen);
+  while (int(pens_.size()) < count) {
+    Pen p;
+    if (pen.shape != PenShape::None) {
+      // Parked 10 m above the plane until the first pose arrives. Added with mass 0 (so Bullet files
+      // it with the static bodies: it never collides with the plane, the fixed obstacles or another
+      // pen), then made kinematic so its velocity comes from its moves.
+      Eigen::Isometry3d parked = surface().mapping().plane_to_world;
+      parked.translation() += 10.0 * surface().mapping().geometricNormalWorld();
+      phys::BodyMaterial pen_material;
+      pen_material.friction = 0.5;
+      pen_material.restitution = 0.0;
+      p.body = pen.shape == PenShape::Sphere ? &world_->addSphere(pen.radius_m, 0.0, parked, pen_material)
+                                             : &world_->addCapsule(pen.radius_m, 0.5 * pen.length_m, 0.0, parked, pen_material);
+      p.body->setCollisionFlags(p.body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+      p.body->setActivationState(DISABLE_DEACTIVATION);
+      p.body->setUserIndex(kBodyPen);
+      p.body->setUserIndex2(int(pens_.size()));
+    }
+    pens_.push_back(p);
   }
 }
 
 PhysicsScene::~PhysicsScene() = default;
 
 int PhysicsScene::idOf(const btCollisionObject* o) const { return o->getUserIndex(); }
+
+int PhysicsScene::penOf(const btCollisionObject* o) { return o->getUserIndex() == kBodyPen ? o->getUserIndex2() : -1; }
 
 Eigen::Vector3d PhysicsScene::penCentreFor(const Eigen::Vector3d& tip) const {
   const Eigen::Vector3d n = surface().mapping().geometricNormalWorld();
@@ -128,27 +139,30 @@ Eigen::Vector3d PhysicsScene::penCentreFor(const Eigen::Vector3d& tip) const {
   return tip + up * n;
 }
 
-void PhysicsScene::setPenTip(const Eigen::Vector3d& tip_world) {
+void PhysicsScene::setPenTip(int pen, const Eigen::Vector3d& tip_world) {
+  Pen& p = pens_.at(std::size_t(pen));
   if (!tip_world.allFinite()) return;  // keep the last good pose
-  pen_tip_ = tip_world;
-  pen_set_ = true;
+  p.tip = tip_world;
+  p.set = true;
 }
 
-void PhysicsScene::placePen(double /*dt_s*/) {
-  if (pen_ == nullptr || !pen_set_) return;
-  Eigen::Isometry3d pose = surface().mapping().plane_to_world;  // capsule axis = the plane's normal
-  pose.translation() = penCentreFor(pen_tip_);
-  const btTransform t = phys::toBt(pose);
-  const Eigen::Vector3d old = phys::toEigen(pen_->getWorldTransform().getOrigin());
-  pen_->setWorldTransform(t);
-  // A teleport gets no velocity (Bullet derives a kinematic body's velocity from the move since
-  // the previous step: interpolation transform -> world transform).
-  if (!pen_placed_ || (old - pose.translation()).norm() > options_.pen.teleport_m) pen_->setInterpolationWorldTransform(t);
-  pen_placed_ = true;
+void PhysicsScene::placePens() {
+  for (Pen& p : pens_) {
+    if (p.body == nullptr || !p.set) continue;
+    Eigen::Isometry3d pose = surface().mapping().plane_to_world;  // capsule axis = the plane's normal
+    pose.translation() = penCentreFor(p.tip);
+    const btTransform t = phys::toBt(pose);
+    const Eigen::Vector3d old = phys::toEigen(p.body->getWorldTransform().getOrigin());
+    p.body->setWorldTransform(t);
+    // A teleport gets no velocity (Bullet derives a kinematic body's velocity from the move since
+    // the previous step: interpolation transform -> world transform).
+    if (!p.placed || (old - pose.translation()).norm() > options_.pen.teleport_m) p.body->setInterpolationWorldTransform(t);
+    p.placed = true;
+  }
 }
 
 void PhysicsScene::step(double dt_s) {
-  placePen(dt_s);
+  placePens();
   for (std::size_t i = 0; i < objects_.size(); ++i) v_before_[i] = phys::velocityOf(*objects_[i]);
   world_->step(dt_s);
   ++steps_;
@@ -158,11 +172,9 @@ void PhysicsScene::step(double dt_s) {
 
 void PhysicsScene::collectContacts(double dt_s) {
   impacts_.clear();
-  pen_force_ = PenForce{};
-  Eigen::Vector3d pen_force = Eigen::Vector3d::Zero();
+  for (Pen& pen : pens_) pen.force = PenForce{};
   std::set<PairKey> touching_now;
   btDispatcher* dispatcher = world_->world().getDispatcher();
-  const Eigen::Vector3d v_pen = pen_ ? phys::velocityOf(*pen_) : Eigen::Vector3d::Zero();
 
   const int manifolds = dispatcher->getNumManifolds();
   for (int m = 0; m < manifolds; ++m) {
@@ -174,6 +186,10 @@ void PhysicsScene::collectContacts(double dt_s) {
     const btCollisionObject* oa = a_first ? o0 : o1;
     const btCollisionObject* ob = a_first ? o1 : o0;
     const int ida = a_first ? id0 : id1, idb = a_first ? id1 : id0;
+    // The pen in this pair (a pen is b unless the other is the surface, which pens never touch).
+    const int pen_index = std::max(penOf(o0), penOf(o1));
+    Pen* pen = pen_index >= 0 ? &pens_[std::size_t(pen_index)] : nullptr;
+    const Eigen::Vector3d v_pen = pen ? phys::velocityOf(*pen->body) : Eigen::Vector3d::Zero();
     // Bullet's normal points from body1 towards body0; ours from b towards a.
     const double sign = a_first ? 1.0 : -1.0;
 
@@ -191,20 +207,20 @@ void PhysicsScene::collectContacts(double dt_s) {
       impulse += double(pt.getAppliedImpulse());
       n += sign * n_bt;
       p += 0.5 * (phys::toEigen(pt.getPositionWorldOnA()) + phys::toEigen(pt.getPositionWorldOnB()));
-      if (ida == kBodyPen || idb == kBodyPen) {
+      if (pen) {
         // Impulse on body0 = +n_bt j + d1 j1 + d2 j2 (Bullet's solver convention); body1 gets the opposite.
         Eigen::Vector3d j_on_0 = n_bt * double(pt.getAppliedImpulse());
         if (options_.pen.friction)
           j_on_0 += phys::toEigen(pt.m_lateralFrictionDir1) * double(pt.m_appliedImpulseLateral1) +
                     phys::toEigen(pt.m_lateralFrictionDir2) * double(pt.m_appliedImpulseLateral2);
         const bool pen_is_0 = id0 == kBodyPen;
-        pen_force += (pen_is_0 ? j_on_0 : Eigen::Vector3d(-j_on_0)) / dt_s;
+        pen->force.raw_world += (pen_is_0 ? j_on_0 : Eigen::Vector3d(-j_on_0)) / dt_s;
       }
     }
     if (points == 0) continue;
     p /= double(points);
     if (n.norm() > 0) n.normalize();
-    if (ida == kBodyPen || idb == kBodyPen) pen_force_.in_contact = true;
+    if (pen) pen->force.in_contact = true;
 
     const PairKey key{oa, ob};
     touching_now.insert(key);
@@ -254,6 +270,7 @@ void PhysicsScene::collectContacts(double dt_s) {
         im.on_surface = on_surface;
         im.texel_i = texel.i;
         im.texel_j = texel.j;
+        im.pen = pen_index;
         impacts_.push_back(im);
       }
     }
@@ -277,17 +294,19 @@ void PhysicsScene::collectContacts(double dt_s) {
   touching_since_.clear();
   for (const PairKey& k : touching_now) touching_since_[k] = steps_;
 
-  pen_force_.raw_world = pen_force;
-  Eigen::Vector3d sent = options_.pen.force_scale * pen_force;
-  const double norm = sent.norm();
-  if (!std::isfinite(norm)) {
-    sent.setZero();
-    pen_force_.clamped = true;
-  } else if (norm > options_.pen.max_force_n) {
-    sent *= options_.pen.max_force_n / norm;
-    pen_force_.clamped = true;
+  for (Pen& pen : pens_) {  // each pen's device gets its own force, clamped on its own
+    PenForce& f = pen.force;
+    Eigen::Vector3d sent = options_.pen.force_scale * f.raw_world;
+    const double norm = sent.norm();
+    if (!std::isfinite(norm)) {
+      sent.setZero();
+      f.clamped = true;
+    } else if (norm > options_.pen.max_force_n) {
+      sent *= options_.pen.max_force_n / norm;
+      f.clamped = true;
+    }
+    f.sent_world = sent;
   }
-  pen_force_.sent_world = sent;
 }
 
 void PhysicsScene::extendPath(const PairKey& key, const btCollisionObject* a, double dt_s, std::uint32_t triangle,

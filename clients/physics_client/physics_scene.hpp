@@ -1,12 +1,14 @@
 #pragma once
 // The physics client's simulation, free of LCM so tests run it directly: a scene's textured
 // plane (normal or relief, as the scene says), its objects (dynamic bodies and fixed obstacles)
-// and the pen, a kinematic body following the device's tip. Each step reports
-//  - the force the pen's contacts put on the pen (scaled, translational, clamped): what goes
-//    back to hapticd as client_force_t;
+// and the pens, kinematic bodies each following one device's tip (one by default; a scene of
+// several devices has one per device, SimOptions::pens). Each step reports
+//  - per pen, the force its contacts put on it (scaled, translational, clamped): what goes back
+//    to that pen's device as client_force_t;
 //  - impacts (pairs that start touching with an approach speed) and lasting contacts (per
 //    touching pair: point, normal, slip velocity, normal force, the texels entered).
-// Body ids: i >= 0 = scene.objects[i]; kBodySurface = the plane; kBodyPen = the pen.
+// Body ids: i >= 0 = scene.objects[i]; kBodySurface = the plane; kBodyPen = a pen, every pen
+// (the physics messages have one pen id; Impact::pen says which).
 // A mesh scene's surface (surface.mesh) is its mesh (mesh_ground.hpp): contacts on it carry the
 // texel under them through the mesh's uv, and paths follow the foot of a body's centre on it.
 // SI units, world frame. Not real-time code (construction allocates; a step allocates only when
@@ -51,6 +53,7 @@ struct PenOptions {
 
 struct SimOptions {
   PenOptions pen;
+  int pens = 1;  // pen bodies, alike (pen i follows the i-th device followed); more: addPens()
   double impact_min_speed_m_per_s = 0.005;  // slower first touches are lasting contacts only
   phys::WorldOptions world;
 };
@@ -73,6 +76,7 @@ struct Impact {
   Eigen::Vector3d n_world = Eigen::Vector3d::UnitZ();  // from b towards a
   bool on_surface = false;
   long long texel_i = 0, texel_j = 0;  // unwrapped, when on_surface
+  int pen = -1;                        // which pen, when one body is kBodyPen
 };
 
 // One texel a surface contact's path crossed: what the paper's Eq. 5 needs at each new texel.
@@ -116,19 +120,25 @@ class PhysicsScene {
   PhysicsScene(const PhysicsScene&) = delete;
   PhysicsScene& operator=(const PhysicsScene&) = delete;
 
-  // The pen tip for the next step (world frame). Before the first call the pen is parked far
-  // above the plane and touches nothing.
-  void setPenTip(const Eigen::Vector3d& tip_world);
+  // Pen bodies up to `count` (never fewer; at most client::kMaxDevices in use), added after the
+  // objects as the constructor adds SimOptions::pens: call before the first step, so that a scene
+  // whose pen count is known late (hapticd's hello) steps as if built with it.
+  void addPens(int count);
+  int penCount() const { return int(pens_.size()); }
+  // The tip of pen `pen` (default the first) for the next step (world frame). Before the first
+  // call a pen is parked far above the plane and touches nothing.
+  void setPenTip(const Eigen::Vector3d& tip_world) { setPenTip(0, tip_world); }
+  void setPenTip(int pen, const Eigen::Vector3d& tip_world);
   // One physics step of dt_s; afterwards penForce(), impacts() and the contacts are current.
   void step(double dt_s);
 
-  const PenForce& penForce() const { return pen_force_; }
+  const PenForce& penForce(int pen = 0) const { return pens_.at(std::size_t(pen)).force; }
   const std::vector<Impact>& impacts() const { return impacts_; }  // this step's
   // Lasting contacts since the previous call (pairs touching in at least one step of it).
   std::vector<LastingContact> takeContacts();
   std::vector<BodyState> bodies() const;  // one per scene object, in scene order
   BodyState body(int id) const;
-  Eigen::Vector3d penTip() const { return pen_tip_; }
+  Eigen::Vector3d penTip(int pen = 0) const { return pens_.at(std::size_t(pen)).tip; }
 
   std::int64_t steps() const { return steps_; }
   double simTime() const { return sim_time_; }
@@ -142,7 +152,7 @@ class PhysicsScene {
 
  private:
   using PairKey = std::pair<const btCollisionObject*, const btCollisionObject*>;
-  void placePen(double dt_s);
+  void placePens();
   void collectContacts(double dt_s);
   // Appends to `c` every texel the path of a (on the surface) entered in this step; on a mesh,
   // `triangle` is one the pair touches.
@@ -154,6 +164,8 @@ class PhysicsScene {
                       LastingContact& c);
   int idOf(const btCollisionObject* o) const;
   Eigen::Vector3d penCentreFor(const Eigen::Vector3d& tip) const;
+  // The pen a kinematic pen body is (its user index 2), -1 for any other body.
+  static int penOf(const btCollisionObject* o);
 
   scene::Scene scene_;
   SimOptions options_;
@@ -162,13 +174,16 @@ class PhysicsScene {
   std::vector<std::unique_ptr<tex::TextureMap>> object_textures_;  // before world_: textured boxes read them
   std::unique_ptr<phys::PhysicsWorld> world_;
   btRigidBody* plane_ = nullptr;
-  btRigidBody* pen_ = nullptr;
   std::vector<btRigidBody*> objects_;
   std::vector<Eigen::Vector3d> v_before_;  // linear velocities before the step, per object
 
-  Eigen::Vector3d pen_tip_ = Eigen::Vector3d::Zero();
-  bool pen_set_ = false, pen_placed_ = false;
-  PenForce pen_force_;
+  struct Pen {
+    btRigidBody* body = nullptr;  // nullptr with PenShape::None
+    Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+    bool set = false, placed = false;
+    PenForce force;
+  };
+  std::vector<Pen> pens_;
   std::vector<Impact> impacts_;
   std::map<PairKey, LastingContact> contacts_;        // accumulating since takeContacts()
   struct PathPoint {

@@ -27,7 +27,9 @@ class PoseCsvSink final : public EventSink {
 class TeeSink final : public EventSink {
  public:
   TeeSink(EventSink& a, EventSink& b) : a_(a), b_(b) {}
-  void force(const PhysicsScene& s, const PenForce& f, std::int64_t t) override { a_.force(s, f, t), b_.force(s, f, t); }
+  void penForce(const PhysicsScene& s, int pen, const PenForce& f, std::int64_t t) override {
+    a_.penForce(s, pen, f, t), b_.penForce(s, pen, f, t);
+  }
   void impacts(const PhysicsScene& s, const std::vector<Impact>& i) override { a_.impacts(s, i), b_.impacts(s, i); }
   void poses(const PhysicsScene& s, std::int64_t t, const Eigen::Vector3d& f) override { a_.poses(s, t, f), b_.poses(s, t, f); }
   void contacts(const PhysicsScene& s, const std::vector<LastingContact>& c, double w) override {

@@ -28,7 +28,13 @@ std::unique_ptr<PhysicsScene> SceneFollower::build(const std::string& file) cons
   SimOptions so;
   so.pen = options_.pen;
   so.impact_min_speed_m_per_s = options_.impact_min_speed;
+  so.pens = int(pen_devices_.size());
   return std::make_unique<PhysicsScene>(data, so);
+}
+
+void SceneFollower::setPens(const std::vector<int>& devices) {
+  pen_devices_ = devices;
+  physics_->addPens(int(devices.size()));
 }
 
 void SceneFollower::start(EventSink& sink) {
@@ -79,6 +85,7 @@ RunSummary SceneFollower::summary() const {
   RunSummary s = driver_ ? driver_->summary() : RunSummary{};
   if (!driver_) s.scene_name = physics_->sceneSurface().scene_name;
   if (has_earlier_) s = continuedRun(earlier_, s);
+  for (std::size_t i = 0; i < s.pens.size() && i < pen_devices_.size(); ++i) s.pens[i].device = pen_devices_[i];
   s.scene_switches = switches_;
   return s;
 }

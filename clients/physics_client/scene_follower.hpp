@@ -7,6 +7,7 @@
 // directly.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "clients/physics_client/driver.hpp"
 #include "clients/physics_client/options.hpp"
@@ -27,6 +28,11 @@ class SceneFollower {
   explicit SceneFollower(const Options& o);
   SceneFollower(const SceneFollower&) = delete;
   SceneFollower& operator=(const SceneFollower&) = delete;
+
+  // The devices whose pens are simulated, pen i following devices[i] (default {0}: one pen):
+  // before start(). Adds the pens to the current scene and to every scene followed after it.
+  void setPens(const std::vector<int>& devices);
+  const std::vector<int>& penDevices() const { return pen_devices_; }
 
   // Starts stepping, events to `sink` (which must outlive this object). Once, before driver().
   void start(EventSink& sink);
@@ -59,6 +65,7 @@ class SceneFollower {
   Options options_;
   std::string scenes_dir_;
   std::string file_;
+  std::vector<int> pen_devices_ = {0};  // before physics_: build() reads it
   std::unique_ptr<PhysicsScene> physics_;
   DriverOptions rates_;
   EventSink* sink_ = nullptr;

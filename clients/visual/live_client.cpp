@@ -34,18 +34,18 @@ std::unique_ptr<LoadedScene> loadScene(const std::string& file) {
   return std::make_unique<LoadedScene>(LoadedScene{std::move(s), std::move(surface)});
 }
 
-// What a frame draws: the bodies where the poses put them (at rest without), the pen where the
-// device state put it (resting where the hand script starts before the first).
+// What a frame draws: the bodies where the poses put them (at rest without), each drawn device's
+// pen where its newest state put it (before the first state, the pens resting where their hand
+// scripts start).
 std::vector<ObjectInstance> frameObjects(const Options& o, const LoadedScene& l, const LiveView& view) {
   std::vector<ObjectInstance> objects;
   if (!o.no_objects) objects = objectsAt(l.scene, view.bodies);
   if (o.no_pen) return objects;
   const tex::TexturedSurface& surface = l.surface.surface;
-  const std::vector<ObjectInstance> pen =
-      view.pen ? penWithProxy(surface, surface.toLocal(view.pen->tip_world), surface.toLocal(view.pen->proxy_world),
-                              view.pen->proxy_held)
-               : penAt(surface, tipOnSurface(surface, o.pen_xy ? *o.pen_xy : penRestPosition(l.scene)));
-  objects.insert(objects.end(), pen.begin(), pen.end());
+  const std::vector<PenView> pens = pensOf(view);
+  const std::vector<ObjectInstance> drawn =
+      pens.empty() ? pensAtRest(surface, l.scene, o.device, o.pen_xy) : pensAt(surface, pens);
+  objects.insert(objects.end(), drawn.begin(), drawn.end());
   return objects;
 }
 

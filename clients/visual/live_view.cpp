@@ -4,8 +4,16 @@
 
 namespace thx::visual {
 
+std::vector<PenView> pensOf(const LiveView& view) {
+  std::vector<PenView> pens;
+  if (view.pen) pens.push_back(*view.pen);
+  pens.insert(pens.end(), view.other_pens.begin(), view.other_pens.end());
+  return pens;
+}
+
 PenView penViewOf(const thx_msgs::device_state_t& s) {
   PenView p;
+  p.device = s.device;
   p.tip_world = Eigen::Vector3d(s.p_world[0], s.p_world[1], s.p_world[2]);
   p.proxy_held = (s.flags & thx_msgs::device_state_t::FLAG_PROXY_HELD) != 0;
   p.proxy_world = p.proxy_held ? Eigen::Vector3d(s.proxy_world[0], s.proxy_world[1], s.proxy_world[2]) : p.tip_world;
@@ -49,18 +57,34 @@ std::vector<Eigen::Isometry3d> bodiesOf(const thx_msgs::physics_poses_t& m) {
 
 LiveView liveViewOf(const std::optional<thx_msgs::device_state_t>& state,
                     const std::optional<thx_msgs::physics_poses_t>& poses) {
+  return liveViewOf(state ? std::vector<thx_msgs::device_state_t>{*state} : std::vector<thx_msgs::device_state_t>{}, poses);
+}
+
+LiveView liveViewOf(const std::vector<thx_msgs::device_state_t>& states,
+                    const std::optional<thx_msgs::physics_poses_t>& poses) {
   LiveView v;
-  if (state && Eigen::Vector3d(state->p_world[0], state->p_world[1], state->p_world[2]).allFinite())
-    v.pen = penViewOf(*state);
+  for (const thx_msgs::device_state_t& s : states) {
+    if (!Eigen::Vector3d(s.p_world[0], s.p_world[1], s.p_world[2]).allFinite()) continue;
+    if (v.pen) v.other_pens.push_back(penViewOf(s));
+    else v.pen = penViewOf(s);
+  }
   if (poses) v.bodies = bodiesOf(*poses);
   return v;
 }
 
+namespace {
+bool samePen(const PenView& a, const PenView& b) {
+  return a.tip_world == b.tip_world && a.proxy_world == b.proxy_world && a.proxy_held == b.proxy_held &&
+         a.device == b.device;
+}
+}  // namespace
+
 bool sameView(const LiveView& a, const LiveView& b) {
-  if (a.pen.has_value() != b.pen.has_value() || a.bodies.size() != b.bodies.size()) return false;
-  if (a.pen && (a.pen->tip_world != b.pen->tip_world || a.pen->proxy_world != b.pen->proxy_world ||
-                a.pen->proxy_held != b.pen->proxy_held))
-    return false;
+  const std::vector<PenView> pens_a = pensOf(a), pens_b = pensOf(b);
+  if (pens_a.size() != pens_b.size() || a.bodies.size() != b.bodies.size()) return false;
+  for (std::size_t i = 0; i < pens_a.size(); ++i) {
+    if (!samePen(pens_a[i], pens_b[i])) return false;
+  }
   for (std::size_t i = 0; i < a.bodies.size(); ++i) {
     if (a.bodies[i].matrix() != b.bodies[i].matrix()) return false;
   }

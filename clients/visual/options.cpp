@@ -11,26 +11,31 @@ const char* const kHelp = R"(usage: visual-client --scene FILE (--screenshot FIL
 
 Draws a scene headless (EGL, no display needed) or in a window: the textured plane from the scene's
 own texture through the textures library (the map, plane mapping and sampling hapticd and the
-physics client use), the scene's objects and the pen. Without --live (and without --replay-log) one
-picture at rest: the objects at their poses in the file, the pen resting on the surface.
+physics client use), the scene's objects and the pens. Without --live (and without --replay-log) one
+picture at rest: the objects at their poses in the file, each device's pen resting on the surface
+where its hand script starts.
 
-Live (--live): subscribes through the client kit to hapticd's device state (tip, proxy, contact) at
---rate and to the physics client's poses (THX_PHYSICS_POSES), and draws the bodies where they are
-and the pen: its ball (red) and shaft at the tip; while the proxy is held on the surface (the tip
-below it) the ball (yellow) and shaft on the proxy, the tip a smaller red ball, a dark rod between. A loop step whose pen and poses equal the last frame's draws nothing (a
-skipped frame). It follows the server's scene switches (finds the new scene in --scenes-dir). The
-summary at exit counts steps, frames drawn and skipped. Without hapticd within --connect-timeout it
-says so and draws the scene at rest (one frame DIR/frame_0000, or the window at rest).
+Live (--live): subscribes through the client kit to hapticd's device states (tip, proxy, contact)
+at --rate and to the physics client's poses (THX_PHYSICS_POSES), and draws the bodies where they
+are and every device's pen (see --device): its ball (device 0's red) and shaft at the tip; while
+the proxy is held on the surface (the tip below it) the ball (device 0's yellow) and shaft on the
+proxy, the tip a smaller ball of the first colour, a dark rod between. A loop step whose pens and
+poses equal the last frame's draws nothing (a skipped frame). It follows the server's scene
+switches (finds the new scene in --scenes-dir). The summary at exit counts steps, frames drawn
+and skipped. Without hapticd within --connect-timeout it says so and draws the scene at rest (one
+frame DIR/frame_0000, or the window at rest).
   --live                 with --out DIR (each drawn frame, numbered) or --window
   --rate HZ              live loop rate (default 30; in a window frames also wait for the display)
   --frames N             live headless: stop after N drawn frames
   --duration S           live: stop after S seconds (default 0: until --frames N or Ctrl-C)
   --lcm-url URL          (default )" THX_DEFAULT_LCM_URL R"()
   --connect-timeout S    wait this long for hapticd's hello (default 3)
-  --device N             draw the pen of hapticd's device N: its index in the hello's device list
-                         (`hapticctl status` prints it; default 0); the other devices' pens are
-                         not drawn; an index hapticd does not have is an error naming its
-                         devices. With --replay-log, device N's recorded pen
+  --device N             draw only the pen of hapticd's device N: its index in the hello's device
+                         list (`hapticctl status` prints it); an index hapticd does not have is an
+                         error naming its devices. Default: every device's pen, each in its own
+                         colour (device 0 red, 1 blue, 2 green, 3 magenta, then again; the ball
+                         on a held proxy lighter: yellow, cyan, lime, pink). With --replay-log,
+                         device N's recorded pen (default: every device the log's hellos name)
   --scenes-dir DIR       where a switched-to scene NAME.yaml is found (default scenes)
   --allow-different-scene  run even when hapticd announces another scene or texture (a warning
                          instead of an error) and keep drawing --scene's look when hapticd
@@ -43,10 +48,11 @@ Output:
   --frames N --out DIR   N numbered frames DIR/frame_0000.png ..., the camera orbiting the target
   --orbit DEG            azimuth step per frame with --frames (default 360 / N)
   --replay-log FILE      a recorded hapticd session (`hapticd --record FILE`) frame by frame into
-                         --out DIR: one frame per 1/--rate s of recorded time, the pen (tip,
-                         proxy) where the recording put it, the objects at the latest physics
-                         poses the log holds by then (`physics-client --replay-log S --record OUT`
-                         writes them; at rest before the first or without any); deterministic
+                         --out DIR: one frame per 1/--rate s of recorded time, each recorded
+                         device's pen (tip, proxy; --device N: one) where the recording put it,
+                         the objects at the latest physics poses the log holds by then
+                         (`physics-client --replay-log S --record OUT` writes them; at rest
+                         before the first or without any); deterministic
                          (--frames N: at most N); refused when a recorded hello gives the scene
                          another texture fingerprint than --scene's
   --rate HZ              --replay-log frames per recorded second (default 30)
@@ -100,8 +106,8 @@ Textured meshes (issue 28; docs/visual.md "Textured meshes"):
                          the texture at the scene's scale; rounded to whole tiles around the shape)
 
 Objects:
-  --pen X,Y              the pen's tip at surface-local X,Y, on the surface (default: where the
-                         scene's hand script starts, else 0,0)
+  --pen X,Y              the (first) pen's tip at surface-local X,Y, on the surface (default:
+                         where its hand script starts, else 0,0)
   --no-pen               no pen
   --no-objects           no scene objects
 
@@ -193,7 +199,7 @@ Options parseOptions(const std::vector<std::string>& args) {
   if (o.scene.empty()) throw UsageError("--scene FILE is required");
   if (o.lcm_url.empty()) o.lcm_url = thx_msgs::kDefaultLcmUrl;
   const bool replay = !o.replay_log.empty();
-  if (o.device != 0 && !o.live && !replay) throw UsageError("--device N picks a pen to draw: with --live or --replay-log");
+  if (o.device && !o.live && !replay) throw UsageError("--device N picks a pen to draw: with --live or --replay-log");
   if (o.surface_mesh_tile_m > 0 && o.surface_mesh.empty()) throw UsageError("--surface-mesh-tile M needs --surface-mesh SHAPE");
   if (!o.surface_mesh.empty()) {
     if (o.window || replay || o.live) throw UsageError("--surface-mesh draws headless: with --screenshot FILE or --frames N --out DIR");

@@ -37,7 +37,7 @@ struct Options {
   bool live = false;              // --live (with --out DIR or --window)
   std::string lcm_url;            // --lcm-url (default thx_msgs::kDefaultLcmUrl)
   double connect_timeout_s = 3.0; // --connect-timeout
-  int device = 0;                 // --device N: the hapticd device whose pen is drawn (live, --replay-log)
+  std::optional<int> device;      // --device N: draw device N's pen alone (live, --replay-log); else every device's
   double duration_s = 0.0;        // --duration (live; 0: until --frames or Ctrl-C)
   std::string scenes_dir = "scenes";  // --scenes-dir: where a scene switch's name is found
   bool allow_different_scene = false;  // --allow-different-scene: draw --scene whatever hapticd runs

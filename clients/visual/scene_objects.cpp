@@ -1,6 +1,7 @@
 #include "clients/visual/scene_objects.hpp"
 
 #include "clients/visual/glyphs.hpp"
+#include "clients/visual/pen_colours.hpp"
 #include "scenes/scene_frames.hpp"
 
 namespace thx::visual {
@@ -66,8 +67,9 @@ std::vector<ObjectInstance> objectsAt(const scene::Scene& scene, const std::vect
   return out;
 }
 
-Eigen::Vector2d penRestPosition(const scene::Scene& scene) {
-  for (const scene::ScriptStep& step : scene.device.script) {
+Eigen::Vector2d penRestPosition(const scene::Scene& scene, std::size_t device) {
+  if (device >= scene::deviceCount(scene)) return Eigen::Vector2d::Zero();  // --device N beyond the scene's
+  for (const scene::ScriptStep& step : scene::deviceAt(scene, device).script) {
     if (const auto* press = std::get_if<scene::PressStep>(&step)) return press->position_m;
     if (const auto* stroke = std::get_if<scene::StrokeStep>(&step)) return stroke->from_m;
   }
@@ -75,16 +77,17 @@ Eigen::Vector2d penRestPosition(const scene::Scene& scene) {
 }
 
 std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local,
-                                         const Eigen::Vector3d& proxy_local, bool proxy_held) {
+                                         const Eigen::Vector3d& proxy_local, bool proxy_held, int device) {
   const Eigen::Vector3d link = proxy_local - tip_local;
-  if (!proxy_held || link.norm() <= 0.0) return penAt(surface, tip_local);
-  // Held: the pen rests on the proxy (its ball yellow), the device's tip a smaller red ball below.
-  std::vector<ObjectInstance> out = penAt(surface, proxy_local);
-  out.front().albedo = {0.95f, 0.85f, 0.3f};
+  if (!proxy_held || link.norm() <= 0.0) return penAt(surface, tip_local, device);
+  // Held: the pen rests on the proxy (its ball in the held colour), the device's tip a smaller ball below.
+  const PenColours colours = penColours(device);
+  std::vector<ObjectInstance> out = penAt(surface, proxy_local, device);
+  out.front().albedo = colours.held;
   const Eigen::Isometry3d& plane = surface.mapping().plane_to_world;
   Eigen::Isometry3d tip = plane;
   tip.translate(tip_local);
-  out.push_back(instance(UnitShape::Sphere, tip, Eigen::Vector3d::Constant(kHeldTipRadius), {0.85f, 0.15f, 0.1f}));
+  out.push_back(instance(UnitShape::Sphere, tip, Eigen::Vector3d::Constant(kHeldTipRadius), colours.ball));
   // The unit cylinder runs along z: turn z onto the link, centre it between tip and proxy.
   Eigen::Isometry3d rod = plane;
   rod.translate(0.5 * (tip_local + proxy_local));
@@ -93,17 +96,40 @@ std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, co
   return out;
 }
 
+std::vector<ObjectInstance> pensAt(const tex::TexturedSurface& surface, const std::vector<PenView>& pens) {
+  std::vector<ObjectInstance> out;
+  for (const PenView& p : pens) {
+    const std::vector<ObjectInstance> pen = penWithProxy(surface, surface.toLocal(p.tip_world),
+                                                         surface.toLocal(p.proxy_world), p.proxy_held, p.device);
+    out.insert(out.end(), pen.begin(), pen.end());
+  }
+  return out;
+}
+
+std::vector<ObjectInstance> pensAtRest(const tex::TexturedSurface& surface, const scene::Scene& scene,
+                                       std::optional<int> device, const std::optional<Eigen::Vector2d>& first_xy) {
+  std::vector<int> devices{device.value_or(0)};
+  for (int i = 1; !device && i < int(scene::deviceCount(scene)); ++i) devices.push_back(i);
+  std::vector<ObjectInstance> out;
+  for (const int i : devices) {
+    const Eigen::Vector2d xy = first_xy && i == devices.front() ? *first_xy : penRestPosition(scene, std::size_t(i));
+    const std::vector<ObjectInstance> pen = penAt(surface, tipOnSurface(surface, xy), i);
+    out.insert(out.end(), pen.begin(), pen.end());
+  }
+  return out;
+}
+
 Eigen::Vector3d tipOnSurface(const tex::TexturedSurface& surface, const Eigen::Vector2d& xy_local) {
   return {xy_local.x(), xy_local.y(), surface.at(xy_local.x(), xy_local.y()).height_m};
 }
 
-std::vector<ObjectInstance> penAt(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local) {
+std::vector<ObjectInstance> penAt(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local, int device) {
   const Eigen::Isometry3d& plane = surface.mapping().plane_to_world;
   Eigen::Isometry3d tip = plane;
   tip.translate(tip_local);
   Eigen::Isometry3d shaft = tip;
   shaft.translate(Eigen::Vector3d(0, 0, kPenTipRadius + kPenShaftLength / 2));
-  return {instance(UnitShape::Sphere, tip, Eigen::Vector3d::Constant(kPenTipRadius), {0.85f, 0.15f, 0.1f}),
+  return {instance(UnitShape::Sphere, tip, Eigen::Vector3d::Constant(kPenTipRadius), penColours(device).ball),
           instance(UnitShape::Cylinder, shaft, {kPenShaftRadius, kPenShaftRadius, kPenShaftLength},
                    {0.25f, 0.25f, 0.3f})};
 }

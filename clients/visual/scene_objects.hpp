@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "clients/visual/object_renderer.hpp"
+#include "clients/visual/pen_view.hpp"
 #include "scenes/scene.hpp"
 #include "textures/textured_surface.hpp"
 
@@ -16,17 +17,26 @@ std::vector<ObjectInstance> objectsAtRest(const scene::Scene& scene);
 // mass, body frame -> world); objects without a pose (i >= poses.size()) at rest.
 std::vector<ObjectInstance> objectsAt(const scene::Scene& scene, const std::vector<Eigen::Isometry3d>& poses);
 
-// The pen's rest position on the surface (plane-local x, y): where the scene's hand script
-// starts (its first press or stroke), else the plane's centre.
-Eigen::Vector2d penRestPosition(const scene::Scene& scene);
+// Device `device`'s pen's rest position on the surface (plane-local x, y): where its hand script
+// starts (its first press or stroke), else (also for a device the scene lacks) the plane's centre.
+Eigen::Vector2d penRestPosition(const scene::Scene& scene, std::size_t device = 0);
 
+// The pens take device `device`'s colours (pen_colours.hpp: device 0's ball red, yellow held).
 // Tip at plane-local (x, y) on the surface (the relief depth there), shaft up the normal.
-std::vector<ObjectInstance> penAt(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local);
+std::vector<ObjectInstance> penAt(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local, int device = 0);
 // The pen of device_state_t, plane-local: not held, penAt(tip). Held (the tip below the surface):
-// the pen's ball (yellow) and shaft at the proxy on the surface, the device's tip a smaller red
-// ball where it is (seen where the relief leaves it visible) and a thin dark rod between them.
+// the pen's ball (held colour) and shaft at the proxy on the surface, the device's tip a smaller
+// ball (ball colour) where it is (seen where the relief leaves it visible) and a thin dark rod
+// between them.
 std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local,
-                                         const Eigen::Vector3d& proxy_local, bool proxy_held);
+                                         const Eigen::Vector3d& proxy_local, bool proxy_held, int device = 0);
+// Every pen of `pens` (world positions) as penWithProxy draws it, each in its device's colours.
+std::vector<ObjectInstance> pensAt(const tex::TexturedSurface& surface, const std::vector<PenView>& pens);
+// The pens at rest, each resting on the surface where its hand script starts (penRestPosition):
+// every device's of the scene, or `device`'s alone; the first of them at `first_xy` when given
+// (--pen X,Y).
+std::vector<ObjectInstance> pensAtRest(const tex::TexturedSurface& surface, const scene::Scene& scene,
+                                       std::optional<int> device, const std::optional<Eigen::Vector2d>& first_xy);
 Eigen::Vector3d tipOnSurface(const tex::TexturedSurface& surface, const Eigen::Vector2d& xy_local);
 
 }  // namespace thx::visual

@@ -13,13 +13,13 @@
 #include "clients/visual/live_client.hpp"
 #include "clients/visual/mesh_frame_renderer.hpp"
 #include "clients/visual/options.hpp"
+#include "clients/visual/replay_devices.hpp"
 #include "clients/visual/replay_frames.hpp"
 #include "clients/visual/scene_objects.hpp"
 #include "clients/visual/window_presenter.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_mesh.hpp"
 #include "scenes/scene_surface.hpp"
-#include "thx_client/logged_devices.hpp"
 #include "thx_client/logged_scene.hpp"
 #include "textures/smoothing.hpp"
 
@@ -31,31 +31,31 @@ using namespace thx::visual;
 std::string framePath(const Options& o, int f) { return visual::framePath(o.out_dir, f, o.frame_format); }
 
 // What a recorded frame shows: the scene's objects where the recording's physics poses put them,
-// and the pen (tip, proxy), unless the options leave either out.
+// and each drawn device's pen (tip, proxy), unless the options leave either out.
 std::vector<ObjectInstance> replayedObjects(const Options& o, const scene::Scene& scene,
                                             const tex::TexturedSurface& surface, const ReplayFrame& frame) {
   std::vector<ObjectInstance> objects;
   if (!o.no_objects) objects = objectsAt(scene, frame.bodies);
   if (!o.no_pen) {
-    const std::vector<ObjectInstance> pen = penWithProxy(surface, surface.toLocal(frame.tip_world),
-                                                         surface.toLocal(frame.proxy_world), frame.proxy_held);
-    objects.insert(objects.end(), pen.begin(), pen.end());
+    const std::vector<ObjectInstance> pens = pensAt(surface, pensOf(frame));
+    objects.insert(objects.end(), pens.begin(), pens.end());
   }
   return objects;
 }
 
-// The recorded pen --device N picks: every state of a one-device session (thx_client/logged_devices.hpp).
-std::optional<int> replayedDevice(const Options& o) {
-  const client::LoggedDevice pen = client::loggedDevice(o.replay_log, o.device);
-  return pen.every ? std::nullopt : std::optional<int>(pen.device);
+// The recording's frames (at most --frames N) with the pens --device picks (replay_devices.hpp).
+std::vector<ReplayFrame> recordedFrames(const Options& o, const scene::Scene& scene) {
+  std::vector<ReplayFrame> frames =
+      replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz, replayedDevices(o.replay_log, o.device));
+  if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
+  return frames;
 }
 
-// A recorded session frame by frame: the pen (tip, proxy) where the recording put it, the objects
+// A recorded session frame by frame: the pens (tip, proxy) where the recording put them, the objects
 // at the recorded physics poses (at rest before the first, or when the log has none).
 int replay(const Options& o, const scene::Scene& scene, const tex::TexturedSurface& surface,
            const CameraPlacement& placement) {
-  std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz, replayedDevice(o));
-  if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
+  const std::vector<ReplayFrame> frames = recordedFrames(o, scene);
   HeadlessContext context;
   FrameRenderer renderer(surface, o.render, o.width, o.height);
   renderer.setTexturedObjects(scene);
@@ -147,7 +147,7 @@ int drawSurfaceMesh(const Options& o, const scene::Scene& scene, const tex::Text
 }
 
 // A recorded session on a mesh scene, frame by frame: the mesh, the scene's objects where
-// physics-client's poses in the recording put them (a combined session), and the pen (tip, proxy).
+// physics-client's poses in the recording put them (a combined session), and the pens (tip, proxy).
 int replayOnMesh(const Options& o, const scene::Scene& scene, const scene::SceneSurface& scene_surface,
                  const CameraPlacement& placement) {
   const tex::TexturedSurface& surface = scene_surface.surface;
@@ -158,8 +158,7 @@ int replayOnMesh(const Options& o, const scene::Scene& scene, const scene::Scene
       scene::meshSceneFingerprint(scene_surface.fingerprint, view.shape, view.surface.mesh_to_world, view.surface.tile_m);
   client::checkLoggedScene(client::loggedScenes(o.replay_log), {scene_surface.scene_name, fingerprint}, o.replay_log,
                            false, false);
-  std::vector<ReplayFrame> frames = replayFrames(o.replay_log, scene.rates.servo_hz, o.replay_rate_hz, replayedDevice(o));
-  if (o.frames > 0 && frames.size() > std::size_t(o.frames)) frames.resize(std::size_t(o.frames));
+  const std::vector<ReplayFrame> frames = recordedFrames(o, scene);
   HeadlessContext context;
   MeshFrameRenderer renderer(view.surface, o.render, o.width, o.height);
   renderer.setTexturedObjects(scene);
@@ -202,9 +201,8 @@ int run(const Options& o) {
   std::vector<ObjectInstance> objects;
   if (!o.no_objects) objects = objectsAtRest(scene);
   if (!o.no_pen) {
-    const Eigen::Vector2d xy = o.pen_xy ? *o.pen_xy : penRestPosition(scene);
-    const std::vector<ObjectInstance> pen = penAt(surface.surface, tipOnSurface(surface.surface, xy));
-    objects.insert(objects.end(), pen.begin(), pen.end());
+    const std::vector<ObjectInstance> pens = pensAtRest(surface.surface, scene, std::nullopt, o.pen_xy);
+    objects.insert(objects.end(), pens.begin(), pens.end());
   }
 
   if (o.window) {

@@ -16,6 +16,7 @@
 #include <thx_msgs/hello_t.hpp>
 #include <thx_msgs/protocol.hpp>
 
+#include "tests/audio/replay_render.hpp"
 #include "tests/support/rendered_sound.hpp"
 #include "thx_msgs/log_reader.hpp"
 
@@ -80,16 +81,9 @@ class MuteReplay : public thx::test::SessionTest {
     ASSERT_EQ(next, hellos.size());
   }
   std::vector<float> render(const std::string& log, const std::string& wav) {
-    EXPECT_EQ(run(std::string(THX_AUDIO_CLIENT) + " --scene " + path("grooves.yaml") + " --replay-log " + log +
-                  " --slab-cells 4 --modes 12 --no-pen --cache-dir " + path("cache") + " --wav " + wav + " > " + wav +
-                  ".out 2>&1"),
-              0)
-        << fileBytes(wav + ".out");
-    std::printf("%s", fileBytes(wav + ".out").c_str());
-    int rate = 0;
-    std::vector<float> x = thx::test::readWavSamples(wav, rate);
-    EXPECT_EQ(rate, 44100);
-    return x;
+    return thx::audio::test::replayRender("--scene " + path("grooves.yaml") + " --replay-log " + log +
+                                              " --slab-cells 4 --modes 12 --no-pen --cache-dir " + path("cache"),
+                                          wav);
   }
 };
 

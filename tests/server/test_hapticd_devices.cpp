@@ -16,7 +16,28 @@
 namespace test_hapticd_devices {
 
 using namespace thx::test;
-using HapticdDevices = thx::test::HapticdProcessTest;
+// hapticd processes as these tests run them.
+class HapticdDevices : public thx::test::HapticdProcessTest {
+ protected:
+  // hapticd on `scene` in real time for `seconds`, its statistics in s.json (returned in `json`).
+  ProcRun runRealTime(const std::string& scene, const std::string& seconds, std::string& json) const {
+    ProcRun r = run("--scene '" + scene + "' --duration " + seconds + " --no-lcm --no-mlock --quiet --stats-json '" +
+                    path("s.json") + "' --flight-dir '" + path("") + "'");
+    json = slurp(path("s.json"));
+    return r;
+  }
+  // A hapticd serving `scene` over VRPN at `port` for `seconds`, once it says it serves `names`.
+  pid_t serveOverVrpn(const std::string& scene, const std::string& seconds, std::uint16_t port,
+                      const std::string& names) {
+    const pid_t served = spawn({THX_HAPTICD, "--scene", std::string(THX_SOURCE_DIR) + "/" + scene, "--duration", seconds,
+                                "--no-lcm", "--no-mlock", "--flight-dir", path(""), "--vrpn-listen", std::to_string(port)},
+                               path("served.out"), path("served.err"));
+    if (served > 0 && !waitUntil([&] { return servedLog().find("serving " + names) != std::string::npos; }, 30))
+      ADD_FAILURE() << "the served hapticd did not start: " << servedLog();
+    return served;
+  }
+  std::string servedLog() const { return slurp(path("served.err")); }
+};
 
 namespace {
 
@@ -162,10 +183,9 @@ void expectPenUntouched(const std::string& pen) {
 // it keeps its force, and the flight record is named after the device that faulted.
 TEST_F(HapticdDevices, ADeviceThatNeverAnswersFaultsAloneAndTheOtherKeepsItsForce) {
   std::ofstream(path("mixed.yaml")) << penBesideVrpn("Phantom0@tcp://127.0.0.1:1");
-  const ProcRun r = run("--scene '" + path("mixed.yaml") + "' --duration 2 --no-lcm --no-mlock --quiet --stats-json '" +
-                        path("s.json") + "' --flight-dir '" + path("") + "'");
+  std::string json;
+  const ProcRun r = runRealTime(path("mixed.yaml"), "2", json);
   ASSERT_EQ(r.status, 0) << r.err;
-  const std::string json = slurp(path("s.json"));
   const std::string pen = deviceEntry(json, "pen"), far = deviceEntry(json, "far");
   SCOPED_TRACE(json);
   expectPenUntouched(pen);
@@ -179,21 +199,15 @@ TEST_F(HapticdDevices, ADeviceThatNeverAnswersFaultsAloneAndTheOtherKeepsItsForc
 // the simulated pen beside it keeps its force.
 TEST_F(HapticdDevices, ADeviceThatStopsMidSessionFaultsAloneAndTheOtherKeepsItsForce) {
   const std::uint16_t port = sparePort();
-  // The served PHANToM: hapticd on the default scene for 1 s, then gone.
-  const pid_t served = spawn({THX_HAPTICD, "--scene", std::string(THX_SOURCE_DIR) + "/scenes/default.yaml", "--duration",
-                              "1.5", "--no-lcm", "--no-mlock", "--flight-dir", path(""), "--vrpn-listen",
-                              std::to_string(port)},
-                             path("served.out"), path("served.err"));
+  // The served PHANToM: hapticd on the default scene for 1.5 s, then gone; listening before the
+  // session starts, so the far device answers from its start.
+  const pid_t served = serveOverVrpn("scenes/default.yaml", "1.5", port, "Phantom0");
   ASSERT_GT(served, 0);
-  // Listening before the session starts, so the far device answers from its start.
-  ASSERT_TRUE(waitUntil([&] { return slurp(path("served.err")).find("serving Phantom0") != std::string::npos; }, 30))
-      << slurp(path("served.err"));
   std::ofstream(path("mixed.yaml")) << penBesideVrpn("Phantom0@tcp://127.0.0.1:" + std::to_string(port));
-  const ProcRun r = run("--scene '" + path("mixed.yaml") + "' --duration 3 --no-lcm --no-mlock --quiet --stats-json '" +
-                        path("s.json") + "' --flight-dir '" + path("") + "'");
-  EXPECT_EQ(reap(served, 30), 0) << slurp(path("served.err"));
+  std::string json;
+  const ProcRun r = runRealTime(path("mixed.yaml"), "3", json);
+  EXPECT_EQ(reap(served, 30), 0) << servedLog();
   ASSERT_EQ(r.status, 0) << r.err;
-  const std::string json = slurp(path("s.json"));
   const std::string pen = deviceEntry(json, "pen"), far = deviceEntry(json, "far");
   SCOPED_TRACE(json);
   expectPenUntouched(pen);
@@ -241,6 +255,34 @@ TEST_F(HapticdDevices, ARecordedSessionHoldsEveryPenInTickOrder) {
               std::string::npos)
         << e.what();
   }
+}
+
+// VRPN both ways with several names: one hapticd serves the two pens of scenes/two_pens.yaml, a
+// second uses both as its devices (two VRPN addresses on one server) and reads each pen's states:
+// each touches the second server's bricks as its pen strokes or presses the first's.
+TEST_F(HapticdDevices, TwoPensBehindOneVrpnServerAreTwoDevicesOfAnother) {
+  const std::uint16_t port = sparePort();
+  const pid_t served = serveOverVrpn("scenes/two_pens.yaml", "6", port, "left,right");
+  ASSERT_GT(served, 0);
+  const std::string at = "@tcp://127.0.0.1:" + std::to_string(port);
+  std::ofstream(path("far.yaml")) << "version: 1\nname: two far pens\nsurface:\n  size: [0.2, 0.2]\n"
+                                     "  texture: {generator: bricks, size: 64, params: {extent: 0.2}}\n"
+                                     "devices:\n  - {name: a, type: vrpn, address: left" + at + "}\n"
+                                     "  - {name: b, type: vrpn, address: right" + at + "}\n";
+  std::string json;
+  const ProcRun r = runRealTime(path("far.yaml"), "3", json);
+  EXPECT_EQ(reap(served, 30), 0) << servedLog();
+  ASSERT_EQ(r.status, 0) << r.err;
+  SCOPED_TRACE(json);
+  for (const char* name : {"a", "b"}) {
+    SCOPED_TRACE(name);
+    const std::string pen = deviceEntry(json, name);
+    ASSERT_FALSE(pen.empty());
+    // How many ticks read a state depends on the scheduler; that each pen was read and touched does not.
+    EXPECT_LT(jsonNumber(pen, "invalid_readings"), jsonNumber(json, "ticks"));
+    EXPECT_GT(jsonNumber(pen, "contact_ticks"), 0);
+  }
+  EXPECT_NE(servedLog().find("2 clients served"), std::string::npos) << servedLog();
 }
 
 }  // namespace test_hapticd_devices

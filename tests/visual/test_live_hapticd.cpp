@@ -5,6 +5,8 @@
 // counted its frames; how many are drawn or skipped is the machine's business.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <set>
 
@@ -84,6 +86,37 @@ TEST_F(VisualLiveHapticd, AnotherLookWithAllowDifferentScene) {
       liveThroughSwitch(args, "pinball", "visual-client: hapticd switched to scene pinball; drawing ours");
   EXPECT_NE(err.find("scene switches 0"), std::string::npos) << err;
   stopServer();
+}
+
+// A server with two devices (scenes/two_pens.yaml): once their states arrive, a frame holds both
+// pens, device 0's in red (yellow held) and device 1's in blue (cyan held). Before any state the
+// pens rest in the same colours, so the newest frame, drawn once hapticd has published a while, is
+// the one looked at.
+TEST_F(VisualLiveHapticd, DrawsEveryPenOfATwoDeviceServer) {
+  if (!udpmAvailable()) GTEST_SKIP() << "no multicast route for " << url_;
+  startServer({"--scene", "scenes/two_pens.yaml"});
+  std::vector<std::string> args = liveArgs("scenes/two_pens.yaml");
+  args.insert(args.end(), {"--size", "640x360", "--elevation", "70", "--distance", "0.16"});
+  const pid_t visual = spawn(args, path("visual.out"), path("visual.err"));
+  ASSERT_GT(visual, 0);
+  expectLive(path("visual.err"));
+  ASSERT_TRUE(waitUntil([&] { return fs::exists(path("frames/frame_0010.ppm")); }, 30)) << slurp(path("visual.err"));
+  const std::string err = stopVisual(visual);
+  EXPECT_NE(err.find("visual-client: live: loop steps"), std::string::npos) << err;
+  stopServer();
+  std::string newest;
+  for (const auto& e : fs::directory_iterator(path("frames"))) newest = std::max(newest, e.path().string());
+  const std::string ppm = slurp(newest);
+  ASSERT_EQ(ppm.size(), std::size_t(15 + 640 * 360 * 3));  // "P6\n640 360\n255\n" + RGB
+  int first = 0, second = 0;  // pixels in device 0's and device 1's colours (the plane is grey-beige)
+  for (std::size_t p = 15; p + 2 < ppm.size(); p += 3) {
+    const int r = (unsigned char)ppm[p], b = (unsigned char)ppm[p + 2];
+    first += r > 60 && 2 * r > 3 * b;
+    second += b > 60 && 2 * b > 3 * r;
+  }
+  std::printf("%s: %d px in device 0's colours, %d in device 1's\n", newest.c_str(), first, second);
+  EXPECT_GE(first, 12) << newest;  // VisualReplayPens: 14..41 px a pen in this view
+  EXPECT_GE(second, 12) << newest;
 }
 
 TEST_F(VisualLiveHapticd, InAWindowUnderXvfb) {

@@ -55,6 +55,7 @@ client::AppOptions appOptions(const LiveOptions& o, const SurfaceSound& sound) {
   a.connect_timeout_s = o.connect_timeout_s;
   a.scene = client::SceneIdentity{sound.surface.scene_name, sound.surface.fingerprint};
   a.allow_different_scene = o.allow_different_scene;
+  a.client.device = o.scene_settings.device;  // the kit delivers this pen's batches only
   return a;
 }
 
@@ -73,7 +74,7 @@ int runLive(const LiveOptions& o) {
   so.budget = o.budget;
   LiveSynth synth(so, clock);
   QueueSink sink(synth.queue());
-  ExcitationFeed feed(sink);
+  ExcitationFeed feed(sink, settings.device);
   feed.setSources(scene->sourcePointers());
   std::size_t scene_modes = scene->synth->modes();  // every body's
   synth.offerScene(std::move(scene->synth));

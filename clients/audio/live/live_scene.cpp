@@ -1,7 +1,9 @@
 #include "clients/audio/live/live_scene.hpp"
 
 #include <filesystem>
+#include <string>
 
+#include "base/error.hpp"
 #include "clients/audio/synthesis/sounding_scene.hpp"
 
 namespace thx::audio {
@@ -24,13 +26,17 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   live->generation = generation;
   live->sound = std::make_unique<SurfaceSound>(buildSurfaceSound(scene_file, s.slab, {}, s.mesh_body));
   const SurfaceSound& sound = *live->sound;
+  if (s.device < 0 || std::size_t(s.device) >= scene::deviceCount(sound.scene))
+    throw Error(Error::Kind::Config, scene_file + ": no device " + std::to_string(s.device) + " (the scene has " +
+                                         std::to_string(scene::deviceCount(sound.scene)) + ")");
+  const scene::Scene pen_scene = scene::sceneForDevice(sound.scene, std::size_t(s.device));  // the pen played
   std::vector<SoundingBody> bodies;
   bodies.push_back(surfaceBody(sound));
 
   PenSourceBodies pen;
   PenSound p;
   if (s.pen_modes) {
-    p = buildPenSound(sound.scene, s.slab);
+    p = buildPenSound(pen_scene, s.slab);
     if (p.modes.size() > 0) {
       pen.pen_body = int(bodies.size());
       pen.tip_node = p.tip_node;
@@ -68,7 +74,7 @@ std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const L
   }
   PenScrapeOptions po;
   po.servo_hz = sound.scene.rates.servo_hz;
-  po.pen_mass_kg = s.pen_mass_kg ? *s.pen_mass_kg : sound.scene.device.sim.device_mass_kg;
+  po.pen_mass_kg = s.pen_mass_kg ? *s.pen_mass_kg : pen_scene.device.sim.device_mass_kg;
   po.surface_size_m = sound.scene.surface.size_m;
   po.meso = sound.map().isRelief() ? MesoSource::ContactNormals : MesoSource::TexelWalk;
   po.mesh_to_world = sound.mesh_to_world;  // a mesh scene: the pen strikes its solid's surface

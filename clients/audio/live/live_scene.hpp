@@ -19,7 +19,8 @@ namespace thx::audio {
 
 struct LiveSceneSettings {
   SlabSettings slab;
-  std::optional<double> pen_mass_kg;  // unset: the scene's simulated device mass
+  int device = 0;                     // the pen played: this device's pen (device.pen) and mass
+  std::optional<double> pen_mass_kg;  // unset: that device's simulated mass
   bool pen_modes = true;              // the pen's own modes sound (else the slab and objects only)
   bool micro = true;                  // the micro level (the scene's surface.roughness)
   bool object_contacts = true;        // two objects rubbing (the micro level too: needs `micro`)
@@ -42,8 +43,9 @@ struct LiveScene {
   std::vector<ExcitationSource*> sourcePointers() const;
 };
 
-// Bodies: the surface slab (0), the pen (device.pen, when it has audible modes), each moving
-// object with audible modes. Sources: the pen (hapticd's CONTACT: meso or relief impulses and the
+// Bodies: the surface slab (0), the pen (settings.device's `pen`, when it has audible modes; a
+// scene without that device is a Config error naming it), each moving object with audible modes.
+// Sources: the pen (hapticd's CONTACT: meso or relief impulses and the
 // micro level on the slab and the pen) and the physics client's streams (impacts, texel paths,
 // relief momentum changes on the slab and the objects). A muted scene (audio.mute) has the same
 // bodies, no sources and a muted SynthScene: the callback plays zeros while it is current.

@@ -292,6 +292,13 @@ std::vector<float> mixSessionSound(std::span<const float> scrape, double scrape_
   return out;
 }
 
+std::vector<float> scaledSessionSound(std::span<const double> scrape, std::span<const double> physics, double gain) {
+  std::vector<float> out(std::max(scrape.size(), physics.size()));
+  for (std::size_t n = 0; n < out.size(); ++n)
+    out[n] = float(((n < scrape.size() ? scrape[n] : 0.0) + (n < physics.size() ? physics[n] : 0.0)) * gain);
+  return out;
+}
+
 PhysicsRender renderPhysicsStreams(const PhysicsStreams& streams, const SoundingScene& first,
                                    const std::function<SoundingScene(const std::string&)>& scene_for,
                                    std::int64_t origin_utime, const PhysicsSoundOptions& options) {

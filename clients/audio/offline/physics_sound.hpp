@@ -80,4 +80,9 @@ PhysicsRender renderPhysicsStreams(const PhysicsStreams& streams, const Sounding
 std::vector<float> mixSessionSound(std::span<const float> scrape, double scrape_scale, std::span<const double> physics,
                                    double peak);
 
+// The same track at a fixed gain instead (audio-client --gain): (scrape + physics) x gain, both
+// the listeners' sums (m^3) from the same origin, not normalised nor clamped, so that renders of
+// one session at one gain compare sample for sample (a pen alone against the mix of every pen).
+std::vector<float> scaledSessionSound(std::span<const double> scrape, std::span<const double> physics, double gain);
+
 }  // namespace thx::audio

@@ -34,34 +34,48 @@ std::vector<Stretch> stretches(std::span<const TimedScrapeSample> samples, std::
 
 }  // namespace
 
-ScrapeSessionRender renderScrapeSession(std::span<const TimedScrapeSample> samples, std::span<const SceneStart> hellos,
-                                        const std::string& first_scene,
-                                        const std::function<const ScrapeSurface&(const std::string&)>& surface_for) {
+ScrapeSessionRender scrapeSessionDisplacement(std::span<const TimedScrapeSample> samples, std::span<const SceneStart> hellos,
+                                              const std::string& first_scene,
+                                              const std::function<const ScrapeSurface&(const std::string&)>& surface_for,
+                                              std::optional<std::int64_t> origin_tick) {
   ScrapeSessionRender out;
   if (samples.empty()) return out;
   const ScrapeOptions session = surface_for(first_scene).options;
-  ScrapeRender& r = out.render;
-  double micro_power = 0.0;
   for (const Stretch& st : stretches(samples, hellos, first_scene)) {
     const ScrapeSurface& surface = surface_for(st.scene);
     ScrapeOptions o = surface.options;
     o.sample_rate_hz = session.sample_rate_hz;
     o.servo_hz = session.servo_hz;  // hapticd's servo keeps its rate across switches
     o.tail_s = session.tail_s;
-    o.origin_tick = samples.front().sample.tick;  // one timeline; a new PenScrape: the walk restarts
-    const ScrapeRender part = scrapeDisplacement(*surface.map, *surface.slab, *surface.modes, st.path, o, surface.pen);
-    if (r.displacement.size() < part.displacement.size()) r.displacement.resize(part.displacement.size(), 0.0);
-    for (std::size_t n = 0; n < part.displacement.size(); ++n) r.displacement[n] += part.displacement[n];
-    r.impulses += part.impulses;
-    r.nonzero_impulses += part.nonzero_impulses;
-    r.slab_peak = std::max(r.slab_peak, part.slab_peak);
-    r.pen_peak = std::max(r.pen_peak, part.pen_peak);
-    micro_power += part.micro_rms_n * part.micro_rms_n * double(part.micro_samples);
-    r.micro_samples += part.micro_samples;
+    // One timeline; a new PenScrape: the walk restarts.
+    o.origin_tick = origin_tick ? *origin_tick : samples.front().sample.tick;
+    addScrape(out.render, scrapeDisplacement(*surface.map, *surface.slab, *surface.modes, st.path, o, surface.pen));
     out.scenes.push_back(st.scene);
   }
-  r.micro_rms_n = r.micro_samples ? std::sqrt(micro_power / double(r.micro_samples)) : 0.0;
-  normaliseScrape(r, session.peak);
+  return out;
+}
+
+void addScrape(ScrapeRender& r, const ScrapeRender& part) {
+  if (r.displacement.size() < part.displacement.size()) r.displacement.resize(part.displacement.size(), 0.0);
+  for (std::size_t n = 0; n < part.displacement.size(); ++n) r.displacement[n] += part.displacement[n];
+  r.impulses += part.impulses;
+  r.nonzero_impulses += part.nonzero_impulses;
+  r.slab_peak = std::max(r.slab_peak, part.slab_peak);
+  r.pen_peak = std::max(r.pen_peak, part.pen_peak);
+  const std::size_t in_contact = r.micro_samples + part.micro_samples;
+  if (r.micro_samples == 0) r.micro_rms_n = part.micro_rms_n;  // exactly the one part's
+  else if (part.micro_samples > 0)
+    r.micro_rms_n = std::sqrt((r.micro_rms_n * r.micro_rms_n * double(r.micro_samples) +
+                               part.micro_rms_n * part.micro_rms_n * double(part.micro_samples)) /
+                              double(in_contact));
+  r.micro_samples = in_contact;
+}
+
+ScrapeSessionRender renderScrapeSession(std::span<const TimedScrapeSample> samples, std::span<const SceneStart> hellos,
+                                        const std::string& first_scene,
+                                        const std::function<const ScrapeSurface&(const std::string&)>& surface_for) {
+  ScrapeSessionRender out = scrapeSessionDisplacement(samples, hellos, first_scene, surface_for);
+  if (!samples.empty()) normaliseScrape(out.render, surface_for(first_scene).options.peak);
   return out;
 }
 

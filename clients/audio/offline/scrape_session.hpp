@@ -7,6 +7,7 @@
 // ends. Deterministic: the same samples, hellos and surfaces give the same samples.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -47,5 +48,18 @@ struct ScrapeSessionRender {
 ScrapeSessionRender renderScrapeSession(std::span<const TimedScrapeSample> samples, std::span<const SceneStart> hellos,
                                         const std::string& first_scene,
                                         const std::function<const ScrapeSurface&(const std::string&)>& surface_for);
+
+// renderScrapeSession without its normalisation (render.samples empty, the listeners' sum in
+// render.displacement), sample 0 at `origin_tick` (unset: the first sample's tick): one pen of
+// several on the session's timeline (pen_mix.hpp).
+ScrapeSessionRender scrapeSessionDisplacement(std::span<const TimedScrapeSample> samples, std::span<const SceneStart> hellos,
+                                              const std::string& first_scene,
+                                              const std::function<const ScrapeSurface&(const std::string&)>& surface_for,
+                                              std::optional<std::int64_t> origin_tick = {});
+
+// Adds `part` (a render before normalising) to `sum`: the displacement sample by sample (the
+// longer length kept), the impulse counts, each body's peak (the larger), the micro level's RMS
+// over both parts' samples in contact.
+void addScrape(ScrapeRender& sum, const ScrapeRender& part);
 
 }  // namespace thx::audio

@@ -1,4 +1,4 @@
-// audio-client: the pen scraping a scene's surface, live from hapticd (live_audio.hpp) or
+// audio-client: the pens scraping a scene's surface, live from hapticd (live_audio.hpp) or
 // rendered from a recorded hapticd session to a WAV file (kHelp below).
 #include <cmath>
 #include <cstdio>
@@ -8,26 +8,25 @@
 #include <string>
 #include <vector>
 
-#include <thx_msgs/contact_t.hpp>
-
 #include "base/cli_number.hpp"
 #include "base/error.hpp"
 #include "clients/audio/analysis/scene_bodies.hpp"
 #include "clients/audio/live/audio_output.hpp"
 #include "clients/audio/live/live_audio.hpp"
+#include "clients/audio/offline/pen_mix.hpp"
 #include "clients/audio/offline/physics_sound.hpp"
 #include "clients/audio/offline/scene_mute.hpp"
 #include "clients/audio/offline/scrape_session.hpp"
 #include "clients/audio/offline/scrape_synthesis.hpp"
 #include "clients/audio/synthesis/sounding_scene.hpp"
 #include "clients/audio/synthesis/surface_sound.hpp"
+#include "clients/audio/tools/session_pens.hpp"
 #include "base/program_main.hpp"
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
 #include "textures/smoothing.hpp"
-#include "thx_client/logged_devices.hpp"
+#include "thx_client/devices.hpp"
 #include "thx_client/logged_scene.hpp"
-#include "thx_msgs/log_reader.hpp"
 
 namespace {
 
@@ -55,18 +54,21 @@ pen strikes its surface node nearest the tip along that node's outward normal, t
 client's contacts strike it at their points.
 
 Live (the default; docs/audio.md "Live audio"): hapticd's CONTACT stream, batched (every servo
-tick), through the client kit, and the physics client's THX_PHYSICS_POSES/IMPACT/CONTACTS. The
-events go through a lock-free queue to the audio callback, which places each at its sample (the
-tick's time plus the playout delay), renders the micro level sample by sample, and lowers the
-number of modes it synthesises when its cost per block nears the block period. Output through
-RtAudio when a sound device exists; when none does, one line says so and a timer-driven callback
-writes the sound to --wav. Follows hapticd's scene switches (finds NAME.yaml in --scenes-dir).
+tick), of one pen (--device N, default 0; every pen is heard offline), through the client kit,
+and the physics client's THX_PHYSICS_POSES/IMPACT/CONTACTS. The events go through a lock-free
+queue to the audio callback, which places each at its sample (the tick's time plus the playout
+delay), renders the micro level sample by sample, and lowers the number of modes it synthesises
+when its cost per block nears the block period. Output through RtAudio when a sound device
+exists; when none does, one line says so and a timer-driven callback writes the sound to --wav.
+Follows hapticd's scene switches (finds NAME.yaml in --scenes-dir).
 
 Offline (--replay-log): deterministic, from a recorded session (`hapticd --record FILE`: one
-contact_t per servo tick on THX_CONTACT; of several devices, device 0's pen sounds, as live). If
-the log also holds the physics client's streams (`physics-client --replay-log SESSION --record
-FILE`: THX_PHYSICS_POSES/IMPACT/CONTACTS on the session's clock), they sound too, on the same
-clock. A THX_HELLO naming another scene (hapticd --record writes one at each switch) switches to
+contact_t per servo tick and device on THX_CONTACT). Every device's pen sounds, mixed: each pen's
+scrape (its own walk, its own pen's modes and mass) on the same surface's modes, the sums added
+(--device N: pen N alone, on the same timeline as the mix). If the log also holds the physics
+client's streams (`physics-client --replay-log SESSION --record FILE`:
+THX_PHYSICS_POSES/IMPACT/CONTACTS on the session's clock), they sound too, on the same clock. A
+THX_HELLO naming another scene (hapticd --record writes one at each switch) switches to
 NAME.yaml (--scenes-dir) from its utime on: the pen's CONTACT samples after it scrape that scene's
 surface and pen (the walk starts afresh), the physics streams strike its bodies; bodies struck
 before ring on. Each scene loaded must have the texture fingerprint the log's hellos give it (else
@@ -74,7 +76,7 @@ an error naming the log, the scene and both fingerprints; --allow-different-scen
 with a warning). While a scene with `audio: {mute: true}` runs the output is exact silence (live:
 from the switch to it, nothing is synthesised; offline: the render's samples from its hello to the
 next unmuted scene's are zeroed); the sound comes back with the next unmuted scene. The sum of the
-modal displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS).
+modal displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS), or times --gain.
 
   --scene FILE           the scene hapticd runs (docs/scenes.md)
   --replay-log FILE      offline: hapticd's --record log, or physics-client's --record log (with
@@ -88,6 +90,13 @@ modal displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS).
   --pen-mass KG          the mass in Eq. 5 (default: the simulated device's mass)
   --sample-rate HZ       default 44100
   --tail S               offline: ring-out after the last tick (default 0.5)
+  --device N             the pen of device N alone (its index in hello_t.device_names; offline:
+                         default every pen, mixed; the physics streams sound either way; live: the
+                         pen played, default 0)
+  --gain G               offline: output = G x, x what the bodies' listeners hear (m^3), neither
+                         normalised nor clamped (renders of one session at one gain compare sample
+                         for sample: a pen alone against the mix); live: output = clamp(G x, -1, 1)
+                         (default 5e6)
   --cache-dir DIR        modal cache (default as modal-analyze); --no-cache: none
   --scenes-dir DIR       where a switched-to scene NAME.yaml is found (offline default: --scene's
                          folder; live default: scenes)
@@ -107,7 +116,6 @@ Live:
   --block N              frames per callback block (default 256, at most 4096)
   --output MODE          auto (a device, else timer + WAV; default), device, timer
   --audio-api API        alsa, pulse or jack (default: ALSA, then PulseAudio)
-  --gain G               output = clamp(G x, -1, 1), x what the bodies' listeners hear, m^3 (default 5e6)
   --fixed-budget         synthesise every mode always (no quality scaling under load)
   --duration S           stop after S seconds (default: at SIGINT/SIGTERM)
   --stats-json FILE      latency (contact -> callback block) and counters at the end
@@ -126,6 +134,8 @@ struct Options {
   bool no_pen = false, no_micro = false, no_object_contacts = false;
   ElementOrder object_order = ElementOrder::Quadratic;
   std::optional<std::string> scenes_dir;
+  std::optional<int> device;  // offline: one pen alone (default every pen); live: the pen played
+  std::optional<double> gain;  // offline: G x instead of normalising; live: LiveOptions::gain
 };
 
 Options parse(const std::vector<std::string>& args) {
@@ -169,7 +179,8 @@ Options parse(const std::vector<std::string>& args) {
       if (o.live.output != "auto" && o.live.output != "device" && o.live.output != "timer")
         throw thx::UsageError("--output: expected auto, device or timer, got '" + o.live.output + "'");
     } else if (a == "--audio-api") o.live.audio_api = value();
-    else if (a == "--gain") o.live.gain = thx::cli::parseNumber(a, value(), {0, 1e12, false, ""});
+    else if (a == "--gain") o.gain = thx::cli::parseNumber(a, value(), {0, 1e12, false, ""});
+    else if (a == "--device") o.device = int(thx::cli::parseInteger(a, value(), 0, thx::client::kMaxDevices - 1));
     else if (a == "--fixed-budget") o.live.adapt_budget = false;
     else if (a == "--duration") o.live.duration_s = thx::cli::parseNumber(a, value(), {0, 1e7, false, "s"});
     else if (a == "--stats-json") o.live.stats_json = value();
@@ -190,13 +201,14 @@ double energyOf(const std::vector<double>& x, double sample_rate_hz) {
   return e / sample_rate_hz;
 }
 
-// One scene as the offline render plays it: the surface (texture, slab, modes) and the pen the
-// scrape uses; the physics streams share the slab's modes.
+// One scene as the offline render plays it: the surface (texture, slab, modes) and each device's
+// pen the scrapes use (by device index: its own pen's modes and Eq. 5 mass, the same surface); the
+// physics streams share the slab's modes.
 struct OfflineScene {
   SurfaceSound surface;
-  PenSound pen;
-  PenModes pen_view;
-  ScrapeSurface scrape;
+  std::vector<PenSound> pens;
+  std::vector<PenModes> pen_views;   // point into `pens`
+  std::vector<ScrapeSurface> scrapes;  // point into `surface` and `pen_views`
   std::shared_ptr<const ModalBody> slab_body;
 };
 
@@ -222,26 +234,32 @@ int runOffline(const Options& o) {
     };
     // Offline, a mesh scene sounds as the solid its mesh encloses (Gmsh: this program links it).
     const MeshBodyBuilder mesh_body = [](const thx::scene::Scene& s) { return meshSurfaceBody(s); };
-    auto sc = std::make_unique<OfflineScene>(
-        OfflineScene{buildSurfaceSound(file_of(name), o.slab, check, mesh_body), {}, {}, {}, nullptr});
+    auto sc = std::make_unique<OfflineScene>(OfflineScene{buildSurfaceSound(file_of(name), o.slab, check, mesh_body), {}, {}, {}, nullptr});
     const thx::scene::Scene& scene = sc->surface.scene;
-    if (!o.no_pen) sc->pen = buildPenSound(scene, o.slab);
-    sc->pen_view = PenModes{&sc->pen.mesh, &sc->pen.modes, sc->pen.tip_node, sc->pen.tilt_deg};
-    ScrapeOptions& so = sc->scrape.options;
-    so.sample_rate_hz = o.slab.sample_rate_hz;
-    so.servo_hz = scene.rates.servo_hz;
-    so.pen_mass_kg = o.pen_mass ? *o.pen_mass : scene.device.sim.device_mass_kg;
-    so.surface_size_m = scene.surface.size_m;
-    so.tail_s = o.tail;
-    so.meso = sc->surface.map().isRelief() ? MesoSource::ContactNormals : MesoSource::TexelWalk;
-    so.roughness = sceneRoughness(scene);
-    if (o.no_micro) so.roughness.amplitude = 0.0;
-    sc->scrape.map = &sc->surface.map();
-    sc->scrape.slab = &sc->surface.slab;
-    sc->scrape.modes = &sc->surface.modes;
-    sc->scrape.pen = o.no_pen ? nullptr : &sc->pen_view;
+    const std::size_t devices = thx::scene::deviceCount(scene);
+    sc->pens.resize(devices);
+    sc->pen_views.resize(devices);
+    for (std::size_t d = 0; d < devices; ++d) {
+      if (!o.no_pen) sc->pens[d] = buildPenSound(thx::scene::sceneForDevice(scene, d), o.slab);
+      sc->pen_views[d] = PenModes{&sc->pens[d].mesh, &sc->pens[d].modes, sc->pens[d].tip_node, sc->pens[d].tilt_deg};
+      ScrapeSurface surface;
+      ScrapeOptions& so = surface.options;
+      so.sample_rate_hz = o.slab.sample_rate_hz;
+      so.servo_hz = scene.rates.servo_hz;
+      so.pen_mass_kg = o.pen_mass ? *o.pen_mass : thx::scene::deviceAt(scene, d).sim.device_mass_kg;
+      so.surface_size_m = scene.surface.size_m;
+      so.tail_s = o.tail;
+      so.meso = sc->surface.map().isRelief() ? MesoSource::ContactNormals : MesoSource::TexelWalk;
+      so.roughness = sceneRoughness(scene);
+      if (o.no_micro) so.roughness.amplitude = 0.0;
+      so.mesh_to_world = sc->surface.mesh_to_world;  // a mesh scene: the scrape strikes its solid's surface
+      surface.map = &sc->surface.map();
+      surface.slab = &sc->surface.slab;
+      surface.modes = &sc->surface.modes;
+      surface.pen = o.no_pen ? nullptr : &sc->pen_views[d];
+      sc->scrapes.push_back(surface);
+    }
     sc->slab_body = std::make_shared<const ModalBody>(sc->surface.slab, sc->surface.modes);
-    so.mesh_to_world = sc->surface.mesh_to_world;  // a mesh scene: the scrape strikes its solid's surface
     if (sc->surface.mesh_to_world)
       std::printf("audio-client: %s: a mesh surface: the pen and the physics client's contacts strike the solid its mesh "
                   "encloses\n",
@@ -250,60 +268,71 @@ int runOffline(const Options& o) {
     return *slot;
   };
 
-  std::vector<TimedScrapeSample> path;
-  // One pen scrapes: device 0's, as live through the kit (every sample of a one-device session).
-  const thx::client::LoggedDevice pen = thx::client::loggedDevice(o.log, 0);
-  thx_msgs::forEachLogMessage<thx_msgs::contact_t>(o.log, "THX_CONTACT", [&](const thx_msgs::contact_t& c, const auto&) {
-    if (pen.takes(c.device)) path.push_back({c.utime, scrapeSample(c)});
-  });
+  // Every device's pen scrapes (or --device's alone), sample 0 at the session's first tick.
+  const SessionPens pens = readSessionPens(o.log, o.device);
   const PhysicsStreams physics = readPhysicsStreams(o.log);
-  if (path.empty() && physics.empty())
+  if (!pens.origin_tick && physics.empty())
     throw thx::Error(thx::Error::Kind::Io, o.log + ": no THX_CONTACT or THX_PHYSICS_* events (not a hapticd or physics-client --record log?)");
   std::vector<SceneStart> hellos;
   for (const auto& h : physics.hellos) hellos.push_back({h.utime, h.scene_name});
 
   OfflineScene& first = offline_scene(first_name);
-  // The pen's scrape, each stretch between switches on its own scene's surface.
-  ScrapeSessionRender session = renderScrapeSession(
-      path, hellos, first_name, [&](const std::string& name) -> const ScrapeSurface& { return offline_scene(name).scrape; });
+  // The pens' scrapes, each stretch between switches on its own scene's surface, summed.
+  const auto scrape_for = [&](const std::string& name, int device) -> const ScrapeSurface& {
+    const OfflineScene& sc = offline_scene(name);
+    if (std::size_t(device) >= sc.scrapes.size())
+      throw thx::Error(thx::Error::Kind::Config, o.log + ": device " + std::to_string(device) + " scrapes scene '" + name +
+                                                     "', which has " + std::to_string(sc.scrapes.size()) +
+                                                     " device(s) (its pen and mass are unknown)");
+    return sc.scrapes[std::size_t(device)];
+  };
+  ScrapeSessionRender session = renderPenMix(pens.pens, hellos, first_name, scrape_for, pens.origin_tick.value_or(0));
   ScrapeRender& r = session.render;
-  const ScrapeOptions& so = first.scrape.options;
+  const ScrapeOptions& so = first.scrapes.front().options;
+  const std::int64_t origin = pens.origin_utime ? *pens.origin_utime : physics.firstUtime();
+  std::vector<double> physics_sum;  // the physics streams' listeners' sum (m^3), for --gain
   if (!physics.empty()) {
     const BodyOptions bo = bodyOptions(o.slab, o.object_order);
     const auto sounding = [&](const std::string& name) {
       OfflineScene& sc = offline_scene(name);
       SoundingScene s =
           soundingScene(name, sc.surface.scene, sc.surface.map().isRelief(), bo, sc.slab_body, sc.surface.mesh_to_world);
-      setPenBody(s, sc.pen);  // impacts with the pen ring the scrape's pen
+      setPenBody(s, sc.pens.front());  // impacts with the pen ring device 0's pen
       return s;
     };
     PhysicsSoundOptions po;
     po.sample_rate_hz = o.slab.sample_rate_hz;
     po.tail_s = o.tail;
     po.object_contacts.enabled = !o.no_micro && !o.no_object_contacts;
-    const std::int64_t origin = path.empty() ? physics.firstUtime() : path.front().utime;
-    const PhysicsRender pr = renderPhysicsStreams(physics, sounding(first_name), sounding, origin, po);
+    PhysicsRender pr = renderPhysicsStreams(physics, sounding(first_name), sounding, origin, po);
     r.samples = mixSessionSound(r.samples, r.raw_peak / so.peak, pr.samples, so.peak);
+    physics_sum = std::move(pr.samples);
     std::printf("audio-client: %s: physics: %zu impacts (%zu between two objects; contact %.3g-%.3g ms), %zu meso "
                 "impulses, %zu relief impulses, %zu object-contact segments, physics energy %.4g m2 s, scenes:",
                 o.log.c_str(), pr.impacts, pr.object_impacts, pr.min_contact_s * 1e3, pr.max_contact_s * 1e3,
-                pr.meso_impulses, pr.relief_impulses, pr.object_contact_segments, energyOf(pr.samples, o.slab.sample_rate_hz));
+                pr.meso_impulses, pr.relief_impulses, pr.object_contact_segments, energyOf(physics_sum, o.slab.sample_rate_hz));
     for (const std::string& n : pr.scenes) std::printf(" %s", n.c_str());
     std::printf("\n");
   }
+  // --gain: the listeners' sums at a fixed gain instead of normalised (a pen alone against the mix).
+  if (o.gain) r.samples = scaledSessionSound(r.displacement, physics_sum, *o.gain);
   // A muted scene (audio.mute) is exact silence for as long as it runs; normalised before, so the
   // unmuted stretches sound as they would without the muted ones' silence.
   const std::vector<MutedSpan> muted = mutedSpans(hellos, first_name, [&](const std::string& name) {
     return name == first_name ? first.surface.scene.audio.mute : thx::scene::loadScene(file_of(name)).audio.mute;
   });
   if (!muted.empty()) {
-    const std::int64_t origin = path.empty() ? physics.firstUtime() : path.front().utime;
     const std::size_t zeroed = silenceMuted(r.samples, muted, origin, o.slab.sample_rate_hz);
     std::printf("audio-client: %s: muted scenes (audio.mute):", o.log.c_str());
     for (const MutedSpan& m : muted) std::printf(" %s", m.scene.c_str());
     std::printf(", %zu samples of silence\n", zeroed);
   }
   WavWriter(o.wav, int(o.slab.sample_rate_hz)).write(r.samples);
+  if (pens.pens.size() > 1 || o.device) {
+    std::printf("audio-client: %s: %s:", o.log.c_str(), o.device ? "one pen alone" : "every pen, mixed");
+    for (const PenPath& p : pens.pens) std::printf(" device %d (%zu ticks)", p.device, p.samples.size());
+    std::printf("\n");
+  }
   if (session.scenes.size() > 1) {
     std::printf("audio-client: %s: the pen's scrape in %zu stretches, scenes:", o.log.c_str(), session.scenes.size());
     for (const std::string& n : session.scenes) std::printf(" %s", n.c_str());
@@ -311,8 +340,8 @@ int runOffline(const Options& o) {
   }
   std::printf("audio-client: %s: %zu ticks, %zu %s impulses (%zu non-zero), micro force RMS %.3g N, %zu slab + %zu pen modes "
               "(peaks %.3g / %.3g, RMS %.3g), %.2f s -> %s\n",
-              o.log.c_str(), path.size(), r.impulses, so.meso == MesoSource::TexelWalk ? "meso" : "relief", r.nonzero_impulses,
-              r.micro_rms_n, first.surface.modes.size(), first.pen.modes.size(), r.slab_peak, r.pen_peak,
+              o.log.c_str(), pens.ticks(), r.impulses, so.meso == MesoSource::TexelWalk ? "meso" : "relief", r.nonzero_impulses,
+              r.micro_rms_n, first.surface.modes.size(), first.pens.front().modes.size(), r.slab_peak, r.pen_peak,
               r.raw_rms, double(r.samples.size()) / o.slab.sample_rate_hz, o.wav.c_str());
   return 0;
 }
@@ -323,6 +352,8 @@ int run(Options o) {
   l.scene = o.scene;
   l.wav = o.wav;
   l.scene_settings.slab = o.slab;
+  l.scene_settings.device = o.device.value_or(0);
+  if (o.gain) l.gain = *o.gain;
   l.scene_settings.slab.quiet = l.quiet;
   l.scene_settings.pen_mass_kg = o.pen_mass;
   l.scene_settings.pen_modes = !o.no_pen;
