@@ -3,6 +3,7 @@
 // options that cannot apply to several devices, and both pens served to a VRPN client under
 // their scene names.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <atomic>
 #include <algorithm>
@@ -26,7 +27,8 @@ class HapticdDevices : public thx::test::HapticdProcessTest {
     json = slurp(path("s.json"));
     return r;
   }
-  // A hapticd serving `scene` over VRPN at `port` for `seconds`, once it says it serves `names`.
+  // A hapticd serving `scene` over VRPN at `port` for `seconds` (0: until stopped), once it says it
+  // serves `names`.
   pid_t serveOverVrpn(const std::string& scene, const std::string& seconds, std::uint16_t port,
                       const std::string& names) {
     const pid_t served = spawn({THX_HAPTICD, "--scene", std::string(THX_SOURCE_DIR) + "/" + scene, "--duration", seconds,
@@ -199,15 +201,23 @@ TEST_F(HapticdDevices, ADeviceThatNeverAnswersFaultsAloneAndTheOtherKeepsItsForc
 // the simulated pen beside it keeps its force.
 TEST_F(HapticdDevices, ADeviceThatStopsMidSessionFaultsAloneAndTheOtherKeepsItsForce) {
   const std::uint16_t port = sparePort();
-  // The served PHANToM: hapticd on the default scene for 1.5 s, then gone; listening before the
-  // session starts, so the far device answers from its start.
-  const pid_t served = serveOverVrpn("scenes/default.yaml", "1.5", port, "Phantom0");
+  // The served PHANToM: hapticd on the default scene until stopped, listening before the session
+  // starts, so the far device answers from its start.
+  const pid_t served = serveOverVrpn("scenes/default.yaml", "0", port, "Phantom0");
   ASSERT_GT(served, 0);
   std::ofstream(path("mixed.yaml")) << penBesideVrpn("Phantom0@tcp://127.0.0.1:" + std::to_string(port));
-  std::string json;
-  const ProcRun r = runRealTime(path("mixed.yaml"), "3", json);
+  // The session in the background: once it reports its first 2 s of ticks (however slowly it
+  // started), the served PHANToM is stopped, and the session goes on for the rest of its 6 s.
+  const pid_t session = spawn({THX_HAPTICD, "--scene", path("mixed.yaml"), "--duration", "6", "--no-lcm", "--no-mlock",
+                               "--stats-json", path("s.json"), "--flight-dir", path("")},
+                              path("session.out"), path("session.err"));
+  ASSERT_GT(session, 0);
+  EXPECT_TRUE(waitUntil([&] { return slurp(path("session.err")).find(" ticks (") != std::string::npos; }, 60))
+      << slurp(path("session.err"));
+  kill(served, SIGTERM);
   EXPECT_EQ(reap(served, 30), 0) << servedLog();
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(reap(session, 60), 0) << slurp(path("session.err"));
+  const std::string json = slurp(path("s.json"));
   const std::string pen = deviceEntry(json, "pen"), far = deviceEntry(json, "far");
   SCOPED_TRACE(json);
   expectPenUntouched(pen);
@@ -262,7 +272,8 @@ TEST_F(HapticdDevices, ARecordedSessionHoldsEveryPenInTickOrder) {
 // each touches the second server's bricks as its pen strokes or presses the first's.
 TEST_F(HapticdDevices, TwoPensBehindOneVrpnServerAreTwoDevicesOfAnother) {
   const std::uint16_t port = sparePort();
-  const pid_t served = serveOverVrpn("scenes/two_pens.yaml", "6", port, "left,right");
+  // Until stopped: the session below reads the pens while they stroke and press, however slowly it starts.
+  const pid_t served = serveOverVrpn("scenes/two_pens.yaml", "0", port, "left,right");
   ASSERT_GT(served, 0);
   const std::string at = "@tcp://127.0.0.1:" + std::to_string(port);
   std::ofstream(path("far.yaml")) << "version: 1\nname: two far pens\nsurface:\n  size: [0.2, 0.2]\n"
@@ -271,6 +282,7 @@ TEST_F(HapticdDevices, TwoPensBehindOneVrpnServerAreTwoDevicesOfAnother) {
                                      "  - {name: b, type: vrpn, address: right" + at + "}\n";
   std::string json;
   const ProcRun r = runRealTime(path("far.yaml"), "3", json);
+  kill(served, SIGTERM);
   EXPECT_EQ(reap(served, 30), 0) << servedLog();
   ASSERT_EQ(r.status, 0) << r.err;
   SCOPED_TRACE(json);
