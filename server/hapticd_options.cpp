@@ -15,21 +15,25 @@ namespace {
 const char* kHelp = R"(usage: hapticd --scene FILE [options]
 
 The haptic device server: renders the scene's textured surface to the device at 1 kHz and
-publishes device and contact state over LCM.
+publishes device and contact state over LCM. A scene that lists several devices (`devices:`)
+runs them all under one servo clock, each with its own proxy, safety stage and faults
+(docs/hapticd.md, "Several devices in one scene").
 
   --scene FILE          scene file (docs/scenes.md); e.g. scenes/default.yaml
   --scenes-dir DIR      where a client's scene switch (server_command_t ACTION_LOAD_SCENE, by
                         name) finds NAME.yaml (default: the folder of --scene; docs/hapticd.md)
   --device DEV          sim; vrpn:NAME@HOST[:PORT] or vrpn:NAME@tcp://HOST:PORT for a PHANToM
                         behind a VRPN server; replay:FILE to play a recorded session's pen
-                        trajectory back (--record)
-                        (docs/vrpn.md); default: the scene's device
+                        trajectory back (--record; device 0's of a log of several)
+                        (docs/vrpn.md); default: the scene's device; refused for a scene of
+                        several devices
   --duration S          run S seconds, then ramp down and stop (default for a simulated device:
                         its script plus 0.5 s; 0 = until SIGINT/SIGTERM)
   --lockstep            simulated or replayed device on a virtual clock: deterministic, runs as
                         fast as it can (and no tick is dropped on the way to --record)
-  --record FILE         write every tick's device and contact state to FILE, a standard LCM log
-                        (lcm-logplayer plays it; --device replay:FILE renders it again)
+  --record FILE         write every tick's device and contact state to FILE, a standard LCM log,
+                        of every device (lcm-logplayer plays it; --device replay:FILE renders it
+                        again)
   --stats-json FILE     write statistics (ticks, rate, missed ticks, latencies, memory) as JSON
   --lcm-url URL         LCM transport (default )" THX_DEFAULT_LCM_URL R"()
   --no-lcm              do not publish at all
@@ -76,14 +80,16 @@ publishes device and contact state over LCM.
   --mlock-eager         fault in and lock every mapped page at start (whole shared libraries);
                         default: lock pages as they are first touched (MCL_ONFAULT)
   --flight-dir DIR      where fault flight records go (default: ., the working folder; one CSV
-                        of the last second of ticks per written fault, flight-tick<N>-<fault>.csv)
-  --flight-max N        write at most N flight records per run (default 20; 0: none); later
-                        faults are counted in the statistics, not written
+                        of the last second of ticks per written fault, flight-tick<N>-<fault>.csv;
+                        with several devices flight-<device>-tick<N>-<fault>.csv)
+  --flight-max N        write at most N flight records per run and device (default 20; 0: none);
+                        later faults are counted in the statistics, not written
   --flight-interval S   write a flight record only S seconds of device time or more after the
                         fault of the last one written (default 10; 0: no rate cap)
   --vrpn-listen [ADDR:]PORT  serve the device to VRPN apps as a PHANToM on TCP+UDP PORT at ADDR
                         (default address 127.0.0.1; 0.0.0.0 for every interface; docs/vrpn.md)
-  --vrpn-name NAME      the served device's VRPN name (default Phantom0)
+  --vrpn-name NAME      the served device's VRPN name (default Phantom0); a scene of several
+                        devices serves each under its scene name, and refuses this option
   --vrpn-report-hz HZ   tracker/force report rate per VRPN client until it sends set_update_rate
                         (default: the servo rate)
   --vrpn-max-clients N  VRPN clients served at once (default 16)

@@ -115,8 +115,11 @@ TEST_F(VisualLiveHapticd, DrawsEveryPenOfATwoDeviceServer) {
     second += b > 60 && 2 * b > 3 * r;
   }
   std::printf("%s: %d px in device 0's colours, %d in device 1's\n", newest.c_str(), first, second);
-  EXPECT_GE(first, 12) << newest;  // VisualReplayPens: 14..41 px a pen in this view
-  EXPECT_GE(second, 12) << newest;
+  // Each pen is drawn in its colours. How many pixels depends on where each pen is when the newest
+  // frame is drawn, which depends on the scheduler (6 to 43 px seen; a held ball is half below the
+  // brick face), so only their presence is asserted; VisualReplayPens counts them deterministically.
+  EXPECT_GE(first, 1) << newest;
+  EXPECT_GE(second, 1) << newest;
 }
 
 TEST_F(VisualLiveHapticd, InAWindowUnderXvfb) {
