@@ -46,11 +46,12 @@ std::string configErrorOf(const std::function<void()>& f) {
 class DeviceClientTest : public ::testing::Test {
  protected:
   void SetUp() override { ASSERT_TRUE(lcm_.good()); }
-  std::unique_ptr<Client> makeClient(const std::string& id, int device) {
+  std::unique_ptr<Client> makeClient(const std::string& id, int device, bool every_device = false) {
     client::ClientOptions o;
     o.client_id = id;
     o.clock = [this] { return now_; };
     o.device = device;
+    o.every_device = every_device;
     return std::make_unique<Client>(lcm_, o);
   }
   void pump(Client& c) {
@@ -144,6 +145,37 @@ TEST_F(DeviceClientTest, AClientFollowingDeviceOneGetsOnlyDeviceOnes) {
   EXPECT_EQ(c->status(Stream::Contact)->messages, 3u);
   EXPECT_EQ(c->status(Stream::Contact)->other_device, 3u);
   EXPECT_EQ(c->counters().other_device, 6u);
+}
+
+// ClientOptions::every_device (the live audio client, which plays every pen): both devices'
+// batches reach the callback in the order they came, each counted as delivered, none as another
+// device's; the same traffic without the option delivers device 0's only.
+TEST_F(DeviceClientTest, EveryDeviceDeliversEveryDevicesBatches) {
+  test::FakeServer server(lcm_, 11, now_);
+  for (bool every : {true, false}) {
+    auto c = makeClient(every ? "audio" : "audio0", 0, every);
+    Seen batches;
+    c->onContactBatch([&](const thx_msgs::contact_batch_t& b, std::int64_t) { batches.emplace_back(b.device, b.seq); });
+    c->subscribe(Stream::Contact, 100.0, /*batch=*/true);
+    pump(*c);
+    ASSERT_TRUE(c->allActive());
+    for (std::int64_t seq = 1; seq <= 2; ++seq)
+      for (int device : {0, 1}) publish(*c, Stream::Contact, test::contactBatch(device, seq, (seq - 1) * 10));
+    pump(*c);
+    if (every) {
+      EXPECT_EQ(batches, (Seen{{0, 1}, {1, 1}, {0, 2}, {1, 2}}));
+      EXPECT_EQ(c->status(Stream::Contact)->messages, 4u);
+      EXPECT_EQ(c->status(Stream::Contact)->other_device, 0u);
+      EXPECT_EQ(c->counters().other_device, 0u);
+      EXPECT_EQ(c->latestContactBatch()->device, 1);  // the newest, whichever device's
+      EXPECT_EQ(c->latestContact()->p_proj_world[0], test::penX(1));
+    } else {
+      EXPECT_EQ(batches, (Seen{{0, 1}, {0, 2}}));
+      EXPECT_EQ(c->status(Stream::Contact)->messages, 2u);
+      EXPECT_EQ(c->status(Stream::Contact)->other_device, 2u);
+      EXPECT_EQ(c->latestContactBatch()->device, 0);
+    }
+  }
 }
 
 // The fake server's own ticks are device 0's (hapticd's publication path): a client following

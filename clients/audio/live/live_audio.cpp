@@ -11,6 +11,7 @@
 #include "base/error.hpp"
 #include "clients/audio/live/audio_output.hpp"
 #include "clients/audio/live/excitation_feed.hpp"
+#include "clients/audio/live/pen_feeds.hpp"
 #include "clients/audio/live/live_synth.hpp"
 #include "rt/clock.hpp"
 #include "thx_client/app.hpp"
@@ -55,7 +56,8 @@ client::AppOptions appOptions(const LiveOptions& o, const SurfaceSound& sound) {
   a.connect_timeout_s = o.connect_timeout_s;
   a.scene = client::SceneIdentity{sound.surface.scene_name, sound.surface.fingerprint};
   a.allow_different_scene = o.allow_different_scene;
-  a.client.device = o.scene_settings.device;  // the kit delivers this pen's batches only
+  a.client.device = o.scene_settings.device;  // the kit delivers this pen's batches only,
+  a.client.every_device = o.scene_settings.every_device;  // or every pen's
   return a;
 }
 
@@ -72,10 +74,13 @@ int runLive(const LiveOptions& o) {
   so.sample_rate_hz = settings.slab.sample_rate_hz;
   so.adapt_budget = o.adapt_budget;
   so.budget = o.budget;
+  // Each pen's batch queues its ticks' events in turn: order them over a batch's span, the micro
+  // level's tick before it and a tick of slack (live_synth.hpp).
+  so.order_window_ns = std::llround(1e9 / o.batch_hz) + 2'000'000;
   LiveSynth synth(so, clock);
   QueueSink sink(synth.queue());
-  ExcitationFeed feed(sink, settings.device);
-  feed.setSources(scene->sourcePointers());
+  PenFeeds feed(sink, settings.every_device ? std::nullopt : std::optional<int>(settings.device));
+  feed.setScene(*scene);
   std::size_t scene_modes = scene->synth->modes();  // every body's
   synth.offerScene(std::move(scene->synth));
 
@@ -152,7 +157,7 @@ int runLive(const LiveOptions& o) {
     if (app.client().sceneChanges() != scene_changes_seen && app.client().serverScene()) {
       scene_changes_seen = app.client().sceneChanges();
       wanted = *app.client().serverScene();
-      feed.setSources({});
+      feed.silence();
     }
     if (wanted && !building.valid()) {
       building_to = *wanted;
@@ -174,7 +179,7 @@ int runLive(const LiveOptions& o) {
         if (next->sound->surface.fingerprint != building_to.texture_fingerprint && !o.quiet)
           std::fprintf(stderr, "audio-client: warning: scene '%s' in %s has another texture than hapticd's; playing ours\n",
                        building_to.name.c_str(), o.scenes_dir.c_str());
-        feed.setSources(next->sourcePointers());
+        feed.setScene(*next);
         scene_modes = next->synth->modes();
         synth.offerScene(std::move(next->synth));
         scene = std::move(next);
@@ -190,7 +195,7 @@ int runLive(const LiveOptions& o) {
   if (latency.csv) std::fclose(latency.csv);
 
   const LiveSynthCounters& c = synth.counters();
-  const FeedCounters& f = feed.counters();
+  const FeedCounters f = feed.total();  // every pen's
   if (!o.quiet)
     std::fprintf(stderr,
                  "audio-client: live: %llu batches, %llu ticks, %llu events played (%llu late, %llu dropped), %llu blocks, "

@@ -20,7 +20,8 @@ namespace thx::audio {
 struct LiveSceneSettings {
   SlabSettings slab;
   int device = 0;                     // the pen played: this device's pen (device.pen) and mass
-  std::optional<double> pen_mass_kg;  // unset: that device's simulated mass
+  bool every_device = false;          // every device's pen, each its own (else `device`'s alone)
+  std::optional<double> pen_mass_kg;  // unset: each device's simulated mass
   bool pen_modes = true;              // the pen's own modes sound (else the slab and objects only)
   bool micro = true;                  // the micro level (the scene's surface.roughness)
   bool object_contacts = true;        // two objects rubbing (the micro level too: needs `micro`)
@@ -37,17 +38,19 @@ struct LiveScene {
   std::unique_ptr<SurfaceSound> sound;     // the sources point into it
   std::unique_ptr<SoundingScene> physics;  // the surface and the moving objects as ModalBodies
   std::unique_ptr<SynthScene> synth;       // taken by LiveSynth::offerScene
-  std::vector<std::unique_ptr<ExcitationSource>> sources;
-  int pen_body = -1;               // the pen's SynthScene body (-1: no pen modes)
+  std::vector<std::unique_ptr<ExcitationSource>> sources;  // the pens', in `devices` order, then the physics client's
+  std::vector<int> devices;        // the devices whose pens are played, ascending
+  std::vector<int> pen_bodies;     // by `devices` index: the pen's SynthScene body (-1: no pen modes)
   std::vector<int> object_bodies;  // by objects[] index (-1: fixed, or no audible mode)
   std::vector<ExcitationSource*> sourcePointers() const;
 };
 
-// Bodies: the surface slab (0), the pen (settings.device's `pen`, when it has audible modes; a
-// scene without that device is a Config error naming it), each moving object with audible modes.
-// Sources: the pen (hapticd's CONTACT: meso or relief impulses and the
-// micro level on the slab and the pen) and the physics client's streams (impacts, texel paths,
-// relief momentum changes on the slab and the objects). A muted scene (audio.mute) has the same
+// Bodies: the surface slab (0), the pens (settings.device's `pen`, or with every_device each
+// device's in index order, when it has audible modes; a scene without settings.device is a Config
+// error naming it), each moving object with audible modes. Sources: each pen (hapticd's CONTACT:
+// meso or relief impulses and the micro level on the slab and that pen, with its device's mass)
+// and the physics client's streams (impacts, texel paths, relief momentum changes on the slab and
+// the objects; an impact with the pen rings the first pen played). A muted scene (audio.mute) has the same
 // bodies, no sources and a muted SynthScene: the callback plays zeros while it is current.
 std::unique_ptr<LiveScene> buildLiveScene(const std::string& scene_file, const LiveSceneSettings& settings,
                                           std::uint32_t generation);

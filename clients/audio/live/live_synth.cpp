@@ -19,7 +19,9 @@ LiveSynth::LiveSynth(LiveSynthOptions options, rt::Clock& cost_clock)
       cost_clock_(cost_clock),
       queue_(options.queue_capacity),
       played_(options.played_capacity),
-      budget_(0, options.budget) {}
+      budget_(0, options.budget) {
+  due_.reserve(options.queue_capacity);  // process() inserts within this and never allocates
+}
 
 LiveSynth::~LiveSynth() = default;
 
@@ -42,6 +44,32 @@ void LiveSynth::collect() {
 
 bool LiveSynth::sceneCurrent() const {
   return !waiting_ && !offered_ && in_use_ && in_use_->generation() == newest_generation_.load(std::memory_order_relaxed);
+}
+
+void LiveSynth::takeEvents(std::int64_t horizon) {
+  if (!scene_) return;  // events wait in the queue for their scene
+  // A new scene: what was taken for an older one is stale.
+  const auto old = std::remove_if(due_.begin(), due_.end(),
+                                  [g = scene_->generation()](const ExcitationEvent& e) { return e.generation < g; });
+  add(counters_.stale_events, std::uint64_t(due_.end() - old));
+  due_.erase(old, due_.end());
+  while (due_.size() < due_.capacity()) {
+    const ExcitationEvent* e = queue_.front();
+    if (!e || e->generation > scene_->generation()) break;  // its scene is not here yet
+    const bool stale = e->generation < scene_->generation();  // dropped whenever it is due
+    if (!stale && sampleOf(e->time_ns) >= horizon) break;     // beyond the window: waits in the queue
+    ExcitationEvent next;
+    queue_.pop(next);
+    if (stale) {
+      add(counters_.stale_events);
+      continue;
+    }
+    // After every event due no later: one source's events keep their order, several sources'
+    // (pens, the physics client) are merged by time.
+    const auto at = std::upper_bound(due_.begin(), due_.end(), next.time_ns,
+                                     [](std::int64_t t, const ExcitationEvent& d) { return t < d.time_ns; });
+    due_.insert(at, next);
+  }
 }
 
 std::int64_t LiveSynth::sampleOf(std::int64_t time_ns) const {
@@ -90,6 +118,8 @@ void LiveSynth::process(std::span<float> out, std::int64_t block_start_ns) {
       ExcitationEvent stale;
       queue_.pop(stale);
     }
+    add(counters_.stale_events, due_.size());  // taken before the mute: older scenes'
+    due_.clear();
     std::fill(out.begin(), out.end(), 0.0f);
     stream_pos_ += n;
     add(counters_.blocks);
@@ -97,21 +127,15 @@ void LiveSynth::process(std::span<float> out, std::int64_t block_start_ns) {
     return;
   }
 
+  takeEvents(stream_pos_ + n + std::llround(double(options_.order_window_ns) * options_.sample_rate_hz / 1e9));
   std::int64_t pos = 0;
-  while (const ExcitationEvent* e = queue_.front()) {
-    if (!scene_ || e->generation > scene_->generation()) break;  // its scene is not here yet
-    if (e->generation < scene_->generation()) {
-      add(counters_.stale_events);
-      ExcitationEvent stale;
-      queue_.pop(stale);
-      continue;
-    }
+  std::size_t done = 0;  // due_[0, done) are played or expired
+  for (; done < due_.size(); ++done) {
+    const ExcitationEvent* e = &due_[done];
     const std::int64_t sample = sampleOf(e->time_ns) - stream_pos_;
     if (sample >= n) break;  // a later block's
     if (sample < -expire) {
       add(counters_.expired_events);
-      ExcitationEvent expired;
-      queue_.pop(expired);
       continue;
     }
     const std::int64_t at = std::max(sample, pos);
@@ -125,9 +149,8 @@ void LiveSynth::process(std::span<float> out, std::int64_t block_start_ns) {
     } else {
       add(counters_.bad_events);
     }
-    ExcitationEvent done;
-    queue_.pop(done);
   }
+  due_.erase(due_.begin(), due_.begin() + std::ptrdiff_t(done));
   if (pos < n) {
     if (scene_)
       scene_->render(out.subspan(std::size_t(pos)));

@@ -5,12 +5,18 @@
 //
 // Time: the first block anchors the stream (sample 0 = its start time); block k starts at
 // anchor + (samples so far) / fs, so events keep their spacing to the sample whatever the
-// callback's jitter. A block that starts more than `reanchor_ns` away from that (a stall, a
-// device restart) re-anchors the stream at its own start time. An event whose sample is past
-// sounds at the block's first sample (counted late), unless it is more than `expire_ns` late:
-// then it is dropped (counted expired) rather than heard in a burst with others; an event
-// beyond the block waits in the queue. While the current scene is muted (SynthScene::muted) every
-// block is zeros and nothing is struck.
+// callback's jitter. Events are played in time order although they are queued out of it (each pen
+// of several devices queues its batch's events in turn): the callback takes the queue's events due
+// before the block's end plus `order_window_ns` into a time-ordered list (as long as the queue,
+// reserved up front; equal times in queue order) and plays the block's from it. It stops at the
+// first event beyond that window, so the events queued behind it come in order as long as no two
+// events queued out of order lie further apart than the window (a batch's span plus a tick: the
+// live client sets it from its batch rate). A block that starts more than `reanchor_ns` away from
+// that (a stall, a device restart) re-anchors the stream at its own start time. An event whose
+// sample is past sounds at the block's first sample (counted late), unless it is more than
+// `expire_ns` late: then it is dropped (counted expired) rather than heard in a burst with others;
+// an event beyond the block waits (in that list or the queue). While the current scene is muted
+// (SynthScene::muted) every block is zeros and nothing is struck.
 //
 // Threads: one feed thread (queue().push, offerScene, collect, played().pop) and one audio thread
 // (process). The counters may be read from any thread.
@@ -19,6 +25,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "clients/audio/live/mode_budget.hpp"
 #include "clients/audio/synthesis/excitation.hpp"
@@ -35,6 +42,7 @@ struct LiveSynthOptions {
   std::size_t played_capacity = 65536;   // latency records kept for the feed thread
   std::int64_t reanchor_ns = 0;          // 0: two blocks
   std::int64_t expire_ns = 100'000'000;  // an event later than this is dropped (counted), not played
+  std::int64_t order_window_ns = 20'000'000;  // events are put in time order this far beyond a block
   bool adapt_budget = true;
   ModeBudgetOptions budget;
 };
@@ -84,6 +92,9 @@ class LiveSynth {
  private:
   std::int64_t sampleOf(std::int64_t time_ns) const;
   std::int64_t timeOf(std::int64_t sample) const;
+  // The queue's events of the current scene due before sample `horizon` into due_, in time order.
+  void takeEvents(std::int64_t horizon);
+
 
   LiveSynthOptions options_;
   rt::Clock& cost_clock_;
@@ -98,6 +109,7 @@ class LiveSynth {
 
   // Audio thread only.
   SynthScene* scene_ = nullptr;
+  std::vector<ExcitationEvent> due_;  // taken from the queue, not yet played: ordered by time_ns
   ModeBudget budget_{0};
   bool anchored_ = false;
   std::int64_t anchor_ns_ = 0, stream_pos_ = 0;

@@ -54,7 +54,7 @@ pen strikes its surface node nearest the tip along that node's outward normal, t
 client's contacts strike it at their points.
 
 Live (the default; docs/audio.md "Live audio"): hapticd's CONTACT stream, batched (every servo
-tick), of one pen (--device N, default 0; every pen is heard offline), through the client kit,
+tick), of every device's pen, mixed (--device N: pen N alone), through the client kit,
 and the physics client's THX_PHYSICS_POSES/IMPACT/CONTACTS. The events go through a lock-free
 queue to the audio callback, which places each at its sample (the tick's time plus the playout
 delay), renders the micro level sample by sample, and lowers the number of modes it synthesises
@@ -91,8 +91,8 @@ modal displacements as a 32-bit float WAV normalised to a peak of 0.5 (-6 dBFS),
   --sample-rate HZ       default 44100
   --tail S               offline: ring-out after the last tick (default 0.5)
   --device N             the pen of device N alone (its index in hello_t.device_names; offline:
-                         default every pen, mixed; the physics streams sound either way; live: the
-                         pen played, default 0)
+                         default every pen, mixed; the physics streams sound either way; live:
+                         likewise, default every pen the scene has, mixed)
   --gain G               offline: output = G x, x what the bodies' listeners hear (m^3), neither
                          normalised nor clamped (renders of one session at one gain compare sample
                          for sample: a pen alone against the mix); live: output = clamp(G x, -1, 1)
@@ -353,6 +353,7 @@ int run(Options o) {
   l.wav = o.wav;
   l.scene_settings.slab = o.slab;
   l.scene_settings.device = o.device.value_or(0);
+  l.scene_settings.every_device = !o.device;  // every pen unless --device names one
   if (o.gain) l.gain = *o.gain;
   l.scene_settings.slab.quiet = l.quiet;
   l.scene_settings.pen_mass_kg = o.pen_mass;

@@ -357,10 +357,11 @@ void Client::onDataBytes(const lcm::ReceiveBuffer* rbuf, const std::string& chan
     return false;
   };
   // Any device's message shows the subscription alive (the silence check); only the followed
-  // device's is delivered, the others' are counted (protocol 6: one channel, every device).
+  // device's is delivered (every device's with every_device), the others' are counted (protocol
+  // 6: one channel, every device).
   auto followed = [&](const auto& m) {
     e->last_data_ns = now;
-    if (m.device == options_.device) return true;
+    if (options_.every_device || m.device == options_.device) return true;
     ++e->status.other_device;
     ++counters_.other_device;
     return false;

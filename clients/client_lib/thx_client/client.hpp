@@ -23,7 +23,9 @@
 // on a server with several, each channel carries every device's messages, and only the followed
 // device's reach the callbacks, latest*() and StreamStatus::messages; the others are counted
 // (StreamStatus::other_device, counters().other_device). latestDeviceState(i) keeps every
-// device's newest state for a client of several pens (thx_client/devices.hpp).
+// device's newest state for a client of several pens (thx_client/devices.hpp). A client that
+// plays every pen (live audio) sets ClientOptions::every_device: then every device's messages are
+// delivered (each tagged with its `device`) and none is counted as another device's.
 //
 // Threads: poll()/service()/subscribe()/unsubscribe()/status()/sendCommand()/serverScene() belong
 // to one thread (callbacks run in it, inside poll()). latest*() may be called from any thread.
@@ -78,8 +80,8 @@ struct StreamStatus {
   std::string channel;       // from the reply
   std::string data_url;      // from the reply: the LCM URL the channel is on ("" = the bus)
   std::string reason;        // refusal, or what the server adjusted
-  std::uint64_t messages = 0;      // of the followed device: delivered
-  std::uint64_t other_device = 0;  // of other devices on this channel: counted, not delivered
+  std::uint64_t messages = 0;      // of the followed device (every device's with every_device): delivered
+  std::uint64_t other_device = 0;  // of other devices on this channel: counted, not delivered (0 with every_device)
 };
 
 struct ClientOptions {
@@ -93,6 +95,8 @@ struct ClientOptions {
                                              // a batch stream's is at least 1 s of its batches
   int device = 0;                            // the device followed: its index in hello_t.device_names,
                                              // 0..kMaxDevices-1 (ClientApp::waitForServer checks it)
+  bool every_device = false;                 // true: deliver every device's messages, not only `device`'s
+                                             // (latest*() then hold the newest of any device)
 };
 
 struct ClientCounters {

@@ -3,7 +3,8 @@
 // devices sends each subscriber every device's messages on its one channel, each tagged with
 // `device`, its index in hello_t.device_names ("Phantom0,Phantom1"). The kit's Client follows one
 // index (ClientOptions::device, 0 by default): the others' messages are counted, not delivered,
-// so a client written for one pen never sees two. docs/clients.md §3.4.
+// so a client written for one pen never sees two; a client that plays every pen asks for them all
+// (ClientOptions::every_device). docs/clients.md §3.4.
 #include <array>
 #include <cstdint>
 #include <mutex>
