@@ -20,6 +20,9 @@
 #              THX_RATES_LOADS (none,cpu2), THX_RATES_SPINS (0,150); about 3.5 min; then the
 #              texture's force error against the servo rate (bench_rate_texture, seconds); both
 #              tables go to docs/hapticd.md)
+#              or capsule (issue 30: the pen with extent's cost against its contacts on the default
+#              scene's bricks and a steep V-valley, upright, at 45 degrees and lying flat, beside the
+#              point pen; about 20 s; its table goes to docs/hapticd.md)
 #              or devices (issue 30: 1, 2 and 4 simulated devices under one servo clock beside
 #              cyclictest, the group's compute against one device's, and each device's force in the
 #              group against alone in lock-step; THX_DEVICES_SECONDS per count (15), THX_DEVICES
@@ -233,6 +236,14 @@ run_devices() {
   return $rc
 }
 
+run_capsule() {
+  need "$BIN/bench_capsule_tool" || return 1
+  say "part capsule: the pen with extent's cost against its contacts (about 20 s)"
+  "$BIN/bench_capsule_tool" --json "$RESULTS/bench_capsule_tool.json" --csv "$RESULTS/bench_capsule_tool.csv" \
+    --md "$WORK/bench_capsule_tool.md" > /dev/null || return 1
+  splice bench_capsule_tool "$WORK/bench_capsule_tool.md" "$ROOT/docs/hapticd.md"
+}
+
 run_clients() {
   need "$BIN/bench_clients" && need "$HAPTICD" && need "$BUILD/clients/probe/probe-client" || return 1
   say "part 5: 16 clients against hapticd (60 s), and hapticd alone before and after (30 s each)"
@@ -365,14 +376,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | table1 | mesh_force | physics_mesh | textured_pair | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | textured_pair | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices table1 mesh_force physics_mesh textured_pair report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh textured_pair report)"
       exit 2
       ;;
   esac

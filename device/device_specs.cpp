@@ -25,4 +25,12 @@ DeviceSpec phantomDesktopSpec() {
   return s;
 }
 
+DeviceSpec simulated6DofSpec() {
+  DeviceSpec s = phantomDesktopSpec();
+  s.model = "simulated_6dof";
+  s.peak_torque_nm = 0.2;
+  s.max_rot_stiffness_nm_per_rad = 2.0;
+  return s;
+}
+
 }  // namespace thx::dev

@@ -12,4 +12,9 @@ namespace thx::dev {
 // quoted vendor figure [unverified]. Physical damping is an assumption, see the .cpp.
 DeviceSpec phantomDesktopSpec();
 
+// A simulated 6-DOF pen for tests and benchmarks of torque (issue 30): the Desktop's force figures
+// with torque added. Its torque figures are this project's choice, of the order of a 6-DOF
+// PHANToM's (a few hundred mN·m), not a vendor's table.
+DeviceSpec simulated6DofSpec();
+
 }  // namespace thx::dev

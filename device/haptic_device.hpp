@@ -43,6 +43,11 @@ struct DeviceSpec {
   double workspace_radius_m = 0.0;
   double position_resolution_m = 0.0;
   double physical_damping_ns_per_m = 0.0;  // b of the passivity bound K <= 2 (b - |B|) / T
+  // Torque a 6-DOF device displays about its pen (0: force only, as every 3-DOF PHANToM), and the
+  // stiffest rotational coupling it renders stably. A pen with extent (server/capsule_tool.hpp)
+  // sends torque only to a device that has some.
+  double peak_torque_nm = 0.0;
+  double max_rot_stiffness_nm_per_rad = 0.0;
 };
 
 struct DeviceState {
