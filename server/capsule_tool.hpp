@@ -13,19 +13,19 @@
 //  1. The tool moves from where it was towards the device's pose as far as the surface lets it:
 //     contacts are found around the tool within the distance it may move (capsule_contacts.hpp), the
 //     closest allowed motion in the coupling's metric is solved (coupling_projection.hpp), and the
-//     contacts are found again at the new pose, kPasses times, so the rotation's linearisation
-//     does not leave the shaft in the surface.
+//     contacts are found again at the new pose, up to `passes` times (3; fewer once a pass barely
+//     moves the tool), so the rotation's linearisation does not leave the shaft in the surface.
 //  2. The coupling's wrench on the device: F = k (c_tool - c_device) + b (v_tool - v_device) and
 //     tau = k_rot rotvec(q_tool q_device^-1) + b_rot (w_tool - w_device), about the tool's centre.
 //     k and k_rot are capped by the device's stiffest stable values; b and b_rot critically damp the
-//     device's mass and inertia on them (b = 2 sqrt(k m)); damping acts on the relative motion, so a
-//     free pen feels nothing.
+//     device's mass and inertia on them (b = 2 sqrt(k m)), b held at the device's damping limit when
+//     that is lower; damping acts on the relative motion, so a free pen feels nothing.
 //  3. Ramped in over ramp_ticks from the first step (and after reset()), clamped to the device's
 //     peak force and torque (direction kept). A device without torque (peak_torque_nm = 0, every
 //     3-DOF PHANToM) is given the force only; the torque is still reported.
 //
 // Real-time safe: no allocation, no locks; the work is bounded by kMaxToolContacts contacts,
-// kPasses passes and the solver's sweeps. Plane-local computation, world-frame inputs and outputs.
+// `passes` passes and the solver's sweeps. Plane-local computation, world-frame inputs and outputs.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
