@@ -83,6 +83,7 @@ Row strokeCapsule(const std::string& surface_name, const std::string& pen_name, 
   config.length_m = 0.10;
   config.radius_m = 0.002;
   config.stiffness_n_per_m = 600.0;
+  config.damping_ns_per_m = 1.0;  // as hapticd on the default scene (device.damping)
   config.rot_stiffness_nm_per_rad = 0.5;
   const Eigen::Quaterniond q = penAt(tilt_rad);
   const Eigen::Vector3d axis = q * Eigen::Vector3d::UnitZ();

@@ -75,6 +75,8 @@ inline constexpr int kMaxPlanes = 4;
 
 struct DeviceCommand {
   Eigen::Vector3d force_world_n = Eigen::Vector3d::Zero();  // force-rendering devices
+  // A device that displays torque (DeviceSpec::peak_torque_nm > 0) renders it too; others ignore it.
+  Eigen::Vector3d torque_world_nm = Eigen::Vector3d::Zero();
   std::array<PlaneProxy, kMaxPlanes> planes{};               // plane-rendering devices
   int num_planes = 0;
   bool forces_enabled = false;  // false: output zero whatever the fields say

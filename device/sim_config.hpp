@@ -51,6 +51,10 @@ struct SimPhantomConfig {
   // a 600 N/m wall) and hold the pen above the floor of a deep valley.
   double hand_push_normal_stiffness_fraction = 0.1;
   Eigen::Isometry3d plane_to_world = Eigen::Isometry3d::Identity();  // local z = outward normal
+  // The pen's orientation, world frame, as the hand holds it: fixed (the simulated device is 3-DOF:
+  // it moves the tip and displays force only). The identity holds a pen with extent upright
+  // (server/capsule_tool.hpp: its shaft along +z).
+  Eigen::Quaterniond pen_orientation = Eigen::Quaterniond::Identity();
   // A curved surface the hand's script follows (hand_script.hpp): heights in plane_to_world's
   // frame (the script's). Not owned: it must outlive the device. nullptr: the plane z = 0.
   const SurfaceHeight* surface_height = nullptr;

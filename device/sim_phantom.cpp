@@ -146,6 +146,7 @@ DeviceState SimPhantom::readTick(const rt::TickTiming& timing) {
   const HandTarget target = script_.sample(t_s, config_.plane_to_world, config_.surface_height);
   out.p_world = count_m;
   out.v_world = v_estimate;
+  out.q_world = config_.pen_orientation;
   out.buttons = target.pressing ? 1u : 0u;
 
   const std::int64_t tick = out.timing.tick;

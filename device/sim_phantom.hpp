@@ -14,8 +14,9 @@
 //     period started, otherwise the watchdog's hold: x decay^n for n = 1..hold periods, then
 //     zero. The output is clipped to the spec's peak force (the motors saturate), direction kept;
 //  4. reading: each world axis rounded to the encoder resolution; velocity = (reading - previous
-//     reading) / elapsed time (a real driver's finite difference); identity orientation; button
-//     1 (bit 0) while the hand pushes; faults applied (SimFaults).
+//     reading) / elapsed time (a real driver's finite difference); the pen's fixed orientation
+//     (SimPhantomConfig::pen_orientation, identity by default); button 1 (bit 0) while the hand
+//     pushes; faults applied (SimFaults).
 // A write() answering tick k drives the period [t_k, t_k+1]: zero extra delay, the sampled-data
 // loop of the passivity analysis (b > K T / 2 + |B|).
 //

@@ -1,4 +1,4 @@
-// device: type, model, address, stiffness_fraction, damping, sim, script; devices: a list of them, each
+// device: type, model, address, stiffness_fraction, damping, sim, script, pen, tool; devices: a list of them, each
 // with a name (issue 30).
 #include "scenes/scene_sections.hpp"
 #include "scenes/vrpn_address.hpp"
@@ -43,6 +43,25 @@ SimDeviceParams parseSim(const Field& field) {
   return sim;
 }
 
+Tool parseTool(const Field& field) {
+  field.expectKeys({"shape", "length", "radius", "rot_stiffness"});
+  Tool tool;
+  if (auto f = field.find("shape")) tool.shape = f->choice<ToolShape>({{"point", ToolShape::Point}, {"capsule", ToolShape::Capsule}});
+  for (const char* key : {"length", "radius", "rot_stiffness"}) {
+    const auto f = field.find(key);
+    if (f && tool.shape == ToolShape::Point)
+      throw SceneError(f->keyLocation(), f->path(), "applies only to shape: capsule",
+                       "no '" + std::string(key) + "' for the point pen, or shape: capsule");
+  }
+  if (auto f = field.find("length")) tool.length_m = f->number(positiveUpTo(0.3, "m"));
+  if (auto f = field.find("radius")) tool.radius_m = f->number(positiveUpTo(0.01, "m"));
+  if (auto f = field.find("rot_stiffness")) tool.rot_stiffness_nm_per_rad = f->number(closedRange(0.0, 10.0, "N·m/rad"));
+  if (tool.length_m < 2 * tool.radius_m)
+    field.fail("the capsule is shorter than it is wide", "length >= 2 x radius",
+               formatNumber(tool.length_m) + " m long, radius " + formatNumber(tool.radius_m) + " m");
+  return tool;
+}
+
 void rejectForVrpn(const std::optional<Field>& field) {
   if (field)
     throw SceneError(field->keyLocation(), field->path(), "applies only to type: sim",
@@ -65,11 +84,19 @@ Device parseOneDevice(const std::optional<Field>& field, const Surface& surface,
   d.model = *findDeviceModel("phantom_desktop");
   d.pen.material = *findMaterial("plastic");
   if (!field) return d;
-  std::vector<std::string> keys = {"type", "model", "address", "stiffness_fraction", "damping", "sim", "script", "pen"};
+  std::vector<std::string> keys = {"type", "model", "address", "stiffness_fraction", "damping", "sim", "script", "pen", "tool"};
   if (named) keys.insert(keys.begin(), "name");  // only a `devices:` entry is named
   field->expectKeys(keys);
   if (const auto n = named ? field->find("name") : std::nullopt) d.name = parseDeviceName(*n);
   if (auto p = field->find("pen")) d.pen = parsePen(*p);
+  const auto tool = field->find("tool");
+  if (tool) d.tool = parseTool(*tool);
+  if (tool && d.tool.shape == ToolShape::Capsule && surface.representation == tex::Representation::Normal)
+    tool->find("shape")->fail("needs a relief (surface.representation: relief)",
+                              "shape: point on a normal map (a shaft rests on a relief's depth)");
+  if (tool && d.tool.shape == ToolShape::Capsule && surface.mesh)
+    tool->find("shape")->fail("applies only to a textured plane",
+                              "shape: point on a mesh surface (surface.mesh: the capsule's contacts are the plane's texels)");
   if (auto t = field->find("type"))
     d.type = t->choice<DeviceType>({{"sim", DeviceType::Sim}, {"vrpn", DeviceType::Vrpn}});
   if (auto m = field->find("model")) d.model = parseModel(*m);
@@ -82,6 +109,11 @@ Device parseOneDevice(const std::optional<Field>& field, const Surface& surface,
     d.address = parseAddress(*address);
     rejectForVrpn(field->find("sim"));
     rejectForVrpn(field->find("script"));
+    // A VRPN PHANToM renders the plane proxies it is sent (OutputMode::Planes); the capsule's
+    // coupling is a force (and torque) the server computes.
+    if (tool && d.tool.shape == ToolShape::Capsule)
+      tool->find("shape")->fail("applies only to type: sim",
+                                "shape: point with type: vrpn (a VRPN PHANToM renders the plane proxies it is sent)");
   } else if (address) {
     address->fail("applies only to type: vrpn", "no address with type: sim (the simulated device is in-process)", "");
   }

@@ -99,6 +99,18 @@ struct Pen {
   double tilt_deg = 30.0;
 };
 
+// device.tool (issue 30): what the servo renders the pen as. The point (the default) is the proxy of
+// docs/design.md; a capsule is the stylus with extent, its tip ball's centre at the device's point
+// and its shaft along the device orientation's +z, held by a 6-DOF virtual coupling
+// (server/capsule_tool.hpp). The coupling's stiffness is the device's (stiffness_fraction).
+enum class ToolShape { Point, Capsule };
+struct Tool {
+  ToolShape shape = ToolShape::Point;
+  double length_m = 0.10;                 // capsule: tip ball centre to the back end
+  double radius_m = 0.002;                // capsule
+  double rot_stiffness_nm_per_rad = 0.5;  // capsule: capped by a 6-DOF device's limit
+};
+
 // The simulated PHANToM and the hand holding it (docs/design.md §5: integrated far above the servo
 // rate so that instability stays possible).
 struct SimDeviceParams {
@@ -143,7 +155,8 @@ struct Device {
   double damping_ns_per_m = 0.0;    // virtual damping, at most model.max_damping_ns_per_m
   SimDeviceParams sim;              // Sim only
   std::vector<ScriptStep> script;   // Sim only
-  Pen pen;
+  Pen pen;    // its sound (clients/audio)
+  Tool tool;  // its touch (hapticd)
 
   double stiffnessNPerM() const { return stiffness_fraction * model.max_stiffness_n_per_m; }
 };

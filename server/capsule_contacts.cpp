@@ -117,6 +117,9 @@ bool nearestOfItsPatch(const SearchGrid& g, long long i, long long j, const Near
 // unless the axis is under that very texel (pushed through it: the plane pushes it back out).
 bool texelContact(const tex::TexturedSurface& surface, const CapsuleShape& cap, long long i, long long j,
                   ToolContact& contact) {
+  contact.has_texel = true;
+  contact.texel_i = i;
+  contact.texel_j = j;
   constexpr double kCreaseCos = 0.990268;  // 8 degrees, the point pen's crease angle (RendererConfig)
   const tex::TexelPoint p = surface.texelPoint(i, j);
   const Eigen::Vector3d s = cap.a + nearestOnSegment(cap.a, cap.b, p.q_local) * (cap.b - cap.a);
@@ -299,6 +302,27 @@ double ReliefBlockHeights::top(const tex::TexturedSurface& surface, long long bi
   const int ri = tex::resolveIndex(bi * kBlock, map.width(), address) / kBlock;
   const int rj = tex::resolveIndex(bj * kBlock, map.height(), address) / kBlock;
   return double(top_m_[std::size_t(rj) * std::size_t(blocks_x_) + std::size_t(ri)]);
+}
+
+constexpr double kCarriedPlaneTexels = 1.5;
+
+void addCarriedContact(const tex::TexturedSurface& surface, const CapsuleShape& capsule, long long i, long long j,
+                       ToolContacts& out) {
+  for (int k = 0; k < out.count; ++k) {
+    const ToolContact& c = out.c[std::size_t(k)];
+    if (c.has_texel && c.texel_i == i && c.texel_j == j) return;
+  }
+  // A texel's plane stands for the surface only near the texel: one the tool has left behind (the
+  // axis more than its radius and two texels away across the plane) is not carried.
+  const Eigen::Vector3d q = surface.texelCentre(i, j);
+  const Eigen::Vector3d s = capsule.a + nearestOnSegment(capsule.a, capsule.b, q) * (capsule.b - capsule.a);
+  if ((s - q).head<2>().norm() > capsule.radius_m + 2.0 * surface.texelSize()) return;
+  ToolContact contact;
+  if (!texelContact(surface, capsule, i, j, contact)) return;
+  // A smooth texel's plane is the surface only over the texel and its edge: carried beyond that (a
+  // ball gone over a crest) it would hold the tool above the far side.
+  if ((contact.point - q).head<2>().norm() > kCarriedPlaneTexels * surface.texelSize()) return;
+  offer(out, contact);
 }
 
 }  // namespace thx::srv

@@ -33,6 +33,10 @@ struct ToolContact {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();        // on the surface, where the force acts
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();      // unit, out of the surface into the tool
   double gap_m = 0.0;  // distance from the surface to the capsule along the normal (< 0: inside)
+  // A relief's texel the contact stands for (unwrapped indices), so the tool can carry it into the
+  // next pass (addCarriedContact()); none on a normal map.
+  bool has_texel = false;
+  long long texel_i = 0, texel_j = 0;
 };
 
 struct ToolContacts {
@@ -79,6 +83,15 @@ void findCapsuleContacts(const tex::TexturedSurface& surface, const CapsuleShape
 // it, one read a texel (the search for contacts reads nine for each texel within its margin).
 void findCapsuleClearance(const tex::TexturedSurface& surface, const CapsuleShape& capsule, double margin_m,
                           ToolContacts& out, const ReliefBlockHeights* blocks = nullptr);
+
+// The relief texel (i, j)'s contact with the capsule at its present pose, added to `out` unless a
+// contact of that texel is there already. The tool carries the contacts that held in its last
+// solve into the next pass this way: a ball in a rounded floor found one contact per feature, the
+// nearest texel, and with only that contact's plane it slid across the floor and back, a contact
+// a tick, a quarter millimetre each way (the stability map's smoothed 160 degree valleys: 0.2 N
+// of ripple); with the last solve's plane kept it rests between the two.
+void addCarriedContact(const tex::TexturedSurface& surface, const CapsuleShape& capsule, long long i, long long j,
+                       ToolContacts& out);
 
 // The point of segment [a, b] nearest to p, as its parameter in [0, 1].
 double nearestOnSegment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& p);

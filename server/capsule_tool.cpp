@@ -42,7 +42,8 @@ CapsuleTool::CapsuleTool(const tex::TexturedSurface& surface, const dev::DeviceS
   gains_.k_rot_nm_per_rad = displays_torque && device.max_rot_stiffness_nm_per_rad > 0.0
                                 ? std::min(config.rot_stiffness_nm_per_rad, device.max_rot_stiffness_nm_per_rad)
                                 : config.rot_stiffness_nm_per_rad;
-  b_ = 2.0 * config.damping_ratio * std::sqrt(gains_.k_n_per_m * config.device_mass_kg);
+  b_ = config.damping_ns_per_m ? *config.damping_ns_per_m
+                              : 2.0 * config.damping_ratio * std::sqrt(gains_.k_n_per_m * config.device_mass_kg);
   if (device.max_damping_ns_per_m > 0.0) b_ = std::min(b_, device.max_damping_ns_per_m);
   b_rot_ = 2.0 * config.damping_ratio * std::sqrt(gains_.k_rot_nm_per_rad * config.device_inertia_kgm2);
 }
@@ -50,6 +51,15 @@ CapsuleTool::CapsuleTool(const tex::TexturedSurface& surface, const dev::DeviceS
 void CapsuleTool::reset() {
   placed_ = false;
   ticks_ = 0;
+  carried_count_ = 0;
+}
+
+void CapsuleTool::carryActiveContacts() {
+  carried_count_ = 0;
+  for (int k = 0; k < solved_contacts_.count && carried_count_ < kMaxCarried; ++k) {
+    const ToolContact& c = solved_contacts_.c[std::size_t(k)];
+    if (c.has_texel && solved_.lambda_n[std::size_t(k)] > 0.0) carried_[std::size_t(carried_count_++)] = {c.texel_i, c.texel_j};
+  }
 }
 
 Eigen::Vector3d CapsuleTool::axisOf(const Eigen::Quaterniond& q_local) const { return q_local * Eigen::Vector3d::UnitZ(); }
@@ -73,6 +83,7 @@ void CapsuleTool::place(const Eigen::Vector3d& device_centre_local, const Eigen:
   if (lowest < config_.radius_m) centre_local_.z() += config_.radius_m - lowest;
   placed_ = true;
   ticks_ = 0;
+  carried_count_ = 0;
 }
 
 ToolOutput CapsuleTool::step(const dev::DeviceState& device) {
@@ -118,8 +129,11 @@ ToolOutput CapsuleTool::step(const dev::DeviceState& device) {
     const double clearance = std::max(0.0, std::min(contacts_.nearest_gap_m, reach));
     const double allowed = std::min({config_.max_step_m, reach, clearance + config_.min_reach_m});
     if (pass == config_.passes) break;  // the last search only measures where the tool ended
+    for (int k = 0; k < carried_count_; ++k)
+      addCarriedContact(*surface_, here, carried_[std::size_t(k)][0], carried_[std::size_t(k)][1], contacts_);
     solved_ = projectToolMotion(dx_target, dtheta_target, contacts_, centre_local_, gains_, config_.solver);
     solved_contacts_ = contacts_;
+    carryActiveContacts();
     out.solver_sweeps += solved_.sweeps;
     const double moved = solved_.dx.norm() + half_extent * solved_.dtheta.norm();
     const double cut = moved > allowed ? allowed / moved : 1.0;
@@ -184,6 +198,30 @@ ToolOutput CapsuleTool::step(const dev::DeviceState& device) {
   for (int i = 0; i < final_contacts.count; ++i)
     if (settled ? solved_.lambda_n[std::size_t(i)] > 0.0 : final_contacts.c[std::size_t(i)].gap_m <= skin) ++out.contacts;
   out.in_contact = out.contacts > 0;
+  return out;
+}
+
+RenderOutput CapsuleTool::renderOutput(const ToolOutput& tool, const dev::DeviceState& device) const {
+  RenderOutput out;
+  out.in_contact = tool.in_contact;
+  out.proxy_held = tool.in_contact;
+  out.force_world = tool.force_world;
+  out.proxy_world = tool.tool_tip_world;
+  const Eigen::Vector3d tip_local = surface_->toLocal(tool.tool_tip_world);
+  const tex::SurfacePoint under = surface_->at(tip_local.x(), tip_local.y());
+  out.p_proj_world = surface_->toWorld({tip_local.x(), tip_local.y(), 0.0});
+  out.uv = under.uv;
+  long long i = 0, j = 0;
+  surface_->texelContaining(tip_local.x(), tip_local.y(), i, j);
+  out.texel = {int(std::clamp(i, -(1LL << 30), 1LL << 30)), int(std::clamp(j, -(1LL << 30), 1LL << 30))};
+  out.n_geom_world = surface_->directionToWorld(Eigen::Vector3d::UnitZ());
+  out.n_sampled_world = surface_->directionToWorld(under.n_local);
+  out.relief_depth_m = -under.height_m;
+  out.f_normal_n = tool.contact_force_world.dot(out.n_geom_world);
+  out.depth_m = std::max(0.0, (tool.tool_tip_world - device.p_world).dot(out.n_geom_world));
+  out.v_tangent_world = device.v_world - device.v_world.dot(out.n_geom_world) * out.n_geom_world;
+  out.tangent_world = surface_->directionToWorld(Eigen::Vector3d::UnitX());
+  out.bitangent_world = surface_->directionToWorld(Eigen::Vector3d::UnitY());
   return out;
 }
 

@@ -18,8 +18,9 @@
 //  2. The coupling's wrench on the device: F = k (c_tool - c_device) + b (v_tool - v_device) and
 //     tau = k_rot rotvec(q_tool q_device^-1) + b_rot (w_tool - w_device), about the tool's centre.
 //     k and k_rot are capped by the device's stiffest stable values; b and b_rot critically damp the
-//     device's mass and inertia on them (b = 2 sqrt(k m)), b held at the device's damping limit when
-//     that is lower; damping acts on the relative motion, so a free pen feels nothing.
+//     device's mass and inertia on them (b = 2 sqrt(k m)), or b is the configured damping
+//     (damping_ns_per_m: hapticd's choice), b held at the device's damping limit when that is
+//     lower; damping acts on the relative motion, so a free pen feels nothing.
 //  3. Ramped in over ramp_ticks from the first step (and after reset()), clamped to the device's
 //     peak force and torque (direction kept). A device without torque (peak_torque_nm = 0, every
 //     3-DOF PHANToM) is given the force only; the torque is still reported.
@@ -28,10 +29,13 @@
 // `passes` passes and the solver's sweeps. Plane-local computation, world-frame inputs and outputs.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
+#include <optional>
 
 #include "device/haptic_device.hpp"
 #include "server/capsule_contacts.hpp"
 #include "server/coupling_projection.hpp"
+#include "server/proxy_renderer.hpp"
 #include "textures/textured_surface.hpp"
 
 namespace thx::srv {
@@ -46,6 +50,12 @@ struct CapsuleToolConfig {
   double device_mass_kg = 0.045;
   double device_inertia_kgm2 = 2e-5;
   double damping_ratio = 1.0;
+  // Set: the coupling's damping (N s/m) instead of damping_ratio's, still capped by the device's
+  // limit. hapticd sets the scene's virtual damping (device.damping, as the point pen's spring):
+  // critical damping of 45 g on 600 N/m is 10.4 N s/m, held at the Desktop's 5, and 5 N s/m on the
+  // velocity of quantised encoders (one 23 um count a 1 ms tick is 23 mm/s) buzzes 0.24 N p-p at
+  // rest in the stability map's V-valleys (docs/hapticd.md).
+  std::optional<double> damping_ns_per_m;
   int ramp_ticks = 500;  // 0.5 s at 1 kHz
   double period_s = 1e-3;
   int passes = 3;
@@ -79,6 +89,12 @@ class CapsuleTool {
   CapsuleTool(const tex::TexturedSurface& surface, const dev::DeviceSpec& device, const CapsuleToolConfig& config);
 
   ToolOutput step(const dev::DeviceState& device);
+  // The tick as the point pen's renderer reports it, for the servo's record and the clients (the
+  // tool's tip stands for the proxy): the force, the tip, where on the texture the tip is over,
+  // the contacts' force along the surface normal, the spring's length along it, and the device's
+  // velocity along the surface (the tool slides with it). No plane proxies: the servo sends the
+  // force. Real-time safe.
+  RenderOutput renderOutput(const ToolOutput& tool, const dev::DeviceState& device) const;
   // Forget the tool: the next step puts it at the device's pose (or as near as the surface lets it
   // from above) and ramps in again.
   void reset();
@@ -112,6 +128,12 @@ class CapsuleTool {
   Eigen::Quaterniond q_local_ = Eigen::Quaterniond::Identity();
   ToolContacts contacts_;
   ToolContacts solved_contacts_;
+  // The texels whose contacts held (multiplier > 0) in the last solve, carried into the next
+  // pass's contacts (addCarriedContact()).
+  static constexpr int kMaxCarried = 8;
+  std::array<std::array<long long, 2>, kMaxCarried> carried_{};
+  int carried_count_ = 0;
+  void carryActiveContacts();
   PoseStep solved_;
 };
 

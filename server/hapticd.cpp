@@ -86,7 +86,8 @@ int run(const thx::srv::HapticdOptions& o) {
     srv::ServoRigConfig wiring = first->devices[i].wiring;
     wiring.missed_mode = o.missed_mode;
     rigs.push_back(std::make_unique<srv::ServoRig>(*devices.devices[i].device, first->surface.surface, wiring,
-                                                   first->devices[i].mesh_renderer.get()));
+                                                   first->devices[i].mesh_renderer.get(),
+                                                   first->devices[i].tool.get()));
   }
   srv::ServoRig& rig0 = *rigs[0];
 

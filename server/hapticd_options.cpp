@@ -285,7 +285,8 @@ ScenePolicy scenePolicy(const HapticdOptions& o) {
           .crease = o.crease,
           .passivity = o.passivity,
           .strict_stability = o.strict_stability,
-          .paper_loop_plane_hz = paper_loop_plane_hz};
+          .paper_loop_plane_hz = paper_loop_plane_hz,
+          .device_renders_planes = startsWith(o.device, "vrpn:")};
 }
 
 SceneSwitcherOptions sceneSwitcherOptions(const HapticdOptions& o) {

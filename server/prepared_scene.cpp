@@ -30,9 +30,26 @@ PreparedDevice prepareDevice(const scene::Scene& one, const dev::DeviceSpec& spe
   d.wiring.passivity = policy.passivity;
   if (policy.paper_loop_plane_hz) applyPaperLoop(d.wiring, *policy.paper_loop_plane_hz);
 
+  const scene::Device& device = scene::deviceAt(one, 0);
+  const bool capsule = device.tool.shape == scene::ToolShape::Capsule;
+  const std::string field = who.empty() ? "device.tool" : "device " + who + ": tool";
+  if (capsule && policy.paper_loop_plane_hz)
+    throw configError(p.path, field + ": capsule: --paper-loop renders the point pen; run without it, or shape: point");
+  if (capsule && policy.device_renders_planes)
+    throw configError(p.path, field + ": capsule: the device renders the plane proxies it is sent (--device vrpn:), "
+                                      "and the capsule's coupling is a force the server computes; shape: point");
+  if (capsule && !p.surface.surface.usesRelief())
+    throw configError(p.path, field + ": capsule needs a relief; the surface's texture holds normals only (no "
+                                      "alpha depth): a relief map (RGBA), or shape: point");
+  if (capsule) {
+    d.tool = std::make_unique<CapsuleTool>(p.surface.surface, spec,
+                                           capsuleToolConfigFor(device.tool, rc, d.wiring.period_s));
+  }
+
   StabilityRequest sr;
-  sr.stiffness_fraction = rc.stiffness_n_per_m / spec.max_stiffness_n_per_m;
-  sr.virtual_damping_ns_per_m = rc.damping_ns_per_m;
+  sr.stiffness_fraction = (d.tool ? d.tool->stiffness() : rc.stiffness_n_per_m) / spec.max_stiffness_n_per_m;
+  // The coupling's damping is the virtual damping the device renders with a capsule.
+  sr.virtual_damping_ns_per_m = d.tool ? d.tool->damping() : rc.damping_ns_per_m;
   sr.period_s = d.wiring.period_s;
   sr.policy = policy.strict_stability ? BoundPolicy::Strict : BoundPolicy::Warn;
   d.budget = checkStabilityBudget(spec, sr);
@@ -41,15 +58,17 @@ PreparedDevice prepareDevice(const scene::Scene& one, const dev::DeviceSpec& spe
     for (const std::string& e : d.budget.errors) all += (all.empty() ? "" : "; ") + e;
     throw configError(p.path, who.empty() ? all : "device " + who + ": " + all);
   }
-  // The servo's passivity observer takes the renderer's stiffness as its K: checked here, off
-  // the servo thread, as the controller's constructor would.
-  servoPassivityConfig(spec, d.wiring.period_s, rc.stiffness_n_per_m, policy.passivity).validate();
+  // The servo's passivity observer takes the renderer's stiffness (the coupling's, with a capsule)
+  // as its K: checked here, off the servo thread, as the controller's constructor would.
+  const double stored_energy_k = d.tool ? d.tool->stiffness() : rc.stiffness_n_per_m;
+  servoPassivityConfig(spec, d.wiring.period_s, stored_energy_k, policy.passivity).validate();
   if (p.mesh) d.mesh_renderer = buildMeshRenderer(*p.mesh, p.surface.surface, rc);
 
   d.swap.surface = &p.surface.surface;
   d.swap.renderer = rc;
-  d.swap.stored_energy_stiffness_n_per_m = rc.stiffness_n_per_m;
+  d.swap.stored_energy_stiffness_n_per_m = stored_energy_k;
   d.swap.mesh = d.mesh_renderer.get();
+  d.swap.tool = d.tool.get();
   return d;
 }
 

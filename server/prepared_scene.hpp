@@ -13,6 +13,7 @@
 #include "device/haptic_device.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_surface.hpp"
+#include "server/capsule_tool.hpp"
 #include "server/mesh_scene.hpp"
 #include "server/servo.hpp"
 #include "server/servo_rig.hpp"
@@ -29,6 +30,9 @@ struct ScenePolicy {
   // --paper-loop [--plane-rate HZ]: the source paper's loop (server/paper_loop.hpp) with one
   // plane per this many hertz; overrides crease and passivity.
   std::optional<double> paper_loop_plane_hz;
+  // --device vrpn:ADDRESS: the device renders the plane proxies it is sent (OutputMode::Planes), so
+  // a scene's capsule tool (device.tool), a force the server computes, is refused.
+  bool device_renders_planes = false;
 };
 
 // One device's part of a prepared scene: what its servo renders the scene with.
@@ -38,7 +42,10 @@ struct PreparedDevice {
   // A mesh scene: the renderer this device's servo runs on the mesh (it keeps the device's proxy,
   // so each device has its own); else null.
   std::unique_ptr<TexturedMeshRenderer> mesh_renderer;
-  SurfaceSwap swap;  // points into the scene's `surface` and `mesh_renderer`
+  // device.tool: capsule: the pen with extent this device's servo renders (server/capsule_tool.hpp),
+  // on the scene's surface; else null (the point pen).
+  std::unique_ptr<CapsuleTool> tool;
+  SurfaceSwap swap;  // points into the scene's `surface`, `mesh_renderer` and `tool`
 };
 
 struct PreparedScene {
@@ -59,7 +66,7 @@ struct PreparedScene {
 // spec per scene device). Throws thx::Error naming the scene file: a spec count that differs from
 // the scene's devices, the texture's errors, the mesh's, a smoothing the server cannot do, a
 // device's stability budget the policy refuses (naming the device when there are several), the
-// paper's loop on a mesh. `mesh`: the scene's mesh if the caller has built it already (hapticd
+// paper's loop on a mesh or with a capsule tool, a capsule tool on a device that renders planes. `mesh`: the scene's mesh if the caller has built it already (hapticd
 // does, for the simulated hand), else it is built here.
 std::unique_ptr<PreparedScene> prepareScene(const scene::Scene& scene, const std::string& path,
                                             const std::vector<dev::DeviceSpec>& specs, const ScenePolicy& policy,

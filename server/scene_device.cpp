@@ -110,6 +110,18 @@ ServoRigConfig servoRigConfigFor(const scene::Scene& s) {
   return c;
 }
 
+CapsuleToolConfig capsuleToolConfigFor(const scene::Tool& tool, const RendererConfig& renderer, double period_s) {
+  CapsuleToolConfig c;
+  c.length_m = tool.length_m;
+  c.radius_m = tool.radius_m;
+  c.rot_stiffness_nm_per_rad = tool.rot_stiffness_nm_per_rad;
+  c.stiffness_n_per_m = renderer.stiffness_n_per_m;
+  c.damping_ns_per_m = renderer.damping_ns_per_m;
+  c.period_s = period_s;
+  c.ramp_ticks = int(std::lround(0.5 / period_s));
+  return c;
+}
+
 SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device_option,
                             const std::string& vrpn_address, bool lockstep, const dev::SurfaceHeight* hand_surface,
                             std::int64_t spin_ns) {

@@ -10,6 +10,7 @@
 #include "device/sim_config.hpp"
 #include "device/surface_height.hpp"
 #include "scenes/scene.hpp"
+#include "server/capsule_tool.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/servo_rig.hpp"
 
@@ -62,5 +63,10 @@ RendererConfig rendererConfigFor(const scene::Scene& scene);
 // the passivity controller on with the quantisation play, one second of flight record, a
 // 1024-record (1 s) tick ring.
 ServoRigConfig servoRigConfigFor(const scene::Scene& scene);
+
+// A capsule tool (device.tool: capsule) for a servo at period_s: the scene's shape and turning
+// stiffness, the renderer's stiffness and virtual damping as the coupling's (a device caps them
+// again), its ramp 0.5 s.
+CapsuleToolConfig capsuleToolConfigFor(const scene::Tool& tool, const RendererConfig& renderer, double period_s);
 
 }  // namespace thx::srv

@@ -22,10 +22,11 @@ void put(double (&dst)[3], const Eigen::Vector3d& v) {
 
 Servo::Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityController& passivity,
              SafetyStage& safety, FlightRecorder& recorder, rt::SpscRing<TickRecord>& out, const ServoConfig& config,
-             TexturedMeshRenderer* mesh)
+             TexturedMeshRenderer* mesh, CapsuleTool* tool)
     : device_(device),
       renderer_(renderer),
       mesh_(mesh),
+      tool_(tool),
       passivity_(passivity),
       safety_(safety),
       recorder_(recorder),
@@ -64,10 +65,24 @@ const TickRecord& Servo::step(const dev::DeviceState& state) {
   const MissedTickDecision gap = missed_policy_.observe(state.timing.missed, state.p_world, r.valid);
   if (gap.fault) faults |= kFaultMissedTicks;
   Eigen::Vector3d f_render = Eigen::Vector3d::Zero();
+  Eigen::Vector3d tau_render = Eigen::Vector3d::Zero();
   RenderOutput out;  // no planes unless rendered
   if (r.valid) {
     invalid_run_ = 0;
-    out = mesh_ ? mesh_->render(state.p_world, state.v_world) : renderer_.render(state.p_world, state.v_world);
+    if (tool_) {
+      const ToolOutput tool = tool_->step(state);
+      out = tool_->renderOutput(tool, state);
+      tau_render = tool.torque_world;
+      r.tool = true;
+      r.tool_q_world[0] = tool.tool_orientation_world.w();
+      r.tool_q_world[1] = tool.tool_orientation_world.x();
+      r.tool_q_world[2] = tool.tool_orientation_world.y();
+      r.tool_q_world[3] = tool.tool_orientation_world.z();
+      r.tool_contacts = tool.contacts;
+      r.tool_penetration_m = tool.penetration_m;
+    } else {
+      out = mesh_ ? mesh_->render(state.p_world, state.v_world) : renderer_.render(state.p_world, state.v_world);
+    }
     f_render = out.force_world;
     r.in_contact = out.in_contact;
     r.recovering = out.recovering;
@@ -131,7 +146,7 @@ const TickRecord& Servo::step(const dev::DeviceState& state) {
   const Eigen::Vector3d f_env = !r.valid               ? Eigen::Vector3d::Zero()
                                 : device_renders_planes ? Eigen::Vector3d(f_client + f_external)
                                                         : Eigen::Vector3d(f_render + f_client + f_external);
-  if (!f_env.allFinite()) faults |= kFaultNonFiniteForce;
+  if (!f_env.allFinite() || !tau_render.allFinite()) faults |= kFaultNonFiniteForce;
   if (gap.action == MissedTickAction::RideThrough) {
     // The device went on pushing with its held force over the gap: the observer books that work,
     // and the force returns from what the pen last felt, within the safety stage's rate limit.
@@ -163,20 +178,26 @@ const TickRecord& Servo::step(const dev::DeviceState& state) {
   if (safety_.flags() & kSafetyBudgetExhausted) faults |= kFaultForceBudget;
   passivity_.recordAppliedForce(f_out);
 
+  // The torque follows the force's engage and shutdown ramps, and stops with it.
+  const bool force_allowed = !(safety_.flags() & (kSafetyDisengaged | kSafetyShutDown | kSafetyNonFinite));
+  const Eigen::Vector3d tau_out = force_allowed && r.valid && tau_render.allFinite()
+                                      ? Eigen::Vector3d(tau_render * (scene_gain * safety_.gain()))
+                                      : Eigen::Vector3d::Zero();
+
   dev::DeviceCommand command;
   command.force_world_n = f_out;
+  command.torque_world_nm = tau_out;
   if (device_renders_planes) {
     // Planes only while the safety stage lets forces through (engaged or ramping).
-    const bool allowed = !(safety_.flags() & (kSafetyDisengaged | kSafetyShutDown | kSafetyNonFinite));
-    command.forces_enabled = allowed;
-    command.num_planes = allowed ? out.num_planes : 0;
+    command.forces_enabled = force_allowed;
+    command.num_planes = force_allowed ? out.num_planes : 0;
     command.planes = out.planes;
     for (dev::PlaneProxy& plane : command.planes) {
       plane.k_n_per_m *= scene_gain;
       plane.b_ns_per_m *= scene_gain;
     }
   } else {
-    command.forces_enabled = f_out.squaredNorm() > 0.0;
+    command.forces_enabled = f_out.squaredNorm() > 0.0 || tau_out.squaredNorm() > 0.0;
   }
   device_.write(command);
 
@@ -185,6 +206,8 @@ const TickRecord& Servo::step(const dev::DeviceState& state) {
   put(r.f_external, f_external);
   put(r.f_passive, f_passive);
   put(r.f_out, f_out);
+  put(r.tau_render, tau_render);
+  put(r.tau_out, tau_out);
   r.pc_energy_j = passivity_.energy();
   r.pc_damping_ns_per_m = passivity_.alpha();
   r.safety_flags = safety_.flags();
@@ -217,7 +240,9 @@ const TickRecord& Servo::step(const dev::DeviceState& state) {
 }
 
 void Servo::resetRenderer() {
-  if (mesh_) {
+  if (tool_) {
+    tool_->reset();
+  } else if (mesh_) {
     mesh_->reset();
   } else {
     renderer_.reset();
@@ -243,6 +268,7 @@ double Servo::stepSceneSwitch() {
   if (switch_phase_ == SwitchPhase::RampDown) {
     if (switch_tick_ < n) return 1.0 - smooth(switch_tick_);
     mesh_ = swap_next_->mesh;
+    tool_ = swap_next_->tool;
     if (mesh_ == nullptr) renderer_.retarget(*swap_next_->surface, swap_next_->renderer);
     passivity_.setStoredEnergyStiffness(swap_next_->stored_energy_stiffness_n_per_m);
     passivity_.reset();

@@ -12,7 +12,13 @@
 //    passivity controller -> safety stage -> write. Safety is always last and always on.
 //  - Render: the plane's renderer (proxy_renderer.hpp, the fast path), or, while the scene's
 //    surface is a textured mesh, that scene's mesh renderer (textured_mesh_renderer.hpp), built
-//    and owned off this thread like the scene's texture. One branch chooses; nothing else differs.
+//    and owned off this thread like the scene's texture; or, for a pen with extent (a scene's
+//    device.tool: capsule), that scene's capsule tool (capsule_tool.hpp), built and owned the same
+//    way. One branch chooses; nothing else differs but the torque.
+//  - Torque (the capsule on a device that displays it): the coupling's torque, clamped by the tool
+//    to the device's peak, times the scene's gain and the safety stage's gain (its engage and
+//    shutdown ramps), and zero whenever the safety stage lets no force through. The passivity
+//    controller and the safety stage's force limits act on the force only.
 //  - Missed-cycle policy: the pacer realigns to the next period (no catch-up burst); while the
 //    servo is away the device holds its last force with decay (its own watchdog). What a gap
 //    does then is MissedTickPolicy's decision (server/missed_tick_policy.hpp): ride through it
@@ -38,6 +44,7 @@
 #include "server/missed_tick_policy.hpp"
 #include "rt/handoff.hpp"
 #include "rt/latest_slot.hpp"
+#include "server/capsule_tool.hpp"
 #include "server/external_effects.hpp"
 #include "server/passivity.hpp"
 #include "server/proxy_renderer.hpp"
@@ -69,6 +76,9 @@ struct SurfaceSwap {
   // servo renders it instead of the plane until the next swap. nullptr: the plane's renderer,
   // retargeted at `surface` with `renderer`.
   TexturedMeshRenderer* mesh = nullptr;
+  // A scene whose device has a capsule tool: that tool, fresh, owned by the builder like `mesh`;
+  // the servo renders it instead of the plane's renderer until the next swap.
+  CapsuleTool* tool = nullptr;
 };
 
 // What a client (the physics client) asks the servo to add to the rendered force.
@@ -118,9 +128,10 @@ struct ServoCounters {
 class Servo {
  public:
   // `mesh`: the first scene's mesh renderer (a mesh scene), else nullptr: the plane's `renderer`.
+  // `tool`: the first scene's capsule tool (device.tool: capsule), else nullptr: the point pen.
   Servo(dev::HapticDevice& device, ProxyRenderer& renderer, PassivityController& passivity, SafetyStage& safety,
         FlightRecorder& recorder, rt::SpscRing<TickRecord>& out, const ServoConfig& config,
-        TexturedMeshRenderer* mesh = nullptr);
+        TexturedMeshRenderer* mesh = nullptr, CapsuleTool* tool = nullptr);
 
   // One tick. Returns this tick's record (valid until the next call).
   const TickRecord& tick() { return step(device_.read()); }
@@ -152,6 +163,8 @@ class Servo {
   const MissedTickPolicy& missedTickPolicy() const { return missed_policy_; }
   // The mesh renderer in use (a mesh scene), else nullptr (the plane). Servo thread, or stopped.
   const TexturedMeshRenderer* meshRenderer() const { return mesh_; }
+  // The capsule tool in use (device.tool: capsule), else nullptr. Servo thread, or stopped.
+  const CapsuleTool* capsuleTool() const { return tool_; }
   // The renderer in use forgets its proxy (after a bad reading; a rig's reset). Servo thread, or stopped.
   void resetRenderer();
 
@@ -165,6 +178,7 @@ class Servo {
   dev::HapticDevice& device_;
   ProxyRenderer& renderer_;
   TexturedMeshRenderer* mesh_ = nullptr;  // renders instead of renderer_ while set
+  CapsuleTool* tool_ = nullptr;           // renders instead of both while set
   PassivityController& passivity_;
   SafetyStage& safety_;
   FlightRecorder& recorder_;

@@ -16,7 +16,7 @@ ServoConfig servoConfigFor(const dev::DeviceSpec& spec, const ServoRigConfig& c)
 }  // namespace
 
 ServoRig::ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surface, const ServoRigConfig& config,
-                   TexturedMeshRenderer* mesh)
+                   TexturedMeshRenderer* mesh, CapsuleTool* tool)
     : config_(config),
       renderer_(surface, config.renderer),
       passivity_(passivityFor(device.spec(), config)),
@@ -24,7 +24,7 @@ ServoRig::ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surfac
       recorder_(config.flight_record_ticks),
       ring_(config.ring_records),
       servo_(device, renderer_, passivity_, safety_, recorder_, ring_, servoConfigFor(device.spec(), config),
-             mesh) {}
+             mesh, tool) {}
 
 const TickRecord& ServoRig::tickAndDrain() {
   const TickRecord& r = servo_.tick();

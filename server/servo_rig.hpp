@@ -43,8 +43,9 @@ class ServoRig {
  public:
   // `mesh`: a mesh scene's renderer, which the servo renders instead of the plane's (servo.hpp);
   // `surface` then only seeds the plane's renderer, unused until a switch to a plane scene.
+  // `tool`: a capsule tool (device.tool: capsule; it must outlive the rig), rendered instead of both.
   ServoRig(dev::HapticDevice& device, const tex::TexturedSurface& surface, const ServoRigConfig& config,
-           TexturedMeshRenderer* mesh = nullptr);
+           TexturedMeshRenderer* mesh = nullptr, CapsuleTool* tool = nullptr);
   ServoRig(const ServoRig&) = delete;
   ServoRig& operator=(const ServoRig&) = delete;
 

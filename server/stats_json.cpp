@@ -35,6 +35,7 @@ void writeStatsJson(const std::string& path, const RunSummary& s, const LatencyH
   std::fprintf(f, "  \"mode\": \"%s\",\n", s.lockstep ? "lockstep" : "realtime");
   std::fprintf(f, "  \"crease_handling\": %s,\n  \"passivity_control\": %s,\n", s.crease ? "true" : "false",
                s.passivity ? "true" : "false");
+  std::fprintf(f, "  \"pen_tool\": \"%s\",\n", json::escaped(s.tool).c_str());
   std::fprintf(f, "  \"stiffness_n_per_m\": %.6g,\n", s.stiffness_n_per_m);
   std::fprintf(f, "  \"ticks\": %llu,\n", (unsigned long long)s.ticks);
   std::fprintf(f, "  \"rate_hz\": %.3f,\n", achievedRate(s));
@@ -141,9 +142,11 @@ void printSummary(std::FILE* out, const RunSummary& s, const LatencyHistogram& c
                  (unsigned long long)d.passivity_active_ticks, d.compute_p99_us);
   }
   if (!s.devices.empty()) std::fprintf(out, "  device 0's details:\n");
-  std::fprintf(out, "  contact          %llu ticks; max force %.3f N (stiffness %.0f N/m, crease %s, passivity %s)\n",
-               (unsigned long long)s.servo.contact_ticks, s.servo.max_force_n, s.stiffness_n_per_m,
-               s.crease ? "on" : "off", s.passivity ? "on" : "off");
+  // A capsule meets creases with its own contacts: the point renderer's crease handling is not its.
+  const std::string pen = s.tool == "point" ? std::string("crease ") + (s.crease ? "on" : "off") : s.tool + " tool";
+  std::fprintf(out, "  contact          %llu ticks; max force %.3f N (stiffness %.0f N/m, %s, passivity %s)\n",
+               (unsigned long long)s.servo.contact_ticks, s.servo.max_force_n, s.stiffness_n_per_m, pen.c_str(),
+               s.passivity ? "on" : "off");
   std::fprintf(out, "  safety           peak-clamped %llu, rate-limited %llu, continuous-limited %llu ticks\n",
                (unsigned long long)s.safety.peak_clamped, (unsigned long long)s.safety.rate_limited,
                (unsigned long long)s.safety.continuous_limited);
@@ -186,6 +189,11 @@ void addServoSummary(RunSummary& s, const ServoRig& rig) {
   s.passivity_active_ticks = rig.passivity().activeTicks();
   s.passivity_dissipated_j = rig.passivity().dissipatedEnergy();
   s.crease = rig.config().renderer.crease_handling;
+  if (const CapsuleTool* tool = servo.capsuleTool()) {
+    char text[64];
+    std::snprintf(text, sizeof text, "capsule %g x %g mm", tool->config().length_m * 1e3, tool->config().radius_m * 1e3);
+    s.tool = text;
+  }
   s.passivity = rig.config().passivity;
   s.stiffness_n_per_m = rig.config().renderer.stiffness_n_per_m;
 }

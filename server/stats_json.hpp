@@ -31,6 +31,7 @@ struct RunSummary {
   bool lockstep = false;
   bool crease = true;
   bool passivity = true;
+  std::string tool = "point";  // what the servo renders the pen as: "point", or "capsule L x R mm"
   double stiffness_n_per_m = 0.0;
   std::uint64_t ticks = 0;
   double device_time_s = 0.0;  // first to last deadline (+ one period): the device's own clock

@@ -64,6 +64,13 @@ struct TickRecord {
   std::uint32_t scene_swaps = 0;  // swaps applied since start; this tick is the first on the new
                                   // surface when it is one more than the last tick's
   double scene_gain = 1.0;        // the switch ramp on the scene's force (1: no switch under way)
+  // A pen with extent (device.tool: capsule; server/capsule_tool.hpp); zero for the point pen.
+  bool tool = false;             // the capsule rendered this tick (proxy_world is its tip's centre)
+  double tool_q_world[4] = {1, 0, 0, 0};  // the tool's orientation, w, x, y, z
+  std::int32_t tool_contacts = 0;
+  double tool_penetration_m = 0.0;
+  double tau_render[3] = {};     // N m, the coupling's torque for the device (0: it shows none)
+  double tau_out[3] = {};        // what the device was told: tau_render x the scene's and the safety stage's gains
 };
 
 }  // namespace thx::srv

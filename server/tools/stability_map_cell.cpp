@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -45,6 +46,15 @@ struct HandField {
 };
 
 }  // namespace
+
+const char* penToolName(PenTool tool) {
+  switch (tool) {
+    case PenTool::Point: return "point";
+    case PenTool::Capsule: return "capsule";
+    case PenTool::CapsuleAcross: return "capsule-across";
+  }
+  return "?";
+}
 
 std::string Mitigations::name() const {
   if (paper_loop) return smoothing ? "paper+smoothing" : "paper";
@@ -104,8 +114,26 @@ CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const
   result.params = params;
   result.floor_height_m = surface.at(aim_x, 0.0).height_m;
 
+  const bool capsule = setup.tool != PenTool::Point;
+  if (capsule && (params.mitigations.crease || params.mitigations.paper_loop))
+    throw thx::Error(thx::Error::Kind::Config, "simulateCell: mitigations '" + params.mitigations.name() +
+                                                   "': a capsule takes none, passivity and smoothing only");
+  if (capsule && !params.relief)
+    throw thx::Error(thx::Error::Kind::Config, "simulateCell: a capsule needs the relief representation");
   dev::SimPhantomConfig sim = simConfigFor(setup.hand);
-  sim.plane_to_world = Eigen::Translation3d(0.0, 0.0, result.floor_height_m);  // the hand's frame: the floor
+  if (setup.tool == PenTool::CapsuleAcross)  // the shaft along -x from the tip, level
+    sim.pen_orientation = Eigen::Quaterniond(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Eigen::Vector3d::UnitY()));
+  // The hand's frame: where the pen's point rests, so that the hand's spring pulls no harder on
+  // one pen than another: the floor for the point; a capsule's ball centre r / sin(half the
+  // opening) above it upright, in contact with both walls; lying across, the radius above the
+  // crests. (Anchored at the floor, the default hand's normal spring, 30 N/m, pulled the ball
+  // 4 mm above a 60 degree floor down with 0.12 N more than the point pen felt, and 2 N pushes
+  // reached the continuous-force limit inside the window.)
+  double rest_m = result.floor_height_m;
+  if (setup.tool == PenTool::Capsule)
+    rest_m += setup.capsule_radius_m / std::sin(0.5 * params.angle_deg * std::numbers::pi / 180.0);
+  if (setup.tool == PenTool::CapsuleAcross) rest_m += valley.depth_m + setup.capsule_radius_m;
+  sim.plane_to_world = Eigen::Translation3d(0.0, 0.0, rest_m);
   dev::HandScriptOptions hand_options;
   hand_options.hover_height_m = setup.hover_m;
   dev::HandScript script({dev::HandHold{setup.settle_s}, dev::HandPress{{aim_x, 0.0}, params.push_force_n, setup.duration_s}},
@@ -124,6 +152,16 @@ CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const
     rig_options.passivity = false;
     rig_options.recovery_ticks = 0;
     rig_options.plane_hold_ticks = planeHoldTicks(1e9 / double(sim.servo_period_ns), setup.plane_rate_hz);
+  }
+  if (capsule) {
+    CapsuleToolConfig tool;
+    tool.length_m = setup.capsule_length_m;
+    tool.radius_m = setup.capsule_radius_m;
+    tool.damping_ns_per_m = setup.virtual_damping_ns_per_m;  // as hapticd (capsuleToolConfigFor)
+    tool.stiffness_n_per_m = result.stiffness_n_per_m;
+    tool.period_s = double(sim.servo_period_ns) * 1e-9;
+    tool.ramp_ticks = int(std::lround(0.5 / tool.period_s));  // as hapticd (capsuleToolConfigFor)
+    rig_options.capsule = tool;
   }
   SimRig rig(surface, sim, std::move(script), rig_options);
   const dev::SimDynamics dynamics(sim);

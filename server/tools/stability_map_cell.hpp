@@ -10,12 +10,14 @@
 // The hand's frame is put at the valley floor (relief) or on the plane (normal map, whose surface
 // is the plane itself), so "press" means press into the floor: a hand frame on the plane would
 // hang the pen in the air above the floor of a deep relief valley, and nothing would be measured.
+// A capsule's hand frame is where its point (the tip ball's centre) rests on the relief instead.
 // The hand aims aim_offset_m beside the floor line: a hand never aims exactly at a crease, and a
 // tip exactly on it would sample the two walls' average (a flat normal) and never feel either.
 #include <functional>
 #include <string>
 
 #include "device/sim_phantom.hpp"
+#include "server/capsule_tool.hpp"
 #include "server/proxy_renderer.hpp"
 #include "server/tick_record.hpp"
 #include "server/tools/stability_map_metrics.hpp"
@@ -52,6 +54,13 @@ HandParams lightGripHand();  // docs/stability.md: fingertips only, holding the 
 // "default" or "light"; throws thx::Error (Config) otherwise.
 HandParams handByName(const std::string& name);
 
+// What the pen is (issue 30): the point (the plane-proxy renderer), or a capsule
+// (server/capsule_tool.hpp) held upright, its tip's ball in the valley, or lying across the
+// ridges (its shaft along -x from the tip, the hand holding it level). The simulated Desktop shows
+// force only, so a capsule's torque steers the tool and is not displayed.
+enum class PenTool { Point, Capsule, CapsuleAcross };
+const char* penToolName(PenTool tool);  // "point", "capsule", "capsule-across"
+
 struct CellSetup {
   ValleyGeometry geometry;
   HandParams hand = defaultHand();
@@ -65,6 +74,9 @@ struct CellSetup {
   double duration_s = 3.0;
   double window_s = 1.0;
   Thresholds thresholds;
+  PenTool tool = PenTool::Point;
+  double capsule_length_m = 0.10;  // scenes' device.tool defaults
+  double capsule_radius_m = 0.002;
 };
 
 struct CellParams {
@@ -89,6 +101,7 @@ using TraceFn = std::function<void(const TickRecord&, const dev::SimTruth&)>;
 dev::SimPhantomConfig simConfigFor(const HandParams& hand);
 
 // `valley` must be the map for params.angle_deg with params.mitigations.smoothing. Deterministic.
+// A capsule takes no crease handling and no paper loop (they are the point renderer's): thx::Error.
 CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const CellSetup& setup,
                         const TraceFn& trace = {});
 

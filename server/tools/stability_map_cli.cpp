@@ -35,8 +35,15 @@ Axes (comma-separated lists; default: the full map):
                           still apply
 
 Setup:
+  --tool T                the pen: point (default; the plane-proxy renderer), capsule (a pen
+                          with extent, 100 mm x 2 mm, held upright: its tip's ball in the
+                          valley) or capsule-across (the same lying level across the ridges);
+                          a capsule renders through a 6-DOF virtual coupling (docs/hapticd.md)
+                          on relief maps only, and takes the mitigations none, passivity,
+                          smoothing and passivity+smoothing (those four by default)
   --hand NAME             default (scenes/default.yaml) or light (light grip, docs/stability.md)
-  --damping B             renderer virtual damping, N s/m (default 1.0, as the scenes)
+  --damping B             renderer virtual damping, N s/m (default 1.0, as the scenes): the
+                          point pen's spring's, or the capsule's coupling's
   --recovery-ticks N      renderer recovery ramp, ticks (default 10 = hapticd; 0 = off; the
                           paper's loop has none)
   --plane-rate HZ         planes per second in the paper's loop (default 100)
@@ -140,6 +147,17 @@ bool parseCommandLine(int argc, char** argv, CliOptions& o) {
       }
     } else if (a == "--mitigations") {
       for (const std::string& p : split(value())) explicit_axes.mitigations.push_back(parseMitigations(p));
+    } else if (a == "--tool") {
+      const std::string name = value();
+      if (name == "point") {
+        o.setup.tool = PenTool::Point;
+      } else if (name == "capsule") {
+        o.setup.tool = PenTool::Capsule;
+      } else if (name == "capsule-across") {
+        o.setup.tool = PenTool::CapsuleAcross;
+      } else {
+        throw UsageError{a + ": expected point, capsule or capsule-across, got '" + name + "'"};
+      }
     } else if (a == "--quick") {
       o.quick = true;
     } else if (a == "--hand") {
@@ -205,6 +223,24 @@ bool parseCommandLine(int argc, char** argv, CliOptions& o) {
   if (!explicit_axes.stiffness_fractions.empty()) o.axes.stiffness_fractions = explicit_axes.stiffness_fractions;
   if (!explicit_axes.push_forces_n.empty()) o.axes.push_forces_n = explicit_axes.push_forces_n;
   if (!explicit_axes.relief.empty()) o.axes.relief = explicit_axes.relief;
+  if (o.setup.tool != PenTool::Point) {
+    // The crease handling and the paper's loop are the point renderer's; a capsule meets creases
+    // with its own contacts (server/capsule_contacts.hpp).
+    for (const Mitigations& m : explicit_axes.mitigations) {
+      if (m.crease || m.paper_loop)
+        throw UsageError{"--mitigations: '" + m.name() + "' with --tool " + penToolName(o.setup.tool) +
+                         ": a capsule takes none, passivity, smoothing and passivity+smoothing"};
+    }
+    for (const bool relief : explicit_axes.relief) {
+      if (!relief)
+        throw UsageError{std::string("--representations: normal with --tool ") + penToolName(o.setup.tool) +
+                         ": a capsule rests on a relief's depth (a normal map's planes move with the tool)"};
+    }
+    o.axes.relief = {true};
+    if (explicit_axes.mitigations.empty())
+      o.axes.mitigations = {Mitigations{}, Mitigations{false, true, false, false}, Mitigations{false, false, true, false},
+                            Mitigations{false, true, true, false}};
+  }
   if (!explicit_axes.mitigations.empty()) o.axes.mitigations = explicit_axes.mitigations;
   return true;
 }

@@ -87,11 +87,16 @@ int run(const CliOptions& o) {
   writeJson(base + ".json", o, results);
   writeCsv(base + ".csv", results);
   if (o.picture) {
-    char subtitle[256];
+    // A capsule first (the picture is as wide as the map): which pen, then the rest.
+    char pen[96] = "";
+    if (o.setup.tool != PenTool::Point)
+      std::snprintf(pen, sizeof pen, "pen: %s, %g x %g mm; ", penToolName(o.setup.tool), o.setup.capsule_length_m * 1e3,
+                    o.setup.capsule_radius_m * 1e3);
+    char subtitle[352];
     std::snprintf(subtitle, sizeof subtitle,
-                  "hand '%s' (%.3g kg, %.3g N/m, %.3g N s/m); B %.3g N s/m; recovery %d ticks; smoothing sigma %.3g "
+                  "%shand '%s' (%.3g kg, %.3g N/m, %.3g N s/m); B %.3g N s/m; recovery %d ticks; smoothing sigma %.3g "
                   "texels; window: last %.3g of %.3g s",
-                  o.setup.hand.name.c_str(), o.setup.hand.mass_kg, o.setup.hand.stiffness_n_per_m,
+                  pen, o.setup.hand.name.c_str(), o.setup.hand.mass_kg, o.setup.hand.stiffness_n_per_m,
                   o.setup.hand.damping_ns_per_m, o.setup.virtual_damping_ns_per_m, o.setup.recovery_ticks,
                   o.setup.geometry.smoothing_sigma_texels, o.setup.window_s, o.setup.duration_s);
     writeHeatmap(base + ".png", o.axes, results, subtitle);

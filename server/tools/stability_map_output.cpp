@@ -123,6 +123,10 @@ std::string setupJson(const CellSetup& s, double max_stiffness_fraction) {
     << "    \"renderer\": {\"virtual_damping_ns_per_m\": " << num(s.virtual_damping_ns_per_m)
     << ", \"recovery_ticks\": " << s.recovery_ticks << ", \"ridges\": \"" << (s.sided_ridges ? "sided" : "blend")
     << "\"},\n"
+    << "    \"pen\": {\"tool\": " << json::quoted(penToolName(s.tool));
+  if (s.tool != PenTool::Point)
+    o << ", \"capsule_length_m\": " << num(s.capsule_length_m) << ", \"capsule_radius_m\": " << num(s.capsule_radius_m);
+  o << "},\n"
     << "    \"stability_budget\": " << budgetJson(s, max_stiffness_fraction) << ",\n"
     << "    \"script\": {\"aim_offset_m\": " << num(s.aim_offset_m) << ", \"hover_m\": " << num(s.hover_m)
     << ", \"settle_s\": " << num(s.settle_s) << ", \"duration_s\": " << num(s.duration_s)

@@ -29,7 +29,8 @@ SimRig::SimRig(const tex::TexturedSurface& surface, const dev::SimPhantomConfig&
   c.quantisation_play = true;  // as hapticd
   c.flight_record_ticks = kFlightRecordTicks;
   c.ring_records = kRingRecords;
-  rig_ = std::make_unique<ServoRig>(*device_, surface, c);
+  if (options.capsule) tool_ = std::make_unique<CapsuleTool>(surface, sim.spec, *options.capsule);
+  rig_ = std::make_unique<ServoRig>(*device_, surface, c, nullptr, tool_.get());
   device_->open();
 }
 

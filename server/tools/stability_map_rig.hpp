@@ -1,6 +1,7 @@
 #pragma once
 // The whole servo pipeline around a simulated PHANToM, wired as hapticd wires it (server/hapticd.cpp):
-// SimPhantom (lock-step) -> Servo { ProxyRenderer -> PassivityController -> SafetyStage } -> SimPhantom.
+// SimPhantom (lock-step) -> Servo { ProxyRenderer (or a CapsuleTool) -> PassivityController -> SafetyStage }
+// -> SimPhantom.
 // The stability map and its tests drive it one tick at a time and read the simulator's ground truth
 // beside the tick record, so what they measure is what the pen really did, not what the encoders said.
 //
@@ -8,9 +9,11 @@
 // on its own VirtualClock and nothing reads the wall clock except the servo's latency statistics,
 // which the analysis ignores.
 #include <memory>
+#include <optional>
 
 #include "device/hand_script.hpp"
 #include "device/sim_phantom.hpp"
+#include "server/capsule_tool.hpp"
 #include "server/servo_rig.hpp"
 #include "textures/textured_surface.hpp"
 
@@ -24,6 +27,9 @@ struct RigOptions {
   bool passivity = true;
   int plane_hold_ticks = 1;  // RendererConfig::plane_hold_ticks (the paper's loop)
   bool sided_ridges = RendererConfig{}.sided_ridges;  // false: issue 3's blended ridges (--ridges blend)
+  // A pen with extent: the servo renders this capsule tool (on the device's spec) instead of the
+  // plane-proxy renderer. Its stiffness should be stiffness_n_per_m (the passivity observer's K).
+  std::optional<CapsuleToolConfig> capsule;
 };
 
 class SimRig {
@@ -47,6 +53,7 @@ class SimRig {
  private:
   double period_s_;
   std::unique_ptr<dev::SimPhantom> device_;
+  std::unique_ptr<CapsuleTool> tool_;  // RigOptions::capsule
   std::unique_ptr<ServoRig> rig_;
 };
 

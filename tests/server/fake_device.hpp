@@ -14,9 +14,11 @@ class FakeDevice final : public dev::HapticDevice {
  public:
   using Script = std::function<void(std::int64_t tick, dev::DeviceState& state)>;
 
-  explicit FakeDevice(Script script, std::size_t reserve_writes = 100000)
-      : script_(std::move(script)), spec_(dev::phantomDesktopSpec()) {
+  explicit FakeDevice(Script script, std::size_t reserve_writes = 100000,
+                      const dev::DeviceSpec& spec = dev::phantomDesktopSpec())
+      : script_(std::move(script)), spec_(spec) {
     writes_.reserve(reserve_writes);
+    torque_writes_.reserve(reserve_writes);
   }
 
   const dev::DeviceSpec& spec() const override { return spec_; }
@@ -40,15 +42,18 @@ class FakeDevice final : public dev::HapticDevice {
   }
   void write(const dev::DeviceCommand& command) override {
     if (writes_.size() < writes_.capacity()) writes_.push_back(command.force_world_n);
+    if (torque_writes_.size() < torque_writes_.capacity()) torque_writes_.push_back(command.torque_world_nm);
   }
 
   const std::vector<Eigen::Vector3d>& writes() const { return writes_; }
+  const std::vector<Eigen::Vector3d>& torqueWrites() const { return torque_writes_; }
 
  private:
   Script script_;
   dev::DeviceSpec spec_;
   std::int64_t tick_ = 0;
   std::vector<Eigen::Vector3d> writes_;
+  std::vector<Eigen::Vector3d> torque_writes_;
 };
 
 }  // namespace thx::test
