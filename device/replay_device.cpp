@@ -5,6 +5,21 @@
 
 namespace thx::dev {
 
+namespace {
+
+// The sample's pose and buttons; its velocities only while it is moving (a held or finished pen
+// is at rest).
+void show(DeviceState& s, const ReplaySample& m, bool moving, bool valid) {
+  s.p_world = m.p_world;
+  s.q_world = m.q_world;
+  s.v_world = moving ? m.v_world : Eigen::Vector3d::Zero();
+  s.w_world = moving ? m.w_world : Eigen::Vector3d::Zero();
+  s.buttons = m.buttons;
+  s.valid = valid;
+}
+
+}  // namespace
+
 ReplayDevice::ReplayDevice(std::vector<ReplaySample> samples, DeviceSpec spec, ReplayOptions options)
     : samples_(std::move(samples)),
       spec_(std::move(spec)),
@@ -21,6 +36,7 @@ ReplayDevice::ReplayDevice(std::vector<ReplaySample> samples, DeviceSpec spec, R
 
 void ReplayDevice::open() {
   next_ = 0;
+  group_started_ = false;
   if (!options_.lockstep) pacer_.start();
 }
 
@@ -48,14 +64,26 @@ DeviceState ReplayDevice::read() {
     if (s.timing.missed > 0) next_ += std::size_t(s.timing.missed);  // keep wall-clock time
   }
   const bool have = next_ < samples_.size();
-  const ReplaySample& m = have ? samples_[next_] : samples_.back();
-  s.p_world = m.p_world;
-  s.q_world = m.q_world;
-  s.v_world = have ? m.v_world : Eigen::Vector3d::Zero();
-  s.w_world = have ? m.w_world : Eigen::Vector3d::Zero();
-  s.buttons = m.buttons;
-  s.valid = have;
+  show(s, have ? samples_[next_] : samples_.back(), have, have);
   ++next_;
+  return s;
+}
+
+DeviceState ReplayDevice::readTick(const rt::TickTiming& timing) {
+  DeviceState s;
+  s.timing = timing;
+  if (!group_started_) {
+    tick_offset_ = samples_.front().tick - timing.tick;
+    group_started_ = true;
+  }
+  const std::int64_t recorded = timing.tick + tick_offset_;
+  while (next_ < samples_.size() && samples_[next_].tick < recorded) ++next_;  // the group missed periods
+  const bool have = next_ < samples_.size();
+  const bool recorded_here = have && samples_[next_].tick == recorded;
+  // A tick the recording lacks holds the sample before it (the first one before any).
+  show(s, !have ? samples_.back() : recorded_here || next_ == 0 ? samples_[next_] : samples_[next_ - 1], recorded_here,
+       have);
+  if (recorded_here) ++next_;
   return s;
 }
 

@@ -11,6 +11,11 @@
 //    recording: replay is deterministic and reproduces the missed-tick policy too.
 //  - real time: read() paces on the period (Pacer on the monotonic clock); a tick the replay
 //    misses skips that many samples, so the trajectory keeps wall-clock time.
+//  - under another clock (several devices' group, server/servo_group.hpp; readTick()): the group's
+//    first tick plays the first sample, and group tick t the sample recorded t ticks after it. A
+//    tick the recording lacks (a missed tick while recording: every device of a group missed it
+//    alike) holds the last sample, valid: the group's clock cannot miss it again. A group's
+//    missed periods skip samples, as in real time.
 // After the last sample read() keeps returning it with valid = false and finished() is true.
 // Nothing allocates after the constructor.
 #include <cstdint>
@@ -46,6 +51,8 @@ class ReplayDevice final : public HapticDevice {
   void open() override;
   void close() override {}
   DeviceState read() override;
+  bool sharesClock() const override { return true; }
+  DeviceState readTick(const rt::TickTiming& timing) override;
   void write(const DeviceCommand& command) override;
 
   bool finished() const { return next_ >= samples_.size(); }
@@ -62,6 +69,9 @@ class ReplayDevice final : public HapticDevice {
   rt::VirtualClock virtual_;
   rt::Pacer pacer_;
   std::size_t next_ = 0;
+  // readTick(): the recorded tick minus the group's, set at the first readTick after open().
+  bool group_started_ = false;
+  std::int64_t tick_offset_ = 0;
   std::uint64_t writes_ = 0;
 };
 

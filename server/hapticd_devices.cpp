@@ -56,8 +56,10 @@ void checkOptionsForDevices(const HapticdOptions& o, const scene::Scene& sc) {
   const std::size_t count = scene::deviceCount(sc);
   if (count > 1) {
     const std::string many = "the scene lists " + std::to_string(count) + " devices: ";
-    if (!o.device.empty())
-      throw configError(sc, many + "--device replaces a scene's one device; give each device's sim or vrpn in the scene");
+    // A recorded session of several devices replays them all, device i from the log's device i.
+    if (!o.device.empty() && o.device.rfind("replay:", 0) != 0)
+      throw configError(sc, many + "--device replaces a scene's one device; give each device's sim or vrpn in the scene "
+                                   "(--device replay:FILE replays a session of as many devices)");
     if (o.vrpn_name_given)
       throw configError(sc, many + "--vrpn-name names one device; with several each is served under its scene name");
   }
@@ -80,7 +82,13 @@ HapticdDevices makeHapticdDevices(const HapticdOptions& o, const scene::Scene& s
     const std::string vrpn_address = vrpnAddress(o, isVrpn(one.device) ? one.device.address : std::string());
     const bool replay = o.device.rfind("replay:", 0) == 0;
     if (hand_surface && !replay && vrpn_address.empty()) checkScriptOnMesh(one, *hand_surface);
-    out.devices.push_back(makeSceneDevice(one, o.device, vrpn_address, o.lockstep, hand_surface, o.spin_ns));
+    try {
+      out.devices.push_back(makeSceneDevice(one, o.device, vrpn_address, o.lockstep, hand_surface, o.spin_ns, int(i)));
+    } catch (const thx::Error& e) {
+      if (count == 1 || !replay) throw;
+      throw thx::Error(e.kind(), "device " + one.device.name + " (" + std::to_string(i) + " of the scene's " +
+                                     std::to_string(count) + "): " + e.what());
+    }
     out.specs.push_back(out.devices.back().device->spec());
     out.names.push_back(one.device.name);
     out.sources.push_back(vrpn_address.empty() ? "sim" : vrpn_address);  // a replay too, as before

@@ -24,9 +24,9 @@ runs them all under one servo clock, each with its own proxy, safety stage and f
                         name) finds NAME.yaml (default: the folder of --scene; docs/hapticd.md)
   --device DEV          sim; vrpn:NAME@HOST[:PORT] or vrpn:NAME@tcp://HOST:PORT for a PHANToM
                         behind a VRPN server; replay:FILE to play a recorded session's pen
-                        trajectory back (--record; device 0's of a log of several)
-                        (docs/vrpn.md); default: the scene's device; refused for a scene of
-                        several devices
+                        trajectories back (--record; a scene's device i plays the log's device
+                        i) (docs/vrpn.md); default: the scene's device; sim and vrpn: refused
+                        for a scene of several devices
   --duration S          run S seconds, then ramp down and stop (default for a simulated device:
                         its script plus 0.5 s; 0 = until SIGINT/SIGTERM)
   --lockstep            simulated or replayed device on a virtual clock: deterministic, runs as

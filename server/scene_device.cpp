@@ -124,14 +124,14 @@ CapsuleToolConfig capsuleToolConfigFor(const scene::Tool& tool, const RendererCo
 
 SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device_option,
                             const std::string& vrpn_address, bool lockstep, const dev::SurfaceHeight* hand_surface,
-                            std::int64_t spin_ns) {
+                            std::int64_t spin_ns, int replay_device) {
   const std::int64_t period_ns = std::int64_t(std::llround(1.0 / scene.rates.servo_hz * 1e9));
   SceneDevice d;
   if (device_option.rfind("replay:", 0) == 0) {
     dev::ReplayOptions ro;
     ro.period_ns = period_ns;
     ro.lockstep = lockstep;
-    auto replay = std::make_unique<dev::ReplayDevice>(loadSessionTrajectory(device_option.substr(7)),
+    auto replay = std::make_unique<dev::ReplayDevice>(loadSessionTrajectory(device_option.substr(7), replay_device),
                                                       deviceSpecFor(scene), ro);
     d.replay = replay.get();
     d.device = std::move(replay);

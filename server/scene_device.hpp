@@ -48,9 +48,11 @@ struct SceneDevice {
 // it must outlive the device), nullptr on the plane.
 // `spin_ns`: the simulated or VRPN device's pacer busy-waits the last spin_ns of each period
 // (rt::Pacer; hapticd --spin-us), in real time only.
+// `replay_device`: which device of the recorded session a replay plays (its index in the log).
 SceneDevice makeSceneDevice(const scene::Scene& scene, const std::string& device_option,
                             const std::string& vrpn_address, bool lockstep,
-                            const dev::SurfaceHeight* hand_surface = nullptr, std::int64_t spin_ns = 0);
+                            const dev::SurfaceHeight* hand_surface = nullptr, std::int64_t spin_ns = 0,
+                            int replay_device = 0);
 
 // A mesh scene's script against its mesh: every point a press, stroke or path step touches must
 // have the mesh under it (seen from above in the surface frame), or the hand would press on

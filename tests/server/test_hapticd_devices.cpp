@@ -272,6 +272,42 @@ TEST_F(HapticdDevices, ARecordedSessionHoldsEveryPenInTickOrder) {
   }
 }
 
+// --device replay:FILE with two pens: each device plays its own pen of the log under the group's
+// clock, so a lock-step replay renders every tick of both pens as the recording did; a log of one
+// pen cannot feed a scene of two, and says which device it lacks.
+TEST_F(HapticdDevices, ARecordedSessionOfTwoPensReplaysBoth) {
+  const std::string common = " --lockstep --no-lcm --quiet --duration 3 --flight-dir '" + path("") + "'";
+  ProcRun r = run("--scene scenes/two_pens.yaml --record '" + path("two.lcm") + "'" + common);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("--scene scenes/two_pens.yaml --device replay:'" + path("two.lcm") + "' --record '" + path("again.lcm") + "'" +
+          common);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<thx_msgs::contact_t> rec = thx::srv::loadSessionContacts(path("two.lcm"));
+  const std::vector<thx_msgs::contact_t> rep = thx::srv::loadSessionContacts(path("again.lcm"));
+  ASSERT_GT(rec.size(), 4000u);
+  ASSERT_EQ(rep.size(), rec.size());  // the same 3 s
+  std::size_t contacts[2] = {0, 0}, differing = 0;
+  for (std::size_t k = 0; k < rec.size(); ++k) {
+    const thx_msgs::contact_t& a = rec[k];
+    const thx_msgs::contact_t& b = rep[k];
+    if (a.in_contact) ++contacts[a.device & 1];
+    const bool same = a.device == b.device && a.tick == b.tick && a.in_contact == b.in_contact && a.depth == b.depth &&
+                      a.f_normal == b.f_normal && a.texel_i == b.texel_i && a.texel_j == b.texel_j;
+    differing += same ? 0 : 1;
+  }
+  EXPECT_GT(contacts[0], 500u);
+  EXPECT_GT(contacts[1], 500u);
+  EXPECT_EQ(differing, 0u) << "of " << rec.size() << " events";
+
+  // One pen's log under two pens: the second has nothing to play.
+  r = run("--scene scenes/default.yaml --record '" + path("one.lcm") + "'" + common);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("--scene scenes/two_pens.yaml --device replay:'" + path("one.lcm") + "'" + common);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("device right (1 of the scene's 2): "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("device 1 is not in this log; it holds one device (0)"), std::string::npos) << r.err;
+}
+
 // VRPN both ways with several names: one hapticd serves the two pens of scenes/two_pens.yaml, a
 // second uses both as its devices (two VRPN addresses on one server) and reads each pen's states:
 // each touches the second server's bricks as its pen strokes or presses the first's.

@@ -148,6 +148,40 @@ TEST(SessionLog, LockstepReplayReproducesTheRecordedTicksAndGaps) {
   EXPECT_NEAR(d.durationS(), 0.007, 1e-12);
 }
 
+// Under a group's clock (several devices, readTick): the group's first tick plays the first sample,
+// a tick the recording lacks holds the last sample (valid, at rest), a missed period of the group
+// skips a sample, and past the end the reading is invalid.
+TEST(SessionLog, ReplayUnderAGroupsClockFollowsTheGroupsTicks) {
+  std::vector<dev::ReplaySample> samples;
+  for (std::int64_t t : {10, 11, 12, 15, 16, 17, 18}) {
+    dev::ReplaySample s;
+    s.tick = t;
+    s.p_world = Eigen::Vector3d(0.001 * double(t), 0, 0);
+    s.v_world = Eigen::Vector3d(0.01, 0, 0);
+    samples.push_back(s);
+  }
+  dev::ReplayDevice d(samples, dev::phantomDesktopSpec(), dev::ReplayOptions{});
+  EXPECT_TRUE(d.sharesClock());
+  d.open();
+  std::vector<double> x;
+  std::vector<bool> valid, moving;
+  for (std::int64_t tick : {0, 1, 2, 3, 4, 5, 6, 8, 9}) {  // the group missed tick 7
+    rt::TickTiming timing;
+    timing.tick = tick;
+    timing.missed = tick == 8 ? 1 : 0;
+    const dev::DeviceState s = d.readTick(timing);
+    EXPECT_EQ(s.timing.tick, tick);
+    x.push_back(s.p_world.x());
+    valid.push_back(s.valid);
+    moving.push_back(s.v_world.x() != 0.0);
+  }
+  const std::vector<std::int64_t> played = {10, 11, 12, 12, 12, 15, 16, 18, 18};  // the recorded ticks shown
+  for (std::size_t k = 0; k < played.size(); ++k) EXPECT_EQ(x[k], 0.001 * double(played[k])) << "group tick " << k;
+  EXPECT_EQ(valid, (std::vector<bool>{true, true, true, true, true, true, true, true, false}));
+  EXPECT_EQ(moving, (std::vector<bool>{true, true, true, false, false, true, true, true, false}));
+  EXPECT_TRUE(d.finished());
+}
+
 TEST(SessionLog, BadFilesGiveErrorsThatNameTheProblem) {
   auto message = [](const std::string& path) {
     try {
