@@ -22,7 +22,8 @@ const char* kindName(const HandStep& step) {
     case 0: return "press";
     case 1: return "stroke";
     case 2: return "hold";
-    default: return "path";
+    case 3: return "path";
+    default: return "move";
   }
 }
 
@@ -66,6 +67,13 @@ void validateStep(std::size_t i, const HandStep& step) {
     requireNonNegative(i, step, "force_n", stroke->force_n, "a force >= 0 N");
   } else if (const auto* hold = std::get_if<HandHold>(&step)) {
     requirePositive(i, step, "duration_s", hold->duration_s, "a duration > 0 s");
+  } else if (const auto* move = std::get_if<HandMove>(&step)) {
+    const auto text = [](const Eigen::Vector3d& v) {
+      return "[" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + "]";
+    };
+    if (!move->to_m.allFinite()) stepError(i, step, "to_m", "not finite", "finite [x, y, z] in m", text(move->to_m));
+    if (!move->push_n.allFinite()) stepError(i, step, "push_n", "not finite", "finite [x, y, z] in N", text(move->push_n));
+    requirePositive(i, step, "duration_s", move->duration_s, "a duration > 0 s");
   } else {
     const HandPath& path = std::get<HandPath>(step);
     if (path.samples.size() < 2)
@@ -126,20 +134,30 @@ HandScript::HandScript(std::vector<HandStep> steps, HandScriptOptions options) :
 
   const double h = options_.hover_height_m;
   Eigen::Vector2d first_xy = Eigen::Vector2d::Zero();
-  for (const HandStep& step : steps)
-    if (!std::holds_alternative<HandHold>(step)) {
-      first_xy = contactEnds(step).start_m;
-      break;
-    }
+  for (const HandStep& step : steps) {
+    if (std::holds_alternative<HandHold>(step)) continue;
+    const auto* move = std::get_if<HandMove>(&step);
+    first_xy = move ? Eigen::Vector2d(move->to_m.head<2>()) : contactEnds(step).start_m;
+    break;
+  }
   start_m_ = Eigen::Vector3d(first_xy.x(), first_xy.y(), h);
 
   Eigen::Vector3d cursor = start_m_;
+  Eigen::Vector3d push = Eigen::Vector3d::Zero();  // the push the hand has at the cursor
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    if (const auto* hold = std::get_if<HandHold>(&steps[i]))
-      addBlend(cursor, cursor, 0.0, 0.0, hold->duration_s, 0.0, 0.0);
-    else
-      addContactStep(steps[i], cursor);
+    if (const auto* hold = std::get_if<HandHold>(&steps[i])) {
+      addBlend(cursor, cursor, push, push, hold->duration_s, 0.0, 0.0);
+    } else if (const auto* move = std::get_if<HandMove>(&steps[i])) {
+      addBlend(cursor, move->to_m, push, move->push_n, move->duration_s, 0.0, 0.0);
+      cursor = move->to_m;
+      push = move->push_n;
+    } else {
+      addContactStep(steps[i], cursor, push);
+    }
   }
+  // Ending with a push: ramped out where the hand is, so the force has no step at the end.
+  if (push != Eigen::Vector3d::Zero())
+    addBlend(cursor, cursor, push, Eigen::Vector3d::Zero(), options_.force_ramp_s, 0.0, 0.0);
   end_m_ = cursor;
   starts_s_.reserve(segments_.size());
   for (const Segment& s : segments_) starts_s_.push_back(s.t0_s);
@@ -147,6 +165,11 @@ HandScript::HandScript(std::vector<HandStep> steps, HandScriptOptions options) :
 
 void HandScript::addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, double f0, double f1, double d_s,
                           double c0, double c1) {
+  addBlend(p0, p1, Eigen::Vector3d(0.0, 0.0, -f0), Eigen::Vector3d(0.0, 0.0, -f1), d_s, c0, c1);
+}
+
+void HandScript::addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& push0,
+                          const Eigen::Vector3d& push1, double d_s, double c0, double c1) {
   if (!(d_s > 0.0)) return;
   Segment s;
   s.kind = Segment::Kind::Blend;
@@ -154,15 +177,15 @@ void HandScript::addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, 
   s.duration_s = d_s;
   s.p0_m = p0;
   s.p1_m = p1;
-  s.f0_n = f0;
-  s.f1_n = f1;
+  s.push0_n = push0;
+  s.push1_n = push1;
   s.c0 = c0;
   s.c1 = c1;
   segments_.push_back(s);
   duration_s_ += d_s;
 }
 
-void HandScript::addContactStep(const HandStep& step, Eigen::Vector3d& cursor) {
+void HandScript::addContactStep(const HandStep& step, Eigen::Vector3d& cursor, Eigen::Vector3d& push) {
   const double h = options_.hover_height_m;
   const ContactEnds ends = contactEnds(step);
   const Eigen::Vector3d above_start(ends.start_m.x(), ends.start_m.y(), h);
@@ -171,9 +194,11 @@ void HandScript::addContactStep(const HandStep& step, Eigen::Vector3d& cursor) {
   const Eigen::Vector3d above_end(ends.end_m.x(), ends.end_m.y(), h);
 
   const double hop_m = (above_start - cursor).norm();
-  if (hop_m > 0.0)
-    addBlend(cursor, above_start, 0.0, 0.0, std::max(hop_m / options_.transit_speed_m_per_s, options_.min_transit_s),
+  if (hop_m > 0.0 || push != Eigen::Vector3d::Zero())  // a move's push ramps out on the way
+    addBlend(cursor, above_start, push, Eigen::Vector3d::Zero(),
+             std::max({hop_m / options_.transit_speed_m_per_s, options_.min_transit_s, push.isZero() ? 0.0 : options_.force_ramp_s}),
              0.0, 0.0);
+  push = Eigen::Vector3d::Zero();
   addBlend(above_start, at_start, 0.0, 0.0, options_.approach_s, 0.0, 1.0);
   addBlend(at_start, at_start, 0.0, ends.start_force_n, options_.force_ramp_s, 1.0, 1.0);
 
@@ -189,7 +214,7 @@ void HandScript::addContactStep(const HandStep& step, Eigen::Vector3d& cursor) {
     s.duration_s = cruise_s + s.ramp_s;  // each raised-cosine ramp loses speed * ramp / 2 of distance
     s.p0_m = at_start;
     s.p1_m = at_end;
-    s.f0_n = s.f1_n = stroke->force_n;
+    s.push0_n = s.push1_n = Eigen::Vector3d(0.0, 0.0, -stroke->force_n);
     s.speed_m_per_s = stroke->speed_m_per_s;
     segments_.push_back(s);
     duration_s_ += s.duration_s;
@@ -269,7 +294,7 @@ HandTarget HandScript::sample(double t_s, const Eigen::Isometry3d& plane_to_worl
 HandTarget HandScript::sampleSegment(const Segment& s, double t_s, double& c, double& c_rate) const {
   const double tau = std::clamp(t_s - s.t0_s, 0.0, s.duration_s);
   HandTarget out;
-  double force_n = s.f0_n;
+  Eigen::Vector3d push = s.push0_n;
   c = s.c0;  // Stroke and Path: 1
   c_rate = 0.0;
   switch (s.kind) {
@@ -279,7 +304,7 @@ HandTarget HandScript::sampleSegment(const Segment& s, double t_s, double& c, do
       const double w_rate = minJerkRate(u) / s.duration_s;
       out.p_m = s.p0_m + w * (s.p1_m - s.p0_m);
       out.v_m_per_s = w_rate * (s.p1_m - s.p0_m);
-      force_n = s.f0_n + w * (s.f1_n - s.f0_n);
+      push = s.push0_n + w * (s.push1_n - s.push0_n);
       c = s.c0 + w * (s.c1 - s.c0);
       c_rate = w_rate * (s.c1 - s.c0);
       break;
@@ -310,8 +335,8 @@ HandTarget HandScript::sampleSegment(const Segment& s, double t_s, double& c, do
     case Segment::Kind::Path:
       return samplePath(s, tau);
   }
-  out.push_n.z() = -force_n;
-  out.pressing = force_n > 0.0;
+  out.push_n = push;
+  out.pressing = push.squaredNorm() > 0.0;
   return out;
 }
 

@@ -15,9 +15,15 @@
 //    over ramp = min(stroke_ramp_s, length / speed), so the body lasts length / speed + ramp.
 //  - path body: the samples, linearly interpolated (position and force) over t_s in
 //    [0, t_last]; before the first sample's time the hand waits at the first sample.
-//  - hold: stay where the hand is (hovering) for duration_s.
-//  - The hand starts hovering above the first contact step's start point ((0, 0) if none) and,
-//    after the end, hovers at its last target with zero push.
+//  - hold: stay where the hand is (hovering, or where a move left it, with its push) for
+//    duration_s.
+//  - move (HandMove): from where the hand is to any point (x, y, height z) with a push vector;
+//    no approach or ramp of its own (its duration is both). A contact step after it starts with
+//    its transit, which ramps the push out; a script that ends pushing ramps it out over
+//    force_ramp_s at its end. A move's z is the plane's: a height source (below) would override it
+//    while "hovering", so hapticd refuses move steps on a mesh.
+//  - The hand starts hovering above the first step's point (a contact step's start, a move's
+//    target; (0, 0) if none) and, after the end, stays at its last target with zero push.
 // During contact the target height is 0 (the surface plane): on a wall of stiffness K the
 // steady contact force is push * K / (K + hand_stiffness), the hand's spring pulling back.
 //
@@ -86,6 +92,17 @@ struct HandHold {
   double duration_s = 0.0;
 };
 
+// A move anywhere (issue 30: a hand that lifts the pen, or holds two pens against a box's sides):
+// the target goes from where it is to `to_m` (plane-local x, y and height z above the plane) over
+// duration_s, minimum-jerk, and the push goes from the one the hand has to `push_n` (a vector,
+// plane-local, N) over the same time with the same minimum-jerk weight. The push then stays
+// through holds and further moves until a contact step (its transit ramps it out) or the end.
+struct HandMove {
+  Eigen::Vector3d to_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d push_n = Eigen::Vector3d::Zero();
+  double duration_s = 0.0;
+};
+
 struct PathSample {
   double t_s = 0.0;  // from the step's start
   Eigen::Vector2d p_m = Eigen::Vector2d::Zero();
@@ -97,7 +114,7 @@ struct HandPath {
   std::string source;               // file it came from, for messages
 };
 
-using HandStep = std::variant<HandPress, HandStroke, HandHold, HandPath>;
+using HandStep = std::variant<HandPress, HandStroke, HandHold, HandPath, HandMove>;
 
 struct HandScriptOptions {
   double hover_height_m = 0.005;
@@ -112,7 +129,7 @@ struct HandScriptOptions {
 struct HandTarget {
   Eigen::Vector3d p_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d v_m_per_s = Eigen::Vector3d::Zero();
-  Eigen::Vector3d push_n = Eigen::Vector3d::Zero();  // along -normal, magnitude = push force
+  Eigen::Vector3d push_n = Eigen::Vector3d::Zero();  // along -normal (a move: any way), N
   bool pressing = false;                              // push > 0: the sim's button 1
 };
 
@@ -145,8 +162,10 @@ class HandScript {
     double duration_s = 0.0;
     Eigen::Vector3d p0_m = Eigen::Vector3d::Zero();  // plane-local
     Eigen::Vector3d p1_m = Eigen::Vector3d::Zero();
-    double f0_n = 0.0;  // Blend: from f0 to f1; Stroke: f0 throughout
-    double f1_n = 0.0;
+    // The push, plane-local: Blend from push0 to push1 (along -z but after a move); Stroke push0
+    // throughout.
+    Eigen::Vector3d push0_n = Eigen::Vector3d::Zero();
+    Eigen::Vector3d push1_n = Eigen::Vector3d::Zero();
     // Blend: how far the ends are in contact (1: on the surface, 0: hovering), blended as the
     // position; Stroke and Path: in contact throughout. Only a height source reads it.
     double c0 = 1.0;
@@ -160,7 +179,10 @@ class HandScript {
   // c0, c1: the ends' contact weights (Segment).
   void addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, double f0, double f1, double d_s, double c0,
                 double c1);
-  void addContactStep(const HandStep& step, Eigen::Vector3d& cursor);
+  void addBlend(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& push0,
+                const Eigen::Vector3d& push1, double d_s, double c0, double c1);
+  // `push`: the push the hand has at the cursor (after a move), ramped out on the way.
+  void addContactStep(const HandStep& step, Eigen::Vector3d& cursor, Eigen::Vector3d& push);
   // The plane's target, and the contact weight c and its rate dc/dt at that instant.
   HandTarget sampleSegment(const Segment& s, double t_s, double& c, double& c_rate) const;
   HandTarget samplePath(const Segment& s, double tau_s) const;

@@ -72,6 +72,7 @@ void checkWorkspace(const Field& section, const Device& device, const Scene& sce
       check(stroke->from_m, i);
       check(stroke->to_m, i);
     }
+    if (const auto* move = std::get_if<MoveStep>(&step)) check(move->to_m.head<2>(), i);
   }
 }
 

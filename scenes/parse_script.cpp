@@ -62,15 +62,42 @@ HoldStep parseHold(const Field& field) {
   return {field.at("duration", "seconds").number(positiveUpTo(kMaxStepDurationS, "s"))};
 }
 
+MoveStep parseMove(const Field& field, const Surface& surface, const DeviceModel& model) {
+  field.expectKeys({"to", "push", "duration"});
+  if (field.isNull()) field.fail("missing value", "{to: [x, y, z], push: [fx, fy, fz], duration: s}");
+  // The move's heights are the plane's; on a mesh the hand's heights follow the mesh instead.
+  if (surface.mesh)
+    field.fail("a move needs a plane surface", "press, stroke, path_file or hold steps on a mesh (surface.mesh)");
+  MoveStep step;
+  const Field to = field.at("to", "[x, y, z]: a surface-local point and its height above the surface, in metres");
+  const Eigen::Vector3d p = to.vector3(closedRange(-100.0, 100.0, "m"));
+  const Eigen::Vector2d half = surface.size_m / 2.0;
+  if (std::fabs(p.x()) > half.x() || std::fabs(p.y()) > half.y() || p.z() < -0.05 || p.z() > 0.3)
+    to.fail("outside the hand's room",
+            "[x, y, z] with x, y within [" + formatNumber(-half.x()) + ", " + formatNumber(half.x()) + "] x [" +
+                formatNumber(-half.y()) + ", " + formatNumber(half.y()) + "] m and z in [-0.05, 0.3] m",
+            "[" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + ", " + formatNumber(p.z()) + "]");
+  step.to_m = p;
+  if (auto f = field.find("push")) {
+    step.push_n = f->vector3(closedRange(-model.peak_force_n, model.peak_force_n, "N"));
+    if (step.push_n.norm() > model.peak_force_n)
+      f->fail("push above the peak force of " + model.name,
+              "a push of at most " + formatNumber(model.peak_force_n) + " N", formatNumber(step.push_n.norm()) + " N");
+  }
+  step.duration_s = field.at("duration", "seconds").number(positiveUpTo(kMaxStepDurationS, "s"));
+  return step;
+}
+
 ScriptStep parseStep(const Field& step, const Surface& surface, const DeviceModel& model) {
-  const std::string expected = "exactly one of press, stroke, path_file, hold";
-  step.expectKeys({"press", "stroke", "path_file", "hold"});
+  const std::string expected = "exactly one of press, stroke, path_file, hold, move";
+  step.expectKeys({"press", "stroke", "path_file", "hold", "move"});
   const auto actions = step.entries();
   if (actions.size() != 1) step.fail(actions.empty() ? "empty step" : "more than one action in a step", expected);
   const auto& [action, body] = actions.front();
   if (action == "press") return parsePress(body, surface, model);
   if (action == "stroke") return parseStroke(body, surface, model);
   if (action == "hold") return parseHold(body);
+  if (action == "move") return parseMove(body, surface, model);
   return PathFileStep{parseExistingFile(body, "path file (CSV rows t_s, x_m, y_m, force_n)")};
 }
 

@@ -142,7 +142,14 @@ struct PathFileStep {
 struct HoldStep {
   double duration_s = 0.0;
 };
-using ScriptStep = std::variant<PressStep, StrokeStep, PathFileStep, HoldStep>;
+// The hand moves anywhere (x, y on the surface, z above it) pushing any way (surface-local N), over
+// duration_s (device/hand_script.hpp HandMove); the push stays until a contact step or the end.
+struct MoveStep {
+  Eigen::Vector3d to_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d push_n = Eigen::Vector3d::Zero();
+  double duration_s = 0.0;
+};
+using ScriptStep = std::variant<PressStep, StrokeStep, PathFileStep, HoldStep, MoveStep>;
 
 struct Device {
   // The name a client and VRPN know the device by: `devices[i].name`, by default Phantom<i>

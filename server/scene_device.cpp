@@ -84,6 +84,8 @@ dev::HandScript handScriptFor(const scene::Scene& s, const dev::SurfaceHeight* h
                          dev::HandStroke{st->from_m, st->to_m, st->speed_m_per_s, st->force_n});
     } else if (const auto* h = std::get_if<scene::HoldStep>(&step)) {
       steps.emplace_back(std::in_place_type<dev::HandHold>, dev::HandHold{h->duration_s});
+    } else if (const auto* m = std::get_if<scene::MoveStep>(&step)) {
+      steps.emplace_back(std::in_place_type<dev::HandMove>, dev::HandMove{m->to_m, m->push_n, m->duration_s});
     } else if (const auto* f = std::get_if<scene::PathFileStep>(&step)) {
       dev::HandPath path = dev::HandScript::loadPathCsv(f->path);
       steps.emplace_back(std::in_place_type<dev::HandPath>, std::move(path));

@@ -97,6 +97,7 @@ std::vector<PenSample> penPathFromScript(const PhysicsScene& scene, double dt_s)
   std::vector<PenSample> out;
   double t = 0.0;
   std::optional<Eigen::Vector2d> at;
+  std::optional<Eigen::Vector3d> lifted;  // where a move left the pen (off the surface)
   auto emit = [&](const Eigen::Vector2d& xy) {
     const tex::SurfacePoint sp = surface.at(xy.x(), xy.y());
     PenSample s;
@@ -109,9 +110,15 @@ std::vector<PenSample> penPathFromScript(const PhysicsScene& scene, double dt_s)
         [&](const auto& s) {
           using T = std::decay_t<decltype(s)>;
           if constexpr (std::is_same_v<T, scene::HoldStep>) {
-            if (at) emit(*at);
+            const auto here = [&] {
+              if (lifted)
+                out.push_back(PenSample{t, surface.toWorld(*lifted)});
+              else if (at)
+                emit(*at);
+            };
+            here();
             t += s.duration_s;
-            if (at) emit(*at);
+            here();
           } else if constexpr (std::is_same_v<T, scene::PressStep>) {
             at = s.position_m;
             emit(*at);
@@ -127,11 +134,26 @@ std::vector<PenSample> penPathFromScript(const PhysicsScene& scene, double dt_s)
               emit(*at);
               if (k < n) t += duration / n;
             }
+          } else if constexpr (std::is_same_v<T, scene::MoveStep>) {
+            // From where the pen is (on the surface, or where the last move left it) straight to
+            // the move's point, z its height above the plane.
+            const Eigen::Vector3d from = lifted ? *lifted
+                                         : at   ? Eigen::Vector3d(at->x(), at->y(), surface.at(at->x(), at->y()).height_m)
+                                                : Eigen::Vector3d(s.to_m);
+            const int n = std::max(1, int(std::ceil(s.duration_s / dt_s)));
+            for (int k = 0; k <= n; ++k) {
+              const Eigen::Vector3d p = from + (double(k) / n) * (s.to_m - from);
+              out.push_back(PenSample{t, surface.toWorld(p)});
+              if (k < n) t += s.duration_s / n;
+            }
+            lifted = s.to_m;
+            at = Eigen::Vector2d(s.to_m.x(), s.to_m.y());
           } else {
             throw PenPathError(scene.scene().source +
                                ": device.script: path_file steps cannot be followed without hapticd; expected press, "
-                               "stroke and hold steps (or run against hapticd, or --replay-log)");
+                               "stroke, hold and move steps (or run against hapticd, or --replay-log)");
           }
+          if constexpr (!std::is_same_v<T, scene::MoveStep> && !std::is_same_v<T, scene::HoldStep>) lifted.reset();
           // Successive emits at the same time (a teleport) keep the times increasing.
           for (std::size_t i = 1; i < out.size(); ++i)
             if (out[i].t_s <= out[i - 1].t_s) out[i].t_s = out[i - 1].t_s + 1e-9;

@@ -72,6 +72,7 @@ Eigen::Vector2d penRestPosition(const scene::Scene& scene, std::size_t device) {
   for (const scene::ScriptStep& step : scene::deviceAt(scene, device).script) {
     if (const auto* press = std::get_if<scene::PressStep>(&step)) return press->position_m;
     if (const auto* stroke = std::get_if<scene::StrokeStep>(&step)) return stroke->from_m;
+    if (const auto* move = std::get_if<scene::MoveStep>(&step)) return move->to_m.head<2>();
   }
   return Eigen::Vector2d::Zero();
 }

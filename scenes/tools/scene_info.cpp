@@ -40,6 +40,7 @@ double scriptDuration(const scene::Device& device) {
   for (const scene::ScriptStep& step : device.script) {
     if (const auto* press = std::get_if<scene::PressStep>(&step)) total += press->duration_s;
     if (const auto* hold = std::get_if<scene::HoldStep>(&step)) total += hold->duration_s;
+    if (const auto* move = std::get_if<scene::MoveStep>(&step)) total += move->duration_s;
     if (const auto* stroke = std::get_if<scene::StrokeStep>(&step)) {
       total += (stroke->to_m - stroke->from_m).norm() / stroke->speed_m_per_s;
     }

@@ -173,6 +173,52 @@ TEST(HandScript, IsDeterministic) {
   }
 }
 
+// A move lifts the hand off the surface and pushes any way: the target goes to the point, the push
+// to the move's with the same minimum-jerk weight; a hold keeps both; the next move starts from
+// them; a contact step's transit ramps the push out; a script ending with a push ramps it out.
+TEST(HandScript, MovesGoAnywhereWithTheirPushAndRampItOut) {
+  const HandScriptOptions o;
+  const Eigen::Vector3d grip(0.01, 0.0, 0.02), lift(0.01, 0.0, 0.05), side(-1.5, 0.0, 0.0);
+  const HandScript s({HandMove{grip, side, 1.0}, HandHold{0.5}, HandMove{lift, side, 2.0}, HandPress{{0.0, 0.0}, 1.0, 0.5},
+                      HandMove{lift, side, 1.0}});
+  // Starts hovering above the first move's point.
+  EXPECT_TRUE(s.sampleLocal(0.0).p_m.isApprox(Eigen::Vector3d(0.01, 0.0, o.hover_height_m)));
+  // Half way through the first move: half way there, half the push (min-jerk weight 1/2 at 1/2).
+  const HandTarget half = s.sampleLocal(0.5);
+  EXPECT_NEAR((half.p_m - 0.5 * (Eigen::Vector3d(0.01, 0.0, o.hover_height_m) + grip)).norm(), 0.0, kEps);
+  EXPECT_NEAR((half.push_n - 0.5 * side).norm(), 0.0, kEps);
+  EXPECT_TRUE(half.pressing);
+  // The hold keeps the point and the push; the second move lifts with it.
+  const HandTarget held = s.sampleLocal(1.25);
+  EXPECT_NEAR((held.p_m - grip).norm(), 0.0, kEps);
+  EXPECT_EQ(held.push_n, side);
+  EXPECT_EQ(held.v_m_per_s, Eigen::Vector3d::Zero());
+  const HandTarget lifted = s.sampleLocal(3.5);
+  EXPECT_NEAR((lifted.p_m - lift).norm(), 0.0, kEps);
+  EXPECT_EQ(lifted.push_n, side);
+  // The press's transit (from the lift to above its point) ramps the push out and descends as usual.
+  const double hop = (Eigen::Vector3d(0.0, 0.0, o.hover_height_m) - lift).norm();
+  const double transit = std::max({hop / o.transit_speed_m_per_s, o.min_transit_s, o.force_ramp_s});
+  const HandTarget pressing = s.sampleLocal(3.5 + transit + o.approach_s + o.force_ramp_s + 0.25);
+  EXPECT_NEAR((pressing.p_m - Eigen::Vector3d::Zero()).norm(), 0.0, kEps);
+  EXPECT_NEAR((pressing.push_n - Eigen::Vector3d(0, 0, -1.0)).norm(), 0.0, kEps);
+  // The last move ends pushing: ramped out over force_ramp_s, then at rest without a push.
+  EXPECT_EQ(s.sampleLocal(s.duration() - 1e-9).push_n.x() < 0.0, true);
+  const HandTarget after = s.sampleLocal(s.duration() + 1.0);
+  EXPECT_NEAR((after.p_m - lift).norm(), 0.0, kEps);
+  EXPECT_EQ(after.push_n, Eigen::Vector3d::Zero());
+  EXPECT_FALSE(after.pressing);
+  // No step in the position or the push anywhere (the push's rate bounded by the min-jerk slope).
+  const double dt = 1e-4, rate_bound = 1.875 * 1.5 / o.force_ramp_s;
+  HandTarget prev = s.sampleLocal(0.0);
+  for (double t = dt; t < s.duration() + 0.2; t += dt) {
+    const HandTarget h = s.sampleLocal(t);
+    ASSERT_LT((h.p_m - prev.p_m).norm() / dt, 0.3) << "position jump at t = " << t;
+    ASSERT_LT((h.push_n - prev.push_n).norm() / dt, rate_bound * 1.01) << "push jump at t = " << t;
+    prev = h;
+  }
+}
+
 TEST(HandScript, InvalidStepsAreRejectedWithTheirField) {
   const auto message = [](std::vector<HandStep> steps) {
     try {
@@ -190,6 +236,10 @@ TEST(HandScript, InvalidStepsAreRejectedWithTheirField) {
             "hand script step 1 (press): duration_s: out of range; expected a duration > 0 s, got '0'");
   EXPECT_EQ(message({HandPress{{0, 0}, std::nan(""), 1.0}}),
             "hand script step 1 (press): force_n: not finite; expected a force >= 0 N, got 'nan'");
+  EXPECT_EQ(message({HandMove{{0, 0, std::nan("")}, {0, 0, 0}, 1.0}}),
+            "hand script step 1 (move): to_m: not finite; expected finite [x, y, z] in m, got '[0, 0, nan]'");
+  EXPECT_EQ(message({HandHold{1.0}, HandMove{{0, 0, 0.01}, {0, 0, 0}, 0.0}}),
+            "hand script step 2 (move): duration_s: out of range; expected a duration > 0 s, got '0'");
   HandPath backwards{{{0.0, {0, 0}, 1.0}, {0.0, {0, 0}, 1.0}}, "p.csv"};
   EXPECT_EQ(message({backwards}),
             "hand script step 1 (path from p.csv): samples[1].t_s: time does not increase; expected a time > 0 s, got '0'");

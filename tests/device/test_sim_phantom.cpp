@@ -141,6 +141,32 @@ TEST(SimPhantom, PushSagsByForceOverTheHandsPushingStiffnessInFreeSpace) {
               1e-3);
 }
 
+// A move lifts the pen off the surface and pushes it sideways: in free space the pen goes to the
+// move's point and, pushing, sags along the push by F over the hand's pushing stiffness, as a press
+// sags along the normal (issue 30: the hand that will pinch a box between two pens).
+TEST(SimPhantom, AMoveLiftsThePenAndPushesItSideways) {
+  const HandScript script({HandMove{{0.0, 0.0, 0.03}, {0.0, 0.0, 0.0}, 0.5}, HandHold{1.0},
+                           HandMove{{0.0, 0.0, 0.03}, {-1.5, 0.0, 0.0}, 0.5}, HandHold{3.0}});
+  SimPhantomConfig c;
+  SimPhantom sim(c, script);
+  sim.open();
+  while (sim.truth().t_s < 1.4) {  // the lift is done, the push not begun
+    sim.read();
+    sim.write(DeviceCommand{});
+  }
+  EXPECT_LT((sim.truth().p_world_m - Eigen::Vector3d(0.0, 0.0, 0.03)).norm(), 0.1e-3);
+  EXPECT_FALSE(sim.read().buttons & 1u);  // no push: not pressing
+  sim.write(DeviceCommand{});
+  while (sim.truth().t_s < 4.9) {  // the last hold ends at 5 s
+    sim.read();
+    sim.write(DeviceCommand{});
+  }
+  const double sag = -1.5 / (c.hand_push_normal_stiffness_fraction * c.hand_stiffness_n_per_m);
+  EXPECT_NEAR(sim.truth().p_world_m.x(), sag, 1e-3);
+  EXPECT_NEAR(sim.truth().p_world_m.z(), 0.03, 0.1e-3);
+  EXPECT_TRUE(sim.read().buttons & 1u);  // pushing: button 1
+}
+
 TEST(SimPhantom, ReadingsAreEncoderCountsAndVelocityIsTheirDifference) {
   const HandScript script({HandStroke{{-0.02, 0.01}, {0.02, -0.01}, 0.08, 0.0}});
   SimPhantomConfig c;

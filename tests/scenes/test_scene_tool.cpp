@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scenes/scene_loader.hpp"
+#include "tests/scenes/scene_error_of.hpp"
 
 namespace test_scene_tool {
 
@@ -15,14 +16,7 @@ using namespace thx::scene;
 
 const std::string kPlane = "version: 1\nname: tool\nsurface:\n  size: [0.2, 0.2]\n  texture: {generator: bricks}\n";
 
-std::string errorOf(const std::string& text) {
-  try {
-    parseScene(text, "s.yaml", "");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string errorOf(const std::string& text) { return thx::test::sceneErrorOf(text); }
 
 }  // namespace
 
