@@ -30,6 +30,15 @@ Eigen::Vector3d clampedNorm(const Eigen::Vector3d& v, double limit) {
 
 }  // namespace
 
+CapsuleToolConfig couplingForServo(const RendererConfig& renderer, double period_s) {
+  CapsuleToolConfig c;
+  c.stiffness_n_per_m = renderer.stiffness_n_per_m;
+  c.damping_ns_per_m = renderer.damping_ns_per_m;
+  c.period_s = period_s;
+  c.ramp_ticks = int(std::lround(0.5 / period_s));
+  return c;
+}
+
 CapsuleTool::CapsuleTool(const tex::TexturedSurface& surface, const dev::DeviceSpec& device,
                          const CapsuleToolConfig& config)
     : surface_(&surface), blocks_(surface), device_(device), config_(config) {

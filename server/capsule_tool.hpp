@@ -69,6 +69,11 @@ struct CapsuleToolConfig {
   ProjectionSettings solver;
 };
 
+// The coupling as a servo at period_s renders it beside the point pen: the renderer's stiffness and
+// virtual damping as the coupling's (the device caps them again), its force ramped in over 0.5 s.
+// The shape and the turning stiffness stay the defaults, for the caller to set.
+CapsuleToolConfig couplingForServo(const RendererConfig& renderer, double period_s);
+
 struct ToolOutput {
   Eigen::Vector3d force_world = Eigen::Vector3d::Zero();   // to send to the device
   Eigen::Vector3d torque_world = Eigen::Vector3d::Zero();  // to send (zero for a force-only device)

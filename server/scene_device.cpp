@@ -113,14 +113,10 @@ ServoRigConfig servoRigConfigFor(const scene::Scene& s) {
 }
 
 CapsuleToolConfig capsuleToolConfigFor(const scene::Tool& tool, const RendererConfig& renderer, double period_s) {
-  CapsuleToolConfig c;
+  CapsuleToolConfig c = couplingForServo(renderer, period_s);
   c.length_m = tool.length_m;
   c.radius_m = tool.radius_m;
   c.rot_stiffness_nm_per_rad = tool.rot_stiffness_nm_per_rad;
-  c.stiffness_n_per_m = renderer.stiffness_n_per_m;
-  c.damping_ns_per_m = renderer.damping_ns_per_m;
-  c.period_s = period_s;
-  c.ramp_ticks = int(std::lround(0.5 / period_s));
   return c;
 }
 

@@ -154,13 +154,12 @@ CellResult simulateCell(const CellParams& params, const ValleyMap& valley, const
     rig_options.plane_hold_ticks = planeHoldTicks(1e9 / double(sim.servo_period_ns), setup.plane_rate_hz);
   }
   if (capsule) {
-    CapsuleToolConfig tool;
+    RendererConfig renderer;  // the coupling is the renderer's spring, as in hapticd
+    renderer.stiffness_n_per_m = result.stiffness_n_per_m;
+    renderer.damping_ns_per_m = setup.virtual_damping_ns_per_m;
+    CapsuleToolConfig tool = couplingForServo(renderer, double(sim.servo_period_ns) * 1e-9);
     tool.length_m = setup.capsule_length_m;
     tool.radius_m = setup.capsule_radius_m;
-    tool.damping_ns_per_m = setup.virtual_damping_ns_per_m;  // as hapticd (capsuleToolConfigFor)
-    tool.stiffness_n_per_m = result.stiffness_n_per_m;
-    tool.period_s = double(sim.servo_period_ns) * 1e-9;
-    tool.ramp_ticks = int(std::lround(0.5 / tool.period_s));  // as hapticd (capsuleToolConfigFor)
     rig_options.capsule = tool;
   }
   SimRig rig(surface, sim, std::move(script), rig_options);
