@@ -3,7 +3,8 @@
 # stroke across the bricks and a press, then a press into a steep V-valley, then strokes inside a
 # bowl of bricks (a textured mesh), then two pens at once; each prints its summary.
 # Two pens also push two balls (physics), scrape the bricks together (audio) and are drawn
-# (visual) from lock-step recordings. Then physics-client next to hapticd: the pen pushes a ball out of its dimple. Then the
+# (visual) from lock-step recordings. Then physics-client next to hapticd: the pen pushes a ball out of its dimple, and
+# two pens pinch a block and lift it. Then the
 # pen's scrape over the bricks and a marble rolling over them, each as a WAV with its spectrogram.
 # Then the texture gallery with shaded previews, frames of the default scene and of the bowl, three
 # marbles rolling in the bowl (physics-client on a lock-step recording of the pen, frames of the
@@ -59,6 +60,20 @@ echo "   records both pens in lock-step, physics-client simulates a pen per devi
   --quiet > /dev/null
 "$PC" --scene scenes/two_pens_two_balls.yaml --replay-log "$OUT/two_pens_two_balls_session.lcm" \
   --record "$OUT/two_pens_two_balls.lcm" --no-lcm --quiet --json "$OUT/two_pens_two_balls.json"
+
+echo
+echo "== physics: two pens pinch a wooden block and lift it by friction (scenes/two_pens_pinch.yaml, about 8 s): hapticd"
+echo "   in real time with two simulated hands pushing their pens against the block's sides, physics-client with grasping"
+echo "   pens (--pen-coupling 300: each pen a body on a spring to its device's tip; the devices feel the squeeze)"
+PS=scenes/two_pens_pinch.yaml
+"$PC" --scene "$PS" --pen-coupling 300 --duration 7 --json "$OUT/pinch.json" --poses-csv "$OUT/pinch_poses.csv" \
+  --quiet > "$OUT/pinch.txt" 2>&1 &
+PC_PID=$!
+sleep 0.5
+"$HD" --scene "$PS" --quiet --stats-json "$OUT/hapticd_pinch.json" --flight-dir "$OUT" > /dev/null
+wait "$PC_PID" || echo "physics-client failed (see $OUT/pinch.txt)"
+cat "$OUT/pinch.txt"
+echo "the block's height over time: $OUT/pinch_poses.csv"
 
 echo
 echo "== audio: the pen scraping the bricks, rendered offline from a lock-step recording of the default scene (2-10 s, the most the first time, when the slab's and the pen's modes are solved)"

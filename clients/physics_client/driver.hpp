@@ -45,6 +45,8 @@ struct ObjectSummary {
   Eigen::Vector3d start_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d end_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d end_local = Eigen::Vector3d::Zero();  // surface frame: x, y along the plane, h above it (a mesh's frame)
+  double start_h_m = 0.0;   // end_local's h at the start
+  double max_rise_m = 0.0;  // highest h over the run above start_h_m (a lifted object's lift)
   double max_speed_m_per_s = 0.0;
   double end_speed_m_per_s = 0.0;
   std::vector<Touch> touched;  // other scene objects (not the plane, not the pen), in order of first touch

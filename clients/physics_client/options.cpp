@@ -58,6 +58,13 @@ Pen (the device's tip; default: hapticd over LCM, a pen for each of its devices)
   --force-scale F        client force = F x contact force on the pen (default 1)
   --max-force N          clamp of |client force| (default 2; hapticd refuses above its peak force)
   --no-friction-force    send only the normal part of the pen's contact force
+  --pen-coupling K       N/m: grasping pens (docs/physics.md, "Grasping"): each pen a dynamic body
+                         on a spring of K (critically damped) to its device's tip, touching the
+                         objects only; the device feels the coupling, so two pens pushed against a
+                         box's sides squeeze it and can lift it. 0 (default): kinematic pens that
+                         follow the tips exactly (they push, but cannot grip). 300 suits a Desktop
+  --pen-mass KG          a grasping pen's mass (default 0.02)
+  --pen-friction MU      the pen's friction coefficient (default 0.5; Bullet multiplies a pair's)
   --impact-speed M/S     slowest first touch reported as an impact (default 0.005)
 
 LCM:
@@ -141,6 +148,12 @@ Options parseOptions(const std::vector<std::string>& args) {
       o.pen.max_force_n = cli::parseNumber(a, value(), {0, 100, false, "N"});
     } else if (a == "--no-friction-force") {
       o.pen.friction = false;
+    } else if (a == "--pen-coupling") {
+      o.pen.coupling_n_per_m = cli::parseNumber(a, value(), {0, 1e5, false, "N/m"});
+    } else if (a == "--pen-mass") {
+      o.pen.coupling_mass_kg = cli::parseNumber(a, value(), {0, 10, true, "kg"});
+    } else if (a == "--pen-friction") {
+      o.pen.material_friction = cli::parseNumber(a, value(), {0, 10, false, ""});
     } else if (a == "--impact-speed") {
       o.impact_min_speed = cli::parseNumber(a, value(), {0, 100, false, "m/s"});
     } else if (a == "--lcm-url") {

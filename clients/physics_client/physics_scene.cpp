@@ -107,17 +107,29 @@ void PhysicsScene::addPens(int count) {
   while (int(pens_.size()) < count) {
     Pen p;
     if (pen.shape != PenShape::None) {
-      // Parked 10 m above the plane until the first pose arrives. Added with mass 0 (so Bullet files
-      // it with the static bodies: it never collides with the plane, the fixed obstacles or another
-      // pen), then made kinematic so its velocity comes from its moves.
+      // Parked 10 m above the plane until the first pose arrives.
       Eigen::Isometry3d parked = surface().mapping().plane_to_world;
       parked.translation() += 10.0 * surface().mapping().geometricNormalWorld();
       phys::BodyMaterial pen_material;
-      pen_material.friction = 0.5;
+      pen_material.friction = pen.material_friction;
       pen_material.restitution = 0.0;
-      p.body = pen.shape == PenShape::Sphere ? &world_->addSphere(pen.radius_m, 0.0, parked, pen_material)
-                                             : &world_->addCapsule(pen.radius_m, 0.5 * pen.length_m, 0.0, parked, pen_material);
-      p.body->setCollisionFlags(p.body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+      // Kinematic: added with mass 0 (so Bullet files it with the static bodies: it never collides
+      // with the plane, the fixed obstacles or another pen), then made kinematic so its velocity
+      // comes from its moves. Coupled: dynamic, filtered to meet the dynamic objects only.
+      const double mass = pen.coupled() ? pen.coupling_mass_kg : 0.0;
+      p.body = pen.shape == PenShape::Sphere ? &world_->addSphere(pen.radius_m, mass, parked, pen_material)
+                                             : &world_->addCapsule(pen.radius_m, 0.5 * pen.length_m, mass, parked, pen_material);
+      if (pen.coupled()) {
+        btDiscreteDynamicsWorld& w = world_->world();
+        w.removeRigidBody(p.body);
+        p.body->setFlags(p.body->getFlags() | BT_DISABLE_WORLD_GRAVITY);
+        p.body->setGravity(btVector3(0, 0, 0));
+        p.body->setAngularFactor(0.0);
+        p.body->setDamping(0.0, 0.0);
+        w.addRigidBody(p.body, btBroadphaseProxy::CharacterFilter, btBroadphaseProxy::DefaultFilter);
+      } else {
+        p.body->setCollisionFlags(p.body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+      }
       p.body->setActivationState(DISABLE_DEACTIVATION);
       p.body->setUserIndex(kBodyPen);
       p.body->setUserIndex2(int(pens_.size()));
@@ -146,12 +158,33 @@ void PhysicsScene::setPenTip(int pen, const Eigen::Vector3d& tip_world) {
   p.set = true;
 }
 
-void PhysicsScene::placePens() {
+Eigen::Vector3d PhysicsScene::couplingForce(const Pen& p) const {
+  const double k = options_.pen.coupling_n_per_m;
+  const double b = 2.0 * std::sqrt(k * options_.pen.coupling_mass_kg);  // critical
+  return k * (p.target - phys::positionOf(*p.body)) + b * (p.v_target - phys::velocityOf(*p.body));
+}
+
+void PhysicsScene::placePens(double dt_s) {
   for (Pen& p : pens_) {
     if (p.body == nullptr || !p.set) continue;
     Eigen::Isometry3d pose = surface().mapping().plane_to_world;  // capsule axis = the plane's normal
     pose.translation() = penCentreFor(p.tip);
     const btTransform t = phys::toBt(pose);
+    if (options_.pen.coupled()) {
+      // A teleport puts the body at its target at rest; otherwise the spring pulls it there.
+      const bool teleport = !p.placed || (p.target - pose.translation()).norm() > options_.pen.teleport_m;
+      p.v_target = teleport ? Eigen::Vector3d::Zero() : Eigen::Vector3d((pose.translation() - p.target) / dt_s);
+      p.target = pose.translation();
+      if (teleport) {
+        p.body->setWorldTransform(t);
+        p.body->setInterpolationWorldTransform(t);
+        p.body->setLinearVelocity(btVector3(0, 0, 0));
+      }
+      p.body->setAngularVelocity(btVector3(0, 0, 0));
+      p.body->applyCentralForce(phys::toBt(couplingForce(p)));
+      p.placed = true;
+      continue;
+    }
     const Eigen::Vector3d old = phys::toEigen(p.body->getWorldTransform().getOrigin());
     p.body->setWorldTransform(t);
     // A teleport gets no velocity (Bullet derives a kinematic body's velocity from the move since
@@ -162,7 +195,7 @@ void PhysicsScene::placePens() {
 }
 
 void PhysicsScene::step(double dt_s) {
-  placePens();
+  placePens(dt_s);
   for (std::size_t i = 0; i < objects_.size(); ++i) v_before_[i] = phys::velocityOf(*objects_[i]);
   world_->step(dt_s);
   ++steps_;
@@ -207,7 +240,7 @@ void PhysicsScene::collectContacts(double dt_s) {
       impulse += double(pt.getAppliedImpulse());
       n += sign * n_bt;
       p += 0.5 * (phys::toEigen(pt.getPositionWorldOnA()) + phys::toEigen(pt.getPositionWorldOnB()));
-      if (pen) {
+      if (pen && !options_.pen.coupled()) {
         // Impulse on body0 = +n_bt j + d1 j1 + d2 j2 (Bullet's solver convention); body1 gets the opposite.
         Eigen::Vector3d j_on_0 = n_bt * double(pt.getAppliedImpulse());
         if (options_.pen.friction)
@@ -296,6 +329,8 @@ void PhysicsScene::collectContacts(double dt_s) {
 
   for (Pen& pen : pens_) {  // each pen's device gets its own force, clamped on its own
     PenForce& f = pen.force;
+    // A coupled pen's device feels the coupling pulling it towards the pen (after this step).
+    if (options_.pen.coupled() && pen.body != nullptr && pen.placed) f.raw_world = -couplingForce(pen);
     Eigen::Vector3d sent = options_.pen.force_scale * f.raw_world;
     const double norm = sent.norm();
     if (!std::isfinite(norm)) {

@@ -1,8 +1,9 @@
 #pragma once
 // The physics client's simulation, free of LCM so tests run it directly: a scene's textured
 // plane (normal or relief, as the scene says), its objects (dynamic bodies and fixed obstacles)
-// and the pens, kinematic bodies each following one device's tip (one by default; a scene of
-// several devices has one per device, SimOptions::pens). Each step reports
+// and the pens, each following one device's tip (one by default; a scene of several devices has
+// one per device, SimOptions::pens): kinematic bodies by default, or dynamic bodies on a virtual
+// coupling to the tip for grasping (PenOptions::coupling_n_per_m). Each step reports
 //  - per pen, the force its contacts put on it (scaled, translational, clamped): what goes back
 //    to that pen's device as client_force_t;
 //  - impacts (pairs that start touching with an approach speed) and lasting contacts (per
@@ -49,6 +50,18 @@ struct PenOptions {
   // A pen pose that jumps farther than this in one step is a teleport (first pose, reconnect):
   // no velocity is derived from it, so it cannot fling objects.
   double teleport_m = 0.02;
+  double material_friction = 0.5;  // the pen's (Bullet multiplies a pair's two frictions)
+  // Grasping (issue 30). 0 (default): a kinematic pen that follows the tip exactly; it pushes,
+  // but its contact impulses are unbounded, so two of them squeezing a box penetrate it (590-670 N
+  // measured) instead of gripping it. > 0: each pen is a dynamic body of coupling_mass_kg (no
+  // gravity, no rotation: a held tip does not roll) pulled to the tip by a spring of this stiffness
+  // and critical damping, touching only the dynamic objects (hapticd renders the surface; pens
+  // pass through each other and the fixed obstacles, as kinematic pens do). The force sent back to
+  // the device is the coupling's reaction, so a hand pushing two pens against a box's sides
+  // squeezes it with what it pushes and can lift it by friction (docs/physics.md, "Grasping").
+  double coupling_n_per_m = 0.0;
+  double coupling_mass_kg = 0.02;
+  bool coupled() const { return coupling_n_per_m > 0.0; }
 };
 
 struct SimOptions {
@@ -105,7 +118,9 @@ struct LastingContact {
 };
 
 struct PenForce {
-  Eigen::Vector3d raw_world = Eigen::Vector3d::Zero();  // contact force on the pen (N), unscaled
+  // Contact force on the pen (N), unscaled; a coupled pen: the coupling's pull on the device
+  // (spring and damper, after the step), which at rest equals the contact force on the pen.
+  Eigen::Vector3d raw_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d sent_world = Eigen::Vector3d::Zero(); // scaled and clamped
   bool clamped = false;
   bool in_contact = false;
@@ -152,7 +167,7 @@ class PhysicsScene {
 
  private:
   using PairKey = std::pair<const btCollisionObject*, const btCollisionObject*>;
-  void placePens();
+  void placePens(double dt_s);
   void collectContacts(double dt_s);
   // Appends to `c` every texel the path of a (on the surface) entered in this step; on a mesh,
   // `triangle` is one the pair touches.
@@ -182,7 +197,12 @@ class PhysicsScene {
     Eigen::Vector3d tip = Eigen::Vector3d::Zero();
     bool set = false, placed = false;
     PenForce force;
+    // A coupled pen: where the coupling pulls its centre, and that target's velocity (this step).
+    Eigen::Vector3d target = Eigen::Vector3d::Zero();
+    Eigen::Vector3d v_target = Eigen::Vector3d::Zero();
   };
+  // The coupling's force on a coupled pen's body (spring + critical damper towards its target).
+  Eigen::Vector3d couplingForce(const Pen& p) const;
   std::vector<Pen> pens_;
   std::vector<Impact> impacts_;
   std::map<PairKey, LastingContact> contacts_;        // accumulating since takeContacts()

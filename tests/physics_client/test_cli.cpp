@@ -53,6 +53,14 @@ TEST(PhysicsClientCli, Options) {
   EXPECT_NE(usageError({"--scene", "s", "--rate", "nan"}).find("got 'nan'"), std::string::npos);
   EXPECT_NE(usageError({"--scene", "s", "--max-force", "-1"}).find("--max-force"), std::string::npos);
   EXPECT_NE(usageError({"--scene", "s", "--pen-shape", "cube"}).find("capsule, sphere or none"), std::string::npos);
+  const Options grasp = parseOptions({"--scene", "s", "--pen-coupling", "300", "--pen-mass", "0.03", "--pen-friction", "0.9"});
+  EXPECT_EQ(grasp.pen.coupling_n_per_m, 300.0);
+  EXPECT_TRUE(grasp.pen.coupled());
+  EXPECT_EQ(grasp.pen.coupling_mass_kg, 0.03);
+  EXPECT_EQ(grasp.pen.material_friction, 0.9);
+  EXPECT_FALSE(parseOptions({"--scene", "s"}).pen.coupled());  // kinematic pens by default
+  EXPECT_NE(usageError({"--scene", "s", "--pen-coupling", "-5"}).find("--pen-coupling"), std::string::npos);
+  EXPECT_NE(usageError({"--scene", "s", "--pen-mass", "0"}).find("--pen-mass"), std::string::npos);
   EXPECT_NE(usageError({"--scene", "s", "--pen-csv", "a", "--pen-script"}).find("exclude each other"), std::string::npos);
   EXPECT_NE(usageError({"--scene", "s", "--no-lcm"}).find("offline pen"), std::string::npos);
   EXPECT_NE(usageError({"--scene", "s", "--no-pen"}).find("--duration"), std::string::npos);
