@@ -37,6 +37,7 @@ void Driver::step(const std::optional<Eigen::Vector3d>& tip_world, std::int64_t 
 void Driver::step(const std::vector<PenInput>& pens) {
   for (std::size_t i = 0; i < pens.size() && i < pens_.size(); ++i) {
     if (pens[i].tip_world) scene_.setPenTip(int(i), *pens[i].tip_world);
+    if (pens[i].q_world) scene_.setPenOrientation(int(i), *pens[i].q_world);
     if (pens[i].ref_tick >= 0) pens_[i].last_ref_tick = pens[i].ref_tick;
   }
   stepScene();

@@ -107,6 +107,7 @@ class Driver {
   struct PenInput {
     std::optional<Eigen::Vector3d> tip_world;
     std::int64_t ref_tick = -1;
+    std::optional<Eigen::Quaterniond> q_world;  // the device's orientation (PhysicsScene::setPenOrientation)
   };
   void step(const std::vector<PenInput>& pens);
   // Hands the contacts accumulated since the last report to the sink now.

@@ -191,6 +191,9 @@ std::vector<std::vector<PenSample>> loadSessionPens(const std::string& path, dou
         ps.tick = s.tick;
         ps.t_s = double(s.tick - first_tick) / servo_hz;
         ps.p_world = p;
+        const Eigen::Quaterniond q(s.q_world[0], s.q_world[1], s.q_world[2], s.q_world[3]);
+        if (!q.coeffs().allFinite()) throw PenPathError(at.where() + ": q_world is not finite");
+        if (q.norm() > 1e-6) ps.q_world = q.normalized();  // zero: upright, as a pen without one
         pen.push_back(ps);
       }
     });

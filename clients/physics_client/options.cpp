@@ -52,7 +52,10 @@ Pen (the device's tip; default: hapticd over LCM, a pen for each of its devices)
   --pen-script           deterministic, no network: the scene's hand script (its first device's),
                          followed kinematically on the surface
   --no-pen               deterministic, no network, no pen (objects only); needs --duration
-  --pen-shape S          capsule (default; stands on the tip along the plane's normal) | sphere | none
+  --pen-shape S          capsule (default; stands on the tip along the plane's normal) | sphere | none.
+                         A scene device with `tool: capsule` gets that capsule instead, along its
+                         device's axis (device_state_t.q_world; kinematic pens only); --pen-shape,
+                         --pen-radius or --pen-length make every pen the one they describe
   --pen-radius M         default 0.004
   --pen-length M         capsule, between cap centres (default 0.04)
   --force-scale F        client force = F x contact force on the pen (default 1)
@@ -134,14 +137,17 @@ Options parseOptions(const std::vector<std::string>& args) {
       o.pen_source = PenSource::None, ++sources;
     } else if (a == "--pen-shape") {
       const std::string v = value();
+      o.pen.scene_tool = false;
       if (v == "capsule") o.pen.shape = PenShape::Capsule;
       else if (v == "sphere") o.pen.shape = PenShape::Sphere;
       else if (v == "none") o.pen.shape = PenShape::None;
       else throw UsageError(a + ": expected capsule, sphere or none, got '" + v + "'");
     } else if (a == "--pen-radius") {
       o.pen.radius_m = cli::parseNumber(a, value(), {0, 0.1, true, "m"});
+      o.pen.scene_tool = false;
     } else if (a == "--pen-length") {
       o.pen.length_m = cli::parseNumber(a, value(), {0, 1, true, "m"});
+      o.pen.scene_tool = false;
     } else if (a == "--force-scale") {
       o.pen.force_scale = cli::parseNumber(a, value(), {0, 100, false, ""});
     } else if (a == "--max-force") {

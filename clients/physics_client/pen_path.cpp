@@ -185,6 +185,15 @@ Eigen::Vector3d PenPath::at(double t) const {
   return a.p_world + w * (b.p_world - a.p_world);
 }
 
+Eigen::Quaterniond PenPath::orientationAt(double t) const {
+  if (t <= samples_.front().t_s) return samples_.front().q_world;
+  if (t >= samples_.back().t_s) return samples_.back().q_world;
+  const std::size_t i = indexAt(t);
+  const PenSample& a = samples_[i];
+  const PenSample& b = samples_[i + 1];
+  return a.q_world.slerp((t - a.t_s) / (b.t_s - a.t_s), b.q_world);
+}
+
 std::int64_t PenPath::tickAt(double t) const {
   if (t < samples_.front().t_s) return -1;
   return samples_[indexAt(t)].tick;

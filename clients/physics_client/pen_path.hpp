@@ -6,6 +6,7 @@
 //  - a recorded hapticd session (LCM log, lcm_io.hpp), converted to these samples.
 // Linear interpolation between samples; before the first and after the last the end is held.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,7 @@ namespace thx::physclient {
 struct PenSample {
   double t_s = 0.0;
   Eigen::Vector3d p_world = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond q_world = Eigen::Quaterniond::Identity();  // the device's (a recorded session's); else upright
   std::int64_t tick = -1;  // device tick when the sample came from hapticd
 };
 
@@ -41,6 +43,7 @@ class PenPath {
  public:
   explicit PenPath(std::vector<PenSample> samples);  // non-empty, increasing times
   Eigen::Vector3d at(double t_s) const;
+  Eigen::Quaterniond orientationAt(double t_s) const;  // slerp between samples
   std::int64_t tickAt(double t_s) const;  // tick of the sample at or before t (-1 if none)
   double duration() const { return samples_.back().t_s; }
   std::size_t size() const { return samples_.size(); }

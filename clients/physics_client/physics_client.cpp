@@ -39,6 +39,11 @@ std::vector<int> replayedDevices(const Options& o) {
   return devices;
 }
 
+// The pen's orientation in device state `s` (a pen along its device's axis turns with it).
+Eigen::Quaterniond orientationOf(const thx_msgs::device_state_t& s) {
+  return Eigen::Quaterniond(s.q_world[0], s.q_world[1], s.q_world[2], s.q_world[3]);
+}
+
 // The tip of device state `s` now: device states arrive in bursts; extrapolating the newest one by
 // its age (same host, same CLOCK_MONOTONIC; at most 20 ms) keeps the pen's motion, and so its
 // velocity, smooth.
@@ -124,7 +129,7 @@ int runOffline(const Options& o, SceneFollower& sim) {
   std::vector<Driver::PenInput> pens(paths.size());
   for (std::int64_t k = 0; k < steps && !thx::client::stopRequested(); ++k) {
     const double t = double(k) * dt;  // the pen poses the devices had at the start of the step
-    for (std::size_t i = 0; i < paths.size(); ++i) pens[i] = {paths[i].at(t), paths[i].tickAt(t)};
+    for (std::size_t i = 0; i < paths.size(); ++i) pens[i] = {paths[i].at(t), paths[i].tickAt(t), paths[i].orientationAt(t)};
     driver.step(pens);
   }
   driver.flush();
@@ -222,7 +227,7 @@ int runOnline(const Options& o, SceneFollower& sim) {
           }
           for (std::size_t i = 0; i < devices.size(); ++i) {
             const auto s = client.latestDeviceState(devices[i]);  // none yet: the pen stays parked
-            pens[i] = s ? Driver::PenInput{tipNow(*s), s->tick} : Driver::PenInput{};
+            pens[i] = s ? Driver::PenInput{tipNow(*s), s->tick, orientationOf(*s)} : Driver::PenInput{};
           }
           if (pens[0].ref_tick == last_tick) ++link.stale_steps;  // the followed device's
           last_tick = pens[0].ref_tick;

@@ -99,43 +99,73 @@ PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
   }
   v_before_.resize(objects_.size(), Eigen::Vector3d::Zero());
 
-  addPens(options.pens);
+  if (options.pen_devices.empty())
+    addPens(options.pens);
+  else
+    addPens(options.pen_devices);
 }
 
 void PhysicsScene::addPens(int count) {
+  std::vector<int> devices;
+  for (int i = 0; i < count; ++i) devices.push_back(i < penCount() ? pens_[std::size_t(i)].device : i);
+  addPens(devices);
+}
+
+PhysicsScene::PenBody PhysicsScene::bodyFor(int device) const {
   const PenOptions& pen = options_.pen;
-  while (int(pens_.size()) < count) {
-    Pen p;
-    if (pen.shape != PenShape::None) {
-      // Parked 10 m above the plane until the first pose arrives.
-      Eigen::Isometry3d parked = surface().mapping().plane_to_world;
-      parked.translation() += 10.0 * surface().mapping().geometricNormalWorld();
-      phys::BodyMaterial pen_material;
-      pen_material.friction = pen.material_friction;
-      pen_material.restitution = 0.0;
-      // Kinematic: added with mass 0 (so Bullet files it with the static bodies: it never collides
-      // with the plane, the fixed obstacles or another pen), then made kinematic so its velocity
-      // comes from its moves. Coupled: dynamic, filtered to meet the dynamic objects only.
-      const double mass = pen.coupled() ? pen.coupling_mass_kg : 0.0;
-      p.body = pen.shape == PenShape::Sphere ? &world_->addSphere(pen.radius_m, mass, parked, pen_material)
-                                             : &world_->addCapsule(pen.radius_m, 0.5 * pen.length_m, mass, parked, pen_material);
-      if (pen.coupled()) {
-        btDiscreteDynamicsWorld& w = world_->world();
-        w.removeRigidBody(p.body);
-        p.body->setFlags(p.body->getFlags() | BT_DISABLE_WORLD_GRAVITY);
-        p.body->setGravity(btVector3(0, 0, 0));
-        p.body->setAngularFactor(0.0);
-        p.body->setDamping(0.0, 0.0);
-        w.addRigidBody(p.body, btBroadphaseProxy::CharacterFilter, btBroadphaseProxy::DefaultFilter);
-      } else {
-        p.body->setCollisionFlags(p.body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-      }
-      p.body->setActivationState(DISABLE_DEACTIVATION);
-      p.body->setUserIndex(kBodyPen);
-      p.body->setUserIndex2(int(pens_.size()));
-    }
-    pens_.push_back(p);
+  if (pen.scene_tool && !pen.coupled() && device >= 0 && std::size_t(device) < scene::deviceCount(scene_)) {
+    const scene::Tool& tool = scene::deviceAt(scene_, std::size_t(device)).tool;
+    if (tool.shape == scene::ToolShape::Capsule) return PenBody{PenShape::Capsule, tool.radius_m, tool.length_m, true};
   }
+  return PenBody{pen.shape, pen.radius_m, pen.length_m, false};
+}
+
+void PhysicsScene::addPens(const std::vector<int>& devices) {
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    if (i < pens_.size() && pens_[i].device == devices[i]) continue;
+    if (i < pens_.size()) {  // follows another device now (before the first step): its body anew
+      if (pens_[i].body) world_->world().removeRigidBody(pens_[i].body);
+      pens_[i] = Pen{};
+    } else {
+      pens_.emplace_back();
+    }
+    makePen(int(i), devices[i]);
+  }
+}
+
+void PhysicsScene::makePen(int index, int device) {
+  const PenOptions& pen = options_.pen;
+  Pen& p = pens_[std::size_t(index)];
+  p.device = device;
+  p.geometry = bodyFor(device);
+  const PenBody& g = p.geometry;
+  if (g.shape == PenShape::None) return;
+  // Parked 10 m above the plane until the first pose arrives.
+  Eigen::Isometry3d parked = surface().mapping().plane_to_world;
+  parked.translation() += 10.0 * surface().mapping().geometricNormalWorld();
+  phys::BodyMaterial pen_material;
+  pen_material.friction = pen.material_friction;
+  pen_material.restitution = 0.0;
+  // Kinematic: added with mass 0 (so Bullet files it with the static bodies: it never collides
+  // with the plane, the fixed obstacles or another pen), then made kinematic so its velocity
+  // comes from its moves. Coupled: dynamic, filtered to meet the dynamic objects only.
+  const double mass = pen.coupled() ? pen.coupling_mass_kg : 0.0;
+  p.body = g.shape == PenShape::Sphere ? &world_->addSphere(g.radius_m, mass, parked, pen_material)
+                                       : &world_->addCapsule(g.radius_m, 0.5 * g.length_m, mass, parked, pen_material);
+  if (pen.coupled()) {
+    btDiscreteDynamicsWorld& w = world_->world();
+    w.removeRigidBody(p.body);
+    p.body->setFlags(p.body->getFlags() | BT_DISABLE_WORLD_GRAVITY);
+    p.body->setGravity(btVector3(0, 0, 0));
+    p.body->setAngularFactor(0.0);
+    p.body->setDamping(0.0, 0.0);
+    w.addRigidBody(p.body, btBroadphaseProxy::CharacterFilter, btBroadphaseProxy::DefaultFilter);
+  } else {
+    p.body->setCollisionFlags(p.body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  }
+  p.body->setActivationState(DISABLE_DEACTIVATION);
+  p.body->setUserIndex(kBodyPen);
+  p.body->setUserIndex2(index);
 }
 
 PhysicsScene::~PhysicsScene() = default;
@@ -144,11 +174,25 @@ int PhysicsScene::idOf(const btCollisionObject* o) const { return o->getUserInde
 
 int PhysicsScene::penOf(const btCollisionObject* o) { return o->getUserIndex() == kBodyPen ? o->getUserIndex2() : -1; }
 
-Eigen::Vector3d PhysicsScene::penCentreFor(const Eigen::Vector3d& tip) const {
+Eigen::Isometry3d PhysicsScene::penPoseFor(const Pen& p) const {
+  Eigen::Isometry3d pose = surface().mapping().plane_to_world;  // capsule axis = the plane's normal
+  if (p.geometry.along_device) {
+    pose.linear() = p.q.toRotationMatrix();
+    pose.translation() = p.tip + p.q * Eigen::Vector3d(0, 0, 0.5 * p.geometry.length_m);
+    return pose;
+  }
   const Eigen::Vector3d n = surface().mapping().geometricNormalWorld();
-  const PenOptions& pen = options_.pen;
-  const double up = pen.shape == PenShape::Capsule ? pen.radius_m + 0.5 * pen.length_m : pen.radius_m;
-  return tip + up * n;
+  const PenBody& g = p.geometry;
+  const double up = g.shape == PenShape::Capsule ? g.radius_m + 0.5 * g.length_m : g.radius_m;
+  pose.translation() = p.tip + up * n;
+  return pose;
+}
+
+void PhysicsScene::setPenOrientation(int pen, const Eigen::Quaterniond& q_world) {
+  Pen& p = pens_.at(std::size_t(pen));
+  const double norm = q_world.norm();
+  if (!std::isfinite(norm) || norm < 1e-6) return;  // keep the last good orientation
+  p.q = q_world.normalized();
 }
 
 void PhysicsScene::setPenTip(int pen, const Eigen::Vector3d& tip_world) {
@@ -167,8 +211,7 @@ Eigen::Vector3d PhysicsScene::couplingForce(const Pen& p) const {
 void PhysicsScene::placePens(double dt_s) {
   for (Pen& p : pens_) {
     if (p.body == nullptr || !p.set) continue;
-    Eigen::Isometry3d pose = surface().mapping().plane_to_world;  // capsule axis = the plane's normal
-    pose.translation() = penCentreFor(p.tip);
+    const Eigen::Isometry3d pose = penPoseFor(p);
     const btTransform t = phys::toBt(pose);
     if (options_.pen.coupled()) {
       // A teleport puts the body at its target at rest; otherwise the spring pulls it there.

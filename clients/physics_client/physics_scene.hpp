@@ -40,6 +40,12 @@ inline constexpr int kBodyPen = -2;
 enum class PenShape { None, Sphere, Capsule };
 
 struct PenOptions {
+  // A scene device with `tool: capsule` (docs/scenes.md "device.tool") gets that capsule as its pen:
+  // the tool's radius and length, its tip ball centred on the device's point and its shaft along
+  // the device orientation's +z (setPenOrientation), so the shaft the servo renders against the
+  // texture also pushes the objects (kinematic pens only; a grasping pen stands on the tip as
+  // below). false: every pen is `shape` below (physics-client's --pen-shape/-radius/-length).
+  bool scene_tool = true;
   PenShape shape = PenShape::Capsule;
   double radius_m = 0.004;   // sphere radius, or the capsule's
   double length_m = 0.04;    // capsule: between the cap centres; the capsule stands on the tip
@@ -66,7 +72,10 @@ struct PenOptions {
 
 struct SimOptions {
   PenOptions pen;
-  int pens = 1;  // pen bodies, alike (pen i follows the i-th device followed); more: addPens()
+  int pens = 1;  // pen bodies (pen i follows scene device i); more: addPens()
+  // The scene device each pen follows (its tool shapes the pen); when given, one pen per entry
+  // and `pens` is ignored.
+  std::vector<int> pen_devices;
   double impact_min_speed_m_per_s = 0.005;  // slower first touches are lasting contacts only
   phys::WorldOptions world;
 };
@@ -139,7 +148,20 @@ class PhysicsScene {
   // objects as the constructor adds SimOptions::pens: call before the first step, so that a scene
   // whose pen count is known late (hapticd's hello) steps as if built with it.
   void addPens(int count);
+  // The same with the scene device each pen follows: pen i follows devices[i] (a pen that followed
+  // another device is made anew for this one; call before the first step).
+  void addPens(const std::vector<int>& devices);
   int penCount() const { return int(pens_.size()); }
+  // The orientation of pen `pen`'s device (device_state_t.q_world), for a pen along its device's
+  // axis (PenOptions::scene_tool); other pens ignore it. Non-finite or zero: the last one is kept.
+  void setPenOrientation(int pen, const Eigen::Quaterniond& q_world);
+  // The pen's body: its shape and size, and whether it lies along its device's axis.
+  struct PenBody {
+    PenShape shape = PenShape::Capsule;
+    double radius_m = 0.004, length_m = 0.04;
+    bool along_device = false;
+  };
+  PenBody penBody(int pen = 0) const { return pens_.at(std::size_t(pen)).geometry; }
   // The tip of pen `pen` (default the first) for the next step (world frame). Before the first
   // call a pen is parked far above the plane and touches nothing.
   void setPenTip(const Eigen::Vector3d& tip_world) { setPenTip(0, tip_world); }
@@ -178,7 +200,12 @@ class PhysicsScene {
   void extendMeshPath(const btCollisionObject* a, const PathPoint* from, const MeshGround::Place& to, double dt_s,
                       LastingContact& c);
   int idOf(const btCollisionObject* o) const;
-  Eigen::Vector3d penCentreFor(const Eigen::Vector3d& tip) const;
+  // The pen body's pose for a tip: along the plane's normal standing on it, or along the device's
+  // axis with its tip ball around it.
+  struct Pen;
+  Eigen::Isometry3d penPoseFor(const Pen& p) const;
+  PenBody bodyFor(int device) const;
+  void makePen(int index, int device);  // pens_[index]'s body for `device`
   // The pen a kinematic pen body is (its user index 2), -1 for any other body.
   static int penOf(const btCollisionObject* o);
 
@@ -194,7 +221,10 @@ class PhysicsScene {
 
   struct Pen {
     btRigidBody* body = nullptr;  // nullptr with PenShape::None
+    int device = 0;               // the scene device it follows
+    PenBody geometry;
     Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+    Eigen::Quaterniond q = Eigen::Quaterniond::Identity();  // its device's orientation
     bool set = false, placed = false;
     PenForce force;
     // A coupled pen: where the coupling pulls its centre, and that target's velocity (this step).

@@ -28,13 +28,13 @@ std::unique_ptr<PhysicsScene> SceneFollower::build(const std::string& file) cons
   SimOptions so;
   so.pen = options_.pen;
   so.impact_min_speed_m_per_s = options_.impact_min_speed;
-  so.pens = int(pen_devices_.size());
+  so.pen_devices = pen_devices_;
   return std::make_unique<PhysicsScene>(data, so);
 }
 
 void SceneFollower::setPens(const std::vector<int>& devices) {
   pen_devices_ = devices;
-  physics_->addPens(int(devices.size()));
+  physics_->addPens(devices);
 }
 
 void SceneFollower::start(EventSink& sink) {

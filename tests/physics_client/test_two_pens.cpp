@@ -240,7 +240,7 @@ TEST(TwoPensRouting, EachPensForceGoesToItsOwnDevice) {
   // The right ball rests at (0.03125, 0.05625); pen 1 comes from +x along its row at 5 cm/s.
   for (int k = 0; k < 600; ++k) {
     const double x = 0.05 - 0.05 * std::max(0.0, (k - 200) * 1e-3);
-    driver.step({Driver::PenInput{}, Driver::PenInput{Eigen::Vector3d(x, 0.05625, 0.0), k}});
+    driver.step({Driver::PenInput{}, Driver::PenInput{Eigen::Vector3d(x, 0.05625, 0.0), k, std::nullopt}});
     while (lcm.handleTimeout(0) > 0) {
     }
   }
