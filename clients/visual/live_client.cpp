@@ -44,7 +44,7 @@ std::vector<ObjectInstance> frameObjects(const Options& o, const LoadedScene& l,
   const tex::TexturedSurface& surface = l.surface.surface;
   const std::vector<PenView> pens = pensOf(view);
   const std::vector<ObjectInstance> drawn =
-      pens.empty() ? pensAtRest(surface, l.scene, o.device, o.pen_xy) : pensAt(surface, pens);
+      pens.empty() ? pensAtRest(surface, l.scene, o.device, o.pen_xy) : pensAt(surface, pens, &l.scene);
   objects.insert(objects.end(), drawn.begin(), drawn.end());
   return objects;
 }

@@ -17,6 +17,8 @@ PenView penViewOf(const thx_msgs::device_state_t& s) {
   p.tip_world = Eigen::Vector3d(s.p_world[0], s.p_world[1], s.p_world[2]);
   p.proxy_held = (s.flags & thx_msgs::device_state_t::FLAG_PROXY_HELD) != 0;
   p.proxy_world = p.proxy_held ? Eigen::Vector3d(s.proxy_world[0], s.proxy_world[1], s.proxy_world[2]) : p.tip_world;
+  const Eigen::Quaterniond q(s.q_world[0], s.q_world[1], s.q_world[2], s.q_world[3]);
+  if (q.coeffs().allFinite() && q.norm() > 1e-6) p.q_world = q.normalized();  // else upright
   return p;
 }
 
@@ -75,7 +77,7 @@ LiveView liveViewOf(const std::vector<thx_msgs::device_state_t>& states,
 namespace {
 bool samePen(const PenView& a, const PenView& b) {
   return a.tip_world == b.tip_world && a.proxy_world == b.proxy_world && a.proxy_held == b.proxy_held &&
-         a.device == b.device;
+         a.device == b.device && a.q_world.coeffs() == b.q_world.coeffs();
 }
 }  // namespace
 

@@ -85,7 +85,7 @@ std::vector<Poses> readPoses(const std::string& log_path) {
 }  // namespace
 
 std::vector<PenView> pensOf(const ReplayFrame& frame) {
-  std::vector<PenView> pens{{frame.tip_world, frame.proxy_world, frame.proxy_held, frame.device}};
+  std::vector<PenView> pens{{frame.tip_world, frame.proxy_world, frame.proxy_held, frame.device, frame.q_world}};
   pens.insert(pens.end(), frame.other_pens.begin(), frame.other_pens.end());
   return pens;
 }
@@ -129,6 +129,7 @@ std::vector<ReplayFrame> replayFrames(const std::string& log_path, double servo_
         frame.proxy_world = s.pen.proxy_world;
         frame.proxy_held = s.pen.proxy_held;
         frame.device = s.pen.device;
+        frame.q_world = s.pen.q_world;
       } else {
         frame.other_pens.push_back(s.pen);
       }

@@ -25,6 +25,7 @@ struct ReplayFrame {
   bool proxy_held = false;                                // device_state_t FLAG_PROXY_HELD
   std::vector<Eigen::Isometry3d> bodies;  // body i = the scene's objects[i]; empty: no poses yet (at rest)
   int device = 0;                         // the first pen's device (0 for a one-device session's)
+  Eigen::Quaterniond q_world = Eigen::Quaterniond::Identity();  // the first pen's device orientation
   std::vector<PenView> other_pens;        // the other devices' pens, in index order
 };
 

@@ -97,11 +97,47 @@ std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, co
   return out;
 }
 
-std::vector<ObjectInstance> pensAt(const tex::TexturedSurface& surface, const std::vector<PenView>& pens) {
+namespace {
+// Device `device`'s capsule tool in `scene`, if it has one.
+const scene::Tool* capsuleToolOf(const scene::Scene* scene, int device) {
+  if (scene == nullptr || device < 0 || std::size_t(device) >= scene::deviceCount(*scene)) return nullptr;
+  const scene::Tool& tool = scene::deviceAt(*scene, std::size_t(device)).tool;
+  return tool.shape == scene::ToolShape::Capsule ? &tool : nullptr;
+}
+}  // namespace
+
+std::vector<ObjectInstance> capsuleToolAt(const PenView& pen, const scene::Tool& tool) {
+  const PenColours colours = penColours(pen.device);
+  const Eigen::Vector3d link = pen.proxy_world - pen.tip_world;
+  const bool held = pen.proxy_held && link.norm() > 0.0;
+  Eigen::Isometry3d ball = Eigen::Isometry3d::Identity();
+  ball.translation() = pen.proxy_world;
+  Eigen::Isometry3d shaft = Eigen::Isometry3d::Identity();
+  shaft.linear() = pen.q_world.toRotationMatrix();
+  shaft.translation() = pen.proxy_world + pen.q_world * Eigen::Vector3d(0, 0, 0.5 * tool.length_m);
+  std::vector<ObjectInstance> out{
+      instance(UnitShape::Sphere, ball, Eigen::Vector3d::Constant(tool.radius_m), held ? colours.held : colours.ball),
+      instance(UnitShape::Cylinder, shaft, {tool.radius_m, tool.radius_m, tool.length_m}, {0.25f, 0.25f, 0.3f})};
+  if (held) {
+    Eigen::Isometry3d tip = Eigen::Isometry3d::Identity();
+    tip.translation() = pen.tip_world;
+    out.push_back(instance(UnitShape::Sphere, tip, Eigen::Vector3d::Constant(kHeldTipRadius), colours.ball));
+    Eigen::Isometry3d rod = Eigen::Isometry3d::Identity();
+    rod.translation() = 0.5 * (pen.tip_world + pen.proxy_world);
+    rod.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), link).toRotationMatrix();
+    out.push_back(instance(UnitShape::Cylinder, rod, {kLinkRadius, kLinkRadius, link.norm()}, {0.1f, 0.1f, 0.1f}));
+  }
+  return out;
+}
+
+std::vector<ObjectInstance> pensAt(const tex::TexturedSurface& surface, const std::vector<PenView>& pens,
+                                   const scene::Scene* scene) {
   std::vector<ObjectInstance> out;
   for (const PenView& p : pens) {
-    const std::vector<ObjectInstance> pen = penWithProxy(surface, surface.toLocal(p.tip_world),
-                                                         surface.toLocal(p.proxy_world), p.proxy_held, p.device);
+    const scene::Tool* tool = capsuleToolOf(scene, p.device);
+    const std::vector<ObjectInstance> pen =
+        tool ? capsuleToolAt(p, *tool)
+             : penWithProxy(surface, surface.toLocal(p.tip_world), surface.toLocal(p.proxy_world), p.proxy_held, p.device);
     out.insert(out.end(), pen.begin(), pen.end());
   }
   return out;
@@ -114,7 +150,17 @@ std::vector<ObjectInstance> pensAtRest(const tex::TexturedSurface& surface, cons
   std::vector<ObjectInstance> out;
   for (const int i : devices) {
     const Eigen::Vector2d xy = first_xy && i == devices.front() ? *first_xy : penRestPosition(scene, std::size_t(i));
-    const std::vector<ObjectInstance> pen = penAt(surface, tipOnSurface(surface, xy), i);
+    std::vector<ObjectInstance> pen;
+    if (const scene::Tool* tool = capsuleToolOf(&scene, i)) {
+      PenView upright;  // the ball resting on the surface, the shaft up its normal
+      upright.device = i;
+      upright.q_world = Eigen::Quaterniond(surface.mapping().plane_to_world.linear());
+      upright.tip_world = upright.proxy_world =
+          surface.mapping().plane_to_world * (tipOnSurface(surface, xy) + Eigen::Vector3d(0, 0, tool->radius_m));
+      pen = capsuleToolAt(upright, *tool);
+    } else {
+      pen = penAt(surface, tipOnSurface(surface, xy), i);
+    }
     out.insert(out.end(), pen.begin(), pen.end());
   }
   return out;

@@ -30,11 +30,18 @@ std::vector<ObjectInstance> penAt(const tex::TexturedSurface& surface, const Eig
 // between them.
 std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local,
                                          const Eigen::Vector3d& proxy_local, bool proxy_held, int device = 0);
-// Every pen of `pens` (world positions) as penWithProxy draws it, each in its device's colours.
-std::vector<ObjectInstance> pensAt(const tex::TexturedSurface& surface, const std::vector<PenView>& pens);
+// Every pen of `pens` (world positions) as penWithProxy draws it, each in its device's colours;
+// a device whose tool is a capsule in `scene` (docs/scenes.md "device.tool") as capsuleToolAt.
+std::vector<ObjectInstance> pensAt(const tex::TexturedSurface& surface, const std::vector<PenView>& pens,
+                                   const scene::Scene* scene = nullptr);
+// A capsule tool (issue 30): its tip ball (the tool's radius) at the proxy, hapticd's tool tip (the
+// held colour while the device's tip is elsewhere, which is then a smaller ball with a dark rod to
+// it, as penWithProxy draws), its shaft of the tool's radius and length along the device
+// orientation's +z: the device's, not the coupled tool's (the messages do not carry it).
+std::vector<ObjectInstance> capsuleToolAt(const PenView& pen, const scene::Tool& tool);
 // The pens at rest, each resting on the surface where its hand script starts (penRestPosition):
 // every device's of the scene, or `device`'s alone; the first of them at `first_xy` when given
-// (--pen X,Y).
+// (--pen X,Y). A capsule tool stands upright with its ball on the surface.
 std::vector<ObjectInstance> pensAtRest(const tex::TexturedSurface& surface, const scene::Scene& scene,
                                        std::optional<int> device, const std::optional<Eigen::Vector2d>& first_xy);
 Eigen::Vector3d tipOnSurface(const tex::TexturedSurface& surface, const Eigen::Vector2d& xy_local);

@@ -37,7 +37,7 @@ std::vector<ObjectInstance> replayedObjects(const Options& o, const scene::Scene
   std::vector<ObjectInstance> objects;
   if (!o.no_objects) objects = objectsAt(scene, frame.bodies);
   if (!o.no_pen) {
-    const std::vector<ObjectInstance> pens = pensAt(surface, pensOf(frame));
+    const std::vector<ObjectInstance> pens = pensAt(surface, pensOf(frame), &scene);
     objects.insert(objects.end(), pens.begin(), pens.end());
   }
   return objects;
