@@ -175,23 +175,23 @@ std::size_t PenPath::indexAt(double t) const {
   return hint_;
 }
 
-Eigen::Vector3d PenPath::at(double t) const {
-  if (t <= samples_.front().t_s) return samples_.front().p_world;
-  if (t >= samples_.back().t_s) return samples_.back().p_world;
+PenPath::Bracket PenPath::bracketAt(double t) const {
+  if (t <= samples_.front().t_s) return {&samples_.front(), &samples_.front(), 0.0};
+  if (t >= samples_.back().t_s) return {&samples_.back(), &samples_.back(), 0.0};
   const std::size_t i = indexAt(t);
   const PenSample& a = samples_[i];
   const PenSample& b = samples_[i + 1];
-  const double w = (t - a.t_s) / (b.t_s - a.t_s);
-  return a.p_world + w * (b.p_world - a.p_world);
+  return {&a, &b, (t - a.t_s) / (b.t_s - a.t_s)};
+}
+
+Eigen::Vector3d PenPath::at(double t) const {
+  const Bracket k = bracketAt(t);
+  return k.a->p_world + k.w * (k.b->p_world - k.a->p_world);
 }
 
 Eigen::Quaterniond PenPath::orientationAt(double t) const {
-  if (t <= samples_.front().t_s) return samples_.front().q_world;
-  if (t >= samples_.back().t_s) return samples_.back().q_world;
-  const std::size_t i = indexAt(t);
-  const PenSample& a = samples_[i];
-  const PenSample& b = samples_[i + 1];
-  return a.q_world.slerp((t - a.t_s) / (b.t_s - a.t_s), b.q_world);
+  const Bracket k = bracketAt(t);
+  return k.a->q_world.slerp(k.w, k.b->q_world);
 }
 
 std::int64_t PenPath::tickAt(double t) const {

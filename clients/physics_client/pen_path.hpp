@@ -50,6 +50,13 @@ class PenPath {
 
  private:
   std::size_t indexAt(double t_s) const;
+  // The samples around t and the later one's weight (the end sample twice, weight 0, outside).
+  struct Bracket {
+    const PenSample* a;
+    const PenSample* b;
+    double w;
+  };
+  Bracket bracketAt(double t_s) const;
   std::vector<PenSample> samples_;
   mutable std::size_t hint_ = 0;
 };

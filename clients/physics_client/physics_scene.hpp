@@ -206,7 +206,7 @@ class PhysicsScene {
   Eigen::Isometry3d penPoseFor(const Pen& p) const;
   PenBody bodyFor(int device) const;
   void makePen(int index, int device);  // pens_[index]'s body for `device`
-  // The pen a kinematic pen body is (its user index 2), -1 for any other body.
+  // The pen a pen body is (its user index 2), -1 for any other body.
   static int penOf(const btCollisionObject* o);
 
   scene::Scene scene_;

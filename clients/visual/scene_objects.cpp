@@ -77,14 +77,12 @@ Eigen::Vector2d penRestPosition(const scene::Scene& scene, std::size_t device) {
   return Eigen::Vector2d::Zero();
 }
 
-std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local,
-                                         const Eigen::Vector3d& proxy_local, bool proxy_held, int device) {
+namespace {
+// Under a held proxy: the device's tip a smaller ball (its ball colour) where it is, and a thin
+// dark rod from it to the proxy (plane-local positions).
+void appendHeldTip(std::vector<ObjectInstance>& out, const tex::TexturedSurface& surface,
+                   const Eigen::Vector3d& tip_local, const Eigen::Vector3d& proxy_local, const PenColours& colours) {
   const Eigen::Vector3d link = proxy_local - tip_local;
-  if (!proxy_held || link.norm() <= 0.0) return penAt(surface, tip_local, device);
-  // Held: the pen rests on the proxy (its ball in the held colour), the device's tip a smaller ball below.
-  const PenColours colours = penColours(device);
-  std::vector<ObjectInstance> out = penAt(surface, proxy_local, device);
-  out.front().albedo = colours.held;
   const Eigen::Isometry3d& plane = surface.mapping().plane_to_world;
   Eigen::Isometry3d tip = plane;
   tip.translate(tip_local);
@@ -94,6 +92,17 @@ std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, co
   rod.translate(0.5 * (tip_local + proxy_local));
   rod.rotate(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), link));
   out.push_back(instance(UnitShape::Cylinder, rod, {kLinkRadius, kLinkRadius, link.norm()}, {0.1f, 0.1f, 0.1f}));
+}
+}  // namespace
+
+std::vector<ObjectInstance> penWithProxy(const tex::TexturedSurface& surface, const Eigen::Vector3d& tip_local,
+                                         const Eigen::Vector3d& proxy_local, bool proxy_held, int device) {
+  if (!proxy_held || (proxy_local - tip_local).norm() <= 0.0) return penAt(surface, tip_local, device);
+  // Held: the pen rests on the proxy (its ball in the held colour), the device's tip a smaller ball below.
+  const PenColours colours = penColours(device);
+  std::vector<ObjectInstance> out = penAt(surface, proxy_local, device);
+  out.front().albedo = colours.held;
+  appendHeldTip(out, surface, tip_local, proxy_local, colours);
   return out;
 }
 
@@ -106,10 +115,10 @@ const scene::Tool* capsuleToolOf(const scene::Scene* scene, int device) {
 }
 }  // namespace
 
-std::vector<ObjectInstance> capsuleToolAt(const PenView& pen, const scene::Tool& tool) {
+std::vector<ObjectInstance> capsuleToolAt(const tex::TexturedSurface& surface, const PenView& pen,
+                                          const scene::Tool& tool) {
   const PenColours colours = penColours(pen.device);
-  const Eigen::Vector3d link = pen.proxy_world - pen.tip_world;
-  const bool held = pen.proxy_held && link.norm() > 0.0;
+  const bool held = pen.proxy_held && (pen.proxy_world - pen.tip_world).norm() > 0.0;
   Eigen::Isometry3d ball = Eigen::Isometry3d::Identity();
   ball.translation() = pen.proxy_world;
   Eigen::Isometry3d shaft = Eigen::Isometry3d::Identity();
@@ -118,15 +127,7 @@ std::vector<ObjectInstance> capsuleToolAt(const PenView& pen, const scene::Tool&
   std::vector<ObjectInstance> out{
       instance(UnitShape::Sphere, ball, Eigen::Vector3d::Constant(tool.radius_m), held ? colours.held : colours.ball),
       instance(UnitShape::Cylinder, shaft, {tool.radius_m, tool.radius_m, tool.length_m}, {0.25f, 0.25f, 0.3f})};
-  if (held) {
-    Eigen::Isometry3d tip = Eigen::Isometry3d::Identity();
-    tip.translation() = pen.tip_world;
-    out.push_back(instance(UnitShape::Sphere, tip, Eigen::Vector3d::Constant(kHeldTipRadius), colours.ball));
-    Eigen::Isometry3d rod = Eigen::Isometry3d::Identity();
-    rod.translation() = 0.5 * (pen.tip_world + pen.proxy_world);
-    rod.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), link).toRotationMatrix();
-    out.push_back(instance(UnitShape::Cylinder, rod, {kLinkRadius, kLinkRadius, link.norm()}, {0.1f, 0.1f, 0.1f}));
-  }
+  if (held) appendHeldTip(out, surface, surface.toLocal(pen.tip_world), surface.toLocal(pen.proxy_world), colours);
   return out;
 }
 
@@ -136,7 +137,7 @@ std::vector<ObjectInstance> pensAt(const tex::TexturedSurface& surface, const st
   for (const PenView& p : pens) {
     const scene::Tool* tool = capsuleToolOf(scene, p.device);
     const std::vector<ObjectInstance> pen =
-        tool ? capsuleToolAt(p, *tool)
+        tool ? capsuleToolAt(surface, p, *tool)
              : penWithProxy(surface, surface.toLocal(p.tip_world), surface.toLocal(p.proxy_world), p.proxy_held, p.device);
     out.insert(out.end(), pen.begin(), pen.end());
   }
@@ -157,7 +158,7 @@ std::vector<ObjectInstance> pensAtRest(const tex::TexturedSurface& surface, cons
       upright.q_world = Eigen::Quaterniond(surface.mapping().plane_to_world.linear());
       upright.tip_world = upright.proxy_world =
           surface.mapping().plane_to_world * (tipOnSurface(surface, xy) + Eigen::Vector3d(0, 0, tool->radius_m));
-      pen = capsuleToolAt(upright, *tool);
+      pen = capsuleToolAt(surface, upright, *tool);
     } else {
       pen = penAt(surface, tipOnSurface(surface, xy), i);
     }

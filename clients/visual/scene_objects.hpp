@@ -38,7 +38,8 @@ std::vector<ObjectInstance> pensAt(const tex::TexturedSurface& surface, const st
 // held colour while the device's tip is elsewhere, which is then a smaller ball with a dark rod to
 // it, as penWithProxy draws), its shaft of the tool's radius and length along the device
 // orientation's +z: the device's, not the coupled tool's (the messages do not carry it).
-std::vector<ObjectInstance> capsuleToolAt(const PenView& pen, const scene::Tool& tool);
+std::vector<ObjectInstance> capsuleToolAt(const tex::TexturedSurface& surface, const PenView& pen,
+                                          const scene::Tool& tool);
 // The pens at rest, each resting on the surface where its hand script starts (penRestPosition):
 // every device's of the scene, or `device`'s alone; the first of them at `first_xy` when given
 // (--pen X,Y). A capsule tool stands upright with its ball on the surface.

@@ -16,9 +16,8 @@ namespace {
 
 using namespace thx::scene;
 
-const std::string kPlane = "version: 1\nname: move\nsurface:\n  size: [0.2, 0.2]\n  texture: {generator: bricks}\n";
-
-std::string errorOf(const std::string& text) { return thx::test::sceneErrorOf(text); }
+const std::string kPlane = thx::test::planeSceneText("move");
+const auto& errorOf = thx::test::sceneErrorOf;
 
 }  // namespace
 
