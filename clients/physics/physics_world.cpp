@@ -98,6 +98,14 @@ btRigidBody& PhysicsWorld::addTexturedMesh(const mesh::TexturedMesh& mesh, const
       arrays->vertices.data(), int(3 * sizeof(btScalar)));
   auto shape = std::make_unique<btBvhTriangleMeshShape>(arrays->array.get(), true);
   triangle_arrays_.push_back(std::move(arrays));
+  if (options.smooth && options.texture && options.texture->isRelief()) {
+    auto relief = std::make_unique<MeshRelief>(mesh);
+    relief->map = options.texture;
+    relief->sampling = options.sampling;
+    relief->normals_made_for_m = options.normals_made_for_m;
+    attachMeshRelief(*shape, *relief);
+    mesh_reliefs_.push_back(std::move(relief));
+  }
   btRigidBody& body = addBody(std::move(shape), 0.0, pose, material);
   world_->addTexturedMesh(&body, &mesh, options);
   return body;

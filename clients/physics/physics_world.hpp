@@ -16,6 +16,7 @@
 #include <memory>
 #include <vector>
 
+#include "clients/physics/mesh_relief_chart.hpp"
 #include "clients/physics/normal_map_contact.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "clients/physics/textured_world.hpp"
@@ -72,8 +73,9 @@ class PhysicsWorld {
   btRigidBody& addReliefPlane(const tex::TexturedSurface& surface, const BodyMaterial& material);
   // A static textured mesh (meshes/textured_mesh.hpp, frames built) at `pose` (the mesh's frame
   // in the world): Bullet's btBvhTriangleMeshShape over its triangles, each contact steered by the
-  // smooth surface and the texture (mesh_contact.hpp). The mesh and any texture in `options`
-  // must outlive this world.
+  // smooth surface and the texture (mesh_contact.hpp); with a relief map, a textured box meets
+  // it on the chart under it, both reliefs shaping the contact (mesh_relief_chart.hpp). The mesh
+  // and any texture in `options` must outlive this world.
   btRigidBody& addTexturedMesh(const mesh::TexturedMesh& mesh, const Eigen::Isometry3d& pose,
                                const BodyMaterial& material, const MeshContactOptions& options = {});
   // Any static collision shape (heightfield, mesh ...), for comparisons; the world owns it.
@@ -111,6 +113,7 @@ class PhysicsWorld {
                           // shapes_: the shapes that read them go first)
   std::vector<std::unique_ptr<TriangleArrays>> triangle_arrays_;
   std::vector<std::unique_ptr<FaceTexture>> face_textures_;  // the textured boxes' (their shapes point here)
+  std::vector<std::unique_ptr<MeshRelief>> mesh_reliefs_;    // the relief meshes' (their shapes point here)
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
 };

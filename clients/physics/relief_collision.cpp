@@ -1,6 +1,7 @@
 #include "clients/physics/relief_collision.hpp"
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <BulletCollision/CollisionDispatch/btConvexConcaveCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
@@ -45,7 +46,8 @@ namespace {
 
 // Adds the chosen contacts (deepest first) to the result's manifold (relief_collision.hpp's
 // convention).
-void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside& underside, const ReliefPlaneShape& plane,
+void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside& underside,
+                       const tex::TexturedSurface& surface, const GroundBend& bend,
                        const Eigen::Isometry3d& world_from_plane, bool conforming, double threshold,
                        btManifoldResult* result) {
   // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
@@ -68,7 +70,7 @@ void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside&
     // The relief's own height under the contact point (bilinear, one sample) is not fooled by
     // the curvature; the vertical gap there, projected on n, is used when it is the larger.
     // Flat reliefs give the same value both ways, concave spots keep the tangent-plane gap.
-    const double gap_below_q = q.z() - plane.surface().at(q.x(), q.y()).height_m;
+    const double gap_below_q = q.z() - surface.at(q.x(), q.y()).height_m - bend.height(q.x(), q.y());
     const double distance = conforming ? c.depth : std::max((q - c.p_surface).dot(c.n_local), gap_below_q * c.n_local.z());
     const Eigen::Vector3d on_object = world_from_plane * q;
     bool duplicate = false;
@@ -96,15 +98,16 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 }  // namespace
 
 void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapper& object,
-                                                    const btCollisionObjectWrapper& relief, const ReliefPlaneShape& plane,
-                                                    const Underside& underside, const FaceTexture& faces, double threshold,
+                                                    const btCollisionObjectWrapper& relief, const tex::TexturedSurface& surface,
+                                                    const GroundBend& bend, const Underside& underside,
+                                                    const FaceTexture& faces, double threshold,
                                                     const Eigen::Isometry3d& world_from_plane, btManifoldResult* result) {
   // Reused between steps so a resting box costs no allocation per step.
   thread_local std::vector<ReliefCandidate> candidates, group;
   thread_local std::vector<std::size_t> group_index, taken;
   candidates.clear();
   taken.clear();
-  const RasterStats raster = rasterizeRelief(plane.surface(), underside, threshold, candidates, &faces);
+  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend);
   for (std::size_t g = 0; g < kNormalGroups; ++g) {
     btPersistentManifold* manifold = g == 0 ? manifoldFor(object.getCollisionObject(), relief.getCollisionObject())
                                             : groupManifold(g, object.getCollisionObject(), relief.getCollisionObject());
@@ -126,7 +129,7 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
       taken.push_back(picked[k]);
       chosen[count++] = candidates[picked[k]];
     }
-    addReliefContacts(std::span(chosen.data(), count), underside, plane, world_from_plane, false, threshold, result);
+    addReliefContacts(std::span(chosen.data(), count), underside, surface, bend, world_from_plane, false, threshold, result);
     // The points of earlier steps stay, each replaced by a new one within the breaking threshold
     // of it (keeping its impulse to start the solver from) or dropped once its gap or slide
     // exceeds that threshold; Bullet keeps the four that span the most area. Cleared every step
@@ -161,11 +164,50 @@ void ReliefCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds
     if (m) manifolds.push_back(m);
 }
 
+void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
+                                             const MeshRelief& relief, const FaceTexture& faces, btManifoldResult* result) {
+  btPersistentManifold* manifold = manifoldFor(object.getCollisionObject(), mesh.getCollisionObject());
+  result->setPersistentManifold(manifold);
+  const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
+  const Eigen::Isometry3d world_from_object = toEigen(object.getWorldTransform());
+  const Eigen::Vector3d centre = world_from_mesh.inverse() * world_from_object.translation();
+  const auto& box = static_cast<const btBoxShape&>(*object.getCollisionShape());
+  const double reach = toEigen(box.getHalfExtentsWithMargin()).norm();
+  MeshChart chart;
+  if (!chartUnder(relief, centre, reach, foot_triangle_, chart)) {
+    // Behind the winding: nothing textured to meet (mesh_relief_chart.hpp).
+    manifold->clearManifold();
+    clearGroupManifolds();
+    return;
+  }
+  const Eigen::Isometry3d world_from_chart = world_from_mesh * chart.surface.mapping().plane_to_world;
+  const std::optional<Underside> underside = undersideOf(box, world_from_chart.inverse() * world_from_object);
+  if (!underside) return;
+  texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, faces,
+                       double(manifold->getContactBreakingThreshold()), world_from_chart, result);
+  // Each point names the triangle under it on the mesh's side, as Bullet's own points do (the
+  // physics client reads a contact's texel through it).
+  btManifoldArray manifolds;
+  getAllContactManifolds(manifolds);
+  const Eigen::Isometry3d mesh_from_world = world_from_mesh.inverse();
+  for (int m = 0; m < manifolds.size(); ++m) {
+    for (int k = 0; k < manifolds[m]->getNumContacts(); ++k) {
+      btManifoldPoint& p = manifolds[m]->getContactPoint(k);
+      p.m_partId1 = 0;
+      p.m_index1 = int(triangleUnder(relief, mesh_from_world * toEigen(p.getPositionWorldOnB()), chart.triangle));
+    }
+  }
+}
+
 void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                                 const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
                                                 btManifoldResult* result) {
   const btCollisionObjectWrapper* object = swapped_ ? body1 : body0;
   const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
+  if (const MeshRelief* mesh = meshReliefOf(*relief->getCollisionShape())) {
+    meshCollision(*object, *relief, *mesh, *faceTextureOf(*object->getCollisionShape()), result);
+    return;
+  }
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());
   result->setPersistentManifold(manifold);
   // A textured box keeps its points between steps (texturedBoxCollision); everything else starts
@@ -184,7 +226,8 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   // A box with a relief on its faces (textured_box.hpp): its own rule, one manifold per group of
   // normals.
   if (box_faces) {
-    texturedBoxCollision(*object, *relief, plane, *underside, *box_faces, threshold, world_from_plane, result);
+    texturedBoxCollision(*object, *relief, plane.surface(), GroundBend{}, *underside, *box_faces, threshold,
+                         world_from_plane, result);
     return;
   }
   clearGroupManifolds();
@@ -226,9 +269,36 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     chosen.count = n;
   }
 
-  addReliefContacts(std::span(chosen.contacts.data(), chosen.count), *underside, plane, world_from_plane, conforming,
-                    threshold, result);
+  addReliefContacts(std::span(chosen.contacts.data(), chosen.count), *underside, plane.surface(), GroundBend{},
+                    world_from_plane, conforming, threshold, result);
 }
+
+bool reliefTakesMeshPair(const btCollisionShape& object, const btCollisionShape& mesh) {
+  return faceTextureOf(object) != nullptr && meshReliefOf(mesh) != nullptr;
+}
+
+namespace {
+
+// Box against a triangle mesh: ours for a textured box on a relief-textured mesh, Bullet's
+// convex-concave algorithm (its default for the pair) otherwise. Decided when Bullet makes the
+// pair's algorithm; a shape's texture is fixed when it is added.
+struct MeshPairCreateFunc : btCollisionAlgorithmCreateFunc {
+  explicit MeshPairCreateFunc(bool swapped) { m_swapped = swapped; }
+  btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                 const btCollisionObjectWrapper* body0,
+                                                 const btCollisionObjectWrapper* body1) override {
+    const btCollisionObjectWrapper* object = m_swapped ? body1 : body0;
+    const btCollisionObjectWrapper* mesh = m_swapped ? body0 : body1;
+    if (reliefTakesMeshPair(*object->getCollisionShape(), *mesh->getCollisionShape()))
+      return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, m_swapped);
+    return m_swapped ? bullet_swapped.CreateCollisionAlgorithm(ci, body0, body1)
+                     : bullet_direct.CreateCollisionAlgorithm(ci, body0, body1);
+  }
+  btConvexConcaveCollisionAlgorithm::CreateFunc bullet_direct;
+  btConvexConcaveCollisionAlgorithm::SwappedCreateFunc bullet_swapped;
+};
+
+}  // namespace
 
 void registerReliefCollision(btCollisionDispatcher& dispatcher) {
   static ReliefCollisionAlgorithm::CreateFunc direct(false);
@@ -237,6 +307,10 @@ void registerReliefCollision(btCollisionDispatcher& dispatcher) {
     dispatcher.registerCollisionCreateFunc(type, CUSTOM_CONCAVE_SHAPE_TYPE, &direct);
     dispatcher.registerCollisionCreateFunc(CUSTOM_CONCAVE_SHAPE_TYPE, type, &swapped);
   }
+  static MeshPairCreateFunc mesh_direct(false);
+  static MeshPairCreateFunc mesh_swapped(true);
+  dispatcher.registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, TRIANGLE_MESH_SHAPE_PROXYTYPE, &mesh_direct);
+  dispatcher.registerCollisionCreateFunc(TRIANGLE_MESH_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &mesh_swapped);
 }
 
 }  // namespace thx::phys

@@ -8,6 +8,9 @@
 // rasteriser finds every contact afresh anyway. A box with a relief on its faces
 // (textured_box.hpp) is the exception: its contacts, grouped by normal into up to five manifolds,
 // are kept between steps and merged with the new ones (relief_collision.cpp, texturedBoxCollision).
+// The same textured box against a relief-textured mesh (mesh_relief_chart.hpp) takes the same rule
+// on the mesh's chart under it, the relief standing on the mesh's bend; each point names the
+// triangle under it (m_index1), as Bullet's own points on a mesh do.
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher
 // hands the pair in): normal = relief normal in world frame, pointing from the relief to the
@@ -16,9 +19,12 @@
 // point on the object is where its surface faces -n (underside.hpp, contactOnObject): q = c - r n
 // for a sphere (Eq. 2), the axis point for a capsule or a cylinder's side, the lowest point above
 // the texel for a box or a cylinder's end face.
+#include <cstdint>
 #include <optional>
 
+#include "clients/physics/ground_bend.hpp"
 #include "clients/physics/manifold_algorithm.hpp"
+#include "clients/physics/mesh_relief_chart.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "clients/physics/underside.hpp"
@@ -52,20 +58,30 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   // pair's own manifold.
   static constexpr std::size_t kNormalGroups = 5;
   void texturedBoxCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& relief,
-                            const ReliefPlaneShape& plane, const Underside& underside, const FaceTexture& faces,
-                            double threshold, const Eigen::Isometry3d& world_from_plane, btManifoldResult* result);
+                            const tex::TexturedSurface& surface, const GroundBend& bend, const Underside& underside,
+                            const FaceTexture& faces, double threshold, const Eigen::Isometry3d& world_from_plane,
+                            btManifoldResult* result);
   btPersistentManifold* groupManifold(std::size_t g, const btCollisionObject* object, const btCollisionObject* relief);
   void clearGroupManifolds();
+  // A textured box against a relief-textured mesh (mesh_relief_chart.hpp): the same rule on the
+  // mesh's chart under the box.
+  void meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
+                     const MeshRelief& relief, const FaceTexture& faces, btManifoldResult* result);
 
   bool swapped_ = false;  // true: body0 is the relief plane, body1 the object
+  std::uint32_t foot_triangle_ = 0xffffffffu;  // on a mesh: the triangle under the box last step
   btPersistentManifold* groups_[kNormalGroups - 1] = {};
 };
 
 // The shapes the relief algorithm understands, seen from the plane; nullopt for any other shape.
 std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen::Isometry3d& plane_from_object);
 
+// Whether the relief algorithm takes this (object, mesh) pair: a textured box against a mesh with
+// a relief attached (mesh_relief_chart.hpp). Bullet's own convex-concave algorithm takes the rest.
+bool reliefTakesMeshPair(const btCollisionShape& object, const btCollisionShape& mesh);
+
 // Registers the algorithm for sphere, box, capsule and cylinder against CUSTOM_CONCAVE_SHAPE_TYPE,
-// in both orders. The create functions are static: they outlive any dispatcher.
+// in both orders, and for a textured box against a relief-textured mesh. The create functions are static: they outlive any dispatcher.
 void registerReliefCollision(btCollisionDispatcher& dispatcher);
 
 }  // namespace thx::phys

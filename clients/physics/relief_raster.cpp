@@ -46,9 +46,15 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 }
 
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
-                            std::vector<ReliefCandidate>& out, const FaceTexture* box_faces) {
+                            std::vector<ReliefCandidate>& out, const FaceTexture* box_faces, const GroundBend* bend) {
   RasterStats stats;
-  const FootprintTexels f = footprintTexels(surface, shape, threshold_m);
+  // Bent ground may rise above the plane under the object: the footprint reaches as high.
+  double reach = 0.0;
+  if (bend) {
+    const Eigen::AlignedBox3d bounds = planeBounds(shape);
+    reach = bend->highestOver(Eigen::AlignedBox2d(bounds.min().head<2>(), bounds.max().head<2>()));
+  }
+  const FootprintTexels f = footprintTexels(surface, shape, threshold_m + reach);
   if (f.empty) return stats;
   const long long i0 = f.i0, i1 = f.i1, j0 = f.j0, j1 = f.j1;
   stats.stride = f.stride;
@@ -73,17 +79,18 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
       std::optional<double> z = lowestZ(shape, x, y);
       if (!z) continue;
       const int ri = tex::resolveIndex(i, map.width(), address);
-      const double height = relief ? -double(map.depth(ri, rj)) : 0.0;
+      const double height = (relief ? -double(map.depth(ri, rj)) : 0.0) + (bend ? bend->height(x, y) : 0.0);
+      auto ground = [&](const Eigen::Vector3d& n) { return bend ? bend->tilt(n, x, y) : n; };
       if (!textured) {
         const double depth = *z - height;
         if (depth < threshold_m)
-          out.push_back({Eigen::Vector3d(x, y, height), surface.texelNormal(i, j, ri, rj), depth, i, j});
+          out.push_back({Eigen::Vector3d(x, y, height), ground(surface.texelNormal(i, j, ri, rj)), depth, i, j});
         continue;
       }
       const FacePoint face =
           faceTextureAt(*box_faces, shape.half_extents, object_from_plane * Eigen::Vector3d(x, y, *z), down_object);
       const double down = -face.sign * to_plane(2, face.axis);  // the face's outward normal against the plane's -z
-      Eigen::Vector3d n = surface.texelNormal(i, j, ri, rj);
+      Eigen::Vector3d n = ground(surface.texelNormal(i, j, ri, rj));
       if (down > kSteepestTexturedFaceCos) {
         *z += face.recess_m / down;
         n = (n - to_plane * face.normal_object).normalized();

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "clients/physics/contact_selection.hpp"
+#include "clients/physics/ground_bend.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "clients/physics/underside.hpp"
 #include "textures/textured_surface.hpp"
@@ -36,9 +37,11 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // lowest face pushed inwards by that face's relief depth (along the vertical; a point on a face
 // steeper than kSteepestTexturedFaceCos reads the face turned most towards the plane:
 // faceTextureAt), and the candidate's normal is the mean of the plane's and the box's (turned to
-// face the plane's way).
+// face the plane's way). With `bend` (ground_bend.hpp: a chart on a curved mesh), the relief stands
+// on the bent ground: its heights raised by the bend's, its normals tilted by its slope.
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
-                            std::vector<ReliefCandidate>& out, const FaceTexture* box_faces = nullptr);
+                            std::vector<ReliefCandidate>& out, const FaceTexture* box_faces = nullptr,
+                            const GroundBend* bend = nullptr);
 
 // Sub-texel refinement of a round object's deepest contact. The texel-centre minimum is off the
 // true tangent point by up to half a texel, and its normal with it: at a dimple's bottom the

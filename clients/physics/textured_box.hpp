@@ -20,9 +20,9 @@
 // side since the map's normal is its depth's gradient (n = N + d_u T + d_v B for any orthonormal
 // T, B and outward N).
 //
-// What a textured box does not do yet: its texture shapes contacts with a relief plane only (on a
-// plain or normal-mapped plane, a mesh, another object, the coarse box collides: on a mesh the
-// pair's depth would need both reliefs on the mesh's chart, docs/physics.md "Textured objects");
+// What a textured box does not do yet: its texture shapes contacts with a relief plane and with a
+// relief-textured mesh (on the mesh's chart under it, mesh_relief_chart.hpp) only; on a plain or
+// normal-mapped plane or mesh, or another object, the coarse box collides;
 // a normal map (no depth) on an object is refused where objects are built
 // (scene::buildObjectTexture). The visual client draws the same layout (meshes/textured_box_mesh.hpp).
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>

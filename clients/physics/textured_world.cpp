@@ -9,6 +9,7 @@
 
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/friction_direction.hpp"
+#include "clients/physics/relief_collision.hpp"
 
 namespace thx::phys {
 
@@ -82,6 +83,8 @@ void TexturedWorld::rewriteMeshContacts() {
   rewritten_ += rewriteContactsWith(*getDispatcher(), meshes_,
                                     [&](btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                                         const TexturedMeshBody& mesh, const btCollisionObject& other) {
+                                      // A textured box's points on a relief mesh come from its chart already.
+                                      if (reliefTakesMeshPair(*other.getCollisionShape(), *mesh.body->getCollisionShape())) return;
                                       applyMeshContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
                                     });
 }

@@ -26,6 +26,18 @@ inline constexpr double kFriction = 0.3;
 inline double alongForce() { return kFriction; }
 inline double acrossForce() { return std::tan(std::atan(2 * kDepth / kPeriod) + std::atan(kFriction)); }
 
+// The block pushed by a force (over its weight) for `seconds`: how far its centre moved.
+inline Eigen::Vector3d pushBlock(PhysicsWorld& world, btRigidBody& block, const Eigen::Vector3d& force_over_weight,
+                                 double seconds) {
+  const Eigen::Vector3d start = positionOf(block);
+  block.activate(true);
+  for (int k = 0; k < int(std::lround(seconds / kDt)); ++k) {
+    block.applyCentralForce(toBt(Eigen::Vector3d(force_over_weight * kMass * kG)));
+    world.step(kDt);
+  }
+  return positionOf(block) - start;
+}
+
 struct Scene {
   SurfaceHolder plane;
   tex::TextureMap block_map;
@@ -57,13 +69,7 @@ struct Scene {
 
   // Pushed by a horizontal force for `seconds`: how far the block's centre moved.
   Eigen::Vector3d push(const Eigen::Vector3d& force_over_weight, double seconds) {
-    const Eigen::Vector3d start = positionOf(*block);
-    block->activate(true);
-    for (int k = 0; k < int(std::lround(seconds / kDt)); ++k) {
-      block->applyCentralForce(toBt(Eigen::Vector3d(force_over_weight * kMass * kG)));
-      world->step(kDt);
-    }
-    return positionOf(*block) - start;
+    return pushBlock(*world, *block, force_over_weight, seconds);
   }
 };
 

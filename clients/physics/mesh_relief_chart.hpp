@@ -1,0 +1,58 @@
+#pragma once
+// A relief-textured static mesh as a textured box meets it (issue 29, "Textured objects" on a
+// curved surface): the mesh's tangent plane at the foot of the box's centre on the smooth surface,
+// with the texture laid on it at that face's scale (as hapticd's chart lays it for the pen,
+// server/textured_mesh_renderer.cpp), and the smooth surface's bend under it (ground_bend.hpp).
+// On that chart the pair's depth comes from both reliefs exactly as on the relief plane
+// (relief_raster.hpp, relief_collision.hpp): Otaduy et al.'s directional depth along the chart's
+// normal, the ground raised by the bend. Bullet's own box-triangle points are not used: they sit at
+// the box's corners and edges, and a point lying in one of the box's grooves does not touch the
+// mesh at all (docs/physics.md, "Textured objects").
+//
+// Only the side the mesh's winding faces is textured (a closed bowl's inside, a sphere's outside):
+// a box behind the winding gets no contacts from the chart.
+#include <BulletCollision/CollisionShapes/btCollisionShape.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+
+#include "clients/physics/ground_bend.hpp"
+#include "clients/physics/mesh_contact.hpp"
+#include "textures/sampling.hpp"
+#include "textures/texture_map.hpp"
+#include "textures/textured_surface.hpp"
+
+namespace thx::phys {
+
+// What the chart needs of a mesh; attached to its Bullet shape (attachMeshRelief).
+struct MeshRelief {
+  explicit MeshRelief(const mesh::TexturedMesh& m) : mesh(m) {}
+  ContactMesh mesh;
+  const tex::TextureMap* map = nullptr;  // a relief map; must outlive the shape
+  tex::SampleOptions sampling;
+  // The tile (metres per uv) the map's normals were made for (MeshContactOptions::normals_made_for_m).
+  Eigen::Vector2d normals_made_for_m = Eigen::Vector2d::Zero();
+};
+
+// Attaches `relief` (which must outlive the shape) to a btBvhTriangleMeshShape built from its mesh.
+void attachMeshRelief(btCollisionShape& mesh_shape, const MeshRelief& relief);
+// The relief attached to a mesh shape; nullptr for any other shape.
+const MeshRelief* meshReliefOf(const btCollisionShape& shape);
+
+struct MeshChart {
+  tex::TexturedSurface surface;  // its plane frame is the chart, placed in the mesh's frame
+  GroundBend bend;               // the smooth surface's height above the chart (chart frame)
+  std::uint32_t triangle = 0;    // the foot's triangle
+};
+
+// The chart under the point c (mesh frame) of an object reaching `reach_m` from it, starting the
+// walk at `triangle` (updated to the foot's; kNoNeighbour: from the nearest triangle, found by
+// looking at every one). False where c lies behind the mesh's winding.
+bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle, MeshChart& out);
+
+// The triangle under a point on the smooth surface near the foot's triangle (for the contact's
+// place, as Bullet reports a triangle for its own points).
+std::uint32_t triangleUnder(const MeshRelief& relief, const Eigen::Vector3d& p, std::uint32_t from);
+
+}  // namespace thx::phys
