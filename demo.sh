@@ -135,38 +135,42 @@ LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/two_pens.yaml --replay-
     --rate 2 --elevation 70 --distance 0.16 --out "$OUT/visual_two_pens" --quiet \
   && echo "frames: $OUT/visual_two_pens/frame_*.png" || echo "visual-client failed"
 
+# A physics scene offline, as a user would run it by hand: hapticd's simulated pen recorded in
+# lock-step, physics-client on that recording, relief frames every half second of the combined
+# session, and its sound with a spectrogram. Arguments: the scene's name, the summary lines to
+# show (a regular expression), the spectrogram's title.
+physics_scene_offline() {
+  local name=$1 lines=$2 title=$3 scene=scenes/$1.yaml
+  "$HD" --scene "$scene" --lockstep --no-lcm --record "$OUT/${name}_pen.lcm" --quiet > /dev/null
+  "$PC" --scene "$scene" --replay-log "$OUT/${name}_pen.lcm" --record "$OUT/${name}_session.lcm" \
+    --quiet > "$OUT/$name.txt" 2>&1 && grep -E "$lines" "$OUT/$name.txt" || echo "physics-client failed"
+  LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene "$scene" --mode relief --replay-log "$OUT/${name}_session.lcm" \
+    --rate 2 --out "$OUT/visual_$name" --quiet \
+    && echo "frames: $OUT/visual_$name/frame_*.png" || echo "visual-client failed"
+  "$AC" --scene "$scene" --replay-log "$OUT/${name}_session.lcm" --wav "$OUT/$name.wav" > "$OUT/${name}_audio.txt" 2>&1 \
+    && "$WS" "$OUT/$name.wav" "$OUT/${name}_spectrogram.png" --title "$title ($scene)" \
+    && echo "sound: $OUT/$name.wav, its spectrogram: $OUT/${name}_spectrogram.png" || echo "audio-client failed"
+}
+
 echo
 echo "== physics on a mesh: three marbles roll down the bowl of bricks and the pen strokes through them"
 echo "   (scenes/marble_bowl.yaml): the pen recorded in lock-step, physics-client on that recording, one frame"
-echo "   every half second of the combined session -> $OUT/visual_marble_bowl/"
-"$HD" --scene scenes/marble_bowl.yaml --lockstep --no-lcm --record "$OUT/marble_bowl_pen.lcm" --quiet > /dev/null
-"$PC" --scene scenes/marble_bowl.yaml --replay-log "$OUT/marble_bowl_pen.lcm" --record "$OUT/marble_bowl_session.lcm" \
-  --quiet > "$OUT/marble_bowl.txt" 2>&1 && grep -E "^  (red|green|blue) " "$OUT/marble_bowl.txt" || echo "physics-client failed"
-LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene scenes/marble_bowl.yaml --mode relief --replay-log "$OUT/marble_bowl_session.lcm" \
-  --rate 2 --out "$OUT/visual_marble_bowl" --quiet \
-  && echo "frames: $OUT/visual_marble_bowl/frame_*.png" || echo "visual-client failed"
-echo "   and heard: the bowl's own modes (the solid its mesh encloses, Gmsh; about 10 s the first time) struck where"
-echo "   the marbles and the pen touch it, and where the pen scrapes it"
-"$AC" --scene scenes/marble_bowl.yaml --replay-log "$OUT/marble_bowl_session.lcm" --wav "$OUT/marble_bowl.wav" \
-  > "$OUT/marble_bowl_audio.txt" 2>&1 \
-  && "$WS" "$OUT/marble_bowl.wav" "$OUT/marble_bowl_spectrogram.png" --title "marbles in the bowl of bricks (scenes/marble_bowl.yaml)" \
-  && echo "sound: $OUT/marble_bowl.wav, its spectrogram: $OUT/marble_bowl_spectrogram.png" || echo "audio-client failed"
+echo "   every half second of the combined session -> $OUT/visual_marble_bowl/, and heard: the bowl's own modes (the"
+echo "   solid its mesh encloses, Gmsh; about 10 s the first time) struck where the marbles and the pen touch it, and"
+echo "   where the pen scrapes it"
+physics_scene_offline marble_bowl "^  (red|green|blue) " "marbles in the bowl of bricks"
 
 echo
 echo "== textured objects: a grooved block on a grooved plane (scenes/grooved_block.yaml), both reliefs in the contact:"
 echo "   the pen pushes it along the grooves (it slides, staying in them), then across (it climbs from groove to groove);"
 echo "   recorded in lock-step, physics-client on the recording, frames every half second -> $OUT/visual_grooved_block/, and heard"
-GB=scenes/grooved_block.yaml
-"$HD" --scene "$GB" --lockstep --no-lcm --record "$OUT/grooved_block_pen.lcm" --quiet > /dev/null
-"$PC" --scene "$GB" --replay-log "$OUT/grooved_block_pen.lcm" --record "$OUT/grooved_block_session.lcm" \
-  --quiet > "$OUT/grooved_block.txt" 2>&1 && grep -E "^  block " "$OUT/grooved_block.txt" || echo "physics-client failed"
-LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$VC" --scene "$GB" --mode relief --replay-log "$OUT/grooved_block_session.lcm" \
-  --rate 2 --out "$OUT/visual_grooved_block" --quiet \
-  && echo "frames: $OUT/visual_grooved_block/frame_*.png" || echo "visual-client failed"
-"$AC" --scene "$GB" --replay-log "$OUT/grooved_block_session.lcm" --wav "$OUT/grooved_block.wav" \
-  > "$OUT/grooved_block_audio.txt" 2>&1 \
-  && "$WS" "$OUT/grooved_block.wav" "$OUT/grooved_block_spectrogram.png" --title "a grooved block pushed on a grooved plane (scenes/grooved_block.yaml)" \
-  && echo "sound: $OUT/grooved_block.wav, its spectrogram: $OUT/grooved_block_spectrogram.png" || echo "audio-client failed"
+physics_scene_offline grooved_block "^  block " "a grooved block pushed on a grooved plane"
+
+echo
+echo "== a textured object on a textured curved surface: a grooved block in the bowl of bricks (scenes/grooved_block_bowl.yaml),"
+echo "   both reliefs in the contact on the bowl's chart under it; the pen pushes it across the floor. The pen recorded"
+echo "   in lock-step, physics-client on the recording, frames every half second -> $OUT/visual_grooved_block_bowl/, and heard"
+physics_scene_offline grooved_block_bowl "^  block " "a grooved block pushed in the bowl of bricks"
 
 echo
 echo "== user studies: three simulated participants per study on the shipped surfaces (scenes/study/), then the analysis -> $OUT/study/ (about 30 s)"
@@ -183,4 +187,4 @@ done
   && echo "sessions: $OUT/study/*.csv; tables and plots: $OUT/study/study.md" || echo "study-analyze failed"
 
 echo
-echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png, $OUT/visual_two_pens/*.png, $OUT/visual_marble_bowl/*.png, $OUT/visual_grooved_block/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."
+echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png, $OUT/visual_two_pens/*.png, $OUT/visual_marble_bowl/*.png, $OUT/visual_grooved_block/*.png, $OUT/visual_grooved_block_bowl/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."

@@ -180,7 +180,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   out = ChosenReliefContacts{};
   const FootprintTexels f = footprintTexels(surface, box, threshold_m);
   if (f.empty) return true;
-  if (f.stride != 1) return false;
+  if (f.stride_i != 1 || f.stride_j != 1) return false;
   const long long ni = f.i1 - f.i0 + 1, nj = f.j1 - f.j0 + 1;
   out.raster.texels_visited = ni * nj;
 
@@ -369,7 +369,7 @@ ChosenReliefContacts generalBoxReliefContacts(const tex::TexturedSurface& surfac
   out.raster = rasterizeRelief(surface, box, threshold_m, candidates);
   std::array<std::size_t, kMaxReliefContacts> chosen{};
   out.count = selectReliefContacts(candidates, chosen);
-  snapToBasins(candidates, out.raster.stride, std::span(chosen.data(), out.count));
+  snapToBasins(candidates, out.raster.stride_i, out.raster.stride_j, std::span(chosen.data(), out.count));
   for (std::size_t c = 0; c < out.count; ++c) out.contacts[c] = candidates[chosen[c]];
   return out;
 }

@@ -68,24 +68,25 @@ std::size_t selectReliefContacts(std::span<const ReliefCandidate> cand,
   return 4;
 }
 
-void snapToBasins(std::span<const ReliefCandidate> cand, long long stride, std::span<std::size_t> chosen) {
+void snapToBasins(std::span<const ReliefCandidate> cand, long long stride_i, long long stride_j,
+                  std::span<std::size_t> chosen) {
   if (cand.empty() || chosen.empty()) return;
   long long i0 = cand[0].i, i1 = cand[0].i, j0 = cand[0].j, j1 = cand[0].j;
   for (const ReliefCandidate& c : cand) {
     i0 = std::min(i0, c.i), i1 = std::max(i1, c.i);
     j0 = std::min(j0, c.j), j1 = std::max(j1, c.j);
   }
-  const long long ni = (i1 - i0) / stride + 1, nj = (j1 - j0) / stride + 1;
+  const long long ni = (i1 - i0) / stride_i + 1, nj = (j1 - j0) / stride_j + 1;
   // Reused between steps: a resting ball costs no allocation per step.
   thread_local std::vector<int> grid;
   grid.assign(std::size_t(ni * nj), -1);
   auto cell = [&](long long gi, long long gj) { return std::size_t(gj * ni + gi); };
-  for (std::size_t k = 0; k < cand.size(); ++k) grid[cell((cand[k].i - i0) / stride, (cand[k].j - j0) / stride)] = int(k);
+  for (std::size_t k = 0; k < cand.size(); ++k) grid[cell((cand[k].i - i0) / stride_i, (cand[k].j - j0) / stride_j)] = int(k);
   for (std::size_t c = 0; c < chosen.size(); ++c) {
     std::size_t index = chosen[c];
     // Strictly downhill, so it ends; at most one step per candidate.
     for (std::size_t guard = 0; guard < cand.size(); ++guard) {
-      const long long gi = (cand[index].i - i0) / stride, gj = (cand[index].j - j0) / stride;
+      const long long gi = (cand[index].i - i0) / stride_i, gj = (cand[index].j - j0) / stride_j;
       std::size_t next = index;
       for (long long dj = -1; dj <= 1; ++dj)
         for (long long di = -1; di <= 1; ++di) {

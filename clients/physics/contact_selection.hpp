@@ -27,13 +27,15 @@ std::size_t selectReliefContacts(std::span<const ReliefCandidate> candidates,
 
 // For a sphere, whose contacts are isolated points, and a box on a bumpy relief (it rests on the
 // bumps' tops; before, it stood on its deepest point and rocked): moves each chosen candidate downhill in
-// depth, over its 8 neighbours on the candidate grid (texels `stride` apart), to the bottom of its
+// depth, over its 8 neighbours on the candidate grid (texels stride_i apart along i, stride_j along
+// j), to the bottom of its
 // basin, unless an earlier chosen point holds that basin (then it stays: around a single contact
 // the spread points are look-ahead for a fast ball). The spread rule alone picks a fringe texel
 // of a second wall (a ball resting in a groove
 // on both walls): a point slightly off the contact, computed unlike the refined deepest one, so
 // the two walls' contacts disagreed and the ball rattled between them in a two-step cycle
 // (±55 nm, read as 0.11 mm/s at 1 kHz; refined basin bottoms: ±7 nm, 0.014 mm/s).
-void snapToBasins(std::span<const ReliefCandidate> candidates, long long stride, std::span<std::size_t> chosen);
+void snapToBasins(std::span<const ReliefCandidate> candidates, long long stride_i, long long stride_j,
+                  std::span<std::size_t> chosen);
 
 }  // namespace thx::phys

@@ -120,7 +120,7 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
     const std::size_t n = selectReliefContacts(group, picked);
     for (std::size_t k = 0; k < n; ++k) picked[k] = group_index[picked[k]];
     // Each to the bottom of its basin in the pair's depth, where the two surfaces' normals agree.
-    snapToBasins(candidates, raster.stride, std::span(picked.data(), n));
+    snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
     // A basin another group's point went to already holds a contact.
     std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
     std::size_t count = 0;
@@ -246,7 +246,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     // (conforming_contact.hpp). Otherwise the deepest and the spread points.
     std::array<std::size_t, kMaxReliefContacts> picked{};
     std::size_t n = 0;
-    conforming = underside->kind == Underside::Kind::Sphere && raster.stride == 1 && !candidates.empty() &&
+    conforming = underside->kind == Underside::Kind::Sphere && raster.stride_i == 1 && raster.stride_j == 1 && !candidates.empty() &&
                  (n = selectConformingContacts(plane.surface(), *underside, candidates, picked)) > 0;
     if (!conforming) n = selectReliefContacts(candidates, picked);
     // Round objects roll on their contacts: locate them within their texels (relief_raster.hpp).
@@ -256,12 +256,12 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
       // Texel centres with their own normals, already measured: nothing to refine or snap.
     } else if (n > 0 && underside->kind == Underside::Kind::Sphere) {
       const std::array<std::size_t, kMaxReliefContacts> spread = picked;
-      snapToBasins(candidates, raster.stride, std::span(picked.data(), n));
+      snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
       for (std::size_t k = 0; k < n; ++k)
         if (k == 0 || picked[k] != spread[k]) candidates[picked[k]] = refineDeepest(plane.surface(), *underside, candidates[picked[k]]);
     } else if (n > 0 && underside->kind == Underside::Kind::Box) {
       // A box whose footprint is visited with a stride (a huge box): the same rule on the texels visited.
-      snapToBasins(candidates, raster.stride, std::span(picked.data(), n));
+      snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
     } else if (n > 0) {
       candidates[picked[0]] = refineDeepest(plane.surface(), *underside, candidates[picked[0]]);
     }

@@ -19,7 +19,7 @@ inline constexpr long long kMaxFootprintTexels = 512LL * 512LL;
 
 struct RasterStats {
   long long texels_visited = 0;
-  long long stride = 1;
+  long long stride_i = 1, stride_j = 1;  // texels between the ones visited, along i and j
 };
 
 // The texels an object's footprint covers (unwrapped indices, inclusive), with the stride that
@@ -28,7 +28,7 @@ struct RasterStats {
 struct FootprintTexels {
   bool empty = true;
   long long i0 = 0, i1 = -1, j0 = 0, j1 = -1;
-  long long stride = 1;
+  long long stride_i = 1, stride_j = 1;
 };
 FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m);
 
@@ -38,7 +38,9 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // steeper than kSteepestTexturedFaceCos reads the face turned most towards the plane:
 // faceTextureAt), and the candidate's normal is the mean of the plane's and the box's (turned to
 // face the plane's way). With `bend` (ground_bend.hpp: a chart on a curved mesh), the relief stands
-// on the bent ground: its heights raised by the bend's, its normals tilted by its slope.
+// on the bent ground: its heights raised by the bend's, its normals tilted by its slope; a chart
+// whose texels are twice as long along one axis as along the other is read at the longer spacing
+// along both (a texture squeezed by the mesh's uv, relief_raster.cpp).
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
                             std::vector<ReliefCandidate>& out, const FaceTexture* box_faces = nullptr,
                             const GroundBend* bend = nullptr);

@@ -138,7 +138,7 @@ std::vector<ReliefCandidate> twoWalls(long long stride) {
 TEST(SnapToBasins, AFringePointOfAnotherBasinMovesToItsBottom) {
   const std::vector<ReliefCandidate> c = twoWalls(1);
   std::array<std::size_t, 3> chosen = {2, 10, 0};  // deepest, the far right fringe, the far left fringe
-  snapToBasins(c, 1, chosen);
+  snapToBasins(c, 1, 1, chosen);
   EXPECT_EQ(chosen[0], 2u);
   EXPECT_EQ(chosen[1], 8u) << "the right wall's bottom";
   EXPECT_EQ(chosen[2], 0u) << "in the deepest's basin: stays as look-ahead";
@@ -147,7 +147,7 @@ TEST(SnapToBasins, AFringePointOfAnotherBasinMovesToItsBottom) {
 TEST(SnapToBasins, StridedCandidatesStepByTheStride) {
   const std::vector<ReliefCandidate> c = twoWalls(2);  // i = 0, 2, ..., 10 at indices 0..5
   std::array<std::size_t, 2> chosen = {1, 5};            // i = 2 (deepest), i = 10
-  snapToBasins(c, 2, chosen);
+  snapToBasins(c, 2, 2, chosen);
   EXPECT_EQ(c[chosen[1]].i, 8);
 }
 
@@ -155,7 +155,7 @@ TEST(SnapToBasins, PlateausAndSingleCandidatesStay) {
   std::vector<ReliefCandidate> c = {at(0, 0, -1e-6), at(1e-3, 0, -1e-6)};
   c[1].i = 1;
   std::array<std::size_t, 2> chosen = {0, 1};
-  snapToBasins(c, 1, chosen);
+  snapToBasins(c, 1, 1, chosen);
   EXPECT_EQ(chosen[0], 0u);
   EXPECT_EQ(chosen[1], 1u) << "equal depths: no strictly lower neighbour";
 }

@@ -71,13 +71,17 @@ using thx::physclient::test::kSanitized;
 
 // texture_size > 0 replaces the generated texture's size (same pattern, coarser texels). With
 // with_pen the pen follows the scene's hand script (penPathFromScript), as `--pen-script` does.
-SceneRun runScene(const std::string& file, double seconds, int texture_size = 0, bool with_pen = false) {
+// pen_path: the pen follows these samples instead (a mesh scene, whose hand script
+// penPathFromScript refuses).
+SceneRun runScene(const std::string& file, double seconds, int texture_size = 0, bool with_pen = false,
+                  const std::vector<PenSample>& pen_path = {}) {
   SceneRun r;
   r.scene = thx::scene::loadScene(kScenes + file);
   if (texture_size > 0) r.scene.surface.texture.generator.size = texture_size;
   PhysicsScene sim(r.scene, SimOptions{});
   std::optional<PenPath> pen;
   if (with_pen) pen.emplace(penPathFromScript(sim, 1e-3));
+  if (!pen_path.empty()) pen.emplace(pen_path);
   TrackSink sink;
   DriverOptions d;
   d.rate_hz = r.scene.rates.physics_hz;
@@ -189,6 +193,43 @@ TEST(ShippedSceneOutcome, GroovedBlockSlidesAlongTheGroovesAndClimbsOutAcrossThe
   if (kSanitized) return;  // the push across takes minutes under the sanitizers
   EXPECT_GT(end.local.x() - along.local.x(), 2 * period);   // pushed across ...
   EXPECT_GT(highest_across - rest.local.z(), 0.5 * depth);  // ... over the rims
+}
+
+// The grooved block rests on the floor of the bowl of bricks (both reliefs on the bowl's chart
+// under it, standing on the floor's curve: docs/physics.md "On a relief-textured mesh"), and the
+// pen pushing it 14 mm across the floor moves it there, over the mortar joints, without throwing
+// it; it comes to rest again (scenes/grooved_block_bowl.yaml). The pen follows the scene's push in
+// a straight line, its tip 4.5 mm above the floor (hapticd's hand follows the mesh; `make demo`
+// runs that).
+TEST(ShippedSceneOutcome, GroovedBlockRestsInTheBowlAndIsPushedAcrossItsFloor) {
+  // The bowl's floor: 4.8 mm up its frame (3.52 cm below the world's origin) at the centre,
+  // curving up at a radius of about 71 mm.
+  auto tip = [](double x) { return Eigen::Vector3d(x, 0.0, -0.04 + 0.0048 + 0.0045 + x * x / (2 * 0.071)); };
+  std::vector<PenSample> path;
+  auto add = [&](double t, double x) { path.push_back({t, tip(x), Eigen::Quaterniond::Identity(), -1}); };
+  add(0.0, -0.024), add(1.0, -0.024), add(2.3, 0.002), add(2.6, -0.012), add(3.5, -0.012);
+  const SceneRun r = runScene("grooved_block_bowl.yaml", 3.5, kSanitized ? 64 : 0, false, path);
+  const Track& b = r.tracks.at("block");
+  const Sample rest = at(b, 0.9), end = b.back();
+  double lowest = 1.0, fastest = 0.0;
+  for (const Sample& s : b) lowest = std::min(lowest, s.local.z()), fastest = std::max(fastest, s.speed);
+  const double half_height = 0.5 * r.scene.objects[0].size_m.z();
+  std::printf("[measured] grooved block in the bowl rests %.2f mm above the floor's centre (its face), moves %.1f um "
+              "from 0.5 s to 0.9 s; pushed: moved %.2f mm along x, %.2f mm along y, rose %.2f mm; fastest %.3f m/s; "
+              "%.2g m/s at the end\n",
+              (rest.local.z() - half_height - 0.0048) * 1e3, wanderAfter({at(b, 0.5), rest}, 0.0) * 1e6,
+              (end.local.x() - rest.local.x()) * 1e3, (end.local.y() - rest.local.y()) * 1e3,
+              (end.local.z() - rest.local.z()) * 1e3, fastest, end.speed);
+  // On the floor: its face within a millimetre of the floor's lowest point (the floor rises
+  // 0.45 mm under its edges; the bricks' joints are 0.8 mm deep), never into it.
+  EXPECT_NEAR(rest.local.z() - half_height, 0.0048, 1e-3);
+  EXPECT_GT(lowest - half_height, 0.0048 - 1e-3);
+  EXPECT_LT(wanderAfter({at(b, 0.5), rest}, 0.0), 1e-4);  // at rest before the pen comes
+  // Pushed from x = -8 mm (its face) by a pen reaching x = 2 + 4 mm: 14 mm along x, nearly straight.
+  EXPECT_NEAR(end.local.x() - rest.local.x(), 0.014, 0.002);
+  EXPECT_LT(std::fabs(end.local.y() - rest.local.y()), 0.002);
+  EXPECT_LT(fastest, 0.1);       // carried by the pen (20 mm/s), not thrown
+  EXPECT_LT(end.speed, 1e-3);    // and at rest again
 }
 
 // The dimple ball passes over dimples (through the middle of at least one other than the last)
