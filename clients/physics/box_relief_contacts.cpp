@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <span>
 #include <vector>
@@ -173,6 +174,95 @@ void touchingInterval(const BoxSlabs& box, const FootprintRow& row, double x0, d
   lo = std::floor(lo) - 1.0, hi = std::ceil(hi) + 1.0;
 }
 
+// A row's touching texels where they are one interval on level stretches (lo > hi: none).
+struct RowSpan {
+  long long lo = 0, hi = -1;
+  bool holds(long long gi) const { return gi >= lo && gi <= hi; }
+};
+
+// The basin walks' end, where it can be told without walking (issue 29: the three walks of a box
+// at rest on a level relief were a fifth of its step, corner to corner, 40 steps each). Where
+// every row's touching texels are one interval on one level relief (`spans`, all at `height`)
+// and one lower face of the box is its lowest surface over all of them, the depth is that face's
+// plane less the height: affine in the texel indices, d = d0 + a gi + b gj. Where a, b and a +- b
+// are far from zero against rounding, the walk's comparisons are the plane's, and a texel is the
+// end of a walk (no neighbour deeper) only at the end of its row that the row runs down to, and
+// only if none of the four neighbours downhill of that end touches. One such texel is where
+// every walk ends. Returns it as (gi, gj), or false where any condition fails (then the walks
+// are walked).
+bool oneBasin(const BoxSlabs& box, const std::vector<FootprintRow>& rows, const std::vector<RowSpan>& spans,
+              double x0, double dy, double height, long long& basin_i, long long& basin_j) {
+  const long long nj = (long long)spans.size();
+  long long top = 0;
+  while (top < nj && spans[std::size_t(top)].lo > spans[std::size_t(top)].hi) ++top;
+  if (top == nj) return false;
+  auto plane = [&](std::size_t k, const FootprintRow& row, long long gi) {
+    return row.slabs[k].a_lo + row.slabs[k].b * (x0 + double(gi) * box.dx);
+  };
+  // The lowest face where the first touching row starts.
+  int face = -1;
+  for (std::size_t m = 0; m < 3; ++m)
+    if (!box.axis[m].vertical &&
+        (face < 0 || plane(m, rows[std::size_t(top)], spans[std::size_t(top)].lo) >
+                         plane(std::size_t(face), rows[std::size_t(top)], spans[std::size_t(top)].lo)))
+      face = int(m);
+  if (face < 0) return false;
+  const std::size_t k = std::size_t(face);
+  // A face's plane is evaluated from terms no larger than `scale`; its rounding is a few times
+  // 1e-16 of that. Differences are trusted beyond 1e-12 of it: ten thousand times that.
+  double far_x = 0.0;
+  for (const RowSpan& s : spans)
+    if (s.lo <= s.hi) far_x = std::max({far_x, std::fabs(x0 + double(s.lo) * box.dx), std::fabs(x0 + double(s.hi) * box.dx)});
+  const double far_y = std::max(std::fabs(rows.front().y), std::fabs(rows.back().y));
+  auto scale = [&](std::size_t m) {
+    const BoxSlabs::Axis& a = box.axis[m];
+    return std::fabs(a.inv_uz) * (a.h + far_y + box.centre.cwiseAbs().sum()) + std::fabs(a.b) * far_x + std::fabs(height);
+  };
+  constexpr double kTrusted = 1e-12;
+  const double rounding = kTrusted * scale(k);
+  // That face lowest at both ends of every row, so over all of it (each difference is affine
+  // along a row).
+  for (std::size_t m = 0; m < 3; ++m) {
+    if (m == k || box.axis[m].vertical) continue;
+    const double margin = kTrusted * (scale(k) + scale(m));
+    for (long long gj = top; gj < nj; ++gj) {
+      const RowSpan& s = spans[std::size_t(gj)];
+      if (s.lo > s.hi) continue;
+      const FootprintRow& row = rows[std::size_t(gj)];
+      if (!(plane(k, row, s.lo) - plane(m, row, s.lo) > margin) || !(plane(k, row, s.hi) - plane(m, row, s.hi) > margin))
+        return false;
+    }
+  }
+  // The depth's change per texel along the row (+gi: x grows by dx) and down the rows (+gj: y
+  // falls by dy).
+  const BoxSlabs::Axis& lowest = box.axis[k];
+  const double a = lowest.b * box.dx, b = lowest.u.y() * lowest.inv_uz * dy;
+  const double apart = 4.0 * rounding;
+  if (!(std::fabs(a) > apart && std::fabs(b) > apart && std::fabs(a + b) > apart && std::fabs(a - b) > apart)) return false;
+  // The four neighbours downhill: o with a oi + b oj < 0.
+  std::array<std::array<long long, 2>, 4> downhill{};
+  std::size_t n_down = 0;
+  for (long long oj = -1; oj <= 1; ++oj)
+    for (long long oi = -1; oi <= 1; ++oi)
+      if (a * double(oi) + b * double(oj) < 0.0) downhill[n_down++] = {oi, oj};
+  long long ends = 0;
+  for (long long gj = top; gj < nj; ++gj) {
+    const RowSpan& s = spans[std::size_t(gj)];
+    if (s.lo > s.hi) continue;
+    const long long gi = a > 0.0 ? s.lo : s.hi;
+    bool end = true;
+    for (std::size_t o = 0; o < n_down && end; ++o) {
+      const long long j = gj + downhill[o][1];
+      end = !(j >= 0 && j < nj && spans[std::size_t(j)].holds(gi + downhill[o][0]));
+    }
+    if (end) {
+      if (++ends > 1) return false;
+      basin_i = gi, basin_j = gj;
+    }
+  }
+  return ends == 1;
+}
+
 }  // namespace
 
 bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box, double threshold_m,
@@ -199,9 +289,13 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   thread_local std::vector<long long> straight_to;  // last footprint column resolving to consecutive columns
   thread_local std::vector<FootprintRow> rows;
   thread_local std::vector<ReliefCandidate> kept;
+  thread_local std::vector<RowSpan> spans;  // each row's touching texels while every row is one level stretch
   // The grid has a border of +inf around the footprint: the basin walk needs no bounds check.
   const long long pitch = ni + 2;
-  depth.assign(std::size_t(pitch * (nj + 2)), std::numeric_limits<double>::quiet_NaN());
+  // "Not read yet" is a NaN whose bytes are all 0xff, so the grid is cleared by memset: a
+  // loop storing quiet_NaN one double at a time was a twentieth of a step at 1024².
+  depth.resize(std::size_t(pitch * (nj + 2)));
+  std::memset(depth.data(), 0xff, depth.size() * sizeof(double));
   for (long long gi = 0; gi < pitch; ++gi) depth[std::size_t(gi)] = depth[std::size_t((nj + 1) * pitch + gi)] = kInf;
   for (long long gj = 1; gj <= nj; ++gj) depth[std::size_t(gj * pitch)] = depth[std::size_t(gj * pitch + ni + 1)] = kInf;
   columns.resize(std::size_t(ni));
@@ -212,6 +306,11 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
         gi + 1 < ni && columns[std::size_t(gi + 1)] == columns[std::size_t(gi)] + 1 ? straight_to[std::size_t(gi + 1)] : gi;
   rows.resize(std::size_t(nj));
   kept.clear();
+  spans.assign(std::size_t(nj), RowSpan{});
+  // Whether every row's touching texels are one interval, all on level stretches of one height
+  // (oneBasin's premise).
+  bool one_level = true;
+  double level_height = std::numeric_limits<double>::quiet_NaN();
 
   const BoxSlabs slabs(box, texel.x());
   auto heightAt = [&](long long gi, int rj) {
@@ -292,6 +391,12 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
           for (std::size_t q = 0; q < n_at; ++q) consider(at[q]);
           keep(a);
           if (b != a) keep(b);
+          if (one_level) {  // one interval per row (stretches meet at a wrap seam), one height
+            RowSpan& span = spans[std::size_t(gj)];
+            one_level = (std::isnan(level_height) || height == level_height) && (span.lo > span.hi || a == span.hi + 1);
+            level_height = height;
+            span = RowSpan{span.lo > span.hi ? a : span.lo, b};
+          }
         }
         gi = level_to + 1;
         continue;
@@ -305,6 +410,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
         if (depth_row[gi] < kInf) {
           if (run_start < 0) run_start = gi;
           consider(gi);
+          one_level = false;  // a touching texel where the relief is not level for long
         } else {
           closeRun(gi - 1);
         }
@@ -330,9 +436,15 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   // neighbour (8 around, the first of equals in scan order) while that is deeper; it moves there
   // unless an earlier chosen texel ended in the same place.
   std::array<long long, kMaxReliefContacts> cell{};
+  // Where every walk provably ends at the deepest texel, each point stays where it is.
+  long long basin_i = -1, basin_j = -1;
+  const bool walked = !(one_level && n > 1 && !std::isnan(level_height) &&
+                        oneBasin(slabs, rows, spans, first.x(), texel.y(), level_height, basin_i, basin_j) &&
+                        basin_i == kept[chosen[0]].i - f.i0 && basin_j == kept[chosen[0]].j - f.j0);
+  out.one_basin = !walked;
   for (std::size_t c = 0; c < n; ++c) {
     long long gi = kept[chosen[c]].i - f.i0, gj = kept[chosen[c]].j - f.j0;
-    for (;;) {
+    for (; walked;) {
       long long next_i = gi, next_j = gj;
       double next_depth = depthAt(gi, gj);
       for (long long dj = -1; dj <= 1; ++dj)

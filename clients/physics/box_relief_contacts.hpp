@@ -12,8 +12,10 @@
 // spread points (farthest from the deepest, from the line, most area) maximise scores that are
 // convex along a row (a distance, the absolute value of an affine function, the largest of three
 // such), so each row's run of touching texels can only score its best at one of its two ends:
-// only the runs' ends are scored. The basin walk reads the depth grid; normals are read for the
-// chosen texels only.
+// only the runs' ends are scored. The basin walk reads the depth grid, and is not walked where
+// every walk provably ends at the deepest texel (a box on one level of the relief with one face
+// lowest: its depth is a plane there, whose walks' ends are found row by row); normals are read
+// for the chosen texels only.
 //
 // The same texels as the general rule, except where two texels' scores or depths are equal to
 // rounding (then either is the rule's answer: a level box on a level relief has every texel
@@ -35,6 +37,9 @@ struct ChosenReliefContacts {
   std::array<ReliefCandidate, kMaxReliefContacts> contacts{};  // deepest first, as the rule orders them
   std::size_t count = 0;
   RasterStats raster;
+  // The basin walks were not walked: every one was known to end at the deepest texel (a box on
+  // one level of the relief with one face lowest, box_relief_contacts.cpp's oneBasin).
+  bool one_basin = false;
 };
 
 // A level stretch at least this long is read at its ends (and where the box's faces cross over
