@@ -432,9 +432,10 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   std::array<std::size_t, kMaxReliefContacts> chosen{};
   const std::size_t n = selectReliefContacts(kept, chosen);
 
-  // snapToBasins, reading depths as the walk needs them: each chosen texel walks to its lowest
-  // neighbour (8 around, the first of equals in scan order) while that is deeper; it moves there
-  // unless an earlier chosen texel ended in the same place.
+  // snapToBasins (BasinClaim::NearestPoint), reading depths as the walk needs them: each chosen
+  // texel walks to its lowest neighbour (8 around, the first of equals in scan order) while that
+  // is deeper; it moves there where that bottom is nearer to it than to every other chosen texel
+  // (where an earlier one went, where a later one stands).
   std::array<long long, kMaxReliefContacts> cell{};
   // Where every walk provably ends at the deepest texel, each point stays where it is.
   long long basin_i = -1, basin_j = -1;
@@ -457,9 +458,15 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
       if (next_i == gi && next_j == gj) break;
       gi = next_i, gj = next_j;
     }
-    const long long here = gj * ni + gi;
-    const bool taken = std::find(cell.begin(), cell.begin() + std::ptrdiff_t(c), here) != cell.begin() + std::ptrdiff_t(c);
-    cell[c] = taken ? (kept[chosen[c]].j - f.j0) * ni + (kept[chosen[c]].i - f.i0) : here;
+    // The plane's coordinates of the texels, as the general rule's candidates hold them.
+    auto at = [&](long long i, long long j) { return Eigen::Vector2d(xOf(i), rows[std::size_t(j)].y); };
+    std::array<Eigen::Vector2d, kMaxReliefContacts> others;
+    std::size_t n_others = 0;
+    for (std::size_t e = 0; e < n; ++e)
+      if (e != c) others[n_others++] = e < c ? at(cell[e] % ni, cell[e] / ni) : at(kept[chosen[e]].i - f.i0, kept[chosen[e]].j - f.j0);
+    const long long start_i = kept[chosen[c]].i - f.i0, start_j = kept[chosen[c]].j - f.j0;
+    const bool claims = nearestClaims(at(start_i, start_j), at(gi, gj), std::span(others.data(), n_others));
+    cell[c] = claims ? gj * ni + gi : start_j * ni + start_i;
   }
 
   for (std::size_t c = 0; c < n; ++c) {
@@ -481,7 +488,8 @@ ChosenReliefContacts generalBoxReliefContacts(const tex::TexturedSurface& surfac
   out.raster = rasterizeRelief(surface, box, threshold_m, candidates);
   std::array<std::size_t, kMaxReliefContacts> chosen{};
   out.count = selectReliefContacts(candidates, chosen);
-  snapToBasins(candidates, out.raster.stride_i, out.raster.stride_j, std::span(chosen.data(), out.count));
+  snapToBasins(candidates, out.raster.stride_i, out.raster.stride_j, std::span(chosen.data(), out.count),
+               BasinClaim::NearestPoint);
   for (std::size_t c = 0; c < out.count; ++c) out.contacts[c] = candidates[chosen[c]];
   return out;
 }

@@ -68,8 +68,15 @@ std::size_t selectReliefContacts(std::span<const ReliefCandidate> cand,
   return 4;
 }
 
+bool nearestClaims(const Eigen::Vector2d& start, const Eigen::Vector2d& bottom, std::span<const Eigen::Vector2d> others) {
+  const double own = (bottom - start).squaredNorm();
+  for (const Eigen::Vector2d& o : others)
+    if ((bottom - o).squaredNorm() <= own) return false;
+  return true;
+}
+
 void snapToBasins(std::span<const ReliefCandidate> cand, long long stride_i, long long stride_j,
-                  std::span<std::size_t> chosen) {
+                  std::span<std::size_t> chosen, BasinClaim claim) {
   if (cand.empty() || chosen.empty()) return;
   long long i0 = cand[0].i, i1 = cand[0].i, j0 = cand[0].j, j1 = cand[0].j;
   for (const ReliefCandidate& c : cand) {
@@ -100,8 +107,15 @@ void snapToBasins(std::span<const ReliefCandidate> cand, long long stride_i, lon
     }
     // A point whose basin is already chosen stays where it was: around a ball's single contact
     // the spread points are its look-ahead (a fast ball meets a dimple's far rim there first).
-    if (std::find(chosen.begin(), chosen.begin() + std::ptrdiff_t(c), index) == chosen.begin() + std::ptrdiff_t(c))
+    if (claim == BasinClaim::NearestPoint) {
+      std::array<Eigen::Vector2d, kMaxReliefContacts> others;
+      std::size_t n_others = 0;
+      for (std::size_t e = 0; e < chosen.size(); ++e)
+        if (e != c) others[n_others++] = xy(cand[chosen[e]]);
+      if (nearestClaims(xy(cand[chosen[c]]), xy(cand[index]), std::span(others.data(), n_others))) chosen[c] = index;
+    } else if (std::find(chosen.begin(), chosen.begin() + std::ptrdiff_t(c), index) == chosen.begin() + std::ptrdiff_t(c)) {
       chosen[c] = index;
+    }
   }
 }
 

@@ -35,7 +35,24 @@ std::size_t selectReliefContacts(std::span<const ReliefCandidate> candidates,
 // on both walls): a point slightly off the contact, computed unlike the refined deepest one, so
 // the two walls' contacts disagreed and the ball rattled between them in a two-step cycle
 // (±55 nm, read as 0.11 mm/s at 1 kHz; refined basin bottoms: ±7 nm, 0.014 mm/s).
+//
+// Which basin a point may take (BasinClaim):
+// - SameTexel (a sphere): any basin no earlier point went to.
+// - NearestPoint (a box): only a basin whose bottom is nearer (in the plane) to the point than to
+//   every other chosen point (where an earlier one went, where a later one stands). A basin
+//   nearer another point is that point's; going there gathers the contacts and loses the spread
+//   they stand for. On a sloping relief a box's walks cross its footprint (a roll of a µm already
+//   makes one edge the deepest) and end in basins of the heights' rounding along that edge: its
+//   four contacts stood on one edge, the box rocked from edge to edge each step and crept down
+//   a 0.28 slope at friction 0.3 (up to 9 mm in 2 s), and a push up a 26.6° slope moved it at
+//   0.65-0.92 of its weight where friction holds it to 0.94.
+enum class BasinClaim { SameTexel, NearestPoint };
 void snapToBasins(std::span<const ReliefCandidate> candidates, long long stride_i, long long stride_j,
-                  std::span<std::size_t> chosen);
+                  std::span<std::size_t> chosen, BasinClaim claim = BasinClaim::SameTexel);
+
+// Whether a point that walked from `start` to `bottom` may take that basin under
+// BasinClaim::NearestPoint: `others` are the other chosen points where they are. The box's
+// row-by-row path (box_relief_contacts.cpp) and snapToBasins decide with this one function.
+bool nearestClaims(const Eigen::Vector2d& start, const Eigen::Vector2d& bottom, std::span<const Eigen::Vector2d> others);
 
 }  // namespace thx::phys

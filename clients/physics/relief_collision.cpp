@@ -261,7 +261,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
         if (k == 0 || picked[k] != spread[k]) candidates[picked[k]] = refineDeepest(plane.surface(), *underside, candidates[picked[k]]);
     } else if (n > 0 && underside->kind == Underside::Kind::Box) {
       // A box whose footprint is visited with a stride (a huge box): the same rule on the texels visited.
-      snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
+      snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n), BasinClaim::NearestPoint);
     } else if (n > 0) {
       candidates[picked[0]] = refineDeepest(plane.surface(), *underside, candidates[picked[0]]);
     }
