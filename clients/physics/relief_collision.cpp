@@ -15,6 +15,7 @@
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/conforming_contact.hpp"
 #include "clients/physics/contact_selection.hpp"
+#include "clients/physics/crease_contact.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/relief_raster.hpp"
 #include "clients/physics/textured_box.hpp"
@@ -269,6 +270,8 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     chosen.count = n;
   }
 
+  // A box's face resting on a crease of the relief takes the face's normal (crease_contact.hpp).
+  if (underside->kind == Underside::Kind::Box) faceNormalsOnCreases(plane.surface(), *underside, chosen);
   addReliefContacts(std::span(chosen.contacts.data(), chosen.count), *underside, plane.surface(), GroundBend{},
                     world_from_plane, conforming, threshold, result);
 }

@@ -128,6 +128,27 @@ std::optional<double> lowestZ(const Underside& s, double x, double y) {
   return in.lo;
 }
 
+int boxFaceUnder(const Underside& box, double x, double y) {
+  const Eigen::Vector3d o(x, y, 0.0), c = box.plane_from_object.translation();
+  double enter = -kInf, exit = kInf;
+  int face = -1;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d u = box.plane_from_object.linear().col(k);
+    const Interval in = slabInterval(o, c, u, box.half_extents[k]);
+    if (in.empty()) return -1;
+    exit = std::min(exit, in.hi);
+    // Entering from below through the face whose outward normal points down: -h where the
+    // axis points up.
+    if (std::isfinite(in.lo) && in.lo > enter) enter = in.lo, face = 2 * k + (u.z() < 0.0 ? 1 : 0);
+  }
+  return enter <= exit ? face : -1;
+}
+
+Eigen::Vector3d boxFaceNormalUp(const Underside& box, int face) {
+  const Eigen::Vector3d u = box.plane_from_object.linear().col(face / 2);
+  return face % 2 == 1 ? Eigen::Vector3d(-u) : u;
+}
+
 Eigen::Vector3d contactOnObject(const Underside& s, const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
   const Eigen::Vector3d c = s.plane_from_object.translation();
   switch (s.kind) {

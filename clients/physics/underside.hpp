@@ -35,6 +35,12 @@ std::optional<double> lowestZ(const Underside& shape, double x, double y);
 // Flat parts (box, cylinder end faces) keep p.
 Eigen::Vector3d contactOnObject(const Underside& shape, const Eigen::Vector3d& p_lowest, const Eigen::Vector3d& n);
 
+// A box's lower face that the vertical line through (x, y) enters by: its axis (0-2) times 2,
+// plus 1 where it is the face at +half extent; -1 where the line misses the box.
+int boxFaceUnder(const Underside& box, double x, double y);
+// That face's normal pointing up, out of the relief into the box (plane frame).
+Eigen::Vector3d boxFaceNormalUp(const Underside& box, int face);
+
 // Exact axis-aligned bounds of the object in the plane frame (its footprint is the xy part).
 Eigen::AlignedBox3d planeBounds(const Underside& shape);
 
