@@ -1,7 +1,7 @@
 // A plain box against creases of a relief (issue 29, crease_contact.hpp): resting flat on bricks
 // it is pushed along its face's normal at the bricks' edges, where the relief's normals lean 31°
-// into the joints; pushed against a kerb, sunk below its top, it keeps the kerb's normal and is
-// held back, not lifted onto it.
+// into the joints; pushed against a kerb it is held back, not lifted onto it, as before the rule
+// (the floor's texels beside the kerb lean away from it).
 #include <gtest/gtest.h>
 
 #include <cmath>
