@@ -16,6 +16,7 @@
 #include "clients/physics/conforming_contact.hpp"
 #include "clients/physics/contact_selection.hpp"
 #include "clients/physics/crease_contact.hpp"
+#include "clients/physics/end_face_contacts.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/relief_raster.hpp"
 #include "clients/physics/textured_box.hpp"
@@ -211,16 +212,17 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   }
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());
   result->setPersistentManifold(manifold);
-  // A textured box keeps its points between steps (texturedBoxCollision); everything else starts
-  // afresh (relief_collision.hpp).
-  const FaceTexture* box_faces = faceTextureOf(*object->getCollisionShape());
-  if (!box_faces) manifold->clearManifold();
-
   const auto& plane = static_cast<const ReliefPlaneShape&>(*relief->getCollisionShape());
   const Eigen::Isometry3d world_from_plane = toEigen(relief->getWorldTransform());
   const Eigen::Isometry3d world_from_object = toEigen(object->getWorldTransform());
   const std::optional<Underside> underside =
       undersideOf(*object->getCollisionShape(), world_from_plane.inverse() * world_from_object);
+  // A textured box (texturedBoxCollision) and a cylinder standing on an end face
+  // (end_face_contacts.hpp) keep their points between steps; everything else starts afresh
+  // (relief_collision.hpp).
+  const FaceTexture* box_faces = faceTextureOf(*object->getCollisionShape());
+  const bool on_end_face = underside && standsOnEndFace(*underside);
+  if (!box_faces && !on_end_face) manifold->clearManifold();
   if (!underside) return;
 
   const double threshold = double(manifold->getContactBreakingThreshold());
@@ -249,7 +251,12 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     std::size_t n = 0;
     conforming = underside->kind == Underside::Kind::Sphere && raster.stride_i == 1 && raster.stride_j == 1 && !candidates.empty() &&
                  (n = selectConformingContacts(plane.surface(), *underside, candidates, picked)) > 0;
-    if (!conforming) n = selectReliefContacts(candidates, picked);
+    if (on_end_face) {
+      const Eigen::Vector2d texel = plane.surface().mapping().texelSize(plane.surface().map()).cwiseAbs();
+      n = selectEndFaceContacts(candidates, *underside, texel.maxCoeff(), raster.stride_i, raster.stride_j, picked);
+    } else if (!conforming) {
+      n = selectReliefContacts(candidates, picked);
+    }
     // Round objects roll on their contacts: locate them within their texels (relief_raster.hpp).
     // A sphere touches at the bottoms of basins (contact_selection.hpp); a capsule or cylinder
     // lying flat touches along a line of equal depths, so only its deepest point is refined.
@@ -274,6 +281,9 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   if (underside->kind == Underside::Kind::Box) faceNormalsOnCreases(plane.surface(), *underside, chosen);
   addReliefContacts(std::span(chosen.contacts.data(), chosen.count), *underside, plane.surface(), GroundBend{},
                     world_from_plane, conforming, threshold, result);
+  // Kept points follow the body and are dropped once they separate or slide beyond the
+  // threshold, as in Bullet's own algorithms (kept without this, stale points stayed).
+  if (on_end_face) result->refreshContactPoints();
 }
 
 bool reliefTakesMeshPair(const btCollisionShape& object, const btCollisionShape& mesh) {

@@ -5,9 +5,10 @@
 // picks at most 4 contacts (contact_selection.hpp) and reports them with the relief normals
 // there. Its manifold is cleared at the start of every step: cached points fixed to a rolling
 // ball's surface rotate behind the centre and inject energy (docs/design.md §7 fact 4), and the
-// rasteriser finds every contact afresh anyway. A box with a relief on its faces
-// (textured_box.hpp) is the exception: its contacts, grouped by normal into up to five manifolds,
-// are kept between steps and merged with the new ones (relief_collision.cpp, texturedBoxCollision).
+// rasteriser finds every contact afresh anyway. Two exceptions keep their contacts between steps,
+// merged with the new ones: a box with a relief on its faces (textured_box.hpp), grouped by normal
+// into up to five manifolds (relief_collision.cpp, texturedBoxCollision), and a cylinder standing
+// on an end face, on two rim points of the face's fall line (end_face_contacts.hpp).
 // The same textured box against a relief-textured mesh (mesh_relief_chart.hpp) takes the same rule
 // on the mesh's chart under it, the relief standing on the mesh's bend; each point names the
 // triangle under it (m_index1), as Bullet's own points on a mesh do.

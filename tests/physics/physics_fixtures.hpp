@@ -65,6 +65,34 @@ inline tex::TextureMap flatRelief(int size, double max_depth_m = 1e-3) {
   return tex::TextureMap(size, size, tex::Representation::Relief, max_depth_m);
 }
 
+// A world whose bodies never sleep (a test of creep must see every step), on one relief plane of
+// the height h (extent_m across, `texels` a side) with friction 1, so that Bullet's product of the
+// two frictions is the object's own.
+struct ReliefWorld {
+  SurfaceHolder relief;
+  std::unique_ptr<PhysicsWorld> world;
+  ReliefWorld(const std::function<double(double, double)>& h, double extent_m, int texels,
+              tex::Address address = tex::Address::Clamp) {
+    relief = holdSurface(heightMap(texels, extent_m, h, address), extent_m, true, address);
+    WorldOptions options;
+    options.rest.enabled = false;
+    world = std::make_unique<PhysicsWorld>(options);
+    world->addReliefPlane(relief.surface, {1.0, 0.0, 0.0});
+  }
+};
+
+// The pose of an object standing on the plane through `foot` that rises along -x with `slope`, its
+// own z axis along that plane's normal and its centre `half_height` (+ 10 µm) above `foot`, turned
+// by `yaw` about its own z axis.
+inline Eigen::Isometry3d onSlope(double slope, const Eigen::Vector3d& foot, double half_height, double yaw = 0.0) {
+  const double angle = std::atan(slope);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() =
+      (Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())).toRotationMatrix();
+  pose.translation() = foot + (half_height + 1e-5) * Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle));
+  return pose;
+}
+
 inline Eigen::Isometry3d at(double x, double y, double z) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   t.translation() = Eigen::Vector3d(x, y, z);

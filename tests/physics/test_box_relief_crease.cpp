@@ -16,18 +16,12 @@ namespace {
 
 constexpr double kDt = 1e-3, kMass = 0.05, kExtent = 0.125;
 
-struct BoxOnRelief {
-  SurfaceHolder relief;
-  std::unique_ptr<PhysicsWorld> world;
+struct BoxOnRelief : ReliefWorld {
   btRigidBody* box = nullptr;
 
   BoxOnRelief(int texels, const std::function<double(double, double)>& height, const Eigen::Vector3d& centre,
-              double half, double friction) {
-    relief = holdSurface(heightMap(texels, kExtent, height), kExtent, true);
-    WorldOptions options;
-    options.rest.enabled = false;  // moving or not, nothing sleeps
-    world = std::make_unique<PhysicsWorld>(options);
-    world->addReliefPlane(relief.surface, {1.0, 0.0, 0.0});
+              double half, double friction)
+      : ReliefWorld(height, kExtent, texels, tex::Address::Wrap) {
     box = &world->addBox(Eigen::Vector3d::Constant(half), kMass, at(centre.x(), centre.y(), centre.z()), {friction, 0.0, 0.0});
   }
   void run(double seconds, const Eigen::Vector3d& force_over_weight = Eigen::Vector3d::Zero()) {

@@ -21,24 +21,13 @@ const Eigen::Vector3d kHalf(0.01, 0.01, 0.005);
 
 // A box resting on the relief z = -slope (x + 2 cm) (the plane frame's z = 0 at its top), its
 // bottom face on the slope, centred over x = 0; rests do not sleep.
-struct BoxOnSlope {
-  SurfaceHolder relief;
-  std::unique_ptr<PhysicsWorld> world;
+struct BoxOnSlope : ReliefWorld {
   btRigidBody* box = nullptr;
 
-  BoxOnSlope(double slope, int texels) {
-    auto height = [slope](double x, double) { return -slope * (x + 0.5 * kExtent); };
-    relief = holdSurface(heightMap(texels, kExtent, height, tex::Address::Clamp), kExtent, true, tex::Address::Clamp);
-    WorldOptions options;
-    options.rest.enabled = false;
-    world = std::make_unique<PhysicsWorld>(options);
-    world->addReliefPlane(relief.surface, {1.0, 0.0, 0.0});  // Bullet multiplies frictions: the box's decides
-    const double angle = std::atan(slope);
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY()).toRotationMatrix();
-    pose.translation() = Eigen::Vector3d(0.0, 0.0, height(0.0, 0.0)) +
-                         (kHalf.z() + 1e-5) * Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle));
-    box = &world->addBox(kHalf, kMass, pose, {kFriction, 0.0, 0.0});
+  BoxOnSlope(double slope, int texels)
+      : ReliefWorld([slope](double x, double) { return -slope * (x + 0.5 * kExtent); }, kExtent, texels) {
+    const double foot_z = -slope * 0.5 * kExtent;
+    box = &world->addBox(kHalf, kMass, onSlope(slope, {0.0, 0.0, foot_z}, kHalf.z()), {kFriction, 0.0, 0.0});
   }
 
   // A steady horizontal force up the slope (-x), over the box's weight, for `seconds`: how far
