@@ -63,7 +63,6 @@ std::size_t selectEndFaceContacts(std::span<const ReliefCandidate> candidates, c
   // The deepest texel too where the face is tipped against the relief, or where no rim point was
   // found.
   if (found == 0 || candidates[deepest].depth < deepest_rim - kEndFaceTipM) chosen[n++] = deepest;
-  if (found == 2 && candidates[rim[1]].depth < candidates[rim[0]].depth) std::swap(rim[0], rim[1]);
   for (int i = 0; i < found; ++i)
     if (n == 0 || rim[i] != chosen[0]) chosen[n++] = rim[i];
   // A rim point clear of the relief (a bumpy relief under a level face) goes to the bottom of its
@@ -83,10 +82,10 @@ std::size_t selectEndFaceContacts(std::span<const ReliefCandidate> candidates, c
                       std::span(others.data(), n_others)))
       chosen[c] = walk[0];
   }
-  std::size_t first = 0;
-  for (std::size_t c = 1; c < n; ++c)
-    if (candidates[chosen[c]].depth < candidates[chosen[first]].depth) first = c;
-  std::swap(chosen[0], chosen[first]);
+  // Deepest first, as addReliefContacts takes them (relief_collision.cpp: of two points within the
+  // breaking threshold of each other the deeper must win) and the caller refines the first.
+  std::sort(chosen.begin(), chosen.begin() + std::ptrdiff_t(n),
+            [&](std::size_t a, std::size_t b) { return candidates[a].depth < candidates[b].depth; });
   return n;
 }
 

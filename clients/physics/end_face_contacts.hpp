@@ -11,7 +11,7 @@
 // spread points followed it round the rim, chosen afresh each step. The disc rocked and crept
 // down slopes its friction holds it on (a 1 cm cylinder, friction 0.3, on a 0.28 slope: up to
 // 6.9 mm in 2 s, where Bullet's tilted plane holds it still). Four rim points fixed to the
-// cylinder crept too (0.2-0.4 mm in 2 s, kept or not): on four points the disc's load is
+// cylinder crept too (0.2-0.4 mm in 2 s; kept between steps, up to 0.8 mm): on four points the disc's load is
 // statically indeterminate, and it went to one diagonal. Two points on the fall line is Bullet's
 // own answer for a disc on a plane; chosen afresh each step they still crept (up to 0.35 mm),
 // kept between steps they hold (docs/physics.md, "Relief-map mode").
@@ -38,8 +38,8 @@ inline constexpr double kEndFaceClearM = 10e-6;
 // Fills `chosen` with indices into `candidates` (the cylinder's rasterised texels,
 // relief_raster.hpp, visited `stride_i` and `stride_j` texels apart); returns how many, at most
 // three. `texel_m`: the relief's larger texel side; the rim points are taken that far inside the
-// rim, so that the texel nearest each lies under the flat face, not its rounded edge. The first
-// is the deepest of them (the one the caller refines).
+// rim, so that the texel nearest each lies under the flat face, not its rounded edge. Deepest
+// first (the caller refines the first).
 std::size_t selectEndFaceContacts(std::span<const ReliefCandidate> candidates, const Underside& cylinder, double texel_m,
                                   long long stride_i, long long stride_j,
                                   std::array<std::size_t, kMaxReliefContacts>& chosen);

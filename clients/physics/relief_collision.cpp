@@ -259,7 +259,8 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     }
     // Round objects roll on their contacts: locate them within their texels (relief_raster.hpp).
     // A sphere touches at the bottoms of basins (contact_selection.hpp); a capsule or cylinder
-    // lying flat touches along a line of equal depths, so only its deepest point is refined.
+    // lying flat touches along a line of equal depths, and a standing cylinder's face is flat
+    // (end_face_contacts.hpp), so only their deepest point is refined.
     if (conforming) {
       // Texel centres with their own normals, already measured: nothing to refine or snap.
     } else if (n > 0 && underside->kind == Underside::Kind::Sphere) {
