@@ -17,6 +17,7 @@
 #include "clients/physics/contact_selection.hpp"
 #include "clients/physics/crease_contact.hpp"
 #include "clients/physics/end_face_contacts.hpp"
+#include "clients/physics/pair_contact_normal.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/relief_raster.hpp"
 #include "clients/physics/textured_box.hpp"
@@ -110,6 +111,7 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
   candidates.clear();
   taken.clear();
   const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend);
+  const TexturedBoxSurface box_surface(underside, faces);
   for (std::size_t g = 0; g < kNormalGroups; ++g) {
     btPersistentManifold* manifold = g == 0 ? manifoldFor(object.getCollisionObject(), relief.getCollisionObject())
                                             : groupManifold(g, object.getCollisionObject(), relief.getCollisionObject());
@@ -131,6 +133,8 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
       taken.push_back(picked[k]);
       chosen[count++] = candidates[picked[k]];
     }
+    // A crest pressing on the other body's wall: the wall's normal (pair_contact_normal.hpp).
+    smootherSurfaceNormals(surface, bend.flat() ? nullptr : &bend, box_surface, std::span(chosen.data(), count));
     addReliefContacts(std::span(chosen.data(), count), underside, surface, bend, world_from_plane, false, threshold, result);
     // The points of earlier steps stay, each replaced by a new one within the breaking threshold
     // of it (keeping its impulse to start the solver from) or dropped once its gap or slide

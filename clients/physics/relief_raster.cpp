@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace thx::phys {
 
@@ -76,9 +77,8 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   const Eigen::Vector3d first = surface.texelPoint(i0, j0).q_local;
   const bool relief = surface.usesRelief();
   const bool textured = box_faces != nullptr && shape.kind == Underside::Kind::Box;
-  const Eigen::Isometry3d object_from_plane = shape.plane_from_object.inverse();
-  const Eigen::Matrix3d& to_plane = shape.plane_from_object.linear();
-  const Eigen::Vector3d down_object = -to_plane.row(2).transpose();  // the plane's -z in the object frame
+  std::optional<TexturedBoxSurface> box_surface;
+  if (textured) box_surface.emplace(shape, *box_faces);
   for (long long j = j0; j <= j1; j += stats.stride_j) {
     const double y = first.y() - double(j - j0) * texel.y();
     const int rj = tex::resolveIndex(j, map.height(), address);
@@ -96,15 +96,10 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
           out.push_back({Eigen::Vector3d(x, y, height), ground(surface.texelNormal(i, j, ri, rj)), depth, i, j});
         continue;
       }
-      const FacePoint face =
-          faceTextureAt(*box_faces, shape.half_extents, object_from_plane * Eigen::Vector3d(x, y, *z), down_object);
-      const double down = -face.sign * to_plane(2, face.axis);  // the face's outward normal against the plane's -z
+      const BoxSurfacePoint box = box_surface->over(x, y, *z);
       Eigen::Vector3d n = ground(surface.texelNormal(i, j, ri, rj));
-      if (down > kSteepestTexturedFaceCos) {
-        *z += face.recess_m / down;
-        n = (n - to_plane * face.normal_object).normalized();
-      }
-      const double depth = *z - height;
+      if (box.n_up) n = (n + *box.n_up).normalized();
+      const double depth = box.z - height;
       if (depth < threshold_m) out.push_back({Eigen::Vector3d(x, y, height), n, depth, i, j});
     }
   }

@@ -36,8 +36,9 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // faces carry a relief (`box_faces`, textured_box.hpp): the box's surface over each texel is its
 // lowest face pushed inwards by that face's relief depth (along the vertical; a point on a face
 // steeper than kSteepestTexturedFaceCos reads the face turned most towards the plane:
-// faceTextureAt), and the candidate's normal is the mean of the plane's and the box's (turned to
-// face the plane's way). With `bend` (ground_bend.hpp: a chart on a curved mesh), the relief stands
+// faceTextureAt; TexturedBoxSurface), and the candidate's normal is the mean of the plane's and
+// the box's (turned to face the plane's way; the chosen contacts' normals are then revisited:
+// pair_contact_normal.hpp). With `bend` (ground_bend.hpp: a chart on a curved mesh), the relief stands
 // on the bent ground: its heights raised by the bend's, its normals tilted by its slope; a chart
 // whose texels are twice as long along one axis as along the other is read at the longer spacing
 // along both (a texture squeezed by the mesh's uv, relief_raster.cpp).

@@ -38,6 +38,26 @@ FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half,
   return f;
 }
 
+TexturedBoxSurface::TexturedBoxSurface(const Underside& box, const FaceTexture& texture)
+    : box_(box),
+      texture_(texture),
+      object_from_plane_(box.plane_from_object.inverse()),
+      down_object_(-box.plane_from_object.linear().row(2).transpose()) {}
+
+BoxSurfacePoint TexturedBoxSurface::over(double x, double y, double lowest_z) const {
+  const FacePoint face = faceTextureAt(texture_, box_.half_extents, object_from_plane_ * Eigen::Vector3d(x, y, lowest_z), down_object_);
+  const Eigen::Matrix3d& to_plane = box_.plane_from_object.linear();
+  const double down = -face.sign * to_plane(2, face.axis);  // the face's outward normal against the plane's -z
+  if (down <= kSteepestTexturedFaceCos) return {lowest_z, std::nullopt};
+  return {lowest_z + face.recess_m / down, Eigen::Vector3d(-(to_plane * face.normal_object))};
+}
+
+std::optional<BoxSurfacePoint> TexturedBoxSurface::at(double x, double y) const {
+  const std::optional<double> z = lowestZ(box_, x, y);
+  if (!z) return std::nullopt;
+  return over(x, y, *z);
+}
+
 namespace {
 // Marks a shape whose user pointer is a FaceTexture ("TBOX").
 constexpr int kFaceTextureTag = 0x54424f58;

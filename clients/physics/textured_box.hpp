@@ -9,9 +9,9 @@
 // spread points, each moved to the bottom of its basin: where the depth of the pair is deepest),
 // in one manifold per group of normals, kept between steps (relief_collision.hpp),
 // and each takes the mean of the two surfaces' normals there (equal where the two surfaces touch
-// at a basin's bottom, a stationary point of the pair's depth; where a crest presses on the other
-// body's wall it leans half as much as the wall: the normal of whichever surface bends less there
-// was tried instead and held a grooved block across its grooves no better, docs/physics.md).
+// at a basin's bottom, a stationary point of the pair's depth), or, where one of them bends
+// sharply (a crest pressing on the other body's wall), the normal of the one that bends less
+// (pair_contact_normal.hpp).
 //
 // Mapping: one texture on all six faces, spanning `tile_m` on each. On the face with outward
 // normal along ±axis a, u grows along the object's axis (a + 1) % 3 and v along (a + 2) % 3, from
@@ -28,6 +28,10 @@
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+
+#include "clients/physics/underside.hpp"
 
 #include "textures/sampling.hpp"
 #include "textures/texture_map.hpp"
@@ -61,6 +65,31 @@ inline constexpr double kSteepestTexturedFaceCos = 0.2;  // 78° from the plane
 // and threw the block up.)
 FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half_extents, const Eigen::Vector3d& p_object,
                         const Eigen::Vector3d& toward = Eigen::Vector3d::Zero());
+
+// A textured box's surface seen from a relief plane under it (plane frame): over a point of the
+// plane, the box's lowest face pushed inwards by that face's relief (along the vertical, divided by
+// the face's tilt), and that relief's normal turned to face the plane's way. The rasteriser reads
+// the pair's depth through it (relief_raster.hpp), the pair's normal rule its neighbours
+// (pair_contact_normal.hpp).
+struct BoxSurfacePoint {
+  double z = 0.0;                         // the surface's height in the plane frame
+  std::optional<Eigen::Vector3d> n_up;    // the relief's normal, unit, +z side; absent on a face
+                                          // steeper than kSteepestTexturedFaceCos (not read there)
+};
+class TexturedBoxSurface {
+ public:
+  TexturedBoxSurface(const Underside& box, const FaceTexture& texture);
+  // Over (x, y), whose vertical line first meets the box at height `lowest_z` (lowestZ).
+  BoxSurfacePoint over(double x, double y, double lowest_z) const;
+  // Over (x, y); nullopt where the vertical line misses the box.
+  std::optional<BoxSurfacePoint> at(double x, double y) const;
+
+ private:
+  const Underside& box_;
+  const FaceTexture& texture_;
+  Eigen::Isometry3d object_from_plane_;
+  Eigen::Vector3d down_object_;  // the plane's -z in the object frame
+};
 
 // Attaches `texture` (which must outlive the shape) to a btBoxShape. (Subclassing btBoxShape
 // would emit Bullet's inline btBoxShape::getPlane here, which reads an uninitialised plane for an

@@ -26,13 +26,16 @@ inline constexpr double kFriction = 0.3;
 inline double alongForce() { return kFriction; }
 inline double acrossForce() { return std::tan(std::atan(2 * kDepth / kPeriod) + std::atan(kFriction)); }
 
-// The block pushed by a force (over its weight) for `seconds`: how far its centre moved.
+// The block pushed by a force (over its weight) for `seconds`, after `ramp_seconds` in which the
+// force grows from zero: how far its centre moved.
 inline Eigen::Vector3d pushBlock(PhysicsWorld& world, btRigidBody& block, const Eigen::Vector3d& force_over_weight,
-                                 double seconds) {
+                                 double seconds, double ramp_seconds = 0.0) {
   const Eigen::Vector3d start = positionOf(block);
-  block.activate(true);
-  for (int k = 0; k < int(std::lround(seconds / kDt)); ++k) {
-    block.applyCentralForce(toBt(Eigen::Vector3d(force_over_weight * kMass * kG)));
+  const int ramp = int(std::lround(ramp_seconds / kDt));
+  for (int k = 0; k < ramp + int(std::lround(seconds / kDt)); ++k) {
+    const double scale = k < ramp ? double(k + 1) / double(ramp) : 1.0;
+    block.activate(true);
+    block.applyCentralForce(toBt(Eigen::Vector3d(scale * force_over_weight * kMass * kG)));
     world.step(kDt);
   }
   return positionOf(block) - start;
@@ -68,8 +71,8 @@ struct Scene {
   }
 
   // Pushed by a horizontal force for `seconds`: how far the block's centre moved.
-  Eigen::Vector3d push(const Eigen::Vector3d& force_over_weight, double seconds) {
-    return pushBlock(*world, *block, force_over_weight, seconds);
+  Eigen::Vector3d push(const Eigen::Vector3d& force_over_weight, double seconds, double ramp_seconds = 0.0) {
+    return pushBlock(*world, *block, force_over_weight, seconds, ramp_seconds);
   }
 };
 
