@@ -14,7 +14,8 @@ void smootherSurfaceNormals(const tex::TexturedSurface& surface, const GroundBen
                             std::span<ReliefCandidate> contacts) {
   const tex::TextureMap& map = surface.map();
   const tex::Address address = surface.sampling().address;
-  const Eigen::Vector2d texel = surface.mapping().texelSize(map).cwiseAbs();
+  // Signed as the rasteriser steps (+i is +x, +j is -y, relief_raster.cpp).
+  const Eigen::Vector2d texel = surface.mapping().texelSize(map);
   for (ReliefCandidate& c : contacts) {
     // The texel d texels along a row (axis 0) or a column (axis 1) from the contact's.
     auto planeHeight = [&](int axis, int d) {
@@ -33,7 +34,7 @@ void smootherSurfaceNormals(const tex::TexturedSurface& surface, const GroundBen
     // difference is then taken one texel in.
     double plane_jump = 0.0, object_jump = -1.0;
     for (int axis = 0; axis < 2; ++axis) {
-      const double size = axis == 0 ? texel.x() : texel.y();
+      const double size = std::fabs(axis == 0 ? texel.x() : texel.y());
       plane_jump = std::max(plane_jump, std::fabs(planeHeight(axis, -1) + planeHeight(axis, 1) - 2.0 * planeHeight(axis, 0)) / size);
       std::optional<double> h[5];
       for (int d = -2; d <= 2; ++d) h[d + 2] = boxHeight(axis, d);
