@@ -9,8 +9,8 @@
 // spread points, each moved to the bottom of its basin: where the depth of the pair is deepest),
 // in one manifold per group of normals, kept between steps (relief_collision.hpp),
 // and each takes the mean of the two surfaces' normals there (equal where the two surfaces touch
-// at a basin's bottom, a stationary point of the pair's depth), or, where one of them bends
-// sharply (a crest pressing on the other body's wall), the normal of the one that bends less
+// at a basin's bottom, a stationary point of the pair's depth), or, where one of them has a
+// crease and the other none (a crest pressing on the other body's wall), the other's
 // (pair_contact_normal.hpp).
 //
 // Mapping: one texture on all six faces, spanning `tile_m` on each. On the face with outward

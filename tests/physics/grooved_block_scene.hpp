@@ -34,7 +34,7 @@ inline Eigen::Vector3d pushBlock(PhysicsWorld& world, btRigidBody& block, const 
   const int ramp = int(std::lround(ramp_seconds / kDt));
   for (int k = 0; k < ramp + int(std::lround(seconds / kDt)); ++k) {
     const double scale = k < ramp ? double(k + 1) / double(ramp) : 1.0;
-    block.activate(true);
+    block.activate(true);  // a force raised from zero must not let the rest detector put it to sleep
     block.applyCentralForce(toBt(Eigen::Vector3d(scale * force_over_weight * kMass * kG)));
     world.step(kDt);
   }

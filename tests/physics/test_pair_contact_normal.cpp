@@ -1,6 +1,7 @@
 // Which normal a contact between a relief plane and a textured box takes
 // (clients/physics/pair_contact_normal.hpp): where a crest of one presses on the other's flat
-// wall or face, the wall's; where both bend gently, the rasteriser's mean of the two.
+// wall or face, the wall's; where both bend gently, or both have a crease, the rasteriser's mean
+// of the two.
 #include <gtest/gtest.h>
 
 #include <cmath>
