@@ -45,9 +45,9 @@
 #              against the smooth sphere's answers, smooth contacts and Bullet's flat ones, by
 #              tessellation; about 10 s; its table goes to docs/physics.md)
 #              or textured_pair (issue 29: a grooved block on a grooved plane, the force that starts
-#              it sliding along and across the grooves in both orders of the pair and beside a plain
-#              block, and the cost of a step, at 64, 128 and 256 texels; about 2 min; its table goes
-#              to docs/physics.md)
+#              it sliding along and across the grooves (raised slowly; across also at once) in both
+#              orders of the pair and beside a plain block, and the cost of a step, at 64, 128 and
+#              256 texels; about 2 min; its table goes to docs/physics.md)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
