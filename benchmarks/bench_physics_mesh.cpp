@@ -17,6 +17,7 @@
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/bench_stamp.hpp"
 #include "tests/physics/mesh_rolling_scenes.hpp"
+#include "tests/physics/slope_predicted_swing.hpp"
 #include "tools/report/plot.hpp"
 
 namespace {
@@ -39,7 +40,11 @@ PhysicsWorld::addTexturedMesh) and with Bullet's own contacts on the flat triang
 wall-clock time of a step in the bowl (one ball, the mesh static). Then both scenes on one
 tessellation with a fine texture: sine bumps 2.5 mm apart (tests/physics/mesh_rolling_scenes.hpp)
 whose steepest slope s is 0.005 to 0.1, against the same scene untextured; the departure's change
-beside atan(s), the most the texture can tilt the surface.
+beside atan(s), the most the texture can tilt the surface; the bowl's period change beside the
+change the texture's slopes predict (tests/physics/slope_predicted_swing.hpp: the same slopes
+read at the foot, the ball's rolling integrated without Bullet at 0.1 ms), with the bowl's
+bottom at the sphere's pole (where the uv squeezes the texture) and turned onto its equator
+(where the texture lies at its stated scale).
 
   --segments LIST   tessellations (default 16,24,32,48,64,96,128,192,256)
   --seconds S       simulated time of each bowl run (default 4)
@@ -48,10 +53,14 @@ beside atan(s), the most the texture can tilt the surface.
   --json/--csv/--md/--png F   results
 )";
 
+struct BowlChange {
+  double simulated = 0, predicted = 0;  // relative to the untextured run of each
+  int periods = 0;                      // whole periods simulated
+};
+
 struct TexturedRow {
   double slope = 0;
-  double period_change = 0;  // relative to the untextured run
-  int periods = 0;
+  BowlChange pole, equator;
   double leave_change_deg = 0;
   bool left = false;
 };
@@ -110,17 +119,36 @@ int run(int argc, char** argv) {
   }
   std::fprintf(stderr, ", textured:");
   std::vector<TexturedRow> textured;
-  const Swing plain_swing = swingInBowl(texture_segments, true, kR, kSwing0, seconds);
+  const Eigen::Matrix3d pole = Eigen::Matrix3d::Identity(), equator = bottomOnTheEquator(kR);
+  auto change = [](const Swing& with, const Swing& without) {
+    return with.periods > 0 && without.periods > 0 ? with.period_s / without.period_s - 1.0 : NAN;
+  };
+  struct Untextured {
+    Eigen::Matrix3d turn;
+    Swing simulated, predicted;
+  };
+  auto untextured = [&](const Eigen::Matrix3d& turn) {
+    return Untextured{turn, swingInBowl(texture_segments, true, kR, kSwing0, seconds, nullptr, turn),
+                      slopePredictedSwing(texture_segments, kR, kSwing0, seconds, nullptr, turn)};
+  };
+  const Untextured at_pole = untextured(pole), on_equator = untextured(equator);
+  auto bowlChange = [&](const tex::TextureMap& map, const Untextured& plain) {
+    const Swing simulated = swingInBowl(texture_segments, true, kR, kSwing0, seconds, &map, plain.turn);
+    BowlChange b;
+    b.simulated = change(simulated, plain.simulated);
+    b.predicted = change(slopePredictedSwing(texture_segments, kR, kSwing0, seconds, &map, plain.turn), plain.predicted);
+    b.periods = simulated.periods;
+    return b;
+  };
   const Departure plain_leave = rollOffSphere(texture_segments, true, kR, kTheta0, kFriction);
   for (double slope : {0.005, 0.01, 0.02, 0.05, 0.1}) {
     std::fprintf(stderr, " %g", slope);
     const tex::TextureMap map = sineBumps(slope);
-    const Swing sw = swingInBowl(texture_segments, true, kR, kSwing0, seconds, &map);
     const Departure d = rollOffSphere(texture_segments, true, kR, kTheta0, kFriction, &map);
     TexturedRow t;
     t.slope = slope;
-    t.periods = sw.periods;
-    t.period_change = sw.periods > 0 && plain_swing.periods > 0 ? sw.period_s / plain_swing.period_s - 1.0 : NAN;
+    t.pole = bowlChange(map, at_pole);
+    t.equator = bowlChange(map, on_equator);
     t.left = d.left && plain_leave.left;
     t.leave_change_deg = d.theta_deg - plain_leave.theta_deg;
     textured.push_back(t);
@@ -135,9 +163,11 @@ int run(int argc, char** argv) {
     for (const Row& r : rows)
       c += bench::fmt("%d,%zu,%.6g,%.6g,%.4f,%.4f,%.2f,%.2f\n", r.segments, r.triangles, r.period_smooth, r.period_flat,
                       r.leave_smooth, r.leave_flat, r.us_smooth, r.us_flat);
-    c += "\ntextured_segments,slope,period_change,periods,departure_change_deg,slope_angle_deg\n";
+    c += "\ntextured_segments,slope,pole_period_change,pole_period_change_predicted,pole_periods,equator_period_change,"
+         "equator_period_change_predicted,equator_periods,departure_change_deg,slope_angle_deg\n";
     for (const TexturedRow& t : textured)
-      c += bench::fmt("%d,%g,%.6g,%d,%.4f,%.4f\n", texture_segments, t.slope, t.period_change, t.periods, t.leave_change_deg,
+      c += bench::fmt("%d,%g,%.6g,%.6g,%d,%.6g,%.6g,%d,%.4f,%.4f\n", texture_segments, t.slope, t.pole.simulated, t.pole.predicted,
+                      t.pole.periods, t.equator.simulated, t.equator.predicted, t.equator.periods, t.leave_change_deg,
                       std::atan(t.slope) * 180.0 / kPi);
     bench::writeTextFile(csv, c);
   }
@@ -157,9 +187,13 @@ int run(int argc, char** argv) {
     j += bench::fmt("  ],\n  \"textured_segments\": %d,\n  \"textured\": [\n", texture_segments);
     for (std::size_t i = 0; i < textured.size(); ++i) {
       const TexturedRow& t = textured[i];
-      j += bench::fmt("    {\"slope\": %g, \"period_change\": %.6g, \"periods\": %d, \"departure_change_deg\": %.4f, "
+      auto bowl = [](const BowlChange& b) {
+        return bench::fmt("{\"period_change\": %.6g, \"period_change_predicted\": %.6g, \"periods\": %d}", b.simulated,
+                          b.predicted, b.periods);
+      };
+      j += bench::fmt("    {\"slope\": %g, \"bowl_at_pole\": %s, \"bowl_on_equator\": %s, \"departure_change_deg\": %.4f, "
                       "\"left\": %s, \"slope_angle_deg\": %.4f}%s\n",
-                      t.slope, t.period_change, t.periods, t.leave_change_deg, t.left ? "true" : "false",
+                      t.slope, bowl(t.pole).c_str(), bowl(t.equator).c_str(), t.leave_change_deg, t.left ? "true" : "false",
                       std::atan(t.slope) * 180.0 / kPi, i + 1 < textured.size() ? "," : "");
     }
     j += "  ]\n}\n";
@@ -180,13 +214,19 @@ int run(int argc, char** argv) {
                       angle(r.left_flat, r.leave_flat).c_str(), r.us_smooth, r.us_flat);
     }
     t += bench::fmt("\nWith a fine texture (%d segments, smooth contact): sine bumps 2.5 mm apart, steepest slope s, against the "
-                    "same scene untextured.\n\n",
+                    "same scene untextured. The bowl's period: simulated, and predicted from the texture's slopes (read at the "
+                    "foot as the contact reads them; the rolling integrated without Bullet); at the pole the bottom is the UV "
+                    "sphere's pole (the uv squeezes the texture there), on the equator the sphere is turned so the texture "
+                    "lies under the swing at its stated scale.\n\n",
                     texture_segments);
-    t += "| slope s | atan s | roll-off: departure moved | bowl: period changed | whole periods |\n|---:|---:|---:|---:|---:|\n";
+    t += "| slope s | atan s | roll-off: departure moved | bowl at the pole: period changed | predicted | periods "
+         "| bowl on the equator: period changed | predicted | periods |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const TexturedRow& r : textured)
-      t += bench::fmt("| %g | %.2f° | %s | %+.2f %% | %d |\n", r.slope, std::atan(r.slope) * 180.0 / kPi,
-                      r.left ? bench::fmt("%+.2f°", r.leave_change_deg).c_str() : "stayed on", 100 * r.period_change,
-                      r.periods);
+      t += bench::fmt("| %g | %.2f° | %s | %+.2f %% | %+.2f %% | %d | %+.2f %% | %+.2f %% | %d |\n", r.slope,
+                      std::atan(r.slope) * 180.0 / kPi,
+                      r.left ? bench::fmt("%+.2f°", r.leave_change_deg).c_str() : "stayed on", 100 * r.pole.simulated,
+                      100 * r.pole.predicted, r.pole.periods, 100 * r.equator.simulated, 100 * r.equator.predicted,
+                      r.equator.periods);
     bench::writeTextFile(md, t);
   }
   if (!png.empty()) {

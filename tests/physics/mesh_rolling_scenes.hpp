@@ -5,6 +5,7 @@
 // tessellation): a ball swinging inside a sphere (a bowl) and a ball rolling off its top.
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 
+#include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -36,21 +37,35 @@ inline double normalImpulse(PhysicsWorld& w, const btRigidBody& ball) {
   return total;
 }
 
-// A UV sphere mesh of `radius` (`segments` around, half as many rings) at the origin, in a world.
-// With `texture`, the map is laid at one tile per kTileM of arc (its normals made for that tile).
+// A UV sphere mesh of `radius` (`segments` around, half as many rings) at the origin, turned by
+// `turn` (the sphere's frame to the world's), in a world. With `texture`, the map is laid at one
+// tile per kTileM of arc (its normals made for that tile).
 inline constexpr double kTileM = 0.01;
 struct SphereScene {
   mesh::GeneratedMesh sphere;
   PhysicsWorld world;
-  SphereScene(int segments, bool smooth, double radius, const tex::TextureMap* texture = nullptr)
+  SphereScene(int segments, bool smooth, double radius, const tex::TextureMap* texture = nullptr,
+              const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity())
       : sphere(mesh::sphere(radius, segments, segments / 2, kTileM)) {
     MeshContactOptions options;
     options.smooth = smooth;
     options.texture = texture;
     options.normals_made_for_m = Eigen::Vector2d::Constant(kTileM);
-    world.addTexturedMesh(sphere.mesh, Eigen::Isometry3d::Identity(), {1.0, 0.0, 0.0}, options);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = turn;
+    world.addTexturedMesh(sphere.mesh, pose, {1.0, 0.0, 0.0}, options);
   }
 };
+
+// Unturned, the bowl's bottom is the UV sphere's south pole, where u closes to a point: there the
+// uv squeezes a texture along u (its bumps a fraction of a millimetre apart and, rescaled to the
+// tile they were made for, many times steeper). This turn puts the bottom on the equator instead,
+// where the texture lies at its stated scale, and about an eighth of the sine bumps' period off
+// their node lines (kTileM / 32 of arc along v), so the swing along u meets their slopes both
+// along and across its path.
+inline Eigen::Matrix3d bottomOnTheEquator(double bowl_radius) {
+  return Eigen::AngleAxisd(0.5 * kPi + kTileM / 32.0 / bowl_radius, Eigen::Vector3d::UnitX()).toRotationMatrix();
+}
 
 // Sine bumps (textures/generators/sine.cpp) of period kTileM / 4 whose steepest slope is `slope`
 // (amplitude x 2 pi / period), one tile of 256 texels.
@@ -69,11 +84,11 @@ struct Swing {
   double us_per_step = 0.0;  // wall clock, the whole step
 };
 
-// The ball released at rest theta_0 up the inside of a sphere of radius R (the bowl), for
-// `seconds`; the period from the times it crosses the bottom moving in +x.
+// The ball released at rest theta_0 up the inside of a sphere of radius R (the bowl), along +x of
+// the world, for `seconds`; the period from the times it crosses the bottom moving in +x.
 inline Swing swingInBowl(int segments, bool smooth, double bowl_radius, double theta0_deg, double seconds,
-                         const tex::TextureMap* texture = nullptr) {
-  SphereScene scene(segments, smooth, bowl_radius, texture);
+                         const tex::TextureMap* texture = nullptr, const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity()) {
+  SphereScene scene(segments, smooth, bowl_radius, texture, turn);
   PhysicsWorld& w = scene.world;
   const double l = bowl_radius - kBallRadius, th = deg(theta0_deg);
   btRigidBody& ball = w.addSphere(kBallRadius, kBallMass, placedAt({l * std::sin(th), 0.0, -l * std::cos(th)}),
@@ -129,6 +144,12 @@ inline Departure rollOffSphere(int segments, bool smooth, double sphere_radius, 
 
 // The exact answers.
 inline double swingPeriod(double bowl_radius) { return 2.0 * kPi * std::sqrt(7.0 * (bowl_radius - kBallRadius) / (5.0 * kG)); }
+// At a swing of theta_0 (rad): the pendulum's series, T0 (1 + theta_0^2 / 16 + 11 theta_0^4 / 3072);
+// the next term is below 1e-8 of T0 at 5 degrees.
+inline double swingPeriodAt(double bowl_radius, double theta0_deg) {
+  const double t2 = deg(theta0_deg) * deg(theta0_deg);
+  return swingPeriod(bowl_radius) * (1.0 + t2 / 16.0 + 11.0 * t2 * t2 / 3072.0);
+}
 inline double departureDeg(double theta0_deg) {
   return std::acos(10.0 / 17.0 * std::cos(theta0_deg * kPi / 180.0)) * 180.0 / kPi;
 }

@@ -11,6 +11,7 @@
 #include "base/error.hpp"
 #include "meshes/mesh_generators.hpp"
 #include "tests/physics/mesh_rolling_scenes.hpp"
+#include "tests/physics/slope_predicted_swing.hpp"
 
 namespace thx::phys::test::test_mesh_rolling {
 namespace {
@@ -51,8 +52,9 @@ TEST(MeshRolling, ABallRollingOffATessellatedSphereLeavesWhereCosThetaIsTenSeven
 
 // A fine texture moves the sphere's answers by less than its own slope: the departure by less
 // than atan(s), the most it tilts the surface; the bowl's period by under 1 % while s stays well
-// under the swing's own slope (5 degrees: 0.087). Steeper bumps trap the ball in the bumps, as a
-// point-sampled normal map makes them (docs/physics.md).
+// under the swing's own slope (5 degrees: 0.087). This bowl swings through the UV sphere's pole,
+// where the uv squeezes steeper bumps: the period against what the slopes predict is held on the
+// equator (below; docs/physics.md).
 TEST(MeshRolling, AFineTextureMovesTheAnswersByLessThanItsSlope) {
   const Departure plain = rollOffSphere(128, true, 0.1, 1.0, 10.0);
   const Swing plain_swing = swingInBowl(128, true, 0.1, 5.0, 4.0);
@@ -69,6 +71,42 @@ TEST(MeshRolling, AFineTextureMovesTheAnswersByLessThanItsSlope) {
   ASSERT_GE(swing.periods, 4);
   std::printf("sine bumps, slope 0.02: bowl period changed %+.3f %%\n", 100.0 * (swing.period_s / plain_swing.period_s - 1.0));
   EXPECT_NEAR(swing.period_s, plain_swing.period_s, 0.01 * plain_swing.period_s);
+}
+
+// The prediction (slope_predicted_swing.hpp) untextured is the exact swing at 5 degrees: its
+// integrator and its mechanics, checked before it judges the simulation.
+TEST(MeshRolling, TheSlopePredictionOfAnUntexturedBowlIsTheExactSwing) {
+  const double expected = swingPeriodAt(0.1, 5.0);
+  for (const Eigen::Matrix3d& turn : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), bottomOnTheEquator(0.1)}) {
+    const Swing predicted = slopePredictedSwing(128, 0.1, 5.0, 4.0, nullptr, turn);
+    ASSERT_GE(predicted.periods, 4);
+    std::printf("prediction, untextured: %.6f s, expected %.6f s\n", predicted.period_s, expected);
+    EXPECT_NEAR(predicted.period_s, expected, 2e-5 * expected);
+  }
+}
+
+// Where the texture lies at its stated scale (the bowl's bottom on the sphere's equator), sine
+// bumps as steep as the swing itself change the period by several percent, and the simulation
+// changes it as the texture's slopes predict: within 1 % of the period, the smooth bowl's own
+// tolerance (measured 0.27 and 0.76 points; bench_physics_mesh, docs/physics.md).
+TEST(MeshRolling, OnTheEquatorAFineTextureChangesThePeriodAsItsSlopesPredict) {
+  const Eigen::Matrix3d turn = bottomOnTheEquator(0.1);
+  const Swing plain = swingInBowl(128, true, 0.1, 5.0, 4.0, nullptr, turn);
+  const Swing plain_predicted = slopePredictedSwing(128, 0.1, 5.0, 4.0, nullptr, turn);
+  for (double slope : {0.05, 0.1}) {
+    const tex::TextureMap map = sineBumps(slope);
+    const Swing simulated = swingInBowl(128, true, 0.1, 5.0, 4.0, &map, turn);
+    const Swing predicted = slopePredictedSwing(128, 0.1, 5.0, 4.0, &map, turn);
+    ASSERT_GE(simulated.periods, 3) << slope;
+    ASSERT_GE(predicted.periods, 3) << slope;
+    const double simulated_change = simulated.period_s / plain.period_s - 1.0;
+    const double predicted_change = predicted.period_s / plain_predicted.period_s - 1.0;
+    std::printf("sine bumps, slope %.2f, on the equator: period changed %+.2f %%, predicted %+.2f %%\n", slope,
+                100.0 * simulated_change, 100.0 * predicted_change);
+    // The texture changes the period: not a comparison of two untouched swings.
+    EXPECT_GT(std::fabs(predicted_change), 0.02) << slope;
+    EXPECT_NEAR(simulated_change, predicted_change, 0.01) << slope;
+  }
 }
 
 // The texture on a mesh steers a ball as the same texture on the plane does: a uniformly tilted

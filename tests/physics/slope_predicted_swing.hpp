@@ -1,0 +1,98 @@
+#pragma once
+// What a texture's own slopes predict for the ball swinging in the bowl (issue 29: "the same
+// scenes with a fine texture change the mean by less than the texture's own slope predicts").
+//
+// The prediction leaves Bullet out and keeps only what the texture says: the ball's centre held
+// on the smooth sphere of radius R - r, pulled by gravity and pushed by the contact force along
+// the normal the texture tilts at the foot of the centre, rolling without slipping (a force
+// through the centre accelerates it at 5/7 of force / mass), integrated by RK4 at 0.1 ms. The
+// texture is read through the product's own lookup on the same mesh (smoothFoot,
+// meshContactNormal at one point), so the prediction and the simulation read the same slopes;
+// only the mechanics differ: no solver, no 1 ms step, no tessellated gap. Untextured it is the
+// exact swing, a pendulum's of length 7 (R - r) / 5 (swingPeriodAt).
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "clients/physics/mesh_contact.hpp"
+#include "tests/physics/mesh_rolling_scenes.hpp"
+
+namespace thx::phys::test::mesh_rolling {
+
+// The slope the texture adds at ball centre c inside `sphere` (towards the ball): the steered
+// normal's part along the smooth surface over its part across it, turned onto the exact sphere's
+// tangent plane there. `triangle` and `b` carry the foot from call to call.
+struct SlopeAtFoot {
+  const ContactMesh& contact_mesh;
+  MeshContactOptions options;
+  std::uint32_t triangle = 0;
+  Eigen::Vector3d b = Eigen::Vector3d::Constant(1.0 / 3.0);
+
+  Eigen::Vector3d operator()(const Eigen::Vector3d& c) {
+    smoothFoot(contact_mesh, c, -1.0, triangle, b);
+    const mesh::SurfaceFrame f = mesh::frameAt(*contact_mesh.mesh, triangle, b, mesh::FrameMode::Interpolated);
+    const Eigen::Vector3d n = -meshContactNormal(*contact_mesh.mesh, triangle, b, options), smooth = -f.normal;
+    const Eigen::Vector3d slope = (n - n.dot(smooth) * smooth) / n.dot(smooth);
+    const Eigen::Vector3d up = -c.normalized();  // the exact sphere's normal towards the ball
+    return slope - slope.dot(up) * up;
+  }
+};
+
+// The nearest triangle's centroid to p (once, to start the walks).
+inline std::uint32_t nearestTriangle(const mesh::TexturedMesh& m, const Eigen::Vector3d& p) {
+  std::uint32_t best = 0;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
+    const mesh::Triangle& tri = m.triangles[t];
+    const double d = ((m.positions[tri[0]] + m.positions[tri[1]] + m.positions[tri[2]]) / 3.0 - p).squaredNorm();
+    if (d < best_d) best_d = d, best = t;
+  }
+  return best;
+}
+
+// The swing of swingInBowl (the same release, sphere and turn, the same crossings counted) as the
+// texture's slopes predict it.
+inline Swing slopePredictedSwing(int segments, double bowl_radius, double theta0_deg, double seconds,
+                                 const tex::TextureMap* texture,
+                                 const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity(), double dt = 1e-4) {
+  const mesh::GeneratedMesh sphere = mesh::sphere(bowl_radius, segments, segments / 2, kTileM);
+  const ContactMesh contact_mesh(sphere.mesh);
+  MeshContactOptions options;
+  options.texture = texture;
+  options.normals_made_for_m = Eigen::Vector2d::Constant(kTileM);
+  const double l = bowl_radius - kBallRadius, th = deg(theta0_deg);
+  // In the sphere's own frame: the world turned back.
+  Eigen::Vector3d c = turn.transpose() * Eigen::Vector3d(l * std::sin(th), 0.0, -l * std::cos(th)), v = Eigen::Vector3d::Zero();
+  SlopeAtFoot slope_at{contact_mesh, options, nearestTriangle(sphere.mesh, c * (bowl_radius / l))};
+  const Eigen::Vector3d g = turn.transpose() * Eigen::Vector3d(0.0, 0.0, -kG), along = turn.transpose().col(0);
+  auto accel = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& u) -> Eigen::Vector3d {
+    const Eigen::Vector3d up = -p.normalized();
+    const double load = u.squaredNorm() / l - g.dot(up);  // normal force / mass along the smooth normal
+    const Eigen::Vector3d pull = g - g.dot(up) * up + load * slope_at(p);
+    return 5.0 / 7.0 * pull + u.squaredNorm() / l * up;
+  };
+  std::vector<double> crossings;
+  const long steps = std::lround(seconds / dt);
+  for (long k = 1; k <= steps; ++k) {
+    const Eigen::Vector3d a1 = accel(c, v), v1 = v;
+    const Eigen::Vector3d v2 = v + 0.5 * dt * a1, a2 = accel(c + 0.5 * dt * v1, v2);
+    const Eigen::Vector3d v3 = v + 0.5 * dt * a2, a3 = accel(c + 0.5 * dt * v2, v3);
+    const Eigen::Vector3d v4 = v + dt * a3, a4 = accel(c + dt * v3, v4);
+    const double x_last = c.dot(along);
+    c += dt / 6.0 * (v1 + 2.0 * v2 + 2.0 * v3 + v4);
+    v += dt / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+    // Back onto the sphere, the velocity along it (RK4 drifts off by dt^5).
+    c *= l / c.norm();
+    v -= v.dot(c) / (l * l) * c;
+    const double x = c.dot(along);
+    if (x_last < 0.0 && x >= 0.0) crossings.push_back(dt * (double(k - 1) + (-x_last) / (x - x_last)));
+  }
+  Swing s;
+  s.periods = int(crossings.size()) - 1;
+  if (s.periods > 0) s.period_s = (crossings.back() - crossings.front()) / s.periods;
+  return s;
+}
+
+}  // namespace thx::phys::test::mesh_rolling
