@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "base/cli_number.hpp"
@@ -44,7 +46,9 @@ beside atan(s), the most the texture can tilt the surface; the bowl's period cha
 change the texture's slopes predict (tests/physics/slope_predicted_swing.hpp: the same slopes
 read at the foot, the ball's rolling integrated without Bullet at 0.1 ms), with the bowl's
 bottom at the sphere's pole (where the uv squeezes the texture) and turned onto its equator
-(where the texture lies at its stated scale).
+(where the texture lies at its stated scale); the same with the bumps as a relief met as the
+ball's sphere meets it (textures/ball_on_relief.hpp), and the cost of a step each way; and on the
+equator, released at 4.90 to 5.10 degrees, where which bump the ball turns at decides the period.
 
   --segments LIST   tessellations (default 16,24,32,48,64,96,128,192,256)
   --seconds S       simulated time of each bowl run (default 4)
@@ -56,13 +60,33 @@ bottom at the sphere's pole (where the uv squeezes the texture) and turned onto 
 struct BowlChange {
   double simulated = 0, predicted = 0;  // relative to the untextured run of each
   int periods = 0;                      // whole periods simulated
+  double us_per_step = 0;               // the simulation's, wall clock
 };
 
 struct TexturedRow {
   double slope = 0;
-  BowlChange pole, equator;
+  BowlChange pole, equator;                // the texture read at one point
+  BowlChange pole_relief, equator_relief;  // as the ball's sphere meets the relief
   double leave_change_deg = 0;
   bool left = false;
+};
+
+constexpr double kReleasesDeg[] = {4.9, 4.95, 5.0, 5.05, 5.1};
+
+struct ReleaseRow {
+  double slope = 0;
+  bool ball_on_relief = false;
+  std::vector<double> simulated, predicted;  // the period's change at each of kReleasesDeg (the bottom on the equator)
+  int within(double points) const {
+    int n = 0;
+    for (std::size_t k = 0; k < simulated.size(); ++k) n += std::fabs(simulated[k] - predicted[k]) <= points;
+    return n;
+  }
+  static double mean(const std::vector<double>& v) {
+    double sum = 0;
+    for (double x : v) sum += x;
+    return v.empty() ? NAN : sum / double(v.size());
+  }
 };
 
 struct Row {
@@ -132,12 +156,13 @@ int run(int argc, char** argv) {
                       slopePredictedSwing(texture_segments, kR, kSwing0, seconds, nullptr, turn)};
   };
   const Untextured at_pole = untextured(pole), on_equator = untextured(equator);
-  auto bowlChange = [&](const tex::TextureMap& map, const Untextured& plain) {
-    const Swing simulated = swingInBowl(texture_segments, true, kR, kSwing0, seconds, &map, plain.turn);
+  auto bowlChange = [&](const tex::TextureMap& map, const Untextured& plain, const tex::BallOnRelief* relief) {
+    const Swing simulated = swingInBowl(texture_segments, true, kR, kSwing0, seconds, &map, plain.turn, relief);
     BowlChange b;
     b.simulated = change(simulated, plain.simulated);
-    b.predicted = change(slopePredictedSwing(texture_segments, kR, kSwing0, seconds, &map, plain.turn), plain.predicted);
+    b.predicted = change(slopePredictedSwing(texture_segments, kR, kSwing0, seconds, &map, plain.turn, relief), plain.predicted);
     b.periods = simulated.periods;
+    b.us_per_step = simulated.us_per_step;
     return b;
   };
   const Departure plain_leave = rollOffSphere(texture_segments, true, kR, kTheta0, kFriction);
@@ -147,11 +172,36 @@ int run(int argc, char** argv) {
     const Departure d = rollOffSphere(texture_segments, true, kR, kTheta0, kFriction, &map);
     TexturedRow t;
     t.slope = slope;
-    t.pole = bowlChange(map, at_pole);
-    t.equator = bowlChange(map, on_equator);
+    const tex::BallOnRelief relief(map, tex::Address::Wrap);
+    t.pole = bowlChange(map, at_pole, nullptr);
+    t.equator = bowlChange(map, on_equator, nullptr);
+    t.pole_relief = bowlChange(map, at_pole, &relief);
+    t.equator_relief = bowlChange(map, on_equator, &relief);
     t.left = d.left && plain_leave.left;
     t.leave_change_deg = d.theta_deg - plain_leave.theta_deg;
     textured.push_back(t);
+  }
+  // Where the bumps are as steep as the swing (its own slope at the ends is 0.087), which bump the
+  // ball turns at decides the period: the same comparison released a little higher or lower.
+  std::fprintf(stderr, ", releases:");
+  std::vector<ReleaseRow> releases;
+  for (double slope : {0.02, 0.05, 0.1}) {
+    std::fprintf(stderr, " %g", slope);
+    const tex::TextureMap map = sineBumps(slope);
+    const tex::BallOnRelief relief(map, tex::Address::Wrap);
+    for (const tex::BallOnRelief* read : {(const tex::BallOnRelief*)nullptr, &relief}) {
+      ReleaseRow row;
+      row.slope = slope, row.ball_on_relief = read != nullptr;
+      for (double deg : kReleasesDeg) {
+        const Swing plain = swingInBowl(texture_segments, true, kR, deg, seconds, nullptr, equator);
+        const Swing plain_predicted = slopePredictedSwing(texture_segments, kR, deg, seconds, nullptr, equator);
+        const Swing simulated = swingInBowl(texture_segments, true, kR, deg, seconds, &map, equator, read);
+        const Swing predicted = slopePredictedSwing(texture_segments, kR, deg, seconds, &map, equator, read);
+        row.simulated.push_back(change(simulated, plain));
+        row.predicted.push_back(change(predicted, plain_predicted));
+      }
+      releases.push_back(row);
+    }
   }
   std::fprintf(stderr, "\n");
 
@@ -163,12 +213,21 @@ int run(int argc, char** argv) {
     for (const Row& r : rows)
       c += bench::fmt("%d,%zu,%.6g,%.6g,%.4f,%.4f,%.2f,%.2f\n", r.segments, r.triangles, r.period_smooth, r.period_flat,
                       r.leave_smooth, r.leave_flat, r.us_smooth, r.us_flat);
-    c += "\ntextured_segments,slope,pole_period_change,pole_period_change_predicted,pole_periods,equator_period_change,"
-         "equator_period_change_predicted,equator_periods,departure_change_deg,slope_angle_deg\n";
+    c += "\ntextured_segments,slope,read,bottom,period_change,period_change_predicted,periods,us_per_step\n";
     for (const TexturedRow& t : textured)
-      c += bench::fmt("%d,%g,%.6g,%.6g,%d,%.6g,%.6g,%d,%.4f,%.4f\n", texture_segments, t.slope, t.pole.simulated, t.pole.predicted,
-                      t.pole.periods, t.equator.simulated, t.equator.predicted, t.equator.periods, t.leave_change_deg,
-                      std::atan(t.slope) * 180.0 / kPi);
+      for (const auto& [read, bottom, b] : {std::tuple{"one point", "pole", t.pole}, std::tuple{"one point", "equator", t.equator},
+                                            std::tuple{"ball on relief", "pole", t.pole_relief},
+                                            std::tuple{"ball on relief", "equator", t.equator_relief}})
+        c += bench::fmt("%d,%g,%s,%s,%.6g,%.6g,%d,%.2f\n", texture_segments, t.slope, read, bottom, b.simulated, b.predicted, b.periods,
+                        b.us_per_step);
+    c += "\ntextured_segments,slope,read,release_deg,period_change,period_change_predicted\n";
+    for (const ReleaseRow& r : releases)
+      for (std::size_t k = 0; k < r.simulated.size(); ++k)
+        c += bench::fmt("%d,%g,%s,%g,%.6g,%.6g\n", texture_segments, r.slope, r.ball_on_relief ? "ball on relief" : "one point",
+                        kReleasesDeg[k], r.simulated[k], r.predicted[k]);
+    c += "\ntextured_segments,slope,departure_change_deg,slope_angle_deg\n";
+    for (const TexturedRow& t : textured)
+      c += bench::fmt("%d,%g,%.4f,%.4f\n", texture_segments, t.slope, t.leave_change_deg, std::atan(t.slope) * 180.0 / kPi);
     bench::writeTextFile(csv, c);
   }
   if (!json.empty()) {
@@ -188,13 +247,25 @@ int run(int argc, char** argv) {
     for (std::size_t i = 0; i < textured.size(); ++i) {
       const TexturedRow& t = textured[i];
       auto bowl = [](const BowlChange& b) {
-        return bench::fmt("{\"period_change\": %.6g, \"period_change_predicted\": %.6g, \"periods\": %d}", b.simulated,
-                          b.predicted, b.periods);
+        return bench::fmt("{\"period_change\": %.6g, \"period_change_predicted\": %.6g, \"periods\": %d, \"us_per_step\": %.2f}",
+                          b.simulated, b.predicted, b.periods, b.us_per_step);
       };
-      j += bench::fmt("    {\"slope\": %g, \"bowl_at_pole\": %s, \"bowl_on_equator\": %s, \"departure_change_deg\": %.4f, "
-                      "\"left\": %s, \"slope_angle_deg\": %.4f}%s\n",
-                      t.slope, bowl(t.pole).c_str(), bowl(t.equator).c_str(), t.leave_change_deg, t.left ? "true" : "false",
+      j += bench::fmt("    {\"slope\": %g, \"bowl_at_pole\": %s, \"bowl_on_equator\": %s, \"bowl_at_pole_ball_on_relief\": %s, "
+                      "\"bowl_on_equator_ball_on_relief\": %s, \"departure_change_deg\": %.4f, \"left\": %s, "
+                      "\"slope_angle_deg\": %.4f}%s\n",
+                      t.slope, bowl(t.pole).c_str(), bowl(t.equator).c_str(), bowl(t.pole_relief).c_str(),
+                      bowl(t.equator_relief).c_str(), t.leave_change_deg, t.left ? "true" : "false",
                       std::atan(t.slope) * 180.0 / kPi, i + 1 < textured.size() ? "," : "");
+    }
+    j += "  ],\n  \"releases_on_equator\": [\n";
+    for (std::size_t i = 0; i < releases.size(); ++i) {
+      const ReleaseRow& r = releases[i];
+      std::string cells;
+      for (std::size_t k = 0; k < r.simulated.size(); ++k)
+        cells += bench::fmt("%s{\"release_deg\": %g, \"period_change\": %.6g, \"period_change_predicted\": %.6g}", k ? ", " : "",
+                            kReleasesDeg[k], r.simulated[k], r.predicted[k]);
+      j += bench::fmt("    {\"slope\": %g, \"read\": \"%s\", \"releases\": [%s]}%s\n", r.slope,
+                      r.ball_on_relief ? "ball on relief" : "one point", cells.c_str(), i + 1 < releases.size() ? "," : "");
     }
     j += "  ]\n}\n";
     bench::writeTextFile(json, j);
@@ -227,6 +298,29 @@ int run(int argc, char** argv) {
                       r.left ? bench::fmt("%+.2f°", r.leave_change_deg).c_str() : "stayed on", 100 * r.pole.simulated,
                       100 * r.pole.predicted, r.pole.periods, 100 * r.equator.simulated, 100 * r.equator.predicted,
                       r.equator.periods);
+    t += "\nThe same bumps as a relief (depth 2a) met as the ball's sphere meets it (`ballOnReliefNormal`), in the "
+         "simulation and in the prediction; and the cost of a step (one ball) read each way.\n\n";
+    t += "| slope s | bowl at the pole: period changed | predicted | periods | bowl on the equator: period changed | predicted "
+         "| periods | µs per step, one point: pole | equator | ball on relief: pole | equator |\n"
+         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const TexturedRow& r : textured)
+      t += bench::fmt("| %g | %+.2f %% | %+.2f %% | %d | %+.2f %% | %+.2f %% | %d | %.1f | %.1f | %.1f | %.1f |\n", r.slope,
+                      100 * r.pole_relief.simulated, 100 * r.pole_relief.predicted, r.pole_relief.periods,
+                      100 * r.equator_relief.simulated, 100 * r.equator_relief.predicted, r.equator_relief.periods,
+                      r.pole.us_per_step, r.equator.us_per_step, r.pole_relief.us_per_step, r.equator_relief.us_per_step);
+    t += "\nReleased a little higher or lower (the bottom on the equator): the period's change simulated / predicted at each "
+         "release, how many releases agree within 1 point (1 % of the period), and the mean over the releases.\n\n";
+    t += "| slope s | read |";
+    for (double deg : kReleasesDeg) t += bench::fmt(" %.2f° |", deg);
+    t += " within 1 point | mean: simulated | predicted |\n|---:|---|";
+    for (std::size_t k = 0; k < std::size(kReleasesDeg); ++k) t += "---:|";
+    t += "---:|---:|---:|\n";
+    for (const ReleaseRow& r : releases) {
+      t += bench::fmt("| %g | %s |", r.slope, r.ball_on_relief ? "ball on relief" : "one point");
+      for (std::size_t k = 0; k < r.simulated.size(); ++k) t += bench::fmt(" %+.2f / %+.2f %% |", 100 * r.simulated[k], 100 * r.predicted[k]);
+      t += bench::fmt(" %d of %zu | %+.2f %% | %+.2f %% |\n", r.within(0.01), r.simulated.size(), 100 * ReleaseRow::mean(r.simulated),
+                      100 * ReleaseRow::mean(r.predicted));
+    }
     bench::writeTextFile(md, t);
   }
   if (!png.empty()) {

@@ -21,31 +21,69 @@ Eigen::Vector3d meshTextureNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
   return clampTilt(mesh::fromTangentSpace(f, n_tangent), f.normal, options.max_tilt_deg);
 }
 
-double ballPatchRadius(double radius_m, double depth_m) {
-  return depth_m > 0.0 && radius_m > 0.0 ? std::sqrt(2.0 * radius_m * depth_m) : 0.0;
-}
-
 Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
-                                  const MeshContactOptions& options, double patch_radius_m) {
+                                  const MeshContactOptions& options) {
   const mesh::SurfaceFrame f = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::Interpolated);
   if (!options.texture) return f.normal;
   const tex::TexCoord uv{f.uv.x(), f.uv.y()};
-  if (options.pyramid != nullptr && patch_radius_m > 0.0) {
-    // The patch's width in texels along the texture's more squeezed axis here (where a lathe's u
-    // closes to a point, thousands): the level that averages that many.
-    const Eigen::Vector2d metres_per_uv = mesh::metresPerUv(mesh, triangle, f);
-    const double texels = 2.0 * patch_radius_m *
-                          std::max(options.texture->width() / metres_per_uv.x(), options.texture->height() / metres_per_uv.y());
-    if (texels > 1.0) {
-      const Eigen::Vector3d n = options.pyramid->normal(uv, std::log2(texels), options.sampling.address);
-      return meshTextureNormal(mesh, triangle, f, n, options);
-    }
-  }
   const tex::Sample s = tex::sample(*options.texture, uv, options.sampling);
   return meshTextureNormal(mesh, triangle, f, s.normal.cast<double>(), options);
 }
 
-ContactMesh::ContactMesh(const mesh::TexturedMesh& m) : mesh(&m), neighbours(mesh::triangleNeighbours(m)) {
+Eigen::Vector2d metresPerUvAt(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b) {
+  const mesh::Triangle& t = contact_mesh.mesh->triangles[triangle];
+  return b.x() * contact_mesh.metres_per_uv[t[0]] + b.y() * contact_mesh.metres_per_uv[t[1]] + b.z() * contact_mesh.metres_per_uv[t[2]];
+}
+
+double ballOnReliefLift(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
+                        double r, const MeshContactOptions& options) {
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  Eigen::Vector3d b = Eigen::Vector3d::Constant(1.0 / 3.0);
+  smoothFoot(contact_mesh, c, side, triangle, b);
+  const mesh::SurfaceFrame f = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::Interpolated);
+  // In metres where the texture is laid: no rescaling to the tile it was made for.
+  return options.ball_relief->touch({f.uv.x(), f.uv.y()}, metresPerUvAt(contact_mesh, triangle, b), r, side < 0.0).lift_m;
+}
+
+Eigen::Vector3d ballOnReliefNormal(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side,
+                                   std::uint32_t triangle, const Eigen::Vector3d& b, double r,
+                                   const MeshContactOptions& options) {
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const mesh::SurfaceFrame f = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::Interpolated);
+  const Eigen::Vector3d n = side * f.normal;
+  const Eigen::Vector2d metres_per_uv = metresPerUvAt(contact_mesh, triangle, b);
+  const tex::TextureMap& map = *options.texture;
+  // A quarter of the coarser texel where the texture is laid: near a pole the squeezed texels are
+  // far finer, and a difference over them would read the relief's texel-scale roughness there.
+  const double h = 0.25 * std::max(metres_per_uv.x() / map.width(), metres_per_uv.y() / map.height());
+  if (!(h > 0.0)) return n;
+  // The tangent and bitangent made orthogonal to the normal and to each other.
+  const Eigen::Vector3d e1 = (f.tangent - f.tangent.dot(f.normal) * f.normal).normalized();
+  const Eigen::Vector3d e2 = f.normal.cross(e1);
+  auto lift = [&](const Eigen::Vector3d& at) {
+    std::uint32_t t = triangle;
+    return ballOnReliefLift(contact_mesh, at, side, t, r, options);
+  };
+  const double g1 = (lift(c + h * e1) - lift(c - h * e1)) / (2.0 * h);
+  const double g2 = (lift(c + h * e2) - lift(c - h * e2)) / (2.0 * h);
+  return clampTilt((n - g1 * e1 - g2 * e2).normalized(), n, options.max_tilt_deg);
+}
+
+ContactMesh::ContactMesh(const mesh::TexturedMesh& m)
+    : mesh(&m), neighbours(mesh::triangleNeighbours(m)), metres_per_uv(m.positions.size(), Eigen::Vector2d::Zero()) {
+  std::vector<double> weight(m.positions.size(), 0.0);
+  for (const mesh::Triangle& t : m.triangles) {
+    const Eigen::Vector3d e1 = m.positions[t[1]] - m.positions[t[0]], e2 = m.positions[t[2]] - m.positions[t[0]];
+    const Eigen::Vector2d d1 = m.uvs[t[1]] - m.uvs[t[0]], d2 = m.uvs[t[2]] - m.uvs[t[0]];
+    const double det = d1.x() * d2.y() - d2.x() * d1.y(), area = e1.cross(e2).norm();
+    if (!(std::fabs(det) > 0.0) || !(area > 0.0)) continue;
+    // The lengths of the position's derivatives along u and along v.
+    const Eigen::Vector2d scale(((e1 * d2.y() - e2 * d1.y()) / det).norm(), ((e2 * d1.x() - e1 * d2.x()) / det).norm());
+    if (!scale.allFinite()) continue;
+    for (std::uint32_t v : t) metres_per_uv[v] += area * scale, weight[v] += area;
+  }
+  for (std::size_t v = 0; v < metres_per_uv.size(); ++v)
+    metres_per_uv[v] = weight[v] > 0.0 ? Eigen::Vector2d(metres_per_uv[v] / weight[v]) : Eigen::Vector2d(1.0, 1.0);
   std::unordered_map<mesh::PositionBits, int, mesh::PositionHash> fan;
   for (const mesh::Triangle& t : m.triangles)
     for (std::uint32_t v : t) max_hops = std::max(max_hops, 16 + ++fan[mesh::bitsOf(m.positions[v])]);
@@ -103,18 +141,21 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
   const double side = n_face.dot(towards_object) < 0.0 ? -1.0 : 1.0;  // -1: touched from behind (a bowl's inside)
 
   Eigen::Vector3d n_geometric = side * n_face;
-  double patch_radius = 0.0;  // only a ball's patch is known: other shapes read one point
   const btCollisionShape* shape = other.getCollisionShape();
+  Eigen::Vector3d n;
   if (shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
+    // Only a ball meets the relief as a sphere: other shapes read one point.
     const double r = double(static_cast<const btSphereShape*>(shape)->getRadius());
-    if (options.texture) patch_radius = ballPatchRadius(r, options.texture->maxDepth());
     const Eigen::Vector3d c = world_to_mesh * toEigen(other.getWorldTransform().getOrigin());
     smoothFoot(contact_mesh, c, side, triangle, b);
     const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
     n_geometric = side * smooth.normal;
     point.m_distance1 = static_cast<btScalar>(n_geometric.dot(c - smooth.point) - r);
+    n = options.texture && options.ball_relief ? ballOnReliefNormal(contact_mesh, c, side, triangle, b, r, options)
+                                               : side * meshContactNormal(mesh, triangle, b, options);
+  } else {
+    n = side * meshContactNormal(mesh, triangle, b, options);
   }
-  const Eigen::Vector3d n = side * meshContactNormal(mesh, triangle, b, options, patch_radius);
   steerContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n_geometric, other,
                options.hold_height, step);
 }

@@ -31,7 +31,7 @@
 #include "clients/physics/normal_map_contact.hpp"
 #include "meshes/textured_mesh.hpp"
 #include "textures/sampling.hpp"
-#include "textures/slope_pyramid.hpp"
+#include "textures/ball_on_relief.hpp"
 #include "textures/texture_map.hpp"
 
 namespace thx::phys {
@@ -44,10 +44,11 @@ struct MeshContactOptions {
   // texture at another scale its slopes are turned to match (as on the haptic chart). Zero: as
   // they are.
   Eigen::Vector2d normals_made_for_m = Eigen::Vector2d::Zero();
-  // The texture's slopes box-filtered (textures/slope_pyramid.hpp), built from `texture`: with a
-  // relief map, a ball's contact reads the texture averaged over its contact patch instead of at
-  // one point (meshContactNormal). nullptr: always at one point. It must outlive the world.
-  const tex::SlopePyramid* pyramid = nullptr;
+  // The relief as a ball meets it (textures/ball_on_relief.hpp), built from `texture`: with a
+  // relief map, a ball's contact is steered by the relief dilated by its sphere
+  // (ballOnReliefNormal) instead of the texture's normal at one point (meshContactNormal).
+  // nullptr: always at one point. It must outlive the world.
+  const tex::BallOnRelief* ball_relief = nullptr;
   // false: Bullet's own contact (the flat triangle's normal), for comparisons.
   bool smooth = true;
   double max_tilt_deg = 75.0;  // as NormalMapOptions::max_tilt_deg, from the smooth normal
@@ -60,32 +61,47 @@ Eigen::Vector3d meshTextureNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
                                   Eigen::Vector3d n_tangent, const MeshContactOptions& options);
 
 // The steering normal at barycentric b of `triangle` (mesh frame, unit, outward as the mesh is
-// wound): the interpolated normal, turned by the texture if there is one. A relief read by a body
-// whose contact patch has radius patch_radius_m (a ball: sqrt(2 r depth), what it can reach of
-// the relief's depth) is read through options.pyramid over the patch's texels, where the patch
-// spans more than one: a ball bridges features narrower than its patch. Only one point's normal
-// otherwise (a normal map has no depth to reach into; the plane's relief is rasterised instead,
-// relief_raster.hpp).
+// wound): the interpolated normal, turned by the texture's normal there if there is one (one
+// point: a normal map has no depth to reach into; the plane's relief is rasterised instead,
+// relief_raster.hpp; a ball on a relief mesh reads ballOnReliefNormal below).
 Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
-                                  const MeshContactOptions& options, double patch_radius_m = 0.0);
-// A ball's contact patch on a relief of depth `depth_m`: the radius within which its surface comes
-// within the relief's depth of its lowest point, sqrt(2 r depth) (0 without depth).
-double ballPatchRadius(double radius_m, double depth_m);
+                                  const MeshContactOptions& options);
 
 // A mesh with what the contacts walk on (built once; allocates).
 struct ContactMesh {
   explicit ContactMesh(const mesh::TexturedMesh& m);
   const mesh::TexturedMesh* mesh;
   std::vector<mesh::Triangle> neighbours;
+  // Metres per uv unit along u and v at each vertex: its triangles' (area-weighted), so that,
+  // interpolated, the texture's scale does not jump at a triangle's edge (metresPerUvAt).
+  std::vector<Eigen::Vector2d> metres_per_uv;
   // Edges a walk may cross: enough to go round the largest fan of triangles at one position (a
   // UV sphere's pole: Bullet may report a point on the far side of it from the ball).
   int max_hops = 16;
 };
 
+// Metres per uv unit along u and v at barycentric b of `triangle`, interpolated from its vertices.
+Eigen::Vector2d metresPerUvAt(const ContactMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b);
+
 // The triangle and barycentric coordinates of the foot of a ball's centre c (mesh frame) on the
 // smooth surface, from a triangle near it; `side` is -1 where the ball is behind the winding.
 void smoothFoot(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
                 Eigen::Vector3d& barycentric);
+
+// A ball of radius r centred at c (mesh frame) on a relief mesh (options.ball_relief): how far the
+// relief as the ball meets it lifts its centre off the smooth surface at its foot (walked to from
+// `triangle`, which is updated; BallOnRelief::Touch::lift_m), the texture laid in metres there.
+double ballOnReliefLift(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
+                        double r, const MeshContactOptions& options);
+// The steering normal of that ball (mesh frame, unit, towards the ball: side times the outward
+// normal): the smooth normal tilted by the lift's gradient along the surface, taken by central
+// differences of ballOnReliefLift over the ball's centre moved along the tangent and the bitangent
+// (by a quarter of the coarser texel there). So the push is the gradient of one scalar, the lift:
+// the read is a potential, which a texture whose scale changes under the ball (near a pole) keeps,
+// and BallOnRelief's own normal, taken in the foot's one metric, does not. The ball rides the crests
+// of what is narrower than it can enter and meets the full slope of what is wider.
+Eigen::Vector3d ballOnReliefNormal(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t triangle,
+                                   const Eigen::Vector3d& b, double r, const MeshContactOptions& options);
 
 // Rewrites `point` of a manifold in which the mesh is body B (`mesh_is_b`) or body A. The normal
 // is oriented towards the object as Bullet found it (a bowl's inside is touched against the

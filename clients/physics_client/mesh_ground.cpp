@@ -6,10 +6,10 @@ namespace thx::physclient {
 
 namespace {
 
-phys::MeshContactOptions contactOptionsFor(const tex::TexturedSurface& texture, const tex::SlopePyramid* pyramid) {
+phys::MeshContactOptions contactOptionsFor(const tex::TexturedSurface& texture, const tex::BallOnRelief* ball_relief) {
   phys::MeshContactOptions o;
   o.texture = &texture.map();
-  o.pyramid = pyramid;
+  o.ball_relief = ball_relief;
   o.sampling = texture.sampling();
   o.normals_made_for_m = texture.mapping().size_m;  // the scene's tile (surface.size), as hapticd's
   return o;
@@ -21,9 +21,10 @@ MeshGround::MeshGround(const scene::Scene& scene, const tex::TexturedSurface& te
     : texture_(&texture),
       scene_mesh_(scene::buildSceneMesh(scene)),
       contact_mesh_(scene_mesh_.mesh),
-      pyramid_(texture.map().maxDepth() > 0.0 ? std::optional<tex::SlopePyramid>(std::in_place, texture.map(), texture.sampling().address)
-                                              : std::nullopt),
-      options_(contactOptionsFor(texture, pyramid_ ? &*pyramid_ : nullptr)) {}
+      ball_relief_(texture.map().maxDepth() > 0.0
+                       ? std::optional<tex::BallOnRelief>(std::in_place, texture.map(), texture.sampling().address)
+                       : std::nullopt),
+      options_(contactOptionsFor(texture, ball_relief_ ? &*ball_relief_ : nullptr)) {}
 
 btRigidBody& MeshGround::addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const {
   return world.addTexturedMesh(scene_mesh_.mesh, scene_mesh_.mesh_to_world, material, options_);

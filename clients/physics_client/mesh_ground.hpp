@@ -52,7 +52,7 @@ class MeshGround {
   const tex::TexturedSurface* texture_;
   scene::SceneMesh scene_mesh_;
   phys::ContactMesh contact_mesh_;
-  std::optional<tex::SlopePyramid> pyramid_;  // a relief's: what a ball's patch reads
+  std::optional<tex::BallOnRelief> ball_relief_;  // a relief's: what a ball meets of it
   phys::MeshContactOptions options_;
 };
 

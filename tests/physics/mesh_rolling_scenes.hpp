@@ -39,17 +39,19 @@ inline double normalImpulse(PhysicsWorld& w, const btRigidBody& ball) {
 
 // A UV sphere mesh of `radius` (`segments` around, half as many rings) at the origin, turned by
 // `turn` (the sphere's frame to the world's), in a world. With `texture`, the map is laid at one
-// tile per kTileM of arc (its normals made for that tile).
+// tile per kTileM of arc (its normals made for that tile), read at one point under a ball, or
+// with `ball_relief` (built from it) as the ball's sphere meets the relief.
 inline constexpr double kTileM = 0.01;
 struct SphereScene {
   mesh::GeneratedMesh sphere;
   PhysicsWorld world;
   SphereScene(int segments, bool smooth, double radius, const tex::TextureMap* texture = nullptr,
-              const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity())
+              const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity(), const tex::BallOnRelief* ball_relief = nullptr)
       : sphere(mesh::sphere(radius, segments, segments / 2, kTileM)) {
     MeshContactOptions options;
     options.smooth = smooth;
     options.texture = texture;
+    options.ball_relief = ball_relief;
     options.normals_made_for_m = Eigen::Vector2d::Constant(kTileM);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.linear() = turn;
@@ -87,8 +89,9 @@ struct Swing {
 // The ball released at rest theta_0 up the inside of a sphere of radius R (the bowl), along +x of
 // the world, for `seconds`; the period from the times it crosses the bottom moving in +x.
 inline Swing swingInBowl(int segments, bool smooth, double bowl_radius, double theta0_deg, double seconds,
-                         const tex::TextureMap* texture = nullptr, const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity()) {
-  SphereScene scene(segments, smooth, bowl_radius, texture, turn);
+                         const tex::TextureMap* texture = nullptr, const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity(),
+                         const tex::BallOnRelief* ball_relief = nullptr) {
+  SphereScene scene(segments, smooth, bowl_radius, texture, turn, ball_relief);
   PhysicsWorld& w = scene.world;
   const double l = bowl_radius - kBallRadius, th = deg(theta0_deg);
   btRigidBody& ball = w.addSphere(kBallRadius, kBallMass, placedAt({l * std::sin(th), 0.0, -l * std::cos(th)}),

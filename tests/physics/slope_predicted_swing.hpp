@@ -6,8 +6,9 @@
 // on the smooth sphere of radius R - r, pulled by gravity and pushed by the contact force along
 // the normal the texture tilts at the foot of the centre, rolling without slipping (a force
 // through the centre accelerates it at 5/7 of force / mass), integrated by RK4 at 0.1 ms. The
-// texture is read through the product's own lookup on the same mesh (smoothFoot,
-// meshContactNormal at one point), so the prediction and the simulation read the same slopes;
+// texture is read through the product's own lookup on the same mesh (smoothFoot and
+// meshContactNormal at one point, or ballOnReliefNormal as the ball meets a relief), so the
+// prediction and the simulation read the same slopes;
 // only the mechanics differ: no solver, no 1 ms step, no tessellated gap. Untextured it is the
 // exact swing, a pendulum's of length 7 (R - r) / 5 (swingPeriodAt).
 #include <Eigen/Core>
@@ -33,7 +34,10 @@ struct SlopeAtFoot {
   Eigen::Vector3d operator()(const Eigen::Vector3d& c) {
     smoothFoot(contact_mesh, c, -1.0, triangle, b);
     const mesh::SurfaceFrame f = mesh::frameAt(*contact_mesh.mesh, triangle, b, mesh::FrameMode::Interpolated);
-    const Eigen::Vector3d n = -meshContactNormal(*contact_mesh.mesh, triangle, b, options), smooth = -f.normal;
+    const Eigen::Vector3d smooth = -f.normal;
+    const Eigen::Vector3d n = options.texture && options.ball_relief
+                                  ? ballOnReliefNormal(contact_mesh, c, -1.0, triangle, b, kBallRadius, options)
+                                  : Eigen::Vector3d(-meshContactNormal(*contact_mesh.mesh, triangle, b, options));
     const Eigen::Vector3d slope = (n - n.dot(smooth) * smooth) / n.dot(smooth);
     const Eigen::Vector3d up = -c.normalized();  // the exact sphere's normal towards the ball
     return slope - slope.dot(up) * up;
@@ -56,11 +60,13 @@ inline std::uint32_t nearestTriangle(const mesh::TexturedMesh& m, const Eigen::V
 // texture's slopes predict it.
 inline Swing slopePredictedSwing(int segments, double bowl_radius, double theta0_deg, double seconds,
                                  const tex::TextureMap* texture,
-                                 const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity(), double dt = 1e-4) {
+                                 const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity(),
+                                 const tex::BallOnRelief* ball_relief = nullptr, double dt = 1e-4) {
   const mesh::GeneratedMesh sphere = mesh::sphere(bowl_radius, segments, segments / 2, kTileM);
   const ContactMesh contact_mesh(sphere.mesh);
   MeshContactOptions options;
   options.texture = texture;
+  options.ball_relief = ball_relief;
   options.normals_made_for_m = Eigen::Vector2d::Constant(kTileM);
   const double l = bowl_radius - kBallRadius, th = deg(theta0_deg);
   // In the sphere's own frame: the world turned back.

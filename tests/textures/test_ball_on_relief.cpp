@@ -1,0 +1,146 @@
+// A relief as a ball meets it (textures/ball_on_relief.hpp): the centre of a ball of radius r at
+// max over t of [h(t) + sqrt(r^2 - |x - t|^2)], the normal from the point it touches.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "textures/ball_on_relief.hpp"
+#include "textures/height_normals.hpp"
+
+namespace thx::tex::test_ball_on_relief {
+namespace {
+
+constexpr double kTexel = 1e-4;  // 0.1 mm texels: a 128-texel tile is 12.8 mm
+
+// A relief of heights h(i, j) in metres, kTexel texels.
+template <class Height>
+TextureMap reliefOf(int w, int h, Height height) {
+  HeightField field;
+  field.width = w;
+  field.height = h;
+  field.heights_m.resize(std::size_t(w) * std::size_t(h));
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) field.heights_m[std::size_t(j) * std::size_t(w) + std::size_t(i)] = height(i, j);
+  ReliefFromHeightOptions o;
+  o.texel_m = {kTexel, kTexel};
+  o.address = Address::Wrap;
+  return reliefFromHeight(field, o);
+}
+
+// Brute force: the highest the ball's centre is lifted over any texel centre (no refinement),
+// over every wrapped image within r.
+double bruteForceLift(const TextureMap& map, TexCoord uv, const Eigen::Vector2d& metres_per_uv, double r) {
+  const double s = uv.u * map.width() - 0.5, t = (1.0 - uv.v) * map.height() - 0.5;
+  const double du = metres_per_uv.x() / map.width(), dv = metres_per_uv.y() / map.height();
+  const int ru = int(std::ceil(r / du)) + 1, rv = int(std::ceil(r / dv)) + 1;
+  double best = -1e300;
+  for (long long j = (long long)std::floor(t) - rv; j <= (long long)std::floor(t) + rv; ++j)
+    for (long long i = (long long)std::floor(s) - ru; i <= (long long)std::floor(s) + ru; ++i) {
+      const double d2 = std::pow((double(i) - s) * du, 2) + std::pow((double(j) - t) * dv, 2);
+      if (d2 >= r * r) continue;
+      const double h = -double(map.depth(resolveIndex(i, map.width(), Address::Wrap), resolveIndex(j, map.height(), Address::Wrap)));
+      best = std::max(best, h + std::sqrt(r * r - d2));
+    }
+  return best - r;
+}
+
+TEST(BallOnRelief, TheSearchFindsTheHighestTouchOfABruteForceScanAndTheRefinementOnlyLiftsIt) {
+  // Random bumps, 64 x 32 texels; metrics from as laid to a pole's squeeze of u by 50.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const TextureMap map = reliefOf(64, 32, [&](int i, int j) {
+    return 2e-4 * std::sin(0.7 * i + 0.3 * j) * std::cos(0.45 * j) + 5e-5 * std::sin(2.1 * i * j);
+  });
+  const BallOnRelief reader(map, Address::Wrap);
+  for (int k = 0; k < 300; ++k) {
+    const TexCoord uv{unit(rng) * 3.0 - 1.0, unit(rng) * 3.0 - 1.0};
+    const double squeeze = k % 3 == 0 ? 1.0 : (k % 3 == 1 ? 0.1 : 0.02);
+    const Eigen::Vector2d mpu(64 * kTexel * squeeze, 32 * kTexel);
+    const double r = k % 2 ? 1e-3 : 4e-3;
+    const BallOnRelief::Touch touch = reader.touch(uv, mpu, r);
+    const double brute = bruteForceLift(map, uv, mpu, r);
+    ASSERT_GE(touch.lift_m, brute - 1e-12) << k;
+    // The refinement moves the touch within a texel of the best texel centre: it lifts the ball
+    // by no more than a texel's worth of the relief's slope.
+    ASSERT_LE(touch.lift_m, brute + 2e-5) << k;
+    ASSERT_NEAR(touch.normal.norm(), 1.0, 1e-12) << k;
+  }
+}
+
+TEST(BallOnRelief, AFlatTopPushesStraightUpAndANarrowGrooveIsBridged) {
+  // A groove 15 texels (1.5 mm) wide and 0.8 mm deep across u, every 64 texels.
+  const TextureMap map = reliefOf(64, 64, [](int i, int) { return (i >= 40 && i < 55) ? -8e-4 : 0.0; });
+  const BallOnRelief reader(map, Address::Wrap);
+  const Eigen::Vector2d mpu(64 * kTexel, 64 * kTexel);
+  const double r = 6e-3;
+  // Over the top, between texel centres: straight up, the centre at r.
+  for (double u : {0.1, 0.2037, 0.33}) {
+    const BallOnRelief::Touch top = reader.touch({u, 0.4}, mpu, r);
+    EXPECT_NEAR(top.normal.x(), 0.0, 1e-12) << u;
+    EXPECT_NEAR(top.normal.y(), 0.0, 1e-12) << u;
+    EXPECT_NEAR(top.lift_m, 0.0, 1e-12) << u;
+  }
+  // Over the groove the ball rests on its two edges (the last top texels' centres, 39 and 55):
+  // it sinks by r - sqrt(r^2 - (w/2)^2) at the middle, far less than the groove's depth, and is
+  // pushed away from the nearer edge. On a row's centre (v = 1 - 38.5 / 64) straight across it.
+  const double middle = (47.0 + 0.5) / 64.0, half = 8.0 * kTexel;  // centres 39 and 55: 16 texels apart
+  const double row = 1.0 - 38.5 / 64.0;
+  const BallOnRelief::Touch at_middle = reader.touch({middle, row}, mpu, r);
+  EXPECT_NEAR(at_middle.lift_m, -(r - std::sqrt(r * r - half * half)), 1e-9);
+  EXPECT_GT(at_middle.lift_m, -1e-4);  // bridged: 0.8 mm deep, the ball sinks 5 µm
+  const double x = 3.0 * kTexel;       // 3 texels right of the middle: nearer the right edge
+  const BallOnRelief::Touch right = reader.touch({middle + 3.0 / 64.0, row}, mpu, r);
+  EXPECT_NEAR(right.normal.x(), -(half - x) / r, 1e-9);
+  EXPECT_NEAR(right.normal.y(), 0.0, 1e-12);
+  // Between rows the touch stays on an edge texel's centre: it leans along the edge by at most
+  // half a texel over r.
+  const BallOnRelief::Touch between = reader.touch({middle + 3.0 / 64.0, row + 0.3 / 64.0}, mpu, r);
+  EXPECT_NEAR(between.normal.x(), -(half - x) / r, 1e-6);
+  EXPECT_LE(std::fabs(between.normal.y()), 0.5 * kTexel / r);
+}
+
+TEST(BallOnRelief, TheNormalIsTheGradientOfTheLiftSoTheReadIsAPotential) {
+  // Sine bumps 2.56 mm apart, amplitude 40 µm (slope 0.1), under a 1 cm ball; and the same
+  // bumps squeezed 20 times along u, as at a mesh's pole.
+  const double k = 2.0 * M_PI / 25.6;  // per texel
+  const TextureMap map = reliefOf(128, 128, [&](int i, int j) { return 4e-5 * std::sin(k * i) * std::sin(k * j); });
+  const BallOnRelief reader(map, Address::Wrap);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (double squeeze : {1.0, 0.05}) {
+    const Eigen::Vector2d mpu(128 * kTexel * squeeze, 128 * kTexel);
+    const double r = 0.01, h_u = 1e-3 / 128.0, h_v = 1e-3 / 128.0;  // steps of a thousandth of a texel
+    double worst = 0.0, largest_slope_u = 0.0, largest_slope_v = 0.0;
+    for (int n = 0; n < 200; ++n) {
+      const TexCoord uv{unit(rng), unit(rng)};
+      const BallOnRelief::Touch at = reader.touch(uv, mpu, r);
+      const double du_m = h_u * mpu.x(), dv_m = h_v * mpu.y();
+      const double gu = (reader.touch({uv.u + h_u, uv.v}, mpu, r).lift_m - reader.touch({uv.u - h_u, uv.v}, mpu, r).lift_m) / (2 * du_m);
+      const double gv = (reader.touch({uv.u, uv.v + h_v}, mpu, r).lift_m - reader.touch({uv.u, uv.v - h_v}, mpu, r).lift_m) / (2 * dv_m);
+      // A kink between two touches (the ball balanced between two crests) has no gradient.
+      if (std::fabs(reader.touch({uv.u + h_u, uv.v}, mpu, r).normal.x() - reader.touch({uv.u - h_u, uv.v}, mpu, r).normal.x()) > 1e-3) continue;
+      if (std::fabs(reader.touch({uv.u, uv.v + h_v}, mpu, r).normal.y() - reader.touch({uv.u, uv.v - h_v}, mpu, r).normal.y()) > 1e-3) continue;
+      const double su = -at.normal.x() / at.normal.z(), sv = -at.normal.y() / at.normal.z();
+      worst = std::max({worst, std::fabs(su - gu), std::fabs(sv - gv)});
+      largest_slope_u = std::max(largest_slope_u, std::fabs(su));
+      largest_slope_v = std::max(largest_slope_v, std::fabs(sv));
+    }
+    std::printf("[measured] squeeze %.2f: slope against the lift's gradient within %.2e; largest slope along u %.3f, v %.3f\n",
+                squeeze, worst, largest_slope_u, largest_slope_v);
+    EXPECT_LT(worst, 1e-3) << squeeze;
+    // As laid, the ball meets most of the bumps' slope (0.1). Squeezed 20 times along u it rides
+    // their crests that way (a real ball cannot enter bumps 0.13 mm apart) and along v meets
+    // their crests' envelope, a |sin kv|, whose sharp troughs it bridges.
+    if (squeeze < 1.0) {
+      EXPECT_LT(largest_slope_u, 0.02);
+      EXPECT_GT(largest_slope_v, 0.04);
+    } else {
+      EXPECT_GT(largest_slope_u, 0.07);
+      EXPECT_GT(largest_slope_v, 0.07);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace thx::tex::test_ball_on_relief

@@ -1,0 +1,63 @@
+#pragma once
+// A relief as a ball meets it. A ball of radius r resting over the height field h (h = -depth)
+// has its centre at c(x) = max over t of [h(t) + sqrt(r^2 - |x - t|^2)]: the relief dilated by
+// the ball. The point t* it touches gives the normal that pushes it, (x - t*, c - h(t*)) / r, the
+// gradient of that surface. So a ball rides the crests of features narrower than it can enter
+// (it bridges a brick joint, and the bumps a mesh's pole squeezes to a fraction of a millimetre)
+// yet meets a wide bump's full slope, which a box filter of the slopes over its contact patch
+// erased (docs/physics.md, "Textured meshes").
+//
+// The search is a branch and bound over a max-pyramid of the heights: a block of texels is
+// skipped when its highest texel, at the block's nearest distance, cannot lift the ball above
+// the best touch found so far. The touching texel is then refined on the bilinear height (a few
+// fixed-point steps of t = x + sqrt(r^2 - |x - t|^2) grad h(t), each kept only if it lifts the
+// ball), so that a flat top pushes straight up and a smooth crest from where it is touched, not
+// from the nearest texel centre. At a sharp edge the touch stays at a texel centre: the normal
+// leans along the edge by at most half a texel over r.
+//
+// Distances are in metres: the caller gives the metres per uv unit along u and v where the
+// texture is laid (a mesh's pole squeezes u), so the same texture is read as the ball meets it
+// wherever it lies. Built once (allocates); normal() is real-time safe (no allocation, bounded
+// work: at most the texels within r of the centre).
+#include <Eigen/Core>
+#include <vector>
+
+#include "textures/sampling.hpp"
+#include "textures/texture_map.hpp"
+
+namespace thx::tex {
+
+class BallOnRelief {
+ public:
+  // `map` must be a relief (maxDepth() > 0); it must outlive this reader.
+  BallOnRelief(const TextureMap& map, Address address);
+
+  struct Touch {
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // tangent space (x along u, y along v, metres), unit
+    double lift_m = 0.0;                                // c - r: the centre's height above h = 0, less r
+    long long texels_visited = 0;                       // the search's work, for benchmarks
+  };
+  // The ball of `radius_m` over uv, the texture laid at `metres_per_uv` (u, v) there. From behind
+  // (a ball inside a sphere whose winding faces out) the relief is met from its other side: its
+  // heights negated, the normal's z and lift along the texture's -z.
+  Touch touch(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m, bool from_behind = false) const;
+
+  int levels() const { return int(front_.size()); }
+
+ private:
+  struct Level {
+    int width = 0, height = 0;
+    std::vector<float> max_height;  // row-major, row 0 = v = 1 (the map's rows)
+    float at(int i, int j) const { return max_height[std::size_t(j) * std::size_t(width) + std::size_t(i)]; }
+  };
+  double bilinearHeight(const Level& base, double s, double t) const;
+  Eigen::Vector2d bilinearGradient(const Level& base, double s, double t) const;  // per texel, along s and t
+  static std::vector<Level> pyramidOf(Level base);
+  const TextureMap* map_;
+  Address address_;
+  // [0]: the heights (h = -depth; from behind, depth); [k]: maxima over 2^k x 2^k texels, while
+  // both sides divide.
+  std::vector<Level> front_, behind_;
+};
+
+}  // namespace thx::tex
