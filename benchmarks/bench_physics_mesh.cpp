@@ -184,6 +184,10 @@ int run(int argc, char** argv) {
   // Where the bumps are as steep as the swing (its own slope at the ends is 0.087), which bump the
   // ball turns at decides the period: the same comparison released a little higher or lower.
   std::fprintf(stderr, ", releases:");
+  std::vector<Untextured> plain_at_release;
+  for (double deg : kReleasesDeg)
+    plain_at_release.push_back({equator, swingInBowl(texture_segments, true, kR, deg, seconds, nullptr, equator),
+                                slopePredictedSwing(texture_segments, kR, deg, seconds, nullptr, equator)});
   std::vector<ReleaseRow> releases;
   for (double slope : {0.02, 0.05, 0.1}) {
     std::fprintf(stderr, " %g", slope);
@@ -192,13 +196,12 @@ int run(int argc, char** argv) {
     for (const tex::BallOnRelief* read : {(const tex::BallOnRelief*)nullptr, &relief}) {
       ReleaseRow row;
       row.slope = slope, row.ball_on_relief = read != nullptr;
-      for (double deg : kReleasesDeg) {
-        const Swing plain = swingInBowl(texture_segments, true, kR, deg, seconds, nullptr, equator);
-        const Swing plain_predicted = slopePredictedSwing(texture_segments, kR, deg, seconds, nullptr, equator);
+      for (std::size_t k = 0; k < std::size(kReleasesDeg); ++k) {
+        const double deg = kReleasesDeg[k];
         const Swing simulated = swingInBowl(texture_segments, true, kR, deg, seconds, &map, equator, read);
         const Swing predicted = slopePredictedSwing(texture_segments, kR, deg, seconds, &map, equator, read);
-        row.simulated.push_back(change(simulated, plain));
-        row.predicted.push_back(change(predicted, plain_predicted));
+        row.simulated.push_back(change(simulated, plain_at_release[k].simulated));
+        row.predicted.push_back(change(predicted, plain_at_release[k].predicted));
       }
       releases.push_back(row);
     }

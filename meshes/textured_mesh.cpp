@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <unordered_map>
 
 #include "base/error.hpp"
@@ -389,6 +390,19 @@ Eigen::Vector3d closestBarycentric(const Eigen::Vector3d& a, const Eigen::Vector
   const double denom = 1.0 / (va + vb + vc);
   const double v = vb * denom, w = vc * denom;
   return {1.0 - v - w, v, w};
+}
+
+std::uint32_t nearestTriangle(const TexturedMesh& mesh, const Eigen::Vector3d& p) {
+  std::uint32_t best = 0;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Triangle& tri = mesh.triangles[t];
+    const Eigen::Vector3d b = closestBarycentric(mesh, t, p);
+    const Eigen::Vector3d q = b[0] * mesh.positions[tri[0]] + b[1] * mesh.positions[tri[1]] + b[2] * mesh.positions[tri[2]];
+    const double d2 = (q - p).squaredNorm();
+    if (d2 < best_d2) best_d2 = d2, best = t;
+  }
+  return best;
 }
 
 }  // namespace thx::mesh

@@ -113,5 +113,8 @@ inline Eigen::Vector3d closestBarycentric(const TexturedMesh& mesh, std::uint32_
   const Triangle& t = mesh.triangles[triangle];
   return closestBarycentric(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], p);
 }
+// The triangle whose closest point is nearest p, by looking at every one (O(triangles): where a
+// walk over the mesh has no triangle to start from; not for the servo tick).
+std::uint32_t nearestTriangle(const TexturedMesh& mesh, const Eigen::Vector3d& p);
 
 }  // namespace thx::mesh

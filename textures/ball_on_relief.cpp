@@ -11,7 +11,7 @@ long long floorDiv(long long a, int shift) { return a >= 0 ? a >> shift : -((-a 
 
 }  // namespace
 
-BallOnRelief::BallOnRelief(const TextureMap& map, Address address) : map_(&map), address_(address) {
+BallOnRelief::BallOnRelief(const TextureMap& map, Address address) : max_depth_m_(map.maxDepth()), address_(address) {
   Level front, behind;
   front.width = behind.width = map.width();
   front.height = behind.height = map.height();
@@ -48,21 +48,14 @@ std::vector<BallOnRelief::Level> BallOnRelief::pyramidOf(Level base) {
   return levels;
 }
 
-double BallOnRelief::bilinearHeight(const Level& l, double s, double t) const {
-  const double s0 = std::floor(s), t0 = std::floor(t), fs = s - s0, ft = t - t0;
-  const long long i0 = (long long)s0, j0 = (long long)t0;
-  const int ia = resolveIndex(i0, l.width, address_), ib = resolveIndex(i0 + 1, l.width, address_);
-  const int ja = resolveIndex(j0, l.height, address_), jb = resolveIndex(j0 + 1, l.height, address_);
-  return (1.0 - ft) * ((1.0 - fs) * l.at(ia, ja) + fs * l.at(ib, ja)) + ft * ((1.0 - fs) * l.at(ia, jb) + fs * l.at(ib, jb));
-}
-
-Eigen::Vector2d BallOnRelief::bilinearGradient(const Level& l, double s, double t) const {
+double BallOnRelief::bilinear(const Level& l, double s, double t, Eigen::Vector2d* gradient) const {
   const double s0 = std::floor(s), t0 = std::floor(t), fs = s - s0, ft = t - t0;
   const long long i0 = (long long)s0, j0 = (long long)t0;
   const int ia = resolveIndex(i0, l.width, address_), ib = resolveIndex(i0 + 1, l.width, address_);
   const int ja = resolveIndex(j0, l.height, address_), jb = resolveIndex(j0 + 1, l.height, address_);
   const double a = l.at(ia, ja), b = l.at(ib, ja), c = l.at(ia, jb), d = l.at(ib, jb);
-  return {(1.0 - ft) * (b - a) + ft * (d - c), (1.0 - fs) * (c - a) + fs * (d - b)};
+  if (gradient) *gradient = {(1.0 - ft) * (b - a) + ft * (d - c), (1.0 - fs) * (c - a) + fs * (d - b)};
+  return (1.0 - ft) * ((1.0 - fs) * a + fs * b) + ft * ((1.0 - fs) * c + fs * d);
 }
 
 BallOnRelief::Touch BallOnRelief::touch(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m,
@@ -89,7 +82,7 @@ BallOnRelief::Touch BallOnRelief::touch(TexCoord uv, const Eigen::Vector2d& metr
   const double d0 = distance2(double(best_i) - s, double(best_j) - t);
   if (d0 >= r2) return out;  // texels wider than the ball: nothing to search
   double best = levels.front().at(resolveIndex(best_i, width, address_), resolveIndex(best_j, height, address_)) + std::sqrt(r2 - d0);
-  const double depth = map_->maxDepth(), rise = std::max(0.0, std::sqrt(r2 - d0) - depth);
+  const double depth = max_depth_m_, rise = std::max(0.0, std::sqrt(r2 - d0) - depth);
   const double reach2 = r2 - rise * rise;  // beyond it even the highest texel stays below the first touch
   double reach_u = std::sqrt(reach2) / du, reach_v = std::sqrt(reach2) / dv;
   if (address_ == Address::Wrap) reach_u = std::min(reach_u, 0.5 * width), reach_v = std::min(reach_v, 0.5 * height);
@@ -126,7 +119,6 @@ BallOnRelief::Touch BallOnRelief::touch(TexCoord uv, const Eigen::Vector2d& metr
         if (d2 >= r2) continue;
         const double bound = level.at(resolveIndex(b.i, level.width, address_), resolveIndex(b.j, level.height, address_)) +
                              std::sqrt(r2 - d2);
-        ++out.texels_visited;
         if (bound <= best) continue;
         if (b.level == 0) {
           best = bound, best_i = b.i, best_j = b.j;  // a texel: its nearest point is its centre
@@ -159,12 +151,13 @@ BallOnRelief::Touch BallOnRelief::touch(TexCoord uv, const Eigen::Vector2d& metr
   double ps = double(best_i), pt = double(best_j);
   auto lifted = [&](double qs, double qt) {
     const double d2 = distance2(qs - s, qt - t);
-    return d2 < r2 ? bilinearHeight(levels.front(), qs, qt) + std::sqrt(r2 - d2) : -1e300;
+    return d2 < r2 ? bilinear(levels.front(), qs, qt) + std::sqrt(r2 - d2) : -1e300;
   };
   double value = lifted(ps, pt);
   for (int step = 0; step < 4; ++step) {
     const double z = std::sqrt(std::max(0.0, r2 - distance2(ps - s, pt - t)));
-    const Eigen::Vector2d g = bilinearGradient(levels.front(), ps, pt);  // metres of height per texel
+    Eigen::Vector2d g;  // metres of height per texel
+    bilinear(levels.front(), ps, pt, &g);
     const double qs = std::clamp(s + z * g.x() / (du * du), double(best_i) - 1.0, double(best_i) + 1.0);
     const double qt = std::clamp(t + z * g.y() / (dv * dv), double(best_j) - 1.0, double(best_j) + 1.0);
     const double candidate = lifted(qs, qt);

@@ -17,7 +17,7 @@
 //
 // Distances are in metres: the caller gives the metres per uv unit along u and v where the
 // texture is laid (a mesh's pole squeezes u), so the same texture is read as the ball meets it
-// wherever it lies. Built once (allocates); normal() is real-time safe (no allocation, bounded
+// wherever it lies. Built once (allocates); touch() is real-time safe (no allocation, bounded
 // work: at most the texels within r of the centre).
 #include <Eigen/Core>
 #include <vector>
@@ -29,13 +29,12 @@ namespace thx::tex {
 
 class BallOnRelief {
  public:
-  // `map` must be a relief (maxDepth() > 0); it must outlive this reader.
+  // `map` must be a relief (maxDepth() > 0); its heights are copied.
   BallOnRelief(const TextureMap& map, Address address);
 
   struct Touch {
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // tangent space (x along u, y along v, metres), unit
     double lift_m = 0.0;                                // c - r: the centre's height above h = 0, less r
-    long long texels_visited = 0;                       // the search's work, for benchmarks
   };
   // The ball of `radius_m` over uv, the texture laid at `metres_per_uv` (u, v) there. From behind
   // (a ball inside a sphere whose winding faces out) the relief is met from its other side: its
@@ -50,10 +49,10 @@ class BallOnRelief {
     std::vector<float> max_height;  // row-major, row 0 = v = 1 (the map's rows)
     float at(int i, int j) const { return max_height[std::size_t(j) * std::size_t(width) + std::size_t(i)]; }
   };
-  double bilinearHeight(const Level& base, double s, double t) const;
-  Eigen::Vector2d bilinearGradient(const Level& base, double s, double t) const;  // per texel, along s and t
+  // The bilinear height at (s, t) and its gradient per texel along s and t.
+  double bilinear(const Level& base, double s, double t, Eigen::Vector2d* gradient = nullptr) const;
   static std::vector<Level> pyramidOf(Level base);
-  const TextureMap* map_;
+  double max_depth_m_;
   Address address_;
   // [0]: the heights (h = -depth; from behind, depth); [k]: maxima over 2^k x 2^k texels, while
   // both sides divide.

@@ -3,7 +3,6 @@
 #include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
 
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 namespace thx::phys {
@@ -11,19 +10,6 @@ namespace thx::phys {
 namespace {
 
 constexpr int kMeshReliefTag = 0x7468584d;  // "thXM": the user index marking an attached MeshRelief
-
-std::uint32_t nearestTriangle(const mesh::TexturedMesh& m, const Eigen::Vector3d& c) {
-  std::uint32_t best = 0;
-  double best_d2 = std::numeric_limits<double>::infinity();
-  for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
-    const mesh::Triangle& tri = m.triangles[t];
-    const Eigen::Vector3d b = mesh::closestBarycentric(m, t, c);
-    const Eigen::Vector3d p = b[0] * m.positions[tri[0]] + b[1] * m.positions[tri[1]] + b[2] * m.positions[tri[2]];
-    const double d2 = (p - c).squaredNorm();
-    if (d2 < best_d2) best_d2 = d2, best = t;
-  }
-  return best;
-}
 
 // The bend's least-squares fit h = (xx x^2 + 2 xy x y + yy y^2) / 2 to the smooth surface's
 // heights at eight points a distance `radius` round the foot (their feet on Phong's surface).
@@ -62,7 +48,7 @@ const MeshRelief* meshReliefOf(const btCollisionShape& shape) {
 
 bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle, MeshChart& out) {
   const mesh::TexturedMesh& m = *relief.mesh.mesh;
-  if (triangle >= m.triangles.size()) triangle = nearestTriangle(m, c);
+  if (triangle >= m.triangles.size()) triangle = mesh::nearestTriangle(m, c);
   Eigen::Vector3d b = mesh::closestBarycentric(m, triangle, c);
   // The winding's side first, then the foot along the smooth normal on that side.
   const mesh::SurfaceFrame near = mesh::frameAt(m, triangle, b, mesh::FrameMode::Interpolated);

@@ -14,7 +14,6 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "clients/physics/mesh_contact.hpp"
@@ -44,18 +43,6 @@ struct SlopeAtFoot {
   }
 };
 
-// The nearest triangle's centroid to p (once, to start the walks).
-inline std::uint32_t nearestTriangle(const mesh::TexturedMesh& m, const Eigen::Vector3d& p) {
-  std::uint32_t best = 0;
-  double best_d = std::numeric_limits<double>::infinity();
-  for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
-    const mesh::Triangle& tri = m.triangles[t];
-    const double d = ((m.positions[tri[0]] + m.positions[tri[1]] + m.positions[tri[2]]) / 3.0 - p).squaredNorm();
-    if (d < best_d) best_d = d, best = t;
-  }
-  return best;
-}
-
 // The swing of swingInBowl (the same release, sphere and turn, the same crossings counted) as the
 // texture's slopes predict it.
 inline Swing slopePredictedSwing(int segments, double bowl_radius, double theta0_deg, double seconds,
@@ -71,7 +58,7 @@ inline Swing slopePredictedSwing(int segments, double bowl_radius, double theta0
   const double l = bowl_radius - kBallRadius, th = deg(theta0_deg);
   // In the sphere's own frame: the world turned back.
   Eigen::Vector3d c = turn.transpose() * Eigen::Vector3d(l * std::sin(th), 0.0, -l * std::cos(th)), v = Eigen::Vector3d::Zero();
-  SlopeAtFoot slope_at{contact_mesh, options, nearestTriangle(sphere.mesh, c * (bowl_radius / l))};
+  SlopeAtFoot slope_at{contact_mesh, options, mesh::nearestTriangle(sphere.mesh, c * (bowl_radius / l))};
   const Eigen::Vector3d g = turn.transpose() * Eigen::Vector3d(0.0, 0.0, -kG), along = turn.transpose().col(0);
   auto accel = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& u) -> Eigen::Vector3d {
     const Eigen::Vector3d up = -p.normalized();
