@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -48,7 +49,9 @@ read at the foot, the ball's rolling integrated without Bullet at 0.1 ms), with 
 bottom at the sphere's pole (where the uv squeezes the texture) and turned onto its equator
 (where the texture lies at its stated scale); the same with the bumps as a relief met as the
 ball's sphere meets it (textures/ball_on_relief.hpp), and the cost of a step each way; and on the
-equator, released at 4.90 to 5.10 degrees, where which bump the ball turns at decides the period.
+equator, released at 4.90 to 5.10 degrees, where which bump the ball turns at decides the period;
+and there the relief again with the simulation at 1, 0.5, 0.25 and 0.1 ms steps and the
+prediction at 0.025 ms (whether the simulation and the prediction have settled in their steps).
 
   --segments LIST   tessellations (default 16,24,32,48,64,96,128,192,256)
   --seconds S       simulated time of each bowl run (default 4)
@@ -86,6 +89,23 @@ struct ReleaseRow {
     double sum = 0;
     for (double x : v) sum += x;
     return v.empty() ? NAN : sum / double(v.size());
+  }
+};
+
+// The relief on the equator at each release, simulated at one step (or predicted at one, `predicted`).
+constexpr double kSimulatedStepsS[] = {1e-3, 5e-4, 2.5e-4, 1e-4};
+constexpr double kFinePredictionStepS = 2.5e-5;
+struct StepRow {
+  double slope = 0;
+  bool predicted = false;
+  double step_s = 0;
+  std::vector<double> change;       // at each of kReleasesDeg
+  double wall_per_simulated = NAN;  // simulated rows: wall-clock seconds per simulated second
+  // How many releases agree within `points` with `reference` (the 0.1 ms prediction).
+  int within(const std::vector<double>& reference, double points) const {
+    int n = 0;
+    for (std::size_t k = 0; k < change.size(); ++k) n += std::fabs(change[k] - reference[k]) <= points;
+    return n;
   }
 };
 
@@ -206,6 +226,47 @@ int run(int argc, char** argv) {
       releases.push_back(row);
     }
   }
+  // The relief's rows again by step: the simulation at finer steps, and the prediction at a finer
+  // step than its own 0.1 ms (whether the reference itself has settled).
+  std::fprintf(stderr, ", steps:");
+  std::vector<StepRow> steps;
+  std::vector<std::vector<Swing>> plain_at_step(std::size(kSimulatedStepsS));
+  for (std::size_t i = 0; i < std::size(kSimulatedStepsS); ++i)
+    for (double deg : kReleasesDeg)
+      plain_at_step[i].push_back(swingInBowl(texture_segments, true, kR, deg, seconds, nullptr, equator, nullptr, kSimulatedStepsS[i]));
+  std::vector<Swing> plain_fine_prediction;
+  for (double deg : kReleasesDeg)
+    plain_fine_prediction.push_back(slopePredictedSwing(texture_segments, kR, deg, seconds, nullptr, equator, nullptr, kFinePredictionStepS));
+  for (double slope : {0.05, 0.1}) {
+    std::fprintf(stderr, " %g", slope);
+    const tex::TextureMap map = sineBumps(slope);
+    const tex::BallOnRelief relief(map, tex::Address::Wrap);
+    StepRow fine;
+    fine.slope = slope, fine.predicted = true, fine.step_s = kFinePredictionStepS;
+    for (std::size_t k = 0; k < std::size(kReleasesDeg); ++k)
+      fine.change.push_back(change(slopePredictedSwing(texture_segments, kR, kReleasesDeg[k], seconds, &map, equator, &relief,
+                                                       kFinePredictionStepS),
+                                   plain_fine_prediction[k]));
+    steps.push_back(fine);
+    for (std::size_t i = 0; i < std::size(kSimulatedStepsS); ++i) {
+      StepRow row;
+      row.slope = slope, row.step_s = kSimulatedStepsS[i];
+      double us = 0;
+      for (std::size_t k = 0; k < std::size(kReleasesDeg); ++k) {
+        const Swing simulated = swingInBowl(texture_segments, true, kR, kReleasesDeg[k], seconds, &map, equator, &relief, row.step_s);
+        row.change.push_back(change(simulated, plain_at_step[i][k]));
+        us += simulated.us_per_step;
+      }
+      row.wall_per_simulated = us / double(std::size(kReleasesDeg)) * 1e-6 / row.step_s;
+      steps.push_back(row);
+    }
+  }
+  // The 0.1 ms prediction of each slope's relief rows (the release table's).
+  auto reference = [&](double slope) -> const std::vector<double>& {
+    for (const ReleaseRow& r : releases)
+      if (r.ball_on_relief && r.slope == slope) return r.predicted;
+    throw std::logic_error("no release row for the slope");
+  };
   std::fprintf(stderr, "\n");
 
   const std::string stamp = bench::fmt("%s, %s build, %s", bench::isoNow().c_str(), bench::buildType(),
@@ -228,6 +289,11 @@ int run(int argc, char** argv) {
       for (std::size_t k = 0; k < r.simulated.size(); ++k)
         c += bench::fmt("%d,%g,%s,%g,%.6g,%.6g\n", texture_segments, r.slope, r.ball_on_relief ? "ball on relief" : "one point",
                         kReleasesDeg[k], r.simulated[k], r.predicted[k]);
+    c += "\ntextured_segments,slope,read,step_s,release_deg,period_change,wall_s_per_simulated_s\n";
+    for (const StepRow& r : steps)
+      for (std::size_t k = 0; k < r.change.size(); ++k)
+        c += bench::fmt("%d,%g,%s,%g,%g,%.6g,%.4g\n", texture_segments, r.slope, r.predicted ? "predicted" : "simulated", r.step_s,
+                        kReleasesDeg[k], r.change[k], r.wall_per_simulated);
     c += "\ntextured_segments,slope,departure_change_deg,slope_angle_deg\n";
     for (const TexturedRow& t : textured)
       c += bench::fmt("%d,%g,%.4f,%.4f\n", texture_segments, t.slope, t.leave_change_deg, std::atan(t.slope) * 180.0 / kPi);
@@ -269,6 +335,17 @@ int run(int argc, char** argv) {
                             kReleasesDeg[k], r.simulated[k], r.predicted[k]);
       j += bench::fmt("    {\"slope\": %g, \"read\": \"%s\", \"releases\": [%s]}%s\n", r.slope,
                       r.ball_on_relief ? "ball on relief" : "one point", cells.c_str(), i + 1 < releases.size() ? "," : "");
+    }
+    j += "  ],\n  \"relief_on_equator_by_step\": [\n";
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      const StepRow& r = steps[i];
+      std::string cells;
+      for (std::size_t k = 0; k < r.change.size(); ++k)
+        cells += bench::fmt("%s{\"release_deg\": %g, \"period_change\": %.6g}", k ? ", " : "", kReleasesDeg[k], r.change[k]);
+      j += bench::fmt("    {\"slope\": %g, \"read\": \"%s\", \"step_s\": %g, \"wall_s_per_simulated_s\": %s, \"releases\": [%s]}%s\n",
+                      r.slope, r.predicted ? "predicted" : "simulated", r.step_s,
+                      std::isfinite(r.wall_per_simulated) ? bench::fmt("%.4g", r.wall_per_simulated).c_str() : "null", cells.c_str(),
+                      i + 1 < steps.size() ? "," : "");
     }
     j += "  ]\n}\n";
     bench::writeTextFile(json, j);
@@ -313,16 +390,33 @@ int run(int argc, char** argv) {
                       r.pole.us_per_step, r.equator.us_per_step, r.pole_relief.us_per_step, r.equator_relief.us_per_step);
     t += "\nReleased a little higher or lower (the bottom on the equator): the period's change simulated / predicted at each "
          "release, how many releases agree within 1 point (1 % of the period), and the mean over the releases.\n\n";
-    t += "| slope s | read |";
-    for (double deg : kReleasesDeg) t += bench::fmt(" %.2f° |", deg);
-    t += " within 1 point | mean: simulated | predicted |\n|---:|---|";
-    for (std::size_t k = 0; k < std::size(kReleasesDeg); ++k) t += "---:|";
-    t += "---:|---:|---:|\n";
+    // A table with a column per release between `first` and `last` columns (each given with its
+    // separators and the row of alignments that follows them).
+    auto byRelease = [](const char* first, const char* last, const char* last_alignment) {
+      std::string h = first;
+      for (double deg : kReleasesDeg) h += bench::fmt(" %.2f° |", deg);
+      h += std::string(last) + "\n|---:|---|";
+      for (std::size_t k = 0; k < std::size(kReleasesDeg); ++k) h += "---:|";
+      return h + last_alignment + "\n";
+    };
+    t += byRelease("| slope s | read |", " within 1 point | mean: simulated | predicted |", "---:|---:|---:|");
     for (const ReleaseRow& r : releases) {
       t += bench::fmt("| %g | %s |", r.slope, r.ball_on_relief ? "ball on relief" : "one point");
       for (std::size_t k = 0; k < r.simulated.size(); ++k) t += bench::fmt(" %+.2f / %+.2f %% |", 100 * r.simulated[k], 100 * r.predicted[k]);
       t += bench::fmt(" %d of %zu | %+.2f %% | %+.2f %% |\n", r.within(0.01), r.simulated.size(), 100 * ReleaseRow::mean(r.simulated),
                       100 * ReleaseRow::mean(r.predicted));
+    }
+    t += bench::fmt("\nThe relief's rows (ball on relief, the bottom on the equator) by step: simulated at 1, 0.5, 0.25 and 0.1 ms "
+                    "(the untextured swing at the same step the reference of each), and predicted at %g ms besides the 0.1 ms of the "
+                    "tables above; how many releases agree within 1 point with the 0.1 ms prediction, and the wall clock a "
+                    "simulated second costs (one ball).\n\n",
+                    kFinePredictionStepS * 1e3);
+    t += byRelease("| slope s | step |", " within 1 point of the 0.1 ms prediction | wall clock per simulated second |", "---:|---:|");
+    for (const StepRow& r : steps) {
+      t += bench::fmt("| %g | %s %g ms |", r.slope, r.predicted ? "predicted at" : "simulated at", r.step_s * 1e3);
+      for (double x : r.change) t += bench::fmt(" %+.2f %% |", 100 * x);
+      t += bench::fmt(" %d of %zu | %s |\n", r.within(reference(r.slope), 0.01), r.change.size(),
+                      std::isfinite(r.wall_per_simulated) ? bench::fmt("%.2f s", r.wall_per_simulated).c_str() : "");
     }
     bench::writeTextFile(md, t);
   }

@@ -87,10 +87,11 @@ struct Swing {
 };
 
 // The ball released at rest theta_0 up the inside of a sphere of radius R (the bowl), along +x of
-// the world, for `seconds`; the period from the times it crosses the bottom moving in +x.
+// the world, for `seconds` of steps of `dt`; the period from the times it crosses the bottom
+// moving in +x.
 inline Swing swingInBowl(int segments, bool smooth, double bowl_radius, double theta0_deg, double seconds,
                          const tex::TextureMap* texture = nullptr, const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity(),
-                         const tex::BallOnRelief* ball_relief = nullptr) {
+                         const tex::BallOnRelief* ball_relief = nullptr, double dt = kDt) {
   SphereScene scene(segments, smooth, bowl_radius, texture, turn, ball_relief);
   PhysicsWorld& w = scene.world;
   const double l = bowl_radius - kBallRadius, th = deg(theta0_deg);
@@ -98,12 +99,12 @@ inline Swing swingInBowl(int segments, bool smooth, double bowl_radius, double t
                                   {1.0, 0.0, 0.0});
   std::vector<double> crossings;
   double x_last = positionOf(ball).x();
-  const int steps = int(std::lround(seconds / kDt));
+  const int steps = int(std::lround(seconds / dt));
   const auto start = std::chrono::steady_clock::now();
   for (int k = 1; k <= steps; ++k) {
-    w.step(kDt);
+    w.step(dt);
     const double x = positionOf(ball).x();
-    if (x_last < 0.0 && x >= 0.0) crossings.push_back(kDt * (k - 1 + (-x_last) / (x - x_last)));
+    if (x_last < 0.0 && x >= 0.0) crossings.push_back(dt * (k - 1 + (-x_last) / (x - x_last)));
     x_last = x;
   }
   Swing s;
