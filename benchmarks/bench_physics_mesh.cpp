@@ -51,7 +51,9 @@ bottom at the sphere's pole (where the uv squeezes the texture) and turned onto 
 ball's sphere meets it (textures/ball_on_relief.hpp), and the cost of a step each way; and on the
 equator, released at 4.90 to 5.10 degrees, where which bump the ball turns at decides the period;
 and there the relief again with the simulation at 1, 0.5, 0.25 and 0.1 ms steps and the
-prediction at 0.025 ms (whether the simulation and the prediction have settled in their steps).
+prediction at 0.025 ms (whether the simulation and the prediction have settled in their steps);
+and at s = 0.1, 20 releases from 4.80 to 5.20 degrees read each way, simulated at 1 and 0.25 ms
+and predicted at 0.1 and 0.025 ms: the mean change over the releases and its spread.
 
   --segments LIST   tessellations (default 16,24,32,48,64,96,128,192,256)
   --seconds S       simulated time of each bowl run (default 4)
@@ -106,6 +108,28 @@ struct StepRow {
     int n = 0;
     for (std::size_t k = 0; k < change.size(); ++k) n += std::fabs(change[k] - reference[k]) <= points;
     return n;
+  }
+};
+
+// At s = 0.1 which crest the ball turns at is not settled in either integration's step, so the
+// period at one release is not a number to compare; their means over many releases are.
+constexpr int kManyReleases = 20;  // evenly over 4.80 to 5.20 degrees
+constexpr double kManySlope = 0.1;
+double manyRelease(int i) { return 4.8 + 0.4 * (i + 0.5) / kManyReleases; }
+struct ManyRow {
+  bool ball_on_relief = false, predicted = false;
+  double step_s = 0;
+  std::vector<double> change;  // at each of the releases
+  double mean() const { return ReleaseRow::mean(change); }
+  int within(const ManyRow& reference, double points) const {
+    int n = 0;
+    for (std::size_t k = 0; k < change.size(); ++k) n += std::fabs(change[k] - reference.change[k]) <= points;
+    return n;
+  }
+  double deviation() const {
+    double sum = 0;
+    for (double x : change) sum += (x - mean()) * (x - mean());
+    return change.size() > 1 ? std::sqrt(sum / double(change.size() - 1)) : NAN;
   }
 };
 
@@ -267,6 +291,43 @@ int run(int argc, char** argv) {
       if (r.ball_on_relief && r.slope == slope) return r.predicted;
     throw std::logic_error("no release row for the slope");
   };
+  // Many releases at s = 0.1: each read simulated at 1 and 0.25 ms and predicted at 0.1 and
+  // 0.025 ms, against the untextured swing at the same step.
+  std::fprintf(stderr, ", %d releases:", kManyReleases);
+  constexpr double kManySimulatedS[] = {1e-3, 2.5e-4}, kManyPredictedS[] = {1e-4, kFinePredictionStepS};
+  std::vector<ManyRow> many;
+  {
+    const tex::TextureMap map = sineBumps(kManySlope);
+    const tex::BallOnRelief relief(map, tex::Address::Wrap);
+    for (const tex::BallOnRelief* read : {(const tex::BallOnRelief*)nullptr, &relief}) {
+      for (double step : kManySimulatedS) many.push_back({read != nullptr, false, step, {}});
+      for (double step : kManyPredictedS) many.push_back({read != nullptr, true, step, {}});
+    }
+    for (int i = 0; i < kManyReleases; ++i) {
+      std::fprintf(stderr, " %d", i + 1);
+      const double deg = manyRelease(i);
+      // The untextured swings, one per step (both reads share them).
+      Swing plain_simulated[std::size(kManySimulatedS)], plain_predicted[std::size(kManyPredictedS)];
+      for (std::size_t k = 0; k < std::size(kManySimulatedS); ++k)
+        plain_simulated[k] = swingInBowl(texture_segments, true, kR, deg, seconds, nullptr, equator, nullptr, kManySimulatedS[k]);
+      for (std::size_t k = 0; k < std::size(kManyPredictedS); ++k)
+        plain_predicted[k] = slopePredictedSwing(texture_segments, kR, deg, seconds, nullptr, equator, nullptr, kManyPredictedS[k]);
+      for (ManyRow& row : many) {
+        const tex::BallOnRelief* read = row.ball_on_relief ? &relief : nullptr;
+        const std::size_t k = row.step_s == (row.predicted ? kManyPredictedS[0] : kManySimulatedS[0]) ? 0 : 1;
+        row.change.push_back(
+            row.predicted
+                ? change(slopePredictedSwing(texture_segments, kR, deg, seconds, &map, equator, read, row.step_s), plain_predicted[k])
+                : change(swingInBowl(texture_segments, true, kR, deg, seconds, &map, equator, read, row.step_s), plain_simulated[k]));
+      }
+    }
+  }
+  // The 0.1 ms prediction of the same read.
+  auto manyReference = [&](bool ball_on_relief) -> const ManyRow& {
+    for (const ManyRow& r : many)
+      if (r.predicted && r.ball_on_relief == ball_on_relief && r.step_s == kManyPredictedS[0]) return r;
+    throw std::logic_error("no 0.1 ms prediction");
+  };
   std::fprintf(stderr, "\n");
 
   const std::string stamp = bench::fmt("%s, %s build, %s", bench::isoNow().c_str(), bench::buildType(),
@@ -294,6 +355,11 @@ int run(int argc, char** argv) {
       for (std::size_t k = 0; k < r.change.size(); ++k)
         c += bench::fmt("%d,%g,%s,%g,%g,%.6g,%.4g\n", texture_segments, r.slope, r.predicted ? "predicted" : "simulated", r.step_s,
                         kReleasesDeg[k], r.change[k], r.wall_per_simulated);
+    c += "\ntextured_segments,slope,read,what,step_s,release_deg,period_change\n";
+    for (const ManyRow& r : many)
+      for (std::size_t k = 0; k < r.change.size(); ++k)
+        c += bench::fmt("%d,%g,%s,%s,%g,%.4f,%.6g\n", texture_segments, kManySlope, r.ball_on_relief ? "ball on relief" : "one point",
+                        r.predicted ? "predicted" : "simulated", r.step_s, manyRelease(int(k)), r.change[k]);
     c += "\ntextured_segments,slope,departure_change_deg,slope_angle_deg\n";
     for (const TexturedRow& t : textured)
       c += bench::fmt("%d,%g,%.4f,%.4f\n", texture_segments, t.slope, t.leave_change_deg, std::atan(t.slope) * 180.0 / kPi);
@@ -347,7 +413,18 @@ int run(int argc, char** argv) {
                       std::isfinite(r.wall_per_simulated) ? bench::fmt("%.4g", r.wall_per_simulated).c_str() : "null", cells.c_str(),
                       i + 1 < steps.size() ? "," : "");
     }
-    j += "  ]\n}\n";
+    j += bench::fmt("  ],\n  \"many_releases\": {\"slope\": %g, \"releases_deg\": [%g, %g], \"count\": %d, \"rows\": [\n", kManySlope,
+                    manyRelease(0), manyRelease(kManyReleases - 1), kManyReleases);
+    for (std::size_t i = 0; i < many.size(); ++i) {
+      const ManyRow& r = many[i];
+      std::string cells;
+      for (std::size_t k = 0; k < r.change.size(); ++k) cells += bench::fmt("%s%.6g", k ? ", " : "", r.change[k]);
+      j += bench::fmt("    {\"read\": \"%s\", \"what\": \"%s\", \"step_s\": %g, \"mean\": %.6g, \"deviation\": %.6g, "
+                      "\"period_change\": [%s]}%s\n",
+                      r.ball_on_relief ? "ball on relief" : "one point", r.predicted ? "predicted" : "simulated", r.step_s, r.mean(),
+                      r.deviation(), cells.c_str(), i + 1 < many.size() ? "," : "");
+    }
+    j += "  ]}\n}\n";
     bench::writeTextFile(json, j);
   }
   if (!md.empty()) {
@@ -418,6 +495,15 @@ int run(int argc, char** argv) {
       t += bench::fmt(" %d of %zu | %s |\n", r.within(reference(r.slope), 0.01), r.change.size(),
                       std::isfinite(r.wall_per_simulated) ? bench::fmt("%.2f s", r.wall_per_simulated).c_str() : "");
     }
+    t += bench::fmt("\nAt s = %g, %d releases evenly over %.2f° to %.2f° (the bottom on the equator): the period's change "
+                    "simulated and predicted at two steps each, its mean and standard deviation over the releases, and how many "
+                    "releases agree within 1 point with the 0.1 ms prediction of the same read.\n\n",
+                    kManySlope, kManyReleases, manyRelease(0), manyRelease(kManyReleases - 1));
+    t += "| read | step | mean change | standard deviation | within 1 point of the 0.1 ms prediction |\n|---|---|---:|---:|---:|\n";
+    for (const ManyRow& r : many)
+      t += bench::fmt("| %s | %s %g ms | %+.2f %% | %.2f points | %d of %zu |\n", r.ball_on_relief ? "ball on relief" : "one point",
+                      r.predicted ? "predicted at" : "simulated at", r.step_s * 1e3, 100 * r.mean(), 100 * r.deviation(),
+                      r.within(manyReference(r.ball_on_relief), 0.01), r.change.size());
     bench::writeTextFile(md, t);
   }
   if (!png.empty()) {
