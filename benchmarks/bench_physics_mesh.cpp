@@ -78,15 +78,18 @@ struct TexturedRow {
 
 constexpr double kReleasesDeg[] = {4.9, 4.95, 5.0, 5.05, 5.1};
 
+// How many of the releases' changes a and b agree within `points`.
+int agreeing(const std::vector<double>& a, const std::vector<double>& b, double points) {
+  int n = 0;
+  for (std::size_t k = 0; k < a.size() && k < b.size(); ++k) n += std::fabs(a[k] - b[k]) <= points;
+  return n;
+}
+
 struct ReleaseRow {
   double slope = 0;
   bool ball_on_relief = false;
   std::vector<double> simulated, predicted;  // the period's change at each of kReleasesDeg (the bottom on the equator)
-  int within(double points) const {
-    int n = 0;
-    for (std::size_t k = 0; k < simulated.size(); ++k) n += std::fabs(simulated[k] - predicted[k]) <= points;
-    return n;
-  }
+  int within(double points) const { return agreeing(simulated, predicted, points); }
   static double mean(const std::vector<double>& v) {
     double sum = 0;
     for (double x : v) sum += x;
@@ -103,12 +106,6 @@ struct StepRow {
   double step_s = 0;
   std::vector<double> change;       // at each of kReleasesDeg
   double wall_per_simulated = NAN;  // simulated rows: wall-clock seconds per simulated second
-  // How many releases agree within `points` with `reference` (the 0.1 ms prediction).
-  int within(const std::vector<double>& reference, double points) const {
-    int n = 0;
-    for (std::size_t k = 0; k < change.size(); ++k) n += std::fabs(change[k] - reference[k]) <= points;
-    return n;
-  }
 };
 
 // At s = 0.1 which crest the ball turns at is not settled in either integration's step, so the
@@ -121,11 +118,6 @@ struct ManyRow {
   double step_s = 0;
   std::vector<double> change;  // at each of the releases
   double mean() const { return ReleaseRow::mean(change); }
-  int within(const ManyRow& reference, double points) const {
-    int n = 0;
-    for (std::size_t k = 0; k < change.size(); ++k) n += std::fabs(change[k] - reference.change[k]) <= points;
-    return n;
-  }
   double deviation() const {
     double sum = 0;
     for (double x : change) sum += (x - mean()) * (x - mean());
@@ -492,7 +484,7 @@ int run(int argc, char** argv) {
     for (const StepRow& r : steps) {
       t += bench::fmt("| %g | %s %g ms |", r.slope, r.predicted ? "predicted at" : "simulated at", r.step_s * 1e3);
       for (double x : r.change) t += bench::fmt(" %+.2f %% |", 100 * x);
-      t += bench::fmt(" %d of %zu | %s |\n", r.within(reference(r.slope), 0.01), r.change.size(),
+      t += bench::fmt(" %d of %zu | %s |\n", agreeing(r.change, reference(r.slope), 0.01), r.change.size(),
                       std::isfinite(r.wall_per_simulated) ? bench::fmt("%.2f s", r.wall_per_simulated).c_str() : "");
     }
     t += bench::fmt("\nAt s = %g, %d releases evenly over %.2f° to %.2f° (the bottom on the equator): the period's change "
@@ -503,7 +495,7 @@ int run(int argc, char** argv) {
     for (const ManyRow& r : many)
       t += bench::fmt("| %s | %s %g ms | %+.2f %% | %.2f points | %d of %zu |\n", r.ball_on_relief ? "ball on relief" : "one point",
                       r.predicted ? "predicted at" : "simulated at", r.step_s * 1e3, 100 * r.mean(), 100 * r.deviation(),
-                      r.within(manyReference(r.ball_on_relief), 0.01), r.change.size());
+                      agreeing(r.change, manyReference(r.ball_on_relief).change, 0.01), r.change.size());
     bench::writeTextFile(md, t);
   }
   if (!png.empty()) {
