@@ -52,18 +52,9 @@ double insideMeasure(const Eigen::Vector3d& c) {
   return r2 / (a * a) + below_rim * below_rim / (b * b);
 }
 
-// The triangle nearest p_world, by looking at every one (the test's own answer, slow and sure).
+// The triangle nearest p_world, by looking at every one (slow and sure).
 std::uint32_t nearestTriangle(const thx::scene::SceneMesh& m, const Eigen::Vector3d& p_world) {
-  const Eigen::Vector3d p = m.mesh_to_world.inverse() * p_world;
-  std::uint32_t best = 0;
-  double best_d = 1e300;
-  for (std::uint32_t t = 0; t < m.mesh.triangles.size(); ++t) {
-    const Eigen::Vector3d b = thx::mesh::closestBarycentric(m.mesh, t, p);
-    const auto& tri = m.mesh.triangles[t];
-    const Eigen::Vector3d q = b[0] * m.mesh.positions[tri[0]] + b[1] * m.mesh.positions[tri[1]] + b[2] * m.mesh.positions[tri[2]];
-    if ((q - p).squaredNorm() < best_d) best_d = (q - p).squaredNorm(), best = t;
-  }
-  return best;
+  return thx::mesh::nearestTriangle(m.mesh, m.mesh_to_world.inverse() * p_world);
 }
 
 bool fourNeighbours(const Texel& a, const Texel& b) { return std::llabs(a.i - b.i) + std::llabs(a.j - b.j) == 1; }
