@@ -6,11 +6,13 @@
 // Bullet's own contacts on the flat triangles (the baseline); and the cost of a step. Measures
 // only; nothing asserted (tests/physics/test_mesh_rolling.cpp holds the analytic answers).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -52,13 +54,18 @@ ball's sphere meets it (textures/ball_on_relief.hpp), and the cost of a step eac
 equator, released at 4.90 to 5.10 degrees, where which bump the ball turns at decides the period;
 and there the relief again with the simulation at 1, 0.5, 0.25 and 0.1 ms steps and the
 prediction at 0.025 ms (whether the simulation and the prediction have settled in their steps);
-and at s = 0.1, 20 releases from 4.80 to 5.20 degrees read each way, simulated at 1 and 0.25 ms
-and predicted at 0.1 and 0.025 ms: the mean change over the releases and its spread.
+and at s = 0.1, many releases from 4.80 to 5.20 degrees read each way, simulated at 1 and 0.25
+ms and predicted at 0.1 and 0.025 ms: the mean change over the releases, and each row's mean
+difference from the 0.1 ms prediction, release by release, with its standard error and how far
+neighbouring releases' differences are correlated.
 
   --segments LIST   tessellations (default 16,24,32,48,64,96,128,192,256)
   --seconds S       simulated time of each bowl run (default 4)
   --texture-segments N  the tessellation of the textured runs (default 128)
-  --quick           a short run (3 tessellations, 2 s)
+  --releases N      releases in the last table (default 100)
+  --threads N       threads for the last table's releases (default: the machine's cores); the
+                    wall-clock columns are all measured before it, on one thread
+  --quick           a short run (3 tessellations, 2 s, 10 releases)
   --json/--csv/--md/--png F   results
 )";
 
@@ -110,18 +117,38 @@ struct StepRow {
 
 // At s = 0.1 which crest the ball turns at is not settled in either integration's step, so the
 // period at one release is not a number to compare; their means over many releases are.
-constexpr int kManyReleases = 20;  // evenly over 4.80 to 5.20 degrees
 constexpr double kManySlope = 0.1;
-double manyRelease(int i) { return 4.8 + 0.4 * (i + 0.5) / kManyReleases; }
+double manyRelease(int i, int count) { return 4.8 + 0.4 * (i + 0.5) / count; }  // evenly over 4.80 to 5.20 degrees
+double sampleDeviation(const std::vector<double>& v) {
+  const double mean = ReleaseRow::mean(v);
+  double sum = 0;
+  for (double x : v) sum += (x - mean) * (x - mean);
+  return v.size() > 1 ? std::sqrt(sum / double(v.size() - 1)) : NAN;
+}
+// The standard error of v's mean, were its entries independent; neighbourCorrelation says how far
+// they are (the releases are evenly spaced, and a period's change can run smoothly from one to the next).
+double standardError(const std::vector<double>& v) { return sampleDeviation(v) / std::sqrt(double(v.size())); }
+// The correlation of each entry with the next (lag 1).
+double neighbourCorrelation(const std::vector<double>& v) {
+  const double mean = ReleaseRow::mean(v);
+  double products = 0, squares = 0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    squares += (v[k] - mean) * (v[k] - mean);
+    if (k + 1 < v.size()) products += (v[k] - mean) * (v[k + 1] - mean);
+  }
+  return squares > 0 ? products / squares : NAN;
+}
 struct ManyRow {
   bool ball_on_relief = false, predicted = false;
   double step_s = 0;
   std::vector<double> change;  // at each of the releases
   double mean() const { return ReleaseRow::mean(change); }
-  double deviation() const {
-    double sum = 0;
-    for (double x : change) sum += (x - mean()) * (x - mean());
-    return change.size() > 1 ? std::sqrt(sum / double(change.size() - 1)) : NAN;
+  double deviation() const { return sampleDeviation(change); }
+  // Release by release, this row's change less `reference`'s (the same releases).
+  std::vector<double> differenceFrom(const ManyRow& reference) const {
+    std::vector<double> d;
+    for (std::size_t k = 0; k < change.size() && k < reference.change.size(); ++k) d.push_back(change[k] - reference.change[k]);
+    return d;
   }
 };
 
@@ -139,12 +166,15 @@ int run(int argc, char** argv) {
   std::vector<int> segments{16, 24, 32, 48, 64, 96, 128, 192, 256};
   double seconds = 4.0;
   int texture_segments = 128;
+  int many_releases = 100;
+  int threads = int(std::max(1u, std::thread::hardware_concurrency()));
   std::string json, csv, md, png;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") {
       segments = {32, 64, 128};
       seconds = 2.0;
+      many_releases = 10;
       continue;
     }
     if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
@@ -152,6 +182,8 @@ int run(int argc, char** argv) {
     if (a == "--segments") segments = cli::parseIntegerList(a, v, 6, 2048);
     else if (a == "--seconds") seconds = cli::parseNumber(a, v, {0.5, 600.0, false, "s"});
     else if (a == "--texture-segments") texture_segments = int(cli::parseInteger(a, v, 6, 2048));
+    else if (a == "--releases") many_releases = int(cli::parseInteger(a, v, 2, 10000));
+    else if (a == "--threads") threads = int(cli::parseInteger(a, v, 1, 256));
     else if (a == "--json") json = v;
     else if (a == "--csv") csv = v;
     else if (a == "--md") md = v;
@@ -284,35 +316,43 @@ int run(int argc, char** argv) {
     throw std::logic_error("no release row for the slope");
   };
   // Many releases at s = 0.1: each read simulated at 1 and 0.25 ms and predicted at 0.1 and
-  // 0.025 ms, against the untextured swing at the same step.
-  std::fprintf(stderr, ", %d releases:", kManyReleases);
+  // 0.025 ms, against the untextured swing at the same step. The releases are independent (each
+  // swing builds its own world), so they are shared out over threads; nothing here is timed.
+  std::fprintf(stderr, ", %d releases on %d threads:", many_releases, threads);
   constexpr double kManySimulatedS[] = {1e-3, 2.5e-4}, kManyPredictedS[] = {1e-4, kFinePredictionStepS};
   std::vector<ManyRow> many;
   {
     const tex::TextureMap map = sineBumps(kManySlope);
     const tex::BallOnRelief relief(map, tex::Address::Wrap);
     for (const tex::BallOnRelief* read : {(const tex::BallOnRelief*)nullptr, &relief}) {
-      for (double step : kManySimulatedS) many.push_back({read != nullptr, false, step, {}});
-      for (double step : kManyPredictedS) many.push_back({read != nullptr, true, step, {}});
+      for (double step : kManySimulatedS) many.push_back({read != nullptr, false, step, std::vector<double>(std::size_t(many_releases))});
+      for (double step : kManyPredictedS) many.push_back({read != nullptr, true, step, std::vector<double>(std::size_t(many_releases))});
     }
-    for (int i = 0; i < kManyReleases; ++i) {
-      std::fprintf(stderr, " %d", i + 1);
-      const double deg = manyRelease(i);
-      // The untextured swings, one per step (both reads share them).
-      Swing plain_simulated[std::size(kManySimulatedS)], plain_predicted[std::size(kManyPredictedS)];
-      for (std::size_t k = 0; k < std::size(kManySimulatedS); ++k)
-        plain_simulated[k] = swingInBowl(texture_segments, true, kR, deg, seconds, nullptr, equator, nullptr, kManySimulatedS[k]);
-      for (std::size_t k = 0; k < std::size(kManyPredictedS); ++k)
-        plain_predicted[k] = slopePredictedSwing(texture_segments, kR, deg, seconds, nullptr, equator, nullptr, kManyPredictedS[k]);
-      for (ManyRow& row : many) {
-        const tex::BallOnRelief* read = row.ball_on_relief ? &relief : nullptr;
-        const std::size_t k = row.step_s == (row.predicted ? kManyPredictedS[0] : kManySimulatedS[0]) ? 0 : 1;
-        row.change.push_back(
-            row.predicted
-                ? change(slopePredictedSwing(texture_segments, kR, deg, seconds, &map, equator, read, row.step_s), plain_predicted[k])
-                : change(swingInBowl(texture_segments, true, kR, deg, seconds, &map, equator, read, row.step_s), plain_simulated[k]));
+    std::atomic<int> next{0}, done{0};
+    auto work = [&] {
+      for (int i; (i = next++) < many_releases;) {
+        const double deg = manyRelease(i, many_releases);
+        // The untextured swings, one per step (both reads share them).
+        Swing plain_simulated[std::size(kManySimulatedS)], plain_predicted[std::size(kManyPredictedS)];
+        for (std::size_t k = 0; k < std::size(kManySimulatedS); ++k)
+          plain_simulated[k] = swingInBowl(texture_segments, true, kR, deg, seconds, nullptr, equator, nullptr, kManySimulatedS[k]);
+        for (std::size_t k = 0; k < std::size(kManyPredictedS); ++k)
+          plain_predicted[k] = slopePredictedSwing(texture_segments, kR, deg, seconds, nullptr, equator, nullptr, kManyPredictedS[k]);
+        for (ManyRow& row : many) {  // each thread writes only its own release's cells
+          const tex::BallOnRelief* read = row.ball_on_relief ? &relief : nullptr;
+          const std::size_t k = row.step_s == (row.predicted ? kManyPredictedS[0] : kManySimulatedS[0]) ? 0 : 1;
+          row.change[std::size_t(i)] =
+              row.predicted
+                  ? change(slopePredictedSwing(texture_segments, kR, deg, seconds, &map, equator, read, row.step_s), plain_predicted[k])
+                  : change(swingInBowl(texture_segments, true, kR, deg, seconds, &map, equator, read, row.step_s), plain_simulated[k]);
+        }
+        std::fprintf(stderr, " %d", ++done);
       }
-    }
+    };
+    std::vector<std::thread> workers;
+    for (int t = 1; t < threads; ++t) workers.emplace_back(work);
+    work();
+    for (std::thread& w : workers) w.join();
   }
   // The 0.1 ms prediction of the same read.
   auto manyReference = [&](bool ball_on_relief) -> const ManyRow& {
@@ -351,7 +391,7 @@ int run(int argc, char** argv) {
     for (const ManyRow& r : many)
       for (std::size_t k = 0; k < r.change.size(); ++k)
         c += bench::fmt("%d,%g,%s,%s,%g,%.4f,%.6g\n", texture_segments, kManySlope, r.ball_on_relief ? "ball on relief" : "one point",
-                        r.predicted ? "predicted" : "simulated", r.step_s, manyRelease(int(k)), r.change[k]);
+                        r.predicted ? "predicted" : "simulated", r.step_s, manyRelease(int(k), many_releases), r.change[k]);
     c += "\ntextured_segments,slope,departure_change_deg,slope_angle_deg\n";
     for (const TexturedRow& t : textured)
       c += bench::fmt("%d,%g,%.4f,%.4f\n", texture_segments, t.slope, t.leave_change_deg, std::atan(t.slope) * 180.0 / kPi);
@@ -406,15 +446,19 @@ int run(int argc, char** argv) {
                       i + 1 < steps.size() ? "," : "");
     }
     j += bench::fmt("  ],\n  \"many_releases\": {\"slope\": %g, \"releases_deg\": [%g, %g], \"count\": %d, \"rows\": [\n", kManySlope,
-                    manyRelease(0), manyRelease(kManyReleases - 1), kManyReleases);
+                    manyRelease(0, many_releases), manyRelease(many_releases - 1, many_releases), many_releases);
     for (std::size_t i = 0; i < many.size(); ++i) {
       const ManyRow& r = many[i];
+      const std::vector<double> d = r.differenceFrom(manyReference(r.ball_on_relief));
       std::string cells;
       for (std::size_t k = 0; k < r.change.size(); ++k) cells += bench::fmt("%s%.6g", k ? ", " : "", r.change[k]);
       j += bench::fmt("    {\"read\": \"%s\", \"what\": \"%s\", \"step_s\": %g, \"mean\": %.6g, \"deviation\": %.6g, "
-                      "\"period_change\": [%s]}%s\n",
+                      "\"neighbour_correlation\": %.4f, \"difference_from_prediction_0_1ms\": {\"mean\": %.6g, "
+                      "\"standard_error\": %.6g, \"neighbour_correlation\": %s}, \"period_change\": [%s]}%s\n",
                       r.ball_on_relief ? "ball on relief" : "one point", r.predicted ? "predicted" : "simulated", r.step_s, r.mean(),
-                      r.deviation(), cells.c_str(), i + 1 < many.size() ? "," : "");
+                      r.deviation(), neighbourCorrelation(r.change), ReleaseRow::mean(d), standardError(d),
+                      std::isfinite(neighbourCorrelation(d)) ? bench::fmt("%.4f", neighbourCorrelation(d)).c_str() : "null",
+                      cells.c_str(), i + 1 < many.size() ? "," : "");
     }
     j += "  ]}\n}\n";
     bench::writeTextFile(json, j);
@@ -488,14 +532,25 @@ int run(int argc, char** argv) {
                       std::isfinite(r.wall_per_simulated) ? bench::fmt("%.2f s", r.wall_per_simulated).c_str() : "");
     }
     t += bench::fmt("\nAt s = %g, %d releases evenly over %.2f° to %.2f° (the bottom on the equator): the period's change "
-                    "simulated and predicted at two steps each, its mean and standard deviation over the releases, and how many "
-                    "releases agree within 1 point with the 0.1 ms prediction of the same read.\n\n",
-                    kManySlope, kManyReleases, manyRelease(0), manyRelease(kManyReleases - 1));
-    t += "| read | step | mean change | standard deviation | within 1 point of the 0.1 ms prediction |\n|---|---|---:|---:|---:|\n";
-    for (const ManyRow& r : many)
-      t += bench::fmt("| %s | %s %g ms | %+.2f %% | %.2f points | %d of %zu |\n", r.ball_on_relief ? "ball on relief" : "one point",
-                      r.predicted ? "predicted at" : "simulated at", r.step_s * 1e3, 100 * r.mean(), 100 * r.deviation(),
-                      agreeing(r.change, manyReference(r.ball_on_relief).change, 0.01), r.change.size());
+                    "simulated and predicted at two steps each, its mean and standard deviation over the releases, and the "
+                    "correlation of each release's change with the next one's; then, release by release, the change less the "
+                    "0.1 ms prediction of the same read: its mean ± its standard error (as if the releases were independent), "
+                    "the same correlation of neighbours for it, and how many releases agree with that prediction within 1 "
+                    "point.\n\n",
+                    kManySlope, many_releases, manyRelease(0, many_releases), manyRelease(many_releases - 1, many_releases));
+    t += "| read | step | mean change | standard deviation | neighbours' correlation | less the 0.1 ms prediction | its "
+         "neighbours' correlation | within 1 point of it |\n|---|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const ManyRow& r : many) {
+      const ManyRow& prediction = manyReference(r.ball_on_relief);
+      const std::vector<double> d = r.differenceFrom(prediction);
+      const bool self = &r == &prediction;
+      t += bench::fmt("| %s | %s %g ms | %+.2f %% | %.2f points | %.2f | %s | %s | %d of %zu |\n",
+                      r.ball_on_relief ? "ball on relief" : "one point", r.predicted ? "predicted at" : "simulated at", r.step_s * 1e3,
+                      100 * r.mean(), 100 * r.deviation(), neighbourCorrelation(r.change),
+                      self ? "" : bench::fmt("%+.2f ± %.2f points", 100 * ReleaseRow::mean(d), 100 * standardError(d)).c_str(),
+                      self ? "" : bench::fmt("%.2f", neighbourCorrelation(d)).c_str(), agreeing(r.change, prediction.change, 0.01),
+                      r.change.size());
+    }
     bench::writeTextFile(md, t);
   }
   if (!png.empty()) {

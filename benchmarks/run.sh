@@ -43,7 +43,8 @@
 #              cost up to 500,000 triangles; about 2 min; its tables go to docs/meshes.md)
 #              or physics_mesh (issue 29: a ball swinging in and rolling off tessellated spheres
 #              against the smooth sphere's answers, smooth contacts and Bullet's flat ones, by
-#              tessellation, and the relief by step; about 9 min; its table goes to docs/physics.md)
+#              tessellation, the relief by step, and 100 releases shared over the cores; about
+#              18 min on 2 cores; its table goes to docs/physics.md)
 #              or textured_pair (issue 29: a grooved block on a grooved plane, the force that starts
 #              it sliding along and across the grooves (raised slowly; across also at once) in both
 #              orders of the pair and beside a plain block, and the cost of a step, at 64, 128 and
@@ -346,7 +347,7 @@ run_mesh_force() {
 
 run_physics_mesh() {
   need "$BIN/bench_physics_mesh" || return 1
-  say "part physics_mesh: balls on tessellated spheres against the smooth sphere's answers (about 9 min)"
+  say "part physics_mesh: balls on tessellated spheres against the smooth sphere's answers (about 18 min on 2 cores)"
   bench_with_table bench_physics_mesh "$ROOT/docs/physics.md"
 }
 

@@ -30,6 +30,18 @@ Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
   return meshTextureNormal(mesh, triangle, f, s.normal.cast<double>(), options);
 }
 
+UvSqueeze largestUvSqueeze(const mesh::TexturedMesh& mesh, const Eigen::Vector2d& tile_m) {
+  UvSqueeze out;
+  const Eigen::Vector3d centre = Eigen::Vector3d::Constant(1.0 / 3.0);
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    const mesh::SurfaceFrame f = mesh::frameAt(mesh, t, centre, mesh::FrameMode::Interpolated);
+    const Eigen::Vector2d factor = tile_m.cwiseQuotient(mesh::metresPerUv(mesh, t, f));
+    for (int axis = 0; axis < 2; ++axis)
+      if (std::isfinite(factor[axis]) && factor[axis] > out.factor) out = {factor[axis], axis, f.point, f.uv};
+  }
+  return out;
+}
+
 Eigen::Vector2d metresPerUvAt(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b) {
   const mesh::Triangle& t = contact_mesh.mesh->triangles[triangle];
   return b.x() * contact_mesh.metres_per_uv[t[0]] + b.y() * contact_mesh.metres_per_uv[t[1]] + b.z() * contact_mesh.metres_per_uv[t[2]];

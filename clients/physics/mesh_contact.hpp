@@ -67,6 +67,19 @@ Eigen::Vector3d meshTextureNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
 Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
                                   const MeshContactOptions& options);
 
+// Where a mesh's uv lays a texture tile of `tile_m` (metres per uv) squeezed the most: the factor
+// its slopes are steepened by there (meshTextureNormal: the tile over the triangle's metres per uv,
+// at its centre, on the axis that gives the larger), the axis (0: u, 1: v), and that centre's
+// point (mesh frame) and uv. A factor of 1 at the origin when nothing is squeezed. Allocates
+// nothing; linear in the triangles.
+struct UvSqueeze {
+  double factor = 1.0;
+  int axis = 0;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+};
+UvSqueeze largestUvSqueeze(const mesh::TexturedMesh& mesh, const Eigen::Vector2d& tile_m);
+
 // A mesh with what the contacts walk on (built once; allocates).
 struct ContactMesh {
   explicit ContactMesh(const mesh::TexturedMesh& m);

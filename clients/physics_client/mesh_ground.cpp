@@ -1,6 +1,7 @@
 #include "clients/physics_client/mesh_ground.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace thx::physclient {
 
@@ -28,6 +29,23 @@ MeshGround::MeshGround(const scene::Scene& scene, const tex::TexturedSurface& te
 
 btRigidBody& MeshGround::addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const {
   return world.addTexturedMesh(scene_mesh_.mesh, scene_mesh_.mesh_to_world, material, options_);
+}
+
+std::vector<std::string> MeshGround::warnings() const {
+  if (ball_relief_) return {};  // a ball meets a relief as its sphere does, and bridges squeezed bumps
+  const phys::UvSqueeze squeeze = phys::largestUvSqueeze(scene_mesh_.mesh, options_.normals_made_for_m);
+  if (!(squeeze.factor > kSqueezeWarning)) return {};
+  const Eigen::Vector3d where = scene_mesh_.mesh_to_world * squeeze.point;
+  char text[640];
+  std::snprintf(text, sizeof text,
+                "surface.mesh: its uv squeezes the normal map up to %.0fx along %c (near (%.3f, %.3f, %.3f) m in the scene, uv "
+                "(%.3f, %.3f)), where objects read "
+                "it at one point with its slopes %.0fx steeper: bumps narrower than a body moves in a step knock it at random "
+                "(docs/physics.md, Known gaps); give the surface a relief (representation: relief), which a ball meets as its "
+                "sphere does, or a mapping that does not squeeze the texture",
+                squeeze.factor, squeeze.axis == 0 ? 'u' : 'v', where.x(), where.y(), where.z(), squeeze.uv.x(), squeeze.uv.y(),
+                squeeze.factor);
+  return {text};
 }
 
 MeshGround::Place MeshGround::placeAt(std::uint32_t triangle, const Eigen::Vector3d& b) const {

@@ -8,6 +8,8 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "clients/physics/mesh_contact.hpp"
 #include "clients/physics/physics_world.hpp"
@@ -36,6 +38,13 @@ class MeshGround {
     tex::TexCoord uv;
     Eigen::Vector2d metres_per_uv = Eigen::Vector2d::Ones();  // the texture's scale laid here
   };
+  // What the client should tell a user who puts objects on this mesh (one line each, no prefix):
+  // a normal map (no depth) that the uv squeezes more than kSqueezeWarning times somewhere, for
+  // there the objects read it at one point with its slopes steepened as many times, and bumps
+  // narrower than a body moves in a step knock it at random (docs/physics.md, Known gaps).
+  static constexpr double kSqueezeWarning = 4.0;
+  std::vector<std::string> warnings() const;
+
   // The closest point of `triangle` to p_world (a contact point Bullet reported on it).
   Place on(std::uint32_t triangle, const Eigen::Vector3d& p_world) const;
   // The foot of c_world (a body's centre) on the smooth surface, walking from `near` (a triangle

@@ -20,6 +20,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -185,6 +186,11 @@ class PhysicsScene {
   const scene::Scene& scene() const { return scene_; }
   // The surface's mesh in a mesh scene; nullptr on the plane.
   const MeshGround* meshGround() const { return mesh_.get(); }
+  // What the client should warn about this scene's physics (MeshGround::warnings, when objects
+  // stand on the mesh); empty on the plane.
+  std::vector<std::string> warnings() const {
+    return mesh_ && !scene_.objects.empty() ? mesh_->warnings() : std::vector<std::string>{};
+  }
   phys::PhysicsWorld& world() { return *world_; }
 
  private:

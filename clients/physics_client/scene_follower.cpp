@@ -29,7 +29,9 @@ std::unique_ptr<PhysicsScene> SceneFollower::build(const std::string& file) cons
   so.pen = options_.pen;
   so.impact_min_speed_m_per_s = options_.impact_min_speed;
   so.pen_devices = pen_devices_;
-  return std::make_unique<PhysicsScene>(data, so);
+  auto physics = std::make_unique<PhysicsScene>(data, so);
+  for (const std::string& w : physics->warnings()) std::fprintf(stderr, "physics-client: warning: %s\n", w.c_str());
+  return physics;
 }
 
 void SceneFollower::setPens(const std::vector<int>& devices) {
