@@ -447,17 +447,20 @@ int run(int argc, char** argv) {
     }
     j += bench::fmt("  ],\n  \"many_releases\": {\"slope\": %g, \"releases_deg\": [%g, %g], \"count\": %d, \"rows\": [\n", kManySlope,
                     manyRelease(0, many_releases), manyRelease(many_releases - 1, many_releases), many_releases);
+    auto correlation = [](const std::vector<double>& v) {  // null where it is undefined (no spread)
+      const double c = neighbourCorrelation(v);
+      return std::isfinite(c) ? bench::fmt("%.4f", c) : std::string("null");
+    };
     for (std::size_t i = 0; i < many.size(); ++i) {
       const ManyRow& r = many[i];
       const std::vector<double> d = r.differenceFrom(manyReference(r.ball_on_relief));
       std::string cells;
       for (std::size_t k = 0; k < r.change.size(); ++k) cells += bench::fmt("%s%.6g", k ? ", " : "", r.change[k]);
       j += bench::fmt("    {\"read\": \"%s\", \"what\": \"%s\", \"step_s\": %g, \"mean\": %.6g, \"deviation\": %.6g, "
-                      "\"neighbour_correlation\": %.4f, \"difference_from_prediction_0_1ms\": {\"mean\": %.6g, "
+                      "\"neighbour_correlation\": %s, \"difference_from_prediction_0_1ms\": {\"mean\": %.6g, "
                       "\"standard_error\": %.6g, \"neighbour_correlation\": %s}, \"period_change\": [%s]}%s\n",
                       r.ball_on_relief ? "ball on relief" : "one point", r.predicted ? "predicted" : "simulated", r.step_s, r.mean(),
-                      r.deviation(), neighbourCorrelation(r.change), ReleaseRow::mean(d), standardError(d),
-                      std::isfinite(neighbourCorrelation(d)) ? bench::fmt("%.4f", neighbourCorrelation(d)).c_str() : "null",
+                      r.deviation(), correlation(r.change).c_str(), ReleaseRow::mean(d), standardError(d), correlation(d).c_str(),
                       cells.c_str(), i + 1 < many.size() ? "," : "");
     }
     j += "  ]}\n}\n";
