@@ -21,6 +21,7 @@
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/bench_stamp.hpp"
+#include "clients/study/stats.hpp"
 #include "tests/physics/mesh_rolling_scenes.hpp"
 #include "tests/physics/slope_predicted_swing.hpp"
 #include "tools/report/plot.hpp"
@@ -97,11 +98,7 @@ struct ReleaseRow {
   bool ball_on_relief = false;
   std::vector<double> simulated, predicted;  // the period's change at each of kReleasesDeg (the bottom on the equator)
   int within(double points) const { return agreeing(simulated, predicted, points); }
-  static double mean(const std::vector<double>& v) {
-    double sum = 0;
-    for (double x : v) sum += x;
-    return v.empty() ? NAN : sum / double(v.size());
-  }
+  static double mean(const std::vector<double>& v) { return study::summarize(v).mean; }
 };
 
 // The relief on the equator at each release, simulated at one step (or predicted at one, `predicted`).
@@ -119,12 +116,7 @@ struct StepRow {
 // period at one release is not a number to compare; their means over many releases are.
 constexpr double kManySlope = 0.1;
 double manyRelease(int i, int count) { return 4.8 + 0.4 * (i + 0.5) / count; }  // evenly over 4.80 to 5.20 degrees
-double sampleDeviation(const std::vector<double>& v) {
-  const double mean = ReleaseRow::mean(v);
-  double sum = 0;
-  for (double x : v) sum += (x - mean) * (x - mean);
-  return v.size() > 1 ? std::sqrt(sum / double(v.size() - 1)) : NAN;
-}
+double sampleDeviation(const std::vector<double>& v) { return study::summarize(v).sd; }
 // The standard error of v's mean, were its entries independent; neighbourCorrelation says how far
 // they are (the releases are evenly spaced, and a period's change can run smoothly from one to the next).
 double standardError(const std::vector<double>& v) { return sampleDeviation(v) / std::sqrt(double(v.size())); }

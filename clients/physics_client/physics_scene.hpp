@@ -186,8 +186,8 @@ class PhysicsScene {
   const scene::Scene& scene() const { return scene_; }
   // The surface's mesh in a mesh scene; nullptr on the plane.
   const MeshGround* meshGround() const { return mesh_.get(); }
-  // What the client should warn about this scene's physics (MeshGround::warnings, when objects
-  // stand on the mesh); empty on the plane.
+  // What the client should warn about this scene's physics (MeshGround::warnings, when the scene
+  // has objects); empty on the plane.
   std::vector<std::string> warnings() const {
     return mesh_ && !scene_.objects.empty() ? mesh_->warnings() : std::vector<std::string>{};
   }
