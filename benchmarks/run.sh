@@ -49,6 +49,9 @@
 #              it sliding along and across the grooves (raised slowly; across also at once) in both
 #              orders of the pair and beside a plain block, and the cost of a step, at 64, 128 and
 #              256 texels; about 2 min; its table goes to docs/physics.md)
+#              or rolling_ridges (issue 29: a ball rolling across sine ridges on the relief plane and on
+#              a relief mesh, lifted and steered, against the rolling-impact law, with the cost of a
+#              step; about half a minute; its table goes to docs/physics.md)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
@@ -109,11 +112,12 @@ splice() {
   say "updated the $name table in ${DOC#"$ROOT"/}"
 }
 
-# A benchmark that writes its results into RESULTS (NAME.json, .csv, .png) and one table, spliced
-# into DOC between NAME's markers.
+# bench_with_table NAME DOC [--png]: a benchmark that writes its results into RESULTS (NAME.json,
+# .csv, and with --png its plot NAME.png) and one table, spliced into DOC between NAME's markers.
 bench_with_table() {
-  local name=$1 doc=$2
-  "$BIN/$name" --json "$RESULTS/$name.json" --csv "$RESULTS/$name.csv" --png "$RESULTS/$name.png" \
+  local name=$1 doc=$2 png=()
+  [ "${3:-}" = --png ] && png=(--png "$RESULTS/$name.png")
+  "$BIN/$name" --json "$RESULTS/$name.json" --csv "$RESULTS/$name.csv" "${png[@]}" \
     --md "$WORK/$name.md" > /dev/null || return 1
   splice "$name" "$WORK/$name.md" "$doc"
 }
@@ -220,7 +224,7 @@ run_rates() {
   local rc=$?
   [ -s "$WORK/bench_rates.md" ] && splice bench_rates "$WORK/bench_rates.md" "$ROOT/docs/hapticd.md"
   say "part rates: the texture's force error against the servo rate"
-  bench_with_table bench_rate_texture "$ROOT/docs/hapticd.md" || rc=1
+  bench_with_table bench_rate_texture "$ROOT/docs/hapticd.md" --png || rc=1
   return $rc
 }
 
@@ -240,9 +244,7 @@ run_devices() {
 run_capsule() {
   need "$BIN/bench_capsule_tool" || return 1
   say "part capsule: the pen with extent's cost against its contacts (about 20 s)"
-  "$BIN/bench_capsule_tool" --json "$RESULTS/bench_capsule_tool.json" --csv "$RESULTS/bench_capsule_tool.csv" \
-    --md "$WORK/bench_capsule_tool.md" > /dev/null || return 1
-  splice bench_capsule_tool "$WORK/bench_capsule_tool.md" "$ROOT/docs/hapticd.md"
+  bench_with_table bench_capsule_tool "$ROOT/docs/hapticd.md"
 }
 
 run_clients() {
@@ -342,21 +344,25 @@ run_visual_servo() {
 run_mesh_force() {
   need "$BIN/bench_mesh_force" || return 1
   say "part mesh_force: textured meshes, force error and render cost against triangles (about 2 min)"
-  bench_with_table bench_mesh_force "$ROOT/docs/meshes.md"
+  bench_with_table bench_mesh_force "$ROOT/docs/meshes.md" --png
 }
 
 run_physics_mesh() {
   need "$BIN/bench_physics_mesh" || return 1
   say "part physics_mesh: balls on tessellated spheres against the smooth sphere's answers (about 18 min on 2 cores)"
-  bench_with_table bench_physics_mesh "$ROOT/docs/physics.md"
+  bench_with_table bench_physics_mesh "$ROOT/docs/physics.md" --png
 }
 
 run_textured_pair() {
   need "$BIN/bench_textured_pair" || return 1
   say "part textured_pair: a grooved block on a grooved plane, the force to slide it each way (about 2 min)"
-  "$BIN/bench_textured_pair" --json "$RESULTS/bench_textured_pair.json" --csv "$RESULTS/bench_textured_pair.csv" \
-    --md "$WORK/bench_textured_pair.md" > /dev/null || return 1
-  splice bench_textured_pair "$WORK/bench_textured_pair.md" "$ROOT/docs/physics.md"
+  bench_with_table bench_textured_pair "$ROOT/docs/physics.md"
+}
+
+run_rolling_ridges() {
+  need "$BIN/bench_rolling_ridges" || return 1
+  say "part rolling_ridges: a ball across sine ridges, plane and mesh against the rolling-impact law (about half a minute)"
+  bench_with_table bench_rolling_ridges "$ROOT/docs/physics.md"
 }
 
 run_table1() {
@@ -377,14 +383,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | textured_pair | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | textured_pair | rolling_ridges | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh textured_pair report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh textured_pair rolling_ridges report)"
       exit 2
       ;;
   esac

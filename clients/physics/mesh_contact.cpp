@@ -162,9 +162,17 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
     smoothFoot(contact_mesh, c, side, triangle, b);
     const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
     n_geometric = side * smooth.normal;
-    point.m_distance1 = static_cast<btScalar>(n_geometric.dot(c - smooth.point) - r);
-    n = options.texture && options.ball_relief ? ballOnReliefNormal(contact_mesh, c, side, triangle, b, r, options)
-                                               : side * meshContactNormal(mesh, triangle, b, options);
+    double gap = n_geometric.dot(c - smooth.point) - r;
+    if (options.texture && options.ball_relief) {
+      n = ballOnReliefNormal(contact_mesh, c, side, triangle, b, r, options);
+      // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
+      // surface (steerContact's rule, with that gap).
+      std::uint32_t foot = triangle;
+      if (options.lift_ball) gap -= ballOnReliefLift(contact_mesh, c, side, foot, r, options);
+    } else {
+      n = side * meshContactNormal(mesh, triangle, b, options);
+    }
+    point.m_distance1 = static_cast<btScalar>(gap);
   } else {
     n = side * meshContactNormal(mesh, triangle, b, options);
   }

@@ -19,7 +19,8 @@
 // on the smooth surface, found by walking across the triangles' edges from Bullet's triangle,
 // and its gap is measured there to Phong's surface (mesh::FrameMode::InterpolatedPhong), not to
 // the flat triangle: a ball rolling fast over a tessellated sphere's convex edges would
-// otherwise turn about each edge at its own radius and hop from edge to edge.
+// otherwise turn about each edge at its own radius and hop from edge to edge. On a relief, a
+// ball's gap is measured further to the relief as its sphere meets it (MeshContactOptions::lift_ball).
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <BulletCollision/NarrowPhaseCollision/btManifoldPoint.h>
 
@@ -49,6 +50,14 @@ struct MeshContactOptions {
   // (ballOnReliefNormal) instead of the texture's normal at one point (meshContactNormal).
   // nullptr: always at one point. It must outlive the world.
   const tex::BallOnRelief* ball_relief = nullptr;
+  // A ball on such a relief is lifted, as on the relief plane: the gap the solver holds
+  // (steerContact, with hold_height) is to the relief as its sphere meets it, so its centre rides
+  // over what it cannot enter and sinks into what it can, and where its touch jumps across a
+  // trough sharper than the ball it loses speed as a rigid ball rolling without slipping does (the
+  // rolling-impact law, tests/physics/test_relief_mesh_ridges.cpp). false: held on the smooth
+  // surface and steered by the lift's gradient only, a potential that keeps the energy (the
+  // rolling model tests/physics/slope_predicted_swing.hpp integrates).
+  bool lift_ball = true;
   // false: Bullet's own contact (the flat triangle's normal), for comparisons.
   bool smooth = true;
   double max_tilt_deg = 75.0;  // as NormalMapOptions::max_tilt_deg, from the smooth normal

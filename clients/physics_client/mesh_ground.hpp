@@ -26,9 +26,9 @@ class MeshGround {
   MeshGround(const scene::Scene& scene, const tex::TexturedSurface& texture);
 
   const scene::SceneMesh& sceneMesh() const { return scene_mesh_; }
-  // The mesh as a static body of `world`, its contacts steered by the texture's normals (a relief
-  // map's too, averaged over a ball's contact patch: on a mesh its depth is felt by the pen, not
-  // simulated; docs/physics.md).
+  // The mesh as a static body of `world`, its contacts steered by the texture's normals; a ball
+  // meets a relief as its sphere does and is lifted onto it, other shapes read it at one point
+  // (docs/physics.md, "A ball on a relief, lifted").
   btRigidBody& addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const;
 
   struct Place {

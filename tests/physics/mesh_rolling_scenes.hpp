@@ -40,7 +40,10 @@ inline double normalImpulse(PhysicsWorld& w, const btRigidBody& ball) {
 // A UV sphere mesh of `radius` (`segments` around, half as many rings) at the origin, turned by
 // `turn` (the sphere's frame to the world's), in a world. With `texture`, the map is laid at one
 // tile per kTileM of arc (its normals made for that tile), read at one point under a ball, or
-// with `ball_relief` (built from it) as the ball's sphere meets the relief.
+// with `ball_relief` (built from it) as the ball's sphere meets the relief: the steered ball,
+// held on the smooth surface (MeshContactOptions::lift_ball false), whose swing the rolling model
+// of slope_predicted_swing.hpp integrates; the product's lifted ball loses energy where its
+// contact jumps across a trough, held to the rolling-impact law in test_relief_mesh_ridges.cpp.
 inline constexpr double kTileM = 0.01;
 struct SphereScene {
   mesh::GeneratedMesh sphere;
@@ -52,6 +55,7 @@ struct SphereScene {
     options.smooth = smooth;
     options.texture = texture;
     options.ball_relief = ball_relief;
+    options.lift_ball = false;
     options.normals_made_for_m = Eigen::Vector2d::Constant(kTileM);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.linear() = turn;
