@@ -167,8 +167,10 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
       n = ballOnReliefNormal(contact_mesh, c, side, triangle, b, r, options);
       // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
       // surface (steerContact's rule, with that gap).
-      std::uint32_t foot = triangle;
-      if (options.lift_ball) gap -= ballOnReliefLift(contact_mesh, c, side, foot, r, options);
+      if (options.lift_ball) {
+        std::uint32_t foot = triangle;
+        gap -= ballOnReliefLift(contact_mesh, c, side, foot, r, options);
+      }
     } else {
       n = side * meshContactNormal(mesh, triangle, b, options);
     }
