@@ -39,15 +39,29 @@ long long parseInteger(std::string_view option, std::string_view text, long long
   return v;
 }
 
-std::vector<int> parseIntegerList(std::string_view option, std::string_view text, int min, int max) {
-  std::vector<int> out;
+namespace {
+
+// Each comma-separated item of text, read by `read`.
+template <class T, class Read>
+std::vector<T> parseList(std::string_view text, Read read) {
+  std::vector<T> out;
   for (std::size_t a = 0; a <= text.size();) {
     std::size_t b = text.find(',', a);
     if (b == std::string_view::npos) b = text.size();
-    out.push_back(int(parseInteger(option, text.substr(a, b - a), min, max)));
+    out.push_back(read(text.substr(a, b - a)));
     a = b + 1;
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<int> parseIntegerList(std::string_view option, std::string_view text, int min, int max) {
+  return parseList<int>(text, [&](std::string_view item) { return int(parseInteger(option, item, min, max)); });
+}
+
+std::vector<double> parseNumberList(std::string_view option, std::string_view text, const Range& range) {
+  return parseList<double>(text, [&](std::string_view item) { return parseNumber(option, item, range); });
 }
 
 }  // namespace thx::cli

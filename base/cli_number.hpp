@@ -19,5 +19,7 @@ double parseNumber(std::string_view option, std::string_view text, const Range& 
 long long parseInteger(std::string_view option, std::string_view text, long long min, long long max);
 // A comma-separated list of whole numbers, each in [min, max] ("500,2000,5000").
 std::vector<int> parseIntegerList(std::string_view option, std::string_view text, int min, int max);
+// A comma-separated list of numbers, each as parseNumber reads it ("0.02,0.05,0.1").
+std::vector<double> parseNumberList(std::string_view option, std::string_view text, const Range& range = {});
 
 }  // namespace thx::cli

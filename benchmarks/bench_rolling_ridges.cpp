@@ -3,7 +3,6 @@
 // default, and steered) against the rolling-impact law of a rigid ball rolling without slipping
 // (tests/physics/rolling_over_ridges.hpp), with the cost of a step. Measures only; nothing
 // asserted (tests/physics/test_relief_mesh_ridges.cpp holds the mesh's behaviour).
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -49,17 +48,6 @@ struct Row {
   double us_per_step[3] = {0, 0, 0};
 };
 
-std::vector<double> parseSlopes(const std::string& option, const std::string& text) {
-  std::vector<double> out;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    out.push_back(cli::parseNumber(option, std::string_view(text).substr(start, comma - start), {1e-4, 0.2, false, ""}));
-    start = comma + 1;
-  }
-  return out;
-}
-
 int run(int argc, char** argv) {
   std::vector<double> slopes{0.02, 0.05, 0.1}, steps{1e-3, 2.5e-4};
   std::string json, csv, md;
@@ -71,7 +59,7 @@ int run(int argc, char** argv) {
     }
     if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
     const std::string v = argv[++i];
-    if (a == "--slopes") slopes = parseSlopes(a, v);
+    if (a == "--slopes") slopes = cli::parseNumberList(a, v, {1e-4, 0.2, false, ""});
     else if (a == "--json") json = v;
     else if (a == "--csv") csv = v;
     else if (a == "--md") md = v;

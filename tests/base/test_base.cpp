@@ -36,6 +36,8 @@ TEST(CliNumber, AcceptsWholeNumbersInRange) {
   EXPECT_EQ(cli::parseNumber("--rate", "250", {10, 10000, false, "Hz"}), 250.0);
   EXPECT_EQ(cli::parseNumber("--x", "-1.5e-3"), -1.5e-3);
   EXPECT_EQ(cli::parseInteger("--n", "42", 0, 100), 42);
+  EXPECT_EQ(cli::parseIntegerList("--n", "500,2000", 1, 5000), (std::vector<int>{500, 2000}));
+  EXPECT_EQ(cli::parseNumberList("--s", "0.02,0.1", {0, 1, false, ""}), (std::vector<double>{0.02, 0.1}));
 }
 
 TEST(CliNumber, ErrorsNameTheOptionTheRangeAndTheValue) {
@@ -50,6 +52,8 @@ TEST(CliNumber, ErrorsNameTheOptionTheRangeAndTheValue) {
             "--n: expected a whole number in [0, 9], got '3.5'");
   EXPECT_EQ(usageMessage([] { cli::parseInteger("--n", "99999999999999999999", 0, 9); }),
             "--n: expected a whole number in [0, 9], got '99999999999999999999'");
+  EXPECT_EQ(usageMessage([] { cli::parseNumberList("--s", "0.02,x", {0, 1, false, ""}); }),
+            "--s: expected a number in [0, 1], got 'x'");
 }
 
 TEST(JsonText, EscapesQuotesBackslashesAndControlCharacters) {

@@ -6,7 +6,7 @@
 // measures every contact model against it, with its cost).
 #include <cmath>
 #include <functional>
-#include <memory>
+#include <optional>
 #include <vector>
 
 #include "clients/physics/bullet_convert.hpp"
@@ -18,13 +18,14 @@
 namespace thx::phys::test::ridges {
 
 inline constexpr double kRadius = 0.01, kMass = 0.05, kTile = 0.01, kPeriod = kTile / 4.0;
+inline constexpr int kTexels = 256;  // a side of the relief, over one tile
 
 inline double amplitudeFor(double slope) { return slope * kPeriod / (2.0 * kPi); }
 
-// Ridges of slope s (at most) as a 256-texel relief over one tile.
+// Ridges of slope s (at most) as a relief of kTexels a side over one tile.
 inline tex::TextureMap sineRidges(double slope) {
   const double a = amplitudeFor(slope);
-  return heightMap(256, kTile, [&](double x, double) { return a * std::sin(2.0 * kPi * x / kPeriod); });
+  return heightMap(kTexels, kTile, [&](double x, double) { return a * std::sin(2.0 * kPi * x / kPeriod); });
 }
 
 struct RidgeRun {
@@ -41,23 +42,29 @@ enum class Ground { MeshLifted, MeshSteered, ReliefPlane };
 inline RidgeRun rollAcross(const tex::TextureMap& map, Ground ground, double dt, double v0, double seconds) {
   WorldOptions world_options;
   world_options.rest.enabled = false;
-  PhysicsWorld world(world_options);
-  const mesh::GeneratedMesh box = mesh::box({1.0, 0.05, 0.02}, 0.005, kTile);
-  const tex::BallOnRelief ball_relief(map, tex::Address::Wrap);
-  MeshContactOptions options;
-  options.texture = &map;
-  options.sampling.address = tex::Address::Wrap;
-  options.ball_relief = &ball_relief;
-  options.lift_ball = ground == Ground::MeshLifted;
-  options.normals_made_for_m = Eigen::Vector2d::Constant(kTile);
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.01);  // the top face at z = 0
-  SurfaceHolder holder;
+  // What the world's ground reads: built before the world, which must not outlive it.
+  std::optional<mesh::GeneratedMesh> box;
+  std::optional<tex::BallOnRelief> ball_relief;
+  SurfaceHolder plane;
   if (ground == Ground::ReliefPlane) {
-    holder = holdSurface(map, kTile, true, tex::Address::Wrap);
-    world.addReliefPlane(holder.surface, {1.0, 0.0, 0.0});
+    plane = holdSurface(map, kTile, true, tex::Address::Wrap);
   } else {
-    world.addTexturedMesh(box.mesh, pose, {1.0, 0.0, 0.0}, options);
+    box.emplace(mesh::box({1.0, 0.05, 0.02}, 0.005, kTile));
+    ball_relief.emplace(map, tex::Address::Wrap);
+  }
+  PhysicsWorld world(world_options);
+  if (ground == Ground::ReliefPlane) {
+    world.addReliefPlane(plane.surface, {1.0, 0.0, 0.0});
+  } else {
+    MeshContactOptions options;
+    options.texture = &map;
+    options.sampling.address = tex::Address::Wrap;
+    options.ball_relief = &*ball_relief;
+    options.lift_ball = ground == Ground::MeshLifted;
+    options.normals_made_for_m = Eigen::Vector2d::Constant(kTile);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.01);  // the top face at z = 0
+    world.addTexturedMesh(box->mesh, pose, {1.0, 0.0, 0.0}, options);
   }
   Eigen::Isometry3d at = Eigen::Isometry3d::Identity();
   at.translation() = Eigen::Vector3d(-0.45, 0.0, kRadius + 2e-4);
@@ -92,7 +99,7 @@ inline RidgeRun rollAcross(const tex::TextureMap& map, Ground ground, double dt,
 // The ridges as the relief stores them: heights at texel centres (x = (k + 1/2) texel from the
 // sine's origin, heightMap's), linear between them along x, as BallOnRelief reads them.
 inline std::function<double(double)> storedRidges(double slope) {
-  const double a = amplitudeFor(slope), texel = kTile / 256.0;
+  const double a = amplitudeFor(slope), texel = kTile / kTexels;
   return [a, texel](double x) {
     const double k = std::floor(x / texel), w = x / texel - k;
     auto at = [&](double i) { return a * std::sin(2.0 * kPi * (i + 0.5) * texel / kPeriod); };
