@@ -52,6 +52,10 @@
 #              or rolling_ridges (issue 29: a ball rolling across sine ridges on the relief plane and on
 #              a relief mesh, lifted and steered, against the rolling-impact law, with the cost of a
 #              step; about half a minute; its table goes to docs/physics.md)
+#              or rod_in_groove (issue 29: a capsule and a cylinder lying in a V-groove on the relief
+#              plane, a flat relief mesh and a grooved pipe, where it rests and the force that rolls
+#              it out against the analytic answers, with the cost of a step; about 20 s; its table
+#              goes to docs/physics.md)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
@@ -365,6 +369,12 @@ run_rolling_ridges() {
   bench_with_table bench_rolling_ridges "$ROOT/docs/physics.md"
 }
 
+run_rod_in_groove() {
+  need "$BIN/bench_rod_in_groove" || return 1
+  say "part rod_in_groove: a rod in a V-groove on the relief plane and on relief meshes (about 20 s)"
+  bench_with_table bench_rod_in_groove "$ROOT/docs/physics.md"
+}
+
 run_table1() {
   need "$BIN/bench_table1" || return 1
   say "part table1: the paper's Table 1 on one surface, normal / relief / mesh 256² / mesh 512² (about 10 min, 8 GB)"
@@ -383,14 +393,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | textured_pair | rolling_ridges | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | textured_pair | rolling_ridges | rod_in_groove | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh textured_pair rolling_ridges report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh textured_pair rolling_ridges rod_in_groove report)"
       exit 2
       ;;
   esac

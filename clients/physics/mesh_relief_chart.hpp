@@ -1,16 +1,18 @@
 #pragma once
-// A relief-textured static mesh as a textured box meets it (issue 29, "Textured objects" on a
-// curved surface): the mesh's tangent plane at the foot of the box's centre on the smooth surface,
-// with the texture laid on it at that face's scale (as hapticd's chart lays it for the pen,
-// server/textured_mesh_renderer.cpp), and the smooth surface's bend under it (ground_bend.hpp).
-// On that chart the pair's depth comes from both reliefs exactly as on the relief plane
-// (relief_raster.hpp, relief_collision.hpp): Otaduy et al.'s directional depth along the chart's
-// normal, the ground raised by the bend. Bullet's own box-triangle points are not used: they sit at
-// the box's corners and edges, and a point lying in one of the box's grooves does not touch the
-// mesh at all (docs/physics.md, "Textured objects").
+// A relief-textured static mesh as a box (textured or not), capsule or cylinder meets it (issue 29,
+// "Textured objects" on a curved surface, and plain objects as on the relief plane): the mesh's
+// tangent plane at the foot of the object's centre on the smooth surface, with the texture laid on
+// it at that face's scale (as hapticd's chart lays it for the pen, server/textured_mesh_renderer.cpp),
+// and the smooth surface's bend under it (ground_bend.hpp). On that chart the contacts come from the
+// relief plane's rules (relief_raster.hpp, relief_collision.hpp), the ground raised by the bend; for
+// a textured box, from both reliefs: Otaduy et al.'s directional depth along the chart's normal.
+// Bullet's own box-triangle points are not used: they sit at the box's corners and edges, and a
+// point lying in one of the box's grooves does not touch the mesh at all (docs/physics.md,
+// "Textured objects"). One chart holds one smooth surface: an object across a crease of the mesh
+// (a rim, a box's edge) meets only the face under its centre.
 //
 // Only the side the mesh's winding faces is textured (a closed bowl's inside, a sphere's outside):
-// a box behind the winding gets no contacts from the chart.
+// an object behind the winding gets no contacts from the chart.
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>

@@ -73,8 +73,9 @@ class PhysicsWorld {
   btRigidBody& addReliefPlane(const tex::TexturedSurface& surface, const BodyMaterial& material);
   // A static textured mesh (meshes/textured_mesh.hpp, frames built) at `pose` (the mesh's frame
   // in the world): Bullet's btBvhTriangleMeshShape over its triangles, each contact steered by the
-  // smooth surface and the texture (mesh_contact.hpp); with a relief map, a textured box meets
-  // it on the chart under it, both reliefs shaping the contact (mesh_relief_chart.hpp). The mesh
+  // smooth surface and the texture (mesh_contact.hpp); with a relief map, a box (textured or not),
+  // capsule or cylinder meets it on the chart under it as on the relief plane, a textured box's
+  // relief shaping the contact too (mesh_relief_chart.hpp, relief_collision.hpp). The mesh
   // and any texture in `options` must outlive this world.
   btRigidBody& addTexturedMesh(const mesh::TexturedMesh& mesh, const Eigen::Isometry3d& pose,
                                const BodyMaterial& material, const MeshContactOptions& options = {});

@@ -47,6 +47,30 @@ std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen:
 
 namespace {
 
+// How far the shape reaches from its centre: the chart under it must cover that far.
+double reachOf(const btCollisionShape& shape) {
+  switch (shape.getShapeType()) {
+    case CAPSULE_SHAPE_PROXYTYPE: {
+      const auto& c = static_cast<const btCapsuleShape&>(shape);
+      return double(c.getRadius() + c.getHalfHeight());
+    }
+    case CYLINDER_SHAPE_PROXYTYPE: {
+      const auto& c = static_cast<const btCylinderShape&>(shape);
+      const btVector3 half = c.getHalfExtentsWithMargin();
+      const double radius = double(c.getRadius()), along = double(half[c.getUpAxis()]);
+      return std::hypot(radius, along);
+    }
+    case BOX_SHAPE_PROXYTYPE:
+      return toEigen(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin()).norm();
+    default: {
+      btVector3 centre;
+      btScalar radius = 0;
+      shape.getBoundingSphere(centre, radius);
+      return double(radius + centre.length());
+    }
+  }
+}
+
 // Adds the chosen contacts (deepest first) to the result's manifold (relief_collision.hpp's
 // convention).
 void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside& underside,
@@ -171,26 +195,34 @@ void ReliefCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds
 }
 
 void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                                             const MeshRelief& relief, const FaceTexture& faces, btManifoldResult* result) {
+                                             const MeshRelief& relief, const FaceTexture* faces, btManifoldResult* result) {
   btPersistentManifold* manifold = manifoldFor(object.getCollisionObject(), mesh.getCollisionObject());
   result->setPersistentManifold(manifold);
   const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
   const Eigen::Isometry3d world_from_object = toEigen(object.getWorldTransform());
   const Eigen::Vector3d centre = world_from_mesh.inverse() * world_from_object.translation();
-  const auto& box = static_cast<const btBoxShape&>(*object.getCollisionShape());
-  const double reach = toEigen(box.getHalfExtentsWithMargin()).norm();
+  const btCollisionShape& shape = *object.getCollisionShape();
   MeshChart chart;
-  if (!chartUnder(relief, centre, reach, foot_triangle_, chart)) {
+  if (!chartUnder(relief, centre, reachOf(shape), foot_triangle_, chart)) {
     // Behind the winding: nothing textured to meet (mesh_relief_chart.hpp).
     manifold->clearManifold();
     clearGroupManifolds();
     return;
   }
   const Eigen::Isometry3d world_from_chart = world_from_mesh * chart.surface.mapping().plane_to_world;
-  const std::optional<Underside> underside = undersideOf(box, world_from_chart.inverse() * world_from_object);
+  const std::optional<Underside> underside = undersideOf(shape, world_from_chart.inverse() * world_from_object);
   if (!underside) return;
-  texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, faces,
-                       double(manifold->getContactBreakingThreshold()), world_from_chart, result);
+  const double threshold = double(manifold->getContactBreakingThreshold());
+  if (faces) {
+    texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, *faces, threshold,
+                         world_from_chart, result);
+  } else {
+    // An untextured object: the plane's rule on the chart (points afresh each step, as there).
+    const bool on_end_face = standsOnEndFace(*underside);
+    if (!on_end_face) manifold->clearManifold();
+    plainObjectCollision(chart.surface, chart.bend, *underside, on_end_face, nullptr, threshold, world_from_chart,
+                         result);
+  }
   // Each point names the triangle under it on the mesh's side, as Bullet's own points do (the
   // physics client reads a contact's texel through it).
   btManifoldArray manifolds;
@@ -211,7 +243,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   const btCollisionObjectWrapper* object = swapped_ ? body1 : body0;
   const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
   if (const MeshRelief* mesh = meshReliefOf(*relief->getCollisionShape())) {
-    meshCollision(*object, *relief, *mesh, *faceTextureOf(*object->getCollisionShape()), result);
+    meshCollision(*object, *relief, *mesh, faceTextureOf(*object->getCollisionShape()), result);
     return;
   }
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());
@@ -238,26 +270,35 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     return;
   }
   clearGroupManifolds();
+  plainObjectCollision(plane.surface(), GroundBend{}, *underside, on_end_face, &plane.levelRuns(), threshold,
+                       world_from_plane, result);
+}
+
+void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& surface, const GroundBend& bend,
+                                                    const Underside& underside, bool on_end_face,
+                                                    const ReliefLevelRuns* level_runs, double threshold,
+                                                    const Eigen::Isometry3d& world_from_plane, btManifoldResult* result) {
+  const GroundBend* bent = bend.flat() ? nullptr : &bend;
   ChosenReliefContacts chosen;
   bool conforming = false;
-  if (underside->kind == Underside::Kind::Box && boxReliefContacts(plane.surface(), *underside, threshold, chosen, &plane.levelRuns())) {
+  if (underside.kind == Underside::Kind::Box && !bent && boxReliefContacts(surface, underside, threshold, chosen, level_runs)) {
     // A box stands on the tops of the bumps under it: its spread points go to their basins'
     // bottoms (a flat relief leaves its corners). Not refined: its faces are flat. The rule of
-    // the branch below, computed row by row (box_relief_contacts.hpp).
+    // the branch below, computed row by row (box_relief_contacts.hpp); on flat ground only.
   } else {
     // Reused between steps so a resting object costs no allocation per step.
     thread_local std::vector<ReliefCandidate> candidates;
     candidates.clear();
-    const RasterStats raster = rasterizeRelief(plane.surface(), *underside, threshold, candidates);
+    const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, nullptr, bent);
     // A ball in a relief of its own curvature: contacts by position, one measure
     // (conforming_contact.hpp). Otherwise the deepest and the spread points.
     std::array<std::size_t, kMaxReliefContacts> picked{};
     std::size_t n = 0;
-    conforming = underside->kind == Underside::Kind::Sphere && raster.stride_i == 1 && raster.stride_j == 1 && !candidates.empty() &&
-                 (n = selectConformingContacts(plane.surface(), *underside, candidates, picked)) > 0;
+    conforming = underside.kind == Underside::Kind::Sphere && raster.stride_i == 1 && raster.stride_j == 1 && !candidates.empty() &&
+                 (n = selectConformingContacts(surface, underside, candidates, picked)) > 0;
     if (on_end_face) {
-      const Eigen::Vector2d texel = plane.surface().mapping().texelSize(plane.surface().map()).cwiseAbs();
-      n = selectEndFaceContacts(candidates, *underside, texel.maxCoeff(), raster.stride_i, raster.stride_j, picked);
+      const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map()).cwiseAbs();
+      n = selectEndFaceContacts(candidates, underside, texel.maxCoeff(), raster.stride_i, raster.stride_j, picked);
     } else if (!conforming) {
       n = selectReliefContacts(candidates, picked);
     }
@@ -267,24 +308,24 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
     // (end_face_contacts.hpp), so only their deepest point is refined.
     if (conforming) {
       // Texel centres with their own normals, already measured: nothing to refine or snap.
-    } else if (n > 0 && underside->kind == Underside::Kind::Sphere) {
+    } else if (n > 0 && underside.kind == Underside::Kind::Sphere) {
       const std::array<std::size_t, kMaxReliefContacts> spread = picked;
       snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
       for (std::size_t k = 0; k < n; ++k)
-        if (k == 0 || picked[k] != spread[k]) candidates[picked[k]] = refineDeepest(plane.surface(), *underside, candidates[picked[k]]);
-    } else if (n > 0 && underside->kind == Underside::Kind::Box) {
+        if (k == 0 || picked[k] != spread[k]) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);
+    } else if (n > 0 && underside.kind == Underside::Kind::Box) {
       // A box whose footprint is visited with a stride (a huge box): the same rule on the texels visited.
       snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n), BasinClaim::NearestPoint);
     } else if (n > 0) {
-      candidates[picked[0]] = refineDeepest(plane.surface(), *underside, candidates[picked[0]]);
+      candidates[picked[0]] = refineDeepest(surface, underside, candidates[picked[0]], bent);
     }
     for (std::size_t k = 0; k < n; ++k) chosen.contacts[k] = candidates[picked[k]];
     chosen.count = n;
   }
 
   // A box's face resting on a crease of the relief takes the face's normal (crease_contact.hpp).
-  if (underside->kind == Underside::Kind::Box) faceNormalsOnCreases(plane.surface(), *underside, chosen);
-  addReliefContacts(std::span(chosen.contacts.data(), chosen.count), *underside, plane.surface(), GroundBend{},
+  if (underside.kind == Underside::Kind::Box) faceNormalsOnCreases(surface, underside, chosen);
+  addReliefContacts(std::span(chosen.contacts.data(), chosen.count), underside, surface, bend,
                     world_from_plane, conforming, threshold, result);
   // Kept points follow the body and are dropped once they separate or slide beyond the
   // threshold, as in Bullet's own algorithms (kept without this, stale points stayed).
@@ -292,13 +333,16 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
 }
 
 bool reliefTakesMeshPair(const btCollisionShape& object, const btCollisionShape& mesh) {
-  return faceTextureOf(object) != nullptr && meshReliefOf(mesh) != nullptr;
+  if (meshReliefOf(mesh) == nullptr) return false;
+  if (faceTextureOf(object) != nullptr) return true;
+  const int type = object.getShapeType();
+  return type == BOX_SHAPE_PROXYTYPE || type == CAPSULE_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE;
 }
 
 namespace {
 
-// Box against a triangle mesh: ours for a textured box on a relief-textured mesh, Bullet's
-// convex-concave algorithm (its default for the pair) otherwise. Decided when Bullet makes the
+// Box, capsule or cylinder against a triangle mesh: ours on a relief-textured mesh (reliefTakesMeshPair),
+// Bullet's convex-concave algorithm (its default for the pair) otherwise. Decided when Bullet makes the
 // pair's algorithm; a shape's texture is fixed when it is added.
 struct MeshPairCreateFunc : btCollisionAlgorithmCreateFunc {
   explicit MeshPairCreateFunc(bool swapped) { m_swapped = swapped; }
@@ -327,8 +371,10 @@ void registerReliefCollision(btCollisionDispatcher& dispatcher) {
   }
   static MeshPairCreateFunc mesh_direct(false);
   static MeshPairCreateFunc mesh_swapped(true);
-  dispatcher.registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, TRIANGLE_MESH_SHAPE_PROXYTYPE, &mesh_direct);
-  dispatcher.registerCollisionCreateFunc(TRIANGLE_MESH_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &mesh_swapped);
+  for (int type : {BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE}) {
+    dispatcher.registerCollisionCreateFunc(type, TRIANGLE_MESH_SHAPE_PROXYTYPE, &mesh_direct);
+    dispatcher.registerCollisionCreateFunc(TRIANGLE_MESH_SHAPE_PROXYTYPE, type, &mesh_swapped);
+  }
 }
 
 }  // namespace thx::phys

@@ -9,9 +9,10 @@
 // merged with the new ones: a box with a relief on its faces (textured_box.hpp), grouped by normal
 // into up to five manifolds (relief_collision.cpp, texturedBoxCollision), and a cylinder standing
 // on an end face, on two rim points of the face's fall line (end_face_contacts.hpp).
-// The same textured box against a relief-textured mesh (mesh_relief_chart.hpp) takes the same rule
-// on the mesh's chart under it, the relief standing on the mesh's bend; each point names the
-// triangle under it (m_index1), as Bullet's own points on a mesh do.
+// A box (textured or not), capsule or cylinder against a relief-textured mesh (mesh_relief_chart.hpp)
+// takes the same rule on the mesh's chart under it, the relief standing on the mesh's bend; each
+// point names the triangle under it (m_index1), as Bullet's own points on a mesh do. A sphere on
+// such a mesh stays with Bullet's sphere-triangle points, lifted onto the relief (mesh_contact.hpp).
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher
 // hands the pair in): normal = relief normal in world frame, pointing from the relief to the
@@ -64,10 +65,16 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
                             btManifoldResult* result);
   btPersistentManifold* groupManifold(std::size_t g, const btCollisionObject* object, const btCollisionObject* relief);
   void clearGroupManifolds();
-  // A textured box against a relief-textured mesh (mesh_relief_chart.hpp): the same rule on the
-  // mesh's chart under the box.
+  // An untextured object (the plane's general rule: raster, selection, basins, refinement), on the
+  // relief plane or on a mesh's chart standing on its bend; `level_runs` (the plane's) lets a box's
+  // row-by-row path skip level stretches, on flat ground only.
+  void plainObjectCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const Underside& underside,
+                            bool on_end_face, const ReliefLevelRuns* level_runs, double threshold,
+                            const Eigen::Isometry3d& world_from_plane, btManifoldResult* result);
+  // An object against a relief-textured mesh (mesh_relief_chart.hpp): the same rule as on the
+  // plane (a textured box's, `faces`, or the untextured one's) on the mesh's chart under it.
   void meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                     const MeshRelief& relief, const FaceTexture& faces, btManifoldResult* result);
+                     const MeshRelief& relief, const FaceTexture* faces, btManifoldResult* result);
 
   bool swapped_ = false;  // true: body0 is the relief plane, body1 the object
   std::uint32_t foot_triangle_ = 0xffffffffu;  // on a mesh: the triangle under the box last step
@@ -77,12 +84,13 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
 // The shapes the relief algorithm understands, seen from the plane; nullopt for any other shape.
 std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen::Isometry3d& plane_from_object);
 
-// Whether the relief algorithm takes this (object, mesh) pair: a textured box against a mesh with
-// a relief attached (mesh_relief_chart.hpp). Bullet's own convex-concave algorithm takes the rest.
+// Whether the relief algorithm takes this (object, mesh) pair: a box (textured or not), capsule or
+// cylinder against a mesh with a relief attached (mesh_relief_chart.hpp). Bullet's own
+// convex-concave algorithm takes the rest (a sphere, any mesh without a relief).
 bool reliefTakesMeshPair(const btCollisionShape& object, const btCollisionShape& mesh);
 
 // Registers the algorithm for sphere, box, capsule and cylinder against CUSTOM_CONCAVE_SHAPE_TYPE,
-// in both orders, and for a textured box against a relief-textured mesh. The create functions are static: they outlive any dispatcher.
+// in both orders, and for box, capsule and cylinder against a triangle mesh (ours on a relief mesh). The create functions are static: they outlive any dispatcher.
 void registerReliefCollision(btCollisionDispatcher& dispatcher);
 
 }  // namespace thx::phys

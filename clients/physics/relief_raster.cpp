@@ -106,13 +106,15 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   return stats;
 }
 
-ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c) {
+ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,
+                              const GroundBend* bend) {
   const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map());
+  auto raised = [&](double x, double y) { return bend ? bend->height(x, y) : 0.0; };
   // Depth at a neighbouring texel centre (di, dj texels away); NaN where the object is absent.
   auto depthAt = [&](int di, int dj) {
     const tex::TexelPoint t = surface.texelPoint(c.i + di, c.j + dj);
     const std::optional<double> z = lowestZ(shape, t.q_local.x(), t.q_local.y());
-    return z ? *z - t.q_local.z() : std::nan("");
+    return z ? *z - t.q_local.z() - raised(t.q_local.x(), t.q_local.y()) : std::nan("");
   };
   // Vertex of the parabola through (-1, m), (0, d0), (1, p), kept inside the texel.
   auto vertex = [&](double m, double p) {
@@ -127,10 +129,11 @@ ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Undersi
   const std::optional<double> z = lowestZ(shape, x, y);
   if (!z) return c;
   const tex::SurfacePoint s = surface.at(x, y);
+  const double height = s.height_m + raised(x, y);
   ReliefCandidate r = c;
-  r.p_surface = Eigen::Vector3d(x, y, s.height_m);
-  r.n_local = s.n_local;
-  r.depth = *z - s.height_m;
+  r.p_surface = Eigen::Vector3d(x, y, height);
+  r.n_local = bend ? bend->tilt(s.n_local, x, y) : s.n_local;
+  r.depth = *z - height;
   return r;
 }
 

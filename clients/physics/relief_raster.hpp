@@ -51,7 +51,9 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
 // deepest of four equal texels pushes the ball sideways, the next step another one pushes it
 // back (measured: 0.4 mm/s jitter). A parabola through the depths of the texel and its four
 // neighbours locates the minimum within the texel; the relief is then sampled there bilinearly
-// (the project's one sampling convention) for its height and normal.
-ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c);
+// (the project's one sampling convention) for its height and normal. With `bend`, on the bent
+// ground as rasterizeRelief reads it.
+ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,
+                              const GroundBend* bend = nullptr);
 
 }  // namespace thx::phys

@@ -9,6 +9,7 @@
 
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/textured_box.hpp"
+#include "meshes/mesh_generators.hpp"
 #include "tests/physics/physics_fixtures.hpp"
 
 namespace thx::phys::test::grooved_block {
@@ -75,5 +76,35 @@ struct Scene {
     return pushBlock(*world, *block, force_over_weight, seconds, ramp_seconds);
   }
 };
+
+// The same grooves on a curved mesh (tests/physics/test_textured_box_on_mesh.cpp,
+// test_plain_objects_on_relief_mesh.cpp): the inside of a pipe along y, 16 whole tiles round so
+// the grooves keep their 4 mm period, its lowest line (a ridge, u = 12 tiles) at z = 0 and
+// y = kTroughLength / 2; or the top face of a flat slab at z = 0. Each laid with the grooves'
+// relief (`map`, which must outlive the world) at one tile per 4 cm.
+inline constexpr double kTroughRadius = 16 * kExtent / (2 * kPi), kTroughLength = 0.1;
+inline mesh::GeneratedMesh groovedGround(bool trough) {
+  return trough ? mesh::cylinder(kTroughRadius, kTroughLength, 256, 8, kExtent, true)
+                : mesh::box({0.2, 0.2, 0.02}, 0.02, kExtent);
+}
+// Adds `ground` (groovedGround(trough)) to the world; returns the lowest point of its middle.
+inline Eigen::Vector3d addGroovedGround(PhysicsWorld& world, const mesh::GeneratedMesh& ground, bool trough,
+                                        const tex::TextureMap& map) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d bottom = Eigen::Vector3d::Zero();
+  if (trough) {
+    // The pipe's axis (z) turned onto y, its centre line raised by its radius.
+    pose.linear() = Eigen::AngleAxisd(-0.5 * kPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    pose.translation() = Eigen::Vector3d(0.0, 0.0, kTroughRadius);
+    bottom = Eigen::Vector3d(0.0, 0.5 * kTroughLength, 0.0);
+  } else {
+    pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.01);
+  }
+  MeshContactOptions options;
+  options.texture = &map;
+  options.normals_made_for_m = Eigen::Vector2d::Constant(kExtent);
+  world.addTexturedMesh(ground.mesh, pose, {1.0, 0.0, 0.0}, options);
+  return bottom;
+}
 
 }  // namespace thx::phys::test::grooved_block
