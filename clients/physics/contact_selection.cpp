@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace thx::phys {
@@ -73,6 +74,42 @@ bool nearestClaims(const Eigen::Vector2d& start, const Eigen::Vector2d& bottom, 
   for (const Eigen::Vector2d& o : others)
     if ((bottom - o).squaredNorm() <= own) return false;
   return true;
+}
+
+std::size_t selectLyingRodContacts(std::span<const ReliefCandidate> cand, const Eigen::Vector2d& centre_xy,
+                                   const Eigen::Vector2d& axis_xy, double band_m,
+                                   std::array<std::size_t, kMaxReliefContacts>& chosen) {
+  constexpr double kLyingCos = 0.5;  // within 60 degrees of the plane
+  const double length = axis_xy.norm();
+  if (cand.empty() || !(length > kLyingCos)) return 0;
+  const Eigen::Vector2d along = axis_xy / length, across(-along.y(), along.x());
+  double first = std::numeric_limits<double>::infinity(), last = -first;
+  for (const ReliefCandidate& c : cand) {
+    const double a = (xy(c) - centre_xy).dot(along);
+    first = std::min(first, a), last = std::max(last, a);
+  }
+  // best[2 * end + side]: the deepest at that end (0: the first along the axis) on that side.
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  std::array<std::size_t, 4> best;
+  best.fill(kNone);
+  for (std::size_t k = 0; k < cand.size(); ++k) {
+    const Eigen::Vector2d d = xy(cand[k]) - centre_xy;
+    const double a = d.dot(along);
+    const std::size_t side = d.dot(across) < 0.0 ? 0 : 1;
+    for (std::size_t end = 0; end < 2; ++end) {
+      if (end == 0 ? a > first + band_m : a < last - band_m) continue;
+      std::size_t& b = best[2 * end + side];
+      if (b == kNone || cand[k].depth < cand[b].depth) b = k;
+    }
+  }
+  std::size_t n = 0;
+  for (std::size_t b : best)
+    if (b != kNone && std::find(chosen.begin(), chosen.begin() + std::ptrdiff_t(n), b) == chosen.begin() + std::ptrdiff_t(n))
+      chosen[n++] = b;
+  // Deepest first (an insertion sort: four at most).
+  for (std::size_t i = 1; i < n; ++i)
+    for (std::size_t j = i; j > 0 && cand[chosen[j]].depth < cand[chosen[j - 1]].depth; --j) std::swap(chosen[j], chosen[j - 1]);
+  return n;
 }
 
 void snapToBasins(std::span<const ReliefCandidate> cand, long long stride_i, long long stride_j,

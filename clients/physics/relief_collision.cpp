@@ -294,18 +294,29 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     // (conforming_contact.hpp). Otherwise the deepest and the spread points.
     std::array<std::size_t, kMaxReliefContacts> picked{};
     std::size_t n = 0;
+    bool lying_rod = false;
     conforming = underside.kind == Underside::Kind::Sphere && raster.stride_i == 1 && raster.stride_j == 1 && !candidates.empty() &&
                  (n = selectConformingContacts(surface, underside, candidates, picked)) > 0;
+    const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map()).cwiseAbs();
+    const bool rod = underside.kind == Underside::Kind::Capsule || underside.kind == Underside::Kind::Cylinder;
     if (on_end_face) {
-      const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map()).cwiseAbs();
       n = selectEndFaceContacts(candidates, underside, texel.maxCoeff(), raster.stride_i, raster.stride_j, picked);
+    } else if (rod) {
+      // Along its lines of contact, each end and each side (contact_selection.hpp); a rod standing
+      // steeply takes the general rule.
+      const Eigen::Vector3d axis = underside.plane_from_object.linear().col(underside.axis);
+      const double band = 1.5 * std::max(texel.x() * double(raster.stride_i), texel.y() * double(raster.stride_j));
+      n = selectLyingRodContacts(candidates, underside.plane_from_object.translation().head<2>(), axis.head<2>(), band,
+                                 picked);
+      lying_rod = n > 0;
+      if (!lying_rod) n = selectReliefContacts(candidates, picked);
     } else if (!conforming) {
       n = selectReliefContacts(candidates, picked);
     }
     // Round objects roll on their contacts: locate them within their texels (relief_raster.hpp).
-    // A sphere touches at the bottoms of basins (contact_selection.hpp); a capsule or cylinder
-    // lying flat touches along a line of equal depths, and a standing cylinder's face is flat
-    // (end_face_contacts.hpp), so only their deepest point is refined.
+    // A sphere touches at the bottoms of basins (contact_selection.hpp); a lying rod on its lines
+    // of contact, each refined across its line; a standing cylinder's face is flat
+    // (end_face_contacts.hpp), so only its deepest point is refined.
     if (conforming) {
       // Texel centres with their own normals, already measured: nothing to refine or snap.
     } else if (n > 0 && underside.kind == Underside::Kind::Sphere) {
@@ -316,6 +327,8 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     } else if (n > 0 && underside.kind == Underside::Kind::Box) {
       // A box whose footprint is visited with a stride (a huge box): the same rule on the texels visited.
       snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n), BasinClaim::NearestPoint);
+    } else if (lying_rod) {
+      for (std::size_t k = 0; k < n; ++k) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);
     } else if (n > 0) {
       candidates[picked[0]] = refineDeepest(surface, underside, candidates[picked[0]], bent);
     }

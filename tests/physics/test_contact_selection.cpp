@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <utility>
 #include <vector>
@@ -158,6 +159,45 @@ TEST(SnapToBasins, PlateausAndSingleCandidatesStay) {
   snapToBasins(c, 1, 1, chosen);
   EXPECT_EQ(chosen[0], 0u);
   EXPECT_EQ(chosen[1], 1u) << "equal depths: no strictly lower neighbour";
+}
+
+// A rod along y lying in a V-groove: its lines of contact at x = -1 and +1 mm (depth -1 µm,
+// the deeper at the left end), the walls' fringe farther out (x = +-2 mm, 100 µm gaps: where the
+// spread rule went) and the groove's floor under the axis (50 µm), every 0.5 mm from y = -10 to 10.
+std::vector<ReliefCandidate> rodInAGroove() {
+  std::vector<ReliefCandidate> c;
+  for (double y = -10.0; y <= 10.0 + 1e-9; y += 0.5) {
+    c.push_back(at(-1e-3, y * 1e-3, -1e-6 + 1e-9 * y));
+    c.push_back(at(1e-3, y * 1e-3, -1e-6));
+    for (double x : {-2.0, 2.0}) c.push_back(at(x * 1e-3, y * 1e-3, 1e-4));
+    c.push_back(at(0.0, y * 1e-3, 5e-5));
+  }
+  return c;
+}
+
+TEST(ContactSelection, ALyingRodTakesEachEndOfEachLineOfContact) {
+  const std::vector<ReliefCandidate> c = rodInAGroove();
+  std::array<std::size_t, kMaxReliefContacts> chosen{};
+  const std::size_t n = selectLyingRodContacts(c, Eigen::Vector2d::Zero(), Eigen::Vector2d(0.0, 1.0), 7.5e-4, chosen);
+  ASSERT_EQ(n, 4u);
+  const std::vector<std::size_t> idx(chosen.begin(), chosen.begin() + 4);
+  EXPECT_EQ(positionsMm(c, idx), (std::set<std::pair<long, long>>{{-1, -10}, {-1, 10}, {1, -10}, {1, 10}}));
+  // Deepest first: the left line's far end (y = -10 mm).
+  EXPECT_EQ(positionsMm(c, {chosen[0]}), (std::set<std::pair<long, long>>{{-1, -10}}));
+  for (std::size_t k = 1; k < n; ++k) EXPECT_LE(c[chosen[k - 1]].depth, c[chosen[k]].depth);
+  // The spread rule, for comparison, takes the fringe up the walls.
+  const std::vector<std::size_t> spread = select(c);
+  long fringe = 0;
+  for (std::size_t k : spread) fringe += std::fabs(c[k].p_surface.x()) > 1.5e-3;
+  EXPECT_GE(fringe, 2);
+}
+
+TEST(ContactSelection, ARodSteeperThanSixtyDegreesTakesTheGeneralRule) {
+  const std::vector<ReliefCandidate> c = rodInAGroove();
+  std::array<std::size_t, kMaxReliefContacts> chosen{};
+  // Tilted 70 degrees: its axis's shadow on the plane is cos 70 = 0.34 long.
+  EXPECT_EQ(selectLyingRodContacts(c, Eigen::Vector2d::Zero(), Eigen::Vector2d(0.0, 0.34), 7.5e-4, chosen), 0u);
+  EXPECT_EQ(selectLyingRodContacts({}, Eigen::Vector2d::Zero(), Eigen::Vector2d(0.0, 1.0), 7.5e-4, chosen), 0u);
 }
 
 }  // namespace

@@ -42,20 +42,34 @@ TEST(PlainObjectsOnReliefMesh, TheRuleTakesBoxesCapsulesAndCylindersNotBalls) {
 TEST(PlainObjectsOnReliefMesh, ARodAlongAGrooveRestsWhereItsCircleTouchesBothWalls) {
   const RodScene on_plane(Ground::Plane, Rod::Capsule), flat(Ground::FlatMesh, Rod::Capsule),
       trough(Ground::Trough, Rod::Capsule);
-  // The texels' sampling of the walls (0.31 mm texels) leaves it 12 µm high on the plane.
-  EXPECT_NEAR(on_plane.rest.z(), inTheGroove(kRadius), 2e-5) << on_plane.rest.transpose();
+  // The texels' sampling leaves it 16 µm high on the plane at 0.31 mm texels (8 µm at 0.16 mm:
+  // bench_rod_in_groove).
+  EXPECT_NEAR(on_plane.rest.z(), inTheGroove(kRadius), 2.5e-5) << on_plane.rest.transpose();
   EXPECT_NEAR(on_plane.rest.x(), 0.5 * kPeriod, 1e-5);
   // A flat mesh's chart is the plane: the same answer.
   EXPECT_NEAR(flat.rest.z(), on_plane.rest.z(), 1e-6) << flat.rest.transpose();
   EXPECT_NEAR(std::fabs(flat.rest.x() - on_plane.rest.x()), 0.0, 1e-5);
   // In the pipe the groove's floor stands on the bend (19 µm up, 2 mm from the bottom line) and
-  // its walls lean by the bend's slope (1.1 degrees): the same rule within a few texel-sampling errors.
+  // its walls lean by the bend's slope (1.1 degrees): the same rule within a few texel-sampling
+  // errors (25 µm).
   const double bend = 0.5 * trough.rest.x() * trough.rest.x() / kTroughRadius;
   RecordProperty("trough_above_theory_um", int(std::lround((trough.rest.z() - inTheGroove(kRadius) - bend) * 1e6)));
-  EXPECT_NEAR(trough.rest.z(), inTheGroove(kRadius) + bend, 3e-5) << trough.rest.transpose();
+  EXPECT_NEAR(trough.rest.z(), inTheGroove(kRadius) + bend, 3.5e-5) << trough.rest.transpose();
   EXPECT_NEAR(trough.rest.x(), 0.5 * kPeriod, 1e-4);
   // Before plain objects met the relief, it lay on the smooth surface: r above the ridges.
   EXPECT_LT(trough.rest.z(), kRadius - 0.5 * kDepth);
+}
+
+TEST(PlainObjectsOnReliefMesh, ACylinderOnItsSideRestsAsTheCapsuleOfItsRadius) {
+  // Both touch along the same two lines, one on each wall (selectLyingRodContacts); before, the
+  // cylinder was held by one wall at one end and rested 54 µm into the walls.
+  for (const Ground ground : {Ground::Plane, Ground::Trough}) {
+    const RodScene capsule(ground, Rod::Capsule), cylinder(ground, Rod::LyingCylinder);
+    EXPECT_NEAR(cylinder.rest.z(), capsule.rest.z(), 1e-6) << int(ground);
+    EXPECT_NEAR(cylinder.rest.x(), capsule.rest.x(), 1e-6) << int(ground);
+    // Not walked along the groove by its contacts.
+    EXPECT_NEAR(cylinder.rest.y(), capsule.rest.y(), 1e-5) << int(ground);
+  }
 }
 
 TEST(PlainObjectsOnReliefMesh, PushedAcrossARodLeavesTheGrooveOnlyAboveTanWallOfItsWeight) {
