@@ -9,6 +9,7 @@
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include <algorithm>
+#include <iterator>
 #include <vector>
 
 #include "clients/physics/box_relief_contacts.hpp"
@@ -345,11 +346,16 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
   if (on_end_face) result->refreshContactPoints();
 }
 
+namespace {
+
+// The shapes that meet a relief mesh on its chart (a ball keeps Bullet's points, lifted).
+constexpr int kChartShapes[] = {BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE};
+
+}  // namespace
+
 bool reliefTakesMeshPair(const btCollisionShape& object, const btCollisionShape& mesh) {
   if (meshReliefOf(mesh) == nullptr) return false;
-  if (faceTextureOf(object) != nullptr) return true;
-  const int type = object.getShapeType();
-  return type == BOX_SHAPE_PROXYTYPE || type == CAPSULE_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE;
+  return std::find(std::begin(kChartShapes), std::end(kChartShapes), object.getShapeType()) != std::end(kChartShapes);
 }
 
 namespace {
@@ -384,7 +390,7 @@ void registerReliefCollision(btCollisionDispatcher& dispatcher) {
   }
   static MeshPairCreateFunc mesh_direct(false);
   static MeshPairCreateFunc mesh_swapped(true);
-  for (int type : {BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE}) {
+  for (int type : kChartShapes) {
     dispatcher.registerCollisionCreateFunc(type, TRIANGLE_MESH_SHAPE_PROXYTYPE, &mesh_direct);
     dispatcher.registerCollisionCreateFunc(TRIANGLE_MESH_SHAPE_PROXYTYPE, type, &mesh_swapped);
   }
