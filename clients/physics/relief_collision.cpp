@@ -7,6 +7,7 @@
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <algorithm>
 #include <iterator>
@@ -21,6 +22,7 @@
 #include "clients/physics/pair_contact_normal.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/relief_raster.hpp"
+#include "clients/physics/speculative_contacts.hpp"
 #include "clients/physics/textured_box.hpp"
 
 namespace thx::phys {
@@ -72,12 +74,24 @@ double reachOf(const btCollisionShape& shape) {
   }
 }
 
+// The object's motion as its rigid body has it (none for a collision object without a body).
+BodyMotion motionOf(const btCollisionObject& object) {
+  BodyMotion motion;
+  motion.centre = toEigen(object.getWorldTransform().getOrigin());
+  if (const btRigidBody* body = btRigidBody::upcast(&object)) {
+    motion.centre = toEigen(body->getCenterOfMassPosition());
+    motion.linear = toEigen(body->getLinearVelocity());
+    motion.angular = toEigen(body->getAngularVelocity());
+  }
+  return motion;
+}
+
 // Adds the chosen contacts (deepest first) to the result's manifold (relief_collision.hpp's
 // convention).
 void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside& underside,
                        const tex::TexturedSurface& surface, const GroundBend& bend,
                        const Eigen::Isometry3d& world_from_plane, bool conforming, double threshold,
-                       btManifoldResult* result) {
+                       btManifoldResult* result, const BodyMotion* ball = nullptr) {
   // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
   // within the breaking threshold of the new one. The chosen points come deepest first, so a
   // later point that close is skipped instead: the deeper one must win. (For a sphere every
@@ -101,6 +115,9 @@ void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside&
     const double gap_below_q = q.z() - surface.at(q.x(), q.y()).height_m - bend.height(q.x(), q.y());
     const double distance = conforming ? c.depth : std::max((q - c.p_surface).dot(c.n_local), gap_below_q * c.n_local.z());
     const Eigen::Vector3d on_object = world_from_plane * q;
+    // A ball's further point still open while it moves onto it: an impact still to come, which
+    // Bullet would take early (speculative_contacts.hpp).
+    if (ball && &c != &chosen.front() && !keepFurtherContact(distance, approachSpeed(*ball, on_object, n_world))) continue;
     bool duplicate = false;
     for (std::size_t a = 0; a < added_count; ++a)
       duplicate = duplicate || (added[a] - on_object).squaredNorm() < threshold * threshold;
@@ -222,7 +239,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
     const bool on_end_face = standsOnEndFace(*underside);
     if (!on_end_face) manifold->clearManifold();
     plainObjectCollision(chart.surface, chart.bend, *underside, on_end_face, nullptr, threshold, world_from_chart,
-                         result);
+                         motionOf(*object.getCollisionObject()), result);
   }
   // Each point names the triangle under it on the mesh's side, as Bullet's own points do (the
   // physics client reads a contact's texel through it).
@@ -272,13 +289,14 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   }
   clearGroupManifolds();
   plainObjectCollision(plane.surface(), GroundBend{}, *underside, on_end_face, &plane.levelRuns(), threshold,
-                       world_from_plane, result);
+                       world_from_plane, motionOf(*object->getCollisionObject()), result);
 }
 
 void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& surface, const GroundBend& bend,
                                                     const Underside& underside, bool on_end_face,
                                                     const ReliefLevelRuns* level_runs, double threshold,
-                                                    const Eigen::Isometry3d& world_from_plane, btManifoldResult* result) {
+                                                    const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
+                                                    btManifoldResult* result) {
   const GroundBend* bent = bend.flat() ? nullptr : &bend;
   ChosenReliefContacts chosen;
   bool conforming = false;
@@ -339,8 +357,11 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
 
   // A box's face resting on a crease of the relief takes the face's normal (crease_contact.hpp).
   if (underside.kind == Underside::Kind::Box) faceNormalsOnCreases(surface, underside, chosen);
+  // A ball's further points are left out while it moves onto them still open; a ball in a
+  // conforming cap keeps its ring (speculative_contacts.hpp).
+  const bool ball = underside.kind == Underside::Kind::Sphere && !conforming;
   addReliefContacts(std::span(chosen.contacts.data(), chosen.count), underside, surface, bend,
-                    world_from_plane, conforming, threshold, result);
+                    world_from_plane, conforming, threshold, result, ball ? &motion : nullptr);
   // Kept points follow the body and are dropped once they separate or slide beyond the
   // threshold, as in Bullet's own algorithms (kept without this, stale points stayed).
   if (on_end_face) result->refreshContactPoints();

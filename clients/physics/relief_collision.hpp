@@ -28,6 +28,7 @@
 #include "clients/physics/manifold_algorithm.hpp"
 #include "clients/physics/mesh_relief_chart.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
+#include "clients/physics/speculative_contacts.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "clients/physics/underside.hpp"
 
@@ -67,10 +68,11 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   void clearGroupManifolds();
   // An untextured object (the plane's general rule: raster, selection, basins, refinement), on the
   // relief plane or on a mesh's chart standing on its bend; `level_runs` (the plane's) lets a box's
-  // row-by-row path skip level stretches, on flat ground only.
+  // row-by-row path skip level stretches, on flat ground only; `motion` (the object's) decides
+  // which of a ball's further points Bullet may take (speculative_contacts.hpp).
   void plainObjectCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const Underside& underside,
                             bool on_end_face, const ReliefLevelRuns* level_runs, double threshold,
-                            const Eigen::Isometry3d& world_from_plane, btManifoldResult* result);
+                            const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion, btManifoldResult* result);
   // An object against a relief-textured mesh (mesh_relief_chart.hpp): the same rule as on the
   // plane (a textured box's, `faces`, or the untextured one's) on the mesh's chart under it.
   void meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,

@@ -2,7 +2,8 @@
 // the rolling-impact reference (rolling_over_ridges.hpp): the product's lifted ball loses its speed
 // where it cannot reach the troughs, as a rigid ball rolling without slipping does, and little
 // where it can; the steered ball (MeshContactOptions::lift_ball false, held on the smooth surface)
-// keeps it everywhere. benchmarks/bench_rolling_ridges.cpp measures the relief plane beside them.
+// keeps it everywhere. The relief plane follows the law too since a ball's open points ahead are
+// left out (speculative_contacts.hpp). benchmarks/bench_rolling_ridges.cpp measures them all.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "tests/physics/ridges_scene.hpp"
+#include "tests/support/sanitized_build.hpp"
 
 namespace thx::phys::test::test_relief_mesh_ridges {
 namespace {
@@ -40,24 +42,42 @@ TEST(ReliefMeshRidges, TheReferenceLosesSpeedAtTroughsSharperThanTheBall) {
   EXPECT_GT(stored.speedKeptPerPeriod(), 0.9999);
 }
 
+// The lifted ball on the mesh, and the ball on the relief plane.
 TEST(ReliefMeshRidges, ALiftedBallSlowsAtTheTroughsAsARigidBallRollingWithoutSlippingDoes) {
   for (const double slope : {0.05, 0.1}) {
     const tex::TextureMap map = sineRidges(slope);
     const RollingOverRidges reference = referenceFor(slope);
     const double expected = speedKept(reference.periodMeanSpeeds(0.25, kFirst + kPeriods + 1));
     ASSERT_LT(expected, 0.9);
-    for (const double dt : {1e-3, 2.5e-4}) {
-      const RidgeRun lifted = rollAcross(map, Ground::MeshLifted, dt, 0.25, 1.5);
-      const double kept = speedKept(lifted.period_speeds);
-      std::printf("[measured] slope %.2f, step %.2g ms: %.4f of the speed kept over %d periods (the rolling-impact law: "
-                  "%.4f, the touches' normals up to %.2f degrees apart at a trough); lowest %.1f um (%.1f)\n",
-                  slope, dt * 1e3, kept, kPeriods, expected, reference.largestJumpAngle() * 180.0 / kPi,
-                  lifted.lowest_m * 1e6, reference.lowest() * 1e6);
-      // Measured: -0.049 and -0.036 at slope 0.05 (1 and 0.25 ms), +0.046 and +0.003 at 0.1; a
-      // 1 ms step takes about 0.02 of its own (the next test).
-      EXPECT_NEAR(kept, expected, 0.065) << "slope " << slope << ", step " << dt;
-      // It sinks between the crests as the rigid ball does (steered, it would stay on their tops).
-      EXPECT_LT(lifted.lowest_m, 0.5 * reference.lowest()) << "slope " << slope << ", step " << dt;
+    for (const Ground ground : {Ground::MeshLifted, Ground::ReliefPlane}) {
+      const bool plane = ground == Ground::ReliefPlane;
+      // The plane rasterises the ball's footprint over 39 um texels: 0.6 ms a step here, 30 ms
+      // under the sanitizers (107 s for its 1 ms steps alone). They need the code path, which every
+      // relief-plane ball test runs; the statistics are the optimised tree's.
+      if (plane && thx::test::kSanitized) continue;
+      for (const double dt : {1e-3, 2.5e-4}) {
+        const RidgeRun run = rollAcross(map, ground, dt, 0.25, 1.5);
+        const double kept = speedKept(run.period_speeds);
+        std::printf("[measured] %s, slope %.2f, step %.2g ms: %.4f of the speed kept over %d periods (the rolling-impact "
+                    "law: %.4f, the touches' normals up to %.2f degrees apart at a trough); lowest %.1f um (%.1f)\n",
+                    plane ? "relief plane" : "mesh, lifted", slope, dt * 1e3, kept, kPeriods, expected,
+                    reference.largestJumpAngle() * 180.0 / kPi, run.lowest_m * 1e6, reference.lowest() * 1e6);
+        // Measured on the mesh: -0.049 and -0.036 at slope 0.05 (1 and 0.25 ms), +0.046 and +0.003
+        // at 0.1; a 1 ms step takes about 0.02 of its own (the next test). On the plane: -0.057 and
+        // -0.009, -0.014 and -0.006; with its open points ahead taken, -0.161 / -0.045 and
+        // -0.203 / -0.054.
+        const double tolerance = plane ? (dt > 5e-4 ? 0.08 : 0.02) : 0.065;
+        EXPECT_NEAR(kept, expected, tolerance) << (plane ? "plane" : "mesh") << ", slope " << slope << ", step " << dt;
+        // It sinks between the crests as the rigid ball does (steered, it would stay on their tops).
+        // On the plane an open point left out is met a step later, a little into the far flank:
+        // measured 11 and 18 um below the rigid ball's lowest at 1 ms (slopes 0.05 and 0.1), 3 and
+        // 5 um at 0.25 ms (with the open points taken: 4 and 0, 0.2 and 0).
+        if (plane) {
+          EXPECT_GT(run.lowest_m, reference.lowest() - (dt > 5e-4 ? 25e-6 : 8e-6)) << "slope " << slope << ", step " << dt;
+        } else {
+          EXPECT_LT(run.lowest_m, 0.5 * reference.lowest()) << "slope " << slope << ", step " << dt;
+        }
+      }
     }
   }
 }
