@@ -11,9 +11,7 @@ namespace thx::phys {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-// A face pair whose normal is this close to level bounds no z (underside.cpp's rule).
-constexpr double kParallel = 1e-12;
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
 // One pair of the box's opposite faces along the current row of texel centres (plane frame,
 // y fixed): where a vertical line at x enters and leaves the slab between them,
@@ -48,10 +46,10 @@ struct BoxSlabs {
       Axis& a = axis[k];
       a.u = box.plane_from_object.linear().col(Eigen::Index(k));
       a.h = box.half_extents[Eigen::Index(k)];
-      a.vertical = std::fabs(a.u.z()) < kParallel;
+      a.vertical = std::fabs(a.u.z()) < kParallelSine;
       any_vertical = any_vertical || a.vertical;
       if (a.vertical) {
-        a.inv_ux_dx = std::fabs(a.u.x()) >= kParallel ? 1.0 / (a.u.x() * dx) : 0.0;
+        a.inv_ux_dx = std::fabs(a.u.x()) >= kParallelSine ? 1.0 / (a.u.x() * dx) : 0.0;
         continue;
       }
       // Along the line the coordinate changes by u.z per metre of z: it enters the slab at the
@@ -75,7 +73,7 @@ struct BoxSlabs {
       RowSlab& s = slabs[k];
       s.s_row = (y - centre.y()) * a.u.y() - centre.z() * a.u.z() - centre.x() * a.u.x();
       if (a.vertical) {
-        s.a_lo = -kInf, s.a_hi = kInf, s.b = 0.0;
+        s.a_lo = -kUnbounded, s.a_hi = kUnbounded, s.b = 0.0;
         continue;
       }
       s.a_lo = (a.enter - s.s_row) * a.inv_uz;
@@ -96,7 +94,7 @@ void clipToVerticalSlabs(const BoxSlabs& box, const std::array<RowSlab, 3>& row,
     if (!a.vertical) continue;
     // |s_row + ux (x0 + gi dx)| <= h, i.e. -h <= s_row + ux x0 + (ux dx) gi <= h.
     const double c0 = row[k].s_row + a.u.x() * x0;
-    if (!(std::fabs(a.u.x()) >= kParallel)) {  // the slab's faces run along the row: all of it or none
+    if (!(std::fabs(a.u.x()) >= kParallelSine)) {  // the slab's faces run along the row: all of it or none
       if (std::fabs(c0) > a.h) first = 1, last = 0;
       continue;
     }
@@ -136,15 +134,15 @@ struct FootprintRow {
 // the same whichever way it is reached (a row's loop, a level stretch's ends, the basin walk).
 double texelDepth(const BoxSlabs& box, const FootprintRow& row, long long gi, double x, double height,
                   double threshold_m) {
-  if (gi < row.first_col || gi > row.last_col) return kInf;
+  if (gi < row.first_col || gi > row.last_col) return kUnbounded;
   const std::array<RowSlab, 3>& s = row.slabs;
   if (box.any_vertical)
     for (std::size_t k = 0; k < 3; ++k)
-      if (box.axis[k].vertical && !(std::fabs(s[k].s_row + box.axis[k].u.x() * x) <= box.axis[k].h)) return kInf;
+      if (box.axis[k].vertical && !(std::fabs(s[k].s_row + box.axis[k].u.x() * x) <= box.axis[k].h)) return kUnbounded;
   const double lo = std::max(std::max(s[0].a_lo + s[0].b * x, s[1].a_lo + s[1].b * x), s[2].a_lo + s[2].b * x);
   const double hi = std::min(std::min(s[0].a_hi + s[0].b * x, s[1].a_hi + s[1].b * x), s[2].a_hi + s[2].b * x);
   const double d = lo - height;
-  return lo <= hi && d < threshold_m ? d : kInf;
+  return lo <= hi && d < threshold_m ? d : kUnbounded;
 }
 
 // On a level stretch of a row (one relief height) the depth is convex in x (the largest of the
@@ -157,7 +155,7 @@ void touchingInterval(const BoxSlabs& box, const FootprintRow& row, double x0, d
   auto bound = [&](double c0, double c1, double inv_c1) {
     if (c1 > 0.0) hi = std::min(hi, -c0 * inv_c1);
     else if (c1 < 0.0) lo = std::max(lo, -c0 * inv_c1);
-    else if (c0 > 0.0) lo = kInf, hi = -kInf;
+    else if (c0 > 0.0) lo = kUnbounded, hi = -kUnbounded;
   };
   for (std::size_t k = 0; k < 3; ++k) {
     const RowSlab& p = row.slabs[k];
@@ -296,8 +294,8 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   // loop storing quiet_NaN one double at a time was a twentieth of a step at 1024².
   depth.resize(std::size_t(pitch * (nj + 2)));
   std::memset(depth.data(), 0xff, depth.size() * sizeof(double));
-  for (long long gi = 0; gi < pitch; ++gi) depth[std::size_t(gi)] = depth[std::size_t((nj + 1) * pitch + gi)] = kInf;
-  for (long long gj = 1; gj <= nj; ++gj) depth[std::size_t(gj * pitch)] = depth[std::size_t(gj * pitch + ni + 1)] = kInf;
+  for (long long gi = 0; gi < pitch; ++gi) depth[std::size_t(gi)] = depth[std::size_t((nj + 1) * pitch + gi)] = kUnbounded;
+  for (long long gj = 1; gj <= nj; ++gj) depth[std::size_t(gj * pitch)] = depth[std::size_t(gj * pitch + ni + 1)] = kUnbounded;
   columns.resize(std::size_t(ni));
   straight_to.resize(std::size_t(ni));
   for (long long gi = 0; gi < ni; ++gi) columns[std::size_t(gi)] = tex::resolveIndex(f.i0 + gi, map.width(), address);
@@ -326,7 +324,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
     return d;
   };
 
-  double deepest = kInf;
+  double deepest = kUnbounded;
   long long deepest_i = -1, deepest_j = -1;
   for (long long gj = 0; gj < nj; ++gj) {
     FootprintRow& row = rows[std::size_t(gj)];
@@ -370,8 +368,8 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
         touchingInterval(slabs, row, first.x(), height, threshold_m, lo, hi);
         long long a = (long long)std::clamp(lo, double(gi), double(level_to) + 1.0);
         long long b = (long long)std::clamp(hi, double(gi) - 1.0, double(level_to));
-        while (a <= b && !(depthAt(a, gj) < kInf)) ++a;
-        while (b >= a && !(depthAt(b, gj) < kInf)) --b;
+        while (a <= b && !(depthAt(a, gj) < kUnbounded)) ++a;
+        while (b >= a && !(depthAt(b, gj) < kUnbounded)) --b;
         if (a <= b) {
           std::array<long long, 8> at{};
           std::size_t n_at = 0;
@@ -407,7 +405,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
       while (end < row.last_col && stretchFrom(end + 1) < end + 1) ++end;
       for (long long g = gi; g <= end; ++g) depth_row[g] = texelDepth(slabs, row, g, xOf(g), heightAt(g, row.rj), threshold_m);
       for (; gi <= end; ++gi) {
-        if (depth_row[gi] < kInf) {
+        if (depth_row[gi] < kUnbounded) {
           if (run_start < 0) run_start = gi;
           consider(gi);
           one_level = false;  // a touching texel where the relief is not level for long

@@ -8,8 +8,9 @@
 // a textured box, from both reliefs: Otaduy et al.'s directional depth along the chart's normal.
 // Bullet's own box-triangle points are not used: they sit at the box's corners and edges, and a
 // point lying in one of the box's grooves does not touch the mesh at all (docs/physics.md,
-// "Textured objects"). One chart holds one smooth surface: an object across a crease of the mesh
-// (a rim, a box's edge) meets only the face under its centre.
+// "Textured objects"). One chart holds one smooth surface: where an object reaches across a
+// crease of the mesh (a rim, a box's edge) the chart stops at the crease, and the faces beyond it
+// are met as Bullet's triangles (chart_boundary.hpp).
 //
 // Only the side the mesh's winding faces is textured (a closed bowl's inside, a sphere's outside):
 // an object behind the winding gets no contacts from the chart.

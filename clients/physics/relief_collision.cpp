@@ -128,6 +128,36 @@ void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside&
   }
 }
 
+// Bullet's points for the pair (object, mesh), kept only on the faces across a crease from the
+// chart whose normal is `chart_normal` (mesh frame; zero: every face). The mesh is the result's
+// second body, so Bullet names each point's triangle in m_index1.
+class BeyondCreaseResult : public btManifoldResult {
+ public:
+  BeyondCreaseResult(const btCollisionObjectWrapper* object, const btCollisionObjectWrapper* mesh,
+                     const mesh::TexturedMesh& triangles, const Eigen::Vector3d& chart_normal)
+      : btManifoldResult(object, mesh), mesh_(triangles), chart_normal_(chart_normal) {}
+
+  void addContactPoint(const btVector3& normal, const btVector3& point, btScalar depth) override {
+    if (m_index1 < 0 || std::size_t(m_index1) >= mesh_.triangles.size()) return;
+    const mesh::Triangle& t = mesh_.triangles[std::size_t(m_index1)];
+    const Eigen::Vector3d& p0 = mesh_.positions[t[0]];
+    const Eigen::Vector3d face = (mesh_.positions[t[1]] - p0).cross(mesh_.positions[t[2]] - p0);
+    if (!acrossCrease(face.normalized(), chart_normal_)) return;
+    btManifoldResult::addContactPoint(normal, point, depth);
+  }
+
+ private:
+  const mesh::TexturedMesh& mesh_;
+  Eigen::Vector3d chart_normal_;
+};
+
+// A mesh chart's texels past its boundary are not the mesh's (chart_boundary.hpp). The basin walks
+// find candidates by their texels' (i, j), so a gap in the raster is only a texel not there.
+void dropPastBoundary(const ChartBoundary* boundary, std::vector<ReliefCandidate>& candidates) {
+  if (!boundary || boundary->count == 0) return;
+  std::erase_if(candidates, [&](const ReliefCandidate& c) { return boundary->past(c.p_surface); });
+}
+
 // Which group of a textured box's contacts a normal (plane frame) falls in: 0 within 6° of the
 // plane's normal, else 1-4 by the quarter of the plane its tilt leans towards (centred on +x, +y,
 // -x, -y). Contacts on walls that face each other land in different groups, so each group's four
@@ -145,14 +175,16 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapper& object,
                                                     const btCollisionObjectWrapper& relief, const tex::TexturedSurface& surface,
                                                     const GroundBend& bend, const Underside& underside,
-                                                    const FaceTexture& faces, double threshold,
-                                                    const Eigen::Isometry3d& world_from_plane, btManifoldResult* result) {
+                                                    const FaceTexture& faces, const ChartBoundary* boundary,
+                                                    double threshold, const Eigen::Isometry3d& world_from_plane,
+                                                    btManifoldResult* result) {
   // Reused between steps so a resting box costs no allocation per step.
   thread_local std::vector<ReliefCandidate> candidates, group;
   thread_local std::vector<std::size_t> group_index, taken;
   candidates.clear();
   taken.clear();
   const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend);
+  dropPastBoundary(boundary, candidates);
   const TexturedBoxSurface box_surface(underside, faces);
   for (std::size_t g = 0; g < kNormalGroups; ++g) {
     btPersistentManifold* manifold = g == 0 ? manifoldFor(object.getCollisionObject(), relief.getCollisionObject())
@@ -204,16 +236,26 @@ void ReliefCollisionAlgorithm::clearGroupManifolds() {
 ReliefCollisionAlgorithm::~ReliefCollisionAlgorithm() {
   for (btPersistentManifold* m : groups_)
     if (m) m_dispatcher->releaseManifold(m);
+  if (beyond_crease_) {
+    beyond_crease_->~btCollisionAlgorithm();
+    m_dispatcher->freeCollisionAlgorithm(beyond_crease_);
+  }
 }
 
 void ReliefCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
+  chartManifolds(manifolds);
+  if (beyond_crease_) beyond_crease_->getAllContactManifolds(manifolds);
+}
+
+void ReliefCollisionAlgorithm::chartManifolds(btManifoldArray& manifolds) {
   ManifoldAlgorithm::getAllContactManifolds(manifolds);
   for (btPersistentManifold* m : groups_)
     if (m) manifolds.push_back(m);
 }
 
 void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                                             const MeshRelief& relief, const FaceTexture* faces, btManifoldResult* result) {
+                                             const MeshRelief& relief, const FaceTexture* faces,
+                                             const btDispatcherInfo& info, btManifoldResult* result) {
   btPersistentManifold* manifold = manifoldFor(object.getCollisionObject(), mesh.getCollisionObject());
   result->setPersistentManifold(manifold);
   const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
@@ -225,26 +267,39 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
     // Behind the winding: nothing textured to meet (mesh_relief_chart.hpp).
     manifold->clearManifold();
     clearGroupManifolds();
+    clearBeyondCrease();
     return;
   }
-  const Eigen::Isometry3d world_from_chart = world_from_mesh * chart.surface.mapping().plane_to_world;
+  const Eigen::Isometry3d& mesh_from_chart = chart.surface.mapping().plane_to_world;
+  const Eigen::Isometry3d world_from_chart = world_from_mesh * mesh_from_chart;
+  // Where the chart stops: faces across a crease within the object's reach (chart_boundary.hpp).
+  const double threshold = double(manifold->getContactBreakingThreshold());
+  btVector3 aabb_min, aabb_max;
+  shape.getAabb(toBt(Eigen::Isometry3d(world_from_mesh.inverse() * world_from_object)), aabb_min, aabb_max);
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(threshold);
+  const Eigen::AlignedBox3d reach(toEigen(aabb_min) - margin, toEigen(aabb_max) + margin);
+  const mesh::TexturedMesh& triangles = *relief.mesh.mesh;
+  const mesh::Triangle& foot = triangles.triangles[chart.triangle];
+  const Eigen::Vector3d foot_middle =
+      (triangles.positions[foot[0]] + triangles.positions[foot[1]] + triangles.positions[foot[2]]) / 3.0;
+  const ChartBoundary boundary = chartBoundary(static_cast<const btConcaveShape&>(*mesh.getCollisionShape()), mesh_from_chart,
+                                               (mesh_from_chart.inverse() * foot_middle).head<2>(), reach);
   const std::optional<Underside> underside = undersideOf(shape, world_from_chart.inverse() * world_from_object);
   if (!underside) return;
-  const double threshold = double(manifold->getContactBreakingThreshold());
   if (faces) {
-    texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, *faces, threshold,
+    texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, *faces, &boundary, threshold,
                          world_from_chart, result);
   } else {
     // An untextured object: the plane's rule on the chart (points afresh each step, as there).
     const bool on_end_face = standsOnEndFace(*underside);
     if (!on_end_face) manifold->clearManifold();
-    plainObjectCollision(chart.surface, chart.bend, *underside, on_end_face, nullptr, threshold, world_from_chart,
-                         motionOf(*object.getCollisionObject()), result);
+    plainObjectCollision(chart.surface, chart.bend, *underside, on_end_face, nullptr, &boundary, threshold,
+                         world_from_chart, motionOf(*object.getCollisionObject()), result);
   }
   // Each point names the triangle under it on the mesh's side, as Bullet's own points do (the
   // physics client reads a contact's texel through it).
   btManifoldArray manifolds;
-  getAllContactManifolds(manifolds);
+  chartManifolds(manifolds);
   const Eigen::Isometry3d mesh_from_world = world_from_mesh.inverse();
   for (int m = 0; m < manifolds.size(); ++m) {
     for (int k = 0; k < manifolds[m]->getNumContacts(); ++k) {
@@ -253,15 +308,39 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
       p.m_index1 = int(triangleUnder(relief, mesh_from_world * toEigen(p.getPositionWorldOnB()), chart.triangle));
     }
   }
+  if (boundary.beyond_faces) {
+    beyondCreaseCollision(object, mesh, relief, mesh_from_chart.linear().col(2), info);
+  } else {
+    clearBeyondCrease();
+  }
+}
+
+void ReliefCollisionAlgorithm::beyondCreaseCollision(const btCollisionObjectWrapper& object,
+                                                     const btCollisionObjectWrapper& mesh, const MeshRelief& relief,
+                                                     const Eigen::Vector3d& chart_normal, const btDispatcherInfo& info) {
+  if (!beyond_crease_) {
+    btCollisionAlgorithmConstructionInfo ci(m_dispatcher, 0);
+    void* memory = m_dispatcher->allocateCollisionAlgorithm(int(sizeof(btConvexConcaveCollisionAlgorithm)));
+    beyond_crease_ = new (memory) btConvexConcaveCollisionAlgorithm(ci, &object, &mesh, false);
+  }
+  BeyondCreaseResult result(&object, &mesh, *relief.mesh.mesh, chart_normal);
+  beyond_crease_->processCollision(&object, &mesh, info, &result);
+}
+
+void ReliefCollisionAlgorithm::clearBeyondCrease() {
+  if (!beyond_crease_) return;
+  btManifoldArray manifolds;
+  beyond_crease_->getAllContactManifolds(manifolds);
+  for (int m = 0; m < manifolds.size(); ++m) manifolds[m]->clearManifold();
 }
 
 void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
-                                                const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
+                                                const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                                                 btManifoldResult* result) {
   const btCollisionObjectWrapper* object = swapped_ ? body1 : body0;
   const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
   if (const MeshRelief* mesh = meshReliefOf(*relief->getCollisionShape())) {
-    meshCollision(*object, *relief, *mesh, faceTextureOf(*object->getCollisionShape()), result);
+    meshCollision(*object, *relief, *mesh, faceTextureOf(*object->getCollisionShape()), info, result);
     return;
   }
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());
@@ -283,24 +362,26 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   // A box with a relief on its faces (textured_box.hpp): its own rule, one manifold per group of
   // normals.
   if (box_faces) {
-    texturedBoxCollision(*object, *relief, plane.surface(), GroundBend{}, *underside, *box_faces, threshold,
+    texturedBoxCollision(*object, *relief, plane.surface(), GroundBend{}, *underside, *box_faces, nullptr, threshold,
                          world_from_plane, result);
     return;
   }
   clearGroupManifolds();
-  plainObjectCollision(plane.surface(), GroundBend{}, *underside, on_end_face, &plane.levelRuns(), threshold,
+  plainObjectCollision(plane.surface(), GroundBend{}, *underside, on_end_face, &plane.levelRuns(), nullptr, threshold,
                        world_from_plane, motionOf(*object->getCollisionObject()), result);
 }
 
 void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& surface, const GroundBend& bend,
                                                     const Underside& underside, bool on_end_face,
-                                                    const ReliefLevelRuns* level_runs, double threshold,
-                                                    const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
-                                                    btManifoldResult* result) {
+                                                    const ReliefLevelRuns* level_runs, const ChartBoundary* boundary,
+                                                    double threshold, const Eigen::Isometry3d& world_from_plane,
+                                                    const BodyMotion& motion, btManifoldResult* result) {
   const GroundBend* bent = bend.flat() ? nullptr : &bend;
   ChosenReliefContacts chosen;
   bool conforming = false;
-  if (underside.kind == Underside::Kind::Box && !bent && boxReliefContacts(surface, underside, threshold, chosen, level_runs)) {
+  const bool bounded = boundary && boundary->count > 0;
+  if (underside.kind == Underside::Kind::Box && !bent && !bounded &&
+      boxReliefContacts(surface, underside, threshold, chosen, level_runs)) {
     // A box stands on the tops of the bumps under it: its spread points go to their basins'
     // bottoms (a flat relief leaves its corners). Not refined: its faces are flat. The rule of
     // the branch below, computed row by row (box_relief_contacts.hpp); on flat ground only.
@@ -309,6 +390,7 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     thread_local std::vector<ReliefCandidate> candidates;
     candidates.clear();
     const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, nullptr, bent);
+    dropPastBoundary(boundary, candidates);
     // A ball in a relief of its own curvature: contacts by position, one measure
     // (conforming_contact.hpp). Otherwise the deepest and the spread points.
     std::array<std::size_t, kMaxReliefContacts> picked{};

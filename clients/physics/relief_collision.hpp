@@ -11,7 +11,9 @@
 // on an end face, on two rim points of the face's fall line (end_face_contacts.hpp).
 // A box (textured or not), capsule or cylinder against a relief-textured mesh (mesh_relief_chart.hpp)
 // takes the same rule on the mesh's chart under it, the relief standing on the mesh's bend; each
-// point names the triangle under it (m_index1), as Bullet's own points on a mesh do. A sphere on
+// point names the triangle under it (m_index1), as Bullet's own points on a mesh do; the chart
+// stops at a crease within the object's reach, and the faces across it are met by Bullet's own
+// convex-concave algorithm, its points kept on those faces only (chart_boundary.hpp). A sphere on
 // such a mesh stays with Bullet's sphere-triangle points, lifted onto the relief (mesh_contact.hpp).
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher
@@ -24,6 +26,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "clients/physics/chart_boundary.hpp"
 #include "clients/physics/ground_bend.hpp"
 #include "clients/physics/manifold_algorithm.hpp"
 #include "clients/physics/mesh_relief_chart.hpp"
@@ -60,10 +63,11 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   // its own manifold of at most four points (relief_collision.cpp, normalGroup); group 0 is the
   // pair's own manifold.
   static constexpr std::size_t kNormalGroups = 5;
+  // `boundary` (a mesh's chart's; nullptr on the plane): texels past it are not the mesh's.
   void texturedBoxCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& relief,
                             const tex::TexturedSurface& surface, const GroundBend& bend, const Underside& underside,
-                            const FaceTexture& faces, double threshold, const Eigen::Isometry3d& world_from_plane,
-                            btManifoldResult* result);
+                            const FaceTexture& faces, const ChartBoundary* boundary, double threshold,
+                            const Eigen::Isometry3d& world_from_plane, btManifoldResult* result);
   btPersistentManifold* groupManifold(std::size_t g, const btCollisionObject* object, const btCollisionObject* relief);
   void clearGroupManifolds();
   // An untextured object (the plane's general rule: raster, selection, basins, refinement), on the
@@ -71,16 +75,27 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   // row-by-row path skip level stretches, on flat ground only; `motion` (the object's) decides
   // which of a ball's further points Bullet may take (speculative_contacts.hpp).
   void plainObjectCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const Underside& underside,
-                            bool on_end_face, const ReliefLevelRuns* level_runs, double threshold,
-                            const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion, btManifoldResult* result);
+                            bool on_end_face, const ReliefLevelRuns* level_runs, const ChartBoundary* boundary,
+                            double threshold, const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
+                            btManifoldResult* result);
   // An object against a relief-textured mesh (mesh_relief_chart.hpp): the same rule as on the
   // plane (a textured box's, `faces`, or the untextured one's) on the mesh's chart under it.
   void meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                     const MeshRelief& relief, const FaceTexture* faces, btManifoldResult* result);
+                     const MeshRelief& relief, const FaceTexture* faces, const btDispatcherInfo& info,
+                     btManifoldResult* result);
+  // The faces across a crease from the chart, within reach (chart_boundary.hpp): Bullet's
+  // convex-concave algorithm for the pair, its points kept on those faces only. Made on first
+  // need, from the dispatcher's pool.
+  void beyondCreaseCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
+                             const MeshRelief& relief, const Eigen::Vector3d& chart_normal, const btDispatcherInfo& info);
+  void clearBeyondCrease();
+  // The manifolds our own rules fill (the pair's and the textured box's groups), not Bullet's.
+  void chartManifolds(btManifoldArray& manifolds);
 
   bool swapped_ = false;  // true: body0 is the relief plane, body1 the object
   std::uint32_t foot_triangle_ = 0xffffffffu;  // on a mesh: the triangle under the box last step
   btPersistentManifold* groups_[kNormalGroups - 1] = {};
+  btCollisionAlgorithm* beyond_crease_ = nullptr;
 };
 
 // The shapes the relief algorithm understands, seen from the plane; nullopt for any other shape.

@@ -9,8 +9,6 @@ namespace thx::phys {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Below this the ray counts as parallel to an axis or slab (|sin| of the angle).
-constexpr double kParallel = 1e-12;
 
 struct Interval {
   double lo = -kInf, hi = kInf;
@@ -34,7 +32,7 @@ Interval sideInterval(const Eigen::Vector3d& o, const Eigen::Vector3d& a, const 
   const double qa = d_perp.squaredNorm();
   const double qb = w_perp.dot(d_perp);
   const double qc = w_perp.squaredNorm() - r * r;
-  if (qa < kParallel) return qc <= 0.0 ? Interval{} : Interval{kInf, -kInf};
+  if (qa < kParallelSine) return qc <= 0.0 ? Interval{} : Interval{kInf, -kInf};
   const double disc = qb * qb - qa * qc;
   if (disc < 0.0) return {kInf, -kInf};
   const double root = std::sqrt(disc);
@@ -44,7 +42,7 @@ Interval sideInterval(const Eigen::Vector3d& o, const Eigen::Vector3d& a, const 
 // Where the ray o + t e_z has its coordinate along unit u (measured from centre c) in [-h, h].
 Interval slabInterval(const Eigen::Vector3d& o, const Eigen::Vector3d& c, const Eigen::Vector3d& u, double h) {
   const double s0 = (o - c).dot(u), ds = u.z();
-  if (std::fabs(ds) < kParallel) return std::fabs(s0) <= h ? Interval{} : Interval{kInf, -kInf};
+  if (std::fabs(ds) < kParallelSine) return std::fabs(s0) <= h ? Interval{} : Interval{kInf, -kInf};
   const double t1 = (-h - s0) / ds, t2 = (h - s0) / ds;
   return {std::min(t1, t2), std::max(t1, t2)};
 }

@@ -24,6 +24,9 @@ struct Underside {
   static Underside cylinder(const Eigen::Isometry3d& pose, double radius, double half_length, int axis = 2);
 };
 
+// Below this |sin| a vertical line counts as parallel to a face or slab of the object (no z bound).
+inline constexpr double kParallelSine = 1e-12;
+
 // Lowest z of the object on the vertical line through (x, y); nullopt if the line misses it.
 std::optional<double> lowestZ(const Underside& shape, double x, double y);
 

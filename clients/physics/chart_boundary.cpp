@@ -1,0 +1,69 @@
+#include "clients/physics/chart_boundary.hpp"
+
+#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "clients/physics/bullet_convert.hpp"
+
+namespace thx::phys {
+
+namespace {
+
+// Two planes closer than this in direction (unit normals' difference) and offset (metres) are one.
+constexpr double kSameDirection = 1e-6, kSameOffset = 1e-7;
+
+struct CollectEdges : btTriangleCallback {
+  const Eigen::Isometry3d& mesh_from_chart;
+  Eigen::Vector2d inside;
+  ChartBoundary& out;
+  CollectEdges(const Eigen::Isometry3d& m, const Eigen::Vector2d& f, ChartBoundary& o) : mesh_from_chart(m), inside(f), out(o) {}
+
+  void processTriangle(btVector3* triangle, int, int) override {
+    const Eigen::Vector3d p0 = toEigen(triangle[0]);
+    const Eigen::Vector3d face = (toEigen(triangle[1]) - p0).cross(toEigen(triangle[2]) - p0);
+    if (!(face.norm() > 0.0)) return;
+    const Eigen::Vector3d n = face.normalized();
+    const Eigen::Vector3d chart_normal = mesh_from_chart.linear().col(2);
+    if (!acrossCrease(n, chart_normal)) return;
+    out.beyond_faces = true;
+    // The face's plane n . x = d met by the chart's plane z = 0: x = R p + t gives the line
+    // (R^T n)_xy . p = d - n . t.
+    const Eigen::Vector3d along = mesh_from_chart.linear().transpose() * n;
+    const Eigen::Vector2d line = along.head<2>();
+    const double length = line.norm();
+    if (length < 1e-9) return;  // parallel to the chart (a plate's underside): no line to cut along
+    ChartEdge edge;
+    edge.normal = line / length;
+    edge.offset = (n.dot(p0) - n.dot(mesh_from_chart.translation())) / length;
+    // Oriented so that the chart's own face is held.
+    if (edge.normal.dot(inside) > edge.offset) edge.normal = -edge.normal, edge.offset = -edge.offset;
+    for (std::size_t k = 0; k < out.count; ++k)
+      if ((out.edges[k].normal - edge.normal).norm() < kSameDirection && std::fabs(out.edges[k].offset - edge.offset) < kSameOffset)
+        return;
+    if (out.count < ChartBoundary::kMaxEdges) out.edges[out.count++] = edge;
+  }
+};
+
+}  // namespace
+
+bool ChartBoundary::past(const Eigen::Vector3d& p) const {
+  for (std::size_t k = 0; k < count; ++k)
+    if (edges[k].normal.dot(p.head<2>()) > edges[k].offset) return true;
+  return false;
+}
+
+bool acrossCrease(const Eigen::Vector3d& face_normal, const Eigen::Vector3d& chart_normal) {
+  return face_normal.dot(chart_normal) < std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
+}
+
+ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const Eigen::Isometry3d& mesh_from_chart,
+                            const Eigen::Vector2d& inside, const Eigen::AlignedBox3d& reach) {
+  ChartBoundary boundary;
+  CollectEdges collect(mesh_from_chart, inside, boundary);
+  mesh_shape.processAllTriangles(&collect, toBt(reach.min()), toBt(reach.max()));
+  return boundary;
+}
+
+}  // namespace thx::phys
