@@ -129,8 +129,8 @@ void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside&
 }
 
 // Bullet's points for the pair (object, mesh), kept only on the faces across a crease from the
-// chart whose normal is `chart_normal` (mesh frame; zero: every face). The mesh is the result's
-// second body, so Bullet names each point's triangle in m_index1.
+// chart whose normal is `chart_normal` (mesh frame). The mesh is the result's second body, so
+// Bullet names each point's triangle in m_index1.
 class BeyondCreaseResult : public btManifoldResult {
  public:
   BeyondCreaseResult(const btCollisionObjectWrapper* object, const btCollisionObjectWrapper* mesh,
