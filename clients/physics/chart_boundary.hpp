@@ -8,8 +8,9 @@
 // A face across a crease from the chart is one whose normal lies more than kCreaseFromChartDeg
 // from the chart's (the angle at which the mesh's own frames keep an edge hard,
 // meshes/textured_mesh.hpp); it cuts the chart's plane along a line, and the chart holds only the
-// side of that line its foot is on. The object meets such a face as Bullet's triangles (flat,
-// untextured; relief_collision.cpp).
+// side of that line that holds the middle of its foot's triangle. The object meets such a face as Bullet's triangles (flat,
+// untextured; relief_collision.cpp), which lie at the relief's top: an object down in its grooves
+// reads their depth as penetration there (docs/physics.md, Known gaps).
 #include <BulletCollision/CollisionShapes/btConcaveShape.h>
 
 #include <Eigen/Core>
