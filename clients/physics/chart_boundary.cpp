@@ -14,20 +14,28 @@ namespace {
 // Two planes closer than this in direction (unit normals' difference) and offset (metres) are one.
 constexpr double kSameDirection = 1e-6, kSameOffset = 1e-7;
 
+// The mesh's own face normal (its triangle frame, as every sense reads a flat face).
+Eigen::Vector3d faceNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle) {
+  Eigen::Vector3d normal, tangent;
+  double handedness = 1.0;
+  mesh::triangleFrame(mesh, triangle, normal, tangent, handedness);
+  return normal;
+}
+
 struct CollectEdges : btTriangleCallback {
+  const mesh::TexturedMesh& mesh;
   const Eigen::Isometry3d& mesh_from_chart;
   Eigen::Vector2d inside;
   ChartBoundary& out;
-  CollectEdges(const Eigen::Isometry3d& m, const Eigen::Vector2d& f, ChartBoundary& o) : mesh_from_chart(m), inside(f), out(o) {}
+  CollectEdges(const mesh::TexturedMesh& m, const Eigen::Isometry3d& c, const Eigen::Vector2d& f, ChartBoundary& o)
+      : mesh(m), mesh_from_chart(c), inside(f), out(o) {}
 
-  void processTriangle(btVector3* triangle, int, int) override {
-    const Eigen::Vector3d p0 = toEigen(triangle[0]);
-    const Eigen::Vector3d face = (toEigen(triangle[1]) - p0).cross(toEigen(triangle[2]) - p0);
-    if (!(face.norm() > 0.0)) return;
-    const Eigen::Vector3d n = face.normalized();
+  void processTriangle(btVector3* triangle, int, int index) override {
+    if (index < 0 || std::size_t(index) >= mesh.triangles.size()) return;
     const Eigen::Vector3d chart_normal = mesh_from_chart.linear().col(2);
-    if (!acrossCrease(n, chart_normal)) return;
+    if (!acrossCrease(mesh, std::uint32_t(index), chart_normal)) return;
     out.beyond_faces = true;
+    const Eigen::Vector3d p0 = toEigen(triangle[0]), n = faceNormal(mesh, std::uint32_t(index));
     // The face's plane n . x = d met by the chart's plane z = 0: x = R p + t gives the line
     // (R^T n)_xy . p = d - n . t.
     const Eigen::Vector3d along = mesh_from_chart.linear().transpose() * n;
@@ -54,14 +62,15 @@ bool ChartBoundary::past(const Eigen::Vector3d& p) const {
   return false;
 }
 
-bool acrossCrease(const Eigen::Vector3d& face_normal, const Eigen::Vector3d& chart_normal) {
-  return face_normal.dot(chart_normal) < std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
+bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& chart_normal) {
+  return faceNormal(mesh, triangle).dot(chart_normal) < std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
 }
 
-ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const Eigen::Isometry3d& mesh_from_chart,
-                            const Eigen::Vector2d& inside, const Eigen::AlignedBox3d& reach) {
+ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
+                            const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
+                            const Eigen::AlignedBox3d& reach) {
   ChartBoundary boundary;
-  CollectEdges collect(mesh_from_chart, inside, boundary);
+  CollectEdges collect(mesh, mesh_from_chart, inside, boundary);
   mesh_shape.processAllTriangles(&collect, toBt(reach.min()), toBt(reach.max()));
   return boundary;
 }

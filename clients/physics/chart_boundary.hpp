@@ -6,17 +6,20 @@
 // plane, run on up above the top, 7 mm deep, and was thrown off at 1.4 m/s.
 //
 // A face across a crease from the chart is one whose normal lies more than kCreaseFromChartDeg
-// from the chart's (the angle at which the mesh's own frames keep an edge hard,
+// from the chart's (the default angle at which the mesh's own frames keep an edge hard,
 // meshes/textured_mesh.hpp); it cuts the chart's plane along a line, and the chart holds only the
-// side of that line that holds the middle of its foot's triangle. The object meets such a face as Bullet's triangles (flat,
-// untextured; relief_collision.cpp), which lie at the relief's top: an object down in its grooves
-// reads their depth as penetration there (docs/physics.md, Known gaps).
+// side of that line that holds the middle of its foot's triangle. The object meets such a face as
+// Bullet's triangles (flat, untextured; relief_collision.cpp), which lie at the relief's top: an
+// object down in its grooves reads their depth as penetration there (docs/physics.md, Known gaps).
 #include <BulletCollision/CollisionShapes/btConcaveShape.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
 #include <cstddef>
+#include <cstdint>
+
+#include "meshes/textured_mesh.hpp"
 
 namespace thx::phys {
 
@@ -39,15 +42,16 @@ struct ChartBoundary {
   bool past(const Eigen::Vector3d& p) const;
 };
 
-// Whether a face with unit normal `face_normal` lies across a crease from a chart whose normal is
-// `chart_normal` (both in one frame).
-bool acrossCrease(const Eigen::Vector3d& face_normal, const Eigen::Vector3d& chart_normal);
+// Whether the mesh's `triangle` lies across a crease from a chart whose normal is `chart_normal`
+// (mesh frame).
+bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& chart_normal);
 
-// The edges of the chart `mesh_from_chart` cut by the faces across a crease among the mesh's
-// triangles that overlap `reach` (mesh frame). `inside` (chart frame) is a point of the chart's own
+// The edges of the chart `mesh_from_chart` cut by the faces across a crease among the triangles of
+// `mesh` (the one `mesh_shape` was built from) that overlap `reach` (mesh frame). `inside` (chart frame) is a point of the chart's own
 // face, the middle of the foot's triangle: the side of each edge that holds it is the chart's (the
 // foot itself may lie on the crease, where an object's centre has passed beyond a box's edge).
-ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const Eigen::Isometry3d& mesh_from_chart,
-                            const Eigen::Vector2d& inside, const Eigen::AlignedBox3d& reach);
+ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
+                            const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
+                            const Eigen::AlignedBox3d& reach);
 
 }  // namespace thx::phys

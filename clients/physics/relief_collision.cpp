@@ -139,10 +139,7 @@ class BeyondCreaseResult : public btManifoldResult {
 
   void addContactPoint(const btVector3& normal, const btVector3& point, btScalar depth) override {
     if (m_index1 < 0 || std::size_t(m_index1) >= mesh_.triangles.size()) return;
-    const mesh::Triangle& t = mesh_.triangles[std::size_t(m_index1)];
-    const Eigen::Vector3d& p0 = mesh_.positions[t[0]];
-    const Eigen::Vector3d face = (mesh_.positions[t[1]] - p0).cross(mesh_.positions[t[2]] - p0);
-    if (!acrossCrease(face.normalized(), chart_normal_)) return;
+    if (!acrossCrease(mesh_, std::uint32_t(m_index1), chart_normal_)) return;
     btManifoldResult::addContactPoint(normal, point, depth);
   }
 
@@ -282,8 +279,8 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
   const mesh::Triangle& foot = triangles.triangles[chart.triangle];
   const Eigen::Vector3d foot_middle =
       (triangles.positions[foot[0]] + triangles.positions[foot[1]] + triangles.positions[foot[2]]) / 3.0;
-  const ChartBoundary boundary = chartBoundary(static_cast<const btConcaveShape&>(*mesh.getCollisionShape()), mesh_from_chart,
-                                               (mesh_from_chart.inverse() * foot_middle).head<2>(), reach);
+  const ChartBoundary boundary = chartBoundary(static_cast<const btConcaveShape&>(*mesh.getCollisionShape()), triangles,
+                                               mesh_from_chart, (mesh_from_chart.inverse() * foot_middle).head<2>(), reach);
   const std::optional<Underside> underside = undersideOf(shape, world_from_chart.inverse() * world_from_object);
   if (!underside) return;
   if (faces) {
