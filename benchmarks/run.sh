@@ -56,6 +56,10 @@
 #              plane, a flat relief mesh and a grooved pipe, where it rests and the force that rolls
 #              it out against the analytic answers, with the cost of a step; about 20 s; its table
 #              goes to docs/physics.md)
+#              or rocking_on_curve (issue 29: a block rocking on an untextured cylinder mesh and a
+#              capsule and a cylinder rolling in a pipe, met on the smooth chart and on Bullet's
+#              triangles, their period against the exact rolling answer by tessellation and grid,
+#              with the cost of a step; seconds; its table goes to docs/physics.md)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
@@ -369,6 +373,12 @@ run_rolling_ridges() {
   bench_with_table bench_rolling_ridges "$ROOT/docs/physics.md"
 }
 
+run_rocking_on_curve() {
+  need "$BIN/bench_rocking_on_curve" || return 1
+  say "part rocking_on_curve: boxes and rods rocking on untextured curved meshes (seconds)"
+  bench_with_table bench_rocking_on_curve "$ROOT/docs/physics.md" --png
+}
+
 run_rod_in_groove() {
   need "$BIN/bench_rod_in_groove" || return 1
   say "part rod_in_groove: a rod in a V-groove on the relief plane and on relief meshes (about 20 s)"
@@ -393,14 +403,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | textured_pair | rolling_ridges | rod_in_groove | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | textured_pair | rolling_ridges | rod_in_groove | rocking_on_curve | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh textured_pair rolling_ridges rod_in_groove report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh textured_pair rolling_ridges rod_in_groove rocking_on_curve report)"
       exit 2
       ;;
   esac

@@ -26,13 +26,14 @@ struct CollectEdges : btTriangleCallback {
   const mesh::TexturedMesh& mesh;
   const Eigen::Isometry3d& mesh_from_chart;
   Eigen::Vector2d inside;
+  double side;
   ChartBoundary& out;
-  CollectEdges(const mesh::TexturedMesh& m, const Eigen::Isometry3d& c, const Eigen::Vector2d& f, ChartBoundary& o)
-      : mesh(m), mesh_from_chart(c), inside(f), out(o) {}
+  CollectEdges(const mesh::TexturedMesh& m, const Eigen::Isometry3d& c, const Eigen::Vector2d& f, double s, ChartBoundary& o)
+      : mesh(m), mesh_from_chart(c), inside(f), side(s), out(o) {}
 
   void processTriangle(btVector3* triangle, int, int index) override {
     if (index < 0 || std::size_t(index) >= mesh.triangles.size()) return;
-    const Eigen::Vector3d chart_normal = mesh_from_chart.linear().col(2);
+    const Eigen::Vector3d chart_normal = side * mesh_from_chart.linear().col(2);
     if (!acrossCrease(mesh, std::uint32_t(index), chart_normal)) return;
     out.beyond_faces = true;
     const Eigen::Vector3d p0 = toEigen(triangle[0]), n = faceNormal(mesh, std::uint32_t(index));
@@ -56,9 +57,9 @@ struct CollectEdges : btTriangleCallback {
 
 }  // namespace
 
-bool ChartBoundary::past(const Eigen::Vector3d& p) const {
+bool ChartBoundary::past(const Eigen::Vector3d& p, double margin) const {
   for (std::size_t k = 0; k < count; ++k)
-    if (edges[k].normal.dot(p.head<2>()) > edges[k].offset) return true;
+    if (edges[k].normal.dot(p.head<2>()) > edges[k].offset - margin) return true;
   return false;
 }
 
@@ -68,9 +69,9 @@ bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const 
 
 ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
                             const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
-                            const Eigen::AlignedBox3d& reach) {
+                            const Eigen::AlignedBox3d& reach, double side) {
   ChartBoundary boundary;
-  CollectEdges collect(mesh, mesh_from_chart, inside, boundary);
+  CollectEdges collect(mesh, mesh_from_chart, inside, side, boundary);
   mesh_shape.processAllTriangles(&collect, toBt(reach.min()), toBt(reach.max()));
   return boundary;
 }

@@ -38,8 +38,9 @@ struct ChartBoundary {
   std::size_t count = 0;
   bool beyond_faces = false;  // some face across a crease lies within reach (even parallel to the chart)
 
-  // Whether the chart point p (chart frame; its z ignored) lies past an edge.
-  bool past(const Eigen::Vector3d& p) const;
+  // Whether the chart point p (chart frame; its z ignored) lies past an edge, or within `margin`
+  // of one (metres).
+  bool past(const Eigen::Vector3d& p, double margin = 0.0) const;
 };
 
 // Whether the mesh's `triangle` lies across a crease from a chart whose normal is `chart_normal`
@@ -50,8 +51,10 @@ bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const 
 // `mesh` (the one `mesh_shape` was built from) that overlap `reach` (mesh frame). `inside` (chart frame) is a point of the chart's own
 // face, the middle of the foot's triangle: the side of each edge that holds it is the chart's (the
 // foot itself may lie on the crease, where an object's centre has passed beyond a box's edge).
+// `side` -1: the chart faces against the mesh's winding (a smooth chart behind it: its faces are
+// compared with the chart's normal turned back to the winding's side).
 ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
                             const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
-                            const Eigen::AlignedBox3d& reach);
+                            const Eigen::AlignedBox3d& reach, double side = 1.0);
 
 }  // namespace thx::phys

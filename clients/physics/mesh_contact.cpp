@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 
 #include "clients/physics/bullet_convert.hpp"
@@ -134,17 +135,52 @@ void smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
   }
 }
 
+namespace {
+
+// Where a manifold point lies on the mesh: the triangle it names on the mesh's side and the
+// mesh-side point's barycentric coordinates on it; nullopt for an index out of range.
+struct MeshPlace {
+  std::uint32_t triangle = 0;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+};
+std::optional<MeshPlace> placeOf(const btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& world_to_mesh,
+                                 const mesh::TexturedMesh& mesh) {
+  const int index = mesh_is_b ? point.m_index1 : point.m_index0;
+  if (index < 0 || std::size_t(index) >= mesh.triangles.size()) return std::nullopt;
+  const Eigen::Vector3d on_mesh = world_to_mesh * toEigen(mesh_is_b ? point.m_positionWorldOnB : point.m_positionWorldOnA);
+  return MeshPlace{std::uint32_t(index), mesh::closestBarycentric(mesh, std::uint32_t(index), on_mesh)};
+}
+
+}  // namespace
+
+void steerChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                       const ContactMesh& contact_mesh, const btCollisionObject& other,
+                       const MeshContactOptions& options, const StepContext& step) {
+  if (!options.texture) return;
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
+  const std::optional<MeshPlace> place = placeOf(point, mesh_is_b, world_to_mesh, mesh);
+  if (!place) return;
+  const std::uint32_t triangle = place->triangle;
+  const Eigen::Vector3d& b = place->barycentric;
+  // The chart's normal at the point, towards the object: the smooth surface's, the geometry held.
+  const Eigen::Vector3d n_geometric = toEigen(point.m_normalWorldOnB) * (mesh_is_b ? 1.0 : -1.0);
+  const Eigen::Vector3d smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::Interpolated).normal;
+  const double side = smooth.dot(world_to_mesh.linear() * n_geometric) < 0.0 ? -1.0 : 1.0;
+  const Eigen::Vector3d n = side * meshContactNormal(mesh, triangle, b, options);
+  steerContact(point, mesh_is_b, mesh_to_world.linear() * n, n_geometric, other, options.hold_height, step);
+}
+
 void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                       const ContactMesh& contact_mesh, const btCollisionObject& other,
                       const MeshContactOptions& options, const StepContext& step) {
   if (!options.smooth) return;
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
-  const int index = mesh_is_b ? point.m_index1 : point.m_index0;
-  if (index < 0 || std::size_t(index) >= mesh.triangles.size()) return;
-  std::uint32_t triangle = std::uint32_t(index);
   const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
-  const Eigen::Vector3d on_mesh = world_to_mesh * toEigen(mesh_is_b ? point.m_positionWorldOnB : point.m_positionWorldOnA);
-  Eigen::Vector3d b = mesh::closestBarycentric(mesh, triangle, on_mesh);
+  const std::optional<MeshPlace> place = placeOf(point, mesh_is_b, world_to_mesh, mesh);
+  if (!place) return;
+  std::uint32_t triangle = place->triangle;
+  Eigen::Vector3d b = place->barycentric;
   Eigen::Vector3d n_face, tangent;
   double handedness = 1.0;
   mesh::triangleFrame(mesh, triangle, n_face, tangent, handedness);

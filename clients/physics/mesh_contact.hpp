@@ -21,6 +21,9 @@
 // the flat triangle: a ball rolling fast over a tessellated sphere's convex edges would
 // otherwise turn about each edge at its own radius and hop from edge to edge. On a relief, a
 // ball's gap is measured further to the relief as its sphere meets it (MeshContactOptions::lift_ball).
+// Boxes, capsules and cylinders meet a chart instead (mesh_relief_chart.hpp, relief_collision.hpp)
+// unless MeshContactOptions::smooth_chart is false: their points come with the smooth surface's
+// place and gap, and a normal map steers them (steerChartContact).
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <BulletCollision/NarrowPhaseCollision/btManifoldPoint.h>
 
@@ -60,6 +63,12 @@ struct MeshContactOptions {
   bool lift_ball = true;
   // false: Bullet's own contact (the flat triangle's normal), for comparisons.
   bool smooth = true;
+  // Without a relief, boxes, capsules and cylinders meet the smooth surface on a chart
+  // (mesh_relief_chart.hpp, relief_collision.hpp), sampled `chart_grid_intervals` times (8 at
+  // least) along the object's longer side; false: Bullet's points on the flat triangles, their normals steered
+  // (the comparison's baseline). With a relief they always meet it on its chart.
+  bool smooth_chart = true;
+  int chart_grid_intervals = 16;
   double max_tilt_deg = 75.0;  // as NormalMapOptions::max_tilt_deg, from the smooth normal
   bool hold_height = true;     // as NormalMapOptions::hold_height, on the flat triangle
 };
@@ -124,6 +133,13 @@ double ballOnReliefLift(const ContactMesh& mesh, const Eigen::Vector3d& c, doubl
 // of what is narrower than it can enter and meets the full slope of what is wider.
 Eigen::Vector3d ballOnReliefNormal(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t triangle,
                                    const Eigen::Vector3d& b, double r, const MeshContactOptions& options);
+
+// Steers `point`, made on a smooth chart (relief_collision.hpp: its place and gap are the smooth
+// surface's already), by the mesh's normal map as the plane's normal map steers a point
+// (steerContact, holding the gap along the point's own normal); nothing without a texture.
+void steerChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                       const ContactMesh& mesh, const btCollisionObject& other, const MeshContactOptions& options,
+                       const StepContext& step = {});
 
 // Rewrites `point` of a manifold in which the mesh is body B (`mesh_is_b`) or body A. The normal
 // is oriented towards the object as Bullet found it (a bowl's inside is touched against the

@@ -2,6 +2,7 @@
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -11,19 +12,28 @@ namespace {
 
 constexpr int kMeshReliefTag = 0x7468584d;  // "thXM": the user index marking an attached MeshRelief
 
+// The smooth chart's map: flat, nothing laid on the surface (a relief map, so that the raster
+// reads heights; every depth 0).
+const tex::TextureMap& smoothChartMap() {
+  static const tex::TextureMap flat(2, 2, tex::Representation::Relief, 1e-3);
+  return flat;
+}
+
 // The bend's least-squares fit h = (xx x^2 + 2 xy x y + yy y^2) / 2 to the smooth surface's
-// heights at eight points a distance `radius` round the foot (their feet on Phong's surface).
-GroundBend fitBend(const ContactMesh& cm, const mesh::SurfaceFrame& f, std::uint32_t triangle, double radius) {
+// heights at eight points a distance `radius` round the foot (their feet on Phong's surface),
+// in the chart's axes (x, y, its normal n).
+GroundBend fitBend(const ContactMesh& cm, const Eigen::Vector3d& foot, const Eigen::Matrix3d& axes,
+                   std::uint32_t triangle, double radius) {
   Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
   Eigen::Vector3d atb = Eigen::Vector3d::Zero();
   for (int k = 0; k < 8; ++k) {
     const double a = k * std::numbers::pi / 4;
-    const Eigen::Vector3d p = f.point + radius * (std::cos(a) * f.tangent + std::sin(a) * f.bitangent);
+    const Eigen::Vector3d p = foot + radius * (std::cos(a) * axes.col(0) + std::sin(a) * axes.col(1));
     std::uint32_t t = triangle;
     Eigen::Vector3d b(1.0 / 3, 1.0 / 3, 1.0 / 3);
     smoothFoot(cm, p, 1.0, t, b);
-    const Eigen::Vector3d d = mesh::frameAt(*cm.mesh, t, b, mesh::FrameMode::InterpolatedPhong).point - f.point;
-    const double x = d.dot(f.tangent), y = d.dot(f.bitangent), h = d.dot(f.normal);
+    const Eigen::Vector3d d = mesh::frameAt(*cm.mesh, t, b, mesh::FrameMode::InterpolatedPhong).point - foot;
+    const double x = d.dot(axes.col(0)), y = d.dot(axes.col(1)), h = d.dot(axes.col(2));
     const Eigen::Vector3d row(0.5 * x * x, x * y, 0.5 * y * y);
     ata += row * row.transpose();
     atb += row * h;
@@ -52,10 +62,29 @@ bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach
   Eigen::Vector3d b = mesh::closestBarycentric(m, triangle, c);
   // The winding's side first, then the foot along the smooth normal on that side.
   const mesh::SurfaceFrame near = mesh::frameAt(m, triangle, b, mesh::FrameMode::Interpolated);
-  if ((c - near.point).dot(near.normal) < 0.0) return false;
-  smoothFoot(relief.mesh, c, 1.0, triangle, b);
+  const double side = (c - near.point).dot(near.normal) < 0.0 ? -1.0 : 1.0;
+  if (side < 0.0 && relief.map) return false;
+  smoothFoot(relief.mesh, c, side, triangle, b);
   const mesh::SurfaceFrame f = mesh::frameAt(m, triangle, b, mesh::FrameMode::InterpolatedPhong);
-  if ((c - f.point).dot(f.normal) < 0.0) return false;
+  if (side * (c - f.point).dot(f.normal) < 0.0) return false;
+  if (!relief.map) {
+    // Nothing laid on it: the frame is the smooth normal on the object's side and any tangent
+    // (alignChart turns it, layGridUnder places its samples).
+    const Eigen::Vector3d n = side * f.normal;
+    Eigen::Vector3d x = f.tangent - f.tangent.dot(n) * n;
+    if (!(x.norm() > 1e-9)) x = n.unitOrthogonal();
+    Eigen::Matrix3d axes;
+    axes.col(0) = x.normalized(), axes.col(2) = n, axes.col(1) = n.cross(axes.col(0));
+    tex::PlaneMapping mapping;
+    mapping.plane_to_world.linear() = axes;
+    mapping.plane_to_world.translation() = f.point;
+    out.surface = tex::TexturedSurface(smoothChartMap(), mapping, tex::SampleOptions{}, true);
+    out.bend = fitBend(relief.mesh, f.point, axes, triangle, reach_m);
+    out.bend.centre = Eigen::Vector2d::Zero();
+    out.triangle = triangle;
+    out.side = side;
+    return true;
+  }
   // The chart as the pen's (hapticd's chartAt): x along the tangent, y along the bitangent, the
   // texture at this face's scale; uv taken within its tile so the chart's origin stays near.
   const Eigen::Vector2d scale = mesh::metresPerUv(m, triangle, f);
@@ -69,10 +98,58 @@ bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach
   mapping.plane_to_world.translation() = f.point - f.tangent * foot.x() - f.bitangent * foot.y();
   out.surface = tex::TexturedSurface(*relief.map, mapping, relief.sampling, true);
   out.surface.setNormalsMadeFor(relief.normals_made_for_m);
-  out.bend = fitBend(relief.mesh, f, triangle, reach_m);
+  out.bend = fitBend(relief.mesh, f.point, axes, triangle, reach_m);
   out.bend.centre = foot;
   out.triangle = triangle;
+  out.side = 1.0;
   return true;
+}
+
+bool isSmoothChart(const tex::TexturedSurface& surface) { return &surface.map() == &smoothChartMap(); }
+
+void alignChart(MeshChart& chart, const Eigen::Vector3d& axis) {
+  const Eigen::Isometry3d& mesh_from_chart = chart.surface.mapping().plane_to_world;
+  const Eigen::Vector3d n = mesh_from_chart.linear().col(2);
+  const Eigen::Vector3d x = axis - axis.dot(n) * n;
+  if (!(x.norm() > 1e-6 * axis.norm())) return;  // the axis along the normal: any turn will do
+  // The bend is a quadratic form in the chart's axes: turned with them, about the chart's origin.
+  const Eigen::Vector2d along(x.dot(mesh_from_chart.linear().col(0)), x.dot(mesh_from_chart.linear().col(1)));
+  const double angle = std::atan2(along.y(), along.x());
+  const Eigen::Matrix2d turn = Eigen::Rotation2Dd(angle).toRotationMatrix();
+  Eigen::Matrix2d form;
+  form << chart.bend.xx, chart.bend.xy, chart.bend.xy, chart.bend.yy;
+  form = turn.transpose() * form * turn;
+  chart.bend.xx = form(0, 0), chart.bend.xy = form(0, 1), chart.bend.yy = form(1, 1);
+  chart.bend.centre = turn.transpose() * chart.bend.centre;
+  tex::PlaneMapping mapping = chart.surface.mapping();
+  mapping.plane_to_world.linear() = mesh_from_chart.linear() * Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  chart.surface = tex::TexturedSurface(chart.surface.map(), mapping, chart.surface.sampling(), true);
+}
+
+void layGridUnder(MeshChart& chart, const Eigen::AlignedBox2d& footprint, int intervals, double max_cell_m) {
+  const Eigen::Vector2d extent = footprint.sizes();
+  const double longer = std::max(extent.maxCoeff(), 1e-9);
+  const double fine = max_cell_m > 0.0 ? std::ceil(longer / max_cell_m) : double(kMaxGridIntervals);
+  const int n = std::clamp(std::max(intervals, int(std::min(fine, double(kMaxGridIntervals)))), kMinGridIntervals,
+                           kMaxGridIntervals);
+  // About square cells (the raster reads a chart whose cells differ more than twice at the
+  // coarser spacing), each side an exact number of them.
+  // At least two along each side, so that a level rod has a row of samples under its axis.
+  const Eigen::Vector2d count(std::max(2.0, std::round(n * extent.x() / longer)), std::max(2.0, std::round(n * extent.y() / longer)));
+  // Samples a hair inside the edges: on them the object's underside may read as absent.
+  const Eigen::Vector2d inset = 1e-7 * extent;
+  const Eigen::Vector2d step = (extent - 2.0 * inset).cwiseMax(Eigen::Vector2d::Constant(1e-9)).cwiseQuotient(count);
+  tex::PlaneMapping mapping = chart.surface.mapping();
+  const tex::TextureMap& map = chart.surface.map();
+  mapping.size_m = Eigen::Vector2d(step.x() * map.width(), step.y() * map.height());
+  // The centre of texel (0, 0) (top left: +j is -y) on the footprint's corner at (min x, max y).
+  const tex::TexturedSurface unplaced(map, mapping, chart.surface.sampling(), true);
+  const Eigen::Vector2d first = unplaced.texelCentre(0, 0).head<2>();
+  const Eigen::Vector2d corner(footprint.min().x() + inset.x(), footprint.max().y() - inset.y());
+  const Eigen::Vector2d shift = corner - first;  // the plane's origin moves here; every plane point by -shift
+  mapping.plane_to_world.translation() += mapping.plane_to_world.linear().leftCols<2>() * shift;
+  chart.surface = tex::TexturedSurface(map, mapping, chart.surface.sampling(), true);
+  chart.bend.centre -= shift;
 }
 
 std::uint32_t triangleUnder(const MeshRelief& relief, const Eigen::Vector3d& p, std::uint32_t from) {

@@ -13,12 +13,22 @@
 // are met as Bullet's triangles (chart_boundary.hpp).
 //
 // Only the side the mesh's winding faces is textured (a closed bowl's inside, a sphere's outside):
-// an object behind the winding gets no contacts from the chart.
+// an object behind the winding gets no contacts from a relief's chart.
+//
+// A mesh without a relief (untextured, or normal-mapped: a normal map has no depth) has a smooth
+// chart: the same tangent plane and bend with nothing laid on it, so that a box, capsule or
+// cylinder meets the curved surface the mesh stands for rather than its flat triangles (the ball's
+// rule, mesh_contact.hpp, for every shape). Having no texture to lay, its frame is turned to the
+// object's own axis and sampled on a grid laid over the object's footprint (layGridUnder): the
+// footprint's edges and corners are samples, at a spacing that is a fraction of the object, so
+// the cost is the same for any object and any mesh. Both sides of the mesh are met, as Bullet's
+// triangles are (a closed sphere's inside is a bowl).
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <limits>
 
 #include "clients/physics/ground_bend.hpp"
 #include "clients/physics/mesh_contact.hpp"
@@ -32,7 +42,9 @@ namespace thx::phys {
 struct MeshRelief {
   explicit MeshRelief(const mesh::TexturedMesh& m) : mesh(m) {}
   ContactMesh mesh;
-  const tex::TextureMap* map = nullptr;  // a relief map; must outlive the shape
+  const tex::TextureMap* map = nullptr;  // a relief map; must outlive the shape. nullptr: a smooth chart
+  // A smooth chart's grid: intervals along the object's longer side (layGridUnder; 8 at least).
+  int grid_intervals = 16;
   tex::SampleOptions sampling;
   // The tile (metres per uv) the map's normals were made for (MeshContactOptions::normals_made_for_m).
   Eigen::Vector2d normals_made_for_m = Eigen::Vector2d::Zero();
@@ -47,12 +59,30 @@ struct MeshChart {
   tex::TexturedSurface surface;  // its plane frame is the chart, placed in the mesh's frame
   GroundBend bend;               // the smooth surface's height above the chart (chart frame)
   std::uint32_t triangle = 0;    // the foot's triangle
+  double side = 1.0;             // -1: the chart faces against the mesh's winding (a smooth chart only)
 };
 
 // The chart under the point c (mesh frame) of an object reaching `reach_m` from it, starting the
 // walk at `triangle` (updated to the foot's; kNoNeighbour: from the nearest triangle, found by
-// looking at every one). False where c lies behind the mesh's winding.
+// looking at every one). False where c lies behind the winding of a relief mesh. A smooth chart's
+// plane is laid by layGridUnder afterwards.
 bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle, MeshChart& out);
+
+// Whether the chart is a smooth one (its map is smoothChartMap()).
+bool isSmoothChart(const tex::TexturedSurface& surface);
+
+// Turns a smooth chart about its normal so that x runs along `axis` (mesh frame) projected on it.
+void alignChart(MeshChart& chart, const Eigen::Vector3d& axis);
+
+// Lays a smooth chart's samples over `footprint` (the object's underside in the chart's plane
+// frame): a grid of `intervals` along its longer side and as many of about the same spacing
+// along the other (two at least), its first and last rows and columns on the footprint's edges
+// (a hair inside, so the object is there); more where a cell would be longer than `max_cell_m`
+// (a textured box's own texel), up to kMaxGridIntervals; never fewer than kMinGridIntervals (at 4
+// a capsule in a pipe, two rows across it and cells 13 mm along, gained its swing 8.7 times over).
+inline constexpr int kMinGridIntervals = 8, kMaxGridIntervals = 512;
+void layGridUnder(MeshChart& chart, const Eigen::AlignedBox2d& footprint, int intervals,
+                  double max_cell_m = std::numeric_limits<double>::infinity());
 
 // The triangle under a point on the smooth surface near the foot's triangle (for the contact's
 // place, as Bullet reports a triangle for its own points).

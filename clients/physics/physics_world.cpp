@@ -98,11 +98,14 @@ btRigidBody& PhysicsWorld::addTexturedMesh(const mesh::TexturedMesh& mesh, const
       arrays->vertices.data(), int(3 * sizeof(btScalar)));
   auto shape = std::make_unique<btBvhTriangleMeshShape>(arrays->array.get(), true);
   triangle_arrays_.push_back(std::move(arrays));
-  if (options.smooth && options.texture && options.texture->isRelief()) {
+  const bool relief_map = options.texture && options.texture->isRelief();
+  if (options.smooth && (relief_map || options.smooth_chart)) {
+    // Boxes, capsules and cylinders meet it on a chart: the relief's, or the smooth surface's alone.
     auto relief = std::make_unique<MeshRelief>(mesh);
-    relief->map = options.texture;
+    relief->map = relief_map ? options.texture : nullptr;
     relief->sampling = options.sampling;
     relief->normals_made_for_m = options.normals_made_for_m;
+    relief->grid_intervals = options.chart_grid_intervals;
     attachMeshRelief(*shape, *relief);
     mesh_reliefs_.push_back(std::move(relief));
   }

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
 #include <vector>
 
 #include "clients/physics/box_relief_contacts.hpp"
@@ -72,6 +73,48 @@ double reachOf(const btCollisionShape& shape) {
       return double(radius + centre.length());
     }
   }
+}
+
+// Where a smooth chart's samples go under an object (chart frame): a box's lowest face, so that
+// its corners are samples however it is tilted (over its bounds, a tilted box's outer rows fall
+// beside its underside's edges, and a block in a bowl sank 0.36 mm onto the samples a row in);
+// other shapes' bounds.
+Eigen::AlignedBox2d gridFootprint(const Underside& underside) {
+  if (underside.kind != Underside::Kind::Box) {
+    const Eigen::AlignedBox3d bounds = planeBounds(underside);
+    return Eigen::AlignedBox2d(bounds.min().head<2>(), bounds.max().head<2>());
+  }
+  const Eigen::Matrix3d& axes = underside.plane_from_object.linear();
+  const Eigen::Vector3d& half = underside.half_extents;
+  int down = 0;
+  for (int k = 1; k < 3; ++k) down = std::fabs(axes(2, k)) > std::fabs(axes(2, down)) ? k : down;
+  const double below = axes(2, down) > 0.0 ? -1.0 : 1.0;  // the face whose normal points down
+  const int a = (down + 1) % 3, b = (down + 2) % 3;
+  const Eigen::Vector3d middle = underside.plane_from_object.translation() + below * half[down] * axes.col(down);
+  Eigen::AlignedBox2d face;
+  for (double sa : {-1.0, 1.0})
+    for (double sb : {-1.0, 1.0}) face.extend((middle + sa * half[a] * axes.col(a) + sb * half[b] * axes.col(b)).head<2>());
+  return face;
+}
+
+// A smooth chart (mesh_relief_chart.hpp) laid under an object posed at mesh_from_object: turned to
+// the object's axis that lies most along it, its samples over the object's footprint.
+void laySmoothChart(MeshChart& chart, const btCollisionShape& shape, const Eigen::Isometry3d& mesh_from_object,
+                    int intervals, const FaceTexture* faces) {
+  const Eigen::Vector3d n = chart.surface.mapping().plane_to_world.linear().col(2);
+  int along = 0;
+  for (int k = 1; k < 3; ++k) {
+    const Eigen::Vector3d a = mesh_from_object.linear().col(k), best = mesh_from_object.linear().col(along);
+    if ((a - a.dot(n) * n).norm() > (best - best.dot(n) * n).norm() + 1e-9) along = k;
+  }
+  alignChart(chart, mesh_from_object.linear().col(along));
+  const std::optional<Underside> underside =
+      undersideOf(shape, chart.surface.mapping().plane_to_world.inverse() * mesh_from_object);
+  if (!underside) return;
+  // A textured box's relief is read at its own texels (textured_box.hpp).
+  const double texel = faces ? faces->tile_m / double(std::max(faces->map->width(), faces->map->height()))
+                             : std::numeric_limits<double>::infinity();
+  layGridUnder(chart, gridFootprint(*underside), intervals, texel);
 }
 
 // The object's motion as its rigid body has it (none for a collision object without a body).
@@ -149,10 +192,17 @@ class BeyondCreaseResult : public btManifoldResult {
 };
 
 // A mesh chart's texels past its boundary are not the mesh's (chart_boundary.hpp). The basin walks
-// find candidates by their texels' (i, j), so a gap in the raster is only a texel not there.
-void dropPastBoundary(const ChartBoundary* boundary, std::vector<ReliefCandidate>& candidates) {
+// find candidates by their texels' (i, j), so a gap in the raster is only a texel not there. Texels
+// within one texel of the crease go too: there the object touches the face across it (met as
+// Bullet's triangles), and a chart's texel just short of the line measures that contact along the
+// chart's normal, as deep as the object reaches behind the crease (a block resting on a slab's top
+// by its edge, sunk a micrometre, read 7 mm into the side face's chart where its underside's edge
+// was sampled).
+void dropPastBoundary(const ChartBoundary* boundary, const tex::TexturedSurface& surface,
+                      std::vector<ReliefCandidate>& candidates) {
   if (!boundary || boundary->count == 0) return;
-  std::erase_if(candidates, [&](const ReliefCandidate& c) { return boundary->past(c.p_surface); });
+  const double texel = surface.mapping().texelSize(surface.map()).cwiseAbs().maxCoeff();
+  std::erase_if(candidates, [&](const ReliefCandidate& c) { return boundary->past(c.p_surface, texel); });
 }
 
 // Which group of a textured box's contacts a normal (plane frame) falls in: 0 within 6° of the
@@ -181,7 +231,7 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
   candidates.clear();
   taken.clear();
   const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend);
-  dropPastBoundary(boundary, candidates);
+  dropPastBoundary(boundary, surface, candidates);
   const TexturedBoxSurface box_surface(underside, faces);
   for (std::size_t g = 0; g < kNormalGroups; ++g) {
     btPersistentManifold* manifold = g == 0 ? manifoldFor(object.getCollisionObject(), relief.getCollisionObject())
@@ -267,6 +317,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
     clearBeyondCrease();
     return;
   }
+  if (!relief.map) laySmoothChart(chart, shape, world_from_mesh.inverse() * world_from_object, relief.grid_intervals, faces);
   const Eigen::Isometry3d& mesh_from_chart = chart.surface.mapping().plane_to_world;
   const Eigen::Isometry3d world_from_chart = world_from_mesh * mesh_from_chart;
   // Where the chart stops: faces across a crease within the object's reach (chart_boundary.hpp).
@@ -279,8 +330,9 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
   const mesh::Triangle& foot = triangles.triangles[chart.triangle];
   const Eigen::Vector3d foot_middle =
       (triangles.positions[foot[0]] + triangles.positions[foot[1]] + triangles.positions[foot[2]]) / 3.0;
-  const ChartBoundary boundary = chartBoundary(static_cast<const btConcaveShape&>(*mesh.getCollisionShape()), triangles,
-                                               mesh_from_chart, (mesh_from_chart.inverse() * foot_middle).head<2>(), reach);
+  const ChartBoundary boundary =
+      chartBoundary(static_cast<const btConcaveShape&>(*mesh.getCollisionShape()), triangles, mesh_from_chart,
+                    (mesh_from_chart.inverse() * foot_middle).head<2>(), reach, chart.side);
   const std::optional<Underside> underside = undersideOf(shape, world_from_chart.inverse() * world_from_object);
   if (!underside) return;
   if (faces) {
@@ -306,7 +358,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
     }
   }
   if (boundary.beyond_faces) {
-    beyondCreaseCollision(object, mesh, relief, mesh_from_chart.linear().col(2), info);
+    beyondCreaseCollision(object, mesh, relief, chart.side * mesh_from_chart.linear().col(2), info);
   } else {
     clearBeyondCrease();
   }
@@ -387,7 +439,7 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     thread_local std::vector<ReliefCandidate> candidates;
     candidates.clear();
     const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, nullptr, bent);
-    dropPastBoundary(boundary, candidates);
+    dropPastBoundary(boundary, surface, candidates);
     // A ball in a relief of its own curvature: contacts by position, one measure
     // (conforming_contact.hpp). Otherwise the deepest and the spread points.
     std::array<std::size_t, kMaxReliefContacts> picked{};
@@ -425,6 +477,11 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     } else if (n > 0 && underside.kind == Underside::Kind::Box) {
       // A box whose footprint is visited with a stride (a huge box): the same rule on the texels visited.
       snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n), BasinClaim::NearestPoint);
+      // On a smooth chart the ground is the bend alone and the samples are the box's own: each point
+      // is taken to where the face meets the curved ground between them, so a box rocking on a
+      // cylinder rolls on the line it touches rather than from sample to sample.
+      if (isSmoothChart(surface))
+        for (std::size_t k = 0; k < n; ++k) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);
     } else if (lying_rod) {
       for (std::size_t k = 0; k < n; ++k) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);
     } else if (n > 0) {

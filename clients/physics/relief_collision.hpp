@@ -10,7 +10,8 @@
 // into up to five manifolds (relief_collision.cpp, texturedBoxCollision), and a cylinder standing
 // on an end face, on two rim points of the face's fall line (end_face_contacts.hpp).
 // A box (textured or not), capsule or cylinder against a relief-textured mesh (mesh_relief_chart.hpp)
-// takes the same rule on the mesh's chart under it, the relief standing on the mesh's bend; each
+// takes the same rule on the mesh's chart under it, the relief standing on the mesh's bend (on a
+// mesh without a relief, on its smooth chart: the bend alone, sampled over the object); each
 // point names the triangle under it (m_index1), as Bullet's own points on a mesh do; the chart
 // stops at a crease within the object's reach, and the faces across it are met by Bullet's own
 // convex-concave algorithm, its points kept on those faces only (chart_boundary.hpp). A sphere on
@@ -78,8 +79,9 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
                             bool on_end_face, const ReliefLevelRuns* level_runs, const ChartBoundary* boundary,
                             double threshold, const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
                             btManifoldResult* result);
-  // An object against a relief-textured mesh (mesh_relief_chart.hpp): the same rule as on the
-  // plane (a textured box's, `faces`, or the untextured one's) on the mesh's chart under it.
+  // An object against a mesh with a chart (mesh_relief_chart.hpp: a relief's or a smooth one): the
+  // same rule as on the plane (a textured box's, `faces`, or the untextured one's) on the mesh's
+  // chart under it.
   void meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
                      const MeshRelief& relief, const FaceTexture* faces, const btDispatcherInfo& info,
                      btManifoldResult* result);
@@ -102,8 +104,8 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
 std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen::Isometry3d& plane_from_object);
 
 // Whether the relief algorithm takes this (object, mesh) pair: a box (textured or not), capsule or
-// cylinder against a mesh with a relief attached (mesh_relief_chart.hpp). Bullet's own
-// convex-concave algorithm takes the rest (a sphere, any mesh without a relief).
+// cylinder against a mesh with a chart attached (mesh_relief_chart.hpp: a relief's or a smooth
+// one). Bullet's own convex-concave algorithm takes the rest (a sphere, a mesh without a chart).
 bool reliefTakesMeshPair(const btCollisionShape& object, const btCollisionShape& mesh);
 
 // Registers the algorithm for sphere, box, capsule and cylinder against CUSTOM_CONCAVE_SHAPE_TYPE,

@@ -83,8 +83,13 @@ void TexturedWorld::rewriteMeshContacts() {
   rewritten_ += rewriteContactsWith(*getDispatcher(), meshes_,
                                     [&](btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                                         const TexturedMeshBody& mesh, const btCollisionObject& other) {
-                                      // A textured box's points on a relief mesh come from its chart already.
-                                      if (reliefTakesMeshPair(*other.getCollisionShape(), *mesh.body->getCollisionShape())) return;
+                                      // Points made on a chart (relief_collision.hpp) are the surface's
+                                      // already; on a smooth chart a normal map still steers them.
+                                      if (reliefTakesMeshPair(*other.getCollisionShape(), *mesh.body->getCollisionShape())) {
+                                        if (!meshReliefOf(*mesh.body->getCollisionShape())->map)
+                                          steerChartContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
+                                        return;
+                                      }
                                       applyMeshContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
                                     });
 }
