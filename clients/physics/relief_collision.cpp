@@ -476,11 +476,18 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
         if (k == 0 || picked[k] != spread[k]) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);
     } else if (n > 0 && underside.kind == Underside::Kind::Box) {
       // A box whose footprint is visited with a stride (a huge box): the same rule on the texels visited.
-      snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n), BasinClaim::NearestPoint);
-      // On a smooth chart the ground is the bend alone and the samples are the box's own: each point
-      // is taken to where the face meets the curved ground between them, so a box rocking on a
-      // cylinder rolls on the line it touches rather than from sample to sample.
-      if (isSmoothChart(surface))
+      // On a smooth chart the gap is the bend's quadratic alone, and a box's spread points stand
+      // symmetrically about its line of contact on a cylinder: each spread point's basin lies as near
+      // another's as its own, the nearest-point claim refused them all, and the box hung on its one
+      // deepest point at one end every few steps (losing a third of its swing's energy and taking it
+      // back). There any basin no earlier point took is claimed.
+      const bool smooth = isSmoothChart(surface);
+      snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n),
+                   smooth ? BasinClaim::SameTexel : BasinClaim::NearestPoint);
+      // On a smooth chart each point is then taken to where the face meets the curved ground between
+      // the samples, so a box rocking on a cylinder rolls on the line it touches rather than from
+      // sample to sample.
+      if (smooth)
         for (std::size_t k = 0; k < n; ++k) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);
     } else if (lying_rod) {
       for (std::size_t k = 0; k < n; ++k) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);

@@ -40,12 +40,13 @@ TEST(ObjectsOnSmoothMesh, ABlockRocksOnACylinderAtTheRollingPeriod) {
                 "amplitude kept %.3f), Bullet's triangles %d swings (%.4f s)\n",
                 segments, exact, s.period_s, 100 * (s.period_s / exact - 1), s.swings, s.amplitude_kept, f.swings,
                 f.period_s);
-    // Measured +0.39 % and +0.57 % (bench_rocking_on_curve); on the triangles it rests on a
-    // facet at both, without a swing.
+    // Measured +0.75 % and +0.76 % (bench_rocking_on_curve: the bend fitted at the block's reach);
+    // on the triangles it rests on a facet at both, without a swing.
     EXPECT_GE(s.swings, 20);
     EXPECT_NEAR(s.period_s, exact, 0.01 * exact) << segments;
-    // It keeps most of its swing: 0.77 and 0.80 of it after 2 s (24 swings).
-    EXPECT_GT(s.amplitude_kept, 0.5) << segments;
+    // It keeps its swing: 0.973 and 0.970 of it after 2 s (24 swings). With the spread points
+    // refused their basins it hung on one point every few steps and kept 0.77 and 0.80.
+    EXPECT_GT(s.amplitude_kept, 0.95) << segments;
   }
 }
 
