@@ -2,7 +2,7 @@
 // smooth curved mesh"): a block on a cylinder, a capsule and a cylinder rolling in a pipe
 // (tests/physics/rocking_on_curve_scene.hpp), their swing's period against the exact rolling
 // answer, by the mesh's tessellation and the smooth chart's grid, beside Bullet's flat triangles;
-// with the cost of a step. Measures only; nothing asserted (tests/physics/test_rocking_on_curve.cpp
+// with the cost of a step. Measures only; nothing asserted (tests/physics/test_objects_on_smooth_mesh.cpp
 // holds the behaviour).
 #include <cmath>
 #include <cstdio>

@@ -129,12 +129,12 @@ void alignChart(MeshChart& chart, const Eigen::Vector3d& axis) {
 void layGridUnder(MeshChart& chart, const Eigen::AlignedBox2d& footprint, int intervals, double max_cell_m) {
   const Eigen::Vector2d extent = footprint.sizes();
   const double longer = std::max(extent.maxCoeff(), 1e-9);
-  const double fine = max_cell_m > 0.0 ? std::ceil(longer / max_cell_m) : double(kMaxGridIntervals);
-  const int n = std::clamp(std::max(intervals, int(std::min(fine, double(kMaxGridIntervals)))), kMinGridIntervals,
-                           kMaxGridIntervals);
+  // Enough for a cell no longer than max_cell_m (none for an infinite one).
+  const double fine = std::min(std::ceil(longer / max_cell_m), double(kMaxGridIntervals));
+  const int n = std::clamp(std::max(intervals, int(fine)), kMinGridIntervals, kMaxGridIntervals);
   // About square cells (the raster reads a chart whose cells differ more than twice at the
-  // coarser spacing), each side an exact number of them.
-  // At least two along each side, so that a level rod has a row of samples under its axis.
+  // coarser spacing), each side an exact number of them, at least two, so that a level rod has a
+  // row of samples under its axis.
   const Eigen::Vector2d count(std::max(2.0, std::round(n * extent.x() / longer)), std::max(2.0, std::round(n * extent.y() / longer)));
   // Samples a hair inside the edges: on them the object's underside may read as absent.
   const Eigen::Vector2d inset = 1e-7 * extent;

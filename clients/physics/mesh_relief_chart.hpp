@@ -21,8 +21,8 @@
 // rule, mesh_contact.hpp, for every shape). Having no texture to lay, its frame is turned to the
 // object's own axis and sampled on a grid laid over the object's footprint (layGridUnder): the
 // footprint's edges and corners are samples, at a spacing that is a fraction of the object, so
-// the cost is the same for any object and any mesh (a textured box's relief is read at its own
-// texels). Both sides of the mesh are met, as Bullet's triangles are (a closed sphere's inside is
+// their number does not grow with the object or the mesh (a textured box's relief is read at its
+// own texels). Both sides of the mesh are met, as Bullet's triangles are (a closed sphere's inside is
 // a bowl).
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 

@@ -11,7 +11,7 @@
 //    I the body's own moment about its axis (Bullet's, as the solver has it).
 // The swing's period is read from the roll angle's upward zero crossings and compared with the
 // rolling equations integrated at 0.1 ms (rollingPeriod); the scene steps 1 ms unless given. Shared by
-// tests/physics/test_rocking_on_curve.cpp and benchmarks/bench_rocking_on_curve.cpp.
+// tests/physics/test_objects_on_smooth_mesh.cpp and benchmarks/bench_rocking_on_curve.cpp.
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <Eigen/Geometry>
