@@ -60,6 +60,9 @@
 #              capsule and a cylinder rolling in a pipe, met on the smooth chart and on Bullet's
 #              triangles, their period against the exact rolling answer by tessellation and grid,
 #              with the cost of a step; seconds; its table goes to docs/physics.md)
+#              or object_by_crease (issue 29: a plain and a grooved block by a slab mesh's edge,
+#              grooved or untextured, where it rests and how it tips over the edge, with the cost
+#              of a step; seconds; its table goes to docs/physics.md)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
@@ -379,6 +382,12 @@ run_rocking_on_curve() {
   bench_with_table bench_rocking_on_curve "$ROOT/docs/physics.md" --png
 }
 
+run_object_by_crease() {
+  need "$BIN/bench_object_by_crease" || return 1
+  say "part object_by_crease: a block by a slab mesh's edge (seconds)"
+  bench_with_table bench_object_by_crease "$ROOT/docs/physics.md"
+}
+
 run_rod_in_groove() {
   need "$BIN/bench_rod_in_groove" || return 1
   say "part rod_in_groove: a rod in a V-groove on the relief plane and on relief meshes (about 20 s)"
@@ -403,14 +412,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | textured_pair | rolling_ridges | rod_in_groove | rocking_on_curve | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | textured_pair | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh textured_pair rolling_ridges rod_in_groove rocking_on_curve report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh textured_pair rolling_ridges rod_in_groove rocking_on_curve object_by_crease report)"
       exit 2
       ;;
   esac

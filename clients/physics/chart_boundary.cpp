@@ -2,6 +2,7 @@
 
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -26,17 +27,44 @@ struct CollectEdges : btTriangleCallback {
   const mesh::TexturedMesh& mesh;
   const Eigen::Isometry3d& mesh_from_chart;
   Eigen::Vector2d inside;
+  Eigen::Vector3d centre;
   double side;
   ChartBoundary& out;
-  CollectEdges(const mesh::TexturedMesh& m, const Eigen::Isometry3d& c, const Eigen::Vector2d& f, double s, ChartBoundary& o)
-      : mesh(m), mesh_from_chart(c), inside(f), side(s), out(o) {}
+  // Every surface found, before the nearest kMaxSurfaces are kept.
+  std::array<BeyondSurface, 2 * ChartBoundary::kMaxSurfaces> found{};
+  std::size_t found_count = 0;
+  CollectEdges(const mesh::TexturedMesh& m, const Eigen::Isometry3d& c, const Eigen::Vector2d& f,
+               const Eigen::Vector3d& o_centre, double s, ChartBoundary& o)
+      : mesh(m), mesh_from_chart(c), inside(f), centre(o_centre), side(s), out(o) {}
+
+  // The triangle joins the first surface it is not across a crease from, or starts one.
+  void gather(std::uint32_t index, const Eigen::Vector3d& n) {
+    const mesh::Triangle& t = mesh.triangles[index];
+    const Eigen::Vector3d b = mesh::closestBarycentric(mesh, index, centre);
+    const double distance =
+        (b[0] * mesh.positions[t[0]] + b[1] * mesh.positions[t[1]] + b[2] * mesh.positions[t[2]] - centre).norm();
+    for (std::size_t k = 0; k < found_count; ++k) {
+      BeyondSurface& s = found[k];
+      if (acrossCrease(mesh, index, s.normal)) continue;
+      if (distance < s.distance_m) s.nearest_triangle = index, s.distance_m = distance;
+      return;
+    }
+    if (found_count < found.size()) found[found_count++] = {n, index, distance};
+  }
+
+  void keepNearest() {
+    std::sort(found.begin(), found.begin() + std::ptrdiff_t(found_count),
+              [](const BeyondSurface& a, const BeyondSurface& b) { return a.distance_m < b.distance_m; });
+    out.surface_count = std::min(found_count, ChartBoundary::kMaxSurfaces);
+    std::copy_n(found.begin(), out.surface_count, out.surfaces.begin());
+  }
 
   void processTriangle(btVector3* triangle, int, int index) override {
     if (index < 0 || std::size_t(index) >= mesh.triangles.size()) return;
     const Eigen::Vector3d chart_normal = side * mesh_from_chart.linear().col(2);
     if (!acrossCrease(mesh, std::uint32_t(index), chart_normal)) return;
-    out.beyond_faces = true;
     const Eigen::Vector3d p0 = toEigen(triangle[0]), n = faceNormal(mesh, std::uint32_t(index));
+    gather(std::uint32_t(index), n);
     // The face's plane n . x = d met by the chart's plane z = 0: x = R p + t gives the line
     // (R^T n)_xy . p = d - n . t.
     const Eigen::Vector3d along = mesh_from_chart.linear().transpose() * n;
@@ -48,6 +76,11 @@ struct CollectEdges : btTriangleCallback {
     edge.offset = (n.dot(p0) - n.dot(mesh_from_chart.translation())) / length;
     // Oriented so that the chart's own face is held.
     if (edge.normal.dot(inside) > edge.offset) edge.normal = -edge.normal, edge.offset = -edge.offset;
+    // The face's plane in the chart's frame, its normal out of the solid on the chart's side of the
+    // winding; convex where the chart's own face lies behind it.
+    edge.across_normal = side * along;
+    edge.across_offset = side * (n.dot(p0) - n.dot(mesh_from_chart.translation()));
+    edge.convex = edge.across_normal.head<2>().dot(inside) < edge.across_offset;
     for (std::size_t k = 0; k < out.count; ++k)
       if ((out.edges[k].normal - edge.normal).norm() < kSameDirection && std::fabs(out.edges[k].offset - edge.offset) < kSameOffset)
         return;
@@ -63,16 +96,23 @@ bool ChartBoundary::past(const Eigen::Vector3d& p, double margin) const {
   return false;
 }
 
+bool ChartBoundary::nearerAcross(const Eigen::Vector3d& q, double gap) const {
+  for (std::size_t k = 0; k < count; ++k)
+    if (edges[k].convex && edges[k].across_normal.dot(q) - edges[k].across_offset > gap) return true;
+  return false;
+}
+
 bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& chart_normal) {
   return faceNormal(mesh, triangle).dot(chart_normal) < std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
 }
 
 ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
                             const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
-                            const Eigen::AlignedBox3d& reach, double side) {
+                            const Eigen::AlignedBox3d& reach, const Eigen::Vector3d& centre, double side) {
   ChartBoundary boundary;
-  CollectEdges collect(mesh, mesh_from_chart, inside, side, boundary);
+  CollectEdges collect(mesh, mesh_from_chart, inside, centre, side, boundary);
   mesh_shape.processAllTriangles(&collect, toBt(reach.min()), toBt(reach.max()));
+  collect.keepNearest();
   return boundary;
 }
 

@@ -8,9 +8,10 @@
 // A face across a crease from the chart is one whose normal lies more than kCreaseFromChartDeg
 // from the chart's (the default angle at which the mesh's own frames keep an edge hard,
 // meshes/textured_mesh.hpp); it cuts the chart's plane along a line, and the chart holds only the
-// side of that line that holds the middle of its foot's triangle. The object meets such a face as
-// Bullet's triangles (flat, untextured; relief_collision.cpp), which lie at the relief's top: an
-// object down in its grooves reads their depth as penetration there (docs/physics.md, Known gaps).
+// side of that line that holds the middle of its foot's triangle. The faces across creases are
+// gathered into surfaces (faces not across a crease from each other), each with its triangle
+// nearest the object: the object meets each such surface on a chart of its own, cut the same way
+// (relief_collision.cpp), so that the texture is read beyond the crease too.
 #include <BulletCollision/CollisionShapes/btConcaveShape.h>
 
 #include <Eigen/Core>
@@ -26,21 +27,45 @@ namespace thx::phys {
 inline constexpr double kCreaseFromChartDeg = 60.0;
 
 // A line of the chart's plane (chart frame, metres): the chart holds the points with
-// normal . p < offset.
+// normal . p < offset. It is where the plane of a face across a crease (across_normal . x =
+// across_offset, chart frame, the normal out of the mesh's solid) meets the chart's; `convex`:
+// the chart's own face lies behind that plane (a slab's top against its side), not in front of it
+// (a room's floor against its wall).
 struct ChartEdge {
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
   double offset = 0.0;
+  Eigen::Vector3d across_normal = Eigen::Vector3d::UnitX();
+  double across_offset = 0.0;
+  bool convex = true;
+};
+
+// A surface across a crease from the chart: faces within reach, none across a crease from the
+// first one found (its face normal `normal`, mesh frame), and the one whose closest point lies
+// nearest the object's centre.
+struct BeyondSurface {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  std::uint32_t nearest_triangle = 0;
+  double distance_m = 0.0;
 };
 
 struct ChartBoundary {
   static constexpr std::size_t kMaxEdges = 8;  // distinct planes across creases within an object's reach
+  // Surfaces across creases kept (the nearest the object's centre first when there are more).
+  static constexpr std::size_t kMaxSurfaces = 4;
   std::array<ChartEdge, kMaxEdges> edges{};
   std::size_t count = 0;
-  bool beyond_faces = false;  // some face across a crease lies within reach (even parallel to the chart)
+  std::array<BeyondSurface, kMaxSurfaces> surfaces{};
+  std::size_t surface_count = 0;
 
   // Whether the chart point p (chart frame; its z ignored) lies past an edge, or within `margin`
   // of one (metres).
   bool past(const Eigen::Vector3d& p, double margin = 0.0) const;
+  // Whether an object's point q (chart frame), `gap` from the chart's surface (negative: into it),
+  // lies nearer a face across a convex crease than the chart: deeper behind the chart's surface
+  // than behind that face's plane. Such a point is that face's to meet (on its own chart): a block
+  // resting on a slab's top by its edge, sampled on the side face's chart, reads its whole width
+  // as depth along the side's normal.
+  bool nearerAcross(const Eigen::Vector3d& q, double gap) const;
 };
 
 // Whether the mesh's `triangle` lies across a crease from a chart whose normal is `chart_normal`
@@ -52,9 +77,10 @@ bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const 
 // face, the middle of the foot's triangle: the side of each edge that holds it is the chart's (the
 // foot itself may lie on the crease, where an object's centre has passed beyond a box's edge).
 // `side` -1: the chart faces against the mesh's winding (a smooth chart behind it: its faces are
-// compared with the chart's normal turned back to the winding's side).
+// compared with the chart's normal turned back to the winding's side). `centre` (mesh frame): the
+// object's, to which each surface across a crease names its nearest triangle.
 ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
                             const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
-                            const Eigen::AlignedBox3d& reach, double side = 1.0);
+                            const Eigen::AlignedBox3d& reach, const Eigen::Vector3d& centre, double side = 1.0);
 
 }  // namespace thx::phys

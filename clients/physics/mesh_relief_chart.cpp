@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "clients/physics/chart_boundary.hpp"
+
 namespace thx::phys {
 
 namespace {
@@ -21,25 +23,33 @@ const tex::TextureMap& smoothChartMap() {
 
 // The bend's least-squares fit h = (xx x^2 + 2 xy x y + yy y^2) / 2 to the smooth surface's
 // heights at eight points a distance `radius` round the foot (their feet on Phong's surface),
-// in the chart's axes (x, y, its normal n).
+// in the chart's axes (x, y, its normal n; `side` -1: n against the winding). A point whose foot
+// lies across a crease from the chart (chart_boundary.hpp) is not the chart's surface and is left
+// out: by a slab's edge the ring's points past it walked onto the side face, and the bend bowed
+// the top's chart down so that a block resting there by the edge was thrown back. Flat where too
+// few points are left to fit.
 GroundBend fitBend(const ContactMesh& cm, const Eigen::Vector3d& foot, const Eigen::Matrix3d& axes,
-                   std::uint32_t triangle, double radius) {
+                   std::uint32_t triangle, double radius, double side) {
   Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
   Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+  int used = 0;
   for (int k = 0; k < 8; ++k) {
     const double a = k * std::numbers::pi / 4;
     const Eigen::Vector3d p = foot + radius * (std::cos(a) * axes.col(0) + std::sin(a) * axes.col(1));
     std::uint32_t t = triangle;
     Eigen::Vector3d b(1.0 / 3, 1.0 / 3, 1.0 / 3);
     smoothFoot(cm, p, 1.0, t, b);
+    if (acrossCrease(*cm.mesh, t, side * axes.col(2))) continue;
     const Eigen::Vector3d d = mesh::frameAt(*cm.mesh, t, b, mesh::FrameMode::InterpolatedPhong).point - foot;
     const double x = d.dot(axes.col(0)), y = d.dot(axes.col(1)), h = d.dot(axes.col(2));
     const Eigen::Vector3d row(0.5 * x * x, x * y, 0.5 * y * y);
     ata += row * row.transpose();
     atb += row * h;
+    ++used;
   }
-  const Eigen::Vector3d q = ata.ldlt().solve(atb);
   GroundBend bend;
+  if (used < 4) return bend;
+  const Eigen::Vector3d q = ata.ldlt().solve(atb);
   if (q.allFinite()) bend.xx = q[0], bend.xy = q[1], bend.yy = q[2];
   return bend;
 }
@@ -56,17 +66,15 @@ const MeshRelief* meshReliefOf(const btCollisionShape& shape) {
   return static_cast<const MeshRelief*>(shape.getUserPointer());
 }
 
-bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle, MeshChart& out) {
+namespace {
+
+// The chart at the foot f (on `triangle`) of an object reaching `reach_m`, on the side `side` of
+// the winding (a relief's chart is on the winding's side only).
+void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const mesh::SurfaceFrame& f, double side,
+                double reach_m, MeshChart& out) {
   const mesh::TexturedMesh& m = *relief.mesh.mesh;
-  if (triangle >= m.triangles.size()) triangle = mesh::nearestTriangle(m, c);
-  Eigen::Vector3d b = mesh::closestBarycentric(m, triangle, c);
-  // The winding's side first, then the foot along the smooth normal on that side.
-  const mesh::SurfaceFrame near = mesh::frameAt(m, triangle, b, mesh::FrameMode::Interpolated);
-  const double side = (c - near.point).dot(near.normal) < 0.0 ? -1.0 : 1.0;
-  if (side < 0.0 && relief.map) return false;
-  smoothFoot(relief.mesh, c, side, triangle, b);
-  const mesh::SurfaceFrame f = mesh::frameAt(m, triangle, b, mesh::FrameMode::InterpolatedPhong);
-  if (side * (c - f.point).dot(f.normal) < 0.0) return false;
+  out.triangle = triangle;
+  out.side = side;
   if (!relief.map) {
     // Nothing laid on it: the frame is the smooth normal on the object's side and any tangent
     // (alignChart turns it, layGridUnder places its samples).
@@ -79,11 +87,9 @@ bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach
     mapping.plane_to_world.linear() = axes;
     mapping.plane_to_world.translation() = f.point;
     out.surface = tex::TexturedSurface(smoothChartMap(), mapping, tex::SampleOptions{}, true);
-    out.bend = fitBend(relief.mesh, f.point, axes, triangle, reach_m);
+    out.bend = fitBend(relief.mesh, f.point, axes, triangle, reach_m, side);
     out.bend.centre = Eigen::Vector2d::Zero();
-    out.triangle = triangle;
-    out.side = side;
-    return true;
+    return;
   }
   // The chart as the pen's (hapticd's chartAt): x along the tangent, y along the bitangent, the
   // texture at this face's scale; uv taken within its tile so the chart's origin stays near.
@@ -98,10 +104,35 @@ bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach
   mapping.plane_to_world.translation() = f.point - f.tangent * foot.x() - f.bitangent * foot.y();
   out.surface = tex::TexturedSurface(*relief.map, mapping, relief.sampling, true);
   out.surface.setNormalsMadeFor(relief.normals_made_for_m);
-  out.bend = fitBend(relief.mesh, f.point, axes, triangle, reach_m);
+  out.bend = fitBend(relief.mesh, f.point, axes, triangle, reach_m, side);
   out.bend.centre = foot;
-  out.triangle = triangle;
-  out.side = 1.0;
+}
+
+}  // namespace
+
+bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle, MeshChart& out) {
+  const mesh::TexturedMesh& m = *relief.mesh.mesh;
+  if (triangle >= m.triangles.size()) triangle = mesh::nearestTriangle(m, c);
+  Eigen::Vector3d b = mesh::closestBarycentric(m, triangle, c);
+  // The winding's side first, then the foot along the smooth normal on that side.
+  const mesh::SurfaceFrame near = mesh::frameAt(m, triangle, b, mesh::FrameMode::Interpolated);
+  const double side = (c - near.point).dot(near.normal) < 0.0 ? -1.0 : 1.0;
+  if (side < 0.0 && relief.map) return false;
+  smoothFoot(relief.mesh, c, side, triangle, b);
+  const mesh::SurfaceFrame f = mesh::frameAt(m, triangle, b, mesh::FrameMode::InterpolatedPhong);
+  if (side * (c - f.point).dot(f.normal) < 0.0) return false;
+  layChartAt(relief, triangle, f, side, reach_m, out);
+  return true;
+}
+
+bool chartOnFace(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t triangle,
+                 double side, MeshChart& out) {
+  const mesh::TexturedMesh& m = *relief.mesh.mesh;
+  if (triangle >= m.triangles.size() || (relief.map && side < 0.0)) return false;
+  const mesh::SurfaceFrame f =
+      mesh::frameAt(m, triangle, mesh::closestBarycentric(m, triangle, c), mesh::FrameMode::InterpolatedPhong);
+  if (side * (c - f.point).dot(f.normal) <= 0.0) return false;
+  layChartAt(relief, triangle, f, side, reach_m, out);
   return true;
 }
 

@@ -9,8 +9,8 @@
 // Bullet's own box-triangle points are not used: they sit at the box's corners and edges, and a
 // point lying in one of the box's grooves does not touch the mesh at all (docs/physics.md,
 // "Textured objects"). One chart holds one smooth surface: where an object reaches across a
-// crease of the mesh (a rim, a box's edge) the chart stops at the crease, and the faces beyond it
-// are met as Bullet's triangles (chart_boundary.hpp).
+// crease of the mesh (a rim, a box's edge) the chart stops at the crease, and each surface beyond
+// it is met on a chart of its own, cut at the crease the same way (chart_boundary.hpp).
 //
 // Only the side the mesh's winding faces is textured (a closed bowl's inside, a sphere's outside):
 // an object behind the winding gets no contacts from a relief's chart.
@@ -68,6 +68,15 @@ struct MeshChart {
 // looking at every one). False where c lies behind the winding of a relief mesh. A smooth chart's
 // plane is laid by layGridUnder afterwards.
 bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle, MeshChart& out);
+
+// The chart of a surface across a crease from the one under the object (chart_boundary.hpp): at the
+// point of `triangle` nearest c, on the side `side` of the winding (the chart under the object's),
+// without walking (a walk would cross the crease back). False where c does not lie in front of it
+// on that side: an object behind a face's plane cannot touch its front (the grooved block resting
+// short of a slab's edge, met by the side face's chart from behind, would read its whole width as
+// depth).
+bool chartOnFace(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t triangle,
+                 double side, MeshChart& out);
 
 // Whether the chart is a smooth one (its map is smoothChartMap()).
 bool isSmoothChart(const tex::TexturedSurface& surface);

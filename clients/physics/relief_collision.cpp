@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <iterator>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "clients/physics/box_relief_contacts.hpp"
@@ -171,38 +172,22 @@ void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside&
   }
 }
 
-// Bullet's points for the pair (object, mesh), kept only on the faces across a crease from the
-// chart whose normal is `chart_normal` (mesh frame). The mesh is the result's second body, so
-// Bullet names each point's triangle in m_index1.
-class BeyondCreaseResult : public btManifoldResult {
- public:
-  BeyondCreaseResult(const btCollisionObjectWrapper* object, const btCollisionObjectWrapper* mesh,
-                     const mesh::TexturedMesh& triangles, const Eigen::Vector3d& chart_normal)
-      : btManifoldResult(object, mesh), mesh_(triangles), chart_normal_(chart_normal) {}
-
-  void addContactPoint(const btVector3& normal, const btVector3& point, btScalar depth) override {
-    if (m_index1 < 0 || std::size_t(m_index1) >= mesh_.triangles.size()) return;
-    if (!acrossCrease(mesh_, std::uint32_t(m_index1), chart_normal_)) return;
-    btManifoldResult::addContactPoint(normal, point, depth);
-  }
-
- private:
-  const mesh::TexturedMesh& mesh_;
-  Eigen::Vector3d chart_normal_;
-};
-
 // A mesh chart's texels past its boundary are not the mesh's (chart_boundary.hpp). The basin walks
-// find candidates by their texels' (i, j), so a gap in the raster is only a texel not there. Texels
-// within one texel of the crease go too: there the object touches the face across it (met as
-// Bullet's triangles), and a chart's texel just short of the line measures that contact along the
-// chart's normal, as deep as the object reaches behind the crease (a block resting on a slab's top
-// by its edge, sunk a micrometre, read 7 mm into the side face's chart where its underside's edge
-// was sampled).
-void dropPastBoundary(const ChartBoundary* boundary, const tex::TexturedSurface& surface,
-                      std::vector<ReliefCandidate>& candidates) {
+// find candidates by their texels' (i, j), so a gap in the raster is only a texel not there. Across
+// a convex crease, a texel whose object point lies nearer the face across it than the chart goes
+// too (ChartBoundary::nearerAcross): that face's chart meets it. A block resting on a slab's top by
+// its edge, sunk a micrometre, read 7 mm into the side face's chart where its underside's edge was
+// sampled, and was thrown back over the slab. (Dropping every texel within one texel of a crease
+// instead dropped the ridge on a slab's edge, and a grooved block overhanging it tipped over the
+// ridge before.)
+bool offChart(const ChartBoundary* boundary, const ReliefCandidate& c) {
+  return boundary && boundary->count > 0 &&
+         (boundary->past(c.p_surface) || boundary->nearerAcross(c.p_surface + c.depth * Eigen::Vector3d::UnitZ(), c.depth));
+}
+
+void dropPastBoundary(const ChartBoundary* boundary, std::vector<ReliefCandidate>& candidates) {
   if (!boundary || boundary->count == 0) return;
-  const double texel = surface.mapping().texelSize(surface.map()).cwiseAbs().maxCoeff();
-  std::erase_if(candidates, [&](const ReliefCandidate& c) { return boundary->past(c.p_surface, texel); });
+  std::erase_if(candidates, [&](const ReliefCandidate& c) { return offChart(boundary, c); });
 }
 
 // Which group of a textured box's contacts a normal (plane frame) falls in: 0 within 6° of the
@@ -224,19 +209,17 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
                                                     const GroundBend& bend, const Underside& underside,
                                                     const FaceTexture& faces, const ChartBoundary* boundary,
                                                     double threshold, const Eigen::Isometry3d& world_from_plane,
-                                                    btManifoldResult* result) {
+                                                    int chart, btManifoldResult* result) {
   // Reused between steps so a resting box costs no allocation per step.
   thread_local std::vector<ReliefCandidate> candidates, group;
   thread_local std::vector<std::size_t> group_index, taken;
   candidates.clear();
   taken.clear();
   const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend);
-  dropPastBoundary(boundary, surface, candidates);
+  dropPastBoundary(boundary, candidates);
   const TexturedBoxSurface box_surface(underside, faces);
   for (std::size_t g = 0; g < kNormalGroups; ++g) {
-    btPersistentManifold* manifold = g == 0 ? manifoldFor(object.getCollisionObject(), relief.getCollisionObject())
-                                            : groupManifold(g, object.getCollisionObject(), relief.getCollisionObject());
-    result->setPersistentManifold(manifold);
+    result->setPersistentManifold(groupManifold(chart, g, object.getCollisionObject(), relief.getCollisionObject()));
     group.clear();
     group_index.clear();
     for (std::size_t k = 0; k < candidates.size(); ++k)
@@ -268,9 +251,10 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
   result->setPersistentManifold(manifoldFor(object.getCollisionObject(), relief.getCollisionObject()));
 }
 
-btPersistentManifold* ReliefCollisionAlgorithm::groupManifold(std::size_t g, const btCollisionObject* object,
+btPersistentManifold* ReliefCollisionAlgorithm::groupManifold(int chart, std::size_t g, const btCollisionObject* object,
                                                              const btCollisionObject* relief) {
-  btPersistentManifold*& m = groups_[g - 1];
+  if (chart == kUnder && g == 0) return manifoldFor(object, relief);
+  btPersistentManifold*& m = chart == kUnder ? groups_[g - 1] : surfaces_->slots[std::size_t(chart)].groups[g];
   if (!m) m = m_dispatcher->getNewManifold(object, relief);
   return m;
 }
@@ -280,66 +264,90 @@ void ReliefCollisionAlgorithm::clearGroupManifolds() {
     if (m) m->clearManifold();
 }
 
+void ReliefCollisionAlgorithm::clearSlot(int slot) {
+  SurfaceSlot& s = surfaces_->slots[std::size_t(slot)];
+  for (btPersistentManifold* m : s.groups)
+    if (m) m->clearManifold();
+  s.held = false;
+}
+
+int ReliefCollisionAlgorithm::surfaceSlot(const Eigen::Vector3d& normal, std::uint32_t taken) {
+  if (!surfaces_) surfaces_ = std::make_unique<SurfaceSlots>();
+  const double same = std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
+  int free_slot = kUnder;
+  for (std::size_t k = 0; k < surfaces_->slots.size(); ++k) {
+    if (taken & (1u << k)) continue;
+    const SurfaceSlot& s = surfaces_->slots[k];
+    // Not across a crease from the surface it held: the same surface.
+    if (s.held && s.normal.dot(normal) >= same) return int(k);
+    if (!s.held && free_slot == kUnder) free_slot = int(k);
+  }
+  if (free_slot == kUnder)  // every slot held a surface last step: take one this step has not
+    for (std::size_t k = 0; k < surfaces_->slots.size() && free_slot == kUnder; ++k)
+      if (!(taken & (1u << k))) free_slot = int(k);
+  if (free_slot != kUnder) {
+    clearSlot(free_slot);
+    surfaces_->slots[std::size_t(free_slot)].normal = normal;
+  }
+  return free_slot;
+}
+
 ReliefCollisionAlgorithm::~ReliefCollisionAlgorithm() {
   for (btPersistentManifold* m : groups_)
     if (m) m_dispatcher->releaseManifold(m);
-  if (beyond_crease_) {
-    beyond_crease_->~btCollisionAlgorithm();
-    m_dispatcher->freeCollisionAlgorithm(beyond_crease_);
+  if (surfaces_)
+    for (SurfaceSlot& s : surfaces_->slots)
+      for (btPersistentManifold* m : s.groups)
+        if (m) m_dispatcher->releaseManifold(m);
+}
+
+void ReliefCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) { chartManifolds(manifolds); }
+
+void ReliefCollisionAlgorithm::slotManifolds(int slot, btManifoldArray& manifolds) {
+  if (slot == kUnder) {
+    ManifoldAlgorithm::getAllContactManifolds(manifolds);
+    for (btPersistentManifold* m : groups_)
+      if (m) manifolds.push_back(m);
+    return;
   }
-}
-
-void ReliefCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-  chartManifolds(manifolds);
-  if (beyond_crease_) beyond_crease_->getAllContactManifolds(manifolds);
-}
-
-void ReliefCollisionAlgorithm::chartManifolds(btManifoldArray& manifolds) {
-  ManifoldAlgorithm::getAllContactManifolds(manifolds);
-  for (btPersistentManifold* m : groups_)
+  for (btPersistentManifold* m : surfaces_->slots[std::size_t(slot)].groups)
     if (m) manifolds.push_back(m);
 }
 
-void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                                             const MeshRelief& relief, const FaceTexture* faces,
-                                             const btDispatcherInfo& info, btManifoldResult* result) {
-  btPersistentManifold* manifold = manifoldFor(object.getCollisionObject(), mesh.getCollisionObject());
-  result->setPersistentManifold(manifold);
+void ReliefCollisionAlgorithm::chartManifolds(btManifoldArray& manifolds) {
+  slotManifolds(kUnder, manifolds);
+  if (surfaces_)
+    for (std::size_t k = 0; k < surfaces_->slots.size(); ++k) slotManifolds(int(k), manifolds);
+}
+
+ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWrapper& object,
+                                                       const btCollisionObjectWrapper& mesh, const MeshRelief& relief,
+                                                       const FaceTexture* faces, const MeshChart& chart, int slot,
+                                                       const Eigen::AlignedBox3d& reach, double threshold,
+                                                       btManifoldResult* result) {
   const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
   const Eigen::Isometry3d world_from_object = toEigen(object.getWorldTransform());
-  const Eigen::Vector3d centre = world_from_mesh.inverse() * world_from_object.translation();
-  const btCollisionShape& shape = *object.getCollisionShape();
-  MeshChart chart;
-  if (!chartUnder(relief, centre, reachOf(shape), foot_triangle_, chart)) {
-    // Behind the winding: nothing textured to meet (mesh_relief_chart.hpp).
-    manifold->clearManifold();
-    clearGroupManifolds();
-    clearBeyondCrease();
-    return;
-  }
-  if (!relief.map) laySmoothChart(chart, shape, world_from_mesh.inverse() * world_from_object, relief.grid_intervals, faces);
   const Eigen::Isometry3d& mesh_from_chart = chart.surface.mapping().plane_to_world;
   const Eigen::Isometry3d world_from_chart = world_from_mesh * mesh_from_chart;
   // Where the chart stops: faces across a crease within the object's reach (chart_boundary.hpp).
-  const double threshold = double(manifold->getContactBreakingThreshold());
-  btVector3 aabb_min, aabb_max;
-  shape.getAabb(toBt(Eigen::Isometry3d(world_from_mesh.inverse() * world_from_object)), aabb_min, aabb_max);
-  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(threshold);
-  const Eigen::AlignedBox3d reach(toEigen(aabb_min) - margin, toEigen(aabb_max) + margin);
   const mesh::TexturedMesh& triangles = *relief.mesh.mesh;
   const mesh::Triangle& foot = triangles.triangles[chart.triangle];
   const Eigen::Vector3d foot_middle =
       (triangles.positions[foot[0]] + triangles.positions[foot[1]] + triangles.positions[foot[2]]) / 3.0;
   const ChartBoundary boundary =
       chartBoundary(static_cast<const btConcaveShape&>(*mesh.getCollisionShape()), triangles, mesh_from_chart,
-                    (mesh_from_chart.inverse() * foot_middle).head<2>(), reach, chart.side);
-  const std::optional<Underside> underside = undersideOf(shape, world_from_chart.inverse() * world_from_object);
-  if (!underside) return;
+                    (mesh_from_chart.inverse() * foot_middle).head<2>(), reach,
+                    world_from_mesh.inverse() * world_from_object.translation(), chart.side);
+  const std::optional<Underside> underside =
+      undersideOf(*object.getCollisionShape(), world_from_chart.inverse() * world_from_object);
+  if (!underside) return boundary;
   if (faces) {
     texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, *faces, &boundary, threshold,
-                         world_from_chart, result);
+                         world_from_chart, slot, result);
   } else {
     // An untextured object: the plane's rule on the chart (points afresh each step, as there).
+    btPersistentManifold* manifold = groupManifold(slot, 0, object.getCollisionObject(), mesh.getCollisionObject());
+    result->setPersistentManifold(manifold);
     const bool on_end_face = standsOnEndFace(*underside);
     if (!on_end_face) manifold->clearManifold();
     plainObjectCollision(chart.surface, chart.bend, *underside, on_end_face, nullptr, &boundary, threshold,
@@ -348,7 +356,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
   // Each point names the triangle under it on the mesh's side, as Bullet's own points do (the
   // physics client reads a contact's texel through it).
   btManifoldArray manifolds;
-  chartManifolds(manifolds);
+  slotManifolds(slot, manifolds);
   const Eigen::Isometry3d mesh_from_world = world_from_mesh.inverse();
   for (int m = 0; m < manifolds.size(); ++m) {
     for (int k = 0; k < manifolds[m]->getNumContacts(); ++k) {
@@ -357,39 +365,63 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
       p.m_index1 = int(triangleUnder(relief, mesh_from_world * toEigen(p.getPositionWorldOnB()), chart.triangle));
     }
   }
-  if (boundary.beyond_faces) {
-    beyondCreaseCollision(object, mesh, relief, chart.side * mesh_from_chart.linear().col(2), info);
+  return boundary;
+}
+
+void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
+                                             const MeshRelief& relief, const FaceTexture* faces,
+                                             btManifoldResult* result) {
+  btPersistentManifold* manifold = manifoldFor(object.getCollisionObject(), mesh.getCollisionObject());
+  result->setPersistentManifold(manifold);
+  const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
+  const Eigen::Isometry3d mesh_from_object = world_from_mesh.inverse() * toEigen(object.getWorldTransform());
+  const Eigen::Vector3d centre = mesh_from_object.translation();
+  const btCollisionShape& shape = *object.getCollisionShape();
+  std::uint32_t held = 0;  // the slots of surfaces across creases met this step
+  MeshChart chart;
+  if (chartUnder(relief, centre, reachOf(shape), foot_triangle_, chart)) {
+    if (!relief.map) laySmoothChart(chart, shape, mesh_from_object, relief.grid_intervals, faces);
+    const double threshold = double(manifold->getContactBreakingThreshold());
+    btVector3 aabb_min, aabb_max;
+    shape.getAabb(toBt(mesh_from_object), aabb_min, aabb_max);
+    const Eigen::Vector3d margin = Eigen::Vector3d::Constant(threshold);
+    const Eigen::AlignedBox3d reach(toEigen(aabb_min) - margin, toEigen(aabb_max) + margin);
+    const ChartBoundary boundary = chartCollision(object, mesh, relief, faces, chart, kUnder, reach, threshold, result);
+    // Each surface across a crease within reach, on a chart of its own at its point nearest the
+    // object's centre, cut at its own creases (the chart under the object's surface among them).
+    for (std::size_t k = 0; k < boundary.surface_count; ++k) {
+      const BeyondSurface& beyond = boundary.surfaces[k];
+      MeshChart across;
+      if (!chartOnFace(relief, centre, reachOf(shape), beyond.nearest_triangle, chart.side, across)) continue;
+      const int slot = surfaceSlot(beyond.normal, held);
+      if (slot == kUnder) continue;
+      held |= 1u << std::size_t(slot);
+      if (!relief.map) laySmoothChart(across, shape, mesh_from_object, relief.grid_intervals, faces);
+      chartCollision(object, mesh, relief, faces, across, slot, reach, threshold, result);
+    }
   } else {
-    clearBeyondCrease();
+    // Behind the winding: nothing textured to meet (mesh_relief_chart.hpp).
+    manifold->clearManifold();
+    clearGroupManifolds();
   }
-}
-
-void ReliefCollisionAlgorithm::beyondCreaseCollision(const btCollisionObjectWrapper& object,
-                                                     const btCollisionObjectWrapper& mesh, const MeshRelief& relief,
-                                                     const Eigen::Vector3d& chart_normal, const btDispatcherInfo& info) {
-  if (!beyond_crease_) {
-    btCollisionAlgorithmConstructionInfo ci(m_dispatcher, 0);
-    void* memory = m_dispatcher->allocateCollisionAlgorithm(int(sizeof(btConvexConcaveCollisionAlgorithm)));
-    beyond_crease_ = new (memory) btConvexConcaveCollisionAlgorithm(ci, &object, &mesh, false);
-  }
-  BeyondCreaseResult result(&object, &mesh, *relief.mesh.mesh, chart_normal);
-  beyond_crease_->processCollision(&object, &mesh, info, &result);
-}
-
-void ReliefCollisionAlgorithm::clearBeyondCrease() {
-  if (!beyond_crease_) return;
-  btManifoldArray manifolds;
-  beyond_crease_->getAllContactManifolds(manifolds);
-  for (int m = 0; m < manifolds.size(); ++m) manifolds[m]->clearManifold();
+  if (surfaces_)
+    for (std::size_t k = 0; k < surfaces_->slots.size(); ++k) {
+      if (held & (1u << k)) {
+        surfaces_->slots[k].held = true;
+      } else if (surfaces_->slots[k].held) {
+        clearSlot(int(k));
+      }
+    }
+  result->setPersistentManifold(manifold);
 }
 
 void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
-                                                const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
+                                                const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
                                                 btManifoldResult* result) {
   const btCollisionObjectWrapper* object = swapped_ ? body1 : body0;
   const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
   if (const MeshRelief* mesh = meshReliefOf(*relief->getCollisionShape())) {
-    meshCollision(*object, *relief, *mesh, faceTextureOf(*object->getCollisionShape()), info, result);
+    meshCollision(*object, *relief, *mesh, faceTextureOf(*object->getCollisionShape()), result);
     return;
   }
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());
@@ -412,7 +444,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   // normals.
   if (box_faces) {
     texturedBoxCollision(*object, *relief, plane.surface(), GroundBend{}, *underside, *box_faces, nullptr, threshold,
-                         world_from_plane, result);
+                         world_from_plane, kUnder, result);
     return;
   }
   clearGroupManifolds();
@@ -439,7 +471,14 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     thread_local std::vector<ReliefCandidate> candidates;
     candidates.clear();
     const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, nullptr, bent);
-    dropPastBoundary(boundary, surface, candidates);
+    dropPastBoundary(boundary, candidates);
+    // Refined within its texel (relief_raster.hpp), but kept on the chart: a box tilted over a
+    // slab's edge has its deepest point on flat ground at its far edge, over the air past the crease,
+    // and a block tipping off the edge was held there and thrown back.
+    auto refine = [&](const ReliefCandidate& c) {
+      const ReliefCandidate refined = refineDeepest(surface, underside, c, bent);
+      return offChart(boundary, refined) ? c : refined;
+    };
     // A ball in a relief of its own curvature: contacts by position, one measure
     // (conforming_contact.hpp). Otherwise the deepest and the spread points.
     std::array<std::size_t, kMaxReliefContacts> picked{};
@@ -473,7 +512,7 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
       const std::array<std::size_t, kMaxReliefContacts> spread = picked;
       snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
       for (std::size_t k = 0; k < n; ++k)
-        if (k == 0 || picked[k] != spread[k]) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);
+        if (k == 0 || picked[k] != spread[k]) candidates[picked[k]] = refine(candidates[picked[k]]);
     } else if (n > 0 && underside.kind == Underside::Kind::Box) {
       // A box whose footprint is visited with a stride (a huge box): the same rule on the texels visited.
       // On a smooth chart the gap is the bend's quadratic alone, and a box's spread points stand
@@ -488,11 +527,11 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
       // the samples, so a box rocking on a cylinder rolls on the line it touches rather than from
       // sample to sample.
       if (smooth)
-        for (std::size_t k = 0; k < n; ++k) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);
+        for (std::size_t k = 0; k < n; ++k) candidates[picked[k]] = refine(candidates[picked[k]]);
     } else if (lying_rod) {
-      for (std::size_t k = 0; k < n; ++k) candidates[picked[k]] = refineDeepest(surface, underside, candidates[picked[k]], bent);
+      for (std::size_t k = 0; k < n; ++k) candidates[picked[k]] = refine(candidates[picked[k]]);
     } else if (n > 0) {
-      candidates[picked[0]] = refineDeepest(surface, underside, candidates[picked[0]], bent);
+      candidates[picked[0]] = refine(candidates[picked[0]]);
     }
     for (std::size_t k = 0; k < n; ++k) chosen.contacts[k] = candidates[picked[k]];
     chosen.count = n;

@@ -13,9 +13,10 @@
 // takes the same rule on the mesh's chart under it, the relief standing on the mesh's bend (on a
 // mesh without a relief, on its smooth chart: the bend alone, sampled over the object); each
 // point names the triangle under it (m_index1), as Bullet's own points on a mesh do; the chart
-// stops at a crease within the object's reach, and the faces across it are met by Bullet's own
-// convex-concave algorithm, its points kept on those faces only (chart_boundary.hpp). A sphere on
-// such a mesh stays with Bullet's sphere-triangle points, lifted onto the relief (mesh_contact.hpp).
+// stops at a crease within the object's reach, and each surface across it is met the same way on
+// a chart of its own, cut at its creases in turn, in manifolds of its own (chart_boundary.hpp). A
+// sphere on such a mesh stays with Bullet's sphere-triangle points, lifted onto the relief
+// (mesh_contact.hpp).
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher
 // hands the pair in): normal = relief normal in world frame, pointing from the relief to the
@@ -24,7 +25,9 @@
 // point on the object is where its surface faces -n (underside.hpp, contactOnObject): q = c - r n
 // for a sphere (Eq. 2), the axis point for a capsule or a cylinder's side, the lowest point above
 // the texel for a box or a cylinder's end face.
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "clients/physics/chart_boundary.hpp"
@@ -62,14 +65,18 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
  private:
   // A textured box's contacts come in up to kNormalGroups groups by their normals' tilt, each in
   // its own manifold of at most four points (relief_collision.cpp, normalGroup); group 0 is the
-  // pair's own manifold.
+  // pair's own manifold on the chart under the object.
   static constexpr std::size_t kNormalGroups = 5;
+  // Which chart's manifolds: the one under the object (kUnder) or a surface across a crease from
+  // it (its slot, 0 to ChartBoundary::kMaxSurfaces - 1).
+  static constexpr int kUnder = -1;
   // `boundary` (a mesh's chart's; nullptr on the plane): texels past it are not the mesh's.
   void texturedBoxCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& relief,
                             const tex::TexturedSurface& surface, const GroundBend& bend, const Underside& underside,
                             const FaceTexture& faces, const ChartBoundary* boundary, double threshold,
-                            const Eigen::Isometry3d& world_from_plane, btManifoldResult* result);
-  btPersistentManifold* groupManifold(std::size_t g, const btCollisionObject* object, const btCollisionObject* relief);
+                            const Eigen::Isometry3d& world_from_plane, int chart, btManifoldResult* result);
+  btPersistentManifold* groupManifold(int chart, std::size_t g, const btCollisionObject* object,
+                                      const btCollisionObject* relief);
   void clearGroupManifolds();
   // An untextured object (the plane's general rule: raster, selection, basins, refinement), on the
   // relief plane or on a mesh's chart standing on its bend; `level_runs` (the plane's) lets a box's
@@ -81,23 +88,38 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
                             btManifoldResult* result);
   // An object against a mesh with a chart (mesh_relief_chart.hpp: a relief's or a smooth one): the
   // same rule as on the plane (a textured box's, `faces`, or the untextured one's) on the mesh's
-  // chart under it.
+  // chart under it, and on the chart of each surface across a crease within its reach.
   void meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                     const MeshRelief& relief, const FaceTexture* faces, const btDispatcherInfo& info,
-                     btManifoldResult* result);
-  // The faces across a crease from the chart, within reach (chart_boundary.hpp): Bullet's
-  // convex-concave algorithm for the pair, its points kept on those faces only. Made on first
-  // need, from the dispatcher's pool.
-  void beyondCreaseCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                             const MeshRelief& relief, const Eigen::Vector3d& chart_normal, const btDispatcherInfo& info);
-  void clearBeyondCrease();
-  // The manifolds our own rules fill (the pair's and the textured box's groups), not Bullet's.
+                     const MeshRelief& relief, const FaceTexture* faces, btManifoldResult* result);
+  // The rule on one chart, into that chart's manifolds; each point names the triangle under it.
+  // Returns the chart's boundary.
+  ChartBoundary chartCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
+                               const MeshRelief& relief, const FaceTexture* faces, const MeshChart& chart, int slot,
+                               const Eigen::AlignedBox3d& reach, double threshold, btManifoldResult* result);
+  // The slot of the surface across a crease whose face normal is `normal` (mesh frame): the one
+  // that held it last step, else a free one, emptied; kUnder when none is free.
+  int surfaceSlot(const Eigen::Vector3d& normal, std::uint32_t taken);
+  void clearSlot(int slot);
+  // The manifolds of one chart (kUnder: the pair's and the textured box's groups), or of all.
+  void slotManifolds(int slot, btManifoldArray& manifolds);
   void chartManifolds(btManifoldArray& manifolds);
+
+  // The surfaces across creases from the chart under the object, each in a slot kept while it stays
+  // within reach (a textured box's kept points stay with their surface). Made on first need: the
+  // algorithm comes from Bullet's pool, sized for its own algorithms.
+  struct SurfaceSlot {
+    btPersistentManifold* groups[kNormalGroups] = {};
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    bool held = false;  // it held a surface last step
+  };
+  struct SurfaceSlots {
+    std::array<SurfaceSlot, ChartBoundary::kMaxSurfaces> slots;
+  };
 
   bool swapped_ = false;  // true: body0 is the relief plane, body1 the object
   std::uint32_t foot_triangle_ = 0xffffffffu;  // on a mesh: the triangle under the box last step
   btPersistentManifold* groups_[kNormalGroups - 1] = {};
-  btCollisionAlgorithm* beyond_crease_ = nullptr;
+  std::unique_ptr<SurfaceSlots> surfaces_;
 };
 
 // The shapes the relief algorithm understands, seen from the plane; nullopt for any other shape.
