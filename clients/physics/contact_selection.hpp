@@ -63,6 +63,18 @@ enum class BasinClaim { SameTexel, NearestPoint };
 void snapToBasins(std::span<const ReliefCandidate> candidates, long long stride_i, long long stride_j,
                   std::span<std::size_t> chosen, BasinClaim claim = BasinClaim::SameTexel);
 
+// A box on a relief's chart of a mesh (relief_collision.cpp): the deepest candidate, then in each
+// other quarter of the box's footprint (about its centre `centre_xy`, along its axes `axis_a`,
+// `axis_b` as they lie in the plane) the candidate lowest in depth less `prefer_spread` times its
+// distance from the centre: the most spread of those about as deep. A box on sharp V-ridges rests
+// on the crests in each quarter. The spread rule's corners stood on texels down the outer ridges'
+// flanks, up to 27 um above its support, and the block rested on one point a step, a different
+// ridge each step: never at rest, it moved 0.2-3.1 mm in 0.9 s along the grooves (docs/physics.md,
+// Known gaps). Up to four, deepest first.
+std::size_t selectBoxQuarterContacts(std::span<const ReliefCandidate> candidates, const Eigen::Vector2d& centre_xy,
+                                     const Eigen::Vector2d& axis_a, const Eigen::Vector2d& axis_b, double prefer_spread,
+                                     std::array<std::size_t, kMaxReliefContacts>& chosen);
+
 // Whether a point that walked from `start` to `bottom` may take that basin under
 // BasinClaim::NearestPoint: `others` are the other chosen points where they are. The box's
 // row-by-row path (box_relief_contacts.cpp) and snapToBasins decide with this one function.
