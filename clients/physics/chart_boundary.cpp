@@ -49,7 +49,15 @@ struct CollectEdges : btTriangleCallback {
       if (distance < s.distance_m) s.nearest_triangle = index, s.distance_m = distance;
       return;
     }
-    if (found_count < found.size()) found[found_count++] = {n, index, distance};
+    if (found_count < found.size()) {
+      found[found_count++] = {n, index, distance};
+      return;
+    }
+    // Full: the new surface takes the place of the farthest, if it is nearer.
+    BeyondSurface* farthest = std::max_element(found.begin(), found.end(), [](const BeyondSurface& p, const BeyondSurface& q) {
+      return p.distance_m < q.distance_m;
+    });
+    if (distance < farthest->distance_m) *farthest = {n, index, distance};
   }
 
   void keepNearest() {
