@@ -79,15 +79,16 @@ struct CollectEdges : btTriangleCallback {
     const Eigen::Vector2d line = along.head<2>();
     const double length = line.norm();
     if (length < 1e-9) return;  // parallel to the chart (a plate's underside): no line to cut along
+    const double plane_offset = n.dot(p0) - n.dot(mesh_from_chart.translation());  // d - n . t
     ChartEdge edge;
     edge.normal = line / length;
-    edge.offset = (n.dot(p0) - n.dot(mesh_from_chart.translation())) / length;
+    edge.offset = plane_offset / length;
     // Oriented so that the chart's own face is held.
     if (edge.normal.dot(inside) > edge.offset) edge.normal = -edge.normal, edge.offset = -edge.offset;
     // The face's plane in the chart's frame, its normal out of the solid on the chart's side of the
     // winding; convex where the chart's own face lies behind it.
     edge.across_normal = side * along;
-    edge.across_offset = side * (n.dot(p0) - n.dot(mesh_from_chart.translation()));
+    edge.across_offset = side * plane_offset;
     edge.convex = edge.across_normal.head<2>().dot(inside) < edge.across_offset;
     for (std::size_t k = 0; k < out.count; ++k)
       if ((out.edges[k].normal - edge.normal).norm() < kSameDirection && std::fabs(out.edges[k].offset - edge.offset) < kSameOffset)
@@ -98,9 +99,9 @@ struct CollectEdges : btTriangleCallback {
 
 }  // namespace
 
-bool ChartBoundary::past(const Eigen::Vector3d& p, double margin) const {
+bool ChartBoundary::past(const Eigen::Vector3d& p) const {
   for (std::size_t k = 0; k < count; ++k)
-    if (edges[k].normal.dot(p.head<2>()) > edges[k].offset - margin) return true;
+    if (edges[k].normal.dot(p.head<2>()) > edges[k].offset) return true;
   return false;
 }
 

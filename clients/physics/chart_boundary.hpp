@@ -57,9 +57,8 @@ struct ChartBoundary {
   std::array<BeyondSurface, kMaxSurfaces> surfaces{};
   std::size_t surface_count = 0;
 
-  // Whether the chart point p (chart frame; its z ignored) lies past an edge, or within `margin`
-  // of one (metres).
-  bool past(const Eigen::Vector3d& p, double margin = 0.0) const;
+  // Whether the chart point p (chart frame; its z ignored) lies past an edge.
+  bool past(const Eigen::Vector3d& p) const;
   // Whether an object's point q (chart frame), `gap` from the chart's surface (negative: into it),
   // lies nearer a face across a convex crease than the chart: deeper behind the chart's surface
   // than behind that face's plane. Such a point is that face's to meet (on its own chart): a block

@@ -84,6 +84,14 @@ double reachOf(const btCollisionShape& shape) {
   }
 }
 
+// Which of a box's axes (columns of `axes`, the box in the chart's frame) lies most along the
+// chart's normal: its other two lie most in the plane.
+int mostUpright(const Eigen::Matrix3d& axes) {
+  int down = 0;
+  for (int k = 1; k < 3; ++k) down = std::fabs(axes(2, k)) > std::fabs(axes(2, down)) ? k : down;
+  return down;
+}
+
 // Where a smooth chart's samples go under an object (chart frame): a box's lowest face, so that
 // its corners are samples however it is tilted (over its bounds, a tilted box's outer rows fall
 // beside its underside's edges, and a block in a bowl sank 0.36 mm onto the samples a row in);
@@ -95,8 +103,7 @@ Eigen::AlignedBox2d gridFootprint(const Underside& underside) {
   }
   const Eigen::Matrix3d& axes = underside.plane_from_object.linear();
   const Eigen::Vector3d& half = underside.half_extents;
-  int down = 0;
-  for (int k = 1; k < 3; ++k) down = std::fabs(axes(2, k)) > std::fabs(axes(2, down)) ? k : down;
+  const int down = mostUpright(axes);
   const double below = axes(2, down) > 0.0 ? -1.0 : 1.0;  // the face whose normal points down
   const int a = (down + 1) % 3, b = (down + 2) % 3;
   const Eigen::Vector3d middle = underside.plane_from_object.translation() + below * half[down] * axes.col(down);
@@ -385,9 +392,10 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
   const Eigen::Isometry3d mesh_from_object = world_from_mesh.inverse() * toEigen(object.getWorldTransform());
   const Eigen::Vector3d centre = mesh_from_object.translation();
   const btCollisionShape& shape = *object.getCollisionShape();
+  const double reach_m = reachOf(shape);
   std::uint32_t held = 0;  // the slots of surfaces across creases met this step
   MeshChart chart;
-  if (chartUnder(relief, centre, reachOf(shape), foot_triangle_, chart)) {
+  if (chartUnder(relief, centre, reach_m, foot_triangle_, chart)) {
     if (!relief.map) laySmoothChart(chart, shape, mesh_from_object, relief.grid_intervals, faces);
     const double threshold = double(manifold->getContactBreakingThreshold());
     btVector3 aabb_min, aabb_max;
@@ -400,7 +408,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
     for (std::size_t k = 0; k < boundary.surface_count; ++k) {
       const BeyondSurface& beyond = boundary.surfaces[k];
       MeshChart across;
-      if (!chartOnFace(relief, centre, reachOf(shape), beyond.nearest_triangle, chart.side, across)) continue;
+      if (!chartOnFace(relief, centre, reach_m, beyond.nearest_triangle, chart.side, across)) continue;
       const int slot = surfaceSlot(beyond.normal, held);
       if (slot == kUnder) continue;
       held |= 1u << std::size_t(slot);
@@ -517,8 +525,7 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     } else if (box_quarters) {
       // The box's two axes that lie most in the plane.
       const Eigen::Matrix3d& axes = underside.plane_from_object.linear();
-      int down = 0;
-      for (int k = 1; k < 3; ++k) down = std::fabs(axes(2, k)) > std::fabs(axes(2, down)) ? k : down;
+      const int down = mostUpright(axes);
       n = selectBoxQuarterContacts(candidates, underside.plane_from_object.translation().head<2>(),
                                    axes.col((down + 1) % 3).head<2>(), axes.col((down + 2) % 3).head<2>(),
                                    kPreferSpread, picked);
