@@ -68,6 +68,8 @@ class TextureMap {
   std::int16_t normalCodeX(int i, int j) const { return texels_[index(i, j)].nx; }
   std::int16_t normalCodeY(int i, int j) const { return texels_[index(i, j)].ny; }
   float depth(int i, int j) const { return float(texels_[index(i, j)].depth) * depth_scale_; }
+  // Metres per depth code: two texels on one plane may read depths this far apart (0 for a normal map).
+  double depthStep() const { return double(depth_scale_); }
   // Raw 16-bit depth fraction (0 = plane, 65535 = maxDepth()).
   std::uint16_t depthCode(int i, int j) const { return texels_[index(i, j)].depth; }
 

@@ -107,7 +107,7 @@ void clipToVerticalSlabs(const BoxSlabs& box, const std::array<RowSlab, 3>& row,
   }
 }
 
-// A touching texel kept for the selection: a run's end, a level stretch's end or the deepest.
+// A chosen texel as the general rule's candidates hold it.
 ReliefCandidate keptTexel(long long i, long long j, double x, double y, double height, double depth) {
   ReliefCandidate c;
   c.p_surface = Eigen::Vector3d(x, y, height);
@@ -115,10 +115,6 @@ ReliefCandidate keptTexel(long long i, long long j, double x, double y, double h
   c.i = i;
   c.j = j;
   return c;
-}
-
-bool scanOrderBefore(const ReliefCandidate& a, const ReliefCandidate& b) {
-  return a.j != b.j ? a.j < b.j : a.i < b.i;
 }
 
 // A row of the footprint: its slabs and the columns its vertical slabs leave.
@@ -172,93 +168,21 @@ void touchingInterval(const BoxSlabs& box, const FootprintRow& row, double x0, d
   lo = std::floor(lo) - 1.0, hi = std::ceil(hi) + 1.0;
 }
 
-// A row's touching texels where they are one interval on level stretches (lo > hi: none).
-struct RowSpan {
-  long long lo = 0, hi = -1;
-  bool holds(long long gi) const { return gi >= lo && gi <= hi; }
+// A stretch of a row whose texels the selection reads: read texel by texel (every touching texel
+// may win), or one level stretch's touching interval [from, to] at `height`, whose depth is convex.
+struct RowPiece {
+  long long gj = 0, from = 0, to = -1;
+  bool level = false;
+  double height = 0.0;
+  double least = 0.0;  // a level stretch's least depth
 };
 
-// The basin walks' end, where it can be told without walking (issue 29: the three walks of a box
-// at rest on a level relief were a fifth of its step, corner to corner, 40 steps each). Where
-// every row's touching texels are one interval on one level relief (`spans`, all at `height`)
-// and one lower face of the box is its lowest surface over all of them, the depth is that face's
-// plane less the height: affine in the texel indices, d = d0 + a gi + b gj. Where a, b and a +- b
-// are far from zero against rounding, the walk's comparisons are the plane's, and a texel is the
-// end of a walk (no neighbour deeper) only at the end of its row that the row runs down to, and
-// only if none of the four neighbours downhill of that end touches. One such texel is where
-// every walk ends. Returns it as (gi, gj), or false where any condition fails (then the walks
-// are walked).
-bool oneBasin(const BoxSlabs& box, const std::vector<FootprintRow>& rows, const std::vector<RowSpan>& spans,
-              double x0, double dy, double height, long long& basin_i, long long& basin_j) {
-  const long long nj = (long long)spans.size();
-  long long top = 0;
-  while (top < nj && spans[std::size_t(top)].lo > spans[std::size_t(top)].hi) ++top;
-  if (top == nj) return false;
-  auto plane = [&](std::size_t k, const FootprintRow& row, long long gi) {
-    return row.slabs[k].a_lo + row.slabs[k].b * (x0 + double(gi) * box.dx);
-  };
-  // The lowest face where the first touching row starts.
-  int face = -1;
-  for (std::size_t m = 0; m < 3; ++m)
-    if (!box.axis[m].vertical &&
-        (face < 0 || plane(m, rows[std::size_t(top)], spans[std::size_t(top)].lo) >
-                         plane(std::size_t(face), rows[std::size_t(top)], spans[std::size_t(top)].lo)))
-      face = int(m);
-  if (face < 0) return false;
-  const std::size_t k = std::size_t(face);
-  // A face's plane is evaluated from terms no larger than `scale`; its rounding is a few times
-  // 1e-16 of that. Differences are trusted beyond 1e-12 of it: ten thousand times that.
-  double far_x = 0.0;
-  for (const RowSpan& s : spans)
-    if (s.lo <= s.hi) far_x = std::max({far_x, std::fabs(x0 + double(s.lo) * box.dx), std::fabs(x0 + double(s.hi) * box.dx)});
-  const double far_y = std::max(std::fabs(rows.front().y), std::fabs(rows.back().y));
-  auto scale = [&](std::size_t m) {
-    const BoxSlabs::Axis& a = box.axis[m];
-    return std::fabs(a.inv_uz) * (a.h + far_y + box.centre.cwiseAbs().sum()) + std::fabs(a.b) * far_x + std::fabs(height);
-  };
-  constexpr double kTrusted = 1e-12;
-  const double rounding = kTrusted * scale(k);
-  // That face lowest at both ends of every row, so over all of it (each difference is affine
-  // along a row).
-  for (std::size_t m = 0; m < 3; ++m) {
-    if (m == k || box.axis[m].vertical) continue;
-    const double margin = kTrusted * (scale(k) + scale(m));
-    for (long long gj = top; gj < nj; ++gj) {
-      const RowSpan& s = spans[std::size_t(gj)];
-      if (s.lo > s.hi) continue;
-      const FootprintRow& row = rows[std::size_t(gj)];
-      if (!(plane(k, row, s.lo) - plane(m, row, s.lo) > margin) || !(plane(k, row, s.hi) - plane(m, row, s.hi) > margin))
-        return false;
-    }
-  }
-  // The depth's change per texel along the row (+gi: x grows by dx) and down the rows (+gj: y
-  // falls by dy).
-  const BoxSlabs::Axis& lowest = box.axis[k];
-  const double a = lowest.b * box.dx, b = lowest.u.y() * lowest.inv_uz * dy;
-  const double apart = 4.0 * rounding;
-  if (!(std::fabs(a) > apart && std::fabs(b) > apart && std::fabs(a + b) > apart && std::fabs(a - b) > apart)) return false;
-  // The four neighbours downhill: o with a oi + b oj < 0.
-  std::array<std::array<long long, 2>, 4> downhill{};
-  std::size_t n_down = 0;
-  for (long long oj = -1; oj <= 1; ++oj)
-    for (long long oi = -1; oi <= 1; ++oi)
-      if (a * double(oi) + b * double(oj) < 0.0) downhill[n_down++] = {oi, oj};
-  long long ends = 0;
-  for (long long gj = top; gj < nj; ++gj) {
-    const RowSpan& s = spans[std::size_t(gj)];
-    if (s.lo > s.hi) continue;
-    const long long gi = a > 0.0 ? s.lo : s.hi;
-    bool end = true;
-    for (std::size_t o = 0; o < n_down && end; ++o) {
-      const long long j = gj + downhill[o][1];
-      end = !(j >= 0 && j < nj && spans[std::size_t(j)].holds(gi + downhill[o][0]));
-    }
-    if (end) {
-      if (++ends > 1) return false;
-      basin_i = gi, basin_j = gj;
-    }
-  }
-  return ends == 1;
+// Where along a row (in columns) the line through the box's centre along `axis` crosses it:
+// the quarters change there. NaN where the row runs along the line.
+double quarterCrossing(const Eigen::Vector2d& centre, const Eigen::Vector2d& axis, double y, double x0, double inv_dx) {
+  if (axis.x() == 0.0) return std::numeric_limits<double>::quiet_NaN();
+  // (x - cx) a.x + (y - cy) a.y = 0
+  return (centre.x() - (y - centre.y()) * axis.y() / axis.x() - x0) * inv_dx;
 }
 
 }  // namespace
@@ -286,9 +210,8 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   thread_local std::vector<int> columns;           // resolved column of each footprint column
   thread_local std::vector<long long> straight_to;  // last footprint column resolving to consecutive columns
   thread_local std::vector<FootprintRow> rows;
-  thread_local std::vector<ReliefCandidate> kept;
-  thread_local std::vector<RowSpan> spans;  // each row's touching texels while every row is one level stretch
-  // The grid has a border of +inf around the footprint: the basin walk needs no bounds check.
+  thread_local std::vector<RowPiece> pieces;  // what the selection reads, in scan order
+  // The grid has a border of +inf around the footprint.
   const long long pitch = ni + 2;
   // "Not read yet" is a NaN whose bytes are all 0xff, so the grid is cleared by memset: a
   // loop storing quiet_NaN one double at a time was a twentieth of a step at 1024².
@@ -303,12 +226,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
     straight_to[std::size_t(gi)] =
         gi + 1 < ni && columns[std::size_t(gi + 1)] == columns[std::size_t(gi)] + 1 ? straight_to[std::size_t(gi + 1)] : gi;
   rows.resize(std::size_t(nj));
-  kept.clear();
-  spans.assign(std::size_t(nj), RowSpan{});
-  // Whether every row's touching texels are one interval, all on level stretches of one height
-  // (oneBasin's premise).
-  bool one_level = true;
-  double level_height = std::numeric_limits<double>::quiet_NaN();
+  pieces.clear();
 
   const BoxSlabs slabs(box, texel.x());
   auto heightAt = [&](long long gi, int rj) {
@@ -323,7 +241,22 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
     }
     return d;
   };
+  // Where a level stretch's faces' planes cross along its row (in columns, within (a, b)): its
+  // depth is affine between them. At most three.
+  auto faceCrossings = [&](const FootprintRow& row, long long a, long long b, std::array<double, 3>& at) {
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < 3; ++k)
+      for (std::size_t m = k + 1; m < 3; ++m) {
+        if (slabs.inv_db[k][m] == 0.0) continue;  // parallel planes or a vertical slab: no crossing
+        const RowSlab &p = row.slabs[k], &q = row.slabs[m];
+        const double cross = ((q.a_lo - p.a_lo) * slabs.inv_db[k][m] - first.x()) * slabs.inv_dx;
+        if (cross > double(a) && cross < double(b)) at[n++] = cross;
+      }
+    return n;
+  };
 
+  // Pass 1: every row's depths as far as the deepest texel needs them, and the pieces the
+  // selection reads.
   double deepest = kUnbounded;
   long long deepest_i = -1, deepest_j = -1;
   for (long long gj = 0; gj < nj; ++gj) {
@@ -333,19 +266,9 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
     row.slabs = slabs.row(row.y);
     row.first_col = 0, row.last_col = ni - 1;
     clipToVerticalSlabs(slabs, row.slabs, first.x(), row.first_col, row.last_col);
-    auto keep = [&](long long gi) {
-      kept.push_back(keptTexel(f.i0 + gi, f.j0 + gj, xOf(gi), row.y, heightAt(gi, row.rj), depthAt(gi, gj)));
-    };
-    auto consider = [&](long long gi) {  // in scan order within the row: the first of equals stays
+    auto consider = [&](long long gi) {  // of equal depths the first in scan order
       const double d = depthAt(gi, gj);
-      if (d < deepest) deepest = d, deepest_i = gi, deepest_j = gj;
-    };
-    long long run_start = -1;  // the touching run open on this row (texel by texel)
-    auto closeRun = [&](long long last) {
-      if (run_start < 0) return;
-      keep(run_start);
-      if (last != run_start) keep(last);
-      run_start = -1;
+      if (d < deepest || (d == deepest && gj == deepest_j && gi < deepest_i)) deepest = d, deepest_i = gi, deepest_j = gj;
     };
     // The column where a level stretch of at least kLevelStretchMin texels ends, if one starts
     // at gi (consecutive texels of one height), else gi - 1.
@@ -359,10 +282,9 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
     for (long long gi = row.first_col; gi <= row.last_col;) {
       const long long level_to = stretchFrom(gi);
       if (level_to >= gi) {
-        // A level stretch: its touching interval's ends and the texels next to where its
-        // faces' planes cross (the only places a convex depth can be least) are read; the
-        // stretch's inside needs no reading.
-        closeRun(gi - 1);
+        // A level stretch: the ends of its touching interval and the texels by where its faces'
+        // planes cross (the only places a convex depth can be least) are read; the inside needs
+        // no reading.
         const double height = heightAt(gi, row.rj);
         double lo = double(gi), hi = double(level_to);
         touchingInterval(slabs, row, first.x(), height, threshold_m, lo, hi);
@@ -371,104 +293,98 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
         while (a <= b && !(depthAt(a, gj) < kUnbounded)) ++a;
         while (b >= a && !(depthAt(b, gj) < kUnbounded)) --b;
         if (a <= b) {
-          std::array<long long, 8> at{};
-          std::size_t n_at = 0;
-          at[n_at++] = a;
-          for (std::size_t k = 0; k < 3; ++k)
-            for (std::size_t m = k + 1; m < 3; ++m) {
-              if (slabs.inv_db[k][m] == 0.0) continue;  // parallel planes or a vertical slab: no crossing
-              const RowSlab &p = row.slabs[k], &q = row.slabs[m];
-              const double cross = ((q.a_lo - p.a_lo) * slabs.inv_db[k][m] - first.x()) * slabs.inv_dx;
-              if (!(cross > double(a) && cross < double(b))) continue;
-              at[n_at++] = (long long)std::floor(cross);
-              at[n_at++] = (long long)std::floor(cross) + 1;
-            }
-          at[n_at++] = b;
-          for (std::size_t q = 1; q < n_at; ++q)  // in scan order (a handful: insertion)
-            for (std::size_t r = q; r > 0 && at[r] < at[r - 1]; --r) std::swap(at[r], at[r - 1]);
-          for (std::size_t q = 0; q < n_at; ++q) consider(at[q]);
-          keep(a);
-          if (b != a) keep(b);
-          if (one_level) {  // one interval per row (stretches meet at a wrap seam), one height
-            RowSpan& span = spans[std::size_t(gj)];
-            one_level = (std::isnan(level_height) || height == level_height) && (span.lo > span.hi || a == span.hi + 1);
-            level_height = height;
-            span = RowSpan{span.lo > span.hi ? a : span.lo, b};
-          }
+          std::array<double, 3> cross{};
+          const std::size_t n_cross = faceCrossings(row, a, b, cross);
+          double least = kUnbounded;
+          auto read = [&](long long g) { consider(g), least = std::min(least, depthAt(g, gj)); };
+          read(a);
+          for (std::size_t c = 0; c < n_cross; ++c) read((long long)std::floor(cross[c])), read((long long)std::floor(cross[c]) + 1);
+          read(b);
+          pieces.push_back(RowPiece{gj, a, b, true, height, least});
         }
         gi = level_to + 1;
         continue;
       }
       // Texel by texel up to where a level stretch starts: their depths in a tight loop (no
-      // texel of this stretch of the row has been read), then their runs.
+      // texel of this stretch of the row has been read).
       long long end = gi;
       while (end < row.last_col && stretchFrom(end + 1) < end + 1) ++end;
       for (long long g = gi; g <= end; ++g) depth_row[g] = texelDepth(slabs, row, g, xOf(g), heightAt(g, row.rj), threshold_m);
-      for (; gi <= end; ++gi) {
-        if (depth_row[gi] < kUnbounded) {
-          if (run_start < 0) run_start = gi;
-          consider(gi);
-          one_level = false;  // a touching texel where the relief is not level for long
-        } else {
-          closeRun(gi - 1);
-        }
-      }
+      bool touching = false;
+      for (long long g = gi; g <= end; ++g)
+        if (depth_row[g] < kUnbounded) consider(g), touching = true;
+      if (touching) pieces.push_back(RowPiece{gj, gi, end, false, 0.0, 0.0});
+      gi = end + 1;
     }
-    closeRun(row.last_col);
   }
-  if (kept.empty()) return true;
-  // The deepest texel joins the kept ones in scan order, so that among equally deep texels the
-  // selection takes the first in scan order, as the general rule does.
-  {
-    const long long j = f.j0 + deepest_j;
-    const ReliefCandidate deepest_texel = keptTexel(f.i0 + deepest_i, j, xOf(deepest_i), rows[std::size_t(deepest_j)].y,
-                                                    heightAt(deepest_i, rows[std::size_t(deepest_j)].rj), deepest);
-    const auto at = std::lower_bound(kept.begin(), kept.end(), deepest_texel, scanOrderBefore);
-    if (at == kept.end() || at->i != deepest_texel.i || at->j != deepest_texel.j) kept.insert(at, deepest_texel);
-  }
+  if (deepest_i < 0) return true;
 
-  std::array<std::size_t, kMaxReliefContacts> chosen{};
-  const std::size_t n = selectReliefContacts(kept, chosen);
-
-  // snapToBasins (BasinClaim::NearestPoint), reading depths as the walk needs them: each chosen
-  // texel walks to its lowest neighbour (8 around, the first of equals in scan order) while that
-  // is deeper; it moves there where that bottom is nearer to it than to every other chosen texel
-  // (where an earlier one went, where a later one stands).
-  std::array<long long, kMaxReliefContacts> cell{};
-  // Where every walk provably ends at the deepest texel, each point stays where it is.
-  long long basin_i = -1, basin_j = -1;
-  const bool walked = !(one_level && n > 1 && !std::isnan(level_height) &&
-                        oneBasin(slabs, rows, spans, first.x(), texel.y(), level_height, basin_i, basin_j) &&
-                        basin_i == kept[chosen[0]].i - f.i0 && basin_j == kept[chosen[0]].j - f.j0);
-  out.one_basin = !walked;
-  for (std::size_t c = 0; c < n; ++c) {
-    long long gi = kept[chosen[c]].i - f.i0, gj = kept[chosen[c]].j - f.j0;
-    for (; walked;) {
-      long long next_i = gi, next_j = gj;
-      double next_depth = depthAt(gi, gj);
-      for (long long dj = -1; dj <= 1; ++dj)
-        for (long long di = -1; di <= 1; ++di) {
-          // The border reads +inf: never deeper.
-          const long long a = gi + di, b = gj + dj;
-          const double v = depthAt(a, b);
-          if (v < next_depth) next_i = a, next_j = b, next_depth = v;
-        }
-      if (next_i == gi && next_j == gj) break;
-      gi = next_i, gj = next_j;
+  // Pass 2: the quarter rule (contact_selection.hpp, BoxQuarters) offered every texel that can
+  // win. Along a level stretch the score (depth less the spread preference, concave
+  // where one face is lowest) is least at the ends of where one face is lowest, of each quarter's
+  // part and of the part within the tolerance of the deepest: those ends are offered, with a
+  // texel either side of each crossing against rounding.
+  BoxQuarters quarters = quartersUnder(box, map.depthStep());
+  quarters.setDeepest(deepest, Eigen::Vector2d(xOf(deepest_i), rows[std::size_t(deepest_j)].y));
+  const double within = deepest + quarters.depthTolerance();
+  const Eigen::Matrix3d& axes = box.plane_from_object.linear();
+  const int down = mostUprightAxis(axes);
+  const Eigen::Vector2d centre = box.plane_from_object.translation().head<2>();
+  const std::array<Eigen::Vector2d, 2> quarter_axes = {axes.col((down + 1) % 3).head<2>(), axes.col((down + 2) % 3).head<2>()};
+  auto offer = [&](long long gi, long long gj) {
+    const double d = depthAt(gi, gj);
+    if (d < kUnbounded) quarters.offer(std::size_t(gj * ni + gi), Eigen::Vector2d(xOf(gi), rows[std::size_t(gj)].y), d);
+  };
+  // The pieces from both ends of the footprint inwards: a level box's corners come first, and
+  // then every piece between is refused whole (the offers name their texels' places in scan
+  // order, so their order does not change the answer).
+  const double reach_slack = kPreferSpread * (1.0 + 1e-9);
+  for (std::size_t visited = 0; visited < pieces.size(); ++visited) {
+    const RowPiece& piece = pieces[visited % 2 == 0 ? visited / 2 : pieces.size() - 1 - visited / 2];
+    const FootprintRow& row = rows[std::size_t(piece.gj)];
+    if (!piece.level) {
+      for (long long g = piece.from; g <= piece.to; ++g) offer(g, piece.gj);
+      continue;
     }
-    // The plane's coordinates of the texels, as the general rule's candidates hold them.
-    auto at = [&](long long i, long long j) { return Eigen::Vector2d(xOf(i), rows[std::size_t(j)].y); };
-    std::array<Eigen::Vector2d, kMaxReliefContacts> others;
-    std::size_t n_others = 0;
-    for (std::size_t e = 0; e < n; ++e)
-      if (e != c) others[n_others++] = e < c ? at(cell[e] % ni, cell[e] / ni) : at(kept[chosen[e]].i - f.i0, kept[chosen[e]].j - f.j0);
-    const long long start_i = kept[chosen[c]].i - f.i0, start_j = kept[chosen[c]].j - f.j0;
-    const bool claims = nearestClaims(at(start_i, start_j), at(gi, gj), std::span(others.data(), n_others));
-    cell[c] = claims ? gj * ni + gi : start_j * ni + start_i;
+    const long long a = piece.from, b = piece.to;
+    // No texel of a level stretch scores below its least depth less the preference at its
+    // farthest end (the distance is convex along the row): refused whole where every quarter has
+    // a lower score already.
+    {
+      const double far = std::max(Eigen::Vector2d(xOf(a) - centre.x(), row.y - centre.y()).norm(),
+                                  Eigen::Vector2d(xOf(b) - centre.x(), row.y - centre.y()).norm());
+      if (quarters.refuses(piece.least - reach_slack * far)) continue;
+    }
+    auto around = [&](double cross) {  // the texels either side of a crossing, one more where it is near a texel
+      if (!(cross > double(a) - 2.0 && cross < double(b) + 2.0)) return;
+      const long long g = (long long)std::floor(cross);
+      const double frac = cross - double(g);
+      for (long long t = std::max(g - (frac < 1e-6 ? 1 : 0), a); t <= std::min(g + (frac > 1.0 - 1e-6 ? 2 : 1), b); ++t)
+        offer(t, piece.gj);
+    };
+    offer(a, piece.gj);
+    offer(b, piece.gj);
+    std::array<double, 3> cross{};
+    const std::size_t n_cross = faceCrossings(row, a, b, cross);
+    for (std::size_t c = 0; c < n_cross; ++c) around(cross[c]);
+    for (const Eigen::Vector2d& axis : quarter_axes) around(quarterCrossing(centre, axis, row.y, first.x(), slabs.inv_dx));
+    // Where the depth is within the tolerance of the deepest: one interval (the depth is convex),
+    // none where its least is not, all of it where both ends are.
+    if (piece.least <= within && !(depthAt(a, piece.gj) <= within && depthAt(b, piece.gj) <= within)) {
+      double lo = double(a), hi = double(b);
+      touchingInterval(slabs, row, first.x(), piece.height, within, lo, hi);
+      long long r0 = (long long)std::clamp(lo, double(a), double(b) + 1.0);
+      long long r1 = (long long)std::clamp(hi, double(a) - 1.0, double(b));
+      while (r0 <= r1 && !(depthAt(r0, piece.gj) <= within)) ++r0;
+      while (r1 >= r0 && !(depthAt(r1, piece.gj) <= within)) --r1;
+      if (r0 <= r1) offer(r0, piece.gj), offer(r1, piece.gj);
+    }
   }
 
+  std::array<std::size_t, kMaxReliefContacts> cells{};
+  const std::size_t n = quarters.chosen(cells);
   for (std::size_t c = 0; c < n; ++c) {
-    const long long gi = cell[c] % ni, gj = cell[c] / ni;
+    const long long gi = (long long)cells[c] % ni, gj = (long long)cells[c] / ni;
     const long long i = f.i0 + gi, j = f.j0 + gj;
     const FootprintRow& row = rows[std::size_t(gj)];
     ReliefCandidate& contact = out.contacts[c];
@@ -485,11 +401,17 @@ ChosenReliefContacts generalBoxReliefContacts(const tex::TexturedSurface& surfac
   std::vector<ReliefCandidate> candidates;
   out.raster = rasterizeRelief(surface, box, threshold_m, candidates);
   std::array<std::size_t, kMaxReliefContacts> chosen{};
-  out.count = selectReliefContacts(candidates, chosen);
-  snapToBasins(candidates, out.raster.stride_i, out.raster.stride_j, std::span(chosen.data(), out.count),
-               BasinClaim::NearestPoint);
+  BoxQuarters quarters = quartersUnder(box, surface.map().depthStep());
+  out.count = selectBoxQuarterContacts(candidates, quarters, chosen);
   for (std::size_t c = 0; c < out.count; ++c) out.contacts[c] = candidates[chosen[c]];
   return out;
+}
+
+BoxQuarters quartersUnder(const Underside& box, double depth_tolerance) {
+  const Eigen::Matrix3d& axes = box.plane_from_object.linear();
+  const int down = mostUprightAxis(axes);
+  return BoxQuarters(box.plane_from_object.translation().head<2>(), axes.col((down + 1) % 3).head<2>(),
+                     axes.col((down + 2) % 3).head<2>(), kPreferSpread, depth_tolerance, box.half_extents.norm());
 }
 
 }  // namespace thx::phys

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <span>
 
 namespace thx::phys {
@@ -63,21 +64,87 @@ enum class BasinClaim { SameTexel, NearestPoint };
 void snapToBasins(std::span<const ReliefCandidate> candidates, long long stride_i, long long stride_j,
                   std::span<std::size_t> chosen, BasinClaim claim = BasinClaim::SameTexel);
 
-// A box on a relief's chart of a mesh (relief_collision.cpp): the deepest candidate, then in each
-// other quarter of the box's footprint (about its centre `centre_xy`, along its axes `axis_a`,
-// `axis_b` as they lie in the plane) the candidate lowest in depth less `prefer_spread` times its
-// distance from the centre: the most spread of those about as deep. A box on sharp V-ridges rests
-// on the crests in each quarter. The spread rule's corners stood on texels down the outer ridges'
-// flanks, up to 27 um above its support, and the block rested on one point a step, a different
-// ridge each step: never at rest, it moved 0.2-3.1 mm in 0.9 s along the grooves (docs/physics.md,
-// Known gaps). Up to four, deepest first.
-std::size_t selectBoxQuarterContacts(std::span<const ReliefCandidate> candidates, const Eigen::Vector2d& centre_xy,
-                                     const Eigen::Vector2d& axis_a, const Eigen::Vector2d& axis_b, double prefer_spread,
+// A plain box on a relief (the plane, a mesh's chart; relief_collision.cpp) rests on the lowest
+// point of each quarter of its footprint, about its centre `centre_xy` along its axes `axis_a`,
+// `axis_b` as they lie in the plane: in each, the candidate lowest in depth less `prefer_spread`
+// times its distance from the centre, the most spread of those about as deep. In the quarter of
+// the deepest candidate only candidates within `depth_tolerance` of its depth take part (the
+// most spread of them as elsewhere), so what must be resolved is resolved to that tolerance. Up
+// to four, deepest first. A box on sharp V-ridges rests on the crests in each quarter.
+//
+// The spread rule's corners stood on texels down the outer ridges' flanks, up to 27 um above its
+// support, and the block rested on one point a step, a different ridge each step: never at rest,
+// it moved 0.2-3.1 mm in 0.9 s along the grooves on a mesh, 0.02-0.34 mm in 0.9 s on the plane
+// (docs/physics.md, "A plain box on sharp ridges"). The tolerance is the relief's depth step: on a
+// uniform slope the stored heights' rounding (0.3 um at 16 bits of 2 cm) made a texel one in from
+// a corner the deepest, a different side each step, and a box pushed up the slope at 0.91 of the
+// weight its friction holds to 0.94 moved 0.24 mm in 0.3 s (without the tolerance); with it the
+// four corners hold it.
+// The farther of two candidates is preferred where their depths differ by less than this per metre
+// between their distances from the centre (a tilt of 1 mrad): the corners of a box level on flat
+// ground, the outer crests of ridges over texels down their flanks. The block on the grooved slab
+// mesh, released at eight positions 0.05 mm apart, moved 1.6-9.7 um in 0.9 s (0.2-3.1 mm with the
+// spread rule); a first version (quarters along the chart's axes, points then snapped to their
+// basins) held it as well at 0.3, 1 and 3 mrad.
+inline constexpr double kPreferSpread = 1e-3;
+
+// The rule's bookkeeping: the deepest candidate is found first; then every candidate that may win
+// is offered, in any order, named by its place in scan order (`id`: of equal scores the first in
+// scan order wins, whatever the order of the offers). selectBoxQuarterContacts offers all;
+// box_relief_contacts.cpp only those its rows show can win.
+class BoxQuarters {
+ public:
+  // `reach`: no candidate lies farther than this from the centre (it lets most offers be refused
+  // without their distance).
+  BoxQuarters(const Eigen::Vector2d& centre_xy, const Eigen::Vector2d& axis_a, const Eigen::Vector2d& axis_b,
+              double prefer_spread, double depth_tolerance, double reach)
+      : centre_(centre_xy), axis_a_(axis_a), axis_b_(axis_b), prefer_spread_(prefer_spread), tolerance_(depth_tolerance),
+        most_preferred_(prefer_spread * reach * (1.0 + 1e-9)) {}
+  int quarterOf(const Eigen::Vector2d& xy) const {
+    const Eigen::Vector2d d = xy - centre_;
+    return (d.dot(axis_a_) < 0.0 ? 0 : 1) + (d.dot(axis_b_) < 0.0 ? 0 : 2);
+  }
+  // Once, before any offer: the deepest candidate's depth and where it lies.
+  void setDeepest(double depth, const Eigen::Vector2d& xy) { deepest_ = depth, deepest_quarter_ = quarterOf(xy); }
+  double deepestDepth() const { return deepest_; }
+  double depthTolerance() const { return tolerance_; }
+  // Candidate `id` (its place in scan order) at `xy`, `depth`.
+  void offer(std::size_t id, const Eigen::Vector2d& xy, double depth) {
+    const int q = quarterOf(xy);
+    if (q == deepest_quarter_ && !(depth <= deepest_ + tolerance_)) return;
+    if (depth - most_preferred_ >= score_[std::size_t(q)]) return;  // cannot score lower
+    const double s = depth - prefer_spread_ * (xy - centre_).norm();
+    const std::size_t k = std::size_t(q);
+    if (s < score_[k] || (s == score_[k] && id < id_[k])) score_[k] = s, depth_[k] = depth, id_[k] = id;
+  }
+  // Whether every quarter already has a score below `score` (a candidate scoring no lower would
+  // change nothing).
+  bool refuses(double score) const {
+    return score > score_[0] && score > score_[1] && score > score_[2] && score > score_[3];
+  }
+  // The winners' ids, the deepest first (of equal depths, the lower quarter), then the quarter
+  // across from it, then the two beside it; how many.
+  std::size_t chosen(std::array<std::size_t, kMaxReliefContacts>& ids) const;
+
+ private:
+  Eigen::Vector2d centre_, axis_a_, axis_b_;
+  double prefer_spread_, tolerance_, most_preferred_;
+  double deepest_ = 0.0;
+  int deepest_quarter_ = -1;
+  std::array<double, 4> score_ = filled(std::numeric_limits<double>::infinity());
+  std::array<double, 4> depth_{};
+  std::array<std::size_t, 4> id_{};
+  static std::array<double, 4> filled(double v) { return {v, v, v, v}; }
+};
+
+// The rule over every candidate, in their order; `quarters` is the box's (quartersUnder,
+// box_relief_contacts.hpp), not yet fed.
+std::size_t selectBoxQuarterContacts(std::span<const ReliefCandidate> candidates, BoxQuarters quarters,
                                      std::array<std::size_t, kMaxReliefContacts>& chosen);
 
 // Whether a point that walked from `start` to `bottom` may take that basin under
-// BasinClaim::NearestPoint: `others` are the other chosen points where they are. The box's
-// row-by-row path (box_relief_contacts.cpp) and snapToBasins decide with this one function.
+// BasinClaim::NearestPoint: `others` are the other chosen points where they are. A standing
+// cylinder's rim (end_face_contacts.cpp) and snapToBasins decide with this one function.
 bool nearestClaims(const Eigen::Vector2d& start, const Eigen::Vector2d& bottom, std::span<const Eigen::Vector2d> others);
 
 }  // namespace thx::phys

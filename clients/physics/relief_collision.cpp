@@ -52,14 +52,6 @@ std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen:
 
 namespace {
 
-// A box's quarter contacts prefer the farther of two candidates whose depths differ by less than
-// this per metre between their distances from its centre (a tilt of 1 mrad): the corners of a box
-// level on flat ground, the outer crests of ridges over texels down their flanks. The block on the
-// grooved slab mesh, released at eight positions 0.05 mm apart, moved 1.6-9.7 um in 0.9 s (0.2-3.1 mm
-// with the spread rule); a first version (quarters along the chart's axes, points then snapped to
-// their basins) held it as well at 0.3, 1 and 3 mrad.
-constexpr double kPreferSpread = 1e-3;
-
 // How far the shape reaches from its centre: the chart under it must cover that far.
 double reachOf(const btCollisionShape& shape) {
   switch (shape.getShapeType()) {
@@ -84,14 +76,6 @@ double reachOf(const btCollisionShape& shape) {
   }
 }
 
-// Which of a box's axes (columns of `axes`, the box in the chart's frame) lies most along the
-// chart's normal: its other two lie most in the plane.
-int mostUpright(const Eigen::Matrix3d& axes) {
-  int down = 0;
-  for (int k = 1; k < 3; ++k) down = std::fabs(axes(2, k)) > std::fabs(axes(2, down)) ? k : down;
-  return down;
-}
-
 // Where a smooth chart's samples go under an object (chart frame): a box's lowest face, so that
 // its corners are samples however it is tilted (over its bounds, a tilted box's outer rows fall
 // beside its underside's edges, and a block in a bowl sank 0.36 mm onto the samples a row in);
@@ -103,7 +87,7 @@ Eigen::AlignedBox2d gridFootprint(const Underside& underside) {
   }
   const Eigen::Matrix3d& axes = underside.plane_from_object.linear();
   const Eigen::Vector3d& half = underside.half_extents;
-  const int down = mostUpright(axes);
+  const int down = mostUprightAxis(axes);
   const double below = axes(2, down) > 0.0 ? -1.0 : 1.0;  // the face whose normal points down
   const int a = (down + 1) % 3, b = (down + 2) % 3;
   const Eigen::Vector3d middle = underside.plane_from_object.translation() + below * half[down] * axes.col(down);
@@ -479,9 +463,9 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
   const bool bounded = boundary && boundary->count > 0;
   if (underside.kind == Underside::Kind::Box && !bent && !bounded &&
       boxReliefContacts(surface, underside, threshold, chosen, level_runs)) {
-    // A box stands on the tops of the bumps under it: its spread points go to their basins'
-    // bottoms (a flat relief leaves its corners). Not refined: its faces are flat. The rule of
-    // the branch below, computed row by row (box_relief_contacts.hpp); on flat ground only.
+    // A box rests on the lowest point of each quarter of its footprint (the tops of the bumps
+    // under it; a flat relief's corners). Not refined: its faces are flat. The rule of the branch
+    // below, computed row by row (box_relief_contacts.hpp); on flat ground only.
   } else {
     // Reused between steps so a resting object costs no allocation per step.
     thread_local std::vector<ReliefCandidate> candidates;
@@ -504,12 +488,10 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
                  (n = selectConformingContacts(surface, underside, candidates, picked)) > 0;
     const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map()).cwiseAbs();
     const bool rod = underside.kind == Underside::Kind::Capsule || underside.kind == Underside::Kind::Cylinder;
-    // A box on a relief mesh's chart (`boundary` is a mesh's) rests on the lowest of each quarter
-    // of its footprint (selectBoxQuarterContacts). The relief plane's box keeps the spread rule
-    // its row-by-row path computes (box_relief_contacts.hpp), which still creeps on sharp ridges at
-    // some texel phases (docs/physics.md, Known gaps); a smooth chart's box keeps the spread rule,
-    // refined on the bend.
-    const bool box_quarters = underside.kind == Underside::Kind::Box && boundary && !isSmoothChart(surface) &&
+    // A box rests on the lowest of each quarter of its footprint (selectBoxQuarterContacts), as the
+    // row-by-row path above computes it; a smooth chart's box keeps the spread rule, refined on
+    // the bend, and a huge box's footprint visited with a stride the spread rule.
+    const bool box_quarters = underside.kind == Underside::Kind::Box && !isSmoothChart(surface) &&
                               raster.stride_i == 1 && raster.stride_j == 1 && !candidates.empty();
     if (on_end_face) {
       n = selectEndFaceContacts(candidates, underside, texel.maxCoeff(), raster.stride_i, raster.stride_j, picked);
@@ -523,12 +505,7 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
       lying_rod = n > 0;
       if (!lying_rod) n = selectReliefContacts(candidates, picked);
     } else if (box_quarters) {
-      // The box's two axes that lie most in the plane.
-      const Eigen::Matrix3d& axes = underside.plane_from_object.linear();
-      const int down = mostUpright(axes);
-      n = selectBoxQuarterContacts(candidates, underside.plane_from_object.translation().head<2>(),
-                                   axes.col((down + 1) % 3).head<2>(), axes.col((down + 2) % 3).head<2>(),
-                                   kPreferSpread, picked);
+      n = selectBoxQuarterContacts(candidates, quartersUnder(underside, surface.map().depthStep()), picked);
     } else if (!conforming) {
       n = selectReliefContacts(candidates, picked);
     }

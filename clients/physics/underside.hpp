@@ -4,6 +4,7 @@
 // plane enters the object). Relief contact rasterises this over the object's footprint texels.
 // Pure geometry in double, in the PLANE frame (z = the plane's normal); no Bullet types.
 #include <Eigen/Core>
+#include <cmath>
 #include <Eigen/Geometry>
 #include <optional>
 
@@ -23,6 +24,14 @@ struct Underside {
   static Underside capsule(const Eigen::Isometry3d& pose, double radius, double half_length, int axis = 2);
   static Underside cylinder(const Eigen::Isometry3d& pose, double radius, double half_length, int axis = 2);
 };
+
+// Which of a box's axes (columns of `axes`, the box in the plane's frame) lies most along the
+// plane's normal: its other two lie most in the plane.
+inline int mostUprightAxis(const Eigen::Matrix3d& axes) {
+  int down = 0;
+  for (int k = 1; k < 3; ++k) down = std::fabs(axes(2, k)) > std::fabs(axes(2, down)) ? k : down;
+  return down;
+}
 
 // Below this |sin| a vertical line counts as parallel to a face or slab of the object (no z bound).
 inline constexpr double kParallelSine = 1e-12;

@@ -1,6 +1,6 @@
 // A box on a relief: the row-by-row rule (box_relief_contacts.hpp) chooses the contacts the
-// general rule chooses (rasterise every texel, select, snap to basins), on flat, bumpy and
-// bricked reliefs, in every pose a box can rest or tumble in, both address modes.
+// general rule chooses (rasterise every texel, the quarter rule over all of them), on flat, bumpy
+// and bricked reliefs, in every pose a box can rest or tumble in, both address modes.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -127,18 +127,15 @@ TEST(BoxReliefContacts, ALevelBoxAndANearlyLevelOneGetTheGeneralRulesCorners) {
   }
 }
 
-TEST(BoxReliefContacts, ANearlyLevelBoxSkipsItsBasinWalksOnlyWhereTheyAllEndAtTheDeepestTexel) {
+TEST(BoxReliefContacts, ANearlyLevelBoxGetsTheGeneralRulesContacts) {
   // Resting poses: tilted by 1e-9 to 1e-3 rad about any level axis, a third of them square to
-  // the texels and the others at any yaw, on the flat relief and on the bricks (every box there
-  // spans a joint: a basin on each brick, walked). Where the walks are skipped (oneBasin) the
-  // contacts must still be the general rule's. Both kinds occur: on the flat relief the walks of
-  // a box at a yaw can end at a second basin, a notch where the texels meet its edge, and a tilt
-  // below about 5e-9 rad, or about an axis within rounding of a row or a diagonal, leaves depths
-  // too close to tell (when written: 87 of the 100 square boxes skipped, 92 of the 200 yawed
-  // ones, 1 of 295 on the bricks).
+  // the texels and the others at any yaw, on the flat relief and on the bricks. On level stretches
+  // the row-by-row path reads only the ends of where one face is lowest, of each quarter's part
+  // and of the part within the depth step of the deepest: all three change within a stretch in
+  // these poses (the depth step of a flat relief is 0: there the part is the deepest's own level).
   std::mt19937 rng(2912);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  int skipped = 0, walked = 0;
+  int four = 0, compared = 0;
   for (tex::Address address : {tex::Address::Clamp, tex::Address::Wrap}) {
     for (Relief kind : {Relief::Flat, Relief::Bricks}) {
       const SurfaceHolder s = reliefOf(kind, address);
@@ -155,12 +152,51 @@ TEST(BoxReliefContacts, ANearlyLevelBoxSkipsItsBasinWalksOnlyWhereTheyAllEndAtTh
         ASSERT_TRUE(boxReliefContacts(s.surface, box, kThreshold, stretches, &level));
         const ChosenReliefContacts general = generalBoxReliefContacts(s.surface, box, kThreshold);
         expectSameContacts(stretches, general, "pose " + std::to_string(k) + " relief " + std::to_string(int(kind)));
-        if (stretches.count > 1) (stretches.one_basin ? skipped : walked) += 1;
+        four += stretches.count == 4;
+        ++compared;
       }
     }
   }
-  EXPECT_GT(skipped, 150);
-  EXPECT_GT(walked, 300);
+  EXPECT_EQ(compared, 600);
+  EXPECT_GT(four, 500);  // a point in each quarter
+}
+
+TEST(BoxReliefContacts, OnABrickByItsCentreTheDeepestQuarterTakesTheFarthestTexelWithinTheDepthStep) {
+  // A box touching only a brick raised 0.6 mm in one quarter of its footprint, tilted a few
+  // micro-radians down towards its centre: the deepest texel is the brick's end nearest the
+  // centre, and within the depth step (9 nm) of it lie a few texels farther out along each row.
+  // The farthest of them wins that quarter: on its level stretch it is neither the stretch's end
+  // nor by a crossing of faces or quarters, but the end of the part within the step.
+  const int n = 256;
+  const double d = kExtent / n;
+  tex::HeightField field;
+  field.width = field.height = n;
+  field.heights_m.assign(std::size_t(n) * n, -6e-4);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = (i + 0.5) * d - 0.5 * kExtent, y = 0.5 * kExtent - (j + 0.5) * d;
+      if (x > 0.002 && x < 0.008 && y > 0.002 && y < 0.008) field.heights_m[std::size_t(j) * n + std::size_t(i)] = 0.0;
+    }
+  tex::ReliefFromHeightOptions o;
+  o.texel_m = {d, d};
+  const SurfaceHolder s = holdSurface(tex::reliefFromHeight(field, o), kExtent, true);
+  ASSERT_GT(s.map->depthStep(), 0.0);
+  const ReliefLevelRuns level(*s.map);
+  int within_step_won = 0;
+  for (double tilt : {2e-6, 5e-6, 1e-5}) {
+    // Down towards -x and -y: the brick's corner nearest the box's centre is the deepest.
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(tilt, Eigen::Vector3d(1.0, -0.7, 0.0).normalized()).toRotationMatrix();
+    const Underside box = boxAt({0.0, 0.0}, turn, 0.01, 1e-7);  // its lowest point 0.1 um into the brick
+    ChosenReliefContacts stretches;
+    ASSERT_TRUE(boxReliefContacts(s.surface, box, kThreshold, stretches, &level));
+    const ChosenReliefContacts general = generalBoxReliefContacts(s.surface, box, kThreshold);
+    expectSameContacts(stretches, general, "tilt " + std::to_string(tilt));
+    ASSERT_EQ(stretches.count, 1u);  // one quarter touches
+    const ReliefCandidate& c = stretches.contacts[0];
+    // Not the brick's corner nearest the centre (the deepest), farther out within the step.
+    within_step_won += c.p_surface.x() > 0.0025 || c.p_surface.y() > 0.0025;
+  }
+  EXPECT_EQ(within_step_won, 3);
 }
 
 TEST(BoxReliefContacts, LevelRunsCountEqualDepthsAlongARowUpToItsEdge) {

@@ -104,10 +104,13 @@ TEST(CylinderOnAnEndFace, TippedItFallsFlatOntoItsFace) {
   pose.linear() = Eigen::AngleAxisd(tip, Eigen::Vector3d(1.0, 1.0, 0.0).normalized()).toRotationMatrix();
   pose.translation() = Eigen::Vector3d(0.0, 0.0, kRadius * std::sin(tip) + kHalfLength * std::cos(tip) + 1e-5);
   c.body->setWorldTransform(toBt(pose));
-  double lowest = 1.0;
+  double lowest = 1.0, fastest_late = 0.0;
+  Eigen::Vector3d at_800ms = Eigen::Vector3d::Zero();
   for (int k = 0; k < 1000; ++k) {
     c.world->step(kDt);
     const Eigen::Vector3d p = positionOf(*c.body);
+    if (k == 799) at_800ms = p;
+    if (k >= 800) fastest_late = std::max(fastest_late, velocityOf(*c.body).norm());
     const Eigen::Vector3d axis = toEigen(c.body->getWorldTransform().getBasis().getColumn(2));
     // The lowest rim point of the lower face, as the cylinder stands.
     const Eigen::Vector3d down = -axis;
@@ -116,12 +119,15 @@ TEST(CylinderOnAnEndFace, TippedItFallsFlatOntoItsFace) {
     lowest = std::min(lowest, p.z() + kHalfLength * down.z() - sag);
   }
   const Eigen::Vector3d axis = toEigen(c.body->getWorldTransform().getBasis().getColumn(2));
-  std::printf("[measured] tipped 20°: rim's lowest %.4f mm, rests at z %.4f mm, axis z %.6f, %.4f mm/s\n", 1e3 * lowest,
-              1e3 * positionOf(*c.body).z(), axis.z(), 1e3 * velocityOf(*c.body).norm());
+  const double drift = (positionOf(*c.body) - at_800ms).norm();
+  std::printf("[measured] tipped 20°: rim's lowest %.4f mm, rests at z %.4f mm, axis z %.6f; from 0.8 to 1 s moved %.5f mm, at most %.4f mm/s\n",
+              1e3 * lowest, 1e3 * positionOf(*c.body).z(), axis.z(), 1e3 * drift, 1e3 * fastest_late);
   EXPECT_GT(lowest, -0.3e-3) << "the rim sank into the relief";
   EXPECT_NEAR(positionOf(*c.body).z(), kHalfLength, 0.05e-3);
   EXPECT_GT(axis.z(), 0.99999);
-  EXPECT_LT(velocityOf(*c.body).norm(), 0.01e-3);
+  // At rest: it jitters at a few hundredths of a mm/s (the solver's noise), going nowhere.
+  EXPECT_LT(drift, 1e-6);
+  EXPECT_LT(fastest_late, 0.1e-3);
 }
 
 }  // namespace
