@@ -4,8 +4,8 @@
 // plane enters the object). Relief contact rasterises this over the object's footprint texels.
 // Pure geometry in double, in the PLANE frame (z = the plane's normal); no Bullet types.
 #include <Eigen/Core>
-#include <cmath>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <optional>
 
 namespace thx::phys {
