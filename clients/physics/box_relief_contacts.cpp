@@ -327,10 +327,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   BoxQuarters quarters = quartersUnder(box, map.depthStep());
   quarters.setDeepest(deepest, Eigen::Vector2d(xOf(deepest_i), rows[std::size_t(deepest_j)].y));
   const double within = deepest + quarters.depthTolerance();
-  const Eigen::Matrix3d& axes = box.plane_from_object.linear();
-  const int down = mostUprightAxis(axes);
-  const Eigen::Vector2d centre = box.plane_from_object.translation().head<2>();
-  const std::array<Eigen::Vector2d, 2> quarter_axes = {axes.col((down + 1) % 3).head<2>(), axes.col((down + 2) % 3).head<2>()};
+  const Eigen::Vector2d centre = quarters.centre();
   auto offer = [&](long long gi, long long gj) {
     const double d = depthAt(gi, gj);
     if (d < kUnbounded) quarters.offer(std::size_t(gj * ni + gi), Eigen::Vector2d(xOf(gi), rows[std::size_t(gj)].y), d);
@@ -338,7 +335,6 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
   // The pieces from both ends of the footprint inwards: a level box's corners come first, and
   // then every piece between is refused whole (the offers name their texels' places in scan
   // order, so their order does not change the answer).
-  const double reach_slack = kPreferSpread * (1.0 + 1e-9);
   for (std::size_t visited = 0; visited < pieces.size(); ++visited) {
     const RowPiece& piece = pieces[visited % 2 == 0 ? visited / 2 : pieces.size() - 1 - visited / 2];
     const FootprintRow& row = rows[std::size_t(piece.gj)];
@@ -353,7 +349,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
     {
       const double far = std::max(Eigen::Vector2d(xOf(a) - centre.x(), row.y - centre.y()).norm(),
                                   Eigen::Vector2d(xOf(b) - centre.x(), row.y - centre.y()).norm());
-      if (quarters.refuses(piece.least - reach_slack * far)) continue;
+      if (quarters.refuses(piece.least, far)) continue;
     }
     auto around = [&](double cross) {  // the texels either side of a crossing, one more where it is near a texel
       if (!(cross > double(a) - 2.0 && cross < double(b) + 2.0)) return;
@@ -367,7 +363,7 @@ bool boxReliefContacts(const tex::TexturedSurface& surface, const Underside& box
     std::array<double, 3> cross{};
     const std::size_t n_cross = faceCrossings(row, a, b, cross);
     for (std::size_t c = 0; c < n_cross; ++c) around(cross[c]);
-    for (const Eigen::Vector2d& axis : quarter_axes) around(quarterCrossing(centre, axis, row.y, first.x(), slabs.inv_dx));
+    for (const Eigen::Vector2d& axis : quarters.axes()) around(quarterCrossing(centre, axis, row.y, first.x(), slabs.inv_dx));
     // Where the depth is within the tolerance of the deepest: one interval (the depth is convex),
     // none where its least is not, all of it where both ends are.
     if (piece.least <= within && !(depthAt(a, piece.gj) <= within && depthAt(b, piece.gj) <= within)) {

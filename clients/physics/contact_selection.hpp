@@ -80,6 +80,7 @@ void snapToBasins(std::span<const ReliefCandidate> candidates, long long stride_
 // a corner the deepest, a different side each step, and a box pushed up the slope at 0.91 of the
 // weight its friction holds to 0.94 moved 0.24 mm in 0.3 s (without the tolerance); with it the
 // four corners hold it.
+
 // The farther of two candidates is preferred where their depths differ by less than this per metre
 // between their distances from the centre (a tilt of 1 mrad): the corners of a box level on flat
 // ground, the outer crests of ridges over texels down their flanks. The block on the grooved slab
@@ -106,8 +107,9 @@ class BoxQuarters {
   }
   // Once, before any offer: the deepest candidate's depth and where it lies.
   void setDeepest(double depth, const Eigen::Vector2d& xy) { deepest_ = depth, deepest_quarter_ = quarterOf(xy); }
-  double deepestDepth() const { return deepest_; }
   double depthTolerance() const { return tolerance_; }
+  const Eigen::Vector2d& centre() const { return centre_; }
+  std::array<Eigen::Vector2d, 2> axes() const { return {axis_a_, axis_b_}; }
   // Candidate `id` (its place in scan order) at `xy`, `depth`.
   void offer(std::size_t id, const Eigen::Vector2d& xy, double depth) {
     const int q = quarterOf(xy);
@@ -117,9 +119,10 @@ class BoxQuarters {
     const std::size_t k = std::size_t(q);
     if (s < score_[k] || (s == score_[k] && id < id_[k])) score_[k] = s, depth_[k] = depth, id_[k] = id;
   }
-  // Whether every quarter already has a score below `score` (a candidate scoring no lower would
-  // change nothing).
-  bool refuses(double score) const {
+  // Whether no candidate at least `depth` deep and at most `distance` from the centre can change
+  // anything: every quarter already has a lower score.
+  bool refuses(double depth, double distance) const {
+    const double score = depth - prefer_spread_ * distance * (1.0 + 1e-9);
     return score > score_[0] && score > score_[1] && score > score_[2] && score > score_[3];
   }
   // The winners' ids, the deepest first (of equal depths, the lower quarter), then the quarter
