@@ -33,6 +33,18 @@ void ContactSolver::convertContacts(btPersistentManifold** manifolds, int num_ma
   btSequentialImpulseConstraintSolver::convertContacts(manifolds, num_manifolds, info);
   const int contacts = m_tmpSolverContactConstraintPool.size();
   sliding_.resize(std::size_t(contacts));
+  // Bullet converts the manifolds in order, each one's points in its cache's order.
+  manifold_of_.resize(std::size_t(contacts));
+  for (int k = 0, m = 0; k < contacts; ++k) {
+    const auto* point = static_cast<const btManifoldPoint*>(m_tmpSolverContactConstraintPool[k].m_originalContactPoint);
+    auto holds = [&](const btPersistentManifold& manifold) {
+      if (manifold.getNumContacts() == 0) return false;
+      const btManifoldPoint* first = &manifold.getContactPoint(0);
+      return point >= first && point < first + manifold.getNumContacts();
+    };
+    while (m < num_manifolds && !holds(*manifolds[m])) ++m;
+    manifold_of_[std::size_t(k)] = m < num_manifolds ? manifolds[m] : nullptr;
+  }
   for (int k = 0; k < contacts; ++k) {
     const btSolverConstraint& contact = m_tmpSolverContactConstraintPool[k];
     sliding_[std::size_t(k)] = slidingSpeed(m_tmpSolverBodyPool[contact.m_solverBodyIdA], m_tmpSolverBodyPool[contact.m_solverBodyIdB],
@@ -111,21 +123,23 @@ void ContactSolver::shareStickingFriction() {
     btVector3 position, normal;
     btScalar normal_impulse, distance;
     bool both_move;
-    const btManifoldPoint* point;
+    const btPersistentManifold* manifold;
   };
   thread_local std::vector<Pair> group;
   group.clear();
-  // Consecutive points of one manifold with one normal, within 10 um of one plane across it: a
+  // The loaded points of one manifold with one normal, within 10 um of one plane across it: a
   // flat face on a flat patch. Only there is the shared-out friction the same force and torque
   // (to a torque of 10 um times the friction moved, about an axis in the plane): a normal a
-  // milliradian off drops a thousandth of the moved friction from the rows. Points of several
+  // milliradian off drops a thousandth of the moved friction from the rows. A point without load
+  // between them does not split the group: split, a grooved block at rest on a smooth chart (its
+  // loaded points taking turns) jittered at up to 2.5e-5 m/s, 3.5e-7 whole. Points of several
   // manifolds of one pair (a textured box's groups) are not shared between: a grooved block
-  // settling by a slab's edge on its smooth chart, with normals 1.4 mrad apart and its groups
-  // shared together, was turned at up to 5e-4 rad/s by one sharing and crept 2 mm (21 um
-  // without sharing; 19 um as it is). Where both bodies move, the points on each must also be one
-  // distance apart.
+  // balanced on its outermost ridge 2 mm short of a slab's edge on its smooth chart rocked off it
+  // and tipped over the edge in 0.3 s (normals equal to 1e-16), and with normals 1.4 mrad apart
+  // allowed one sharing turned it at up to 5e-4 rad/s. Where both bodies move, the points on each
+  // must also be one distance apart.
   auto sameFace = [&](const Pair& a, const Pair& b) {
-    return a.first->m_solverBodyIdA == b.first->m_solverBodyIdA && a.first->m_solverBodyIdB == b.first->m_solverBodyIdB &&
+    return a.manifold == b.manifold && a.manifold != nullptr &&
            (a.normal - b.normal).length2() < kSameNormal * kSameNormal &&
            btFabs((b.position - a.position).dot(a.normal)) < kSameHeight &&
            (!a.both_move || btFabs(a.distance - b.distance) < kSameHeight);
@@ -153,15 +167,14 @@ void ContactSolver::shareStickingFriction() {
                     std::max(contact.m_appliedImpulse, btScalar(0)),
                     point.getDistance(),
                     a_moves && b_moves,
-                    &point};
+                    manifold_of_[std::size_t(first.m_frictionIndex)]};
     if (sliding_[std::size_t(first.m_frictionIndex)]) {
       flush();
       continue;
     }
     // A point without load has no friction to share (the disc takes all of it away).
     if (!(pair.normal_impulse > btScalar(0))) continue;
-    // One manifold's points: the next in its cache (btPersistentManifold::m_pointCache).
-    if (!group.empty() && (!sameFace(group.front(), pair) || pair.point != group.back().point + 1)) flush();
+    if (!group.empty() && !sameFace(group.front(), pair)) flush();
     group.push_back(pair);
   }
   flush();

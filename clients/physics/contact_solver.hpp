@@ -82,6 +82,7 @@ class ContactSolver : public btSequentialImpulseConstraintSolver {
   static constexpr btScalar kSameNormal = btScalar(1e-6);
   static constexpr btScalar kSameHeight = btScalar(1e-5);
   std::vector<bool> sliding_;  // per contact row of the current solve
+  std::vector<const btPersistentManifold*> manifold_of_;  // per contact row of the current solve
 
   long long released_ = 0;
   long long clamped_ = 0;

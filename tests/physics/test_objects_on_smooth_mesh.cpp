@@ -175,7 +175,9 @@ TEST(ObjectsOnSmoothMesh, AGroovedBlockRestsOnAnUntexturedSlabAsOnAFlatReliefPla
   EXPECT_NEAR(mesh.centre.z(), plane.centre.z(), 8e-5);
   EXPECT_LE(mesh.centre.z(), grooved_block::kHalf.z() + 2e-6);
   EXPECT_LT((mesh.centre - plane.centre).head<2>().norm(), 1e-5);
-  EXPECT_LT(mesh.fastest_late, 1e-3);
+  // At rest: 3.5e-7 m/s at its fastest after 0.2 s (2.5e-5 while a point without load split the
+  // sticking points that share their friction, contact_solver.hpp).
+  EXPECT_LT(mesh.fastest_late, 5e-6);
 }
 
 }  // namespace
