@@ -49,13 +49,14 @@ struct SphereScene {
   mesh::GeneratedMesh sphere;
   PhysicsWorld world;
   SphereScene(int segments, bool smooth, double radius, const tex::TextureMap* texture = nullptr,
-              const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity(), const tex::BallOnRelief* ball_relief = nullptr)
+              const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity(), const tex::BallOnRelief* ball_relief = nullptr,
+              bool lift_ball = false)
       : sphere(mesh::sphere(radius, segments, segments / 2, kTileM)) {
     MeshContactOptions options;
     options.smooth = smooth;
     options.texture = texture;
     options.ball_relief = ball_relief;
-    options.lift_ball = false;
+    options.lift_ball = lift_ball;
     options.normals_made_for_m = Eigen::Vector2d::Constant(kTileM);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.linear() = turn;
@@ -88,6 +89,7 @@ struct Swing {
   double period_s = 0.0;
   int periods = 0;
   double us_per_step = 0.0;  // wall clock, the whole step
+  double end_amplitude_m = 0.0;  // the largest distance from the bottom along the swing in the last second
 };
 
 // The ball released at rest theta_0 up the inside of a sphere of radius R (the bowl), along +x of
@@ -95,8 +97,8 @@ struct Swing {
 // moving in +x.
 inline Swing swingInBowl(int segments, bool smooth, double bowl_radius, double theta0_deg, double seconds,
                          const tex::TextureMap* texture = nullptr, const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity(),
-                         const tex::BallOnRelief* ball_relief = nullptr, double dt = kDt) {
-  SphereScene scene(segments, smooth, bowl_radius, texture, turn, ball_relief);
+                         const tex::BallOnRelief* ball_relief = nullptr, double dt = kDt, bool lift_ball = false) {
+  SphereScene scene(segments, smooth, bowl_radius, texture, turn, ball_relief, lift_ball);
   PhysicsWorld& w = scene.world;
   const double l = bowl_radius - kBallRadius, th = deg(theta0_deg);
   btRigidBody& ball = w.addSphere(kBallRadius, kBallMass, placedAt({l * std::sin(th), 0.0, -l * std::cos(th)}),
@@ -105,13 +107,16 @@ inline Swing swingInBowl(int segments, bool smooth, double bowl_radius, double t
   double x_last = positionOf(ball).x();
   const int steps = int(std::lround(seconds / dt));
   const auto start = std::chrono::steady_clock::now();
+  double end_amplitude = 0.0;
   for (int k = 1; k <= steps; ++k) {
     w.step(dt);
     const double x = positionOf(ball).x();
     if (x_last < 0.0 && x >= 0.0) crossings.push_back(dt * (k - 1 + (-x_last) / (x - x_last)));
     x_last = x;
+    if (double(steps - k) * dt < 1.0) end_amplitude = std::max(end_amplitude, std::fabs(x));
   }
   Swing s;
+  s.end_amplitude_m = end_amplitude;
   s.us_per_step = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() / steps;
   s.periods = int(crossings.size()) - 1;
   if (s.periods > 0) s.period_s = (crossings.back() - crossings.front()) / s.periods;
