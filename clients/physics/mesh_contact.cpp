@@ -77,8 +77,21 @@ Eigen::Vector3d ballOnReliefNormal(const ContactMesh& contact_mesh, const Eigen:
     std::uint32_t t = triangle;
     return ballOnReliefLift(contact_mesh, at, side, t, r, options);
   };
-  const double g1 = (lift(c + h * e1) - lift(c - h * e1)) / (2.0 * h);
-  const double g2 = (lift(c + h * e2) - lift(c - h * e2)) / (2.0 * h);
+  double g1 = (lift(c + h * e1) - lift(c - h * e1)) / (2.0 * h);
+  double g2 = (lift(c + h * e2) - lift(c - h * e2)) / (2.0 * h);
+  if (!options.ball_relief_mean_slope.isZero()) {
+    // As the texture is laid here (slope x made-for size / local size along each axis, as the
+    // haptic chart turns a normal map's slopes); the lift rises with the heights from the front,
+    // against them from behind.
+    const Eigen::Vector2d& made_for = options.normals_made_for_m;
+    auto laid = [](double slope, double made_for_m, double local_m) {
+      return made_for_m > 0.0 && local_m > 0.0 ? slope * made_for_m / local_m : slope;
+    };
+    const double su = laid(options.ball_relief_mean_slope.x(), made_for.x(), metres_per_uv.x());
+    const double sv = laid(options.ball_relief_mean_slope.y(), made_for.y(), metres_per_uv.y());
+    g1 += side * su;
+    g2 += side * (e2.dot(f.bitangent) >= 0.0 ? sv : -sv);
+  }
   return clampTilt((n - g1 * e1 - g2 * e2).normalized(), n, options.max_tilt_deg);
 }
 

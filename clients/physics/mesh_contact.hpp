@@ -53,6 +53,11 @@ struct MeshContactOptions {
   // (ballOnReliefNormal) instead of the texture's normal at one point (meshContactNormal).
   // nullptr: always at one point. It must outlive the world.
   const tex::BallOnRelief* ball_relief = nullptr;
+  // The slope `ball_relief` cannot hold, added to its lift's gradient: a normal map's mean slope
+  // (dh/du, dh/dv at the tile its normals were made for; a uniformly tilted map is all mean),
+  // where `ball_relief` is the relief its normals integrate to (textures/height_from_normals.hpp),
+  // periodic and so level on average. Zero for a relief map.
+  Eigen::Vector2d ball_relief_mean_slope = Eigen::Vector2d::Zero();
   // A ball on such a relief is lifted, as on the relief plane: the gap the solver holds
   // (steerContact, with hold_height) is to the relief as its sphere meets it, so its centre rides
   // over what it cannot enter and sinks into what it can, and where its touch jumps across a

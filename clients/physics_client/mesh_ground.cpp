@@ -3,14 +3,18 @@
 #include <cmath>
 #include <cstdio>
 
+#include "textures/height_from_normals.hpp"
+
 namespace thx::physclient {
 
 namespace {
 
-phys::MeshContactOptions contactOptionsFor(const tex::TexturedSurface& texture, const tex::BallOnRelief* ball_relief) {
+phys::MeshContactOptions contactOptionsFor(const tex::TexturedSurface& texture, const tex::BallOnRelief* ball_relief,
+                                           const Eigen::Vector2d& mean_slope) {
   phys::MeshContactOptions o;
   o.texture = &texture.map();
   o.ball_relief = ball_relief;
+  o.ball_relief_mean_slope = mean_slope;
   o.sampling = texture.sampling();
   o.normals_made_for_m = texture.mapping().size_m;  // the scene's tile (surface.size), as hapticd's
   return o;
@@ -19,30 +23,42 @@ phys::MeshContactOptions contactOptionsFor(const tex::TexturedSurface& texture, 
 }  // namespace
 
 MeshGround::MeshGround(const scene::Scene& scene, const tex::TexturedSurface& texture)
-    : texture_(&texture),
-      scene_mesh_(scene::buildSceneMesh(scene)),
-      contact_mesh_(scene_mesh_.mesh),
-      ball_relief_(texture.map().maxDepth() > 0.0
-                       ? std::optional<tex::BallOnRelief>(std::in_place, texture.map(), texture.sampling().address)
-                       : std::nullopt),
-      options_(contactOptionsFor(texture, ball_relief_ ? &*ball_relief_ : nullptr)) {}
+    : texture_(&texture), scene_mesh_(scene::buildSceneMesh(scene)), contact_mesh_(scene_mesh_.mesh) {
+  const tex::TextureMap& map = texture.map();
+  const tex::Address address = texture.sampling().address;
+  Eigen::Vector2d mean_slope = Eigen::Vector2d::Zero();
+  if (map.maxDepth() > 0.0) {
+    ball_relief_.emplace(map, address);
+  } else {
+    // The texel at the tile its normals were made for (the scene's surface.size).
+    const Eigen::Vector2d texel_m = texture.mapping().size_m.cwiseQuotient(Eigen::Vector2d(map.width(), map.height()));
+    const tex::IntegratedNormals integrated = tex::heightsFromNormals(map, texel_m, address);
+    tex::ReliefFromHeightOptions o;
+    o.texel_m = texel_m;
+    o.address = address;
+    o.source = "the relief of the scene's normal map";
+    ball_relief_.emplace(tex::reliefFromHeight(integrated.heights, o), address);
+    mean_slope = integrated.mean_slope;
+  }
+  options_ = contactOptionsFor(texture, &*ball_relief_, mean_slope);
+}
 
 btRigidBody& MeshGround::addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const {
   return world.addTexturedMesh(scene_mesh_.mesh, scene_mesh_.mesh_to_world, material, options_);
 }
 
 std::vector<std::string> MeshGround::warnings() const {
-  if (ball_relief_) return {};  // a ball meets a relief as its sphere does, and bridges squeezed bumps
+  if (texture_->map().maxDepth() > 0.0) return {};  // a relief is met on its chart, and by a ball as its sphere meets it
   const phys::UvSqueeze squeeze = phys::largestUvSqueeze(scene_mesh_.mesh, options_.normals_made_for_m);
   if (!(squeeze.factor > kSqueezeWarning)) return {};
   const Eigen::Vector3d where = scene_mesh_.mesh_to_world * squeeze.point;
-  char text[640];
+  char text[800];
   std::snprintf(text, sizeof text,
                 "surface.mesh: its uv squeezes the normal map up to %.0fx along %c (near (%.3f, %.3f, %.3f) m in the scene, uv "
-                "(%.3f, %.3f)), where objects read "
+                "(%.3f, %.3f)), where boxes, capsules and cylinders read "
                 "it at one point with its slopes %.0fx steeper: bumps narrower than a body moves in a step knock it at random "
-                "(docs/physics.md, Known gaps); give the surface a relief (representation: relief), which a ball meets as its "
-                "sphere does, or a mapping that does not squeeze the texture",
+                "(docs/physics.md, Known gaps; balls meet the relief its normals integrate to); give the surface a relief "
+                "(representation: relief), which every shape meets as a relief, or a mapping that does not squeeze the texture",
                 squeeze.factor, squeeze.axis == 0 ? 'u' : 'v', where.x(), where.y(), where.z(), squeeze.uv.x(), squeeze.uv.y(),
                 squeeze.factor);
   return {text};

@@ -27,9 +27,12 @@ class MeshGround {
 
   const scene::SceneMesh& sceneMesh() const { return scene_mesh_; }
   // The mesh as a static body of `world`, its contacts steered by the texture's normals; a ball
-  // meets a relief as its sphere does and is lifted onto it, other shapes read it at one point
-  // (docs/physics.md, "A ball on a relief, lifted").
+  // meets a relief as its sphere does and is lifted onto it, and a normal map as the relief its
+  // normals integrate to (plus their mean slope); boxes, capsules and cylinders meet a relief on
+  // its chart and read a normal map at one point (docs/physics.md, "A ball on a relief, lifted").
   btRigidBody& addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const;
+  // How the mesh's contacts read the texture (what addTo gives the world).
+  const phys::MeshContactOptions& contactOptions() const { return options_; }
 
   struct Place {
     std::uint32_t triangle = 0;
@@ -38,10 +41,11 @@ class MeshGround {
     tex::TexCoord uv;
     Eigen::Vector2d metres_per_uv = Eigen::Vector2d::Ones();  // the texture's scale laid here
   };
-  // What the client should tell a user who puts objects on this mesh (one line each, no prefix):
-  // a normal map (no depth) that the uv squeezes more than kSqueezeWarning times somewhere, for
-  // there the objects read it at one point with its slopes steepened as many times, and bumps
-  // narrower than a body moves in a step knock it at random (docs/physics.md, Known gaps).
+  // What the client should tell a user who puts objects other than balls on this mesh (one line
+  // each, no prefix): a normal map (no depth) that the uv squeezes more than kSqueezeWarning times
+  // somewhere, for there boxes, capsules and cylinders read it at one point with its slopes
+  // steepened as many times, and bumps narrower than a body moves in a step knock it at random
+  // (docs/physics.md, Known gaps). Balls meet the map's relief and bridge such bumps.
   static constexpr double kSqueezeWarning = 4.0;
   std::vector<std::string> warnings() const;
 
@@ -61,7 +65,9 @@ class MeshGround {
   const tex::TexturedSurface* texture_;
   scene::SceneMesh scene_mesh_;
   phys::ContactMesh contact_mesh_;
-  std::optional<tex::BallOnRelief> ball_relief_;  // a relief's: what a ball meets of it
+  // What a ball meets: a relief map's relief, or a normal map's, the heights its normals integrate
+  // to (textures/height_from_normals.hpp; their mean slope goes into options_).
+  std::optional<tex::BallOnRelief> ball_relief_;
   phys::MeshContactOptions options_;
 };
 

@@ -16,6 +16,7 @@
 // a new pair starts touching).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -187,9 +188,11 @@ class PhysicsScene {
   // The surface's mesh in a mesh scene; nullptr on the plane.
   const MeshGround* meshGround() const { return mesh_.get(); }
   // What the client should warn about this scene's physics (MeshGround::warnings, when the scene
-  // has objects); empty on the plane.
+  // has objects other than balls); empty on the plane.
   std::vector<std::string> warnings() const {
-    return mesh_ && !scene_.objects.empty() ? mesh_->warnings() : std::vector<std::string>{};
+    const bool other_than_balls = std::any_of(scene_.objects.begin(), scene_.objects.end(),
+                                              [](const scene::SceneObject& o) { return o.shape != scene::Shape::Sphere; });
+    return mesh_ && other_than_balls ? mesh_->warnings() : std::vector<std::string>{};
   }
   phys::PhysicsWorld& world() { return *world_; }
 
