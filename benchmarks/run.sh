@@ -47,8 +47,8 @@
 #              18 min on 2 cores; its table goes to docs/physics.md)
 #              or lifted_swing (issue 29: the lifted ball, the default, swinging in a bowl of sine bumps
 #              at the UV sphere's pole and on its equator against a rigid ball rolling on the relief
-#              as its sphere meets it with the rolling-impact law where its touch jumps; about 2 min;
-#              its table goes to docs/physics.md)
+#              as its sphere meets it with the rolling-impact law where its touch jumps, and where it
+#              leaves the top of that sphere; about 1 min; its table goes to docs/physics.md)
 #              or textured_pair (issue 29: a grooved block on a grooved plane, the force that starts
 #              it sliding along and across the grooves (raised slowly; across also at once) in both
 #              orders of the pair and beside a plain block, and the cost of a step, at 64, 128 and
@@ -394,7 +394,7 @@ run_object_by_crease() {
 
 run_lifted_swing() {
   need "$BIN/bench_lifted_swing" || return 1
-  say "part lifted_swing: the lifted ball in a textured bowl against a rigid ball's rolling (about 2 min)"
+  say "part lifted_swing: the lifted ball in a textured bowl against a rigid ball's rolling, and off a textured sphere (about 1 min)"
   bench_with_table bench_lifted_swing "$ROOT/docs/physics.md"
 }
 

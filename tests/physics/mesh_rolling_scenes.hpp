@@ -8,12 +8,17 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/physics_world.hpp"
 #include "meshes/mesh_generators.hpp"
 #include "tests/physics/physics_fixtures.hpp"
+#include "textures/ball_on_relief.hpp"
+#include "textures/height_from_normals.hpp"
+#include "textures/height_normals.hpp"
 
 namespace thx::phys::test::mesh_rolling {
 
@@ -85,6 +90,34 @@ inline tex::TextureMap sineBumps(double slope) {
   return tex::generate(r);
 }
 
+// Their crests' curvature, a k^2 = s k (both ways at a crest; the most anywhere on them).
+inline double sineBumpsCrestCurvature(double slope) { return slope * 2.0 * kPi / (kTileM / 4.0); }
+
+// A normal map (no depth) as physics-client gives it to a ball on a mesh (MeshGround): the relief
+// its normals integrate to (textures/height_from_normals.hpp), lifted onto, and their mean slope,
+// which a periodic relief cannot hold.
+struct NormalMapRelief {
+  tex::TextureMap normals;  // the map's normals alone, no depth
+  tex::TextureMap relief;
+  Eigen::Vector2d mean_slope;
+  std::optional<tex::BallOnRelief> ball;
+};
+inline std::unique_ptr<NormalMapRelief> normalMapRelief(const tex::TextureMap& map, double tile_m) {
+  auto r = std::make_unique<NormalMapRelief>();
+  r->normals = tex::TextureMap(map.width(), map.height(), tex::Representation::Normal);
+  for (int j = 0; j < map.height(); ++j)
+    for (int i = 0; i < map.width(); ++i) r->normals.setNormal(i, j, map.normal(i, j));
+  const Eigen::Vector2d texel(tile_m / map.width(), tile_m / map.height());
+  const tex::IntegratedNormals integrated = tex::heightsFromNormals(r->normals, texel, tex::Address::Wrap);
+  tex::ReliefFromHeightOptions o;
+  o.texel_m = texel;
+  o.address = tex::Address::Wrap;
+  r->relief = tex::reliefFromHeight(integrated.heights, o);
+  r->mean_slope = integrated.mean_slope;
+  r->ball.emplace(r->relief, tex::Address::Wrap);
+  return r;
+}
+
 struct Swing {
   double period_s = 0.0;
   int periods = 0;
@@ -128,9 +161,12 @@ struct Departure {
   bool left = false;
 };
 
+// With `ball_relief`, the texture's relief met as the ball's sphere meets it (lifted onto it with
+// `lift_ball`, the product's default; steered otherwise), as in swingInBowl.
 inline Departure rollOffSphere(int segments, bool smooth, double sphere_radius, double theta0_deg, double friction,
-                               const tex::TextureMap* texture = nullptr) {
-  SphereScene scene(segments, smooth, sphere_radius, texture);
+                               const tex::TextureMap* texture = nullptr, const tex::BallOnRelief* ball_relief = nullptr,
+                               bool lift_ball = false, double dt = kDt) {
+  SphereScene scene(segments, smooth, sphere_radius, texture, Eigen::Matrix3d::Identity(), ball_relief, lift_ball);
   PhysicsWorld& w = scene.world;
   const double l = sphere_radius + kBallRadius, th = deg(theta0_deg);
   // Off the x axis by a little so the ball does not roll along one ring of vertices.
@@ -140,8 +176,9 @@ inline Departure rollOffSphere(int segments, bool smooth, double sphere_radius, 
   // The last step that pushed the ball is where it left (it may lift off a facet's edge for a
   // step before that and land again).
   Departure d;
-  for (int k = 1; k <= 3000; ++k) {
-    w.step(kDt);
+  const int steps = int(std::lround(3.0 / dt));
+  for (int k = 1; k <= steps; ++k) {
+    w.step(dt);
     const Eigen::Vector3d c = positionOf(ball);
     const double theta = std::atan2(std::hypot(c.x(), c.y()), c.z()) * 180.0 / kPi;
     if (normalImpulse(w, ball) > 0.0) {
@@ -165,6 +202,29 @@ inline double swingPeriodAt(double bowl_radius, double theta0_deg) {
 }
 inline double departureDeg(double theta0_deg) {
   return std::acos(10.0 / 17.0 * std::cos(theta0_deg * kPi / 180.0)) * 180.0 / kPi;
+}
+// Where a rigid ball rolling from rest theta_0 off the top of a sphere (its centre on radius
+// l = R + r) leaves it if its centre's path there curves by 1/l plus `path_curvature` (1/m): where
+// gravity's pull along the normal no longer holds it on that path, v^2 (1/l + path_curvature) =
+// g cos(theta), with v^2 = 10/7 g l (cos(theta_0) - cos(theta)) from the energy of rolling (a
+// texture's own heights left out: under 1e-3 of l's here). Zero: departureDeg.
+inline double departureOnPathDeg(double sphere_radius, double theta0_deg, double path_curvature) {
+  const double a = 10.0 / 7.0 * (1.0 + path_curvature * (sphere_radius + kBallRadius));
+  if (!(a > 0.0)) return NAN;  // held at any speed
+  return std::acos(a * std::cos(theta0_deg * kPi / 180.0) / (1.0 + a)) * 180.0 / kPi;
+}
+// Bumps on the sphere bound where it leaves. The earliest: at a crest of curvature kappa (a k^2 at
+// the top of sine bumps a sin(kx) sin(ky)) its centre's path, riding it, curves by
+// kappa / (1 + r kappa) more.
+inline double earliestDepartureOverCrestsDeg(double sphere_radius, double theta0_deg, double crest_curvature) {
+  return departureOnPathDeg(sphere_radius, theta0_deg, crest_curvature / (1.0 + kBallRadius * crest_curvature));
+}
+// The latest it can leave: in a trough of that curvature its centre's path curves back by
+// kappa / (1 - r kappa); NAN where no speed lifts it out of one (that path curves back more than
+// the sphere curves on) or where the ball bridges the trough (r kappa >= 1: held by two touches).
+inline double latestDepartureInTroughsDeg(double sphere_radius, double theta0_deg, double trough_curvature) {
+  if (kBallRadius * trough_curvature >= 1.0) return NAN;
+  return departureOnPathDeg(sphere_radius, theta0_deg, -trough_curvature / (1.0 - kBallRadius * trough_curvature));
 }
 
 }  // namespace thx::phys::test::mesh_rolling
