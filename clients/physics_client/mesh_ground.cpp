@@ -9,10 +9,10 @@ namespace thx::physclient {
 
 namespace {
 
-phys::MeshContactOptions contactOptionsFor(const tex::TexturedSurface& texture, const tex::BallOnRelief* ball_relief,
-                                           const Eigen::Vector2d& mean_slope) {
+phys::MeshContactOptions contactOptionsFor(const tex::TexturedSurface& texture, const tex::TextureMap& contact_map,
+                                           const tex::BallOnRelief* ball_relief, const Eigen::Vector2d& mean_slope) {
   phys::MeshContactOptions o;
-  o.texture = &texture.map();
+  o.texture = &contact_map;
   o.ball_relief = ball_relief;
   o.ball_relief_mean_slope = mean_slope;
   o.sampling = texture.sampling();
@@ -27,6 +27,7 @@ MeshGround::MeshGround(const scene::Scene& scene, const tex::TexturedSurface& te
   const tex::TextureMap& map = texture.map();
   const tex::Address address = texture.sampling().address;
   Eigen::Vector2d mean_slope = Eigen::Vector2d::Zero();
+  const tex::TextureMap* contact_map = &map;
   if (map.maxDepth() > 0.0) {
     ball_relief_.emplace(map, address);
   } else {
@@ -37,10 +38,16 @@ MeshGround::MeshGround(const scene::Scene& scene, const tex::TexturedSurface& te
     o.texel_m = texel_m;
     o.address = address;
     o.source = "the relief of the scene's normal map";
-    ball_relief_.emplace(tex::reliefFromHeight(integrated.heights, o), address);
-    mean_slope = integrated.mean_slope;
+    relief_ = tex::reliefFromHeight(integrated.heights, o);
+    mean_slope_ = integrated.mean_slope;
+    ball_relief_.emplace(*relief_, address);
+    if (mean_slope_.norm() <= kLevelSlope) {
+      contact_map = &*relief_;  // every body meets it
+    } else {
+      mean_slope = mean_slope_;  // a ball meets the relief leaning by it; the rest read the map
+    }
   }
-  options_ = contactOptionsFor(texture, &*ball_relief_, mean_slope);
+  options_ = contactOptionsFor(texture, *contact_map, &*ball_relief_, mean_slope);
 }
 
 btRigidBody& MeshGround::addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const {
@@ -48,19 +55,20 @@ btRigidBody& MeshGround::addTo(phys::PhysicsWorld& world, const phys::BodyMateri
 }
 
 std::vector<std::string> MeshGround::warnings() const {
-  if (texture_->map().maxDepth() > 0.0) return {};  // a relief is met on its chart, and by a ball as its sphere meets it
+  if (options_.texture->isRelief()) return {};  // a relief is met on its chart, and by a ball as its sphere meets it
   const phys::UvSqueeze squeeze = phys::largestUvSqueeze(scene_mesh_.mesh, options_.normals_made_for_m);
   if (!(squeeze.factor > kSqueezeWarning)) return {};
   const Eigen::Vector3d where = scene_mesh_.mesh_to_world * squeeze.point;
-  char text[800];
+  char text[900];
   std::snprintf(text, sizeof text,
                 "surface.mesh: its uv squeezes the normal map up to %.0fx along %c (near (%.3f, %.3f, %.3f) m in the scene, uv "
                 "(%.3f, %.3f)), where boxes, capsules and cylinders read "
                 "it at one point with its slopes %.0fx steeper: bumps narrower than a body moves in a step knock it at random "
-                "(docs/physics.md, Known gaps; balls meet the relief its normals integrate to); give the surface a relief "
-                "(representation: relief), which every shape meets as a relief, or a mapping that does not squeeze the texture",
+                "(docs/physics.md, Known gaps); its normals lean by %.4f on average, so they are not met as the relief they "
+                "integrate to (balls meet that relief leaning by it); give the surface a relief (representation: relief), a "
+                "normal map level on average, or a mapping that does not squeeze the texture",
                 squeeze.factor, squeeze.axis == 0 ? 'u' : 'v', where.x(), where.y(), where.z(), squeeze.uv.x(), squeeze.uv.y(),
-                squeeze.factor);
+                squeeze.factor, mean_slope_.norm());
   return {text};
 }
 

@@ -24,12 +24,17 @@ class MeshGround {
   // Builds the scene's mesh (throws scene::SceneError as buildSceneMesh does). `texture` is the
   // scene's surface texture (scene_surface.hpp); it and this outlive the world it is added to.
   MeshGround(const scene::Scene& scene, const tex::TexturedSurface& texture);
+  MeshGround(const MeshGround&) = delete;  // its contact options point into it
+  MeshGround& operator=(const MeshGround&) = delete;
 
   const scene::SceneMesh& sceneMesh() const { return scene_mesh_; }
-  // The mesh as a static body of `world`, its contacts steered by the texture's normals; a ball
-  // meets a relief as its sphere does and is lifted onto it, and a normal map as the relief its
-  // normals integrate to (plus their mean slope); boxes, capsules and cylinders meet a relief on
-  // its chart and read a normal map at one point (docs/physics.md, "A ball on a relief, lifted").
+  // The mesh as a static body of `world`, its contacts steered by the texture: a ball meets a
+  // relief as its sphere does and is lifted onto it, and boxes, capsules and cylinders meet it on
+  // its chart (docs/physics.md, "A ball on a relief, lifted", "Plain objects on a relief mesh"). A
+  // normal map is met by every body as the relief its normals integrate to, when they are level
+  // on average (their mean slope within kLevelSlope: a periodic relief cannot lean); one that
+  // leans is met so by a ball, the relief tilted by the mean slope, and read at one point by the
+  // other shapes (docs/physics.md, "Mesh scenes in physics-client").
   btRigidBody& addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const;
   // How the mesh's contacts read the texture (what addTo gives the world).
   const phys::MeshContactOptions& contactOptions() const { return options_; }
@@ -42,11 +47,15 @@ class MeshGround {
     Eigen::Vector2d metres_per_uv = Eigen::Vector2d::Ones();  // the texture's scale laid here
   };
   // What the client should tell a user who puts objects other than balls on this mesh (one line
-  // each, no prefix): a normal map (no depth) that the uv squeezes more than kSqueezeWarning times
-  // somewhere, for there boxes, capsules and cylinders read it at one point with its slopes
-  // steepened as many times, and bumps narrower than a body moves in a step knock it at random
-  // (docs/physics.md, Known gaps). Balls meet the map's relief and bridge such bumps.
+  // each, no prefix): a normal map (no depth) leaning on average, so read at one point by boxes,
+  // capsules and cylinders, that the uv squeezes more than kSqueezeWarning times somewhere, for
+  // there they read it with its slopes steepened as many times, and bumps narrower than a body
+  // moves in a step knock it at random (docs/physics.md, Known gaps). Balls meet the map's relief
+  // and bridge such bumps.
   static constexpr double kSqueezeWarning = 4.0;
+  // A normal map's mean slope below which it is taken as level (a map made from a periodic height
+  // field has none but its normals' rounding).
+  static constexpr double kLevelSlope = 1e-3;
   std::vector<std::string> warnings() const;
 
   // The closest point of `triangle` to p_world (a contact point Bullet reported on it).
@@ -65,8 +74,11 @@ class MeshGround {
   const tex::TexturedSurface* texture_;
   scene::SceneMesh scene_mesh_;
   phys::ContactMesh contact_mesh_;
-  // What a ball meets: a relief map's relief, or a normal map's, the heights its normals integrate
-  // to (textures/height_from_normals.hpp; their mean slope goes into options_).
+  // A normal map's relief, the heights its normals integrate to (textures/height_from_normals.hpp),
+  // and their mean slope.
+  std::optional<tex::TextureMap> relief_;
+  Eigen::Vector2d mean_slope_ = Eigen::Vector2d::Zero();
+  // What a ball meets: a relief map's relief, or a normal map's.
   std::optional<tex::BallOnRelief> ball_relief_;
   phys::MeshContactOptions options_;
 };
