@@ -49,6 +49,9 @@
 #              at the UV sphere's pole and on its equator against a rigid ball rolling on the relief
 #              as its sphere meets it with the rolling-impact law where its touch jumps, and where it
 #              leaves the top of that sphere; about 1 min; its table goes to docs/physics.md)
+#              or block_by_pole (issue 29: a block set down around the squeezed pole of the bowl of
+#              bricks as a normal map, read at one point, as its integrated relief and as the
+#              relief map; about 15 s; its table goes to docs/physics.md)
 #              or textured_pair (issue 29: a grooved block on a grooved plane, the force that starts
 #              it sliding along and across the grooves (raised slowly; across also at once) in both
 #              orders of the pair and beside a plain block, and the cost of a step, at 64, 128 and
@@ -392,6 +395,12 @@ run_object_by_crease() {
   bench_with_table bench_object_by_crease "$ROOT/docs/physics.md"
 }
 
+run_block_by_pole() {
+  need "$BIN/bench_block_by_pole" || return 1
+  say "part block_by_pole: a block around the squeezed pole of a normal-mapped bowl, read three ways (about 15 s)"
+  bench_with_table bench_block_by_pole "$ROOT/docs/physics.md"
+}
+
 run_lifted_swing() {
   need "$BIN/bench_lifted_swing" || return 1
   say "part lifted_swing: the lifted ball in a textured bowl against a rigid ball's rolling, and off a textured sphere (about 1 min)"
@@ -422,14 +431,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | textured_pair | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | block_by_pole | textured_pair | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing textured_pair rolling_ridges rod_in_groove rocking_on_curve object_by_crease report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing block_by_pole textured_pair rolling_ridges rod_in_groove rocking_on_curve object_by_crease report)"
       exit 2
       ;;
   esac

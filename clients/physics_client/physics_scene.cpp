@@ -25,15 +25,6 @@ scene::SceneSurface buildSurface(const scene::Scene& scene) {
   return scene::buildSceneSurface(scene, options);
 }
 
-phys::BodyMaterial materialOf(const scene::Material& m) {
-  phys::BodyMaterial b;
-  b.friction = m.friction;
-  b.restitution = m.restitution;
-  b.rolling_friction = m.rolling_friction_m;
-  b.spinning_friction = m.spinning_friction_m;
-  return b;
-}
-
 // A manifold point counts as touching when it is closed (or the solver pushed through it).
 constexpr double kTouchDistance_m = 1e-5;
 
@@ -47,6 +38,15 @@ bool aIsFirst(int id0, int id1) {
 }
 
 }  // namespace
+
+phys::BodyMaterial materialOf(const scene::Material& m) {
+  phys::BodyMaterial b;
+  b.friction = m.friction;
+  b.restitution = m.restitution;
+  b.rolling_friction = m.rolling_friction_m;
+  b.spinning_friction = m.spinning_friction_m;
+  return b;
+}
 
 PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
     : scene_(scene),

@@ -137,6 +137,9 @@ struct PenForce {
   bool in_contact = false;
 };
 
+// A scene material as the physics world's (friction, restitution, rolling and spinning friction).
+phys::BodyMaterial materialOf(const scene::Material& m);
+
 class PhysicsScene {
  public:
   // Builds the scene's surface with scene::buildSceneSurface, smoothing included (throws

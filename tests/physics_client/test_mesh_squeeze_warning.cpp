@@ -127,8 +127,8 @@ TEST(MeshSqueezeWarning, ALeaningNormalMapIsMetAsItsReliefByABallAndReadAtOnePoi
 // The bowl of bricks as a normal map with a block on its floor, around the pole of the lathe's uv
 // that squeezes it: met as the bricks' integrated relief, the block comes to rest at both places,
 // where read at one point it kept rocking at 1.76 and 1.86 mm/s (2026-12-03, the code before;
-// on the 128-segment bowl, 19 places around the pole: 9 at rest read at one point, 16 on the
-// integrated relief, 18 on the bricks' own relief, docs/physics.md).
+// on the 128-segment bowl, 21 places around the pole: 10 at rest read at one point, 17 on the
+// integrated relief, 20 on the bricks' own relief map, bench_block_by_pole).
 TEST(MeshSqueezeWarning, ABlockOnALevelNormalMapSqueezedAtTheBowlsFloorComesToRest) {
   for (const Eigen::Vector2d& at : {Eigen::Vector2d(-0.0023, 0.0067), Eigen::Vector2d(0.0132, 0.0042)}) {
     // The floor's height under the block's centre: half an ellipsoid, 55.2 mm across and 43.2 mm
