@@ -97,4 +97,15 @@ IntegratedNormals heightsFromNormals(const TextureMap& map, const Eigen::Vector2
   return out;
 }
 
+ReliefOfNormals reliefFromNormals(const TextureMap& map, const Eigen::Vector2d& tile_m, Address address,
+                                  const std::string& source) {
+  const Eigen::Vector2d texel_m = tile_m.cwiseQuotient(Eigen::Vector2d(map.width(), map.height()));
+  const IntegratedNormals integrated = heightsFromNormals(map, texel_m, address);
+  ReliefFromHeightOptions o;
+  o.texel_m = texel_m;
+  o.address = address;
+  o.source = source;
+  return {reliefFromHeight(integrated.heights, o), integrated.mean_slope};
+}
+
 }  // namespace thx::tex

@@ -11,6 +11,7 @@
 // imported from a photograph): the answer is then the surface nearest its slopes. The mean height
 // is zero. Offline (allocates); not for the servo.
 #include <Eigen/Core>
+#include <string>
 
 #include "textures/height_normals.hpp"
 #include "textures/sampling.hpp"
@@ -27,5 +28,14 @@ struct IntegratedNormals {
 
 // texel_m: the texel's size in metres along x and y where the map was made (finite, > 0).
 IntegratedNormals heightsFromNormals(const TextureMap& map, const Eigen::Vector2d& texel_m, Address address);
+
+// Those heights as a relief map (reliefFromHeight), for a map made for a tile of `tile_m` metres,
+// with the mean slope the relief cannot hold. `source` names the relief in error messages.
+struct ReliefOfNormals {
+  TextureMap relief;
+  Eigen::Vector2d mean_slope = Eigen::Vector2d::Zero();
+};
+ReliefOfNormals reliefFromNormals(const TextureMap& map, const Eigen::Vector2d& tile_m, Address address,
+                                  const std::string& source = "the relief of a normal map");
 
 }  // namespace thx::tex

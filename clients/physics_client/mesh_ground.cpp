@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "textures/height_from_normals.hpp"
 
@@ -26,28 +27,22 @@ MeshGround::MeshGround(const scene::Scene& scene, const tex::TexturedSurface& te
     : texture_(&texture), scene_mesh_(scene::buildSceneMesh(scene)), contact_mesh_(scene_mesh_.mesh) {
   const tex::TextureMap& map = texture.map();
   const tex::Address address = texture.sampling().address;
-  Eigen::Vector2d mean_slope = Eigen::Vector2d::Zero();
-  const tex::TextureMap* contact_map = &map;
   if (map.maxDepth() > 0.0) {
     ball_relief_.emplace(map, address);
-  } else {
-    // The texel at the tile its normals were made for (the scene's surface.size).
-    const Eigen::Vector2d texel_m = texture.mapping().size_m.cwiseQuotient(Eigen::Vector2d(map.width(), map.height()));
-    const tex::IntegratedNormals integrated = tex::heightsFromNormals(map, texel_m, address);
-    tex::ReliefFromHeightOptions o;
-    o.texel_m = texel_m;
-    o.address = address;
-    o.source = "the relief of the scene's normal map";
-    relief_ = tex::reliefFromHeight(integrated.heights, o);
-    mean_slope_ = integrated.mean_slope;
-    ball_relief_.emplace(*relief_, address);
-    if (mean_slope_.norm() <= kLevelSlope) {
-      contact_map = &*relief_;  // every body meets it
-    } else {
-      mean_slope = mean_slope_;  // a ball meets the relief leaning by it; the rest read the map
-    }
+    options_ = contactOptionsFor(texture, map, &*ball_relief_, Eigen::Vector2d::Zero());
+    return;
   }
-  options_ = contactOptionsFor(texture, *contact_map, &*ball_relief_, mean_slope);
+  // Made for the scene's tile (surface.size).
+  tex::ReliefOfNormals integrated =
+      tex::reliefFromNormals(map, texture.mapping().size_m, address, "the relief of the scene's normal map");
+  relief_ = std::move(integrated.relief);
+  mean_slope_ = integrated.mean_slope;
+  ball_relief_.emplace(*relief_, address);
+  // Level: every body meets the relief. Leaning: a ball meets it tilted by the mean slope, the
+  // rest read the map.
+  const bool level = mean_slope_.norm() <= kLevelSlope;
+  options_ = contactOptionsFor(texture, level ? *relief_ : map, &*ball_relief_,
+                               level ? Eigen::Vector2d::Zero() : mean_slope_);
 }
 
 btRigidBody& MeshGround::addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const {

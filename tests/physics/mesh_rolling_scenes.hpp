@@ -10,6 +10,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "clients/physics/bullet_convert.hpp"
@@ -18,7 +19,6 @@
 #include "tests/physics/physics_fixtures.hpp"
 #include "textures/ball_on_relief.hpp"
 #include "textures/height_from_normals.hpp"
-#include "textures/height_normals.hpp"
 
 namespace thx::phys::test::mesh_rolling {
 
@@ -107,12 +107,8 @@ inline std::unique_ptr<NormalMapRelief> normalMapRelief(const tex::TextureMap& m
   r->normals = tex::TextureMap(map.width(), map.height(), tex::Representation::Normal);
   for (int j = 0; j < map.height(); ++j)
     for (int i = 0; i < map.width(); ++i) r->normals.setNormal(i, j, map.normal(i, j));
-  const Eigen::Vector2d texel(tile_m / map.width(), tile_m / map.height());
-  const tex::IntegratedNormals integrated = tex::heightsFromNormals(r->normals, texel, tex::Address::Wrap);
-  tex::ReliefFromHeightOptions o;
-  o.texel_m = texel;
-  o.address = tex::Address::Wrap;
-  r->relief = tex::reliefFromHeight(integrated.heights, o);
+  tex::ReliefOfNormals integrated = tex::reliefFromNormals(r->normals, Eigen::Vector2d::Constant(tile_m), tex::Address::Wrap);
+  r->relief = std::move(integrated.relief);
   r->mean_slope = integrated.mean_slope;
   r->ball.emplace(r->relief, tex::Address::Wrap);
   return r;

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
-#include <optional>
 
 #include "base/error.hpp"
 #include "meshes/mesh_generators.hpp"
@@ -198,8 +197,6 @@ TEST(MeshRolling, ALiftedBallSwingsAsARigidBallRollingOnTheReliefWithItsImpacts)
   EXPECT_NEAR(simulated_change, predicted_change, 0.01);
 }
 
-// The texture on a mesh steers a ball as the same texture on the plane does: a uniformly tilted
-// normal map laid on a box's flat top rolls a ball at 5/7 g tan(theta) along the texture's +u.
 // A ball on a uniformly tilted texture laid on a box's flat top, its contacts as `options` reads
 // them: its acceleration along the texture's +u from 0.1 to 0.5 s, how fast it moves across that,
 // and how far its height strays from the face.
@@ -245,6 +242,8 @@ void expectRollsAtFiveSeventhsGTanTheta(const TiltedRoll& r, double angle_deg, c
   EXPECT_LT(r.z_error, 5e-5) << what << ": the flat face keeps the ball's height";
 }
 
+// The texture on a mesh steers a ball as the same texture on the plane does: a uniformly tilted
+// normal map laid on a box's flat top rolls a ball at 5/7 g tan(theta) along the texture's +u.
 TEST(MeshRolling, ATiltedTextureOnAMeshsFlatFaceRollsABallAtFiveSeventhsGTanTheta) {
   const double angle = 10.0;
   const tex::TextureMap map = tiltedMap(angle, 64, 0.2);
