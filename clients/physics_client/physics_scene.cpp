@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "clients/physics/bullet_convert.hpp"
@@ -166,6 +167,43 @@ void PhysicsScene::makePen(int index, int device) {
   p.body->setActivationState(DISABLE_DEACTIVATION);
   p.body->setUserIndex(kBodyPen);
   p.body->setUserIndex2(index);
+}
+
+std::string coarseReliefWarning(const std::string& ball, double radius_m, const Eigen::Vector2d& texel_m,
+                                const Eigen::Vector2d& surface_m) {
+  const double texel = texel_m.maxCoeff(), enough = kCoarseTexelPerRadius * radius_m;
+  if (!(texel > enough)) return {};
+  char text[640];
+  std::snprintf(text, sizeof text,
+                "ball '%s' (radius %.2f mm) on relief texels of %.2f mm: the relief's contacts stand at texel centres, so "
+                "a ball sinks between them and jitters there where a texel is over %.2f of its radius%s; texels of %.2f mm "
+                "or less would do (%d x %d over the %.3f x %.3f m surface)",
+                ball.c_str(), 1e3 * radius_m, 1e3 * texel, kCoarseTexelPerRadius,
+                texel * std::sqrt(0.5) >= radius_m ? ", and here it can fall between them where no centre lies within its "
+                                                     "radius and be thrown out"
+                                                   : "",
+                1e3 * enough, int(std::ceil(surface_m.x() / enough)), int(std::ceil(surface_m.y() / enough)), surface_m.x(),
+                surface_m.y());
+  return text;
+}
+
+std::vector<std::string> PhysicsScene::warnings() const {
+  const auto& objects = scene_.objects;
+  if (mesh_) {
+    const bool other_than_balls = std::any_of(objects.begin(), objects.end(),
+                                              [](const scene::SceneObject& o) { return o.shape != scene::Shape::Sphere; });
+    return other_than_balls ? mesh_->warnings() : std::vector<std::string>{};
+  }
+  std::vector<std::string> out;
+  const tex::TexturedSurface& plane = surface();
+  if (!plane.usesRelief()) return out;  // a normal map's balls meet the flat plane
+  const Eigen::Vector2d texel = plane.mapping().texelSize(plane.map());
+  for (const scene::SceneObject& o : objects) {
+    if (o.shape != scene::Shape::Sphere || o.fixed) continue;
+    std::string w = coarseReliefWarning(o.name, o.radius_m, texel, plane.mapping().size_m);
+    if (!w.empty()) out.push_back(std::move(w));
+  }
+  return out;
 }
 
 PhysicsScene::~PhysicsScene() = default;

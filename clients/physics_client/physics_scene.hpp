@@ -140,6 +140,15 @@ struct PenForce {
 // A scene material as the physics world's (friction, restitution, rolling and spinning friction).
 phys::BodyMaterial materialOf(const scene::Material& m);
 
+// A ball of `radius_m` on a relief plane read texel by texel (the relief's contacts stand at texel
+// centres) sinks between the centres and jitters there where the texels are coarse against it,
+// and falls between them where no centre lies within its radius (docs/physics.md, Known gaps).
+// The warning names the ball and the texel count that would do, or is empty where a texel is at
+// most kCoarseTexelPerRadius of the radius.
+inline constexpr double kCoarseTexelPerRadius = 0.25;
+std::string coarseReliefWarning(const std::string& ball, double radius_m, const Eigen::Vector2d& texel_m,
+                                const Eigen::Vector2d& surface_m);
+
 class PhysicsScene {
  public:
   // Builds the scene's surface with scene::buildSceneSurface, smoothing included (throws
@@ -190,13 +199,10 @@ class PhysicsScene {
   const scene::Scene& scene() const { return scene_; }
   // The surface's mesh in a mesh scene; nullptr on the plane.
   const MeshGround* meshGround() const { return mesh_.get(); }
-  // What the client should warn about this scene's physics (MeshGround::warnings, when the scene
-  // has objects other than balls); empty on the plane.
-  std::vector<std::string> warnings() const {
-    const bool other_than_balls = std::any_of(scene_.objects.begin(), scene_.objects.end(),
-                                              [](const scene::SceneObject& o) { return o.shape != scene::Shape::Sphere; });
-    return mesh_ && other_than_balls ? mesh_->warnings() : std::vector<std::string>{};
-  }
+  // What the client should warn about this scene's physics: on a mesh, MeshGround::warnings when
+  // the scene has objects other than balls; on a relief plane, every moving ball whose radius is
+  // small against the relief's texels (coarseReliefWarning).
+  std::vector<std::string> warnings() const;
   phys::PhysicsWorld& world() { return *world_; }
 
  private:
