@@ -141,8 +141,9 @@ struct PenForce {
 phys::BodyMaterial materialOf(const scene::Material& m);
 
 // A ball of `radius_m` on a relief plane read texel by texel (the relief's contacts stand at texel
-// centres) sinks between the centres and jitters there where the texels are coarse against it,
-// and falls between them where no centre lies within its radius (docs/physics.md, Known gaps).
+// centres) can sink between the centres and jitter there where the texels are coarse against it
+// (measured at rest up to 0.2 of its radius, jittering from 0.39), and fall between them where no
+// centre lies within its radius (docs/physics.md, Known gaps).
 // The warning names the ball and the texel count that would do, or is empty where a texel is at
 // most kCoarseTexelPerRadius of the radius.
 inline constexpr double kCoarseTexelPerRadius = 0.25;

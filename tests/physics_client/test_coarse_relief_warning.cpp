@@ -4,12 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "clients/physics_client/physics_scene.hpp"
 #include "scenes/scene_loader.hpp"
+#include "tests/support/process.hpp"
 
 namespace test_coarse_relief_warning {
 
@@ -21,10 +20,7 @@ using thx::physclient::PhysicsScene;
 // The shipped dimple_ball scene (a 5 mm ball, 0.2 m of relief, 512 texels a side) with `texels`
 // a side, read as `representation`.
 PhysicsScene dimpleBall(int texels, const std::string& representation = "relief") {
-  std::ifstream in(std::string(THX_SOURCE_DIR) + "/scenes/dimple_ball.yaml");
-  std::stringstream read;
-  read << in.rdbuf();
-  std::string text = read.str();
+  std::string text = thx::test::slurp(std::string(THX_SOURCE_DIR) + "/scenes/dimple_ball.yaml");
   const std::string size = "size: 512", relief = "representation: relief";
   text.replace(text.find(size), size.size(), "size: " + std::to_string(texels));
   text.replace(text.find(relief), relief.size(), "representation: " + representation);
