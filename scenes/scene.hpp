@@ -171,7 +171,8 @@ struct Device {
 enum class Shape { Sphere, Box, Capsule, Cylinder };
 
 // objects[].texture (issue 29): a relief map on every face of a box, spanning tile_m on each
-// (clients/physics/textured_box.hpp lays it out). Built by buildObjectTexture (surface_texture.hpp).
+// (clients/physics/textured_box.hpp lays it out); a file of normals only is read as the relief
+// they integrate to. Built by buildObjectTexture (surface_texture.hpp).
 struct ObjectTexture {
   TextureSource source;  // a generator's extent defaults to tile_m
   double tile_m = 0.02;  // texture_tile; default: the generator's extent, else the box's longest edge

@@ -1,9 +1,12 @@
 #include "scenes/surface_texture.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 
 #include "scenes/yaml_field.hpp"
 #include "textures/generators.hpp"
+#include "textures/height_from_normals.hpp"
 #include "textures/texture_error.hpp"
 
 namespace thx::scene {
@@ -81,17 +84,34 @@ tex::TextureMap buildSurfaceTexture(const Scene& scene, const SurfaceTextureOpti
 
 tex::TextureMap buildObjectTexture(const Scene& scene, std::size_t index, const SurfaceTextureOptions& options) {
   const SceneObject& object = scene.objects.at(index);
-  const TextureSource& source = object.texture.value().source;
+  const ObjectTexture& texture = object.texture.value();
+  const TextureSource& source = texture.source;
+  const std::string named = "object '" + object.name + "'";
   try {
     if (source.kind == TextureSource::Kind::Generator) return tex::generate(source.generator);
     tex::LoadOptions load;
     load.bad_texels = options.bad_texels;
-    load.representation = tex::Representation::Relief;
-    return tex::loadTexture(source.file, load, options.report);
+    tex::TextureMap map = tex::loadTexture(source.file, load, options.report);
+    if (map.isRelief()) return map;
+    // Normals only: the faces meet the relief they integrate to, made for the tile (the same
+    // reading a mesh's normal map gets; a box's contacts need depth).
+    const tex::ReliefOfNormals relief = tex::reliefFromNormals(map, Eigen::Vector2d(texture.tile_m, texture.tile_m),
+                                                               tex::Address::Wrap, named + "'s texture");
+    const double lean = relief.mean_slope.norm();
+    if (lean > tex::kLevelMeanSlope && options.report) {
+      char text[400];
+      std::snprintf(text, sizeof text,
+                    "%s: its normal map leans on average (mean slope %.4f, %.2f degrees); its faces meet the "
+                    "relief its normals integrate to, which cannot lean, so that lean is lost (a map level "
+                    "on average, mean slope within %.0e, loses nothing)",
+                    named.c_str(), lean, std::atan(lean) * 180.0 / std::numbers::pi, tex::kLevelMeanSlope);
+      options.report->warnings.emplace_back(text);
+    }
+    return relief.relief;
   } catch (const tex::TextureError& e) {
     throw SceneError(source.where, "objects[" + std::to_string(index) + "].texture",
-                     "object '" + object.name + "': " + e.what() +
-                         " (a box's texture must be a relief map: RGBA, the depth in alpha)");
+                     named + ": " + e.what() + " (a box's texture is a relief map, RGBA with the depth in alpha, or a "
+                     "normal map, read as the relief its normals integrate to)");
   }
 }
 

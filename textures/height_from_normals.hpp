@@ -19,6 +19,11 @@
 
 namespace thx::tex {
 
+// A map whose mean slope (its norm) is within this is level on average: its relief, periodic,
+// loses nothing of it. A mean slope above it is a lean the relief cannot hold; users of the
+// relief say so.
+inline constexpr double kLevelMeanSlope = 1e-3;
+
 struct IntegratedNormals {
   HeightField heights;
   // What a periodic relief cannot hold (Address::Wrap): the slopes' mean (dh/dx, dh/dy), all of a

@@ -23,8 +23,9 @@
 // What a textured box does not do yet: its texture shapes contacts with a relief plane and with a
 // relief-textured mesh (on the mesh's chart under it, mesh_relief_chart.hpp) only; on a plain or
 // normal-mapped plane or mesh, or another object, the coarse box collides;
-// a normal map (no depth) on an object is refused where objects are built
-// (scene::buildObjectTexture). The visual client draws the same layout (meshes/textured_box_mesh.hpp).
+// a normal map (no depth) given for an object is read, where objects are built, as the relief its
+// normals integrate to (scene::buildObjectTexture). The visual client draws the same layout
+// (meshes/textured_box_mesh.hpp).
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>

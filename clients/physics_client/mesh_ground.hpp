@@ -15,6 +15,7 @@
 #include "clients/physics/physics_world.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_mesh.hpp"
+#include "textures/height_from_normals.hpp"
 #include "textures/textured_surface.hpp"
 
 namespace thx::physclient {
@@ -55,7 +56,7 @@ class MeshGround {
   static constexpr double kSqueezeWarning = 4.0;
   // A normal map's mean slope below which it is taken as level (a map made from a periodic height
   // field has none but its normals' rounding).
-  static constexpr double kLevelSlope = 1e-3;
+  static constexpr double kLevelSlope = tex::kLevelMeanSlope;
   std::vector<std::string> warnings() const;
 
   // The closest point of `triangle` to p_world (a contact point Bullet reported on it).

@@ -78,7 +78,12 @@ PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
         break;
       case scene::Shape::Box:
         if (o.texture) {
-          object_textures_.push_back(std::make_unique<tex::TextureMap>(scene::buildObjectTexture(scene, i)));
+          tex::LoadReport report;
+          scene::SurfaceTextureOptions texture_options;
+          texture_options.report = &report;
+          object_textures_.push_back(
+              std::make_unique<tex::TextureMap>(scene::buildObjectTexture(scene, i, texture_options)));
+          for (std::string& w : report.warnings) object_texture_warnings_.push_back(std::move(w));
           phys::FaceTexture faces;
           faces.map = object_textures_.back().get();
           faces.tile_m = o.texture->tile_m;
@@ -189,12 +194,14 @@ std::string coarseReliefWarning(const std::string& ball, double radius_m, const 
 
 std::vector<std::string> PhysicsScene::warnings() const {
   const auto& objects = scene_.objects;
+  std::vector<std::string> out = object_texture_warnings_;
   if (mesh_) {
     const bool other_than_balls = std::any_of(objects.begin(), objects.end(),
                                               [](const scene::SceneObject& o) { return o.shape != scene::Shape::Sphere; });
-    return other_than_balls ? mesh_->warnings() : std::vector<std::string>{};
+    if (other_than_balls)
+      for (const std::string& w : mesh_->warnings()) out.push_back(w);
+    return out;
   }
-  std::vector<std::string> out;
   const tex::TexturedSurface& plane = surface();
   if (!plane.usesRelief()) return out;  // a normal map's balls meet the flat plane
   const Eigen::Vector2d texel = plane.mapping().texelSize(plane.map());

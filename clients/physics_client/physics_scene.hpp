@@ -200,9 +200,10 @@ class PhysicsScene {
   const scene::Scene& scene() const { return scene_; }
   // The surface's mesh in a mesh scene; nullptr on the plane.
   const MeshGround* meshGround() const { return mesh_.get(); }
-  // What the client should warn about this scene's physics: on a mesh, MeshGround::warnings when
-  // the scene has objects other than balls; on a relief plane, every moving ball whose radius is
-  // small against the relief's texels (coarseReliefWarning).
+  // What the client should warn about this scene's physics: a box's normal map that leans on
+  // average (scene::buildObjectTexture: its relief cannot hold the lean); on a mesh,
+  // MeshGround::warnings when the scene has objects other than balls; on a relief plane, every
+  // moving ball whose radius is small against the relief's texels (coarseReliefWarning).
   std::vector<std::string> warnings() const;
   phys::PhysicsWorld& world() { return *world_; }
 
@@ -233,6 +234,7 @@ class PhysicsScene {
   scene::SceneSurface scene_surface_;
   std::unique_ptr<MeshGround> mesh_;  // before world_: the world reads its mesh and texture
   std::vector<std::unique_ptr<tex::TextureMap>> object_textures_;  // before world_: textured boxes read them
+  std::vector<std::string> object_texture_warnings_;               // from building them (a leaning normal map)
   std::unique_ptr<phys::PhysicsWorld> world_;
   btRigidBody* plane_ = nullptr;
   std::vector<btRigidBody*> objects_;
