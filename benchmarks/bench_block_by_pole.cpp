@@ -5,11 +5,12 @@
 // physics-client did before 2026-12-03, and does still for a map that leans on average), the
 // relief the map's normals integrate to (what it does for a map level on average: MeshGround), and
 // the bricks' own relief map. Whether the block comes to rest, and how fast it still moves.
-// Measures only; nothing asserted (tests/physics_client/test_mesh_squeeze_warning.cpp holds the
+// Measures only; nothing asserted (tests/physics_client/test_mesh_normal_map_relief.cpp holds the
 // behaviour at two places).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,7 @@
 #include "scenes/scene_frames.hpp"
 #include "scenes/scene_loader.hpp"
 #include "tests/support/bowl_scene.hpp"
+#include "textures/height_from_normals.hpp"
 
 namespace {
 
@@ -38,7 +40,9 @@ above the floor at 21 places within 17 mm of the pole: r = 0, 2, 4, 7, 10, 13 an
 point 0.76 mm off it, each turned three ways about the vertical, at 1 ms steps for T seconds, with the bricks read three ways: as a
 normal map at one point of each contact (on the smooth chart), as the relief the normal map's
 normals integrate to (physics-client's MeshGround for a map level on average), and as the bricks'
-own relief map. Per place and reading: the block's peak speed over the last second and how far
+own relief map; then the bricks' normals leaning by a slope of 0.02 along v (outwards across the
+floor), read at one point and as MeshGround reads such a map since 2026-12-03 (their relief, the
+contacts' normals leaning by the mean slope). Per place and reading: the block's peak speed over the last second and how far
 it moved in it; at rest is under 0.1 mm/s.
 
   --segments N   the bowl's tessellation (default 128)
@@ -55,10 +59,28 @@ struct Reading {
   const char* name;
   const char* representation;  // of the scene
   bool one_point;              // the normal map itself instead of MeshGround's texture
+  double lean = 0.0;           // added to the normal map's slope along v (MeshGround's reading of such a map)
 };
+// The lean of the leaning rows: along v, the lathe's profile (outwards on the floor), not squeezed
+// at the pole; 1.1 degrees, far below the block's friction.
+constexpr double kLean = 0.02;
 constexpr Reading kReadings[] = {{"normal map at one point", "normal", true},
                                  {"normal map as its integrated relief", "normal", false},
-                                 {"relief map", "relief", false}};
+                                 {"relief map", "relief", false},
+                                 {"leaning normal map at one point", "normal", true, kLean},
+                                 {"leaning normal map as its relief, leaning", "normal", false, kLean}};
+
+// `map`'s normals with `lean` added to their slope along v (texture y): n ~ (-h_x, -h_y, 1).
+tex::TextureMap leaned(const tex::TextureMap& map, double lean) {
+  tex::TextureMap out(map.width(), map.height(), tex::Representation::Normal);
+  for (int j = 0; j < map.height(); ++j)
+    for (int i = 0; i < map.width(); ++i) {
+      const Eigen::Vector3f n = map.normal(i, j);
+      out.setNormal(i, j, Eigen::Vector3f(n.x(), n.y() - float(lean) * n.z(), n.z()).normalized());
+    }
+  out.meta() = map.meta();
+  return out;
+}
 
 struct Cell {
   double peak_mm_s = 0, moved_um = 0;
@@ -90,6 +112,16 @@ Cell settle(const Reading& reading, const Place& place, int segments, double sec
   const physclient::MeshGround& ground = *loaded.meshGround();
   phys::MeshContactOptions options = ground.contactOptions();
   if (reading.one_point) options.texture = &loaded.surface().map();
+  // A leaning map: read at one point (the code before 2026-12-03), or as MeshGround reads it, the
+  // relief its normals integrate to with their mean slope.
+  std::optional<tex::TextureMap> leaning;
+  std::optional<tex::ReliefOfNormals> relief_of_leaning;
+  if (reading.lean != 0.0) {
+    leaning = leaned(loaded.surface().map(), reading.lean);
+    relief_of_leaning = tex::reliefFromNormals(*leaning, options.normals_made_for_m, loaded.surface().sampling().address);
+    options.texture = reading.one_point ? &*leaning : &relief_of_leaning->relief;
+    options.relief_mean_slope = reading.one_point ? Eigen::Vector2d::Zero() : relief_of_leaning->mean_slope;
+  }
   phys::PhysicsWorld world(physclient::SimOptions{}.world);
   world.addTexturedMesh(ground.sceneMesh().mesh, ground.sceneMesh().mesh_to_world, physclient::materialOf(loaded.scene().surface.material),
                         options);

@@ -51,7 +51,8 @@
 #              leaves the top of that sphere; about 1 min; its table goes to docs/physics.md)
 #              or block_by_pole (issue 29: a block set down around the squeezed pole of the bowl of
 #              bricks as a normal map, read at one point, as its integrated relief and as the
-#              relief map; about 15 s; its table goes to docs/physics.md)
+#              relief map, then the map leaning (at one point, and as its relief with its normals
+#              leaning); about 20 s; its table goes to docs/physics.md)
 #              or textured_pair (issue 29: a grooved block on a grooved plane, the force that starts
 #              it sliding along and across the grooves (raised slowly; across also at once) in both
 #              orders of the pair and beside a plain block, and the cost of a step, at 64, 128 and
@@ -397,7 +398,7 @@ run_object_by_crease() {
 
 run_block_by_pole() {
   need "$BIN/bench_block_by_pole" || return 1
-  say "part block_by_pole: a block around the squeezed pole of a normal-mapped bowl, read three ways (about 15 s)"
+  say "part block_by_pole: a block around the squeezed pole of a normal-mapped bowl, read five ways (about 20 s)"
   bench_with_table bench_block_by_pole "$ROOT/docs/physics.md"
 }
 

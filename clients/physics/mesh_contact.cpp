@@ -31,18 +31,6 @@ Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
   return meshTextureNormal(mesh, triangle, f, s.normal.cast<double>(), options);
 }
 
-UvSqueeze largestUvSqueeze(const mesh::TexturedMesh& mesh, const Eigen::Vector2d& tile_m) {
-  UvSqueeze out;
-  const Eigen::Vector3d centre = Eigen::Vector3d::Constant(1.0 / 3.0);
-  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    const mesh::SurfaceFrame f = mesh::frameAt(mesh, t, centre, mesh::FrameMode::Interpolated);
-    const Eigen::Vector2d factor = tile_m.cwiseQuotient(mesh::metresPerUv(mesh, t, f));
-    for (int axis = 0; axis < 2; ++axis)
-      if (std::isfinite(factor[axis]) && factor[axis] > out.factor) out = {factor[axis], axis, f.point, f.uv};
-  }
-  return out;
-}
-
 Eigen::Vector2d metresPerUvAt(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b) {
   const mesh::Triangle& t = contact_mesh.mesh->triangles[triangle];
   return b.x() * contact_mesh.metres_per_uv[t[0]] + b.y() * contact_mesh.metres_per_uv[t[1]] + b.z() * contact_mesh.metres_per_uv[t[2]];
@@ -77,22 +65,28 @@ Eigen::Vector3d ballOnReliefNormal(const ContactMesh& contact_mesh, const Eigen:
     std::uint32_t t = triangle;
     return ballOnReliefLift(contact_mesh, at, side, t, r, options);
   };
-  double g1 = (lift(c + h * e1) - lift(c - h * e1)) / (2.0 * h);
-  double g2 = (lift(c + h * e2) - lift(c - h * e2)) / (2.0 * h);
-  if (!options.ball_relief_mean_slope.isZero()) {
-    // As the texture is laid here (slope x made-for size / local size along each axis, as the
-    // haptic chart turns a normal map's slopes); the lift rises with the heights from the front,
-    // against them from behind.
-    const Eigen::Vector2d& made_for = options.normals_made_for_m;
-    auto laid = [](double slope, double made_for_m, double local_m) {
-      return made_for_m > 0.0 && local_m > 0.0 ? slope * made_for_m / local_m : slope;
-    };
-    const double su = laid(options.ball_relief_mean_slope.x(), made_for.x(), metres_per_uv.x());
-    const double sv = laid(options.ball_relief_mean_slope.y(), made_for.y(), metres_per_uv.y());
-    g1 += side * su;
-    g2 += side * (e2.dot(f.bitangent) >= 0.0 ? sv : -sv);
-  }
-  return clampTilt((n - g1 * e1 - g2 * e2).normalized(), n, options.max_tilt_deg);
+  const double g1 = (lift(c + h * e1) - lift(c - h * e1)) / (2.0 * h);
+  const double g2 = (lift(c + h * e2) - lift(c - h * e2)) / (2.0 * h);
+  // The lift rises with the heights from the front, against them from behind.
+  const Eigen::Vector3d lean = side * laidLean(f, metres_per_uv, options);
+  return clampTilt((n - g1 * e1 - g2 * e2 - lean).normalized(), n, options.max_tilt_deg);
+}
+
+Eigen::Vector3d laidLean(const mesh::SurfaceFrame& f, const Eigen::Vector2d& metres_per_uv,
+                         const MeshContactOptions& options) {
+  if (options.relief_mean_slope.isZero()) return Eigen::Vector3d::Zero();
+  // As the texture is laid here (slope x made-for size / local size along each axis, as the
+  // haptic chart turns a normal map's slopes).
+  const Eigen::Vector2d& made_for = options.normals_made_for_m;
+  auto laid = [](double slope, double made_for_m, double local_m) {
+    return made_for_m > 0.0 && local_m > 0.0 ? slope * made_for_m / local_m : slope;
+  };
+  const double su = laid(options.relief_mean_slope.x(), made_for.x(), metres_per_uv.x());
+  const double sv = laid(options.relief_mean_slope.y(), made_for.y(), metres_per_uv.y());
+  // The tangent and bitangent made orthogonal to the normal and to each other.
+  const Eigen::Vector3d e1 = (f.tangent - f.tangent.dot(f.normal) * f.normal).normalized();
+  const Eigen::Vector3d e2 = f.normal.cross(e1);
+  return su * e1 + (e2.dot(f.bitangent) >= 0.0 ? sv : -sv) * e2;
 }
 
 ContactMesh::ContactMesh(const mesh::TexturedMesh& m)
@@ -152,6 +146,10 @@ namespace {
 
 // Where a manifold point lies on the mesh: the triangle it names on the mesh's side and the
 // mesh-side point's barycentric coordinates on it; nullopt for an index out of range.
+// Marks a point leanChartContact has leaned (Bullet's own flags use the low five bits; a point
+// Bullet replaces with a new one takes the new one's flags).
+constexpr int kLeanedContactFlag = 1 << 12;
+
 struct MeshPlace {
   std::uint32_t triangle = 0;
   Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
@@ -182,6 +180,29 @@ void steerChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isom
   const double side = smooth.dot(world_to_mesh.linear() * n_geometric) < 0.0 ? -1.0 : 1.0;
   const Eigen::Vector3d n = side * meshContactNormal(mesh, triangle, b, options);
   steerContact(point, mesh_is_b, mesh_to_world.linear() * n, n_geometric, other, options.hold_height, step);
+}
+
+void leanChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                      const ContactMesh& contact_mesh, const btCollisionObject& other,
+                      const MeshContactOptions& options, const StepContext& step) {
+  if (options.relief_mean_slope.isZero()) return;
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
+  const std::optional<MeshPlace> place = placeOf(point, mesh_is_b, world_to_mesh, mesh);
+  if (!place) return;
+  const mesh::SurfaceFrame f = mesh::frameAt(mesh, place->triangle, place->barycentric, mesh::FrameMode::Interpolated);
+  const Eigen::Vector3d lean = laidLean(f, metresPerUvAt(contact_mesh, place->triangle, place->barycentric), options);
+  // The point's own normal (the relief's on the chart, towards the object) is the geometry held.
+  // A point kept from the last step (a textured box's, a cylinder's on its end face) was leaned
+  // then: its own normal is that one unleaned (n = N - grad h scaled, so the lean's inverse is
+  // n + (n . N) lean, up to the clamp).
+  Eigen::Vector3d n_mesh = world_to_mesh.linear() * toEigen(point.m_normalWorldOnB) * (mesh_is_b ? 1.0 : -1.0);
+  if (point.m_contactPointFlags & kLeanedContactFlag) n_mesh = (n_mesh + n_mesh.dot(f.normal) * lean).normalized();
+  point.m_contactPointFlags |= kLeanedContactFlag;
+  // A normal tilts by the lean as by any slope: n - (n . N) lean.
+  const Eigen::Vector3d n = clampTilt((n_mesh - n_mesh.dot(f.normal) * lean).normalized(), f.normal, options.max_tilt_deg);
+  steerContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n_mesh, other,
+               options.hold_height, step);
 }
 
 void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,

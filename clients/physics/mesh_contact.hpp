@@ -53,11 +53,12 @@ struct MeshContactOptions {
   // (ballOnReliefNormal) instead of the texture's normal at one point (meshContactNormal).
   // nullptr: always at one point. It must outlive the world.
   const tex::BallOnRelief* ball_relief = nullptr;
-  // The slope `ball_relief` cannot hold, added to its lift's gradient: a normal map's mean slope
-  // (dh/du, dh/dv at the tile its normals were made for; a uniformly tilted map is all mean),
-  // where `ball_relief` is the relief its normals integrate to (textures/height_from_normals.hpp),
-  // periodic and so level on average. Zero for a relief map.
-  Eigen::Vector2d ball_relief_mean_slope = Eigen::Vector2d::Zero();
+  // The slope the relief cannot hold: a normal map's mean slope (dh/du, dh/dv at the tile its
+  // normals were made for; a uniformly tilted map is all mean), where `texture` and `ball_relief`
+  // are the relief its normals integrate to (textures/height_from_normals.hpp), periodic and so
+  // level on average. Added to a ball's lift's gradient, and the ground of the chart boxes,
+  // capsules and cylinders meet leans by it (MeshRelief::lean). Zero for a relief map.
+  Eigen::Vector2d relief_mean_slope = Eigen::Vector2d::Zero();
   // A ball on such a relief is lifted, as on the relief plane: the gap the solver holds
   // (steerContact, with hold_height) is to the relief as its sphere meets it, so its centre rides
   // over what it cannot enter and sinks into what it can, and where its touch jumps across a
@@ -89,19 +90,6 @@ Eigen::Vector3d meshTextureNormal(const mesh::TexturedMesh& mesh, std::uint32_t 
 // relief_raster.hpp; a ball on a relief mesh reads ballOnReliefNormal below).
 Eigen::Vector3d meshContactNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
                                   const MeshContactOptions& options);
-
-// Where a mesh's uv lays a texture tile of `tile_m` (metres per uv) squeezed the most: the factor
-// its slopes are steepened by there (meshTextureNormal: the tile over the triangle's metres per uv,
-// at its centre, on the axis that gives the larger), the axis (0: u, 1: v), and that centre's
-// point (mesh frame) and uv. A factor of 1 at the origin when nothing is squeezed. Allocates
-// nothing; linear in the triangles.
-struct UvSqueeze {
-  double factor = 1.0;
-  int axis = 0;
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();
-};
-UvSqueeze largestUvSqueeze(const mesh::TexturedMesh& mesh, const Eigen::Vector2d& tile_m);
 
 // A mesh with what the contacts walk on (built once; allocates).
 struct ContactMesh {
@@ -145,6 +133,20 @@ Eigen::Vector3d ballOnReliefNormal(const ContactMesh& mesh, const Eigen::Vector3
 void steerChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                        const ContactMesh& mesh, const btCollisionObject& other, const MeshContactOptions& options,
                        const StepContext& step = {});
+
+// A normal map's mean slope (MeshContactOptions::relief_mean_slope) laid at frame `f`, where the
+// texture's tile is `metres_per_uv` long: the slope along the surface (mesh frame, tangential;
+// zero for a relief map).
+Eigen::Vector3d laidLean(const mesh::SurfaceFrame& f, const Eigen::Vector2d& metres_per_uv,
+                         const MeshContactOptions& options);
+
+// Leans `point`, made on a relief's chart (relief_collision.hpp: the relief a normal map's normals
+// integrate to, periodic and so level), by the map's mean slope (laidLean): its normal tilted as
+// by any slope, the gap held along its own normal (steerContact with hold_height), so a box meets
+// the virtual slope as on the normal-mapped plane and stays at its height. Nothing for a relief map.
+void leanChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                      const ContactMesh& mesh, const btCollisionObject& other, const MeshContactOptions& options,
+                      const StepContext& step = {});
 
 // Rewrites `point` of a manifold in which the mesh is body B (`mesh_is_b`) or body A. The normal
 // is oriented towards the object as Bullet found it (a bowl's inside is touched against the

@@ -84,10 +84,13 @@ void TexturedWorld::rewriteMeshContacts() {
                                     [&](btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                                         const TexturedMeshBody& mesh, const btCollisionObject& other) {
                                       // Points made on a chart (relief_collision.hpp) are the surface's
-                                      // already; on a smooth chart a normal map still steers them.
+                                      // already; on a smooth chart a normal map still steers them, and
+                                      // on a normal map's relief its mean slope leans them.
                                       if (reliefTakesMeshPair(*other.getCollisionShape(), *mesh.body->getCollisionShape())) {
                                         if (!meshReliefOf(*mesh.body->getCollisionShape())->map)
                                           steerChartContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
+                                        else
+                                          leanChartContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
                                         return;
                                       }
                                       applyMeshContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);

@@ -15,7 +15,7 @@ phys::MeshContactOptions contactOptionsFor(const tex::TexturedSurface& texture, 
   phys::MeshContactOptions o;
   o.texture = &contact_map;
   o.ball_relief = ball_relief;
-  o.ball_relief_mean_slope = mean_slope;
+  o.relief_mean_slope = mean_slope;
   o.sampling = texture.sampling();
   o.normals_made_for_m = texture.mapping().size_m;  // the scene's tile (surface.size), as hapticd's
   return o;
@@ -38,33 +38,14 @@ MeshGround::MeshGround(const scene::Scene& scene, const tex::TexturedSurface& te
   relief_ = std::move(integrated.relief);
   mean_slope_ = integrated.mean_slope;
   ball_relief_.emplace(*relief_, address);
-  // Level: every body meets the relief. Leaning: a ball meets it tilted by the mean slope, the
-  // rest read the map.
+  // Every body meets the relief; leaning, tilted by the mean slope (a ball's lift, the chart's
+  // ground under the others).
   const bool level = mean_slope_.norm() <= kLevelSlope;
-  options_ = contactOptionsFor(texture, level ? *relief_ : map, &*ball_relief_,
-                               level ? Eigen::Vector2d::Zero() : mean_slope_);
+  options_ = contactOptionsFor(texture, *relief_, &*ball_relief_, level ? Eigen::Vector2d::Zero() : mean_slope_);
 }
 
 btRigidBody& MeshGround::addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const {
   return world.addTexturedMesh(scene_mesh_.mesh, scene_mesh_.mesh_to_world, material, options_);
-}
-
-std::vector<std::string> MeshGround::warnings() const {
-  if (options_.texture->isRelief()) return {};  // a relief is met on its chart, and by a ball as its sphere meets it
-  const phys::UvSqueeze squeeze = phys::largestUvSqueeze(scene_mesh_.mesh, options_.normals_made_for_m);
-  if (!(squeeze.factor > kSqueezeWarning)) return {};
-  const Eigen::Vector3d where = scene_mesh_.mesh_to_world * squeeze.point;
-  char text[900];
-  std::snprintf(text, sizeof text,
-                "surface.mesh: its uv squeezes the normal map up to %.0fx along %c (near (%.3f, %.3f, %.3f) m in the scene, uv "
-                "(%.3f, %.3f)), where boxes, capsules and cylinders read "
-                "it at one point with its slopes %.0fx steeper: bumps narrower than a body moves in a step knock it at random "
-                "(docs/physics.md, Known gaps); its normals lean by %.4f on average, so they are not met as the relief they "
-                "integrate to (balls meet that relief leaning by it); give the surface a relief (representation: relief), a "
-                "normal map level on average, or a mapping that does not squeeze the texture",
-                squeeze.factor, squeeze.axis == 0 ? 'u' : 'v', where.x(), where.y(), where.z(), squeeze.uv.x(), squeeze.uv.y(),
-                squeeze.factor, mean_slope_.norm());
-  return {text};
 }
 
 MeshGround::Place MeshGround::placeAt(std::uint32_t triangle, const Eigen::Vector3d& b) const {

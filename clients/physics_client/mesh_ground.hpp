@@ -32,10 +32,10 @@ class MeshGround {
   // The mesh as a static body of `world`, its contacts steered by the texture: a ball meets a
   // relief as its sphere does and is lifted onto it, and boxes, capsules and cylinders meet it on
   // its chart (docs/physics.md, "A ball on a relief, lifted", "Plain objects on a relief mesh"). A
-  // normal map is met by every body as the relief its normals integrate to, when they are level
-  // on average (their mean slope within kLevelSlope: a periodic relief cannot lean); one that
-  // leans is met so by a ball, the relief tilted by the mean slope, and read at one point by the
-  // other shapes (docs/physics.md, "Mesh scenes in physics-client").
+  // normal map is met by every body as the relief its normals integrate to; where they lean on
+  // average (their mean slope beyond kLevelSlope: a periodic relief cannot lean) its contacts'
+  // normals lean by that slope, the heights held: a ball's lift, and the chart's points of the
+  // other shapes (phys::leanChartContact; docs/physics.md, "Mesh scenes in physics-client").
   btRigidBody& addTo(phys::PhysicsWorld& world, const phys::BodyMaterial& material) const;
   // How the mesh's contacts read the texture (what addTo gives the world).
   const phys::MeshContactOptions& contactOptions() const { return options_; }
@@ -47,17 +47,9 @@ class MeshGround {
     tex::TexCoord uv;
     Eigen::Vector2d metres_per_uv = Eigen::Vector2d::Ones();  // the texture's scale laid here
   };
-  // What the client should tell a user who puts objects other than balls on this mesh (one line
-  // each, no prefix): a normal map (no depth) leaning on average, so read at one point by boxes,
-  // capsules and cylinders, that the uv squeezes more than kSqueezeWarning times somewhere, for
-  // there they read it with its slopes steepened as many times, and bumps narrower than a body
-  // moves in a step knock it at random (docs/physics.md, Known gaps). Balls meet the map's relief
-  // and bridge such bumps.
-  static constexpr double kSqueezeWarning = 4.0;
   // A normal map's mean slope below which it is taken as level (a map made from a periodic height
   // field has none but its normals' rounding).
   static constexpr double kLevelSlope = tex::kLevelMeanSlope;
-  std::vector<std::string> warnings() const;
 
   // The closest point of `triangle` to p_world (a contact point Bullet reported on it).
   Place on(std::uint32_t triangle, const Eigen::Vector3d& p_world) const;

@@ -195,13 +195,7 @@ std::string coarseReliefWarning(const std::string& ball, double radius_m, const 
 std::vector<std::string> PhysicsScene::warnings() const {
   const auto& objects = scene_.objects;
   std::vector<std::string> out = object_texture_warnings_;
-  if (mesh_) {
-    const bool other_than_balls = std::any_of(objects.begin(), objects.end(),
-                                              [](const scene::SceneObject& o) { return o.shape != scene::Shape::Sphere; });
-    if (other_than_balls)
-      for (const std::string& w : mesh_->warnings()) out.push_back(w);
-    return out;
-  }
+  if (mesh_) return out;
   const tex::TexturedSurface& plane = surface();
   if (!plane.usesRelief()) return out;  // a normal map's balls meet the flat plane
   const Eigen::Vector2d texel = plane.mapping().texelSize(plane.map());

@@ -259,7 +259,7 @@ TEST(MeshRolling, ATiltedNormalMapMetAsItsReliefRollsABallByItsMeanSlope) {
   MeshContactOptions options;
   options.texture = &implied->normals;
   options.ball_relief = &*implied->ball;
-  options.ball_relief_mean_slope = implied->mean_slope;
+  options.relief_mean_slope = implied->mean_slope;
   expectRollsAtFiveSeventhsGTanTheta(rollOnATiltedFace(options), angle, "tilted normal map met as its relief");
 }
 

@@ -3,11 +3,15 @@
 // held to the exact rolling answers of rocking_on_curve_scene.hpp (a block rocking on a cylinder,
 // a capsule and a cylinder rolling in a pipe), to where a block rests inside a sphere (behind the
 // mesh's winding), and to the virtual slope of a normal map, as on the normal-mapped plane.
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "clients/physics/relief_collision.hpp"
+#include "textures/height_from_normals.hpp"
 #include "tests/physics/grooved_block_scene.hpp"
 #include "tests/physics/rocking_on_curve_scene.hpp"
 
@@ -100,38 +104,111 @@ TEST(ObjectsOnSmoothMesh, ABlockInsideASphereRestsOnItsCorners) {
   }
 }
 
-// A uniformly tilted normal map on a mesh's flat top slides a box at the virtual slope's
-// acceleration g (tan t - mu) / (1 + mu tan t), as on the normal-mapped plane
-// (test_box_friction.cpp): the smooth chart's points are steered by the map.
-TEST(ObjectsOnSmoothMesh, ATiltedNormalMapSlidesABoxAtTheVirtualSlope) {
-  constexpr double kAngle = 10.0, kMu = 0.1, kHalf = 0.01;
+// A box on a uniformly tilted normal map (10 degrees, friction 0.1) laid on a slab mesh's flat top.
+struct VirtualSlide {
+  double accel = 0.0, expected = 0.0, z_error = 0.0, tilt_rad = 0.0;
+};
+constexpr double kSlideAngle = 10.0, kSlideMu = 0.1, kSlideHalf = 0.01;
+// A textured box (`textured_faces`) keeps its contacts between steps.
+VirtualSlide slideOnATiltedNormalMap(bool as_leaning_relief, bool textured_faces = false) {
   // The generator's tilted plane is a relief (its depth ramps across the map): its normals alone.
-  const tex::TextureMap tilted = tiltedMap(kAngle, 64, 0.2);
+  const tex::TextureMap tilted = tiltedMap(kSlideAngle, 64, 0.2);
   tex::TextureMap map(tilted.width(), tilted.height(), tex::Representation::Normal);
   for (int j = 0; j < map.height(); ++j)
     for (int i = 0; i < map.width(); ++i) map.setNormal(i, j, tilted.normal(i, j));
+  // Met as physics-client meets a normal map (MeshGround): the relief its normals integrate to,
+  // flat here, leaning by their mean slope.
+  const tex::ReliefOfNormals relief = tex::reliefFromNormals(map, Eigen::Vector2d(0.2, 0.2), tex::Address::Wrap);
   const mesh::GeneratedMesh slab = mesh::box({0.4, 0.4, 0.02}, 0.05, 0.2);
   PhysicsWorld world;
   MeshContactOptions options;
   options.texture = &map;
+  if (as_leaning_relief) {
+    options.texture = &relief.relief;
+    options.relief_mean_slope = relief.mean_slope;
+    options.normals_made_for_m = Eigen::Vector2d(0.2, 0.2);
+  }
   world.addTexturedMesh(slab.mesh, Eigen::Isometry3d::Identity(), {1.0, 0.0, 0.0}, options);
   Eigen::Isometry3d at = Eigen::Isometry3d::Identity();
-  at.translation() = Eigen::Vector3d(0.0, 0.0, 0.01 + kHalf);
-  btRigidBody& box = world.addBox(Eigen::Vector3d::Constant(kHalf), 0.1, at, {kMu, 0.0, 0.0});
+  at.translation() = Eigen::Vector3d(0.0, 0.0, 0.01 + kSlideHalf);
+  const tex::TextureMap faces_map = flatRelief(64);
+  FaceTexture faces;
+  faces.map = &faces_map;
+  faces.tile_m = 2.0 * kSlideHalf;
+  btRigidBody& box = textured_faces
+                         ? world.addTexturedBox(Eigen::Vector3d::Constant(kSlideHalf), 0.1, at, {kSlideMu, 0.0, 0.0}, faces)
+                         : world.addBox(Eigen::Vector3d::Constant(kSlideHalf), 0.1, at, {kSlideMu, 0.0, 0.0});
   box.setActivationState(DISABLE_DEACTIVATION);
-  double v1 = 0.0, z_error = 0.0;
+  VirtualSlide out;
+  double v1 = 0.0;
   for (int k = 1; k <= 500; ++k) {
     world.step(kDt);
-    z_error = std::max(z_error, std::fabs(double(box.getWorldTransform().getOrigin().z()) - 0.01 - kHalf));
+    out.z_error = std::max(out.z_error, std::fabs(double(box.getWorldTransform().getOrigin().z()) - 0.01 - kSlideHalf));
+    const btVector3 up = box.getWorldTransform().getBasis().getColumn(2);
+    out.tilt_rad = std::max(out.tilt_rad, std::acos(std::min(1.0, double(up.z()))));
     if (k == 100) v1 = double(box.getLinearVelocity().length());
   }
-  const double accel = (double(box.getLinearVelocity().length()) - v1) / 0.4;
-  const double t = std::tan(kAngle * kPi / 180.0), expected = kG * (t - kMu) / (1.0 + kMu * t);
+  out.accel = (double(box.getLinearVelocity().length()) - v1) / 0.4;
+  const double t = std::tan(kSlideAngle * kPi / 180.0);
+  out.expected = kG * (t - kSlideMu) / (1.0 + kSlideMu * t);
+  return out;
+}
+
+// A uniformly tilted normal map on a mesh's flat top slides a box at the virtual slope's
+// acceleration g (tan t - mu) / (1 + mu tan t), as on the normal-mapped plane
+// (test_box_friction.cpp): the smooth chart's points are steered by the map.
+TEST(ObjectsOnSmoothMesh, ATiltedNormalMapSlidesABoxAtTheVirtualSlope) {
+  const VirtualSlide s = slideOnATiltedNormalMap(false);
   std::printf("[measured] box on a tilted normal map on a mesh: a = %.4f m/s^2, expected %.4f (%+.2f %%), height held "
               "within %.1f um\n",
-              accel, expected, 100.0 * (accel / expected - 1.0), z_error * 1e6);
-  EXPECT_NEAR(accel, expected, 0.015 * expected);
-  EXPECT_LT(z_error, 5e-5);
+              s.accel, s.expected, 100.0 * (s.accel / s.expected - 1.0), s.z_error * 1e6);
+  EXPECT_NEAR(s.accel, s.expected, 0.015 * s.expected);
+  EXPECT_LT(s.z_error, 5e-5);
+}
+
+// A point kept from one step to the next is leaned once: leaning it again gives the same normal.
+TEST(ObjectsOnSmoothMesh, AChartPointIsLeanedOnceEvenWhenKeptBetweenSteps) {
+  const mesh::GeneratedMesh slab = mesh::box({0.4, 0.4, 0.02}, 0.05, 0.2);
+  const ContactMesh contact_mesh(slab.mesh);
+  MeshContactOptions options;
+  options.relief_mean_slope = Eigen::Vector2d(0.1, -0.05);
+  options.hold_height = false;
+  btBoxShape shape(btVector3(0.01f, 0.01f, 0.01f));
+  btCollisionObject box;
+  box.setCollisionShape(&shape);
+  const Eigen::Vector3d on_top(0.013, -0.021, 0.01);
+  btManifoldPoint point;
+  point.m_index1 = int(mesh::nearestTriangle(slab.mesh, on_top));
+  point.m_positionWorldOnA = point.m_positionWorldOnB = toBt(on_top);
+  point.m_normalWorldOnB = btVector3(0.0f, 0.0f, 1.0f);
+  leanChartContact(point, true, Eigen::Isometry3d::Identity(), contact_mesh, box, options);
+  const Eigen::Vector3d once = toEigen(point.m_normalWorldOnB);
+  leanChartContact(point, true, Eigen::Isometry3d::Identity(), contact_mesh, box, options);
+  const Eigen::Vector3d twice = toEigen(point.m_normalWorldOnB);
+  // The top face's tangent frame: tilted by the two slopes, whichever way the mapping lays u and v.
+  EXPECT_NEAR(once.z(), 1.0 / std::sqrt(1.0 + 0.1 * 0.1 + 0.05 * 0.05), 1e-6);
+  EXPECT_LT((twice - once).norm(), 1e-6) << once.transpose() << " then " << twice.transpose();
+}
+
+// A box whose faces carry a (flat) relief keeps its contacts between steps: each is leaned once.
+TEST(ObjectsOnSmoothMesh, ATiltedNormalMapMetAsItsLeaningReliefSlidesATexturedBoxAtTheVirtualSlope) {
+  const VirtualSlide s = slideOnATiltedNormalMap(true, true);
+  std::printf("[measured] textured box on a tilted normal map's leaning relief on a mesh: a = %.4f m/s^2, expected %.4f "
+              "(%+.2f %%), height held within %.1f um, tilted up to %.3f degrees\n",
+              s.accel, s.expected, 100.0 * (s.accel / s.expected - 1.0), s.z_error * 1e6, s.tilt_rad * 180.0 / kPi);
+  EXPECT_NEAR(s.accel, s.expected, 0.015 * s.expected);
+  EXPECT_LT(s.z_error, 5e-5);
+}
+
+// The same map met as physics-client meets it: the relief its normals integrate to (flat), on the
+// chart, its ground's normals leaning by the map's mean slope (GroundBend::lean), the box held level.
+TEST(ObjectsOnSmoothMesh, ATiltedNormalMapMetAsItsLeaningReliefSlidesABoxAtTheVirtualSlope) {
+  const VirtualSlide s = slideOnATiltedNormalMap(true);
+  std::printf("[measured] box on a tilted normal map's leaning relief on a mesh: a = %.4f m/s^2, expected %.4f (%+.2f %%), "
+              "height held within %.1f um, tilted up to %.3f degrees\n",
+              s.accel, s.expected, 100.0 * (s.accel / s.expected - 1.0), s.z_error * 1e6, s.tilt_rad * 180.0 / kPi);
+  EXPECT_NEAR(s.accel, s.expected, 0.015 * s.expected);
+  EXPECT_LT(s.z_error, 5e-5);
 }
 
 // A grooved block (a relief on its faces) on an untextured slab mesh rests on its ridges as on a
