@@ -55,8 +55,9 @@
 #              leaning); about 20 s; its table goes to docs/physics.md)
 #              or textured_pair (issue 29: a grooved block on a grooved plane, the force that starts
 #              it sliding along and across the grooves (raised slowly; across also at once) in both
-#              orders of the pair and beside a plain block, and the cost of a step, at 64, 128 and
-#              256 texels; about 2 min; its table goes to docs/physics.md)
+#              orders of the pair and beside a plain block, along and across on a slab mesh, and
+#              the cost of a step, at 64, 128 and 256 texels; about 3 min; its table goes to
+#              docs/physics.md)
 #              or rolling_ridges (issue 29: a ball rolling across sine ridges on the relief plane and on
 #              a relief mesh, lifted and steered, against the rolling-impact law, with the cost of a
 #              step; about half a minute; its table goes to docs/physics.md)
@@ -374,7 +375,7 @@ run_physics_mesh() {
 
 run_textured_pair() {
   need "$BIN/bench_textured_pair" || return 1
-  say "part textured_pair: a grooved block on a grooved plane, the force to slide it each way (about 2 min)"
+  say "part textured_pair: a grooved block on a grooved plane and slab mesh, the force to slide it each way (about 3 min)"
   bench_with_table bench_textured_pair "$ROOT/docs/physics.md"
 }
 

@@ -2,7 +2,8 @@
 // A grooved block on a grooved plane (issue 29, two textured bodies; clients/physics/textured_box.hpp):
 // V-grooves along y, 4 mm apart and 1 mm deep (walls at atan(2 D / P) = 26.6°), on a relief plane
 // and on the faces of a 2 x 2 x 1 cm, 50 g block (friction 0.3) set half a period over, so its
-// ridges sit in the plane's grooves; or a plain block of the same size. Shared by
+// ridges sit in the plane's grooves (or in the same grooves laid on a flat slab mesh's top); or a
+// plain block of the same size. Shared by
 // tests/physics/test_textured_box.cpp and benchmarks/bench_textured_pair.cpp.
 #include <cmath>
 #include <memory>
@@ -42,41 +43,6 @@ inline Eigen::Vector3d pushBlock(PhysicsWorld& world, btRigidBody& block, const 
   return positionOf(block) - start;
 }
 
-struct Scene {
-  SurfaceHolder plane;
-  tex::TextureMap block_map;
-  std::unique_ptr<PhysicsWorld> world;
-  btRigidBody* block = nullptr;
-
-  // The block's ridges over the plane's floors (x = P/2), a little above where they fit; both
-  // textures `texels` on a side over 4 cm. block_first: the block is added to the world first, so
-  // Bullet hands the pair to the relief algorithm in the other order.
-  Scene(bool textured, bool block_first, int texels = 128, const WorldOptions& options = {})
-      : plane(holdSurface(heightMap(texels, kExtent, vGrooves), kExtent, true)),
-        block_map(heightMap(texels, kExtent, vGrooves)),
-        world(std::make_unique<PhysicsWorld>(options)) {
-    const BodyMaterial plane_material{1.0, 0.0, 0.0};  // Bullet multiplies frictions: the block's decides
-    const BodyMaterial block_material{kFriction, 0.0, 0.0};
-    const Eigen::Isometry3d pose = at(0.5 * kPeriod, 0.0, kHalf.z() - (textured ? kDepth : 0.0) + 2e-4);
-    FaceTexture faces;
-    faces.map = &block_map;
-    faces.tile_m = kExtent;
-    auto add_block = [&] {
-      block = textured ? &world->addTexturedBox(kHalf, kMass, pose, block_material, faces)
-                       : &world->addBox(kHalf, kMass, pose, block_material);
-    };
-    if (block_first) add_block();
-    world->addReliefPlane(plane.surface, plane_material);
-    if (!block_first) add_block();
-    for (int k = 0; k < 100; ++k) world->step(kDt);  // settle
-  }
-
-  // Pushed by a horizontal force for `seconds`: how far the block's centre moved.
-  Eigen::Vector3d push(const Eigen::Vector3d& force_over_weight, double seconds, double ramp_seconds = 0.0) {
-    return pushBlock(*world, *block, force_over_weight, seconds, ramp_seconds);
-  }
-};
-
 // The same grooves on a curved mesh (tests/physics/test_textured_box_on_mesh.cpp,
 // test_plain_objects_on_relief_mesh.cpp): the inside of a pipe along y, 16 whole tiles round so
 // the grooves keep their 4 mm period, its lowest line (a ridge, u = 12 tiles) at z = 0 and
@@ -106,5 +72,50 @@ inline Eigen::Vector3d addGroovedGround(PhysicsWorld& world, const mesh::Generat
   world.addTexturedMesh(ground.mesh, pose, {1.0, 0.0, 0.0}, options);
   return bottom;
 }
+
+// What the block stands on: the relief plane, or the grooves laid on a flat slab mesh's top
+// (groovedGround(false): met on the mesh's relief chart, mesh_relief_chart.hpp).
+enum class BlockGround { Plane, SlabMesh };
+
+struct Scene {
+  SurfaceHolder plane;
+  tex::TextureMap block_map;
+  std::unique_ptr<mesh::GeneratedMesh> slab;  // with BlockGround::SlabMesh
+  std::unique_ptr<PhysicsWorld> world;
+  btRigidBody* block = nullptr;
+
+  // The block's ridges over the plane's floors (x = P/2), a little above where they fit; both
+  // textures `texels` on a side over 4 cm. block_first: the block is added to the world first, so
+  // Bullet hands the pair to the relief algorithm in the other order.
+  Scene(bool textured, bool block_first, int texels = 128, const WorldOptions& options = {}, BlockGround ground = BlockGround::Plane)
+      : plane(holdSurface(heightMap(texels, kExtent, vGrooves), kExtent, true)),
+        block_map(heightMap(texels, kExtent, vGrooves)),
+        world(std::make_unique<PhysicsWorld>(options)) {
+    const BodyMaterial plane_material{1.0, 0.0, 0.0};  // Bullet multiplies frictions: the block's decides
+    const BodyMaterial block_material{kFriction, 0.0, 0.0};
+    const Eigen::Isometry3d pose = at(0.5 * kPeriod, 0.0, kHalf.z() - (textured ? kDepth : 0.0) + 2e-4);
+    FaceTexture faces;
+    faces.map = &block_map;
+    faces.tile_m = kExtent;
+    auto add_block = [&] {
+      block = textured ? &world->addTexturedBox(kHalf, kMass, pose, block_material, faces)
+                       : &world->addBox(kHalf, kMass, pose, block_material);
+    };
+    if (block_first) add_block();
+    if (ground == BlockGround::SlabMesh) {
+      slab = std::make_unique<mesh::GeneratedMesh>(groovedGround(false));
+      addGroovedGround(*world, *slab, false, plane.surface.map());
+    } else {
+      world->addReliefPlane(plane.surface, plane_material);
+    }
+    if (!block_first) add_block();
+    for (int k = 0; k < 100; ++k) world->step(kDt);  // settle
+  }
+
+  // Pushed by a horizontal force for `seconds`: how far the block's centre moved.
+  Eigen::Vector3d push(const Eigen::Vector3d& force_over_weight, double seconds, double ramp_seconds = 0.0) {
+    return pushBlock(*world, *block, force_over_weight, seconds, ramp_seconds);
+  }
+};
 
 }  // namespace thx::phys::test::grooved_block

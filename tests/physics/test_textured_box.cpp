@@ -61,6 +61,17 @@ TEST(TexturedBox, AForceRaisedSlowlyToMostOfTheWedgesHoldsTheBlockInItsGrooves) 
   EXPECT_LT(moved.z(), 0.5 * kDepth) << moved.transpose();
 }
 
+// The same on the grooves laid on a flat slab mesh's top, met on its relief chart (bench_textured_pair's
+// slab columns: the plane's forces within 0.016); and pushed well past the wedge it climbs out.
+TEST(TexturedBox, OnASlabMeshTheWedgeHoldsAsOnThePlane) {
+  Scene held(true, false, 64, {}, BlockGround::SlabMesh);
+  const Eigen::Vector3d moved = held.push({0.84, 0.0, 0.0}, 0.3, 0.5);
+  EXPECT_LT(moved.x(), 1e-3) << moved.transpose();
+  EXPECT_LT(moved.z(), 0.5 * kDepth) << moved.transpose();
+  Scene pushed(true, false, 64, {}, BlockGround::SlabMesh);
+  EXPECT_GT(pushed.push({1.3, 0.0, 0.0}, 0.2).x(), kPeriod);
+}
+
 TEST(TexturedBox, EitherOrderOfThePairGivesTheSameMotion) {
   Scene block_first(true, true), plane_first(true, false);
   const Eigen::Vector3d a = block_first.push({0.5, 0.5, 0.0}, 0.2);
