@@ -2,9 +2,10 @@
 // "Mesh scenes in physics-client"): the bowl of bricks (tests/support/bowl_scene.hpp) as a normal
 // map, whose lathe uv squeezes the texture towards its floor's centre, with a wooden block set
 // down at places around it, read three ways: the normal map at one point of each contact (what
-// physics-client did before 2026-12-03, and does still for a map that leans on average), the
-// relief the map's normals integrate to (what it does for a map level on average: MeshGround), and
-// the bricks' own relief map. Whether the block comes to rest, and how fast it still moves.
+// physics-client did before 2026-12-03), the relief the map's normals integrate to (what it does
+// now: MeshGround), and the bricks' own relief map; then the bricks' normals leaning, read at one
+// point and as their relief with the contacts leaning by the mean slope (MeshGround's reading of
+// a leaning map). Whether the block comes to rest, and how fast it still moves.
 // Measures only; nothing asserted (tests/physics_client/test_mesh_normal_map_relief.cpp holds the
 // behaviour at two places).
 #include <algorithm>

@@ -56,8 +56,8 @@ struct MeshContactOptions {
   // The slope the relief cannot hold: a normal map's mean slope (dh/du, dh/dv at the tile its
   // normals were made for; a uniformly tilted map is all mean), where `texture` and `ball_relief`
   // are the relief its normals integrate to (textures/height_from_normals.hpp), periodic and so
-  // level on average. Added to a ball's lift's gradient, and the ground of the chart boxes,
-  // capsules and cylinders meet leans by it (MeshRelief::lean). Zero for a relief map.
+  // level on average. Added to a ball's lift's gradient, and the points boxes, capsules and
+  // cylinders get on the relief's chart lean by it (leanChartContact). Zero for a relief map.
   Eigen::Vector2d relief_mean_slope = Eigen::Vector2d::Zero();
   // A ball on such a relief is lifted, as on the relief plane: the gap the solver holds
   // (steerContact, with hold_height) is to the relief as its sphere meets it, so its centre rides

@@ -1,7 +1,6 @@
 #include "clients/physics_client/mesh_ground.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
 #include "textures/height_from_normals.hpp"
@@ -38,8 +37,8 @@ MeshGround::MeshGround(const scene::Scene& scene, const tex::TexturedSurface& te
   relief_ = std::move(integrated.relief);
   mean_slope_ = integrated.mean_slope;
   ball_relief_.emplace(*relief_, address);
-  // Every body meets the relief; leaning, tilted by the mean slope (a ball's lift, the chart's
-  // ground under the others).
+  // Every body meets the relief; leaning, its contacts' normals tilted by the mean slope (a ball's
+  // lift, the chart's points of the others).
   const bool level = mean_slope_.norm() <= kLevelSlope;
   options_ = contactOptionsFor(texture, *relief_, &*ball_relief_, level ? Eigen::Vector2d::Zero() : mean_slope_);
 }

@@ -8,8 +8,6 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
-#include <string>
-#include <vector>
 
 #include "clients/physics/mesh_contact.hpp"
 #include "clients/physics/physics_world.hpp"
