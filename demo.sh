@@ -167,6 +167,12 @@ echo "   recorded in lock-step, physics-client on the recording, frames every ha
 physics_scene_offline grooved_block "^  block " "a grooved block pushed on a grooved plane"
 
 echo
+echo "== a textured ball: a dimpled ball on the grooved plane (scenes/dimpled_ball_grooves.yaml), its bump map and the plane's"
+echo "   relief both in the contact; the pen pushes it along the grooves, then across them (it rolls over their rims);"
+echo "   recorded in lock-step, physics-client on the recording, frames every half second -> $OUT/visual_dimpled_ball_grooves/, and heard"
+physics_scene_offline dimpled_ball_grooves "^  ball " "a dimpled ball pushed on a grooved plane"
+
+echo
 echo "== a textured object on a textured curved surface: a grooved block in the bowl of bricks (scenes/grooved_block_bowl.yaml),"
 echo "   both reliefs in the contact on the bowl's chart under it; the pen pushes it across the floor. The pen recorded"
 echo "   in lock-step, physics-client on the recording, frames every half second -> $OUT/visual_grooved_block_bowl/, and heard"

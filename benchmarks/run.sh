@@ -58,6 +58,9 @@
 #              orders of the pair and beside a plain block, along and across on a slab mesh, and
 #              the cost of a step, at 64, 128 and 256 texels; about 3 min; its table goes to
 #              docs/physics.md)
+#              or textured_ball (issue 29: a ball with a bump map on relief planes of 128, 256 and
+#              512 texels: rolling on its recessed radius, at rest on a flat and a bumpy relief, the
+#              cost of a step beside a plain ball; about 30 s; its table goes to docs/physics.md)
 #              or rolling_ridges (issue 29: a ball rolling across sine ridges on the relief plane and on
 #              a relief mesh, lifted and steered, against the rolling-impact law, with the cost of a
 #              step; about half a minute; its table goes to docs/physics.md)
@@ -379,6 +382,12 @@ run_textured_pair() {
   bench_with_table bench_textured_pair "$ROOT/docs/physics.md"
 }
 
+run_textured_ball() {
+  need "$BIN/bench_textured_ball" || return 1
+  say "part textured_ball: a ball with a bump map rolling and at rest on relief planes (about 30 s)"
+  bench_with_table bench_textured_ball "$ROOT/docs/physics.md"
+}
+
 run_rolling_ridges() {
   need "$BIN/bench_rolling_ridges" || return 1
   say "part rolling_ridges: a ball across sine ridges, plane and mesh against the rolling-impact law (about half a minute)"
@@ -433,14 +442,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | block_by_pole | textured_pair | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | block_by_pole | textured_pair | textured_ball | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing block_by_pole textured_pair rolling_ridges rod_in_groove rocking_on_curve object_by_crease report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing block_by_pole textured_pair textured_ball rolling_ridges rod_in_groove rocking_on_curve object_by_crease report)"
       exit 2
       ;;
   esac

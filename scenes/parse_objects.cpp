@@ -1,6 +1,7 @@
 // objects: the dynamic bodies physics simulates on the surface.
 #include <algorithm>
 
+#include "meshes/textured_ball_mesh.hpp"
 #include "scenes/scene_frames.hpp"
 #include "scenes/scene_sections.hpp"
 
@@ -51,13 +52,13 @@ void parseDimensions(const Field& field, SceneObject& object) {
   }
 }
 
-// objects[].texture and texture_tile: a relief map on a box's faces (issue 29).
+// objects[].texture and texture_tile: a relief map on a box's faces or a ball's bump map (issue 29).
 ObjectTexture parseObjectTexture(const Field& field, const SceneObject& object) {
   const Field texture = *field.find("texture");
-  if (object.shape != Shape::Box)
-    texture.fail("only a box carries a texture", "no texture on a " + std::string(toString(object.shape)), "");
+  if (object.shape != Shape::Box && object.shape != Shape::Sphere)
+    texture.fail("only a box or a sphere carries a texture", "no texture on a " + std::string(toString(object.shape)), "");
   ObjectTexture out;
-  out.tile_m = object.size_m.maxCoeff();
+  out.tile_m = object.shape == Shape::Box ? object.size_m.maxCoeff() : mesh::ballFaceArc(object.radius_m);
   const auto params = texture.find("params");
   const auto extent = params ? params->find("extent") : std::nullopt;
   if (auto tile = field.find("texture_tile"))

@@ -171,11 +171,14 @@ struct Device {
 enum class Shape { Sphere, Box, Capsule, Cylinder };
 
 // objects[].texture (issue 29): a relief map on every face of a box, spanning tile_m on each
-// (clients/physics/textured_box.hpp lays it out); a file of normals only is read as the relief
-// they integrate to. Built by buildObjectTexture (surface_texture.hpp).
+// (clients/physics/textured_box.hpp lays it out), or a ball's bump map, laid on the six faces of
+// a cube projected onto it (meshes/textured_ball_mesh.hpp); a file of normals only is read as the
+// relief they integrate to. Built by buildObjectTexture (surface_texture.hpp).
 struct ObjectTexture {
   TextureSource source;  // a generator's extent defaults to tile_m
-  double tile_m = 0.02;  // texture_tile; default: the generator's extent, else the box's longest edge
+  // texture_tile; default: the generator's extent, else the box's longest edge or the arc of one
+  // of the ball's faces (pi r / 2: each face spans one tile)
+  double tile_m = 0.02;
 };
 
 struct SceneObject {
@@ -190,7 +193,7 @@ struct SceneObject {
   Eigen::Vector3d velocity_m_per_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity_rad_per_s = Eigen::Vector3d::Zero();  // world frame
   bool fixed = false;  // a static obstacle (walls, bumpers): never moves, mass_kg = 0
-  std::optional<ObjectTexture> texture;  // box only
+  std::optional<ObjectTexture> texture;  // box or sphere
 };
 
 struct Rates {

@@ -93,15 +93,15 @@ tex::TextureMap buildObjectTexture(const Scene& scene, std::size_t index, const 
     load.bad_texels = options.bad_texels;
     tex::TextureMap map = tex::loadTexture(source.file, load, options.report);
     if (map.isRelief()) return map;
-    // Normals only: the faces meet the relief they integrate to, made for the tile (the same
-    // reading a mesh's normal map gets; a box's contacts need depth).
+    // Normals only: the object meets the relief they integrate to, made for the tile (the same
+    // reading a mesh's normal map gets; an object's contacts need depth).
     const tex::ReliefOfNormals relief = tex::reliefFromNormals(map, Eigen::Vector2d(texture.tile_m, texture.tile_m),
                                                                tex::Address::Wrap, named + "'s texture");
     const double lean = relief.mean_slope.norm();
     if (lean > tex::kLevelMeanSlope && options.report) {
       char text[400];
       std::snprintf(text, sizeof text,
-                    "%s: its normal map leans on average (mean slope %.4f, %.2f degrees); its faces meet the "
+                    "%s: its normal map leans on average (mean slope %.4f, %.2f degrees); the object meets the "
                     "relief its normals integrate to, which cannot lean, so that lean is lost (a map level "
                     "on average, mean slope within %.0e, loses nothing)",
                     named.c_str(), lean, std::atan(lean) * 180.0 / std::numbers::pi, tex::kLevelMeanSlope);
@@ -110,7 +110,7 @@ tex::TextureMap buildObjectTexture(const Scene& scene, std::size_t index, const 
     return relief.relief;
   } catch (const tex::TextureError& e) {
     throw SceneError(source.where, "objects[" + std::to_string(index) + "].texture",
-                     named + ": " + e.what() + " (a box's texture is a relief map, RGBA with the depth in alpha, or a "
+                     named + ": " + e.what() + " (an object's texture is a relief map, RGBA with the depth in alpha, or a "
                      "normal map, read as the relief its normals integrate to)");
   }
 }

@@ -22,9 +22,9 @@ struct SurfaceTextureOptions {
 // Throws SceneError (located at the scene's `texture:` field) wrapping any texture error.
 tex::TextureMap buildSurfaceTexture(const Scene& scene, const SurfaceTextureOptions& options = {});
 
-// scene.objects[index]'s face texture (objects[].texture), always a relief map (a box's texture
-// shapes contacts through its depth): a file holding only normals becomes the relief they
-// integrate to over the object's tile (tex::reliefFromNormals, wrapped), and a map leaning on
+// scene.objects[index]'s texture (objects[].texture: a box's faces, a ball's bump map), always a
+// relief map (it shapes contacts through its depth): a file holding only normals becomes the relief
+// they integrate to over the object's tile (tex::reliefFromNormals, wrapped), and a map leaning on
 // average (mean slope above tex::kLevelMeanSlope), whose lean that relief cannot hold, adds a
 // warning naming the object to `options.report`. Throws SceneError located at the object's
 // `texture:`, naming the object. Requires that object to have a texture.

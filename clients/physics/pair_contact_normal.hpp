@@ -1,6 +1,6 @@
 #pragma once
-// Which normal a contact between a relief plane and a textured box takes (issue 29, two textured
-// bodies; textured_box.hpp). The rasteriser gives every texel the mean of the two surfaces'
+// Which normal a contact between a relief plane and a textured object takes (issue 29, two textured
+// bodies; textured_box.hpp, textured_ball.hpp). The rasteriser gives every texel the mean of the two surfaces'
 // normals: right where the two touch wall on wall (they agree there), half wrong where a crest of
 // one presses on a wall of the other. There the wall sets the normal, as a vertex touching a face
 // takes the face's in Bullet and as a plain box's face on a crease of the relief does
@@ -12,7 +12,7 @@
 
 #include "clients/physics/contact_selection.hpp"
 #include "clients/physics/ground_bend.hpp"
-#include "clients/physics/textured_box.hpp"
+#include "clients/physics/textured_object_surface.hpp"
 #include "textures/textured_surface.hpp"
 
 namespace thx::phys {
@@ -24,9 +24,9 @@ namespace thx::phys {
 // takes the other's normal. Where neither does (smooth bumps, wall on wall) or both do (a brick's
 // edge on a rounded groove's rim: neither is the face), it keeps the mean: taking the less bent
 // one's there too, the grooved block pushed over the bowl's bricks was thrown at 0.096 m/s
-// (0.048 with the mean). The plane is read centred; the box, on its footprint's rim, one texel
+// (0.048 with the mean). The plane is read centred; the object, on its footprint's rim, one texel
 // in. `bend`: the chart's bent ground on a mesh, nullptr on a plane.
-void smootherSurfaceNormals(const tex::TexturedSurface& surface, const GroundBend* bend, const TexturedBoxSurface& box,
+void smootherSurfaceNormals(const tex::TexturedSurface& surface, const GroundBend* bend, const TexturedObjectSurface& object,
                             std::span<ReliefCandidate> contacts);
 
 }  // namespace thx::phys

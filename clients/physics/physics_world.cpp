@@ -156,6 +156,14 @@ btRigidBody& PhysicsWorld::addTexturedBox(const Eigen::Vector3d& half_extents_m,
   return addBody(std::move(shape), mass_kg, pose, material);
 }
 
+btRigidBody& PhysicsWorld::addTexturedSphere(double radius_m, double mass_kg, const Eigen::Isometry3d& pose,
+                                             const BodyMaterial& material, const FaceTexture& texture) {
+  face_textures_.push_back(std::make_unique<FaceTexture>(texture));
+  auto shape = std::make_unique<btSphereShape>(narrow(radius_m));
+  attachBallTexture(*shape, *face_textures_.back());
+  return addBody(std::move(shape), mass_kg, pose, material);
+}
+
 btRigidBody& PhysicsWorld::addCapsule(double radius_m, double half_length_m, double mass_kg,
                                       const Eigen::Isometry3d& pose, const BodyMaterial& material) {
   return addBody(std::make_unique<btCapsuleShapeZ>(narrow(radius_m), narrow(2.0 * half_length_m)), mass_kg, pose,

@@ -18,6 +18,7 @@
 
 #include "clients/physics/mesh_relief_chart.hpp"
 #include "clients/physics/normal_map_contact.hpp"
+#include "clients/physics/textured_ball.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "clients/physics/textured_world.hpp"
 #include "textures/textured_surface.hpp"
@@ -92,6 +93,10 @@ class PhysicsWorld {
   // relief plane both textures shape the contact; elsewhere it collides as the plain box.
   btRigidBody& addTexturedBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
                               const BodyMaterial& material, const FaceTexture& texture);
+  // A ball with a bump map (textured_ball.hpp; the map must outlive this world): on a relief plane
+  // both textures shape the contact; elsewhere it collides as the plain ball.
+  btRigidBody& addTexturedSphere(double radius_m, double mass_kg, const Eigen::Isometry3d& pose,
+                                 const BodyMaterial& material, const FaceTexture& texture);
   btRigidBody& addCapsule(double radius_m, double half_length_m, double mass_kg, const Eigen::Isometry3d& pose,
                           const BodyMaterial& material);
   btRigidBody& addCylinder(double radius_m, double half_length_m, double mass_kg, const Eigen::Isometry3d& pose,
@@ -113,7 +118,7 @@ class PhysicsWorld {
   struct TriangleArrays;  // a mesh's vertices and indices as Bullet reads them (declared before
                           // shapes_: the shapes that read them go first)
   std::vector<std::unique_ptr<TriangleArrays>> triangle_arrays_;
-  std::vector<std::unique_ptr<FaceTexture>> face_textures_;  // the textured boxes' (their shapes point here)
+  std::vector<std::unique_ptr<FaceTexture>> face_textures_;  // the textured boxes' and balls' (their shapes point here)
   std::vector<std::unique_ptr<MeshRelief>> mesh_reliefs_;    // the relief meshes' (their shapes point here)
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;

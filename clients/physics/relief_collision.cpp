@@ -25,7 +25,9 @@
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/relief_raster.hpp"
 #include "clients/physics/speculative_contacts.hpp"
+#include "clients/physics/textured_ball.hpp"
 #include "clients/physics/textured_box.hpp"
+#include "clients/physics/textured_object_surface.hpp"
 
 namespace thx::phys {
 
@@ -130,11 +132,13 @@ BodyMotion motionOf(const btCollisionObject& object) {
 }
 
 // Adds the chosen contacts (deepest first) to the result's manifold (relief_collision.hpp's
-// convention).
+// convention). `object_relief`: a ball with a bump map, whose point of contact is on its recessed
+// surface above the texel (where the pair's depth was measured), not where its smooth sphere
+// faces -n.
 void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside& underside,
                        const tex::TexturedSurface& surface, const GroundBend& bend,
                        const Eigen::Isometry3d& world_from_plane, bool conforming, double threshold,
-                       btManifoldResult* result, const BodyMotion* ball = nullptr) {
+                       btManifoldResult* result, const BodyMotion* ball = nullptr, bool object_relief = false) {
   // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
   // within the breaking threshold of the new one. The chosen points come deepest first, so a
   // later point that close is skipped instead: the deeper one must win. (For a sphere every
@@ -144,7 +148,7 @@ void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside&
   for (const ReliefCandidate& c : chosen) {
     const Eigen::Vector3d n_world = world_from_plane.linear() * c.n_local;
     const Eigen::Vector3d lowest = c.p_surface + c.depth * Eigen::Vector3d::UnitZ();  // plane frame
-    const Eigen::Vector3d q = contactOnObject(underside, lowest, c.n_local);
+    const Eigen::Vector3d q = object_relief ? lowest : contactOnObject(underside, lowest, c.n_local);
     // Signed distance of the contact point from the texel's tangent plane, along its normal:
     // for a box this is depth * n_z, for a round part the gap of the round surface itself (a
     // fringe texel of a capsule's end cap then reports the cap's real gap, not the fringe's).
@@ -201,6 +205,36 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
   return n.y() > 0.0 ? 2 : 4;
 }
 
+// A ball with a bump map on the relief plane (textured_ball.hpp): the pair's depth rasterised
+// over the plane's texels under it, the deepest and the spread points each taken to the bottom of
+// its basin in that depth (where the two surfaces' normals agree) and located within its texel as
+// a plain ball's (refineDeepest, on the pair's depth), their normals by the pair's rule
+// (pair_contact_normal.hpp), found afresh each step as a plain ball's are.
+void texturedBallCollision(const tex::TexturedSurface& surface, const Underside& underside, const FaceTexture& texture,
+                           double threshold, const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
+                           btManifoldResult* result) {
+  thread_local std::vector<ReliefCandidate> candidates;
+  candidates.clear();
+  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &texture);
+  std::array<std::size_t, kMaxReliefContacts> picked{};
+  const std::size_t n = selectReliefContacts(candidates, picked);
+  const std::array<std::size_t, kMaxReliefContacts> spread = picked;
+  snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
+  std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    // Two points whose walks ended in one basin: one contact.
+    if (std::find(picked.begin(), picked.begin() + std::ptrdiff_t(k), picked[k]) != picked.begin() + std::ptrdiff_t(k))
+      continue;
+    const ReliefCandidate& c = candidates[picked[k]];
+    // As a plain ball's: the deepest and every point that walked to a basin's bottom.
+    chosen[count++] = k == 0 || picked[k] != spread[k] ? refineDeepest(surface, underside, c, nullptr, &texture) : c;
+  }
+  smootherSurfaceNormals(surface, nullptr, TexturedObjectSurface(underside, texture), std::span(chosen.data(), count));
+  addReliefContacts(std::span(chosen.data(), count), underside, surface, GroundBend{}, world_from_plane, false,
+                    threshold, result, &motion, true);
+}
+
 }  // namespace
 
 void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapper& object,
@@ -216,7 +250,7 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
   taken.clear();
   const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend);
   dropPastBoundary(boundary, candidates);
-  const TexturedBoxSurface box_surface(underside, faces);
+  const TexturedObjectSurface box_surface(underside, faces);
   for (std::size_t g = 0; g < kNormalGroups; ++g) {
     result->setPersistentManifold(groupManifold(chart, g, object.getCollisionObject(), relief.getCollisionObject()));
     group.clear();
@@ -440,6 +474,12 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   if (!underside) return;
 
   const double threshold = double(manifold->getContactBreakingThreshold());
+  if (const FaceTexture* ball = ballTextureOf(*object->getCollisionShape())) {
+    clearGroupManifolds();
+    texturedBallCollision(plane.surface(), *underside, *ball, threshold, world_from_plane,
+                          motionOf(*object->getCollisionObject()), result);
+    return;
+  }
   // A box with a relief on its faces (textured_box.hpp): its own rule, one manifold per group of
   // normals.
   if (box_faces) {

@@ -8,7 +8,9 @@
 // rasteriser finds every contact afresh anyway. Two exceptions keep their contacts between steps,
 // merged with the new ones: a box with a relief on its faces (textured_box.hpp), grouped by normal
 // into up to five manifolds (relief_collision.cpp, texturedBoxCollision), and a cylinder standing
-// on an end face, on two rim points of the face's fall line (end_face_contacts.hpp).
+// on an end face, on two rim points of the face's fall line (end_face_contacts.hpp). A ball with a
+// bump map (textured_ball.hpp) meets the plane by the textured box's pair depth, its points found
+// afresh each step as any ball's (relief_collision.cpp, texturedBallCollision).
 // A box (textured or not), capsule or cylinder against a relief-textured mesh (mesh_relief_chart.hpp)
 // takes the same rule on the mesh's chart under it, the relief standing on the mesh's bend (on a
 // mesh without a relief, on its smooth chart: the bend alone, sampled over the object); each

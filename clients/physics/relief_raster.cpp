@@ -47,7 +47,7 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 }
 
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
-                            std::vector<ReliefCandidate>& out, const FaceTexture* box_faces, const GroundBend* bend) {
+                            std::vector<ReliefCandidate>& out, const FaceTexture* object_texture, const GroundBend* bend) {
   RasterStats stats;
   // Bent ground may rise above the plane under the object: the footprint reaches as high.
   double reach = 0.0;
@@ -76,9 +76,10 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   }
   const Eigen::Vector3d first = surface.texelPoint(i0, j0).q_local;
   const bool relief = surface.usesRelief();
-  const bool textured = box_faces != nullptr && shape.kind == Underside::Kind::Box;
-  std::optional<TexturedBoxSurface> box_surface;
-  if (textured) box_surface.emplace(shape, *box_faces);
+  const bool textured = object_texture != nullptr &&
+                        (shape.kind == Underside::Kind::Box || shape.kind == Underside::Kind::Sphere);
+  std::optional<TexturedObjectSurface> object_surface;
+  if (textured) object_surface.emplace(shape, *object_texture);
   for (long long j = j0; j <= j1; j += stats.stride_j) {
     const double y = first.y() - double(j - j0) * texel.y();
     const int rj = tex::resolveIndex(j, map.height(), address);
@@ -96,10 +97,13 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
           out.push_back({Eigen::Vector3d(x, y, height), ground(surface.texelNormal(i, j, ri, rj)), depth, i, j});
         continue;
       }
-      const BoxSurfacePoint box = box_surface->over(x, y, *z);
+      // An object's relief lies inside its smooth surface: where that is already beyond the
+      // threshold, so is the relief, and its texture need not be read (most of a ball's footprint).
+      if (*z - height >= threshold_m) continue;
+      const ObjectSurfacePoint object = object_surface->over(x, y, *z);
       Eigen::Vector3d n = ground(surface.texelNormal(i, j, ri, rj));
-      if (box.n_up) n = (n + *box.n_up).normalized();
-      const double depth = box.z - height;
+      if (object.n_up) n = (n + *object.n_up).normalized();
+      const double depth = object.z - height;
       if (depth < threshold_m) out.push_back({Eigen::Vector3d(x, y, height), n, depth, i, j});
     }
   }
@@ -107,13 +111,23 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
 }
 
 ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,
-                              const GroundBend* bend) {
+                              const GroundBend* bend, const FaceTexture* object_texture) {
   const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map());
   auto raised = [&](double x, double y) { return bend ? bend->height(x, y) : 0.0; };
+  std::optional<TexturedObjectSurface> object;
+  if (object_texture) object.emplace(shape, *object_texture);
+  // The object's surface over (x, y): its lowest point, pushed in by its relief if it has one.
+  auto objectZ = [&](double x, double y) -> std::optional<double> {
+    if (object) {
+      const std::optional<ObjectSurfacePoint> p = object->at(x, y);
+      return p ? std::optional<double>(p->z) : std::nullopt;
+    }
+    return lowestZ(shape, x, y);
+  };
   // Depth at a neighbouring texel centre (di, dj texels away); NaN where the object is absent.
   auto depthAt = [&](int di, int dj) {
     const tex::TexelPoint t = surface.texelPoint(c.i + di, c.j + dj);
-    const std::optional<double> z = lowestZ(shape, t.q_local.x(), t.q_local.y());
+    const std::optional<double> z = objectZ(t.q_local.x(), t.q_local.y());
     return z ? *z - t.q_local.z() - raised(t.q_local.x(), t.q_local.y()) : std::nan("");
   };
   // Vertex of the parabola through (-1, m), (0, d0), (1, p), kept inside the texel.
@@ -126,13 +140,17 @@ ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Undersi
   const double oj = vertex(depthAt(0, -1), depthAt(0, 1));  // +j is -y
   if (ox == 0.0 && oj == 0.0) return c;
   const double x = c.p_surface.x() + ox * texel.x(), y = c.p_surface.y() - oj * texel.y();
-  const std::optional<double> z = lowestZ(shape, x, y);
+  const std::optional<ObjectSurfacePoint> on_object =
+      object ? object->at(x, y) : std::optional<ObjectSurfacePoint>();
+  const std::optional<double> z = object ? (on_object ? std::optional<double>(on_object->z) : std::nullopt)
+                                         : lowestZ(shape, x, y);
   if (!z) return c;
   const tex::SurfacePoint s = surface.at(x, y);
   const double height = s.height_m + raised(x, y);
   ReliefCandidate r = c;
   r.p_surface = Eigen::Vector3d(x, y, height);
   r.n_local = bend ? bend->tilt(s.n_local, x, y) : s.n_local;
+  if (on_object && on_object->n_up) r.n_local = (r.n_local + *on_object->n_up).normalized();
   r.depth = *z - height;
   return r;
 }

@@ -7,7 +7,7 @@
 
 #include "clients/physics/contact_selection.hpp"
 #include "clients/physics/ground_bend.hpp"
-#include "clients/physics/textured_box.hpp"
+#include "clients/physics/textured_object_surface.hpp"
 #include "clients/physics/underside.hpp"
 #include "textures/textured_surface.hpp"
 
@@ -33,17 +33,18 @@ struct FootprintTexels {
 FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m);
 
 // Appends candidates to `out` (not cleared). `surface` must read the map as relief. A box whose
-// faces carry a relief (`box_faces`, textured_box.hpp): the box's surface over each texel is its
-// lowest face pushed inwards by that face's relief depth (along the vertical; a point on a face
-// steeper than kSteepestTexturedFaceCos reads the face turned most towards the plane:
-// faceTextureAt; TexturedBoxSurface), and the candidate's normal is the mean of the plane's and
-// the box's (turned to face the plane's way; the chosen contacts' normals are then revisited:
+// faces carry a relief or a ball with a bump map (`object_texture`, textured_box.hpp,
+// textured_ball.hpp): the object's surface over each texel is its lowest surface pushed inwards by
+// its relief depth there (along the vertical; a point on a box's face steeper than
+// kSteepestTexturedFaceCos reads the face turned most towards the plane: faceTextureAt;
+// TexturedObjectSurface), and the candidate's normal is the mean of the plane's and the object's
+// (turned to face the plane's way; the chosen contacts' normals are then revisited:
 // pair_contact_normal.hpp). With `bend` (ground_bend.hpp: a chart on a curved mesh), the relief stands
 // on the bent ground: its heights raised by the bend's, its normals tilted by its slope; a chart
 // whose texels are twice as long along one axis as along the other is read at the longer spacing
 // along both (a texture squeezed by the mesh's uv, relief_raster.cpp).
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
-                            std::vector<ReliefCandidate>& out, const FaceTexture* box_faces = nullptr,
+                            std::vector<ReliefCandidate>& out, const FaceTexture* object_texture = nullptr,
                             const GroundBend* bend = nullptr);
 
 // Sub-texel refinement of a round object's deepest contact. The texel-centre minimum is off the
@@ -52,8 +53,9 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
 // back (measured: 0.4 mm/s jitter). A parabola through the depths of the texel and its four
 // neighbours locates the minimum within the texel; the relief is then sampled there bilinearly
 // (the project's one sampling convention) for its height and normal. With `bend`, on the bent
-// ground as rasterizeRelief reads it.
+// ground as rasterizeRelief reads it. With `object_texture` (a ball with a bump map), the pair's
+// depth, as rasterizeRelief reads it, and the mean of the two surfaces' normals there.
 ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,
-                              const GroundBend* bend = nullptr);
+                              const GroundBend* bend = nullptr, const FaceTexture* object_texture = nullptr);
 
 }  // namespace thx::phys

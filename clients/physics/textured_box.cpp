@@ -38,39 +38,27 @@ FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half,
   return f;
 }
 
-TexturedBoxSurface::TexturedBoxSurface(const Underside& box, const FaceTexture& texture)
-    : box_(box),
-      texture_(texture),
-      object_from_plane_(box.plane_from_object.inverse()),
-      down_object_(-box.plane_from_object.linear().row(2).transpose()) {}
-
-BoxSurfacePoint TexturedBoxSurface::over(double x, double y, double lowest_z) const {
-  const FacePoint face = faceTextureAt(texture_, box_.half_extents, object_from_plane_ * Eigen::Vector3d(x, y, lowest_z), down_object_);
-  const Eigen::Matrix3d& to_plane = box_.plane_from_object.linear();
-  const double down = -face.sign * to_plane(2, face.axis);  // the face's outward normal against the plane's -z
-  if (down <= kSteepestTexturedFaceCos) return {lowest_z, std::nullopt};
-  return {lowest_z + face.recess_m / down, Eigen::Vector3d(-(to_plane * face.normal_object))};
-}
-
-std::optional<BoxSurfacePoint> TexturedBoxSurface::at(double x, double y) const {
-  const std::optional<double> z = lowestZ(box_, x, y);
-  if (!z) return std::nullopt;
-  return over(x, y, *z);
-}
-
 namespace {
 // Marks a shape whose user pointer is a FaceTexture ("TBOX").
 constexpr int kFaceTextureTag = 0x54424f58;
 }  // namespace
 
+void attachObjectTexture(btCollisionShape& shape, const FaceTexture& texture, int tag) {
+  shape.setUserPointer(const_cast<FaceTexture*>(&texture));
+  shape.setUserIndex(tag);
+}
+
+const FaceTexture* objectTextureOf(const btCollisionShape& shape, int shape_type, int tag) {
+  if (shape.getShapeType() != shape_type || shape.getUserIndex() != tag) return nullptr;
+  return static_cast<const FaceTexture*>(shape.getUserPointer());
+}
+
 void attachFaceTexture(btCollisionShape& box, const FaceTexture& texture) {
-  box.setUserPointer(const_cast<FaceTexture*>(&texture));
-  box.setUserIndex(kFaceTextureTag);
+  attachObjectTexture(box, texture, kFaceTextureTag);
 }
 
 const FaceTexture* faceTextureOf(const btCollisionShape& shape) {
-  if (shape.getShapeType() != BOX_SHAPE_PROXYTYPE || shape.getUserIndex() != kFaceTextureTag) return nullptr;
-  return static_cast<const FaceTexture*>(shape.getUserPointer());
+  return objectTextureOf(shape, BOX_SHAPE_PROXYTYPE, kFaceTextureTag);
 }
 
 }  // namespace thx::phys

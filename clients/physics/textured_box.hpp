@@ -32,8 +32,6 @@
 #include <Eigen/Geometry>
 #include <optional>
 
-#include "clients/physics/underside.hpp"
-
 #include "textures/sampling.hpp"
 #include "textures/texture_map.hpp"
 
@@ -67,31 +65,6 @@ inline constexpr double kSteepestTexturedFaceCos = 0.2;  // 78° from the plane
 FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half_extents, const Eigen::Vector3d& p_object,
                         const Eigen::Vector3d& toward = Eigen::Vector3d::Zero());
 
-// A textured box's surface seen from a relief plane under it (plane frame): over a point of the
-// plane, the box's lowest face pushed inwards by that face's relief (along the vertical, divided by
-// the face's tilt), and that relief's normal turned to face the plane's way. The rasteriser reads
-// the pair's depth through it (relief_raster.hpp), the pair's normal rule its neighbours
-// (pair_contact_normal.hpp).
-struct BoxSurfacePoint {
-  double z = 0.0;                         // the surface's height in the plane frame
-  std::optional<Eigen::Vector3d> n_up;    // the relief's normal, unit, +z side; absent on a face
-                                          // steeper than kSteepestTexturedFaceCos (not read there)
-};
-class TexturedBoxSurface {
- public:
-  TexturedBoxSurface(const Underside& box, const FaceTexture& texture);
-  // Over (x, y), whose vertical line first meets the box at height `lowest_z` (lowestZ).
-  BoxSurfacePoint over(double x, double y, double lowest_z) const;
-  // Over (x, y); nullopt where the vertical line misses the box.
-  std::optional<BoxSurfacePoint> at(double x, double y) const;
-
- private:
-  const Underside& box_;
-  const FaceTexture& texture_;
-  Eigen::Isometry3d object_from_plane_;
-  Eigen::Vector3d down_object_;  // the plane's -z in the object frame
-};
-
 // Attaches `texture` (which must outlive the shape) to a btBoxShape. (Subclassing btBoxShape
 // would emit Bullet's inline btBoxShape::getPlane here, which reads an uninitialised plane for an
 // out-of-range index and fails -Werror=maybe-uninitialized.)
@@ -99,5 +72,10 @@ void attachFaceTexture(btCollisionShape& box, const FaceTexture& texture);
 
 // The texture attached to a box shape; nullptr for any other shape or a plain box.
 const FaceTexture* faceTextureOf(const btCollisionShape& shape);
+
+// How a textured object's shape carries its texture (a box's here, a ball's: textured_ball.hpp):
+// the shape's user pointer, marked by `tag` in its user index.
+void attachObjectTexture(btCollisionShape& shape, const FaceTexture& texture, int tag);
+const FaceTexture* objectTextureOf(const btCollisionShape& shape, int shape_type, int tag);
 
 }  // namespace thx::phys

@@ -72,21 +72,24 @@ PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
     const double mass = o.fixed ? 0.0 : o.mass_kg;
     const phys::BodyMaterial material = materialOf(o.material);
     btRigidBody* body = nullptr;
+    // A textured box's faces or a ball's bump map (issue 29).
+    phys::FaceTexture faces;
+    if (o.texture) {
+      tex::LoadReport report;
+      scene::SurfaceTextureOptions texture_options;
+      texture_options.report = &report;
+      object_textures_.push_back(std::make_unique<tex::TextureMap>(scene::buildObjectTexture(scene, i, texture_options)));
+      for (std::string& w : report.warnings) object_texture_warnings_.push_back(std::move(w));
+      faces.map = object_textures_.back().get();
+      faces.tile_m = o.texture->tile_m;
+    }
     switch (o.shape) {
       case scene::Shape::Sphere:
-        body = &world_->addSphere(o.radius_m, mass, pose, material);
+        body = o.texture ? &world_->addTexturedSphere(o.radius_m, mass, pose, material, faces)
+                         : &world_->addSphere(o.radius_m, mass, pose, material);
         break;
       case scene::Shape::Box:
         if (o.texture) {
-          tex::LoadReport report;
-          scene::SurfaceTextureOptions texture_options;
-          texture_options.report = &report;
-          object_textures_.push_back(
-              std::make_unique<tex::TextureMap>(scene::buildObjectTexture(scene, i, texture_options)));
-          for (std::string& w : report.warnings) object_texture_warnings_.push_back(std::move(w));
-          phys::FaceTexture faces;
-          faces.map = object_textures_.back().get();
-          faces.tile_m = o.texture->tile_m;
           body = &world_->addTexturedBox(0.5 * o.size_m, mass, pose, material, faces);
         } else {
           body = &world_->addBox(0.5 * o.size_m, mass, pose, material);

@@ -44,6 +44,7 @@ std::vector<ObjectInstance> objectsAt(const scene::Scene& scene, const std::vect
     switch (o.shape) {
       case scene::Shape::Sphere:
         out.push_back(instance(UnitShape::Sphere, pose, Eigen::Vector3d::Constant(o.radius_m), albedo));
+        if (o.texture) out.back().textured_object = int(i);
         break;
       case scene::Shape::Box:
         out.push_back(instance(UnitShape::Box, pose, o.size_m, albedo));

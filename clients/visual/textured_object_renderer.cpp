@@ -1,6 +1,7 @@
 #include "clients/visual/textured_object_renderer.hpp"
 
 #include "clients/visual/gl_error.hpp"
+#include "meshes/textured_ball_mesh.hpp"
 #include "meshes/textured_box_mesh.hpp"
 #include "scenes/surface_texture.hpp"
 
@@ -8,7 +9,7 @@ namespace thx::visual {
 
 struct TexturedObjectRenderer::Textured {
   tex::TextureMap map;
-  mesh::TexturedMesh box;
+  mesh::TexturedMesh mesh;  // the box's or the ball's layout
   std::unique_ptr<MeshSurfaceRenderer> renderer;
 };
 
@@ -30,14 +31,15 @@ TexturedObjectRenderer::TexturedObjectRenderer(const scene::Scene& scene, const 
   const RenderSettings object_settings = texturedObjectSettings(settings);
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const scene::SceneObject& o = scene.objects[i];
-    if (!o.texture || o.shape != scene::Shape::Box) {
+    if (!o.texture || (o.shape != scene::Shape::Box && o.shape != scene::Shape::Sphere)) {
       objects_.push_back(nullptr);
       continue;
     }
-    auto t = std::make_unique<Textured>(Textured{scene::buildObjectTexture(scene, i),
-                                                 mesh::texturedBoxMesh(o.size_m, o.texture->tile_m), nullptr});
+    mesh::TexturedMesh laid = o.shape == scene::Shape::Box ? mesh::texturedBoxMesh(o.size_m, o.texture->tile_m)
+                                                           : mesh::texturedBallMesh(o.radius_m, o.texture->tile_m);
+    auto t = std::make_unique<Textured>(Textured{scene::buildObjectTexture(scene, i), std::move(laid), nullptr});
     MeshSurface surface;
-    surface.mesh = &t->box;
+    surface.mesh = &t->mesh;
     surface.tile_m = Eigen::Vector2d::Constant(o.texture->tile_m);
     surface.map = &t->map;
     surface.use_relief = true;

@@ -1,10 +1,11 @@
 #pragma once
 // Scene objects that carry a texture (objects[].texture: boxes with a relief map on their faces,
-// issue 29), drawn with the textured mesh's shaders (mesh_surface_renderer.hpp) on a box mesh laid
-// out as the physics reads it (meshes/textured_box_mesh.hpp), each at its body's pose.
+// balls with a bump map, issue 29), drawn with the textured mesh's shaders
+// (mesh_surface_renderer.hpp) on a box or ball mesh laid out as the physics reads it
+// (meshes/textured_box_mesh.hpp, meshes/textured_ball_mesh.hpp), each at its body's pose.
 //
 // Modes: the frame's own (normal or relief); the plane's displaced-grid mode and max-mipmap relief
-// search have no mesh counterpart, so a box under them is drawn in relief mode with the linear
+// search have no mesh counterpart, so an object under them is drawn in relief mode with the linear
 // search (at the frame's step counts).
 #include <memory>
 #include <vector>

@@ -33,7 +33,7 @@ Eigen::Vector3d chosenNormal(const tex::TexturedSurface& plane, const tex::Textu
   faces.tile_m = kExtent;
   const Underside box = Underside::box(box_pose, kHalf);
   std::array<ReliefCandidate, 1> c{contactAt(plane, x, y)};
-  smootherSurfaceNormals(plane, nullptr, TexturedBoxSurface(box, faces), c);
+  smootherSurfaceNormals(plane, nullptr, TexturedObjectSurface(box, faces), c);
   return c[0].n_local;
 }
 

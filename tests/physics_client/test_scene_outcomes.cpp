@@ -195,6 +195,32 @@ TEST(ShippedSceneOutcome, GroovedBlockSlidesAlongTheGroovesAndClimbsOutAcrossThe
   EXPECT_GT(highest_across - rest.local.z(), 0.5 * depth);  // ... over the rims
 }
 
+// The dimpled ball rests across two of the grooved plane's rims, its own relief and theirs in the
+// contact; the pen pushes it along the grooves, then across them, where it rolls over their rims,
+// and it comes to rest again, never thrown (scenes/dimpled_ball_grooves.yaml).
+TEST(ShippedSceneOutcome, DimpledBallRollsAlongAndAcrossTheGrooves) {
+  const SceneRun r = runScene("dimpled_ball_grooves.yaml", 9.3, 0, true);
+  const Track& b = r.tracks.at("ball");
+  const double radius = r.scene.objects[0].radius_m, period = param(r.scene, "period");
+  const Sample rest = at(b, 0.4), along = at(b, 3.0), end = b.back();
+  double highest = 0.0, fastest = 0.0;
+  for (const Sample& s : b) highest = std::max(highest, s.local.z()), fastest = std::max(fastest, s.speed);
+  std::printf("[measured] dimpled ball rests at %.3f mm; along: moved %.2f mm along y, %.2f mm across; then "
+              "%.2f mm along x; highest %.3f mm, fastest %.3f m/s, at the end %.4f m/s at %.3f mm\n",
+              rest.local.z() * 1e3, (along.local.y() - rest.local.y()) * 1e3, (along.local.x() - rest.local.x()) * 1e3,
+              (end.local.x() - along.local.x()) * 1e3, highest * 1e3, fastest, end.speed, end.local.z() * 1e3);
+  // On two rims 4 mm apart (its centre sqrt(r^2 - (P/2)^2) above them), or lower by at most its
+  // dimples' depth where a rim lies in a dimple.
+  const double on_rims = std::sqrt(radius * radius - 0.25 * period * period);
+  EXPECT_LT(rest.local.z(), on_rims + 2e-5);
+  EXPECT_GT(rest.local.z(), on_rims - 0.00025 - 2e-5);
+  EXPECT_GT(along.local.y() - rest.local.y(), 0.01);  // pushed along ...
+  EXPECT_GT(end.local.x() - along.local.x(), 2 * period);  // ... then across
+  EXPECT_LT(highest, radius + 1e-3);  // never thrown up
+  EXPECT_LT(fastest, 0.3);
+  EXPECT_LT(end.speed, 1e-3);
+}
+
 // The grooved block rests on the floor of the bowl of bricks (both reliefs on the bowl's chart
 // under it, standing on the floor's curve: docs/physics.md "On a relief-textured mesh"), and the
 // pen pushing it 14 mm across the floor moves it there, over the mortar joints, without throwing

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "scenes/scene_loader.hpp"
 #include "scenes/surface_texture.hpp"
@@ -76,10 +77,18 @@ TEST(ObjectTexture, UntexturedObjectsHaveNone) {
   EXPECT_FALSE(scene.objects[0].texture);
 }
 
-TEST(ObjectTexture, OnlyABoxCarriesATexture) {
-  expectError(withObject("{name: ball, shape: sphere, radius: 0.01, mass: 0.05, position: [0, 0, 0.01],\n"
+TEST(ObjectTexture, OnlyABoxOrASphereCarriesATexture) {
+  expectError(withObject("{name: rod, shape: capsule, radius: 0.01, length: 0.03, mass: 0.05, position: [0, 0, 0.01],\n"
                          "     texture: {generator: grooves}}"),
-              "objects[0].texture", {"only a box carries a texture", "no texture on a sphere"});
+              "objects[0].texture", {"only a box or a sphere carries a texture", "no texture on a capsule"});
+}
+
+TEST(ObjectTexture, ABallsTileDefaultsToOneFaceOfItsCube) {
+  // meshes/textured_ball_mesh.hpp: each of the six faces spans pi r / 2 along its edges.
+  const Scene scene = parse(withObject("{name: ball, shape: sphere, radius: 0.01, mass: 0.05, position: [0, 0, 0.01],\n"
+                                       "     texture: {generator: dimples, size: 32}}"));
+  ASSERT_TRUE(scene.objects[0].texture);
+  EXPECT_DOUBLE_EQ(scene.objects[0].texture->tile_m, 0.5 * std::numbers::pi * 0.01);
 }
 
 TEST(ObjectTexture, ATileNeedsATexture) {

@@ -1,0 +1,36 @@
+#include "clients/physics/textured_ball.hpp"
+
+#include "meshes/textured_ball_mesh.hpp"
+
+namespace thx::phys {
+
+FacePoint ballTextureAt(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& p) {
+  const mesh::BallChartPoint chart = mesh::ballChartAt(p, radius_m);
+  const tex::Sample s = tex::sample(*texture.map, {chart.uv_m.x() / texture.tile_m, chart.uv_m.y() / texture.tile_m},
+                                    texture.sampling);
+  FacePoint f;
+  f.axis = chart.axis;
+  f.sign = chart.sign;
+  f.recess_m = double(s.depth);
+  // The map's normal is its depth's gradient (x along u, y along v, z out): n = N + d_u du + d_v dv
+  // with d_u = n_x / n_z, exact for the chart's non-orthogonal gradients (textured_ball_mesh.hpp).
+  f.normal_object = (double(s.normal.z()) * p.normalized() + double(s.normal.x()) * chart.du +
+                     double(s.normal.y()) * chart.dv)
+                        .normalized();
+  return f;
+}
+
+namespace {
+// Marks a shape whose user pointer is a FaceTexture laid on a ball ("TBAL").
+constexpr int kBallTextureTag = 0x5442414c;
+}  // namespace
+
+void attachBallTexture(btCollisionShape& sphere, const FaceTexture& texture) {
+  attachObjectTexture(sphere, texture, kBallTextureTag);
+}
+
+const FaceTexture* ballTextureOf(const btCollisionShape& shape) {
+  return objectTextureOf(shape, SPHERE_SHAPE_PROXYTYPE, kBallTextureTag);
+}
+
+}  // namespace thx::phys

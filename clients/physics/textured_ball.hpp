@@ -1,0 +1,33 @@
+#pragma once
+// A moving ball with a bump map (issue 29, "a sphere with a bump map"): a relief map laid on the
+// ball as meshes/textured_ball_mesh.hpp lays it (a cube projected onto the sphere, equi-angular
+// faces; the visual client draws that mesh), its depth recessed along the radius. Bullet sees the
+// coarse ball (a plain btSphereShape, the texture attached through the shape's user pointer and
+// index). Against a relief plane both textures shape the contact as for a textured box
+// (textured_box.hpp, textured_object_surface.hpp): the pair's depth at each texel of the plane
+// under the ball is the plane's height minus the ball's recessed surface there; its contacts are
+// found afresh each step, as every ball's are (a rolling ball's kept points inject energy:
+// relief_collision.hpp).
+//
+// What a textured ball does not do yet: on a plain or normal-mapped plane, on a mesh (relief or
+// not) and against another object it collides as the coarse ball, its texture unread.
+#include <BulletCollision/CollisionShapes/btCollisionShape.h>
+
+#include <Eigen/Core>
+
+#include "clients/physics/textured_box.hpp"
+
+namespace thx::phys {
+
+// The ball's texture at the point of its surface in direction `p_object` from its centre (object
+// frame): the recess there, and the recessed surface's outward normal (FacePoint's axis and sign
+// name the cube face whose chart holds the point).
+FacePoint ballTextureAt(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& p_object);
+
+// Attaches `texture` (which must outlive the shape) to a btSphereShape.
+void attachBallTexture(btCollisionShape& sphere, const FaceTexture& texture);
+
+// The texture attached to a sphere shape; nullptr for any other shape or a plain ball.
+const FaceTexture* ballTextureOf(const btCollisionShape& shape);
+
+}  // namespace thx::phys

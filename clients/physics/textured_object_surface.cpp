@@ -1,0 +1,35 @@
+#include "clients/physics/textured_object_surface.hpp"
+
+#include "clients/physics/textured_ball.hpp"
+
+namespace thx::phys {
+
+TexturedObjectSurface::TexturedObjectSurface(const Underside& object, const FaceTexture& texture)
+    : object_(object),
+      texture_(texture),
+      object_from_plane_(object.plane_from_object.inverse()),
+      down_object_(-object.plane_from_object.linear().row(2).transpose()) {}
+
+ObjectSurfacePoint TexturedObjectSurface::over(double x, double y, double lowest_z) const {
+  const Eigen::Vector3d p = object_from_plane_ * Eigen::Vector3d(x, y, lowest_z);
+  const Eigen::Matrix3d& to_plane = object_.plane_from_object.linear();
+  double down = 0.0;  // the smooth surface's outward normal against the plane's -z
+  FacePoint relief;
+  if (object_.kind == Underside::Kind::Sphere) {
+    relief = ballTextureAt(texture_, object_.radius, p);
+    down = p.normalized().dot(down_object_);
+  } else {
+    relief = faceTextureAt(texture_, object_.half_extents, p, down_object_);
+    down = -relief.sign * to_plane(2, relief.axis);
+  }
+  if (down <= kSteepestTexturedFaceCos) return {lowest_z, std::nullopt};
+  return {lowest_z + relief.recess_m / down, Eigen::Vector3d(-(to_plane * relief.normal_object))};
+}
+
+std::optional<ObjectSurfacePoint> TexturedObjectSurface::at(double x, double y) const {
+  const std::optional<double> z = lowestZ(object_, x, y);
+  if (!z) return std::nullopt;
+  return over(x, y, *z);
+}
+
+}  // namespace thx::phys

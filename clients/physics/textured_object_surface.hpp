@@ -1,0 +1,41 @@
+#pragma once
+// A textured object's surface seen from a relief plane under it (plane frame): a box whose faces
+// carry a relief (textured_box.hpp) or a ball with a bump map (textured_ball.hpp). Over a point
+// of the plane, the object's lowest surface pushed inwards by its relief there (along the
+// vertical: the recess divided by the cosine between the smooth surface's outward normal and the
+// plane's downward), and that relief's normal turned to face the plane's way. The rasteriser
+// reads the pair's depth through it (relief_raster.hpp), the pair's normal rule its neighbours
+// (pair_contact_normal.hpp).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+
+#include "clients/physics/textured_box.hpp"
+#include "clients/physics/underside.hpp"
+
+namespace thx::phys {
+
+struct ObjectSurfacePoint {
+  double z = 0.0;                         // the surface's height in the plane frame
+  std::optional<Eigen::Vector3d> n_up;    // the relief's normal, unit, +z side; absent where the
+                                          // surface is steeper than kSteepestTexturedFaceCos (not
+                                          // read there)
+};
+
+class TexturedObjectSurface {
+ public:
+  // `object`: a box (its faces' layout) or a sphere (the ball's); both must outlive this.
+  TexturedObjectSurface(const Underside& object, const FaceTexture& texture);
+  // Over (x, y), whose vertical line first meets the object at height `lowest_z` (lowestZ).
+  ObjectSurfacePoint over(double x, double y, double lowest_z) const;
+  // Over (x, y); nullopt where the vertical line misses the object.
+  std::optional<ObjectSurfacePoint> at(double x, double y) const;
+
+ private:
+  const Underside& object_;
+  const FaceTexture& texture_;
+  Eigen::Isometry3d object_from_plane_;
+  Eigen::Vector3d down_object_;  // the plane's -z in the object frame
+};
+
+}  // namespace thx::phys
