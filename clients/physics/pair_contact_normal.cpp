@@ -62,4 +62,43 @@ void smootherSurfaceNormals(const tex::TexturedSurface& surface, const GroundBen
   }
 }
 
+void flatterReliefNormals(const tex::TexturedSurface& surface, const GroundBend* bend, const TexturedObjectSurface& object,
+                          std::span<ReliefCandidate> contacts) {
+  const tex::TextureMap& map = surface.map();
+  const tex::Address address = surface.sampling().address;
+  const Eigen::Vector2d texel = surface.mapping().texelSize(map);  // signed: +i is +x, +j is -y
+  const double dx = texel.x(), dy = -texel.y();                     // metres per +i, per +j
+  for (ReliefCandidate& c : contacts) {
+    const double x0 = c.p_surface.x(), y0 = c.p_surface.y();
+    // Each surface's heights over the 3 x 3 texels round the contact's (the relief's at its texel
+    // centres, as rasterised; the object's at the same offsets from the contact's point).
+    double plane[3][3], lower[3][3];
+    bool inside = true;
+    for (int a = -1; a <= 1 && inside; ++a)
+      for (int b = -1; b <= 1 && inside; ++b) {
+        const double x = x0 + a * dx, y = y0 + b * dy;
+        plane[a + 1][b + 1] = -double(map.depth(tex::resolveIndex(c.i + a, map.width(), address),
+                                                tex::resolveIndex(c.j + b, map.height(), address))) +
+                              (bend ? bend->height(x, y) : 0.0);
+        const std::optional<ObjectSurfacePoint> o = object.at(x, y);
+        inside = o.has_value();
+        if (o) lower[a + 1][b + 1] = o->z;
+      }
+    if (!inside) continue;
+    auto hessian = [&](const double (&f)[3][3]) {
+      Eigen::Matrix2d h;
+      h(0, 0) = (f[2][1] + f[0][1] - 2.0 * f[1][1]) / (dx * dx);
+      h(1, 1) = (f[1][2] + f[1][0] - 2.0 * f[1][1]) / (dy * dy);
+      h(0, 1) = h(1, 0) = (f[2][2] - f[2][0] - f[0][2] + f[0][0]) / (4.0 * dx * dy);
+      return h;
+    };
+    const Eigen::Matrix2d h_plane = hessian(plane), h_object = hessian(lower);
+    // The pair's minimum's slope is g_plane + H_plane d, d its offset (pair_contact_normal.hpp): the
+    // relief's own where it curves much less than the object.
+    if (!(h_plane.norm() <= kFlatterRelief * h_object.norm())) continue;
+    const tex::SurfacePoint at = surface.at(x0, y0);  // bilinear, as the refined contact reads it
+    c.n_local = bend ? bend->tilt(at.n_local, x0, y0) : at.n_local;
+  }
+}
+
 }  // namespace thx::phys

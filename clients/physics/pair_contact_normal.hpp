@@ -29,4 +29,20 @@ namespace thx::phys {
 void smootherSurfaceNormals(const tex::TexturedSurface& surface, const GroundBend* bend, const TexturedObjectSurface& object,
                             std::span<ReliefCandidate> contacts);
 
+// A ball with a bump map's contacts (textured_ball.hpp) where the relief round them is much
+// flatter than the ball: the relief's own normal. The two surfaces' slopes agree where the pair's
+// depth is least, at g_plane + H_plane d (each surface a quadratic round the contact: its slope g
+// from its normal, its Hessian H from its heights over the 3 x 3 texels round it; d the minimum's
+// offset, -(H_object - H_plane)^-1 (g_object - g_plane)); where |H_plane| is at most
+// kFlatterRelief times |H_object| that is the relief's slope within a tenth of the two slopes'
+// difference, where the rasteriser's mean is off by half of it. The mean leans by half the ball's
+// slope at the texel centre, off the true point by up to half a texel: four such points under a
+// bumpy ball on a flat relief, leaning up to 0.005 rad each way, kept it cycling at 0.3 mm/s;
+// with the relief's normal it falls asleep. The full expression above, used everywhere the pair's
+// depth curves up, made a bumpy ball on a bumpy relief (tip on tip) worse (3-5 mm/s against
+// 0.9; the ball's Hessian read from its bilinear relief is noisy at the texels' scale): not kept.
+inline constexpr double kFlatterRelief = 0.1;
+void flatterReliefNormals(const tex::TexturedSurface& surface, const GroundBend* bend, const TexturedObjectSurface& object,
+                          std::span<ReliefCandidate> contacts);
+
 }  // namespace thx::phys

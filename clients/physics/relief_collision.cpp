@@ -208,8 +208,9 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 // A ball with a bump map on the relief plane (textured_ball.hpp): the pair's depth rasterised
 // over the plane's texels under it, the deepest and the spread points each taken to the bottom of
 // its basin in that depth (where the two surfaces' normals agree) and located within its texel as
-// a plain ball's (refineDeepest, on the pair's depth), their normals by the pair's rule
-// (pair_contact_normal.hpp), found afresh each step as a plain ball's are.
+// a plain ball's (refineDeepest, on the pair's depth), their normals by the pair's rule, and the
+// relief's own where it is much flatter than the ball there (pair_contact_normal.hpp), found
+// afresh each step as a plain ball's are.
 void texturedBallCollision(const tex::TexturedSurface& surface, const Underside& underside, const FaceTexture& texture,
                            double threshold, const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
                            btManifoldResult* result) {
@@ -230,7 +231,9 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const Underside&
     // As a plain ball's: the deepest and every point that walked to a basin's bottom.
     chosen[count++] = k == 0 || picked[k] != spread[k] ? refineDeepest(surface, underside, c, nullptr, &texture) : c;
   }
-  smootherSurfaceNormals(surface, nullptr, TexturedObjectSurface(underside, texture), std::span(chosen.data(), count));
+  const TexturedObjectSurface ball(underside, texture);
+  smootherSurfaceNormals(surface, nullptr, ball, std::span(chosen.data(), count));
+  flatterReliefNormals(surface, nullptr, ball, std::span(chosen.data(), count));
   addReliefContacts(std::span(chosen.data(), count), underside, surface, GroundBend{}, world_from_plane, false,
                     threshold, result, &motion, true);
 }
