@@ -201,7 +201,8 @@ class PhysicsScene {
   // The surface's mesh in a mesh scene; nullptr on the plane.
   const MeshGround* meshGround() const { return mesh_.get(); }
   // What the client should warn about this scene's physics: a box's normal map that leans on
-  // average (scene::buildObjectTexture: its relief cannot hold the lean); on a relief plane, every
+  // average (scene::buildObjectTexture: its relief cannot hold the lean); a ball with a bump map
+  // on a mesh or a normal-mapped plane, where its texture is not read; on a relief plane, every
   // moving ball whose radius is small against the relief's texels (coarseReliefWarning).
   std::vector<std::string> warnings() const;
   phys::PhysicsWorld& world() { return *world_; }
