@@ -34,7 +34,7 @@ void smootherSurfaceNormals(const tex::TexturedSurface& surface, const GroundBen
 // depth is least, at g_plane + H_plane d (each surface a quadratic round the contact: its slope g
 // from its normal, its Hessian H from its heights over the 3 x 3 texels round it; d the minimum's
 // offset, -(H_object - H_plane)^-1 (g_object - g_plane)); where |H_plane| is at most
-// kFlatterRelief times |H_object| that is the relief's slope within a tenth of the two slopes'
+// kFlatterRelief times |H_object| that is the relief's slope within about a tenth of the two slopes'
 // difference, where the rasteriser's mean is off by half of it. The mean leans by half the ball's
 // slope at the texel centre, off the true point by up to half a texel: four such points under a
 // bumpy ball on a flat relief, leaning up to 0.005 rad each way, kept it cycling at 0.3 mm/s;
