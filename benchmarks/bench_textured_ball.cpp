@@ -2,7 +2,9 @@
 // 256 and 512 texels over 4 cm, a uniformly recessed ball rolling down a virtual slope against
 // rolling without slipping on its recessed radius, a bumpy ball let down on a flat and on a bumpy
 // relief (how far its surface stands off the plane's relief at rest, found over the ball's own
-// directions, and how still it lies), and the cost of a step rolling, beside a plain ball.
+// directions, and how still it lies), and the cost of a step rolling, beside a plain ball; and on
+// UV-sphere meshes, where it meets the chart under it, a ball recessed 2 mm swinging in a smooth
+// bowl and rolling off the top of a sphere against the rigid-ball answers for its recessed radius.
 // Measures only; nothing asserted (tests/physics/test_textured_ball.cpp holds the behaviour).
 #include <chrono>
 #include <cmath>
@@ -15,6 +17,7 @@
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/bench_stamp.hpp"
+#include "tests/physics/textured_ball_on_mesh_scene.hpp"
 #include "tests/physics/textured_ball_scene.hpp"
 
 namespace {
@@ -24,7 +27,7 @@ using namespace thx::phys;
 using namespace thx::phys::test;
 using namespace thx::phys::test::textured_ball;
 
-constexpr const char* kHelp = R"(usage: bench_textured_ball [--texels N,N,...] [--json F] [--csv F] [--md F]
+constexpr const char* kHelp = R"(usage: bench_textured_ball [--texels N,N,...] [--segments N,N,...] [--json F] [--csv F] [--md F]
 
 A 1 cm, 30 g ball whose bump map is laid on it as a cube projected onto the sphere, one tile
 (pi r / 2 = 15.7 mm, 256 texels) per face (clients/physics/textured_ball.hpp), on a relief plane
@@ -38,7 +41,15 @@ of N texels over 4 cm, at 1 ms steps:
   bumpy     the same on a plane of bumps 2 mm apart, 0.4 mm high (tip on tip), after 3 s
   step      the mean wall-clock time of a step while the bumpy ball rolls at 0.1 m/s over the
             flat relief for 1 s, and a plain ball's
+On UV spheres of N segments (meets the sphere on the chart under it; the ball's map 2 mm deep
+everywhere, rho = 8 mm, k = 2 r^2 / (5 rho^2)):
+  swing     released 5 degrees up the inside of a smooth 5 cm sphere, friction 1, 2.2 s: the
+            period against 2 pi sqrt((R - rho)(1 + k) / g) (1 + theta0^2 / 16 + ...)
+  leave     rolled from 5 degrees off the top of a 10 cm sphere, friction 10: where it leaves
+            against cos(theta) = 2 cos(theta0) / (3 + k), on the smooth sphere and on a flat
+            relief of 64 texels per 1 cm tile laid on it
   --texels LIST   plane texture sizes (default 128,256,512)
+  --segments LIST UV sphere segments (default 64,128,256)
   --json/--csv/--md F   results
 )";
 
@@ -47,6 +58,11 @@ struct Row {
   double rolling_error = 0;                  // relative
   Settled flat, bumpy;
   double us_textured = 0, us_plain = 0;      // per step
+};
+
+struct MeshRow {
+  int segments = 0;
+  textured_ball_on_mesh::MeshRun swing, leave_smooth, leave_relief;
 };
 
 double microsPerStep(int texels, bool textured) {
@@ -66,13 +82,14 @@ double microsPerStep(int texels, bool textured) {
 }
 
 int run(int argc, char** argv) {
-  std::vector<int> texels{128, 256, 512};
+  std::vector<int> texels{128, 256, 512}, segments{64, 128, 256};
   std::string json, csv, md;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
     const std::string v = argv[++i];
     if (a == "--texels") texels = cli::parseIntegerList(a, v, 16, 2048);
+    else if (a == "--segments") segments = cli::parseIntegerList(a, v, 16, 1024);
     else if (a == "--json") json = v;
     else if (a == "--csv") csv = v;
     else if (a == "--md") md = v;
@@ -94,6 +111,20 @@ int run(int argc, char** argv) {
     r.us_plain = microsPerStep(n, false);
     rows.push_back(r);
   }
+  namespace on_mesh = textured_ball_on_mesh;
+  const double swing_answer = on_mesh::recessedSwingAnswer(0.05, 5.0), leave_answer = on_mesh::recessedDepartureAnswer(5.0);
+  const tex::TextureMap flat_tile = flatRelief(64);
+  std::vector<MeshRow> mesh_rows;
+  for (int n : segments) {
+    std::fprintf(stderr, "bench_textured_ball: UV spheres of %d segments ...\n", n);
+    MeshRow r;
+    r.segments = n;
+    r.swing = on_mesh::recessedSwing(0.05, 5.0, 2.2, n);
+    r.leave_smooth = on_mesh::recessedDeparture(0.1, 5.0, nullptr, n);
+    r.leave_relief = on_mesh::recessedDeparture(0.1, 5.0, &flat_tile, n);
+    mesh_rows.push_back(r);
+  }
+  auto swingError = [&](const MeshRow& r) { return r.swing.value / swing_answer - 1.0; };
   const std::string stamp = bench::fmt("%s, %s build, %s", bench::isoNow().c_str(), bench::buildType(),
                                        bench::machineSummary().c_str());
   if (!csv.empty()) {
@@ -103,6 +134,12 @@ int run(int argc, char** argv) {
       c += bench::fmt("%d,%.4f,%.6f,%.3f,%.4f,%.3f,%.4f,%.2f,%.2f\n", r.texels, 40.0 / r.texels, r.rolling_error,
                       r.flat.gap * 1e6, r.flat.fastest * 1e3, r.bumpy.gap * 1e6, r.bumpy.fastest * 1e3, r.us_textured,
                       r.us_plain);
+    c += "\nsegments,triangles,swing_error,swing_us_per_step,leave_smooth_error_deg,leave_relief_error_deg,"
+         "leave_smooth_us_per_step,leave_relief_us_per_step\n";
+    for (const MeshRow& r : mesh_rows)
+      c += bench::fmt("%d,%d,%.6f,%.1f,%.4f,%.4f,%.1f,%.1f\n", r.segments, r.segments * (r.segments / 2 - 1) * 2,
+                      swingError(r), r.swing.us_per_step, r.leave_smooth.value - leave_answer,
+                      r.leave_relief.value - leave_answer, r.leave_smooth.us_per_step, r.leave_relief.us_per_step);
     bench::writeTextFile(csv, c);
   }
   if (!json.empty()) {
@@ -114,6 +151,15 @@ int run(int argc, char** argv) {
                       "\"us_per_step_plain\": %.3f}",
                       k ? ", " : "", r.texels, r.rolling_error, r.flat.gap * 1e6, r.flat.fastest * 1e3, r.bumpy.gap * 1e6,
                       r.bumpy.fastest * 1e3, r.us_textured, r.us_plain);
+    }
+    j += "], \"mesh_rows\": [";
+    for (std::size_t k = 0; k < mesh_rows.size(); ++k) {
+      const MeshRow& r = mesh_rows[k];
+      j += bench::fmt("%s{\"segments\": %d, \"swing_error\": %.6f, \"swing_us_per_step\": %.1f, "
+                      "\"leave_smooth_error_deg\": %.4f, \"leave_relief_error_deg\": %.4f, \"leave_smooth_us_per_step\": %.1f, "
+                      "\"leave_relief_us_per_step\": %.1f}",
+                      k ? ", " : "", r.segments, swingError(r), r.swing.us_per_step, r.leave_smooth.value - leave_answer,
+                      r.leave_relief.value - leave_answer, r.leave_smooth.us_per_step, r.leave_relief.us_per_step);
     }
     bench::writeTextFile(json, j + "]}\n");
   }
@@ -130,6 +176,17 @@ int run(int argc, char** argv) {
       t += bench::fmt("| %d (%.3f mm) | %+.2f %% | %+.1f µm | %.2f mm/s | %+.1f µm | %.2f mm/s | %.1f µs | %.1f µs |\n",
                       r.texels, 40.0 / r.texels, 100.0 * r.rolling_error, r.flat.gap * 1e6, r.flat.fastest * 1e3,
                       r.bumpy.gap * 1e6, r.bumpy.fastest * 1e3, r.us_textured, r.us_plain);
+    t += bench::fmt("\nOn UV spheres (the chart under the ball), the ball recessed 2 mm: the swing in a smooth 5 cm bowl "
+                    "from 5° against %.4f s (a plain ball's answer %.4f s); leaving the top of a 10 cm sphere from 5° "
+                    "against %.2f° (a plain ball's %.2f°); steps timed over each run.\n\n",
+                    swing_answer, mesh_rolling::swingPeriodAt(0.05, 5.0), leave_answer, mesh_rolling::departureDeg(5.0));
+    t += "| segments (triangles) | swing: period error | step | leaves, smooth | step | leaves, flat relief | step |\n"
+         "|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const MeshRow& r : mesh_rows)
+      t += bench::fmt("| %d (%d) | %+.2f %% | %.0f µs | %+.2f° | %.0f µs | %+.2f° | %.0f µs |\n", r.segments,
+                      r.segments * (r.segments / 2 - 1) * 2, 100.0 * swingError(r), r.swing.us_per_step,
+                      r.leave_smooth.value - leave_answer, r.leave_smooth.us_per_step, r.leave_relief.value - leave_answer,
+                      r.leave_relief.us_per_step);
     bench::writeTextFile(md, t);
   }
   for (const Row& r : rows)
@@ -137,6 +194,10 @@ int run(int argc, char** argv) {
                 "mm/s; %.1f / %.1f us per step\n",
                 r.texels, 100.0 * r.rolling_error, r.flat.gap * 1e6, r.flat.fastest * 1e3, r.bumpy.gap * 1e6,
                 r.bumpy.fastest * 1e3, r.us_textured, r.us_plain);
+  for (const MeshRow& r : mesh_rows)
+    std::printf("%4d segments: swing %+.2f %% (%.0f us per step); leaves %+.2f deg smooth, %+.2f deg on a flat relief\n",
+                r.segments, 100.0 * swingError(r), r.swing.us_per_step, r.leave_smooth.value - leave_answer,
+                r.leave_relief.value - leave_answer);
   return 0;
 }
 

@@ -60,7 +60,9 @@
 #              docs/physics.md)
 #              or textured_ball (issue 29: a ball with a bump map on relief planes of 128, 256 and
 #              512 texels: rolling on its recessed radius, at rest on a flat and a bumpy relief, the
-#              cost of a step beside a plain ball; about 30 s; its table goes to docs/physics.md)
+#              cost of a step beside a plain ball; on UV spheres of 64, 128 and 256 segments, a
+#              recessed ball's swing in a bowl and where it leaves a sphere's top; about a minute;
+#              its tables go to docs/physics.md)
 #              or rolling_ridges (issue 29: a ball rolling across sine ridges on the relief plane and on
 #              a relief mesh, lifted and steered, against the rolling-impact law, with the cost of a
 #              step; about half a minute; its table goes to docs/physics.md)
@@ -384,7 +386,7 @@ run_textured_pair() {
 
 run_textured_ball() {
   need "$BIN/bench_textured_ball" || return 1
-  say "part textured_ball: a ball with a bump map rolling and at rest on relief planes (about 30 s)"
+  say "part textured_ball: a ball with a bump map rolling and at rest on relief planes and on meshes (about a minute)"
   bench_with_table bench_textured_ball "$ROOT/docs/physics.md"
 }
 

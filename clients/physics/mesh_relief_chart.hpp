@@ -1,11 +1,12 @@
 #pragma once
-// A relief-textured static mesh as a box (textured or not), capsule or cylinder meets it (issue 29,
-// "Textured objects" on a curved surface, and plain objects as on the relief plane): the mesh's
-// tangent plane at the foot of the object's centre on the smooth surface, with the texture laid on
-// it at that face's scale (as hapticd's chart lays it for the pen, server/textured_mesh_renderer.cpp),
-// and the smooth surface's bend under it (ground_bend.hpp). On that chart the contacts come from the
-// relief plane's rules (relief_raster.hpp, relief_collision.hpp), the ground raised by the bend; for
-// a textured box, from both reliefs: Otaduy et al.'s directional depth along the chart's normal.
+// A relief-textured static mesh as a box (textured or not), capsule, cylinder or ball with a bump
+// map meets it (issue 29, "Textured objects" on a curved surface, and plain objects as on the
+// relief plane): the mesh's tangent plane at the foot of the object's centre on the smooth
+// surface, with the texture laid on it at that face's scale (as hapticd's chart lays it for the
+// pen, server/textured_mesh_renderer.cpp), and the smooth surface's bend under it
+// (ground_bend.hpp). On that chart the contacts come from the relief plane's rules
+// (relief_raster.hpp, relief_collision.hpp), the ground raised by the bend; for a textured box or
+// ball, from both reliefs: Otaduy et al.'s directional depth along the chart's normal.
 // Bullet's own box-triangle points are not used: they sit at the box's corners and edges, and a
 // point lying in one of the box's grooves does not touch the mesh at all (docs/physics.md,
 // "Textured objects"). One chart holds one smooth surface: where an object reaches across a
@@ -21,8 +22,8 @@
 // rule, mesh_contact.hpp, for every shape). Having no texture to lay, its frame is turned to the
 // object's own axis and sampled on a grid laid over the object's footprint (layGridUnder): the
 // footprint's edges and corners are samples, at a spacing that is a fraction of the object, so
-// their number does not grow with the object or the mesh (a textured box's relief is read at its
-// own texels). Both sides of the mesh are met, as Bullet's triangles are (a closed sphere's inside is
+// their number does not grow with the object or the mesh (a textured box's or ball's relief is
+// read at its own texels). Both sides of the mesh are met, as Bullet's triangles are (a closed sphere's inside is
 // a bowl).
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 

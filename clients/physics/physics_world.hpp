@@ -94,7 +94,7 @@ class PhysicsWorld {
   btRigidBody& addTexturedBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
                               const BodyMaterial& material, const FaceTexture& texture);
   // A ball with a bump map (textured_ball.hpp; the map must outlive this world): on a relief plane
-  // both textures shape the contact; elsewhere it collides as the plain ball.
+  // and on a mesh's chart both textures shape the contact; elsewhere it collides as the plain ball.
   btRigidBody& addTexturedSphere(double radius_m, double mass_kg, const Eigen::Isometry3d& pose,
                                  const BodyMaterial& material, const FaceTexture& texture);
   btRigidBody& addCapsule(double radius_m, double half_length_m, double mass_kg, const Eigen::Isometry3d& pose,

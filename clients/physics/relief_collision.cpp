@@ -211,12 +211,15 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 // a plain ball's (refineDeepest, on the pair's depth), their normals by the pair's rule, and the
 // relief's own where it is much flatter than the ball there (pair_contact_normal.hpp), found
 // afresh each step as a plain ball's are.
-void texturedBallCollision(const tex::TexturedSurface& surface, const Underside& underside, const FaceTexture& texture,
-                           double threshold, const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
-                           btManifoldResult* result) {
+// On a mesh's chart (`bend` its smooth surface's, `boundary` where it stops) as on the plane.
+void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const ChartBoundary* boundary,
+                           const Underside& underside, const FaceTexture& texture, double threshold,
+                           const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion, btManifoldResult* result) {
   thread_local std::vector<ReliefCandidate> candidates;
   candidates.clear();
-  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &texture);
+  const GroundBend* bent = bend.flat() ? nullptr : &bend;
+  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &texture, bent);
+  dropPastBoundary(boundary, candidates);
   std::array<std::size_t, kMaxReliefContacts> picked{};
   const std::size_t n = selectReliefContacts(candidates, picked);
   const std::array<std::size_t, kMaxReliefContacts> spread = picked;
@@ -229,13 +232,13 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const Underside&
       continue;
     const ReliefCandidate& c = candidates[picked[k]];
     // As a plain ball's: the deepest and every point that walked to a basin's bottom.
-    chosen[count++] = k == 0 || picked[k] != spread[k] ? refineDeepest(surface, underside, c, nullptr, &texture) : c;
+    chosen[count++] = k == 0 || picked[k] != spread[k] ? refineDeepest(surface, underside, c, bent, &texture) : c;
   }
   const TexturedObjectSurface ball(underside, texture);
-  smootherSurfaceNormals(surface, nullptr, ball, std::span(chosen.data(), count));
-  flatterReliefNormals(surface, nullptr, ball, std::span(chosen.data(), count));
-  addReliefContacts(std::span(chosen.data(), count), underside, surface, GroundBend{}, world_from_plane, false,
-                    threshold, result, &motion, true);
+  smootherSurfaceNormals(surface, bent, ball, std::span(chosen.data(), count));
+  flatterReliefNormals(surface, bent, ball, std::span(chosen.data(), count));
+  addReliefContacts(std::span(chosen.data(), count), underside, surface, bend, world_from_plane, false, threshold,
+                    result, &motion, true);
 }
 
 }  // namespace
@@ -377,7 +380,14 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
   const std::optional<Underside> underside =
       undersideOf(*object.getCollisionShape(), world_from_chart.inverse() * world_from_object);
   if (!underside) return boundary;
-  if (faces) {
+  if (const FaceTexture* ball = ballTextureOf(*object.getCollisionShape())) {
+    // A ball with a bump map: its points afresh each step, as on the plane.
+    btPersistentManifold* manifold = groupManifold(slot, 0, object.getCollisionObject(), mesh.getCollisionObject());
+    result->setPersistentManifold(manifold);
+    manifold->clearManifold();
+    texturedBallCollision(chart.surface, chart.bend, &boundary, *underside, *ball, threshold, world_from_chart,
+                          motionOf(*object.getCollisionObject()), result);
+  } else if (faces) {
     texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, *faces, &boundary, threshold,
                          world_from_chart, slot, result);
   } else {
@@ -416,8 +426,10 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
   const double reach_m = reachOf(shape);
   std::uint32_t held = 0;  // the slots of surfaces across creases met this step
   MeshChart chart;
+  // A smooth chart's grid is laid at the object's own texels where it has a texture.
+  const FaceTexture* texture = faces ? faces : ballTextureOf(shape);
   if (chartUnder(relief, centre, reach_m, foot_triangle_, chart)) {
-    if (!relief.map) laySmoothChart(chart, shape, mesh_from_object, relief.grid_intervals, faces);
+    if (!relief.map) laySmoothChart(chart, shape, mesh_from_object, relief.grid_intervals, texture);
     const double threshold = double(manifold->getContactBreakingThreshold());
     btVector3 aabb_min, aabb_max;
     shape.getAabb(toBt(mesh_from_object), aabb_min, aabb_max);
@@ -433,7 +445,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
       const int slot = surfaceSlot(beyond.normal, held);
       if (slot == kUnder) continue;
       held |= 1u << std::size_t(slot);
-      if (!relief.map) laySmoothChart(across, shape, mesh_from_object, relief.grid_intervals, faces);
+      if (!relief.map) laySmoothChart(across, shape, mesh_from_object, relief.grid_intervals, texture);
       chartCollision(object, mesh, relief, faces, across, slot, reach, threshold, result);
     }
   } else {
@@ -479,7 +491,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   const double threshold = double(manifold->getContactBreakingThreshold());
   if (const FaceTexture* ball = ballTextureOf(*object->getCollisionShape())) {
     clearGroupManifolds();
-    texturedBallCollision(plane.surface(), *underside, *ball, threshold, world_from_plane,
+    texturedBallCollision(plane.surface(), GroundBend{}, nullptr, *underside, *ball, threshold, world_from_plane,
                           motionOf(*object->getCollisionObject()), result);
     return;
   }
@@ -603,21 +615,25 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
 
 namespace {
 
-// The shapes that meet a relief mesh on its chart (a ball keeps Bullet's points, lifted).
-constexpr int kChartShapes[] = {BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE};
+// The shapes that meet a relief mesh on its chart; a ball only with a bump map of its own (a plain
+// ball keeps Bullet's points, lifted).
+constexpr int kChartShapes[] = {BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE,
+                                SPHERE_SHAPE_PROXYTYPE};
 
 }  // namespace
 
 bool reliefTakesMeshPair(const btCollisionShape& object, const btCollisionShape& mesh) {
   if (meshReliefOf(mesh) == nullptr) return false;
+  if (object.getShapeType() == SPHERE_SHAPE_PROXYTYPE) return ballTextureOf(object) != nullptr;
   return std::find(std::begin(kChartShapes), std::end(kChartShapes), object.getShapeType()) != std::end(kChartShapes);
 }
 
 namespace {
 
-// Box, capsule or cylinder against a triangle mesh: ours on a relief-textured mesh (reliefTakesMeshPair),
-// Bullet's convex-concave algorithm (its default for the pair) otherwise. Decided when Bullet makes the
-// pair's algorithm; a shape's texture is fixed when it is added.
+// Box, capsule, cylinder or ball with a bump map against a triangle mesh: ours on a relief-textured
+// mesh (reliefTakesMeshPair), Bullet's convex-concave algorithm (its default for the pair)
+// otherwise. Decided when Bullet makes the pair's algorithm; a shape's texture is fixed when it is
+// added.
 struct MeshPairCreateFunc : btCollisionAlgorithmCreateFunc {
   explicit MeshPairCreateFunc(bool swapped) { m_swapped = swapped; }
   btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,

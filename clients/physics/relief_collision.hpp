@@ -17,8 +17,8 @@
 // point names the triangle under it (m_index1), as Bullet's own points on a mesh do; the chart
 // stops at a crease within the object's reach, and each surface across it is met the same way on
 // a chart of its own, cut at its creases in turn, in manifolds of its own (chart_boundary.hpp). A
-// sphere on such a mesh stays with Bullet's sphere-triangle points, lifted onto the relief
-// (mesh_contact.hpp).
+// ball with a bump map does the same, by its own rule (texturedBallCollision); a plain sphere on
+// such a mesh stays with Bullet's sphere-triangle points, lifted onto the relief (mesh_contact.hpp).
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher
 // hands the pair in): normal = relief normal in world frame, pointing from the relief to the
@@ -127,9 +127,10 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
 // The shapes the relief algorithm understands, seen from the plane; nullopt for any other shape.
 std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen::Isometry3d& plane_from_object);
 
-// Whether the relief algorithm takes this (object, mesh) pair: a box (textured or not), capsule or
-// cylinder against a mesh with a chart attached (mesh_relief_chart.hpp: a relief's or a smooth
-// one). Bullet's own convex-concave algorithm takes the rest (a sphere, a mesh without a chart).
+// Whether the relief algorithm takes this (object, mesh) pair: a box (textured or not), capsule,
+// cylinder or ball with a bump map against a mesh with a chart attached (mesh_relief_chart.hpp: a
+// relief's or a smooth one). Bullet's own convex-concave algorithm takes the rest (a plain
+// sphere, a mesh without a chart).
 bool reliefTakesMeshPair(const btCollisionShape& object, const btCollisionShape& mesh);
 
 // Registers the algorithm for sphere, box, capsule and cylinder against CUSTOM_CONCAVE_SHAPE_TYPE,

@@ -7,10 +7,12 @@
 // (textured_box.hpp, textured_object_surface.hpp): the pair's depth at each texel of the plane
 // under the ball is the plane's height minus the ball's recessed surface there; its contacts are
 // found afresh each step, as every ball's are (a rolling ball's kept points inject energy:
-// relief_collision.hpp).
+// relief_collision.hpp). On a mesh it meets the chart under it the same way (mesh_relief_chart.hpp:
+// the mesh's relief, or its smooth surface alone, standing on the mesh's bend), where a plain ball
+// keeps Bullet's points, lifted (mesh_contact.hpp).
 //
-// What a textured ball does not do yet: on a plain or normal-mapped plane, on a mesh (relief or
-// not) and against another object it collides as the coarse ball, its texture unread.
+// What a textured ball does not do yet: on a plain or normal-mapped plane and against another
+// object it collides as the coarse ball, its texture unread.
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>

@@ -198,13 +198,14 @@ std::string coarseReliefWarning(const std::string& ball, double radius_m, const 
 std::vector<std::string> PhysicsScene::warnings() const {
   const auto& objects = scene_.objects;
   std::vector<std::string> out = object_texture_warnings_;
-  // A ball's bump map is read against a relief plane only (clients/physics/textured_ball.hpp).
-  if (mesh_ || !surface().usesRelief())
+  // A ball's bump map is read against a relief plane or a mesh (on its chart), not against a
+  // normal-mapped plane (clients/physics/textured_ball.hpp).
+  if (!mesh_ && !surface().usesRelief())
     for (const scene::SceneObject& o : objects)
       if (o.shape == scene::Shape::Sphere && o.texture)
-        out.push_back("ball '" + o.name + "': its bump map shapes its contacts with a relief plane only; on this scene's " +
-                      (mesh_ ? "mesh" : "normal-mapped plane") +
-                      " it collides as the plain ball (docs/physics.md, \"A ball with a bump map\")");
+        out.push_back("ball '" + o.name + "': its bump map shapes its contacts with a relief plane or a mesh only; on "
+                      "this scene's normal-mapped plane it collides as the plain ball (docs/physics.md, \"A ball with a "
+                      "bump map\")");
   if (mesh_) return out;
   const tex::TexturedSurface& plane = surface();
   if (!plane.usesRelief()) return out;  // a normal map's balls meet the flat plane
