@@ -36,7 +36,9 @@ bumps, V-grooves; relief maps baked in tangent space), by triangle count and fra
 Each probe is pressed from outside along the smooth normal in 20 um steps and held 15 ticks; the
 error is |F - k (q - p)| at 600 N/m, relative to the RMS exact force. Then the largest turn of the
 force between ticks on a stroke across the edges of an untextured sphere, and the servo's render
-cost per tick (p50, p99, max) on a textured sphere stroked in contact, by triangle count.
+cost per tick (p50, p99, max) on a textured sphere stroked in contact, by triangle count: render()
+from the reading to the force, and apart from it prepareNextTick(), which the servo runs once the
+force is written (p99 of it, and of the two together).
 
   --triangles LIST       tessellations for the error (default 500,2000,5000,20000,80000)
   --cost-triangles LIST  tessellations for the cost (default 1000,5000,20000,100000,500000)
@@ -161,6 +163,8 @@ EdgeRow measureEdges(const bench::CurvedSurface& s, const Tessellation& t, const
 struct CostRow {
   std::size_t triangles = 0, bytes = 0;
   double build_ms = 0, p50_us = 0, p99_us = 0, max_us = 0, contact_share = 0;
+  // The work done after the force for the ticks after it (prepareNextTick), and the whole tick's.
+  double after_p99_us = 0, tick_p99_us = 0;
   // The same stroke with every sweep asked of the hierarchy (TexturedMeshRenderer::useLocalSet).
   double hierarchy_p50_us = 0, hierarchy_p99_us = 0;
 };
@@ -168,8 +172,13 @@ struct CostRow {
 // The textured sphere stroked in contact, 1 mm under the smooth surface at 50 mm/s along a
 // wavy path round the equator; every render() timed.
 struct StrokeTimes {
-  double p50_us = 0, p99_us = 0, max_us = 0, contact_share = 0;
+  double p50_us = 0, p99_us = 0, max_us = 0, contact_share = 0, after_p99_us = 0, tick_p99_us = 0;
 };
+
+double percentile(std::vector<double>& v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
+}
 
 StrokeTimes timeStroke(const bench::CurvedSurface& s, const tex::TextureMap& map, const Tessellation& t, int ticks,
                        bool local_set) {
@@ -185,20 +194,28 @@ StrokeTimes timeStroke(const bench::CurvedSurface& s, const tex::TextureMap& map
   r.reset();
   const Eigen::Vector3d n0 = s.normal(0, M_PI / 2 * s.radius());
   for (int k = 0; k <= 60; ++k) r.render(path(0) + n0 * (1.6e-3 * (60 - k) / 60), Eigen::Vector3d::Zero());
-  std::vector<double> us(static_cast<std::size_t>(ticks));
+  // As the servo does: render() from the reading to the force, then prepareNextTick() once the
+  // force is out; each timed apart, and the two together as the tick's whole work.
+  std::vector<double> us(static_cast<std::size_t>(ticks)), after_us(us.size()), tick_us(us.size());
   int contact = 0;
   for (int k = 0; k < ticks; ++k) {
     const Eigen::Vector3d tip = path(k);
     const auto t0 = Clock::now();
     const srv::RenderOutput out = r.render(tip, Eigen::Vector3d::Zero());
-    us[std::size_t(k)] = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+    const auto t1 = Clock::now();
+    r.prepareNextTick();
+    const auto t2 = Clock::now();
+    us[std::size_t(k)] = std::chrono::duration<double, std::micro>(t1 - t0).count();
+    after_us[std::size_t(k)] = std::chrono::duration<double, std::micro>(t2 - t1).count();
+    tick_us[std::size_t(k)] = std::chrono::duration<double, std::micro>(t2 - t0).count();
     contact += out.in_contact ? 1 : 0;
   }
-  std::sort(us.begin(), us.end());
   StrokeTimes times;
-  times.p50_us = us[us.size() / 2];
-  times.p99_us = us[std::size_t(0.99 * double(us.size()))];
+  times.p50_us = percentile(us, 0.5);
+  times.p99_us = percentile(us, 0.99);
   times.max_us = us.back();
+  times.after_p99_us = percentile(after_us, 0.99);
+  times.tick_p99_us = percentile(tick_us, 0.99);
   times.contact_share = double(contact) / ticks;
   return times;
 }
@@ -217,6 +234,8 @@ CostRow measureCost(const bench::CurvedSurface& s, const tex::TextureMap& map, i
   row.p99_us = local.p99_us;
   row.max_us = local.max_us;
   row.contact_share = local.contact_share;
+  row.after_p99_us = local.after_p99_us;
+  row.tick_p99_us = local.tick_p99_us;
   row.hierarchy_p50_us = hierarchy.p50_us;
   row.hierarchy_p99_us = hierarchy.p99_us;
   return row;
@@ -314,19 +333,19 @@ int run(int argc, char** argv) {
                                        bench::machineSummary().c_str());
   std::string c = "table,surface,triangles,frame,rel_rms,rel_median,rel_max,over_20pct,no_contact,probes,ns_per_tick,"
                   "largest_step_deg,natural_step_deg,bytes,build_ms,p50_us,p99_us,max_us,contact_share,hierarchy_p50_us,"
-                  "hierarchy_p99_us\n";
+                  "hierarchy_p99_us,after_p99_us,tick_p99_us\n";
   for (const ErrorRow& r : errors) {
-    c += bench::fmt("error,%s,%zu,%s,%.6g,%.6g,%.6g,%d,%d,%d,%.1f,,,,,,,,,,\n", r.surface.c_str(), r.triangles, r.mode.c_str(),
+    c += bench::fmt("error,%s,%zu,%s,%.6g,%.6g,%.6g,%d,%d,%d,%.1f,,,,,,,,,,,,\n", r.surface.c_str(), r.triangles, r.mode.c_str(),
                     r.rel_rms, r.rel_median, r.rel_max, r.over_20, r.no_contact, r.probes, r.ns_per_tick);
   }
   for (const EdgeRow& r : edges) {
-    c += bench::fmt("edges,sphere+untextured,%zu,%s,,,,,,,,%.5g,%.5g,,,,,,,,\n", r.triangles, r.mode.c_str(), r.largest_step_deg,
+    c += bench::fmt("edges,sphere+untextured,%zu,%s,,,,,,,,%.5g,%.5g,,,,,,,,,,\n", r.triangles, r.mode.c_str(), r.largest_step_deg,
                     r.natural_step_deg);
   }
   for (const CostRow& r : costs) {
-    c += bench::fmt("cost,sphere+sine,%zu,interpolated+phong,,,,,,,,,,%zu,%.1f,%.3f,%.3f,%.3f,%.4f,%.3f,%.3f\n", r.triangles,
-                    r.bytes, r.build_ms, r.p50_us, r.p99_us, r.max_us, r.contact_share, r.hierarchy_p50_us,
-                    r.hierarchy_p99_us);
+    c += bench::fmt("cost,sphere+sine,%zu,interpolated+phong,,,,,,,,,,%zu,%.1f,%.3f,%.3f,%.3f,%.4f,%.3f,%.3f,%.3f,%.3f\n",
+                    r.triangles, r.bytes, r.build_ms, r.p50_us, r.p99_us, r.max_us, r.contact_share, r.hierarchy_p50_us,
+                    r.hierarchy_p99_us, r.after_p99_us, r.tick_p99_us);
   }
   if (!csv.empty()) bench::writeTextFile(csv, c);
   if (!json.empty()) {
@@ -351,10 +370,10 @@ int run(int argc, char** argv) {
     for (std::size_t i = 0; i < costs.size(); ++i) {
       const CostRow& r = costs[i];
       j += bench::fmt("    {\"triangles\": %zu, \"bytes\": %zu, \"build_ms\": %.1f, \"p50_us\": %.3f, \"p99_us\": %.3f, "
-                      "\"max_us\": %.3f, \"contact_share\": %.4f, \"hierarchy_p50_us\": %.3f, \"hierarchy_p99_us\": %.3f}%s\n",
+                      "\"max_us\": %.3f, \"contact_share\": %.4f, \"hierarchy_p50_us\": %.3f, \"hierarchy_p99_us\": %.3f, "
+                      "\"after_p99_us\": %.3f, \"tick_p99_us\": %.3f}%s\n",
                       r.triangles, r.bytes, r.build_ms, r.p50_us, r.p99_us, r.max_us, r.contact_share, r.hierarchy_p50_us,
-                      r.hierarchy_p99_us,
-                      i + 1 < costs.size() ? "," : "");
+                      r.hierarchy_p99_us, r.after_p99_us, r.tick_p99_us, i + 1 < costs.size() ? "," : "");
     }
     j += "  ]\n}\n";
     bench::writeTextFile(json, j);
@@ -377,15 +396,17 @@ int run(int argc, char** argv) {
     for (const EdgeRow& r : edges) {
       t += bench::fmt("| %zu | %s | %.3f° | %.3f° |\n", r.triangles, r.mode.c_str(), r.largest_step_deg, r.natural_step_deg);
     }
-    t += "\n**Render cost** (textured sphere, interpolated + Phong, stroked 1 mm deep at 50 mm/s; every `render()` timed; "
-         "the sweeps from the leaves around the pen, the default, and from the hierarchy every time, the same stroke just "
-         "before):\n\n";
-    t += "| triangles | mesh + BVH | build | p50 | p99 | max | in contact | hierarchy only: p50 | p99 |\n"
-         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    t += "\n**Render cost** (textured sphere, interpolated + Phong, stroked 1 mm deep at 50 mm/s; every `render()` timed, "
+         "from the reading to the force; after it, as in the servo once the force is written, `prepareNextTick()` timed "
+         "apart, and the two together as the tick's whole work; the sweeps from the leaves around the pen, the default, "
+         "and from the hierarchy every time, the same stroke just before):\n\n";
+    t += "| triangles | mesh + BVH | build | p50 | p99 | max | in contact | after the force: p99 | whole tick: p99 | "
+         "hierarchy only: p50 | p99 |\n"
+         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const CostRow& r : costs) {
-      t += bench::fmt("| %zu | %.1f MB | %.0f ms | %.2f µs | %.2f µs | %.1f µs | %.1f %% | %.2f µs | %.2f µs |\n", r.triangles,
-                      double(r.bytes) / 1e6, r.build_ms, r.p50_us, r.p99_us, r.max_us, 100 * r.contact_share,
-                      r.hierarchy_p50_us, r.hierarchy_p99_us);
+      t += bench::fmt("| %zu | %.1f MB | %.0f ms | %.2f µs | %.2f µs | %.1f µs | %.1f %% | %.2f µs | %.2f µs | %.2f µs | %.2f µs |\n",
+                      r.triangles, double(r.bytes) / 1e6, r.build_ms, r.p50_us, r.p99_us, r.max_us, 100 * r.contact_share,
+                      r.after_p99_us, r.tick_p99_us, r.hierarchy_p50_us, r.hierarchy_p99_us);
     }
     bench::writeTextFile(md, t);
   }
@@ -419,16 +440,19 @@ int run(int argc, char** argv) {
     p50.label = "p50", p50.color = {60, 120, 200};
     p99.label = "p99", p99.color = {200, 60, 40}, p99.marker = bench::Marker::Square;
     double cmin = 1e9, cmax = 0;
-    bench::PlotSeries p99_hierarchy;
+    bench::PlotSeries p99_hierarchy, p99_tick;
     p99_hierarchy.label = "p99, hierarchy only", p99_hierarchy.color = {150, 150, 150};
     p99_hierarchy.marker = bench::Marker::Square;
+    p99_tick.label = "p99, whole tick (render + after the force)", p99_tick.color = {40, 150, 70};
+    p99_tick.marker = bench::Marker::Triangle;
     for (const CostRow& r : costs) {
       p50.x.push_back(double(r.triangles)), p50.y.push_back(r.p50_us);
       p99.x.push_back(double(r.triangles)), p99.y.push_back(r.p99_us);
       p99_hierarchy.x.push_back(double(r.triangles)), p99_hierarchy.y.push_back(r.hierarchy_p99_us);
-      cmin = std::min(cmin, r.p50_us), cmax = std::max({cmax, r.p99_us, r.hierarchy_p99_us});
+      p99_tick.x.push_back(double(r.triangles)), p99_tick.y.push_back(r.tick_p99_us);
+      cmin = std::min(cmin, r.p50_us), cmax = std::max({cmax, r.p99_us, r.hierarchy_p99_us, r.tick_p99_us});
     }
-    cost.series = {p50, p99, p99_hierarchy};
+    cost.series = {p50, p99, p99_tick, p99_hierarchy};
     if (!costs.empty()) {
       cost.x_min = double(costs.front().triangles) / 1.5, cost.x_max = double(costs.back().triangles) * 1.5;
       cost.y_min = cmin / 1.5, cost.y_max = cmax * 1.5;

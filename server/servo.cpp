@@ -200,6 +200,9 @@ const TickRecord& Servo::step(const dev::DeviceState& state) {
     command.forces_enabled = f_out.squaredNorm() > 0.0 || tau_out.squaredNorm() > 0.0;
   }
   device_.write(command);
+  // What the mesh renderer does for the next tick, not for this force: after the write, so that
+  // it is not between the reading and the force (still inside compute_ns, the tick's whole work).
+  if (mesh_ && !tool_) mesh_->prepareNextTick();
 
   put(r.f_render, f_render);
   put(r.f_client, f_client);

@@ -14,7 +14,8 @@
 //    surface is a textured mesh, that scene's mesh renderer (textured_mesh_renderer.hpp), built
 //    and owned off this thread like the scene's texture; or, for a pen with extent (a scene's
 //    device.tool: capsule), that scene's capsule tool (capsule_tool.hpp), built and owned the same
-//    way. One branch chooses; nothing else differs but the torque.
+//    way. One branch chooses; nothing else differs but the torque. The mesh renderer's work for
+//    the ticks after this one (gathering the triangles ahead of the pen) runs after the write.
 //  - Torque (the capsule on a device that displays it): the coupling's torque, clamped by the tool
 //    to the device's peak, times the scene's gain and the safety stage's gain (its engage and
 //    shutdown ramps), and zero whenever the safety stage lets no force through. The passivity

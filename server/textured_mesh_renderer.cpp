@@ -60,6 +60,26 @@ void TexturedMeshRenderer::reset() {
   contact_ = {};
   last_sweeps_ = 0;
   local_.reset();
+  next_tick_pending_ = false;
+}
+
+void TexturedMeshRenderer::prepareNextTick() {
+  if (!next_tick_pending_) return;
+  next_tick_pending_ = false;
+  if (use_local_) local_.advance(proxy_);
+  // The faces around the anchor's, which the next tick's anchor walks onto, asked for now.
+  if (contact_.valid) {
+    for (const std::uint32_t next : neighbours_[contact_.triangle]) {
+      if (next == mesh::kNoNeighbour) continue;
+      __builtin_prefetch(&bvh_->plane(next));
+      for (const std::uint32_t v : mesh_->triangles[next]) {
+        __builtin_prefetch(&mesh_->positions[v]);
+        __builtin_prefetch(&mesh_->normals[v]);
+        __builtin_prefetch(&mesh_->tangents[v]);
+        __builtin_prefetch(&mesh_->uvs[v]);
+      }
+    }
+  }
 }
 
 void TexturedMeshRenderer::locate(const Eigen::Vector3d& x, std::uint32_t held, std::uint32_t& triangle,
@@ -237,6 +257,7 @@ RenderOutput TexturedMeshRenderer::renderPlanes(const std::uint32_t* held, int c
 }
 
 RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world) {
+  prepareNextTick();  // unless the caller has, since the last tick
   const Eigen::Vector3d tip = world_to_mesh_ * tip_world;
   const Eigen::Vector3d v = world_to_mesh_.linear() * v_world;
   const MeshContact previous = contact_;
@@ -265,7 +286,7 @@ RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, cons
   const GodObjectStep step = moveGodObject(*bvh_, proxy_, tip, use_local_ ? &local_ : nullptr);
   proxy_ = step.proxy;
   last_sweeps_ = step.sweeps;
-  if (use_local_) local_.advance(proxy_);
+  next_tick_pending_ = true;
   std::array<std::uint32_t, kGodObjectMaxConstraints> held = step.triangles;
   int count = step.count;
   if (count == 0 && bulge_m_ > 0.0) {

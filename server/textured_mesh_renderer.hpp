@@ -85,6 +85,13 @@ class TexturedMeshRenderer {
   TexturedMeshRenderer& operator=(const TexturedMeshRenderer&) = delete;
 
   RenderOutput render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world);
+  // The work a tick does for the ticks after it, not for its own force: moving the gathering of
+  // the next region on (local_triangle_set.hpp) and asking the memory for the faces round the
+  // anchor's, where the next anchor walks. The servo calls it after the force is written, in the
+  // slack before its next reading, so it is not between a reading and its force (docs/meshes.md,
+  // "Render cost"). Without the call render() does it first thing, and the forces are the same
+  // either way, to the bit. Real-time safe: bounded (kNodesPerTick nodes, three faces).
+  void prepareNextTick();
   void reset();  // forget the proxy: the next tick's tip is the proxy (call it with the tip outside)
 
   const RendererConfig& config() const { return config_; }
@@ -154,6 +161,7 @@ class TexturedMeshRenderer {
   int last_sweeps_ = 0;
   LocalTriangleSet local_;
   bool use_local_ = true;
+  bool next_tick_pending_ = false;  // render() ran since the last prepareNextTick()
 };
 
 }  // namespace thx::srv

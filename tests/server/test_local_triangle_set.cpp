@@ -94,9 +94,10 @@ TEST(LocalTriangleSet, WhereEveryRegionHasTooManyLeavesTheHierarchyAnswers) {
   EXPECT_EQ(set.localAnswers(), 0);
 }
 
-TEST(LocalTriangleSet, ARendererSweepingThroughItRendersTheSameForces) {
+TEST(LocalTriangleSet, ARendererSweepingThroughItRendersTheSameForcesPreparedBeforeOrAfterTheForce) {
   // A relief-textured sphere stroked 1 mm deep along a wavy path at 50 mm/s, and a stroke that
-  // leaves the surface and comes back; one renderer with the local set, one without.
+  // leaves the surface and comes back; one renderer with the local set, one without, and one
+  // with it run in the servo's order.
   const Sphere s(128, 64);
   tex::GenerateRequest request;
   request.kind = "bricks";
@@ -108,22 +109,30 @@ TEST(LocalTriangleSet, ARendererSweepingThroughItRendersTheSameForces) {
   srv::TexturedMeshRenderer local(s.generated.mesh, *s.bvh, texture, Eigen::Isometry3d::Identity(), config);
   srv::TexturedMeshRenderer hierarchy(s.generated.mesh, *s.bvh, texture, Eigen::Isometry3d::Identity(), config);
   hierarchy.useLocalSet(false);
+  // As the servo runs it: the gathering moved on after each force (prepareNextTick), not at the
+  // start of the next render().
+  srv::TexturedMeshRenderer servo_order(s.generated.mesh, *s.bvh, texture, Eigen::Isometry3d::Identity(), config);
   int in_contact = 0;
   for (int k = 0; k < 6000; ++k) {
     const double a = 5e-5 * k / 0.03, b = 0.3 * std::sin(a * 3.0);
     const double depth = k % 2000 < 1700 ? 1e-3 : -2e-3;  // out of contact for 300 ticks in 2000
     const Eigen::Vector3d n(std::cos(a) * std::cos(b), std::sin(a) * std::cos(b), std::sin(b));
     const Eigen::Vector3d tip = n * (0.03 - depth), v = Eigen::Vector3d(-std::sin(a), std::cos(a), 0.0) * 0.05;
-    const srv::RenderOutput x = local.render(tip, v), y = hierarchy.render(tip, v);
+    const srv::RenderOutput x = local.render(tip, v), y = hierarchy.render(tip, v), z = servo_order.render(tip, v);
+    servo_order.prepareNextTick();
     ASSERT_EQ(x.in_contact, y.in_contact) << k;
     ASSERT_EQ(x.force_world, y.force_world) << k;
     ASSERT_EQ(x.proxy_world, y.proxy_world) << k;
     ASSERT_EQ(x.triangle, y.triangle) << k;
+    ASSERT_EQ(z.force_world, x.force_world) << k;
+    ASSERT_EQ(z.proxy_world, x.proxy_world) << k;
     in_contact += x.in_contact ? 1 : 0;
   }
   EXPECT_GT(in_contact, 3000);
   EXPECT_GT(local.localSet().localAnswers(), 10 * local.localSet().hierarchyAnswers())
       << "the sweeps are answered from the leaves around the pen";
+  EXPECT_EQ(servo_order.localSet().localAnswers(), local.localSet().localAnswers());
+  EXPECT_EQ(servo_order.localSet().gathers(), local.localSet().gathers());
 }
 
 }  // namespace test_local_triangle_set
