@@ -144,10 +144,6 @@ void smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
 
 namespace {
 
-// Marks a point leanChartContact has leaned (Bullet's own flags use the low five bits; a point
-// Bullet replaces with a new one takes the new one's flags).
-constexpr int kLeanedContactFlag = 1 << 12;
-
 // Where a manifold point lies on the mesh: the triangle it names on the mesh's side and the
 // mesh-side point's barycentric coordinates on it; nullopt for an index out of range.
 struct MeshPlace {

@@ -91,4 +91,20 @@ void applyNormalMap(btManifoldPoint& point, bool plane_is_b, const Eigen::Isomet
   steerContact(point, plane_is_b, n_world, plane_to_world.linear().col(2), other, options.hold_height, step);
 }
 
+void leanReliefContact(btManifoldPoint& point, bool plane_is_b, const Eigen::Isometry3d& plane_to_world,
+                       const Eigen::Vector3d& lean_local, const btCollisionObject& other, const NormalMapOptions& options,
+                       const StepContext& step) {
+  if (lean_local.isZero()) return;
+  const Eigen::Matrix3d& r = plane_to_world.linear();
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  // The point's own normal (the relief's, towards the object) is the geometry held. A point kept
+  // from the last step (a textured box's) was leaned then: its own normal is that one unleaned
+  // (n = N - grad h scaled, so the lean's inverse is n + (n . N) lean, up to the clamp).
+  Eigen::Vector3d n_local = r.transpose() * toEigen(point.m_normalWorldOnB) * (plane_is_b ? 1.0 : -1.0);
+  if (point.m_contactPointFlags & kLeanedContactFlag) n_local = (n_local + n_local.z() * lean_local).normalized();
+  point.m_contactPointFlags |= kLeanedContactFlag;
+  const Eigen::Vector3d n = clampTilt((n_local - n_local.z() * lean_local).normalized(), up, options.max_tilt_deg);
+  steerContact(point, plane_is_b, r * n, r * n_local, other, options.hold_height, step);
+}
+
 }  // namespace thx::phys

@@ -65,4 +65,19 @@ void applyNormalMap(btManifoldPoint& point, bool plane_is_b, const Eigen::Isomet
                     const tex::TexturedSurface& surface, const btCollisionObject& other,
                     const NormalMapOptions& options, const StepContext& step = {});
 
+// Marks a point a mean slope has leaned (leanReliefContact, mesh_contact.hpp's leanChartContact):
+// a point kept from the last step is leaned once. Bullet's own flags use the low five bits; a
+// point Bullet replaces with a new one takes the new one's flags.
+inline constexpr int kLeanedContactFlag = 1 << 12;
+
+// Leans `point`, made on a relief plane that stands for a normal-mapped plane (the relief its
+// normals integrate to: periodic, so level; PhysicsWorld::addTexturedObjectsRelief), by the map's
+// mean slope `lean_local` ((dh/dx, dh/dy, 0) in the plane frame): its normal tilted as by any
+// slope, n - (n . z) lean, the gap held along its own normal (steerContact with hold_height), so
+// an object meets the virtual slope as on the normal-mapped plane and keeps its height. Nothing
+// for a zero lean.
+void leanReliefContact(btManifoldPoint& point, bool plane_is_b, const Eigen::Isometry3d& plane_to_world,
+                       const Eigen::Vector3d& lean_local, const btCollisionObject& other, const NormalMapOptions& options,
+                       const StepContext& step = {});
+
 }  // namespace thx::phys

@@ -1,5 +1,6 @@
 #include "clients/physics/physics_world.hpp"
 
+#include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
@@ -16,6 +17,8 @@
 #include "clients/physics/relief_collision.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/scaled_convex_collision.hpp"
+#include "clients/physics/textured_ball.hpp"
+#include "textures/height_from_normals.hpp"
 
 #include "base/error.hpp"
 
@@ -24,6 +27,33 @@ namespace thx::phys {
 namespace {
 btScalar narrow(double v) { return static_cast<btScalar>(v); }
 }  // namespace
+
+// A textured object meets the relief standing for a normal-mapped plane, every other body the
+// plane itself (addTexturedObjectsRelief); otherwise Bullet's own rule (groups and masks).
+struct PhysicsWorld::TexturedObjectsFilter : btOverlapFilterCallback {
+  struct StandIn {
+    const btCollisionObject* plane;
+    const btCollisionObject* relief;
+  };
+  std::vector<StandIn> stand_ins;
+
+  static bool textured(const btCollisionObject& o) {
+    const btCollisionShape& shape = *o.getCollisionShape();
+    return faceTextureOf(shape) != nullptr || ballTextureOf(shape) != nullptr;
+  }
+  bool needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const override {
+    if ((p0->m_collisionFilterGroup & p1->m_collisionFilterMask) == 0 ||
+        (p1->m_collisionFilterGroup & p0->m_collisionFilterMask) == 0)
+      return false;
+    const auto* a = static_cast<const btCollisionObject*>(p0->m_clientObject);
+    const auto* b = static_cast<const btCollisionObject*>(p1->m_clientObject);
+    for (const StandIn& s : stand_ins) {
+      if (a == s.plane || b == s.plane) return !textured(a == s.plane ? *b : *a);
+      if (a == s.relief || b == s.relief) return textured(a == s.relief ? *b : *a);
+    }
+    return true;
+  }
+};
 
 PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   configuration_ = std::make_unique<btDefaultCollisionConfiguration>();
@@ -127,6 +157,20 @@ btRigidBody& PhysicsWorld::addNormalMapPlane(const tex::TexturedSurface& surface
 
 btRigidBody& PhysicsWorld::addReliefPlane(const tex::TexturedSurface& surface, const BodyMaterial& material) {
   return addBody(std::make_unique<ReliefPlaneShape>(surface), 0.0, surface.mapping().plane_to_world, material);
+}
+
+btRigidBody& PhysicsWorld::addTexturedObjectsRelief(const btRigidBody& plane, const tex::TexturedSurface& relief,
+                                                    const Eigen::Vector2d& mean_slope, const BodyMaterial& material,
+                                                    const NormalMapOptions& options) {
+  if (!textured_objects_filter_) {
+    textured_objects_filter_ = std::make_unique<TexturedObjectsFilter>();
+    world_->getPairCache()->setOverlapFilterCallback(textured_objects_filter_.get());
+  }
+  btRigidBody& body = addReliefPlane(relief, material);
+  textured_objects_filter_->stand_ins.push_back({&plane, &body});
+  if (mean_slope.norm() > tex::kLevelMeanSlope)
+    world_->addLeaningRelief(&body, Eigen::Vector3d(mean_slope.x(), mean_slope.y(), 0.0), options);
+  return body;
 }
 
 btRigidBody& PhysicsWorld::addStaticShape(std::unique_ptr<btCollisionShape> shape, const Eigen::Isometry3d& pose,

@@ -72,6 +72,18 @@ class PhysicsWorld {
   btRigidBody& addNormalMapPlane(const tex::TexturedSurface& surface, const BodyMaterial& material,
                                  const NormalMapOptions& options = {});
   btRigidBody& addReliefPlane(const tex::TexturedSurface& surface, const BodyMaterial& material);
+  // The textured objects (boxes with faces, balls with bump maps) meet `relief` instead of `plane`
+  // (a body from addNormalMapPlane): a relief plane at `relief`'s mapping standing for the plane's
+  // normal map, the relief its normals integrate to (tex::reliefFromNormals), so both textures
+  // shape their contacts as on a relief plane. Every other body meets the normal-mapped plane as
+  // before (a broadphase filter keeps each pair to its own plane). A map that leans on average
+  // (`mean_slope`, dh/dx and dh/dy in the plane frame, beyond tex::kLevelMeanSlope) leans the
+  // relief's contacts by it, their heights held (leanReliefContact), as the plane's normals lean.
+  // Add it before the first step (the filter decides when a pair is first found). `relief` must
+  // outlive this world.
+  btRigidBody& addTexturedObjectsRelief(const btRigidBody& plane, const tex::TexturedSurface& relief,
+                                        const Eigen::Vector2d& mean_slope, const BodyMaterial& material,
+                                        const NormalMapOptions& options = {});
   // A static textured mesh (meshes/textured_mesh.hpp, frames built) at `pose` (the mesh's frame
   // in the world): Bullet's btBvhTriangleMeshShape over its triangles, each contact steered by the
   // smooth surface and the texture (mesh_contact.hpp); with a relief map, a box (textured or not),
@@ -90,11 +102,13 @@ class PhysicsWorld {
   btRigidBody& addBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
                       const BodyMaterial& material);
   // A box whose faces carry a relief map (textured_box.hpp; the map must outlive this world): on a
-  // relief plane both textures shape the contact; elsewhere it collides as the plain box.
+  // relief plane (and the relief standing for a normal-mapped plane: addTexturedObjectsRelief) and
+  // on a mesh's chart both textures shape the contact; elsewhere it collides as the plain box.
   btRigidBody& addTexturedBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
                               const BodyMaterial& material, const FaceTexture& texture);
   // A ball with a bump map (textured_ball.hpp; the map must outlive this world): on a relief plane
-  // and on a mesh's chart both textures shape the contact; elsewhere it collides as the plain ball.
+  // (and the relief standing for a normal-mapped plane: addTexturedObjectsRelief) and on a mesh's
+  // chart both textures shape the contact; elsewhere it collides as the plain ball.
   btRigidBody& addTexturedSphere(double radius_m, double mass_kg, const Eigen::Isometry3d& pose,
                                  const BodyMaterial& material, const FaceTexture& texture);
   btRigidBody& addCapsule(double radius_m, double half_length_m, double mass_kg, const Eigen::Isometry3d& pose,
@@ -109,7 +123,11 @@ class PhysicsWorld {
   btRigidBody& addBody(std::unique_ptr<btCollisionShape> shape, double mass_kg, const Eigen::Isometry3d& pose,
                        const BodyMaterial& material);
 
+  // Which plane a pair meets where a relief stands in for a normal-mapped plane (physics_world.cpp).
+  struct TexturedObjectsFilter;
+
   WorldOptions options_;
+  std::unique_ptr<TexturedObjectsFilter> textured_objects_filter_;  // declared before the world that reads it
   std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btDbvtBroadphase> broadphase_;

@@ -11,8 +11,11 @@
 // the mesh's relief, or its smooth surface alone, standing on the mesh's bend), where a plain ball
 // keeps Bullet's points, lifted (mesh_contact.hpp).
 //
-// What a textured ball does not do yet: on a plain or normal-mapped plane and against another
-// object it collides as the coarse ball, its texture unread.
+// On a normal-mapped plane it meets the relief the plane's normals integrate to, where a plain ball
+// meets the plane (PhysicsWorld::addTexturedObjectsRelief).
+//
+// What a textured ball does not do yet: on a plain plane and against another object it collides
+// as the coarse ball, its texture unread.
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>

@@ -20,9 +20,10 @@
 // side since the map's normal is its depth's gradient (n = N + d_u T + d_v B for any orthonormal
 // T, B and outward N).
 //
-// What a textured box does not do yet: its texture shapes contacts with a relief plane and with a
-// relief-textured mesh (on the mesh's chart under it, mesh_relief_chart.hpp) only; on a plain or
-// normal-mapped plane or mesh, or another object, the coarse box collides;
+// What a textured box does not do yet: its texture shapes contacts with a relief plane, with a
+// mesh (on the mesh's chart under it, mesh_relief_chart.hpp) and with the relief standing for a
+// normal-mapped plane (PhysicsWorld::addTexturedObjectsRelief) only; on a plain plane or against
+// another object the coarse box collides;
 // a normal map (no depth) given for an object is read, where objects are built, as the relief its
 // normals integrate to (scene::buildObjectTexture). The visual client draws the same layout
 // (meshes/textured_box_mesh.hpp).

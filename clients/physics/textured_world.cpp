@@ -29,10 +29,17 @@ void TexturedWorld::addTexturedMesh(const btCollisionObject* body, const mesh::T
   meshes_.push_back({body, ContactMesh(*mesh), options});
 }
 
+void TexturedWorld::addLeaningRelief(const btCollisionObject* relief, const Eigen::Vector3d& lean_local,
+                                     const NormalMapOptions& options) {
+  std::erase_if(leaning_reliefs_, [&](const LeaningRelief& r) { return r.body == relief; });
+  leaning_reliefs_.push_back({relief, lean_local, options});
+}
+
 void TexturedWorld::performDiscreteCollisionDetection() {
   btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
   rewritten_ = 0;
   rewriteNormalMapContacts();
+  rewriteLeaningReliefContacts();
   rewriteMeshContacts();
   if ((getSolverInfo().m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) == 0) return;
   btDispatcher* dispatcher = getDispatcher();
@@ -104,6 +111,17 @@ void TexturedWorld::rewriteNormalMapContacts() {
                                     [&](btManifoldPoint& point, bool plane_is_b, const Eigen::Isometry3d& plane_to_world,
                                         const NormalMapPlane& plane, const btCollisionObject& other) {
                                       applyNormalMap(point, plane_is_b, plane_to_world, *plane.surface, other, plane.options, step);
+                                    });
+}
+
+void TexturedWorld::rewriteLeaningReliefContacts() {
+  if (leaning_reliefs_.empty()) return;
+  const StepContext step = stepContext();
+  rewritten_ += rewriteContactsWith(*getDispatcher(), leaning_reliefs_,
+                                    [&](btManifoldPoint& point, bool relief_is_b, const Eigen::Isometry3d& relief_to_world,
+                                        const LeaningRelief& relief, const btCollisionObject& other) {
+                                      leanReliefContact(point, relief_is_b, relief_to_world, relief.lean_local, other,
+                                                        relief.options, step);
                                     });
 }
 

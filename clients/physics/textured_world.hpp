@@ -3,7 +3,8 @@
 //
 // Normal-map mode lives here: performDiscreteCollisionDetection() runs Bullet's own collision
 // detection, then rewrites every manifold point touching a registered normal-mapped plane
-// (normal_map_contact.hpp) or textured mesh (mesh_contact.hpp) before the solver runs. Doing it here rather than in
+// (normal_map_contact.hpp), textured mesh (mesh_contact.hpp) or relief standing for a leaning normal
+// map (leanReliefContact) before the solver runs. Doing it here rather than in
 // gContactAddedCallback reaches every point on every step, including points Bullet keeps from
 // earlier steps, and sees world positions after refreshContactPoints (docs/design.md §7 fact 7).
 //
@@ -36,6 +37,10 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
   // mesh's; its contacts are steered by mesh_contact.hpp. The mesh (and any texture in
   // `options`) must outlive the registration.
   void addTexturedMesh(const btCollisionObject* body, const mesh::TexturedMesh* mesh, const MeshContactOptions& options);
+  // `relief` is a static relief plane standing for a normal map that leans on average (its mean
+  // slope `lean_local`, (dh/dx, dh/dy, 0) in the plane frame, which the periodic relief cannot
+  // hold): its contacts lean by it (leanReliefContact). PhysicsWorld::addTexturedObjectsRelief.
+  void addLeaningRelief(const btCollisionObject* relief, const Eigen::Vector3d& lean_local, const NormalMapOptions& options = {});
 
   // Bullet's detection, then the normal-map rewrite, then (with the solver's
   // SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) every point's friction along its slip
@@ -61,7 +66,13 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
     ContactMesh mesh;
     MeshContactOptions options;
   };
+  struct LeaningRelief {
+    const btCollisionObject* body;
+    Eigen::Vector3d lean_local;
+    NormalMapOptions options;
+  };
   void rewriteNormalMapContacts();
+  void rewriteLeaningReliefContacts();
   void rewriteMeshContacts();
   StepContext stepContext();
   void updateActivationState(btScalar time_step) override;
@@ -73,6 +84,7 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
 
   std::vector<NormalMapPlane> planes_;
   std::vector<TexturedMeshBody> meshes_;
+  std::vector<LeaningRelief> leaning_reliefs_;
   long long rewritten_ = 0;
   RestOptions rest_;
   std::unordered_map<const btRigidBody*, RestDetector> rest_detectors_;

@@ -14,6 +14,7 @@
 #include "scenes/scene_loader.hpp"
 #include "scenes/scene_mesh.hpp"
 #include "scenes/surface_texture.hpp"
+#include "textures/height_from_normals.hpp"
 #include "textures/smoothing.hpp"
 
 namespace thx::physclient {
@@ -65,6 +66,18 @@ PhysicsScene::PhysicsScene(const scene::Scene& scene, const SimOptions& options)
                                     : &world_->addNormalMapPlane(surface(), plane_material);
   }
   plane_->setUserIndex(kBodySurface);
+  // Textured objects on a normal-mapped plane meet the relief its normals integrate to, as on a
+  // mesh (MeshGround), so both textures shape their contacts; the other bodies meet the plane.
+  const bool textured_objects = std::any_of(scene.objects.begin(), scene.objects.end(),
+                                            [](const scene::SceneObject& o) { return o.texture.has_value(); });
+  if (!mesh_ && !surface().usesRelief() && textured_objects) {
+    tex::ReliefOfNormals relief = tex::reliefFromNormals(surface().map(), surface().mapping().size_m,
+                                                         surface().sampling().address, "the relief of the plane's normal map");
+    plane_relief_map_.emplace(std::move(relief.relief));
+    plane_relief_ = tex::TexturedSurface(*plane_relief_map_, surface().mapping(), surface().sampling(), true);
+    world_->addTexturedObjectsRelief(*plane_, plane_relief_, relief.mean_slope, plane_material)
+        .setUserIndex(kBodySurface);
+  }
 
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const scene::SceneObject& o = scene.objects[i];
@@ -198,20 +211,13 @@ std::string coarseReliefWarning(const std::string& ball, double radius_m, const 
 std::vector<std::string> PhysicsScene::warnings() const {
   const auto& objects = scene_.objects;
   std::vector<std::string> out = object_texture_warnings_;
-  // A ball's bump map is read against a relief plane or a mesh (on its chart), not against a
-  // normal-mapped plane (clients/physics/textured_ball.hpp).
-  if (!mesh_ && !surface().usesRelief())
-    for (const scene::SceneObject& o : objects)
-      if (o.shape == scene::Shape::Sphere && o.texture)
-        out.push_back("ball '" + o.name + "': its bump map shapes its contacts with a relief plane or a mesh only; on "
-                      "this scene's normal-mapped plane it collides as the plain ball (docs/physics.md, \"A ball with a "
-                      "bump map\")");
   if (mesh_) return out;
   const tex::TexturedSurface& plane = surface();
-  if (!plane.usesRelief()) return out;  // a normal map's balls meet the flat plane
+  // A normal map's plain balls meet the flat plane; its balls with bump maps, its relief.
+  const bool relief = plane.usesRelief();
   const Eigen::Vector2d texel = plane.mapping().texelSize(plane.map());
   for (const scene::SceneObject& o : objects) {
-    if (o.shape != scene::Shape::Sphere || o.fixed) continue;
+    if (o.shape != scene::Shape::Sphere || o.fixed || (!relief && !o.texture)) continue;
     std::string w = coarseReliefWarning(o.name, o.radius_m, texel, plane.mapping().size_m);
     if (!w.empty()) out.push_back(std::move(w));
   }

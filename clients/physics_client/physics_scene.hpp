@@ -201,9 +201,10 @@ class PhysicsScene {
   // The surface's mesh in a mesh scene; nullptr on the plane.
   const MeshGround* meshGround() const { return mesh_.get(); }
   // What the client should warn about this scene's physics: a box's normal map that leans on
-  // average (scene::buildObjectTexture: its relief cannot hold the lean); a ball with a bump map
-  // on a mesh or a normal-mapped plane, where its texture is not read; on a relief plane, every
-  // moving ball whose radius is small against the relief's texels (coarseReliefWarning).
+  // average (scene::buildObjectTexture: its relief cannot hold the lean); on a relief plane, every
+  // moving ball whose radius is small against the relief's texels (coarseReliefWarning), and on a
+  // normal-mapped plane every moving ball with a bump map (it meets the relief of the plane's
+  // normals).
   std::vector<std::string> warnings() const;
   phys::PhysicsWorld& world() { return *world_; }
 
@@ -235,6 +236,10 @@ class PhysicsScene {
   std::unique_ptr<MeshGround> mesh_;  // before world_: the world reads its mesh and texture
   std::vector<std::unique_ptr<tex::TextureMap>> object_textures_;  // before world_: textured boxes read them
   std::vector<std::string> object_texture_warnings_;               // from building them (a leaning normal map)
+  // On a normal-mapped plane with textured objects: the relief its normals integrate to, which
+  // those objects meet instead of the plane (phys::PhysicsWorld::addTexturedObjectsRelief).
+  std::optional<tex::TextureMap> plane_relief_map_;  // before world_: its relief plane reads it
+  tex::TexturedSurface plane_relief_;
   std::unique_ptr<phys::PhysicsWorld> world_;
   btRigidBody* plane_ = nullptr;
   std::vector<btRigidBody*> objects_;

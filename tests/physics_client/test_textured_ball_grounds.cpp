@@ -1,0 +1,68 @@
+// A ball's bump map shapes its contacts on every ground physics-client builds: a relief plane, a
+// mesh (on its chart), and a normal-mapped plane, which its textured objects meet as the relief the
+// plane's normals integrate to (phys::PhysicsWorld::addTexturedObjectsRelief); no warning says
+// otherwise.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "clients/physics_client/physics_scene.hpp"
+#include "scenes/scene_loader.hpp"
+#include "tests/support/process.hpp"
+
+namespace test_textured_ball_grounds {
+
+namespace {
+
+using thx::physclient::PhysicsScene;
+
+// The shipped dimpled ball scene, its grooves read as `representation`, on a bowl's mesh or not.
+PhysicsScene dimpledBall(const std::string& representation, bool bowl = false) {
+  std::string text = thx::test::slurp(std::string(THX_SOURCE_DIR) + "/scenes/dimpled_ball_grooves.yaml");
+  const std::string relief = "representation: relief", size = "  size: [0.1, 0.1]\n";
+  text.replace(text.find(relief), relief.size(), "representation: " + representation);
+  if (bowl) text.insert(text.find(size) + size.size(), "  mesh: {generator: bowl, size: 0.06, segments: 32, closed: true}\n");
+  return PhysicsScene(thx::scene::parseScene(text, "dimpled_ball_grooves.yaml", "."));
+}
+
+}  // namespace
+
+TEST(TexturedBallGrounds, ABumpMappedBallIsReadOnEveryGroundAndWarnedAboutOnNone) {
+  for (const bool bowl : {false, true})
+    for (const char* representation : {"relief", "normal"}) {
+      const std::vector<std::string> warnings = dimpledBall(representation, bowl).warnings();
+      EXPECT_TRUE(warnings.empty()) << representation << (bowl ? " bowl: " : " plane: ") << warnings.front();
+    }
+}
+
+// On the grooves given as their normals alone the dimpled ball rests down in a groove, as on their
+// relief, its contacts the surface's; a plain ball on the normal-mapped plane would rest on the
+// flat plane at its radius. (Not at the same height: the generator's normals are its grooves'
+// exact slopes, which integrate to grooves of another depth: docs/physics.md, "A normal map on a
+// box".)
+TEST(TexturedBallGrounds, OnTheGroovesNormalMapTheDimpledBallRestsInAGrooveAsOnTheirRelief) {
+  Eigen::Vector3d rest[2];
+  double speed[2] = {0.0, 0.0};
+  for (int k = 0; k < 2; ++k) {
+    PhysicsScene scene = dimpledBall(k == 0 ? "relief" : "normal");
+    bool touched_surface = false;
+    for (int step = 0; step < 600; ++step) {
+      scene.step(1e-3);
+      for (const thx::physclient::LastingContact& c : scene.takeContacts())
+        touched_surface = touched_surface || (c.body_a == 0 && c.body_b == thx::physclient::kBodySurface);
+    }
+    EXPECT_TRUE(touched_surface) << k;
+    rest[k] = scene.body(0).p_world;
+    speed[k] = scene.body(0).v_world.norm();
+  }
+  std::printf("[measured] dimpled ball at 0.6 s on the grooves' relief (%.1f, %.1f, %.2f) um at %.2f mm/s, on their "
+              "normal map (%.1f, %.1f, %.2f) um at %.2f mm/s\n",
+              rest[0].x() * 1e6, rest[0].y() * 1e6, rest[0].z() * 1e6, speed[0] * 1e3, rest[1].x() * 1e6,
+              rest[1].y() * 1e6, rest[1].z() * 1e6, speed[1] * 1e3);
+  EXPECT_LT((rest[1] - rest[0]).head<2>().norm(), 5e-6);  // over the same groove's floor
+  EXPECT_LT(rest[1].z(), 0.01 - 2e-4);                   // down in it, not on the flat plane
+  EXPECT_LT(speed[1], 1e-3);
+}
+
+}  // namespace test_textured_ball_grounds
