@@ -69,6 +69,43 @@ std::size_t selectReliefContacts(std::span<const ReliefCandidate> cand,
   return 4;
 }
 
+std::size_t selectShallowestBasins(std::span<const ReliefCandidate> cand, long long stride_i, long long stride_j,
+                                   std::array<std::size_t, kMaxReliefContacts>& chosen) {
+  if (cand.empty()) return 0;
+  long long i0 = cand[0].i, i1 = i0, j0 = cand[0].j, j1 = j0;
+  for (const ReliefCandidate& c : cand) i0 = std::min(i0, c.i), i1 = std::max(i1, c.i), j0 = std::min(j0, c.j), j1 = std::max(j1, c.j);
+  const long long ni = (i1 - i0) / stride_i + 1, nj = (j1 - j0) / stride_j + 1;
+  // The candidates on their grid (-1: none), reused between calls.
+  thread_local std::vector<int> grid;
+  grid.assign(std::size_t(ni * nj), -1);
+  auto cell = [&](long long gi, long long gj) { return std::size_t(gj * ni + gi); };
+  for (std::size_t k = 0; k < cand.size(); ++k) grid[cell((cand[k].i - i0) / stride_i, (cand[k].j - j0) / stride_j)] = int(k);
+  std::size_t count = 0;
+  // Keeps the kMaxReliefContacts deepest basins, in order (insertion into a short sorted list).
+  for (std::size_t k = 0; k < cand.size(); ++k) {
+    const long long gi = (cand[k].i - i0) / stride_i, gj = (cand[k].j - j0) / stride_j;
+    bool basin = true;
+    for (long long dj = -1; dj <= 1 && basin; ++dj)
+      for (long long di = -1; di <= 1 && basin; ++di) {
+        if ((di == 0 && dj == 0) || gi + di < 0 || gi + di >= ni || gj + dj < 0 || gj + dj >= nj) continue;
+        const int n = grid[cell(gi + di, gj + dj)];
+        // Ties go to the lower index, so a flat basin counts once.
+        if (n >= 0 && (cand[std::size_t(n)].depth < cand[k].depth ||
+                       (cand[std::size_t(n)].depth == cand[k].depth && std::size_t(n) < k)))
+          basin = false;
+      }
+    if (!basin) continue;
+    std::size_t at = count < kMaxReliefContacts ? count++ : kMaxReliefContacts;
+    if (at == kMaxReliefContacts) {
+      if (!(cand[k].depth < cand[chosen[kMaxReliefContacts - 1]].depth)) continue;
+      at = kMaxReliefContacts - 1;
+    }
+    while (at > 0 && cand[k].depth < cand[chosen[at - 1]].depth) chosen[at] = chosen[at - 1], --at;
+    chosen[at] = k;
+  }
+  return count;
+}
+
 bool nearestClaims(const Eigen::Vector2d& start, const Eigen::Vector2d& bottom, std::span<const Eigen::Vector2d> others) {
   const double own = (bottom - start).squaredNorm();
   for (const Eigen::Vector2d& o : others)

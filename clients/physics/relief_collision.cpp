@@ -206,9 +206,9 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 }
 
 // A ball with a bump map on the relief plane (textured_ball.hpp): the pair's depth rasterised
-// over the plane's texels under it, the deepest and the spread points each taken to the bottom of
-// its basin in that depth (where the two surfaces' normals agree) and located within its texel as
-// a plain ball's (refineDeepest, on the pair's depth), their normals by the pair's rule, and the
+// over the plane's texels under it, its basins closest to closing (the deepest first: each the
+// bottom of a basin in that depth, where the two surfaces' normals agree) located within their
+// texels as a plain ball's (refineDeepest, on the pair's depth), their normals by the pair's rule, and the
 // relief's own where it is much flatter than the ball there (pair_contact_normal.hpp), found
 // afresh each step as a plain ball's are.
 // On a mesh's chart (`bend` its smooth surface's, `boundary` where it stops) as on the plane.
@@ -220,20 +220,14 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   const GroundBend* bent = bend.flat() ? nullptr : &bend;
   const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &texture, bent);
   dropPastBoundary(boundary, candidates);
+  // The basins closest to closing, deepest first (selectShallowestBasins), each refined to its
+  // bottom between the texels: a bumpy ball's supports are its bump tips, and the next tip to
+  // touch must be among them before it touches.
   std::array<std::size_t, kMaxReliefContacts> picked{};
-  const std::size_t n = selectReliefContacts(candidates, picked);
-  const std::array<std::size_t, kMaxReliefContacts> spread = picked;
-  snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
+  const std::size_t n = selectShallowestBasins(candidates, raster.stride_i, raster.stride_j, picked);
   std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
   std::size_t count = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    // Two points whose walks ended in one basin: one contact.
-    if (std::find(picked.begin(), picked.begin() + std::ptrdiff_t(k), picked[k]) != picked.begin() + std::ptrdiff_t(k))
-      continue;
-    const ReliefCandidate& c = candidates[picked[k]];
-    // As a plain ball's: the deepest and every point that walked to a basin's bottom.
-    chosen[count++] = k == 0 || picked[k] != spread[k] ? refineDeepest(surface, underside, c, bent, &texture) : c;
-  }
+  for (std::size_t k = 0; k < n; ++k) chosen[count++] = refineDeepest(surface, underside, candidates[picked[k]], bent, &texture);
   const TexturedObjectSurface ball(underside, texture);
   smootherSurfaceNormals(surface, bent, ball, std::span(chosen.data(), count));
   flatterReliefNormals(surface, bent, ball, std::span(chosen.data(), count));

@@ -200,5 +200,44 @@ TEST(ContactSelection, ARodSteeperThanSixtyDegreesTakesTheGeneralRule) {
   EXPECT_EQ(selectLyingRodContacts({}, Eigen::Vector2d::Zero(), Eigen::Vector2d(0.0, 1.0), 7.5e-4, chosen), 0u);
 }
 
+// The basins closest to closing (selectShallowestBasins): on a grid of candidates whose depth has
+// five local minima (one of them a flat pair of equal texels) and a slope, the four shallowest
+// minima, the deepest first; the fifth, deeper-open one is left out, and the flat pair counts once.
+TEST(ShallowestBasins, TheFourBasinsClosestToClosingDeepestFirst) {
+  std::vector<ReliefCandidate> c;
+  // depth(i, j): a tilted floor (every texel on it has a lower neighbour) with dips carved in.
+  auto depth = [](long long i, long long j) {
+    if (i == 2 && j == 2) return -5e-6;                 // the deepest
+    if (i == 7 && j == 2) return 3e-6;                  // a tip 3 um open
+    if ((i == 2 || i == 3) && j == 7) return 1e-6;      // a flat pair, 1 um open
+    if (i == 8 && j == 8) return 8e-6;                  // 8 um open
+    if (i == 5 && j == 5) return 20e-6;                 // 20 um open: the fifth
+    return 40e-6 + 1e-6 * double(i + j);                // the floor, rising with i + j
+  };
+  for (long long j = 0; j < 10; ++j)
+    for (long long i = 0; i < 10; ++i) {
+      ReliefCandidate k = at(1e-4 * double(i), -1e-4 * double(j), depth(i, j));
+      k.i = i, k.j = j;
+      c.push_back(k);
+    }
+  std::array<std::size_t, kMaxReliefContacts> chosen{};
+  const std::size_t n = selectShallowestBasins(c, 1, 1, chosen);
+  ASSERT_EQ(n, 4u);
+  auto ij = [&](std::size_t k) { return std::make_pair(c[chosen[k]].i, c[chosen[k]].j); };
+  EXPECT_EQ(ij(0), std::make_pair(2LL, 2LL));
+  EXPECT_EQ(ij(1), std::make_pair(2LL, 7LL));  // the flat pair's first texel, once
+  EXPECT_EQ(ij(2), std::make_pair(7LL, 2LL));
+  EXPECT_EQ(ij(3), std::make_pair(8LL, 8LL));
+  // On a strided grid (every second texel) the same basins are found among the texels read.
+  std::vector<ReliefCandidate> strided;
+  for (const ReliefCandidate& k : c)
+    if (k.i % 2 == 0 && k.j % 2 == 0) strided.push_back(k);
+  const std::size_t m = selectShallowestBasins(strided, 2, 2, chosen);
+  ASSERT_GE(m, 2u);
+  EXPECT_EQ(std::make_pair(strided[chosen[0]].i, strided[chosen[0]].j), std::make_pair(2LL, 2LL));
+  EXPECT_EQ(std::make_pair(strided[chosen[1]].i, strided[chosen[1]].j), std::make_pair(8LL, 8LL));
+  EXPECT_EQ(selectShallowestBasins(std::vector<ReliefCandidate>{}, 1, 1, chosen), 0u);
+}
+
 }  // namespace
 }  // namespace thx::phys::test_contact_selection
