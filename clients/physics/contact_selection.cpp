@@ -25,6 +25,37 @@ double spreadArea(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eige
   return 0.5 * std::max(t1, std::max(t2, t3));
 }
 
+// The candidates on their grid (texels stride_i apart along i, stride_j along j): the index of
+// the candidate in each cell, -1 in a cell without one or outside the grid. Its cells are reused
+// between calls (a resting ball costs no allocation per step); one grid at a time per thread.
+class CandidateGrid {
+ public:
+  CandidateGrid(std::span<const ReliefCandidate> cand, long long stride_i, long long stride_j)
+      : stride_i_(stride_i), stride_j_(stride_j), i0_(cand[0].i), j0_(cand[0].j) {
+    long long i1 = i0_, j1 = j0_;
+    for (const ReliefCandidate& c : cand) {
+      i0_ = std::min(i0_, c.i), i1 = std::max(i1, c.i);
+      j0_ = std::min(j0_, c.j), j1 = std::max(j1, c.j);
+    }
+    ni_ = (i1 - i0_) / stride_i_ + 1, nj_ = (j1 - j0_) / stride_j_ + 1;
+    cells().assign(std::size_t(ni_ * nj_), -1);
+    for (std::size_t k = 0; k < cand.size(); ++k) cells()[cell(gi(cand[k]), gj(cand[k]))] = int(k);
+  }
+  long long gi(const ReliefCandidate& c) const { return (c.i - i0_) / stride_i_; }
+  long long gj(const ReliefCandidate& c) const { return (c.j - j0_) / stride_j_; }
+  int at(long long gi, long long gj) const {
+    return gi < 0 || gj < 0 || gi >= ni_ || gj >= nj_ ? -1 : cells()[cell(gi, gj)];
+  }
+
+ private:
+  static std::vector<int>& cells() {
+    thread_local std::vector<int> c;
+    return c;
+  }
+  std::size_t cell(long long gi, long long gj) const { return std::size_t(gj * ni_ + gi); }
+  long long stride_i_, stride_j_, i0_, j0_, ni_ = 0, nj_ = 0;
+};
+
 }  // namespace
 
 std::size_t selectReliefContacts(std::span<const ReliefCandidate> cand,
@@ -72,23 +103,16 @@ std::size_t selectReliefContacts(std::span<const ReliefCandidate> cand,
 std::size_t selectShallowestBasins(std::span<const ReliefCandidate> cand, long long stride_i, long long stride_j,
                                    std::array<std::size_t, kMaxReliefContacts>& chosen) {
   if (cand.empty()) return 0;
-  long long i0 = cand[0].i, i1 = i0, j0 = cand[0].j, j1 = j0;
-  for (const ReliefCandidate& c : cand) i0 = std::min(i0, c.i), i1 = std::max(i1, c.i), j0 = std::min(j0, c.j), j1 = std::max(j1, c.j);
-  const long long ni = (i1 - i0) / stride_i + 1, nj = (j1 - j0) / stride_j + 1;
-  // The candidates on their grid (-1: none), reused between calls.
-  thread_local std::vector<int> grid;
-  grid.assign(std::size_t(ni * nj), -1);
-  auto cell = [&](long long gi, long long gj) { return std::size_t(gj * ni + gi); };
-  for (std::size_t k = 0; k < cand.size(); ++k) grid[cell((cand[k].i - i0) / stride_i, (cand[k].j - j0) / stride_j)] = int(k);
+  const CandidateGrid grid(cand, stride_i, stride_j);
   std::size_t count = 0;
   // Keeps the kMaxReliefContacts deepest basins, in order (insertion into a short sorted list).
   for (std::size_t k = 0; k < cand.size(); ++k) {
-    const long long gi = (cand[k].i - i0) / stride_i, gj = (cand[k].j - j0) / stride_j;
+    const long long gi = grid.gi(cand[k]), gj = grid.gj(cand[k]);
     bool basin = true;
     for (long long dj = -1; dj <= 1 && basin; ++dj)
       for (long long di = -1; di <= 1 && basin; ++di) {
-        if ((di == 0 && dj == 0) || gi + di < 0 || gi + di >= ni || gj + dj < 0 || gj + dj >= nj) continue;
-        const int n = grid[cell(gi + di, gj + dj)];
+        if (di == 0 && dj == 0) continue;
+        const int n = grid.at(gi + di, gj + dj);
         // Ties go to the lower index, so a flat basin counts once.
         if (n >= 0 && (cand[std::size_t(n)].depth < cand[k].depth ||
                        (cand[std::size_t(n)].depth == cand[k].depth && std::size_t(n) < k)))
@@ -152,28 +176,16 @@ std::size_t selectLyingRodContacts(std::span<const ReliefCandidate> cand, const 
 void snapToBasins(std::span<const ReliefCandidate> cand, long long stride_i, long long stride_j,
                   std::span<std::size_t> chosen, BasinClaim claim) {
   if (cand.empty() || chosen.empty()) return;
-  long long i0 = cand[0].i, i1 = cand[0].i, j0 = cand[0].j, j1 = cand[0].j;
-  for (const ReliefCandidate& c : cand) {
-    i0 = std::min(i0, c.i), i1 = std::max(i1, c.i);
-    j0 = std::min(j0, c.j), j1 = std::max(j1, c.j);
-  }
-  const long long ni = (i1 - i0) / stride_i + 1, nj = (j1 - j0) / stride_j + 1;
-  // Reused between steps: a resting ball costs no allocation per step.
-  thread_local std::vector<int> grid;
-  grid.assign(std::size_t(ni * nj), -1);
-  auto cell = [&](long long gi, long long gj) { return std::size_t(gj * ni + gi); };
-  for (std::size_t k = 0; k < cand.size(); ++k) grid[cell((cand[k].i - i0) / stride_i, (cand[k].j - j0) / stride_j)] = int(k);
+  const CandidateGrid grid(cand, stride_i, stride_j);
   for (std::size_t c = 0; c < chosen.size(); ++c) {
     std::size_t index = chosen[c];
     // Strictly downhill, so it ends; at most one step per candidate.
     for (std::size_t guard = 0; guard < cand.size(); ++guard) {
-      const long long gi = (cand[index].i - i0) / stride_i, gj = (cand[index].j - j0) / stride_j;
+      const long long gi = grid.gi(cand[index]), gj = grid.gj(cand[index]);
       std::size_t next = index;
       for (long long dj = -1; dj <= 1; ++dj)
         for (long long di = -1; di <= 1; ++di) {
-          const long long a = gi + di, b = gj + dj;
-          if (a < 0 || b < 0 || a >= ni || b >= nj) continue;
-          const int k = grid[cell(a, b)];
+          const int k = grid.at(gi + di, gj + dj);
           if (k >= 0 && cand[std::size_t(k)].depth < cand[next].depth) next = std::size_t(k);
         }
       if (next == index) break;

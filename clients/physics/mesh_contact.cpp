@@ -188,17 +188,8 @@ void leanChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
   if (!place) return;
   const mesh::SurfaceFrame f = mesh::frameAt(mesh, place->triangle, place->barycentric, mesh::FrameMode::Interpolated);
   const Eigen::Vector3d lean = laidLean(f, metresPerUvAt(contact_mesh, place->triangle, place->barycentric), options);
-  // The point's own normal (the relief's on the chart, towards the object) is the geometry held.
-  // A point kept from the last step (a textured box's, a cylinder's on its end face) was leaned
-  // then: its own normal is that one unleaned (n = N - grad h scaled, so the lean's inverse is
-  // n + (n . N) lean, up to the clamp).
-  Eigen::Vector3d n_mesh = world_to_mesh.linear() * toEigen(point.m_normalWorldOnB) * (mesh_is_b ? 1.0 : -1.0);
-  if (point.m_contactPointFlags & kLeanedContactFlag) n_mesh = (n_mesh + n_mesh.dot(f.normal) * lean).normalized();
-  point.m_contactPointFlags |= kLeanedContactFlag;
-  // A normal tilts by the lean as by any slope: n - (n . N) lean.
-  const Eigen::Vector3d n = clampTilt((n_mesh - n_mesh.dot(f.normal) * lean).normalized(), f.normal, options.max_tilt_deg);
-  steerContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n_mesh, other,
-               options.hold_height, step);
+  leanContact(point, mesh_is_b, mesh_to_world.linear(), f.normal, lean, other, options.max_tilt_deg, options.hold_height,
+              step);
 }
 
 void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,

@@ -91,20 +91,26 @@ void applyNormalMap(btManifoldPoint& point, bool plane_is_b, const Eigen::Isomet
   steerContact(point, plane_is_b, n_world, plane_to_world.linear().col(2), other, options.hold_height, step);
 }
 
+void leanContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Matrix3d& surface_to_world,
+                 const Eigen::Vector3d& up, const Eigen::Vector3d& lean, const btCollisionObject& other,
+                 double max_tilt_deg, bool hold_height, const StepContext& step) {
+  // The point's own normal (the relief's, towards the object) is the geometry held. A point kept
+  // from the last step (a textured box's, a cylinder's on its end face) was leaned then: its own
+  // normal is that one unleaned (n = N - grad h scaled, so the lean's inverse is n + (n . N) lean,
+  // up to the clamp).
+  Eigen::Vector3d n_own = surface_to_world.transpose() * toEigen(point.m_normalWorldOnB) * (surface_is_b ? 1.0 : -1.0);
+  if (point.m_contactPointFlags & kLeanedContactFlag) n_own = (n_own + n_own.dot(up) * lean).normalized();
+  point.m_contactPointFlags |= kLeanedContactFlag;
+  const Eigen::Vector3d n = clampTilt((n_own - n_own.dot(up) * lean).normalized(), up, max_tilt_deg);
+  steerContact(point, surface_is_b, surface_to_world * n, surface_to_world * n_own, other, hold_height, step);
+}
+
 void leanReliefContact(btManifoldPoint& point, bool plane_is_b, const Eigen::Isometry3d& plane_to_world,
                        const Eigen::Vector3d& lean_local, const btCollisionObject& other, const NormalMapOptions& options,
                        const StepContext& step) {
   if (lean_local.isZero()) return;
-  const Eigen::Matrix3d& r = plane_to_world.linear();
-  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
-  // The point's own normal (the relief's, towards the object) is the geometry held. A point kept
-  // from the last step (a textured box's) was leaned then: its own normal is that one unleaned
-  // (n = N - grad h scaled, so the lean's inverse is n + (n . N) lean, up to the clamp).
-  Eigen::Vector3d n_local = r.transpose() * toEigen(point.m_normalWorldOnB) * (plane_is_b ? 1.0 : -1.0);
-  if (point.m_contactPointFlags & kLeanedContactFlag) n_local = (n_local + n_local.z() * lean_local).normalized();
-  point.m_contactPointFlags |= kLeanedContactFlag;
-  const Eigen::Vector3d n = clampTilt((n_local - n_local.z() * lean_local).normalized(), up, options.max_tilt_deg);
-  steerContact(point, plane_is_b, r * n, r * n_local, other, options.hold_height, step);
+  leanContact(point, plane_is_b, plane_to_world.linear(), Eigen::Vector3d::UnitZ(), lean_local, other,
+              options.max_tilt_deg, options.hold_height, step);
 }
 
 }  // namespace thx::phys

@@ -70,6 +70,16 @@ void applyNormalMap(btManifoldPoint& point, bool plane_is_b, const Eigen::Isomet
 // point Bullet replaces with a new one takes the new one's flags.
 inline constexpr int kLeanedContactFlag = 1 << 12;
 
+// The lean itself, shared by the plane (leanReliefContact) and a mesh's chart (mesh_contact.hpp's
+// leanChartContact): `point`'s own normal (towards the object, its surface's frame, whose normal
+// there is `up`; unleaned first if the point carries kLeanedContactFlag) tilted by `lean` (that
+// frame, tangential) as by any slope, n - (n . up) lean, clamped to max_tilt_deg from `up`, the gap
+// held along the point's own normal (steerContact). `surface_to_world` turns the frame's
+// directions into the world's.
+void leanContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Matrix3d& surface_to_world,
+                 const Eigen::Vector3d& up, const Eigen::Vector3d& lean, const btCollisionObject& other,
+                 double max_tilt_deg, bool hold_height, const StepContext& step);
+
 // Leans `point`, made on a relief plane that stands for a normal-mapped plane (the relief its
 // normals integrate to: periodic, so level; PhysicsWorld::addTexturedObjectsRelief), by the map's
 // mean slope `lean_local` ((dh/dx, dh/dy, 0) in the plane frame): its normal tilted as by any

@@ -226,12 +226,11 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   std::array<std::size_t, kMaxReliefContacts> picked{};
   const std::size_t n = selectShallowestBasins(candidates, raster.stride_i, raster.stride_j, picked);
   std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < n; ++k) chosen[count++] = refineDeepest(surface, underside, candidates[picked[k]], bent, &texture);
+  for (std::size_t k = 0; k < n; ++k) chosen[k] = refineDeepest(surface, underside, candidates[picked[k]], bent, &texture);
   const TexturedObjectSurface ball(underside, texture);
-  smootherSurfaceNormals(surface, bent, ball, std::span(chosen.data(), count));
-  flatterReliefNormals(surface, bent, ball, std::span(chosen.data(), count));
-  addReliefContacts(std::span(chosen.data(), count), underside, surface, bend, world_from_plane, false, threshold,
+  smootherSurfaceNormals(surface, bent, ball, std::span(chosen.data(), n));
+  flatterReliefNormals(surface, bent, ball, std::span(chosen.data(), n));
+  addReliefContacts(std::span(chosen.data(), n), underside, surface, bend, world_from_plane, false, threshold,
                     result, &motion, true);
 }
 

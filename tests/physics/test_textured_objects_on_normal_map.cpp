@@ -44,7 +44,7 @@ struct NormalMappedPlane {
   }
 };
 
-// Whether any manifold between `a` and `b` has ever been made (Bullet keeps a pair's manifold
+// Whether a manifold between `a` and `b` exists (Bullet keeps a pair's manifold
 // while their boxes overlap).
 bool paired(PhysicsWorld& world, const btCollisionObject* a, const btCollisionObject* b) {
   btDispatcher& dispatcher = *world.world().getDispatcher();
