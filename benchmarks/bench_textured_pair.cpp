@@ -35,10 +35,13 @@ slides it, over its weight, is bisected to 0.004 in [0, 2]: along the grooves, a
 across with the pair handed to the relief algorithm in the other order (the block added to the
 world first), a plain block across, and the grooved block across under the force applied at
 once and held for 0.3 s; then along and across with the same grooves laid on a flat slab
-mesh's top (met on its relief chart) instead of the plane. Against: friction alone along (0.3)
+mesh's top (met on its relief chart) instead of the plane, and on the faces of a fixed
+20 x 20 x 2 cm box (clients/physics/box_ground.hpp; across also with the box a 1 kg body on a
+plain plane). Against: friction alone along (0.3)
 and for the plain block;
 across, up a wall with friction, tan(26.57 + 16.70 deg) = 0.942. Then the mean wall-clock time
-of a step while pushed along, textured and plain. Each texture size N texels over 4 cm.
+of a step while pushed along, textured and plain, and textured on the fixed box. Each texture
+size N texels over 4 cm.
 
   --texels LIST   texture sizes (default 64,128,256)
   --quick         64 and 128 only
@@ -52,7 +55,8 @@ struct Row {
   double along = 0, across = 0, across_swapped = 0, plain_across = 0;  // force over weight, raised slowly
   double across_at_once = 0;                                            // applied at once
   double along_mesh = 0, across_mesh = 0;  // raised slowly, the grooves on a flat slab mesh's top
-  double us_textured = 0, us_plain = 0;                                // per step
+  double along_box = 0, across_box = 0, across_moving_box = 0;  // the grooves on a box's faces
+  double us_textured = 0, us_plain = 0, us_box = 0;                    // per step
 };
 
 double breakaway(int texels, bool textured, bool block_first, const Eigen::Vector3d& direction, double ramp_s = kRampS,
@@ -67,8 +71,8 @@ double breakaway(int texels, bool textured, bool block_first, const Eigen::Vecto
   return 0.5 * (lo + hi);
 }
 
-double microsPerStep(int texels, bool textured) {
-  Scene s(textured, false, texels);
+double microsPerStep(int texels, bool textured, BlockGround ground = BlockGround::Plane) {
+  Scene s(textured, false, texels, {}, ground);
   const auto t0 = std::chrono::steady_clock::now();
   s.push({0.0, 0.5, 0.0}, kPushS);
   const auto t1 = std::chrono::steady_clock::now();
@@ -105,19 +109,25 @@ int run(int argc, char** argv) {
     r.across_at_once = breakaway(n, true, false, x, 0.0);
     r.along_mesh = breakaway(n, true, false, y, kRampS, BlockGround::SlabMesh);
     r.across_mesh = breakaway(n, true, false, x, kRampS, BlockGround::SlabMesh);
+    r.along_box = breakaway(n, true, false, y, kRampS, BlockGround::FixedBox);
+    r.across_box = breakaway(n, true, false, x, kRampS, BlockGround::FixedBox);
+    r.across_moving_box = breakaway(n, true, false, x, kRampS, BlockGround::MovingBox);
     r.us_textured = microsPerStep(n, true);
     r.us_plain = microsPerStep(n, false);
+    r.us_box = microsPerStep(n, true, BlockGround::FixedBox);
     rows.push_back(r);
   }
   const std::string stamp = bench::fmt("%s, %s build, %s", bench::isoNow().c_str(), bench::buildType(),
                                        bench::machineSummary().c_str());
   if (!csv.empty()) {
     std::string c = "texels,texel_mm,along,across,across_other_order,plain_across,across_at_once,along_slab_mesh,"
-                    "across_slab_mesh,expected_along,expected_across,us_per_step_textured,us_per_step_plain\n";
+                    "across_slab_mesh,along_box,across_box,across_moving_box,expected_along,expected_across,us_per_step_textured,"
+                    "us_per_step_plain,us_per_step_on_box\n";
     for (const Row& r : rows)
-      c += bench::fmt("%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f,%.2f\n", r.texels, 1e3 * kExtent / r.texels, r.along,
-                      r.across, r.across_swapped, r.plain_across, r.across_at_once, r.along_mesh, r.across_mesh, alongForce(),
-                      acrossForce(), r.us_textured, r.us_plain);
+      c += bench::fmt("%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f,%.2f,%.2f\n", r.texels,
+                      1e3 * kExtent / r.texels, r.along, r.across, r.across_swapped, r.plain_across, r.across_at_once,
+                      r.along_mesh, r.across_mesh, r.along_box, r.across_box, r.across_moving_box, alongForce(),
+                      acrossForce(), r.us_textured, r.us_plain, r.us_box);
     bench::writeTextFile(csv, c);
   }
   if (!json.empty()) {
@@ -127,9 +137,12 @@ int run(int argc, char** argv) {
       const Row& r = rows[k];
       j += bench::fmt("%s{\"texels\": %d, \"along\": %.6f, \"across\": %.6f, \"across_other_order\": %.6f, "
                       "\"plain_across\": %.6f, \"across_at_once\": %.6f, \"along_slab_mesh\": %.6f, "
-                      "\"across_slab_mesh\": %.6f, \"us_per_step_textured\": %.3f, \"us_per_step_plain\": %.3f}",
+                      "\"across_slab_mesh\": %.6f, \"along_box\": %.6f, \"across_box\": %.6f, "
+                      "\"across_moving_box\": %.6f, \"us_per_step_textured\": %.3f, \"us_per_step_plain\": %.3f, "
+                      "\"us_per_step_on_box\": %.3f}",
                       k ? ", " : "", r.texels, r.along, r.across, r.across_swapped, r.plain_across, r.across_at_once,
-                      r.along_mesh, r.across_mesh, r.us_textured, r.us_plain);
+                      r.along_mesh, r.across_mesh, r.along_box, r.across_box, r.across_moving_box, r.us_textured,
+                      r.us_plain, r.us_box);
     }
     bench::writeTextFile(json, j + "]}\n");
   }
@@ -138,22 +151,29 @@ int run(int argc, char** argv) {
                     ". The force that starts the block sliding, over its weight (bisected to 0.004), raised over 0.5 s and held 0.3 s; "
                     "the last force column applied at once and held 0.3 s; expected " +
                     bench::fmt("%.3f along and %.3f across", alongForce(), acrossForce()) +
-                    "; on a slab mesh: the same grooves laid on a flat mesh's top, met on its relief chart, raised slowly. "
-                    "Time per step: the whole world's step while pushed along (on the plane).\n\n"
+                    "; on a slab mesh: the same grooves laid on a flat mesh's top, met on its relief chart, raised slowly; "
+                    "on a box: the same grooves on the faces of a fixed 20 x 20 x 2 cm box (moving: a 1 kg body on a plain "
+                    "plane), raised slowly. "
+                    "Time per step: the whole world's step while pushed along (on the plane, and on the fixed box).\n\n"
                     "| texels (texel) | along | across | across, other order | plain block across | across, at once | "
-                    "along, slab mesh | across, slab mesh | step, textured | step, plain |\n"
-                    "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+                    "along, slab mesh | across, slab mesh | along, box | across, box | across, moving box | "
+                    "step, textured | step, plain | step, on a box |\n"
+                    "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const Row& r : rows)
-      t += bench::fmt("| %d (%.3f mm) | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f µs | %.0f µs |\n", r.texels,
-                      1e3 * kExtent / r.texels, r.along, r.across, r.across_swapped, r.plain_across, r.across_at_once,
-                      r.along_mesh, r.across_mesh, r.us_textured, r.us_plain);
+      t += bench::fmt("| %d (%.3f mm) | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f µs | "
+                      "%.0f µs | %.0f µs |\n",
+                      r.texels, 1e3 * kExtent / r.texels, r.along, r.across, r.across_swapped, r.plain_across,
+                      r.across_at_once, r.along_mesh, r.across_mesh, r.along_box, r.across_box, r.across_moving_box,
+                      r.us_textured, r.us_plain, r.us_box);
     bench::writeTextFile(md, t);
   }
   for (const Row& r : rows)
     std::printf("%4d texels: along %.3f, across %.3f (other order %.3f), plain across %.3f, across at once %.3f; "
-                "on a slab mesh along %.3f, across %.3f; expected %.3f / %.3f; %.0f / %.0f us per step\n",
+                "on a slab mesh along %.3f, across %.3f; on a box along %.3f, across %.3f (moving box %.3f); "
+                "expected %.3f / %.3f; %.0f / %.0f / %.0f us per step\n",
                 r.texels, r.along, r.across, r.across_swapped, r.plain_across, r.across_at_once, r.along_mesh, r.across_mesh,
-                alongForce(), acrossForce(), r.us_textured, r.us_plain);
+                r.along_box, r.across_box, r.across_moving_box, alongForce(), acrossForce(), r.us_textured, r.us_plain,
+                r.us_box);
   return 0;
 }
 

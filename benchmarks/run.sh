@@ -55,8 +55,9 @@
 #              leaning); about 20 s; its table goes to docs/physics.md)
 #              or textured_pair (issue 29: a grooved block on a grooved plane, the force that starts
 #              it sliding along and across the grooves (raised slowly; across also at once) in both
-#              orders of the pair and beside a plain block, along and across on a slab mesh, and
-#              the cost of a step, at 64, 128 and 256 texels; about 3 min; its table goes to
+#              orders of the pair and beside a plain block, along and across on a slab mesh and on
+#              a grooved box (fixed, and across on a moving one), and the cost of a step, at 64,
+#              128 and 256 texels; about 5 min; its table goes to
 #              docs/physics.md)
 #              or textured_ball (issue 29: a ball with a bump map on relief planes of 128, 256 and
 #              512 texels: rolling on its recessed radius, at rest on a flat and a bumpy relief, the
@@ -380,7 +381,7 @@ run_physics_mesh() {
 
 run_textured_pair() {
   need "$BIN/bench_textured_pair" || return 1
-  say "part textured_pair: a grooved block on a grooved plane and slab mesh, the force to slide it each way (about 3 min)"
+  say "part textured_pair: a grooved block on a grooved plane, slab mesh and box, the force to slide it each way (about 5 min)"
   bench_with_table bench_textured_pair "$ROOT/docs/physics.md"
 }
 

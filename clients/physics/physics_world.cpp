@@ -64,6 +64,9 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   registerReliefCollision(*dispatcher_);
   // Convex pairs without an exact Bullet algorithm: GJK/EPA at metre scale (scaled_convex_collision.hpp).
   if (options.scaled_convex_pairs) registerScaledConvexCollision(*dispatcher_);
+  // A textured object against a box, or any object against a textured box: the box met as a mesh
+  // of its faces by the texture rules (box_ground.hpp); every other pair as registered above.
+  box_ground_funcs_ = registerBoxGroundCollision(*dispatcher_, *configuration_, options.scaled_convex_pairs);
   broadphase_ = std::make_unique<btDbvtBroadphase>();
   // Bullet's solver, except that friction never outlives its contact's normal impulse
   // (contact_solver.hpp: a box on a normal map slid 12 % slow without this).
@@ -103,12 +106,6 @@ btRigidBody& PhysicsWorld::addBody(std::unique_ptr<btCollisionShape> shape, doub
   return *bodies_.back();
 }
 
-struct PhysicsWorld::TriangleArrays {
-  std::vector<int> indices;
-  std::vector<btScalar> vertices;
-  std::unique_ptr<btTriangleIndexVertexArray> array;
-};
-
 btRigidBody& PhysicsWorld::addTexturedMesh(const mesh::TexturedMesh& mesh, const Eigen::Isometry3d& pose,
                                            const BodyMaterial& material, const MeshContactOptions& options) {
   if (mesh.triangles.empty() || !mesh.hasFrames())
@@ -116,16 +113,7 @@ btRigidBody& PhysicsWorld::addTexturedMesh(const mesh::TexturedMesh& mesh, const
   if (mesh.triangles.size() > std::size_t(std::numeric_limits<int>::max() / 3) ||
       mesh.positions.size() > std::size_t(std::numeric_limits<int>::max()))
     throw thx::Error(thx::Error::Kind::Config, "mesh " + mesh.source + ": too many triangles for Bullet's int indices");
-  auto arrays = std::make_unique<TriangleArrays>();
-  arrays->indices.reserve(3 * mesh.triangles.size());
-  for (const mesh::Triangle& t : mesh.triangles)
-    for (std::uint32_t v : t) arrays->indices.push_back(int(v));
-  arrays->vertices.reserve(3 * mesh.positions.size());
-  for (const Eigen::Vector3d& p : mesh.positions)
-    for (int k = 0; k < 3; ++k) arrays->vertices.push_back(narrow(p[k]));
-  arrays->array = std::make_unique<btTriangleIndexVertexArray>(
-      int(mesh.triangles.size()), arrays->indices.data(), int(3 * sizeof(int)), int(mesh.positions.size()),
-      arrays->vertices.data(), int(3 * sizeof(btScalar)));
+  std::unique_ptr<BulletTriangles> arrays = bulletTriangles(mesh);
   auto shape = std::make_unique<btBvhTriangleMeshShape>(arrays->array.get(), true);
   triangle_arrays_.push_back(std::move(arrays));
   const bool relief_map = options.texture && options.texture->isRelief();

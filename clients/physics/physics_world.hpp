@@ -16,6 +16,8 @@
 #include <memory>
 #include <vector>
 
+#include "clients/physics/box_ground.hpp"
+#include "clients/physics/bullet_triangles.hpp"
 #include "clients/physics/mesh_relief_chart.hpp"
 #include "clients/physics/normal_map_contact.hpp"
 #include "clients/physics/textured_ball.hpp"
@@ -102,13 +104,15 @@ class PhysicsWorld {
   btRigidBody& addBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
                       const BodyMaterial& material);
   // A box whose faces carry a relief map (textured_box.hpp; the map must outlive this world): on a
-  // relief plane (and the relief standing for a normal-mapped plane: addTexturedObjectsRelief) and
-  // on a mesh's chart both textures shape the contact; elsewhere it collides as the plain box.
+  // relief plane (and the relief standing for a normal-mapped plane: addTexturedObjectsRelief), on
+  // a mesh's chart and against another box or a ball (box_ground.hpp) both textures shape the
+  // contact; elsewhere it collides as the plain box.
   btRigidBody& addTexturedBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
                               const BodyMaterial& material, const FaceTexture& texture);
   // A ball with a bump map (textured_ball.hpp; the map must outlive this world): on a relief plane
-  // (and the relief standing for a normal-mapped plane: addTexturedObjectsRelief) and on a mesh's
-  // chart both textures shape the contact; elsewhere it collides as the plain ball.
+  // (and the relief standing for a normal-mapped plane: addTexturedObjectsRelief), on a mesh's
+  // chart and against a box (box_ground.hpp) both textures shape the contact; elsewhere it
+  // collides as the plain ball.
   btRigidBody& addTexturedSphere(double radius_m, double mass_kg, const Eigen::Isometry3d& pose,
                                  const BodyMaterial& material, const FaceTexture& texture);
   btRigidBody& addCapsule(double radius_m, double half_length_m, double mass_kg, const Eigen::Isometry3d& pose,
@@ -129,13 +133,13 @@ class PhysicsWorld {
   WorldOptions options_;
   std::unique_ptr<TexturedObjectsFilter> textured_objects_filter_;  // declared before the world that reads it
   std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
+  std::unique_ptr<BoxGroundRegistration> box_ground_funcs_;  // the dispatcher points at them
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btDbvtBroadphase> broadphase_;
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
   std::unique_ptr<TexturedWorld> world_;
-  struct TriangleArrays;  // a mesh's vertices and indices as Bullet reads them (declared before
-                          // shapes_: the shapes that read them go first)
-  std::vector<std::unique_ptr<TriangleArrays>> triangle_arrays_;
+  // The meshes' triangles (declared before shapes_: the shapes that read them go first).
+  std::vector<std::unique_ptr<BulletTriangles>> triangle_arrays_;
   std::vector<std::unique_ptr<FaceTexture>> face_textures_;  // the textured boxes' and balls' (their shapes point here)
   std::vector<std::unique_ptr<MeshRelief>> mesh_reliefs_;    // the relief meshes' (their shapes point here)
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;

@@ -131,6 +131,16 @@ BodyMotion motionOf(const btCollisionObject& object) {
   return motion;
 }
 
+// The object's motion as seen from the ground it meets (which moves where it is a box,
+// box_ground.hpp): the velocity of each of its points less the ground's at the same place.
+BodyMotion motionAgainst(const btCollisionObject& object, const btCollisionObject& ground) {
+  BodyMotion motion = motionOf(object);
+  const BodyMotion g = motionOf(ground);
+  motion.linear -= g.linear + g.angular.cross(motion.centre - g.centre);
+  motion.angular -= g.angular;
+  return motion;
+}
+
 // Adds the chosen contacts (deepest first) to the result's manifold (relief_collision.hpp's
 // convention). `object_relief`: a ball with a bump map, whose point of contact is on its recessed
 // surface above the texel (where the pair's depth was measured), not where its smooth sphere
@@ -354,7 +364,8 @@ void ReliefCollisionAlgorithm::chartManifolds(btManifoldArray& manifolds) {
 
 ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWrapper& object,
                                                        const btCollisionObjectWrapper& mesh, const MeshRelief& relief,
-                                                       const FaceTexture* faces, const MeshChart& chart, int slot,
+                                                       const btConcaveShape& triangles_shape, const FaceTexture* faces,
+                                                       const MeshChart& chart, int slot,
                                                        const Eigen::AlignedBox3d& reach, double threshold,
                                                        btManifoldResult* result) {
   const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
@@ -367,7 +378,7 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
   const Eigen::Vector3d foot_middle =
       (triangles.positions[foot[0]] + triangles.positions[foot[1]] + triangles.positions[foot[2]]) / 3.0;
   const ChartBoundary boundary =
-      chartBoundary(static_cast<const btConcaveShape&>(*mesh.getCollisionShape()), triangles, mesh_from_chart,
+      chartBoundary(triangles_shape, triangles, mesh_from_chart,
                     (mesh_from_chart.inverse() * foot_middle).head<2>(), reach,
                     world_from_mesh.inverse() * world_from_object.translation(), chart.side);
   const std::optional<Underside> underside =
@@ -379,7 +390,7 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
     result->setPersistentManifold(manifold);
     manifold->clearManifold();
     texturedBallCollision(chart.surface, chart.bend, &boundary, *underside, *ball, threshold, world_from_chart,
-                          motionOf(*object.getCollisionObject()), result);
+                          motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()), result);
   } else if (faces) {
     texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, *faces, &boundary, threshold,
                          world_from_chart, slot, result);
@@ -390,7 +401,8 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
     const bool on_end_face = standsOnEndFace(*underside);
     if (!on_end_face) manifold->clearManifold();
     plainObjectCollision(chart.surface, chart.bend, *underside, on_end_face, nullptr, &boundary, threshold,
-                         world_from_chart, motionOf(*object.getCollisionObject()), result);
+                         world_from_chart, motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()),
+                         result);
   }
   // Each point names the triangle under it on the mesh's side, as Bullet's own points do (the
   // physics client reads a contact's texel through it).
@@ -408,8 +420,8 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
 }
 
 void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                                             const MeshRelief& relief, const FaceTexture* faces,
-                                             btManifoldResult* result) {
+                                             const MeshRelief& relief, const btConcaveShape& triangles,
+                                             const FaceTexture* faces, btManifoldResult* result) {
   btPersistentManifold* manifold = manifoldFor(object.getCollisionObject(), mesh.getCollisionObject());
   result->setPersistentManifold(manifold);
   const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
@@ -428,7 +440,8 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
     shape.getAabb(toBt(mesh_from_object), aabb_min, aabb_max);
     const Eigen::Vector3d margin = Eigen::Vector3d::Constant(threshold);
     const Eigen::AlignedBox3d reach(toEigen(aabb_min) - margin, toEigen(aabb_max) + margin);
-    const ChartBoundary boundary = chartCollision(object, mesh, relief, faces, chart, kUnder, reach, threshold, result);
+    const ChartBoundary boundary =
+        chartCollision(object, mesh, relief, triangles, faces, chart, kUnder, reach, threshold, result);
     // Each surface across a crease within reach, on a chart of its own at its point nearest the
     // object's centre, cut at its own creases (the chart under the object's surface among them).
     for (std::size_t k = 0; k < boundary.surface_count; ++k) {
@@ -439,7 +452,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
       if (slot == kUnder) continue;
       held |= 1u << std::size_t(slot);
       if (!relief.map) laySmoothChart(across, shape, mesh_from_object, relief.grid_intervals, texture);
-      chartCollision(object, mesh, relief, faces, across, slot, reach, threshold, result);
+      chartCollision(object, mesh, relief, triangles, faces, across, slot, reach, threshold, result);
     }
   } else {
     // Behind the winding: nothing textured to meet (mesh_relief_chart.hpp).
@@ -462,8 +475,19 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
                                                 btManifoldResult* result) {
   const btCollisionObjectWrapper* object = swapped_ ? body1 : body0;
   const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
-  if (const MeshRelief* mesh = meshReliefOf(*relief->getCollisionShape())) {
-    meshCollision(*object, *relief, *mesh, faceTextureOf(*object->getCollisionShape()), result);
+  const btCollisionShape& ground = *relief->getCollisionShape();
+  if (const MeshRelief* mesh = meshReliefOf(ground)) {
+    meshCollision(*object, *relief, *mesh, static_cast<const btConcaveShape&>(ground),
+                  faceTextureOf(*object->getCollisionShape()), result);
+    return;
+  }
+  if (ground.getShapeType() == BOX_SHAPE_PROXYTYPE) {
+    // A box as a mesh of its faces (box_ground.hpp).
+    if (!box_ground_)
+      box_ground_ = std::make_unique<BoxGround>(
+          toEigen(static_cast<const btBoxShape&>(ground).getHalfExtentsWithMargin()), faceTextureOf(ground));
+    meshCollision(*object, *relief, box_ground_->relief(), box_ground_->triangles(),
+                  faceTextureOf(*object->getCollisionShape()), result);
     return;
   }
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());

@@ -19,6 +19,8 @@
 // a chart of its own, cut at its creases in turn, in manifolds of its own (chart_boundary.hpp). A
 // ball with a bump map does the same, by its own rule (texturedBallCollision); a plain sphere on
 // such a mesh stays with Bullet's sphere-triangle points, lifted onto the relief (mesh_contact.hpp).
+// A box that a textured object meets, or a textured box that a ball or smaller box meets
+// (box_ground.hpp), is met as a mesh of its faces: the mesh rules, the box's moving frame.
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher
 // hands the pair in): normal = relief normal in world frame, pointing from the relief to the
@@ -32,6 +34,7 @@
 #include <memory>
 #include <optional>
 
+#include "clients/physics/box_ground.hpp"
 #include "clients/physics/chart_boundary.hpp"
 #include "clients/physics/ground_bend.hpp"
 #include "clients/physics/manifold_algorithm.hpp"
@@ -91,12 +94,15 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   // An object against a mesh with a chart (mesh_relief_chart.hpp: a relief's or a smooth one): the
   // same rule as on the plane (a textured box's, `faces`, or the untextured one's) on the mesh's
   // chart under it, and on the chart of each surface across a crease within its reach.
+  // `triangles`: the mesh's faces as Bullet's, where the chart's boundary is looked for.
   void meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                     const MeshRelief& relief, const FaceTexture* faces, btManifoldResult* result);
+                     const MeshRelief& relief, const btConcaveShape& triangles, const FaceTexture* faces,
+                     btManifoldResult* result);
   // The rule on one chart, into that chart's manifolds; each point names the triangle under it.
   // Returns the chart's boundary.
   ChartBoundary chartCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
-                               const MeshRelief& relief, const FaceTexture* faces, const MeshChart& chart, int slot,
+                               const MeshRelief& relief, const btConcaveShape& triangles, const FaceTexture* faces,
+                               const MeshChart& chart, int slot,
                                const Eigen::AlignedBox3d& reach, double threshold, btManifoldResult* result);
   // The slot of the surface across a crease whose face normal is `normal` (mesh frame): the one
   // that held it last step, else a free one, emptied; kUnder when none is free.
@@ -122,6 +128,8 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   std::uint32_t foot_triangle_ = 0xffffffffu;  // on a mesh: the triangle under the box last step
   btPersistentManifold* groups_[kNormalGroups - 1] = {};
   std::unique_ptr<SurfaceSlots> surfaces_;
+  // Against a box (box_ground.hpp): the box as a mesh of its faces, made on first need.
+  std::unique_ptr<BoxGround> box_ground_;
 };
 
 // The shapes the relief algorithm understands, seen from the plane; nullopt for any other shape.

@@ -14,8 +14,9 @@
 // On a normal-mapped plane it meets the relief the plane's normals integrate to, where a plain ball
 // meets the plane (PhysicsWorld::addTexturedObjectsRelief).
 //
-// What a textured ball does not do yet: on a plain plane and against another object it collides
-// as the coarse ball, its texture unread.
+// Against a box it meets the box's faces as a mesh's (box_ground.hpp: a plain box's smooth chart,
+// a textured box's relief). What a textured ball does not do yet: on a plain plane and against a
+// ball, capsule or cylinder it collides as the coarse ball, its texture unread.
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>

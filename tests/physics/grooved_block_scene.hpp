@@ -74,8 +74,13 @@ inline Eigen::Vector3d addGroovedGround(PhysicsWorld& world, const mesh::Generat
 }
 
 // What the block stands on: the relief plane, or the grooves laid on a flat slab mesh's top
-// (groovedGround(false): met on the mesh's relief chart, mesh_relief_chart.hpp).
-enum class BlockGround { Plane, SlabMesh };
+// (groovedGround(false): met on the mesh's relief chart, mesh_relief_chart.hpp), or on the faces
+// of a textured box of the slab's size (box_ground.hpp): fixed, fixed and turned over (its -z face
+// up, where the face's frame is mirrored), or a 1 kg body resting on a plain plane; or a plain
+// fixed box of that size.
+enum class BlockGround { Plane, SlabMesh, FixedBox, TurnedBox, MovingBox, PlainBox };
+inline const Eigen::Vector3d kSlabHalf(0.1, 0.1, 0.01);
+inline constexpr double kSlabMass = 1.0;
 
 struct Scene {
   SurfaceHolder plane;
@@ -83,6 +88,7 @@ struct Scene {
   std::unique_ptr<mesh::GeneratedMesh> slab;  // with BlockGround::SlabMesh
   std::unique_ptr<PhysicsWorld> world;
   btRigidBody* block = nullptr;
+  btRigidBody* slab_box = nullptr;  // with BlockGround::FixedBox or MovingBox
 
   // The block's ridges over the plane's floors (x = P/2), a little above where they fit; both
   // textures `texels` on a side over 4 cm. block_first: the block is added to the world first, so
@@ -105,6 +111,19 @@ struct Scene {
     if (ground == BlockGround::SlabMesh) {
       slab = std::make_unique<mesh::GeneratedMesh>(groovedGround(false));
       addGroovedGround(*world, *slab, false, plane.surface.map());
+    } else if (ground == BlockGround::PlainBox) {
+      slab_box = &world->addBox(kSlabHalf, 0.0, at(0.0, 0.0, -kSlabHalf.z()), plane_material);
+    } else if (ground == BlockGround::FixedBox || ground == BlockGround::TurnedBox || ground == BlockGround::MovingBox) {
+      // Its top face at z = 0, the grooves' ridges at x = k P as on the plane (u = x / tile; turned
+      // over about x, the -z face's u still runs along x).
+      FaceTexture slab_faces;
+      slab_faces.map = &plane.surface.map();
+      slab_faces.tile_m = kExtent;
+      const bool moving = ground == BlockGround::MovingBox;
+      if (moving) world->addPlainPlane(at(0.0, 0.0, -2.0 * kSlabHalf.z()), plane_material);
+      Eigen::Isometry3d slab_pose = at(0.0, 0.0, -kSlabHalf.z());
+      if (ground == BlockGround::TurnedBox) slab_pose.linear() = Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
+      slab_box = &world->addTexturedBox(kSlabHalf, moving ? kSlabMass : 0.0, slab_pose, plane_material, slab_faces);
     } else {
       world->addReliefPlane(plane.surface, plane_material);
     }

@@ -1,0 +1,82 @@
+#include "clients/physics/box_ground.hpp"
+
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+
+#include "clients/physics/relief_collision.hpp"
+#include "clients/physics/scaled_convex_collision.hpp"
+#include "clients/physics/textured_ball.hpp"
+#include "meshes/textured_box_mesh.hpp"
+
+namespace thx::phys {
+
+BoxGround::BoxGround(const Eigen::Vector3d& half_extents_m, const FaceTexture* texture)
+    // A plain box's uv is never read (its chart is the smooth one): any tile will do.
+    : mesh_(mesh::texturedBoxMesh(2.0 * half_extents_m, texture ? texture->tile_m : 2.0 * half_extents_m.maxCoeff())) {
+  relief_ = std::make_unique<MeshRelief>(mesh_);
+  if (texture) {
+    relief_->map = texture->map;
+    relief_->sampling = texture->sampling;
+    // The face's relief is laid at the scale it was made for: one tile across tile_m.
+    relief_->normals_made_for_m = Eigen::Vector2d::Constant(texture->tile_m);
+  }
+  triangles_ = bulletTriangles(mesh_);
+  shape_ = std::make_unique<btBvhTriangleMeshShape>(triangles_->array.get(), true);
+}
+
+namespace {
+
+bool isBox(const btCollisionShape& s) { return s.getShapeType() == BOX_SHAPE_PROXYTYPE; }
+
+double boxVolume(const btCollisionShape& s) {
+  const btVector3 h = static_cast<const btBoxShape&>(s).getHalfExtentsWithMargin();
+  return double(h.x()) * double(h.y()) * double(h.z());
+}
+
+bool textured(const btCollisionShape& s) { return faceTextureOf(s) != nullptr || ballTextureOf(s) != nullptr; }
+
+}  // namespace
+
+PairGround texturedPairGround(const btCollisionShape& first, const btCollisionShape& second) {
+  if (!textured(first) && !textured(second)) return PairGround::None;
+  const auto ball = [](const btCollisionShape& s) { return s.getShapeType() == SPHERE_SHAPE_PROXYTYPE; };
+  if (isBox(first) && isBox(second)) return boxVolume(first) > boxVolume(second) ? PairGround::First : PairGround::Second;
+  if (isBox(first) && ball(second)) return PairGround::First;
+  if (ball(first) && isBox(second)) return PairGround::Second;
+  return PairGround::None;
+}
+
+btCollisionAlgorithm* BoxGroundCreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                                    const btCollisionObjectWrapper* body0,
+                                                                    const btCollisionObjectWrapper* body1) {
+  switch (texturedPairGround(*body0->getCollisionShape(), *body1->getCollisionShape())) {
+    case PairGround::First:  // body0 is the ground: the relief algorithm's "swapped" order
+      return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, true);
+    case PairGround::Second:
+      return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, false);
+    case PairGround::None:
+      break;
+  }
+  return otherwise->CreateCollisionAlgorithm(ci, body0, body1);
+}
+
+std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDispatcher& dispatcher,
+                                                                  btCollisionConfiguration& configuration,
+                                                                  bool scaled_convex) {
+  auto registration = std::make_unique<BoxGroundRegistration>();
+  registration->scaled_convex = std::make_unique<ScaledConvexAlgorithm::CreateFunc>();
+  const int types[] = {SPHERE_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE};
+  for (int other : types) {
+    for (const bool box_first : {true, false}) {
+      if (other == BOX_SHAPE_PROXYTYPE && !box_first) continue;
+      const int t0 = box_first ? BOX_SHAPE_PROXYTYPE : other, t1 = box_first ? other : BOX_SHAPE_PROXYTYPE;
+      btCollisionAlgorithmCreateFunc* otherwise = scaled_convex && usesScaledConvex(t0, t1)
+                                                      ? registration->scaled_convex.get()
+                                                      : configuration.getCollisionAlgorithmCreateFunc(t0, t1);
+      registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise));
+      dispatcher.registerCollisionCreateFunc(t0, t1, registration->funcs.back().get());
+    }
+  }
+  return registration;
+}
+
+}  // namespace thx::phys

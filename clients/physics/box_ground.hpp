@@ -1,0 +1,86 @@
+#pragma once
+// A box that another object meets by the texture rules (issue 29, "a textured object against
+// another object"): the box seen as a mesh of its own six faces (meshes/textured_box_mesh.hpp, the
+// layout its face texture is read in), met on the chart under the object as a relief mesh is
+// (mesh_relief_chart.hpp, relief_collision.hpp): the box's own relief laid on its face, or, for a
+// plain box, the smooth chart (its flat face, sampled over the object); each of its faces across
+// an edge within the object's reach on a chart of its own (chart_boundary.hpp). So a grooved block
+// on a grooved box sits in its grooves as on a grooved plane (both textures shape the contact,
+// Otaduy's directional depth), a grooved block slides on a plain box as on a flat plane, a ball
+// with a bump map rests on a plain box as on a flat relief, and a plain ball on a textured box
+// meets its relief. The box moves: the chart is laid in its frame
+// each step, and the object's motion relative to it decides which of a ball's further points
+// Bullet may take.
+//
+// Which body is the ground (texturedPairGround): a box under a ball, when either carries a
+// texture; of two boxes, one of them textured, the larger (by volume; the second on a tie). Pairs
+// without a texture keep their algorithms (Bullet's box-box, the scaled GJK of
+// scaled_convex_collision.hpp). Not covered, colliding as the coarse shapes: a ball with a bump
+// map against a ball, capsule or cylinder (no box to stand on), and a capsule or cylinder against
+// a textured box. The rod rules are made for a rod lying on, or standing on, the ground under it;
+// measured on 2026-12-04, the pen's upright capsule pushing the grooved block in the bowl met the
+// block's top face at its edge, where a groove wall's tilted normal made the capsule's far side
+// the contact point, 1.75 mm deep where the raster read 0.23 mm, and the block was thrown at
+// 0.22 m/s.
+#include <BulletCollision/CollisionDispatch/btCollisionConfiguration.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "clients/physics/bullet_triangles.hpp"
+#include "clients/physics/mesh_relief_chart.hpp"
+#include "clients/physics/textured_box.hpp"
+#include "meshes/textured_mesh.hpp"
+
+namespace thx::phys {
+
+class BoxGround {
+ public:
+  // `half_extents_m`: the whole box's (with Bullet's margin); `texture` (nullptr: a plain box)
+  // must outlive this.
+  BoxGround(const Eigen::Vector3d& half_extents_m, const FaceTexture* texture);
+  BoxGround(const BoxGround&) = delete;
+  BoxGround& operator=(const BoxGround&) = delete;
+
+  const MeshRelief& relief() const { return *relief_; }
+  // The faces as Bullet's triangles, for the chart's boundary (chart_boundary.hpp); never in a world.
+  const btConcaveShape& triangles() const { return *shape_; }
+
+ private:
+  mesh::TexturedMesh mesh_;
+  std::unique_ptr<MeshRelief> relief_;  // reads mesh_
+  std::unique_ptr<BulletTriangles> triangles_;
+  std::unique_ptr<btBvhTriangleMeshShape> shape_;  // reads triangles_
+};
+
+// Which of a pair's shapes the texture rules take as the ground (above).
+enum class PairGround { None, First, Second };
+PairGround texturedPairGround(const btCollisionShape& first, const btCollisionShape& second);
+
+// The create function for a pair of box against sphere, box, capsule or cylinder: the relief
+// algorithm (relief_collision.hpp) for the pairs texturedPairGround takes, `otherwise` for the rest.
+struct BoxGroundCreateFunc : btCollisionAlgorithmCreateFunc {
+  explicit BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func) : otherwise(otherwise_func) {}
+  btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                 const btCollisionObjectWrapper* body0,
+                                                 const btCollisionObjectWrapper* body1) override;
+  btCollisionAlgorithmCreateFunc* otherwise;
+};
+
+// The create functions of one dispatcher (they point at its configuration's); must outlive its use.
+struct BoxGroundRegistration {
+  std::vector<std::unique_ptr<BoxGroundCreateFunc>> funcs;
+  std::unique_ptr<btCollisionAlgorithmCreateFunc> scaled_convex;
+};
+
+// Registers BoxGroundCreateFunc for box against sphere, box, capsule and cylinder, in both orders,
+// each falling back on what the pair had: the scaled GJK where `scaled_convex` and
+// usesScaledConvex say so (scaled_convex_collision.hpp), else the configuration's own.
+std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDispatcher& dispatcher,
+                                                                  btCollisionConfiguration& configuration,
+                                                                  bool scaled_convex);
+
+}  // namespace thx::phys

@@ -1,0 +1,203 @@
+// A textured object against another object (issue 29; clients/physics/box_ground.hpp): a box met
+// as a mesh of its faces, so that both textures shape the contact as on a textured plane. The
+// grooved block of test_textured_box.cpp on a box whose faces carry the same grooves (fixed,
+// turned over, or itself a body resting on a plane) and on a plain box; a ball with a bump map on a
+// plain box; a plain ball on the grooved box.
+#include <gtest/gtest.h>
+
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "clients/physics/box_ground.hpp"
+#include "tests/physics/grooved_block_scene.hpp"
+#include "tests/physics/textured_ball_scene.hpp"
+
+namespace thx::phys::test::test_textured_pairs {
+namespace {
+
+namespace gb = grooved_block;
+namespace tb = textured_ball;
+
+constexpr gb::BlockGround kBoxGrounds[] = {gb::BlockGround::FixedBox, gb::BlockGround::TurnedBox,
+                                           gb::BlockGround::MovingBox};
+
+const char* nameOf(gb::BlockGround g) {
+  return g == gb::BlockGround::FixedBox ? "fixed box" : g == gb::BlockGround::TurnedBox ? "turned box" : "moving box";
+}
+
+TEST(TexturedPairs, TheTextureRulesTakeEveryPairWithATextureThatHasABoxToStandOn) {
+  const tex::TextureMap map = heightMap(16, gb::kExtent, gb::vGrooves);
+  FaceTexture faces;
+  faces.map = &map;
+  btBoxShape big(btVector3(0.1f, 0.1f, 0.01f)), small(btVector3(0.01f, 0.01f, 0.005f));
+  btBoxShape textured_small(btVector3(0.01f, 0.01f, 0.005f));
+  attachFaceTexture(textured_small, faces);
+  btSphereShape ball(0.01f), textured_ball(0.01f);
+  attachBallTexture(textured_ball, faces);
+  btCapsuleShape rod(0.004f, 0.04f);
+  // Of two boxes the larger stands under the other, whichever carries the texture.
+  EXPECT_EQ(texturedPairGround(big, textured_small), PairGround::First);
+  EXPECT_EQ(texturedPairGround(textured_small, big), PairGround::Second);
+  // A box under a ball, whichever is textured.
+  EXPECT_EQ(texturedPairGround(textured_ball, small), PairGround::Second);
+  EXPECT_EQ(texturedPairGround(textured_small, ball), PairGround::First);
+  EXPECT_EQ(texturedPairGround(textured_ball, textured_small), PairGround::Second);
+  // No texture, or no box to stand on, or a rod: the pair's own algorithm.
+  EXPECT_EQ(texturedPairGround(big, small), PairGround::None);
+  EXPECT_EQ(texturedPairGround(ball, small), PairGround::None);
+  EXPECT_EQ(texturedPairGround(textured_ball, ball), PairGround::None);
+  EXPECT_EQ(texturedPairGround(rod, textured_small), PairGround::None);
+}
+
+TEST(TexturedPairs, AGroovedBlockSitsInTheGroovesOfAGroovedBox) {
+  // As on the grooved plane (TexturedBox.AGroovedBlockSitsInTheGroovesOfAGroovedPlane): its face
+  // at the grooves' floor, its ridges in them; a plain block on the ridges' tops.
+  for (gb::BlockGround ground : kBoxGrounds) {
+    gb::Scene textured(true, false, 128, {}, ground), plain(false, false, 128, {}, ground);
+    for (int k = 0; k < 400; ++k) textured.world->step(gb::kDt), plain.world->step(gb::kDt);
+    const Eigen::Vector3d p = positionOf(*textured.block), q = positionOf(*plain.block);
+    std::printf("[measured] %s: grooved block at x %.1f um, z %.1f um from the floor's fit; plain block %.1f um over the ridges\n",
+                nameOf(ground), (p.x() - 0.5 * gb::kPeriod) * 1e6, (p.z() - (gb::kHalf.z() - gb::kDepth)) * 1e6,
+                (q.z() - gb::kHalf.z()) * 1e6);
+    EXPECT_NEAR(p.z(), gb::kHalf.z() - gb::kDepth, 1.6e-4) << nameOf(ground);
+    EXPECT_NEAR(p.x(), 0.5 * gb::kPeriod, 1.6e-4) << nameOf(ground);
+    EXPECT_NEAR(q.z(), gb::kHalf.z(), 1.6e-4) << nameOf(ground);
+    const Eigen::Vector3d up = toEigen(textured.block->getWorldTransform().getBasis().getColumn(2));
+    EXPECT_GT(up.z(), std::cos(deg(0.5))) << nameOf(ground);
+  }
+}
+
+TEST(TexturedPairs, AGroovedBlockSlidesAlongTheGroovesOfAGroovedBoxAndNotAcrossThem) {
+  // The forces of TexturedBox.AGroovedBlockSlidesAlongTheGroovesAndNotAcrossThem and
+  // OnASlabMeshTheWedgeHoldsAsOnThePlane: half its weight moves it along the grooves as friction
+  // alone would and not across; 0.84 raised slowly is held by the wedge; 1.3 climbs out.
+  for (gb::BlockGround ground : kBoxGrounds) {
+    gb::Scene along(true, false, 128, {}, ground), across(true, false, 128, {}, ground);
+    gb::Scene plain_across(false, false, 128, {}, ground);
+    const Eigen::Vector3d a = along.push({0.0, 0.5, 0.0}, 0.2);
+    const Eigen::Vector3d c = across.push({0.5, 0.0, 0.0}, 0.2);
+    const Eigen::Vector3d p = plain_across.push({0.5, 0.0, 0.0}, 0.2);
+    gb::Scene held(true, false, 64, {}, ground), hard(true, false, 64, {}, ground);
+    const Eigen::Vector3d h = held.push({0.84, 0.0, 0.0}, 0.3, 0.5);
+    const Eigen::Vector3d out = hard.push({1.3, 0.0, 0.0}, 0.2);
+    std::printf("[measured] %s: along %.2f mm (friction alone: 39.2), across %.3f mm, plain block across %.2f mm; "
+                "0.84 held: %.3f mm; 1.3: %.2f mm\n",
+                nameOf(ground), a.y() * 1e3, c.norm() * 1e3, p.x() * 1e3, h.x() * 1e3, out.x() * 1e3);
+    EXPECT_NEAR(a.y(), 0.5 * (0.5 - 0.3) * kG * 0.04, 0.1 * 0.0392) << nameOf(ground) << ": " << a.transpose();
+    EXPECT_LT(std::fabs(a.x()), 3e-4) << nameOf(ground) << ": " << a.transpose();
+    EXPECT_LT(c.norm(), 0.25 * gb::kPeriod) << nameOf(ground) << ": " << c.transpose();
+    EXPECT_GT(p.x(), 0.5 * 0.5 * (0.5 - 0.3) * kG * 0.04) << nameOf(ground) << ": " << p.transpose();
+    EXPECT_LT(h.x(), 1e-3) << nameOf(ground) << ": " << h.transpose();
+    EXPECT_LT(h.z(), 0.5 * gb::kDepth) << nameOf(ground) << ": " << h.transpose();
+    EXPECT_GT(out.x(), gb::kPeriod) << nameOf(ground) << ": " << out.transpose();
+  }
+}
+
+TEST(TexturedPairs, EitherOrderOfABoxPairGivesTheSameMotion) {
+  gb::Scene block_first(true, true, 128, {}, gb::BlockGround::FixedBox);
+  gb::Scene box_first(true, false, 128, {}, gb::BlockGround::FixedBox);
+  const Eigen::Vector3d a = block_first.push({0.5, 0.5, 0.0}, 0.2);
+  const Eigen::Vector3d b = box_first.push({0.5, 0.5, 0.0}, 0.2);
+  EXPECT_LT((a - b).norm(), 1e-9) << a.transpose() << " / " << b.transpose();
+  EXPECT_GT(a.y(), 0.01);
+}
+
+TEST(TexturedPairs, AGroovedBlockOnAPlainBoxRestsOnItsRidgesAndSlidesEitherWay) {
+  // Its texture read on the plain box's smooth chart: its face (the ridges) on the box's top, within
+  // the bilinear rounding of a V's crease at 0.31 mm texels (half a texel of a 0.5 slope: 78 µm),
+  // and half its weight moves it as friction alone would, along the grooves and across them.
+  gb::Scene rest(true, false, 128, {}, gb::BlockGround::PlainBox);
+  for (int k = 0; k < 400; ++k) rest.world->step(gb::kDt);
+  gb::Scene along(true, false, 128, {}, gb::BlockGround::PlainBox), across(true, false, 128, {}, gb::BlockGround::PlainBox);
+  const Eigen::Vector3d a = along.push({0.0, 0.5, 0.0}, 0.2);
+  const Eigen::Vector3d c = across.push({0.5, 0.0, 0.0}, 0.2);
+  std::printf("[measured] grooved block on a plain box: %.2f um over its face's fit; along %.2f mm, across %.2f mm "
+              "(friction alone: 39.2)\n",
+              (positionOf(*rest.block).z() - gb::kHalf.z()) * 1e6, a.y() * 1e3, c.x() * 1e3);
+  EXPECT_NEAR(positionOf(*rest.block).z(), gb::kHalf.z(), 8e-5);
+  EXPECT_NEAR(a.y(), 0.5 * (0.5 - 0.3) * kG * 0.04, 0.1 * 0.0392) << a.transpose();
+  EXPECT_NEAR(c.x(), 0.5 * (0.5 - 0.3) * kG * 0.04, 0.1 * 0.0392) << c.transpose();
+}
+
+// A ball set on a box's top face (z = 0; or on a flat relief plane there, `on_plane`) at `pose`,
+// for `seconds`: where it rests.
+struct BallOnBox {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double fastest_late = 0.0;  // over the last 0.5 s
+};
+BallOnBox ballOnBox(double radius, const FaceTexture* ball_texture, const FaceTexture* box_texture,
+                    const Eigen::Isometry3d& pose, double seconds, bool on_plane = false) {
+  PhysicsWorld world;
+  const Eigen::Vector3d half(0.05, 0.05, 0.01);
+  const Eigen::Isometry3d box_pose = at(0.0, 0.0, -half.z());
+  const SurfaceHolder plane = holdSurface(flatRelief(256), 0.04, true);
+  if (on_plane) {
+    world.addReliefPlane(plane.surface, {1.0, 0.0, 0.0});
+  } else if (box_texture) {
+    world.addTexturedBox(half, 0.0, box_pose, {1.0, 0.0, 0.0}, *box_texture);
+  } else {
+    world.addBox(half, 0.0, box_pose, {1.0, 0.0, 0.0});
+  }
+  btRigidBody& ball = ball_texture ? world.addTexturedSphere(radius, tb::kMass, pose, {0.5, 0.0, 0.0}, *ball_texture)
+                                   : world.addSphere(radius, tb::kMass, pose, {0.5, 0.0, 0.0});
+  BallOnBox r;
+  const int steps = int(std::lround(seconds / tb::kDt));
+  for (int k = 0; k < steps; ++k) {
+    world.step(tb::kDt);
+    if (k >= steps - 500) r.fastest_late = std::max(r.fastest_late, velocityOf(ball).norm());
+  }
+  r.centre = positionOf(ball);
+  return r;
+}
+
+TEST(TexturedPairs, ABallWithABumpMapRestsOnAPlainBoxAsOnAFlatRelief) {
+  // Recessed 0.5 mm everywhere, it rests on its recessed radius (the coarse pair: on its full one).
+  const tex::TextureMap recess = tb::uniformRecess(5e-4);
+  const FaceTexture recessed = tb::ballTexture(recess);
+  const BallOnBox r = ballOnBox(tb::kRadius, &recessed, nullptr, at(0.001, 0.0, tb::kRadius), 1.0);
+  std::printf("[measured] recessed ball on a plain box: centre %.2f um from r - 0.5 mm, fastest %.3f mm/s\n",
+              (r.centre.z() - (tb::kRadius - 5e-4)) * 1e6, r.fastest_late * 1e3);
+  EXPECT_NEAR(r.centre.z(), tb::kRadius - 5e-4, 5e-6);
+  EXPECT_LT(r.fastest_late, 1e-4);
+  // With bumps (0.3 mm), turned so that no tip lies straight down, it rests on their flanks where
+  // it does on a flat relief plane.
+  const tex::TextureMap bumps = tb::bumpMap(3e-4);
+  const FaceTexture bumpy = tb::ballTexture(bumps);
+  Eigen::Isometry3d pose = at(0.001, 0.0, tb::kRadius + 2e-4);
+  pose.linear() = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()))
+                      .toRotationMatrix();
+  const BallOnBox box = ballOnBox(tb::kRadius, &bumpy, nullptr, pose, 2.0);
+  const BallOnBox plane = ballOnBox(tb::kRadius, &bumpy, nullptr, pose, 2.0, true);
+  std::printf("[measured] bumpy ball: on a plain box %.2f um below r, on a flat relief %.2f um; fastest %.3f and %.3f mm/s\n",
+              (tb::kRadius - box.centre.z()) * 1e6, (tb::kRadius - plane.centre.z()) * 1e6, box.fastest_late * 1e3,
+              plane.fastest_late * 1e3);
+  EXPECT_NEAR(box.centre.z(), plane.centre.z(), 5e-6);
+  EXPECT_LT(box.centre.z(), tb::kRadius - 1e-4);  // on the bumps' flanks, not on the coarse sphere
+  // Still rocking at 0.8 mm/s over the last 0.5 s where the plane has it asleep (docs/physics.md,
+  // "Textured objects against other objects").
+  EXPECT_LT(box.fastest_late, 2e-3);
+}
+
+TEST(TexturedPairs, APlainBallRestsOnTheRidgesOfAGroovedBox) {
+  // A 5 mm ball over a groove's floor (x = P/2) touches the two ridges either side (at x = 0 and
+  // P, their tops at z = 0): its centre sqrt(r^2 - (P/2)^2) = 4.58 mm above them, where the
+  // coarse box holds it at 5 mm. Within the bilinear rounding of the ridges' creases.
+  const tex::TextureMap map = heightMap(128, gb::kExtent, gb::vGrooves);
+  FaceTexture grooves;
+  grooves.map = &map;
+  grooves.tile_m = gb::kExtent;
+  const double r = 0.005, expected = std::sqrt(r * r - 0.25 * gb::kPeriod * gb::kPeriod);
+  const BallOnBox b = ballOnBox(r, nullptr, &grooves, at(0.5 * gb::kPeriod + 2e-4, 0.0, r + 1e-4), 1.5);
+  std::printf("[measured] plain ball on a grooved box: centre %.1f um from the ridges' answer, x %.1f um from the floor\n",
+              (b.centre.z() - expected) * 1e6, (b.centre.x() - 0.5 * gb::kPeriod) * 1e6);
+  EXPECT_NEAR(b.centre.z(), expected, 1e-4);
+  EXPECT_NEAR(b.centre.x(), 0.5 * gb::kPeriod, 1e-4);
+  EXPECT_LT(b.fastest_late, 1e-3);
+}
+
+}  // namespace
+}  // namespace thx::phys::test::test_textured_pairs
