@@ -38,7 +38,8 @@ bool textured(const btCollisionShape& s) { return faceTextureOf(s) != nullptr ||
 
 PairGround texturedPairGround(const btCollisionShape& first, const btCollisionShape& second) {
   if (!textured(first) && !textured(second)) return PairGround::None;
-  const auto ball = [](const btCollisionShape& s) { return s.getShapeType() == SPHERE_SHAPE_PROXYTYPE; };
+  // A ball with a bump map (box_ground.hpp: a plain ball keeps the coarse pair).
+  const auto ball = [](const btCollisionShape& s) { return ballTextureOf(s) != nullptr; };
   if (isBox(first) && isBox(second)) return boxVolume(first) > boxVolume(second) ? PairGround::First : PairGround::Second;
   if (isBox(first) && ball(second)) return PairGround::First;
   if (ball(first) && isBox(second)) return PairGround::Second;

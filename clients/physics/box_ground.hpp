@@ -6,22 +6,26 @@
 // plain box, the smooth chart (its flat face, sampled over the object); each of its faces across
 // an edge within the object's reach on a chart of its own (chart_boundary.hpp). So a grooved block
 // on a grooved box sits in its grooves as on a grooved plane (both textures shape the contact,
-// Otaduy's directional depth), a grooved block slides on a plain box as on a flat plane, a ball
-// with a bump map rests on a plain box as on a flat relief, and a plain ball on a textured box
-// meets its relief. The box moves: the chart is laid in its frame
-// each step, and the object's motion relative to it decides which of a ball's further points
-// Bullet may take.
+// Otaduy's directional depth), a grooved block slides on a plain box as on a flat plane, and a
+// ball with a bump map rests on a plain box as on a flat relief. The box moves: the chart is laid
+// in its frame each step, and the object's motion relative to it decides which of a ball's
+// further points Bullet may take.
 //
-// Which body is the ground (texturedPairGround): a box under a ball, when either carries a
-// texture; of two boxes, one of them textured, the larger (by volume; the second on a tie). Pairs
-// without a texture keep their algorithms (Bullet's box-box, the scaled GJK of
-// scaled_convex_collision.hpp). Not covered, colliding as the coarse shapes: a ball with a bump
-// map against a ball, capsule or cylinder (no box to stand on), and a capsule or cylinder against
-// a textured box. The rod rules are made for a rod lying on, or standing on, the ground under it;
-// measured on 2026-12-04, the pen's upright capsule pushing the grooved block in the bowl met the
-// block's top face at its edge, where a groove wall's tilted normal made the capsule's far side
-// the contact point, 1.75 mm deep where the raster read 0.23 mm, and the block was thrown at
-// 0.22 m/s.
+// Which body is the ground (texturedPairGround): a box under a ball with a bump map; of two boxes,
+// one of them textured, the larger (by volume; the second on a tie). Pairs without a texture keep
+// their algorithms (Bullet's box-box, the scaled GJK of scaled_convex_collision.hpp). Not covered,
+// colliding as the coarse shapes (measured on 2026-12-04, docs/physics.md "Textured objects
+// against other objects"):
+// - a ball with a bump map against a ball, capsule or cylinder (no box to stand on);
+// - a plain ball against a textured box: the plane's rule for a plain ball, never used across a
+//   crease before (on a mesh a plain ball keeps Bullet's points, lifted), threw a marble rolling
+//   off the grooved board's edge at 0.1 m/s up at 0.45 m/s (a ball with a bump map rolled off the
+//   same edge as it should);
+// - a capsule or cylinder against a textured box: the rod rules are made for a rod lying on, or
+//   standing on, the ground under it. The pen's upright capsule pushing the grooved block in the
+//   bowl met the block's top face at its edge, where a groove wall's tilted normal made the
+//   capsule's far side the contact point, 1.75 mm deep where the raster read 0.23 mm, and the
+//   block was thrown at 0.22 m/s.
 #include <BulletCollision/CollisionDispatch/btCollisionConfiguration.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>

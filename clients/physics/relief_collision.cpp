@@ -433,13 +433,19 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
   MeshChart chart;
   // A smooth chart's grid is laid at the object's own texels where it has a texture.
   const FaceTexture* texture = faces ? faces : ballTextureOf(shape);
-  if (chartUnder(relief, centre, reach_m, foot_triangle_, chart)) {
+  const double threshold = double(manifold->getContactBreakingThreshold());
+  btVector3 aabb_min, aabb_max;
+  shape.getAabb(toBt(mesh_from_object), aabb_min, aabb_max);
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(threshold);
+  const Eigen::AlignedBox3d reach(toEigen(aabb_min) - margin, toEigen(aabb_max) + margin);
+  // Bullet keeps a pair while their bounds, each widened by its breaking threshold (2 cm), meet;
+  // an object wholly beyond the mesh's own bounds touches nothing of it. (The chart under it would
+  // be laid on the nearest face and run on past that face's edge, the faces across which lie out
+  // of the object's reach: a marble rolling off a box's edge rode on at its height for 0.5 s.)
+  triangles.getAabb(btTransform::getIdentity(), aabb_min, aabb_max);
+  const bool within = reach.intersects(Eigen::AlignedBox3d(toEigen(aabb_min), toEigen(aabb_max)));
+  if (within && chartUnder(relief, centre, reach_m, foot_triangle_, chart)) {
     if (!relief.map) laySmoothChart(chart, shape, mesh_from_object, relief.grid_intervals, texture);
-    const double threshold = double(manifold->getContactBreakingThreshold());
-    btVector3 aabb_min, aabb_max;
-    shape.getAabb(toBt(mesh_from_object), aabb_min, aabb_max);
-    const Eigen::Vector3d margin = Eigen::Vector3d::Constant(threshold);
-    const Eigen::AlignedBox3d reach(toEigen(aabb_min) - margin, toEigen(aabb_max) + margin);
     const ChartBoundary boundary =
         chartCollision(object, mesh, relief, triangles, faces, chart, kUnder, reach, threshold, result);
     // Each surface across a crease within reach, on a chart of its own at its point nearest the
@@ -455,7 +461,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
       chartCollision(object, mesh, relief, triangles, faces, across, slot, reach, threshold, result);
     }
   } else {
-    // Behind the winding: nothing textured to meet (mesh_relief_chart.hpp).
+    // Beyond the mesh, or behind the winding: nothing textured to meet (mesh_relief_chart.hpp).
     manifold->clearManifold();
     clearGroupManifolds();
   }

@@ -19,8 +19,8 @@
 // a chart of its own, cut at its creases in turn, in manifolds of its own (chart_boundary.hpp). A
 // ball with a bump map does the same, by its own rule (texturedBallCollision); a plain sphere on
 // such a mesh stays with Bullet's sphere-triangle points, lifted onto the relief (mesh_contact.hpp).
-// A box that a textured object meets, or a textured box that a ball or smaller box meets
-// (box_ground.hpp), is met as a mesh of its faces: the mesh rules, the box's moving frame.
+// A box that a textured object meets, or a textured box that a smaller box meets (box_ground.hpp),
+// is met as a mesh of its faces: the mesh rules, the box's moving frame.
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher
 // hands the pair in): normal = relief normal in world frame, pointing from the relief to the

@@ -23,8 +23,9 @@
 // What a textured box does not do yet: its texture shapes contacts with a relief plane, with a
 // mesh (on the mesh's chart under it, mesh_relief_chart.hpp), with the relief standing for a
 // normal-mapped plane (PhysicsWorld::addTexturedObjectsRelief), and with another box or a ball
-// (box_ground.hpp: the larger box, or the box under the ball, met as a mesh of its faces) only; on
-// a plain plane and against a capsule or cylinder the coarse box collides;
+// with a bump map (box_ground.hpp: the larger box, or the box under the ball, met as a mesh of its
+// faces) only; on a plain plane and against a plain ball, capsule or cylinder the coarse box
+// collides;
 // a normal map (no depth) given for an object is read, where objects are built, as the relief its
 // normals integrate to (scene::buildObjectTexture). The visual client draws the same layout
 // (meshes/textured_box_mesh.hpp).

@@ -258,6 +258,49 @@ TEST(ShippedSceneOutcome, GroovedBlockRestsInTheBowlAndIsPushedAcrossItsFloor) {
   EXPECT_LT(end.speed, 1e-3);    // and at rest again
 }
 
+// Two grooved blocks sit in the grooves of a fixed grooved board, both reliefs in each contact (the
+// board met as a mesh of its faces: docs/physics.md "Textured objects against other objects"): the
+// one launched along the grooves slides on in them, the one launched across is held by their walls;
+// a marble with fine bumps rolls along a groove on its two rims until its rolling friction stops it
+// (scenes/grooved_board.yaml).
+TEST(ShippedSceneOutcome, GroovedBoardHoldsItsBlocksInItsGroovesAndAMarbleRollsAlongOne) {
+  const SceneRun r = runScene("grooved_board.yaml", 1.2);
+  const Track& along = r.tracks.at("along");
+  const Track& across = r.tracks.at("across");
+  const Track& marble = r.tracks.at("marble");
+  const double top = 0.01, period = 0.004, radius = 0.005;
+  const double on_rims = top + std::sqrt(radius * radius - 0.25 * period * period);
+  double marble_off_line = 0.0, marble_off_rims = 0.0, marble_highest = 0.0;
+  for (const Sample& s : marble) {
+    marble_highest = std::max(marble_highest, s.local.z());
+    marble_off_line = std::max(marble_off_line, std::fabs(s.local.x() + 0.002));
+    marble_off_rims = std::max(marble_off_rims, std::fabs(s.local.z() - on_rims));
+  }
+  const Sample a0 = along.front(), a1 = along.back(), c0 = across.front(), c1 = across.back();
+  std::printf("[measured] grooved board: along moved %.2f mm along y, %.3f mm across, at %.3f mm; across moved %.3f mm "
+              "across, at %.3f mm; marble within %.3f mm of its groove's line and %.3f mm of the rims' answer, highest "
+              "%.3f mm, rolled %.2f mm, %.3f mm/s at the end\n",
+              (a1.local.y() - a0.local.y()) * 1e3, (a1.local.x() - a0.local.x()) * 1e3, a1.local.z() * 1e3,
+              (c1.local.x() - c0.local.x()) * 1e3, c1.local.z() * 1e3, marble_off_line * 1e3, marble_off_rims * 1e3,
+              marble_highest * 1e3, (marble.back().local.y() - marble.front().local.y()) * 1e3, marble.back().speed * 1e3);
+  // Along: friction alone stops it (0.3 m/s, 12.6 mm at wood on wood's 0.36), straight, in the grooves
+  // (its face 0.1 mm above their floor: below the rims by 0.7 mm).
+  EXPECT_GT(a1.local.y() - a0.local.y(), 0.01);
+  EXPECT_LT(std::fabs(a1.local.x() - a0.local.x()), 0.05 * period);
+  EXPECT_LT(a1.local.z(), top + 0.005 - 0.0005);
+  EXPECT_LT(a1.speed, 1e-3);
+  // Across (0.1 m/s): the walls hold it within its groove, still nested.
+  EXPECT_LT(std::fabs(c1.local.x() - c0.local.x()), 0.25 * period);
+  EXPECT_LT(c1.local.z(), top + 0.005 - 0.0005);
+  // The marble on its groove's rims (its bumps 20 µm), never thrown up, stopped by its rolling
+  // friction (5/7 g d / r: 36 mm from 0.1 m/s) on the board (its edge at y = 40 mm).
+  EXPECT_LT(marble_off_line, 2e-4);
+  EXPECT_LT(marble_off_rims, 5e-5);
+  EXPECT_LT(marble_highest, on_rims + 1e-4);
+  EXPECT_NEAR(marble.back().local.y() - marble.front().local.y(), 0.036, 0.006);
+  EXPECT_LT(marble.back().speed, 2e-3);
+}
+
 // The dimple ball passes over dimples (through the middle of at least one other than the last)
 // and ends trapped in one: near its centre, below the plane, no longer moving.
 TEST(ShippedSceneOutcome, DimpleBallCrossesDimplesAndIsCaughtInOne) {
