@@ -32,12 +32,10 @@ double boxVolume(const btCollisionShape& s) {
   return double(h.x()) * double(h.y()) * double(h.z());
 }
 
-bool textured(const btCollisionShape& s) { return faceTextureOf(s) != nullptr || ballTextureOf(s) != nullptr; }
-
 }  // namespace
 
 PairGround texturedPairGround(const btCollisionShape& first, const btCollisionShape& second) {
-  if (!textured(first) && !textured(second)) return PairGround::None;
+  if (!hasObjectTexture(first) && !hasObjectTexture(second)) return PairGround::None;
   // A ball with a bump map (box_ground.hpp: a plain ball keeps the coarse pair).
   const auto ball = [](const btCollisionShape& s) { return ballTextureOf(s) != nullptr; };
   if (isBox(first) && isBox(second)) return boxVolume(first) > boxVolume(second) ? PairGround::First : PairGround::Second;

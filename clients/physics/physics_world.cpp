@@ -37,10 +37,7 @@ struct PhysicsWorld::TexturedObjectsFilter : btOverlapFilterCallback {
   };
   std::vector<StandIn> stand_ins;
 
-  static bool textured(const btCollisionObject& o) {
-    const btCollisionShape& shape = *o.getCollisionShape();
-    return faceTextureOf(shape) != nullptr || ballTextureOf(shape) != nullptr;
-  }
+  static bool textured(const btCollisionObject& o) { return hasObjectTexture(*o.getCollisionShape()); }
   bool needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const override {
     if ((p0->m_collisionFilterGroup & p1->m_collisionFilterMask) == 0 ||
         (p1->m_collisionFilterGroup & p0->m_collisionFilterMask) == 0)

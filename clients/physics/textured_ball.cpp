@@ -33,4 +33,8 @@ const FaceTexture* ballTextureOf(const btCollisionShape& shape) {
   return objectTextureOf(shape, SPHERE_SHAPE_PROXYTYPE, kBallTextureTag);
 }
 
+bool hasObjectTexture(const btCollisionShape& shape) {
+  return faceTextureOf(shape) != nullptr || ballTextureOf(shape) != nullptr;
+}
+
 }  // namespace thx::phys

@@ -36,4 +36,7 @@ void attachBallTexture(btCollisionShape& sphere, const FaceTexture& texture);
 // The texture attached to a sphere shape; nullptr for any other shape or a plain ball.
 const FaceTexture* ballTextureOf(const btCollisionShape& shape);
 
+// Whether the shape carries an object texture: a textured box's faces or a ball's bump map.
+bool hasObjectTexture(const btCollisionShape& shape);
+
 }  // namespace thx::phys
