@@ -38,6 +38,11 @@ struct GroundBend {
     return std::max(0.0, 0.5 * (std::max(xx, 0.0) * ax * ax + 2.0 * std::fabs(xy) * ax * ay + std::max(yy, 0.0) * ay * ay));
   }
   bool flat() const { return xx == 0.0 && xy == 0.0 && yy == 0.0; }
+  // Whether the ground rises less than `tolerance` (m) within `reach` (m) of the centre: a flat
+  // face's fit is rounding, 1e-15 /m on a box's face (mesh_relief_chart.cpp).
+  bool flatWithin(double reach, double tolerance) const {
+    return 0.5 * (std::fabs(xx) + 2.0 * std::fabs(xy) + std::fabs(yy)) * reach * reach <= tolerance;
+  }
 };
 
 }  // namespace thx::phys

@@ -21,6 +21,7 @@
 #include "clients/physics/contact_selection.hpp"
 #include "clients/physics/crease_contact.hpp"
 #include "clients/physics/end_face_contacts.hpp"
+#include "clients/physics/manifold_room.hpp"
 #include "clients/physics/pair_contact_normal.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/relief_raster.hpp"
@@ -141,6 +142,10 @@ BodyMotion motionAgainst(const btCollisionObject& object, const btCollisionObjec
   return motion;
 }
 
+// What becomes of the points a manifold kept from earlier steps: Bullet's rule alone, or room made
+// for every chosen point first (manifold_room.hpp).
+enum class KeptPoints { AsBullet, RoomForChosen };
+
 // Adds the chosen contacts (deepest first) to the result's manifold (relief_collision.hpp's
 // convention). `object_relief`: a ball with a bump map, whose point of contact is on its recessed
 // surface above the texel (where the pair's depth was measured), not where its smooth sphere
@@ -148,13 +153,19 @@ BodyMotion motionAgainst(const btCollisionObject& object, const btCollisionObjec
 void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside& underside,
                        const tex::TexturedSurface& surface, const GroundBend& bend,
                        const Eigen::Isometry3d& world_from_plane, bool conforming, double threshold,
-                       btManifoldResult* result, const BodyMotion* ball = nullptr, bool object_relief = false) {
+                       btManifoldResult* result, const BodyMotion* ball = nullptr, bool object_relief = false,
+                       KeptPoints kept = KeptPoints::AsBullet) {
   // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
   // within the breaking threshold of the new one. The chosen points come deepest first, so a
   // later point that close is skipped instead: the deeper one must win. (For a sphere every
   // point with the same normal maps to the same q = c - r n, see contactOnObject.)
   std::array<Eigen::Vector3d, kMaxReliefContacts> added;
   std::size_t added_count = 0;
+  // The points Bullet will take (it drops those beyond the breaking threshold,
+  // btManifoldResult::addContactPoint), added once all are known (manifold_room.hpp).
+  std::array<btVector3, kMaxReliefContacts> on_reliefs, normals, on_objects;
+  std::array<btScalar, kMaxReliefContacts> gaps;
+  std::size_t taken = 0;
   for (const ReliefCandidate& c : chosen) {
     const Eigen::Vector3d n_world = world_from_plane.linear() * c.n_local;
     const Eigen::Vector3d lowest = c.p_surface + c.depth * Eigen::Vector3d::UnitZ();  // plane frame
@@ -180,9 +191,15 @@ void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside&
       duplicate = duplicate || (added[a] - on_object).squaredNorm() < threshold * threshold;
     if (duplicate) continue;
     added[added_count++] = on_object;
+    if (static_cast<btScalar>(distance) > static_cast<btScalar>(threshold)) continue;
     const Eigen::Vector3d on_relief = on_object - distance * n_world;
-    result->addContactPoint(toBt(n_world), toBt(on_relief), static_cast<btScalar>(distance));
+    on_reliefs[taken] = toBt(on_relief), normals[taken] = toBt(n_world), gaps[taken] = static_cast<btScalar>(distance);
+    on_objects[taken] = on_reliefs[taken] + normals[taken] * gaps[taken];  // as Bullet finds it again
+    ++taken;
   }
+  if (kept == KeptPoints::RoomForChosen)
+    makeRoomFor(*result->getPersistentManifold(), std::span(on_objects.data(), taken));
+  for (std::size_t k = 0; k < taken; ++k) result->addContactPoint(normals[k], on_reliefs[k], gaps[k]);
 }
 
 // A mesh chart's texels past its boundary are not the mesh's (chart_boundary.hpp). The basin walks
@@ -260,6 +277,13 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
   const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend);
   dropPastBoundary(boundary, candidates);
   const TexturedObjectSurface box_surface(underside, faces);
+  // Ground flat under the whole footprint: no crease within reach, and a bend that is rounding (a
+  // flat face's fit rises 1e-15 /m; a picometre over the box is nothing a relief stores).
+  const double reach = (underside.plane_from_object.translation().head<2>() - bend.centre).norm() + underside.half_extents.norm();
+  const bool flat_ground = bend.flatWithin(reach, 1e-12) && !(boundary && boundary->count > 0);
+  // What the two reliefs' stored depths can resolve (a smooth chart stores none).
+  const double depth_step = isSmoothChart(surface) ? faces.map->depthStep()
+                                                   : std::max(surface.map().depthStep(), faces.map->depthStep());
   for (std::size_t g = 0; g < kNormalGroups; ++g) {
     result->setPersistentManifold(groupManifold(chart, g, object.getCollisionObject(), relief.getCollisionObject()));
     group.clear();
@@ -267,10 +291,14 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
     for (std::size_t k = 0; k < candidates.size(); ++k)
       if (normalGroup(candidates[k].n_local) == g) group.push_back(candidates[k]), group_index.push_back(k);
     std::array<std::size_t, kMaxReliefContacts> picked{};
-    const std::size_t n = selectReliefContacts(group, picked);
+    // Level contacts on flat ground within the chart: the lowest point of each quarter of the
+    // footprint (contact_selection.hpp), as a plain box's.
+    const bool level = g == 0 && flat_ground;
+    const std::size_t n = level ? selectBoxQuarterContacts(group, quartersUnder(underside, depth_step), picked)
+                                : selectReliefContacts(group, picked);
     for (std::size_t k = 0; k < n; ++k) picked[k] = group_index[picked[k]];
     // Each to the bottom of its basin in the pair's depth, where the two surfaces' normals agree.
-    snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
+    if (!level) snapToBasins(candidates, raster.stride_i, raster.stride_j, std::span(picked.data(), n));
     // A basin another group's point went to already holds a contact.
     std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
     std::size_t count = 0;
@@ -281,10 +309,12 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
     }
     // A crest pressing on the other body's wall: the wall's normal (pair_contact_normal.hpp).
     smootherSurfaceNormals(surface, bend.flat() ? nullptr : &bend, box_surface, std::span(chosen.data(), count));
-    addReliefContacts(std::span(chosen.data(), count), underside, surface, bend, world_from_plane, false, threshold, result);
+    addReliefContacts(std::span(chosen.data(), count), underside, surface, bend, world_from_plane, false, threshold, result,
+                      nullptr, false, level ? KeptPoints::RoomForChosen : KeptPoints::AsBullet);
     // The points of earlier steps stay, each replaced by a new one within the breaking threshold
     // of it (keeping its impulse to start the solver from) or dropped once its gap or slide
-    // exceeds that threshold; Bullet keeps the four that span the most area. Cleared every step
+    // exceeds that threshold; Bullet keeps the four that span the most area (the level points on
+    // flat ground: every chosen one first, manifold_room.hpp). Cleared every step
     // as the other shapes' are (a rolling ball's cached points inject energy; a box does not
     // roll), the deepest texels, chosen afresh, stayed 10-60 µm deep, and the grooved block
     // crept up the plane's walls under 0.58 of its weight at 128 texels, against 0.78 kept.

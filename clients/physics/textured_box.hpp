@@ -6,8 +6,9 @@
 // (2004): the penetration depth along the plane's normal at each texel of the plane under the box
 // is the plane's relief height minus the box's surface there, the box's face pushed inwards by its
 // own relief's depth. Contacts are chosen among those texels as for a plain box (the deepest, the
-// spread points, each moved to the bottom of its basin: where the depth of the pair is deepest),
-// in one manifold per group of normals, kept between steps (relief_collision.hpp),
+// spread points, each moved to the bottom of its basin: where the depth of the pair is deepest;
+// the level ones on flat ground, the lowest of each quarter of the footprint), in one manifold per
+// group of normals, kept between steps (relief_collision.hpp),
 // and each takes the mean of the two surfaces' normals there (equal where the two surfaces touch
 // at a basin's bottom, a stationary point of the pair's depth), or, where one of them has a
 // crease and the other none (a crest pressing on the other body's wall), the other's

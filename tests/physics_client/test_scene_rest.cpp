@@ -49,8 +49,8 @@ const std::map<std::string, const char*> kOpen = {
     {"marble_rolling_bricks", "rolls on across the joints by design (the audio client's onset check, no rolling friction)"},
     {"two_pens", "no objects: two pens on the bricks (hapticd's several devices), nothing for physics to settle"},
     {"grooved_board", "measured 2026-12-04 from 1.5 to 3 s: the marble with fine bumps creeps along its groove at "
-                      "0.05-0.07 mm/s with spikes to 1.4 mm/s, which keeps the block beside it awake (one Bullet "
-                      "island), where it cycles at up to 1.3 mm/s (docs/physics.md, Known gaps)"},
+                      "0.05-0.07 mm/s with spikes to 1.4 mm/s (the blocks are still: 0.0009 mm/s at most; "
+                      "docs/physics.md, Known gaps)"},
 };
 #ifdef THX_SCENE_REST_SLOW
 constexpr bool kSlowBuild = true;
