@@ -36,7 +36,7 @@ double boxVolume(const btCollisionShape& s) {
 
 PairGround texturedPairGround(const btCollisionShape& first, const btCollisionShape& second) {
   if (!hasObjectTexture(first) && !hasObjectTexture(second)) return PairGround::None;
-  // A ball with a bump map (box_ground.hpp: a plain ball keeps the coarse pair).
+  // A ball with a bump map (a plain ball meets a textured box's faces by BallOnBoxFacesAlgorithm, below).
   const auto ball = [](const btCollisionShape& s) { return ballTextureOf(s) != nullptr; };
   if (isBox(first) && isBox(second)) return boxVolume(first) > boxVolume(second) ? PairGround::First : PairGround::Second;
   if (isBox(first) && ball(second)) return PairGround::First;
@@ -55,6 +55,18 @@ btCollisionAlgorithm* BoxGroundCreateFunc::CreateCollisionAlgorithm(btCollisionA
     case PairGround::None:
       break;
   }
+  // A plain ball against a textured box: its faces as a relief mesh's.
+  const btCollisionShape& s0 = *body0->getCollisionShape();
+  const btCollisionShape& s1 = *body1->getCollisionShape();
+  const auto plain_ball = [](const btCollisionShape& s) {
+    return s.getShapeType() == SPHERE_SHAPE_PROXYTYPE && !ballTextureOf(s);
+  };
+  if (isBox(s0) && plain_ball(s1))
+    if (const BoxFaces* faces = catalog->find(s0))
+      return ManifoldAlgorithm::create<BallOnBoxFacesAlgorithm>(ci, body0, body1, true, faces, catalog);
+  if (plain_ball(s0) && isBox(s1))
+    if (const BoxFaces* faces = catalog->find(s1))
+      return ManifoldAlgorithm::create<BallOnBoxFacesAlgorithm>(ci, body0, body1, false, faces, catalog);
   return otherwise->CreateCollisionAlgorithm(ci, body0, body1);
 }
 
@@ -71,7 +83,7 @@ std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDis
       btCollisionAlgorithmCreateFunc* otherwise = scaled_convex && usesScaledConvex(t0, t1)
                                                       ? registration->scaled_convex.get()
                                                       : configuration.getCollisionAlgorithmCreateFunc(t0, t1);
-      registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise));
+      registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces));
       dispatcher.registerCollisionCreateFunc(t0, t1, registration->funcs.back().get());
     }
   }

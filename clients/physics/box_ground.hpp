@@ -13,14 +13,11 @@
 //
 // Which body is the ground (texturedPairGround): a box under a ball with a bump map; of two boxes,
 // one of them textured, the larger (by volume; the second on a tie). Pairs without a texture keep
-// their algorithms (Bullet's box-box, the scaled GJK of scaled_convex_collision.hpp). Not covered,
-// colliding as the coarse shapes (measured on 2026-12-04, docs/physics.md "Textured objects
+// their algorithms (Bullet's box-box, the scaled GJK of scaled_convex_collision.hpp). A plain ball
+// against a textured box meets its faces as a relief mesh's, lifted (ball_on_box_faces.hpp). Not
+// covered, colliding as the coarse shapes (measured on 2026-12-04, docs/physics.md "Textured objects
 // against other objects"):
 // - a ball with a bump map against a ball, capsule or cylinder (no box to stand on);
-// - a plain ball against a textured box: the plane's rule for a plain ball, never used across a
-//   crease before (on a mesh a plain ball keeps Bullet's points, lifted), threw a marble rolling
-//   off the grooved board's edge at 0.1 m/s up at 0.45 m/s (a ball with a bump map rolled off the
-//   same edge as it should);
 // - a capsule or cylinder against a textured box: the rod rules are made for a rod lying on, or
 //   standing on, the ground under it. The pen's upright capsule pushing the grooved block in the
 //   bowl met the block's top face at its edge, where a groove wall's tilted normal made the
@@ -34,6 +31,7 @@
 #include <memory>
 #include <vector>
 
+#include "clients/physics/ball_on_box_faces.hpp"
 #include "clients/physics/bullet_triangles.hpp"
 #include "clients/physics/mesh_relief_chart.hpp"
 #include "clients/physics/textured_box.hpp"
@@ -66,16 +64,20 @@ PairGround texturedPairGround(const btCollisionShape& first, const btCollisionSh
 
 // The create function for a pair of box against sphere, box, capsule or cylinder: the relief
 // algorithm (relief_collision.hpp) for the pairs texturedPairGround takes, `otherwise` for the rest.
+// A plain ball against a textured box whose faces `catalog` holds goes to BallOnBoxFacesAlgorithm.
 struct BoxGroundCreateFunc : btCollisionAlgorithmCreateFunc {
-  explicit BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func) : otherwise(otherwise_func) {}
+  BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func, const BoxFacesCatalog* faces_catalog)
+      : otherwise(otherwise_func), catalog(faces_catalog) {}
   btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
                                                  const btCollisionObjectWrapper* body0,
                                                  const btCollisionObjectWrapper* body1) override;
   btCollisionAlgorithmCreateFunc* otherwise;
+  const BoxFacesCatalog* catalog;
 };
 
 // The create functions of one dispatcher (they point at its configuration's); must outlive its use.
 struct BoxGroundRegistration {
+  BoxFacesCatalog faces;  // the world's textured boxes (PhysicsWorld::addTexturedBox)
   std::vector<std::unique_ptr<BoxGroundCreateFunc>> funcs;
   std::unique_ptr<btCollisionAlgorithmCreateFunc> scaled_convex;
 };

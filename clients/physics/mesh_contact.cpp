@@ -109,18 +109,22 @@ ContactMesh::ContactMesh(const mesh::TexturedMesh& m)
     for (std::uint32_t v : t) max_hops = std::max(max_hops, 16 + ++fan[mesh::bitsOf(m.positions[v])]);
 }
 
-void smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
+bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
                 Eigen::Vector3d& barycentric) {
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   // Fixed point: the centre's line along the interpolated normal meets the triangle's plane at
   // x; walk to the triangle that holds x; again from there (as the haptic anchor does,
   // server/textured_mesh_renderer.cpp). A ball's radius is large against a triangle's turn, so two or
-  // three rounds settle it.
+  // three rounds settle it. The place is kept consistent (a barycentric of its own triangle) at
+  // every hop: beyond a box's edge the line runs along the face across it, and the walk stops there.
   constexpr int kRounds = 4;
+  bool over = false;
   for (int round = 0; round < kRounds; ++round) {
     const Eigen::Vector3d n = side * mesh::frameAt(mesh, triangle, barycentric, mesh::FrameMode::Interpolated).normal;
+    std::uint32_t walked = triangle;
+    over = false;
     for (int hop = 0; hop < contact_mesh.max_hops; ++hop) {
-      const mesh::Triangle& t = mesh.triangles[triangle];
+      const mesh::Triangle& t = mesh.triangles[walked];
       const Eigen::Vector3d& p0 = mesh.positions[t[0]];
       const Eigen::Vector3d e1 = mesh.positions[t[1]] - p0, e2 = mesh.positions[t[2]] - p0;
       const Eigen::Vector3d face = e1.cross(e2);
@@ -132,14 +136,19 @@ void smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
       const Eigen::Vector3d b(1.0 - l1 - l2, l1, l2);
       int worst = 0;
       for (int k = 1; k < 3; ++k) worst = b[k] < b[worst] ? k : worst;
-      const std::uint32_t next = b[worst] < 0.0 ? contact_mesh.neighbours[triangle][std::size_t(worst)] : mesh::kNoNeighbour;
-      if (next == mesh::kNoNeighbour) {
-        barycentric = b[worst] < 0.0 ? mesh::closestBarycentric(mesh, triangle, w + p0) : b;
+      triangle = walked;
+      if (b[worst] >= 0.0) {
+        barycentric = b;
+        over = true;
         break;
       }
-      triangle = next;
+      barycentric = mesh::closestBarycentric(mesh, walked, w + p0);
+      const std::uint32_t next = contact_mesh.neighbours[walked][std::size_t(worst)];
+      if (next == mesh::kNoNeighbour) break;
+      walked = next;
     }
   }
+  return over;
 }
 
 namespace {
@@ -192,6 +201,65 @@ void leanChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
               step);
 }
 
+namespace {
+
+// The lift of a ball of radius r on the relief of `triangle` at barycentric b, met from the front
+// (front: the side its winding faces) or from behind.
+double liftOnFace(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b, bool front,
+                  double r, const MeshContactOptions& options) {
+  const mesh::SurfaceFrame f = mesh::frameAt(*contact_mesh.mesh, triangle, b, mesh::FrameMode::Interpolated);
+  return options.ball_relief->touch({f.uv.x(), f.uv.y()}, metresPerUvAt(contact_mesh, triangle, b), r, !front).lift_m;
+}
+
+// A ball whose centre lies over no triangle (smoothFoot): beyond a convex crease (a box's edge or
+// corner) or past the mesh's border. It meets the reporting triangle's point nearest its centre,
+// as Bullet found it, along the line to the centre: the edge rounds the ball's path by its radius,
+// and the gap and normal go on continuously from those of the face it leaves (where the centre
+// crosses the face's edge its foot is that point). On a relief, the lift of the face the ball
+// leaves, blended into the face's across the edge as the line to the centre turns from one face's
+// normal to the other's, so that it goes on continuously at both ends.
+void ballPastCrease(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                    const ContactMesh& contact_mesh, const MeshPlace& place, const Eigen::Vector3d& c, double r,
+                    const btCollisionObject& other, const MeshContactOptions& options, const StepContext& step) {
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const mesh::Triangle& t = mesh.triangles[place.triangle];
+  const Eigen::Vector3d nearest = place.barycentric.x() * mesh.positions[t[0]] +
+                                  place.barycentric.y() * mesh.positions[t[1]] +
+                                  place.barycentric.z() * mesh.positions[t[2]];
+  const Eigen::Vector3d d = c - nearest;
+  const double distance = d.norm();
+  if (!(distance > 1e-9 * r)) return;  // the centre on the surface: nothing to steer by
+  const Eigen::Vector3d n = d / distance;
+  double gap = distance - r;
+  if (options.texture && options.ball_relief && options.lift_ball) {
+    Eigen::Vector3d n_face, tangent;
+    double handedness = 1.0;
+    mesh::triangleFrame(mesh, place.triangle, n_face, tangent, handedness);
+    double lift = liftOnFace(contact_mesh, place.triangle, place.barycentric, n_face.dot(n) >= 0.0, r, options);
+    // The edge the point lies on (its smallest barycentric), and the face across it.
+    int edge = 0;
+    for (int k = 1; k < 3; ++k) edge = place.barycentric[k] < place.barycentric[edge] ? k : edge;
+    const std::uint32_t across = contact_mesh.neighbours[place.triangle][std::size_t(edge)];
+    if (across != mesh::kNoNeighbour) {
+      Eigen::Vector3d n_across;
+      mesh::triangleFrame(mesh, across, n_across, tangent, handedness);
+      const double turned = std::acos(std::clamp(n_face.dot(n), -1.0, 1.0));
+      const double to_go = std::acos(std::clamp(n_across.dot(n), -1.0, 1.0));
+      if (turned + to_go > 0.0) {
+        const Eigen::Vector3d b_across = mesh::closestBarycentric(mesh, across, nearest);
+        const double lift_across = liftOnFace(contact_mesh, across, b_across, n_across.dot(n) >= 0.0, r, options);
+        lift += turned / (turned + to_go) * (lift_across - lift);
+      }
+    }
+    gap -= lift;
+  }
+  point.m_distance1 = static_cast<btScalar>(gap);
+  steerContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n, other, options.hold_height,
+               step);
+}
+
+}  // namespace
+
 void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                       const ContactMesh& contact_mesh, const btCollisionObject& other,
                       const MeshContactOptions& options, const StepContext& step) {
@@ -207,7 +275,7 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
   mesh::triangleFrame(mesh, triangle, n_face, tangent, handedness);
   // Bullet's normal points from B to A; towards the object it is that (mesh B) or its reverse.
   const Eigen::Vector3d towards_object = world_to_mesh.linear() * toEigen(point.m_normalWorldOnB) * (mesh_is_b ? 1.0 : -1.0);
-  const double side = n_face.dot(towards_object) < 0.0 ? -1.0 : 1.0;  // -1: touched from behind (a bowl's inside)
+  double side = n_face.dot(towards_object) < 0.0 ? -1.0 : 1.0;  // -1: touched from behind (a bowl's inside)
 
   Eigen::Vector3d n_geometric = side * n_face;
   const btCollisionShape* shape = other.getCollisionShape();
@@ -216,10 +284,18 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
     // Only a ball meets the relief as a sphere: other shapes read one point.
     const double r = double(static_cast<const btSphereShape*>(shape)->getRadius());
     const Eigen::Vector3d c = world_to_mesh * toEigen(other.getWorldTransform().getOrigin());
-    smoothFoot(contact_mesh, c, side, triangle, b);
+    if (!smoothFoot(contact_mesh, c, side, triangle, b)) {
+      ballPastCrease(point, mesh_is_b, mesh_to_world, contact_mesh, *place, c, r, other, options, step);
+      return;
+    }
     const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
+    // The side is where the centre lies from its foot, not where Bullet's normal points from the
+    // reporting triangle: by a box's edge Bullet reports the face beside the one the ball stands
+    // on too, its centre behind that face's plane, and that side pulled the ball into the box.
+    const double along = smooth.normal.dot(c - smooth.point);
+    if (along != 0.0) side = along < 0.0 ? -1.0 : 1.0;
     n_geometric = side * smooth.normal;
-    double gap = n_geometric.dot(c - smooth.point) - r;
+    double gap = side * along - r;
     if (options.texture && options.ball_relief) {
       n = ballOnReliefNormal(contact_mesh, c, side, triangle, b, r, options);
       // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth

@@ -108,8 +108,11 @@ struct ContactMesh {
 Eigen::Vector2d metresPerUvAt(const ContactMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b);
 
 // The triangle and barycentric coordinates of the foot of a ball's centre c (mesh frame) on the
-// smooth surface, from a triangle near it; `side` is -1 where the ball is behind the winding.
-void smoothFoot(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
+// smooth surface, from a triangle near it (the foot does not depend on `side`, -1 where the ball
+// is behind the winding). Returns whether c lies over the surface there: false where no triangle
+// holds the foot (c beyond a convex crease, such as a box's edge, or past the mesh's border), and
+// then the place is the point nearest the foot on the last triangle the walk reached.
+bool smoothFoot(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
                 Eigen::Vector3d& barycentric);
 
 // A ball of radius r centred at c (mesh frame) on a relief mesh (options.ball_relief): how far the

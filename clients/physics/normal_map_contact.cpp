@@ -59,8 +59,9 @@ void steerContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector
   const Eigen::Vector3d on_object = toEigen(surface_is_b ? point.m_positionWorldOnA : point.m_positionWorldOnB);
   // For a sphere the solver's normal row sees only the centre's velocity (the lever arm is along
   // n_s); for other shapes the contact point's.
-  const Eigen::Vector3d v_ref =
-      sphere ? velocityAt(other, toEigen(other.getWorldTransform().getOrigin())) : velocityAt(other, on_object);
+  const Eigen::Vector3d at = sphere ? toEigen(other.getWorldTransform().getOrigin()) : on_object;
+  Eigen::Vector3d v_ref = velocityAt(other, at);
+  if (step.surface_body) v_ref -= velocityAt(*step.surface_body, at);
   if (sphere) {
     const double r = double(static_cast<const btSphereShape*>(shape)->getRadius());
     const Eigen::Vector3d c = toEigen(other.getWorldTransform().getOrigin());

@@ -30,6 +30,9 @@ struct StepContext {
   double dt_s = 1e-3;
   double erp = 0.2;                            // btContactSolverInfo::m_erp (shallow contacts)
   double split_penetration_threshold = -0.04;  // deeper than this Bullet corrects by split impulse
+  // The body the surface belongs to where it moves (a textured box's faces, ball_on_box_faces.hpp):
+  // the object's velocity is taken relative to it. nullptr: a fixed surface.
+  const btCollisionObject* surface_body = nullptr;
 };
 
 // n (unit) tilted at most max_tilt_deg from the unit vector `axis`, keeping its azimuth about it

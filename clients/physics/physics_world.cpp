@@ -69,6 +69,7 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   // (contact_solver.hpp: a box on a normal map slid 12 % slow without this).
   solver_ = std::make_unique<ContactSolver>();
   world_ = std::make_unique<TexturedWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(), configuration_.get());
+  box_ground_funcs_->faces.solver = &world_->getSolverInfo();
   world_->setGravity(toBt(options.gravity_m_per_s2));
   world_->getSolverInfo().m_numIterations = options.solver_iterations;
   if (options.friction_along_slip) world_->getSolverInfo().m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
@@ -182,6 +183,8 @@ btRigidBody& PhysicsWorld::addTexturedBox(const Eigen::Vector3d& half_extents_m,
   auto shape = std::make_unique<btBoxShape>(toBt(half_extents_m));
   shape->setMargin(narrow(std::min(options_.convex_margin_m, 0.5 * half_extents_m.minCoeff())));
   attachFaceTexture(*shape, *face_textures_.back());
+  // A plain ball meets its faces as a relief mesh's (ball_on_box_faces.hpp).
+  box_ground_funcs_->faces.add(*shape, toEigen(shape->getHalfExtentsWithMargin()), *face_textures_.back());
   return addBody(std::move(shape), mass_kg, pose, material);
 }
 
