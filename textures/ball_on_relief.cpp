@@ -160,9 +160,19 @@ BallOnRelief::Touch BallOnRelief::touch(TexCoord uv, const Eigen::Vector2d& metr
     bilinear(levels.front(), ps, pt, &g);
     const double qs = std::clamp(s + z * g.x() / (du * du), double(best_i) - 1.0, double(best_i) + 1.0);
     const double qt = std::clamp(t + z * g.y() / (dv * dv), double(best_j) - 1.0, double(best_j) + 1.0);
-    const double candidate = lifted(qs, qt);
-    if (!(candidate > value)) break;
-    ps = qs, pt = qt, value = candidate;
+    double candidate = lifted(qs, qt), cs = qs, ct = qt;
+    if (!(candidate > value)) {
+      // Across a crest the step along it settles where the one across it does not: a ball on a
+      // ridge's crest line (a V-groove's rim, read between texel centres) slides its touch along
+      // the crest to the foot of its centre instead of staying at the texel centre, whose lift
+      // rippled by 2.6 um a texel along a groove under a 5 mm ball.
+      const double along_s = lifted(qs, pt), along_t = lifted(ps, qt);
+      candidate = std::max(along_s, along_t);
+      cs = along_s >= along_t ? qs : ps;
+      ct = along_s >= along_t ? pt : qt;
+      if (!(candidate > value)) break;
+    }
+    ps = cs, pt = ct, value = candidate;
   }
   const double x_u = (s - ps) * du, x_v = (pt - t) * dv;  // the centre from the touch, along u and v
   out.normal = Eigen::Vector3d(x_u, x_v, std::sqrt(std::max(0.0, r2 - x_u * x_u - x_v * x_v))) / r;

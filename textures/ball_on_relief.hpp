@@ -12,8 +12,10 @@
 // the best touch found so far. The touching texel is then refined on the bilinear height (a few
 // fixed-point steps of t = x + sqrt(r^2 - |x - t|^2) grad h(t), each kept only if it lifts the
 // ball), so that a flat top pushes straight up and a smooth crest from where it is touched, not
-// from the nearest texel centre. At a sharp edge the touch stays at a texel centre: the normal
-// leans along the edge by at most half a texel over r.
+// from the nearest texel centre. Across a sharp crest the step is refused; then the step along
+// each axis alone is tried, so that the touch slides along a crest line (a V-groove's rim, a
+// brick's edge) to the centre's row and the lift does not ripple a texel along it. At a corner
+// the touch stays at a texel centre: the normal leans by at most half a texel over r.
 //
 // Distances are in metres: the caller gives the metres per uv unit along u and v where the
 // texture is laid (a mesh's pole squeezes u), so the same texture is read as the ball meets it

@@ -62,7 +62,7 @@ TEST(BallOnBoxFaces, ABallMeetsATexturedBoxAsTheSameReliefOnABoxMesh) {
 // The box a 1 kg body sliding across its grooves at 0.05 m/s on a frictionless plane, the ball
 // in a groove moving with it: the ball stays in its groove at its height, the contact's held
 // height taken against the box's own motion (StepContext::surface_body; against the world, the
-// height moved 4.8 um and the ball 1.5 mm/s against the box).
+// height moved 4.8 um).
 TEST(BallOnBoxFaces, ABallInAGrooveIsCarriedAtItsHeightByTheSlidingBox) {
   const tex::TextureMap map = heightMap(128, kExtent, vGrooves);
   PhysicsWorld world;

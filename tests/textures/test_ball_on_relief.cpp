@@ -2,7 +2,9 @@
 // max over t of [h(t) + sqrt(r^2 - |x - t|^2)], the normal from the point it touches.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "textures/ball_on_relief.hpp"
@@ -93,11 +95,38 @@ TEST(BallOnRelief, AFlatTopPushesStraightUpAndANarrowGrooveIsBridged) {
   const BallOnRelief::Touch right = reader.touch({middle + 3.0 / 64.0, row}, mpu, r);
   EXPECT_NEAR(right.normal.x(), -(half - x) / r, 1e-9);
   EXPECT_NEAR(right.normal.y(), 0.0, 1e-12);
-  // Between rows the touch stays on an edge texel's centre: it leans along the edge by at most
-  // half a texel over r.
+  // Between rows the touch slides along the edge to the centre's row: it does not lean along the
+  // edge (before the step along one axis, it stayed on an edge texel's centre and leaned by up to
+  // half a texel over r).
   const BallOnRelief::Touch between = reader.touch({middle + 3.0 / 64.0, row + 0.3 / 64.0}, mpu, r);
   EXPECT_NEAR(between.normal.x(), -(half - x) / r, 1e-6);
-  EXPECT_LE(std::fabs(between.normal.y()), 0.5 * kTexel / r);
+  EXPECT_NEAR(between.normal.y(), 0.0, 1e-9);
+}
+
+TEST(BallOnRelief, OnTwoCrestLinesTheLiftDoesNotRippleAlongThem) {
+  // V-grooves along v, 40 texels (4 mm) apart and 1 mm deep, under a 5 mm ball over a groove's
+  // floor: it rests on the two crests either side. Its touch slides along a crest to its centre's
+  // row, so the lift is the same wherever the centre lies along the groove. (Before, the touch
+  // stayed on a crest texel's centre, the refinement's step across the crest being refused, and
+  // the lift rippled by 0.27 um a texel along the groove here, by 2.6 um under the same ball at
+  // 0.31 mm texels: a ball rolled to and fro along such a groove at 4 mm/s.)
+  const TextureMap map = reliefOf(80, 64, [](int i, int) { return -1e-3 * 2.0 * std::fabs(i / 40.0 - std::round(i / 40.0)); });
+  const BallOnRelief reader(map, Address::Wrap);
+  const Eigen::Vector2d mpu(80 * kTexel, 64 * kTexel);
+  const double r = 5e-3;
+  double lowest = 1.0, highest = -1.0;
+  for (int k = 0; k <= 40; ++k) {
+    const double v = 0.3 + k * (2.0 / 64.0) / 40.0;  // over two texels along the groove
+    const BallOnRelief::Touch touch = reader.touch({20.5 / 80.0, v}, mpu, r);
+    lowest = std::min(lowest, touch.lift_m);
+    highest = std::max(highest, touch.lift_m);
+    EXPECT_NEAR(touch.normal.y(), 0.0, 1e-9) << k;  // across the groove only
+  }
+  std::printf("[measured] along the groove: lift %.4f um, rippling by %.2e um\n", highest * 1e6, (highest - lowest) * 1e6);
+  EXPECT_LT(highest - lowest, 1e-10);
+  // On the crests 2 mm either side (the floor's texel centre 20, its neighbours' bilinear 20.5):
+  // the centre sqrt(r^2 - (2 mm)^2) over their top.
+  EXPECT_NEAR(highest, std::sqrt(r * r - 4e-6) - r, 1e-6);
 }
 
 TEST(BallOnRelief, TheNormalIsTheGradientOfTheLiftSoTheReadIsAPotential) {
