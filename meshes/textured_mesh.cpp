@@ -396,10 +396,7 @@ std::uint32_t nearestTriangle(const TexturedMesh& mesh, const Eigen::Vector3d& p
   std::uint32_t best = 0;
   double best_d2 = std::numeric_limits<double>::infinity();
   for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Triangle& tri = mesh.triangles[t];
-    const Eigen::Vector3d b = closestBarycentric(mesh, t, p);
-    const Eigen::Vector3d q = b[0] * mesh.positions[tri[0]] + b[1] * mesh.positions[tri[1]] + b[2] * mesh.positions[tri[2]];
-    const double d2 = (q - p).squaredNorm();
+    const double d2 = (pointAt(mesh, t, closestBarycentric(mesh, t, p)) - p).squaredNorm();
     if (d2 < best_d2) best_d2 = d2, best = t;
   }
   return best;

@@ -113,6 +113,11 @@ inline Eigen::Vector3d closestBarycentric(const TexturedMesh& mesh, std::uint32_
   const Triangle& t = mesh.triangles[triangle];
   return closestBarycentric(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], p);
 }
+// The point at barycentric b of `triangle` (flat). Real-time safe.
+inline Eigen::Vector3d pointAt(const TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b) {
+  const Triangle& t = mesh.triangles[triangle];
+  return b.x() * mesh.positions[t[0]] + b.y() * mesh.positions[t[1]] + b.z() * mesh.positions[t[2]];
+}
 // The triangle whose closest point is nearest p, by looking at every one (O(triangles): where a
 // walk over the mesh has no triangle to start from; not for the servo tick).
 std::uint32_t nearestTriangle(const TexturedMesh& mesh, const Eigen::Vector3d& p);

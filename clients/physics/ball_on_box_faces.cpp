@@ -44,9 +44,7 @@ void BallOnBoxFacesAlgorithm::processCollision(const btCollisionObjectWrapper* b
   // Bullet's sphere-triangle points on each face triangle within reach.
   const mesh::TexturedMesh& mesh = faces_->mesh;
   for (std::uint32_t t = 0; t < std::uint32_t(mesh.triangles.size()); ++t) {
-    const mesh::Triangle& tri = mesh.triangles[t];
-    const Eigen::Vector3d b = mesh::closestBarycentric(mesh, t, c);
-    const Eigen::Vector3d q = b.x() * mesh.positions[tri[0]] + b.y() * mesh.positions[tri[1]] + b.z() * mesh.positions[tri[2]];
+    const Eigen::Vector3d q = mesh::pointAt(mesh, t, mesh::closestBarycentric(mesh, t, c));
     const Eigen::Vector3d d = c - q;
     const double distance = d.norm();
     if (distance - r > threshold) continue;
@@ -67,13 +65,8 @@ void BallOnBoxFacesAlgorithm::processCollision(const btCollisionObjectWrapper* b
 
   // Every point, kept or new, rewritten as a relief mesh's are (textured_world.cpp does it there
   // after Bullet's detection; here the box moves, so relative to it).
-  StepContext step;
+  StepContext step = catalog_->solver ? stepContextOf(*catalog_->solver, double(info.m_timeStep)) : StepContext{};
   step.dt_s = double(info.m_timeStep);
-  if (catalog_->solver) {
-    step.erp = double(catalog_->solver->m_erp);
-    step.split_penetration_threshold =
-        catalog_->solver->m_splitImpulse ? double(catalog_->solver->m_splitImpulsePenetrationThreshold) : -1e30;
-  }
   step.surface_body = box->getCollisionObject();
   for (int k = 0; k < manifold->getNumContacts(); ++k)
     applyMeshContact(manifold->getContactPoint(k), true, world_from_box, faces_->contact, *ball->getCollisionObject(),

@@ -36,14 +36,24 @@ Eigen::Vector2d metresPerUvAt(const ContactMesh& contact_mesh, std::uint32_t tri
   return b.x() * contact_mesh.metres_per_uv[t[0]] + b.y() * contact_mesh.metres_per_uv[t[1]] + b.z() * contact_mesh.metres_per_uv[t[2]];
 }
 
+namespace {
+
+// The lift of a ball of radius r on the relief of `triangle` at barycentric b, met from the front
+// (front: the side its winding faces) or from behind; in metres where the texture is laid (no
+// rescaling to the tile it was made for).
+double liftOnFace(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b, bool front,
+                  double r, const MeshContactOptions& options) {
+  const mesh::SurfaceFrame f = mesh::frameAt(*contact_mesh.mesh, triangle, b, mesh::FrameMode::Interpolated);
+  return options.ball_relief->touch({f.uv.x(), f.uv.y()}, metresPerUvAt(contact_mesh, triangle, b), r, !front).lift_m;
+}
+
+}  // namespace
+
 double ballOnReliefLift(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
                         double r, const MeshContactOptions& options) {
-  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   Eigen::Vector3d b = Eigen::Vector3d::Constant(1.0 / 3.0);
   smoothFoot(contact_mesh, c, side, triangle, b);
-  const mesh::SurfaceFrame f = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::Interpolated);
-  // In metres where the texture is laid: no rescaling to the tile it was made for.
-  return options.ball_relief->touch({f.uv.x(), f.uv.y()}, metresPerUvAt(contact_mesh, triangle, b), r, side < 0.0).lift_m;
+  return liftOnFace(contact_mesh, triangle, b, side >= 0.0, r, options);
 }
 
 Eigen::Vector3d ballOnReliefNormal(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side,
@@ -203,14 +213,6 @@ void leanChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
 
 namespace {
 
-// The lift of a ball of radius r on the relief of `triangle` at barycentric b, met from the front
-// (front: the side its winding faces) or from behind.
-double liftOnFace(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b, bool front,
-                  double r, const MeshContactOptions& options) {
-  const mesh::SurfaceFrame f = mesh::frameAt(*contact_mesh.mesh, triangle, b, mesh::FrameMode::Interpolated);
-  return options.ball_relief->touch({f.uv.x(), f.uv.y()}, metresPerUvAt(contact_mesh, triangle, b), r, !front).lift_m;
-}
-
 // A ball whose centre lies over no triangle (smoothFoot): beyond a convex crease (a box's edge or
 // corner) or past the mesh's border. It meets the reporting triangle's point nearest its centre,
 // as Bullet found it, along the line to the centre: the edge rounds the ball's path by its radius,
@@ -222,10 +224,7 @@ void ballPastCrease(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometr
                     const ContactMesh& contact_mesh, const MeshPlace& place, const Eigen::Vector3d& c, double r,
                     const btCollisionObject& other, const MeshContactOptions& options, const StepContext& step) {
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
-  const mesh::Triangle& t = mesh.triangles[place.triangle];
-  const Eigen::Vector3d nearest = place.barycentric.x() * mesh.positions[t[0]] +
-                                  place.barycentric.y() * mesh.positions[t[1]] +
-                                  place.barycentric.z() * mesh.positions[t[2]];
+  const Eigen::Vector3d nearest = mesh::pointAt(mesh, place.triangle, place.barycentric);
   const Eigen::Vector3d d = c - nearest;
   const double distance = d.norm();
   if (!(distance > 1e-9 * r)) return;  // the centre on the surface: nothing to steer by

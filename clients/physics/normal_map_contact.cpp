@@ -27,6 +27,14 @@ Eigen::Vector3d clampedSampledNormal(const tex::TexturedSurface& surface, double
   return clampTilt(surface.at(x_local, y_local).n_local, Eigen::Vector3d::UnitZ(), max_tilt_deg);
 }
 
+StepContext stepContextOf(const btContactSolverInfo& solver, double dt_s) {
+  StepContext step;
+  step.dt_s = dt_s;
+  step.erp = double(solver.m_erp);
+  step.split_penetration_threshold = solver.m_splitImpulse ? double(solver.m_splitImpulsePenetrationThreshold) : -1e30;
+  return step;
+}
+
 namespace {
 
 // Velocity of `body` at world point p (zero for a body that is not a rigid body).

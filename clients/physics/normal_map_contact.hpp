@@ -10,6 +10,7 @@
 //  - other shapes keep their points and change the normal only.
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <BulletCollision/NarrowPhaseCollision/btManifoldPoint.h>
+#include <BulletDynamics/ConstraintSolver/btContactSolverInfo.h>
 
 #include "textures/textured_surface.hpp"
 
@@ -34,6 +35,8 @@ struct StepContext {
   // the object's velocity is taken relative to it. nullptr: a fixed surface.
   const btCollisionObject* surface_body = nullptr;
 };
+// The step's context from the world's solver settings and its step.
+StepContext stepContextOf(const btContactSolverInfo& solver, double dt_s);
 
 // n (unit) tilted at most max_tilt_deg from the unit vector `axis`, keeping its azimuth about it
 // (90 leaves it as it is); a normal straight across the axis becomes the axis.

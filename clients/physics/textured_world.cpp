@@ -47,14 +47,7 @@ void TexturedWorld::performDiscreteCollisionDetection() {
     alignFrictionWithSlip(*dispatcher->getManifoldByIndexInternal(m), double(getDispatchInfo().m_timeStep));
 }
 
-StepContext TexturedWorld::stepContext() {
-  StepContext step;
-  step.dt_s = double(getDispatchInfo().m_timeStep);
-  step.erp = double(getSolverInfo().m_erp);
-  step.split_penetration_threshold =
-      getSolverInfo().m_splitImpulse ? double(getSolverInfo().m_splitImpulsePenetrationThreshold) : -1e30;
-  return step;
-}
+StepContext TexturedWorld::stepContext() { return stepContextOf(getSolverInfo(), double(getDispatchInfo().m_timeStep)); }
 
 namespace {
 
