@@ -55,16 +55,13 @@ btCollisionAlgorithm* BoxGroundCreateFunc::CreateCollisionAlgorithm(btCollisionA
     case PairGround::None:
       break;
   }
-  // A plain ball against a textured box: its faces as a relief mesh's.
+  // A plain ball or a capsule against a textured box: its faces as a relief mesh's.
   const btCollisionShape& s0 = *body0->getCollisionShape();
   const btCollisionShape& s1 = *body1->getCollisionShape();
-  const auto plain_ball = [](const btCollisionShape& s) {
-    return s.getShapeType() == SPHERE_SHAPE_PROXYTYPE && !ballTextureOf(s);
-  };
-  if (isBox(s0) && plain_ball(s1))
+  if (isBox(s0) && meetsBoxFacesAsBalls(s1))
     if (const BoxFaces* faces = catalog->find(s0))
       return ManifoldAlgorithm::create<BallOnBoxFacesAlgorithm>(ci, body0, body1, true, faces, catalog);
-  if (plain_ball(s0) && isBox(s1))
+  if (meetsBoxFacesAsBalls(s0) && isBox(s1))
     if (const BoxFaces* faces = catalog->find(s1))
       return ManifoldAlgorithm::create<BallOnBoxFacesAlgorithm>(ci, body0, body1, false, faces, catalog);
   return otherwise->CreateCollisionAlgorithm(ci, body0, body1);

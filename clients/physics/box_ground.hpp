@@ -14,15 +14,14 @@
 // Which body is the ground (texturedPairGround): a box under a ball with a bump map; of two boxes,
 // one of them textured, the larger (by volume; the second on a tie). Pairs without a texture keep
 // their algorithms (Bullet's box-box, the scaled GJK of scaled_convex_collision.hpp). A plain ball
-// against a textured box meets its faces as a relief mesh's, lifted (ball_on_box_faces.hpp). Not
-// covered, colliding as the coarse shapes (measured on 2026-12-04, docs/physics.md "Textured objects
-// against other objects"):
+// or a capsule against a textured box meets its faces as a relief mesh's, as balls, lifted
+// (ball_on_box_faces.hpp). Not covered, colliding as the coarse shapes (docs/physics.md "Textured
+// objects against other objects"):
 // - a ball with a bump map against a ball, capsule or cylinder (no box to stand on);
-// - a capsule or cylinder against a textured box: the rod rules are made for a rod lying on, or
-//   standing on, the ground under it. The pen's upright capsule pushing the grooved block in the
-//   bowl met the block's top face at its edge, where a groove wall's tilted normal made the
-//   capsule's far side the contact point, 1.75 mm deep where the raster read 0.23 mm, and the
-//   block was thrown at 0.22 m/s.
+// - a cylinder against a textured box: the rod rules are made for a rod lying on, or standing on,
+//   the ground under it (tried on 2026-12-04 with capsules too: the pen's upright capsule pushing
+//   the grooved block met the block's top face at its edge and threw it at 0.22 m/s), and a
+//   cylinder's flat ends are not balls.
 #include <BulletCollision/CollisionDispatch/btCollisionConfiguration.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
@@ -64,7 +63,8 @@ PairGround texturedPairGround(const btCollisionShape& first, const btCollisionSh
 
 // The create function for a pair of box against sphere, box, capsule or cylinder: the relief
 // algorithm (relief_collision.hpp) for the pairs texturedPairGround takes, `otherwise` for the rest.
-// A plain ball against a textured box whose faces `catalog` holds goes to BallOnBoxFacesAlgorithm.
+// A plain ball or a capsule against a textured box whose faces `catalog` holds goes to
+// BallOnBoxFacesAlgorithm.
 struct BoxGroundCreateFunc : btCollisionAlgorithmCreateFunc {
   BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func, const BoxFacesCatalog* faces_catalog)
       : otherwise(otherwise_func), catalog(faces_catalog) {}

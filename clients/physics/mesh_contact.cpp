@@ -56,6 +56,21 @@ double ballOnReliefLift(const ContactMesh& contact_mesh, const Eigen::Vector3d& 
   return liftOnFace(contact_mesh, triangle, b, side >= 0.0, r, options);
 }
 
+double ballLiftedGap(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, std::uint32_t triangle, double r,
+                     const MeshContactOptions& options) {
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const std::uint32_t reporting = triangle;
+  Eigen::Vector3d b = Eigen::Vector3d::Constant(1.0 / 3.0);
+  if (!smoothFoot(contact_mesh, c, 1.0, triangle, b))
+    return (c - mesh::pointAt(mesh, reporting, mesh::closestBarycentric(mesh, reporting, c))).norm() - r;
+  const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
+  const double along = smooth.normal.dot(c - smooth.point);
+  const bool front = along >= 0.0;
+  double gap = std::fabs(along) - r;
+  if (options.texture && options.ball_relief && options.lift_ball) gap -= liftOnFace(contact_mesh, triangle, b, front, r, options);
+  return gap;
+}
+
 Eigen::Vector3d ballOnReliefNormal(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side,
                                    std::uint32_t triangle, const Eigen::Vector3d& b, double r,
                                    const MeshContactOptions& options) {
@@ -177,6 +192,17 @@ std::optional<MeshPlace> placeOf(const btManifoldPoint& point, bool mesh_is_b, c
   return MeshPlace{std::uint32_t(index), mesh::closestBarycentric(mesh, std::uint32_t(index), on_mesh)};
 }
 
+// The side of `triangle` Bullet's normal says the object touches: -1 from behind (a bowl's inside).
+double sideOf(const btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& world_to_mesh,
+              const mesh::TexturedMesh& mesh, std::uint32_t triangle) {
+  Eigen::Vector3d n_face, tangent;
+  double handedness = 1.0;
+  mesh::triangleFrame(mesh, triangle, n_face, tangent, handedness);
+  // Bullet's normal points from B to A; towards the object it is that (mesh B) or its reverse.
+  const Eigen::Vector3d towards_object = world_to_mesh.linear() * toEigen(point.m_normalWorldOnB) * (mesh_is_b ? 1.0 : -1.0);
+  return n_face.dot(towards_object) < 0.0 ? -1.0 : 1.0;
+}
+
 }  // namespace
 
 void steerChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
@@ -221,8 +247,10 @@ namespace {
 // leaves, blended into the face's across the edge as the line to the centre turns from one face's
 // normal to the other's, so that it goes on continuously at both ends.
 void ballPastCrease(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
-                    const ContactMesh& contact_mesh, const MeshPlace& place, const Eigen::Vector3d& c, double r,
-                    const btCollisionObject& other, const MeshContactOptions& options, const StepContext& step) {
+                    const ContactMesh& contact_mesh, const MeshPlace& place, const Eigen::Vector3d& c,
+                    const ObjectBall& ball, const btCollisionObject& other, const MeshContactOptions& options,
+                    const StepContext& step) {
+  const double r = ball.radius_m;
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   const Eigen::Vector3d nearest = mesh::pointAt(mesh, place.triangle, place.barycentric);
   const Eigen::Vector3d d = c - nearest;
@@ -234,34 +262,42 @@ void ballPastCrease(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometr
     Eigen::Vector3d n_face, tangent;
     double handedness = 1.0;
     mesh::triangleFrame(mesh, place.triangle, n_face, tangent, handedness);
-    double lift = liftOnFace(contact_mesh, place.triangle, place.barycentric, n_face.dot(n) >= 0.0, r, options);
     // The edge the point lies on (its smallest barycentric), and the face across it.
     int edge = 0;
     for (int k = 1; k < 3; ++k) edge = place.barycentric[k] < place.barycentric[edge] ? k : edge;
     const std::uint32_t across = contact_mesh.neighbours[place.triangle][std::size_t(edge)];
+    Eigen::Vector3d n_across = n_face;
+    if (across != mesh::kNoNeighbour) mesh::triangleFrame(mesh, across, n_across, tangent, handedness);
+    // Both faces are met from their front where the centre lies in front of either, or level with
+    // it: outside the convex crease, though behind one face's plane. By a box's upright edge a
+    // ball in front of one side face lies behind the other's plane, and at a corner the face
+    // across the edge the point names may be its own face's other triangle, level with the
+    // centre to rounding; read from behind, those faces' grooves stood up as ridges 0.8 mm tall
+    // and threw a block the pen went round.
+    constexpr double kLevel = 1e-5;  // Bullet's float transforms: the level reads up to about 1e-7
+    const bool front = n_face.dot(n) >= -kLevel || n_across.dot(n) >= -kLevel;
+    double lift = liftOnFace(contact_mesh, place.triangle, place.barycentric, front, r, options);
     if (across != mesh::kNoNeighbour) {
-      Eigen::Vector3d n_across;
-      mesh::triangleFrame(mesh, across, n_across, tangent, handedness);
       const double turned = std::acos(std::clamp(n_face.dot(n), -1.0, 1.0));
       const double to_go = std::acos(std::clamp(n_across.dot(n), -1.0, 1.0));
       if (turned + to_go > 0.0) {
         const Eigen::Vector3d b_across = mesh::closestBarycentric(mesh, across, nearest);
-        const double lift_across = liftOnFace(contact_mesh, across, b_across, n_across.dot(n) >= 0.0, r, options);
+        const double lift_across = liftOnFace(contact_mesh, across, b_across, front, r, options);
         lift += turned / (turned + to_go) * (lift_across - lift);
       }
     }
     gap -= lift;
   }
   point.m_distance1 = static_cast<btScalar>(gap);
-  steerContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n, other, options.hold_height,
-               step);
+  steerBallContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n, ball, other,
+                   options.hold_height, step);
 }
 
 }  // namespace
 
-void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
-                      const ContactMesh& contact_mesh, const btCollisionObject& other,
-                      const MeshContactOptions& options, const StepContext& step) {
+void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                          const ContactMesh& contact_mesh, const ObjectBall& ball, const btCollisionObject& other,
+                          const MeshContactOptions& options, const StepContext& step) {
   if (!options.smooth) return;
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
@@ -269,48 +305,60 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
   if (!place) return;
   std::uint32_t triangle = place->triangle;
   Eigen::Vector3d b = place->barycentric;
-  Eigen::Vector3d n_face, tangent;
-  double handedness = 1.0;
-  mesh::triangleFrame(mesh, triangle, n_face, tangent, handedness);
-  // Bullet's normal points from B to A; towards the object it is that (mesh B) or its reverse.
-  const Eigen::Vector3d towards_object = world_to_mesh.linear() * toEigen(point.m_normalWorldOnB) * (mesh_is_b ? 1.0 : -1.0);
-  double side = n_face.dot(towards_object) < 0.0 ? -1.0 : 1.0;  // -1: touched from behind (a bowl's inside)
-
-  Eigen::Vector3d n_geometric = side * n_face;
-  const btCollisionShape* shape = other.getCollisionShape();
+  const double r = ball.radius_m;
+  const Eigen::Vector3d c = world_to_mesh * ball.centre_world;
+  if (!smoothFoot(contact_mesh, c, 1.0, triangle, b)) {
+    ballPastCrease(point, mesh_is_b, mesh_to_world, contact_mesh, *place, c, ball, other, options, step);
+    return;
+  }
+  const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
+  // The side is where the centre lies from its foot, not where Bullet's normal points from the
+  // reporting triangle: by a box's edge Bullet reports the face beside the one the ball stands
+  // on too, its centre behind that face's plane, and that side pulled the ball into the box.
+  const double along = smooth.normal.dot(c - smooth.point);
+  double side = along < 0.0 ? -1.0 : 1.0;
+  if (along == 0.0) side = sideOf(point, mesh_is_b, world_to_mesh, mesh, place->triangle);
+  const Eigen::Vector3d n_geometric = side * smooth.normal;
+  double gap = side * along - r;
   Eigen::Vector3d n;
-  if (shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
-    // Only a ball meets the relief as a sphere: other shapes read one point.
-    const double r = double(static_cast<const btSphereShape*>(shape)->getRadius());
-    const Eigen::Vector3d c = world_to_mesh * toEigen(other.getWorldTransform().getOrigin());
-    if (!smoothFoot(contact_mesh, c, side, triangle, b)) {
-      ballPastCrease(point, mesh_is_b, mesh_to_world, contact_mesh, *place, c, r, other, options, step);
-      return;
+  if (options.texture && options.ball_relief) {
+    n = ballOnReliefNormal(contact_mesh, c, side, triangle, b, r, options);
+    // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
+    // surface (steerContact's rule, with that gap).
+    if (options.lift_ball) {
+      std::uint32_t foot = triangle;
+      gap -= ballOnReliefLift(contact_mesh, c, side, foot, r, options);
     }
-    const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
-    // The side is where the centre lies from its foot, not where Bullet's normal points from the
-    // reporting triangle: by a box's edge Bullet reports the face beside the one the ball stands
-    // on too, its centre behind that face's plane, and that side pulled the ball into the box.
-    const double along = smooth.normal.dot(c - smooth.point);
-    if (along != 0.0) side = along < 0.0 ? -1.0 : 1.0;
-    n_geometric = side * smooth.normal;
-    double gap = side * along - r;
-    if (options.texture && options.ball_relief) {
-      n = ballOnReliefNormal(contact_mesh, c, side, triangle, b, r, options);
-      // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
-      // surface (steerContact's rule, with that gap).
-      if (options.lift_ball) {
-        std::uint32_t foot = triangle;
-        gap -= ballOnReliefLift(contact_mesh, c, side, foot, r, options);
-      }
-    } else {
-      n = side * meshContactNormal(mesh, triangle, b, options);
-    }
-    point.m_distance1 = static_cast<btScalar>(gap);
   } else {
     n = side * meshContactNormal(mesh, triangle, b, options);
   }
-  steerContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n_geometric, other,
+  point.m_distance1 = static_cast<btScalar>(gap);
+  steerBallContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n_geometric, ball, other,
+                   options.hold_height, step);
+}
+
+void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                      const ContactMesh& contact_mesh, const btCollisionObject& other,
+                      const MeshContactOptions& options, const StepContext& step) {
+  if (!options.smooth) return;
+  const btCollisionShape* shape = other.getCollisionShape();
+  if (shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
+    // Only a ball meets the relief as a sphere: other shapes read one point.
+    const ObjectBall ball{toEigen(other.getWorldTransform().getOrigin()),
+                          double(static_cast<const btSphereShape*>(shape)->getRadius())};
+    applyBallMeshContact(point, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
+    return;
+  }
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
+  const std::optional<MeshPlace> place = placeOf(point, mesh_is_b, world_to_mesh, mesh);
+  if (!place) return;
+  const double side = sideOf(point, mesh_is_b, world_to_mesh, mesh, place->triangle);
+  Eigen::Vector3d n_face, tangent;
+  double handedness = 1.0;
+  mesh::triangleFrame(mesh, place->triangle, n_face, tangent, handedness);
+  const Eigen::Vector3d n = side * meshContactNormal(mesh, place->triangle, place->barycentric, options);
+  steerContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * (side * n_face), other,
                options.hold_height, step);
 }
 

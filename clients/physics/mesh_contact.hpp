@@ -120,6 +120,13 @@ bool smoothFoot(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, 
 // `triangle`, which is updated; BallOnRelief::Touch::lift_m), the texture laid in metres there.
 double ballOnReliefLift(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
                         double r, const MeshContactOptions& options);
+// The gap of that ball to the relief as it meets it (its distance to the smooth surface at its
+// foot, less r and the lift; without a relief or with options.lift_ball false, to the smooth
+// surface), the foot walked to from `triangle`; where no triangle holds the foot, its distance to
+// `triangle` less r.
+double ballLiftedGap(const ContactMesh& mesh, const Eigen::Vector3d& c, std::uint32_t triangle, double r,
+                     const MeshContactOptions& options);
+
 // The steering normal of that ball (mesh frame, unit, towards the ball: side times the outward
 // normal): the smooth normal tilted by the lift's gradient along the surface, taken by central
 // differences of ballOnReliefLift over the ball's centre moved along the tangent and the bitangent
@@ -157,5 +164,12 @@ void leanChartContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
 void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                       const ContactMesh& mesh, const btCollisionObject& other,
                       const MeshContactOptions& options, const StepContext& step = {});
+
+// applyMeshContact's rule for a ball, for `point` made by `ball` of `other` (its sphere, or a ball
+// a capsule sweeps: ball_on_box_faces.hpp): the foot of its centre on the smooth surface, the ball
+// lifted onto the relief there, past a convex crease the nearest point of the reporting triangle.
+void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                          const ContactMesh& mesh, const ObjectBall& ball, const btCollisionObject& other,
+                          const MeshContactOptions& options, const StepContext& step = {});
 
 }  // namespace thx::phys

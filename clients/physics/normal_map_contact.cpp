@@ -54,26 +54,21 @@ double distanceForBias(double r, const StepContext& step) {
   return std::max(-r * step.dt_s / step.erp, 0.99 * step.split_penetration_threshold);
 }
 
-}  // namespace
-
-void steerContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector3d& n_world,
-                  const Eigen::Vector3d& n_geometric, const btCollisionObject& other, bool hold_height,
-                  const StepContext& step) {
+// steerContact's rule; `ball` null: a point of a shape that is not met as a ball.
+void steerOnto(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector3d& n_world,
+               const Eigen::Vector3d& n_geometric, const ObjectBall* ball, const btCollisionObject& other,
+               bool hold_height, const StepContext& step) {
   // m_normalWorldOnB points from B towards A: the surface's normal if the surface is B, else reversed.
   point.m_normalWorldOnB = toBt(surface_is_b ? n_world : Eigen::Vector3d(-n_world));
 
-  const btCollisionShape* shape = other.getCollisionShape();
-  const bool sphere = shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE;
   const Eigen::Vector3d on_object = toEigen(surface_is_b ? point.m_positionWorldOnA : point.m_positionWorldOnB);
-  // For a sphere the solver's normal row sees only the centre's velocity (the lever arm is along
+  // For a ball the solver's normal row sees only the centre's velocity (the lever arm is along
   // n_s); for other shapes the contact point's.
-  const Eigen::Vector3d at = sphere ? toEigen(other.getWorldTransform().getOrigin()) : on_object;
+  const Eigen::Vector3d at = ball ? ball->centre_world : on_object;
   Eigen::Vector3d v_ref = velocityAt(other, at);
   if (step.surface_body) v_ref -= velocityAt(*step.surface_body, at);
-  if (sphere) {
-    const double r = double(static_cast<const btSphereShape*>(shape)->getRadius());
-    const Eigen::Vector3d c = toEigen(other.getWorldTransform().getOrigin());
-    const btVector3 q = toBt(Eigen::Vector3d(c - r * n_world));
+  if (ball) {
+    const btVector3 q = toBt(Eigen::Vector3d(ball->centre_world - ball->radius_m * n_world));
     // The solver takes lever arms from the world positions; the local points are left alone so
     // Bullet's own matching of cached points (by local point on A) keeps working next step.
     point.m_positionWorldOnA = q;
@@ -85,6 +80,27 @@ void steerContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector
     const Eigen::Vector3d v_t = v_ref - v_ref.dot(n_geometric) * n_geometric;
     const double required = b_g * n_world.dot(n_geometric) + v_t.dot(n_world);
     point.m_distance1 = static_cast<btScalar>(distanceForBias(required, step));
+  }
+}
+
+}  // namespace
+
+void steerBallContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector3d& n_world,
+                      const Eigen::Vector3d& n_geometric, const ObjectBall& ball, const btCollisionObject& other,
+                      bool hold_height, const StepContext& step) {
+  steerOnto(point, surface_is_b, n_world, n_geometric, &ball, other, hold_height, step);
+}
+
+void steerContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector3d& n_world,
+                  const Eigen::Vector3d& n_geometric, const btCollisionObject& other, bool hold_height,
+                  const StepContext& step) {
+  const btCollisionShape* shape = other.getCollisionShape();
+  if (shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
+    const ObjectBall ball{toEigen(other.getWorldTransform().getOrigin()),
+                          double(static_cast<const btSphereShape*>(shape)->getRadius())};
+    steerOnto(point, surface_is_b, n_world, n_geometric, &ball, other, hold_height, step);
+  } else {
+    steerOnto(point, surface_is_b, n_world, n_geometric, nullptr, other, hold_height, step);
   }
 }
 

@@ -55,6 +55,19 @@ void steerContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector
                   const Eigen::Vector3d& n_geometric, const btCollisionObject& other, bool hold_height,
                   const StepContext& step);
 
+// A ball of `other`: its sphere, or one of the balls a capsule sweeps along its axis
+// (ball_on_box_faces.hpp), centred at `centre_world`.
+struct ObjectBall {
+  Eigen::Vector3d centre_world;
+  double radius_m = 0.0;
+};
+// steerContact for a point made by `ball` of `other`: the point moves to its centre - r n_world,
+// and the height held is taken against its centre's velocity (the lever arm of a ball's contact is
+// along its normal, so its rolling does not enter).
+void steerBallContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector3d& n_world,
+                      const Eigen::Vector3d& n_geometric, const ObjectBall& ball, const btCollisionObject& other,
+                      bool hold_height, const StepContext& step);
+
 // Rewrites `point` of a manifold in which the textured plane is body B (`plane_is_b`) or body A.
 // `plane_to_world` is the plane body's world transform (the surface's local frame); `other` is the
 // object touching the plane.
