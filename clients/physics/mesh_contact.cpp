@@ -56,21 +56,6 @@ double ballOnReliefLift(const ContactMesh& contact_mesh, const Eigen::Vector3d& 
   return liftOnFace(contact_mesh, triangle, b, side >= 0.0, r, options);
 }
 
-double ballLiftedGap(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, std::uint32_t triangle, double r,
-                     const MeshContactOptions& options) {
-  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
-  const std::uint32_t reporting = triangle;
-  Eigen::Vector3d b = Eigen::Vector3d::Constant(1.0 / 3.0);
-  if (!smoothFoot(contact_mesh, c, 1.0, triangle, b))
-    return (c - mesh::pointAt(mesh, reporting, mesh::closestBarycentric(mesh, reporting, c))).norm() - r;
-  const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
-  const double along = smooth.normal.dot(c - smooth.point);
-  const bool front = along >= 0.0;
-  double gap = std::fabs(along) - r;
-  if (options.texture && options.ball_relief && options.lift_ball) gap -= liftOnFace(contact_mesh, triangle, b, front, r, options);
-  return gap;
-}
-
 Eigen::Vector3d ballOnReliefNormal(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side,
                                    std::uint32_t triangle, const Eigen::Vector3d& b, double r,
                                    const MeshContactOptions& options) {
@@ -246,18 +231,17 @@ namespace {
 // crosses the face's edge its foot is that point). On a relief, the lift of the face the ball
 // leaves, blended into the face's across the edge as the line to the centre turns from one face's
 // normal to the other's, so that it goes on continuously at both ends.
-void ballPastCrease(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
-                    const ContactMesh& contact_mesh, const MeshPlace& place, const Eigen::Vector3d& c,
-                    const ObjectBall& ball, const btCollisionObject& other, const MeshContactOptions& options,
-                    const StepContext& step) {
-  const double r = ball.radius_m;
+// Its gap, and the normal n (the line from that point to the centre); false where the centre lies
+// on the surface (nothing to steer by).
+bool gapPastCrease(const ContactMesh& contact_mesh, const MeshPlace& place, const Eigen::Vector3d& c, double r,
+                   const MeshContactOptions& options, double& gap, Eigen::Vector3d& n) {
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   const Eigen::Vector3d nearest = mesh::pointAt(mesh, place.triangle, place.barycentric);
   const Eigen::Vector3d d = c - nearest;
   const double distance = d.norm();
-  if (!(distance > 1e-9 * r)) return;  // the centre on the surface: nothing to steer by
-  const Eigen::Vector3d n = d / distance;
-  double gap = distance - r;
+  if (!(distance > 1e-9 * r)) return false;
+  n = d / distance;
+  gap = distance - r;
   if (options.texture && options.ball_relief && options.lift_ball) {
     Eigen::Vector3d n_face, tangent;
     double handedness = 1.0;
@@ -288,12 +272,41 @@ void ballPastCrease(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometr
     }
     gap -= lift;
   }
+  return true;
+}
+
+void ballPastCrease(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                    const ContactMesh& contact_mesh, const MeshPlace& place, const Eigen::Vector3d& c,
+                    const ObjectBall& ball, const btCollisionObject& other, const MeshContactOptions& options,
+                    const StepContext& step) {
+  double gap = 0.0;
+  Eigen::Vector3d n;
+  if (!gapPastCrease(contact_mesh, place, c, ball.radius_m, options, gap, n)) return;
   point.m_distance1 = static_cast<btScalar>(gap);
   steerBallContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n, ball, other,
                    options.hold_height, step);
 }
 
 }  // namespace
+
+double ballLiftedGap(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, std::uint32_t triangle, double r,
+                     const MeshContactOptions& options) {
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const std::uint32_t reporting = triangle;
+  Eigen::Vector3d b = mesh::closestBarycentric(mesh, reporting, c);
+  if (!smoothFoot(contact_mesh, c, 1.0, triangle, b)) {  // as applyBallMeshContact meets it there
+    double gap = 0.0;
+    Eigen::Vector3d n;
+    const MeshPlace place{reporting, mesh::closestBarycentric(mesh, reporting, c)};
+    return gapPastCrease(contact_mesh, place, c, r, options, gap, n) ? gap : -r;
+  }
+  const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
+  const double along = smooth.normal.dot(c - smooth.point);
+  const bool front = along >= 0.0;
+  double gap = std::fabs(along) - r;
+  if (options.texture && options.ball_relief && options.lift_ball) gap -= liftOnFace(contact_mesh, triangle, b, front, r, options);
+  return gap;
+}
 
 void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                           const ContactMesh& contact_mesh, const ObjectBall& ball, const btCollisionObject& other,
