@@ -93,12 +93,8 @@ int run(int argc, char** argv) {
     texture.tile_m = kExtent;
     const BoxFaces faces(half, texture);
     std::vector<std::uint32_t> top;
-    for (std::uint32_t t = 0; t < std::uint32_t(faces.mesh.triangles.size()); ++t) {
-      Eigen::Vector3d n, tangent;
-      double handedness = 1.0;
-      mesh::triangleFrame(faces.mesh, t, n, tangent, handedness);
-      if (n.z() > 0.5) top.push_back(t);
-    }
+    for (std::uint32_t t = 0; t < std::uint32_t(faces.mesh.triangles.size()); ++t)
+      if (mesh::faceNormal(faces.mesh, t).z() > 0.5) top.push_back(t);
     for (const double radius : {0.002, 0.004}) {
       const std::vector<Pose> poses = posesOf(pose_count, radius, half);
       // The least lifted gap over each pose's runs, every micrometre.

@@ -96,12 +96,8 @@ void BallOnBoxFacesAlgorithm::processCollision(const btCollisionObjectWrapper* b
     const Eigen::Vector3d d = c - q;
     const double distance = d.norm();
     if (distance - r > threshold) return;
-    Eigen::Vector3d n = d / distance;
-    if (!(distance > 1e-12)) {  // the centre on the face: its outward normal
-      Eigen::Vector3d tangent;
-      double handedness = 1.0;
-      mesh::triangleFrame(mesh, t, n, tangent, handedness);
-    }
+    // The centre on the face: its outward normal.
+    const Eigen::Vector3d n = distance > 1e-12 ? Eigen::Vector3d(d / distance) : mesh::faceNormal(mesh, t);
     if (box_first_)
       result->setShapeIdentifiersA(0, int(t));
     else

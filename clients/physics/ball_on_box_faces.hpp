@@ -4,7 +4,8 @@
 // lifted onto the box's relief as a ball meets it. The box is a mesh of its six faces laid as its
 // face texture is read (meshes/textured_box_mesh.hpp). A capsule is its segment swept by a ball,
 // so it is met as the balls on its segment that meet each triangle (capsule_balls.hpp: where the
-// segment comes nearest, and the ends of its run over the triangle); a sphere is its one ball.
+// segment comes nearest beside the triangle, and over it the ball of least lifted gap on each half
+// of its run); a sphere is its one ball.
 // Each step every such ball's point on each of the twelve triangles within the breaking threshold
 // is found as Bullet's sphere-triangle algorithm finds it on a mesh (the nearest point of the
 // triangle, the normal from it to the ball's centre), kept between steps as Bullet keeps a mesh's,
@@ -67,7 +68,8 @@ bool meetsBoxFacesAsBalls(const btCollisionShape& shape);
 
 class BallOnBoxFacesAlgorithm : public ManifoldAlgorithm {
  public:
-  // `box_first`: body0 is the box; the other body meetsBoxFacesAsBalls. `faces` and `catalog` outlive the algorithm (the world's).
+  // `box_first`: body0 is the box; the other body meetsBoxFacesAsBalls. `faces` and `catalog`
+  // outlive the algorithm (the world's).
   BallOnBoxFacesAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
                           const btCollisionObjectWrapper* body1, bool box_first, const BoxFaces* faces,
                           const BoxFacesCatalog* catalog)

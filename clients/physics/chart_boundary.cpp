@@ -15,14 +15,6 @@ namespace {
 // Two planes closer than this in direction (unit normals' difference) and offset (metres) are one.
 constexpr double kSameDirection = 1e-6, kSameOffset = 1e-7;
 
-// The mesh's own face normal (its triangle frame, as every sense reads a flat face).
-Eigen::Vector3d faceNormal(const mesh::TexturedMesh& mesh, std::uint32_t triangle) {
-  Eigen::Vector3d normal, tangent;
-  double handedness = 1.0;
-  mesh::triangleFrame(mesh, triangle, normal, tangent, handedness);
-  return normal;
-}
-
 struct CollectEdges : btTriangleCallback {
   const mesh::TexturedMesh& mesh;
   const Eigen::Isometry3d& mesh_from_chart;
@@ -71,7 +63,7 @@ struct CollectEdges : btTriangleCallback {
     if (index < 0 || std::size_t(index) >= mesh.triangles.size()) return;
     const Eigen::Vector3d chart_normal = side * mesh_from_chart.linear().col(2);
     if (!acrossCrease(mesh, std::uint32_t(index), chart_normal)) return;
-    const Eigen::Vector3d p0 = toEigen(triangle[0]), n = faceNormal(mesh, std::uint32_t(index));
+    const Eigen::Vector3d p0 = toEigen(triangle[0]), n = mesh::faceNormal(mesh, std::uint32_t(index));
     gather(std::uint32_t(index), n);
     // The face's plane n . x = d met by the chart's plane z = 0: x = R p + t gives the line
     // (R^T n)_xy . p = d - n . t.
@@ -112,7 +104,7 @@ bool ChartBoundary::nearerAcross(const Eigen::Vector3d& q, double gap) const {
 }
 
 bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& chart_normal) {
-  return faceNormal(mesh, triangle).dot(chart_normal) < std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
+  return mesh::faceNormal(mesh, triangle).dot(chart_normal) < std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
 }
 
 ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,

@@ -177,12 +177,10 @@ std::optional<MeshPlace> placeOf(const btManifoldPoint& point, bool mesh_is_b, c
   return MeshPlace{std::uint32_t(index), mesh::closestBarycentric(mesh, std::uint32_t(index), on_mesh)};
 }
 
-// The side of `triangle` Bullet's normal says the object touches: -1 from behind (a bowl's inside).
+// The side of a triangle (face normal n_face) Bullet's normal says the object touches: -1 from
+// behind (a bowl's inside).
 double sideOf(const btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& world_to_mesh,
-              const mesh::TexturedMesh& mesh, std::uint32_t triangle) {
-  Eigen::Vector3d n_face, tangent;
-  double handedness = 1.0;
-  mesh::triangleFrame(mesh, triangle, n_face, tangent, handedness);
+              const Eigen::Vector3d& n_face) {
   // Bullet's normal points from B to A; towards the object it is that (mesh B) or its reverse.
   const Eigen::Vector3d towards_object = world_to_mesh.linear() * toEigen(point.m_normalWorldOnB) * (mesh_is_b ? 1.0 : -1.0);
   return n_face.dot(towards_object) < 0.0 ? -1.0 : 1.0;
@@ -243,15 +241,12 @@ bool gapPastCrease(const ContactMesh& contact_mesh, const MeshPlace& place, cons
   n = d / distance;
   gap = distance - r;
   if (options.texture && options.ball_relief && options.lift_ball) {
-    Eigen::Vector3d n_face, tangent;
-    double handedness = 1.0;
-    mesh::triangleFrame(mesh, place.triangle, n_face, tangent, handedness);
+    const Eigen::Vector3d n_face = mesh::faceNormal(mesh, place.triangle);
     // The edge the point lies on (its smallest barycentric), and the face across it.
     int edge = 0;
     for (int k = 1; k < 3; ++k) edge = place.barycentric[k] < place.barycentric[edge] ? k : edge;
     const std::uint32_t across = contact_mesh.neighbours[place.triangle][std::size_t(edge)];
-    Eigen::Vector3d n_across = n_face;
-    if (across != mesh::kNoNeighbour) mesh::triangleFrame(mesh, across, n_across, tangent, handedness);
+    const Eigen::Vector3d n_across = across != mesh::kNoNeighbour ? mesh::faceNormal(mesh, across) : n_face;
     // Both faces are met from their front where the centre lies in front of either, or level with
     // it: outside the convex crease, though behind one face's plane. By a box's upright edge a
     // ball in front of one side face lies behind the other's plane, and at a corner the face
@@ -292,13 +287,12 @@ void ballPastCrease(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometr
 double ballLiftedGap(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, std::uint32_t triangle, double r,
                      const MeshContactOptions& options) {
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
-  const std::uint32_t reporting = triangle;
-  Eigen::Vector3d b = mesh::closestBarycentric(mesh, reporting, c);
+  const MeshPlace reporting{triangle, mesh::closestBarycentric(mesh, triangle, c)};
+  Eigen::Vector3d b = reporting.barycentric;
   if (!smoothFoot(contact_mesh, c, 1.0, triangle, b)) {  // as applyBallMeshContact meets it there
     double gap = 0.0;
     Eigen::Vector3d n;
-    const MeshPlace place{reporting, mesh::closestBarycentric(mesh, reporting, c)};
-    return gapPastCrease(contact_mesh, place, c, r, options, gap, n) ? gap : -r;
+    return gapPastCrease(contact_mesh, reporting, c, r, options, gap, n) ? gap : -r;
   }
   const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
   const double along = smooth.normal.dot(c - smooth.point);
@@ -330,7 +324,7 @@ void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::I
   // on too, its centre behind that face's plane, and that side pulled the ball into the box.
   const double along = smooth.normal.dot(c - smooth.point);
   double side = along < 0.0 ? -1.0 : 1.0;
-  if (along == 0.0) side = sideOf(point, mesh_is_b, world_to_mesh, mesh, place->triangle);
+  if (along == 0.0) side = sideOf(point, mesh_is_b, world_to_mesh, mesh::faceNormal(mesh, place->triangle));
   const Eigen::Vector3d n_geometric = side * smooth.normal;
   double gap = side * along - r;
   Eigen::Vector3d n;
@@ -366,10 +360,8 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
   const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
   const std::optional<MeshPlace> place = placeOf(point, mesh_is_b, world_to_mesh, mesh);
   if (!place) return;
-  const double side = sideOf(point, mesh_is_b, world_to_mesh, mesh, place->triangle);
-  Eigen::Vector3d n_face, tangent;
-  double handedness = 1.0;
-  mesh::triangleFrame(mesh, place->triangle, n_face, tangent, handedness);
+  const Eigen::Vector3d n_face = mesh::faceNormal(mesh, place->triangle);
+  const double side = sideOf(point, mesh_is_b, world_to_mesh, n_face);
   const Eigen::Vector3d n = side * meshContactNormal(mesh, place->triangle, place->barycentric, options);
   steerContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * (side * n_face), other,
                options.hold_height, step);

@@ -122,8 +122,9 @@ double ballOnReliefLift(const ContactMesh& mesh, const Eigen::Vector3d& c, doubl
                         double r, const MeshContactOptions& options);
 // The gap of that ball to the relief as it meets it (its distance to the smooth surface at its
 // foot, less r and the lift; without a relief or with options.lift_ball false, to the smooth
-// surface), the foot walked to from `triangle`; where no triangle holds the foot, its distance to
-// `triangle` less r.
+// surface), the foot walked to from `triangle`; where no triangle holds the foot, the gap past a
+// crease applyBallMeshContact gives there (`triangle`'s nearest point, the lift blended across
+// its edge). For searching where a ball of a capsule meets the relief (ball_on_box_faces.hpp).
 double ballLiftedGap(const ContactMesh& mesh, const Eigen::Vector3d& c, std::uint32_t triangle, double r,
                      const MeshContactOptions& options);
 
