@@ -1,5 +1,5 @@
 // A capsule against a textured box (issue 29; clients/physics/capsule_balls.hpp,
-// ball_on_box_faces.hpp): how well the search along a capsule's run over a face finds the ball
+// ball_on_object_faces.hpp): how well the search along a capsule's run over a face finds the ball
 // whose lifted gap is least, against the spacing it samples at, and what it costs. Measures only;
 // nothing asserted (tests/physics/test_capsule_on_box_faces.cpp holds the behaviour).
 #include <algorithm>
@@ -15,7 +15,7 @@
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/bench_stamp.hpp"
-#include "clients/physics/ball_on_box_faces.hpp"
+#include "clients/physics/ball_on_object_faces.hpp"
 #include "clients/physics/capsule_balls.hpp"
 #include "tests/physics/grooved_block_scene.hpp"
 
@@ -91,7 +91,8 @@ int run(int argc, char** argv) {
     FaceTexture texture;
     texture.map = &map;
     texture.tile_m = kExtent;
-    const BoxFaces faces(half, texture);
+    const std::unique_ptr<ObjectFaces> box_faces = boxFaces(half, texture);
+    const ObjectFaces& faces = *box_faces;
     std::vector<std::uint32_t> top;
     for (std::uint32_t t = 0; t < std::uint32_t(faces.mesh.triangles.size()); ++t)
       if (mesh::faceNormal(faces.mesh, t).z() > 0.5) top.push_back(t);

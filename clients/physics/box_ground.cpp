@@ -2,6 +2,8 @@
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 
+#include <utility>
+
 #include "clients/physics/relief_collision.hpp"
 #include "clients/physics/scaled_convex_collision.hpp"
 #include "clients/physics/textured_ball.hpp"
@@ -36,7 +38,7 @@ double boxVolume(const btCollisionShape& s) {
 
 PairGround texturedPairGround(const btCollisionShape& first, const btCollisionShape& second) {
   if (!hasObjectTexture(first) && !hasObjectTexture(second)) return PairGround::None;
-  // A ball with a bump map (a plain ball meets a textured box's faces by BallOnBoxFacesAlgorithm, below).
+  // A ball with a bump map (a plain ball meets a textured box's faces by BallOnObjectFacesAlgorithm, below).
   const auto ball = [](const btCollisionShape& s) { return ballTextureOf(s) != nullptr; };
   if (isBox(first) && isBox(second)) return boxVolume(first) > boxVolume(second) ? PairGround::First : PairGround::Second;
   if (isBox(first) && ball(second)) return PairGround::First;
@@ -55,15 +57,16 @@ btCollisionAlgorithm* BoxGroundCreateFunc::CreateCollisionAlgorithm(btCollisionA
     case PairGround::None:
       break;
   }
-  // A plain ball or a capsule against a textured box: its faces as a relief mesh's.
+  // A plain ball or a capsule against a textured box or a ball with a bump map: its surface as a
+  // relief mesh's.
   const btCollisionShape& s0 = *body0->getCollisionShape();
   const btCollisionShape& s1 = *body1->getCollisionShape();
-  if (isBox(s0) && meetsBoxFacesAsBalls(s1))
-    if (const BoxFaces* faces = catalog->find(s0))
-      return ManifoldAlgorithm::create<BallOnBoxFacesAlgorithm>(ci, body0, body1, true, faces, catalog);
-  if (meetsBoxFacesAsBalls(s0) && isBox(s1))
-    if (const BoxFaces* faces = catalog->find(s1))
-      return ManifoldAlgorithm::create<BallOnBoxFacesAlgorithm>(ci, body0, body1, false, faces, catalog);
+  if (meetsFacesAsBalls(s1))
+    if (const ObjectFaces* faces = catalog->find(s0))
+      return ManifoldAlgorithm::create<BallOnObjectFacesAlgorithm>(ci, body0, body1, true, faces, catalog);
+  if (meetsFacesAsBalls(s0))
+    if (const ObjectFaces* faces = catalog->find(s1))
+      return ManifoldAlgorithm::create<BallOnObjectFacesAlgorithm>(ci, body0, body1, false, faces, catalog);
   return otherwise->CreateCollisionAlgorithm(ci, body0, body1);
 }
 
@@ -83,6 +86,16 @@ std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDis
       registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces));
       dispatcher.registerCollisionCreateFunc(t0, t1, registration->funcs.back().get());
     }
+  }
+  // A ball with a bump map against a plain ball or a capsule (the pairs without a box).
+  for (const auto& [t0, t1] : {std::pair{SPHERE_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE},
+                               std::pair{SPHERE_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE},
+                               std::pair{CAPSULE_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE}}) {
+    btCollisionAlgorithmCreateFunc* otherwise = scaled_convex && usesScaledConvex(t0, t1)
+                                                    ? registration->scaled_convex.get()
+                                                    : configuration.getCollisionAlgorithmCreateFunc(t0, t1);
+    registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces));
+    dispatcher.registerCollisionCreateFunc(t0, t1, registration->funcs.back().get());
   }
   return registration;
 }

@@ -14,10 +14,10 @@
 // Which body is the ground (texturedPairGround): a box under a ball with a bump map; of two boxes,
 // one of them textured, the larger (by volume; the second on a tie). Pairs without a texture keep
 // their algorithms (Bullet's box-box, the scaled GJK of scaled_convex_collision.hpp). A plain ball
-// or a capsule against a textured box meets its faces as a relief mesh's, as balls, lifted
-// (ball_on_box_faces.hpp). Not covered, colliding as the coarse shapes (docs/physics.md "Textured
-// objects against other objects"):
-// - a ball with a bump map against a ball, capsule or cylinder (no box to stand on);
+// or a capsule against a textured box or a ball with a bump map meets its surface as a relief
+// mesh's, as balls, lifted (ball_on_object_faces.hpp). Not covered, colliding as the coarse shapes
+// (docs/physics.md "Textured objects against other objects"):
+// - a ball with a bump map against another ball with a bump map, or a cylinder;
 // - a cylinder against a textured box: the rod rules are made for a rod lying on, or standing on,
 //   the ground under it (tried on 2026-12-04 with capsules too: the pen's upright capsule pushing
 //   the grooved block met the block's top face at its edge and threw it at 0.22 m/s), and a
@@ -30,7 +30,7 @@
 #include <memory>
 #include <vector>
 
-#include "clients/physics/ball_on_box_faces.hpp"
+#include "clients/physics/ball_on_object_faces.hpp"
 #include "clients/physics/bullet_triangles.hpp"
 #include "clients/physics/mesh_relief_chart.hpp"
 #include "clients/physics/textured_box.hpp"
@@ -61,29 +61,31 @@ class BoxGround {
 enum class PairGround { None, First, Second };
 PairGround texturedPairGround(const btCollisionShape& first, const btCollisionShape& second);
 
-// The create function for a pair of box against sphere, box, capsule or cylinder: the relief
-// algorithm (relief_collision.hpp) for the pairs texturedPairGround takes, `otherwise` for the rest.
-// A plain ball or a capsule against a textured box whose faces `catalog` holds goes to
-// BallOnBoxFacesAlgorithm.
+// The create function for a pair of box against sphere, box, capsule or cylinder, and of sphere
+// against sphere or capsule: the relief algorithm (relief_collision.hpp) for the pairs
+// texturedPairGround takes, `otherwise` for the rest. A plain ball or a capsule against a textured
+// object whose surface `catalog` holds (a textured box, a ball with a bump map) goes to
+// BallOnObjectFacesAlgorithm.
 struct BoxGroundCreateFunc : btCollisionAlgorithmCreateFunc {
-  BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func, const BoxFacesCatalog* faces_catalog)
+  BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func, const ObjectFacesCatalog* faces_catalog)
       : otherwise(otherwise_func), catalog(faces_catalog) {}
   btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
                                                  const btCollisionObjectWrapper* body0,
                                                  const btCollisionObjectWrapper* body1) override;
   btCollisionAlgorithmCreateFunc* otherwise;
-  const BoxFacesCatalog* catalog;
+  const ObjectFacesCatalog* catalog;
 };
 
 // The create functions of one dispatcher (they point at its configuration's); must outlive its use.
 struct BoxGroundRegistration {
-  BoxFacesCatalog faces;  // the world's textured boxes (PhysicsWorld::addTexturedBox)
+  ObjectFacesCatalog faces;  // the world's textured boxes and balls (PhysicsWorld::addTextured*)
   std::vector<std::unique_ptr<BoxGroundCreateFunc>> funcs;
   std::unique_ptr<btCollisionAlgorithmCreateFunc> scaled_convex;
 };
 
 // Registers BoxGroundCreateFunc for box against sphere, box, capsule and cylinder, in both orders,
-// each falling back on what the pair had: the scaled GJK where `scaled_convex` and
+// and for sphere against sphere and capsule (a ball with a bump map's pairs without a box), each
+// falling back on what the pair had: the scaled GJK where `scaled_convex` and
 // usesScaledConvex say so (scaled_convex_collision.hpp), else the configuration's own.
 std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDispatcher& dispatcher,
                                                                   btCollisionConfiguration& configuration,

@@ -1,5 +1,5 @@
 #pragma once
-// Which balls of a capsule meet one triangle (ball_on_box_faces.hpp). A capsule is the segment
+// Which balls of a capsule meet one triangle (ball_on_object_faces.hpp). A capsule is the segment
 // [a, b] swept by a ball of radius r, so against a surface it is met as the balls centred on its
 // segment, each met as a ball meets the surface (on a relief, lifted onto it). Where the segment
 // comes nearest the triangle off its run over it (beside an edge), that one ball, as Bullet's

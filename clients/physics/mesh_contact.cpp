@@ -44,7 +44,22 @@ namespace {
 double liftOnFace(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b, bool front,
                   double r, const MeshContactOptions& options) {
   const mesh::SurfaceFrame f = mesh::frameAt(*contact_mesh.mesh, triangle, b, mesh::FrameMode::Interpolated);
-  return options.ball_relief->touch({f.uv.x(), f.uv.y()}, metresPerUvAt(contact_mesh, triangle, b), r, !front).lift_m;
+  const Eigen::Vector2d metres_per_uv = metresPerUvAt(contact_mesh, triangle, b);
+  const double big_r = options.sphere_radius_m;
+  if (!(big_r > 0.0)) return options.ball_relief->touch({f.uv.x(), f.uv.y()}, metres_per_uv, r, !front).lift_m;
+  // On a sphere (MeshContactOptions::sphere_radius_m): the touch searched with the distances
+  // stretched for the sphere's sag, then the centre's distance for the point it found taken
+  // exactly: that point at height h over the smooth sphere and an arc rho from the foot lies on the
+  // sphere of radius s = R + h, an angle rho / R off the centre's line, so the ball's centre stands
+  // s cos(phi) + sqrt(r^2 - s^2 sin^2(phi)) from the sphere's centre. (The stretch alone is exact
+  // at h = 0 only; on the dimpled ball's floors, 0.25 mm down, it read the marble's swing 3 % slow.)
+  const double stretch = std::sqrt(std::max(1e-3, 1.0 + (front ? r : -r) / big_r));
+  const tex::BallOnRelief::Touch touch = options.ball_relief->touch({f.uv.x(), f.uv.y()}, stretch * metres_per_uv, r, !front);
+  if (!front) return touch.lift_m;  // a ball inside a textured ball: the stretch alone
+  const double h = touch.lift_m + r - r * touch.normal.z();
+  const double phi = r * touch.normal.head<2>().norm() / stretch / big_r;
+  const double s = big_r + h;
+  return s * std::cos(phi) + std::sqrt(std::max(0.0, r * r - s * s * std::sin(phi) * std::sin(phi))) - big_r - r;
 }
 
 }  // namespace

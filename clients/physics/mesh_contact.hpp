@@ -59,6 +59,14 @@ struct MeshContactOptions {
   // level on average. Added to a ball's lift's gradient, and the points boxes, capsules and
   // cylinders get on the relief's chart lean by it (leanChartContact). Zero for a relief map.
   Eigen::Vector2d relief_mean_slope = Eigen::Vector2d::Zero();
+  // The smooth surface is a sphere of this radius (a ball with a bump map: ball_on_object_faces.hpp);
+  // zero: the relief is met on its tangent plane at the ball's foot. On a sphere of radius R the
+  // texels an arc d from the foot lie about d^2 / 2R below that plane (0.13 mm at the dimpled ball's
+  // rims, 1.6 mm out on a 1 cm ball: half the dimples' depth). A ball of radius r from outside
+  // searches the relief with its distances stretched by sqrt(1 + r/R) (exact to second order in
+  // d / R at the smooth surface's height), and the point it touches is then met exactly, on its
+  // own sphere (liftOnFace in mesh_contact.cpp); from inside, the stretch sqrt(1 - r/R) alone.
+  double sphere_radius_m = 0.0;
   // A ball on such a relief is lifted, as on the relief plane: the gap the solver holds
   // (steerContact, with hold_height) is to the relief as its sphere meets it, so its centre rides
   // over what it cannot enter and sinks into what it can, and where its touch jumps across a
@@ -124,7 +132,7 @@ double ballOnReliefLift(const ContactMesh& mesh, const Eigen::Vector3d& c, doubl
 // foot, less r and the lift; without a relief or with options.lift_ball false, to the smooth
 // surface), the foot walked to from `triangle`; where no triangle holds the foot, the gap past a
 // crease applyBallMeshContact gives there (`triangle`'s nearest point, the lift blended across
-// its edge). For searching where a ball of a capsule meets the relief (ball_on_box_faces.hpp).
+// its edge). For searching where a ball of a capsule meets the relief (ball_on_object_faces.hpp).
 double ballLiftedGap(const ContactMesh& mesh, const Eigen::Vector3d& c, std::uint32_t triangle, double r,
                      const MeshContactOptions& options);
 
@@ -167,7 +175,7 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
                       const MeshContactOptions& options, const StepContext& step = {});
 
 // applyMeshContact's rule for a ball, for `point` made by `ball` of `other` (its sphere, or a ball
-// a capsule sweeps: ball_on_box_faces.hpp): the foot of its centre on the smooth surface, the ball
+// a capsule sweeps: ball_on_object_faces.hpp): the foot of its centre on the smooth surface, the ball
 // lifted onto the relief there, past a convex crease the nearest point of the reporting triangle.
 void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                           const ContactMesh& mesh, const ObjectBall& ball, const btCollisionObject& other,

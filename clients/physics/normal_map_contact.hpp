@@ -31,7 +31,7 @@ struct StepContext {
   double dt_s = 1e-3;
   double erp = 0.2;                            // btContactSolverInfo::m_erp (shallow contacts)
   double split_penetration_threshold = -0.04;  // deeper than this Bullet corrects by split impulse
-  // The body the surface belongs to where it moves (a textured box's faces, ball_on_box_faces.hpp):
+  // The body the surface belongs to where it moves (a textured box's faces, ball_on_object_faces.hpp):
   // the object's velocity is taken relative to it. nullptr: a fixed surface.
   const btCollisionObject* surface_body = nullptr;
 };
@@ -56,7 +56,7 @@ void steerContact(btManifoldPoint& point, bool surface_is_b, const Eigen::Vector
                   const StepContext& step);
 
 // A ball of `other`: its sphere, or one of the balls a capsule sweeps along its axis
-// (ball_on_box_faces.hpp), centred at `centre_world`.
+// (ball_on_object_faces.hpp), centred at `centre_world`.
 struct ObjectBall {
   Eigen::Vector3d centre_world;
   double radius_m = 0.0;

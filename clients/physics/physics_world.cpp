@@ -183,8 +183,8 @@ btRigidBody& PhysicsWorld::addTexturedBox(const Eigen::Vector3d& half_extents_m,
   auto shape = std::make_unique<btBoxShape>(toBt(half_extents_m));
   shape->setMargin(narrow(std::min(options_.convex_margin_m, 0.5 * half_extents_m.minCoeff())));
   attachFaceTexture(*shape, *face_textures_.back());
-  // A plain ball meets its faces as a relief mesh's (ball_on_box_faces.hpp).
-  box_ground_funcs_->faces.add(*shape, toEigen(shape->getHalfExtentsWithMargin()), *face_textures_.back());
+  // A plain ball or a capsule meets its faces as a relief mesh's (ball_on_object_faces.hpp).
+  box_ground_funcs_->faces.addBox(*shape, toEigen(shape->getHalfExtentsWithMargin()), *face_textures_.back());
   return addBody(std::move(shape), mass_kg, pose, material);
 }
 
@@ -193,6 +193,8 @@ btRigidBody& PhysicsWorld::addTexturedSphere(double radius_m, double mass_kg, co
   face_textures_.push_back(std::make_unique<FaceTexture>(texture));
   auto shape = std::make_unique<btSphereShape>(narrow(radius_m));
   attachBallTexture(*shape, *face_textures_.back());
+  // A plain ball or a capsule meets its surface as a relief mesh's (ball_on_object_faces.hpp).
+  box_ground_funcs_->faces.addBall(*shape, radius_m, *face_textures_.back());
   return addBody(std::move(shape), mass_kg, pose, material);
 }
 

@@ -107,7 +107,7 @@ class PhysicsWorld {
   // relief plane (and the relief standing for a normal-mapped plane: addTexturedObjectsRelief), on
   // a mesh's chart and against another box or a ball with a bump map (box_ground.hpp) both
   // textures shape the contact; a plain ball or a capsule meets its faces' relief
-  // (ball_on_box_faces.hpp); elsewhere it collides as the plain box.
+  // (ball_on_object_faces.hpp); elsewhere it collides as the plain box.
   btRigidBody& addTexturedBox(const Eigen::Vector3d& half_extents_m, double mass_kg, const Eigen::Isometry3d& pose,
                               const BodyMaterial& material, const FaceTexture& texture);
   // A ball with a bump map (textured_ball.hpp; the map must outlive this world): on a relief plane

@@ -25,7 +25,7 @@
 // mesh (on the mesh's chart under it, mesh_relief_chart.hpp), with the relief standing for a
 // normal-mapped plane (PhysicsWorld::addTexturedObjectsRelief), and with another box or a ball
 // with a bump map (box_ground.hpp: the larger box, or the box under the ball, met as a mesh of its
-// faces); a plain ball or a capsule meets its faces as a relief mesh's (ball_on_box_faces.hpp);
+// faces); a plain ball or a capsule meets its faces as a relief mesh's (ball_on_object_faces.hpp);
 // on a plain plane and against a cylinder the coarse box collides;
 // a normal map (no depth) given for an object is read, where objects are built, as the relief its
 // normals integrate to (scene::buildObjectTexture). The visual client draws the same layout

@@ -2,7 +2,7 @@
 // 0.1 m/s along a groove of the grooved slab (grooved_block_scene.hpp's flat box mesh, its top at
 // z = 0, its edge at y = 0.1 m) rolls over the edge and falls, as off Bullet's own box; and so off
 // a textured box of the slab's size with the grooves on its faces, whose faces a plain ball meets
-// as a relief mesh's (ball_on_box_faces.hpp; before, it met the coarse box and rode the ridges). Before a
+// as a relief mesh's (ball_on_object_faces.hpp; before, it met the coarse box and rode the ridges). Before a
 // ball's side was taken from its foot, Bullet's point on the face beside the top (the ball's centre
 // behind that face's plane) read as a ball touched from behind: on the untextured slab the ball
 // stopped 1.3 mm short of the edge, kicked up and down at up to 0.77 m/s; on the grooved slab it
@@ -14,7 +14,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "clients/physics/ball_on_box_faces.hpp"
+#include "clients/physics/ball_on_object_faces.hpp"
 #include "tests/physics/grooved_block_scene.hpp"
 #include "textures/ball_on_relief.hpp"
 
@@ -116,7 +116,8 @@ TEST(BallOffAnEdge, ABallBesideABoxsCornerLevelWithItsTopReadsTheReliefFromTheFr
   texture.map = &map;
   texture.tile_m = kExtent;
   const Eigen::Vector3d half(0.01, 0.01, 0.005);
-  BoxFaces faces(half, texture);
+  const std::unique_ptr<ObjectFaces> box_faces = boxFaces(half, texture);
+  ObjectFaces& faces = *box_faces;
   faces.options.hold_height = false;  // the gap as it is found
   constexpr double r = 0.004;
   btSphereShape shape{btScalar(r)};

@@ -1,4 +1,4 @@
-// A plain ball against a textured box (ball_on_box_faces.hpp): the box's faces met as the same
+// A plain ball against a textured box (ball_on_object_faces.hpp): the box's faces met as the same
 // relief laid on a box mesh is met (mesh_contact.hpp, the ball lifted). The grooves of
 // grooved_block_scene.hpp (V-grooves along y, 4 mm apart, 1 mm deep) on the faces of a
 // 0.2 x 0.2 x 0.02 m box and on the top of the slab mesh of that size; a 5 mm, 4 g ball let down

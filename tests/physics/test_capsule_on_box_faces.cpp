@@ -1,4 +1,4 @@
-// A capsule against a textured box (ball_on_box_faces.hpp): the capsule met as the balls on its
+// A capsule against a textured box (ball_on_object_faces.hpp): the capsule met as the balls on its
 // segment, each lifted onto the box's relief as a ball is. The grooves of grooved_block_scene.hpp
 // (V-grooves, 4 mm apart, 1 mm deep; along y on the top face) on the faces of a fixed
 // 0.2 x 0.2 x 0.02 m box and of the 2 x 2 x 1 cm, 50 g block; before, a capsule met the coarse box.

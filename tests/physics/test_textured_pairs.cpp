@@ -49,7 +49,7 @@ TEST(TexturedPairs, TheTextureRulesTakeEveryPairWithATextureThatHasABoxToStandOn
   EXPECT_EQ(texturedPairGround(small, textured_ball), PairGround::First);
   EXPECT_EQ(texturedPairGround(textured_ball, textured_small), PairGround::Second);
   // No texture, or no box to stand on, or a plain ball or rod on a textured box: not the relief
-  // algorithm (a plain ball on a textured box meets its faces by ball_on_box_faces.hpp, a rod the
+  // algorithm (a plain ball on a textured box meets its faces by ball_on_object_faces.hpp, a rod the
   // coarse box: box_ground.hpp).
   EXPECT_EQ(texturedPairGround(textured_small, ball), PairGround::None);
   EXPECT_EQ(texturedPairGround(big, small), PairGround::None);

@@ -1,0 +1,198 @@
+#include "clients/physics/ball_on_object_faces.hpp"
+
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+
+#include <algorithm>
+#include <limits>
+#include <utility>
+
+#include "clients/physics/bullet_convert.hpp"
+#include "clients/physics/capsule_balls.hpp"
+#include "clients/physics/textured_ball.hpp"
+#include "meshes/textured_ball_mesh.hpp"
+#include "meshes/textured_box_mesh.hpp"
+
+namespace thx::phys {
+
+ObjectFaces::ObjectFaces(mesh::TexturedMesh surface, const FaceTexture& texture, double sphere_radius_m)
+    : mesh(std::move(surface)), contact(mesh), ball_relief(*texture.map, texture.sampling.address) {
+  options.texture = texture.map;
+  options.sampling = texture.sampling;
+  // The relief is laid at the scale it was made for: one tile across tile_m.
+  options.normals_made_for_m = Eigen::Vector2d::Constant(texture.tile_m);
+  options.ball_relief = &ball_relief;
+  options.sphere_radius_m = sphere_radius_m;
+  texel_m = texture.tile_m / double(std::max(texture.map->width(), texture.map->height()));
+  triangles = bulletTriangles(mesh);
+  bvh = std::make_unique<btBvhTriangleMeshShape>(triangles->array.get(), true);
+}
+
+std::unique_ptr<ObjectFaces> boxFaces(const Eigen::Vector3d& half_extents_m, const FaceTexture& texture) {
+  return std::make_unique<ObjectFaces>(mesh::texturedBoxMesh(2.0 * half_extents_m, texture.tile_m), texture, 0.0);
+}
+
+std::unique_ptr<ObjectFaces> ballFaces(double radius_m, const FaceTexture& texture, int cells) {
+  return std::make_unique<ObjectFaces>(mesh::texturedBallMesh(radius_m, texture.tile_m, cells), texture, radius_m);
+}
+
+void ObjectFacesCatalog::addBox(const btCollisionShape& box, const Eigen::Vector3d& half_extents_m,
+                                const FaceTexture& texture) {
+  faces_[&box] = boxFaces(half_extents_m, texture);
+}
+
+void ObjectFacesCatalog::addBall(const btCollisionShape& ball, double radius_m, const FaceTexture& texture) {
+  faces_[&ball] = ballFaces(radius_m, texture);
+}
+
+const ObjectFaces* ObjectFacesCatalog::find(const btCollisionShape& shape) const {
+  const auto it = faces_.find(&shape);
+  return it == faces_.end() ? nullptr : it->second.get();
+}
+
+namespace {
+
+// The object's segment in its own frame (its balls' centres): a capsule's axis, a sphere's centre.
+struct ObjectAxis {
+  Eigen::Vector3d half_m = Eigen::Vector3d::Zero();  // from the centre to one end
+  double radius_m = 0.0;
+};
+
+ObjectAxis axisOf(const btCollisionShape& shape) {
+  ObjectAxis axis;
+  if (shape.getShapeType() == CAPSULE_SHAPE_PROXYTYPE) {
+    const auto& capsule = static_cast<const btCapsuleShape&>(shape);
+    axis.half_m[capsule.getUpAxis()] = double(capsule.getHalfHeight());
+    axis.radius_m = double(capsule.getRadius());
+  } else {
+    axis.radius_m = double(static_cast<const btSphereShape&>(shape).getRadius());
+  }
+  return axis;
+}
+
+// The centre (object frame) of the ball that made a point whose place on the object is `local`:
+// the axis point nearest it.
+Eigen::Vector3d ballCentreOf(const ObjectAxis& axis, const Eigen::Vector3d& local) {
+  const double length2 = axis.half_m.squaredNorm();
+  if (!(length2 > 0.0)) return Eigen::Vector3d::Zero();
+  return std::clamp(axis.half_m.dot(local) / length2, -1.0, 1.0) * axis.half_m;
+}
+
+}  // namespace
+
+bool meetsFacesAsBalls(const btCollisionShape& shape) {
+  const int type = shape.getShapeType();
+  return type == CAPSULE_SHAPE_PROXYTYPE || (type == SPHERE_SHAPE_PROXYTYPE && !ballTextureOf(shape));
+}
+
+void BallOnObjectFacesAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                                  const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
+                                                  btManifoldResult* result) {
+  const btCollisionObjectWrapper* textured = faces_first_ ? body0 : body1;
+  const btCollisionObjectWrapper* object = faces_first_ ? body1 : body0;
+  // (object, textured), whatever order the dispatcher hands the pair in: the textured object is
+  // the mesh, body B.
+  btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), textured->getCollisionObject());
+  result->setPersistentManifold(manifold);
+  const ObjectAxis axis = axisOf(*object->getCollisionShape());
+  const double r = axis.radius_m;
+  const Eigen::Isometry3d world_from_mesh = toEigen(textured->getWorldTransform());
+  const Eigen::Isometry3d world_from_object = toEigen(object->getWorldTransform());
+  const Eigen::Isometry3d mesh_from_world = world_from_mesh.inverse();
+  const Eigen::Vector3d a = mesh_from_world * (world_from_object * Eigen::Vector3d(-axis.half_m)),
+                        b = mesh_from_world * (world_from_object * axis.half_m);
+  const double threshold = double(manifold->getContactBreakingThreshold());
+
+  // The triangles the object's balls can reach, in index order (the BVH's order is its own, and the
+  // order points are added in decides which a full manifold keeps).
+  near_.clear();
+  struct Gather : btTriangleCallback {
+    std::vector<int>* out = nullptr;
+    void processTriangle(btVector3*, int, int index) override { out->push_back(index); }
+  } gather;
+  gather.out = &near_;
+  const Eigen::Vector3d reach = Eigen::Vector3d::Constant(r + threshold);
+  faces_->bvh->processAllTriangles(&gather, toBt(Eigen::Vector3d(a.cwiseMin(b) - reach)),
+                                   toBt(Eigen::Vector3d(a.cwiseMax(b) + reach)));
+  std::sort(near_.begin(), near_.end());
+
+  // Bullet's sphere-triangle points, for each ball of the object that meets a triangle within
+  // reach (capsule_balls.hpp; a sphere's one).
+  const mesh::TexturedMesh& mesh = faces_->mesh;
+  const double length = (b - a).norm();
+  // Each point goes in with its ball's lifted gap, not its distance to the flat triangle: a full
+  // manifold keeps its deepest point, and over a relief the flat triangle's deepest is not the
+  // relief's (a capsule over the dimpled ball kept points up to 10 um shallower than its least gap).
+  const auto liftedGap = [&](std::uint32_t t, double along) {
+    return ballLiftedGap(faces_->contact, Eigen::Vector3d(a + along * (b - a)), t, r, faces_->options);
+  };
+  // `lifted_gap`: nullptr, read here.
+  const auto addBall = [&](std::uint32_t t, double along, const double* lifted_gap) {
+    const Eigen::Vector3d c = a + along * (b - a);
+    const Eigen::Vector3d q = mesh::pointAt(mesh, t, mesh::closestBarycentric(mesh, t, c));
+    const Eigen::Vector3d d = c - q;
+    const double distance = d.norm();
+    if (distance - r > threshold) return;
+    const double gap = lifted_gap ? *lifted_gap : liftedGap(t, along);
+    // The centre on the face: its outward normal.
+    const Eigen::Vector3d n = distance > 1e-12 ? Eigen::Vector3d(d / distance) : mesh::faceNormal(mesh, t);
+    if (faces_first_)
+      result->setShapeIdentifiersA(0, int(t));
+    else
+      result->setShapeIdentifiersB(0, int(t));
+    result->addContactPoint(toBt(Eigen::Vector3d(world_from_mesh.linear() * n)),
+                            toBt(Eigen::Vector3d(world_from_mesh * q)), static_cast<btScalar>(gap));
+  };
+  // A capsule: the balls on its segment that meet triangle t (capsule_balls.hpp).
+  const auto addCapsuleBalls = [&](std::uint32_t t) {
+    const mesh::Triangle& corners = mesh.triangles[t];
+    const Eigen::Vector3d &p0 = mesh.positions[corners[0]], &p1 = mesh.positions[corners[1]],
+                          &p2 = mesh.positions[corners[2]];
+    const SegmentOverTriangle over = segmentOverTriangle(p0, p1, p2, a, b);
+    // Beside the triangle (its edge nearest): that ball, as Bullet meets it.
+    if (!over.runs_over || over.nearest_t < over.lo || over.nearest_t > over.hi)
+      addBall(t, over.nearest_t, nullptr);
+    if (!over.runs_over) return;
+    // Over it, the least lifted gap on each half of the run, searched a texel apart; the run's
+    // distance to the plane is least at an end, so none of it is within reach if neither end is.
+    const auto distance = [&](double along) { return distanceToTriangle(p0, p1, p2, Eigen::Vector3d(a + along * (b - a))); };
+    if (std::min(distance(over.lo), distance(over.hi)) - r > threshold) return;
+    const auto gap = [&](double along) { return liftedGap(t, along); };
+    const RunBalls balls = leastOnHalves(over.lo, over.hi, faces_->texel_m / length, 1e-9, gap);
+    for (int k = 0; k < balls.count; ++k) addBall(t, balls.t[std::size_t(k)], nullptr);
+  };
+  if (!(length > 0.0)) {
+    // A sphere: its centre's ball, one contact with the smooth surface whichever triangles it is
+    // found on (applyBallMeshContact moves every point to its centre's foot), its lifted gap read
+    // once from the nearest triangle.
+    double nearest = std::numeric_limits<double>::infinity();
+    std::uint32_t from = 0;
+    for (const int index : near_) {
+      const auto t = std::uint32_t(index);
+      const double distance = (a - mesh::pointAt(mesh, t, mesh::closestBarycentric(mesh, t, a))).norm();
+      if (distance < nearest) nearest = distance, from = t;
+    }
+    if (nearest - r <= threshold) {
+      const double gap = liftedGap(from, 0.0);
+      for (const int index : near_) addBall(std::uint32_t(index), 0.0, &gap);
+    }
+  } else {
+    for (const int index : near_) addCapsuleBalls(std::uint32_t(index));
+  }
+  result->refreshContactPoints();
+
+  // Every point, kept or new, rewritten as a relief mesh's are (textured_world.cpp does it there
+  // after Bullet's detection; here the textured object moves, so relative to it), each by the ball
+  // that made it: the axis point nearest its place on the object.
+  StepContext step = catalog_->solver ? stepContextOf(*catalog_->solver, double(info.m_timeStep)) : StepContext{};
+  step.dt_s = double(info.m_timeStep);
+  step.surface_body = textured->getCollisionObject();
+  for (int k = 0; k < manifold->getNumContacts(); ++k) {
+    btManifoldPoint& point = manifold->getContactPoint(k);
+    const ObjectBall ball{world_from_object * ballCentreOf(axis, toEigen(point.m_localPointA)), r};
+    applyBallMeshContact(point, true, world_from_mesh, faces_->contact, ball, *object->getCollisionObject(),
+                         faces_->options, step);
+  }
+}
+
+}  // namespace thx::phys

@@ -1,0 +1,104 @@
+#pragma once
+// A plain ball or a capsule against a textured object (issue 29, "a textured object against
+// another object"): the object's surface met as a relief mesh's triangles are (mesh_contact.hpp),
+// the ball or capsule lifted onto its relief as a ball meets it. The textured object is a mesh of
+// its surface laid as its texture is read: a box's six faces (meshes/textured_box_mesh.hpp), a
+// ball with a bump map as its cube-sphere (meshes/textured_ball_mesh.hpp; its relief is met on
+// the ball's curvature, MeshContactOptions::sphere_radius_m). A capsule is its segment swept by a
+// ball, so it is met as the balls on its segment that meet each triangle (capsule_balls.hpp: where
+// the segment comes nearest beside the triangle, and over it the ball of least lifted gap on each
+// half of its run); a sphere is its one ball.
+// Each step every such ball's point on each triangle within the breaking threshold (the triangles
+// the object's bounding box meets, asked of a Bullet BVH of the surface) is found as Bullet's
+// sphere-triangle algorithm finds it on a mesh (the nearest point of the triangle, the normal from
+// it to the ball's centre), kept between steps as Bullet keeps a mesh's, and every point is
+// rewritten by applyBallMeshContact for the ball that made it (the axis point nearest its place on
+// the object), with the textured object's frame and its velocity (StepContext::surface_body). So a
+// marble rolls along a grooved box's grooves and off its edge (ballPastCrease) as it does on the
+// same relief laid on a box mesh, a capsule lying in a groove rests on its rims as a ball's
+// cross-section does, and the pen pushing a dimpled ball meets its dimples.
+//
+// Why not the relief algorithm's plain-ball rule on the box's chart (relief_collision.hpp): tried
+// on 2026-12-04, it threw a marble rolling off the grooved board's edge up at 0.45 m/s, and rode
+// 0.32 mm too low on its top; a plain ball on a relief mesh has always kept Bullet's points, lifted.
+// Nor its rod rules for a capsule: the pen's upright capsule pushing the grooved block met the
+// block's top face at its edge, where a groove wall's tilted normal made the capsule's far side
+// the contact point, 1.75 mm deep where the raster read 0.23 mm, and threw the block at 0.22 m/s.
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
+#include <BulletDynamics/ConstraintSolver/btContactSolverInfo.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "clients/physics/bullet_triangles.hpp"
+#include "clients/physics/manifold_algorithm.hpp"
+#include "clients/physics/mesh_contact.hpp"
+#include "clients/physics/textured_box.hpp"
+#include "meshes/textured_mesh.hpp"
+#include "textures/ball_on_relief.hpp"
+
+namespace thx::phys {
+
+// One textured object's surface as a relief mesh (built once per object: the ball's relief pyramid
+// costs a millisecond or more at 512 texels).
+struct ObjectFaces {
+  // `texture` must outlive this; `sphere_radius_m`: the smooth surface's, for a ball (0: flat faces).
+  ObjectFaces(mesh::TexturedMesh surface, const FaceTexture& texture, double sphere_radius_m);
+  ObjectFaces(const ObjectFaces&) = delete;
+  ObjectFaces& operator=(const ObjectFaces&) = delete;
+
+  mesh::TexturedMesh mesh;
+  ContactMesh contact;  // reads mesh
+  tex::BallOnRelief ball_relief;
+  MeshContactOptions options;  // reads the texture and ball_relief
+  double texel_m = 0.0;         // the finer of the texture's two texel sizes where it is laid
+  // The triangles as Bullet's BVH, for those within reach of an object.
+  std::unique_ptr<BulletTriangles> triangles;
+  std::unique_ptr<btBvhTriangleMeshShape> bvh;  // reads triangles
+};
+
+// A textured box's six faces. `half_extents_m`: the whole box's (with Bullet's margin).
+std::unique_ptr<ObjectFaces> boxFaces(const Eigen::Vector3d& half_extents_m, const FaceTexture& texture);
+// A ball's bump-mapped surface, as a cube-sphere of `cells` quads along each face's edge (its
+// Phong surface within 0.8 um of the sphere at 24 cells and 1 cm: docs/physics.md).
+std::unique_ptr<ObjectFaces> ballFaces(double radius_m, const FaceTexture& texture, int cells = 24);
+
+// The surfaces of every textured box and textured ball in one world, by its shape, and the world's
+// solver settings (the rewrite's StepContext). PhysicsWorld fills it.
+struct ObjectFacesCatalog {
+  void addBox(const btCollisionShape& box, const Eigen::Vector3d& half_extents_m, const FaceTexture& texture);
+  void addBall(const btCollisionShape& ball, double radius_m, const FaceTexture& texture);
+  const ObjectFaces* find(const btCollisionShape& shape) const;
+
+  const btContactSolverInfo* solver = nullptr;
+
+ private:
+  std::unordered_map<const btCollisionShape*, std::unique_ptr<ObjectFaces>> faces_;
+};
+
+// A plain ball (no bump map) or a capsule: the shapes met as balls.
+bool meetsFacesAsBalls(const btCollisionShape& shape);
+
+class BallOnObjectFacesAlgorithm : public ManifoldAlgorithm {
+ public:
+  // `faces_first`: body0 is the textured object; the other body meetsFacesAsBalls. `faces` and
+  // `catalog` outlive the algorithm (the world's).
+  BallOnObjectFacesAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
+                          const btCollisionObjectWrapper* body1, bool faces_first, const ObjectFaces* faces,
+                          const ObjectFacesCatalog* catalog)
+      : ManifoldAlgorithm(ci, body0, body1), faces_first_(faces_first), faces_(faces), catalog_(catalog) {}
+
+  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                        const btDispatcherInfo& info, btManifoldResult* result) override;
+
+ private:
+  bool faces_first_;
+  const ObjectFaces* faces_;
+  std::vector<int> near_;  // the triangles within reach this step, in index order
+  const ObjectFacesCatalog* catalog_;
+};
+
+}  // namespace thx::phys
