@@ -1,28 +1,38 @@
 #include "clients/physics/box_ground.hpp"
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include <utility>
 
 #include "clients/physics/relief_collision.hpp"
 #include "clients/physics/scaled_convex_collision.hpp"
 #include "clients/physics/textured_ball.hpp"
+#include "meshes/textured_ball_mesh.hpp"
 #include "meshes/textured_box_mesh.hpp"
 
 namespace thx::phys {
 
-BoxGround::BoxGround(const Eigen::Vector3d& half_extents_m, const FaceTexture* texture)
-    // A plain box's uv is never read (its chart is the smooth one): any tile will do.
-    : mesh_(mesh::texturedBoxMesh(2.0 * half_extents_m, texture ? texture->tile_m : 2.0 * half_extents_m.maxCoeff())) {
+ObjectGround::ObjectGround(mesh::TexturedMesh surface, const FaceTexture* texture) : mesh_(std::move(surface)) {
   relief_ = std::make_unique<MeshRelief>(mesh_);
   if (texture) {
     relief_->map = texture->map;
     relief_->sampling = texture->sampling;
-    // The face's relief is laid at the scale it was made for: one tile across tile_m.
+    // The relief is laid at the scale it was made for: one tile across tile_m.
     relief_->normals_made_for_m = Eigen::Vector2d::Constant(texture->tile_m);
   }
   triangles_ = bulletTriangles(mesh_);
   shape_ = std::make_unique<btBvhTriangleMeshShape>(triangles_->array.get(), true);
+}
+
+std::unique_ptr<ObjectGround> boxGround(const Eigen::Vector3d& half_extents_m, const FaceTexture* texture) {
+  // A plain box's uv is never read (its chart is the smooth one): any tile will do.
+  return std::make_unique<ObjectGround>(
+      mesh::texturedBoxMesh(2.0 * half_extents_m, texture ? texture->tile_m : 2.0 * half_extents_m.maxCoeff()), texture);
+}
+
+std::unique_ptr<ObjectGround> ballGround(double radius_m, const FaceTexture& texture) {
+  return std::make_unique<ObjectGround>(mesh::texturedBallMesh(radius_m, texture.tile_m), &texture);
 }
 
 namespace {
@@ -43,6 +53,13 @@ PairGround texturedPairGround(const btCollisionShape& first, const btCollisionSh
   if (isBox(first) && isBox(second)) return boxVolume(first) > boxVolume(second) ? PairGround::First : PairGround::Second;
   if (isBox(first) && ball(second)) return PairGround::First;
   if (ball(first) && isBox(second)) return PairGround::Second;
+  // Two balls with bump maps: the larger under the other (the second on a tie); a cylinder on a
+  // ball with a bump map.
+  const auto radius = [](const btCollisionShape& s) { return double(static_cast<const btSphereShape&>(s).getRadius()); };
+  if (ball(first) && ball(second)) return radius(first) > radius(second) ? PairGround::First : PairGround::Second;
+  const auto isCylinder = [](const btCollisionShape& s) { return s.getShapeType() == CYLINDER_SHAPE_PROXYTYPE; };
+  if (ball(first) && isCylinder(second)) return PairGround::First;
+  if (isCylinder(first) && ball(second)) return PairGround::Second;
   return PairGround::None;
 }
 
@@ -87,10 +104,12 @@ std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDis
       dispatcher.registerCollisionCreateFunc(t0, t1, registration->funcs.back().get());
     }
   }
-  // A ball with a bump map against a plain ball or a capsule (the pairs without a box).
+  // A ball with a bump map against a ball, a capsule or a cylinder (the pairs without a box).
   for (const auto& [t0, t1] : {std::pair{SPHERE_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE},
                                std::pair{SPHERE_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE},
-                               std::pair{CAPSULE_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE}}) {
+                               std::pair{CAPSULE_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE},
+                               std::pair{SPHERE_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE},
+                               std::pair{CYLINDER_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE}}) {
     btCollisionAlgorithmCreateFunc* otherwise = scaled_convex && usesScaledConvex(t0, t1)
                                                     ? registration->scaled_convex.get()
                                                     : configuration.getCollisionAlgorithmCreateFunc(t0, t1);

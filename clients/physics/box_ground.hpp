@@ -1,6 +1,6 @@
 #pragma once
-// A box that another object meets by the texture rules (issue 29, "a textured object against
-// another object"): the box seen as a mesh of its own six faces (meshes/textured_box_mesh.hpp, the
+// A box, or a ball with a bump map, that another object meets by the texture rules (issue 29, "a
+// textured object against another object"): the box seen as a mesh of its own six faces (meshes/textured_box_mesh.hpp, the
 // layout its face texture is read in), met on the chart under the object as a relief mesh is
 // (mesh_relief_chart.hpp, relief_collision.hpp): the box's own relief laid on its face, or, for a
 // plain box, the smooth chart (its flat face, sampled over the object); each of its faces across
@@ -12,12 +12,14 @@
 // further points Bullet may take.
 //
 // Which body is the ground (texturedPairGround): a box under a ball with a bump map; of two boxes,
-// one of them textured, the larger (by volume; the second on a tie). Pairs without a texture keep
-// their algorithms (Bullet's box-box, the scaled GJK of scaled_convex_collision.hpp). A plain ball
-// or a capsule against a textured box or a ball with a bump map meets its surface as a relief
-// mesh's, as balls, lifted (ball_on_object_faces.hpp). Not covered, colliding as the coarse shapes
-// (docs/physics.md "Textured objects against other objects"):
-// - a ball with a bump map against another ball with a bump map, or a cylinder;
+// one of them textured, the larger (by volume; the second on a tie); of two balls with bump maps
+// the larger (by radius; the second on a tie), seen as its cube-sphere (meshes/textured_ball_mesh.hpp)
+// with its relief, so that both reliefs shape the pair's depth; a ball with a bump map under a
+// cylinder. Pairs without a texture keep their algorithms (Bullet's box-box, the scaled GJK of
+// scaled_convex_collision.hpp). A plain ball or a capsule against a textured box or a ball with a
+// bump map meets its surface as a relief mesh's, as balls, lifted (ball_on_object_faces.hpp). Not
+// covered, colliding as the coarse shapes (docs/physics.md "Textured objects against other
+// objects"):
 // - a cylinder against a textured box: the rod rules are made for a rod lying on, or standing on,
 //   the ground under it (tried on 2026-12-04 with capsules too: the pen's upright capsule pushing
 //   the grooved block met the block's top face at its edge and threw it at 0.22 m/s), and a
@@ -38,13 +40,14 @@
 
 namespace thx::phys {
 
-class BoxGround {
+// A textured object's surface as a mesh that another object's chart is laid on: a box's six faces,
+// or a ball with a bump map's cube-sphere (meshes/textured_ball_mesh.hpp).
+class ObjectGround {
  public:
-  // `half_extents_m`: the whole box's (with Bullet's margin); `texture` (nullptr: a plain box)
-  // must outlive this.
-  BoxGround(const Eigen::Vector3d& half_extents_m, const FaceTexture* texture);
-  BoxGround(const BoxGround&) = delete;
-  BoxGround& operator=(const BoxGround&) = delete;
+  // `texture` (nullptr: a plain surface, its smooth chart) must outlive this.
+  ObjectGround(mesh::TexturedMesh surface, const FaceTexture* texture);
+  ObjectGround(const ObjectGround&) = delete;
+  ObjectGround& operator=(const ObjectGround&) = delete;
 
   const MeshRelief& relief() const { return *relief_; }
   // The faces as Bullet's triangles, for the chart's boundary (chart_boundary.hpp); never in a world.
@@ -56,6 +59,11 @@ class BoxGround {
   std::unique_ptr<BulletTriangles> triangles_;
   std::unique_ptr<btBvhTriangleMeshShape> shape_;  // reads triangles_
 };
+
+// A box's: `half_extents_m` the whole box's (with Bullet's margin), `texture` nullptr for a plain box.
+std::unique_ptr<ObjectGround> boxGround(const Eigen::Vector3d& half_extents_m, const FaceTexture* texture);
+// A ball with a bump map's (24 cells along each face's edge, as ball_on_object_faces.hpp's).
+std::unique_ptr<ObjectGround> ballGround(double radius_m, const FaceTexture& texture);
 
 // Which of a pair's shapes the texture rules take as the ground (above).
 enum class PairGround { None, First, Second };

@@ -70,6 +70,11 @@ double reachOf(const btCollisionShape& shape) {
     }
     case BOX_SHAPE_PROXYTYPE:
       return toEigen(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin()).norm();
+    case SPHERE_SHAPE_PROXYTYPE:
+      // Its radius: the bound below is its box's corner, sqrt(3) r, and on a ball of its own size
+      // the ground's bend was fitted that far out, where the ring's points lie 60 degrees round
+      // and were taken for a crease: the bend came out flat (mesh_relief_chart.cpp, fitBend).
+      return double(static_cast<const btSphereShape&>(shape).getRadius());
     default: {
       btVector3 centre;
       btScalar radius = 0;
@@ -517,12 +522,14 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
                   faceTextureOf(*object->getCollisionShape()), result);
     return;
   }
-  if (ground.getShapeType() == BOX_SHAPE_PROXYTYPE) {
-    // A box as a mesh of its faces (box_ground.hpp).
-    if (!box_ground_)
-      box_ground_ = std::make_unique<BoxGround>(
-          toEigen(static_cast<const btBoxShape&>(ground).getHalfExtentsWithMargin()), faceTextureOf(ground));
-    meshCollision(*object, *relief, box_ground_->relief(), box_ground_->triangles(),
+  const FaceTexture* ground_ball = ballTextureOf(ground);
+  if (ground.getShapeType() == BOX_SHAPE_PROXYTYPE || ground_ball) {
+    // A box as a mesh of its faces, a ball with a bump map as its cube-sphere (box_ground.hpp).
+    if (!object_ground_)
+      object_ground_ = ground_ball ? ballGround(double(static_cast<const btSphereShape&>(ground).getRadius()), *ground_ball)
+                                   : boxGround(toEigen(static_cast<const btBoxShape&>(ground).getHalfExtentsWithMargin()),
+                                               faceTextureOf(ground));
+    meshCollision(*object, *relief, object_ground_->relief(), object_ground_->triangles(),
                   faceTextureOf(*object->getCollisionShape()), result);
     return;
   }
@@ -609,7 +616,7 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
       const Eigen::Vector3d axis = underside.plane_from_object.linear().col(underside.axis);
       const double band = 1.5 * std::max(texel.x() * double(raster.stride_i), texel.y() * double(raster.stride_j));
       n = selectLyingRodContacts(candidates, underside.plane_from_object.translation().head<2>(), axis.head<2>(), band,
-                                 picked);
+                                 picked, underside.kind == Underside::Kind::Cylinder);
       lying_rod = n > 0;
       if (!lying_rod) n = selectReliefContacts(candidates, picked);
     } else if (box_quarters) {

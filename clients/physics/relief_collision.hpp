@@ -128,8 +128,9 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   std::uint32_t foot_triangle_ = 0xffffffffu;  // on a mesh: the triangle under the box last step
   btPersistentManifold* groups_[kNormalGroups - 1] = {};
   std::unique_ptr<SurfaceSlots> surfaces_;
-  // Against a box (box_ground.hpp): the box as a mesh of its faces, made on first need.
-  std::unique_ptr<BoxGround> box_ground_;
+  // Against a box or a ball with a bump map (box_ground.hpp): its surface as a mesh, made on first
+  // need.
+  std::unique_ptr<ObjectGround> object_ground_;
 };
 
 // The shapes the relief algorithm understands, seen from the plane; nullopt for any other shape.

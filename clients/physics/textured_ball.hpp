@@ -17,8 +17,9 @@
 // Against a box it meets the box's faces as a mesh's (box_ground.hpp: a plain box's smooth chart,
 // a textured box's relief). A plain ball or a capsule meets its surface as a relief mesh's, lifted
 // onto its relief (ball_on_object_faces.hpp: the cube-sphere, the relief met on the ball's
-// curvature). What a textured ball does not do yet: on a plain plane and against another textured
-// ball or a cylinder it collides as the coarse ball, its texture unread.
+// curvature); another ball with a bump map or a cylinder meets it on the chart of its cube-sphere
+// (box_ground.hpp: the larger of two such balls is the ground). What a textured ball does not do
+// yet: on a plain plane it collides as the coarse ball, its texture unread.
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>

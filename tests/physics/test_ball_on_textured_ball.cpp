@@ -21,18 +21,10 @@ namespace {
 using textured_ball::kRadius;  // the textured ball's: 1 cm
 using textured_ball::kTile;
 
-// Spherical dimples 3.9 mm apart (four to a face each way, one at each face's centre), 1.6 mm in
-// rim radius and 0.25 mm deep: the shipped dimpled ball's (scenes/dimpled_ball_grooves.yaml).
-constexpr double kPitch = 0.25 * 0.015707963267948967, kRim = 0.0016, kDepth = 0.00025;
+using textured_ball::dimpleMap;
+constexpr double kRim = textured_ball::kDimpleRim, kDepth = textured_ball::kDimpleDepth;
+const double kPitch = textured_ball::kDimplePitch;
 
-double dimples(double x, double y) {
-  const double cap = (kRim * kRim + kDepth * kDepth) / (2.0 * kDepth);
-  const double dx = x - std::round(x / kPitch) * kPitch, dy = y - std::round(y / kPitch) * kPitch;
-  const double r2 = dx * dx + dy * dy;
-  return r2 < kRim * kRim ? -(std::sqrt(cap * cap - r2) - (cap - kDepth)) : 0.0;
-}
-
-tex::TextureMap dimpleMap() { return heightMap(256, kTile, dimples); }
 
 // The textured ball's surface point in direction w (unit), as textured_ball.hpp reads it.
 Eigen::Vector3d surfaceAt(const FaceTexture& texture, const Eigen::Vector3d& w) {

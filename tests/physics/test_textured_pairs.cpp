@@ -7,6 +7,7 @@
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include <cmath>
@@ -55,6 +56,18 @@ TEST(TexturedPairs, TheTextureRulesTakeEveryPairWithATextureThatHasABoxToStandOn
   EXPECT_EQ(texturedPairGround(big, small), PairGround::None);
   EXPECT_EQ(texturedPairGround(ball, small), PairGround::None);
   EXPECT_EQ(texturedPairGround(textured_ball, ball), PairGround::None);
+  EXPECT_EQ(texturedPairGround(textured_ball, rod), PairGround::None);
+  // Of two balls with bump maps the larger stands under the other (the second on a tie); a ball
+  // with a bump map under a cylinder.
+  btSphereShape big_textured_ball(0.02f);
+  attachBallTexture(big_textured_ball, faces);
+  btCylinderShapeZ cylinder(btVector3(0.003f, 0.003f, 0.01f));
+  EXPECT_EQ(texturedPairGround(big_textured_ball, textured_ball), PairGround::First);
+  EXPECT_EQ(texturedPairGround(textured_ball, big_textured_ball), PairGround::Second);
+  EXPECT_EQ(texturedPairGround(textured_ball, textured_ball), PairGround::Second);
+  EXPECT_EQ(texturedPairGround(textured_ball, cylinder), PairGround::First);
+  EXPECT_EQ(texturedPairGround(cylinder, textured_ball), PairGround::Second);
+  EXPECT_EQ(texturedPairGround(cylinder, textured_small), PairGround::None);
   EXPECT_EQ(texturedPairGround(rod, textured_small), PairGround::None);
 }
 

@@ -35,6 +35,18 @@ inline tex::TextureMap uniformRecess(double depth, int texels = 64) {
   return map;
 }
 
+// The shipped dimpled ball's dimples (scenes/dimpled_ball_grooves.yaml): spherical caps 3.9 mm
+// apart (four to a face each way, one at each face's centre), 1.6 mm in rim radius, 0.25 mm deep.
+inline const double kDimplePitch = kTile / 4.0;
+inline constexpr double kDimpleRim = 0.0016, kDimpleDepth = 0.00025;
+inline double dimples(double x, double y) {
+  const double cap = (kDimpleRim * kDimpleRim + kDimpleDepth * kDimpleDepth) / (2.0 * kDimpleDepth);
+  const double dx = x - std::round(x / kDimplePitch) * kDimplePitch, dy = y - std::round(y / kDimplePitch) * kDimplePitch;
+  const double r2 = dx * dx + dy * dy;
+  return r2 < kDimpleRim * kDimpleRim ? -(std::sqrt(cap * cap - r2) - (cap - kDimpleDepth)) : 0.0;
+}
+inline tex::TextureMap dimpleMap() { return heightMap(kBallTexels, kTile, dimples); }
+
 inline FaceTexture ballTexture(const tex::TextureMap& map) {
   FaceTexture t;
   t.map = &map;

@@ -1,0 +1,160 @@
+// Two balls with bump maps, and a cylinder on one (box_ground.hpp): the larger ball's surface met as
+// a relief mesh's (its cube-sphere, ObjectGround), the other object on the chart under it as on
+// any relief mesh (relief_collision.hpp): for a ball with a bump map both reliefs in the pair's
+// depth (Otaduy's directional depth), standing on the ground ball's bend. Before, these pairs met
+// as coarse shapes. Checked against the exact contact, found by brute force over both balls'
+// surfaces as textured_ball.hpp reads them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "clients/physics/box_ground.hpp"
+#include "tests/physics/textured_ball_scene.hpp"
+
+namespace thx::phys::test::test_textured_ball_pairs {
+namespace {
+
+using textured_ball::kRadius;  // both balls': 1 cm
+using textured_ball::kTile;
+
+using textured_ball::dimpleMap;
+
+// The gap between ball A (centred at the origin, unturned) and ball B (centred at D u, turned by
+// `b_turn`): the least over B's surface facing A of its height over A's surface, along A's radius.
+double exactGap(const FaceTexture& a, const FaceTexture& b, const Eigen::Matrix3d& b_turn, const Eigen::Vector3d& u,
+                double distance) {
+  Eigen::Vector3d e1 = (std::fabs(u.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).cross(u).normalized();
+  const Eigen::Vector3d e2 = u.cross(e1);
+  double least = 1e9;
+  constexpr int n = 120;
+  constexpr double cone = 0.3;  // rad of B's surface round the line to A
+  for (int i = -n; i <= n; ++i)
+    for (int j = -n; j <= n; ++j) {
+      const double x = cone * double(i) / n, y = cone * double(j) / n;
+      if (x * x + y * y > cone * cone) continue;
+      const Eigen::Vector3d w_world = Eigen::Vector3d(-u + x * e1 + y * e2).normalized();
+      const Eigen::Vector3d w_b = b_turn.transpose() * w_world;
+      const Eigen::Vector3d q = distance * u + (kRadius - ballTextureAt(b, kRadius, w_b).recess_m) * w_world;
+      const double height = q.norm() - (kRadius - ballTextureAt(a, kRadius, q).recess_m);
+      least = std::min(least, height);
+    }
+  return least;
+}
+
+// The centre distance at which the two touch (bisection on exactGap, to 0.01 um).
+double exactTouch(const FaceTexture& a, const FaceTexture& b, const Eigen::Matrix3d& b_turn, const Eigen::Vector3d& u) {
+  double lo = 2.0 * kRadius - 1e-3, hi = 2.0 * kRadius + 1e-4;
+  while (hi - lo > 1e-8) {
+    const double mid = 0.5 * (lo + hi);
+    (exactGap(a, b, b_turn, u, mid) > 0.0 ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Ball B let down on top of ball A (fixed) from 0.1 mm above where they touch, turned by `b_turn`
+// and kept from turning further (its inertia made huge: only its height is asked here); B's
+// centre height after 0.6 s.
+double letDown(const FaceTexture* a, const FaceTexture* b, const Eigen::Matrix3d& b_turn, double touch, bool b_first) {
+  PhysicsWorld world;
+  const auto addA = [&] {
+    if (a)
+      world.addTexturedSphere(kRadius, 0.0, Eigen::Isometry3d::Identity(), {0.5, 0.0, 0.0}, *a);
+    else
+      world.addSphere(kRadius, 0.0, Eigen::Isometry3d::Identity(), {0.5, 0.0, 0.0});
+  };
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = b_turn;
+  pose.translation() = Eigen::Vector3d(0.0, 0.0, touch + 1e-4);
+  btRigidBody* ball = nullptr;
+  if (!b_first) addA();
+  ball = b ? &world.addTexturedSphere(kRadius, 0.03, pose, {0.5, 0.0, 0.0}, *b)
+           : &world.addSphere(kRadius, 0.03, pose, {0.5, 0.0, 0.0});
+  if (b_first) addA();
+  // Held on the line through A's centre: only the contact's height is measured.
+  ball->setLinearFactor(btVector3(0, 0, 1));
+  ball->setAngularFactor(btVector3(0, 0, 0));
+  for (int k = 0; k < 600; ++k) world.step(1e-3);
+  return positionOf(*ball).z();
+}
+
+// Each ball on the other, one uniformly recessed, the other dimpled: where the smaller sphere meets
+// the dimpled ball's top (or bottom) dimple, the exact answer either way round and whichever shape
+// is added first (the tie: the second is the ground). Then two bumpy balls: as laid they nest, 0.29
+// mm nearer than the lower ball's bumps alone would let a smooth ball come; turned by a half period
+// they do not.
+TEST(TexturedBallPairs, TwoBallsWithBumpMapsTouchWhereTheirExactSurfacesDo) {
+  const tex::TextureMap dimple_map = dimpleMap();
+  const tex::TextureMap recess_map = textured_ball::uniformRecess(0.5e-3);
+  const tex::TextureMap smooth_map = flatRelief(64);
+  const FaceTexture dimpled = textured_ball::ballTexture(dimple_map), recessed = textured_ball::ballTexture(recess_map);
+  const FaceTexture smooth = textured_ball::ballTexture(smooth_map);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  const Eigen::Matrix3d unturned = Eigen::Matrix3d::Identity();
+  struct Case {
+    const char* name;
+    const FaceTexture *a, *b;
+    Eigen::Matrix3d turn;
+    double tolerance;
+  };
+  // Bumps 0.3 mm high (textured_ball_scene.hpp): two such balls as laid nest (the exact touch
+  // 0.29 mm nearer than the smooth ball's on the lower one's bumps); the upper turned by a half
+  // period along both of its bottom face's axes, they do not.
+  const tex::TextureMap bump_map = textured_ball::bumpMap(0.3e-3);
+  const FaceTexture bumpy = textured_ball::ballTexture(bump_map);
+  const double half_period = kTile / 8.0;
+  const Eigen::Vector3d tip(std::tan(half_period / kRadius), std::tan(half_period / kRadius), -1.0);
+  const Eigen::Matrix3d tip_down = Eigen::Quaterniond::FromTwoVectors(tip.normalized(), -Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Case cases[] = {
+      {"recessed on recessed", &recessed, &recessed, unturned, 3e-6},
+      {"recessed on dimpled", &dimpled, &recessed, unturned, 3e-6},
+      {"dimpled on recessed", &recessed, &dimpled, unturned, 3e-6},
+      {"bumpy on bumpy, as laid (they nest)", &bumpy, &bumpy, unturned, 15e-6},
+      {"bumpy on bumpy, the upper turned a half period diagonally", &bumpy, &bumpy, tip_down, 3e-6},
+  };
+  for (const Case& c : cases) {
+    const double touch = exactTouch(*c.a, *c.b, c.turn, up);
+    const double upper_plain = exactTouch(*c.a, smooth, c.turn, up);
+    for (const bool b_first : {false, true}) {
+      const double z = letDown(c.a, c.b, c.turn, touch, b_first);
+      std::printf("[measured] %s (%s added first): at rest %.2f um off the exact touch (%.4f mm); the upper ball's "
+                  "texture unread, the exact touch %.4f mm\n",
+                  c.name, b_first ? "upper" : "lower", (z - touch) * 1e6, touch * 1e3, upper_plain * 1e3);
+      EXPECT_NEAR(z, touch, c.tolerance) << c.name;
+      // Where both reliefs decide the touch, nearer it than to the answer with one of them.
+      if (std::fabs(upper_plain - touch) > 10.0 * c.tolerance) {
+        EXPECT_LT(std::fabs(z - touch), 0.1 * std::fabs(upper_plain - touch)) << c.name;
+      }
+    }
+  }
+}
+
+// A cylinder lying across the top of a fixed ball recessed 0.5 mm everywhere rests on it at the
+// smaller sphere's height, where the coarse pair put it on the full sphere.
+TEST(TexturedBallPairs, ACylinderLyingOnABallWithABumpMapRestsOnItsRecessedSurface) {
+  const tex::TextureMap recess_map = textured_ball::uniformRecess(0.5e-3);
+  const FaceTexture recessed = textured_ball::ballTexture(recess_map);
+  constexpr double r = 0.003, half = 0.01;
+  for (const bool textured : {true, false}) {
+    PhysicsWorld world;
+    if (textured)
+      world.addTexturedSphere(kRadius, 0.0, Eigen::Isometry3d::Identity(), {0.5, 0.0, 0.0}, recessed);
+    else
+      world.addSphere(kRadius, 0.0, Eigen::Isometry3d::Identity(), {0.5, 0.0, 0.0});
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::AngleAxisd(0.5 * kPi, Eigen::Vector3d::UnitY()).toRotationMatrix();  // its axis along x
+    pose.translation() = Eigen::Vector3d(0.0, 0.0, kRadius + r + 1e-4);
+    btRigidBody& cylinder = world.addCylinder(r, half, 0.02, pose, {0.5, 0.0, 0.0});
+    cylinder.setLinearFactor(btVector3(0, 0, 1));
+    cylinder.setAngularFactor(btVector3(0, 0, 0));
+    for (int k = 0; k < 600; ++k) world.step(1e-3);
+    const double z = positionOf(cylinder).z(), expected = kRadius - (textured ? 0.5e-3 : 0.0) + r;
+    std::printf("[measured] cylinder on the %s ball: at rest %.2f um off %.3f mm\n", textured ? "recessed" : "plain",
+                (z - expected) * 1e6, expected * 1e3);
+    EXPECT_NEAR(z, expected, 3e-6);
+  }
+}
+
+}  // namespace
+}  // namespace thx::phys::test::test_textured_ball_pairs
