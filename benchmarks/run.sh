@@ -62,6 +62,9 @@
 #              or capsule_run (issue 29: a capsule lying on a textured box's face, the search along
 #              its run for the ball whose lifted gap is least against brute force, its error and
 #              cost at spacings of 0.5 to 4 texels; about 30 s; its table goes to docs/physics.md)
+#              or pen_on_objects (issue 29: a whole world's physics step with the pen's capsule
+#              pressing a block and a ball, a marble in a ball's dimple and a ball on a ball, each
+#              object plain and textured; about 30 s; its table goes to docs/physics.md)
 #              or textured_ball (issue 29: a ball with a bump map on relief planes of 128, 256 and
 #              512 texels: rolling on its recessed radius, at rest on a flat and a bumpy relief, the
 #              cost of a step beside a plain ball; on UV spheres of 64, 128 and 256 segments, a
@@ -388,6 +391,12 @@ run_textured_pair() {
   bench_with_table bench_textured_pair "$ROOT/docs/physics.md"
 }
 
+run_pen_on_objects() {
+  need "$BIN/bench_pen_on_objects" || return 1
+  say "part pen_on_objects: a physics step with the pen or a ball on a plain and a textured object (about 30 s)"
+  bench_with_table bench_pen_on_objects "$ROOT/docs/physics.md"
+}
+
 run_capsule_run() {
   need "$BIN/bench_capsule_run" || return 1
   say "part capsule_run: the search along a capsule's run over a textured box's face, its error by spacing (about 30 s)"
@@ -454,14 +463,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | block_by_pole | textured_pair | capsule_run | textured_ball | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | block_by_pole | textured_pair | capsule_run | pen_on_objects | textured_ball | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing block_by_pole textured_pair capsule_run textured_ball rolling_ridges rod_in_groove rocking_on_curve object_by_crease report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing block_by_pole textured_pair capsule_run pen_on_objects textured_ball rolling_ridges rod_in_groove rocking_on_curve object_by_crease report)"
       exit 2
       ;;
   esac

@@ -30,7 +30,9 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "clients/physics/bullet_triangles.hpp"
@@ -82,6 +84,10 @@ struct ObjectFacesCatalog {
 // A plain ball (no bump map) or a capsule: the shapes met as balls.
 bool meetsFacesAsBalls(const btCollisionShape& shape);
 
+// The centre (the object's frame) of the ball of `object` (a plain ball or a capsule) that made a
+// point of BallOnObjectFacesAlgorithm's manifold, whose body A is the object: kept in the point.
+Eigen::Vector3d ballCentreOfPoint(const btManifoldPoint& point, const btCollisionShape& object);
+
 class BallOnObjectFacesAlgorithm : public ManifoldAlgorithm {
  public:
   // `faces_first`: body0 is the textured object; the other body meetsFacesAsBalls. `faces` and
@@ -98,6 +104,7 @@ class BallOnObjectFacesAlgorithm : public ManifoldAlgorithm {
   bool faces_first_;
   const ObjectFaces* faces_;
   std::vector<int> near_;  // the triangles within reach this step, in index order
+  std::vector<std::pair<double, std::uint32_t>> trail_;  // on a ball: each sample's place on the run, its foot's triangle
   const ObjectFacesCatalog* catalog_;
 };
 

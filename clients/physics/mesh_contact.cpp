@@ -301,6 +301,11 @@ void ballPastCrease(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometr
 
 double ballLiftedGap(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, std::uint32_t triangle, double r,
                      const MeshContactOptions& options) {
+  return ballLiftedGapFrom(contact_mesh, c, triangle, r, options);
+}
+
+double ballLiftedGapFrom(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, std::uint32_t& triangle, double r,
+                         const MeshContactOptions& options) {
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   const MeshPlace reporting{triangle, mesh::closestBarycentric(mesh, triangle, c)};
   Eigen::Vector3d b = reporting.barycentric;

@@ -135,6 +135,9 @@ double ballOnReliefLift(const ContactMesh& mesh, const Eigen::Vector3d& c, doubl
 // its edge). For searching where a ball of a capsule meets the relief (ball_on_object_faces.hpp).
 double ballLiftedGap(const ContactMesh& mesh, const Eigen::Vector3d& c, std::uint32_t triangle, double r,
                      const MeshContactOptions& options);
+// The same, `triangle` updated to the foot's (where the walk ended): the start for a ball nearby.
+double ballLiftedGapFrom(const ContactMesh& mesh, const Eigen::Vector3d& c, std::uint32_t& triangle, double r,
+                         const MeshContactOptions& options);
 
 // The steering normal of that ball (mesh frame, unit, towards the ball: side times the outward
 // normal): the smooth normal tilted by the lift's gradient along the surface, taken by central

@@ -232,18 +232,17 @@ TEST(BallOnTexturedBall, ACapsuleOverTheDimpledBallMeetsItWhereTheExactContactDo
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = centre;
     pose.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
-    world.addCapsule(r, half, 0.01, pose, {0.5, 0.0, 0.0});  // a body: two fixed objects are never paired
+    const btRigidBody& capsule = world.addCapsule(r, half, 0.01, pose, {0.5, 0.0, 0.0});  // a body: two fixed objects are never paired
     world.world().performDiscreteCollisionDetection();
-    // Each point's ball (the axis point nearest its place on the capsule, along its local z), its
-    // lifted gap read as the rewrite reads it (the point's own distance is the one the solver holds
-    // on the flat triangle).
+    // Each point's ball (ballCentreOfPoint), its lifted gap read as the rewrite reads it (the
+    // point's own distance is the one the solver holds on the flat triangle).
     btDispatcher& dispatcher = *world.world().getDispatcher();
     double least = 1e9;
     for (int i = 0; i < dispatcher.getNumManifolds(); ++i) {
       const btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(i);
       for (int j = 0; j < manifold->getNumContacts(); ++j) {
         const btManifoldPoint& point = manifold->getContactPoint(j);
-        const Eigen::Vector3d ball = pose * Eigen::Vector3d(0.0, 0.0, std::clamp(double(point.m_localPointA.z()), -half, half));
+        const Eigen::Vector3d ball = pose * ballCentreOfPoint(point, *capsule.getCollisionShape());
         least = std::min(least, ballLiftedGap(faces->contact, ball, std::uint32_t(point.m_index1), r, faces->options));
       }
     }
