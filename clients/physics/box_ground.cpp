@@ -35,6 +35,15 @@ std::unique_ptr<ObjectGround> ballGround(double radius_m, const FaceTexture& tex
   return std::make_unique<ObjectGround>(mesh::texturedBallMesh(radius_m, texture.tile_m), &texture);
 }
 
+void ObjectGroundCatalog::addBall(const btCollisionShape& ball, double radius_m, const FaceTexture& texture) {
+  grounds_[&ball] = ballGround(radius_m, texture);
+}
+
+const ObjectGround* ObjectGroundCatalog::find(const btCollisionShape& shape) const {
+  const auto it = grounds_.find(&shape);
+  return it == grounds_.end() ? nullptr : it->second.get();
+}
+
 namespace {
 
 bool isBox(const btCollisionShape& s) { return s.getShapeType() == BOX_SHAPE_PROXYTYPE; }
@@ -68,9 +77,11 @@ btCollisionAlgorithm* BoxGroundCreateFunc::CreateCollisionAlgorithm(btCollisionA
                                                                     const btCollisionObjectWrapper* body1) {
   switch (texturedPairGround(*body0->getCollisionShape(), *body1->getCollisionShape())) {
     case PairGround::First:  // body0 is the ground: the relief algorithm's "swapped" order
-      return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, true);
+      return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, true,
+                                                                 grounds->find(*body0->getCollisionShape()));
     case PairGround::Second:
-      return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, false);
+      return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, false,
+                                                                 grounds->find(*body1->getCollisionShape()));
     case PairGround::None:
       break;
   }
@@ -100,7 +111,7 @@ std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDis
       btCollisionAlgorithmCreateFunc* otherwise = scaled_convex && usesScaledConvex(t0, t1)
                                                       ? registration->scaled_convex.get()
                                                       : configuration.getCollisionAlgorithmCreateFunc(t0, t1);
-      registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces));
+      registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces, &registration->grounds));
       dispatcher.registerCollisionCreateFunc(t0, t1, registration->funcs.back().get());
     }
   }
@@ -113,7 +124,7 @@ std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDis
     btCollisionAlgorithmCreateFunc* otherwise = scaled_convex && usesScaledConvex(t0, t1)
                                                     ? registration->scaled_convex.get()
                                                     : configuration.getCollisionAlgorithmCreateFunc(t0, t1);
-    registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces));
+    registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces, &registration->grounds));
     dispatcher.registerCollisionCreateFunc(t0, t1, registration->funcs.back().get());
   }
   return registration;

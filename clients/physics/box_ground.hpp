@@ -30,6 +30,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "clients/physics/ball_on_object_faces.hpp"
@@ -65,6 +66,16 @@ std::unique_ptr<ObjectGround> boxGround(const Eigen::Vector3d& half_extents_m, c
 // A ball with a bump map's (24 cells along each face's edge, as ball_on_object_faces.hpp's).
 std::unique_ptr<ObjectGround> ballGround(double radius_m, const FaceTexture& texture);
 
+// The grounds of a world's balls with bump maps, each built once (a cube-sphere's chart mesh takes
+// about 9 ms: built for each pair, every new pair of two such balls cost a step that long).
+struct ObjectGroundCatalog {
+  void addBall(const btCollisionShape& ball, double radius_m, const FaceTexture& texture);
+  const ObjectGround* find(const btCollisionShape& shape) const;
+
+ private:
+  std::unordered_map<const btCollisionShape*, std::unique_ptr<ObjectGround>> grounds_;
+};
+
 // Which of a pair's shapes the texture rules take as the ground (above).
 enum class PairGround { None, First, Second };
 PairGround texturedPairGround(const btCollisionShape& first, const btCollisionShape& second);
@@ -75,18 +86,21 @@ PairGround texturedPairGround(const btCollisionShape& first, const btCollisionSh
 // object whose surface `catalog` holds (a textured box, a ball with a bump map) goes to
 // BallOnObjectFacesAlgorithm.
 struct BoxGroundCreateFunc : btCollisionAlgorithmCreateFunc {
-  BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func, const ObjectFacesCatalog* faces_catalog)
-      : otherwise(otherwise_func), catalog(faces_catalog) {}
+  BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func, const ObjectFacesCatalog* faces_catalog,
+                      const ObjectGroundCatalog* ground_catalog)
+      : otherwise(otherwise_func), catalog(faces_catalog), grounds(ground_catalog) {}
   btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
                                                  const btCollisionObjectWrapper* body0,
                                                  const btCollisionObjectWrapper* body1) override;
   btCollisionAlgorithmCreateFunc* otherwise;
   const ObjectFacesCatalog* catalog;
+  const ObjectGroundCatalog* grounds;
 };
 
 // The create functions of one dispatcher (they point at its configuration's); must outlive its use.
 struct BoxGroundRegistration {
   ObjectFacesCatalog faces;  // the world's textured boxes and balls (PhysicsWorld::addTextured*)
+  ObjectGroundCatalog grounds;  // the world's balls with bump maps (PhysicsWorld::addTexturedSphere)
   std::vector<std::unique_ptr<BoxGroundCreateFunc>> funcs;
   std::unique_ptr<btCollisionAlgorithmCreateFunc> scaled_convex;
 };

@@ -195,6 +195,8 @@ btRigidBody& PhysicsWorld::addTexturedSphere(double radius_m, double mass_kg, co
   attachBallTexture(*shape, *face_textures_.back());
   // A plain ball or a capsule meets its surface as a relief mesh's (ball_on_object_faces.hpp).
   box_ground_funcs_->faces.addBall(*shape, radius_m, *face_textures_.back());
+  // Another ball with a bump map or a cylinder meets it on its chart (box_ground.hpp).
+  box_ground_funcs_->grounds.addBall(*shape, radius_m, *face_textures_.back());
   return addBody(std::move(shape), mass_kg, pose, material);
 }
 

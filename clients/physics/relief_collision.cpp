@@ -525,11 +525,12 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   const FaceTexture* ground_ball = ballTextureOf(ground);
   if (ground.getShapeType() == BOX_SHAPE_PROXYTYPE || ground_ball) {
     // A box as a mesh of its faces, a ball with a bump map as its cube-sphere (box_ground.hpp).
-    if (!object_ground_)
+    if (!shared_ground_ && !object_ground_)
       object_ground_ = ground_ball ? ballGround(double(static_cast<const btSphereShape&>(ground).getRadius()), *ground_ball)
                                    : boxGround(toEigen(static_cast<const btBoxShape&>(ground).getHalfExtentsWithMargin()),
                                                faceTextureOf(ground));
-    meshCollision(*object, *relief, object_ground_->relief(), object_ground_->triangles(),
+    const ObjectGround& object_ground = shared_ground_ ? *shared_ground_ : *object_ground_;
+    meshCollision(*object, *relief, object_ground.relief(), object_ground.triangles(),
                   faceTextureOf(*object->getCollisionShape()), result);
     return;
   }

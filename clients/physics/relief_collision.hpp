@@ -48,9 +48,11 @@ namespace thx::phys {
 
 class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
  public:
+  // `ground`: the ground's mesh where it is built once for the world (a ball with a bump map's,
+  // box_ground.hpp); nullptr: built on first need (a box's, a dozen triangles).
   ReliefCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
-                           const btCollisionObjectWrapper* body1, bool swapped)
-      : ManifoldAlgorithm(ci, body0, body1), swapped_(swapped) {}
+                           const btCollisionObjectWrapper* body1, bool swapped, const ObjectGround* ground = nullptr)
+      : ManifoldAlgorithm(ci, body0, body1), swapped_(swapped), shared_ground_(ground) {}
 
   ~ReliefCollisionAlgorithm() override;
 
@@ -128,8 +130,9 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   std::uint32_t foot_triangle_ = 0xffffffffu;  // on a mesh: the triangle under the box last step
   btPersistentManifold* groups_[kNormalGroups - 1] = {};
   std::unique_ptr<SurfaceSlots> surfaces_;
-  // Against a box or a ball with a bump map (box_ground.hpp): its surface as a mesh, made on first
-  // need.
+  // Against a box or a ball with a bump map (box_ground.hpp): its surface as a mesh, the world's
+  // (shared_ground_) or made on first need.
+  const ObjectGround* shared_ground_ = nullptr;
   std::unique_ptr<ObjectGround> object_ground_;
 };
 
