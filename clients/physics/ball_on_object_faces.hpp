@@ -5,18 +5,21 @@
 // its surface laid as its texture is read: a box's six faces (meshes/textured_box_mesh.hpp), a
 // ball with a bump map as its cube-sphere (meshes/textured_ball_mesh.hpp; its relief is met on
 // the ball's curvature, MeshContactOptions::sphere_radius_m). A capsule is its segment swept by a
-// ball, so it is met as the balls on its segment that meet each triangle (capsule_balls.hpp: where
-// the segment comes nearest beside the triangle, and over it the ball of least lifted gap on each
-// half of its run); a sphere is its one ball.
-// Each step every such ball's point on each triangle within the breaking threshold (the triangles
+// ball, so it is met as the balls on its segment: on a box's faces those that meet each triangle
+// (capsule_balls.hpp: where the segment comes nearest beside the triangle, and over it the ball of
+// least lifted gap on each half of its run); on a ball, whose triangles are far smaller than the
+// run, the least on each half of the segment's whole run within reach, searched once. A sphere is
+// its one ball, its lifted gap read once from the triangle nearest it.
+// Each step every such ball's point on its triangle within the breaking threshold (the triangles
 // the object's bounding box meets, asked of a Bullet BVH of the surface) is found as Bullet's
 // sphere-triangle algorithm finds it on a mesh (the nearest point of the triangle, the normal from
-// it to the ball's centre), kept between steps as Bullet keeps a mesh's, and every point is
-// rewritten by applyBallMeshContact for the ball that made it (the axis point nearest its place on
-// the object), with the textured object's frame and its velocity (StepContext::surface_body). So a
-// marble rolls along a grooved box's grooves and off its edge (ballPastCrease) as it does on the
-// same relief laid on a box mesh, a capsule lying in a groove rests on its rims as a ball's
-// cross-section does, and the pen pushing a dimpled ball meets its dimples.
+// it to the ball's centre) and entered with the ball's lifted gap (a full manifold keeps its
+// deepest), kept between steps as Bullet keeps a mesh's, and every point is rewritten by
+// applyBallMeshContact for the ball that made it (kept in the point: ballCentreOfPoint), with the
+// textured object's frame and its velocity (StepContext::surface_body). So a marble rolls along a
+// grooved box's grooves and off its edge (ballPastCrease) as it does on the same relief laid on a
+// box mesh, a capsule lying in a groove rests on its rims as a ball's cross-section does, and the
+// pen pushing a dimpled ball meets its dimples.
 //
 // Why not the relief algorithm's plain-ball rule on the box's chart (relief_collision.hpp): tried
 // on 2026-12-04, it threw a marble rolling off the grooved board's edge up at 0.45 m/s, and rode
