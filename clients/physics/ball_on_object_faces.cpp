@@ -185,7 +185,15 @@ void BallOnObjectFacesAlgorithm::processCollision(const btCollisionObjectWrapper
     }
     if (nearest - r <= threshold) {
       const double gap = liftedGap(from, 0.0);
-      for (const int index : near_) addBall(std::uint32_t(index), 0.0, &gap);
+      if (faces_->options.sphere_radius_m > 0.0) {
+        // On a ball, which has no crease, that one point: every other would be rewritten to the
+        // same foot, its lift and gradient read again (a marble in a dimple: 120 us a step).
+        addBall(from, 0.0, &gap);
+      } else {
+        // On a box each face within reach keeps its point: past an edge the rewrite reads the
+        // faces either side of the reporting triangle's (ballPastCrease).
+        for (const int index : near_) addBall(std::uint32_t(index), 0.0, &gap);
+      }
     }
   } else if (faces_->options.sphere_radius_m > 0.0) {
     // On a ball the segment's run within reach of its surface is searched once, not triangle by
