@@ -64,7 +64,7 @@
 #              cost at spacings of 0.5 to 4 texels; about 30 s; its table goes to docs/physics.md)
 #              or pen_on_objects (issue 29: a whole world's physics step with the pen's capsule
 #              pressing a block and a ball, a marble in a ball's dimple and a ball on a ball, each
-#              object plain and textured; about 30 s; its table goes to docs/physics.md)
+#              object plain and textured; about 5 s; its table goes to docs/physics.md)
 #              or textured_ball (issue 29: a ball with a bump map on relief planes of 128, 256 and
 #              512 texels: rolling on its recessed radius, at rest on a flat and a bumpy relief, the
 #              cost of a step beside a plain ball; on UV spheres of 64, 128 and 256 segments, a
@@ -393,7 +393,7 @@ run_textured_pair() {
 
 run_pen_on_objects() {
   need "$BIN/bench_pen_on_objects" || return 1
-  say "part pen_on_objects: a physics step with the pen or a ball on a plain and a textured object (about 30 s)"
+  say "part pen_on_objects: a physics step with the pen or a ball on a plain and a textured object (about 5 s)"
   bench_with_table bench_pen_on_objects "$ROOT/docs/physics.md"
 }
 
