@@ -10,13 +10,14 @@
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/capsule_balls.hpp"
 #include "clients/physics/textured_ball.hpp"
-#include "meshes/textured_ball_mesh.hpp"
-#include "meshes/textured_box_mesh.hpp"
 
 namespace thx::phys {
 
-ObjectFaces::ObjectFaces(mesh::TexturedMesh surface, const FaceTexture& texture, double sphere_radius_m)
-    : mesh(std::move(surface)), contact(mesh), ball_relief(*texture.map, texture.sampling.address) {
+ObjectFaces::ObjectFaces(std::unique_ptr<ObjectGround> surface, const FaceTexture& texture, double sphere_radius_m)
+    : ground(std::move(surface)),
+      mesh(ground->mesh()),
+      contact(ground->relief().mesh),
+      ball_relief(*texture.map, texture.sampling.address) {
   options.texture = texture.map;
   options.sampling = texture.sampling;
   // The relief is laid at the scale it was made for: one tile across tile_m.
@@ -24,16 +25,14 @@ ObjectFaces::ObjectFaces(mesh::TexturedMesh surface, const FaceTexture& texture,
   options.ball_relief = &ball_relief;
   options.sphere_radius_m = sphere_radius_m;
   texel_m = texture.tile_m / double(std::max(texture.map->width(), texture.map->height()));
-  triangles = bulletTriangles(mesh);
-  bvh = std::make_unique<btBvhTriangleMeshShape>(triangles->array.get(), true);
 }
 
 std::unique_ptr<ObjectFaces> boxFaces(const Eigen::Vector3d& half_extents_m, const FaceTexture& texture) {
-  return std::make_unique<ObjectFaces>(mesh::texturedBoxMesh(2.0 * half_extents_m, texture.tile_m), texture, 0.0);
+  return std::make_unique<ObjectFaces>(boxGround(half_extents_m, &texture), texture, 0.0);
 }
 
 std::unique_ptr<ObjectFaces> ballFaces(double radius_m, const FaceTexture& texture, int cells) {
-  return std::make_unique<ObjectFaces>(mesh::texturedBallMesh(radius_m, texture.tile_m, cells), texture, radius_m);
+  return std::make_unique<ObjectFaces>(ballGround(radius_m, texture, cells), texture, radius_m);
 }
 
 void ObjectFacesCatalog::addBox(const btCollisionShape& box, const Eigen::Vector3d& half_extents_m,
@@ -48,6 +47,11 @@ void ObjectFacesCatalog::addBall(const btCollisionShape& ball, double radius_m, 
 const ObjectFaces* ObjectFacesCatalog::find(const btCollisionShape& shape) const {
   const auto it = faces_.find(&shape);
   return it == faces_.end() ? nullptr : it->second.get();
+}
+
+const ObjectGround* ObjectFacesCatalog::ground(const btCollisionShape& shape) const {
+  const ObjectFaces* faces = find(shape);
+  return faces ? faces->ground.get() : nullptr;
 }
 
 namespace {
@@ -120,7 +124,7 @@ void BallOnObjectFacesAlgorithm::processCollision(const btCollisionObjectWrapper
   } gather;
   gather.out = &near_;
   const Eigen::Vector3d reach = Eigen::Vector3d::Constant(r + threshold);
-  faces_->bvh->processAllTriangles(&gather, toBt(Eigen::Vector3d(a.cwiseMin(b) - reach)),
+  faces_->ground->triangles().processAllTriangles(&gather, toBt(Eigen::Vector3d(a.cwiseMin(b) - reach)),
                                    toBt(Eigen::Vector3d(a.cwiseMax(b) + reach)));
   std::sort(near_.begin(), near_.end());
 

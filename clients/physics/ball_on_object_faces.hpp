@@ -28,7 +28,6 @@
 // block's top face at its edge, where a groove wall's tilted normal made the capsule's far side
 // the contact point, 1.75 mm deep where the raster read 0.23 mm, and threw the block at 0.22 m/s.
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
-#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 #include <BulletDynamics/ConstraintSolver/btContactSolverInfo.h>
 
 #include <Eigen/Core>
@@ -38,9 +37,9 @@
 #include <utility>
 #include <vector>
 
-#include "clients/physics/bullet_triangles.hpp"
 #include "clients/physics/manifold_algorithm.hpp"
 #include "clients/physics/mesh_contact.hpp"
+#include "clients/physics/object_ground.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "meshes/textured_mesh.hpp"
 #include "textures/ball_on_relief.hpp"
@@ -48,27 +47,25 @@
 namespace thx::phys {
 
 // One textured object's surface as a relief mesh (built once per object: the ball's relief pyramid
-// costs a millisecond or more at 512 texels).
+// costs a millisecond or more at 512 texels, the cube-sphere 9 ms).
 struct ObjectFaces {
   // `texture` must outlive this; `sphere_radius_m`: the smooth surface's, for a ball (0: flat faces).
-  ObjectFaces(mesh::TexturedMesh surface, const FaceTexture& texture, double sphere_radius_m);
+  ObjectFaces(std::unique_ptr<ObjectGround> surface, const FaceTexture& texture, double sphere_radius_m);
   ObjectFaces(const ObjectFaces&) = delete;
   ObjectFaces& operator=(const ObjectFaces&) = delete;
 
-  mesh::TexturedMesh mesh;
-  ContactMesh contact;  // reads mesh
+  // The mesh, what the contacts walk on, its BVH, and its chart for other objects (box_ground.hpp).
+  std::unique_ptr<ObjectGround> ground;
+  const mesh::TexturedMesh& mesh;  // ground's
+  const ContactMesh& contact;      // ground's
   tex::BallOnRelief ball_relief;
   MeshContactOptions options;  // reads the texture and ball_relief
   double texel_m = 0.0;         // the finer of the texture's two texel sizes where it is laid
-  // The triangles as Bullet's BVH, for those within reach of an object.
-  std::unique_ptr<BulletTriangles> triangles;
-  std::unique_ptr<btBvhTriangleMeshShape> bvh;  // reads triangles
 };
 
 // A textured box's six faces. `half_extents_m`: the whole box's (with Bullet's margin).
 std::unique_ptr<ObjectFaces> boxFaces(const Eigen::Vector3d& half_extents_m, const FaceTexture& texture);
-// A ball's bump-mapped surface, as a cube-sphere of `cells` quads along each face's edge (its
-// Phong surface within 0.8 um of the sphere at 24 cells and 1 cm: docs/physics.md).
+// A ball's bump-mapped surface, as a cube-sphere of `cells` quads along each face's edge.
 std::unique_ptr<ObjectFaces> ballFaces(double radius_m, const FaceTexture& texture, int cells = 24);
 
 // The surfaces of every textured box and textured ball in one world, by its shape, and the world's
@@ -77,6 +74,8 @@ struct ObjectFacesCatalog {
   void addBox(const btCollisionShape& box, const Eigen::Vector3d& half_extents_m, const FaceTexture& texture);
   void addBall(const btCollisionShape& ball, double radius_m, const FaceTexture& texture);
   const ObjectFaces* find(const btCollisionShape& shape) const;
+  // Its surface as the ground another object's chart is laid on; nullptr for a shape not here.
+  const ObjectGround* ground(const btCollisionShape& shape) const;
 
   const btContactSolverInfo* solver = nullptr;
 

@@ -8,41 +8,8 @@
 #include "clients/physics/relief_collision.hpp"
 #include "clients/physics/scaled_convex_collision.hpp"
 #include "clients/physics/textured_ball.hpp"
-#include "meshes/textured_ball_mesh.hpp"
-#include "meshes/textured_box_mesh.hpp"
 
 namespace thx::phys {
-
-ObjectGround::ObjectGround(mesh::TexturedMesh surface, const FaceTexture* texture) : mesh_(std::move(surface)) {
-  relief_ = std::make_unique<MeshRelief>(mesh_);
-  if (texture) {
-    relief_->map = texture->map;
-    relief_->sampling = texture->sampling;
-    // The relief is laid at the scale it was made for: one tile across tile_m.
-    relief_->normals_made_for_m = Eigen::Vector2d::Constant(texture->tile_m);
-  }
-  triangles_ = bulletTriangles(mesh_);
-  shape_ = std::make_unique<btBvhTriangleMeshShape>(triangles_->array.get(), true);
-}
-
-std::unique_ptr<ObjectGround> boxGround(const Eigen::Vector3d& half_extents_m, const FaceTexture* texture) {
-  // A plain box's uv is never read (its chart is the smooth one): any tile will do.
-  return std::make_unique<ObjectGround>(
-      mesh::texturedBoxMesh(2.0 * half_extents_m, texture ? texture->tile_m : 2.0 * half_extents_m.maxCoeff()), texture);
-}
-
-std::unique_ptr<ObjectGround> ballGround(double radius_m, const FaceTexture& texture) {
-  return std::make_unique<ObjectGround>(mesh::texturedBallMesh(radius_m, texture.tile_m), &texture);
-}
-
-void ObjectGroundCatalog::addBall(const btCollisionShape& ball, double radius_m, const FaceTexture& texture) {
-  grounds_[&ball] = ballGround(radius_m, texture);
-}
-
-const ObjectGround* ObjectGroundCatalog::find(const btCollisionShape& shape) const {
-  const auto it = grounds_.find(&shape);
-  return it == grounds_.end() ? nullptr : it->second.get();
-}
 
 namespace {
 
@@ -78,10 +45,10 @@ btCollisionAlgorithm* BoxGroundCreateFunc::CreateCollisionAlgorithm(btCollisionA
   switch (texturedPairGround(*body0->getCollisionShape(), *body1->getCollisionShape())) {
     case PairGround::First:  // body0 is the ground: the relief algorithm's "swapped" order
       return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, true,
-                                                                 grounds->find(*body0->getCollisionShape()));
+                                                                 catalog->ground(*body0->getCollisionShape()));
     case PairGround::Second:
       return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, false,
-                                                                 grounds->find(*body1->getCollisionShape()));
+                                                                 catalog->ground(*body1->getCollisionShape()));
     case PairGround::None:
       break;
   }
@@ -111,7 +78,7 @@ std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDis
       btCollisionAlgorithmCreateFunc* otherwise = scaled_convex && usesScaledConvex(t0, t1)
                                                       ? registration->scaled_convex.get()
                                                       : configuration.getCollisionAlgorithmCreateFunc(t0, t1);
-      registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces, &registration->grounds));
+      registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces));
       dispatcher.registerCollisionCreateFunc(t0, t1, registration->funcs.back().get());
     }
   }
@@ -124,7 +91,7 @@ std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDis
     btCollisionAlgorithmCreateFunc* otherwise = scaled_convex && usesScaledConvex(t0, t1)
                                                     ? registration->scaled_convex.get()
                                                     : configuration.getCollisionAlgorithmCreateFunc(t0, t1);
-    registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces, &registration->grounds));
+    registration->funcs.push_back(std::make_unique<BoxGroundCreateFunc>(otherwise, &registration->faces));
     dispatcher.registerCollisionCreateFunc(t0, t1, registration->funcs.back().get());
   }
   return registration;

@@ -26,55 +26,16 @@
 //   cylinder's flat ends are not balls.
 #include <BulletCollision/CollisionDispatch/btCollisionConfiguration.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
-#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 
 #include <Eigen/Core>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 #include "clients/physics/ball_on_object_faces.hpp"
-#include "clients/physics/bullet_triangles.hpp"
-#include "clients/physics/mesh_relief_chart.hpp"
+#include "clients/physics/object_ground.hpp"
 #include "clients/physics/textured_box.hpp"
-#include "meshes/textured_mesh.hpp"
 
 namespace thx::phys {
-
-// A textured object's surface as a mesh that another object's chart is laid on: a box's six faces,
-// or a ball with a bump map's cube-sphere (meshes/textured_ball_mesh.hpp).
-class ObjectGround {
- public:
-  // `texture` (nullptr: a plain surface, its smooth chart) must outlive this.
-  ObjectGround(mesh::TexturedMesh surface, const FaceTexture* texture);
-  ObjectGround(const ObjectGround&) = delete;
-  ObjectGround& operator=(const ObjectGround&) = delete;
-
-  const MeshRelief& relief() const { return *relief_; }
-  // The faces as Bullet's triangles, for the chart's boundary (chart_boundary.hpp); never in a world.
-  const btConcaveShape& triangles() const { return *shape_; }
-
- private:
-  mesh::TexturedMesh mesh_;
-  std::unique_ptr<MeshRelief> relief_;  // reads mesh_
-  std::unique_ptr<BulletTriangles> triangles_;
-  std::unique_ptr<btBvhTriangleMeshShape> shape_;  // reads triangles_
-};
-
-// A box's: `half_extents_m` the whole box's (with Bullet's margin), `texture` nullptr for a plain box.
-std::unique_ptr<ObjectGround> boxGround(const Eigen::Vector3d& half_extents_m, const FaceTexture* texture);
-// A ball with a bump map's (24 cells along each face's edge, as ball_on_object_faces.hpp's).
-std::unique_ptr<ObjectGround> ballGround(double radius_m, const FaceTexture& texture);
-
-// The grounds of a world's balls with bump maps, each built once (a cube-sphere's chart mesh takes
-// about 9 ms: built for each pair, every new pair of two such balls cost a step that long).
-struct ObjectGroundCatalog {
-  void addBall(const btCollisionShape& ball, double radius_m, const FaceTexture& texture);
-  const ObjectGround* find(const btCollisionShape& shape) const;
-
- private:
-  std::unordered_map<const btCollisionShape*, std::unique_ptr<ObjectGround>> grounds_;
-};
 
 // Which of a pair's shapes the texture rules take as the ground (above).
 enum class PairGround { None, First, Second };
@@ -86,21 +47,18 @@ PairGround texturedPairGround(const btCollisionShape& first, const btCollisionSh
 // object whose surface `catalog` holds (a textured box, a ball with a bump map) goes to
 // BallOnObjectFacesAlgorithm.
 struct BoxGroundCreateFunc : btCollisionAlgorithmCreateFunc {
-  BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func, const ObjectFacesCatalog* faces_catalog,
-                      const ObjectGroundCatalog* ground_catalog)
-      : otherwise(otherwise_func), catalog(faces_catalog), grounds(ground_catalog) {}
+  BoxGroundCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func, const ObjectFacesCatalog* faces_catalog)
+      : otherwise(otherwise_func), catalog(faces_catalog) {}
   btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
                                                  const btCollisionObjectWrapper* body0,
                                                  const btCollisionObjectWrapper* body1) override;
   btCollisionAlgorithmCreateFunc* otherwise;
   const ObjectFacesCatalog* catalog;
-  const ObjectGroundCatalog* grounds;
 };
 
 // The create functions of one dispatcher (they point at its configuration's); must outlive its use.
 struct BoxGroundRegistration {
   ObjectFacesCatalog faces;  // the world's textured boxes and balls (PhysicsWorld::addTextured*)
-  ObjectGroundCatalog grounds;  // the world's balls with bump maps (PhysicsWorld::addTexturedSphere)
   std::vector<std::unique_ptr<BoxGroundCreateFunc>> funcs;
   std::unique_ptr<btCollisionAlgorithmCreateFunc> scaled_convex;
 };

@@ -193,10 +193,9 @@ btRigidBody& PhysicsWorld::addTexturedSphere(double radius_m, double mass_kg, co
   face_textures_.push_back(std::make_unique<FaceTexture>(texture));
   auto shape = std::make_unique<btSphereShape>(narrow(radius_m));
   attachBallTexture(*shape, *face_textures_.back());
-  // A plain ball or a capsule meets its surface as a relief mesh's (ball_on_object_faces.hpp).
+  // A plain ball or a capsule meets its surface as a relief mesh's (ball_on_object_faces.hpp), and
+  // another ball with a bump map or a cylinder on its chart (box_ground.hpp).
   box_ground_funcs_->faces.addBall(*shape, radius_m, *face_textures_.back());
-  // Another ball with a bump map or a cylinder meets it on its chart (box_ground.hpp).
-  box_ground_funcs_->grounds.addBall(*shape, radius_m, *face_textures_.back());
   return addBody(std::move(shape), mass_kg, pose, material);
 }
 

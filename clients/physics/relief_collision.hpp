@@ -48,8 +48,8 @@ namespace thx::phys {
 
 class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
  public:
-  // `ground`: the ground's mesh where it is built once for the world (a ball with a bump map's,
-  // box_ground.hpp); nullptr: built on first need (a box's, a dozen triangles).
+  // `ground`: the ground's mesh where it is built once for the world (a textured box's or a ball
+  // with a bump map's: ObjectFacesCatalog); nullptr: built on first need (a plain box's).
   ReliefCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
                            const btCollisionObjectWrapper* body1, bool swapped, const ObjectGround* ground = nullptr)
       : ManifoldAlgorithm(ci, body0, body1), swapped_(swapped), shared_ground_(ground) {}
