@@ -1,11 +1,12 @@
 // A rod in a V-groove (issue 29; docs/physics.md "Plain objects on a relief mesh"): a capsule and a
-// cylinder lying along a groove on the relief plane, on a flat relief mesh and on a pipe's grooved
-// inside (tests/physics/rod_in_groove_scene.hpp), against the analytic answers: where it rests,
+// cylinder lying along a groove on the relief plane, on a flat relief mesh, on a pipe's grooved
+// inside and on a textured box's top face (tests/physics/rod_in_groove_scene.hpp), against the analytic answers: where it rests,
 // and the horizontal force that rolls it out of the groove; with the cost of a step. Measures
 // only; nothing asserted (tests/physics/test_plain_objects_on_relief_mesh.cpp holds the behaviour).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,11 @@ constexpr const char* kHelp = R"(usage: bench_rod_in_groove [--texels N,N,...] [
 
 A capsule and a cylinder (3 mm radius, 2 cm long, 20 g, friction 0.3) lying along a V-groove
 (grooves 4 mm apart and 1 mm deep, walls at theta = 26.57 degrees; a relief of N texels over
-4 cm) on the relief plane, on the same relief laid on a flat box mesh, and on the inside of a
+4 cm) on the relief plane, on the same relief laid on a flat box mesh, on the inside of a
 pipe of radius 10.2 cm whose grooves run along its axis (the rod 2 mm from its bottom line, where
-the bend raises the groove's floor 19 um). At 1 ms steps it settles 0.5 s; where it rests is
+the bend raises the groove's floor 19 um), and on the top face of a fixed box (0.2 x 0.2 x 0.02 m)
+whose faces carry the relief (the capsule met as the balls on its segment, the cylinder by the
+rod rules on the face's chart: clients/physics/box_ground.hpp). At 1 ms steps it settles 0.5 s; where it rests is
 compared with its circle touching both walls, its axis r / cos(theta) - D above the ridges (plus
 the bend in the pipe). Then a horizontal force across the grooves, applied at its centre for
 0.3 s, rolls it out when it exceeds tan(theta) = 0.5 of its weight (in the pipe, tan of theta
@@ -39,8 +42,9 @@ pushed at 0.4 of its weight (in the groove, against its wall).
   --json/--csv/--md F   results
 )";
 
-constexpr Ground kGrounds[] = {Ground::Plane, Ground::FlatMesh, Ground::Trough};
-const char* const kGroundNames[] = {"relief plane", "flat mesh", "pipe"};
+constexpr Ground kGrounds[] = {Ground::Plane, Ground::FlatMesh, Ground::Trough, Ground::Box};
+const char* const kGroundNames[] = {"relief plane", "flat mesh", "pipe", "grooved box"};
+constexpr int kGroundCount = int(std::size(kGrounds));
 constexpr Rod kRods[] = {Rod::Capsule, Rod::LyingCylinder};
 const char* const kRodNames[] = {"capsule", "cylinder"};
 constexpr double kPushS = 0.3;
@@ -79,7 +83,7 @@ int run(int argc, char** argv) {
   }
   std::vector<Row> rows;
   for (int n : texels) {
-    for (int g = 0; g < 3; ++g) {
+    for (int g = 0; g < kGroundCount; ++g) {
       for (int r = 0; r < 2; ++r) {
         std::fprintf(stderr, "bench_rod_in_groove: %d texels, %s on the %s ...\n", n, kRodNames[r], kGroundNames[g]);
         Row row;

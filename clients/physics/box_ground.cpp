@@ -36,6 +36,10 @@ PairGround texturedPairGround(const btCollisionShape& first, const btCollisionSh
   const auto isCylinder = [](const btCollisionShape& s) { return s.getShapeType() == CYLINDER_SHAPE_PROXYTYPE; };
   if (ball(first) && isCylinder(second)) return PairGround::First;
   if (isCylinder(first) && ball(second)) return PairGround::Second;
+  // A textured box under a cylinder (a plain box and a cylinder have no texture between them).
+  const auto texturedBox = [](const btCollisionShape& s) { return isBox(s) && hasObjectTexture(s); };
+  if (texturedBox(first) && isCylinder(second)) return PairGround::First;
+  if (isCylinder(first) && texturedBox(second)) return PairGround::Second;
   return PairGround::None;
 }
 

@@ -14,16 +14,16 @@
 // Which body is the ground (texturedPairGround): a box under a ball with a bump map; of two boxes,
 // one of them textured, the larger (by volume; the second on a tie); of two balls with bump maps
 // the larger (by radius; the second on a tie), seen as its cube-sphere (meshes/textured_ball_mesh.hpp)
-// with its relief, so that both reliefs shape the pair's depth; a ball with a bump map under a
-// cylinder. Pairs without a texture keep their algorithms (Bullet's box-box, the scaled GJK of
-// scaled_convex_collision.hpp). A plain ball or a capsule against a textured box or a ball with a
-// bump map meets its surface as a relief mesh's, as balls, lifted (ball_on_object_faces.hpp). Not
-// covered, colliding as the coarse shapes (docs/physics.md "Textured objects against other
-// objects"):
-// - a cylinder against a textured box: the rod rules are made for a rod lying on, or standing on,
-//   the ground under it (tried on 2026-12-04 with capsules too: the pen's upright capsule pushing
-//   the grooved block met the block's top face at its edge and threw it at 0.22 m/s), and a
-//   cylinder's flat ends are not balls.
+// with its relief, so that both reliefs shape the pair's depth; a ball with a bump map or a
+// textured box under a cylinder, the cylinder met by the rod rules of the relief plane on the chart
+// laid under its axis's point nearest the ground's centre (relief_collision.cpp, meshCollision),
+// its side on a convex edge with its own normal (edge_contact.hpp). Pairs without a texture keep
+// their algorithms (Bullet's box-box, the scaled GJK of scaled_convex_collision.hpp). A plain ball
+// or a capsule against a textured box or a ball with a bump map meets its surface as a relief
+// mesh's, as balls, lifted (ball_on_object_faces.hpp): the rod rules, tried there for the capsule
+// on 2026-12-04 with the chart under its centre, met the grooved block's top face at its edge when
+// the pen's upright capsule pushed it and threw it at 0.22 m/s; a cylinder's flat ends are not
+// balls.
 #include <BulletCollision/CollisionDispatch/btCollisionConfiguration.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 
@@ -42,7 +42,7 @@ enum class PairGround { None, First, Second };
 PairGround texturedPairGround(const btCollisionShape& first, const btCollisionShape& second);
 
 // The create function for a pair of box against sphere, box, capsule or cylinder, and of sphere
-// against sphere or capsule: the relief algorithm (relief_collision.hpp) for the pairs
+// against sphere, capsule or cylinder: the relief algorithm (relief_collision.hpp) for the pairs
 // texturedPairGround takes, `otherwise` for the rest. A plain ball or a capsule against a textured
 // object whose surface `catalog` holds (a textured box, a ball with a bump map) goes to
 // BallOnObjectFacesAlgorithm.
@@ -64,7 +64,7 @@ struct BoxGroundRegistration {
 };
 
 // Registers BoxGroundCreateFunc for box against sphere, box, capsule and cylinder, in both orders,
-// and for sphere against sphere and capsule (a ball with a bump map's pairs without a box), each
+// and for sphere against sphere, capsule and cylinder (a ball with a bump map's pairs without a box), each
 // falling back on what the pair had: the scaled GJK where `scaled_convex` and
 // usesScaledConvex say so (scaled_convex_collision.hpp), else the configuration's own.
 std::unique_ptr<BoxGroundRegistration> registerBoxGroundCollision(btCollisionDispatcher& dispatcher,

@@ -20,6 +20,7 @@
 #include "clients/physics/conforming_contact.hpp"
 #include "clients/physics/contact_selection.hpp"
 #include "clients/physics/crease_contact.hpp"
+#include "clients/physics/edge_contact.hpp"
 #include "clients/physics/end_face_contacts.hpp"
 #include "clients/physics/manifold_room.hpp"
 #include "clients/physics/pair_contact_normal.hpp"
@@ -54,6 +55,20 @@ std::optional<Underside> undersideOf(const btCollisionShape& shape, const Eigen:
 }
 
 namespace {
+
+// A cylinder's axis's point nearest the origin of the frame `pose` places it in, at least its
+// radius in from its end faces (so inside the ball it holds, outside whatever it touches: the
+// chart is laid under a point in front of the surface); any other shape's centre.
+Eigen::Vector3d rodPointNearestOrigin(const btCollisionShape& shape, const Eigen::Isometry3d& pose) {
+  if (shape.getShapeType() != CYLINDER_SHAPE_PROXYTYPE) return pose.translation();
+  const auto& c = static_cast<const btCylinderShape&>(shape);
+  const int axis = c.getUpAxis();
+  const double half = double(c.getHalfExtentsWithMargin()[axis]);
+  const double free = half - std::min(half, double(c.getRadius()));
+  const Eigen::Vector3d along = pose.linear().col(axis);
+  const double t = std::clamp(-along.dot(pose.translation()), -free, free);
+  return pose.translation() + t * along;
+}
 
 // How far the shape reaches from its centre: the chart under it must cover that far.
 double reachOf(const btCollisionShape& shape) {
@@ -456,14 +471,20 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
 
 void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
                                              const MeshRelief& relief, const btConcaveShape& triangles,
-                                             const FaceTexture* faces, btManifoldResult* result) {
+                                             const FaceTexture* faces, bool object_ground,
+                                             btManifoldResult* result) {
   btPersistentManifold* manifold = manifoldFor(object.getCollisionObject(), mesh.getCollisionObject());
   result->setPersistentManifold(manifold);
   const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
   const Eigen::Isometry3d mesh_from_object = world_from_mesh.inverse() * toEigen(object.getWorldTransform());
-  const Eigen::Vector3d centre = mesh_from_object.translation();
   const btCollisionShape& shape = *object.getCollisionShape();
-  const double reach_m = reachOf(shape);
+  // Where the chart is laid: under the object's centre, or, for a cylinder against a box or a
+  // ball, under its axis's point nearest their centre. An upright cylinder beside a box's side
+  // face (the pen's height, its centre far over the box) had its chart laid at the top edge
+  // nearest its centre and met the side on a chart across that crease: the block it pushed slid
+  // off along the face's upright grooves and rose at 0.018 m/s.
+  const Eigen::Vector3d centre = object_ground ? rodPointNearestOrigin(shape, mesh_from_object) : mesh_from_object.translation();
+  const double reach_m = reachOf(shape) + (centre - mesh_from_object.translation()).norm();
   std::uint32_t held = 0;  // the slots of surfaces across creases met this step
   MeshChart chart;
   // A smooth chart's grid is laid at the object's own texels where it has a texture.
@@ -519,7 +540,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   const btCollisionShape& ground = *relief->getCollisionShape();
   if (const MeshRelief* mesh = meshReliefOf(ground)) {
     meshCollision(*object, *relief, *mesh, static_cast<const btConcaveShape&>(ground),
-                  faceTextureOf(*object->getCollisionShape()), result);
+                  faceTextureOf(*object->getCollisionShape()), false, result);
     return;
   }
   const FaceTexture* ground_ball = ballTextureOf(ground);
@@ -531,7 +552,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
                                                faceTextureOf(ground));
     const ObjectGround& object_ground = shared_ground_ ? *shared_ground_ : *object_ground_;
     meshCollision(*object, *relief, object_ground.relief(), object_ground.triangles(),
-                  faceTextureOf(*object->getCollisionShape()), result);
+                  faceTextureOf(*object->getCollisionShape()), true, result);
     return;
   }
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());
@@ -662,8 +683,13 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     chosen.count = n;
   }
 
-  // A box's face resting on a crease of the relief takes the face's normal (crease_contact.hpp).
+  // A box's face resting on a crease of the relief takes the face's normal (crease_contact.hpp);
+  // a rod's side on a mesh's convex edge, the rod's (edge_contact.hpp).
   if (underside.kind == Underside::Kind::Box) faceNormalsOnCreases(surface, underside, chosen);
+  const bool rod = underside.kind == Underside::Kind::Capsule || underside.kind == Underside::Kind::Cylinder;
+  if (rod && !on_end_face && boundary && boundary->count > 0)
+    rodNormalsAtConvexEdges(underside, *boundary, 1.5 * surface.mapping().texelSize(surface.map()).cwiseAbs().maxCoeff(),
+                            chosen);
   // A ball's further points are left out while it moves onto them still open; a ball in a
   // conforming cap keeps its ring (speculative_contacts.hpp).
   const bool ball = underside.kind == Underside::Kind::Sphere && !conforming;

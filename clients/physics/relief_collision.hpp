@@ -97,9 +97,11 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   // same rule as on the plane (a textured box's, `faces`, or the untextured one's) on the mesh's
   // chart under it, and on the chart of each surface across a crease within its reach.
   // `triangles`: the mesh's faces as Bullet's, where the chart's boundary is looked for.
+  // `object_ground`: the mesh is a box's or a ball's (box_ground.hpp), centred on its frame's
+  // origin, where a cylinder's chart is laid under its axis's point nearest that centre.
   void meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
                      const MeshRelief& relief, const btConcaveShape& triangles, const FaceTexture* faces,
-                     btManifoldResult* result);
+                     bool object_ground, btManifoldResult* result);
   // The rule on one chart, into that chart's manifolds; each point names the triangle under it.
   // Returns the chart's boundary.
   ChartBoundary chartCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,

@@ -2,11 +2,13 @@
 // A rod in a V-groove (issue 29, untextured objects on a relief-textured mesh; relief_collision.hpp):
 // a capsule or cylinder (3 mm radius, 2 cm long, 20 g, friction 0.3) lying along one of
 // grooved_block_scene.hpp's grooves (4 mm apart, 1 mm deep, walls at theta = 26.57 degrees), or a
-// cylinder standing on its end face, on the relief plane, a flat relief mesh or a pipe's grooved
-// inside (grooves along its axis). The analytic answers: lying, its axis rests r / cos(theta) - D
+// cylinder standing on its end face, on the relief plane, a flat relief mesh, a pipe's grooved
+// inside (grooves along its axis) or the top face of a fixed box (0.2 x 0.2 x 0.02 m) whose faces
+// carry the relief (box_ground.hpp). The analytic answers: lying, its axis rests r / cos(theta) - D
 // above the ridges (its circle touching both walls), and a horizontal force at its centre rolls it
 // out over the far wall only above tan(theta) = 0.5 of its weight. Shared by
-// tests/physics/test_plain_objects_on_relief_mesh.cpp and benchmarks/bench_rod_in_groove.cpp.
+// tests/physics/test_plain_objects_on_relief_mesh.cpp, test_cylinder_on_box_faces.cpp and
+// benchmarks/bench_rod_in_groove.cpp.
 #include <cmath>
 #include <memory>
 
@@ -16,7 +18,7 @@ namespace thx::phys::test::rod_in_groove {
 
 using namespace grooved_block;
 
-enum class Ground { Plane, FlatMesh, Trough };
+enum class Ground { Plane, FlatMesh, Trough, Box };
 enum class Rod { Capsule, LyingCylinder, StandingCylinder };
 
 inline constexpr double kRadius = 0.003, kHalfLength = 0.01, kRodMass = 0.02;
@@ -43,6 +45,11 @@ struct RodScene {
     double y = 0.0;
     if (ground == Ground::Plane) {
       world->addReliefPlane(plane.surface, {1.0, 0.0, 0.0});
+    } else if (ground == Ground::Box) {
+      FaceTexture faces;
+      faces.map = &map;
+      faces.tile_m = kExtent;
+      world->addTexturedBox(kSlabHalf, 0.0, at(0.0, 0.0, -kSlabHalf.z()), {1.0, 0.0, 0.0}, faces);
     } else {
       y = addGroovedGround(*world, surface, ground == Ground::Trough, map).y();
     }

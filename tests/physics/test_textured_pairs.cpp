@@ -67,7 +67,9 @@ TEST(TexturedPairs, TheTextureRulesTakeEveryPairWithATextureThatHasABoxToStandOn
   EXPECT_EQ(texturedPairGround(textured_ball, textured_ball), PairGround::Second);
   EXPECT_EQ(texturedPairGround(textured_ball, cylinder), PairGround::First);
   EXPECT_EQ(texturedPairGround(cylinder, textured_ball), PairGround::Second);
-  EXPECT_EQ(texturedPairGround(cylinder, textured_small), PairGround::None);
+  EXPECT_EQ(texturedPairGround(cylinder, textured_small), PairGround::Second);
+  EXPECT_EQ(texturedPairGround(textured_small, cylinder), PairGround::First);
+  EXPECT_EQ(texturedPairGround(cylinder, small), PairGround::None);
   EXPECT_EQ(texturedPairGround(rod, textured_small), PairGround::None);
 }
 
