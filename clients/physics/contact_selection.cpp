@@ -139,7 +139,8 @@ bool nearestClaims(const Eigen::Vector2d& start, const Eigen::Vector2d& bottom, 
 
 std::size_t selectLyingRodContacts(std::span<const ReliefCandidate> cand, const Eigen::Vector2d& centre_xy,
                                    const Eigen::Vector2d& axis_xy, double band_m,
-                                   std::array<std::size_t, kMaxReliefContacts>& chosen, bool flat_ends) {
+                                   std::array<std::size_t, kMaxReliefContacts>& chosen, bool flat_ends,
+                                   double cap_half_length_m) {
   constexpr double kLyingCos = 0.5;  // within 60 degrees of the plane
   const double length = axis_xy.norm();
   if (cand.empty() || !(length > kLyingCos)) return 0;
@@ -170,19 +171,30 @@ std::size_t selectLyingRodContacts(std::span<const ReliefCandidate> cand, const 
   // Deepest first (an insertion sort: four at most).
   for (std::size_t i = 1; i < n; ++i)
     for (std::size_t j = i; j > 0 && cand[chosen[j]].depth < cand[chosen[j - 1]].depth; --j) std::swap(chosen[j], chosen[j - 1]);
-  // A cylinder's deepest candidate between its ends is taken too, first, where it lies deeper than
+  // The rod's deepest candidate between its ends is taken too, first, where it lies deeper than
   // the ends' by more than the texels' sampling leaves along a groove's walls (16 um at 0.31 mm
   // texels): on ground that bulges under the rod's middle (a ball) the ends' points alone let a
-  // cylinder lying across a 1 cm ball sink 0.43 mm into it, held by their tilted normals. (Not a
-  // capsule's: its caps curve up at its ends, so its middle lies deeper than its ends' points in
-  // any groove, and taken there it moved a capsule resting in one by 9 um.)
-  std::size_t deepest = 0;
-  for (std::size_t k = 1; k < cand.size(); ++k)
-    if (cand[k].depth < cand[deepest].depth) deepest = k;
+  // cylinder lying across a 1 cm ball sink 0.43 mm into it, held by their tilted normals, and a
+  // capsule lying across a 5 cm sphere 60 um. A capsule's caps curve up at its ends, so its middle
+  // lies deeper than its ends' points in any groove (taken there, it moved a capsule resting in one
+  // by 9 um): its middle is compared with its straight part's ends, where the caps begin.
+  if (n == 0 || !(flat_ends || cap_half_length_m > 0.0)) return n;
+  // Its ends here: the candidates' extent along the axis (where the ground falls away beyond the
+  // breaking threshold, on a bulge), within its straight part.
+  const double straight = flat_ends ? std::numeric_limits<double>::infinity() : cap_half_length_m * length;
+  const double lo = std::max(first, -straight), hi = std::min(last, straight);
+  std::size_t deepest = kNone;
+  double ends_depth = flat_ends ? cand[chosen[0]].depth : std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < cand.size(); ++k) {
+    const double a = (xy(cand[k]) - centre_xy).dot(along);
+    if (a > lo + band_m && a < hi - band_m) {
+      if (deepest == kNone || cand[k].depth < cand[deepest].depth) deepest = k;
+    } else if (!flat_ends && (std::fabs(a - lo) <= band_m || std::fabs(a - hi) <= band_m)) {
+      ends_depth = std::min(ends_depth, cand[k].depth);
+    }
+  }
   constexpr double kDeeper = 50e-6;  // m
-  const double at = (xy(cand[deepest]) - centre_xy).dot(along);
-  const bool between_ends = at > first + band_m && at < last - band_m;
-  if (flat_ends && n > 0 && between_ends && cand[deepest].depth < cand[chosen[0]].depth - kDeeper) {
+  if (deepest != kNone && std::isfinite(ends_depth) && cand[deepest].depth < ends_depth - kDeeper) {
     const std::size_t keep = std::min(n, kMaxReliefContacts - 1);
     for (std::size_t i = keep; i > 0; --i) chosen[i] = chosen[i - 1];
     chosen[0] = deepest;

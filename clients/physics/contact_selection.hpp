@@ -39,16 +39,19 @@ std::size_t selectShallowestBasins(std::span<const ReliefCandidate> candidates, 
 // the plane: `axis_xy` the axis's direction in the plane, of length cos(its tilt), `centre_xy` its
 // centre) touches along lines parallel to its axis, one on each wall of a groove it lies in: at
 // each of its two ends (the candidates within `band_m` of the extreme along the axis) the
-// deepest candidate on each side of the axis; with `flat_ends` (a cylinder) also the deepest
-// candidate between the ends where it lies 50 um deeper than those (ground that bulges under the rod's middle, a ball); up to four,
-// deepest first. Returns 0 for a rod
+// deepest candidate on each side of the axis; and the deepest candidate between its ends where
+// it lies 50 um deeper than those (ground that bulges under the rod's middle, a ball): for a
+// cylinder (`flat_ends`) its ends' points, for a capsule (`cap_half_length_m`, half the distance
+// between its caps' centres; 0: none) the deepest within the band of its straight part's ends;
+// up to four, deepest first. Returns 0 for a rod
 // steeper than that (the general rule then). The spread rule picked the fringe texels farthest up
 // a groove's walls, with gaps of 0.1 mm, and left one wall at one end holding a cylinder: it
 // rattled between its ends and rested 54 µm into the walls (bench_rod_in_groove, 2026-12-02); its
 // basin walks along a tilted rod's contact line ran to the far end.
 std::size_t selectLyingRodContacts(std::span<const ReliefCandidate> candidates, const Eigen::Vector2d& centre_xy,
                                    const Eigen::Vector2d& axis_xy, double band_m,
-                                   std::array<std::size_t, kMaxReliefContacts>& chosen, bool flat_ends = false);
+                                   std::array<std::size_t, kMaxReliefContacts>& chosen, bool flat_ends = false,
+                                   double cap_half_length_m = 0.0);
 
 // For a sphere, whose contacts are isolated points, and a box on a bumpy relief (it rests on the
 // bumps' tops; before, it stood on its deepest point and rocked): moves each chosen candidate downhill in

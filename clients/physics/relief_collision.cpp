@@ -637,8 +637,9 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
       // steeply takes the general rule.
       const Eigen::Vector3d axis = underside.plane_from_object.linear().col(underside.axis);
       const double band = 1.5 * std::max(texel.x() * double(raster.stride_i), texel.y() * double(raster.stride_j));
+      const bool cylinder = underside.kind == Underside::Kind::Cylinder;
       n = selectLyingRodContacts(candidates, underside.plane_from_object.translation().head<2>(), axis.head<2>(), band,
-                                 picked, underside.kind == Underside::Kind::Cylinder);
+                                 picked, cylinder, cylinder ? 0.0 : underside.half_length);
       lying_rod = n > 0;
       if (!lying_rod) n = selectReliefContacts(candidates, picked);
     } else if (box_quarters) {
