@@ -9,6 +9,21 @@ double reduce(double u, Address address) {
   if (address == Address::Wrap) return u - std::floor(u);
   return std::fmin(2.0, std::fmax(-1.0, u));
 }
+
+// The four texels round uv and their weights (bilinear; texel centres at half-integers).
+struct Bilinear {
+  int i0, i1, j0, j1;
+  float w00, w10, w01, w11;
+};
+Bilinear bilinearAt(const TextureMap& map, TexCoord uv, Address address) {
+  const double s = texelS(map, reduce(uv.u, address));
+  const double t = texelT(map, reduce(uv.v, address));
+  const double s0 = std::floor(s), t0 = std::floor(t);
+  const float fs = float(s - s0), ft = float(t - t0);
+  return {resolveIndex((long long)s0, map.width(), address),     resolveIndex((long long)s0 + 1, map.width(), address),
+          resolveIndex((long long)t0, map.height(), address),    resolveIndex((long long)t0 + 1, map.height(), address),
+          (1 - fs) * (1 - ft), fs * (1 - ft), (1 - fs) * ft, fs * ft};
+}
 }  // namespace
 
 TexCoord texelCentre(const TextureMap& map, TexelIndex t) {
@@ -32,15 +47,9 @@ Sample sample(const TextureMap& map, TexCoord uv, const SampleOptions& options) 
     out.depth = map.depth(t.i, t.j);
     return out;
   }
-  const double s = texelS(map, reduce(uv.u, options.address));
-  const double t = texelT(map, reduce(uv.v, options.address));
-  const double s0 = std::floor(s), t0 = std::floor(t);
-  const float fs = float(s - s0), ft = float(t - t0);
-  const int i0 = resolveIndex((long long)s0, map.width(), options.address);
-  const int i1 = resolveIndex((long long)s0 + 1, map.width(), options.address);
-  const int j0 = resolveIndex((long long)t0, map.height(), options.address);
-  const int j1 = resolveIndex((long long)t0 + 1, map.height(), options.address);
-  const float w00 = (1 - fs) * (1 - ft), w10 = fs * (1 - ft), w01 = (1 - fs) * ft, w11 = fs * ft;
+  const Bilinear b = bilinearAt(map, uv, options.address);
+  const int i0 = b.i0, i1 = b.i1, j0 = b.j0, j1 = b.j1;
+  const float w00 = b.w00, w10 = b.w10, w01 = b.w01, w11 = b.w11;
   const Eigen::Vector3f n = w00 * map.normal(i0, j0) + w10 * map.normal(i1, j0) + w01 * map.normal(i0, j1) +
                             w11 * map.normal(i1, j1);
   const float len = n.norm();
@@ -51,6 +60,19 @@ Sample sample(const TextureMap& map, TexCoord uv, const SampleOptions& options) 
     out.depth = w00 * map.depth(i0, j0) + w10 * map.depth(i1, j0) + w01 * map.depth(i0, j1) + w11 * map.depth(i1, j1);
   }
   return out;
+}
+
+float sampleDepth(const TextureMap& map, TexCoord uv, const SampleOptions& options) {
+  if (!std::isfinite(uv.u) || !std::isfinite(uv.v)) return 0.0f;
+  if (options.filter == Filter::Nearest) {
+    const TexelIndex t = texelOf(map, uv, options.address);
+    return map.depth(t.i, t.j);
+  }
+  if (!map.isRelief()) return 0.0f;
+  const Bilinear b = bilinearAt(map, uv, options.address);
+  const int i0 = b.i0, i1 = b.i1, j0 = b.j0, j1 = b.j1;
+  const float w00 = b.w00, w10 = b.w10, w01 = b.w01, w11 = b.w11;
+  return w00 * map.depth(i0, j0) + w10 * map.depth(i1, j0) + w01 * map.depth(i0, j1) + w11 * map.depth(i1, j1);
 }
 
 std::vector<TexelIndex> texelsOnSegment(const TextureMap& map, TexCoord a, TexCoord b, Address address,

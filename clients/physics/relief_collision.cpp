@@ -265,7 +265,8 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   thread_local std::vector<ReliefCandidate> candidates;
   candidates.clear();
   const GroundBend* bent = bend.flat() ? nullptr : &bend;
-  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &texture, bent);
+  // The ball's texture read for its depth under every texel, for its normal at the points kept.
+  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &texture, bent, false);
   dropPastBoundary(boundary, candidates);
   // The basins closest to closing, deepest first (selectShallowestBasins), each refined to its
   // bottom between the texels: a bumpy ball's supports are its bump tips, and the next tip to
@@ -273,7 +274,11 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   std::array<std::size_t, kMaxReliefContacts> picked{};
   const std::size_t n = selectShallowestBasins(candidates, raster.stride_i, raster.stride_j, picked);
   std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
-  for (std::size_t k = 0; k < n; ++k) chosen[k] = refineDeepest(surface, underside, candidates[picked[k]], bent, &texture);
+  for (std::size_t k = 0; k < n; ++k) {
+    ReliefCandidate c = candidates[picked[k]];
+    withObjectNormal(underside, texture, c);
+    chosen[k] = refineDeepest(surface, underside, c, bent, &texture);
+  }
   const TexturedObjectSurface ball(underside, texture);
   smootherSurfaceNormals(surface, bent, ball, std::span(chosen.data(), n));
   flatterReliefNormals(surface, bent, ball, std::span(chosen.data(), n));

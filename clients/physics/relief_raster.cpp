@@ -47,7 +47,8 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 }
 
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
-                            std::vector<ReliefCandidate>& out, const FaceTexture* object_texture, const GroundBend* bend) {
+                            std::vector<ReliefCandidate>& out, const FaceTexture* object_texture, const GroundBend* bend,
+                            bool object_normals) {
   RasterStats stats;
   // Bent ground may rise above the plane under the object: the footprint reaches as high.
   double reach = 0.0;
@@ -100,6 +101,12 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
       // An object's relief lies inside its smooth surface: where that is already beyond the
       // threshold, so is the relief, and its texture need not be read (most of a ball's footprint).
       if (*z - height >= threshold_m) continue;
+      if (!object_normals) {
+        const double depth = object_surface->zOver(x, y, *z) - height;
+        if (depth < threshold_m)
+          out.push_back({Eigen::Vector3d(x, y, height), ground(surface.texelNormal(i, j, ri, rj)), depth, i, j});
+        continue;
+      }
       const ObjectSurfacePoint object = object_surface->over(x, y, *z);
       Eigen::Vector3d n = ground(surface.texelNormal(i, j, ri, rj));
       if (object.n_up) n = (n + *object.n_up).normalized();
@@ -108,6 +115,14 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
     }
   }
   return stats;
+}
+
+void withObjectNormal(const Underside& shape, const FaceTexture& object_texture, ReliefCandidate& c) {
+  const double x = c.p_surface.x(), y = c.p_surface.y();
+  const std::optional<double> z = lowestZ(shape, x, y);
+  if (!z) return;
+  const ObjectSurfacePoint object = TexturedObjectSurface(shape, object_texture).over(x, y, *z);
+  if (object.n_up) c.n_local = (c.n_local + *object.n_up).normalized();
 }
 
 ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,

@@ -43,9 +43,14 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // on the bent ground: its heights raised by the bend's, its normals tilted by its slope; a chart
 // whose texels are twice as long along one axis as along the other is read at the longer spacing
 // along both (a texture squeezed by the mesh's uv, relief_raster.cpp).
+// `object_normals` false: the candidates keep the relief's normal alone, and the object's is
+// added to the ones kept by withObjectNormal (a ball with a bump map reads its texture's depth at
+// every texel under it and its normal at four: a third of its raster's cost went to the normals).
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
                             std::vector<ReliefCandidate>& out, const FaceTexture* object_texture = nullptr,
-                            const GroundBend* bend = nullptr);
+                            const GroundBend* bend = nullptr, bool object_normals = true);
+// A candidate rasterised without its object's normal, with it: as rasterizeRelief makes it, to the bit.
+void withObjectNormal(const Underside& shape, const FaceTexture& object_texture, ReliefCandidate& c);
 
 // Sub-texel refinement of a round object's deepest contact. The texel-centre minimum is off the
 // true tangent point by up to half a texel, and its normal with it: at a dimple's bottom the

@@ -20,6 +20,12 @@ FacePoint ballTextureAt(const FaceTexture& texture, double radius_m, const Eigen
   return f;
 }
 
+double ballRecessAt(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& p) {
+  const mesh::BallChartPoint chart = mesh::ballChartAt(p, radius_m);
+  return double(tex::sampleDepth(*texture.map, {chart.uv_m.x() / texture.tile_m, chart.uv_m.y() / texture.tile_m},
+                                 texture.sampling));
+}
+
 namespace {
 // Marks a shape whose user pointer is a FaceTexture laid on a ball ("TBAL").
 constexpr int kBallTextureTag = 0x5442414c;

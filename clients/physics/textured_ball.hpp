@@ -32,6 +32,9 @@ namespace thx::phys {
 // frame): the recess there, and the recessed surface's outward normal (FacePoint's axis and sign
 // name the cube face whose chart holds the point).
 FacePoint ballTextureAt(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& p_object);
+// The recess alone, as ballTextureAt reads it to the bit (the raster reads it at every texel, and
+// the normal only at the contacts it keeps).
+double ballRecessAt(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& p_object);
 
 // Attaches `texture` (which must outlive the shape) to a btSphereShape.
 void attachBallTexture(btCollisionShape& sphere, const FaceTexture& texture);

@@ -26,6 +26,14 @@ ObjectSurfacePoint TexturedObjectSurface::over(double x, double y, double lowest
   return {lowest_z + relief.recess_m / down, Eigen::Vector3d(-(to_plane * relief.normal_object))};
 }
 
+double TexturedObjectSurface::zOver(double x, double y, double lowest_z) const {
+  if (object_.kind != Underside::Kind::Sphere) return over(x, y, lowest_z).z;
+  const Eigen::Vector3d p = object_from_plane_ * Eigen::Vector3d(x, y, lowest_z);
+  const double down = p.normalized().dot(down_object_);
+  if (down <= kSteepestTexturedFaceCos) return lowest_z;
+  return lowest_z + ballRecessAt(texture_, object_.radius, p) / down;
+}
+
 std::optional<ObjectSurfacePoint> TexturedObjectSurface::at(double x, double y) const {
   const std::optional<double> z = lowestZ(object_, x, y);
   if (!z) return std::nullopt;

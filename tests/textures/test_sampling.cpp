@@ -124,6 +124,23 @@ TEST(Sampling, NonFiniteCoordinatesSampleAsFlatPlane) {
   EXPECT_NO_FATAL_FAILURE(sample(map, {1e18, -1e18}, {Filter::Bilinear, Address::Wrap}));
 }
 
+TEST(Sampling, DepthAloneIsTheFullSamplesDepthToTheBit) {
+  // sampleDepth skips the normal (the textured ball's raster reads it at every texel).
+  const TextureMap relief = linearDepthMap(9, 6), normals = distinctNormalMap(7, 5);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uv(-1.5, 2.5);
+  for (const Filter filter : {Filter::Nearest, Filter::Bilinear})
+    for (const Address address : {Address::Wrap, Address::Clamp})
+      for (int k = 0; k < 2000; ++k) {
+        const TexCoord at{uv(rng), uv(rng)};
+        const SampleOptions options{filter, address};
+        EXPECT_EQ(sampleDepth(relief, at, options), sample(relief, at, options).depth) << at.u << " " << at.v;
+        EXPECT_EQ(sampleDepth(normals, at, options), sample(normals, at, options).depth);
+      }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(sampleDepth(relief, {nan, 0.5}, {}), 0.0f);
+}
+
 TEST(PlaneMapping, UvAndWorldRoundTrip) {
   PlaneMapping m;
   m.size_m = {0.3, 0.2};
