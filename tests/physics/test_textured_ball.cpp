@@ -8,6 +8,7 @@
 #include <random>
 
 #include "clients/physics/pair_contact_normal.hpp"
+#include "clients/physics/relief_raster.hpp"
 #include "tests/physics/textured_ball_scene.hpp"
 
 namespace thx::phys::test::test_textured_ball {
@@ -83,6 +84,38 @@ TEST(BallTexture, TheTextureLiesAtItsStatedScaleAlongTheFacesGreatCircles) {
   const double tip = ballTextureAt(texture, kRadius, {t, t, -1.0}).recess_m;
   EXPECT_NEAR(valley, 3e-4, 2e-6);
   EXPECT_NEAR(tip, 0.0, 2e-6);
+}
+
+// The raster reads a ball's texture for its depth alone, and its normal at the points kept
+// (withObjectNormal): the same candidates, depths and normals as reading both everywhere, to the
+// bit, over many poses of a bumpy ball on a bumpy relief.
+TEST(BallTexture, ItsDepthAloneUnderEveryTexelAndItsNormalWhereKeptAreTheFullReadsToTheBit) {
+  const tex::TextureMap ball_map = bumpMap(3e-4);
+  const FaceTexture texture = ballTexture(ball_map);
+  const SurfaceHolder plane = holdSurface(heightMap(256, 0.04, [](double x, double y) { return bumps(x, y, 4e-4, 0.002); }),
+                                          0.04, true);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::size_t compared = 0;
+  for (int pose = 0; pose < 40; ++pose) {
+    Eigen::Isometry3d at = Eigen::Isometry3d::Identity();
+    at.linear() = Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized()).toRotationMatrix();
+    at.translation() = Eigen::Vector3d(0.003 * unit(rng), 0.003 * unit(rng), kRadius - 3e-4 + 2e-4 * unit(rng));
+    const Underside ball = Underside::sphere(at, kRadius);
+    std::vector<ReliefCandidate> full, depth_only;
+    rasterizeRelief(plane.surface, ball, 5e-4, full, &texture);
+    rasterizeRelief(plane.surface, ball, 5e-4, depth_only, &texture, nullptr, false);
+    ASSERT_EQ(full.size(), depth_only.size()) << pose;
+    for (std::size_t k = 0; k < full.size(); ++k) {
+      ReliefCandidate c = depth_only[k];
+      EXPECT_EQ(c.depth, full[k].depth);
+      EXPECT_EQ(c.p_surface, full[k].p_surface);
+      withObjectNormal(ball, texture, c);
+      EXPECT_EQ(c.n_local, full[k].n_local) << pose << " " << k;
+    }
+    compared += full.size();
+  }
+  EXPECT_GT(compared, 1000u);
 }
 
 TEST(TexturedBall, AUniformlyRecessedBallRestsAndRollsOnItsRecessedSurface) {
