@@ -20,9 +20,13 @@ Bilinear bilinearAt(const TextureMap& map, TexCoord uv, Address address) {
   const double t = texelT(map, reduce(uv.v, address));
   const double s0 = std::floor(s), t0 = std::floor(t);
   const float fs = float(s - s0), ft = float(t - t0);
-  return {resolveIndex((long long)s0, map.width(), address),     resolveIndex((long long)s0 + 1, map.width(), address),
-          resolveIndex((long long)t0, map.height(), address),    resolveIndex((long long)t0 + 1, map.height(), address),
+  return {resolveIndex((long long)s0, map.width(), address),  resolveIndex((long long)s0 + 1, map.width(), address),
+          resolveIndex((long long)t0, map.height(), address), resolveIndex((long long)t0 + 1, map.height(), address),
           (1 - fs) * (1 - ft), fs * (1 - ft), (1 - fs) * ft, fs * ft};
+}
+float depthAt(const TextureMap& map, const Bilinear& b) {
+  return b.w00 * map.depth(b.i0, b.j0) + b.w10 * map.depth(b.i1, b.j0) + b.w01 * map.depth(b.i0, b.j1) +
+         b.w11 * map.depth(b.i1, b.j1);
 }
 }  // namespace
 
@@ -48,17 +52,13 @@ Sample sample(const TextureMap& map, TexCoord uv, const SampleOptions& options) 
     return out;
   }
   const Bilinear b = bilinearAt(map, uv, options.address);
-  const int i0 = b.i0, i1 = b.i1, j0 = b.j0, j1 = b.j1;
-  const float w00 = b.w00, w10 = b.w10, w01 = b.w01, w11 = b.w11;
-  const Eigen::Vector3f n = w00 * map.normal(i0, j0) + w10 * map.normal(i1, j0) + w01 * map.normal(i0, j1) +
-                            w11 * map.normal(i1, j1);
+  const Eigen::Vector3f n = b.w00 * map.normal(b.i0, b.j0) + b.w10 * map.normal(b.i1, b.j0) +
+                            b.w01 * map.normal(b.i0, b.j1) + b.w11 * map.normal(b.i1, b.j1);
   const float len = n.norm();
   // Four stored normals all have n.z > 0, so their convex combination cannot vanish; the guard
   // only protects against a future storage change.
   out.normal = len > 1e-12f ? Eigen::Vector3f(n / len) : Eigen::Vector3f(0.0f, 0.0f, 1.0f);
-  if (map.isRelief()) {
-    out.depth = w00 * map.depth(i0, j0) + w10 * map.depth(i1, j0) + w01 * map.depth(i0, j1) + w11 * map.depth(i1, j1);
-  }
+  if (map.isRelief()) out.depth = depthAt(map, b);
   return out;
 }
 
@@ -68,11 +68,7 @@ float sampleDepth(const TextureMap& map, TexCoord uv, const SampleOptions& optio
     const TexelIndex t = texelOf(map, uv, options.address);
     return map.depth(t.i, t.j);
   }
-  if (!map.isRelief()) return 0.0f;
-  const Bilinear b = bilinearAt(map, uv, options.address);
-  const int i0 = b.i0, i1 = b.i1, j0 = b.j0, j1 = b.j1;
-  const float w00 = b.w00, w10 = b.w10, w01 = b.w01, w11 = b.w11;
-  return w00 * map.depth(i0, j0) + w10 * map.depth(i1, j0) + w01 * map.depth(i0, j1) + w11 * map.depth(i1, j1);
+  return map.isRelief() ? depthAt(map, bilinearAt(map, uv, options.address)) : 0.0f;
 }
 
 std::vector<TexelIndex> texelsOnSegment(const TextureMap& map, TexCoord a, TexCoord b, Address address,

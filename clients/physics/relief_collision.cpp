@@ -274,12 +274,12 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   std::array<std::size_t, kMaxReliefContacts> picked{};
   const std::size_t n = selectShallowestBasins(candidates, raster.stride_i, raster.stride_j, picked);
   std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
+  const TexturedObjectSurface ball(underside, texture);
   for (std::size_t k = 0; k < n; ++k) {
     ReliefCandidate c = candidates[picked[k]];
-    withObjectNormal(underside, texture, c);
+    withObjectNormal(ball, c);
     chosen[k] = refineDeepest(surface, underside, c, bent, &texture);
   }
-  const TexturedObjectSurface ball(underside, texture);
   smootherSurfaceNormals(surface, bent, ball, std::span(chosen.data(), n));
   flatterReliefNormals(surface, bent, ball, std::span(chosen.data(), n));
   addReliefContacts(std::span(chosen.data(), n), underside, surface, bend, world_from_plane, false, threshold,
@@ -603,6 +603,7 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
   ChosenReliefContacts chosen;
   bool conforming = false;
   const bool bounded = boundary && boundary->count > 0;
+  const bool rod = underside.kind == Underside::Kind::Capsule || underside.kind == Underside::Kind::Cylinder;
   if (underside.kind == Underside::Kind::Box && !bent && !bounded &&
       boxReliefContacts(surface, underside, threshold, chosen, level_runs)) {
     // A box rests on the lowest point of each quarter of its footprint (the tops of the bumps
@@ -629,7 +630,6 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     conforming = underside.kind == Underside::Kind::Sphere && raster.stride_i == 1 && raster.stride_j == 1 && !candidates.empty() &&
                  (n = selectConformingContacts(surface, underside, candidates, picked)) > 0;
     const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map()).cwiseAbs();
-    const bool rod = underside.kind == Underside::Kind::Capsule || underside.kind == Underside::Kind::Cylinder;
     // A box rests on the lowest of each quarter of its footprint (selectBoxQuarterContacts), as the
     // row-by-row path above computes it; a smooth chart's box keeps the spread rule, refined on
     // the bend, and a huge box's footprint visited with a stride the spread rule.
@@ -692,8 +692,7 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
   // A box's face resting on a crease of the relief takes the face's normal (crease_contact.hpp);
   // a rod's side on a mesh's convex edge, the rod's (edge_contact.hpp).
   if (underside.kind == Underside::Kind::Box) faceNormalsOnCreases(surface, underside, chosen);
-  const bool rod = underside.kind == Underside::Kind::Capsule || underside.kind == Underside::Kind::Cylinder;
-  if (rod && !on_end_face && boundary && boundary->count > 0)
+  if (rod && !on_end_face && bounded)
     rodNormalsAtConvexEdges(underside, *boundary, 1.5 * surface.mapping().texelSize(surface.map()).cwiseAbs().maxCoeff(),
                             chosen);
   // A ball's further points are left out while it moves onto them still open; a ball in a

@@ -117,12 +117,9 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   return stats;
 }
 
-void withObjectNormal(const Underside& shape, const FaceTexture& object_texture, ReliefCandidate& c) {
-  const double x = c.p_surface.x(), y = c.p_surface.y();
-  const std::optional<double> z = lowestZ(shape, x, y);
-  if (!z) return;
-  const ObjectSurfacePoint object = TexturedObjectSurface(shape, object_texture).over(x, y, *z);
-  if (object.n_up) c.n_local = (c.n_local + *object.n_up).normalized();
+void withObjectNormal(const TexturedObjectSurface& object, ReliefCandidate& c) {
+  const std::optional<ObjectSurfacePoint> p = object.at(c.p_surface.x(), c.p_surface.y());
+  if (p && p->n_up) c.n_local = (c.n_local + *p->n_up).normalized();
 }
 
 ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,

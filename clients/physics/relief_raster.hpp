@@ -50,7 +50,7 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
                             std::vector<ReliefCandidate>& out, const FaceTexture* object_texture = nullptr,
                             const GroundBend* bend = nullptr, bool object_normals = true);
 // A candidate rasterised without its object's normal, with it: as rasterizeRelief makes it, to the bit.
-void withObjectNormal(const Underside& shape, const FaceTexture& object_texture, ReliefCandidate& c);
+void withObjectNormal(const TexturedObjectSurface& object, ReliefCandidate& c);
 
 // Sub-texel refinement of a round object's deepest contact. The texel-centre minimum is off the
 // true tangent point by up to half a texel, and its normal with it: at a dimple's bottom the

@@ -4,10 +4,16 @@
 
 namespace thx::phys {
 
+namespace {
+// Where the texture is read for a point of the ball's chart: one tile across tile_m.
+tex::TexCoord uvOf(const mesh::BallChartPoint& chart, const FaceTexture& texture) {
+  return {chart.uv_m.x() / texture.tile_m, chart.uv_m.y() / texture.tile_m};
+}
+}  // namespace
+
 FacePoint ballTextureAt(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& p) {
   const mesh::BallChartPoint chart = mesh::ballChartAt(p, radius_m);
-  const tex::Sample s = tex::sample(*texture.map, {chart.uv_m.x() / texture.tile_m, chart.uv_m.y() / texture.tile_m},
-                                    texture.sampling);
+  const tex::Sample s = tex::sample(*texture.map, uvOf(chart, texture), texture.sampling);
   FacePoint f;
   f.axis = chart.axis;
   f.sign = chart.sign;
@@ -21,9 +27,7 @@ FacePoint ballTextureAt(const FaceTexture& texture, double radius_m, const Eigen
 }
 
 double ballRecessAt(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& p) {
-  const mesh::BallChartPoint chart = mesh::ballChartAt(p, radius_m);
-  return double(tex::sampleDepth(*texture.map, {chart.uv_m.x() / texture.tile_m, chart.uv_m.y() / texture.tile_m},
-                                 texture.sampling));
+  return double(tex::sampleDepth(*texture.map, uvOf(mesh::ballChartAt(p, radius_m), texture), texture.sampling));
 }
 
 namespace {

@@ -105,12 +105,13 @@ TEST(BallTexture, ItsDepthAloneUnderEveryTexelAndItsNormalWhereKeptAreTheFullRea
     std::vector<ReliefCandidate> full, depth_only;
     rasterizeRelief(plane.surface, ball, 5e-4, full, &texture);
     rasterizeRelief(plane.surface, ball, 5e-4, depth_only, &texture, nullptr, false);
+    const TexturedObjectSurface surface(ball, texture);
     ASSERT_EQ(full.size(), depth_only.size()) << pose;
     for (std::size_t k = 0; k < full.size(); ++k) {
       ReliefCandidate c = depth_only[k];
       EXPECT_EQ(c.depth, full[k].depth);
       EXPECT_EQ(c.p_surface, full[k].p_surface);
-      withObjectNormal(ball, texture, c);
+      withObjectNormal(surface, c);
       EXPECT_EQ(c.n_local, full[k].n_local) << pose << " " << k;
     }
     compared += full.size();
