@@ -1,8 +1,10 @@
-// A rod in a V-groove (issue 29; docs/physics.md "Plain objects on a relief mesh"): a capsule and a
-// cylinder lying along a groove on the relief plane, on a flat relief mesh, on a pipe's grooved
-// inside and on a textured box's top face (tests/physics/rod_in_groove_scene.hpp), against the analytic answers: where it rests,
-// and the horizontal force that rolls it out of the groove; with the cost of a step. Measures
-// only; nothing asserted (tests/physics/test_plain_objects_on_relief_mesh.cpp holds the behaviour).
+// A rod in a V-groove (issue 29; docs/physics.md "Plain objects on a relief mesh"): a capsule, a
+// cylinder and a ball of their radius lying along a groove on the relief plane, on a flat relief
+// mesh, on a pipe's grooved inside and on a textured box's top face
+// (tests/physics/rod_in_groove_scene.hpp), against the analytic answers: where it rests, and the
+// horizontal force that rolls it out of the groove; with the cost of a step. Measures only;
+// nothing asserted (tests/physics/test_plain_objects_on_relief_mesh.cpp and
+// test_ball_in_v_groove.cpp hold the behaviour).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -24,7 +26,9 @@ using namespace thx::phys::test::rod_in_groove;
 
 constexpr const char* kHelp = R"(usage: bench_rod_in_groove [--texels N,N,...] [--json F] [--csv F] [--md F]
 
-A capsule and a cylinder (3 mm radius, 2 cm long, 20 g, friction 0.3) lying along a V-groove
+A capsule and a cylinder (3 mm radius, 2 cm long, 20 g, friction 0.3) lying along a V-groove, and
+a plain ball of their radius and mass (their cross-section: the same answers; on the meshes met
+as physics-client meets a ball, lifted onto the relief as its sphere meets it)
 (grooves 4 mm apart and 1 mm deep, walls at theta = 26.57 degrees; a relief of N texels over
 4 cm) on the relief plane, on the same relief laid on a flat box mesh, on the inside of a
 pipe of radius 10.2 cm whose grooves run along its axis (the rod 2 mm from its bottom line, where
@@ -45,8 +49,9 @@ pushed at 0.4 of its weight (in the groove, against its wall).
 constexpr Ground kGrounds[] = {Ground::Plane, Ground::FlatMesh, Ground::Trough, Ground::Box};
 const char* const kGroundNames[] = {"relief plane", "flat mesh", "pipe", "grooved box"};
 constexpr int kGroundCount = int(std::size(kGrounds));
-constexpr Rod kRods[] = {Rod::Capsule, Rod::LyingCylinder};
-const char* const kRodNames[] = {"capsule", "cylinder"};
+constexpr Rod kRods[] = {Rod::Capsule, Rod::LyingCylinder, Rod::Ball};
+const char* const kRodNames[] = {"capsule", "cylinder", "ball"};
+constexpr int kRodCount = int(std::size(kRods));
 constexpr double kPushS = 0.3;
 
 struct Row {
@@ -84,7 +89,7 @@ int run(int argc, char** argv) {
   std::vector<Row> rows;
   for (int n : texels) {
     for (int g = 0; g < kGroundCount; ++g) {
-      for (int r = 0; r < 2; ++r) {
+      for (int r = 0; r < kRodCount; ++r) {
         std::fprintf(stderr, "bench_rod_in_groove: %d texels, %s on the %s ...\n", n, kRodNames[r], kGroundNames[g]);
         Row row;
         row.texels = n, row.ground = g, row.rod = r;

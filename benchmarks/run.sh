@@ -73,9 +73,9 @@
 #              or rolling_ridges (issue 29: a ball rolling across sine ridges on the relief plane and on
 #              a relief mesh, lifted and steered, against the rolling-impact law, with the cost of a
 #              step; about half a minute; its table goes to docs/physics.md)
-#              or rod_in_groove (issue 29: a capsule and a cylinder lying in a V-groove on the relief
+#              or rod_in_groove (issue 29: a capsule, a cylinder and a ball lying in a V-groove on the relief
 #              plane, a flat relief mesh and a grooved pipe, where it rests and the force that rolls
-#              it out against the analytic answers, with the cost of a step; about 20 s; its table
+#              it out against the analytic answers, with the cost of a step; about 15 s; its table
 #              goes to docs/physics.md)
 #              or rocking_on_curve (issue 29: a block rocking on an untextured cylinder mesh and a
 #              capsule and a cylinder rolling in a pipe, met on the smooth chart and on Bullet's
@@ -441,7 +441,7 @@ run_lifted_swing() {
 
 run_rod_in_groove() {
   need "$BIN/bench_rod_in_groove" || return 1
-  say "part rod_in_groove: a rod in a V-groove on the relief plane and on relief meshes (about 20 s)"
+  say "part rod_in_groove: a rod in a V-groove on the relief plane and on relief meshes (about 15 s)"
   bench_with_table bench_rod_in_groove "$ROOT/docs/physics.md"
 }
 

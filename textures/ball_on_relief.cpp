@@ -60,6 +60,16 @@ double BallOnRelief::bilinear(const Level& l, double s, double t, Eigen::Vector2
 
 BallOnRelief::Touch BallOnRelief::touch(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m,
                                         bool from_behind) const {
+  return *search(uv, metres_per_uv, radius_m, from_behind, Half{});
+}
+
+std::optional<BallOnRelief::Touch> BallOnRelief::touchOnHalf(TexCoord uv, const Eigen::Vector2d& metres_per_uv,
+                                                             double radius_m, bool from_behind, Half half) const {
+  return search(uv, metres_per_uv, radius_m, from_behind, half);
+}
+
+std::optional<BallOnRelief::Touch> BallOnRelief::search(TexCoord uv, const Eigen::Vector2d& metres_per_uv,
+                                                        double radius_m, bool from_behind, Half half) const {
   Touch out;
   const std::vector<Level>& levels = from_behind ? behind_ : front_;
   const int width = levels.front().width, height = levels.front().height;
@@ -76,22 +86,36 @@ BallOnRelief::Touch BallOnRelief::touch(TexCoord uv, const Eigen::Vector2d& metr
   const double s = uv.u * width - 0.5, t = (1.0 - uv.v) * height - 0.5;
   auto distance2 = [&](double di, double dj) { return di * di * du * du + dj * dj * dv * dv; };
 
-  // The texel under the centre gives the first touch; only texels that could beat it are searched.
+  // A half along u keeps texels i with (i - s) * sign >= 0; along v, whose rows run against v,
+  // (t - j) * sign >= 0. As bounds on the texel indices and on the refined touch (s_lo..s_hi, t_lo..t_hi).
+  double s_lo = -HUGE_VAL, s_hi = HUGE_VAL, t_lo = -HUGE_VAL, t_hi = HUGE_VAL;
+  if (half.axis == 0) (half.sign > 0.0 ? s_lo : s_hi) = s;
+  if (half.axis == 1) (half.sign > 0.0 ? t_hi : t_lo) = t;
+
+  // The texel under the centre gives the first touch (on the half: the nearest in it); only
+  // texels that could beat it are searched.
   long long best_i = std::llround(s), best_j = std::llround(t);
+  if (half.axis == 0) best_i = (long long)(half.sign > 0.0 ? std::ceil(s) : std::floor(s));
+  if (half.axis == 1) best_j = (long long)(half.sign > 0.0 ? std::floor(t) : std::ceil(t));
   if (address_ == Address::Clamp) best_i = std::clamp(best_i, 0LL, (long long)width - 1), best_j = std::clamp(best_j, 0LL, (long long)height - 1);
+  if (double(best_i) < s_lo || double(best_i) > s_hi || double(best_j) < t_lo || double(best_j) > t_hi) return std::nullopt;
   const double d0 = distance2(double(best_i) - s, double(best_j) - t);
   if (d0 >= r2) return out;  // texels wider than the ball: nothing to search
   double best = levels.front().at(resolveIndex(best_i, width, address_), resolveIndex(best_j, height, address_)) + std::sqrt(r2 - d0);
   const double depth = max_depth_m_, rise = std::max(0.0, std::sqrt(r2 - d0) - depth);
   const double reach2 = r2 - rise * rise;  // beyond it even the highest texel stays below the first touch
   double reach_u = std::sqrt(reach2) / du, reach_v = std::sqrt(reach2) / dv;
-  if (address_ == Address::Wrap) reach_u = std::min(reach_u, 0.5 * width), reach_v = std::min(reach_v, 0.5 * height);
+  // Wrapped, each texel is met once, at its nearest image; on a half, at its nearest on that side.
+  if (address_ == Address::Wrap)
+    reach_u = std::min(reach_u, (half.axis == 0 ? 1.0 : 0.5) * width), reach_v = std::min(reach_v, (half.axis == 1 ? 1.0 : 0.5) * height);
   long long ia = (long long)std::ceil(s - reach_u), ib = (long long)std::floor(s + reach_u);
   long long ja = (long long)std::ceil(t - reach_v), jb = (long long)std::floor(t + reach_v);
   if (address_ == Address::Clamp) {
     ia = std::max(ia, 0LL), ib = std::min(ib, (long long)width - 1);
     ja = std::max(ja, 0LL), jb = std::min(jb, (long long)height - 1);
   }
+  if (half.axis == 0) (half.sign > 0.0 ? ia : ib) = best_i;
+  if (half.axis == 1) (half.sign > 0.0 ? jb : ja) = best_j;
 
   // The coarsest level at which the region spans at most four blocks each way.
   int level0 = 0;
@@ -158,8 +182,8 @@ BallOnRelief::Touch BallOnRelief::touch(TexCoord uv, const Eigen::Vector2d& metr
     const double z = std::sqrt(std::max(0.0, r2 - distance2(ps - s, pt - t)));
     Eigen::Vector2d g;  // metres of height per texel
     bilinear(levels.front(), ps, pt, &g);
-    const double qs = std::clamp(s + z * g.x() / (du * du), double(best_i) - 1.0, double(best_i) + 1.0);
-    const double qt = std::clamp(t + z * g.y() / (dv * dv), double(best_j) - 1.0, double(best_j) + 1.0);
+    const double qs = std::clamp(std::clamp(s + z * g.x() / (du * du), double(best_i) - 1.0, double(best_i) + 1.0), s_lo, s_hi);
+    const double qt = std::clamp(std::clamp(t + z * g.y() / (dv * dv), double(best_j) - 1.0, double(best_j) + 1.0), t_lo, t_hi);
     double candidate = lifted(qs, qt), cs = qs, ct = qt;
     if (!(candidate > value)) {
       // Across a crest the step along it settles where the one across it does not: a ball on a

@@ -22,6 +22,7 @@
 // wherever it lies. Built once (allocates); touch() is real-time safe (no allocation, bounded
 // work: at most the texels within r of the centre).
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "textures/sampling.hpp"
@@ -38,10 +39,20 @@ class BallOnRelief {
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // tangent space (x along u, y along v, metres), unit
     double lift_m = 0.0;                                // c - r: the centre's height above h = 0, less r
   };
+  // The texels on one side of the line through the centre along one axis: the relief either side
+  // of a crease of the lift (a V-groove's floor, the two rims a ball wider than the groove rests
+  // on), where the two sides' lifts cross with different slopes and each side is a smooth branch.
+  struct Half {
+    int axis = -1;      // 0: along u (tangent x), 1: along v (tangent y); -1: every texel
+    double sign = 1.0;  // +1: texels at or beyond the centre along +axis; -1: at or before it
+  };
   // The ball of `radius_m` over uv, the texture laid at `metres_per_uv` (u, v) there. From behind
   // (a ball inside a sphere whose winding faces out) the relief is met from its other side: its
-  // heights negated, the normal's z and lift along the texture's -z.
+  // heights negated, the normal's z and lift along the texture's -z. With `half`, only its texels
+  // are met; nullopt where it holds none (a clamped texture's border).
   Touch touch(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m, bool from_behind = false) const;
+  std::optional<Touch> touchOnHalf(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m, bool from_behind,
+                                   Half half) const;
 
   int levels() const { return int(front_.size()); }
 
@@ -53,6 +64,8 @@ class BallOnRelief {
   };
   // The bilinear height at (s, t) and its gradient per texel along s and t.
   double bilinear(const Level& base, double s, double t, Eigen::Vector2d* gradient = nullptr) const;
+  std::optional<Touch> search(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m, bool from_behind,
+                              Half half) const;
   static std::vector<Level> pyramidOf(Level base);
   double max_depth_m_;
   Address address_;

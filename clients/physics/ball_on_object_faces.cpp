@@ -106,6 +106,7 @@ void BallOnObjectFacesAlgorithm::processCollision(const btCollisionObjectWrapper
   // the mesh, body B.
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), textured->getCollisionObject());
   result->setPersistentManifold(manifold);
+  const CreaseSides before = creaseSidesOf(*manifold);  // before this step's points are added
   const ObjectAxis axis = axisOf(*object->getCollisionShape());
   const double r = axis.radius_m;
   const Eigen::Isometry3d world_from_mesh = toEigen(textured->getWorldTransform());
@@ -262,6 +263,13 @@ void BallOnObjectFacesAlgorithm::processCollision(const btCollisionObjectWrapper
   StepContext step = catalog_->solver ? stepContextOf(*catalog_->solver, double(info.m_timeStep)) : StepContext{};
   step.dt_s = double(info.m_timeStep);
   step.surface_body = textured->getCollisionObject();
+  if (!(length > 0.0)) {
+    // A sphere: its manifold as a whole (one point per side where its lift has a crease).
+    const ObjectBall ball{world_from_object.translation(), r};
+    applyBallMeshManifold(*manifold, true, world_from_mesh, faces_->contact, ball, *object->getCollisionObject(),
+                          faces_->options, step, &before);
+    return;
+  }
   for (int k = 0; k < manifold->getNumContacts(); ++k) {
     btManifoldPoint& point = manifold->getContactPoint(k);
     const ObjectBall ball{world_from_object * ballCentreOf(axis, point.m_index0), r};

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <unordered_map>
 
 #include "clients/physics/bullet_convert.hpp"
+#include "clients/physics/crease_contact.hpp"
 #include "meshes/position_key.hpp"
 #include "textures/textured_surface.hpp"
 
@@ -62,6 +64,18 @@ double liftOnFace(const ContactMesh& contact_mesh, std::uint32_t triangle, const
   return s * std::cos(phi) + std::sqrt(std::max(0.0, r * r - s * s * std::sin(phi) * std::sin(phi))) - big_r - r;
 }
 
+// With `half` (BallOnRelief::touchOnHalf; flat faces only), that side's relief alone: nullopt where
+// it holds no texel.
+std::optional<double> liftOnFaceHalf(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
+                                     bool front, double r, const MeshContactOptions& options,
+                                     tex::BallOnRelief::Half half) {
+  const mesh::SurfaceFrame f = mesh::frameAt(*contact_mesh.mesh, triangle, b, mesh::FrameMode::Interpolated);
+  const std::optional<tex::BallOnRelief::Touch> touch =
+      options.ball_relief->touchOnHalf({f.uv.x(), f.uv.y()}, metresPerUvAt(contact_mesh, triangle, b), r, !front, half);
+  if (!touch) return std::nullopt;
+  return touch->lift_m;
+}
+
 }  // namespace
 
 double ballOnReliefLift(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
@@ -71,30 +85,86 @@ double ballOnReliefLift(const ContactMesh& contact_mesh, const Eigen::Vector3d& 
   return liftOnFace(contact_mesh, triangle, b, side >= 0.0, r, options);
 }
 
-Eigen::Vector3d ballOnReliefNormal(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side,
-                                   std::uint32_t triangle, const Eigen::Vector3d& b, double r,
-                                   const MeshContactOptions& options) {
+namespace {
+
+// A ball's lift where its foot is walked to from `triangle`; with a half, that side's relief alone.
+std::optional<double> liftFrom(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side,
+                               std::uint32_t triangle, double r, const MeshContactOptions& options,
+                               tex::BallOnRelief::Half half) {
+  if (half.axis < 0) return ballOnReliefLift(contact_mesh, c, side, triangle, r, options);
+  Eigen::Vector3d b = Eigen::Vector3d::Constant(1.0 / 3.0);
+  smoothFoot(contact_mesh, c, side, triangle, b);
+  return liftOnFaceHalf(contact_mesh, triangle, b, side >= 0.0, r, options, half);
+}
+
+}  // namespace
+
+BallReliefContacts ballOnReliefContacts(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side,
+                                        std::uint32_t triangle, const Eigen::Vector3d& b, double r,
+                                        const MeshContactOptions& options, bool may_split) {
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   const mesh::SurfaceFrame f = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::Interpolated);
   const Eigen::Vector3d n = side * f.normal;
   const Eigen::Vector2d metres_per_uv = metresPerUvAt(contact_mesh, triangle, b);
   const tex::TextureMap& map = *options.texture;
+  BallReliefContacts out;
+  out.side[0] = {n, *liftFrom(contact_mesh, c, side, triangle, r, options, {})};
   // A quarter of the coarser texel where the texture is laid: near a pole the squeezed texels are
   // far finer, and a difference over them would read the relief's texel-scale roughness there.
   const double h = 0.25 * std::max(metres_per_uv.x() / map.width(), metres_per_uv.y() / map.height());
-  if (!(h > 0.0)) return n;
+  if (!(h > 0.0)) return out;
   // The tangent and bitangent made orthogonal to the normal and to each other.
   const Eigen::Vector3d e1 = (f.tangent - f.tangent.dot(f.normal) * f.normal).normalized();
   const Eigen::Vector3d e2 = f.normal.cross(e1);
-  auto lift = [&](const Eigen::Vector3d& at) {
-    std::uint32_t t = triangle;
-    return ballOnReliefLift(contact_mesh, at, side, t, r, options);
-  };
-  const double g1 = (lift(c + h * e1) - lift(c - h * e1)) / (2.0 * h);
-  const double g2 = (lift(c + h * e2) - lift(c - h * e2)) / (2.0 * h);
   // The lift rises with the heights from the front, against them from behind.
   const Eigen::Vector3d lean = side * laidLean(f, metres_per_uv, options);
-  return clampTilt((n - g1 * e1 - g2 * e2 - lean).normalized(), n, options.max_tilt_deg);
+  // The lift (on a half: nullopt where it holds no texel) at c and h either side of it along
+  // e1 and e2, and the normal its central differences give.
+  struct Lifts {
+    std::optional<double> at, e1_plus, e1_minus, e2_plus, e2_minus;
+    bool complete() const { return at && e1_plus && e1_minus && e2_plus && e2_minus; }
+  };
+  const auto liftsOf = [&](tex::BallOnRelief::Half half, bool centre) {
+    Lifts l;
+    if (centre) l.at = liftFrom(contact_mesh, c, side, triangle, r, options, half);
+    l.e1_plus = liftFrom(contact_mesh, c + h * e1, side, triangle, r, options, half);
+    l.e1_minus = liftFrom(contact_mesh, c - h * e1, side, triangle, r, options, half);
+    l.e2_plus = liftFrom(contact_mesh, c + h * e2, side, triangle, r, options, half);
+    l.e2_minus = liftFrom(contact_mesh, c - h * e2, side, triangle, r, options, half);
+    return l;
+  };
+  const auto normalOf = [&](const Lifts& l) {
+    const double g1 = (*l.e1_plus - *l.e1_minus) / (2.0 * h);
+    const double g2 = (*l.e2_plus - *l.e2_minus) / (2.0 * h);
+    return clampTilt((n - g1 * e1 - g2 * e2 - lean).normalized(), n, options.max_tilt_deg);
+  };
+  const Lifts whole = liftsOf({}, false);
+  out.side[0].normal = normalOf(whole);
+  if (!may_split || !options.lift_ball || options.sphere_radius_m > 0.0) return out;
+  // A crease of the lift within h of the centre: its second difference along an axis is the slope's
+  // jump times (h - the crease's distance from c), against curvature times h^2 where it is smooth.
+  const double lift = out.side[0].lift_m;
+  const double crease1 = *whole.e1_plus + *whole.e1_minus - 2.0 * lift;
+  const double crease2 = *whole.e2_plus + *whole.e2_minus - 2.0 * lift;
+  const int axis = crease1 >= crease2 ? 0 : 1;
+  if (!(std::max(crease1, crease2) > kCreaseSlopeJump * h)) return out;
+  // e1 runs along u; e2 along v or against it, as the bitangent.
+  const double texture_sign = axis == 0 || e2.dot(f.bitangent) >= 0.0 ? 1.0 : -1.0;
+  BallReliefContacts split;
+  for (int k = 0; k < 2; ++k) {
+    const double towards = k == 0 ? -1.0 : 1.0;
+    const Lifts on_half = liftsOf({axis, towards * texture_sign}, true);
+    if (!on_half.complete()) return out;
+    split.side[k] = {normalOf(on_half), *on_half.at};
+  }
+  split.count = 2;
+  return split;
+}
+
+Eigen::Vector3d ballOnReliefNormal(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side,
+                                   std::uint32_t triangle, const Eigen::Vector3d& b, double r,
+                                   const MeshContactOptions& options) {
+  return ballOnReliefContacts(contact_mesh, c, side, triangle, b, r, options, false).side[0].normal;
 }
 
 Eigen::Vector3d laidLean(const mesh::SurfaceFrame& f, const Eigen::Vector2d& metres_per_uv,
@@ -322,6 +392,46 @@ double ballLiftedGapFrom(const ContactMesh& contact_mesh, const Eigen::Vector3d&
   return gap;
 }
 
+namespace {
+
+// Where a ball whose foot is over the surface stands from it: the side it is on (-1 behind the
+// winding), the smooth surface's normal towards it, and its gap to the smooth surface.
+struct BallOverSurface {
+  double side = 1.0;
+  Eigen::Vector3d n_geometric = Eigen::Vector3d::UnitZ();
+  double gap_m = 0.0;
+};
+BallOverSurface ballOverSurface(const btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& world_to_mesh,
+                                const ContactMesh& contact_mesh, const MeshPlace& reporting, std::uint32_t triangle,
+                                const Eigen::Vector3d& b, const Eigen::Vector3d& c, double r) {
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
+  // The side is where the centre lies from its foot, not where Bullet's normal points from the
+  // reporting triangle: by a box's edge Bullet reports the face beside the one the ball stands
+  // on too, its centre behind that face's plane, and that side pulled the ball into the box.
+  const double along = smooth.normal.dot(c - smooth.point);
+  BallOverSurface out;
+  out.side = along < 0.0 ? -1.0 : 1.0;
+  if (along == 0.0) out.side = sideOf(point, mesh_is_b, world_to_mesh, mesh::faceNormal(mesh, reporting.triangle));
+  out.n_geometric = out.side * smooth.normal;
+  out.gap_m = out.side * along - r;
+  return out;
+}
+
+// Writes one contact of a ball over the surface into `point`: normal n (mesh frame), its gap the
+// smooth surface's less `lift`.
+void writeBallContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                      const BallOverSurface& at, const Eigen::Vector3d& n, double lift, const ObjectBall& ball,
+                      const btCollisionObject& other, const MeshContactOptions& options, const StepContext& step) {
+  // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
+  // surface (steerContact's rule, with that gap).
+  point.m_distance1 = static_cast<btScalar>(at.gap_m - lift);
+  steerBallContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * at.n_geometric, ball, other,
+                   options.hold_height, step);
+}
+
+}  // namespace
+
 void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                           const ContactMesh& contact_mesh, const ObjectBall& ball, const btCollisionObject& other,
                           const MeshContactOptions& options, const StepContext& step) {
@@ -338,30 +448,144 @@ void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::I
     ballPastCrease(point, mesh_is_b, mesh_to_world, contact_mesh, *place, c, ball, other, options, step);
     return;
   }
-  const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
-  // The side is where the centre lies from its foot, not where Bullet's normal points from the
-  // reporting triangle: by a box's edge Bullet reports the face beside the one the ball stands
-  // on too, its centre behind that face's plane, and that side pulled the ball into the box.
-  const double along = smooth.normal.dot(c - smooth.point);
-  double side = along < 0.0 ? -1.0 : 1.0;
-  if (along == 0.0) side = sideOf(point, mesh_is_b, world_to_mesh, mesh::faceNormal(mesh, place->triangle));
-  const Eigen::Vector3d n_geometric = side * smooth.normal;
-  double gap = side * along - r;
-  Eigen::Vector3d n;
+  const BallOverSurface at = ballOverSurface(point, mesh_is_b, world_to_mesh, contact_mesh, *place, triangle, b, c, r);
   if (options.texture && options.ball_relief) {
-    n = ballOnReliefNormal(contact_mesh, c, side, triangle, b, r, options);
-    // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
-    // surface (steerContact's rule, with that gap).
-    if (options.lift_ball) {
-      std::uint32_t foot = triangle;
-      gap -= ballOnReliefLift(contact_mesh, c, side, foot, r, options);
-    }
+    const BallReliefContact contact = ballOnReliefContacts(contact_mesh, c, at.side, triangle, b, r, options, false).side[0];
+    writeBallContact(point, mesh_is_b, mesh_to_world, at, contact.normal, options.lift_ball ? contact.lift_m : 0.0, ball,
+                     other, options, step);
   } else {
-    n = side * meshContactNormal(mesh, triangle, b, options);
+    writeBallContact(point, mesh_is_b, mesh_to_world, at, at.side * meshContactNormal(mesh, triangle, b, options), 0.0,
+                     ball, other, options, step);
   }
-  point.m_distance1 = static_cast<btScalar>(gap);
-  steerBallContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * n_geometric, ball, other,
-                   options.hold_height, step);
+}
+
+namespace {
+
+// The side of a crease a ball's point stands for (applyBallMeshManifold): 0 none, 1 + k for
+// BallReliefContacts::side[k].
+int creaseSideOf(const btManifoldPoint& point) {
+  return int(reinterpret_cast<std::uintptr_t>(point.m_userPersistentData));
+}
+void setCreaseSide(btManifoldPoint& point, int tag) {
+  point.m_userPersistentData = reinterpret_cast<void*>(std::uintptr_t(tag));
+}
+
+void applyToEachPoint(btPersistentManifold& manifold, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                      const ContactMesh& contact_mesh, const ObjectBall& ball, const btCollisionObject& other,
+                      const MeshContactOptions& options, const StepContext& step) {
+  for (int k = 0; k < manifold.getNumContacts(); ++k) {
+    btManifoldPoint& point = manifold.getContactPoint(k);
+    setCreaseSide(point, 0);
+    applyBallMeshContact(point, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
+  }
+}
+
+}  // namespace
+
+CreaseSides creaseSidesOf(const btPersistentManifold& manifold) {
+  CreaseSides sides;
+  for (int k = 0; k < manifold.getNumContacts(); ++k) {
+    const int tag = creaseSideOf(manifold.getContactPoint(k));
+    if (tag == 1 || tag == 2) sides.point[tag - 1] = manifold.getContactPoint(k), sides.has[tag - 1] = true;
+  }
+  return sides;
+}
+
+void applyBallMeshManifold(btPersistentManifold& manifold, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                           const ContactMesh& contact_mesh, const ObjectBall& ball, const btCollisionObject& other,
+                           const MeshContactOptions& options, const StepContext& step, const CreaseSides* before) {
+  const bool may_split = options.smooth && options.texture && options.ball_relief && options.lift_ball &&
+                         !(options.sphere_radius_m > 0.0) && manifold.getNumContacts() > 0;
+  if (!may_split) return applyToEachPoint(manifold, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
+  const Eigen::Vector3d c = world_to_mesh * ball.centre_world;
+  // Every point's foot over the surface (by an edge a point past it keeps its own rule).
+  std::optional<MeshPlace> first;
+  std::uint32_t triangle = 0;
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (int k = 0; k < manifold.getNumContacts(); ++k) {
+    const std::optional<MeshPlace> place = placeOf(manifold.getContactPoint(k), mesh_is_b, world_to_mesh, mesh);
+    if (!place) return applyToEachPoint(manifold, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
+    std::uint32_t t = place->triangle;
+    Eigen::Vector3d at = place->barycentric;
+    if (!smoothFoot(contact_mesh, c, 1.0, t, at))
+      return applyToEachPoint(manifold, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
+    if (k == 0) first = place, triangle = t, b = at;
+  }
+  const double r = ball.radius_m;
+  const BallOverSurface at =
+      ballOverSurface(manifold.getContactPoint(0), mesh_is_b, world_to_mesh, contact_mesh, *first, triangle, b, c, r);
+  const BallReliefContacts contacts = ballOnReliefContacts(contact_mesh, c, at.side, triangle, b, r, options, true);
+  if (contacts.count == 1) {
+    // As applyBallMeshContact rewrites each point (the first's contact is the one just read).
+    btManifoldPoint& point = manifold.getContactPoint(0);
+    setCreaseSide(point, 0);
+    writeBallContact(point, mesh_is_b, mesh_to_world, at, contacts.side[0].normal, contacts.side[0].lift_m, ball, other,
+                     options, step);
+    for (int k = 1; k < manifold.getNumContacts(); ++k) {
+      setCreaseSide(manifold.getContactPoint(k), 0);
+      applyBallMeshContact(manifold.getContactPoint(k), mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
+    }
+    return;
+  }
+  // One point per side. A side whose point the detection dropped (a full manifold drops one for
+  // each new point) comes back as it was before it (`before`), its impulse kept for the solver's
+  // warm start; a side never seen takes an untagged point (the single contact's passes its
+  // impulse on) or, without one, a copy of the other side's with none. The rest go.
+  bool has[2] = {false, false};
+  for (int k = 0; k < manifold.getNumContacts(); ++k) {
+    const int tag = creaseSideOf(manifold.getContactPoint(k));
+    if (tag == 1 || tag == 2) has[tag - 1] = true;
+  }
+  for (int k = 0; k < manifold.getNumContacts(); ++k) {
+    btManifoldPoint& point = manifold.getContactPoint(k);
+    if (creaseSideOf(point) != 0) continue;
+    const int free = !has[0] && !(before && before->has[0]) ? 0 : !has[1] && !(before && before->has[1]) ? 1 : -1;
+    if (free >= 0) setCreaseSide(point, free + 1), has[free] = true;
+  }
+  bool seen[2] = {false, false};
+  for (int k = manifold.getNumContacts() - 1; k >= 0; --k) {
+    const int tag = creaseSideOf(manifold.getContactPoint(k));
+    if ((tag == 1 || tag == 2) && !seen[tag - 1]) {
+      seen[tag - 1] = true;
+      continue;
+    }
+    manifold.removeContactPoint(k);  // untagged, or a side's second point
+  }
+  for (int k = 0; k < 2; ++k) {
+    if (has[k] || !before || !before->has[k]) continue;
+    manifold.addManifoldPoint(before->point[k]);
+    has[k] = true;
+  }
+  for (int k = 0; k < 2; ++k) {
+    if (has[k]) continue;
+    btManifoldPoint added = manifold.getContactPoint(0);
+    added.m_appliedImpulse = 0;
+    added.m_appliedImpulseLateral1 = 0;
+    added.m_appliedImpulseLateral2 = 0;
+    added.m_prevRHS = 0;
+    added.m_lifeTime = 0;
+    added.m_userPersistentData = nullptr;
+    setCreaseSide(manifold.getContactPoint(manifold.addManifoldPoint(added)), k + 1);
+  }
+  const btTransform& body0 = manifold.getBody0()->getWorldTransform();
+  const btTransform& body1 = manifold.getBody1()->getWorldTransform();
+  for (int k = 0; k < manifold.getNumContacts(); ++k) {
+    btManifoldPoint& point = manifold.getContactPoint(k);
+    // Each side is a wall the ball meets as Bullet meets a plane, its gap taken along its normal:
+    // not held at its height with the ball's sliding frozen in (steerContact's hold_height, for
+    // a ball rolling over a relief), which let the ball sway across the floor of a groove at
+    // up to 10 mm/s, each wall a spring that held its height and let it slide on.
+    const BallReliefContact& side = contacts.side[creaseSideOf(point) - 1];
+    point.m_distance1 = static_cast<btScalar>((at.gap_m - side.lift_m) * side.normal.dot(at.n_geometric));
+    steerBallContact(point, mesh_is_b, mesh_to_world.linear() * side.normal, mesh_to_world.linear() * at.n_geometric, ball,
+                     other, false, step);
+    // Bullet's refresh next step recomputes each point from its local points along its normal and
+    // drops one whose two ends drift apart across it: where the rewrite put it, they do not.
+    point.m_localPointA = body0.invXform(point.m_positionWorldOnB + point.m_normalWorldOnB * point.m_distance1);
+    point.m_localPointB = body1.invXform(point.m_positionWorldOnB);
+  }
 }
 
 void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,

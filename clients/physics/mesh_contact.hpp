@@ -26,6 +26,7 @@
 // place and gap, and a normal map steers them (steerChartContact).
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <BulletCollision/NarrowPhaseCollision/btManifoldPoint.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -149,6 +150,28 @@ double ballLiftedGapFrom(const ContactMesh& mesh, const Eigen::Vector3d& c, std:
 Eigen::Vector3d ballOnReliefNormal(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t triangle,
                                    const Eigen::Vector3d& b, double r, const MeshContactOptions& options);
 
+// A ball's contacts with a relief mesh (options.ball_relief) where its centre c stands over the
+// surface, its foot at barycentric b of `triangle`: the normal that pushes it (ballOnReliefNormal's)
+// and the lift under c. Where `may_split` and the lift has a crease within a quarter texel of c (its
+// second difference over those steps, along the tangent or the bitangent, is more than
+// kCreaseSlopeJump (crease_contact.hpp) times the step: a V-groove's floor, the two rims of a groove
+// narrower than the ball), one contact for each side of the crease instead: the relief on that
+// side of the centre alone (BallOnRelief::touchOnHalf), its lift and the normal of its own
+// gradient, so the ball rests on both walls as in a wedge. One normal blended across the crease
+// over a quarter texel let a ball rock from rim to rim, and a force applied at once start it up a
+// wall below the wall's slope. Flat faces only (not on a ball with a bump map), lifted balls only.
+struct BallReliefContact {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // mesh frame, unit, towards the ball
+  double lift_m = 0.0;                                // ballOnReliefLift's (on a side: that side's)
+};
+struct BallReliefContacts {
+  BallReliefContact side[2];  // split: [0] the side against the axis, [1] along it
+  int count = 1;
+};
+BallReliefContacts ballOnReliefContacts(const ContactMesh& mesh, const Eigen::Vector3d& c, double side,
+                                        std::uint32_t triangle, const Eigen::Vector3d& b, double r,
+                                        const MeshContactOptions& options, bool may_split);
+
 // Steers `point`, made on a smooth chart (relief_collision.hpp: its place and gap are the smooth
 // surface's already), by the mesh's normal map as the plane's normal map steers a point
 // (steerContact, holding the gap along the point's own normal); nothing without a texture.
@@ -183,5 +206,27 @@ void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isome
 void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                           const ContactMesh& mesh, const ObjectBall& ball, const btCollisionObject& other,
                           const MeshContactOptions& options, const StepContext& step = {});
+
+// A ball's crease points (applyBallMeshManifold) as they were before the detection added this
+// step's points: a full manifold drops one of its points for each new one, and a side's point
+// dropped that way comes back with the impulse it carried.
+struct CreaseSides {
+  btManifoldPoint point[2];
+  bool has[2] = {false, false};
+};
+CreaseSides creaseSidesOf(const btPersistentManifold& manifold);
+
+// A ball's whole manifold with a relief mesh (`ball` of `other`, a sphere): every point as
+// applyBallMeshContact rewrites it, except where every point's foot stands over the surface and
+// ballOnReliefContacts splits the contact at a crease: then one point for each side, each tagged
+// with its side (kept in the point's user data, the one field Bullet keeps when it refreshes a
+// point with one found near it, so each side keeps its impulse between steps), the others
+// removed, a side missing brought back from `before` (creaseSidesOf before this step's
+// detection; nullptr: none) or added; each side point's local points set where the rewrite put
+// it, so that Bullet's refresh next step keeps it. The manifold's body 1 is the mesh where `mesh_is_b`.
+void applyBallMeshManifold(btPersistentManifold& manifold, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                           const ContactMesh& mesh, const ObjectBall& ball, const btCollisionObject& other,
+                           const MeshContactOptions& options, const StepContext& step = {},
+                           const CreaseSides* before = nullptr);
 
 }  // namespace thx::phys

@@ -2,6 +2,7 @@
 
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 
 #include <algorithm>
@@ -36,6 +37,15 @@ void TexturedWorld::addLeaningRelief(const btCollisionObject* relief, const Eige
 }
 
 void TexturedWorld::performDiscreteCollisionDetection() {
+  crease_sides_.clear();
+  if (!meshes_.empty()) {
+    btDispatcher* dispatcher = getDispatcher();
+    for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
+      const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+      CreaseSides sides = creaseSidesOf(*manifold);
+      if (sides.has[0] || sides.has[1]) crease_sides_.emplace_back(manifold, sides);
+    }
+  }
   btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
   rewritten_ = 0;
   rewriteNormalMapContacts();
@@ -51,11 +61,11 @@ StepContext TexturedWorld::stepContext() { return stepContextOf(getSolverInfo(),
 
 namespace {
 
-// Calls rewrite(point, surface_is_b, surface_to_world, surface, other) for every contact point of
-// every manifold that touches one of `surfaces` (each manifold is rewritten by the first surface
-// in it); returns the number of points.
+// Calls rewrite(manifold, surface_is_b, surface_to_world, surface, other) for every manifold that
+// touches one of `surfaces` (each manifold is rewritten by the first surface in it); returns the
+// number of points after.
 template <class Surfaces, class Rewrite>
-long long rewriteContactsWith(btDispatcher& dispatcher, const Surfaces& surfaces, Rewrite rewrite) {
+long long rewriteManifoldsWith(btDispatcher& dispatcher, const Surfaces& surfaces, Rewrite rewrite) {
   long long rewritten = 0;
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
     btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
@@ -64,15 +74,23 @@ long long rewriteContactsWith(btDispatcher& dispatcher, const Surfaces& surfaces
       const bool surface_is_b = manifold->getBody1() == surface.body;
       if (!surface_is_b && manifold->getBody0() != surface.body) continue;
       const btCollisionObject* other = surface_is_b ? manifold->getBody0() : manifold->getBody1();
-      const Eigen::Isometry3d surface_to_world = toEigen(surface.body->getWorldTransform());
-      for (int k = 0; k < manifold->getNumContacts(); ++k) {
-        rewrite(manifold->getContactPoint(k), surface_is_b, surface_to_world, surface, *other);
-        ++rewritten;
-      }
+      rewrite(*manifold, surface_is_b, toEigen(surface.body->getWorldTransform()), surface, *other);
+      rewritten += manifold->getNumContacts();
       break;
     }
   }
   return rewritten;
+}
+
+// The same, calling rewrite(point, surface_is_b, surface_to_world, surface, other) for every point.
+template <class Surfaces, class Rewrite>
+long long rewriteContactsWith(btDispatcher& dispatcher, const Surfaces& surfaces, Rewrite rewrite) {
+  return rewriteManifoldsWith(dispatcher, surfaces,
+                              [&](btPersistentManifold& manifold, bool surface_is_b, const Eigen::Isometry3d& surface_to_world,
+                                  const auto& surface, const btCollisionObject& other) {
+                                for (int k = 0; k < manifold.getNumContacts(); ++k)
+                                  rewrite(manifold.getContactPoint(k), surface_is_b, surface_to_world, surface, other);
+                              });
 }
 
 }  // namespace
@@ -80,21 +98,37 @@ long long rewriteContactsWith(btDispatcher& dispatcher, const Surfaces& surfaces
 void TexturedWorld::rewriteMeshContacts() {
   if (meshes_.empty()) return;
   const StepContext step = stepContext();
-  rewritten_ += rewriteContactsWith(*getDispatcher(), meshes_,
-                                    [&](btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
-                                        const TexturedMeshBody& mesh, const btCollisionObject& other) {
-                                      // Points made on a chart (relief_collision.hpp) are the surface's
-                                      // already; on a smooth chart a normal map still steers them, and
-                                      // on a normal map's relief its mean slope leans them.
-                                      if (reliefTakesMeshPair(*other.getCollisionShape(), *mesh.body->getCollisionShape())) {
-                                        if (!meshReliefOf(*mesh.body->getCollisionShape())->map)
-                                          steerChartContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
-                                        else
-                                          leanChartContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
-                                        return;
-                                      }
-                                      applyMeshContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
-                                    });
+  rewritten_ += rewriteManifoldsWith(
+      *getDispatcher(), meshes_,
+      [&](btPersistentManifold& manifold, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+          const TexturedMeshBody& mesh, const btCollisionObject& other) {
+        const btCollisionShape& shape = *other.getCollisionShape();
+        // Points made on a chart (relief_collision.hpp) are the surface's already; on a smooth
+        // chart a normal map still steers them, and on a normal map's relief its mean slope leans them.
+        if (reliefTakesMeshPair(shape, *mesh.body->getCollisionShape())) {
+          const bool relief = meshReliefOf(*mesh.body->getCollisionShape())->map != nullptr;
+          for (int k = 0; k < manifold.getNumContacts(); ++k) {
+            btManifoldPoint& point = manifold.getContactPoint(k);
+            if (!relief)
+              steerChartContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
+            else
+              leanChartContact(point, mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
+          }
+          return;
+        }
+        // A ball: its manifold as a whole (one point per side where its lift has a crease).
+        if (shape.getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
+          const ObjectBall ball{toEigen(other.getWorldTransform().getOrigin()),
+                                double(static_cast<const btSphereShape&>(shape).getRadius())};
+          const CreaseSides* before = nullptr;
+          for (const auto& [kept, sides] : crease_sides_)
+            if (kept == &manifold) before = &sides;
+          applyBallMeshManifold(manifold, mesh_is_b, mesh_to_world, mesh.mesh, ball, other, mesh.options, step, before);
+          return;
+        }
+        for (int k = 0; k < manifold.getNumContacts(); ++k)
+          applyMeshContact(manifold.getContactPoint(k), mesh_is_b, mesh_to_world, mesh.mesh, other, mesh.options, step);
+      });
 }
 
 void TexturedWorld::rewriteNormalMapContacts() {

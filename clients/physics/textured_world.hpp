@@ -13,6 +13,7 @@
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "clients/physics/mesh_contact.hpp"
@@ -86,6 +87,8 @@ class TexturedWorld : public btDiscreteDynamicsWorld {
   std::vector<TexturedMeshBody> meshes_;
   std::vector<LeaningRelief> leaning_reliefs_;
   long long rewritten_ = 0;
+  // Each ball's crease points before this step's detection (applyBallMeshManifold), by manifold.
+  std::vector<std::pair<const btPersistentManifold*, CreaseSides>> crease_sides_;
   RestOptions rest_;
   std::unordered_map<const btRigidBody*, RestDetector> rest_detectors_;
 };

@@ -11,6 +11,7 @@
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "meshes/mesh_generators.hpp"
+#include "textures/ball_on_relief.hpp"
 #include "tests/physics/physics_fixtures.hpp"
 
 namespace thx::phys::test::grooved_block {
@@ -54,8 +55,10 @@ inline mesh::GeneratedMesh groovedGround(bool trough) {
                 : mesh::box({0.2, 0.2, 0.02}, 0.02, kExtent);
 }
 // Adds `ground` (groovedGround(trough)) to the world; returns the lowest point of its middle.
+// `ball_relief` (of `map`; it must outlive the world): how balls meet it, as physics-client gives
+// a mesh; nullptr: balls meet it at one point (boxes and rods meet its chart either way).
 inline Eigen::Vector3d addGroovedGround(PhysicsWorld& world, const mesh::GeneratedMesh& ground, bool trough,
-                                        const tex::TextureMap& map) {
+                                        const tex::TextureMap& map, const tex::BallOnRelief* ball_relief = nullptr) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   Eigen::Vector3d bottom = Eigen::Vector3d::Zero();
   if (trough) {
@@ -69,6 +72,7 @@ inline Eigen::Vector3d addGroovedGround(PhysicsWorld& world, const mesh::Generat
   MeshContactOptions options;
   options.texture = &map;
   options.normals_made_for_m = Eigen::Vector2d::Constant(kExtent);
+  options.ball_relief = ball_relief;
   world.addTexturedMesh(ground.mesh, pose, {1.0, 0.0, 0.0}, options);
   return bottom;
 }

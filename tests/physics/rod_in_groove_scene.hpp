@@ -6,9 +6,10 @@
 // inside (grooves along its axis) or the top face of a fixed box (0.2 x 0.2 x 0.02 m) whose faces
 // carry the relief (box_ground.hpp). The analytic answers: lying, its axis rests r / cos(theta) - D
 // above the ridges (its circle touching both walls), and a horizontal force at its centre rolls it
-// out over the far wall only above tan(theta) = 0.5 of its weight. Shared by
-// tests/physics/test_plain_objects_on_relief_mesh.cpp, test_cylinder_on_box_faces.cpp and
-// benchmarks/bench_rod_in_groove.cpp.
+// out over the far wall only above tan(theta) = 0.5 of its weight. A plain ball of the rods' radius
+// has the same answers (its cross-section is theirs). Shared by
+// tests/physics/test_plain_objects_on_relief_mesh.cpp, test_cylinder_on_box_faces.cpp,
+// test_ball_in_v_groove.cpp and benchmarks/bench_rod_in_groove.cpp.
 #include <cmath>
 #include <memory>
 
@@ -19,7 +20,9 @@ namespace thx::phys::test::rod_in_groove {
 using namespace grooved_block;
 
 enum class Ground { Plane, FlatMesh, Trough, Box };
-enum class Rod { Capsule, LyingCylinder, StandingCylinder };
+// Ball: a plain ball of the rods' radius and mass (their cross-section), on the relief meshes met
+// as physics-client meets them (lifted onto the relief as its sphere meets it).
+enum class Rod { Capsule, LyingCylinder, StandingCylinder, Ball };
 
 inline constexpr double kRadius = 0.003, kHalfLength = 0.01, kRodMass = 0.02;
 inline const double kWall = std::atan(2 * kDepth / kPeriod);
@@ -31,16 +34,19 @@ struct RodScene {
   SurfaceHolder plane;
   mesh::GeneratedMesh surface;
   tex::TextureMap map;
+  tex::BallOnRelief ball_relief;
   std::unique_ptr<PhysicsWorld> world;
   btRigidBody* rod = nullptr;
   Eigen::Vector3d rest = Eigen::Vector3d::Zero();
 
-  // A rod along y over a groove's floor (x = P / 2), a little above where it fits, settled 0.5 s;
-  // the grooves' relief `texels` on a side over 4 cm.
-  RodScene(Ground ground, Rod kind, int texels = 128)
+  // A rod along y over a groove's floor (x = P / 2, or `x_offset_m` from it), a little above where
+  // it fits, settled 0.5 s; the grooves' relief `texels` on a side over 4 cm. A ball may be given
+  // another radius (wider than 2.24 mm / sin(theta) = 5 mm it rests on the rims, not the walls).
+  RodScene(Ground ground, Rod kind, int texels = 128, double ball_radius_m = kRadius, double x_offset_m = 0.0)
       : plane(holdSurface(heightMap(texels, kExtent, vGrooves), kExtent, true)),
         surface(groovedGround(ground == Ground::Trough)),
         map(heightMap(texels, kExtent, vGrooves)),
+        ball_relief(map, tex::Address::Wrap),
         world(std::make_unique<PhysicsWorld>()) {
     double y = 0.0;
     if (ground == Ground::Plane) {
@@ -51,14 +57,19 @@ struct RodScene {
       faces.tile_m = kExtent;
       world->addTexturedBox(kSlabHalf, 0.0, at(0.0, 0.0, -kSlabHalf.z()), {1.0, 0.0, 0.0}, faces);
     } else {
-      y = addGroovedGround(*world, surface, ground == Ground::Trough, map).y();
+      y = addGroovedGround(*world, surface, ground == Ground::Trough, map, &ball_relief).y();
     }
     const bool standing = kind == Rod::StandingCylinder;
-    Eigen::Isometry3d start = at(0.5 * kPeriod, y, (standing ? kHalfLength : inTheGroove(kRadius)) + 2e-4);
+    const double radius = kind == Rod::Ball ? ball_radius_m : kRadius;
+    Eigen::Isometry3d start = at(0.5 * kPeriod + x_offset_m, y, (standing ? kHalfLength : inTheGroove(radius)) + 2e-4);
     if (!standing) start.linear() = Eigen::AngleAxisd(0.5 * kPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
     const BodyMaterial material{kFriction, 0.0, 0.0};
-    rod = kind == Rod::Capsule ? &world->addCapsule(kRadius, kHalfLength, kRodMass, start, material)
-                               : &world->addCylinder(standing ? 0.005 : kRadius, kHalfLength, kRodMass, start, material);
+    if (kind == Rod::Ball)
+      rod = &world->addSphere(radius, kRodMass, start, material);
+    else if (kind == Rod::Capsule)
+      rod = &world->addCapsule(kRadius, kHalfLength, kRodMass, start, material);
+    else
+      rod = &world->addCylinder(standing ? 0.005 : kRadius, kHalfLength, kRodMass, start, material);
     for (int k = 0; k < 500; ++k) world->step(kDt);
     rest = positionOf(*rod);
   }

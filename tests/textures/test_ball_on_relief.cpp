@@ -31,20 +31,29 @@ TextureMap reliefOf(int w, int h, Height height) {
 }
 
 // Brute force: the highest the ball's centre is lifted over any texel centre (no refinement),
-// over every wrapped image within r.
-double bruteForceLift(const TextureMap& map, TexCoord uv, const Eigen::Vector2d& metres_per_uv, double r) {
+// over every wrapped image within r; with a half (BallOnRelief::Half), over its texels alone:
+// along u, (i - s) * sign >= 0; along v, whose rows run against it, (t - j) * sign >= 0.
+// `widen`: texels that far beyond the line count too.
+double bruteForceLiftOnHalf(const TextureMap& map, TexCoord uv, const Eigen::Vector2d& metres_per_uv, double r,
+                            BallOnRelief::Half half, double widen = 0.0) {
   const double s = uv.u * map.width() - 0.5, t = (1.0 - uv.v) * map.height() - 0.5;
   const double du = metres_per_uv.x() / map.width(), dv = metres_per_uv.y() / map.height();
   const int ru = int(std::ceil(r / du)) + 1, rv = int(std::ceil(r / dv)) + 1;
   double best = -1e300;
   for (long long j = (long long)std::floor(t) - rv; j <= (long long)std::floor(t) + rv; ++j)
     for (long long i = (long long)std::floor(s) - ru; i <= (long long)std::floor(s) + ru; ++i) {
+      if (half.axis == 0 && (double(i) - s) * half.sign < -widen) continue;
+      if (half.axis == 1 && (t - double(j)) * half.sign < -widen) continue;
       const double d2 = std::pow((double(i) - s) * du, 2) + std::pow((double(j) - t) * dv, 2);
       if (d2 >= r * r) continue;
       const double h = -double(map.depth(resolveIndex(i, map.width(), Address::Wrap), resolveIndex(j, map.height(), Address::Wrap)));
       best = std::max(best, h + std::sqrt(r * r - d2));
     }
   return best - r;
+}
+
+double bruteForceLift(const TextureMap& map, TexCoord uv, const Eigen::Vector2d& metres_per_uv, double r) {
+  return bruteForceLiftOnHalf(map, uv, metres_per_uv, r, BallOnRelief::Half{});
 }
 
 TEST(BallOnRelief, TheSearchFindsTheHighestTouchOfABruteForceScanAndTheRefinementOnlyLiftsIt) {
@@ -169,6 +178,83 @@ TEST(BallOnRelief, TheNormalIsTheGradientOfTheLiftSoTheReadIsAPotential) {
       EXPECT_GT(largest_slope_v, 0.07);
     }
   }
+}
+
+}  // namespace
+}  // namespace thx::tex::test_ball_on_relief
+
+namespace thx::tex::test_ball_on_relief {
+namespace {
+
+TEST(BallOnRelief, OnAHalfTheSearchMeetsThatSidesTexelsAloneAndTheHigherHalfIsTheWholeLift) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const TextureMap map = reliefOf(64, 32, [&](int i, int j) {
+    return 2e-4 * std::sin(0.7 * i + 0.3 * j) * std::cos(0.45 * j) + 5e-5 * std::sin(2.1 * i * j);
+  });
+  const BallOnRelief reader(map, Address::Wrap);
+  for (int k = 0; k < 200; ++k) {
+    const TexCoord uv{unit(rng) * 3.0 - 1.0, unit(rng) * 3.0 - 1.0};
+    const Eigen::Vector2d mpu(64 * kTexel * (k % 2 ? 1.0 : 0.1), 32 * kTexel);
+    const double r = k % 3 ? 1e-3 : 4e-3;
+    const BallOnRelief::Half half{k % 4 < 2 ? 0 : 1, k % 2 ? 1.0 : -1.0};
+    const std::optional<BallOnRelief::Touch> on_half = reader.touchOnHalf(uv, mpu, r, false, half);
+    ASSERT_TRUE(on_half) << k;  // a wrapped texture: every half holds texels
+    const double brute = bruteForceLiftOnHalf(map, uv, mpu, r, half);
+    ASSERT_GE(on_half->lift_m, brute - 1e-12) << k;
+    // The refinement reads the bilinear surface on the half, which the texels up to one beyond
+    // the line shape too.
+    ASSERT_LE(on_half->lift_m, bruteForceLiftOnHalf(map, uv, mpu, r, half, 1.0) + 2e-5) << k;
+    // The touch lies on its half: the centre from it points the other way along the axis.
+    const double from_touch = half.axis == 0 ? on_half->normal.x() : on_half->normal.y();
+    ASSERT_LE(from_touch * half.sign, 1e-12) << k;
+    // Between the two halves of an axis every texel is met once: the higher is the whole lift,
+    // up to the refinement, which on a half stops at the line through the centre.
+    const std::optional<BallOnRelief::Touch> other = reader.touchOnHalf(uv, mpu, r, false, {half.axis, -half.sign});
+    ASSERT_TRUE(other) << k;
+    const double whole = reader.touch(uv, mpu, r).lift_m;
+    ASSERT_LE(std::max(on_half->lift_m, other->lift_m), whole + 1e-12) << k;
+    ASSERT_GE(std::max(on_half->lift_m, other->lift_m), bruteForceLift(map, uv, mpu, r) - 1e-12) << k;
+  }
+}
+
+TEST(BallOnRelief, OverAVGroovesFloorEachHalfIsOneWall) {
+  // V-grooves along v, 40 texels (4 mm) apart and 1 mm deep (walls at atan 0.5), under a 3 mm
+  // ball, which fits in touching both walls: over the floor each half is one wall, its normal
+  // the wall's and its lift the whole; a texel off the floor the half it moves towards lifts it
+  // by the wall's slope, the other lowers it as much (to the relief's depth quantisation, 1e-4
+  // of the slope here).
+  const TextureMap map = reliefOf(80, 64, [](int i, int) { return -1e-3 * 2.0 * std::fabs(i / 40.0 - std::round(i / 40.0)); });
+  const BallOnRelief reader(map, Address::Wrap);
+  const Eigen::Vector2d mpu(80 * kTexel, 64 * kTexel);
+  const double r = 3e-3, wall = 1.0 / std::sqrt(5.0);  // sin of the wall's angle
+  const TexCoord floor{20.5 / 80.0, 0.3};
+  const double whole = reader.touch(floor, mpu, r).lift_m;
+  const auto left = reader.touchOnHalf(floor, mpu, r, false, {0, -1.0});
+  const auto right = reader.touchOnHalf(floor, mpu, r, false, {0, 1.0});
+  ASSERT_TRUE(left && right);
+  EXPECT_NEAR(left->lift_m, whole, 1e-12);
+  EXPECT_NEAR(right->lift_m, whole, 1e-12);
+  EXPECT_NEAR(left->normal.x(), wall, 5e-4);  // the left wall pushes towards +u
+  EXPECT_NEAR(right->normal.x(), -wall, 5e-4);
+  EXPECT_NEAR(left->normal.x(), -right->normal.x(), 1e-5);
+  const TexCoord off{21.5 / 80.0, 0.3};  // a texel (0.1 mm) towards +u
+  const auto right_off = reader.touchOnHalf(off, mpu, r, false, {0, 1.0});
+  const auto left_off = reader.touchOnHalf(off, mpu, r, false, {0, -1.0});
+  ASSERT_TRUE(right_off && left_off);
+  EXPECT_NEAR(right_off->lift_m - right->lift_m, 0.5 * kTexel, 1e-8);
+  EXPECT_NEAR(left_off->lift_m - left->lift_m, -0.5 * kTexel, 1e-8);
+  EXPECT_NEAR(reader.touch(off, mpu, r).lift_m, right_off->lift_m, 1e-12);
+}
+
+TEST(BallOnRelief, AClampedTexturesBorderLeavesTheHalfBeyondItEmpty) {
+  const TextureMap map = reliefOf(16, 16, [](int, int) { return 0.0; });
+  const BallOnRelief reader(map, Address::Clamp);
+  const Eigen::Vector2d mpu(16 * kTexel, 16 * kTexel);
+  // Beyond the last column's centre along +u: no texel on that half.
+  EXPECT_FALSE(reader.touchOnHalf({0.999, 0.5}, mpu, 1e-3, false, {0, 1.0}));
+  EXPECT_TRUE(reader.touchOnHalf({0.999, 0.5}, mpu, 1e-3, false, {0, -1.0}));
+  EXPECT_TRUE(reader.touchOnHalf({0.5, 0.5}, mpu, 1e-3, false, {1, 1.0}));
 }
 
 }  // namespace
