@@ -4,6 +4,7 @@
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <utility>
 
@@ -56,11 +57,7 @@ const ObjectGround* ObjectFacesCatalog::ground(const btCollisionShape& shape) co
 
 namespace {
 
-// The object's segment in its own frame (its balls' centres): a capsule's axis, a sphere's centre.
-struct ObjectAxis {
-  Eigen::Vector3d half_m = Eigen::Vector3d::Zero();  // from the centre to one end
-  double radius_m = 0.0;
-};
+using ObjectAxis = BallOnObjectFacesAlgorithm::ObjectAxis;
 
 ObjectAxis axisOf(const btCollisionShape& shape) {
   ObjectAxis axis;
@@ -253,6 +250,10 @@ void BallOnObjectFacesAlgorithm::processCollision(const btCollisionObjectWrapper
       }
     }
   } else {
+    // Last step's crease points go: their impulses are in `before`, and this step's balls are
+    // found afresh (splitCapsuleAtCreases).
+    for (int k = manifold->getNumContacts() - 1; k >= 0; --k)
+      if (creaseTagOf(manifold->getContactPoint(k)) != 0) manifold->removeContactPoint(k);
     for (const int index : near_) addCapsuleBalls(std::uint32_t(index));
   }
   result->refreshContactPoints();
@@ -270,12 +271,138 @@ void BallOnObjectFacesAlgorithm::processCollision(const btCollisionObjectWrapper
                           faces_->options, step, &before);
     return;
   }
+  if (!(faces_->options.sphere_radius_m > 0.0) &&
+      splitCapsuleAtCreases(*manifold, axis, world_from_object, world_from_mesh, *object->getCollisionObject(), step, before))
+    return;
   for (int k = 0; k < manifold->getNumContacts(); ++k) {
     btManifoldPoint& point = manifold->getContactPoint(k);
     const ObjectBall ball{world_from_object * ballCentreOf(axis, point.m_index0), r};
     applyBallMeshContact(point, true, world_from_mesh, faces_->contact, ball, *object->getCollisionObject(),
                          faces_->options, step);
   }
+}
+
+bool BallOnObjectFacesAlgorithm::splitCapsuleAtCreases(btPersistentManifold& manifold, const ObjectAxis& axis,
+                                                       const Eigen::Isometry3d& world_from_object,
+                                                       const Eigen::Isometry3d& world_from_mesh,
+                                                       const btCollisionObject& object, const StepContext& step,
+                                                       const CreaseSides& before) {
+  const MeshContactOptions& options = faces_->options;
+  if (!options.smooth || !options.texture || !options.ball_relief || !options.lift_ball) return false;
+  // The balls that made the points (their places along the axis), each read at its first point's
+  // foot where all its points' feet are over the surface.
+  groups_.clear();
+  const int count = manifold.getNumContacts();
+  std::array<int, 4> group_of{};
+  for (int k = 0; k < count; ++k) {
+    const int code = manifold.getContactPoint(k).m_index0;
+    std::size_t g = 0;
+    while (g < groups_.size() && groups_[g].code != code) ++g;
+    if (g == groups_.size()) groups_.push_back({code, k, ObjectBall{world_from_object * ballCentreOf(axis, code), axis.radius_m}, {}});
+    group_of[std::size_t(k)] = int(g);
+  }
+  for (BallGroup& group : groups_) {
+    bool over = true;
+    for (int k = 0; k < count && over; ++k)
+      if (groups_[std::size_t(group_of[std::size_t(k)])].code == group.code)
+        over = ballFootIsOverSurface(manifold.getContactPoint(k), true, world_from_mesh, faces_->contact, group.ball);
+    // Whether it has a crease under it, not yet split (the same reads as the point's rewrite).
+    if (over)
+      group.at = ballContactsAtFoot(manifold.getContactPoint(group.first), true, world_from_mesh, faces_->contact, group.ball,
+                                    options, false);
+  }
+  // The balls with a crease under them at the two ends of their run, each as a point on each
+  // side of it (slot 0 the nearer the axis's start); the rest of them go (the crease runs under
+  // them too, between the two), and the other balls' points stay while there is room.
+  const auto creased = [](const BallGroup& group) { return group.at && group.at->contacts.crease; };
+  int lowest = -1, highest = -1;
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    if (!creased(groups_[g])) continue;
+    if (lowest < 0 || groups_[g].code < groups_[std::size_t(lowest)].code) lowest = int(g);
+    if (highest < 0 || groups_[g].code > groups_[std::size_t(highest)].code) highest = int(g);
+  }
+  if (lowest < 0) {
+    // No crease: as applyBallMeshContact rewrites each point (each ball's first point from the
+    // contact just read).
+    for (int k = 0; k < count; ++k) {
+      btManifoldPoint& point = manifold.getContactPoint(k);
+      const BallGroup& group = groups_[std::size_t(group_of[std::size_t(k)])];
+      if (k == group.first && group.at)
+        writeBallContactAtFoot(point, true, world_from_mesh, *group.at, 0, group.ball, object, options, step, manifold);
+      else
+        applyBallMeshContact(point, true, world_from_mesh, faces_->contact, group.ball, object, options, step);
+    }
+    return true;
+  }
+  struct Wanted {
+    btManifoldPoint point;
+    int group = 0, side = -1;  // side -1: the ball's one contact
+  };
+  std::array<Wanted, 4> wanted;
+  int n = 0;
+  // The crease met at the two ends of the capsule's segment where it runs under them (a capsule
+  // lying along a groove): the balls the search finds along a level groove are any of the run's,
+  // and a slot that moved from an end ball to a middle one for a step kicked the capsule at
+  // 0.15 mm/s. Each end's foot walked to from the point whose ball is nearest it.
+  ends_.clear();
+  for (const int end : {0, 1}) {
+    const int code = encodeAlong(double(end));
+    int nearest = 0;
+    for (int k = 1; k < count; ++k)
+      if (std::abs(manifold.getContactPoint(k).m_index0 - code) < std::abs(manifold.getContactPoint(nearest).m_index0 - code))
+        nearest = k;
+    const ObjectBall ball{world_from_object * ballCentreOf(axis, code), axis.radius_m};
+    const std::uint32_t from = std::uint32_t(manifold.getContactPoint(nearest).m_index1);
+    std::optional<BallContactsAtFoot> at = ballContactsNear(from, world_from_mesh, faces_->contact, ball, options, true);
+    if (at && at->contacts.count == 2) ends_.push_back({code, nearest, ball, at});
+  }
+  if (ends_.empty()) {
+    // Only between the ends (a capsule across a groove): the run's creased balls at its two ends.
+    for (const int g : {lowest, highest}) {
+      if (g == highest && highest == lowest) break;
+      BallGroup group = groups_[std::size_t(g)];
+      group.at = ballContactsAtFoot(manifold.getContactPoint(group.first), true, world_from_mesh, faces_->contact,
+                                    group.ball, options, true);
+      if (group.at && group.at->contacts.count == 2) ends_.push_back(group);
+    }
+  }
+  if (ends_.empty()) {  // a half held no texel: each point as applyBallMeshContact rewrites it
+    for (int k = 0; k < count; ++k) {
+      const BallGroup& group = groups_[std::size_t(group_of[std::size_t(k)])];
+      applyBallMeshContact(manifold.getContactPoint(k), true, world_from_mesh, faces_->contact, group.ball, object, options,
+                           step);
+    }
+    return true;
+  }
+  for (std::size_t e = 0; e < ends_.size(); ++e) {
+    const int slot = ends_.size() == 2 ? int(e) : (ends_[e].code > encodeAlong(0.5) ? 1 : 0);
+    for (int side = 0; side < 2; ++side) {
+      wanted[std::size_t(n)] = {manifold.getContactPoint(ends_[e].first), -1 - int(e), side};
+      btManifoldPoint& point = wanted[std::size_t(n)].point;
+      startCreasePoint(point, 1 + side + 2 * slot, &before);
+      point.m_index0 = ends_[e].code;  // the ball that made it
+      point.m_index1 = int(ends_[e].at->foot_triangle);
+      ++n;
+    }
+  }
+  for (int k = 0; k < count && n < 4; ++k) {
+    if (creased(groups_[std::size_t(group_of[std::size_t(k)])])) continue;
+    wanted[std::size_t(n)] = {manifold.getContactPoint(k), group_of[std::size_t(k)], -1};
+    setCreaseTag(wanted[std::size_t(n)].point, 0);
+    ++n;
+  }
+  manifold.clearManifold();
+  for (int k = 0; k < n; ++k) {
+    btManifoldPoint& point = manifold.getContactPoint(manifold.addManifoldPoint(wanted[std::size_t(k)].point));
+    const int g = wanted[std::size_t(k)].group;
+    const BallGroup& group = g < 0 ? ends_[std::size_t(-1 - g)] : groups_[std::size_t(g)];
+    if (wanted[std::size_t(k)].side >= 0)
+      writeBallContactAtFoot(point, true, world_from_mesh, *group.at, wanted[std::size_t(k)].side, group.ball, object,
+                             options, step, manifold);
+    else
+      applyBallMeshContact(point, true, world_from_mesh, faces_->contact, group.ball, object, options, step);
+  }
+  return true;
 }
 
 }  // namespace thx::phys

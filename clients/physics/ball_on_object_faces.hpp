@@ -19,7 +19,10 @@
 // textured object's frame and its velocity (StepContext::surface_body). So a marble rolls along a
 // grooved box's grooves and off its edge (ballPastCrease) as it does on the same relief laid on a
 // box mesh, a capsule lying in a groove rests on its rims as a ball's cross-section does, and the
-// pen pushing a dimpled ball meets its dimples.
+// pen pushing a dimpled ball meets its dimples. Where a ball's lift has a crease under it (a
+// groove's floor, the two rims of a groove narrower than the ball), a sphere gets a point on each
+// side of it (applyBallMeshManifold) and a capsule at the balls at the two ends of its run
+// (splitCapsuleAtCreases), so each rests in a groove as in a wedge.
 //
 // Why not the relief algorithm's plain-ball rule on the box's chart (relief_collision.hpp): tried
 // on 2026-12-04, it threw a marble rolling off the grooved board's edge up at 0.45 m/s, and rode
@@ -31,8 +34,9 @@
 #include <BulletDynamics/ConstraintSolver/btContactSolverInfo.h>
 
 #include <Eigen/Core>
-#include <memory>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -102,7 +106,31 @@ class BallOnObjectFacesAlgorithm : public ManifoldAlgorithm {
   void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                         const btDispatcherInfo& info, btManifoldResult* result) override;
 
+  // The object's segment in its own frame (its balls' centres): a capsule's axis, a sphere's centre.
+  struct ObjectAxis {
+    Eigen::Vector3d half_m = Eigen::Vector3d::Zero();  // from the centre to one end
+    double radius_m = 0.0;
+  };
+
  private:
+  // A capsule's points on a box's faces (no sphere radius), rewritten: where some of its balls'
+  // lifts have a crease under them (ballOnReliefContacts: a capsule lying along a V-groove), the
+  // split balls at the two ends of their run get a point on each side of it (crease tags 1-4:
+  // side + 2 slot), the split balls between them go, and the unsplit balls' points stay while the
+  // manifold has room; their impulses from `before`. Elsewhere each point as
+  // applyBallMeshContact rewrites it. false: not split here (the caller rewrites each point).
+  bool splitCapsuleAtCreases(btPersistentManifold& manifold, const ObjectAxis& axis,
+                             const Eigen::Isometry3d& world_from_object, const Eigen::Isometry3d& world_from_mesh,
+                             const btCollisionObject& object, const StepContext& step, const CreaseSides& before);
+  struct BallGroup {
+    int code = 0;   // its place along the axis, as kept in its points
+    int first = 0;  // its first point in the manifold
+    ObjectBall ball;
+    std::optional<BallContactsAtFoot> at;
+  };
+  std::vector<BallGroup> groups_;
+  std::vector<BallGroup> ends_;  // the balls split at a crease that get a point on each side
+
   bool faces_first_;
   const ObjectFaces* faces_;
   std::vector<int> near_;  // the triangles within reach this step, in index order

@@ -140,14 +140,15 @@ BallReliefContacts ballOnReliefContacts(const ContactMesh& contact_mesh, const E
   };
   const Lifts whole = liftsOf({}, false);
   out.side[0].normal = normalOf(whole);
-  if (!may_split || !options.lift_ball || options.sphere_radius_m > 0.0) return out;
+  if (!options.lift_ball || options.sphere_radius_m > 0.0) return out;
   // A crease of the lift within h of the centre: its second difference along an axis is the slope's
   // jump times (h - the crease's distance from c), against curvature times h^2 where it is smooth.
   const double lift = out.side[0].lift_m;
   const double crease1 = *whole.e1_plus + *whole.e1_minus - 2.0 * lift;
   const double crease2 = *whole.e2_plus + *whole.e2_minus - 2.0 * lift;
   const int axis = crease1 >= crease2 ? 0 : 1;
-  if (!(std::max(crease1, crease2) > kCreaseSlopeJump * h)) return out;
+  out.crease = std::max(crease1, crease2) > kCreaseSlopeJump * h;
+  if (!out.crease || !may_split) return out;
   // e1 runs along u; e2 along v or against it, as the bitangent.
   const double texture_sign = axis == 0 || e2.dot(f.bitangent) >= 0.0 ? 1.0 : -1.0;
   BallReliefContacts split;
@@ -158,6 +159,7 @@ BallReliefContacts ballOnReliefContacts(const ContactMesh& contact_mesh, const E
     split.side[k] = {normalOf(on_half), *on_half.at};
   }
   split.count = 2;
+  split.crease = true;
   return split;
 }
 
@@ -394,40 +396,98 @@ double ballLiftedGapFrom(const ContactMesh& contact_mesh, const Eigen::Vector3d&
 
 namespace {
 
-// Where a ball whose foot is over the surface stands from it: the side it is on (-1 behind the
-// winding), the smooth surface's normal towards it, and its gap to the smooth surface.
-struct BallOverSurface {
-  double side = 1.0;
-  Eigen::Vector3d n_geometric = Eigen::Vector3d::UnitZ();
-  double gap_m = 0.0;
-};
-BallOverSurface ballOverSurface(const btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& world_to_mesh,
-                                const ContactMesh& contact_mesh, const MeshPlace& reporting, std::uint32_t triangle,
-                                const Eigen::Vector3d& b, const Eigen::Vector3d& c, double r) {
+// ballContactsAtFoot's reading, the foot walked to from barycentric b of `triangle`; `fallback_side`
+// gives the side where the centre lies on the surface itself.
+template <class FallbackSide>
+std::optional<BallContactsAtFoot> ballContactsFrom(const ContactMesh& contact_mesh, std::uint32_t triangle,
+                                                   Eigen::Vector3d b, const Eigen::Vector3d& c, double r,
+                                                   const MeshContactOptions& options, bool may_split,
+                                                   FallbackSide fallback_side) {
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  if (!smoothFoot(contact_mesh, c, 1.0, triangle, b)) return std::nullopt;
   const mesh::SurfaceFrame smooth = mesh::frameAt(mesh, triangle, b, mesh::FrameMode::InterpolatedPhong);
   // The side is where the centre lies from its foot, not where Bullet's normal points from the
   // reporting triangle: by a box's edge Bullet reports the face beside the one the ball stands
   // on too, its centre behind that face's plane, and that side pulled the ball into the box.
   const double along = smooth.normal.dot(c - smooth.point);
-  BallOverSurface out;
+  BallContactsAtFoot out;
   out.side = along < 0.0 ? -1.0 : 1.0;
-  if (along == 0.0) out.side = sideOf(point, mesh_is_b, world_to_mesh, mesh::faceNormal(mesh, reporting.triangle));
+  if (along == 0.0) out.side = fallback_side();
   out.n_geometric = out.side * smooth.normal;
   out.gap_m = out.side * along - r;
+  out.foot_triangle = triangle;
+  if (options.texture && options.ball_relief) {
+    out.contacts = ballOnReliefContacts(contact_mesh, c, out.side, triangle, b, r, options, may_split);
+    // Held on the smooth surface unless lifted onto the relief (a split needs the lift).
+    if (!options.lift_ball) out.contacts.side[0].lift_m = 0.0;
+  } else {
+    out.contacts.side[0] = {out.side * meshContactNormal(mesh, triangle, b, options), 0.0};
+  }
   return out;
 }
 
-// Writes one contact of a ball over the surface into `point`: normal n (mesh frame), its gap the
-// smooth surface's less `lift`.
-void writeBallContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
-                      const BallOverSurface& at, const Eigen::Vector3d& n, double lift, const ObjectBall& ball,
-                      const btCollisionObject& other, const MeshContactOptions& options, const StepContext& step) {
-  // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
-  // surface (steerContact's rule, with that gap).
-  point.m_distance1 = static_cast<btScalar>(at.gap_m - lift);
-  steerBallContact(point, mesh_is_b, mesh_to_world.linear() * n, mesh_to_world.linear() * at.n_geometric, ball, other,
-                   options.hold_height, step);
+}  // namespace
+
+std::optional<BallContactsAtFoot> ballContactsAtFoot(const btManifoldPoint& point, bool mesh_is_b,
+                                                     const Eigen::Isometry3d& mesh_to_world,
+                                                     const ContactMesh& contact_mesh, const ObjectBall& ball,
+                                                     const MeshContactOptions& options, bool may_split) {
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
+  const std::optional<MeshPlace> place = placeOf(point, mesh_is_b, world_to_mesh, mesh);
+  if (!place) return std::nullopt;
+  return ballContactsFrom(contact_mesh, place->triangle, place->barycentric, world_to_mesh * ball.centre_world,
+                          ball.radius_m, options, may_split, [&] {
+                            return sideOf(point, mesh_is_b, world_to_mesh, mesh::faceNormal(mesh, place->triangle));
+                          });
+}
+
+std::optional<BallContactsAtFoot> ballContactsNear(std::uint32_t triangle, const Eigen::Isometry3d& mesh_to_world,
+                                                   const ContactMesh& contact_mesh, const ObjectBall& ball,
+                                                   const MeshContactOptions& options, bool may_split) {
+  const Eigen::Vector3d c = mesh_to_world.inverse() * ball.centre_world;
+  return ballContactsFrom(contact_mesh, triangle, mesh::closestBarycentric(*contact_mesh.mesh, triangle, c), c,
+                          ball.radius_m, options, may_split, [] { return 1.0; });
+}
+
+void writeBallContactAtFoot(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                            const BallContactsAtFoot& at, int k, const ObjectBall& ball, const btCollisionObject& other,
+                            const MeshContactOptions& options, const StepContext& step,
+                            const btPersistentManifold& manifold) {
+  const BallReliefContact& contact = at.contacts.side[k];
+  if (at.contacts.count == 1) {
+    // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
+    // surface (steerContact's rule, with that gap).
+    point.m_distance1 = static_cast<btScalar>(at.gap_m - contact.lift_m);
+    steerBallContact(point, mesh_is_b, mesh_to_world.linear() * contact.normal, mesh_to_world.linear() * at.n_geometric,
+                     ball, other, options.hold_height, step);
+    return;
+  }
+  // Each side is a wall the ball meets as Bullet meets a plane, its gap taken along its normal:
+  // not held at its height with the ball's sliding frozen in (steerContact's hold_height, for a
+  // ball rolling over a relief), which let the ball sway across the floor of a groove at up to
+  // 10 mm/s, each wall a spring that held its height and let it slide on.
+  point.m_distance1 = static_cast<btScalar>((at.gap_m - contact.lift_m) * contact.normal.dot(at.n_geometric));
+  steerBallContact(point, mesh_is_b, mesh_to_world.linear() * contact.normal, mesh_to_world.linear() * at.n_geometric,
+                   ball, other, false, step);
+  // Bullet's refresh next step recomputes a point from its local points along its normal and
+  // drops one whose two ends drift apart across it: where the rewrite put it, they do not.
+  point.m_localPointA = manifold.getBody0()->getWorldTransform().invXform(point.m_positionWorldOnB +
+                                                                          point.m_normalWorldOnB * point.m_distance1);
+  point.m_localPointB = manifold.getBody1()->getWorldTransform().invXform(point.m_positionWorldOnB);
+}
+
+namespace {
+
+// A ball whose foot is not over the surface: past a crease (ballPastCrease).
+void ballNotOverSurface(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                        const ContactMesh& contact_mesh, const ObjectBall& ball, const btCollisionObject& other,
+                        const MeshContactOptions& options, const StepContext& step) {
+  const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
+  const std::optional<MeshPlace> place = placeOf(point, mesh_is_b, world_to_mesh, *contact_mesh.mesh);
+  if (place)
+    ballPastCrease(point, mesh_is_b, mesh_to_world, contact_mesh, *place, world_to_mesh * ball.centre_world, ball, other,
+                   options, step);
 }
 
 }  // namespace
@@ -436,117 +496,97 @@ void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::I
                           const ContactMesh& contact_mesh, const ObjectBall& ball, const btCollisionObject& other,
                           const MeshContactOptions& options, const StepContext& step) {
   if (!options.smooth) return;
-  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
-  const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
-  const std::optional<MeshPlace> place = placeOf(point, mesh_is_b, world_to_mesh, mesh);
-  if (!place) return;
-  std::uint32_t triangle = place->triangle;
-  Eigen::Vector3d b = place->barycentric;
-  const double r = ball.radius_m;
-  const Eigen::Vector3d c = world_to_mesh * ball.centre_world;
-  if (!smoothFoot(contact_mesh, c, 1.0, triangle, b)) {
-    ballPastCrease(point, mesh_is_b, mesh_to_world, contact_mesh, *place, c, ball, other, options, step);
-    return;
-  }
-  const BallOverSurface at = ballOverSurface(point, mesh_is_b, world_to_mesh, contact_mesh, *place, triangle, b, c, r);
-  if (options.texture && options.ball_relief) {
-    const BallReliefContact contact = ballOnReliefContacts(contact_mesh, c, at.side, triangle, b, r, options, false).side[0];
-    writeBallContact(point, mesh_is_b, mesh_to_world, at, contact.normal, options.lift_ball ? contact.lift_m : 0.0, ball,
-                     other, options, step);
-  } else {
-    writeBallContact(point, mesh_is_b, mesh_to_world, at, at.side * meshContactNormal(mesh, triangle, b, options), 0.0,
-                     ball, other, options, step);
-  }
+  const std::optional<BallContactsAtFoot> at =
+      ballContactsAtFoot(point, mesh_is_b, mesh_to_world, contact_mesh, ball, options, false);
+  if (!at) return ballNotOverSurface(point, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
+  // A point-only rewrite has no manifold to set local points in; one contact needs none.
+  point.m_distance1 = static_cast<btScalar>(at->gap_m - at->contacts.side[0].lift_m);
+  steerBallContact(point, mesh_is_b, mesh_to_world.linear() * at->contacts.side[0].normal,
+                   mesh_to_world.linear() * at->n_geometric, ball, other, options.hold_height, step);
 }
 
-namespace {
-
-// The side of a crease a ball's point stands for (applyBallMeshManifold): 0 none, 1 + k for
-// BallReliefContacts::side[k].
-int creaseSideOf(const btManifoldPoint& point) {
+int creaseTagOf(const btManifoldPoint& point) {
   return int(reinterpret_cast<std::uintptr_t>(point.m_userPersistentData));
 }
-void setCreaseSide(btManifoldPoint& point, int tag) {
+void setCreaseTag(btManifoldPoint& point, int tag) {
   point.m_userPersistentData = reinterpret_cast<void*>(std::uintptr_t(tag));
 }
-
-void applyToEachPoint(btPersistentManifold& manifold, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
-                      const ContactMesh& contact_mesh, const ObjectBall& ball, const btCollisionObject& other,
-                      const MeshContactOptions& options, const StepContext& step) {
-  for (int k = 0; k < manifold.getNumContacts(); ++k) {
-    btManifoldPoint& point = manifold.getContactPoint(k);
-    setCreaseSide(point, 0);
-    applyBallMeshContact(point, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
-  }
-}
-
-}  // namespace
 
 CreaseSides creaseSidesOf(const btPersistentManifold& manifold) {
   CreaseSides sides;
   for (int k = 0; k < manifold.getNumContacts(); ++k) {
-    const int tag = creaseSideOf(manifold.getContactPoint(k));
-    if (tag == 1 || tag == 2) sides.point[tag - 1] = manifold.getContactPoint(k), sides.has[tag - 1] = true;
+    const int tag = creaseTagOf(manifold.getContactPoint(k));
+    if (tag >= 1 && tag <= CreaseSides::kTags) sides.point[tag - 1] = manifold.getContactPoint(k), sides.has[tag - 1] = true;
   }
   return sides;
+}
+
+void startCreasePoint(btManifoldPoint& point, int tag, const CreaseSides* before) {
+  point.m_appliedImpulse = 0;
+  point.m_appliedImpulseLateral1 = 0;
+  point.m_appliedImpulseLateral2 = 0;
+  point.m_prevRHS = 0;
+  point.m_lifeTime = 0;
+  if (before && before->has[tag - 1]) {
+    const btManifoldPoint& was = before->point[tag - 1];
+    point.m_appliedImpulse = was.m_appliedImpulse;
+    point.m_appliedImpulseLateral1 = was.m_appliedImpulseLateral1;
+    point.m_appliedImpulseLateral2 = was.m_appliedImpulseLateral2;
+    point.m_prevRHS = was.m_prevRHS;
+    point.m_lifeTime = was.m_lifeTime;
+  }
+  point.m_userPersistentData = nullptr;
+  setCreaseTag(point, tag);
 }
 
 void applyBallMeshManifold(btPersistentManifold& manifold, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                            const ContactMesh& contact_mesh, const ObjectBall& ball, const btCollisionObject& other,
                            const MeshContactOptions& options, const StepContext& step, const CreaseSides* before) {
-  const bool may_split = options.smooth && options.texture && options.ball_relief && options.lift_ball &&
-                         !(options.sphere_radius_m > 0.0) && manifold.getNumContacts() > 0;
-  if (!may_split) return applyToEachPoint(manifold, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
-  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
-  const Eigen::Isometry3d world_to_mesh = mesh_to_world.inverse();
-  const Eigen::Vector3d c = world_to_mesh * ball.centre_world;
-  // Every point's foot over the surface (by an edge a point past it keeps its own rule).
-  std::optional<MeshPlace> first;
-  std::uint32_t triangle = 0;
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  for (int k = 0; k < manifold.getNumContacts(); ++k) {
-    const std::optional<MeshPlace> place = placeOf(manifold.getContactPoint(k), mesh_is_b, world_to_mesh, mesh);
-    if (!place) return applyToEachPoint(manifold, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
-    std::uint32_t t = place->triangle;
-    Eigen::Vector3d at = place->barycentric;
-    if (!smoothFoot(contact_mesh, c, 1.0, t, at))
-      return applyToEachPoint(manifold, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
-    if (k == 0) first = place, triangle = t, b = at;
+  if (!options.smooth || manifold.getNumContacts() == 0) return;
+  // Every point's foot over the surface (by an edge a point past it keeps its own rule); the
+  // contacts read at the first's (the others' feet are the same but for rounding).
+  std::optional<BallContactsAtFoot> at;
+  bool all_over = true;
+  for (int k = 0; k < manifold.getNumContacts() && all_over; ++k) {
+    const std::optional<BallContactsAtFoot> foot =
+        k == 0 ? ballContactsAtFoot(manifold.getContactPoint(k), mesh_is_b, mesh_to_world, contact_mesh, ball, options, true)
+               : std::nullopt;
+    if (k == 0) at = foot;
+    if (k == 0 ? !at : !ballFootIsOverSurface(manifold.getContactPoint(k), mesh_is_b, mesh_to_world, contact_mesh, ball))
+      all_over = false;
   }
-  const double r = ball.radius_m;
-  const BallOverSurface at =
-      ballOverSurface(manifold.getContactPoint(0), mesh_is_b, world_to_mesh, contact_mesh, *first, triangle, b, c, r);
-  const BallReliefContacts contacts = ballOnReliefContacts(contact_mesh, c, at.side, triangle, b, r, options, true);
-  if (contacts.count == 1) {
+  if (!all_over || at->contacts.count == 1) {
     // As applyBallMeshContact rewrites each point (the first's contact is the one just read).
-    btManifoldPoint& point = manifold.getContactPoint(0);
-    setCreaseSide(point, 0);
-    writeBallContact(point, mesh_is_b, mesh_to_world, at, contacts.side[0].normal, contacts.side[0].lift_m, ball, other,
-                     options, step);
-    for (int k = 1; k < manifold.getNumContacts(); ++k) {
-      setCreaseSide(manifold.getContactPoint(k), 0);
-      applyBallMeshContact(manifold.getContactPoint(k), mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
+    for (int k = 0; k < manifold.getNumContacts(); ++k) {
+      btManifoldPoint& point = manifold.getContactPoint(k);
+      setCreaseTag(point, 0);
+      if (k == 0 && all_over)
+        writeBallContactAtFoot(point, mesh_is_b, mesh_to_world, *at, 0, ball, other, options, step, manifold);
+      else
+        applyBallMeshContact(point, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
     }
     return;
   }
-  // One point per side. A side whose point the detection dropped (a full manifold drops one for
+  // One point per side: those tagged keep theirs (Bullet refreshed them with points found near
+  // them, or kept them), a side whose point the detection dropped (a full manifold drops one for
   // each new point) comes back as it was before it (`before`), its impulse kept for the solver's
   // warm start; a side never seen takes an untagged point (the single contact's passes its
   // impulse on) or, without one, a copy of the other side's with none. The rest go.
   bool has[2] = {false, false};
   for (int k = 0; k < manifold.getNumContacts(); ++k) {
-    const int tag = creaseSideOf(manifold.getContactPoint(k));
+    const int tag = creaseTagOf(manifold.getContactPoint(k));
     if (tag == 1 || tag == 2) has[tag - 1] = true;
   }
+  const auto kept = [&](int side) { return before && before->has[side]; };
   for (int k = 0; k < manifold.getNumContacts(); ++k) {
     btManifoldPoint& point = manifold.getContactPoint(k);
-    if (creaseSideOf(point) != 0) continue;
-    const int free = !has[0] && !(before && before->has[0]) ? 0 : !has[1] && !(before && before->has[1]) ? 1 : -1;
-    if (free >= 0) setCreaseSide(point, free + 1), has[free] = true;
+    if (creaseTagOf(point) != 0) continue;
+    const int free = !has[0] && !kept(0) ? 0 : !has[1] && !kept(1) ? 1 : -1;
+    if (free >= 0) setCreaseTag(point, free + 1), has[free] = true;
   }
   bool seen[2] = {false, false};
   for (int k = manifold.getNumContacts() - 1; k >= 0; --k) {
-    const int tag = creaseSideOf(manifold.getContactPoint(k));
+    const int tag = creaseTagOf(manifold.getContactPoint(k));
     if ((tag == 1 || tag == 2) && !seen[tag - 1]) {
       seen[tag - 1] = true;
       continue;
@@ -554,38 +594,30 @@ void applyBallMeshManifold(btPersistentManifold& manifold, bool mesh_is_b, const
     manifold.removeContactPoint(k);  // untagged, or a side's second point
   }
   for (int k = 0; k < 2; ++k) {
-    if (has[k] || !before || !before->has[k]) continue;
+    if (has[k] || !kept(k)) continue;
     manifold.addManifoldPoint(before->point[k]);
     has[k] = true;
   }
   for (int k = 0; k < 2; ++k) {
     if (has[k]) continue;
     btManifoldPoint added = manifold.getContactPoint(0);
-    added.m_appliedImpulse = 0;
-    added.m_appliedImpulseLateral1 = 0;
-    added.m_appliedImpulseLateral2 = 0;
-    added.m_prevRHS = 0;
-    added.m_lifeTime = 0;
-    added.m_userPersistentData = nullptr;
-    setCreaseSide(manifold.getContactPoint(manifold.addManifoldPoint(added)), k + 1);
+    startCreasePoint(added, k + 1, nullptr);
+    manifold.addManifoldPoint(added);
   }
-  const btTransform& body0 = manifold.getBody0()->getWorldTransform();
-  const btTransform& body1 = manifold.getBody1()->getWorldTransform();
   for (int k = 0; k < manifold.getNumContacts(); ++k) {
     btManifoldPoint& point = manifold.getContactPoint(k);
-    // Each side is a wall the ball meets as Bullet meets a plane, its gap taken along its normal:
-    // not held at its height with the ball's sliding frozen in (steerContact's hold_height, for
-    // a ball rolling over a relief), which let the ball sway across the floor of a groove at
-    // up to 10 mm/s, each wall a spring that held its height and let it slide on.
-    const BallReliefContact& side = contacts.side[creaseSideOf(point) - 1];
-    point.m_distance1 = static_cast<btScalar>((at.gap_m - side.lift_m) * side.normal.dot(at.n_geometric));
-    steerBallContact(point, mesh_is_b, mesh_to_world.linear() * side.normal, mesh_to_world.linear() * at.n_geometric, ball,
-                     other, false, step);
-    // Bullet's refresh next step recomputes each point from its local points along its normal and
-    // drops one whose two ends drift apart across it: where the rewrite put it, they do not.
-    point.m_localPointA = body0.invXform(point.m_positionWorldOnB + point.m_normalWorldOnB * point.m_distance1);
-    point.m_localPointB = body1.invXform(point.m_positionWorldOnB);
+    writeBallContactAtFoot(point, mesh_is_b, mesh_to_world, *at, creaseTagOf(point) - 1, ball, other, options, step,
+                           manifold);
   }
+}
+
+bool ballFootIsOverSurface(const btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                           const ContactMesh& contact_mesh, const ObjectBall& ball) {
+  const std::optional<MeshPlace> place = placeOf(point, mesh_is_b, mesh_to_world.inverse(), *contact_mesh.mesh);
+  if (!place) return false;
+  std::uint32_t triangle = place->triangle;
+  Eigen::Vector3d b = place->barycentric;
+  return smoothFoot(contact_mesh, mesh_to_world.inverse() * ball.centre_world, 1.0, triangle, b);
 }
 
 void applyMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,

@@ -31,6 +31,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "clients/physics/normal_map_contact.hpp"
@@ -167,6 +168,7 @@ struct BallReliefContact {
 struct BallReliefContacts {
   BallReliefContact side[2];  // split: [0] the side against the axis, [1] along it
   int count = 1;
+  bool crease = false;  // the lift has a crease there (split where `may_split`)
 };
 BallReliefContacts ballOnReliefContacts(const ContactMesh& mesh, const Eigen::Vector3d& c, double side,
                                         std::uint32_t triangle, const Eigen::Vector3d& b, double r,
@@ -207,23 +209,65 @@ void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::I
                           const ContactMesh& mesh, const ObjectBall& ball, const btCollisionObject& other,
                           const MeshContactOptions& options, const StepContext& step = {});
 
-// A ball's crease points (applyBallMeshManifold) as they were before the detection added this
-// step's points: a full manifold drops one of its points for each new one, and a side's point
-// dropped that way comes back with the impulse it carried.
+// A ball's contacts read at the foot of one of its manifold points (`ball` made it): where its
+// centre stands from the smooth surface there, and the contact (applyBallMeshContact's) or, where
+// `may_split` and its lift has a crease, one for each side (ballOnReliefContacts). nullopt where
+// that foot is not over the surface (past a crease: ballPastCrease) or the point's triangle is
+// out of range.
+struct BallContactsAtFoot {
+  double side = 1.0;                                          // -1: behind the winding
+  Eigen::Vector3d n_geometric = Eigen::Vector3d::UnitZ();    // the smooth surface's, towards it
+  double gap_m = 0.0;                                         // to the smooth surface
+  BallReliefContacts contacts;  // without a relief, the steered normal and no lift
+  std::uint32_t foot_triangle = 0;
+};
+std::optional<BallContactsAtFoot> ballContactsAtFoot(const btManifoldPoint& point, bool mesh_is_b,
+                                                     const Eigen::Isometry3d& mesh_to_world, const ContactMesh& mesh,
+                                                     const ObjectBall& ball, const MeshContactOptions& options,
+                                                     bool may_split);
+// The same for a ball with no point of its own, its foot walked to from `triangle` (a ball in
+// front of the surface where its centre lies on it).
+std::optional<BallContactsAtFoot> ballContactsNear(std::uint32_t triangle, const Eigen::Isometry3d& mesh_to_world,
+                                                   const ContactMesh& mesh, const ObjectBall& ball,
+                                                   const MeshContactOptions& options, bool may_split);
+// Whether the foot of `ball`'s centre, walked to from `point`'s triangle, is over the surface.
+bool ballFootIsOverSurface(const btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                           const ContactMesh& mesh, const ObjectBall& ball);
+// Writes contact `k` of `at` into `point` of `manifold`: one contact as applyBallMeshContact
+// writes it (held at its height); a side of a crease as Bullet meets a plane (its gap along its
+// normal: held at their heights the two walls let the ball slide on into each and it swayed
+// across a groove's floor at up to 10 mm/s), its local points set where the rewrite put it so
+// that Bullet's refresh next step keeps it.
+void writeBallContactAtFoot(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                            const BallContactsAtFoot& at, int k, const ObjectBall& ball, const btCollisionObject& other,
+                            const MeshContactOptions& options, const StepContext& step,
+                            const btPersistentManifold& manifold);
+
+// Which side of a crease a point stands for: 0 none; 1 + side (BallReliefContacts::side) + 2 slot,
+// slot 0 for a ball alone, 0 and 1 for a capsule's two balls split at a crease
+// (ball_on_object_faces.hpp). Kept in the point's user data, the one field Bullet keeps when it
+// refreshes a point with one found near it.
+int creaseTagOf(const btManifoldPoint& point);
+void setCreaseTag(btManifoldPoint& point, int tag);
+
+// A manifold's crease points as they were before the detection added this step's points: a
+// full manifold drops one of its points for each new one, and a side's point dropped that way
+// comes back with the impulse it carried.
 struct CreaseSides {
-  btManifoldPoint point[2];
-  bool has[2] = {false, false};
+  static constexpr int kTags = 4;
+  btManifoldPoint point[kTags];  // by tag - 1
+  bool has[kTags] = {false, false, false, false};
 };
 CreaseSides creaseSidesOf(const btPersistentManifold& manifold);
+// Makes `point` (a copy of another) a new crease point `tag`: the impulses it carried before
+// (`before`, nullptr: none) for the solver's warm start, or none.
+void startCreasePoint(btManifoldPoint& point, int tag, const CreaseSides* before);
 
 // A ball's whole manifold with a relief mesh (`ball` of `other`, a sphere): every point as
 // applyBallMeshContact rewrites it, except where every point's foot stands over the surface and
-// ballOnReliefContacts splits the contact at a crease: then one point for each side, each tagged
-// with its side (kept in the point's user data, the one field Bullet keeps when it refreshes a
-// point with one found near it, so each side keeps its impulse between steps), the others
-// removed, a side missing brought back from `before` (creaseSidesOf before this step's
-// detection; nullptr: none) or added; each side point's local points set where the rewrite put
-// it, so that Bullet's refresh next step keeps it. The manifold's body 1 is the mesh where `mesh_is_b`.
+// ballOnReliefContacts splits the contact at a crease: then one point for each side (tags 1 and
+// 2), the others removed, a side missing brought back from `before` (creaseSidesOf before this
+// step's detection; nullptr: none) or added. The manifold's body 1 is the mesh where `mesh_is_b`.
 void applyBallMeshManifold(btPersistentManifold& manifold, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                            const ContactMesh& mesh, const ObjectBall& ball, const btCollisionObject& other,
                            const MeshContactOptions& options, const StepContext& step = {},

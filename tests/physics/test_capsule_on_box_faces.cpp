@@ -31,23 +31,28 @@ FaceTexture facesOf(const tex::TextureMap& map) {
 struct Lying {
   Eigen::Vector3d centre, axis;
   double speed = 0.0;
+  double fastest_last_second = 0.0;  // kept awake (`awake`), else with the rest detector on
 };
 Lying letDownLying(const tex::TextureMap& map, const Eigen::Vector3d& axis, double x, double y, double seconds,
-                   double rolling_friction = 0.0) {
+                   double rolling_friction = 0.0, bool awake = false) {
   PhysicsWorld world;
   world.addTexturedBox(kSlabHalf, 0.0, at(0.0, 0.0, -kSlabHalf.z()), {1.0, 0.0, 0.0}, facesOf(map));
   Eigen::Isometry3d pose = at(x, y, kRadius + 1e-4);
   pose.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
   btRigidBody& capsule = world.addCapsule(kRadius, kHalfLength, kCapsuleMass, pose, {0.3, 0.0, rolling_friction});
-  for (int k = 0; k < int(std::lround(seconds / kDt)); ++k) world.step(kDt);
+  const int steps = int(std::lround(seconds / kDt));
+  double fastest = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    if (awake) capsule.activate(true);
+    world.step(kDt);
+    if (k >= steps - int(std::lround(1.0 / kDt))) fastest = std::max(fastest, double(capsule.getLinearVelocity().length()));
+  }
   const Eigen::Isometry3d now = toEigen(capsule.getWorldTransform());
-  return {now.translation(), now.linear().col(2), double(toEigen(capsule.getLinearVelocity()).norm())};
+  return {now.translation(), now.linear().col(2), double(toEigen(capsule.getLinearVelocity()).norm()), fastest};
 }
 
 // Lying along a groove, a capsule's cross-section is a ball's: it rests on the groove's two rims,
-// sqrt(r^2 - (P/2)^2) over the ridges' top (4.583 mm; on the coarse box, 5 mm). Without rolling
-// friction it rocks from rim to rim as a plain ball in a V-groove does (up to 0.5 mm/s after 4 s,
-// docs/physics.md "Known gaps"); with 2e-5 m it rests.
+// sqrt(r^2 - (P/2)^2) over the ridges' top (4.583 mm; on the coarse box, 5 mm).
 TEST(CapsuleOnBoxFaces, ACapsuleLyingInAGrooveRestsOnItsRims) {
   const tex::TextureMap map = heightMap(128, kExtent, vGrooves);
   const Lying lying = letDownLying(map, Eigen::Vector3d::UnitY(), 0.5 * kPeriod + 1e-4, 0.013, 1.0, 2e-5);
@@ -59,6 +64,23 @@ TEST(CapsuleOnBoxFaces, ACapsuleLyingInAGrooveRestsOnItsRims) {
   EXPECT_NEAR(lying.centre.x(), 0.5 * kPeriod, 20e-6);
   EXPECT_LT(std::fabs(lying.axis.z()), 1e-3);
   EXPECT_LT(lying.speed, 1e-5);
+}
+
+// Without rolling friction, kept awake, it is still: the balls at the ends of its run each meet
+// both rims (splitCapsuleAtCreases). Before, each ball took one normal blended across the
+// groove's floor and it rocked from rim to rim at 1.5-3.1 mm/s in its second second (up to
+// 0.5 mm/s after 4 s).
+TEST(CapsuleOnBoxFaces, WithoutRollingFrictionACapsuleLyingInAGrooveIsStill) {
+  const tex::TextureMap map = heightMap(128, kExtent, vGrooves);
+  for (const double off : {0.0, 4e-4}) {
+    const Lying lying = letDownLying(map, Eigen::Vector3d::UnitY(), 0.5 * kPeriod + off, 0.013, 2.0, 0.0, true);
+    std::printf("[measured] along a groove, let down %.1f mm off its floor, no rolling friction: fastest in the second "
+                "second %.4f mm/s, %.4f mm over the ridges\n",
+                off * 1e3, lying.fastest_last_second * 1e3, lying.centre.z() * 1e3);
+    EXPECT_LT(lying.fastest_last_second, 1e-5) << off;
+    EXPECT_NEAR(lying.centre.z(), std::sqrt(kRadius * kRadius - 0.25 * kPeriod * kPeriod), 10e-6) << off;
+    EXPECT_NEAR(lying.centre.x(), 0.5 * kPeriod, 20e-6) << off;
+  }
 }
 
 // Lying across the grooves it rests on their ridges though both its ends lie over grooves: at
