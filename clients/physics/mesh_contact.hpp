@@ -20,7 +20,9 @@
 // and its gap is measured there to Phong's surface (mesh::FrameMode::InterpolatedPhong), not to
 // the flat triangle: a ball rolling fast over a tessellated sphere's convex edges would
 // otherwise turn about each edge at its own radius and hop from edge to edge. On a relief, a
-// ball's gap is measured further to the relief as its sphere meets it (MeshContactOptions::lift_ball).
+// ball's gap is measured further to the relief as its sphere meets it (MeshContactOptions::lift_ball),
+// and where that lift has a crease under its centre (a groove's floor, two rims) it gets one
+// contact for each side, each wall met as a plane (ballOnReliefContacts, applyBallMeshManifold).
 // Boxes, capsules and cylinders meet a chart instead (mesh_relief_chart.hpp, relief_collision.hpp)
 // unless MeshContactOptions::smooth_chart is false: their points come with the smooth surface's
 // place and gap, and a normal map steers them (steerChartContact).
