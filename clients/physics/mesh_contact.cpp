@@ -450,19 +450,28 @@ std::optional<BallContactsAtFoot> ballContactsNear(std::uint32_t triangle, const
                           ball.radius_m, options, may_split, [] { return 1.0; });
 }
 
+namespace {
+
+// A ball's one contact (not split), as applyBallMeshContact writes it.
+void writeOneBallContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
+                         const BallContactsAtFoot& at, const ObjectBall& ball, const btCollisionObject& other,
+                         const MeshContactOptions& options, const StepContext& step) {
+  const BallReliefContact& contact = at.contacts.side[0];
+  // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
+  // surface (steerContact's rule, with that gap).
+  point.m_distance1 = static_cast<btScalar>(at.gap_m - contact.lift_m);
+  steerBallContact(point, mesh_is_b, mesh_to_world.linear() * contact.normal, mesh_to_world.linear() * at.n_geometric,
+                   ball, other, options.hold_height, step);
+}
+
+}  // namespace
+
 void writeBallContactAtFoot(btManifoldPoint& point, bool mesh_is_b, const Eigen::Isometry3d& mesh_to_world,
                             const BallContactsAtFoot& at, int k, const ObjectBall& ball, const btCollisionObject& other,
                             const MeshContactOptions& options, const StepContext& step,
                             const btPersistentManifold& manifold) {
+  if (at.contacts.count == 1) return writeOneBallContact(point, mesh_is_b, mesh_to_world, at, ball, other, options, step);
   const BallReliefContact& contact = at.contacts.side[k];
-  if (at.contacts.count == 1) {
-    // Lifted: the gap the solver holds is to the relief as the ball meets it, not to the smooth
-    // surface (steerContact's rule, with that gap).
-    point.m_distance1 = static_cast<btScalar>(at.gap_m - contact.lift_m);
-    steerBallContact(point, mesh_is_b, mesh_to_world.linear() * contact.normal, mesh_to_world.linear() * at.n_geometric,
-                     ball, other, options.hold_height, step);
-    return;
-  }
   // Each side is a wall the ball meets as Bullet meets a plane, its gap taken along its normal:
   // not held at its height with the ball's sliding frozen in (steerContact's hold_height, for a
   // ball rolling over a relief), which let the ball sway across the floor of a groove at up to
@@ -499,10 +508,7 @@ void applyBallMeshContact(btManifoldPoint& point, bool mesh_is_b, const Eigen::I
   const std::optional<BallContactsAtFoot> at =
       ballContactsAtFoot(point, mesh_is_b, mesh_to_world, contact_mesh, ball, options, false);
   if (!at) return ballNotOverSurface(point, mesh_is_b, mesh_to_world, contact_mesh, ball, other, options, step);
-  // A point-only rewrite has no manifold to set local points in; one contact needs none.
-  point.m_distance1 = static_cast<btScalar>(at->gap_m - at->contacts.side[0].lift_m);
-  steerBallContact(point, mesh_is_b, mesh_to_world.linear() * at->contacts.side[0].normal,
-                   mesh_to_world.linear() * at->n_geometric, ball, other, options.hold_height, step);
+  writeOneBallContact(point, mesh_is_b, mesh_to_world, *at, ball, other, options, step);
 }
 
 int creaseTagOf(const btManifoldPoint& point) {
