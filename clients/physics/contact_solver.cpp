@@ -3,17 +3,37 @@
 #include <algorithm>
 #include <initializer_list>
 
+#include "clients/physics/textured_ball.hpp"
+
 namespace thx::phys {
+
+namespace {
+// Whether a ball with a bump map (textured_ball.hpp) has a contact point among the manifolds.
+bool holdsTexturedBall(btPersistentManifold* const* manifolds, int num_manifolds) {
+  for (int m = 0; m < num_manifolds; ++m)
+    if (manifolds[m]->getNumContacts() > 0 && (ballTextureOf(*manifolds[m]->getBody0()->getCollisionShape()) ||
+                                               ballTextureOf(*manifolds[m]->getBody1()->getCollisionShape())))
+      return true;
+  return false;
+}
+}  // namespace
+
+void ContactSolver::prepareSolve(int num_bodies, int num_manifolds) {
+  released_ = 0;
+  clamped_ = 0;
+  shared_ = 0;
+  btSequentialImpulseConstraintSolver::prepareSolve(num_bodies, num_manifolds);
+}
 
 btScalar ContactSolver::solveGroup(btCollisionObject** bodies, int num_bodies, btPersistentManifold** manifolds,
                                    int num_manifolds, btTypedConstraint** constraints, int num_constraints,
                                    const btContactSolverInfo& info, btIDebugDraw* debug_draw,
                                    btDispatcher* dispatcher) {
-  released_ = 0;
-  clamped_ = 0;
-  shared_ = 0;
+  btContactSolverInfo group_info = info;
+  if (group_info.m_numIterations < textured_ball_iterations_ && holdsTexturedBall(manifolds, num_manifolds))
+    group_info.m_numIterations = textured_ball_iterations_;
   return btSequentialImpulseConstraintSolver::solveGroup(bodies, num_bodies, manifolds, num_manifolds, constraints,
-                                                         num_constraints, info, debug_draw, dispatcher);
+                                                         num_constraints, group_info, debug_draw, dispatcher);
 }
 
 namespace {

@@ -67,11 +67,17 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   broadphase_ = std::make_unique<btDbvtBroadphase>();
   // Bullet's solver, except that friction never outlives its contact's normal impulse
   // (contact_solver.hpp: a box on a normal map slid 12 % slow without this).
-  solver_ = std::make_unique<ContactSolver>();
+  auto solver = std::make_unique<ContactSolver>();
+  solver->setTexturedBallIterations(options.textured_ball_solver_iterations);
+  solver_ = std::move(solver);
   world_ = std::make_unique<TexturedWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(), configuration_.get());
   box_ground_funcs_->faces.solver = &world_->getSolverInfo();
   world_->setGravity(toBt(options.gravity_m_per_s2));
   world_->getSolverInfo().m_numIterations = options.solver_iterations;
+  // Each island solved on its own (Bullet batches islands of fewer than 128 constraints into one
+  // solve), so that only an island holding a bump-mapped ball's contacts runs its iterations
+  // (contact_solver.hpp); the answers of independent islands do not depend on the batching.
+  world_->getSolverInfo().m_minimumSolverBatchSize = 1;
   if (options.friction_along_slip) world_->getSolverInfo().m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
   if (options.friction_disc) world_->getSolverInfo().m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
   world_->setRestOptions(options.rest);

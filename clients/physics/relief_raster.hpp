@@ -59,7 +59,9 @@ void withObjectNormal(const TexturedObjectSurface& object, ReliefCandidate& c);
 // neighbours locates the minimum within the texel; the relief is then sampled there bilinearly
 // (the project's one sampling convention) for its height and normal. With `bend`, on the bent
 // ground as rasterizeRelief reads it. With `object_texture` (a ball with a bump map), the pair's
-// depth, as rasterizeRelief reads it, and the mean of the two surfaces' normals there.
+// depth, as rasterizeRelief reads it, and the mean of the two surfaces' normals there; where its
+// point lies near the texel's border, the parabolas are fitted again through it until it settles,
+// so that the two texels either side of a basin's bottom give one point.
 ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,
                               const GroundBend* bend = nullptr, const FaceTexture* object_texture = nullptr);
 

@@ -5,8 +5,8 @@
 // listed: in kRestBy (with the time by which it is at rest) or, while it is not silent yet, in
 // kOpen. Built twice: in physics_client_tests it checks the scenes that rest within a few
 // simulated seconds on spheres (fast under the sanitizer too); in physics_client_slow_tests
-// (THX_SCENE_REST_SLOW, ctest label `slow`) the boxes on a relief (letter_blocks: a box
-// rasterises ~300x slower under ASan) and the zig-zag street (6 s).
+// (THX_SCENE_REST_SLOW, ctest label `slow`) the boxes on a relief (letter_blocks, grooved_block,
+// grooved_board: a box rasterises ~300x slower under ASan) and the zig-zag street (6 s).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -42,15 +42,12 @@ const std::map<std::string, RestBy> kRestBy = {
     {"marble_bowl", {2.0, false}},     {"grooved_block", {1.0, true}},
     {"two_pens_two_balls", {1.0, false}}, {"capsule_bricks", {2.0, false}},
     {"two_pens_pinch", {6.0, false}},  {"grooved_block_bowl", {1.0, false}},
-    {"dimpled_ball_grooves", {1.0, false}},
+    {"dimpled_ball_grooves", {1.0, false}}, {"grooved_board", {2.0, true}},
 };
 // Not silent yet (docs/physics.md, "Known gaps"), each with what was measured.
 const std::map<std::string, const char*> kOpen = {
     {"marble_rolling_bricks", "rolls on across the joints by design (the audio client's onset check, no rolling friction)"},
     {"two_pens", "no objects: two pens on the bricks (hapticd's several devices), nothing for physics to settle"},
-    {"grooved_board", "measured 2026-12-04 from 1.5 to 3 s: the marble with fine bumps creeps along its groove at "
-                      "0.05-0.07 mm/s with spikes to 1.4 mm/s (the blocks are still: 0.0009 mm/s at most; "
-                      "docs/physics.md, Known gaps)"},
 };
 #ifdef THX_SCENE_REST_SLOW
 constexpr bool kSlowBuild = true;
