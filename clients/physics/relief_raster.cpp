@@ -123,10 +123,10 @@ void withObjectNormal(const TexturedObjectSurface& object, ReliefCandidate& c) {
 }
 
 namespace {
-// A ball with a bump map's point within kRefineNearBorder of its texel's border (in texels from
-// its centre): the parabolas fitted again through it, each round through points half as far
-// apart (from a quarter texel), at most kRefineRounds times, until it moves less than
-// kRefineSettled (in texels; at 0.31 mm texels: 0.15 um and 3 nm).
+// A ball with a bump map's point farther than kRefineNearBorder from its texel's centre (in
+// texels): the parabolas fitted again through it, each round through points half as far apart
+// (from kRefineFirstSpan), at most kRefineRounds times (the last round's points 0.15 um apart on
+// a 0.31 mm texel), until it moves less than kRefineSettled (3 nm there).
 constexpr double kRefineNearBorder = 0.4;
 constexpr double kRefineFirstSpan = 0.25;
 constexpr int kRefineRounds = 10;
