@@ -74,8 +74,8 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   box_ground_funcs_->faces.solver = &world_->getSolverInfo();
   world_->setGravity(toBt(options.gravity_m_per_s2));
   world_->getSolverInfo().m_numIterations = options.solver_iterations;
-  // Each island solved on its own (Bullet batches islands of fewer than 128 constraints into one
-  // solve), so that only an island holding a bump-mapped ball's contacts runs its iterations
+  // Each island solved on its own (Bullet batches islands until they hold 128 manifolds and
+  // joints into one solve), so that only an island holding a bump-mapped ball's contacts runs its iterations
   // (contact_solver.hpp); the answers of independent islands do not depend on the batching.
   world_->getSolverInfo().m_minimumSolverBatchSize = 1;
   if (options.friction_along_slip) world_->getSolverInfo().m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
