@@ -70,9 +70,8 @@ namespace {
 
 // The chart at the foot f (on `triangle`) of an object reaching `reach_m`, on the side `side` of
 // the winding (a relief's chart is on the winding's side only).
-void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const mesh::SurfaceFrame& f, double side,
-                double reach_m, MeshChart& out) {
-  const mesh::TexturedMesh& m = *relief.mesh.mesh;
+void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const Eigen::Vector3d& b, const mesh::SurfaceFrame& f,
+                double side, double reach_m, MeshChart& out) {
   out.triangle = triangle;
   out.side = side;
   if (!relief.map) {
@@ -91,9 +90,15 @@ void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const mesh::Su
     out.bend.centre = Eigen::Vector2d::Zero();
     return;
   }
-  // The chart as the pen's (hapticd's chartAt): x along the tangent, y along the bitangent, the
-  // texture at this face's scale; uv taken within its tile so the chart's origin stays near.
-  const Eigen::Vector2d scale = mesh::metresPerUv(m, triangle, f);
+  // The chart as the pen's (hapticd's chartAt): x along the tangent, y along the bitangent, uv
+  // taken within its tile so the chart's origin stays near; but the texture at the scale its
+  // vertices' faces lay it at, interpolated to the foot (metresPerUvAt, as the lifted ball reads
+  // it), not at the foot's face's own (mesh::metresPerUv, the pen's), so that it does not jump at
+  // an edge. Near a lathe's pole the face's own scale halves across every other edge (a face's u
+  // edge on the ring of the pole's fan, or on the ring beyond: 2.52 and 1.26 mm per uv on the
+  // bowl of bricks), and the texture laid under an object there jumped each time its foot
+  // crossed one: a bump-mapped ball resting 2.4 mm from the pole was thrown up by 7 um each time.
+  const Eigen::Vector2d scale = metresPerUvAt(relief.mesh, triangle, b);
   const Eigen::Vector2d uv = f.uv - f.uv.array().floor().matrix();
   tex::PlaneMapping mapping;
   mapping.size_m = scale;
@@ -102,7 +107,11 @@ void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const mesh::Su
   mapping.plane_to_world.linear() = axes;
   const Eigen::Vector2d foot((uv.x() - 0.5) * scale.x(), (uv.y() - 0.5) * scale.y());
   mapping.plane_to_world.translation() = f.point - f.tangent * foot.x() - f.bitangent * foot.y();
-  out.surface = tex::TexturedSurface(*relief.map, mapping, relief.sampling, true);
+  // Where the uv squeezes the texture along one axis, its envelope merged along that axis
+  // (relief_envelope.hpp): the same tile, its texels about square on the chart.
+  const tex::TextureMap& map = envelopeFor(relief.envelopes, *relief.map, scale.x() / relief.map->width(),
+                                           scale.y() / relief.map->height());
+  out.surface = tex::TexturedSurface(map, mapping, relief.sampling, true);
   out.surface.setNormalsMadeFor(relief.normals_made_for_m);
   out.bend = fitBend(relief.mesh, f.point, axes, triangle, reach_m, side);
   out.bend.centre = foot;
@@ -121,7 +130,7 @@ bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach
   smoothFoot(relief.mesh, c, side, triangle, b);
   const mesh::SurfaceFrame f = mesh::frameAt(m, triangle, b, mesh::FrameMode::InterpolatedPhong);
   if (side * (c - f.point).dot(f.normal) < 0.0) return false;
-  layChartAt(relief, triangle, f, side, reach_m, out);
+  layChartAt(relief, triangle, b, f, side, reach_m, out);
   return true;
 }
 
@@ -129,10 +138,10 @@ bool chartOnFace(const MeshRelief& relief, const Eigen::Vector3d& c, double reac
                  double side, MeshChart& out) {
   const mesh::TexturedMesh& m = *relief.mesh.mesh;
   if (triangle >= m.triangles.size() || (relief.map && side < 0.0)) return false;
-  const mesh::SurfaceFrame f =
-      mesh::frameAt(m, triangle, mesh::closestBarycentric(m, triangle, c), mesh::FrameMode::InterpolatedPhong);
+  const Eigen::Vector3d b = mesh::closestBarycentric(m, triangle, c);
+  const mesh::SurfaceFrame f = mesh::frameAt(m, triangle, b, mesh::FrameMode::InterpolatedPhong);
   if (side * (c - f.point).dot(f.normal) <= 0.0) return false;
-  layChartAt(relief, triangle, f, side, reach_m, out);
+  layChartAt(relief, triangle, b, f, side, reach_m, out);
   return true;
 }
 

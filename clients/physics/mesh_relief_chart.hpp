@@ -2,8 +2,9 @@
 // A relief-textured static mesh as a box (textured or not), capsule, cylinder or ball with a bump
 // map meets it (issue 29, "Textured objects" on a curved surface, and plain objects as on the
 // relief plane): the mesh's tangent plane at the foot of the object's centre on the smooth
-// surface, with the texture laid on it at that face's scale (as hapticd's chart lays it for the
-// pen, server/textured_mesh_renderer.cpp), and the smooth surface's bend under it
+// surface, with the texture laid on it as hapticd's chart lays it for the pen
+// (server/textured_mesh_renderer.cpp) but at the scale interpolated from the vertices, and where
+// the uv squeezes it, its envelope (relief_envelope.hpp); and the smooth surface's bend under it
 // (ground_bend.hpp). On that chart the contacts come from the relief plane's rules
 // (relief_raster.hpp, relief_collision.hpp), the ground raised by the bend; for a textured box or
 // ball, from both reliefs: Otaduy et al.'s directional depth along the chart's normal.
@@ -34,6 +35,7 @@
 
 #include "clients/physics/ground_bend.hpp"
 #include "clients/physics/mesh_contact.hpp"
+#include "clients/physics/relief_envelope.hpp"
 #include "textures/sampling.hpp"
 #include "textures/texture_map.hpp"
 #include "textures/textured_surface.hpp"
@@ -45,6 +47,9 @@ struct MeshRelief {
   explicit MeshRelief(const mesh::TexturedMesh& m) : mesh(m) {}
   ContactMesh mesh;
   const tex::TextureMap* map = nullptr;  // a relief map; must outlive the shape. nullptr: a smooth chart
+  // The map's envelopes, for a chart where the uv squeezes it (relief_envelope.hpp); without them
+  // such a chart is read at a stride (relief_raster.cpp).
+  ReliefEnvelopes envelopes;
   // A smooth chart's grid: intervals along the object's longer side (layGridUnder; 8 at least).
   int grid_intervals = 16;
   tex::SampleOptions sampling;

@@ -125,6 +125,7 @@ btRigidBody& PhysicsWorld::addTexturedMesh(const mesh::TexturedMesh& mesh, const
     // Boxes, capsules and cylinders meet it on a chart: the relief's, or the smooth surface's alone.
     auto relief = std::make_unique<MeshRelief>(mesh);
     relief->map = relief_map ? options.texture : nullptr;
+    if (relief_map) relief->envelopes = buildReliefEnvelopes(*options.texture);
     relief->sampling = options.sampling;
     relief->normals_made_for_m = options.normals_made_for_m;
     relief->grid_intervals = options.chart_grid_intervals;

@@ -67,9 +67,11 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   const tex::Address address = surface.sampling().address;
   const Eigen::Vector2d texel = surface.mapping().texelSize(map);
   // A chart on a mesh whose uv squeezes the texture along one axis (a lathe near its pole: 32x at
-  // the bowl's centre) is read at the other axis's spacing along both. The squeezed features
-  // alias, and the contact's resolution is the coarser axis's; read texel by texel, a 16 mm box at
-  // the bowl's centre visited 83,000 texels a step.
+  // the bowl's centre) reads the relief's envelope merged along it (mesh_relief_chart.cpp); what
+  // is still squeezed (beyond the envelope's last level, or a relief without envelopes) is read at
+  // the other axis's spacing along both. The squeezed features alias, and the contact's
+  // resolution is the coarser axis's; read texel by texel, a 16 mm box at the bowl's centre
+  // visited 83,000 texels a step.
   if (bend) {
     const double tx = std::fabs(texel.x()), ty = std::fabs(texel.y());
     if (2.0 * tx <= ty) stats.stride_i *= (long long)(ty / tx);
