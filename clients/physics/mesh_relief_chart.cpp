@@ -5,12 +5,20 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "clients/physics/chart_boundary.hpp"
+#include "meshes/position_key.hpp"
 
 namespace thx::phys {
 
 namespace {
+
+// Edges from one position whose uv breaks at that end alone (each counted from both sides) that
+// make it a pole: 4 edges, a UV sphere of 4 segments' (every edge from a pole breaks so). Where
+// an atlas's seams meet, fewer break at one end alone (tests/physics/test_pole_fans.cpp).
+constexpr int kPoleEdges = 8;
 
 constexpr int kMeshReliefTag = 0x7468584d;  // "thXM": the user index marking an attached MeshRelief
 
@@ -56,6 +64,57 @@ GroundBend fitBend(const ContactMesh& cm, const Eigen::Vector3d& foot, const Eig
 
 }  // namespace
 
+std::vector<std::uint8_t> poleFans(const ContactMesh& contact_mesh) {
+  const mesh::TexturedMesh& m = *contact_mesh.mesh;
+  // The same place in the texture: uv differing by whole tiles (a wrapped seam) or not at all.
+  auto sameTexel = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const Eigen::Vector2d d = a - b;
+    return (d - d.array().round().matrix()).cwiseAbs().maxCoeff() < 1e-9;
+  };
+  // The uv of `triangle`'s corner at position p (nullptr where none is there).
+  auto uvAt = [&](std::uint32_t triangle, const Eigen::Vector3d& p) -> const Eigen::Vector2d* {
+    for (std::uint32_t v : m.triangles[triangle])
+      if (m.positions[v] == p) return &m.uvs[v];
+    return nullptr;
+  };
+  // Each edge where one end's uv continues across and the other's does not, counted at the end
+  // that does not (once from each side). Round a pole every edge from it is one; an atlas's
+  // corner (a cube-sphere's, a box's) has a few at most, its seams breaking both ends or one by
+  // chance.
+  std::unordered_map<mesh::PositionBits, int, mesh::PositionHash> broken;
+  for (std::uint32_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t across = contact_mesh.neighbours[t][std::size_t(k)];
+      if (across == mesh::kNoNeighbour) continue;
+      const std::uint32_t a = m.triangles[t][std::size_t((k + 1) % 3)], b = m.triangles[t][std::size_t((k + 2) % 3)];
+      const Eigen::Vector2d *ua = uvAt(across, m.positions[a]), *ub = uvAt(across, m.positions[b]);
+      if (!ua || !ub) continue;
+      const bool same_a = sameTexel(m.uvs[a], *ua), same_b = sameTexel(m.uvs[b], *ub);
+      if (same_a != same_b) ++broken[mesh::bitsOf(m.positions[same_a ? b : a])];
+    }
+  std::unordered_set<mesh::PositionBits, mesh::PositionHash> poles;
+  for (const auto& [at, edges] : broken)
+    if (edges >= kPoleEdges) poles.insert(at);
+  std::vector<std::uint8_t> pole(m.triangles.size(), 0);
+  if (poles.empty()) return pole;
+  std::unordered_set<mesh::PositionBits, mesh::PositionHash> fan_corners;
+  for (std::uint32_t t = 0; t < m.triangles.size(); ++t)
+    for (std::uint32_t v : m.triangles[t])
+      if (poles.count(mesh::bitsOf(m.positions[v]))) {
+        pole[t] = kPoleFan;
+        for (std::uint32_t w : m.triangles[t]) fan_corners.insert(mesh::bitsOf(m.positions[w]));
+        break;
+      }
+  // The fan's ring: triangles sharing a corner's position with a fan triangle.
+  for (std::uint32_t t = 0; t < m.triangles.size(); ++t)
+    if (pole[t] == 0)
+      for (std::uint32_t v : m.triangles[t])
+        if (fan_corners.count(mesh::bitsOf(m.positions[v]))) pole[t] = kPoleRing;
+  return pole;
+}
+
+MeshRelief::MeshRelief(const mesh::TexturedMesh& m) : mesh(m), pole(poleFans(mesh)) {}
+
 void attachMeshRelief(btCollisionShape& mesh_shape, const MeshRelief& relief) {
   mesh_shape.setUserPointer(const_cast<MeshRelief*>(&relief));
   mesh_shape.setUserIndex(kMeshReliefTag);
@@ -74,7 +133,7 @@ void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const Eigen::V
                 double side, double reach_m, MeshChart& out) {
   out.triangle = triangle;
   out.side = side;
-  if (!relief.map) {
+  if (out.smooth) {
     // Nothing laid on it: the frame is the smooth normal on the object's side and any tangent
     // (alignChart turns it, layGridUnder places its samples).
     const Eigen::Vector3d n = side * f.normal;
@@ -88,6 +147,12 @@ void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const Eigen::V
     out.surface = tex::TexturedSurface(smoothChartMap(), mapping, tex::SampleOptions{}, true);
     out.bend = fitBend(relief.mesh, f.point, axes, triangle, reach_m, side);
     out.bend.centre = Eigen::Vector2d::Zero();
+    // By a pole, samples no finer than the relief's coarser texel there, as its chart would read
+    // it: at a bump-mapped ball's own texels (61 um) a step cost five times as much.
+    if (relief.map) {
+      const Eigen::Vector2d scale = metresPerUvAt(relief.mesh, triangle, b);
+      out.least_cell_m = std::max(scale.x() / relief.map->width(), scale.y() / relief.map->height());
+    }
     return;
   }
   // The chart as the pen's (hapticd's chartAt): x along the tangent, y along the bitangent, uv
@@ -119,7 +184,8 @@ void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const Eigen::V
 
 }  // namespace
 
-bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle, MeshChart& out) {
+bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle,
+                bool& by_pole, MeshChart& out) {
   const mesh::TexturedMesh& m = *relief.mesh.mesh;
   if (triangle >= m.triangles.size()) triangle = mesh::nearestTriangle(m, c);
   Eigen::Vector3d b = mesh::closestBarycentric(m, triangle, c);
@@ -130,6 +196,9 @@ bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach
   smoothFoot(relief.mesh, c, side, triangle, b);
   const mesh::SurfaceFrame f = mesh::frameAt(m, triangle, b, mesh::FrameMode::InterpolatedPhong);
   if (side * (c - f.point).dot(f.normal) < 0.0) return false;
+  if (relief.pole[triangle] == kPoleFan) by_pole = true;
+  else if (relief.pole[triangle] == 0) by_pole = false;
+  out.smooth = !relief.map || by_pole;
   layChartAt(relief, triangle, b, f, side, reach_m, out);
   return true;
 }
@@ -141,6 +210,7 @@ bool chartOnFace(const MeshRelief& relief, const Eigen::Vector3d& c, double reac
   const Eigen::Vector3d b = mesh::closestBarycentric(m, triangle, c);
   const mesh::SurfaceFrame f = mesh::frameAt(m, triangle, b, mesh::FrameMode::InterpolatedPhong);
   if (side * (c - f.point).dot(f.normal) <= 0.0) return false;
+  out.smooth = !relief.map || relief.pole[triangle] == kPoleFan;
   layChartAt(relief, triangle, b, f, side, reach_m, out);
   return true;
 }

@@ -44,8 +44,10 @@ namespace thx::phys {
 
 // What the chart needs of a mesh; attached to its Bullet shape (attachMeshRelief).
 struct MeshRelief {
-  explicit MeshRelief(const mesh::TexturedMesh& m) : mesh(m) {}
+  explicit MeshRelief(const mesh::TexturedMesh& m);
   ContactMesh mesh;
+  // Per triangle, where it lies from a pole of the uv (poleFans): kPoleFan, kPoleRing or 0.
+  std::vector<std::uint8_t> pole;
   const tex::TextureMap* map = nullptr;  // a relief map; must outlive the shape. nullptr: a smooth chart
   // The map's envelopes, for a chart where the uv squeezes it (relief_envelope.hpp); without them
   // such a chart is read at a stride (relief_raster.cpp).
@@ -62,18 +64,36 @@ void attachMeshRelief(btCollisionShape& mesh_shape, const MeshRelief& relief);
 // The relief attached to a mesh shape; nullptr for any other shape.
 const MeshRelief* meshReliefOf(const btCollisionShape& shape);
 
+// A pole of the uv (a lathe's axis, a UV sphere's pole): one position whose copies hold the
+// texture coordinates of a row (u all round, v alike), so the uv is not continuous across the
+// edges of the fan of triangles round it (each such edge's end there has another u on either
+// side). kPoleFan: a triangle of that fan; kPoleRing: one sharing a corner's position with it.
+inline constexpr std::uint8_t kPoleFan = 2, kPoleRing = 1;
+std::vector<std::uint8_t> poleFans(const ContactMesh& mesh);
+
 struct MeshChart {
   tex::TexturedSurface surface;  // its plane frame is the chart, placed in the mesh's frame
   GroundBend bend;               // the smooth surface's height above the chart (chart frame)
   std::uint32_t triangle = 0;    // the foot's triangle
   double side = 1.0;             // -1: the chart faces against the mesh's winding (a smooth chart only)
+  bool smooth = false;           // nothing laid on it (smoothChartMap): its samples laid by layGridUnder
+  double least_cell_m = 0.0;     // a smooth chart's samples no closer (by a pole: the relief's texel)
 };
 
 // The chart under the point c (mesh frame) of an object reaching `reach_m` from it, starting the
 // walk at `triangle` (updated to the foot's; kNoNeighbour: from the nearest triangle, found by
 // looking at every one). False where c lies behind the winding of a relief mesh. A smooth chart's
 // plane is laid by layGridUnder afterwards.
-bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle, MeshChart& out);
+//
+// By a pole of the uv a relief's chart is smooth (nothing laid on it): the texture has no one
+// layout there. A chart laid at the foot took the u and the tangent of the fan's triangle under
+// it, which differ from one triangle to the next (by up to 1/128 of the way round the bowl of bricks),
+// so the texture laid under an object turned and slid as its foot crossed the fan's edges, and a
+// bump-mapped ball at the bowl's centre never came to rest. `by_pole` (the object's, kept between
+// steps) holds which: set where the foot is on the fan, cleared where it is beyond the fan's ring
+// of neighbours, kept on that ring, so that an object resting by the fan's edge stays on one.
+bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle,
+                bool& by_pole, MeshChart& out);
 
 // The chart of a surface across a crease from the one under the object (chart_boundary.hpp): at the
 // point of `triangle` nearest c, on the side `side` of the winding (the chart under the object's),

@@ -134,9 +134,10 @@ void laySmoothChart(MeshChart& chart, const btCollisionShape& shape, const Eigen
   const std::optional<Underside> underside =
       undersideOf(shape, chart.surface.mapping().plane_to_world.inverse() * mesh_from_object);
   if (!underside) return;
-  // A textured box's relief is read at its own texels (textured_box.hpp).
-  const double texel = faces ? faces->tile_m / double(std::max(faces->map->width(), faces->map->height()))
-                             : std::numeric_limits<double>::infinity();
+  // A textured box's relief is read at its own texels (textured_box.hpp), by a pole no finer than
+  // the mesh's relief there (MeshChart::least_cell_m).
+  const double own = faces ? faces->tile_m / double(std::max(faces->map->width(), faces->map->height())) : 0.0;
+  const double texel = faces ? std::max(chart.least_cell_m, own) : std::numeric_limits<double>::infinity();
   layGridUnder(chart, gridFootprint(*underside), intervals, texel);
 }
 
@@ -505,8 +506,8 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
   // of the object's reach: a marble rolling off a box's edge rode on at its height for 0.5 s.)
   triangles.getAabb(btTransform::getIdentity(), aabb_min, aabb_max);
   const bool within = reach.intersects(Eigen::AlignedBox3d(toEigen(aabb_min), toEigen(aabb_max)));
-  if (within && chartUnder(relief, centre, reach_m, foot_triangle_, chart)) {
-    if (!relief.map) laySmoothChart(chart, shape, mesh_from_object, relief.grid_intervals, texture);
+  if (within && chartUnder(relief, centre, reach_m, foot_triangle_, by_pole_, chart)) {
+    if (chart.smooth) laySmoothChart(chart, shape, mesh_from_object, relief.grid_intervals, texture);
     const ChartBoundary boundary =
         chartCollision(object, mesh, relief, triangles, faces, chart, kUnder, reach, threshold, result);
     // Each surface across a crease within reach, on a chart of its own at its point nearest the
@@ -518,7 +519,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
       const int slot = surfaceSlot(beyond.normal, held);
       if (slot == kUnder) continue;
       held |= 1u << std::size_t(slot);
-      if (!relief.map) laySmoothChart(across, shape, mesh_from_object, relief.grid_intervals, texture);
+      if (across.smooth) laySmoothChart(across, shape, mesh_from_object, relief.grid_intervals, texture);
       chartCollision(object, mesh, relief, triangles, faces, across, slot, reach, threshold, result);
     }
   } else {

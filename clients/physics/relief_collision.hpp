@@ -130,6 +130,7 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
 
   bool swapped_ = false;  // true: body0 is the relief plane, body1 the object
   std::uint32_t foot_triangle_ = 0xffffffffu;  // on a mesh: the triangle under the box last step
+  bool by_pole_ = false;                       // on a mesh: its chart smooth by a pole of the uv (chartUnder)
   btPersistentManifold* groups_[kNormalGroups - 1] = {};
   std::unique_ptr<SurfaceSlots> surfaces_;
   // Against a box or a ball with a bump map (box_ground.hpp): its surface as a mesh, the world's

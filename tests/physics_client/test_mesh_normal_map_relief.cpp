@@ -14,6 +14,7 @@
 #include "clients/physics_client/physics_scene.hpp"
 #include "scenes/scene_loader.hpp"
 #include "tests/support/bowl_scene.hpp"
+#include "tests/support/sanitized_build.hpp"
 
 namespace test_mesh_normal_map_relief {
 
@@ -124,20 +125,24 @@ TEST(MeshNormalMapRelief, ABlockOnALevelNormalMapSqueezedAtTheBowlsFloorComesToR
 
 namespace test_mesh_normal_map_relief {
 
-// The shipped bowl of bricks (128 segments) as its relief map and as its normal map (met as the
-// relief the normals integrate to), a block set down around the pole of the lathe's uv at
-// bench_block_by_pole's places within 2 mm of it, turned three ways: it comes to rest at every
-// one. There the chart under the block reads the bricks squeezed 16 to 31 times along u; read at
-// a stride, which texels it read moved with the block, and at its foot's triangle's own scale,
-// which halves across alternate edges there, the laid texture jumped (2026-12-05, the code
-// before: 14.3 mm/s at the pole on the normal map, 5.9 and 7.5 mm/s 2 mm from it). The chart now
-// reads the relief's envelope merged along u (relief_envelope.hpp) at the scale interpolated
-// from the vertices (mesh_relief_chart.cpp).
+// The shipped bowl of bricks (128 segments) as its normal map (met as the relief its normals
+// integrate to) and as its relief map, a block set down around the pole of the lathe's uv at
+// bench_block_by_pole's places 2 and 10 mm from a point 0.76 mm off it, turned three ways: it
+// comes to rest at every one. There the chart under the block reads the bricks squeezed 5 to 31
+// times along u; read at a stride, which texels it read moved with the block, and at its foot's
+// triangle's own scale, which halves across alternate edges by the pole, the laid texture jumped
+// (2026-12-05, the code before, with the chart smooth on the pole's fan as now: 3.96 and
+// 5.94 mm/s on the normal map's relief). The chart now reads the relief's envelope merged along u
+// (relief_envelope.hpp) at the scale interpolated from the vertices (mesh_relief_chart.cpp).
 TEST(MeshNormalMapRelief, ABlockAroundTheSqueezedPoleOfTheBowlComesToRestReadEitherWay) {
-  for (const char* representation : {"relief", "normal"}) {
+  // The sanitizer build: the normal map, turned the one way that rocked (39 s for all twelve).
+  const std::vector<const char*> representations =
+      thx::test::kSanitized ? std::vector<const char*>{"normal"} : std::vector<const char*>{"normal", "relief"};
+  const std::vector<double> turns = thx::test::kSanitized ? std::vector<double>{1.9} : std::vector<double>{0.3, 1.9, 3.6};
+  for (const char* representation : representations) {
     double worst = 0.0;
-    for (double r : {0.0, 2.0})
-      for (double turn : {0.3, 1.9, 3.6}) {
+    for (double r : {2.0, 10.0})
+      for (double turn : turns) {
         const Eigen::Vector2d at(0.0007 + 1e-3 * r * std::cos(turn), 0.0003 + 1e-3 * r * std::sin(turn));
         const double floor_z = -0.0352 + 0.0432 * (1.0 - std::sqrt(1.0 - at.squaredNorm() / (0.0552 * 0.0552)));
         char objects[320];
@@ -157,8 +162,8 @@ TEST(MeshNormalMapRelief, ABlockAroundTheSqueezedPoleOfTheBowlComesToRestReadEit
         worst = std::max(worst, peak);
         EXPECT_LT(peak, 1e-4) << representation << " r " << r << " mm, turned " << turn;
       }
-    std::printf("[measured] block around the bowl's pole (%s), six places within 2 mm: fastest 2-3 s %.4f mm/s\n",
-                representation, worst * 1e3);
+    std::printf("[measured] block around the bowl's pole (%s), %zu places 2 and 10 mm out: fastest 2-3 s %.4f mm/s\n",
+                representation, 2 * turns.size(), worst * 1e3);
   }
 }
 
