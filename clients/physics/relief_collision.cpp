@@ -260,9 +260,12 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 // relief's own where it is much flatter than the ball there (pair_contact_normal.hpp), found
 // afresh each step as a plain ball's are.
 // On a mesh's chart (`bend` its smooth surface's, `boundary` where it stops) as on the plane.
+// `settle_points`: every point refined until it settles (refineDeepest), for a smooth chart
+// sampled coarser than the ball's texels (by a pole of the uv, mesh_relief_chart.hpp).
 void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const ChartBoundary* boundary,
                            const Underside& underside, const FaceTexture& texture, double threshold,
-                           const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion, btManifoldResult* result) {
+                           const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion, btManifoldResult* result,
+                           bool settle_points = false) {
   thread_local std::vector<ReliefCandidate> candidates;
   candidates.clear();
   const GroundBend* bent = bend.flat() ? nullptr : &bend;
@@ -279,7 +282,7 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   for (std::size_t k = 0; k < n; ++k) {
     ReliefCandidate c = candidates[picked[k]];
     withObjectNormal(ball, c);
-    chosen[k] = refineDeepest(surface, underside, c, bent, &texture);
+    chosen[k] = refineDeepest(surface, underside, c, bent, &texture, settle_points);
   }
   smootherSurfaceNormals(surface, bent, ball, std::span(chosen.data(), n));
   flatterReliefNormals(surface, bent, ball, std::span(chosen.data(), n));
@@ -446,7 +449,8 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
     result->setPersistentManifold(manifold);
     manifold->clearManifold();
     texturedBallCollision(chart.surface, chart.bend, &boundary, *underside, *ball, threshold, world_from_chart,
-                          motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()), result);
+                          motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()), result,
+                          chart.least_cell_m > 0.0);
   } else if (faces) {
     texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, *faces, &boundary, threshold,
                          world_from_chart, slot, result);

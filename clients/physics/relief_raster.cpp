@@ -136,7 +136,7 @@ constexpr double kRefineSettled = 1e-5;
 }  // namespace
 
 ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,
-                              const GroundBend* bend, const FaceTexture* object_texture) {
+                              const GroundBend* bend, const FaceTexture* object_texture, bool settle_everywhere) {
   const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map());
   auto raised = [&](double x, double y) { return bend ? bend->height(x, y) : 0.0; };
   std::optional<TexturedObjectSurface> object;
@@ -165,7 +165,7 @@ ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Undersi
   double ox = vertex(depthAt(-1, 0), depthAt(1, 0));
   double oj = vertex(depthAt(0, -1), depthAt(0, 1));  // +j is -y
   if (ox == 0.0 && oj == 0.0) return c;
-  if (object && (std::fabs(ox) > kRefineNearBorder || std::fabs(oj) > kRefineNearBorder)) {
+  if (object && (settle_everywhere || std::fabs(ox) > kRefineNearBorder || std::fabs(oj) > kRefineNearBorder)) {
     // A ball with a bump map whose point lies near its texel's border, where the basin's bottom
     // may be the neighbour's too: the parabolas fitted again through the point found, along each
     // axis in turn, through points closer each round, until it settles, so that either texel

@@ -61,8 +61,11 @@ void withObjectNormal(const TexturedObjectSurface& object, ReliefCandidate& c);
 // ground as rasterizeRelief reads it. With `object_texture` (a ball with a bump map), the pair's
 // depth, as rasterizeRelief reads it, and the mean of the two surfaces' normals there; where its
 // point lies near the texel's border, the parabolas are fitted again through it until it settles,
-// so that the two texels either side of a basin's bottom give one point.
+// so that the two texels either side of a basin's bottom give one point; with
+// `settle_everywhere`, every point (on samples much coarser than the ball's texels one parabola
+// through three puts a bump tip's point micrometres off, on a side that changes as they move).
 ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,
-                              const GroundBend* bend = nullptr, const FaceTexture* object_texture = nullptr);
+                              const GroundBend* bend = nullptr, const FaceTexture* object_texture = nullptr,
+                              bool settle_everywhere = false);
 
 }  // namespace thx::phys
