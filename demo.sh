@@ -161,6 +161,13 @@ echo "   where the pen scrapes it"
 physics_scene_offline marble_bowl "^  (red|green|blue) " "marbles in the bowl of bricks"
 
 echo
+echo "== textured marbles on a textured curved surface: the same bowl with two bump-mapped marbles (sine bumps, dimples)"
+echo "   and a plain one (scenes/bumpy_marbles_bowl.yaml), both textures in each textured marble's contact; they roll"
+echo "   down, meet on the floor, and the pen strokes through them. Recorded in lock-step, physics-client on the recording,"
+echo "   frames every half second -> $OUT/visual_bumpy_marbles_bowl/, and heard"
+physics_scene_offline bumpy_marbles_bowl "^  (bumps|dimples|plain) " "bumpy marbles in the bowl of bricks"
+
+echo
 echo "== textured objects: a grooved block on a grooved plane (scenes/grooved_block.yaml), both reliefs in the contact:"
 echo "   the pen pushes it along the grooves (it slides, staying in them), then across (it climbs from groove to groove);"
 echo "   recorded in lock-step, physics-client on the recording, frames every half second -> $OUT/visual_grooved_block/, and heard"
@@ -193,4 +200,4 @@ done
   && echo "sessions: $OUT/study/*.csv; tables and plots: $OUT/study/study.md" || echo "study-analyze failed"
 
 echo
-echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png, $OUT/visual_two_pens/*.png, $OUT/visual_marble_bowl/*.png, $OUT/visual_grooved_block/*.png, $OUT/visual_grooved_block_bowl/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."
+echo "Statistics: $OUT/hapticd_*.json. Pictures: $OUT/*_preview.png, $OUT/visual/*.png, $OUT/visual_bowl*/*.png, $OUT/visual_two_pens/*.png, $OUT/visual_marble_bowl/*.png, $OUT/visual_bumpy_marbles_bowl/*.png, $OUT/visual_grooved_block/*.png, $OUT/visual_grooved_block_bowl/*.png. Sounds: $OUT/*.wav, their spectrograms $OUT/*_spectrogram.png."

@@ -161,6 +161,31 @@ TEST(ShippedSceneOutcome, MarblesRollDownTheBowlAndMeetOnItsFloor) {
   }
 }
 
+// The bumpy marbles (two with bump maps, one plain) roll down the bowl's inside wall, meet on its
+// floor as the plain marbles do, and come to rest there (scenes/bumpy_marbles_bowl.yaml). Not in
+// the sanitizer build: three seconds of two bump-mapped balls take minutes there (the balls by
+// the pole are tested there, TexturedBallByPole).
+TEST(ShippedSceneOutcome, BumpyMarblesRollDownTheBowlAndMeetOnItsFloor) {
+  if (kSanitized) GTEST_SKIP() << "minutes under the sanitizers; TexturedBallByPole runs the code there";
+  const SceneRun r = runScene("bumpy_marbles_bowl.yaml", 3.0);
+  constexpr double kFloorCentreZ = 0.0048 + 0.006;
+  for (const char* name : {"bumps", "dimples", "plain"}) {
+    const Track& m = r.tracks.at(name);
+    const Sample end = m.back();
+    double lowest = 1.0;
+    for (const Sample& s : m) lowest = std::min(lowest, s.local.z());
+    std::printf("[measured] %s ends %.1f mm from the floor's centre, its centre %.3f mm above resting on the floor "
+                "there; lowest %.3f mm above; %.2g m/s at the end\n",
+                name, end.local.head<2>().norm() * 1e3, (end.local.z() - kFloorCentreZ) * 1e3,
+                (lowest - kFloorCentreZ) * 1e3, end.speed);
+    EXPECT_LT(end.local.head<2>().norm(), 0.012) << name;  // the three touch: within two radii of the centre
+    EXPECT_LT(std::fabs(end.local.z() - kFloorCentreZ), 0.001) << name;
+    EXPECT_GT(lowest - kFloorCentreZ, -0.0005) << name;  // never into the floor
+    EXPECT_LT(reach(m), 0.055) << name;                   // inside the bowl (55.2 mm inside radius)
+    EXPECT_LT(end.speed, 1e-4) << name;                   // and at rest
+  }
+}
+
 // Sample of a track at time t (the last at or before it).
 Sample at(const Track& tr, double t) {
   Sample s = tr.front();

@@ -43,6 +43,7 @@ const std::map<std::string, RestBy> kRestBy = {
     {"two_pens_two_balls", {1.0, false}}, {"capsule_bricks", {2.0, false}},
     {"two_pens_pinch", {6.0, false}},  {"grooved_block_bowl", {1.0, false}},
     {"dimpled_ball_grooves", {1.0, false}}, {"grooved_board", {2.0, true}},
+    {"bumpy_marbles_bowl", {3.0, true}},
 };
 // Not silent yet (docs/physics.md, "Known gaps"), each with what was measured.
 const std::map<std::string, const char*> kOpen = {
