@@ -127,12 +127,14 @@ const MeshRelief* meshReliefOf(const btCollisionShape& shape) {
 
 namespace {
 
-// The chart at the foot f (on `triangle`) of an object reaching `reach_m`, on the side `side` of
-// the winding (a relief's chart is on the winding's side only).
+// The chart at the foot f (on `triangle`, barycentric b) of an object reaching `reach_m`, on the
+// side `side` of the winding (a relief's chart is on the winding's side only); smooth where the
+// caller has set out.smooth.
 void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const Eigen::Vector3d& b, const mesh::SurfaceFrame& f,
                 double side, double reach_m, MeshChart& out) {
   out.triangle = triangle;
   out.side = side;
+  out.least_cell_m = 0.0;
   if (out.smooth) {
     // Nothing laid on it: the frame is the smooth normal on the object's side and any tangent
     // (alignChart turns it, layGridUnder places its samples).
