@@ -162,8 +162,9 @@ physics_scene_offline marble_bowl "^  (red|green|blue) " "marbles in the bowl of
 
 echo
 echo "== textured marbles on a textured curved surface: the same bowl with two bump-mapped marbles (sine bumps, dimples)"
-echo "   and a plain one (scenes/bumpy_marbles_bowl.yaml), both textures in each textured marble's contact; they roll"
-echo "   down, meet on the floor, and the pen strokes through them. Recorded in lock-step, physics-client on the recording,"
+echo "   and a plain one (scenes/bumpy_marbles_bowl.yaml), both textures in each textured marble's contact (but by the"
+echo "   floor's centre, where the bricks squeeze to a point); they roll down, meet on the floor, and the pen strokes"
+echo "   through them. Recorded in lock-step, physics-client on the recording,"
 echo "   frames every half second -> $OUT/visual_bumpy_marbles_bowl/, and heard"
 physics_scene_offline bumpy_marbles_bowl "^  (bumps|dimples|plain) " "bumpy marbles in the bowl of bricks"
 

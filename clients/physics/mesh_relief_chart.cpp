@@ -149,8 +149,9 @@ void layChartAt(const MeshRelief& relief, std::uint32_t triangle, const Eigen::V
     out.surface = tex::TexturedSurface(smoothChartMap(), mapping, tex::SampleOptions{}, true);
     out.bend = fitBend(relief.mesh, f.point, axes, triangle, reach_m, side);
     out.bend.centre = Eigen::Vector2d::Zero();
-    // By a pole, samples no finer than the relief's coarser texel there, as its chart would read
-    // it: at a bump-mapped ball's own texels (61 um) a step cost five times as much.
+    // By a pole, a textured object's grid cells as long as the relief's coarser texel there (not
+    // its own texel's), as the relief's chart would read it: at a bump-mapped ball's own texels
+    // (61 um) a step cost five times as much.
     if (relief.map) {
       const Eigen::Vector2d scale = metresPerUvAt(relief.mesh, triangle, b);
       out.least_cell_m = std::max(scale.x() / relief.map->width(), scale.y() / relief.map->height());

@@ -77,7 +77,7 @@ struct MeshChart {
   std::uint32_t triangle = 0;    // the foot's triangle
   double side = 1.0;             // -1: the chart faces against the mesh's winding (a smooth chart only)
   bool smooth = false;           // nothing laid on it (smoothChartMap): its samples laid by layGridUnder
-  double least_cell_m = 0.0;     // a smooth chart's samples no closer (by a pole: the relief's texel)
+  double least_cell_m = 0.0;     // by a pole: the relief's coarser texel, a textured object's grid cells may be that long
 };
 
 // The chart under the point c (mesh frame) of an object reaching `reach_m` from it, starting the

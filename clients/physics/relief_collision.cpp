@@ -134,8 +134,8 @@ void laySmoothChart(MeshChart& chart, const btCollisionShape& shape, const Eigen
   const std::optional<Underside> underside =
       undersideOf(shape, chart.surface.mapping().plane_to_world.inverse() * mesh_from_object);
   if (!underside) return;
-  // A textured box's relief is read at its own texels (textured_box.hpp), by a pole no finer than
-  // the mesh's relief there (MeshChart::least_cell_m).
+  // A textured box's relief is read at its own texels (textured_box.hpp); by a pole, at the mesh's
+  // relief's coarser texel where that is longer (MeshChart::least_cell_m).
   const double own = faces ? faces->tile_m / double(std::max(faces->map->width(), faces->map->height())) : 0.0;
   const double texel = faces ? std::max(chart.least_cell_m, own) : std::numeric_limits<double>::infinity();
   layGridUnder(chart, gridFootprint(*underside), intervals, texel);
