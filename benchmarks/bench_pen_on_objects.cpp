@@ -32,8 +32,11 @@ textured, the median of three runs of N steps (default 400):
   pen on a block    the pen's capsule (4 mm, upright, kinematic) pressing a 2 x 2 x 1 cm, 50 g
                     block on a plain plane at 20 mm/s: plain, or with V-grooves 4 mm apart and
                     1 mm deep on its faces (0.31 mm texels), upright on the face the pen meets;
+  block on the plane  the same block resting on the plain plane, kept awake, no pen (a textured
+                    object meets the plain plane by its texture: the step's floor share above);
   pen on a ball     the same pen pressing a 1 cm, 30 g ball's side: plain, or with the shipped
                     dimples (3.9 mm apart, 0.25 mm deep, 61 um texels);
+  ball on the plane  the same ball resting on the plain plane, kept awake, no pen;
   marble on a ball  a 3 mm marble resting in the top dimple of a fixed 1 cm ball, plain or dimpled;
   ball on a ball    a 1 cm ball resting on a fixed one: both plain, or both dimpled.
 Each step's time includes Bullet's broadphase, detection and solver for the whole world.
@@ -42,13 +45,16 @@ Each step's time includes Bullet's broadphase, detection and solver for the whol
   --json/--csv/--md F   results
 )";
 
-enum class Scene { PenOnBlock, PenOnBall, MarbleOnBall, BallOnBall };
-constexpr std::array<Scene, 4> kScenes{Scene::PenOnBlock, Scene::PenOnBall, Scene::MarbleOnBall, Scene::BallOnBall};
+enum class Scene { PenOnBlock, BlockOnPlane, PenOnBall, BallOnPlane, MarbleOnBall, BallOnBall };
+constexpr std::array<Scene, 6> kScenes{Scene::PenOnBlock, Scene::BlockOnPlane, Scene::PenOnBall,
+                                       Scene::BallOnPlane,  Scene::MarbleOnBall, Scene::BallOnBall};
 
 const char* nameOf(Scene s) {
   switch (s) {
     case Scene::PenOnBlock: return "pen on a block";
+    case Scene::BlockOnPlane: return "block on the plane";
     case Scene::PenOnBall: return "pen on a ball";
+    case Scene::BallOnPlane: return "ball on the plane";
     case Scene::MarbleOnBall: return "marble on a ball";
     case Scene::BallOnBall: return "ball on a ball";
   }
@@ -72,31 +78,32 @@ double runOnce(Scene scene, bool textured, int steps) {
   const double kR = textured_ball::kRadius;
   btRigidBody* pen = nullptr;
   Eigen::Vector3d pen_velocity = Eigen::Vector3d::Zero();
-  if (scene == Scene::PenOnBlock || scene == Scene::PenOnBall) {
+  const bool block = scene == Scene::PenOnBlock || scene == Scene::BlockOnPlane;
+  const bool with_pen = scene == Scene::PenOnBlock || scene == Scene::PenOnBall;
+  const Eigen::Vector3d half(0.01, 0.01, 0.005);  // the block's
+  if (block || scene == Scene::PenOnBall || scene == Scene::BallOnPlane) {
     world.addPlainPlane(Eigen::Isometry3d::Identity(), {0.5, 0.0, 0.0});
-    double face_x = 0.0, pen_z = 0.0;
-    if (scene == Scene::PenOnBlock) {
-      const Eigen::Vector3d half(0.01, 0.01, 0.005);
+    btRigidBody* object = nullptr;
+    if (block) {
       // The grooves vary along the face texture's u, which runs along y on the +x face: upright there.
-      if (textured)
-        world.addTexturedBox(half, 0.05, at(0.0, 0.0, half.z()), {0.5, 0.0, 0.0}, block_faces);
-      else
-        world.addBox(half, 0.05, at(0.0, 0.0, half.z()), {0.5, 0.0, 0.0});
-      face_x = half.x(), pen_z = 0.006;  // its lower ball's centre: the tip 2 mm over the plane
+      object = textured ? &world.addTexturedBox(half, 0.05, at(0.0, 0.0, half.z()), {0.5, 0.0, 0.0}, block_faces)
+                        : &world.addBox(half, 0.05, at(0.0, 0.0, half.z()), {0.5, 0.0, 0.0});
     } else {
-      if (textured)
-        world.addTexturedSphere(kR, 0.03, at(0.0, 0.0, kR), {0.5, 0.0, 0.0}, ball_faces);
-      else
-        world.addSphere(kR, 0.03, at(0.0, 0.0, kR), {0.5, 0.0, 0.0});
-      face_x = kR, pen_z = kR;  // at the ball's equator
+      object = textured ? &world.addTexturedSphere(kR, 0.03, at(0.0, 0.0, kR), {0.5, 0.0, 0.0}, ball_faces)
+                        : &world.addSphere(kR, 0.03, at(0.0, 0.0, kR), {0.5, 0.0, 0.0});
     }
+    if (!with_pen) object->setActivationState(DISABLE_DEACTIVATION);  // timed awake, as while something moves it
+  }
+  if (with_pen) {
+    // The block's side, its lower ball's centre the tip 2 mm over the plane; or the ball's equator.
+    const double face_x = block ? half.x() : kR, pen_z = block ? 0.006 : kR;
     constexpr double kPenRadius = 0.004, kPenHalf = 0.008;
     // Upright, just clear of the object's side, moving into it.
     pen = &world.addCapsule(kPenRadius, kPenHalf, 0.0, at(face_x + kPenRadius + 1e-4, 0.0, pen_z + kPenHalf), {0.0, 0.0, 0.0});
     pen_velocity = Eigen::Vector3d(-0.02, 0.0, 0.0);
     pen->setCollisionFlags(pen->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
     pen->setActivationState(DISABLE_DEACTIVATION);
-  } else {
+  } else if (scene == Scene::MarbleOnBall || scene == Scene::BallOnBall) {
     const double r = scene == Scene::MarbleOnBall ? 0.003 : kR;
     if (textured)
       world.addTexturedSphere(kR, 0.0, Eigen::Isometry3d::Identity(), {0.5, 0.0, 0.0}, ball_faces);
@@ -172,8 +179,9 @@ int run(int argc, char** argv) {
     std::string t = "Measured " + stamp +
                     bench::fmt(". A whole world's 1 ms step, the median of three runs of %d steps: the pen's capsule "
                                "pressing a block's side (plain, or V-grooves upright on that face) and a ball's side "
-                               "(plain, or the shipped dimples); a 3 mm marble in a fixed ball's top dimple; a 1 cm ball "
-                               "on a fixed one (both plain, or both dimpled).\n\n",
+                               "(plain, or the shipped dimples), each on a plain plane, and each of them alone on the "
+                               "plane, kept awake (a textured object meets the plane by its texture); a 3 mm marble in "
+                               "a fixed ball's top dimple; a 1 cm ball on a fixed one (both plain, or both dimpled).\n\n",
                                steps) +
                     "| scene | plain | textured | ratio |\n|---|---:|---:|---:|\n";
     for (const Row& r : rows)

@@ -218,6 +218,15 @@ bool chartOnFace(const MeshRelief& relief, const Eigen::Vector3d& c, double reac
   return true;
 }
 
+MeshChart flatSmoothChart(const Eigen::Isometry3d& plane_from_chart) {
+  MeshChart out;
+  tex::PlaneMapping mapping;
+  mapping.plane_to_world = plane_from_chart;
+  out.surface = tex::TexturedSurface(smoothChartMap(), mapping, tex::SampleOptions{}, true);
+  out.smooth = true;
+  return out;
+}
+
 bool isSmoothChart(const tex::TexturedSurface& surface) { return &surface.map() == &smoothChartMap(); }
 
 void alignChart(MeshChart& chart, const Eigen::Vector3d& axis) {

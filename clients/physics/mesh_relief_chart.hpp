@@ -42,6 +42,9 @@
 
 namespace thx::phys {
 
+// A smooth chart's grid intervals along the object's longer side unless a mesh says otherwise.
+inline constexpr int kSmoothChartIntervals = 16;
+
 // What the chart needs of a mesh; attached to its Bullet shape (attachMeshRelief).
 struct MeshRelief {
   explicit MeshRelief(const mesh::TexturedMesh& m);
@@ -53,7 +56,7 @@ struct MeshRelief {
   // such a chart is read at a stride (relief_raster.cpp).
   ReliefEnvelopes envelopes;
   // A smooth chart's grid: intervals along the object's longer side (layGridUnder; 8 at least).
-  int grid_intervals = 16;
+  int grid_intervals = kSmoothChartIntervals;
   tex::SampleOptions sampling;
   // The tile (metres per uv) the map's normals were made for (MeshContactOptions::normals_made_for_m).
   Eigen::Vector2d normals_made_for_m = Eigen::Vector2d::Zero();
@@ -103,6 +106,10 @@ bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach
 // depth).
 bool chartOnFace(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t triangle,
                  double side, MeshChart& out);
+
+// A smooth chart on a flat plane (a plain plane's, plain_plane.hpp): the plane's frame (normal +z)
+// placed at `plane_from_chart`, no bend; its samples laid by layGridUnder afterwards.
+MeshChart flatSmoothChart(const Eigen::Isometry3d& plane_from_chart);
 
 // Whether the chart is a smooth one (its map is smoothChartMap()).
 bool isSmoothChart(const tex::TexturedSurface& surface);

@@ -64,6 +64,8 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   // A textured object against a box, or any object against a textured box: the box met as a mesh
   // of its faces by the texture rules (box_ground.hpp); every other pair as registered above.
   box_ground_funcs_ = registerBoxGroundCollision(*dispatcher_, *configuration_, options.scaled_convex_pairs);
+  // A textured object on a plain plane: its texture read against the flat plane (plain_plane.hpp).
+  plain_plane_funcs_ = registerPlainPlaneCollision(*dispatcher_, *configuration_);
   broadphase_ = std::make_unique<btDbvtBroadphase>();
   // Bullet's solver, except that friction never outlives its contact's normal impulse
   // (contact_solver.hpp: a box on a normal map slid 12 % slow without this).
@@ -138,12 +140,16 @@ btRigidBody& PhysicsWorld::addTexturedMesh(const mesh::TexturedMesh& mesh, const
 }
 
 btRigidBody& PhysicsWorld::addPlainPlane(const Eigen::Isometry3d& plane_to_world, const BodyMaterial& material) {
-  return addBody(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), btScalar(0)), 0.0, plane_to_world, material);
+  auto shape = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), btScalar(0));
+  // Textured objects meet it by their texture (plain_plane.hpp); a normal-mapped plane is not marked.
+  markPlainPlane(*shape);
+  return addBody(std::move(shape), 0.0, plane_to_world, material);
 }
 
 btRigidBody& PhysicsWorld::addNormalMapPlane(const tex::TexturedSurface& surface, const BodyMaterial& material,
                                              const NormalMapOptions& options) {
-  btRigidBody& body = addPlainPlane(surface.mapping().plane_to_world, material);
+  btRigidBody& body = addBody(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), btScalar(0)), 0.0,
+                              surface.mapping().plane_to_world, material);
   world_->addNormalMapPlane(&body, &surface, options);
   return body;
 }

@@ -20,6 +20,7 @@
 #include "clients/physics/bullet_triangles.hpp"
 #include "clients/physics/mesh_relief_chart.hpp"
 #include "clients/physics/normal_map_contact.hpp"
+#include "clients/physics/plain_plane.hpp"
 #include "clients/physics/textured_ball.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "clients/physics/textured_world.hpp"
@@ -72,7 +73,9 @@ class PhysicsWorld {
   const WorldOptions& options() const { return options_; }
 
   // Static planes at the surface's plane frame (mapping.plane_to_world). The surface and its map
-  // must outlive this world.
+  // must outlive this world. On the plain plane a textured box or a ball with a bump map meets it
+  // with its texture (plain_plane.hpp); on a normal-mapped one, as its coarse shape, its points
+  // rewritten by the normal map, unless addTexturedObjectsRelief gives it a relief to meet.
   btRigidBody& addPlainPlane(const Eigen::Isometry3d& plane_to_world, const BodyMaterial& material);
   btRigidBody& addNormalMapPlane(const tex::TexturedSurface& surface, const BodyMaterial& material,
                                  const NormalMapOptions& options = {});
@@ -138,6 +141,7 @@ class PhysicsWorld {
   std::unique_ptr<TexturedObjectsFilter> textured_objects_filter_;  // declared before the world that reads it
   std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
   std::unique_ptr<BoxGroundRegistration> box_ground_funcs_;  // the dispatcher points at them
+  std::unique_ptr<PlainPlaneRegistration> plain_plane_funcs_;  // and at these
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btDbvtBroadphase> broadphase_;
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;

@@ -553,6 +553,10 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
                   faceTextureOf(*object->getCollisionShape()), false, result);
     return;
   }
+  if (ground.getShapeType() == STATIC_PLANE_PROXYTYPE) {
+    plainPlaneCollision(*object, *relief, result);
+    return;
+  }
   const FaceTexture* ground_ball = ballTextureOf(ground);
   if (ground.getShapeType() == BOX_SHAPE_PROXYTYPE || ground_ball) {
     // A box as a mesh of its faces, a ball with a bump map as its cube-sphere (box_ground.hpp).
@@ -597,6 +601,40 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   clearGroupManifolds();
   plainObjectCollision(plane.surface(), GroundBend{}, *underside, on_end_face, &plane.levelRuns(), nullptr, threshold,
                        world_from_plane, motionOf(*object->getCollisionObject()), result);
+}
+
+void ReliefCollisionAlgorithm::plainPlaneCollision(const btCollisionObjectWrapper& object,
+                                                   const btCollisionObjectWrapper& plane, btManifoldResult* result) {
+  btPersistentManifold* manifold = manifoldFor(object.getCollisionObject(), plane.getCollisionObject());
+  result->setPersistentManifold(manifold);
+  const btCollisionShape& shape = *object.getCollisionShape();
+  const Eigen::Isometry3d world_from_plane = toEigen(plane.getWorldTransform());
+  const Eigen::Isometry3d plane_from_object = world_from_plane.inverse() * toEigen(object.getWorldTransform());
+  // The chart's origin at the foot of the object's centre, as a mesh's is (the plane reaches on
+  // for ever, so no boundary), laid as a plain box's face is under it: turned to the object, its
+  // samples at the object's own texels over its footprint.
+  MeshChart chart = flatSmoothChart(Eigen::Isometry3d(
+      Eigen::Translation3d(plane_from_object.translation().x(), plane_from_object.translation().y(), 0.0)));
+  const FaceTexture* faces = faceTextureOf(shape);
+  laySmoothChart(chart, shape, plane_from_object, kSmoothChartIntervals, faces ? faces : ballTextureOf(shape));
+  const Eigen::Isometry3d world_from_chart = world_from_plane * chart.surface.mapping().plane_to_world;
+  const std::optional<Underside> underside = undersideOf(shape, world_from_chart.inverse() * toEigen(object.getWorldTransform()));
+  const double threshold = double(manifold->getContactBreakingThreshold());
+  if (!underside) {
+    manifold->clearManifold();
+    clearGroupManifolds();
+    return;
+  }
+  if (faces) {
+    texturedBoxCollision(object, plane, chart.surface, chart.bend, *underside, *faces, nullptr, threshold,
+                         world_from_chart, kUnder, result);
+    return;
+  }
+  // A ball with a bump map (the create function takes no other shape): its points afresh each step.
+  manifold->clearManifold();
+  clearGroupManifolds();
+  texturedBallCollision(chart.surface, chart.bend, nullptr, *underside, *ballTextureOf(shape), threshold,
+                        world_from_chart, motionOf(*object.getCollisionObject()), result);
 }
 
 void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& surface, const GroundBend& bend,

@@ -20,7 +20,8 @@
 // ball with a bump map does the same, by its own rule (texturedBallCollision); a plain sphere on
 // such a mesh stays with Bullet's sphere-triangle points, lifted onto the relief (mesh_contact.hpp).
 // A box that a textured object meets, or a textured box that a smaller box meets (box_ground.hpp),
-// is met as a mesh of its faces: the mesh rules, the box's moving frame.
+// is met as a mesh of its faces: the mesh rules, the box's moving frame. A textured object on a
+// plain plane (plain_plane.hpp) meets it as a plain box's face: a smooth chart laid under it.
 //
 // Contact convention (the manifold is always (object, relief), whatever order the dispatcher
 // hands the pair in): normal = relief normal in world frame, pointing from the relief to the
@@ -93,6 +94,10 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
                             bool on_end_face, const ReliefLevelRuns* level_runs, const ChartBoundary* boundary,
                             double threshold, const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
                             btManifoldResult* result);
+  // A textured box or a ball with a bump map against a plain plane (plain_plane.hpp): the rule of a
+  // plain box's face, on a smooth chart laid under the object.
+  void plainPlaneCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& plane,
+                           btManifoldResult* result);
   // An object against a mesh with a chart (mesh_relief_chart.hpp: a relief's or a smooth one): the
   // same rule as on the plane (a textured box's, `faces`, or the untextured one's) on the mesh's
   // chart under it, and on the chart of each surface across a crease within its reach.

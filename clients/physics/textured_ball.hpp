@@ -18,8 +18,8 @@
 // a textured box's relief). A plain ball or a capsule meets its surface as a relief mesh's, lifted
 // onto its relief (ball_on_object_faces.hpp: the cube-sphere, the relief met on the ball's
 // curvature); another ball with a bump map or a cylinder meets it on the chart of its cube-sphere
-// (box_ground.hpp: the larger of two such balls is the ground). What a textured ball does not do
-// yet: on a plain plane it collides as the coarse ball, its texture unread.
+// (box_ground.hpp: the larger of two such balls is the ground). On a plain plane it meets a smooth
+// chart laid under it, as on a plain box's face (plain_plane.hpp).
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 
 #include <Eigen/Core>

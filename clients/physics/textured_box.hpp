@@ -21,12 +21,12 @@
 // side since the map's normal is its depth's gradient (n = N + d_u T + d_v B for any orthonormal
 // T, B and outward N).
 //
-// What a textured box does not do yet: its texture shapes contacts with a relief plane, with a
-// mesh (on the mesh's chart under it, mesh_relief_chart.hpp), with the relief standing for a
-// normal-mapped plane (PhysicsWorld::addTexturedObjectsRelief), and with another box or a ball
-// with a bump map (box_ground.hpp: the larger box, or the box under the ball, met as a mesh of its
-// faces); a plain ball or a capsule meets its faces as a relief mesh's (ball_on_object_faces.hpp);
-// on a plain plane and against a cylinder the coarse box collides;
+// Its texture shapes contacts with a relief plane, with a mesh (on the mesh's chart under it,
+// mesh_relief_chart.hpp), with the relief standing for a normal-mapped plane
+// (PhysicsWorld::addTexturedObjectsRelief), with a plain plane (plain_plane.hpp: a smooth chart
+// under it), and with another box, a ball with a bump map or a cylinder (box_ground.hpp: the larger
+// box, or the box under the ball or the cylinder, met as a mesh of its faces); a plain ball or a
+// capsule meets its faces as a relief mesh's (ball_on_object_faces.hpp);
 // a normal map (no depth) given for an object is read, where objects are built, as the relief its
 // normals integrate to (scene::buildObjectTexture). The visual client draws the same layout
 // (meshes/textured_box_mesh.hpp).

@@ -82,7 +82,7 @@ inline Eigen::Vector3d addGroovedGround(PhysicsWorld& world, const mesh::Generat
 // of a textured box of the slab's size (box_ground.hpp): fixed, fixed and turned over (its -z face
 // up, where the face's frame is mirrored), or a 1 kg body resting on a plain plane; or a plain
 // fixed box of that size.
-enum class BlockGround { Plane, SlabMesh, FixedBox, TurnedBox, MovingBox, PlainBox };
+enum class BlockGround { Plane, SlabMesh, FixedBox, TurnedBox, MovingBox, PlainBox, PlainPlane };
 inline const Eigen::Vector3d kSlabHalf(0.1, 0.1, 0.01);
 inline constexpr double kSlabMass = 1.0;
 
@@ -117,6 +117,8 @@ struct Scene {
       addGroovedGround(*world, *slab, false, plane.surface.map());
     } else if (ground == BlockGround::PlainBox) {
       slab_box = &world->addBox(kSlabHalf, 0.0, at(0.0, 0.0, -kSlabHalf.z()), plane_material);
+    } else if (ground == BlockGround::PlainPlane) {
+      world->addPlainPlane(at(0.0, 0.0, 0.0), plane_material);
     } else if (ground == BlockGround::FixedBox || ground == BlockGround::TurnedBox || ground == BlockGround::MovingBox) {
       // Its top face at z = 0, the grooves' ridges at x = k P as on the plane (u = x / tile; turned
       // over about x, the -z face's u still runs along x).

@@ -117,7 +117,13 @@ inline void expectThePenFeelsUprightGroovesOnly(PenShape shape) {
                 shape == PenShape::Capsule ? "capsule" : "cylinder", name, p.block_pushed * 1e3, p.block_along * 1e3,
                 p.pen_along * 1e3, p.turned_deg, p.pen_on_face * 1e3, p.resisted / p.pushed_back, p.fastest_up);
   EXPECT_LT(std::fabs(across.pen_on_face), 0.25 * kPeriod);
-  EXPECT_GT(across.resisted, 0.05 * across.pushed_back);
+  // How hard the walls resist depends on how the block turns on the plane under it: standing on
+  // its grooves' ridges (its texture read on the plain plane, since 2026-12-05) it turns more
+  // freely than on its coarse box's four corners, and the capsule felt 0.020 of the push instead
+  // of 0.123. Still more than a plain face or level grooves give.
+  double others = 0.0;
+  for (const Pushed& p : {along, plain_x, plain_y}) others = std::max(others, std::fabs(p.resisted) / p.pushed_back);
+  EXPECT_GT(across.resisted / across.pushed_back, 2.0 * others);
   for (const Pushed& p : {along, plain_x, plain_y}) {
     EXPECT_GT(p.pen_on_face, 0.25 * p.pen_along);
     EXPECT_LT(std::fabs(p.resisted), 0.02 * p.pushed_back);

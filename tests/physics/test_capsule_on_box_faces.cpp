@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "tests/physics/grooved_block_scene.hpp"
 #include "tests/physics/pen_pushes_block.hpp"
+#include "tests/support/sanitized_build.hpp"
 #include "textures/ball_on_relief.hpp"
 
 namespace thx::phys::test::test_capsule_on_box_faces {
@@ -145,9 +147,13 @@ TEST(CapsuleOnBoxFaces, ThePenGoingRoundTheBlockPastItsCornerLeavesItBe) {
   const tex::TextureMap map = heightMap(128, kExtent, vGrooves);
   double worst = 0.0;
   int passes = 0;
-  for (const double clearance : {0.13e-3, 0.3e-3})
+  // Under the sanitizers a quarter of the passes: the block reads its grooves on the plane under
+  // it at every step (docs/physics.md, "A textured object on a plain plane").
+  const std::vector<double> yaws = thx::test::kSanitized ? std::vector<double>{0.0, 3e-4} : std::vector<double>{0.0, 1e-4, -2e-4, 3e-4};
+  const std::vector<double> clearances = thx::test::kSanitized ? std::vector<double>{0.13e-3} : std::vector<double>{0.13e-3, 0.3e-3};
+  for (const double clearance : clearances)
     for (const double tip : {-6e-3, -2e-3})  // the tip below the top: the pen's side beside it
-      for (const double yaw : {0.0, 1e-4, -2e-4, 3e-4}) {  // turned a little, as a pushed block is
+      for (const double yaw : yaws) {  // turned a little, as a pushed block is
         worst = std::max(worst, movedByThePenGoingRound(map, clearance, tip, yaw));
         ++passes;
       }

@@ -144,34 +144,6 @@ TEST(TexturedPairs, AGroovedBlockOnAPlainBoxRestsOnItsRidgesAndSlidesEitherWay) 
   EXPECT_NEAR(c.x(), 0.5 * (0.5 - 0.3) * kG * 0.04, 0.1 * 0.0392) << c.transpose();
 }
 
-// A ball with a bump map set on a plain box's top face (z = 0; or on a flat relief plane there,
-// `on_plane`) at `pose`, for `seconds`: where it rests.
-struct BallOnBox {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  double fastest_late = 0.0;  // over the last 0.5 s
-};
-BallOnBox ballOnBox(const FaceTexture& ball_texture, const Eigen::Isometry3d& pose, double seconds,
-                    bool on_plane = false) {
-  PhysicsWorld world;
-  const Eigen::Vector3d half(0.05, 0.05, 0.01);
-  const Eigen::Isometry3d box_pose = at(0.0, 0.0, -half.z());
-  const SurfaceHolder plane = holdSurface(flatRelief(256), 0.04, true);
-  if (on_plane) {
-    world.addReliefPlane(plane.surface, {1.0, 0.0, 0.0});
-  } else {
-    world.addBox(half, 0.0, box_pose, {1.0, 0.0, 0.0});
-  }
-  btRigidBody& ball = world.addTexturedSphere(tb::kRadius, tb::kMass, pose, {0.5, 0.0, 0.0}, ball_texture);
-  BallOnBox r;
-  const int steps = int(std::lround(seconds / tb::kDt));
-  for (int k = 0; k < steps; ++k) {
-    world.step(tb::kDt);
-    if (k >= steps - 500) r.fastest_late = std::max(r.fastest_late, velocityOf(ball).norm());
-  }
-  r.centre = positionOf(ball);
-  return r;
-}
-
 // Rounded U grooves (the `grooves` generator: flat floors, flat rims), the block's in the ground's:
 // it stands on lines of equal depth, its grooves' floors on the ground's rims. Kept awake (no rest
 // detector), the 16 g block of scenes/grooved_board.yaml on the relief plane and on a fixed box
@@ -224,20 +196,15 @@ TEST(TexturedPairs, ABallWithABumpMapRestsOnAPlainBoxAsOnAFlatRelief) {
   // Recessed 0.5 mm everywhere, it rests on its recessed radius (the coarse pair: on its full one).
   const tex::TextureMap recess = tb::uniformRecess(5e-4);
   const FaceTexture recessed = tb::ballTexture(recess);
-  const BallOnBox r = ballOnBox(recessed, at(0.001, 0.0, tb::kRadius), 1.0);
+  const tb::Rested r = tb::restBallOn(tb::BallGround::PlainBox, recessed, at(0.001, 0.0, tb::kRadius), 1.0);
   std::printf("[measured] recessed ball on a plain box: centre %.2f um from r - 0.5 mm, fastest %.3f mm/s\n",
               (r.centre.z() - (tb::kRadius - 5e-4)) * 1e6, r.fastest_late * 1e3);
   EXPECT_NEAR(r.centre.z(), tb::kRadius - 5e-4, 5e-6);
   EXPECT_LT(r.fastest_late, 1e-4);
   // With bumps (0.3 mm), turned so that no tip lies straight down, it rests on their flanks where
   // it does on a flat relief plane.
-  const tex::TextureMap bumps = tb::bumpMap(3e-4);
-  const FaceTexture bumpy = tb::ballTexture(bumps);
-  Eigen::Isometry3d pose = at(0.001, 0.0, tb::kRadius + 2e-4);
-  pose.linear() = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()))
-                      .toRotationMatrix();
-  const BallOnBox box = ballOnBox(bumpy, pose, 2.0);
-  const BallOnBox plane = ballOnBox(bumpy, pose, 2.0, true);
+  const tb::Rested box = tb::restBumpyBallOn(tb::BallGround::PlainBox, 2.0);
+  const tb::Rested plane = tb::restBumpyBallOn(tb::BallGround::FlatRelief, 2.0);
   std::printf("[measured] bumpy ball: on a plain box %.2f um below r, on a flat relief %.2f um; fastest %.3f and %.3f mm/s\n",
               (tb::kRadius - box.centre.z()) * 1e6, (tb::kRadius - plane.centre.z()) * 1e6, box.fastest_late * 1e3,
               plane.fastest_late * 1e3);

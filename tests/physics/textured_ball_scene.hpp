@@ -123,6 +123,51 @@ inline Settled settleBumpyBall(const tex::TextureMap& plane_map, double seconds)
   return s;
 }
 
+// What a ball with `texture` is let down on, its top at z = 0: a plain fixed box 10 x 10 x 2 cm, a
+// flat relief plane (256 texels over 4 cm) or a plain plane.
+enum class BallGround { PlainBox, FlatRelief, PlainPlane };
+struct Rested {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double fastest_late = 0.0;  // over the last 0.5 s
+};
+// The ball let down at `pose` on `ground`, added before the ball or after it (the pair's two
+// orders), after `seconds`.
+inline Rested restBallOn(BallGround ground, const FaceTexture& texture, const Eigen::Isometry3d& pose, double seconds,
+                         bool ground_first = true) {
+  PhysicsWorld world;
+  const SurfaceHolder plane = holdSurface(flatRelief(256), 0.04, true);
+  const auto add_ground = [&] {
+    if (ground == BallGround::FlatRelief) {
+      world.addReliefPlane(plane.surface, {1.0, 0.0, 0.0});
+    } else if (ground == BallGround::PlainPlane) {
+      world.addPlainPlane(at(0.0, 0.0, 0.0), {1.0, 0.0, 0.0});
+    } else {
+      world.addBox(Eigen::Vector3d(0.05, 0.05, 0.01), 0.0, at(0.0, 0.0, -0.01), {1.0, 0.0, 0.0});
+    }
+  };
+  if (ground_first) add_ground();
+  btRigidBody& ball = world.addTexturedSphere(kRadius, kMass, pose, {0.5, 0.0, 0.0}, texture);
+  if (!ground_first) add_ground();
+  Rested r;
+  const int steps = int(std::lround(seconds / kDt));
+  for (int k = 0; k < steps; ++k) {
+    world.step(kDt);
+    if (k >= steps - 500) r.fastest_late = std::max(r.fastest_late, velocityOf(ball).norm());
+  }
+  r.centre = positionOf(ball);
+  return r;
+}
+
+// The ball with bumps 0.3 mm high (bumpMap(3e-4)) let down 0.2 mm over `ground`, turned so that
+// no bump tip lies straight down, after `seconds`.
+inline Rested restBumpyBallOn(BallGround ground, double seconds) {
+  const tex::TextureMap bumps = bumpMap(3e-4);
+  Eigen::Isometry3d pose = at(0.001, 0.0, kRadius + 2e-4);
+  pose.linear() = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()))
+                      .toRotationMatrix();
+  return restBallOn(ground, ballTexture(bumps), pose, seconds);
+}
+
 // Bumps on the plane, 2 mm apart and 0.4 mm high, `texels` over 4 cm.
 inline tex::TextureMap bumpyPlane(int texels) {
   return heightMap(texels, 0.04, [](double x, double y) { return bumps(x, y, 4e-4, 0.002); });

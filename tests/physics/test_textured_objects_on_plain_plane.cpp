@@ -1,0 +1,149 @@
+// A textured object on a plain plane (issue 29; clients/physics/plain_plane.hpp): a ball with a
+// bump map and a grooved block meet PhysicsWorld::addPlainPlane by their own texture, on a smooth
+// chart laid under them as on a plain box's face, where they used to collide as their coarse
+// shapes. Plain objects, and every object on a normal-mapped plane, keep Bullet's convex-plane
+// points.
+#include <gtest/gtest.h>
+
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "clients/physics/plain_plane.hpp"
+#include "tests/physics/grooved_block_scene.hpp"
+#include "tests/physics/textured_ball_scene.hpp"
+
+namespace thx::phys::test::test_textured_objects_on_plain_plane {
+namespace {
+
+namespace gb = grooved_block;
+namespace tb = textured_ball;
+
+TEST(TexturedObjectsOnAPlainPlane, OnlyThePlainPlaneIsMarkedForTheTextureRules) {
+  PhysicsWorld world;
+  const btRigidBody& plain = world.addPlainPlane(at(0.0, 0.0, 0.0), {1.0, 0.0, 0.0});
+  const SurfaceHolder normals = holdSurface(flatRelief(16), 0.04, false);
+  const btRigidBody& normal_mapped = world.addNormalMapPlane(normals.surface, {1.0, 0.0, 0.0});
+  EXPECT_TRUE(isPlainPlane(*plain.getCollisionShape()));
+  // A normal-mapped plane's textured objects meet the relief its normals integrate to
+  // (addTexturedObjectsRelief), not the flat plane.
+  EXPECT_FALSE(isPlainPlane(*normal_mapped.getCollisionShape()));
+  btStaticPlaneShape unmarked(btVector3(0, 0, 1), 0);
+  EXPECT_FALSE(isPlainPlane(unmarked));
+}
+
+TEST(TexturedObjectsOnAPlainPlane, ABallWithABumpMapRestsOnItAsOnAPlainBoxInEitherOrder) {
+  // Recessed 0.5 mm everywhere, it rests on its recessed radius (as its coarse sphere: on its full one).
+  const tex::TextureMap recess = tb::uniformRecess(5e-4);
+  for (const bool ground_first : {true, false}) {
+    const tb::Rested r =
+        tb::restBallOn(tb::BallGround::PlainPlane, tb::ballTexture(recess), at(0.001, 0.0, tb::kRadius), 1.0, ground_first);
+    std::printf("[measured] recessed ball on a plain plane (%s first): centre %.2f um from r - 0.5 mm, fastest %.3f mm/s\n",
+                ground_first ? "plane" : "ball", (r.centre.z() - (tb::kRadius - 5e-4)) * 1e6, r.fastest_late * 1e3);
+    EXPECT_NEAR(r.centre.z(), tb::kRadius - 5e-4, 5e-6);
+    EXPECT_LT(r.fastest_late, 1e-4);
+  }
+  // With bumps (0.3 mm), turned so that no tip lies straight down: on their flanks, where it rests
+  // on a plain box's face, and at rest (the plane first; the orders are compared above and below,
+  // where a run costs less).
+  const tb::Rested box = tb::restBumpyBallOn(tb::BallGround::PlainBox, 2.0);
+  const tb::Rested plane = tb::restBumpyBallOn(tb::BallGround::PlainPlane, 2.0);
+  std::printf("[measured] bumpy ball on a plain plane: %.2f um below r (on a plain box %.2f), %.2f um from where it "
+              "rests on the box; fastest %.3f mm/s (on the box %.3f)\n",
+              (tb::kRadius - plane.centre.z()) * 1e6, (tb::kRadius - box.centre.z()) * 1e6,
+              (plane.centre - box.centre).norm() * 1e6, plane.fastest_late * 1e3, box.fastest_late * 1e3);
+  EXPECT_LT(plane.centre.z(), tb::kRadius - 1e-4);  // on the bumps' flanks, not on the coarse sphere
+  EXPECT_NEAR(plane.centre.z(), box.centre.z(), 2e-6);
+  EXPECT_LT(plane.fastest_late, 0.05e-3);
+}
+
+TEST(TexturedObjectsOnAPlainPlane, AGroovedBlockRestsOnItsRidgesAndSlidesEitherWayAsOnAPlainBox) {
+  // Its face's ridges, read at 0.31 mm texels, on the plane: within the bilinear rounding of a V's
+  // crease below its coarse box's half height (half a texel of a 0.5 slope: 78 µm), where it rests
+  // on a plain box; and half its weight moves it as friction alone would, along the grooves and
+  // across them, the plane added before the block or after it.
+  gb::Scene on_box(true, false, 128, {}, gb::BlockGround::PlainBox);
+  for (int k = 0; k < 400; ++k) on_box.world->step(gb::kDt);
+  const double box_height = positionOf(*on_box.block).z();
+  const double friction_alone = 0.5 * (0.5 - 0.3) * kG * 0.04;
+  for (const bool block_first : {true, false}) {
+    gb::Scene rest(true, block_first, 128, {}, gb::BlockGround::PlainPlane);
+    for (int k = 0; k < 400; ++k) rest.world->step(gb::kDt);
+    gb::Scene along(true, block_first, 128, {}, gb::BlockGround::PlainPlane);
+    gb::Scene across(true, block_first, 128, {}, gb::BlockGround::PlainPlane);
+    const Eigen::Vector3d a = along.push({0.0, 0.5, 0.0}, 0.2);
+    const Eigen::Vector3d c = across.push({0.5, 0.0, 0.0}, 0.2);
+    const double height = positionOf(*rest.block).z();
+    std::printf("[measured] grooved block on a plain plane (%s first): %.2f um below its half height (on a plain box "
+                "%.2f); along %.2f mm, across %.2f mm (friction alone: %.1f)\n",
+                block_first ? "block" : "plane", (gb::kHalf.z() - height) * 1e6, (gb::kHalf.z() - box_height) * 1e6,
+                a.y() * 1e3, c.x() * 1e3, friction_alone * 1e3);
+    EXPECT_LT(height, gb::kHalf.z() - 3e-5);  // its texture read, not its coarse box
+    EXPECT_NEAR(height, box_height, 1e-6);
+    EXPECT_NEAR(a.y(), friction_alone, 0.1 * friction_alone) << a.transpose();
+    EXPECT_NEAR(c.x(), friction_alone, 0.1 * friction_alone) << c.transpose();
+    EXPECT_LT(std::fabs(a.x()), 3e-4) << a.transpose();
+    EXPECT_LT(std::fabs(c.y()), 3e-4) << c.transpose();
+  }
+}
+
+TEST(TexturedObjectsOnAPlainPlane, AnObjectHoldingMoreTexelsThanTheBudgetMeetsItAsItsCoarseShape) {
+  // The 2 x 2 cm grooved block at 0.31 mm texels: 64 x 64 under its largest face; the dimpled
+  // ball's cap within reach at its 61 um texels, some 7,500; the 20 x 20 x 2 cm slab of the tests
+  // 640 x 640, over the budget.
+  const tex::TextureMap grooves = heightMap(128, gb::kExtent, gb::vGrooves);
+  FaceTexture faces;
+  faces.map = &grooves;
+  faces.tile_m = gb::kExtent;
+  btBoxShape block(toBt(gb::kHalf)), slab(toBt(gb::kSlabHalf));
+  attachFaceTexture(block, faces);
+  attachFaceTexture(slab, faces);
+  const tex::TextureMap dimples = tb::dimpleMap();
+  const FaceTexture dimpled = tb::ballTexture(dimples);
+  btSphereShape ball(float(tb::kRadius)), plain_ball(float(tb::kRadius));
+  attachBallTexture(ball, dimpled);
+  std::printf("[measured] texels under a textured object on a plain plane: block %.0f, dimpled ball %.0f, slab %.0f "
+              "(budget %.0f)\n",
+              plainPlaneTexels(block), plainPlaneTexels(ball), plainPlaneTexels(slab), kPlainPlaneTexelBudget);
+  EXPECT_NEAR(plainPlaneTexels(block), 64.0 * 64.0, 1.0);
+  EXPECT_GT(plainPlaneTexels(ball), 1000.0);
+  EXPECT_LT(plainPlaneTexels(ball), kPlainPlaneTexelBudget);
+  EXPECT_NEAR(plainPlaneTexels(slab), 640.0 * 640.0, 100.0);
+  EXPECT_EQ(plainPlaneTexels(plain_ball), 0.0);
+  // The slab let down on the plane rests on its coarse box's face, its grooves unread.
+  PhysicsWorld world;
+  world.addPlainPlane(at(0.0, 0.0, 0.0), {1.0, 0.0, 0.0});
+  btRigidBody& body = world.addTexturedBox(gb::kSlabHalf, gb::kSlabMass, at(0.0, 0.0, gb::kSlabHalf.z() + 1e-5),
+                                           {1.0, 0.0, 0.0}, faces);
+  for (int k = 0; k < 200; ++k) world.step(gb::kDt);
+  EXPECT_NEAR(positionOf(body).z(), gb::kSlabHalf.z(), 1e-6);
+}
+
+TEST(TexturedObjectsOnAPlainPlane, APlainBallAndAPlainBoxKeepBulletsPoints) {
+  // Bullet's sphere on the plane: at its radius to float rounding; its box: four points at its
+  // bottom face's corners (the smooth chart's quarters would lie a hair inside them).
+  PhysicsWorld world;
+  world.addPlainPlane(at(0.0, 0.0, 0.0), {1.0, 0.0, 0.0});
+  btRigidBody& ball = world.addSphere(tb::kRadius, tb::kMass, at(0.05, 0.0, tb::kRadius + 1e-4), {0.5, 0.0, 0.0});
+  world.addBox(gb::kHalf, gb::kMass, at(-0.05, 0.0, gb::kHalf.z() + 1e-5), {0.3, 0.0, 0.0});
+  for (int k = 0; k < 300; ++k) world.step(gb::kDt);
+  EXPECT_NEAR(positionOf(ball).z(), tb::kRadius, 1e-6);
+  btDispatcher& dispatcher = *world.world().getDispatcher();
+  int corners = 0;
+  for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
+    const btPersistentManifold& manifold = *dispatcher.getManifoldByIndexInternal(m);
+    for (int k = 0; k < manifold.getNumContacts(); ++k) {
+      const Eigen::Vector3d p = toEigen(manifold.getContactPoint(k).getPositionWorldOnB());
+      if (p.x() < 0.0 && std::fabs(std::fabs(p.x() + 0.05) - gb::kHalf.x()) < 1e-6 &&
+          std::fabs(std::fabs(p.y()) - gb::kHalf.y()) < 1e-6)
+        ++corners;
+    }
+  }
+  EXPECT_EQ(corners, 4);
+}
+
+}  // namespace
+}  // namespace thx::phys::test::test_textured_objects_on_plain_plane
