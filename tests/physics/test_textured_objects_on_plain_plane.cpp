@@ -90,6 +90,69 @@ TEST(TexturedObjectsOnAPlainPlane, AGroovedBlockRestsOnItsRidgesAndSlidesEitherW
   }
 }
 
+// A plane tilted by `slope_deg` about y (downhill along +x in its own frame).
+Eigen::Isometry3d tiltedPlane(double slope_deg) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(deg(slope_deg), Eigen::Vector3d::UnitY()).toRotationMatrix();
+  return pose;
+}
+
+TEST(TexturedObjectsOnAPlainPlane, OnATiltedPlaneTheRecessedBallRollsOnItsRecessedRadius) {
+  // Rolling without slipping on rho = r - 0.5 mm with the coarse ball's inertia: 3 % below the
+  // coarse ball's 5/7 g sin(slope) (TexturedBall.AUniformlyRecessedBallRestsAndRollsOnItsRecessedSurface
+  // on a relief plane, there with gravity tilted; here the plane itself).
+  const double depth = 5e-4, slope = 5.0, seconds = 0.3, rho = tb::kRadius - depth;
+  const tex::TextureMap recess = tb::uniformRecess(depth);
+  const FaceTexture texture = tb::ballTexture(recess);
+  const Eigen::Isometry3d plane = tiltedPlane(slope);
+  const auto speedAfter = [&](bool textured) {
+    PhysicsWorld world;
+    world.addPlainPlane(plane, {0.5, 0.0, 0.0});
+    const Eigen::Isometry3d pose = plane * at(0.0, 0.0, textured ? rho : tb::kRadius);
+    btRigidBody& ball = textured ? world.addTexturedSphere(tb::kRadius, tb::kMass, pose, {0.5, 0.0, 0.0}, texture)
+                                 : world.addSphere(tb::kRadius, tb::kMass, pose, {0.5, 0.0, 0.0});
+    for (int k = 0; k < int(std::lround(seconds / tb::kDt)); ++k) world.step(tb::kDt);
+    return velocityOf(ball).norm();
+  };
+  const double expected = kG * std::sin(deg(slope)) / (1.0 + 0.4 * tb::kRadius * tb::kRadius / (rho * rho)) * seconds;
+  const double coarse = 5.0 / 7.0 * kG * std::sin(deg(slope)) * seconds;
+  const double recessed = speedAfter(true), plain = speedAfter(false);
+  std::printf("[measured] down a 5 deg plain plane in 0.3 s: the recessed ball %.5f m/s (%.2f %% from rolling on its "
+              "recessed radius), the plain ball %.5f (%.2f %% from 5/7 g sin)\n",
+              recessed, 100.0 * (recessed / expected - 1.0), plain, 100.0 * (plain / coarse - 1.0));
+  EXPECT_NEAR(recessed, expected, 0.002 * expected);
+  EXPECT_NEAR(plain, coarse, 0.002 * coarse);
+}
+
+TEST(TexturedObjectsOnAPlainPlane, OnATiltedPlaneTheGroovedBlockSlidesAsThePlainBlock) {
+  // 10 degrees, friction 0.1 (Bullet multiplies the plane's 1 by the block's): g (sin - mu cos),
+  // standing on its ridges as the plain block stands on its face.
+  const double slope = 10.0, mu = 0.1;
+  const tex::TextureMap grooves = heightMap(128, gb::kExtent, gb::vGrooves);
+  FaceTexture faces;
+  faces.map = &grooves;
+  faces.tile_m = gb::kExtent;
+  const Eigen::Isometry3d plane = tiltedPlane(slope);
+  const auto acceleration = [&](bool textured) {
+    PhysicsWorld world;
+    world.addPlainPlane(plane, {1.0, 0.0, 0.0});
+    const Eigen::Isometry3d pose = plane * at(0.0, 0.0, gb::kHalf.z() + 1e-5);
+    btRigidBody& block = textured ? world.addTexturedBox(gb::kHalf, gb::kMass, pose, {mu, 0.0, 0.0}, faces)
+                                  : world.addBox(gb::kHalf, gb::kMass, pose, {mu, 0.0, 0.0});
+    for (int k = 0; k < 100; ++k) world.step(gb::kDt);
+    const double v0 = velocityOf(block).norm();
+    for (int k = 0; k < 300; ++k) world.step(gb::kDt);
+    return (velocityOf(block).norm() - v0) / (300 * gb::kDt);
+  };
+  const double expected = kG * (std::sin(deg(slope)) - mu * std::cos(deg(slope)));
+  const double grooved = acceleration(true), plain = acceleration(false);
+  std::printf("[measured] down a 10 deg plain plane, friction 0.1: the grooved block %.4f m/s^2, the plain block %.4f "
+              "(g (sin - mu cos) %.4f)\n",
+              grooved, plain, expected);
+  EXPECT_NEAR(grooved, expected, 0.01 * expected);
+  EXPECT_NEAR(plain, expected, 0.01 * expected);
+}
+
 TEST(TexturedObjectsOnAPlainPlane, AnObjectHoldingMoreTexelsThanTheBudgetMeetsItAsItsCoarseShape) {
   // The 2 x 2 cm grooved block at 0.31 mm texels: 64 x 64 under its largest face; the dimpled
   // ball's cap within reach at its 61 um texels, some 7,500; the 20 x 20 x 2 cm slab of the tests
