@@ -41,11 +41,13 @@
 // own slope at 0.911 of the weight that friction holds to 0.941 slid 0.27 mm in 0.3 s
 // (tests/physics/test_box_relief_slope.cpp).
 // Fifth: a solve whose contacts include a ball with a bump map's (textured_ball.hpp) runs more
-// iterations (PhysicsWorld's default 40, against 10). Its points are found afresh each step
+// iterations (PhysicsWorld's default 150, against 10). Its points are found afresh each step
 // (relief_collision.hpp), so the solve starts cold every step, and in ten iterations it left
 // the ball moving: a bumpy ball on four bump tips loaded one pair, then the other, rocking at
 // 0.8 mm/s on a plain box, and the grooved board's marble rolled on along its groove at 0.05 mm/s
-// against its rolling friction (docs/physics.md, "Known gaps"); at 40: 0.008 mm/s, and asleep.
+// against its rolling friction (docs/physics.md, "Known gaps"); at 40: 0.008 mm/s, and asleep,
+// but kept awake the ball still rocked on three tips in a six-step cycle at up to 0.3 mm/s, the
+// third tip lifting 40 nm and landing; at 150 under 0.02 mm/s on flat ground.
 // Only its island runs them (the bodies whose bounds, widened by Bullet's 2 cm breaking
 // threshold, meet): PhysicsWorld has each island solved on its own, where Bullet batches small
 // islands into one solve.

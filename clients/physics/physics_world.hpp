@@ -32,8 +32,9 @@ struct WorldOptions {
   Eigen::Vector3d gravity_m_per_s2{0.0, 0.0, -9.81};
   int solver_iterations = 10;
   // Iterations for a solve whose contacts include a ball with a bump map's (ContactSolver::
-  // setTexturedBallIterations): its points are found afresh each step, so the solve starts cold.
-  int textured_ball_solver_iterations = 40;
+  // setTexturedBallIterations): its points are found afresh each step, so the solve starts cold
+  // (at 40 a bumpy ball kept awake rocked on its tips at up to 0.3 mm/s; docs/physics.md, "Solver").
+  int textured_ball_solver_iterations = 150;
   // Convex margin for boxes, capsules' and cylinders' GJK (Bullet's 4 cm default is far too big
   // at haptic scale; docs/design.md §7 fact 8).
   double convex_margin_m = 0.5e-3;
