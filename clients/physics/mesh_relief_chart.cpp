@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <unordered_map>
 #include <unordered_set>
@@ -204,6 +205,41 @@ bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach
   out.smooth = !relief.map || by_pole;
   layChartAt(relief, triangle, b, f, side, reach_m, out);
   return true;
+}
+
+namespace {
+
+// The nearest to c of the triangles Bullet's BVH hands over (their boxes meet the query's).
+struct NearestTriangle : btTriangleCallback {
+  NearestTriangle(const mesh::TexturedMesh& m, const Eigen::Vector3d& centre) : mesh(m), c(centre) {}
+  void processTriangle(btVector3*, int, int index) override {
+    const auto t = std::uint32_t(index);
+    if (t >= mesh.triangles.size()) return;
+    // As mesh::nearestTriangle reads it, the first of equals in the mesh's order: its answer
+    // wherever the nearest lies within reach, whatever order the BVH hands them in.
+    const double d = (mesh::pointAt(mesh, t, mesh::closestBarycentric(mesh, t, c)) - c).squaredNorm();
+    if (d < best_d || (d == best_d && t < best)) best_d = d, best = t;
+  }
+  const mesh::TexturedMesh& mesh;
+  Eigen::Vector3d c;
+  double best_d = std::numeric_limits<double>::infinity();
+  std::uint32_t best = mesh::kNoNeighbour;
+};
+
+}  // namespace
+
+std::uint32_t footToWalkFrom(const MeshRelief& relief, const btConcaveShape& triangles, const Eigen::Vector3d& c,
+                             const Eigen::AlignedBox3d& reach, std::uint32_t foot) {
+  const mesh::TexturedMesh& m = *relief.mesh.mesh;
+  if (foot < m.triangles.size()) {
+    const mesh::SurfaceFrame near = mesh::frameAt(m, foot, mesh::closestBarycentric(m, foot, c), mesh::FrameMode::Interpolated);
+    const bool in_front = !relief.map || (c - near.point).dot(near.normal) >= 0.0;
+    if (in_front && reach.exteriorDistance(near.point) == 0.0) return foot;
+  }
+  NearestTriangle nearest(m, c);
+  triangles.processAllTriangles(&nearest, btVector3(btScalar(reach.min().x()), btScalar(reach.min().y()), btScalar(reach.min().z())),
+                                btVector3(btScalar(reach.max().x()), btScalar(reach.max().y()), btScalar(reach.max().z())));
+  return nearest.best;
 }
 
 bool chartOnFace(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t triangle,

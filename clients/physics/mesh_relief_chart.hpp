@@ -27,6 +27,7 @@
 // read at its own texels). Both sides of the mesh are met, as Bullet's triangles are (a closed sphere's inside is
 // a bowl).
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
+#include <BulletCollision/CollisionShapes/btConcaveShape.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -97,6 +98,18 @@ struct MeshChart {
 // of neighbours, kept on that ring, so that an object resting by the fan's edge stays on one.
 bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach_m, std::uint32_t& triangle,
                 bool& by_pole, MeshChart& out);
+
+// The triangle chartUnder's walk starts from for an object centred at c (mesh frame) whose bounds
+// widened by its contact threshold are `reach`: `foot`, the foot's triangle kept from the step
+// before, while its point nearest c lies within `reach`; else the nearest triangle within
+// `reach` (mesh::nearestTriangle's answer there), asked of the mesh's Bullet BVH `triangles`;
+// mesh::kNoNeighbour where none is (nothing to meet). A foot kept while the object was beyond
+// the mesh's bounds, then back on the far side of a closed mesh, lies behind it: against that
+// face's plane the object read as behind the winding, and two bump-mapped balls met nothing again
+// and passed through each other. (An object behind a foot within its reach still meets nothing:
+// a rod tipping over a box's edge, its centre below the top face, falls free of it.)
+std::uint32_t footToWalkFrom(const MeshRelief& relief, const btConcaveShape& triangles, const Eigen::Vector3d& c,
+                             const Eigen::AlignedBox3d& reach, std::uint32_t foot);
 
 // The chart of a surface across a crease from the one under the object (chart_boundary.hpp): at the
 // point of `triangle` nearest c, on the side `side` of the winding (the chart under the object's),

@@ -510,7 +510,10 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
   // of the object's reach: a marble rolling off a box's edge rode on at its height for 0.5 s.)
   triangles.getAabb(btTransform::getIdentity(), aabb_min, aabb_max);
   const bool within = reach.intersects(Eigen::AlignedBox3d(toEigen(aabb_min), toEigen(aabb_max)));
-  if (within && chartUnder(relief, centre, reach_m, foot_triangle_, by_pole_, chart)) {
+  // The walk to the foot from last step's, while that is still within reach and faces the object;
+  // else from the nearest triangle within reach (none: nothing to meet).
+  if (within) foot_triangle_ = footToWalkFrom(relief, triangles, centre, reach, foot_triangle_);
+  if (within && foot_triangle_ != mesh::kNoNeighbour && chartUnder(relief, centre, reach_m, foot_triangle_, by_pole_, chart)) {
     if (chart.smooth) laySmoothChart(chart, shape, mesh_from_object, relief.grid_intervals, texture);
     const ChartBoundary boundary =
         chartCollision(object, mesh, relief, triangles, faces, chart, kUnder, reach, threshold, result);

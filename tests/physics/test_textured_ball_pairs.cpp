@@ -156,5 +156,49 @@ TEST(TexturedBallPairs, ACylinderLyingOnABallWithABumpMapRestsOnItsRecessedSurfa
   }
 }
 
+// A ball that leaves the other's reach and comes back on its far side is met there. The pair's
+// algorithm keeps the foot of the last step it was within reach (on the ground ball's -z face,
+// where the small ball first touched it from below); Bullet keeps the pair while their bounds,
+// each widened by 2 cm, meet. Until 2026-12-05 the walk started from that kept foot: against its
+// face's plane the small ball, back above the ground ball, read as behind the winding, met
+// nothing, and went into it (the pen of `bumpy_marbles_bowl` pushed one marble through another).
+TEST(TexturedBallPairs, ABallThatLeftItsReachAndCameBackOnTheFarSideIsMetThere) {
+  const tex::TextureMap map = textured_ball::bumpMap(1e-4);
+  const FaceTexture bumps = textured_ball::ballTexture(map);
+  constexpr double kBig = 0.008, kSmall = 0.006;
+  WorldOptions options;
+  options.gravity_m_per_s2 = Eigen::Vector3d::Zero();
+  options.rest.enabled = false;
+  PhysicsWorld world(options);
+  world.addTexturedSphere(kBig, 0.0, Eigen::Isometry3d::Identity(), {0.5, 0.0, 0.0}, bumps);
+  btRigidBody& ball = world.addTexturedSphere(kSmall, 0.007, at(0.0, 0.0, -(kBig + kSmall + 5e-4)), {0.5, 0.0, 0.0}, bumps);
+  const auto moveTo = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& v) {
+    btTransform t = ball.getWorldTransform();
+    t.setOrigin(toBt(p));
+    ball.setWorldTransform(t);
+    ball.setLinearVelocity(toBt(v));
+    ball.setAngularVelocity(btVector3(0, 0, 0));
+  };
+  // Up against it from below: met there.
+  moveTo(Eigen::Vector3d(0.0, 0.0, -(kBig + kSmall + 5e-4)), Eigen::Vector3d(0.0, 0.0, 0.01));
+  for (int k = 0; k < 100; ++k) world.step(1e-3);
+  const double below = positionOf(ball).norm();
+  // Aside, beyond its reach (11 mm of gap) but within Bullet's 2 cm widened bounds, then above it
+  // coming down.
+  moveTo(Eigen::Vector3d(0.0, kBig + kSmall + 0.011, 0.0), Eigen::Vector3d::Zero());
+  for (int k = 0; k < 20; ++k) world.step(1e-3);
+  moveTo(Eigen::Vector3d(0.0, 0.0, kBig + kSmall + 5e-4), Eigen::Vector3d(0.0, 0.0, -0.01));
+  double closest = 1.0;
+  for (int k = 0; k < 200; ++k) {
+    world.step(1e-3);
+    closest = std::min(closest, positionOf(ball).norm());
+  }
+  std::printf("[measured] a bumpy ball met from below: centres %.3f mm apart; come back from above: %.3f mm at the "
+              "closest (the radii's sum %.1f mm)\n",
+              below * 1e3, closest * 1e3, (kBig + kSmall) * 1e3);
+  EXPECT_GT(below, kBig + kSmall - 2.5e-4);  // the two bump layers' depth at most
+  EXPECT_GT(closest, kBig + kSmall - 2.5e-4);
+}
+
 }  // namespace
 }  // namespace thx::phys::test::test_textured_ball_pairs
