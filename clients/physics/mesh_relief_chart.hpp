@@ -101,13 +101,14 @@ bool chartUnder(const MeshRelief& relief, const Eigen::Vector3d& c, double reach
 
 // The triangle chartUnder's walk starts from for an object centred at c (mesh frame) whose bounds
 // widened by its contact threshold are `reach`: `foot`, the foot's triangle kept from the step
-// before, while its point nearest c lies within `reach`; else the nearest triangle within
-// `reach` (mesh::nearestTriangle's answer there), asked of the mesh's Bullet BVH `triangles`;
-// mesh::kNoNeighbour where none is (nothing to meet). A foot kept while the object was beyond
-// the mesh's bounds, then back on the far side of a closed mesh, lies behind it: against that
-// face's plane the object read as behind the winding, and two bump-mapped balls met nothing again
-// and passed through each other. (An object behind a foot within its reach still meets nothing:
-// a rod tipping over a box's edge, its centre below the top face, falls free of it.)
+// before, while its point nearest c lies within `reach` and c lies in front of it (where the mesh
+// has a relief); else the nearest triangle within `reach` (mesh::nearestTriangle's answer there),
+// asked of the mesh's Bullet BVH `triangles`; mesh::kNoNeighbour where none is (nothing to meet).
+// A foot kept while the object was beyond the mesh's bounds, then back on the far side of a closed
+// mesh, lies behind it: against that face's plane the object read as behind the winding, no chart
+// was found and the foot was never moved again; two bump-mapped balls passed through each other.
+// (A rod tipping over a box's edge, its centre gone below the top face, now meets the side face
+// under it, where it fell free of the box before.)
 std::uint32_t footToWalkFrom(const MeshRelief& relief, const btConcaveShape& triangles, const Eigen::Vector3d& c,
                              const Eigen::AlignedBox3d& reach, std::uint32_t foot);
 
