@@ -22,14 +22,20 @@ struct FaceFrame {
 // The face normal, area and +u direction from the corner positions and texture coordinates. A
 // triangle whose texture coordinates are degenerate (collinear) has no +u direction; it gets its
 // first edge, which some tangent is as good as any for a texture that does not vary across it.
+// The unit normal of the triangle p0 p1 p2 (+z for a degenerate one), and its area.
+Eigen::Vector3d unitNormal(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
+                           double& area) {
+  const Eigen::Vector3d cross = (p1 - p0).cross(p2 - p0);
+  const double len = cross.norm();
+  area = 0.5 * len;
+  return len > 0.0 ? Eigen::Vector3d(cross / len) : Eigen::Vector3d::UnitZ();
+}
+
 FaceFrame faceFrame(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
                     const Eigen::Vector2d& t0, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2) {
   FaceFrame f;
   const Eigen::Vector3d e1 = p1 - p0, e2 = p2 - p0;
-  const Eigen::Vector3d cross = e1.cross(e2);
-  const double len = cross.norm();
-  f.area = 0.5 * len;
-  f.normal = len > 0.0 ? Eigen::Vector3d(cross / len) : Eigen::Vector3d::UnitZ();
+  f.normal = unitNormal(p0, p1, p2, f.area);
   const Eigen::Vector2d d1 = t1 - t0, d2 = t2 - t0;
   const double r = d1.x() * d2.y() - d2.x() * d1.y();
   const double uv_scale = std::max(d1.squaredNorm(), d2.squaredNorm());
@@ -304,6 +310,12 @@ void triangleFrame(const TexturedMesh& mesh, std::uint32_t triangle, Eigen::Vect
   normal = f.normal;
   tangent = f.tangent;
   handedness = f.handedness;
+}
+
+Eigen::Vector3d faceNormal(const TexturedMesh& mesh, std::uint32_t triangle) {
+  const Triangle& t = mesh.triangles[triangle];
+  double area = 0.0;
+  return unitNormal(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], area);
 }
 
 Eigen::Vector2d metresPerUv(const TexturedMesh& mesh, std::uint32_t triangle, const SurfaceFrame& frame) {

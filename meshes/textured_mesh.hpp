@@ -98,13 +98,10 @@ Eigen::Vector2d metresPerUv(const TexturedMesh& mesh, std::uint32_t triangle, co
 // The triangle's own frame (FrameMode::PerTriangle): unit normal, unit +u direction in its plane.
 void triangleFrame(const TexturedMesh& mesh, std::uint32_t triangle, Eigen::Vector3d& normal,
                    Eigen::Vector3d& tangent, double& handedness);
-// The triangle's own unit normal (triangleFrame's), as every sense reads a flat face.
-inline Eigen::Vector3d faceNormal(const TexturedMesh& mesh, std::uint32_t triangle) {
-  Eigen::Vector3d normal, tangent;
-  double handedness = 1.0;
-  triangleFrame(mesh, triangle, normal, tangent, handedness);
-  return normal;
-}
+// The triangle's own unit normal (triangleFrame's, to the bit), as every sense reads a flat face.
+// Without the tangent: the physics asks it of every triangle within an object's reach each step
+// (chart_boundary.cpp), where the whole frame took a tenth of a bump-mapped marble's step.
+Eigen::Vector3d faceNormal(const TexturedMesh& mesh, std::uint32_t triangle);
 
 // For each triangle, the triangle across each of its edges: [k] shares the edge opposite corner k
 // (corners k+1, k+2), matched by the positions of its ends (a seam's split vertices still join);

@@ -14,7 +14,8 @@
 // Which body is the ground (texturedPairGround): a box under a ball with a bump map; of two boxes,
 // one of them textured, the larger (by volume; the second on a tie); of two balls with bump maps
 // the larger (by radius; the second on a tie), seen as its cube-sphere (meshes/textured_ball_mesh.hpp)
-// with its relief, so that both reliefs shape the pair's depth; a ball with a bump map or a
+// with its relief, so that both reliefs shape the pair's depth (a cube-sphere has no creases: its
+// chart is not cut, relief_collision.hpp); a ball with a bump map or a
 // textured box under a cylinder, the cylinder met by the rod rules of the relief plane on the chart
 // laid under its axis's point nearest the ground's centre (relief_collision.cpp, meshCollision),
 // its side on a convex edge with its own normal (edge_contact.hpp). Pairs without a texture keep

@@ -270,7 +270,7 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   candidates.clear();
   const GroundBend* bent = bend.flat() ? nullptr : &bend;
   // The ball's texture read for its depth under every texel, for its normal at the points kept.
-  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &texture, bent, false);
+  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &texture, bent, false, boundary);
   dropPastBoundary(boundary, candidates);
   // The basins closest to closing, deepest first (selectShallowestBasins), each refined to its
   // bottom between the texels: a bumpy ball's supports are its bump tips, and the next tip to
@@ -303,7 +303,8 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
   thread_local std::vector<std::size_t> group_index, taken;
   candidates.clear();
   taken.clear();
-  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend);
+  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend,
+                                              true, boundary);
   dropPastBoundary(boundary, candidates);
   const TexturedObjectSurface box_surface(underside, faces);
   // Ground flat under the whole footprint: no crease within reach, and a bend that is rounding (a
@@ -424,7 +425,7 @@ void ReliefCollisionAlgorithm::chartManifolds(btManifoldArray& manifolds) {
 ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWrapper& object,
                                                        const btCollisionObjectWrapper& mesh, const MeshRelief& relief,
                                                        const btConcaveShape& triangles_shape, const FaceTexture* faces,
-                                                       const MeshChart& chart, int slot,
+                                                       const MeshChart& chart, int slot, MeshGround ground,
                                                        const Eigen::AlignedBox3d& reach, double threshold,
                                                        btManifoldResult* result) {
   const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
@@ -437,9 +438,10 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
   const Eigen::Vector3d foot_middle =
       (triangles.positions[foot[0]] + triangles.positions[foot[1]] + triangles.positions[foot[2]]) / 3.0;
   const ChartBoundary boundary =
-      chartBoundary(triangles_shape, triangles, mesh_from_chart,
-                    (mesh_from_chart.inverse() * foot_middle).head<2>(), reach,
-                    world_from_mesh.inverse() * world_from_object.translation(), chart.side);
+      ground == MeshGround::Ball
+          ? ChartBoundary{}
+          : chartBoundary(triangles_shape, triangles, mesh_from_chart, (mesh_from_chart.inverse() * foot_middle).head<2>(),
+                          reach, world_from_mesh.inverse() * world_from_object.translation(), chart.side);
   const std::optional<Underside> underside =
       undersideOf(*object.getCollisionShape(), world_from_chart.inverse() * world_from_object);
   if (!underside) return boundary;
@@ -481,8 +483,9 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
 
 void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
                                              const MeshRelief& relief, const btConcaveShape& triangles,
-                                             const FaceTexture* faces, bool object_ground,
+                                             const FaceTexture* faces, MeshGround ground,
                                              btManifoldResult* result) {
+  const bool object_ground = ground != MeshGround::Scene;
   btPersistentManifold* manifold = manifoldFor(object.getCollisionObject(), mesh.getCollisionObject());
   result->setPersistentManifold(manifold);
   const Eigen::Isometry3d world_from_mesh = toEigen(mesh.getWorldTransform());
@@ -516,7 +519,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
   if (within && foot_triangle_ != mesh::kNoNeighbour && chartUnder(relief, centre, reach_m, foot_triangle_, by_pole_, chart)) {
     if (chart.smooth) laySmoothChart(chart, shape, mesh_from_object, relief.grid_intervals, texture);
     const ChartBoundary boundary =
-        chartCollision(object, mesh, relief, triangles, faces, chart, kUnder, reach, threshold, result);
+        chartCollision(object, mesh, relief, triangles, faces, chart, kUnder, ground, reach, threshold, result);
     // Each surface across a crease within reach, on a chart of its own at its point nearest the
     // object's centre, cut at its own creases (the chart under the object's surface among them).
     for (std::size_t k = 0; k < boundary.surface_count; ++k) {
@@ -527,7 +530,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
       if (slot == kUnder) continue;
       held |= 1u << std::size_t(slot);
       if (across.smooth) laySmoothChart(across, shape, mesh_from_object, relief.grid_intervals, texture);
-      chartCollision(object, mesh, relief, triangles, faces, across, slot, reach, threshold, result);
+      chartCollision(object, mesh, relief, triangles, faces, across, slot, ground, reach, threshold, result);
     }
   } else {
     // Beyond the mesh, or behind the winding: nothing textured to meet (mesh_relief_chart.hpp).
@@ -553,7 +556,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   const btCollisionShape& ground = *relief->getCollisionShape();
   if (const MeshRelief* mesh = meshReliefOf(ground)) {
     meshCollision(*object, *relief, *mesh, static_cast<const btConcaveShape&>(ground),
-                  faceTextureOf(*object->getCollisionShape()), false, result);
+                  faceTextureOf(*object->getCollisionShape()), MeshGround::Scene, result);
     return;
   }
   if (ground.getShapeType() == STATIC_PLANE_PROXYTYPE) {
@@ -569,7 +572,8 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
                                                faceTextureOf(ground));
     const ObjectGround& object_ground = shared_ground_ ? *shared_ground_ : *object_ground_;
     meshCollision(*object, *relief, object_ground.relief(), object_ground.triangles(),
-                  faceTextureOf(*object->getCollisionShape()), true, result);
+                  faceTextureOf(*object->getCollisionShape()), ground_ball ? MeshGround::Ball : MeshGround::Box,
+                  result);
     return;
   }
   btPersistentManifold* manifold = manifoldFor(object->getCollisionObject(), relief->getCollisionObject());
@@ -659,7 +663,7 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     // Reused between steps so a resting object costs no allocation per step.
     thread_local std::vector<ReliefCandidate> candidates;
     candidates.clear();
-    const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, nullptr, bent);
+    const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, nullptr, bent, true, boundary);
     dropPastBoundary(boundary, candidates);
     // Refined within its texel (relief_raster.hpp), but kept on the chart: a box tilted over a
     // slab's edge has its deepest point on flat ground at its far edge, over the air past the crease,

@@ -102,16 +102,22 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   // same rule as on the plane (a textured box's, `faces`, or the untextured one's) on the mesh's
   // chart under it, and on the chart of each surface across a crease within its reach.
   // `triangles`: the mesh's faces as Bullet's, where the chart's boundary is looked for.
-  // `object_ground`: the mesh is a box's or a ball's (box_ground.hpp), centred on its frame's
-  // origin, where a cylinder's chart is laid under its axis's point nearest that centre.
+  // `ground`: a scene's mesh, or a box's or a ball's (box_ground.hpp), centred on its frame's
+  // origin, where a cylinder's chart is laid under its axis's point nearest that centre. A ball's
+  // cube-sphere has no creases (below).
+  enum class MeshGround { Scene, Box, Ball };
   void meshCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
                      const MeshRelief& relief, const btConcaveShape& triangles, const FaceTexture* faces,
-                     bool object_ground, btManifoldResult* result);
+                     MeshGround ground, btManifoldResult* result);
   // The rule on one chart, into that chart's manifolds; each point names the triangle under it.
-  // Returns the chart's boundary.
+  // Returns the chart's boundary: none on a ball's cube-sphere, smooth everywhere. There the 60
+  // degrees of chart_boundary.hpp lie within an object's reach round the ball's own curvature, and
+  // the charts laid "across" them met the object too, on their bends 60 degrees off: two balls
+  // recessed 0.5 mm pressed together along a line off the world's axes rested 0.43 mm off their
+  // touch, or were thrown apart (2026-12-05, TexturedBallPairs.PressedTogetherAlongAnyLineTheyRestWhereTheirSurfacesTouch).
   ChartBoundary chartCollision(const btCollisionObjectWrapper& object, const btCollisionObjectWrapper& mesh,
                                const MeshRelief& relief, const btConcaveShape& triangles, const FaceTexture* faces,
-                               const MeshChart& chart, int slot,
+                               const MeshChart& chart, int slot, MeshGround ground,
                                const Eigen::AlignedBox3d& reach, double threshold, btManifoldResult* result);
   // The slot of the surface across a crease whose face normal is `normal` (mesh frame): the one
   // that held it last step, else a free one, emptied; kUnder when none is free.

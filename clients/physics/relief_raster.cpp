@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace thx::phys {
@@ -23,6 +24,43 @@ Eigen::AlignedBox2d touchingFootprint(const Underside& shape, const Eigen::Align
     }
   }
   return box;
+}
+
+// The x-interval of a row at height y that can hold candidates: within a ball's touching disc
+// (centre `disc_centre`, radius `disc_radius`; none for other shapes: radius < 0) and not past a
+// chart edge. Empty (lo > hi) where none can. Approximate to rounding, so the caller widens it by
+// a texel, and tests a texel's point exactly (ChartBoundary::past) only within a texel of where
+// an edge cuts the row (edge_lo, edge_hi), or everywhere where an edge runs nearly along the rows.
+struct RowSpan {
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  double lo = -kInf, hi = kInf;
+  double edge_lo = -kInf, edge_hi = kInf;
+  bool test_every_texel = false;
+};
+RowSpan rowSpan(double y, const Eigen::Vector2d& disc_centre, double disc_radius, const ChartBoundary* boundary) {
+  RowSpan r;
+  if (boundary)
+    for (std::size_t k = 0; k < boundary->count; ++k) {
+      // Kept: normal . (x, y) <= offset. An edge nearly along x cuts whole rows or none: the
+      // test of each texel decides them.
+      const ChartEdge& e = boundary->edges[k];
+      if (std::fabs(e.normal.x()) < 1e-6) {
+        r.test_every_texel = true;
+        continue;
+      }
+      const double x = (e.offset - e.normal.y() * y) / e.normal.x();
+      if (e.normal.x() > 0.0) r.edge_hi = std::min(r.edge_hi, x);
+      else r.edge_lo = std::max(r.edge_lo, x);
+    }
+  r.lo = r.edge_lo, r.hi = r.edge_hi;
+  if (disc_radius >= 0.0) {
+    const double dy = y - disc_centre.y();
+    const double half = disc_radius * disc_radius - dy * dy;
+    if (half < 0.0) return RowSpan{1.0, -1.0};
+    r.lo = std::max(r.lo, disc_centre.x() - std::sqrt(half));
+    r.hi = std::min(r.hi, disc_centre.x() + std::sqrt(half));
+  }
+  return r;
 }
 
 }  // namespace
@@ -48,7 +86,7 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
                             std::vector<ReliefCandidate>& out, const FaceTexture* object_texture, const GroundBend* bend,
-                            bool object_normals) {
+                            bool object_normals, const ChartBoundary* boundary) {
   RasterStats stats;
   // Bent ground may rise above the plane under the object: the footprint reaches as high.
   double reach = 0.0;
@@ -83,13 +121,42 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
                         (shape.kind == Underside::Kind::Box || shape.kind == Underside::Kind::Sphere);
   std::optional<TexturedObjectSurface> object_surface;
   if (textured) object_surface.emplace(shape, *object_texture);
+  // A ball's touching disc, as footprintTexels bounds it (its rows' texels beyond it cannot reach
+  // the relief); the chart's edges.
+  double disc_radius = -1.0;
+  const Eigen::Vector3d centre = shape.plane_from_object.translation();
+  const bool sphere = shape.kind == Underside::Kind::Sphere;
+  if (sphere) {
+    const double above = centre.z() - (threshold_m + reach);
+    disc_radius = above > 0.0 ? std::sqrt(std::max(0.0, shape.radius * shape.radius - above * above)) : shape.radius;
+  }
+  const ChartBoundary* edges = boundary && boundary->count > 0 ? boundary : nullptr;
+  const bool clipped = disc_radius >= 0.0 || edges != nullptr;
   for (long long j = j0; j <= j1; j += stats.stride_j) {
     const double y = first.y() - double(j - j0) * texel.y();
     const int rj = tex::resolveIndex(j, map.height(), address);
-    for (long long i = i0; i <= i1; i += stats.stride_i) {
+    long long row_i0 = i0, row_i1 = i1;
+    RowSpan span;
+    if (clipped) {
+      span = rowSpan(y, centre.head<2>(), disc_radius, edges);
+      if (span.lo > span.hi) continue;
+      // The span in texel steps from the footprint's first, a texel wider either side; texels
+      // off the footprint's stride grid are not its texels.
+      const double a = (span.lo - first.x()) / texel.x(), b = (span.hi - first.x()) / texel.x();
+      const double from = std::min(a, b) - 1.0, to = std::max(a, b) + 1.0;
+      if (std::isfinite(from) && from > 0.0)
+        row_i0 = std::min(i1 + 1, i0 + ((long long)std::ceil(from / double(stats.stride_i))) * stats.stride_i);
+      if (std::isfinite(to) && to < double(i1 - i0)) row_i1 = std::max(i0 - 1, i0 + (long long)std::floor(to));
+    }
+    // Within a texel of an edge's cut, or on a row an edge runs along, each texel is tested.
+    const double surely_from = span.edge_lo + std::fabs(texel.x()), surely_to = span.edge_hi - std::fabs(texel.x());
+    for (long long i = row_i0; i <= row_i1; i += stats.stride_i) {
       ++stats.texels_visited;
       const double x = first.x() + double(i - i0) * texel.x();
-      std::optional<double> z = lowestZ(shape, x, y);
+      if (edges && (span.test_every_texel || !(x >= surely_from && x <= surely_to)) &&
+          edges->past(Eigen::Vector3d(x, y, 0.0)))
+        continue;
+      const std::optional<double> z = sphere ? sphereLowestZ(centre, shape.radius, x, y) : lowestZ(shape, x, y);
       if (!z) continue;
       const int ri = tex::resolveIndex(i, map.width(), address);
       const double height = (relief ? -double(map.depth(ri, rj)) : 0.0) + (bend ? bend->height(x, y) : 0.0);

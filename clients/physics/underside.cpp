@@ -85,14 +85,14 @@ Underside Underside::cylinder(const Eigen::Isometry3d& pose, double r, double ha
 }
 
 std::optional<double> lowestZ(const Underside& s, double x, double y) {
-  const Eigen::Vector3d o(x, y, 0.0);
   const Eigen::Vector3d c = s.plane_from_object.translation();
-  const Eigen::Matrix3d& r = s.plane_from_object.linear();
+  if (s.kind == Underside::Kind::Sphere) return sphereLowestZ(c, s.radius, x, y);
+  const Eigen::Vector3d o(x, y, 0.0);
+  const Eigen::Matrix3d r = s.plane_from_object.linear();
   Interval in{kInf, -kInf};
   switch (s.kind) {
     case Underside::Kind::Sphere:
-      in = sphereInterval(o, c, s.radius);
-      break;
+      break;  // above
     case Underside::Kind::Box: {
       in = Interval{};
       for (int k = 0; k < 3; ++k) in = intersect(in, slabInterval(o, c, r.col(k), s.half_extents[k]));

@@ -39,6 +39,18 @@ inline constexpr double kParallelSine = 1e-12;
 // Lowest z of the object on the vertical line through (x, y); nullopt if the line misses it.
 std::optional<double> lowestZ(const Underside& shape, double x, double y);
 
+// lowestZ of a sphere of radius r centred at c (plane frame), to the bit: inline for the rasters,
+// which ask it at every texel under a ball (a third of a bump-mapped ball's collision time went
+// to the call and its copy of the pose's rotation, which a sphere does not need; 2026-12-05).
+inline std::optional<double> sphereLowestZ(const Eigen::Vector3d& c, double r, double x, double y) {
+  const double dx = x - c.x(), dy = y - c.y();
+  const double h2 = r * r - dx * dx - dy * dy;
+  if (h2 < 0.0) return std::nullopt;
+  const double lo = c.z() - std::sqrt(h2);
+  if (!std::isfinite(lo)) return std::nullopt;
+  return lo;
+}
+
 // Where a contact with surface normal n (plane frame, unit, pointing out of the relief) acts on
 // the object, given the object's lowest point p above a texel. On round parts the point moves to
 // where the object's own surface normal is -n (Eq. 2 generalised): a sphere's q = c - r n, a

@@ -68,6 +68,20 @@ TEST(VertexFrames, BoxKeepsItsEdgesHard) {
   }
 }
 
+// faceNormal computes the normal alone (the physics asks it of every triangle in reach each step):
+// it must be triangleFrame's, to the bit, on curved, flat and inward-facing meshes.
+TEST(VertexFrames, AFacesNormalIsItsFramesNormalToTheBit) {
+  for (const TexturedMesh& m : {sphere(0.05, 32, 16, 0.01).mesh, box({0.04, 0.03, 0.02}, 0.01, 0.02).mesh,
+                                box({0.04, 0.04, 0.04}, 0.02, 0.02, true).mesh}) {
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      Eigen::Vector3d n, tan;
+      double h = 0.0;
+      triangleFrame(m, std::uint32_t(t), n, tan, h);
+      EXPECT_EQ(faceNormal(m, std::uint32_t(t)), n) << "triangle " << t;
+    }
+  }
+}
+
 TEST(VertexFrames, RoomFacesInward) {
   const TexturedMesh m = box({0.04, 0.04, 0.04}, 0.02, 0.02, true).mesh;
   for (std::size_t v = 0; v < m.positions.size(); ++v) {

@@ -130,6 +130,38 @@ TEST(TexturedBallPairs, TwoBallsWithBumpMapsTouchWhereTheirExactSurfacesDo) {
   }
 }
 
+// Two balls recessed 0.5 mm everywhere pressed together along lines through their centres that lie
+// along a world axis, across a diagonal and off every axis: they rest where their recessed spheres
+// touch, 2 (r - 0.5 mm) apart, whichever way the line runs.
+TEST(TexturedBallPairs, PressedTogetherAlongAnyLineTheyRestWhereTheirSurfacesTouch) {
+  const tex::TextureMap recess_map = textured_ball::uniformRecess(0.5e-3);
+  const FaceTexture recessed = textured_ball::ballTexture(recess_map);
+  const double touch = 2.0 * (kRadius - 0.5e-3);
+  for (const Eigen::Vector3d& line : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 1, 1),
+                                      Eigen::Vector3d(1, -2, 0.5), Eigen::Vector3d(-0.3, 0.8, 1)}) {
+    const Eigen::Vector3d u = line.normalized();
+    PhysicsWorld world;
+    world.world().setGravity(btVector3(0, 0, 0));
+    world.addTexturedSphere(kRadius, 0.0, Eigen::Isometry3d::Identity(), {0.5, 0.0, 0.0}, recessed);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = (touch + 1e-4) * u;
+    btRigidBody& ball = world.addTexturedSphere(kRadius, 0.03, pose, {0.5, 0.0, 0.0}, recessed);
+    ball.setAngularFactor(btVector3(0, 0, 0));
+    double farthest_off_line = 0.0;
+    for (int k = 0; k < 600; ++k) {
+      ball.applyCentralForce(toBt(Eigen::Vector3d(-0.03 * kG * u)));
+      world.step(1e-3);
+      const Eigen::Vector3d c = positionOf(ball);
+      farthest_off_line = std::max(farthest_off_line, (c - c.dot(u) * u).norm());
+    }
+    const Eigen::Vector3d c = positionOf(ball);
+    std::printf("[measured] recessed balls pressed along (%.2f, %.2f, %.2f): at rest %.2f um off the touch, %.2f um off the line at most\n",
+                u.x(), u.y(), u.z(), (c.norm() - touch) * 1e6, farthest_off_line * 1e6);
+    EXPECT_NEAR(c.norm(), touch, 3e-6) << u.transpose();
+    EXPECT_LT(farthest_off_line, 1e-6) << u.transpose();
+  }
+}
+
 // A cylinder lying across the top of a fixed ball recessed 0.5 mm everywhere rests on it at the
 // smaller sphere's height, where the coarse pair put it on the full sphere.
 TEST(TexturedBallPairs, ACylinderLyingOnABallWithABumpMapRestsOnItsRecessedSurface) {
