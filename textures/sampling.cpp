@@ -10,6 +10,15 @@ double reduce(double u, Address address) {
   return std::fmin(2.0, std::fmax(-1.0, u));
 }
 
+// resolveIndex for an index within one period of the map (k in [-n, 2n), as a reduced coordinate's
+// texels are), without its division: a bilinear sample resolves four, and the physics samples a
+// textured object's map at every texel under it (the divisions were a tenth of a textured box's
+// step, 2026-12-05).
+inline int resolveNear(long long k, int n, Address address) {
+  if (address == Address::Clamp) return k < 0 ? 0 : (k >= n ? n - 1 : int(k));
+  return int(k < 0 ? k + n : (k >= n ? k - n : k));
+}
+
 // The four texels round uv and their weights (bilinear; texel centres at half-integers).
 struct Bilinear {
   int i0, i1, j0, j1;
@@ -20,8 +29,8 @@ Bilinear bilinearAt(const TextureMap& map, TexCoord uv, Address address) {
   const double t = texelT(map, reduce(uv.v, address));
   const double s0 = std::floor(s), t0 = std::floor(t);
   const float fs = float(s - s0), ft = float(t - t0);
-  return {resolveIndex((long long)s0, map.width(), address),  resolveIndex((long long)s0 + 1, map.width(), address),
-          resolveIndex((long long)t0, map.height(), address), resolveIndex((long long)t0 + 1, map.height(), address),
+  return {resolveNear((long long)s0, map.width(), address),  resolveNear((long long)s0 + 1, map.width(), address),
+          resolveNear((long long)t0, map.height(), address), resolveNear((long long)t0 + 1, map.height(), address),
           (1 - fs) * (1 - ft), fs * (1 - ft), (1 - fs) * ft, fs * ft};
 }
 float depthAt(const TextureMap& map, const Bilinear& b) {

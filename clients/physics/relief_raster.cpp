@@ -150,7 +150,13 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
     }
     // Within a texel of an edge's cut, or on a row an edge runs along, each texel is tested.
     const double surely_from = span.edge_lo + std::fabs(texel.x()), surely_to = span.edge_hi - std::fabs(texel.x());
-    for (long long i = row_i0; i <= row_i1; i += stats.stride_i) {
+    // The texel's column in the map, stepped along the row (a wrapped map's index without a
+    // division a texel; resolveIndex at the row's start).
+    const bool wrap = address == tex::Address::Wrap;
+    const int width = map.width();
+    const int wrap_step = wrap ? int(stats.stride_i % width) : 0;
+    int wrapped_i = tex::resolveIndex(row_i0, width, address);
+    for (long long i = row_i0; i <= row_i1; i += stats.stride_i, wrapped_i += wrap_step, wrapped_i -= wrapped_i >= width ? width : 0) {
       ++stats.texels_visited;
       const double x = first.x() + double(i - i0) * texel.x();
       if (edges && (span.test_every_texel || !(x >= surely_from && x <= surely_to)) &&
@@ -158,7 +164,7 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
         continue;
       const std::optional<double> z = sphere ? sphereLowestZ(centre, shape.radius, x, y) : lowestZ(shape, x, y);
       if (!z) continue;
-      const int ri = tex::resolveIndex(i, map.width(), address);
+      const int ri = wrap ? wrapped_i : tex::resolveIndex(i, width, address);
       const double height = (relief ? -double(map.depth(ri, rj)) : 0.0) + (bend ? bend->height(x, y) : 0.0);
       auto ground = [&](const Eigen::Vector3d& n) { return bend ? bend->tilt(n, x, y) : n; };
       if (!textured) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "textures/plane_mapping.hpp"
 #include "textures/sampling.hpp"
@@ -139,6 +140,35 @@ TEST(Sampling, DepthAloneIsTheFullSamplesDepthToTheBit) {
       }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(sampleDepth(relief, {nan, 0.5}, {}), 0.0f);
+}
+
+// A bilinear sample reads the four texels resolveIndex names round the reduced coordinate, with the
+// weights of its fractions, to the bit: the sampler resolves them without a division
+// (sampling.cpp), which must agree with resolveIndex on every index a reduced coordinate reaches,
+// at the seam of a wrapped map (u = 0 and u just below 0, which reduces to 1) and past a clamped
+// map's edges.
+TEST(Sampling, BilinearReadsTheTexelsResolveIndexNames) {
+  const TextureMap relief = linearDepthMap(9, 6);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> uv(-2.5, 3.5);
+  std::vector<TexCoord> at = {{0.0, 0.0}, {1.0, 1.0}, {-1e-20, 0.5}, {0.5, -1e-20}, {1.0 - 1e-17, 0.5},
+                              {0.5 / 9.0, 0.5 / 6.0}, {-1.0, 2.0}, {2.0, -1.0}, {-0.0, 0.999999999}};
+  for (int k = 0; k < 4000; ++k) at.push_back({uv(rng), uv(rng)});
+  for (const Address address : {Address::Wrap, Address::Clamp}) {
+    const auto reduce = [&](double u) {
+      return address == Address::Wrap ? u - std::floor(u) : std::fmin(2.0, std::fmax(-1.0, u));
+    };
+    for (const TexCoord c : at) {
+      const double s = texelS(relief, reduce(c.u)), t = texelT(relief, reduce(c.v));
+      const double s0 = std::floor(s), t0 = std::floor(t);
+      const float fs = float(s - s0), ft = float(t - t0);
+      const int i0 = resolveIndex((long long)s0, relief.width(), address), i1 = resolveIndex((long long)s0 + 1, relief.width(), address);
+      const int j0 = resolveIndex((long long)t0, relief.height(), address), j1 = resolveIndex((long long)t0 + 1, relief.height(), address);
+      const float expected = (1 - fs) * (1 - ft) * relief.depth(i0, j0) + fs * (1 - ft) * relief.depth(i1, j0) +
+                             (1 - fs) * ft * relief.depth(i0, j1) + fs * ft * relief.depth(i1, j1);
+      EXPECT_EQ(sampleDepth(relief, c, {Filter::Bilinear, address}), expected) << c.u << " " << c.v;
+    }
+  }
 }
 
 TEST(PlaneMapping, UvAndWorldRoundTrip) {
