@@ -155,8 +155,9 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
     const bool wrap = address == tex::Address::Wrap;
     const int width = map.width();
     const int wrap_step = wrap ? int(stats.stride_i % width) : 0;
+    const auto next_wrapped = [&](int k) { return k + wrap_step >= width ? k + wrap_step - width : k + wrap_step; };
     int wrapped_i = tex::resolveIndex(row_i0, width, address);
-    for (long long i = row_i0; i <= row_i1; i += stats.stride_i, wrapped_i += wrap_step, wrapped_i -= wrapped_i >= width ? width : 0) {
+    for (long long i = row_i0; i <= row_i1; i += stats.stride_i, wrapped_i = next_wrapped(wrapped_i)) {
       ++stats.texels_visited;
       const double x = first.x() + double(i - i0) * texel.x();
       if (edges && (span.test_every_texel || !(x >= surely_from && x <= surely_to)) &&
