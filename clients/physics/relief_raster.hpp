@@ -48,9 +48,10 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // added to the ones kept by withObjectNormal (a ball with a bump map reads its texture's depth at
 // every texel under it and its normal at four: a third of its raster's cost went to the normals).
 // `boundary` (a mesh's chart, chart_boundary.hpp): the texels past its edges are not visited; the
-// candidates are those that ChartBoundary::past would keep, to the bit (each visited texel is
-// tested as past() tests a candidate's point; a row's texels are visited only between where
-// its edges cut it, a texel wide on either side). A ball's footprint's rows are likewise visited
+// candidates are those that ChartBoundary::past would keep, to the bit (a row's texels are
+// visited only between where its edges cut it, a texel wider on either side, and each texel
+// within a texel of a cut, or on a row an edge runs nearly along, is tested as past() tests a
+// candidate's point). A ball's footprint's rows are likewise visited
 // only where its touching disc (footprintTexels) covers them. On a small ball's cube-sphere as
 // the ground, the charts across its "creases" (faces 60 degrees round its curvature) held 140,000
 // of the ball's texels, most of them past an edge (2026-12-05).
