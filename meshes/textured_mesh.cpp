@@ -19,9 +19,6 @@ struct FaceFrame {
   double handedness = 1.0;
 };
 
-// The face normal, area and +u direction from the corner positions and texture coordinates. A
-// triangle whose texture coordinates are degenerate (collinear) has no +u direction; it gets its
-// first edge, which some tangent is as good as any for a texture that does not vary across it.
 // The unit normal of the triangle p0 p1 p2 (+z for a degenerate one), and its area.
 Eigen::Vector3d unitNormal(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
                            double& area) {
@@ -31,6 +28,9 @@ Eigen::Vector3d unitNormal(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
   return len > 0.0 ? Eigen::Vector3d(cross / len) : Eigen::Vector3d::UnitZ();
 }
 
+// The face normal, area and +u direction from the corner positions and texture coordinates. A
+// triangle whose texture coordinates are degenerate (collinear) has no +u direction; it gets its
+// first edge, which some tangent is as good as any for a texture that does not vary across it.
 FaceFrame faceFrame(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
                     const Eigen::Vector2d& t0, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2) {
   FaceFrame f;

@@ -15,7 +15,7 @@ double reduce(double u, Address address) {
 // textured object's map at every texel under it (the divisions were a tenth of a textured box's
 // step, 2026-12-05).
 inline int resolveNear(long long k, int n, Address address) {
-  if (address == Address::Clamp) return k < 0 ? 0 : (k >= n ? n - 1 : int(k));
+  if (address == Address::Clamp) return resolveIndex(k, n, address);  // no division there
   return int(k < 0 ? k + n : (k >= n ? k - n : k));
 }
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <optional>
 
+#include "clients/physics/chart_boundary.hpp"
+
 namespace thx::phys {
 
 namespace {
@@ -13,13 +15,19 @@ namespace {
 // [-maxDepth, 0], so only where the object reaches below z = threshold can a texel be a
 // candidate. For a sphere that is a disc much smaller than the ball (at rest: radius
 // sqrt(2 r (maxDepth + threshold))); other shapes keep their bounding box.
+// A sphere's touching disc: the radius round its centre within which it reaches below `level`
+// (its own radius where its centre is not above that level).
+double touchingDiscRadius(const Underside& sphere, double level) {
+  const double above = sphere.plane_from_object.translation().z() - level;  // centre's height above it
+  return above > 0.0 ? std::sqrt(std::max(0.0, sphere.radius * sphere.radius - above * above)) : sphere.radius;
+}
+
 Eigen::AlignedBox2d touchingFootprint(const Underside& shape, const Eigen::AlignedBox3d& bounds, double threshold_m) {
   Eigen::AlignedBox2d box(bounds.min().head<2>(), bounds.max().head<2>());
   if (shape.kind == Underside::Kind::Sphere) {
     const Eigen::Vector3d c = shape.plane_from_object.translation();
-    const double above = c.z() - threshold_m;  // centre's height above the touching level
-    if (above > 0.0) {
-      const double rho = std::sqrt(std::max(0.0, shape.radius * shape.radius - above * above));
+    if (c.z() - threshold_m > 0.0) {
+      const double rho = touchingDiscRadius(shape, threshold_m);
       box = Eigen::AlignedBox2d(c.head<2>() - Eigen::Vector2d::Constant(rho), c.head<2>() + Eigen::Vector2d::Constant(rho));
     }
   }
@@ -123,13 +131,9 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   if (textured) object_surface.emplace(shape, *object_texture);
   // A ball's touching disc, as footprintTexels bounds it (its rows' texels beyond it cannot reach
   // the relief); the chart's edges.
-  double disc_radius = -1.0;
   const Eigen::Vector3d centre = shape.plane_from_object.translation();
   const bool sphere = shape.kind == Underside::Kind::Sphere;
-  if (sphere) {
-    const double above = centre.z() - (threshold_m + reach);
-    disc_radius = above > 0.0 ? std::sqrt(std::max(0.0, shape.radius * shape.radius - above * above)) : shape.radius;
-  }
+  const double disc_radius = sphere ? touchingDiscRadius(shape, threshold_m + reach) : -1.0;
   const ChartBoundary* edges = boundary && boundary->count > 0 ? boundary : nullptr;
   const bool clipped = disc_radius >= 0.0 || edges != nullptr;
   for (long long j = j0; j <= j1; j += stats.stride_j) {

@@ -5,7 +5,6 @@
 // height there). Texels where d < threshold become contact candidates.
 #include <vector>
 
-#include "clients/physics/chart_boundary.hpp"
 #include "clients/physics/contact_selection.hpp"
 #include "clients/physics/ground_bend.hpp"
 #include "clients/physics/textured_object_surface.hpp"
@@ -13,6 +12,8 @@
 #include "textures/textured_surface.hpp"
 
 namespace thx::phys {
+
+struct ChartBoundary;  // chart_boundary.hpp
 
 // A footprint wider than this many texels (in total) is visited with a stride, so a huge object
 // or a grossly mis-scaled texture costs bounded time; at 1 mm texels that is a 0.5 m object.

@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "clients/physics/chart_boundary.hpp"
 #include "clients/physics/relief_raster.hpp"
 #include "tests/physics/textured_ball_scene.hpp"
 

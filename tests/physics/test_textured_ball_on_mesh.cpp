@@ -67,24 +67,15 @@ TEST(TexturedBallOnMesh, PressedOnASmoothSphereMeshAlongAnyLineItRestsWhereItTou
                                       Eigen::Vector3d(1, -2, 0.5), Eigen::Vector3d(-0.3, 0.8, 1)}) {
     const Eigen::Vector3d u = line.normalized();
     mesh_rolling::SphereScene scene(128, true, sphere_radius);
-    scene.world.world().setGravity(btVector3(0, 0, 0));
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = (touch + 1e-4) * u;
     btRigidBody& b = scene.world.addTexturedSphere(ball::kRadius, ball::kMass, pose, {0.5, 0.0, 0.0}, recessed);
-    b.setAngularFactor(btVector3(0, 0, 0));
-    double farthest_off_line = 0.0;
-    for (int k = 0; k < 600; ++k) {
-      b.applyCentralForce(toBt(Eigen::Vector3d(-ball::kMass * kG * u)));
-      scene.world.step(ball::kDt);
-      const Eigen::Vector3d c = positionOf(b);
-      farthest_off_line = std::max(farthest_off_line, (c - c.dot(u) * u).norm());
-    }
-    const Eigen::Vector3d c = positionOf(b);
+    const ball::PressedRest rest = ball::pressTowardsOrigin(scene.world, b, u);
     std::printf("[measured] recessed ball pressed on the 2 cm sphere mesh along (%.2f, %.2f, %.2f): at rest %.2f um off "
                 "the touch, %.2f um off the line at most\n",
-                u.x(), u.y(), u.z(), (c.norm() - touch) * 1e6, farthest_off_line * 1e6);
-    EXPECT_NEAR(c.norm(), touch, 1e-6) << u.transpose();
-    EXPECT_LT(farthest_off_line, 1e-6) << u.transpose();
+                u.x(), u.y(), u.z(), (rest.distance_m - touch) * 1e6, rest.off_line_m * 1e6);
+    EXPECT_NEAR(rest.distance_m, touch, 1e-6) << u.transpose();
+    EXPECT_LT(rest.off_line_m, 1e-6) << u.transpose();
   }
 }
 

@@ -141,24 +141,15 @@ TEST(TexturedBallPairs, PressedTogetherAlongAnyLineTheyRestWhereTheirSurfacesTou
                                       Eigen::Vector3d(1, -2, 0.5), Eigen::Vector3d(-0.3, 0.8, 1)}) {
     const Eigen::Vector3d u = line.normalized();
     PhysicsWorld world;
-    world.world().setGravity(btVector3(0, 0, 0));
     world.addTexturedSphere(kRadius, 0.0, Eigen::Isometry3d::Identity(), {0.5, 0.0, 0.0}, recessed);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = (touch + 1e-4) * u;
-    btRigidBody& ball = world.addTexturedSphere(kRadius, 0.03, pose, {0.5, 0.0, 0.0}, recessed);
-    ball.setAngularFactor(btVector3(0, 0, 0));
-    double farthest_off_line = 0.0;
-    for (int k = 0; k < 600; ++k) {
-      ball.applyCentralForce(toBt(Eigen::Vector3d(-0.03 * kG * u)));
-      world.step(1e-3);
-      const Eigen::Vector3d c = positionOf(ball);
-      farthest_off_line = std::max(farthest_off_line, (c - c.dot(u) * u).norm());
-    }
-    const Eigen::Vector3d c = positionOf(ball);
+    btRigidBody& ball = world.addTexturedSphere(kRadius, textured_ball::kMass, pose, {0.5, 0.0, 0.0}, recessed);
+    const textured_ball::PressedRest rest = textured_ball::pressTowardsOrigin(world, ball, u);
     std::printf("[measured] recessed balls pressed along (%.2f, %.2f, %.2f): at rest %.2f um off the touch, %.2f um off the line at most\n",
-                u.x(), u.y(), u.z(), (c.norm() - touch) * 1e6, farthest_off_line * 1e6);
-    EXPECT_NEAR(c.norm(), touch, 3e-6) << u.transpose();
-    EXPECT_LT(farthest_off_line, 1e-6) << u.transpose();
+                u.x(), u.y(), u.z(), (rest.distance_m - touch) * 1e6, rest.off_line_m * 1e6);
+    EXPECT_NEAR(rest.distance_m, touch, 3e-6) << u.transpose();
+    EXPECT_LT(rest.off_line_m, 1e-6) << u.transpose();
   }
 }
 

@@ -54,6 +54,26 @@ inline FaceTexture ballTexture(const tex::TextureMap& map) {
   return t;
 }
 
+// A ball (kept from turning) pressed by its weight towards the origin along unit `u` for `steps`
+// steps of kDt, the world's gravity off: where its centre ends (distance from the origin) and how
+// far it strayed from the line at most. Something fixed at the origin holds it.
+struct PressedRest {
+  double distance_m = 0.0, off_line_m = 0.0;
+};
+inline PressedRest pressTowardsOrigin(PhysicsWorld& world, btRigidBody& ball, const Eigen::Vector3d& u, int steps = 600) {
+  world.world().setGravity(btVector3(0, 0, 0));
+  ball.setAngularFactor(btVector3(0, 0, 0));
+  PressedRest rest;
+  for (int k = 0; k < steps; ++k) {
+    ball.applyCentralForce(toBt(Eigen::Vector3d(-kMass * kG * u)));
+    world.step(kDt);
+    const Eigen::Vector3d c = positionOf(ball);
+    rest.off_line_m = std::max(rest.off_line_m, (c - c.dot(u) * u).norm());
+  }
+  rest.distance_m = positionOf(ball).norm();
+  return rest;
+}
+
 // How far the ball's recessed surface stands above `plane` at its lowest (negative: into it),
 // found over the ball's directions rather than the plane's texels: every direction within
 // `cone_rad` of straight down, `rings` rings of them, each point's height over the plane's relief
