@@ -7,8 +7,7 @@
 
 namespace thx::mesh {
 
-BallChartPoint ballChartAt(const Eigen::Vector3d& direction, double radius_m) {
-  const Eigen::Vector3d w = direction.normalized();
+BallChartPoint ballChartUvAtUnit(const Eigen::Vector3d& w, double radius_m) {
   BallChartPoint c;
   c.axis = 0;
   for (int k = 1; k < 3; ++k)
@@ -17,6 +16,14 @@ BallChartPoint ballChartAt(const Eigen::Vector3d& direction, double radius_m) {
   c.sign = w[a] < 0.0 ? -1.0 : 1.0;
   const double wa = std::fabs(w[a]);
   c.uv_m = radius_m * Eigen::Vector2d(std::atan2(w[b], wa), std::atan2(w[d], wa));
+  return c;
+}
+
+BallChartPoint ballChartAt(const Eigen::Vector3d& direction, double radius_m) {
+  const Eigen::Vector3d w = direction.normalized();
+  BallChartPoint c = ballChartUvAtUnit(w, radius_m);
+  const int a = c.axis, b = (a + 1) % 3, d = (a + 2) % 3;
+  const double wa = std::fabs(w[a]);
   // u = r atan(P_b / |P_a|) for P = r w: its gradient in space, tangent to the sphere already
   // (u does not change along P), is (|w_a| e_b - sign w_b e_a) / (w_a^2 + w_b^2) on the sphere.
   const double ab = w[a] * w[a] + w[b] * w[b], ad = w[a] * w[a] + w[d] * w[d];

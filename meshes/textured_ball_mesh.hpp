@@ -34,6 +34,10 @@ struct BallChartPoint {
 
 // `direction` need not be unit, and must not be zero; radius_m > 0.
 BallChartPoint ballChartAt(const Eigen::Vector3d& direction, double radius_m);
+// Its face and uv alone (du and dv left at their defaults), at a direction already made unit as
+// ballChartAt makes it (direction.normalized()): the same to the bit. For reads of the depth alone,
+// which a ball's contacts make at every texel under it.
+BallChartPoint ballChartUvAtUnit(const Eigen::Vector3d& unit_direction, double radius_m);
 
 // The face a tile spans exactly once: its edge's arc, r pi / 2.
 double ballFaceArc(double radius_m);

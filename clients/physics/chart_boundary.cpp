@@ -117,4 +117,14 @@ ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::Textur
   return boundary;
 }
 
+bool offChart(const ChartBoundary* boundary, const ReliefCandidate& c) {
+  return boundary && boundary->count > 0 &&
+         (boundary->past(c.p_surface) || boundary->nearerAcross(c.p_surface + c.depth * Eigen::Vector3d::UnitZ(), c.depth));
+}
+
+void dropPastBoundary(const ChartBoundary* boundary, std::vector<ReliefCandidate>& candidates) {
+  if (!boundary || boundary->count == 0) return;
+  std::erase_if(candidates, [&](const ReliefCandidate& c) { return offChart(boundary, c); });
+}
+
 }  // namespace thx::phys

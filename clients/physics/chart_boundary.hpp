@@ -19,7 +19,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
+#include "clients/physics/contact_selection.hpp"
 #include "meshes/textured_mesh.hpp"
 
 namespace thx::phys {
@@ -81,5 +83,16 @@ bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const 
 ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
                             const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
                             const Eigen::AlignedBox3d& reach, const Eigen::Vector3d& centre, double side = 1.0);
+
+// A chart's candidate past its boundary is not the mesh's. The basin walks find candidates by
+// their texels' (i, j), so a gap in the raster is only a texel not there. Across a convex crease,
+// a texel whose object point lies nearer the face across it than the chart goes too
+// (ChartBoundary::nearerAcross): that face's chart meets it. A block resting on a slab's top by
+// its edge, sunk a micrometre, read 7 mm into the side face's chart where its underside's edge was
+// sampled, and was thrown back over the slab. (Dropping every texel within one texel of a crease
+// instead dropped the ridge on a slab's edge, and a grooved block overhanging it tipped over the
+// ridge before.) `boundary` null or without edges: nothing is off the chart.
+bool offChart(const ChartBoundary* boundary, const ReliefCandidate& c);
+void dropPastBoundary(const ChartBoundary* boundary, std::vector<ReliefCandidate>& candidates);
 
 }  // namespace thx::phys

@@ -27,6 +27,7 @@
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/relief_raster.hpp"
 #include "clients/physics/speculative_contacts.hpp"
+#include "clients/physics/textured_ball_basins.hpp"
 #include "clients/physics/textured_ball.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "clients/physics/textured_object_surface.hpp"
@@ -223,24 +224,6 @@ void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside&
   for (std::size_t k = 0; k < taken; ++k) result->addContactPoint(normals[k], on_reliefs[k], gaps[k]);
 }
 
-// A mesh chart's texels past its boundary are not the mesh's (chart_boundary.hpp). The basin walks
-// find candidates by their texels' (i, j), so a gap in the raster is only a texel not there. Across
-// a convex crease, a texel whose object point lies nearer the face across it than the chart goes
-// too (ChartBoundary::nearerAcross): that face's chart meets it. A block resting on a slab's top by
-// its edge, sunk a micrometre, read 7 mm into the side face's chart where its underside's edge was
-// sampled, and was thrown back over the slab. (Dropping every texel within one texel of a crease
-// instead dropped the ridge on a slab's edge, and a grooved block overhanging it tipped over the
-// ridge before.)
-bool offChart(const ChartBoundary* boundary, const ReliefCandidate& c) {
-  return boundary && boundary->count > 0 &&
-         (boundary->past(c.p_surface) || boundary->nearerAcross(c.p_surface + c.depth * Eigen::Vector3d::UnitZ(), c.depth));
-}
-
-void dropPastBoundary(const ChartBoundary* boundary, std::vector<ReliefCandidate>& candidates) {
-  if (!boundary || boundary->count == 0) return;
-  std::erase_if(candidates, [&](const ReliefCandidate& c) { return offChart(boundary, c); });
-}
-
 // Which group of a textured box's contacts a normal (plane frame) falls in: 0 within 6° of the
 // plane's normal, else 1-4 by the quarter of the plane its tilt leans towards (centred on +x, +y,
 // -x, -y). Contacts on walls that face each other land in different groups, so each group's four
@@ -264,23 +247,21 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 // sampled coarser than the ball's texels (by a pole of the uv, mesh_relief_chart.hpp).
 void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const ChartBoundary* boundary,
                            const Underside& underside, const FaceTexture& texture, double threshold,
-                           const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion, btManifoldResult* result,
-                           bool settle_points = false) {
+                           const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion, BallBasinHint& hint,
+                           btManifoldResult* result, bool settle_points = false) {
   thread_local std::vector<ReliefCandidate> candidates;
   candidates.clear();
   const GroundBend* bent = bend.flat() ? nullptr : &bend;
-  // The ball's texture read for its depth under every texel, for its normal at the points kept.
-  const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &texture, bent, false, boundary);
-  dropPastBoundary(boundary, candidates);
-  // The basins closest to closing, deepest first (selectShallowestBasins), each refined to its
-  // bottom between the texels: a bumpy ball's supports are its bump tips, and the next tip to
-  // touch must be among them before it touches.
-  std::array<std::size_t, kMaxReliefContacts> picked{};
-  const std::size_t n = selectShallowestBasins(candidates, raster.stride_i, raster.stride_j, picked);
+  // The basins closest to closing, deepest first (selectShallowestBasins; the ball's texture read
+  // for its depth under the texels, only as far out as they can lie: textured_ball_basins.hpp),
+  // each refined to its bottom between the texels: a bumpy ball's supports are its bump tips, and
+  // the next tip to touch must be among them before it touches. Its normal is read at the points kept.
+  const BallBasins basins = findBallBasins(surface, underside, texture, threshold, bent, boundary, hint, candidates);
+  const std::size_t n = basins.count;
   std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
   const TexturedObjectSurface ball(underside, texture);
   for (std::size_t k = 0; k < n; ++k) {
-    ReliefCandidate c = candidates[picked[k]];
+    ReliefCandidate c = candidates[basins.picked[k]];
     withObjectNormal(ball, c);
     chosen[k] = refineDeepest(surface, underside, c, bent, &texture, settle_points);
   }
@@ -371,6 +352,7 @@ void ReliefCollisionAlgorithm::clearSlot(int slot) {
   for (btPersistentManifold* m : s.groups)
     if (m) m->clearManifold();
   s.held = false;
+  s.ball_hint = {};
 }
 
 int ReliefCollisionAlgorithm::surfaceSlot(const Eigen::Vector3d& normal, std::uint32_t taken) {
@@ -450,8 +432,9 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
     btPersistentManifold* manifold = groupManifold(slot, 0, object.getCollisionObject(), mesh.getCollisionObject());
     result->setPersistentManifold(manifold);
     manifold->clearManifold();
+    BallBasinHint& hint = slot == kUnder ? ball_hint_ : surfaces_->slots[std::size_t(slot)].ball_hint;
     texturedBallCollision(chart.surface, chart.bend, &boundary, *underside, *ball, threshold, world_from_chart,
-                          motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()), result,
+                          motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()), hint, result,
                           chart.least_cell_m > 0.0);
   } else if (faces) {
     texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, *faces, &boundary, threshold,
@@ -595,7 +578,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   if (const FaceTexture* ball = ballTextureOf(*object->getCollisionShape())) {
     clearGroupManifolds();
     texturedBallCollision(plane.surface(), GroundBend{}, nullptr, *underside, *ball, threshold, world_from_plane,
-                          motionOf(*object->getCollisionObject()), result);
+                          motionOf(*object->getCollisionObject()), ball_hint_, result);
     return;
   }
   // A box with a relief on its faces (textured_box.hpp): its own rule, one manifold per group of
@@ -641,7 +624,7 @@ void ReliefCollisionAlgorithm::plainPlaneCollision(const btCollisionObjectWrappe
   manifold->clearManifold();
   clearGroupManifolds();
   texturedBallCollision(chart.surface, chart.bend, nullptr, *underside, *ballTextureOf(shape), threshold,
-                        world_from_chart, motionOf(*object.getCollisionObject()), result);
+                        world_from_chart, motionOf(*object.getCollisionObject()), ball_hint_, result);
 }
 
 void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& surface, const GroundBend& bend,

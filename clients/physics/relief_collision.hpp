@@ -42,6 +42,7 @@
 #include "clients/physics/mesh_relief_chart.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/speculative_contacts.hpp"
+#include "clients/physics/textured_ball_basins.hpp"
 #include "clients/physics/textured_box.hpp"
 #include "clients/physics/underside.hpp"
 
@@ -134,6 +135,7 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
     btPersistentManifold* groups[kNormalGroups] = {};
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     bool held = false;  // it held a surface last step
+    BallBasinHint ball_hint;  // a ball with a bump map on this chart (textured_ball_basins.hpp)
   };
   struct SurfaceSlots {
     std::array<SurfaceSlot, ChartBoundary::kMaxSurfaces> slots;
@@ -144,6 +146,8 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   bool by_pole_ = false;                       // on a mesh: its chart smooth by a pole of the uv (chartUnder)
   btPersistentManifold* groups_[kNormalGroups - 1] = {};
   std::unique_ptr<SurfaceSlots> surfaces_;
+  // A ball with a bump map on the plane or the chart under it: how far out its basins lay last step.
+  BallBasinHint ball_hint_;
   // Against a box or a ball with a bump map (box_ground.hpp): its surface as a mesh, the world's
   // (shared_ground_) or made on first need.
   const ObjectGround* shared_ground_ = nullptr;

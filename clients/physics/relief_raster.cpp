@@ -94,7 +94,7 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
                             std::vector<ReliefCandidate>& out, const FaceTexture* object_texture, const GroundBend* bend,
-                            bool object_normals, const ChartBoundary* boundary) {
+                            bool object_normals, const ChartBoundary* boundary, double texture_within_m) {
   RasterStats stats;
   // Bent ground may rise above the plane under the object: the footprint reaches as high.
   double reach = 0.0;
@@ -133,7 +133,9 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   // the relief); the chart's edges.
   const Eigen::Vector3d centre = shape.plane_from_object.translation();
   const bool sphere = shape.kind == Underside::Kind::Sphere;
-  const double disc_radius = sphere ? touchingDiscRadius(shape, threshold_m + reach) : -1.0;
+  // Where a ball's texture is read: within the threshold, or the tighter bound asked for.
+  const double read_within = textured && sphere ? std::min(threshold_m, texture_within_m) : threshold_m;
+  const double disc_radius = sphere ? touchingDiscRadius(shape, read_within + reach) : -1.0;
   const ChartBoundary* edges = boundary && boundary->count > 0 ? boundary : nullptr;
   const bool clipped = disc_radius >= 0.0 || edges != nullptr;
   for (long long j = j0; j <= j1; j += stats.stride_j) {
@@ -180,7 +182,7 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
       }
       // An object's relief lies inside its smooth surface: where that is already beyond the
       // threshold, so is the relief, and its texture need not be read (most of a ball's footprint).
-      if (*z - height >= threshold_m) continue;
+      if (*z - height >= threshold_m || *z - height > read_within) continue;
       if (!object_normals) {
         const double depth = object_surface->zOver(x, y, *z) - height;
         if (depth < threshold_m)

@@ -3,6 +3,7 @@
 // (docs/design.md §4 rule 8): for every texel centre under the object's plane-frame bounding box,
 // the directional penetration depth along the plane normal, d = (object's lowest z there) - (relief
 // height there). Texels where d < threshold become contact candidates.
+#include <limits>
 #include <vector>
 
 #include "clients/physics/contact_selection.hpp"
@@ -56,10 +57,15 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // only where its touching disc (footprintTexels) covers them. On a small ball's cube-sphere as
 // the ground, the charts across its "creases" (faces 60 degrees round its curvature) held 140,000
 // of the ball's texels, most of them past an edge (2026-12-05).
+// `texture_within_m` (a ball with a bump map, below threshold_m): its texture is read only where
+// its smooth sphere lies within that of the relief, and its touching disc is the one that bound
+// gives. A relief only recesses the sphere, so every texel left out stands farther off than the
+// bound (textured_ball_basins.hpp says when that leaves the basins chosen the same).
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
                             std::vector<ReliefCandidate>& out, const FaceTexture* object_texture = nullptr,
                             const GroundBend* bend = nullptr, bool object_normals = true,
-                            const ChartBoundary* boundary = nullptr);
+                            const ChartBoundary* boundary = nullptr,
+                            double texture_within_m = std::numeric_limits<double>::infinity());
 // A candidate rasterised without its object's normal, with it: as rasterizeRelief makes it, to the bit.
 void withObjectNormal(const TexturedObjectSurface& object, ReliefCandidate& c);
 

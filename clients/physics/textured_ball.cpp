@@ -27,7 +27,11 @@ FacePoint ballTextureAt(const FaceTexture& texture, double radius_m, const Eigen
 }
 
 double ballRecessAt(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& p) {
-  return double(tex::sampleDepth(*texture.map, uvOf(mesh::ballChartAt(p, radius_m), texture), texture.sampling));
+  return ballRecessAtUnit(texture, radius_m, p.normalized());
+}
+
+double ballRecessAtUnit(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& w) {
+  return double(tex::sampleDepth(*texture.map, uvOf(mesh::ballChartUvAtUnit(w, radius_m), texture), texture.sampling));
 }
 
 namespace {

@@ -35,6 +35,8 @@ FacePoint ballTextureAt(const FaceTexture& texture, double radius_m, const Eigen
 // The recess alone, as ballTextureAt reads it to the bit (the raster reads it at every texel, and
 // the normal only at the contacts it keeps).
 double ballRecessAt(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& p_object);
+// The same, given the direction made unit as ballRecessAt makes it (p_object.normalized()).
+double ballRecessAtUnit(const FaceTexture& texture, double radius_m, const Eigen::Vector3d& unit_direction);
 
 // Attaches `texture` (which must outlive the shape) to a btSphereShape.
 void attachBallTexture(btCollisionShape& sphere, const FaceTexture& texture);

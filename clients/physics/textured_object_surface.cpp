@@ -28,10 +28,10 @@ ObjectSurfacePoint TexturedObjectSurface::over(double x, double y, double lowest
 
 double TexturedObjectSurface::zOver(double x, double y, double lowest_z) const {
   if (object_.kind != Underside::Kind::Sphere) return over(x, y, lowest_z).z;
-  const Eigen::Vector3d p = object_from_plane_ * Eigen::Vector3d(x, y, lowest_z);
-  const double down = p.normalized().dot(down_object_);
+  const Eigen::Vector3d w = (object_from_plane_ * Eigen::Vector3d(x, y, lowest_z)).normalized();
+  const double down = w.dot(down_object_);
   if (down <= kSteepestTexturedFaceCos) return lowest_z;
-  return lowest_z + ballRecessAt(texture_, object_.radius, p) / down;
+  return lowest_z + ballRecessAtUnit(texture_, object_.radius, w) / down;
 }
 
 std::optional<ObjectSurfacePoint> TexturedObjectSurface::at(double x, double y) const {

@@ -10,6 +10,7 @@
 
 #include "clients/physics/chart_boundary.hpp"
 #include "clients/physics/relief_raster.hpp"
+#include "tests/physics/random_chart_boundary.hpp"
 #include "tests/physics/textured_ball_scene.hpp"
 
 namespace thx::phys::test::test_relief_raster_rows {
@@ -27,26 +28,6 @@ Eigen::Isometry3d randomPose(std::mt19937& rng, double height) {
   at.linear() = Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized()).toRotationMatrix();
   at.translation() = Eigen::Vector3d(0.004 * unit(rng), 0.004 * unit(rng), height + 3e-4 * unit(rng));
   return at;
-}
-
-// One to three edges through the footprint, some of them along the rows or the columns exactly,
-// one nearly along the rows (the raster tests each texel there).
-ChartBoundary randomBoundary(std::mt19937& rng, const Eigen::Vector2d& near) {
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  ChartBoundary b;
-  b.count = std::size_t(1 + rng() % 3);
-  for (std::size_t k = 0; k < b.count; ++k) {
-    Eigen::Vector2d n(unit(rng), unit(rng));
-    switch (rng() % 5) {
-      case 0: n = Eigen::Vector2d(0.0, 1.0); break;
-      case 1: n = Eigen::Vector2d(-1.0, 0.0); break;
-      case 2: n = Eigen::Vector2d(1e-9, -1.0); break;
-      default: break;
-    }
-    b.edges[k].normal = n.normalized();
-    b.edges[k].offset = b.edges[k].normal.dot(near) + 0.003 * unit(rng);
-  }
-  return b;
 }
 
 void expectSameCandidates(const std::vector<ReliefCandidate>& expected, const std::vector<ReliefCandidate>& got,
