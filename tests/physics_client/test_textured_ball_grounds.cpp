@@ -52,8 +52,10 @@ double dimpledBallOnAFlatRelief(double rolling_friction) {
 }  // namespace
 
 // On a flat relief whose texels are five of the ball's, the dimpled ball with no rolling
-// resistance rolls round on its dimples' rims, one rim contact carried at a time, and nothing
-// takes that energy (docs/physics.md, Known gaps); a rolling friction of 2e-5 m does, and it rests.
+// resistance rolls down the relief's 0.1 µm sine on its land and drops into a dimple in the third
+// second (the speed printed), and from some starts rocks on that dimple's rim ever after, one rim
+// point carried at a time, a rim point not chosen the step before entering micrometres deep
+// (docs/physics.md, Known gaps); with a rolling friction of 2e-5 m it is at rest in the third second.
 TEST(TexturedBallGrounds, ADimpledBallWithRollingFrictionComesToRestOnACoarseFlatRelief) {
   const double without = dimpledBallOnAFlatRelief(0.0), with = dimpledBallOnAFlatRelief(2e-5);
   std::printf("[measured] dimpled ball on a flat relief of 0.31 mm texels, fastest in the third second: %.2f mm/s "
