@@ -189,6 +189,9 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
           out.push_back({Eigen::Vector3d(x, y, height), ground(surface.texelNormal(i, j, ri, rj)), depth, i, j});
         continue;
       }
+      // The depth first: the object's normal is read only where the texel is a candidate (a
+      // grooved block's groove floors, most of its face, lie beyond the threshold).
+      if (object_surface->zOver(x, y, *z) - height >= threshold_m) continue;
       const ObjectSurfacePoint object = object_surface->over(x, y, *z);
       Eigen::Vector3d n = ground(surface.texelNormal(i, j, ri, rj));
       if (object.n_up) n = (n + *object.n_up).normalized();

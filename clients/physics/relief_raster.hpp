@@ -49,6 +49,8 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // `object_normals` false: the candidates keep the relief's normal alone, and the object's is
 // added to the ones kept by withObjectNormal (a ball with a bump map reads its texture's depth at
 // every texel under it and its normal at four: a third of its raster's cost went to the normals).
+// With it true, the object's normal is read only at the texels that are candidates, their depth
+// read first (TexturedObjectSurface::zOver; a grooved block's groove floors lie beyond the threshold).
 // `boundary` (a mesh's chart, chart_boundary.hpp): the texels past its edges are not visited; the
 // candidates are those that ChartBoundary::past would keep, to the bit (a row's texels are
 // visited only between where its edges cut it, a texel wider on either side, and each texel

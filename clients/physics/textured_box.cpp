@@ -6,8 +6,9 @@
 
 namespace thx::phys {
 
-FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
-                        const Eigen::Vector3d& toward) {
+namespace {
+// The face faceTextureAt reads (its axis and sign; recess and normal left to the caller).
+FacePoint faceOf(const Eigen::Vector3d& half, const Eigen::Vector3d& p, const Eigen::Vector3d& toward) {
   FacePoint f;
   double best = -1.0;
   for (int a = 0; a < 3; ++a) best = std::max(best, std::fabs(p[a]) / half[a]);
@@ -27,6 +28,21 @@ FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half,
     f.axis = a_best;
     f.sign = toward[a_best] < 0.0 ? -1.0 : 1.0;
   }
+  return f;
+}
+}  // namespace
+
+FacePoint faceRecessAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
+                       const Eigen::Vector3d& toward) {
+  FacePoint f = faceOf(half, p, toward);
+  const int b = (f.axis + 1) % 3, c = (f.axis + 2) % 3;
+  f.recess_m = double(tex::sampleDepth(*texture.map, {p[b] / texture.tile_m, p[c] / texture.tile_m}, texture.sampling));
+  return f;
+}
+
+FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
+                        const Eigen::Vector3d& toward) {
+  FacePoint f = faceOf(half, p, toward);
   const int a = f.axis, b = (a + 1) % 3, c = (a + 2) % 3;
   const tex::Sample s = tex::sample(*texture.map, {p[b] / texture.tile_m, p[c] / texture.tile_m}, texture.sampling);
   f.recess_m = double(s.depth);

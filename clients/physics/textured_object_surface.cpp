@@ -27,7 +27,12 @@ ObjectSurfacePoint TexturedObjectSurface::over(double x, double y, double lowest
 }
 
 double TexturedObjectSurface::zOver(double x, double y, double lowest_z) const {
-  if (object_.kind != Underside::Kind::Sphere) return over(x, y, lowest_z).z;
+  if (object_.kind != Underside::Kind::Sphere) {
+    const Eigen::Vector3d p = object_from_plane_ * Eigen::Vector3d(x, y, lowest_z);
+    const FacePoint relief = faceRecessAt(texture_, object_.half_extents, p, down_object_);
+    const double down = -relief.sign * object_.plane_from_object.linear()(2, relief.axis);
+    return down <= kSteepestTexturedFaceCos ? lowest_z : lowest_z + relief.recess_m / down;
+  }
   const Eigen::Vector3d w = (object_from_plane_ * Eigen::Vector3d(x, y, lowest_z)).normalized();
   const double down = w.dot(down_object_);
   if (down <= kSteepestTexturedFaceCos) return lowest_z;

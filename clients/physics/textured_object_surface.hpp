@@ -28,7 +28,7 @@ class TexturedObjectSurface {
   TexturedObjectSurface(const Underside& object, const FaceTexture& texture);
   // Over (x, y), whose vertical line first meets the object at height `lowest_z` (lowestZ).
   ObjectSurfacePoint over(double x, double y, double lowest_z) const;
-  // Its z alone, as over() reads it to the bit (a ball's texture read for its depth only).
+  // Its z alone, as over() reads it to the bit (the texture read for its depth only).
   double zOver(double x, double y, double lowest_z) const;
   // Over (x, y); nullopt where the vertical line misses the object.
   std::optional<ObjectSurfacePoint> at(double x, double y) const;

@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <random>
 
 #include "clients/physics/textured_box.hpp"
+#include "clients/physics/textured_object_surface.hpp"
 #include "tests/physics/grooved_block_scene.hpp"
 
 namespace thx::phys::test::test_textured_box {
@@ -109,6 +112,43 @@ TEST(TexturedBox, TheFaceTextureIsReadOnTheFaceAPointLiesOn) {
   // On the bottom's edge itself, the face turned towards the plane.
   f = faceTextureAt(faces, kHalf, {kHalf.x(), 0.003, -kHalf.z()}, {0.0, 0.0, -1.0});
   EXPECT_EQ(f.axis, 2);
+}
+
+// The depth alone, as the raster reads it at every texel (faceRecessAt, and the box's zOver): the
+// face and the recess faceTextureAt gives and the height over() gives, to the bit, on every face,
+// its edges and corners, and from every direction of the plane's downward.
+TEST(TexturedBox, ItsDepthAloneIsTheDepthItsFullReadGives) {
+  const tex::TextureMap map = heightMap(128, kExtent, vGrooves);
+  FaceTexture faces;
+  faces.map = &map;
+  faces.tile_m = kExtent;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int compared = 0;
+  for (int k = 0; k < 20000; ++k) {
+    // A point on the surface (snapped to a face, an edge or a corner), a direction, a pose.
+    Eigen::Vector3d p(unit(rng) * kHalf.x(), unit(rng) * kHalf.y(), unit(rng) * kHalf.z());
+    const int snap = int(rng() % 3) + 1;
+    for (int a = 0; a < snap; ++a) p[(k + a) % 3] = (unit(rng) < 0.0 ? -1.0 : 1.0) * kHalf[(k + a) % 3];
+    const Eigen::Vector3d toward = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+    const FacePoint full = faceTextureAt(faces, kHalf, p, toward), alone = faceRecessAt(faces, kHalf, p, toward);
+    ASSERT_EQ(full.axis, alone.axis) << k;
+    ASSERT_EQ(full.sign, alone.sign) << k;
+    ASSERT_EQ(full.recess_m, alone.recess_m) << k;
+
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized()).toRotationMatrix();
+    pose.translation() = Eigen::Vector3d(0.003 * unit(rng), 0.003 * unit(rng), 0.02);
+    const Underside box = Underside::box(pose, kHalf);
+    const TexturedObjectSurface surface(box, faces);
+    const Eigen::Vector2d xy(0.012 * unit(rng), 0.012 * unit(rng));
+    const std::optional<double> z = lowestZ(box, xy.x(), xy.y());
+    if (!z) continue;
+    const ObjectSurfacePoint over = surface.over(xy.x(), xy.y(), *z);
+    ASSERT_EQ(over.z, surface.zOver(xy.x(), xy.y(), *z)) << k;
+    ++compared;
+  }
+  EXPECT_GT(compared, 5000);  // the box under enough of the points
 }
 
 }  // namespace
