@@ -3,7 +3,6 @@
 // (missed ticks included), the bodies at the latest physics poses by then; bad files name the
 // problem; two runs write identical frames.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -16,16 +15,17 @@
 
 #include "clients/visual/replay_frames.hpp"
 #include "server/session_log.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace thx::visual::test_replay {
 namespace {
 
 namespace fs = std::filesystem;
 
+// One folder per process, removed with its files when the process ends.
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("thx_visual_replay_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  static const test::TempDir dir("thx_visual_replay");
+  return dir.path() / name;
 }
 
 // 1 s at 1 kHz, the tip sliding along x 1 mm below the plane; ticks 500..549 missed.
