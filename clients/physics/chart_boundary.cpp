@@ -21,20 +21,24 @@ struct CollectEdges : btTriangleCallback {
   Eigen::Vector2d inside;
   Eigen::Vector3d centre;
   double side;
+  double reach_radius;
   ChartBoundary& out;
   // Every surface found, before the nearest kMaxSurfaces are kept.
   std::array<BeyondSurface, 2 * ChartBoundary::kMaxSurfaces> found{};
   std::size_t found_count = 0;
   CollectEdges(const mesh::TexturedMesh& m, const Eigen::Isometry3d& c, const Eigen::Vector2d& f,
-               const Eigen::Vector3d& o_centre, double s, ChartBoundary& o)
-      : mesh(m), mesh_from_chart(c), inside(f), centre(o_centre), side(s), out(o) {}
+               const Eigen::Vector3d& o_centre, double s, double r, ChartBoundary& o)
+      : mesh(m), mesh_from_chart(c), inside(f), centre(o_centre), side(s), reach_radius(r), out(o) {}
 
-  // The triangle joins the first surface it is not across a crease from, or starts one.
-  void gather(std::uint32_t index, const Eigen::Vector3d& n) {
+  // How far the triangle's closest point lies from the object's centre.
+  double distanceOf(std::uint32_t index) const {
     const mesh::Triangle& t = mesh.triangles[index];
     const Eigen::Vector3d b = mesh::closestBarycentric(mesh, index, centre);
-    const double distance =
-        (b[0] * mesh.positions[t[0]] + b[1] * mesh.positions[t[1]] + b[2] * mesh.positions[t[2]] - centre).norm();
+    return (b[0] * mesh.positions[t[0]] + b[1] * mesh.positions[t[1]] + b[2] * mesh.positions[t[2]] - centre).norm();
+  }
+
+  // The triangle joins the first surface it is not across a crease from, or starts one.
+  void gather(std::uint32_t index, const Eigen::Vector3d& n, double distance) {
     for (std::size_t k = 0; k < found_count; ++k) {
       BeyondSurface& s = found[k];
       if (acrossCrease(mesh, index, s.normal)) continue;
@@ -63,8 +67,12 @@ struct CollectEdges : btTriangleCallback {
     if (index < 0 || std::size_t(index) >= mesh.triangles.size()) return;
     const Eigen::Vector3d chart_normal = side * mesh_from_chart.linear().col(2);
     if (!acrossCrease(mesh, std::uint32_t(index), chart_normal)) return;
+    // A face the object cannot reach neither holds it nor cuts its chart: the reach box's corners
+    // hold faces of a tight curve far round from the foot (see chartBoundary).
+    const double distance = distanceOf(std::uint32_t(index));
+    if (distance > reach_radius) return;
     const Eigen::Vector3d p0 = toEigen(triangle[0]), n = mesh::faceNormal(mesh, std::uint32_t(index));
-    gather(std::uint32_t(index), n);
+    gather(std::uint32_t(index), n, distance);
     // The face's plane n . x = d met by the chart's plane z = 0: x = R p + t gives the line
     // (R^T n)_xy . p = d - n . t.
     const Eigen::Vector3d along = mesh_from_chart.linear().transpose() * n;
@@ -109,9 +117,10 @@ bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const 
 
 ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
                             const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
-                            const Eigen::AlignedBox3d& reach, const Eigen::Vector3d& centre, double side) {
+                            const Eigen::AlignedBox3d& reach, const Eigen::Vector3d& centre, double reach_radius,
+                            double side) {
   ChartBoundary boundary;
-  CollectEdges collect(mesh, mesh_from_chart, inside, centre, side, boundary);
+  CollectEdges collect(mesh, mesh_from_chart, inside, centre, side, reach_radius, boundary);
   mesh_shape.processAllTriangles(&collect, toBt(reach.min()), toBt(reach.max()));
   collect.keepNearest();
   return boundary;

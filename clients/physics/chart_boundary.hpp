@@ -79,10 +79,16 @@ bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const 
 // foot itself may lie on the crease, where an object's centre has passed beyond a box's edge).
 // `side` -1: the chart faces against the mesh's winding (a smooth chart behind it: its faces are
 // compared with the chart's normal turned back to the winding's side). `centre` (mesh frame): the
-// object's, to which each surface across a crease names its nearest triangle.
+// object's, to which each surface across a crease names its nearest triangle. A face farther
+// from `centre` than `reach_radius` (the object's bounding radius and the breaking threshold) is
+// not across a crease: it cannot hold the object. `reach` is a box, and on a mesh curved as tightly
+// as the object its corners hold faces far round from the foot: on a smooth sphere mesh of a
+// ball's own radius, faces 60 degrees round cut the chart and gave surfaces of their own, and the
+// ball pressed on it along lines off the axes rested 173-640 um off its touch.
 ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
                             const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
-                            const Eigen::AlignedBox3d& reach, const Eigen::Vector3d& centre, double side = 1.0);
+                            const Eigen::AlignedBox3d& reach, const Eigen::Vector3d& centre, double reach_radius,
+                            double side = 1.0);
 
 // A chart's candidate past its boundary is not the mesh's. The basin walks find candidates by
 // their texels' (i, j), so a gap in the raster is only a texel not there. Across a convex crease,

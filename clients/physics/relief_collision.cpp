@@ -423,7 +423,8 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
       ground == MeshGround::Ball
           ? ChartBoundary{}
           : chartBoundary(triangles_shape, triangles, mesh_from_chart, (mesh_from_chart.inverse() * foot_middle).head<2>(),
-                          reach, world_from_mesh.inverse() * world_from_object.translation(), chart.side);
+                          reach, world_from_mesh.inverse() * world_from_object.translation(),
+                          reachOf(*object.getCollisionShape()) + threshold, chart.side);
   const std::optional<Underside> underside =
       undersideOf(*object.getCollisionShape(), world_from_chart.inverse() * world_from_object);
   if (!underside) return boundary;
