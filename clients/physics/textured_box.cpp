@@ -30,13 +30,18 @@ FacePoint faceOf(const Eigen::Vector3d& half, const Eigen::Vector3d& p, const Ei
   }
   return f;
 }
+
+// Where on the texture the face `f` holds the object's point p.
+tex::TexCoord faceUv(const FaceTexture& texture, const FacePoint& f, const Eigen::Vector3d& p) {
+  const int b = (f.axis + 1) % 3, c = (f.axis + 2) % 3;
+  return {p[b] / texture.tile_m, p[c] / texture.tile_m};
+}
 }  // namespace
 
 FacePoint faceRecessAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
                        const Eigen::Vector3d& toward) {
   FacePoint f = faceOf(half, p, toward);
-  const int b = (f.axis + 1) % 3, c = (f.axis + 2) % 3;
-  f.recess_m = double(tex::sampleDepth(*texture.map, {p[b] / texture.tile_m, p[c] / texture.tile_m}, texture.sampling));
+  f.recess_m = double(tex::sampleDepth(*texture.map, faceUv(texture, f, p), texture.sampling));
   return f;
 }
 
@@ -44,7 +49,7 @@ FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half,
                         const Eigen::Vector3d& toward) {
   FacePoint f = faceOf(half, p, toward);
   const int a = f.axis, b = (a + 1) % 3, c = (a + 2) % 3;
-  const tex::Sample s = tex::sample(*texture.map, {p[b] / texture.tile_m, p[c] / texture.tile_m}, texture.sampling);
+  const tex::Sample s = tex::sample(*texture.map, faceUv(texture, f, p), texture.sampling);
   f.recess_m = double(s.depth);
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
   n[b] = double(s.normal.x());

@@ -20,17 +20,21 @@ ObjectSurfacePoint TexturedObjectSurface::over(double x, double y, double lowest
     down = p.normalized().dot(down_object_);
   } else {
     relief = faceTextureAt(texture_, object_.half_extents, p, down_object_);
-    down = -relief.sign * to_plane(2, relief.axis);
+    down = faceDown(relief);
   }
   if (down <= kSteepestTexturedFaceCos) return {lowest_z, std::nullopt};
   return {lowest_z + relief.recess_m / down, Eigen::Vector3d(-(to_plane * relief.normal_object))};
+}
+
+double TexturedObjectSurface::faceDown(const FacePoint& face) const {
+  return -face.sign * object_.plane_from_object.linear()(2, face.axis);
 }
 
 double TexturedObjectSurface::zOver(double x, double y, double lowest_z) const {
   if (object_.kind != Underside::Kind::Sphere) {
     const Eigen::Vector3d p = object_from_plane_ * Eigen::Vector3d(x, y, lowest_z);
     const FacePoint relief = faceRecessAt(texture_, object_.half_extents, p, down_object_);
-    const double down = -relief.sign * object_.plane_from_object.linear()(2, relief.axis);
+    const double down = faceDown(relief);
     return down <= kSteepestTexturedFaceCos ? lowest_z : lowest_z + relief.recess_m / down;
   }
   const Eigen::Vector3d w = (object_from_plane_ * Eigen::Vector3d(x, y, lowest_z)).normalized();

@@ -34,6 +34,8 @@ class TexturedObjectSurface {
   std::optional<ObjectSurfacePoint> at(double x, double y) const;
 
  private:
+  // A box's face's outward normal against the plane's -z.
+  double faceDown(const FacePoint& face) const;
   const Underside& object_;
   const FaceTexture& texture_;
   Eigen::Isometry3d object_from_plane_;
