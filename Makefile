@@ -46,6 +46,9 @@ demo: build
 # each step; make test stops after a step if anything in it failed.
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 SANITIZER_CTEST = cd $(BUILD_ASAN) && $(SANITIZER_ENV) ctest --output-on-failure -j$(JOBS)
+# The last lines a CI shows are the sanitizer tree's log; a failure in either tree is named again
+# after it, so that those last lines say which tests failed.
+FAILED_TESTS = sh -c 'echo "make test: failed in $$0:"; cat "$$0/Testing/Temporary/LastTestsFailed.log"'
 
 test: setup $(BUILD)/CMakeCache.txt $(BUILD_ASAN)/CMakeCache.txt
 	cmake --build $(BUILD_ASAN) -j$(JOBS) --target thx_tests
@@ -55,6 +58,7 @@ test: setup $(BUILD)/CMakeCache.txt $(BUILD_ASAN)/CMakeCache.txt
 	  wait $$tests; tested=$$?; \
 	  echo "make test: the optimised tree is built (exit $$built); the sanitizer tree's real-time tests are done (exit $$tested):"; \
 	  cat $(BUILD_ASAN)/ctest_serial.log; \
+	  test $$tested -eq 0 || $(FAILED_TESTS) $(BUILD_ASAN); \
 	  test $$built -eq 0 && test $$tested -eq 0
 	@echo "make test: the optimised tree's tests run beside the sanitizer tree's other tests (their output: $(BUILD_ASAN)/ctest_other.log)"
 	@$(SANITIZER_CTEST) -LE 'slow|serial' > ctest_other.log 2>&1 & tests=$$!; \
@@ -62,6 +66,8 @@ test: setup $(BUILD)/CMakeCache.txt $(BUILD_ASAN)/CMakeCache.txt
 	  wait $$tests; sanitized=$$?; \
 	  echo "make test: the optimised tree's tests are done (exit $$optimised); the sanitizer tree's other tests are done (exit $$sanitized):"; \
 	  cat $(BUILD_ASAN)/ctest_other.log; \
+	  test $$optimised -eq 0 || $(FAILED_TESTS) $(BUILD); \
+	  test $$sanitized -eq 0 || $(FAILED_TESTS) $(BUILD_ASAN); \
 	  test $$optimised -eq 0 && test $$sanitized -eq 0
 
 clean:
