@@ -312,13 +312,15 @@ TEST_F(DataPortsLoopback, TheKitSendsToTheControlUrlAndListensOnTheDataUrlTheSer
 
 // hapticd as a process with two data ports: two clients get distinct ports (named in the log and
 // replies), a third is refused naming the range, and once the first has left its port is the
-// third's. Ordered by the server's log lines, so no timing is asserted.
+// third's. Ordered by the server's log lines, so no timing is asserted. a holds its port for 5 s
+// from its first message, so that c asks while a and b both hold theirs even when the VM is slow
+// to start c (with 1 s, a starved test could start c after a had left, and c was granted).
 TEST_F(DataPortsLoopback, HapticdHandsOutRecyclesAndRefusesPorts) {
   if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
   const int p = basePort();
   const std::string range = std::to_string(p + 2) + "-" + std::to_string(p + 3);
   startServer({"--data-ports", range});
-  const pid_t a = startProbe("a", {"--stream", "DEVICE_STATE", "--rate", "100", "--duration", "1"});
+  const pid_t a = startProbe("a", {"--stream", "DEVICE_STATE", "--rate", "100", "--duration", "5"});
   ASSERT_TRUE(serverLogHas("client a: DEVICE_STATE at 100 Hz on THX_DEVICE_STATE.a at ", 30)) << serverLog();
   const pid_t b = startProbe("b", {"--stream", "DEVICE_STATE", "--rate", "100", "--duration", "30"});
   ASSERT_TRUE(serverLogHas("client b: DEVICE_STATE at 100 Hz on THX_DEVICE_STATE.b at ", 30)) << serverLog();

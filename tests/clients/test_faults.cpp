@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <thx_msgs/protocol.hpp>
 
@@ -66,18 +67,21 @@ int urlPort(const std::string& url) {
 
 TEST_F(HapticdFaults, KilledClientIsForgottenAndOthersAreStillServed) {
   if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
-  startServer({"--heartbeat-timeout", "0.5", "--client-grace", "0.5"});
+  // The timeouts hold for the steady client too: 2 s of heartbeat timeout and 2 s of grace, so that
+  // it is forgotten only if it (or hapticd's receiver) is starved for 4 s, not for the 1 s a busy
+  // VM has been seen to take. It runs until the victim is forgotten (about 4.5 s after its start).
+  startServer({"--heartbeat-timeout", "2", "--client-grace", "2"});
   const pid_t victim = startProbe("victim", {"--stream", "DEVICE_STATE", "--rate", "1000", "--duration", "30"});
-  const pid_t steady = startProbe("steady", {"--stream", "CONTACT", "--batch", "--rate", "100", "--duration", "3"});
+  const pid_t steady = startProbe("steady", {"--stream", "CONTACT", "--batch", "--rate", "100", "--duration", "8"});
   ASSERT_TRUE(serverLogHas("client victim: DEVICE_STATE at 1000 Hz", 30)) << serverLog();
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   kill(victim, SIGKILL);
   EXPECT_EQ(finishProbe(victim, 5), 128 + SIGKILL);
-  // Suspended after the heartbeat timeout (0.5 s), forgotten after the grace (0.5 s more; the
+  // Suspended after the heartbeat timeout (2 s), forgotten after the grace (2 s more; the wait's
   // margin is for the sanitizer build).
-  EXPECT_TRUE(serverLogHas("hapticd: client victim: no heartbeat for 0.5 s; its streams and port are kept 0.5 s more", 10))
+  EXPECT_TRUE(serverLogHas("hapticd: client victim: no heartbeat for 2 s; its streams and port are kept 2 s more", 30))
       << serverLog();
-  EXPECT_TRUE(serverLogHas("hapticd: client victim forgotten: no heartbeat for 1 s", 10)) << serverLog();
+  EXPECT_TRUE(serverLogHas("hapticd: client victim forgotten: no heartbeat for 4 s", 30)) << serverLog();
   EXPECT_EQ(serverLog().find("client victim is back"), std::string::npos) << serverLog();
 
   EXPECT_EQ(finishProbe(steady, 60), 0) << slurp(path("steady.err"));
@@ -167,13 +171,16 @@ TEST_F(HapticdFaults, MalformedOversizedAndForeignMessagesAreNamedAndIgnored) {
                               {"THX_CLIENT_FORCE", "client_force_t", encode(force), 8 + 32}};
   // Each malformed message, then its stderr line. A datagram may be lost on the way (the 100 kB one
   // is 2 fragments): then it is sent again, a few times at most.
-  auto sendUntilNamed = [&](const char* channel, const std::vector<std::uint8_t>& bytes, const std::string& problem) {
-    const std::string line = std::string("hapticd: warning: ignored a message on ") + channel + ": " + problem;
+  auto publishUntilSaid = [&](const std::function<void()>& publish, const std::string& line) {
     for (int attempt = 0; attempt < 4; ++attempt) {
-      lcm.publish(channel, bytes.data(), unsigned(bytes.size()));
+      publish();
       if (serverLogHas(line, 3)) return;
     }
     ADD_FAILURE() << "hapticd did not say: " << line << "\nhapticd stderr:\n" << serverLog();
+  };
+  auto sendUntilNamed = [&](const char* channel, const std::vector<std::uint8_t>& bytes, const std::string& problem) {
+    publishUntilSaid([&] { lcm.publish(channel, bytes.data(), unsigned(bytes.size())); },
+                     std::string("hapticd: warning: ignored a message on ") + channel + ": " + problem);
   };
   for (const Channel& c : channels) {
     SCOPED_TRACE(c.name);
@@ -209,18 +216,29 @@ TEST_F(HapticdFaults, MalformedOversizedAndForeignMessagesAreNamedAndIgnored) {
   nan_rate.rate_hz = NAN;
   lcm.publish(thx_msgs::kChannelSubscribe, &nan_rate);
   thx_msgs::client_force_t huge = force;
-  huge.seq = 2;
   huge.f_world[0] = 1e9;
   thx_msgs::client_force_t not_finite = force;
-  not_finite.seq = 3;
   not_finite.f_world[2] = NAN;
   thx_msgs::client_force_t bad_source = force;
   bad_source.source = "a b";
-  // Spaced beyond the log's one-second burst window of THX_CLIENT_FORCE.
+  // Spaced beyond the log's one-second burst window of THX_CLIENT_FORCE. The window opens when
+  // hapticd handles the flood, not when it was sent: a receiver that lagged behind the flood can
+  // count these as part of it instead of naming them, so each is sent again (a new seq) after 3 s,
+  // in a window of its own, until its line appears.
   std::this_thread::sleep_for(std::chrono::milliseconds(1100));
-  lcm.publish(thx_msgs::kChannelClientForce, &huge);
-  lcm.publish(thx_msgs::kChannelClientForce, &not_finite);
-  lcm.publish(thx_msgs::kChannelClientForce, &bad_source);
+  auto next_seq = force.seq;
+  auto sendForceUntilNamed = [&](thx_msgs::client_force_t m, const std::string& line) {
+    publishUntilSaid(
+        [&] {
+          m.seq = ++next_seq;
+          lcm.publish(thx_msgs::kChannelClientForce, &m);
+        },
+        line);
+  };
+  sendForceUntilNamed(huge, "client_force_t from fuzz/test: force (1e+09, 0, 0) N is not finite or above the device's "
+                            "peak 7.9 N");
+  sendForceUntilNamed(not_finite, "client_force_t from fuzz/test: force (0, 0, nan) N");
+  sendForceUntilNamed(bad_source, "client_force_t with an invalid client_id or source");
 
   const pid_t after = startProbe("after", {"--stream", "DEVICE_STATE", "--rate", "250", "--duration", "1"});
   EXPECT_EQ(finishProbe(after, 60), 0) << slurp(path("after.err"));
@@ -235,11 +253,6 @@ TEST_F(HapticdFaults, MalformedOversizedAndForeignMessagesAreNamedAndIgnored) {
   // The 10 000-character id of long_id above, quoted (and cut short) in the refusal.
   EXPECT_NE(log.find("invalid client_id '" + std::string(8, 'x')), std::string::npos);
   EXPECT_NE(log.find("rate_hz must be a finite number > 0, got nan"), std::string::npos);
-  EXPECT_NE(log.find("client_force_t from fuzz/test: force (1e+09, 0, 0) N is not finite or above the device's "
-                     "peak 7.9 N"),
-            std::string::npos);
-  EXPECT_NE(log.find("client_force_t from fuzz/test: force (0, 0, nan) N"), std::string::npos);
-  EXPECT_NE(log.find("client_force_t with an invalid client_id or source"), std::string::npos);
   expectServoRanSafely();
 }
 

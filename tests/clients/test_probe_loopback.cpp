@@ -17,12 +17,15 @@ class ProbeLoopback : public HapticdProcessTest {};
 
 TEST_F(ProbeLoopback, LimitsRatesAndBatchesEndToEnd) {
   if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
-  // Four probes at once against three client places: one is refused (whichever asks last).
+  // Four probes at once against three client places: one is refused (whichever asks last). Each
+  // granted probe holds its place for 5 s from its first message, so that the last to ask still
+  // finds three places taken when the VM is slow to start it (with 1 s, a probe that started a
+  // second late could find a place its predecessor had left).
   startServer({"--max-clients", "3", "--max-rate", "40"});
   const char* names[] = {"state", "audio1", "audio2", "audio3"};
-  std::vector<pid_t> probes = {startProbe("state", {"--stream", "DEVICE_STATE", "--rate", "100", "--duration", "1"})};
+  std::vector<pid_t> probes = {startProbe("state", {"--stream", "DEVICE_STATE", "--rate", "100", "--duration", "5"})};
   for (int k = 1; k < 4; ++k)
-    probes.push_back(startProbe(names[k], {"--stream", "CONTACT", "--batch", "--rate", "50", "--duration", "1"}));
+    probes.push_back(startProbe(names[k], {"--stream", "CONTACT", "--batch", "--rate", "50", "--duration", "5"}));
   for (pid_t p : probes) finishProbe(p, 60);
 
   int refused = 0;
@@ -39,8 +42,8 @@ TEST_F(ProbeLoopback, LimitsRatesAndBatchesEndToEnd) {
     EXPECT_EQ(jsonField(json, "error"), "");
     EXPECT_EQ(jsonNumber(json, "granted_rate_hz"), 40.0);  // capped by --max-rate, with the reason
     EXPECT_NE(jsonField(json, "reason").find("--max-rate"), std::string::npos);
-    // How many messages arrive in the probe's second depends on the scheduler (a delayed probe
-    // reads a backlog: 43-44 against 41 were seen under load); that the server never sends above
+    // How many messages arrive in the probe's seconds depends on the scheduler (a delayed probe
+    // reads a backlog: 43-44 in one second at 40 Hz were seen under load); that the server never sends above
     // the granted rate is test_subscriptions' (lock-step, exact).
     expectStreamFlowed(json);
     if (std::string(name) == "state") {

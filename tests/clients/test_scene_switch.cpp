@@ -152,12 +152,14 @@ TEST_F(SceneSwitch, AClientSwitchesTheSceneAndABrokenOneIsRefusedWhileTheOldOneR
 
 // As a user runs it: hapticd, a physics-client on the same scene, and hapticctl switching the
 // scene. The physics client follows (it loads the new scene from its own folder and says so);
-// hapticctl prints the tick hapticd answered with, and a refusal with hapticd's reason.
+// hapticctl prints the tick hapticd answered with, and a refusal with hapticd's reason. The
+// physics client runs until it has followed the switch and is then stopped as a user stops it
+// (SIGINT): a fixed --duration could end before a slow VM had started the two hapticctl runs.
 TEST_F(SceneSwitch, HapticctlSwitchesTheSceneAndThePhysicsClientFollows) {
   if (!udpmAvailable()) GTEST_SKIP() << "LCM udpm is not available here (" << url_ << "): no multicast route";
   startServer({"--scene", "scenes/pen_pushes_ball.yaml"});
   const pid_t physics = spawn({THX_PHYSICS_CLIENT, "--scene", "scenes/pen_pushes_ball.yaml", "--lcm-url", url_,
-                               "--duration", "4", "--connect-timeout", "60", "--json", path("pc.json")},
+                               "--connect-timeout", "60", "--json", path("pc.json")},
                               path("pc.out"), path("pc.err"));
   children_.push_back(physics);
   ASSERT_TRUE(waitUntil([&] { return slurp(path("pc.err")).find("connected") != std::string::npos; }, 60))
@@ -178,6 +180,9 @@ TEST_F(SceneSwitch, HapticctlSwitchesTheSceneAndThePhysicsClientFollows) {
   EXPECT_NE(slurp(path("ctl2.out")).find("scene 'pinball' rendered from tick "), std::string::npos)
       << slurp(path("ctl2.out"));
 
+  EXPECT_TRUE(waitUntil([&] { return slurp(path("pc.err")).find("switched to scene 'pinball'") != std::string::npos; }, 60))
+      << slurp(path("pc.err"));
+  kill(physics, SIGINT);
   EXPECT_EQ(reap(physics, 180), 0) << slurp(path("pc.err"));
   std::erase(children_, physics);
   const std::string err = slurp(path("pc.err"));

@@ -31,7 +31,8 @@ class HapticdDevices : public thx::test::HapticdProcessTest {
   // serves `names`.
   pid_t serveOverVrpn(const std::string& scene, const std::string& seconds, std::uint16_t port,
                       const std::string& names) {
-    const pid_t served = spawn({THX_HAPTICD, "--scene", std::string(THX_SOURCE_DIR) + "/" + scene, "--duration", seconds,
+    const std::string file = scene.starts_with('/') ? scene : std::string(THX_SOURCE_DIR) + "/" + scene;
+    const pid_t served = spawn({THX_HAPTICD, "--scene", file, "--duration", seconds,
                                 "--no-lcm", "--no-mlock", "--flight-dir", path(""), "--vrpn-listen", std::to_string(port)},
                                path("served.out"), path("served.err"));
     if (served > 0 && !waitUntil([&] { return servedLog().find("serving " + names) != std::string::npos; }, 30))
@@ -212,16 +213,26 @@ TEST_F(HapticdDevices, ADeviceThatStopsMidSessionFaultsAloneAndTheOtherKeepsItsF
   const pid_t served = serveOverVrpn("scenes/default.yaml", "0", port, "Phantom0");
   ASSERT_GT(served, 0);
   std::ofstream(path("mixed.yaml")) << penBesideVrpn("Phantom0@tcp://127.0.0.1:" + std::to_string(port));
-  // The session in the background: once it reports its first 2 s of ticks (however slowly it
-  // started), the served PHANToM is stopped, and the session goes on for the rest of its 6 s.
-  const pid_t session = spawn({THX_HAPTICD, "--scene", path("mixed.yaml"), "--duration", "6", "--no-lcm", "--no-mlock",
+  // The session in the background until stopped: once it reports its first 2 s of ticks (however
+  // slowly it started), the served PHANToM is stopped; once the session has reported again, it
+  // has ticked without its far device, and it is stopped as a user stops it. (A fixed --duration
+  // could end before a slow VM had stopped the served PHANToM.)
+  const pid_t session = spawn({THX_HAPTICD, "--scene", path("mixed.yaml"), "--duration", "0", "--no-lcm", "--no-mlock",
                                "--stats-json", path("s.json"), "--flight-dir", path("")},
                               path("session.out"), path("session.err"));
   ASSERT_GT(session, 0);
-  EXPECT_TRUE(waitUntil([&] { return slurp(path("session.err")).find(" ticks (") != std::string::npos; }, 60))
-      << slurp(path("session.err"));
+  const auto reports = [&] {
+    const std::string err = slurp(path("session.err"));
+    std::size_t n = 0;
+    for (std::size_t at = err.find(" ticks ("); at != std::string::npos; at = err.find(" ticks (", at + 1)) ++n;
+    return n;
+  };
+  EXPECT_TRUE(waitUntil([&] { return reports() > 0; }, 60)) << slurp(path("session.err"));
   kill(served, SIGTERM);
   EXPECT_EQ(reap(served, 30), 0) << servedLog();
+  const std::size_t reported = reports();
+  EXPECT_TRUE(waitUntil([&] { return reports() > reported; }, 60)) << slurp(path("session.err"));
+  kill(session, SIGTERM);
   ASSERT_EQ(reap(session, 60), 0) << slurp(path("session.err"));
   const std::string json = slurp(path("s.json"));
   const std::string far = farBesideAnUntouchedPen(json);
@@ -308,13 +319,22 @@ TEST_F(HapticdDevices, ARecordedSessionOfTwoPensReplaysBoth) {
   EXPECT_NE(r.err.find("device 1 is not in this log; it holds one device (0)"), std::string::npos) << r.err;
 }
 
-// VRPN both ways with several names: one hapticd serves the two pens of scenes/two_pens.yaml, a
-// second uses both as its devices (two VRPN addresses on one server) and reads each pen's states:
-// each touches the second server's bricks as its pen strokes or presses the first's.
+// VRPN both ways with several names: one hapticd serves two pens, a second uses both as its
+// devices (two VRPN addresses on one server) and reads each pen's states: each touches the second
+// server's bricks as its pen presses the first's.
 TEST_F(HapticdDevices, TwoPensBehindOneVrpnServerAreTwoDevicesOfAnother) {
   const std::uint16_t port = sparePort();
-  // Until stopped: the session below reads the pens while they stroke and press, however slowly it starts.
-  const pid_t served = serveOverVrpn("scenes/two_pens.yaml", "0", port, "left,right");
+  // Until stopped, each pen pressing a brick for a minute: the session below reads them in contact
+  // however slowly it starts (scenes/two_pens.yaml's scripts end after about 3.4 s, which a
+  // session started late by a busy VM could miss).
+  std::ofstream(path("pressing.yaml")) << "version: 1\nname: two pens pressing\nsurface:\n  size: [0.2, 0.2]\n"
+                                          "  texture: {generator: bricks, size: 64, params: {extent: 0.2}}\n"
+                                          "devices:\n"
+                                          "  - name: left\n    type: sim\n    script:\n"
+                                          "      - press: {position: [-0.02, -0.03], force: 1.0, duration: 60}\n"
+                                          "  - name: right\n    type: sim\n    script:\n"
+                                          "      - press: {position: [0.02, 0.03], force: 1.0, duration: 60}\n";
+  const pid_t served = serveOverVrpn(path("pressing.yaml"), "0", port, "left,right");
   ASSERT_GT(served, 0);
   const std::string at = "@tcp://127.0.0.1:" + std::to_string(port);
   std::ofstream(path("far.yaml")) << "version: 1\nname: two far pens\nsurface:\n  size: [0.2, 0.2]\n"

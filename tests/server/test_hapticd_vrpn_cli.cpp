@@ -138,15 +138,16 @@ TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
     const std::uint16_t port = sparePort(flag ? 1 : 0);
     ProcRun server;
     std::thread proc([&] {
-      server = run("--scene scenes/default.yaml --device sim --duration 2 --no-lcm --no-mlock --vrpn-listen " +
+      server = run("--scene scenes/default.yaml --device sim --duration 5 --no-lcm --no-mlock --vrpn-listen " +
                    std::to_string(port) + (flag ? " --vrpn-plane2" : ""));
     });
     // Connect (retrying while hapticd starts), send 3 placeholder Plane2s, then keep reading
     // until hapticd ends and closes the link: closing first with reports unread would reset the
-    // connection, and the server could lose the Plane2s still in its receive buffer.
+    // connection, and the server could lose the Plane2s still in its receive buffer. hapticd
+    // runs 5 s so that a test thread a busy VM starves for a few seconds still connects in time.
     std::unique_ptr<TcpConnection> conn;
     bool sent = false;
-    const auto until = std::chrono::steady_clock::now() + 10s;
+    const auto until = std::chrono::steady_clock::now() + 30s;
     while (std::chrono::steady_clock::now() < until && !(sent && !conn->open())) {
       if (!sent && (!conn || !conn->open())) {
         Result<UniqueFd> fd = connectTcp("127.0.0.1", port);

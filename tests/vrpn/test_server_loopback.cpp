@@ -103,14 +103,19 @@ TEST(VrpnServerLoopback, SetUpdateRateIsPerClient) {
   slow.send(TrackerUpdateRate{50.0});
   slow.pumpFor(50ms);
   fast.pos_quats = slow.pos_quats = 0;
+  const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < 100; ++i) {
     fast.pumpFor(2ms);
     slow.pumpFor(2ms);
   }
-  // ~400 ms: fast ~1000 Hz, slow 50 Hz. Loose bounds: a loaded VM delays, it does not invent.
-  EXPECT_GT(fast.pos_quats, 3 * slow.pos_quats) << fast.pos_quats << " vs " << slow.pos_quats;
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // ~400 ms on a quiet machine: fast gets every report (~1000 Hz), slow at most 50 Hz of the
+  // loop's wall time (the server paces it on the wall clock, so a loop a loaded VM stretches
+  // lets more through: the bound follows the time taken, plus the report or two at its ends).
+  // The servo, paced never late, ticks more slowly on a loaded VM; 3x holds down to 150 Hz.
+  EXPECT_GT(fast.pos_quats, 3 * slow.pos_quats) << fast.pos_quats << " vs " << slow.pos_quats << " in " << elapsed_s << " s";
   EXPECT_GT(slow.pos_quats, 0);
-  EXPECT_LE(slow.pos_quats, 40);
+  EXPECT_LE(slow.pos_quats, 50.0 * elapsed_s + 2) << elapsed_s << " s";
   // A nonsense rate is refused with a text message, and reports keep coming.
   slow.send(TrackerUpdateRate{-5.0});
   ASSERT_TRUE(eventually([&] {
