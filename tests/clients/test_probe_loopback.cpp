@@ -43,8 +43,8 @@ TEST_F(ProbeLoopback, LimitsRatesAndBatchesEndToEnd) {
     EXPECT_EQ(jsonNumber(json, "granted_rate_hz"), 40.0);  // capped by --max-rate, with the reason
     EXPECT_NE(jsonField(json, "reason").find("--max-rate"), std::string::npos);
     // How many messages arrive in the probe's seconds depends on the scheduler (a delayed probe
-    // reads a backlog: 43-44 in one second at 40 Hz were seen under load); that the server never sends above
-    // the granted rate is test_subscriptions' (lock-step, exact).
+    // reads a backlog: 43-44 in one second at 40 Hz were seen under load); that the server never
+    // sends above the granted rate is test_subscriptions' (lock-step, exact).
     expectStreamFlowed(json);
     if (std::string(name) == "state") {
       EXPECT_EQ(jsonField(json, "channel"), "THX_DEVICE_STATE.state");
