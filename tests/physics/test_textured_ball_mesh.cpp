@@ -110,6 +110,40 @@ TEST(TexturedBallMesh, TheChartsGradientsAreTheFacesDirectionsAtTheirCentres) {
   EXPECT_NEAR(mesh::ballChartAt({0.0, 1.0, 1.0 + 1e-12}, kRadius).uv_m.y(), 0.25 * M_PI * kRadius, 1e-12);
 }
 
+// The chart's angles come from its own arctangent (a knot table and a short series, cheaper than
+// libm's atan2 at every texel under a ball): within a few ulp of libm's over whole faces, on the
+// knots, between them, at the faces' centres and at their edges.
+TEST(TexturedBallMesh, TheChartsAnglesAreLibmsToAFewUlp) {
+  const double quarter_arc = 0.25 * M_PI;  // the angle at a face's edge
+  double worst = 0.0;
+  int points = 0;
+  for (int a = 0; a < 3; ++a)
+    for (const double sign : {-1.0, 1.0})
+      for (int i = -400; i <= 400; ++i)
+        for (int j = -400; j <= 400; j += 7) {
+          Eigen::Vector3d w = Eigen::Vector3d::Zero();
+          // i / 400 lands on every knot k / 8; j steps between them.
+          w[a] = sign;
+          w[(a + 1) % 3] = double(i) / 400.0;
+          w[(a + 2) % 3] = double(j) / 400.0 + (j % 2 ? 1e-7 : 0.0);
+          if (std::fabs(w[(a + 2) % 3]) > 1.0) continue;
+          const Eigen::Vector3d unit = w.normalized();
+          const mesh::BallChartPoint chart = mesh::ballChartUvAtUnit(unit, 1.0);
+          const double wa = std::fabs(unit[chart.axis]);
+          const Eigen::Vector2d libm(std::atan2(unit[(chart.axis + 1) % 3], wa),
+                                     std::atan2(unit[(chart.axis + 2) % 3], wa));
+          worst = std::max(worst, (chart.uv_m - libm).cwiseAbs().maxCoeff());
+          ++points;
+        }
+  EXPECT_GT(points, 6 * 801 * 100);
+  // A few ulp of angles up to pi/4 (one ulp there is 1.1e-16).
+  EXPECT_LT(worst, 5e-16) << worst;
+  EXPECT_EQ(mesh::ballChartUvAtUnit(Eigen::Vector3d(1.0, 1.0, 0.0).normalized(), 1.0).uv_m.x(),
+            std::atan2(1.0, 1.0));
+  EXPECT_NEAR(mesh::ballChartUvAtUnit(Eigen::Vector3d(1.0, -1.0, 1.0).normalized(), 1.0).uv_m.y(), quarter_arc,
+              2e-16);
+}
+
 TEST(TexturedBallMesh, ABadRadiusTileOrCellCountIsRefused) {
   EXPECT_THROW(mesh::texturedBallMesh(0.0, 0.01), Error);
   EXPECT_THROW(mesh::texturedBallMesh(0.01, -1.0), Error);
