@@ -5,10 +5,8 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
-#include <atomic>
 #include <algorithm>
 #include <fstream>
-#include <thread>
 
 #include "server/session_log.hpp"
 #include "tests/support/hapticd_harness.hpp"
@@ -17,6 +15,7 @@
 namespace test_hapticd_devices {
 
 using namespace thx::test;
+using namespace std::chrono_literals;
 // hapticd processes as these tests run them.
 class HapticdDevices : public thx::test::HapticdProcessTest {
  protected:
@@ -35,9 +34,17 @@ class HapticdDevices : public thx::test::HapticdProcessTest {
     const pid_t served = spawn({THX_HAPTICD, "--scene", file, "--duration", seconds,
                                 "--no-lcm", "--no-mlock", "--flight-dir", path(""), "--vrpn-listen", std::to_string(port)},
                                path("served.out"), path("served.err"));
+    if (served > 0) children_.push_back(served);  // killed at the end if a failure leaves it running
     if (served > 0 && !waitUntil([&] { return servedLog().find("serving " + names) != std::string::npos; }, 30))
       ADD_FAILURE() << "the served hapticd did not start: " << servedLog();
     return served;
+  }
+  // Stops it as a user does (SIGTERM); its exit status.
+  int stopServed(pid_t served) {
+    kill(served, SIGTERM);
+    const int status = reap(served, 30);
+    std::erase(children_, served);
+    return status;
   }
   std::string servedLog() const { return slurp(path("served.err")); }
 };
@@ -138,16 +145,28 @@ TEST_F(HapticdDevices, OptionsThatNameOneDeviceAreRefusedWithTheReason) {
 // each follows its own pen (the left pen strokes along x, the right one first presses).
 TEST_F(HapticdDevices, BothPensAreServedToAVrpnClientUnderTheirNames) {
   const std::uint16_t port = sparePort();
-  ProcRun server;
-  std::atomic<bool> server_done{false};
-  std::thread proc([&] {
-    server = run("--scene scenes/two_pens.yaml --duration 3 --no-lcm --no-mlock --vrpn-listen " + std::to_string(port));
-    server_done = true;
-  });
-  const VrpnReports got = readVrpnReports(port, {"left", "right"}, server_done);
-  proc.join();
-  EXPECT_EQ(server.status, 0) << server.err;
-  EXPECT_NE(server.err.find("serving left,right to VRPN apps"), std::string::npos) << server.err;
+  // Until stopped, each pen stroking slowly for a minute (scenes/two_pens.yaml's scripts end after
+  // about 3.4 s, which a client connecting late on a busy VM could miss; a fixed --duration raced
+  // its connect): the client reads until both pens have moved, then hapticd is stopped.
+  std::ofstream(path("stroking.yaml")) << "version: 1\nname: two pens stroking\nsurface:\n  size: [0.2, 0.2]\n"
+                                          "  texture: {generator: bricks, size: 64, params: {extent: 0.2}}\n"
+                                          "devices:\n"
+                                          "  - name: left\n    type: sim\n    script:\n"
+                                          "      - stroke: {from: [-0.06, -0.03], to: [0.0, -0.03], speed: 0.001, force: 1.0}\n"
+                                          "  - name: right\n    type: sim\n    script:\n"
+                                          "      - stroke: {from: [0.0, 0.03], to: [0.06, 0.03], speed: 0.001, force: 1.0}\n";
+  const pid_t served = serveOverVrpn(path("stroking.yaml"), "0", port, "left,right");
+  ASSERT_GT(served, 0);
+  const VrpnReports got = readVrpnReportsUntil(
+      port, {"left", "right"},
+      [](const VrpnReports& r) {
+        for (const auto& [name, pen] : r.by_name)
+          if (!(pen.reports > 0 && pen.x_max > pen.x_min)) return false;
+        return true;
+      },
+      60s);
+  EXPECT_EQ(stopServed(served), 0) << servedLog();
+  EXPECT_NE(servedLog().find("serving left,right to VRPN apps"), std::string::npos) << servedLog();
   // How many reports arrive depends on the scheduler; that both pens' arrive, each moving, does not.
   EXPECT_TRUE(got.connected);
   EXPECT_EQ(got.unnamed_senders, 0);
@@ -228,8 +247,7 @@ TEST_F(HapticdDevices, ADeviceThatStopsMidSessionFaultsAloneAndTheOtherKeepsItsF
     return n;
   };
   EXPECT_TRUE(waitUntil([&] { return reports() > 0; }, 60)) << slurp(path("session.err"));
-  kill(served, SIGTERM);
-  EXPECT_EQ(reap(served, 30), 0) << servedLog();
+  EXPECT_EQ(stopServed(served), 0) << servedLog();
   const std::size_t reported = reports();
   EXPECT_TRUE(waitUntil([&] { return reports() > reported; }, 60)) << slurp(path("session.err"));
   kill(session, SIGTERM);
@@ -343,8 +361,7 @@ TEST_F(HapticdDevices, TwoPensBehindOneVrpnServerAreTwoDevicesOfAnother) {
                                      "  - {name: b, type: vrpn, address: right" + at + "}\n";
   std::string json;
   const ProcRun r = runRealTime(path("far.yaml"), "3", json);
-  kill(served, SIGTERM);
-  EXPECT_EQ(reap(served, 30), 0) << servedLog();
+  EXPECT_EQ(stopServed(served), 0) << servedLog();
   ASSERT_EQ(r.status, 0) << r.err;
   SCOPED_TRACE(json);
   for (const char* name : {"a", "b"}) {

@@ -31,9 +31,41 @@ using namespace std::chrono_literals;
 namespace {
 
 using thx::test::ProcRun;
-using HapticdVrpn = thx::test::HapticdProcessTest;
 
 }  // namespace
+
+// hapticd --vrpn-listen serving a simulated PHANToM until the test stops it (--duration 0, then
+// SIGTERM as a user stops it) once it has what it came for: a fixed --duration raced the test's
+// own connect, which a busy VM can starve for seconds.
+class HapticdVrpn : public thx::test::HapticdProcessTest {
+ protected:
+  pid_t serveUntilStopped(const std::string& scene, std::uint16_t port, const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> argv = {THX_HAPTICD, "--scene",      scene,    "--duration",   "0",
+                                     "--no-lcm",  "--no-mlock",   "--flight-dir", path(""), "--vrpn-listen",
+                                     std::to_string(port)};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    const pid_t served = thx::test::spawn(argv, path("served.out"), path("served.err"));
+    if (served > 0) children_.push_back(served);  // killed at the end if a failure leaves it running
+    return served;
+  }
+  ProcRun stopServed(pid_t served) {
+    kill(served, SIGTERM);
+    const int status = thx::test::reap(served, 30);
+    std::erase(children_, served);
+    return {status, thx::test::slurp(path("served.out")), thx::test::slurp(path("served.err"))};
+  }
+  // The default scene's bricks under one simulated pen stroking them slowly for a minute (the
+  // default scene's script ends after 4.7 s): the pen moves whenever the test connects.
+  std::string strokingScene() {
+    std::ofstream(path("stroking.yaml")) << "version: 1\nname: a pen stroking for a minute\nsurface:\n"
+                                            "  size: [0.2, 0.2]\n"
+                                            "  texture: {generator: bricks, size: 64, params: {extent: 0.2}}\n"
+                                            "devices:\n  - name: pen\n    type: sim\n    script:\n"
+                                            "      - stroke: {from: [-0.06, -0.03], to: [0.06, 0.03], speed: 0.002, "
+                                            "force: 1.0}\n";
+    return path("stroking.yaml");
+  }
+};
 
 TEST_F(HapticdVrpn, BadListenAddressIsAUsageError) {
   for (const char* bad : {"x", "127.0.0.1:", "localhost:3883", "70000", "1.2.3:99"}) {
@@ -59,16 +91,17 @@ TEST_F(HapticdVrpn, APortInUseIsAClearErrorNotACrash) {
 
 TEST_F(HapticdVrpn, ServesItsSimulatedPhantomToAVrpnClient) {
   const std::uint16_t port = sparePort();
-  ProcRun server;
-  std::atomic<bool> server_done{false};
-  std::thread proc([&] {
-    server = run("--scene scenes/default.yaml --device sim --duration 3 --no-lcm --no-mlock --vrpn-listen " +
-                 std::to_string(port));
-    server_done = true;
-  });
-  // Reads reports while the scripted hand moves, until hapticd ends.
-  const thx::test::VrpnReports got = thx::test::readVrpnReports(port, {"Phantom0"}, server_done);
-  proc.join();
+  const pid_t served = serveUntilStopped(strokingScene(), port);
+  ASSERT_GT(served, 0);
+  // Reads reports until they follow the moving pen, however late the client connects.
+  const thx::test::VrpnReports got = thx::test::readVrpnReportsUntil(
+      port, {"Phantom0"},
+      [](const thx::test::VrpnReports& r) {
+        const thx::test::SenderReports& pen = r.by_name.at("Phantom0");
+        return pen.reports > 0 && pen.x_max > pen.x_min;
+      },
+      60s);
+  const ProcRun server = stopServed(served);
   // How many reports arrive depends on the scheduler; that they arrive, decode and follow the
   // moving pen does not.
   const thx::test::SenderReports& pen = got.by_name.at("Phantom0");
@@ -84,13 +117,8 @@ TEST_F(HapticdVrpn, ServesItsSimulatedPhantomToAVrpnClient) {
 // behind it: the client reads the moving pen and its plane commands reach the server.
 TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
   const std::uint16_t port = sparePort();
-  ProcRun server;
-  std::atomic<bool> server_done{false};
-  std::thread proc([&] {
-    server = run("--scene scenes/default.yaml --device sim --duration 3 --no-lcm --no-mlock --vrpn-listen " +
-                 std::to_string(port));
-    server_done = true;
-  });
+  const pid_t served = serveUntilStopped(strokingScene(), port);
+  ASSERT_GT(served, 0);
   VrpnClientOptions o;
   o.reconnect_interval = 100ms;
   o.staleness = 200ms;
@@ -103,8 +131,24 @@ TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
   cmd.forces_enabled = true;
   cmd.num_planes = 1;
   cmd.planes[0].k_n_per_m = 100.0;
-  while (!server_done) {  // the server's whole run (see above)
+  // Until the client has read the moving pen and sent planes, then 2 s more of planes, so the
+  // server has handled some before it is stopped; the client reads on until the server is gone.
+  const auto give_up = std::chrono::steady_clock::now() + 60s;
+  std::optional<std::chrono::steady_clock::time_point> stop_at;
+  ProcRun server;
+  std::atomic<bool> server_gone{false};
+  std::thread stopper;
+  while (std::chrono::steady_clock::now() < give_up + 30s) {
     const thx::dev::DeviceState s = client.read();  // paced at 1 ms
+    const auto now = std::chrono::steady_clock::now();
+    if (!stop_at && ((valid > 0 && z_max > z_min && client.status().planes_sent > 0) || now > give_up))
+      stop_at = now + 2s;
+    if (stop_at && now > *stop_at && !stopper.joinable())
+      stopper = std::thread([&] {
+        server = stopServed(served);
+        server_gone = true;
+      });
+    if (server_gone) break;
     if (!s.valid) continue;
     ++valid;
     z_min = std::min(z_min, s.p_world.z());
@@ -112,11 +156,12 @@ TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
     cmd.planes[0].d_m = -0.01 + 1e-6 * (valid % 100);  // a plane that changes, far below the pen
     client.write(cmd);
   }
+  if (stopper.joinable()) stopper.join();
   const VrpnClientStatus st = client.status();
   client.close();
-  proc.join();
+  ASSERT_TRUE(server_gone);
   EXPECT_GT(valid, 0) << st.last_error;
-  EXPECT_GT(z_max - z_min, 0.0) << "the scripted hand presses and strokes";
+  EXPECT_GT(z_max - z_min, 0.0) << "the scripted hand strokes";
   EXPECT_GT(st.planes_sent, 0u);
   EXPECT_EQ(server.status, 0) << server.err;
   EXPECT_NE(server.err.find("1 clients served"), std::string::npos) << server.err;
@@ -136,20 +181,18 @@ TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
   for (const bool flag : {false, true}) {
     SCOPED_TRACE(flag ? "--vrpn-plane2" : "default");
     const std::uint16_t port = sparePort(flag ? 1 : 0);
-    ProcRun server;
-    std::thread proc([&] {
-      server = run("--scene scenes/default.yaml --device sim --duration 5 --no-lcm --no-mlock --vrpn-listen " +
-                   std::to_string(port) + (flag ? " --vrpn-plane2" : ""));
-    });
-    // Connect (retrying while hapticd starts), send 3 placeholder Plane2s, then keep reading
-    // until hapticd ends and closes the link: closing first with reports unread would reset the
-    // connection, and the server could lose the Plane2s still in its receive buffer. hapticd
-    // runs 5 s so that a test thread a busy VM starves for a few seconds still connects in time.
+    const pid_t served = serveUntilStopped("scenes/default.yaml", port, flag ? std::vector<std::string>{"--device", "sim", "--vrpn-plane2"}
+                                                                           : std::vector<std::string>{"--device", "sim"});
+    ASSERT_GT(served, 0);
+    // Connect (retrying while hapticd starts), send 3 placeholder Plane2s and then a Ping: the
+    // server handles a link's messages in order, so its Pong says the Plane2s have been handled
+    // (counted or applied), and only then is it stopped.
     std::unique_ptr<TcpConnection> conn;
-    bool sent = false;
-    const auto until = std::chrono::steady_clock::now() + 30s;
-    while (std::chrono::steady_clock::now() < until && !(sent && !conn->open())) {
-      if (!sent && (!conn || !conn->open())) {
+    bool sent = false, ponged = false;
+    const auto until = std::chrono::steady_clock::now() + 60s;
+    while (std::chrono::steady_clock::now() < until && !ponged) {
+      if (!conn || !conn->open()) {
+        ASSERT_FALSE(sent) << "hapticd closed the link before its Pong";
         Result<UniqueFd> fd = connectTcp("127.0.0.1", port);
         if (!fd) {
           std::this_thread::sleep_for(20ms);
@@ -157,6 +200,7 @@ TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
         }
         conn = std::make_unique<TcpConnection>(std::move(fd).value());
         conn->endpoint().addSender("Phantom0");
+        conn->endpoint().addType(Pong::kTypeName);
       }
       pollfd p{conn->fd(), short(POLLIN | (conn->wantsWrite() ? POLLOUT : 0)), 0};
       ::poll(&p, 1, 5);
@@ -166,12 +210,16 @@ TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
           const std::int32_t sender = conn->endpoint().senderId("Phantom0");
           for (int i = 0; i < 3; ++i)
             conn->endpoint().sendMessage(sender, ForcePlane2{0.0001f, 0.0001f, 0.0001f, 0.0001f, 0.0001f, 0.0001f});
+          conn->endpoint().sendMessage(sender, Ping{});
           sent = true;
+        } else if (const auto* m = std::get_if<UserMessage>(&*ev); m && m->type_name == Pong::kTypeName) {
+          ponged = true;
         }
       }
     }
-    proc.join();
-    ASSERT_TRUE(sent);
+    const ProcRun server = stopServed(served);
+    if (conn) conn->close(Error{ErrorCode::kPeerClosed, "test done"});
+    ASSERT_TRUE(ponged) << server.err;
     EXPECT_EQ(server.status, 0) << server.err;
     // "..., N force commands (0 refused), M reports skipped for slow readers, K Plane2 ignored"
     std::smatch m;

@@ -1,13 +1,14 @@
 #pragma once
 // Tracker reports a VRPN client reads from hapticd --vrpn-listen while it runs: connects over TCP
 // (retrying while hapticd starts), names the senders it wants, pings each once connected, and
-// collects each sender's Pos_Quat reports until `done` is set. The window is the server's whole
-// run however slowly it starts (the sanitizer build under load once took most of a fixed 2.5 s
-// window to start). Test support only.
+// collects each sender's Pos_Quat reports until they are enough for the test, which then stops
+// hapticd (it runs with --duration 0): no fixed window to miss however slowly either side starts
+// (the sanitizer build under load once took most of a fixed 2.5 s window to start; a client
+// starved for 3 s missed a 3 s run). Test support only.
 #include <poll.h>
 
-#include <atomic>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -32,14 +33,15 @@ struct VrpnReports {
   std::map<std::string, SenderReports> by_name;  // every name asked for is present
 };
 
-inline VrpnReports readVrpnReports(std::uint16_t port, const std::vector<std::string>& names,
-                                   const std::atomic<bool>& done) {
+// Reads until `go_on(reports so far)` says stop.
+inline VrpnReports readVrpnReportsWhile(std::uint16_t port, const std::vector<std::string>& names,
+                                        const std::function<bool(const VrpnReports&)>& go_on) {
   using namespace thx::vrpn;
   VrpnReports out;
   for (const std::string& n : names) out.by_name[n];
   std::unique_ptr<TcpConnection> conn;
   std::map<std::int32_t, std::string> ids;
-  while (!done) {
+  while (go_on(out)) {
     if (!conn || !conn->open()) {
       Result<UniqueFd> fd = connectTcp("127.0.0.1", port);
       if (!fd) {
@@ -78,6 +80,17 @@ inline VrpnReports readVrpnReports(std::uint16_t port, const std::vector<std::st
   }
   if (conn) conn->close(thx::vrpn::Error{ErrorCode::kPeerClosed, "test done"});
   return out;
+}
+
+// Reads until `enough(reports so far)`, or for `timeout` at most: for a server the test stops
+// itself once it has what it came for.
+inline VrpnReports readVrpnReportsUntil(std::uint16_t port, const std::vector<std::string>& names,
+                                        const std::function<bool(const VrpnReports&)>& enough,
+                                        std::chrono::seconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  return readVrpnReportsWhile(port, names, [&](const VrpnReports& r) {
+    return !enough(r) && std::chrono::steady_clock::now() < until;
+  });
 }
 
 }  // namespace thx::test
