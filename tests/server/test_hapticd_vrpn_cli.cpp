@@ -54,7 +54,7 @@ class HapticdVrpn : public thx::test::HapticdProcessTest {
     std::erase(children_, served);
     return {status, thx::test::slurp(path("served.out")), thx::test::slurp(path("served.err"))};
   }
-  // The default scene's bricks under one simulated pen stroking them slowly for a minute (the
+  // Bricks under one simulated pen stroking them slowly for a minute (the
   // default scene's script ends after 4.7 s): the pen moves whenever the test connects.
   std::string strokingScene() {
     std::ofstream(path("stroking.yaml")) << "version: 1\nname: a pen stroking for a minute\nsurface:\n"
