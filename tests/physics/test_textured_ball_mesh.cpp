@@ -122,7 +122,7 @@ TEST(TexturedBallMesh, TheChartsAnglesAreLibmsToAFewUlp) {
       for (int i = -400; i <= 400; ++i)
         for (int j = -400; j <= 400; j += 7) {
           Eigen::Vector3d w = Eigen::Vector3d::Zero();
-          // i / 400 lands on every knot k / 8; j steps between them.
+          // i / 400 lands on every other knot (k / 32 for even k); j steps between them.
           w[a] = sign;
           w[(a + 1) % 3] = double(i) / 400.0;
           w[(a + 2) % 3] = double(j) / 400.0 + (j % 2 ? 1e-7 : 0.0);

@@ -26,27 +26,14 @@ class HapticdDevices : public thx::test::HapticdProcessTest {
     json = slurp(path("s.json"));
     return r;
   }
-  // A hapticd serving `scene` over VRPN at `port` for `seconds` (0: until stopped), once it says it
+  // A hapticd serving `scene` over VRPN at `port` until stopped (serveVrpn), once it says it
   // serves `names`.
-  pid_t serveOverVrpn(const std::string& scene, const std::string& seconds, std::uint16_t port,
-                      const std::string& names) {
-    const std::string file = scene.starts_with('/') ? scene : std::string(THX_SOURCE_DIR) + "/" + scene;
-    const pid_t served = spawn({THX_HAPTICD, "--scene", file, "--duration", seconds,
-                                "--no-lcm", "--no-mlock", "--flight-dir", path(""), "--vrpn-listen", std::to_string(port)},
-                               path("served.out"), path("served.err"));
-    if (served > 0) children_.push_back(served);  // killed at the end if a failure leaves it running
+  pid_t serveOverVrpn(const std::string& scene, std::uint16_t port, const std::string& names) {
+    const pid_t served = serveVrpn(scene, port);
     if (served > 0 && !waitUntil([&] { return servedLog().find("serving " + names) != std::string::npos; }, 30))
       ADD_FAILURE() << "the served hapticd did not start: " << servedLog();
     return served;
   }
-  // Stops it as a user does (SIGTERM); its exit status.
-  int stopServed(pid_t served) {
-    kill(served, SIGTERM);
-    const int status = reap(served, 30);
-    std::erase(children_, served);
-    return status;
-  }
-  std::string servedLog() const { return slurp(path("served.err")); }
 };
 
 namespace {
@@ -155,7 +142,7 @@ TEST_F(HapticdDevices, BothPensAreServedToAVrpnClientUnderTheirNames) {
                                           "      - stroke: {from: [-0.06, -0.03], to: [0.0, -0.03], speed: 0.001, force: 1.0}\n"
                                           "  - name: right\n    type: sim\n    script:\n"
                                           "      - stroke: {from: [0.0, 0.03], to: [0.06, 0.03], speed: 0.001, force: 1.0}\n";
-  const pid_t served = serveOverVrpn(path("stroking.yaml"), "0", port, "left,right");
+  const pid_t served = serveOverVrpn(path("stroking.yaml"), port, "left,right");
   ASSERT_GT(served, 0);
   const VrpnReports got = readVrpnReportsUntil(
       port, {"left", "right"},
@@ -165,7 +152,7 @@ TEST_F(HapticdDevices, BothPensAreServedToAVrpnClientUnderTheirNames) {
         return true;
       },
       60s);
-  EXPECT_EQ(stopServed(served), 0) << servedLog();
+  EXPECT_EQ(stopChild(served), 0) << servedLog();
   EXPECT_NE(servedLog().find("serving left,right to VRPN apps"), std::string::npos) << servedLog();
   // How many reports arrive depends on the scheduler; that both pens' arrive, each moving, does not.
   EXPECT_TRUE(got.connected);
@@ -229,7 +216,7 @@ TEST_F(HapticdDevices, ADeviceThatStopsMidSessionFaultsAloneAndTheOtherKeepsItsF
   const std::uint16_t port = sparePort();
   // The served PHANToM: hapticd on the default scene until stopped, listening before the session
   // starts, so the far device answers from its start.
-  const pid_t served = serveOverVrpn("scenes/default.yaml", "0", port, "Phantom0");
+  const pid_t served = serveOverVrpn("scenes/default.yaml", port, "Phantom0");
   ASSERT_GT(served, 0);
   std::ofstream(path("mixed.yaml")) << penBesideVrpn("Phantom0@tcp://127.0.0.1:" + std::to_string(port));
   // The session in the background until stopped: once it reports its first 2 s of ticks (however
@@ -247,7 +234,7 @@ TEST_F(HapticdDevices, ADeviceThatStopsMidSessionFaultsAloneAndTheOtherKeepsItsF
     return n;
   };
   EXPECT_TRUE(waitUntil([&] { return reports() > 0; }, 60)) << slurp(path("session.err"));
-  EXPECT_EQ(stopServed(served), 0) << servedLog();
+  EXPECT_EQ(stopChild(served), 0) << servedLog();
   const std::size_t reported = reports();
   EXPECT_TRUE(waitUntil([&] { return reports() > reported; }, 60)) << slurp(path("session.err"));
   kill(session, SIGTERM);
@@ -352,7 +339,7 @@ TEST_F(HapticdDevices, TwoPensBehindOneVrpnServerAreTwoDevicesOfAnother) {
                                           "      - press: {position: [-0.02, -0.03], force: 1.0, duration: 60}\n"
                                           "  - name: right\n    type: sim\n    script:\n"
                                           "      - press: {position: [0.02, 0.03], force: 1.0, duration: 60}\n";
-  const pid_t served = serveOverVrpn(path("pressing.yaml"), "0", port, "left,right");
+  const pid_t served = serveOverVrpn(path("pressing.yaml"), port, "left,right");
   ASSERT_GT(served, 0);
   const std::string at = "@tcp://127.0.0.1:" + std::to_string(port);
   std::ofstream(path("far.yaml")) << "version: 1\nname: two far pens\nsurface:\n  size: [0.2, 0.2]\n"
@@ -361,7 +348,7 @@ TEST_F(HapticdDevices, TwoPensBehindOneVrpnServerAreTwoDevicesOfAnother) {
                                      "  - {name: b, type: vrpn, address: right" + at + "}\n";
   std::string json;
   const ProcRun r = runRealTime(path("far.yaml"), "3", json);
-  EXPECT_EQ(stopServed(served), 0) << servedLog();
+  EXPECT_EQ(stopChild(served), 0) << servedLog();
   ASSERT_EQ(r.status, 0) << r.err;
   SCOPED_TRACE(json);
   for (const char* name : {"a", "b"}) {

@@ -5,10 +5,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -34,26 +34,11 @@ using thx::test::ProcRun;
 
 }  // namespace
 
-// hapticd --vrpn-listen serving a simulated PHANToM until the test stops it (--duration 0, then
-// SIGTERM as a user stops it) once it has what it came for: a fixed --duration raced the test's
-// own connect, which a busy VM can starve for seconds.
+// hapticd --vrpn-listen serving a simulated PHANToM until the test stops it (serveVrpn, then
+// stopChild) once it has what it came for: a fixed --duration raced the test's own connect, which
+// a busy VM can starve for seconds.
 class HapticdVrpn : public thx::test::HapticdProcessTest {
  protected:
-  pid_t serveUntilStopped(const std::string& scene, std::uint16_t port, const std::vector<std::string>& extra = {}) {
-    std::vector<std::string> argv = {THX_HAPTICD, "--scene",      scene,    "--duration",   "0",
-                                     "--no-lcm",  "--no-mlock",   "--flight-dir", path(""), "--vrpn-listen",
-                                     std::to_string(port)};
-    argv.insert(argv.end(), extra.begin(), extra.end());
-    const pid_t served = thx::test::spawn(argv, path("served.out"), path("served.err"));
-    if (served > 0) children_.push_back(served);  // killed at the end if a failure leaves it running
-    return served;
-  }
-  ProcRun stopServed(pid_t served) {
-    kill(served, SIGTERM);
-    const int status = thx::test::reap(served, 30);
-    std::erase(children_, served);
-    return {status, thx::test::slurp(path("served.out")), thx::test::slurp(path("served.err"))};
-  }
   // Bricks under one simulated pen stroking them slowly for a minute (the
   // default scene's script ends after 4.7 s): the pen moves whenever the test connects.
   std::string strokingScene() {
@@ -91,7 +76,7 @@ TEST_F(HapticdVrpn, APortInUseIsAClearErrorNotACrash) {
 
 TEST_F(HapticdVrpn, ServesItsSimulatedPhantomToAVrpnClient) {
   const std::uint16_t port = sparePort();
-  const pid_t served = serveUntilStopped(strokingScene(), port);
+  const pid_t served = serveVrpn(strokingScene(), port);
   ASSERT_GT(served, 0);
   // Reads reports until they follow the moving pen, however late the client connects.
   const thx::test::VrpnReports got = thx::test::readVrpnReportsUntil(
@@ -101,7 +86,7 @@ TEST_F(HapticdVrpn, ServesItsSimulatedPhantomToAVrpnClient) {
         return pen.reports > 0 && pen.x_max > pen.x_min;
       },
       60s);
-  const ProcRun server = stopServed(served);
+  const int status = stopChild(served);
   // How many reports arrive depends on the scheduler; that they arrive, decode and follow the
   // moving pen does not.
   const thx::test::SenderReports& pen = got.by_name.at("Phantom0");
@@ -109,15 +94,15 @@ TEST_F(HapticdVrpn, ServesItsSimulatedPhantomToAVrpnClient) {
   EXPECT_GT(pen.reports, 0);
   EXPECT_EQ(pen.undecodable, 0);
   EXPECT_GT(pen.x_max - pen.x_min, 0.0) << "the scripted stroke moves the pen";
-  EXPECT_EQ(server.status, 0) << server.err;
-  EXPECT_NE(server.err.find("1 clients served"), std::string::npos) << server.err;
+  EXPECT_EQ(status, 0) << servedLog();
+  EXPECT_NE(servedLog().find("1 clients served"), std::string::npos) << servedLog();
 }
 
 // Our client device against hapticd's server over the UDP request form, the simulated PHANToM
 // behind it: the client reads the moving pen and its plane commands reach the server.
 TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
   const std::uint16_t port = sparePort();
-  const pid_t served = serveUntilStopped(strokingScene(), port);
+  const pid_t served = serveVrpn(strokingScene(), port);
   ASSERT_GT(served, 0);
   VrpnClientOptions o;
   o.reconnect_interval = 100ms;
@@ -131,24 +116,14 @@ TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
   cmd.forces_enabled = true;
   cmd.num_planes = 1;
   cmd.planes[0].k_n_per_m = 100.0;
-  // Until the client has read the moving pen and sent planes, then 2 s more of planes, so the
-  // server has handled some before it is stopped; the client reads on until the server is gone.
+  // Until the client has read the moving pen and sent planes, then 2 s more of planes, so that the
+  // server has handled some before it is stopped.
   const auto give_up = std::chrono::steady_clock::now() + 60s;
-  std::optional<std::chrono::steady_clock::time_point> stop_at;
-  ProcRun server;
-  std::atomic<bool> server_gone{false};
-  std::thread stopper;
-  while (std::chrono::steady_clock::now() < give_up + 30s) {
+  std::optional<std::chrono::steady_clock::time_point> enough_at;
+  for (auto now = std::chrono::steady_clock::now(); now < give_up && !(enough_at && now > *enough_at + 2s);
+       now = std::chrono::steady_clock::now()) {
+    if (!enough_at && valid > 0 && z_max > z_min && client.status().planes_sent > 0) enough_at = now;
     const thx::dev::DeviceState s = client.read();  // paced at 1 ms
-    const auto now = std::chrono::steady_clock::now();
-    if (!stop_at && ((valid > 0 && z_max > z_min && client.status().planes_sent > 0) || now > give_up))
-      stop_at = now + 2s;
-    if (stop_at && now > *stop_at && !stopper.joinable())
-      stopper = std::thread([&] {
-        server = stopServed(served);
-        server_gone = true;
-      });
-    if (server_gone) break;
     if (!s.valid) continue;
     ++valid;
     z_min = std::min(z_min, s.p_world.z());
@@ -156,19 +131,18 @@ TEST_F(HapticdVrpn, OurClientDeviceUsesTheServedPhantomOverTheUdpForm) {
     cmd.planes[0].d_m = -0.01 + 1e-6 * (valid % 100);  // a plane that changes, far below the pen
     client.write(cmd);
   }
-  if (stopper.joinable()) stopper.join();
+  const int status = stopChild(served);
   const VrpnClientStatus st = client.status();
   client.close();
-  ASSERT_TRUE(server_gone);
+  const std::string log = servedLog();
   EXPECT_GT(valid, 0) << st.last_error;
   EXPECT_GT(z_max - z_min, 0.0) << "the scripted hand strokes";
   EXPECT_GT(st.planes_sent, 0u);
-  EXPECT_EQ(server.status, 0) << server.err;
-  EXPECT_NE(server.err.find("1 clients served"), std::string::npos) << server.err;
+  EXPECT_EQ(status, 0) << log;
+  EXPECT_NE(log.find("1 clients served"), std::string::npos) << log;
   // "hapticd: vrpn: 1 clients served, 0 dropped, 0 refused, N force commands (0 refused)"
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(server.err, m, std::regex("([0-9]+) force commands \\(([0-9]+) refused\\)")))
-      << server.err;
+  ASSERT_TRUE(std::regex_search(log, m, std::regex("([0-9]+) force commands \\(([0-9]+) refused\\)"))) << log;
   EXPECT_GE(std::stoi(m[1]), 1);
   EXPECT_EQ(std::stoi(m[2]), 0);
 }
@@ -181,8 +155,9 @@ TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
   for (const bool flag : {false, true}) {
     SCOPED_TRACE(flag ? "--vrpn-plane2" : "default");
     const std::uint16_t port = sparePort(flag ? 1 : 0);
-    const pid_t served = serveUntilStopped("scenes/default.yaml", port, flag ? std::vector<std::string>{"--device", "sim", "--vrpn-plane2"}
-                                                                           : std::vector<std::string>{"--device", "sim"});
+    const pid_t served = serveVrpn("scenes/default.yaml", port,
+                                   flag ? std::vector<std::string>{"--device", "sim", "--vrpn-plane2"}
+                                        : std::vector<std::string>{"--device", "sim"});
     ASSERT_GT(served, 0);
     // Connect (retrying while hapticd starts), send 3 placeholder Plane2s and then a Ping: the
     // server handles a link's messages in order, so its Pong says the Plane2s have been handled
@@ -217,17 +192,18 @@ TEST_F(HapticdVrpn, Plane2IsIgnoredUnlessVrpnPlane2IsGiven) {
         }
       }
     }
-    const ProcRun server = stopServed(served);
+    const int status = stopChild(served);
     if (conn) conn->close(Error{ErrorCode::kPeerClosed, "test done"});
-    ASSERT_TRUE(ponged) << server.err;
-    EXPECT_EQ(server.status, 0) << server.err;
+    const std::string log = servedLog();
+    ASSERT_TRUE(ponged) << log;
+    EXPECT_EQ(status, 0) << log;
     // "..., N force commands (0 refused), M reports skipped for slow readers, K Plane2 ignored"
     std::smatch m;
     ASSERT_TRUE(std::regex_search(
-        server.err, m,
+        log, m,
         std::regex("([0-9]+) force commands \\([0-9]+ refused\\), [0-9]+ reports skipped for slow readers, "
                    "([0-9]+) Plane2 ignored")))
-        << server.err;
+        << log;
     EXPECT_EQ(std::stoi(m[1]), flag ? 3 : 0);
     EXPECT_EQ(std::stoi(m[2]), flag ? 0 : 3);
   }

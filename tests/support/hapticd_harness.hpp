@@ -3,7 +3,7 @@
 // would: from the source directory, output in a scratch directory of the test's own, a udpm URL
 // on a port of the test's own (ttl=0: nothing leaves the host). run() runs hapticd to completion;
 // startServer()/stopServer() keep it running beside probe-clients (startProbe()) or other
-// children (spawn(), reaped at the end); expectServoRanSafely() and friends read its statistics.
+// children (spawn(), reaped at the end); serveVrpn()/stopChild() serve VRPN until stopped; expectServoRanSafely() and friends read its statistics.
 // Needs THX_HAPTICD, THX_PROBE and THX_SOURCE_DIR (tests/CMakeLists.txt: thx_test_runs_hapticd).
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -119,6 +119,26 @@ class HapticdProcessTest : public ::testing::Test {
   std::string serverLog() const { return slurp(path("hd.err")); }
   bool serverLogHas(const std::string& text, double timeout_s) const {
     return waitUntil([&] { return serverLog().find(text) != std::string::npos; }, timeout_s);
+  }
+
+  // hapticd serving `scene` (relative to the source directory, or absolute) over VRPN at `port`
+  // without LCM until stopChild() (--duration 0): a test stops it once it has what it came for,
+  // since a fixed --duration races the test's own connect. Its output in served.out / served.err.
+  pid_t serveVrpn(const std::string& scene, std::uint16_t port, const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> a = {THX_HAPTICD, "--scene",    scene,        "--duration", "0",           "--no-lcm",
+                                  "--no-mlock", "--flight-dir", path(""), "--vrpn-listen", std::to_string(port)};
+    a.insert(a.end(), extra.begin(), extra.end());
+    const pid_t p = spawn(a, path("served.out"), path("served.err"));
+    if (p > 0) children_.push_back(p);  // killed at the end if a failure leaves it running
+    return p;
+  }
+  std::string servedLog() const { return slurp(path("served.err")); }
+  // A child stopped as a user stops it (SIGTERM) and reaped: its exit status.
+  int stopChild(pid_t p, double timeout_s = 30) {
+    kill(p, SIGTERM);
+    const int rc = reap(p, timeout_s);
+    std::erase(children_, p);
+    return rc;
   }
 
   // probe-client NAME with its JSON at NAME.json, its stderr at NAME.err.

@@ -33,15 +33,17 @@ struct VrpnReports {
   std::map<std::string, SenderReports> by_name;  // every name asked for is present
 };
 
-// Reads until `go_on(reports so far)` says stop.
-inline VrpnReports readVrpnReportsWhile(std::uint16_t port, const std::vector<std::string>& names,
-                                        const std::function<bool(const VrpnReports&)>& go_on) {
+// Reads until `enough(reports so far)`, or for `timeout` at most.
+inline VrpnReports readVrpnReportsUntil(std::uint16_t port, const std::vector<std::string>& names,
+                                        const std::function<bool(const VrpnReports&)>& enough,
+                                        std::chrono::seconds timeout) {
   using namespace thx::vrpn;
   VrpnReports out;
   for (const std::string& n : names) out.by_name[n];
   std::unique_ptr<TcpConnection> conn;
   std::map<std::int32_t, std::string> ids;
-  while (go_on(out)) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (!enough(out) && std::chrono::steady_clock::now() < until) {
     if (!conn || !conn->open()) {
       Result<UniqueFd> fd = connectTcp("127.0.0.1", port);
       if (!fd) {
@@ -80,17 +82,6 @@ inline VrpnReports readVrpnReportsWhile(std::uint16_t port, const std::vector<st
   }
   if (conn) conn->close(thx::vrpn::Error{ErrorCode::kPeerClosed, "test done"});
   return out;
-}
-
-// Reads until `enough(reports so far)`, or for `timeout` at most: for a server the test stops
-// itself once it has what it came for.
-inline VrpnReports readVrpnReportsUntil(std::uint16_t port, const std::vector<std::string>& names,
-                                        const std::function<bool(const VrpnReports&)>& enough,
-                                        std::chrono::seconds timeout) {
-  const auto until = std::chrono::steady_clock::now() + timeout;
-  return readVrpnReportsWhile(port, names, [&](const VrpnReports& r) {
-    return !enough(r) && std::chrono::steady_clock::now() < until;
-  });
 }
 
 }  // namespace thx::test
