@@ -244,6 +244,7 @@ struct RawClient {
           if (auto r = TrackerPosQuat::decode(m->payload)) last_pos = last_pos_of[std::string(m->sender_name)] = *r;
         } else if (m->type_name == ButtonStates::kTypeName) {
           ++button_states;
+          if (auto r = ButtonStates::decode(m->payload)) last_button_states = r->states;
         } else if (m->type_name == ButtonChange::kTypeName) {
           if (auto r = ButtonChange::decode(m->payload)) changes.push_back(*r);
         } else if (m->type_name == ForceError::kTypeName) {
@@ -252,6 +253,7 @@ struct RawClient {
           if (auto r = TextMessage::decode(m->payload)) texts.push_back(r->text);
         } else if (m->type_name == Pong::kTypeName) {
           ++pongs;
+          pos_quats_at_last_pong = pos_quats;
         } else if (m->type_name == ForceReport::kTypeName) {
           if (auto r = ForceReport::decode(m->payload)) last_force = *r;
         }
@@ -275,6 +277,8 @@ struct RawClient {
   std::int32_t sender;
   bool connected = false;
   int pos_quats = 0, button_states = 0, pongs = 0;
+  int pos_quats_at_last_pong = 0;  // the reports that came before the newest pong in the stream
+  std::vector<std::int32_t> last_button_states;
   TrackerPosQuat last_pos;
   ForceReport last_force;
   std::vector<ButtonChange> changes;
@@ -290,6 +294,20 @@ struct RawClient {
 // Handshake done and pinged (like a stock Remote's first mainloop).
 inline void registered(RawClient& c) {
   if (c.waitConnected()) c.send(Ping{});
+}
+
+// Pings and reads until the pong: a barrier, since the server answers a link's messages in order.
+// Each round of the server's loop reads the servo's newest snapshot before the messages it
+// answers, so whatever the servo published before the ping was sent is what the server serves
+// once it has answered a second such ping (the first may be answered by a round that read its
+// snapshot just before the ping arrived).
+inline bool pingedAndAnswered(RawClient& c) {
+  const int pongs = c.pongs;
+  c.send(Ping{});
+  return eventually([&] {
+    c.pumpFor(5ms);
+    return c.pongs > pongs;
+  });
 }
 
 // What our client device sends as a Plane message: 100 N/m with the pen 1 mm inside, 0.1 N up

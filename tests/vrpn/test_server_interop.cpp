@@ -229,8 +229,11 @@ TEST(VrpnServerInterop, NoReportsWhileTheServoHasNoValidReading) {
     c.pumpFor(5ms);
     return rig.ticks.load() > glitch_from + 10;
   }));
-  c.pumpFor(200ms);  // what was already on its way
-  const int before = c.pos_quats;
+  // Two ping barriers: the round answering the second read the invalid snapshot, so no report
+  // follows its pong (reports that were already on their way come before it).
+  ASSERT_TRUE(pingedAndAnswered(c));
+  ASSERT_TRUE(pingedAndAnswered(c));
+  const int before = c.pos_quats_at_last_pong;
   c.pumpFor(200ms);
   EXPECT_EQ(c.pos_quats, before);
 }

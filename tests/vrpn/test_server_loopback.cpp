@@ -2,10 +2,14 @@
 // it, driven by our VrpnClientDevice over both connection forms and by raw protocol clients that
 // misbehave. The device is a pen held still by the test (paced at 1 ms on the monotonic clock),
 // far above the texture, so every force it feels comes from VRPN effects. Waits poll with a
-// generous deadline; nothing asserts on timing except "eventually" and ordering of rates.
+// generous deadline, or ping until the pong (the server answers a link's messages in order);
+// nothing asserts on timing except "eventually" and the bound the server's pacing puts on a rate.
 #include <gtest/gtest.h>
 #include <poll.h>
 #include <sys/socket.h>
+
+#include <algorithm>
+#include <cstdio>
 
 #include "tests/vrpn/served_rig.hpp"
 
@@ -78,19 +82,28 @@ TEST(VrpnServerLoopback, ButtonStatesOnConnectAndPingAndChangeOnEdges) {
     c.pumpFor(5ms);
     return c.button_states >= 2 && c.pongs >= 1;  // one on connect, one in reply to the ping
   }));
-  rig.pen.setButtons(0b01);
+  // The server may connect us before its thread has read a snapshot with the pressed button (on
+  // a loaded machine either thread can lag): it then sends States 0 0 and, once it reads 0b10,
+  // the edge. Ping until the States show button 1 down, so that the change below starts from it.
+  const std::vector<std::int32_t> held_1{0, 1};
   ASSERT_TRUE(eventually([&] {
+    if (c.last_button_states != held_1) pingedAndAnswered(c);
+    return c.last_button_states == held_1;
+  })) << "the States never showed button 1 down";
+  rig.pen.setButtons(0b01);
+  auto saw = [&](std::int32_t button, std::int32_t state) {
+    return std::any_of(c.changes.begin(), c.changes.end(),
+                       [&](const ButtonChange& ch) { return ch.button == button && ch.state == state; });
+  };
+  // Button 0 went down, button 1 went up (both edges of one snapshot, sent together).
+  EXPECT_TRUE(eventually([&] {
     c.pumpFor(5ms);
-    return c.changes.size() >= 2;
-  }));
-  // Button 0 went down, button 1 went up.
-  bool b0_down = false, b1_up = false;
-  for (const ButtonChange& ch : c.changes) {
-    b0_down = b0_down || (ch.button == 0 && ch.state == 1);
-    b1_up = b1_up || (ch.button == 1 && ch.state == 0);
-  }
-  EXPECT_TRUE(b0_down);
-  EXPECT_TRUE(b1_up);
+    return saw(0, 1) && saw(1, 0);
+  })) << c.changes.size() << " changes";
+  EXPECT_FALSE(saw(0, 0));  // button 0 was never down before
+  // A ping now is answered with the new states.
+  ASSERT_TRUE(pingedAndAnswered(c));
+  EXPECT_EQ(c.last_button_states, (std::vector<std::int32_t>{1, 0}));
 }
 
 TEST(VrpnServerLoopback, SetUpdateRateIsPerClient) {
@@ -101,21 +114,32 @@ TEST(VrpnServerLoopback, SetUpdateRateIsPerClient) {
   ASSERT_TRUE(fast.waitConnected());
   ASSERT_TRUE(slow.waitConnected());
   slow.send(TrackerUpdateRate{50.0});
-  slow.pumpFor(50ms);
-  fast.pos_quats = slow.pos_quats = 0;
+  ASSERT_TRUE(pingedAndAnswered(slow));  // the server answers in order: the rate is set
   const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < 100; ++i) {
+  fast.pos_quats = slow.pos_quats = 0;
+  auto elapsedS = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  // At least 400 ms and five of the slow client's reports.
+  for (int i = 0; i < 100 || (slow.pos_quats < 5 && elapsedS() < 20.0); ++i) {
     fast.pumpFor(2ms);
     slow.pumpFor(2ms);
   }
-  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // ~400 ms on a quiet machine: fast gets every report (~1000 Hz), slow at most 50 Hz of the
-  // loop's wall time (the server paces it on the wall clock, so a loop a loaded VM stretches
-  // lets more through: the bound follows the time taken, plus the report or two at its ends).
-  // The servo, paced never late, ticks more slowly on a loaded VM; 3x holds down to 150 Hz.
-  EXPECT_GT(fast.pos_quats, 3 * slow.pos_quats) << fast.pos_quats << " vs " << slow.pos_quats << " in " << elapsed_s << " s";
-  EXPECT_GT(slow.pos_quats, 0);
+  const double elapsed_s = elapsedS();
+  // Each client's Velocity carries its own report period (vel_quat_dt = 1/rate): the rate set by
+  // one client is not the other's, whatever the scheduler did.
+  auto lastVelocityDt = [](RawClient& c) {
+    Result<TrackerVelocity> v = TrackerVelocity::decode(c.last_payload[std::string(TrackerVelocity::kTypeName)]);
+    return v ? v->vel_quat_dt : -1.0;
+  };
+  EXPECT_EQ(lastVelocityDt(slow), 1.0 / 50.0);
+  EXPECT_EQ(lastVelocityDt(fast), 1.0 / srv::VrpnServerOptions{}.report_hz);
+  // The server paces reports on its own clock: the slow client gets at most 50 Hz of the time
+  // taken, plus the report or two at its ends.
+  EXPECT_GE(slow.pos_quats, 5);
   EXPECT_LE(slow.pos_quats, 50.0 * elapsed_s + 2) << elapsed_s << " s";
+  // How many more the unthrottled client gets depends on how often the server's and the servo's
+  // threads run (about 20 times as many on a quiet machine): shown, not asserted.
+  std::printf("[measured] set_update_rate: %d reports at 1000 Hz asked, %d at 50 Hz, in %.3f s\n", fast.pos_quats,
+              slow.pos_quats, elapsed_s);
   // A nonsense rate is refused with a text message, and reports keep coming.
   slow.send(TrackerUpdateRate{-5.0});
   ASSERT_TRUE(eventually([&] {
