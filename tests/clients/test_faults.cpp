@@ -114,8 +114,14 @@ TEST_F(HapticdFaults, ClientThatStopsReadingBlocksNothing) {
   const std::size_t at = log.find(grant);
   ASSERT_NE(at, std::string::npos) << log;
   const std::string data_url = log.substr(at + grant.size(), log.find('\n', at) - at - grant.size());
-  const UdpQueues q = udpQueues(urlPort(data_url));
-  EXPECT_TRUE(q.max_rx_queue > 1'000'000 || q.drops > 0)
+  // How soon depends on how fast hapticd's publisher ran, so it is waited for.
+  UdpQueues q;
+  EXPECT_TRUE(waitUntil(
+      [&] {
+        q = udpQueues(urlPort(data_url));
+        return q.max_rx_queue > 1'000'000 || q.drops > 0;
+      },
+      30))
       << data_url << ": rx_queue " << q.max_rx_queue << " B, drops " << q.drops;
   // Still subscribed (never forgotten) the whole time.
   EXPECT_EQ(serverLog().find("client stalled forgotten"), std::string::npos) << serverLog();

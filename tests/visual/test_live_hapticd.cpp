@@ -26,10 +26,11 @@ struct VisualLiveHapticd : HapticdProcessTest {
     ASSERT_TRUE(logHas(err, "visual-client: live from", 30)) << slurp(err);
     ASSERT_TRUE(waitUntil([&] { return fs::exists(path("frames/frame_0000.ppm")); }, 30));
   }
-  // visual-client live on `scene`, headless into frames/.
+  // visual-client live on `scene`, headless into frames/; it runs until the test ends it (the
+  // 300 s are only a bound: the test's own waits could add up to more than a shorter run).
   std::vector<std::string> liveArgs(const std::string& scene) {
     return {THX_VISUAL_CLIENT, "--scene", scene, "--live", "--lcm-url", url_, "--out", path("frames"), "--format",
-            "ppm", "--size", "160x90", "--rate", "30", "--duration", "30", "--connect-timeout", "20"};
+            "ppm", "--size", "160x90", "--rate", "30", "--duration", "300", "--connect-timeout", "20"};
   }
   // Ends it as a user would (SIGTERM) and returns what it said.
   std::string stopVisual(pid_t visual) {

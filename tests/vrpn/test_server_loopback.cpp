@@ -312,7 +312,12 @@ TEST(VrpnServerLoopback, MalformedInputDropsOnlyTheOffenderWhileTheServoRuns) {
     good.pumpFor(2ms);
     return good.pos_quats > reports_before;
   }));
-  EXPECT_FALSE(wrong_size.conn->open());
+  // What the server does with each offender, however late its thread got to them.
+  EXPECT_TRUE(eventually([&] {
+    wrong_size.pumpFor(0ms);
+    return !wrong_size.conn->open();
+  }));
+  ASSERT_TRUE(pingedAndAnswered(nan_client));  // its Force_Error came before the pong
   EXPECT_TRUE(nan_client.conn->open());
   EXPECT_FALSE(nan_client.force_errors.empty());
   // The good client's plane still holds (a missed-tick fault on a loaded machine only ramps it
@@ -322,9 +327,12 @@ TEST(VrpnServerLoopback, MalformedInputDropsOnlyTheOffenderWhileTheServoRuns) {
     return std::abs(rig.pen.force().z() - k * 0.001) < 1e-3;
   })) << rig.pen.force().transpose();
   EXPECT_TRUE(rig.pen.force().allFinite());
-  const srv::VrpnServerStatus st = rig.server->status();
-  EXPECT_GE(st.drops - drops_before, 3u);  // garbage cookie, huge length, wrong-size body (+ truncated)
-  EXPECT_GE(st.bad_lob_requests, 3u);
+  srv::VrpnServerStatus st;
+  EXPECT_TRUE(eventually([&] {
+    st = rig.server->status();
+    return st.drops - drops_before >= 3u && st.bad_lob_requests >= 3u;
+  })) << st.drops - drops_before << " drops (garbage cookie, huge length, wrong-size body, + truncated), "
+      << st.bad_lob_requests << " bad UDP requests";
   // The servo kept ticking through all of it. How punctually is the benchmarks' question (a test
   // that counted 300 ticks here failed on a loaded machine); that no tick waits on a client is
   // test_servo_no_alloc's, deterministically.
