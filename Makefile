@@ -25,8 +25,14 @@ $(BUILD)/CMakeCache.txt:
 build: setup $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j$(JOBS)
 
+# The sanitizer tree is built with clang: its instrumented code compiles in about half of g++'s
+# CPU time, and the project is checked by a second compiler's warnings (docs/build.md, "The
+# sanitizer tree with clang"). SANITIZER_CXX=g++ SANITIZER_CC=gcc for a tree built with g++.
+SANITIZER_CC  ?= clang-14
+SANITIZER_CXX ?= clang++-14
+
 $(BUILD_ASAN)/CMakeCache.txt:
-	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DTHX_SANITIZE=ON \
+	CC=$(SANITIZER_CC) CXX=$(SANITIZER_CXX) cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DTHX_SANITIZE=ON \
 		-DCMAKE_CXX_FLAGS_DEBUG=$(DEBUG_INFO) -DCMAKE_C_FLAGS_DEBUG=$(DEBUG_INFO)
 
 build-asan: setup $(BUILD_ASAN)/CMakeCache.txt

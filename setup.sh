@@ -14,6 +14,7 @@ fi
 
 PACKAGES="
   g++ make cmake pkg-config
+  clang-14 libclang-rt-14-dev libomp-14-dev
   libeigen3-dev libpng-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libstb-dev
   libyaml-cpp-dev nlohmann-json3-dev

@@ -297,7 +297,7 @@ TEST(MeshImport, GltfBufferBesideTheFile) {
                          "Config: mesh " + dir.file("tetra.gltf") + ": Assimp could not read it as glTF 2.0: "))
       << fileVerdict(dir.file("tetra.gltf"), o);
   // From memory nothing is read from the file system.
-  EXPECT_TRUE(startsWith(verdict([&] { return fromText(json, "gltf"); }),
+  EXPECT_TRUE(startsWith(verdict([&text = json] { return fromText(text, "gltf"); }),
                          "Config: mesh memory.gltf: Assimp could not read it as glTF 2.0: "));
 }
 

@@ -166,7 +166,7 @@ TEST(TexturedObjectsOnAPlainPlane, AnObjectHoldingMoreTexelsThanTheBudgetMeetsIt
   attachFaceTexture(slab, faces);
   const tex::TextureMap dimples = tb::dimpleMap();
   const FaceTexture dimpled = tb::ballTexture(dimples);
-  btSphereShape ball(float(tb::kRadius)), plain_ball(float(tb::kRadius));
+  btSphereShape ball{btScalar(tb::kRadius)}, plain_ball{btScalar(tb::kRadius)};
   attachBallTexture(ball, dimpled);
   std::printf("[measured] texels under a textured object on a plain plane: block %.0f, dimpled ball %.0f, slab %.0f "
               "(budget %.0f)\n",

@@ -180,7 +180,10 @@ TEST(Underside, BoundsContainTheSolidAndReachItsBottom) {
       const Eigen::Vector3d margin = Eigen::Vector3d::Constant(1e-3);
       int inside_count = 0;
       for (int k = 0; k < 4000; ++k) {
-        const Eigen::Vector3d t(u(rng), u(rng), u(rng));
+        // One draw a statement, in g++'s order of a call's arguments (unspecified by C++), so
+        // every compiler draws these points.
+        const double tz = u(rng), ty = u(rng), tx = u(rng);
+        const Eigen::Vector3d t(tx, ty, tz);
         const Eigen::Vector3d q = (b.min() - margin) + (b.max() - b.min() + 2.0 * margin).cwiseProduct(t);
         if (!inside(s, q)) continue;
         ++inside_count;

@@ -67,12 +67,17 @@ TEST(HalfspaceProjection, IsOneLipschitzSoForcesAreContinuous) {
     const int count = 1 + trial % 4;
     for (int i = 0; i < count; ++i) {
       // Upward-facing planes through points near the origin (like surface planes).
-      const Eigen::Vector3d n = Eigen::Vector3d(0.8 * u(rng), 0.8 * u(rng), 1.0).normalized();
+      // Each draw its own statement, in g++'s right-to-left order of a call's arguments, so that
+      // every compiler draws these numbers (the order of a call's arguments is unspecified).
+      const double ny = u(rng), nx = u(rng);
+      const Eigen::Vector3d n = Eigen::Vector3d(0.8 * nx, 0.8 * ny, 1.0).normalized();
       h[std::size_t(i)] = {n, 0.001 * u(rng)};
     }
     for (int k = 0; k < 20; ++k) {
-      const Eigen::Vector3d a(0.003 * u(rng), 0.003 * u(rng), 0.003 * u(rng));
-      const Eigen::Vector3d b = a + Eigen::Vector3d(u(rng), u(rng), u(rng)) * 1e-4;
+      const double az = u(rng), ay = u(rng), ax = u(rng);
+      const Eigen::Vector3d a = 0.003 * Eigen::Vector3d(ax, ay, az);
+      const double dz = u(rng), dy = u(rng), dx = u(rng);
+      const Eigen::Vector3d b = a + Eigen::Vector3d(dx, dy, dz) * 1e-4;
       const Projection pa = projectOntoHalfspaces(a, h, count), pb = projectOntoHalfspaces(b, h, count);
       ASSERT_TRUE(pa.solved && pb.solved);
       EXPECT_LE((pa.x - pb.x).norm(), (a - b).norm() * (1 + 1e-9) + 1e-12);
