@@ -1,5 +1,7 @@
 #include "clients/physics/contact_solver.hpp"
 
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
+
 #include <algorithm>
 #include <initializer_list>
 
