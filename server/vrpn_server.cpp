@@ -28,6 +28,9 @@ using namespace thx::vrpn;
 
 namespace {
 
+// How many kernel-picked ports are tried for a TCP/UDP pair before giving up.
+constexpr int kEphemeralPortAttempts = 32;
+
 // What a client has of one served device: its sender id on the connection, its report rate.
 struct ClientDevice {
   std::int32_t sender = kNoId;
@@ -105,14 +108,27 @@ void VrpnServer::start() {
   auto impl = std::make_unique<Impl>();
   impl->devices.resize(devices_.size());
   const std::string where = options_.listen_ip + ":" + std::to_string(options_.port);
-  Result<UniqueFd> l = listenTcp(options_.listen_ip, options_.port);
-  if (!l) throw thx::Error(thx::Error::Kind::Io, "--vrpn-listen " + where + ": cannot listen on TCP: " + l.error().reason);
-  impl->listen_fd = std::move(l).value();
-  bound_port_ = localPort(impl->listen_fd.get());
-  // The UDP request socket shares the TCP port number (docs/vrpn.md §1).
-  Result<UniqueFd> u = bindUdp(options_.listen_ip, bound_port_);
-  if (!u) throw thx::Error(thx::Error::Kind::Io, "--vrpn-listen " + where + ": cannot bind UDP: " + u.error().reason);
-  impl->udp_fd = std::move(u).value();
+  // The UDP request socket shares the TCP port number (docs/vrpn.md §1). With port 0 the kernel
+  // picks a free TCP port whose UDP twin may be taken by another program; a new pick is then
+  // tried, so "any free port" never fails by chance while some are free.
+  const int attempts = options_.port == 0 ? kEphemeralPortAttempts : 1;
+  for (int attempt = 1;; ++attempt) {
+    Result<UniqueFd> l = listenTcp(options_.listen_ip, options_.port);
+    if (!l) throw thx::Error(thx::Error::Kind::Io, "--vrpn-listen " + where + ": cannot listen on TCP: " + l.error().reason);
+    UniqueFd listen_fd = std::move(l).value();
+    const std::uint16_t port = localPort(listen_fd.get());
+    Result<UniqueFd> u = bindUdp(options_.listen_ip, port);
+    if (u) {
+      impl->listen_fd = std::move(listen_fd);
+      impl->udp_fd = std::move(u).value();
+      bound_port_ = port;
+      break;
+    }
+    if (attempt >= attempts)
+      throw thx::Error(thx::Error::Kind::Io, "--vrpn-listen " + where + ": cannot bind UDP" +
+                                                 (options_.port == 0 ? " on " + std::to_string(attempts) + " ports the kernel picked" : "") +
+                                                 ": " + u.error().reason);
+  }
   impl_ = std::move(impl);
   {
     std::lock_guard lock(status_mutex_);

@@ -4,7 +4,9 @@
 // far above the texture, so every force it feels comes from VRPN effects. Waits poll with a
 // generous deadline, or ping until the pong (the server answers a link's messages in order);
 // nothing asserts on timing except "eventually" and the bound the server's pacing puts on a rate.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
 
@@ -225,6 +227,39 @@ TEST(VrpnServerLoopback, OurClientReconnectsAfterTheServerRestarts) {
   EXPECT_TRUE(eventually([&] { return client.read().valid; })) << client.status().last_error;
   EXPECT_GE(client.status().connects, 2u);
   client.close();
+}
+
+// With port 0 the server retries when the kernel's TCP pick has its UDP twin taken (the pick is
+// the kernel's, so that path is not forced here); a port given explicitly is tried once, and a
+// taken UDP twin is a clear error that leaves the server stopped and restartable.
+TEST(VrpnServerLoopback, AGivenPortWhoseUdpTwinIsTakenIsAClearError) {
+  // Held without SO_REUSEADDR, so the server's UDP bind on the same number must fail.
+  const UniqueFd holder(::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0));
+  ASSERT_TRUE(holder);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(holder.get(), reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+  socklen_t len = sizeof addr;
+  ASSERT_EQ(::getsockname(holder.get(), reinterpret_cast<sockaddr*>(&addr), &len), 0);
+  const std::uint16_t taken = ntohs(addr.sin_port);
+
+  ServedPen pen;
+  srv::VrpnServerOptions o;
+  o.port = taken;
+  o.log = false;
+  pen.limit(o);
+  srv::VrpnServer server(*pen.snapshots, &pen.effects, o);
+  try {
+    server.start();
+    FAIL() << "started on a port whose UDP twin is taken";
+  } catch (const thx::Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("--vrpn-listen 127.0.0.1:" + std::to_string(taken)), std::string::npos) << what;
+    EXPECT_NE(what.find("cannot bind UDP: "), std::string::npos) << what;
+    EXPECT_EQ(what.find("ports the kernel picked"), std::string::npos) << what;
+  }
+  EXPECT_FALSE(server.status().running);
 }
 
 TEST(VrpnServerLoopback, MaxClientsRefusesTheNextOne) {
