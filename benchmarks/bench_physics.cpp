@@ -33,6 +33,7 @@
 #include <thread>
 #include <vector>
 
+#include "base/cli_number.hpp"
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_physics_grounds.hpp"
 #include "benchmarks/bench_stamp.hpp"
@@ -51,6 +52,7 @@ constexpr double kTunedBreaking = 0.002;
 
 double deg(double d) { return d * kPi / 180.0; }
 
+constexpr int kMaxSize = 1024;             // --sizes' bound (the BVH mesh's, run())
 constexpr int kEdgeUtilityMaxSize = 512;  // the edge map takes seconds to build beyond this
 std::string groundLabel(const Ground& g) {
   return std::string(repName(g.rep())) + (g.internalEdges() ? " + edge utility" : "");
@@ -744,12 +746,14 @@ void plot(const Results& r, const std::vector<int>& sizes, const std::string& pa
   writePlotPng(path, panels, "bench_physics: cost and error of the same surface in five representations", 560, 480);
 }
 
-int run(int argc, char** argv) {
-  thx::bench::exitOnHelp(argc, argv, R"(usage: bench_physics [--sizes 64,128,...] [--reps N] [--json F] [--csv F] [--md F] [--png F]
+constexpr const char* kHelp = R"(usage: bench_physics [--sizes 64,128,...] [--reps N] [--json F] [--csv F] [--md F] [--png F]
 
 Cost and error of the same surface in five physics representations (docs/benchmarks.md part 6).
 benchmarks/run.sh BUILD_DIR physics runs it as the docs show.
-)");
+--sizes: texels a side, each 2 to 1024 (default 64,128,256,512,1024). --reps: 1 to 1000.
+)";
+
+int run(int argc, char** argv) {
   std::vector<int> sizes = {64, 128, 256, 512, 1024};
   std::string json_path, csv_path, md_path, png_path;
   for (int i = 1; i < argc; ++i) {
@@ -763,12 +767,11 @@ benchmarks/run.sh BUILD_DIR physics runs it as the docs show.
     else if (a == "--csv") csv_path = v;
     else if (a == "--md") md_path = v;
     else if (a == "--png") png_path = v;
-    else if (a == "--reps") g_reps = std::max(1, std::stoi(v));
+    else if (a == "--reps") g_reps = int(thx::cli::parseInteger(a, v, 1, 1000));
     else if (a == "--sizes") {
-      sizes.clear();
-      std::stringstream ss(v);
-      std::string item;
-      while (std::getline(ss, item, ',')) sizes.push_back(std::stoi(item));
+      // Beyond 1024 texels a side the BVH mesh (two triangles a texel) passes the 2^21 triangles
+      // a quantized Bullet BVH can index, and Bullet writes past its nodes (a run at 4096 crashed).
+      sizes = thx::cli::parseIntegerList(a, v, 2, kMaxSize);
       std::sort(sizes.begin(), sizes.end());
     } else {
       std::fprintf(stderr, "bench_physics: unknown option %s\n", a.c_str());
@@ -872,11 +875,4 @@ benchmarks/run.sh BUILD_DIR physics runs it as the docs show.
 }  // namespace
 }  // namespace thx::bench
 
-int main(int argc, char** argv) {
-  try {
-    return thx::bench::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench_physics: %s\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return thx::bench::benchMain(argc, argv, thx::bench::kHelp, "bench_physics", thx::bench::run); }
