@@ -262,7 +262,7 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   const TexturedObjectSurface ball(underside, texture);
   for (std::size_t k = 0; k < n; ++k) {
     ReliefCandidate c = candidates[basins.picked[k]];
-    withObjectNormal(ball, c);
+    withNormals(surface, bent, &ball, c);
     chosen[k] = refineDeepest(surface, underside, c, bent, &texture, settle_points);
   }
   smootherSurfaceNormals(surface, bent, ball, std::span(chosen.data(), n));
@@ -647,7 +647,8 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     // Reused between steps so a resting object costs no allocation per step.
     thread_local std::vector<ReliefCandidate> candidates;
     candidates.clear();
-    const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, nullptr, bent, true, boundary);
+    // Normals are read for the contacts kept only (below).
+    const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, nullptr, bent, false, boundary);
     dropPastBoundary(boundary, candidates);
     // Refined within its texel (relief_raster.hpp), but kept on the chart: a box tilted over a
     // slab's edge has its deepest point on flat ground at its far edge, over the air past the crease,
@@ -719,7 +720,11 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     } else if (n > 0) {
       candidates[picked[0]] = refine(candidates[picked[0]]);
     }
-    for (std::size_t k = 0; k < n; ++k) chosen.contacts[k] = candidates[picked[k]];
+    // A refined point carries the relief's normal where it lies; the others their texel's.
+    for (std::size_t k = 0; k < n; ++k) {
+      chosen.contacts[k] = candidates[picked[k]];
+      if (!hasNormal(chosen.contacts[k])) withNormals(surface, bent, nullptr, chosen.contacts[k]);
+    }
     chosen.count = n;
   }
 

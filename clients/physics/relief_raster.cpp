@@ -11,6 +11,9 @@ namespace thx::phys {
 
 namespace {
 
+// A candidate's normal before withNormals reads it (hasNormal).
+const Eigen::Vector3d kNoNormal = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+
 // The part of the footprint that can touch the relief at all: the relief lies in
 // [-maxDepth, 0], so only where the object reaches below z = threshold can a texel be a
 // candidate. For a sphere that is a disc much smaller than the ball (at rest: radius
@@ -94,7 +97,7 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
                             std::vector<ReliefCandidate>& out, const FaceTexture* object_texture, const GroundBend* bend,
-                            bool object_normals, const ChartBoundary* boundary, double texture_within_m) {
+                            bool normals, const ChartBoundary* boundary, double texture_within_m) {
   RasterStats stats;
   // Bent ground may rise above the plane under the object: the footprint reaches as high.
   double reach = 0.0;
@@ -177,16 +180,16 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
       if (!textured) {
         const double depth = *z - height;
         if (depth < threshold_m)
-          out.push_back({Eigen::Vector3d(x, y, height), ground(surface.texelNormal(i, j, ri, rj)), depth, i, j});
+          out.push_back({Eigen::Vector3d(x, y, height), normals ? ground(surface.texelNormal(i, j, ri, rj)) : kNoNormal,
+                         depth, i, j});
         continue;
       }
       // An object's relief lies inside its smooth surface: where that is already beyond the
       // threshold, so is the relief, and its texture need not be read (most of a ball's footprint).
       if (*z - height >= threshold_m || *z - height > read_within) continue;
-      if (!object_normals) {
+      if (!normals) {
         const double depth = object_surface->zOver(x, y, *z) - height;
-        if (depth < threshold_m)
-          out.push_back({Eigen::Vector3d(x, y, height), ground(surface.texelNormal(i, j, ri, rj)), depth, i, j});
+        if (depth < threshold_m) out.push_back({Eigen::Vector3d(x, y, height), kNoNormal, depth, i, j});
         continue;
       }
       // The depth first: the object's normal is read only where the texel is a candidate (a
@@ -202,8 +205,16 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   return stats;
 }
 
-void withObjectNormal(const TexturedObjectSurface& object, ReliefCandidate& c) {
-  const std::optional<ObjectSurfacePoint> p = object.at(c.p_surface.x(), c.p_surface.y());
+void withNormals(const tex::TexturedSurface& surface, const GroundBend* bend, const TexturedObjectSurface* object,
+                 ReliefCandidate& c) {
+  // The texel's data as rasterizeRelief resolves it (its stepped column equals resolveIndex's).
+  const tex::Address address = surface.sampling().address;
+  const int ri = tex::resolveIndex(c.i, surface.map().width(), address);
+  const int rj = tex::resolveIndex(c.j, surface.map().height(), address);
+  const Eigen::Vector3d n = surface.texelNormal(c.i, c.j, ri, rj);
+  c.n_local = bend ? bend->tilt(n, c.p_surface.x(), c.p_surface.y()) : n;
+  if (!object) return;
+  const std::optional<ObjectSurfacePoint> p = object->at(c.p_surface.x(), c.p_surface.y());
   if (p && p->n_up) c.n_local = (c.n_local + *p->n_up).normalized();
 }
 

@@ -3,6 +3,7 @@
 // (docs/design.md §4 rule 8): for every texel centre under the object's plane-frame bounding box,
 // the directional penetration depth along the plane normal, d = (object's lowest z there) - (relief
 // height there). Texels where d < threshold become contact candidates.
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -46,11 +47,12 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // on the bent ground: its heights raised by the bend's, its normals tilted by its slope; a chart
 // whose texels are twice as long along one axis as along the other is read at the longer spacing
 // along both (a texture squeezed by the mesh's uv, relief_raster.cpp).
-// `object_normals` false: the candidates keep the relief's normal alone, and the object's is
-// added to the ones kept by withObjectNormal (a ball with a bump map reads its texture's depth at
-// every texel under it and its normal at four: a third of its raster's cost went to the normals).
-// With it true, the object's normal is read only at the texels that are candidates, their depth
-// read first (TexturedObjectSurface::zOver; a grooved block's groove floors lie beyond the threshold).
+// `normals` false: the candidates carry their point and depth only (their normal NaN), and
+// withNormals reads the relief's and the object's for the ones kept (a plain ball or a ball with a
+// bump map reads thousands of texels under it and keeps at most four: on 39 um texels the relief's
+// normals took a third of a plain ball's step). With it true, every candidate carries the relief's
+// normal, and a textured object's is read only at the texels that are candidates, their depth read
+// first (TexturedObjectSurface::zOver; a grooved block's groove floors lie beyond the threshold).
 // `boundary` (a mesh's chart, chart_boundary.hpp): the texels past its edges are not visited; the
 // candidates are those that ChartBoundary::past would keep, to the bit (a row's texels are
 // visited only between where its edges cut it, a texel wider on either side, and each texel
@@ -65,11 +67,15 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // bound (textured_ball_basins.hpp says when that leaves the basins chosen the same).
 RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
                             std::vector<ReliefCandidate>& out, const FaceTexture* object_texture = nullptr,
-                            const GroundBend* bend = nullptr, bool object_normals = true,
+                            const GroundBend* bend = nullptr, bool normals = true,
                             const ChartBoundary* boundary = nullptr,
                             double texture_within_m = std::numeric_limits<double>::infinity());
-// A candidate rasterised without its object's normal, with it: as rasterizeRelief makes it, to the bit.
-void withObjectNormal(const TexturedObjectSurface& object, ReliefCandidate& c);
+// A candidate rasterised without normals, with them: as rasterizeRelief with `normals` makes it,
+// to the bit, given the same surface, bend and object (nullptr: a plain object).
+void withNormals(const tex::TexturedSurface& surface, const GroundBend* bend, const TexturedObjectSurface* object,
+                 ReliefCandidate& c);
+// Whether a candidate carries its normal (rasterised with `normals`, or given them by withNormals).
+inline bool hasNormal(const ReliefCandidate& c) { return !std::isnan(c.n_local.x()); }
 
 // Sub-texel refinement of a round object's deepest contact. The texel-centre minimum is off the
 // true tangent point by up to half a texel, and its normal with it: at a dimple's bottom the

@@ -56,8 +56,8 @@ struct BallBasins {
 };
 
 // `candidates` is cleared and left holding the last read's candidates (past `boundary` dropped),
-// which `picked` indexes. The rest as rasterizeRelief, with the ball's normal left out
-// (object_normals false). `hint` is read and updated for the next step.
+// which `picked` indexes. The rest as rasterizeRelief, without normals (`normals` false:
+// withNormals reads them for the basins kept). `hint` is read and updated for the next step.
 BallBasins findBallBasins(const tex::TexturedSurface& surface, const Underside& ball, const FaceTexture& texture,
                           double threshold_m, const GroundBend* bend, const ChartBoundary* boundary, BallBasinHint& hint,
                           std::vector<ReliefCandidate>& candidates);

@@ -1,10 +1,12 @@
 // The relief raster visits a row only where its candidates can lie (clients/physics/relief_raster.hpp):
 // within a ball's touching disc, and not past a mesh chart's edges (chart_boundary.hpp). Neither
 // may change what it finds: the candidates are those every texel of the footprint would give, less
-// those past the chart's edges, to the bit.
+// those past the chart's edges, to the bit; and their normals, read in the raster or afterwards
+// (withNormals), are the same to the bit.
 #include <gtest/gtest.h>
 
 #include <array>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -67,16 +69,31 @@ TEST(ReliefRasterRows, WithinAChartsEdgesItFindsTheCandidatesPastThemDroppedToTh
       for (const GroundBend* bend : std::array<const GroundBend*, 3>{nullptr, &bowl, &dome}) {
         for (const FaceTexture* object : std::array<const FaceTexture*, 2>{nullptr, &texture}) {
           if (object && !can_texture) continue;
-          for (const bool object_normals : {true, false}) {
+          std::vector<ReliefCandidate> with_normals;
+          for (const bool normals : {true, false}) {
             std::vector<ReliefCandidate> all, within;
-            const RasterStats everywhere =
-                rasterizeRelief(plane.surface, shape, kThreshold, all, object, bend, object_normals);
+            const RasterStats everywhere = rasterizeRelief(plane.surface, shape, kThreshold, all, object, bend, normals);
             const RasterStats clipped =
-                rasterizeRelief(plane.surface, shape, kThreshold, within, object, bend, object_normals, &boundary);
+                rasterizeRelief(plane.surface, shape, kThreshold, within, object, bend, normals, &boundary);
+            const std::string what = "round " + std::to_string(round) + " shape " + std::to_string(int(shape.kind)) +
+                                     (normals ? "" : ", normals read after");
+            if (normals) {
+              with_normals = all;
+            } else {
+              // Read afterwards, the normals are those read in the raster, to the bit.
+              const std::optional<TexturedObjectSurface> on_object =
+                  object ? std::optional<TexturedObjectSurface>(std::in_place, shape, *object) : std::nullopt;
+              for (std::vector<ReliefCandidate>* found : {&all, &within})
+                for (ReliefCandidate& c : *found) {
+                  EXPECT_FALSE(hasNormal(c)) << what;
+                  withNormals(plane.surface, bend, on_object ? &*on_object : nullptr, c);
+                }
+              expectSameCandidates(with_normals, all, what);
+            }
             const std::size_t before = all.size();
             std::erase_if(all, [&](const ReliefCandidate& c) { return boundary.past(c.p_surface); });
             dropped += before - all.size();
-            expectSameCandidates(all, within, "round " + std::to_string(round) + " shape " + std::to_string(int(shape.kind)));
+            expectSameCandidates(all, within, what);
             compared += within.size();
             visited_all += everywhere.texels_visited, visited_within += clipped.texels_visited;
           }

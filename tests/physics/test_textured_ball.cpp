@@ -87,7 +87,7 @@ TEST(BallTexture, TheTextureLiesAtItsStatedScaleAlongTheFacesGreatCircles) {
 }
 
 // The raster reads a ball's texture for its depth alone, and its normal at the points kept
-// (withObjectNormal): the same candidates, depths and normals as reading both everywhere, to the
+// (withNormals): the same candidates, depths and normals as reading both everywhere, to the
 // bit, over many poses of a bumpy ball on a bumpy relief.
 TEST(BallTexture, ItsDepthAloneUnderEveryTexelAndItsNormalWhereKeptAreTheFullReadsToTheBit) {
   const tex::TextureMap ball_map = bumpMap(3e-4);
@@ -111,7 +111,7 @@ TEST(BallTexture, ItsDepthAloneUnderEveryTexelAndItsNormalWhereKeptAreTheFullRea
       ReliefCandidate c = depth_only[k];
       EXPECT_EQ(c.depth, full[k].depth);
       EXPECT_EQ(c.p_surface, full[k].p_surface);
-      withObjectNormal(surface, c);
+      withNormals(plane.surface, nullptr, &surface, c);
       EXPECT_EQ(c.n_local, full[k].n_local) << pose << " " << k;
     }
     compared += full.size();
