@@ -59,17 +59,19 @@ double BallOnRelief::bilinear(const Level& l, double s, double t, Eigen::Vector2
 }
 
 BallOnRelief::Touch BallOnRelief::touch(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m,
-                                        bool from_behind) const {
-  return *search(uv, metres_per_uv, radius_m, from_behind, Half{});
+                                        bool from_behind, std::optional<Texel> near) const {
+  return *search(uv, metres_per_uv, radius_m, from_behind, Half{}, near);
 }
 
 std::optional<BallOnRelief::Touch> BallOnRelief::touchOnHalf(TexCoord uv, const Eigen::Vector2d& metres_per_uv,
-                                                             double radius_m, bool from_behind, Half half) const {
-  return search(uv, metres_per_uv, radius_m, from_behind, half);
+                                                             double radius_m, bool from_behind, Half half,
+                                                             std::optional<Texel> near) const {
+  return search(uv, metres_per_uv, radius_m, from_behind, half, near);
 }
 
 std::optional<BallOnRelief::Touch> BallOnRelief::search(TexCoord uv, const Eigen::Vector2d& metres_per_uv,
-                                                        double radius_m, bool from_behind, Half half) const {
+                                                        double radius_m, bool from_behind, Half half,
+                                                        std::optional<Texel> near) const {
   Touch out;
   const std::vector<Level>& levels = from_behind ? behind_ : front_;
   const int width = levels.front().width, height = levels.front().height;
@@ -117,6 +119,26 @@ std::optional<BallOnRelief::Touch> BallOnRelief::search(TexCoord uv, const Eigen
   if (half.axis == 0) (half.sign > 0.0 ? ia : ib) = best_i;
   if (half.axis == 1) (half.sign > 0.0 ? jb : ja) = best_j;
 
+  // A texel's lift, as the search below reads one at level 0 (its nearest point is its centre).
+  auto texelLift = [&](long long i, long long j, double& lift) {
+    const double gi = std::max({0.0, double(i) - s, s - double(i)}), gj = std::max({0.0, double(j) - t, t - double(j)});
+    const double d2 = distance2(gi, gj);
+    if (d2 >= r2) return false;
+    lift = levels.front().at(resolveIndex(i, width, address_), resolveIndex(j, height, address_)) + std::sqrt(r2 - d2);
+    return true;
+  };
+  // The texel a search nearby touched, at its image nearest the centre, inside the region: no
+  // block below its lift can hold the touch. Blocks at its lift are still searched, so the first
+  // texel of the greatest lift in the search's order is found, as without it.
+  double at_least = -HUGE_VAL;
+  if (near) {
+    long long i = near->i, j = near->j;
+    if (address_ == Address::Wrap)
+      i += (long long)width * std::llround((s - double(i)) / width), j += (long long)height * std::llround((t - double(j)) / height);
+    double lift = 0.0;
+    if (i >= ia && i <= ib && j >= ja && j <= jb && texelLift(i, j, lift)) at_least = lift;
+  }
+
   // The coarsest level at which the region spans at most four blocks each way.
   int level0 = 0;
   while (level0 + 1 < int(levels.size()) && ((ib - ia + 1) >> level0) > 4) ++level0;
@@ -143,7 +165,7 @@ std::optional<BallOnRelief::Touch> BallOnRelief::search(TexCoord uv, const Eigen
         if (d2 >= r2) continue;
         const double bound = level.at(resolveIndex(b.i, level.width, address_), resolveIndex(b.j, level.height, address_)) +
                              std::sqrt(r2 - d2);
-        if (bound <= best) continue;
+        if (bound <= best || bound < at_least) continue;
         if (b.level == 0) {
           best = bound, best_i = b.i, best_j = b.j;  // a texel: its nearest point is its centre
           continue;
@@ -172,6 +194,7 @@ std::optional<BallOnRelief::Touch> BallOnRelief::search(TexCoord uv, const Eigen
   // it lifts the ball. Where they settle the touch is a stationary point, so the normal stays the
   // lift's gradient (the read is a potential: it neither adds nor takes energy); at an edge they
   // do not, and the touch stays at the texel centre.
+  out.texel = Texel{best_i, best_j};
   double ps = double(best_i), pt = double(best_j);
   auto lifted = [&](double qs, double qt) {
     const double d2 = distance2(qs - s, qt - t);

@@ -35,9 +35,14 @@ class BallOnRelief {
   // `map` must be a relief (maxDepth() > 0); its heights are copied.
   BallOnRelief(const TextureMap& map, Address address);
 
+  // A texel by its unwrapped indices (column i along u, row j against v).
+  struct Texel {
+    long long i = 0, j = 0;
+  };
   struct Touch {
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // tangent space (x along u, y along v, metres), unit
     double lift_m = 0.0;                                // c - r: the centre's height above h = 0, less r
+    std::optional<Texel> texel;                         // the texel touched, before refining (none: nothing searched)
   };
   // The texels on one side of the line through the centre along one axis: the relief either side
   // of a crease of the lift (a V-groove's floor, the two rims a ball wider than the groove rests
@@ -50,9 +55,15 @@ class BallOnRelief {
   // (a ball inside a sphere whose winding faces out) the relief is met from its other side: its
   // heights negated, the normal's z and lift along the texture's -z. With `half`, only its texels
   // are met; nullopt where it holds none (a clamped texture's border).
-  Touch touch(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m, bool from_behind = false) const;
+  // `near`: a texel touched by a search nearby (Touch::texel; a lift's differences search five
+  // centres a quarter texel apart). Its height at this centre bounds the touch from below, so the
+  // blocks lower than it are skipped at once; the result is the same to the bit (the touch found
+  // is the first texel of the greatest lift in the search's fixed order, and no block holding one
+  // is skipped), only found sooner. A texel outside this search's region is ignored.
+  Touch touch(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m, bool from_behind = false,
+              std::optional<Texel> near = std::nullopt) const;
   std::optional<Touch> touchOnHalf(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m, bool from_behind,
-                                   Half half) const;
+                                   Half half, std::optional<Texel> near = std::nullopt) const;
 
   int levels() const { return int(front_.size()); }
 
@@ -65,7 +76,7 @@ class BallOnRelief {
   // The bilinear height at (s, t) and its gradient per texel along s and t.
   double bilinear(const Level& base, double s, double t, Eigen::Vector2d* gradient = nullptr) const;
   std::optional<Touch> search(TexCoord uv, const Eigen::Vector2d& metres_per_uv, double radius_m, bool from_behind,
-                              Half half) const;
+                              Half half, std::optional<Texel> near) const;
   static std::vector<Level> pyramidOf(Level base);
   double max_depth_m_;
   Address address_;

@@ -43,12 +43,19 @@ namespace {
 // The lift of a ball of radius r on the relief of `triangle` at barycentric b, met from the front
 // (front: the side its winding faces) or from behind; in metres where the texture is laid (no
 // rescaling to the tile it was made for).
+// `near`: a texel touched nearby, to start the search from (BallOnRelief::touch), updated to this
+// search's.
 double liftOnFace(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b, bool front,
-                  double r, const MeshContactOptions& options) {
+                  double r, const MeshContactOptions& options, std::optional<tex::BallOnRelief::Texel>* near = nullptr) {
+  const auto touched = [&](const tex::BallOnRelief::Touch& t) {
+    if (near) *near = t.texel;
+    return t;
+  };
   const mesh::SurfaceFrame f = mesh::frameAt(*contact_mesh.mesh, triangle, b, mesh::FrameMode::Interpolated);
   const Eigen::Vector2d metres_per_uv = metresPerUvAt(contact_mesh, triangle, b);
   const double big_r = options.sphere_radius_m;
-  if (!(big_r > 0.0)) return options.ball_relief->touch({f.uv.x(), f.uv.y()}, metres_per_uv, r, !front).lift_m;
+  const std::optional<tex::BallOnRelief::Texel> start = near ? *near : std::nullopt;
+  if (!(big_r > 0.0)) return touched(options.ball_relief->touch({f.uv.x(), f.uv.y()}, metres_per_uv, r, !front, start)).lift_m;
   // On a sphere (MeshContactOptions::sphere_radius_m): the touch searched with the distances
   // stretched for the sphere's sag, then the centre's distance for the point it found taken
   // exactly: that point at height h over the smooth sphere and an arc rho from the foot lies on the
@@ -56,7 +63,8 @@ double liftOnFace(const ContactMesh& contact_mesh, std::uint32_t triangle, const
   // s cos(phi) + sqrt(r^2 - s^2 sin^2(phi)) from the sphere's centre. (The stretch alone is exact
   // at h = 0 only; on the dimpled ball's floors, 0.25 mm down, it read the marble's swing 3 % slow.)
   const double stretch = std::sqrt(std::max(1e-3, 1.0 + (front ? r : -r) / big_r));
-  const tex::BallOnRelief::Touch touch = options.ball_relief->touch({f.uv.x(), f.uv.y()}, stretch * metres_per_uv, r, !front);
+  const tex::BallOnRelief::Touch touch =
+      touched(options.ball_relief->touch({f.uv.x(), f.uv.y()}, stretch * metres_per_uv, r, !front, start));
   if (!front) return touch.lift_m;  // a ball inside a textured ball: the stretch alone
   const double h = touch.lift_m + r - r * touch.normal.z();
   const double phi = r * touch.normal.head<2>().norm() / stretch / big_r;
@@ -68,33 +76,35 @@ double liftOnFace(const ContactMesh& contact_mesh, std::uint32_t triangle, const
 // it holds no texel.
 std::optional<double> liftOnFaceHalf(const ContactMesh& contact_mesh, std::uint32_t triangle, const Eigen::Vector3d& b,
                                      bool front, double r, const MeshContactOptions& options,
-                                     tex::BallOnRelief::Half half) {
+                                     tex::BallOnRelief::Half half, std::optional<tex::BallOnRelief::Texel>* near) {
   const mesh::SurfaceFrame f = mesh::frameAt(*contact_mesh.mesh, triangle, b, mesh::FrameMode::Interpolated);
-  const std::optional<tex::BallOnRelief::Touch> touch =
-      options.ball_relief->touchOnHalf({f.uv.x(), f.uv.y()}, metresPerUvAt(contact_mesh, triangle, b), r, !front, half);
+  const std::optional<tex::BallOnRelief::Touch> touch = options.ball_relief->touchOnHalf(
+      {f.uv.x(), f.uv.y()}, metresPerUvAt(contact_mesh, triangle, b), r, !front, half, near ? *near : std::nullopt);
   if (!touch) return std::nullopt;
+  if (near) *near = touch->texel;
   return touch->lift_m;
 }
 
 }  // namespace
 
 double ballOnReliefLift(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
-                        double r, const MeshContactOptions& options) {
+                        double r, const MeshContactOptions& options, std::optional<tex::BallOnRelief::Texel>* near) {
   Eigen::Vector3d b = Eigen::Vector3d::Constant(1.0 / 3.0);
   smoothFoot(contact_mesh, c, side, triangle, b);
-  return liftOnFace(contact_mesh, triangle, b, side >= 0.0, r, options);
+  return liftOnFace(contact_mesh, triangle, b, side >= 0.0, r, options, near);
 }
 
 namespace {
 
 // A ball's lift where its foot is walked to from `triangle`; with a half, that side's relief alone.
+// `near` as liftOnFace's.
 std::optional<double> liftFrom(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side,
                                std::uint32_t triangle, double r, const MeshContactOptions& options,
-                               tex::BallOnRelief::Half half) {
-  if (half.axis < 0) return ballOnReliefLift(contact_mesh, c, side, triangle, r, options);
+                               tex::BallOnRelief::Half half, std::optional<tex::BallOnRelief::Texel>* near) {
+  if (half.axis < 0) return ballOnReliefLift(contact_mesh, c, side, triangle, r, options, near);
   Eigen::Vector3d b = Eigen::Vector3d::Constant(1.0 / 3.0);
   smoothFoot(contact_mesh, c, side, triangle, b);
-  return liftOnFaceHalf(contact_mesh, triangle, b, side >= 0.0, r, options, half);
+  return liftOnFaceHalf(contact_mesh, triangle, b, side >= 0.0, r, options, half, near);
 }
 
 }  // namespace
@@ -108,7 +118,10 @@ BallReliefContacts ballOnReliefContacts(const ContactMesh& contact_mesh, const E
   const Eigen::Vector2d metres_per_uv = metresPerUvAt(contact_mesh, triangle, b);
   const tex::TextureMap& map = *options.texture;
   BallReliefContacts out;
-  out.side[0] = {n, *liftFrom(contact_mesh, c, side, triangle, r, options, {})};
+  // Each search starts from the texel the one before touched: the lifts below are read a quarter
+  // texel apart, and mostly touch the same texel (BallOnRelief::touch's `near`).
+  std::optional<tex::BallOnRelief::Texel> near;
+  out.side[0] = {n, *liftFrom(contact_mesh, c, side, triangle, r, options, {}, &near)};
   // A quarter of the coarser texel where the texture is laid: near a pole the squeezed texels are
   // far finer, and a difference over them would read the relief's texel-scale roughness there.
   const double h = 0.25 * std::max(metres_per_uv.x() / map.width(), metres_per_uv.y() / map.height());
@@ -126,11 +139,11 @@ BallReliefContacts ballOnReliefContacts(const ContactMesh& contact_mesh, const E
   };
   const auto liftsOf = [&](tex::BallOnRelief::Half half, bool centre) {
     Lifts l;
-    if (centre) l.at = liftFrom(contact_mesh, c, side, triangle, r, options, half);
-    l.e1_plus = liftFrom(contact_mesh, c + h * e1, side, triangle, r, options, half);
-    l.e1_minus = liftFrom(contact_mesh, c - h * e1, side, triangle, r, options, half);
-    l.e2_plus = liftFrom(contact_mesh, c + h * e2, side, triangle, r, options, half);
-    l.e2_minus = liftFrom(contact_mesh, c - h * e2, side, triangle, r, options, half);
+    if (centre) l.at = liftFrom(contact_mesh, c, side, triangle, r, options, half, &near);
+    l.e1_plus = liftFrom(contact_mesh, c + h * e1, side, triangle, r, options, half, &near);
+    l.e1_minus = liftFrom(contact_mesh, c - h * e1, side, triangle, r, options, half, &near);
+    l.e2_plus = liftFrom(contact_mesh, c + h * e2, side, triangle, r, options, half, &near);
+    l.e2_minus = liftFrom(contact_mesh, c - h * e2, side, triangle, r, options, half, &near);
     return l;
   };
   const auto normalOf = [&](const Lifts& l) {

@@ -130,8 +130,11 @@ bool smoothFoot(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, 
 // A ball of radius r centred at c (mesh frame) on a relief mesh (options.ball_relief): how far the
 // relief as the ball meets it lifts its centre off the smooth surface at its foot (walked to from
 // `triangle`, which is updated; BallOnRelief::Touch::lift_m), the texture laid in metres there.
+// `near`: a texel touched by a search nearby to start from, updated to this one's
+// (BallOnRelief::touch; the lift is the same to the bit with or without it).
 double ballOnReliefLift(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
-                        double r, const MeshContactOptions& options);
+                        double r, const MeshContactOptions& options,
+                        std::optional<tex::BallOnRelief::Texel>* near = nullptr);
 // The gap of that ball to the relief as it meets it (its distance to the smooth surface at its
 // foot, less r and the lift; without a relief or with options.lift_ball false, to the smooth
 // surface), the foot walked to from `triangle`; where no triangle holds the foot, the gap past a

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
+#include <vector>
 
 #include "textures/ball_on_relief.hpp"
 #include "textures/height_normals.hpp"
@@ -77,6 +79,56 @@ TEST(BallOnRelief, TheSearchFindsTheHighestTouchOfABruteForceScanAndTheRefinemen
     ASSERT_LE(touch.lift_m, brute + 2e-5) << k;
     ASSERT_NEAR(touch.normal.norm(), 1.0, 1e-12) << k;
   }
+}
+
+// A search started from a texel touched nearby (`near`) finds the same touch to the bit: on
+// random bumps, on terraces whose flat tops tie many texels, and on centres exactly between two
+// texel centres (where two texels tie); wrapped and clamped, on halves, from behind; started from
+// the texel a search a quarter texel away touched, from the true one, and from texels anywhere.
+TEST(BallOnRelief, StartingFromATexelTouchedNearbyFindsTheSameTouchToTheBit) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const TextureMap bumps = reliefOf(64, 32, [&](int i, int j) {
+    return 2e-4 * std::sin(0.7 * i + 0.3 * j) * std::cos(0.45 * j) + 5e-5 * std::sin(2.1 * i * j);
+  });
+  const TextureMap terraces = reliefOf(64, 32, [&](int i, int j) { return 1e-4 * double(((i / 8) + (j / 4)) % 3); });
+  auto same = [](const std::optional<BallOnRelief::Touch>& a, const std::optional<BallOnRelief::Touch>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    if (!a) return true;
+    return a->lift_m == b->lift_m && a->normal == b->normal && a->texel.has_value() == b->texel.has_value() &&
+           (!a->texel || (a->texel->i == b->texel->i && a->texel->j == b->texel->j));
+  };
+  int compared = 0, started_inside = 0;
+  for (const TextureMap* map : {&bumps, &terraces})
+    for (const Address address : {Address::Wrap, Address::Clamp}) {
+      const BallOnRelief reader(*map, address);
+      for (int k = 0; k < 400; ++k) {
+        // Every fourth centre exactly between two texel centres along u.
+        const double u = k % 4 == 0 ? (std::floor(unit(rng) * 64.0) + 1.0) / 64.0 : unit(rng) * 1.4 - 0.2;
+        const TexCoord uv{u, unit(rng) * 1.4 - 0.2};
+        const Eigen::Vector2d mpu(64 * kTexel * (k % 3 == 0 ? 1.0 : 0.1), 32 * kTexel);
+        const double r = k % 2 ? 1e-3 : 4e-3;
+        const bool behind = k % 5 == 0;
+        const BallOnRelief::Half half =
+            k % 7 == 0 ? BallOnRelief::Half{k % 2, k % 3 ? 1.0 : -1.0} : BallOnRelief::Half{};
+        const std::optional<BallOnRelief::Touch> cold = reader.touchOnHalf(uv, mpu, r, behind, half);
+        // The texel touched a quarter texel away along u and along v, the texel itself, and a
+        // texel anywhere in or out of reach.
+        std::vector<BallOnRelief::Texel> starts;
+        for (const TexCoord& nearby : {TexCoord{uv.u + 0.25 / 64.0, uv.v}, TexCoord{uv.u, uv.v - 0.25 / 32.0}})
+          if (const auto t = reader.touchOnHalf(nearby, mpu, r, behind, half); t && t->texel) starts.push_back(*t->texel);
+        if (cold && cold->texel) starts.push_back(*cold->texel);
+        starts.push_back({(long long)(unit(rng) * 200.0) - 70, (long long)(unit(rng) * 100.0) - 35});
+        for (const BallOnRelief::Texel& start : starts) {
+          const std::optional<BallOnRelief::Touch> warm = reader.touchOnHalf(uv, mpu, r, behind, half, start);
+          ASSERT_TRUE(same(cold, warm)) << "centre " << k << " from texel " << start.i << ", " << start.j;
+          ++compared;
+        }
+        if (cold && cold->texel) ++started_inside;
+      }
+    }
+  EXPECT_GT(compared, 4000);
+  EXPECT_GT(started_inside, 1000);
 }
 
 TEST(BallOnRelief, AFlatTopPushesStraightUpAndANarrowGrooveIsBridged) {
