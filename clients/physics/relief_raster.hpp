@@ -50,7 +50,7 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // `normals` false: the candidates carry their point and depth only (their normal NaN), and
 // withNormals reads the relief's and the object's for the ones kept (a plain ball or a ball with a
 // bump map reads thousands of texels under it and keeps at most four: on 39 um texels the relief's
-// normals took a third of a plain ball's step). With it true, every candidate carries the relief's
+// normals took a third of the ridges test's run, by perf). With it true, every candidate carries the relief's
 // normal, and a textured object's is read only at the texels that are candidates, their depth read
 // first (TexturedObjectSurface::zOver; a grooved block's groove floors lie beyond the threshold).
 // `boundary` (a mesh's chart, chart_boundary.hpp): the texels past its edges are not visited; the
