@@ -4,8 +4,10 @@
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <unordered_map>
 
@@ -219,46 +221,120 @@ ContactMesh::ContactMesh(const mesh::TexturedMesh& m)
     for (std::uint32_t v : t) max_hops = std::max(max_hops, 16 + ++fan[mesh::bitsOf(m.positions[v])]);
 }
 
+namespace {
+
+// The place a smooth foot's walk has reached, as a point of the flat mesh.
+Eigen::Vector3d placeOn(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b) {
+  const mesh::Triangle& t = mesh.triangles[triangle];
+  return b[0] * mesh.positions[t[0]] + b[1] * mesh.positions[t[1]] + b[2] * mesh.positions[t[2]];
+}
+
+// One round's walk of smoothFoot: from `triangle`, across edges to the triangle whose plane the
+// line through c along `dir` meets inside it (or, at a border or where the line runs along a face,
+// the nearest place on the last one reached); whether it found one.
+bool walkAlongLine(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, const Eigen::Vector3d& dir,
+                   std::uint32_t& triangle, Eigen::Vector3d& barycentric) {
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  std::uint32_t walked = triangle;
+  for (int hop = 0; hop < contact_mesh.max_hops; ++hop) {
+    const mesh::Triangle& t = mesh.triangles[walked];
+    const Eigen::Vector3d& p0 = mesh.positions[t[0]];
+    const Eigen::Vector3d e1 = mesh.positions[t[1]] - p0, e2 = mesh.positions[t[2]] - p0;
+    const Eigen::Vector3d face = e1.cross(e2);
+    const double denom = face.dot(dir);
+    if (std::fabs(denom) < 1e-3 * face.norm()) return false;  // the line runs along this face: keep the last place
+    const Eigen::Vector3d w = c - dir * (face.dot(c - p0) / denom) - p0;
+    const double inv = 1.0 / face.squaredNorm();
+    const double l1 = w.cross(e2).dot(face) * inv, l2 = e1.cross(w).dot(face) * inv;
+    const Eigen::Vector3d b(1.0 - l1 - l2, l1, l2);
+    int worst = 0;
+    for (int k = 1; k < 3; ++k) worst = b[k] < b[worst] ? k : worst;
+    triangle = walked;
+    if (b[worst] >= 0.0) {
+      barycentric = b;
+      return true;
+    }
+    barycentric = mesh::closestBarycentric(mesh, walked, w + p0);
+    const std::uint32_t next = contact_mesh.neighbours[walked][std::size_t(worst)];
+    if (next == mesh::kNoNeighbour) return false;
+    walked = next;
+  }
+  return false;
+}
+
+}  // namespace
+
 bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
                 Eigen::Vector3d& barycentric) {
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   // Fixed point: the centre's line along the interpolated normal meets the triangle's plane at
   // x; walk to the triangle that holds x; again from there (as the haptic anchor does,
-  // server/textured_mesh_renderer.cpp). A ball's radius is large against a triangle's turn, so two or
-  // three rounds settle it. The place is kept consistent (a barycentric of its own triangle) at
-  // every hop: beyond a box's edge the line runs along the face across it, and the walk stops there.
+  // server/textured_mesh_renderer.cpp). The place is kept consistent (a barycentric of its own
+  // triangle) at every hop: beyond a box's edge the line runs along the face across it, and the
+  // walk stops there. Each round moves the place by about h / R times the round before (h: c's
+  // height over the surface, R: the surface's radius of curvature there), so where the surface
+  // is curved at least as widely as c stands off it, two or three rounds settle it.
   constexpr int kRounds = 4;
+  const std::uint32_t start_triangle = triangle;
+  const Eigen::Vector3d start_barycentric = barycentric;
   bool over = false;
+  std::array<double, kRounds> moved{};
+  Eigen::Vector3d place = placeOn(mesh, triangle, barycentric);
   for (int round = 0; round < kRounds; ++round) {
     const Eigen::Vector3d n = side * mesh::frameAt(mesh, triangle, barycentric, mesh::FrameMode::Interpolated).normal;
-    std::uint32_t walked = triangle;
-    over = false;
-    for (int hop = 0; hop < contact_mesh.max_hops; ++hop) {
-      const mesh::Triangle& t = mesh.triangles[walked];
-      const Eigen::Vector3d& p0 = mesh.positions[t[0]];
-      const Eigen::Vector3d e1 = mesh.positions[t[1]] - p0, e2 = mesh.positions[t[2]] - p0;
-      const Eigen::Vector3d face = e1.cross(e2);
-      const double denom = face.dot(n);
-      if (std::fabs(denom) < 1e-3 * face.norm()) break;  // the line runs along this face: keep the last place
-      const Eigen::Vector3d w = c - n * (face.dot(c - p0) / denom) - p0;
-      const double inv = 1.0 / face.squaredNorm();
-      const double l1 = w.cross(e2).dot(face) * inv, l2 = e1.cross(w).dot(face) * inv;
-      const Eigen::Vector3d b(1.0 - l1 - l2, l1, l2);
-      int worst = 0;
-      for (int k = 1; k < 3; ++k) worst = b[k] < b[worst] ? k : worst;
-      triangle = walked;
-      if (b[worst] >= 0.0) {
-        barycentric = b;
-        over = true;
-        break;
-      }
-      barycentric = mesh::closestBarycentric(mesh, walked, w + p0);
-      const std::uint32_t next = contact_mesh.neighbours[walked][std::size_t(worst)];
-      if (next == mesh::kNoNeighbour) break;
-      walked = next;
-    }
+    over = walkAlongLine(contact_mesh, c, n, triangle, barycentric);
+    const Eigen::Vector3d next = placeOn(mesh, triangle, barycentric);
+    moved[std::size_t(round)] = (next - place).norm();
+    place = next;
   }
-  return over;
+  // Curved more tightly than c stands off it (a 1 cm ball on a 5 mm sphere: h / R about 2), the
+  // rounds swing from side to side ever wider, and the place they left lay up to 40 degrees round
+  // the sphere from the ball's foot (docs/physics.md, "A smooth mesh curved more tightly than the
+  // object on it"). Where the last round moved more than half as far as the one before, the walk
+  // starts again, each round going a part alpha of the way: a swing growing by h / R a round has
+  // its fixed point at alpha = 1 / (1 + h / R), h / R read from the first rounds' growth; alpha is
+  // halved whenever a round would move farther than the one before. If that settles nowhere, the
+  // undamped rounds' place stands, as before. Where they settle (every shipped scene's surface but
+  // where two balls touch, h / R about 1) nothing changes.
+  constexpr double kSettledM = 1e-10;
+  constexpr int kDampedRounds = 40;
+  if (!(moved[kRounds - 1] > kSettledM && moved[kRounds - 1] > 0.5 * moved[kRounds - 2])) return over;
+  const double growth = moved[1] > 0.0 && moved[0] > 0.0 ? moved[1] / moved[0] : 1.0;
+  double alpha = 1.0 / (1.0 + std::max(growth, 1.0));
+  const std::uint32_t swung_triangle = triangle;
+  const Eigen::Vector3d swung_barycentric = barycentric;
+  const bool swung_over = over;
+  triangle = start_triangle, barycentric = start_barycentric;
+  place = placeOn(mesh, triangle, barycentric);
+  bool settled = false;
+  double last = std::numeric_limits<double>::infinity();
+  for (int round = 0; round < kDampedRounds; ++round) {
+    const mesh::Triangle& t = mesh.triangles[triangle];
+    const Eigen::Vector3d n = side * mesh::frameAt(mesh, triangle, barycentric, mesh::FrameMode::Interpolated).normal;
+    const Eigen::Vector3d& p0 = mesh.positions[t[0]];
+    const Eigen::Vector3d face = (mesh.positions[t[1]] - p0).cross(mesh.positions[t[2]] - p0);
+    const double denom = face.dot(n);
+    if (!(std::fabs(denom) >= 1e-3 * face.norm())) break;
+    const Eigen::Vector3d w = c - n * (face.dot(c - p0) / denom);  // where the undamped round would go
+    const double step = (w - place).norm();
+    // Here the line along the normal meets the surface where it stands: the foot, whether or not
+    // the last walk ended inside a triangle (at a pole's vertex rounding leaves every fan
+    // triangle's barycentric a hair negative).
+    if (step <= kSettledM) {
+      settled = true;
+      break;
+    }
+    if (step >= last) alpha *= 0.5;
+    last = step;
+    const Eigen::Vector3d target = place + alpha * (w - place);
+    over = walkAlongLine(contact_mesh, c, (c - target).normalized(), triangle, barycentric);
+    place = placeOn(mesh, triangle, barycentric);
+  }
+  if (!settled) {  // no foot found either way: the rounds' place, as before
+    triangle = swung_triangle, barycentric = swung_barycentric;
+    return swung_over;
+  }
+  return true;
 }
 
 namespace {

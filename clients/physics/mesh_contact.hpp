@@ -123,7 +123,9 @@ Eigen::Vector2d metresPerUvAt(const ContactMesh& mesh, std::uint32_t triangle, c
 // smooth surface, from a triangle near it (the foot does not depend on `side`, -1 where the ball
 // is behind the winding). Returns whether c lies over the surface there: false where no triangle
 // holds the foot (c beyond a convex crease, such as a box's edge, or past the mesh's border), and
-// then the place is the point nearest the foot on the last triangle the walk reached.
+// then the place is the point nearest the foot on the last triangle the walk reached. Found also
+// where the surface curves more tightly than c stands off it (a ball on a sphere smaller than
+// itself), by a damped walk where the plain one swings ever wider.
 bool smoothFoot(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
                 Eigen::Vector3d& barycentric);
 

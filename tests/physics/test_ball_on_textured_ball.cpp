@@ -142,7 +142,10 @@ TEST(BallOnTexturedBall, ABallTouchesTheDimpledBallWhereTheExactContactDoes) {
     std::printf("[measured] a %.0f mm ball at %zu places on the dimpled ball: off the exact touch by %.2f um at most "
                 "(on the tangent plane: %.2f um)\n",
                 r * 1e3, directions.size(), worst * 1e6, worst_flat * 1e6);
-    EXPECT_LT(worst, 4e-6);
+    // Measured: 0.79, 2.73 and 5.40 um. The 6 mm ball read 3.63 um until 2026-12-06, its foot
+    // (smoothFoot) four undamped rounds short of where they lead (h / R about 0.6 there); walked
+    // there, by sixty undamped rounds or by the damped walk, it reads 5.40 um: the lift's own error.
+    EXPECT_LT(worst, 6e-6);
     EXPECT_GT(worst_flat, 2.5 * worst);
   }
 }
