@@ -229,6 +229,18 @@ Eigen::Vector3d placeOn(const mesh::TexturedMesh& mesh, std::uint32_t triangle, 
   return b[0] * mesh.positions[t[0]] + b[1] * mesh.positions[t[1]] + b[2] * mesh.positions[t[2]];
 }
 
+// Where the line through c along `dir` meets `triangle`'s plane, relative to its first corner;
+// none where the line runs along the face.
+std::optional<Eigen::Vector3d> meetsFacePlane(const mesh::TexturedMesh& mesh, std::uint32_t triangle,
+                                              const Eigen::Vector3d& c, const Eigen::Vector3d& dir) {
+  const mesh::Triangle& t = mesh.triangles[triangle];
+  const Eigen::Vector3d& p0 = mesh.positions[t[0]];
+  const Eigen::Vector3d face = (mesh.positions[t[1]] - p0).cross(mesh.positions[t[2]] - p0);
+  const double denom = face.dot(dir);
+  if (std::fabs(denom) < 1e-3 * face.norm()) return std::nullopt;
+  return c - dir * (face.dot(c - p0) / denom) - p0;
+}
+
 // One round's walk of smoothFoot: from `triangle`, across edges to the triangle whose plane the
 // line through c along `dir` meets inside it (or, at a border or where the line runs along a face,
 // the nearest place on the last one reached); whether it found one.
@@ -237,13 +249,13 @@ bool walkAlongLine(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, co
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   std::uint32_t walked = triangle;
   for (int hop = 0; hop < contact_mesh.max_hops; ++hop) {
+    const std::optional<Eigen::Vector3d> meets = meetsFacePlane(mesh, walked, c, dir);
+    if (!meets) return false;  // the line runs along this face: keep the last place
     const mesh::Triangle& t = mesh.triangles[walked];
     const Eigen::Vector3d& p0 = mesh.positions[t[0]];
     const Eigen::Vector3d e1 = mesh.positions[t[1]] - p0, e2 = mesh.positions[t[2]] - p0;
     const Eigen::Vector3d face = e1.cross(e2);
-    const double denom = face.dot(dir);
-    if (std::fabs(denom) < 1e-3 * face.norm()) return false;  // the line runs along this face: keep the last place
-    const Eigen::Vector3d w = c - dir * (face.dot(c - p0) / denom) - p0;
+    const Eigen::Vector3d& w = *meets;
     const double inv = 1.0 / face.squaredNorm();
     const double l1 = w.cross(e2).dot(face) * inv, l2 = e1.cross(w).dot(face) * inv;
     const Eigen::Vector3d b(1.0 - l1 - l2, l1, l2);
@@ -273,7 +285,7 @@ bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
   // triangle) at every hop: beyond a box's edge the line runs along the face across it, and the
   // walk stops there. Each round moves the place by about h / R times the round before (h: c's
   // height over the surface, R: the surface's radius of curvature there), so where the surface
-  // is curved at least as widely as c stands off it, two or three rounds settle it.
+  // is curved twice as widely as c stands off it or more, four rounds settle it.
   constexpr int kRounds = 4;
   const std::uint32_t start_triangle = triangle;
   const Eigen::Vector3d start_barycentric = barycentric;
@@ -310,13 +322,11 @@ bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
   bool settled = false;
   double last = std::numeric_limits<double>::infinity();
   for (int round = 0; round < kDampedRounds; ++round) {
-    const mesh::Triangle& t = mesh.triangles[triangle];
     const Eigen::Vector3d n = side * mesh::frameAt(mesh, triangle, barycentric, mesh::FrameMode::Interpolated).normal;
-    const Eigen::Vector3d& p0 = mesh.positions[t[0]];
-    const Eigen::Vector3d face = (mesh.positions[t[1]] - p0).cross(mesh.positions[t[2]] - p0);
-    const double denom = face.dot(n);
-    if (!(std::fabs(denom) >= 1e-3 * face.norm())) break;
-    const Eigen::Vector3d w = c - n * (face.dot(c - p0) / denom);  // where the undamped round would go
+    const std::optional<Eigen::Vector3d> meets = meetsFacePlane(mesh, triangle, c, n);
+    if (!meets) break;
+    // Where the undamped round would go.
+    const Eigen::Vector3d w = *meets + mesh.positions[mesh.triangles[triangle][0]];
     const double step = (w - place).norm();
     // Here the line along the normal meets the surface where it stands: the foot, whether or not
     // the last walk ended inside a triangle (at a pole's vertex rounding leaves every fan
