@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "clients/physics/bullet_convert.hpp"
+#include "clients/physics/mesh_contact.hpp"
 
 namespace thx::phys {
 
@@ -14,8 +15,12 @@ namespace {
 
 // Two planes closer than this in direction (unit normals' difference) and offset (metres) are one.
 constexpr double kSameDirection = 1e-6, kSameOffset = 1e-7;
+// A neighbour this much nearer the object's centre (metres) is nearer (a smooth sphere mesh of a
+// millimetre's faces differ by micrometres there).
+constexpr double kNearer = 1e-9;
 
 struct CollectEdges : btTriangleCallback {
+  const ContactMesh& contact_mesh;
   const mesh::TexturedMesh& mesh;
   const Eigen::Isometry3d& mesh_from_chart;
   Eigen::Vector2d inside;
@@ -26,9 +31,9 @@ struct CollectEdges : btTriangleCallback {
   // Every surface found, before the nearest kMaxSurfaces are kept.
   std::array<BeyondSurface, 2 * ChartBoundary::kMaxSurfaces> found{};
   std::size_t found_count = 0;
-  CollectEdges(const mesh::TexturedMesh& m, const Eigen::Isometry3d& c, const Eigen::Vector2d& f,
+  CollectEdges(const ContactMesh& m, const Eigen::Isometry3d& c, const Eigen::Vector2d& f,
                const Eigen::Vector3d& o_centre, double s, double r, ChartBoundary& o)
-      : mesh(m), mesh_from_chart(c), inside(f), centre(o_centre), side(s), reach_radius(r), out(o) {}
+      : contact_mesh(m), mesh(*m.mesh), mesh_from_chart(c), inside(f), centre(o_centre), side(s), reach_radius(r), out(o) {}
 
   // How far the triangle's closest point lies from the object's centre.
   double distanceOf(std::uint32_t index) const {
@@ -56,7 +61,55 @@ struct CollectEdges : btTriangleCallback {
     if (distance < farthest->distance_m) *farthest = {n, index, distance};
   }
 
+  // Whether the mesh is smooth across the edge of `index` opposite its corner k: the triangle
+  // across it has the same normals at the edge's ends (a hard edge splits them; a texture seam
+  // does not).
+  bool smoothAcross(std::uint32_t index, int k, std::uint32_t other) const {
+    const mesh::Triangle& t = mesh.triangles[index];
+    const mesh::Triangle& o = mesh.triangles[other];
+    for (int end = 1; end <= 2; ++end) {
+      const std::uint32_t v = t[std::size_t((k + end) % 3)];
+      bool same = false;
+      for (std::uint32_t w : o)
+        if (mesh.positions[w] == mesh.positions[v]) same = (mesh.normals[w] - mesh.normals[v]).norm() < kSameDirection;
+      if (!same) return false;
+    }
+    return true;
+  }
+
+  // Whether the surface of `index`, `distance` from the object's centre at its nearest point, runs
+  // on smoothly to a triangle nearer still: across edges the mesh is smooth across, from the
+  // triangle to one as near (round the fan of a corner where the nearest point is that corner) and
+  // on to one nearer. Then the object's nearest point on that smooth surface is not here, and the
+  // surface is the chart's own, turned past the crease angle: a sphere mesh curved more tightly
+  // than the object on it (a 1 cm ball on a 1 mm sphere) has no crease, yet its faces 60 degrees
+  // round from the foot lie within the ball's reach, and their charts, tangent planes run on far
+  // past the sphere, read the ball 0.4-2.6 mm deep and threw it off at 0.5-0.8 m/s. Across a hard
+  // edge (a slab's top against its side) the nearest points of both faces meet on the edge, and
+  // neither is nearer.
+  bool runsOnNearer(std::uint32_t index, double distance) const {
+    std::uint32_t current = index, previous = mesh::kNoNeighbour;
+    for (int hop = 0; hop < contact_mesh.max_hops; ++hop) {
+      const Eigen::Vector3d b = mesh::closestBarycentric(mesh, current, centre);
+      std::uint32_t level = mesh::kNoNeighbour;
+      for (int k = 0; k < 3; ++k) {
+        if (b[k] > 0.0) continue;  // the nearest point is not on the edge opposite corner k
+        const std::uint32_t other = contact_mesh.neighbours[current][std::size_t(k)];
+        if (other == mesh::kNoNeighbour || other == previous || !smoothAcross(current, k, other)) continue;
+        const double d = distanceOf(other);
+        if (d < distance - kNearer) return true;
+        if (d <= distance + kNearer) level = other;
+      }
+      if (level == mesh::kNoNeighbour) return false;
+      previous = current, current = level;
+    }
+    return false;
+  }
+
   void keepNearest() {
+    const auto runs_on = std::remove_if(found.begin(), found.begin() + std::ptrdiff_t(found_count),
+                                        [&](const BeyondSurface& s) { return runsOnNearer(s.nearest_triangle, s.distance_m); });
+    found_count = std::size_t(runs_on - found.begin());
     std::sort(found.begin(), found.begin() + std::ptrdiff_t(found_count),
               [](const BeyondSurface& a, const BeyondSurface& b) { return a.distance_m < b.distance_m; });
     out.surface_count = std::min(found_count, ChartBoundary::kMaxSurfaces);
@@ -115,7 +168,7 @@ bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const 
   return mesh::faceNormal(mesh, triangle).dot(chart_normal) < std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
 }
 
-ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
+ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const ContactMesh& mesh,
                             const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
                             const Eigen::AlignedBox3d& reach, const Eigen::Vector3d& centre, double reach_radius,
                             double side) {

@@ -11,7 +11,10 @@
 // side of that line that holds the middle of its foot's triangle. The faces across creases are
 // gathered into surfaces (faces not across a crease from each other), each with its triangle
 // nearest the object: the object meets each such surface on a chart of its own, cut the same way
-// (relief_collision.cpp), so that the texture is read beyond the crease too.
+// (relief_collision.cpp), so that the texture is read beyond the crease too. A surface whose
+// nearest point runs on across edges the mesh is smooth across to faces nearer the object is no
+// surface of its own but the chart's, curved past the crease angle (a sphere mesh smaller than
+// the object on it); its faces still cut the chart.
 #include <BulletCollision/CollisionShapes/btConcaveShape.h>
 
 #include <Eigen/Core>
@@ -22,6 +25,7 @@
 #include <vector>
 
 #include "clients/physics/contact_selection.hpp"
+#include "clients/physics/mesh_contact.hpp"
 #include "meshes/textured_mesh.hpp"
 
 namespace thx::phys {
@@ -85,7 +89,7 @@ bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const 
 // as the object its corners hold faces far round from the foot: on a smooth sphere mesh of a
 // ball's own radius, faces 60 degrees round cut the chart and gave surfaces of their own, and the
 // ball pressed on it along lines off the axes rested 173-640 um off its touch.
-ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const mesh::TexturedMesh& mesh,
+ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const ContactMesh& mesh,
                             const Eigen::Isometry3d& mesh_from_chart, const Eigen::Vector2d& inside,
                             const Eigen::AlignedBox3d& reach, const Eigen::Vector3d& centre, double reach_radius,
                             double side = 1.0);

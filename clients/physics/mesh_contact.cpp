@@ -292,8 +292,10 @@ bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
   bool over = false;
   std::array<double, kRounds> moved{};
   Eigen::Vector3d place = placeOn(mesh, triangle, barycentric);
+  std::array<Eigen::Vector3d, 2> first_normals;  // at the start and after the first round
   for (int round = 0; round < kRounds; ++round) {
     const Eigen::Vector3d n = side * mesh::frameAt(mesh, triangle, barycentric, mesh::FrameMode::Interpolated).normal;
+    if (round < 2) first_normals[std::size_t(round)] = n;
     over = walkAlongLine(contact_mesh, c, n, triangle, barycentric);
     const Eigen::Vector3d next = placeOn(mesh, triangle, barycentric);
     moved[std::size_t(round)] = (next - place).norm();
@@ -311,8 +313,27 @@ bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
   // on a sphere mesh of its own radius, or on another ball's cube-sphere; docs/physics.md).
   constexpr double kSettledM = 1e-10;
   constexpr int kDampedRounds = 40;
-  if (!(moved[kRounds - 1] > kSettledM && moved[kRounds - 1] > 0.5 * moved[kRounds - 2])) return over;
-  const double growth = moved[1] > 0.0 && moved[0] > 0.0 ? moved[1] / moved[0] : 1.0;
+  if (!(moved[kRounds - 1] > kSettledM && moved[kRounds - 1] > 0.5 * moved[kRounds - 2])) {
+    // Settled. Where the foot lies on an edge or a vertex, rounding can leave the barycentric a
+    // hair negative on every triangle there, and the walk ends "outside" as beyond a crease: the
+    // ball was then met as past a crease for that step (32 steps of the lifted ball rolling over
+    // the ridges on a flat mesh, ReliefMeshRidges.ALifted...; a 1 cm ball's centre over a 1 mm UV
+    // sphere's pole). There the line along the normal meets the surface where the walk stands;
+    // beyond a convex crease it meets the face's plane far off the edge the walk stopped at.
+    if (over || moved[kRounds - 1] > kSettledM) return over;
+    const Eigen::Vector3d n = side * mesh::frameAt(mesh, triangle, barycentric, mesh::FrameMode::Interpolated).normal;
+    const std::optional<Eigen::Vector3d> meets = meetsFacePlane(mesh, triangle, c, n);
+    return meets && (*meets + mesh.positions[mesh.triangles[triangle][0]] - place).norm() <= kSettledM;
+  }
+  // Where the first rounds already swing from one side of the curve to the other (a 1 cm ball on
+  // a sphere of a quarter of a millimetre: h / R about 40), their growth reads about 1; h / R is
+  // read from the curve itself too: the normal turns by the chord over R between two places of a
+  // sphere.
+  double growth = moved[1] > 0.0 && moved[0] > 0.0 ? moved[1] / moved[0] : 1.0;
+  if (moved[0] > 0.0) {
+    const double per_metre = (first_normals[1] - first_normals[0]).norm() / moved[0];
+    growth = std::max(growth, (c - placeOn(mesh, start_triangle, start_barycentric)).norm() * per_metre);
+  }
   double alpha = 1.0 / (1.0 + std::max(growth, 1.0));
   const std::uint32_t swung_triangle = triangle;
   const Eigen::Vector3d swung_barycentric = barycentric;

@@ -422,7 +422,7 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
   const ChartBoundary boundary =
       ground == MeshGround::Ball
           ? ChartBoundary{}
-          : chartBoundary(triangles_shape, triangles, mesh_from_chart, (mesh_from_chart.inverse() * foot_middle).head<2>(),
+          : chartBoundary(triangles_shape, relief.mesh, mesh_from_chart, (mesh_from_chart.inverse() * foot_middle).head<2>(),
                           reach, world_from_mesh.inverse() * world_from_object.translation(),
                           reachOf(*object.getCollisionShape()) + threshold, chart.side);
   const std::optional<Underside> underside =

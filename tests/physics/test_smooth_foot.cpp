@@ -22,22 +22,24 @@ double offNormal(const thx::mesh::TexturedMesh& m, std::uint32_t triangle, const
   return std::atan2(pointing.cross(f.normal).norm(), pointing.dot(f.normal));
 }
 
-// A point 9.5 mm off UV spheres smaller than that (a 1 cm ball recessed 0.5 mm on them), along
-// lines on and off the world's axes, the walk started from the triangle nearest the point (as a
-// chart's first step starts) and from one about a facet round from it (a last step's foot). Each
+// A point 9.5 mm off UV spheres smaller than that (a 1 cm ball recessed 0.5 mm on them, down to a
+// sphere of a fortieth of its radius), along lines on and off the world's axes, the walk started
+// from the triangle nearest the point (as a chart's first step starts), from one about a facet
+// round from it (a last step's foot) and from one 0.5 rad round (where the first rounds swing
+// from side to side of the smaller spheres, and their growth no longer reads h / R). Each
 // round of the undamped walk swung round the sphere h / R times as far as the one before (h the
 // point's height over the surface, R the sphere's radius), and the foot it left lay up to 40
 // degrees off: a ball rested there 108-130 um off its touch on the 5 mm sphere (docs/physics.md,
 // "A smooth mesh curved more tightly than the object on it").
 TEST(SmoothFoot, OnASphereCurvedMoreTightlyThanThePointStandsOffItIsWhereTheNormalPointsAtThePoint) {
-  for (const double radius : {0.005, 0.003, 0.002}) {
+  for (const double radius : {0.005, 0.003, 0.002, 0.001, 0.00025}) {
     const thx::mesh::GeneratedMesh sphere = thx::mesh::sphere(radius, 128, 64, 0.02);
     const ContactMesh contact(sphere.mesh);
     for (const Eigen::Vector3d& line : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 1, 1),
                                         Eigen::Vector3d(1, -2, 0.5), Eigen::Vector3d(-0.3, 0.8, 1)}) {
       const Eigen::Vector3d u = line.normalized();
       const Eigen::Vector3d c = (radius + 0.0095) * u;
-      for (const double start_rad : {0.0, 0.05}) {
+      for (const double start_rad : {0.0, 0.05, 0.5}) {
         const Eigen::Vector3d start = Eigen::AngleAxisd(start_rad, u.unitOrthogonal()) * u * radius;
         std::uint32_t triangle = thx::mesh::nearestTriangle(sphere.mesh, start);
         Eigen::Vector3d b = thx::mesh::closestBarycentric(sphere.mesh, triangle, start);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <vector>
 
 #include "clients/physics/relief_collision.hpp"
 #include "tests/physics/textured_ball_on_mesh_scene.hpp"
@@ -57,20 +58,26 @@ TEST(TexturedBallOnMesh, ARecessedBallLeavesASphereWhereItsRecessedRadiusSays) {
 // A recessed ball pressed on a smooth UV sphere mesh (a scene's surface) by its weight along lines
 // through the sphere's centre, on and off the world's axes (no gravity, the ball kept from
 // turning, 0.6 s): it rests where its recessed sphere touches the smooth one, on a 2 cm sphere, on
-// one of the ball's own 1 cm radius, and on one of 5 mm (smaller ones: SmoothFoot.*, and by hand
-// 3, 2 and 1.5 mm alike, 1 mm not: docs/physics.md). On the 1 cm sphere the faces
+// one of the ball's own 1 cm radius, and on ones of 5, 1 and 0.25 mm (others: SmoothFoot.*,
+// ChartBoundary.*, and by hand 7.5, 3, 2, 1.5 and 0.5 mm alike: docs/physics.md). On the 1 cm sphere the faces
 // far round it that the ball's reach box holds at its corners were taken for creases before
 // 2026-12-05, late evening, and the ball rested 173-640 um off its touch along three lines off
 // the axes (chart_boundary.hpp). On the smaller ones the walk to the foot of its centre swung
 // round the sphere ever wider (smoothFoot) until 2026-12-06: 108 and 130 um off along two lines
-// on the 5 mm sphere, thrown off along one on the 2 mm sphere and 13-28 um off along two more.
+// on the 5 mm sphere, thrown off along one on the 2 mm sphere and 13-28 um off along two more. On
+// the 1 mm sphere, faces 60 degrees round from the foot were taken for surfaces across a crease
+// until 2026-12-06, later, and the ball was thrown off along all five lines; on the 0.25 mm sphere
+// it was thrown off along one line more until the damped walk read h / R from the sphere's bend.
 TEST(TexturedBallOnMesh, PressedOnASmoothSphereMeshAlongAnyLineItRestsWhereItTouches) {
   const tex::TextureMap recess_map = ball::uniformRecess(0.5e-3);
   const FaceTexture recessed = ball::ballTexture(recess_map);
-  for (const double sphere_radius : {0.02, 0.01, 0.005}) {
+  const std::vector<Eigen::Vector3d> lines = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 1, 1),
+                                              Eigen::Vector3d(1, -2, 0.5), Eigen::Vector3d(-0.3, 0.8, 1)};
+  for (const double sphere_radius : {0.02, 0.01, 0.005, 0.001, 0.00025}) {
     const double touch = sphere_radius + ball::kRadius - 0.5e-3;
-    for (const Eigen::Vector3d& line : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 1, 1),
-                                        Eigen::Vector3d(1, -2, 0.5), Eigen::Vector3d(-0.3, 0.8, 1)}) {
+    // On the 0.25 mm sphere the whole mesh lies within the ball's reach, and a step costs 0.9 ms:
+    // the line it was thrown along only.
+    for (const Eigen::Vector3d& line : sphere_radius < 0.001 ? std::vector<Eigen::Vector3d>{lines.back()} : lines) {
       const Eigen::Vector3d u = line.normalized();
       mesh_rolling::SphereScene scene(128, true, sphere_radius);
       Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
