@@ -17,6 +17,7 @@
 #include "clients/physics/relief_collision.hpp"
 #include "clients/physics/relief_plane_shape.hpp"
 #include "clients/physics/scaled_convex_collision.hpp"
+#include "clients/physics/small_triangle_sphere.hpp"
 #include "clients/physics/textured_ball.hpp"
 #include "textures/height_from_normals.hpp"
 
@@ -59,6 +60,9 @@ PhysicsWorld::PhysicsWorld(const WorldOptions& options) : options_(options) {
   configuration_->setPlaneConvexMultipointIterations(3, 3);
   dispatcher_ = std::make_unique<btCollisionDispatcher>(configuration_.get());
   registerReliefCollision(*dispatcher_);
+  // A ball against a mesh's triangles under 0.06 mm^2, which Bullet's own test skips as degenerate
+  // (small_triangle_sphere.hpp).
+  registerSmallTriangleSphere(*dispatcher_);
   // Convex pairs without an exact Bullet algorithm: GJK/EPA at metre scale (scaled_convex_collision.hpp).
   if (options.scaled_convex_pairs) registerScaledConvexCollision(*dispatcher_);
   // A textured object against a box, or any object against a textured box: the box met as a mesh
