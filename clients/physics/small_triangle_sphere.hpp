@@ -11,7 +11,7 @@
 //
 // This algorithm is Bullet's for every triangle it sees (SphereTriangleDetector, called as
 // btSphereTriangleCollisionAlgorithm calls it: the same points to the bit), and for a smaller one
-// that is not degenerate (its area over 1e-12 of the square of its longest edge) the triangle's
+// that is not degenerate (its doubled area over 1e-12 of the square of its longest edge) the triangle's
 // own nearest point to the ball's centre (mesh::closestBarycentric, in double): a contact there
 // when that point lies within the ball's radius and the breaking threshold, its normal from the
 // point to the centre (the face's where the centre lies on the triangle), as Bullet's would give
