@@ -274,6 +274,68 @@ bool walkAlongLine(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, co
   return false;
 }
 
+// The interpolated normal (unit, not turned to a side) at barycentric b of `triangle`, b taken as
+// given (a little outside the triangle too: the normals' linear field runs on).
+Eigen::Vector3d interpolatedNormalAt(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b) {
+  const mesh::Triangle& t = mesh.triangles[triangle];
+  return (b[0] * mesh.normals[t[0]] + b[1] * mesh.normals[t[1]] + b[2] * mesh.normals[t[2]]).normalized();
+}
+
+// smoothFoot's last resort, where the damped walk settles nowhere: a surface curved unlike in two
+// directions, a 1 mm rod under a 1 cm ball (h / R 10 round it, 0 along it), which one part alpha
+// cannot settle in both (it went 0.875 of the way a round along the rod, 40 rounds short).
+// Newton's method on the foot's two coordinates in the plane of the triangle it stands on: the
+// undamped round's move G (where the line along the normal meets that plane, less the place) and
+// its derivative, by differences of the normals' linear field over a thousandth of the triangle,
+// give the place where G vanishes to first order; the walk goes there along the line from c, and
+// again from the triangle it reaches. Settled as the damped walk is.
+bool newtonFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t start_triangle,
+                const Eigen::Vector3d& start_barycentric, std::uint32_t& triangle, Eigen::Vector3d& barycentric) {
+  constexpr int kNewtonRounds = 24;
+  constexpr double kSettledM = 1e-10, kDifference = 1e-3;
+  const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
+  std::uint32_t t = start_triangle;
+  Eigen::Vector3d b = start_barycentric;
+  for (int round = 0; round < kNewtonRounds; ++round) {
+    const mesh::Triangle& corners = mesh.triangles[t];
+    const Eigen::Vector3d p0 = mesh.positions[corners[0]];
+    const Eigen::Vector3d e1 = mesh.positions[corners[1]] - p0, e2 = mesh.positions[corners[2]] - p0;
+    // G at barycentric (1 - l1 - l2, l1, l2), in the plane's coordinates along e1, e2 (the move
+    // lies in the plane: its dot products with e1 and e2 through their Gram matrix).
+    const Eigen::Matrix2d gram{{e1.dot(e1), e1.dot(e2)}, {e1.dot(e2), e2.dot(e2)}};
+    const double gram_det = gram.determinant();
+    if (!(std::fabs(gram_det) > 0.0)) return false;
+    const auto solve2 = [](const Eigen::Matrix2d& m, double det, const Eigen::Vector2d& r) {
+      return Eigen::Vector2d((m(1, 1) * r[0] - m(0, 1) * r[1]) / det, (m(0, 0) * r[1] - m(1, 0) * r[0]) / det);
+    };
+    const auto g = [&](const Eigen::Vector2d& l) -> std::optional<Eigen::Vector2d> {
+      const Eigen::Vector3d n = side * interpolatedNormalAt(mesh, t, Eigen::Vector3d(1.0 - l[0] - l[1], l[0], l[1]));
+      const std::optional<Eigen::Vector3d> meets = meetsFacePlane(mesh, t, c, n);
+      if (!meets) return std::nullopt;
+      const Eigen::Vector3d move = *meets - (l[0] * e1 + l[1] * e2);
+      return solve2(gram, gram_det, Eigen::Vector2d(e1.dot(move), e2.dot(move)));
+    };
+    const Eigen::Vector2d l(b[1], b[2]);
+    const std::optional<Eigen::Vector2d> g_here = g(l);
+    if (!g_here) return false;
+    if ((e1 * (*g_here)[0] + e2 * (*g_here)[1]).norm() <= kSettledM) {
+      triangle = t, barycentric = b;
+      return true;
+    }
+    const std::optional<Eigen::Vector2d> g1 = g(l + Eigen::Vector2d(kDifference, 0.0));
+    const std::optional<Eigen::Vector2d> g2 = g(l + Eigen::Vector2d(0.0, kDifference));
+    if (!g1 || !g2) return false;
+    Eigen::Matrix2d jacobian;
+    jacobian << (*g1 - *g_here) / kDifference, (*g2 - *g_here) / kDifference;
+    const double det = jacobian.determinant();
+    if (!(std::fabs(det) > 1e-12)) return false;
+    const Eigen::Vector2d to = l - solve2(jacobian, det, *g_here);
+    const Eigen::Vector3d target = p0 + to[0] * e1 + to[1] * e2;
+    walkAlongLine(contact_mesh, c, (c - target).normalized(), t, b);
+  }
+  return false;
+}
+
 }  // namespace
 
 bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
@@ -307,8 +369,8 @@ bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
   // object on it"). Where the last round moved more than half as far as the one before, the walk
   // starts again, each round going a part alpha of the way: a swing growing by h / R a round has
   // its fixed point at alpha = 1 / (1 + h / R), h / R read from the first rounds' growth; alpha is
-  // halved whenever a round would move farther than the one before. If that settles nowhere, the
-  // undamped rounds' place stands, as before. Where they settle nothing changes: of the physics
+  // halved whenever a round would move farther than the one before. If that settles nowhere,
+  // Newton's method (newtonFoot), and failing that the undamped rounds' place, as before. Where they settle nothing changes: of the physics
   // and physics-client tests' measured lines only those with h / R of 0.6 or more moved (a ball
   // on a sphere mesh of its own radius, or on another ball's cube-sphere; docs/physics.md).
   constexpr double kSettledM = 1e-10;
@@ -362,6 +424,7 @@ bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
     over = walkAlongLine(contact_mesh, c, (c - target).normalized(), triangle, barycentric);
     place = placeOn(mesh, triangle, barycentric);
   }
+  if (!settled && newtonFoot(contact_mesh, c, side, start_triangle, start_barycentric, triangle, barycentric)) return true;
   if (!settled) {  // no foot found either way: the rounds' place, as before
     triangle = swung_triangle, barycentric = swung_barycentric;
     return swung_over;

@@ -125,7 +125,8 @@ Eigen::Vector2d metresPerUvAt(const ContactMesh& mesh, std::uint32_t triangle, c
 // holds the foot (c beyond a convex crease, such as a box's edge, or past the mesh's border), and
 // then the place is the point nearest the foot on the last triangle the walk reached. Found also
 // where the surface curves more tightly than c stands off it (a ball on a sphere smaller than
-// itself), by a damped walk where the plain one swings ever wider.
+// itself), by a damped walk where the plain one swings ever wider, and by Newton's method where
+// that settles nowhere (a thin rod: curved tightly round it and not along it).
 bool smoothFoot(const ContactMesh& mesh, const Eigen::Vector3d& c, double side, std::uint32_t& triangle,
                 Eigen::Vector3d& barycentric);
 

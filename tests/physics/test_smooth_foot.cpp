@@ -59,4 +59,34 @@ TEST(SmoothFoot, OnASphereCurvedMoreTightlyThanThePointStandsOffItIsWhereTheNorm
   }
 }
 
+// A point 10 mm off a 1 mm rod (a tube mesh of 128 segments and 64 rows over 10 cm: slivers
+// 0.05 x 1.6 mm), at five angles round it and two heights along it, the walk started a facet and
+// more round from the foot and 0.3 mm along the rod. Round it h / R is 10, along it 0: the damped
+// walk's one part alpha settled neither (at 0.125, 0.875 of the way a round along the rod, 40
+// rounds short), and the foot was left at an edge, "not over the surface"; a plain ball pressed on
+// the rod was thrown off along two of five lines (docs/physics.md, "Small triangles"). Newton's
+// method on the foot's two coordinates settles it.
+TEST(SmoothFoot, OnARodCurvedTightlyRoundItAndNotAlongItIsWhereTheNormalPointsAtThePoint) {
+  thx::mesh::GeneratedMesh rod = thx::mesh::cylinder(0.001, 0.1, 128, 64, 0.02);
+  for (Eigen::Vector3d& p : rod.mesh.positions) p.z() -= 0.05;
+  const ContactMesh contact(rod.mesh);
+  for (const double angle : {0.0, 0.3, 0.7, 1.1, 2.0}) {
+    for (const double z : {0.0, 0.0004}) {
+      const Eigen::Vector3d c(0.011 * std::cos(angle), 0.011 * std::sin(angle), z);
+      for (const double start_rad : {0.05, 0.5}) {
+        const Eigen::Vector3d start(0.001 * std::cos(angle + start_rad), 0.001 * std::sin(angle + start_rad), z + 0.0003);
+        std::uint32_t triangle = thx::mesh::nearestTriangle(rod.mesh, start);
+        Eigen::Vector3d b = thx::mesh::closestBarycentric(rod.mesh, triangle, start);
+        const bool over = smoothFoot(contact, c, 1.0, triangle, b);
+        const double off = offNormal(rod.mesh, triangle, b, c);
+        std::printf("[measured] foot on the 1 mm rod at %.1f rad, %.1f mm along, from %.2f rad round: normal %.2g rad off "
+                    "the line to the point\n",
+                    angle, z * 1e3, start_rad, off);
+        EXPECT_TRUE(over) << angle << " rad, " << z << " m along";
+        EXPECT_LT(off, 1e-8) << angle << " rad, " << z << " m along";
+      }
+    }
+  }
+}
+
 }  // namespace
