@@ -274,6 +274,10 @@ bool walkAlongLine(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, co
   return false;
 }
 
+// A foot is settled where the line along the normal there meets the surface within this (metres):
+// smoothFoot's damped walk and newtonFoot alike.
+constexpr double kFootSettledM = 1e-10;
+
 // The interpolated normal (unit, not turned to a side) at barycentric b of `triangle`, b taken as
 // given (a little outside the triangle too: the normals' linear field runs on).
 Eigen::Vector3d interpolatedNormalAt(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b) {
@@ -292,7 +296,7 @@ Eigen::Vector3d interpolatedNormalAt(const mesh::TexturedMesh& mesh, std::uint32
 bool newtonFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, double side, std::uint32_t start_triangle,
                 const Eigen::Vector3d& start_barycentric, std::uint32_t& triangle, Eigen::Vector3d& barycentric) {
   constexpr int kNewtonRounds = 24;
-  constexpr double kSettledM = 1e-10, kDifference = 1e-3;
+  constexpr double kDifference = 1e-3;
   const mesh::TexturedMesh& mesh = *contact_mesh.mesh;
   std::uint32_t t = start_triangle;
   Eigen::Vector3d b = start_barycentric;
@@ -318,7 +322,7 @@ bool newtonFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
     const Eigen::Vector2d l(b[1], b[2]);
     const std::optional<Eigen::Vector2d> g_here = g(l);
     if (!g_here) return false;
-    if ((e1 * (*g_here)[0] + e2 * (*g_here)[1]).norm() <= kSettledM) {
+    if ((e1 * (*g_here)[0] + e2 * (*g_here)[1]).norm() <= kFootSettledM) {
       triangle = t, barycentric = b;
       return true;
     }
@@ -370,22 +374,21 @@ bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
   // starts again, each round going a part alpha of the way: a swing growing by h / R a round has
   // its fixed point at alpha = 1 / (1 + h / R), h / R read from the first rounds' growth; alpha is
   // halved whenever a round would move farther than the one before. If that settles nowhere,
-  // Newton's method (newtonFoot), and failing that the undamped rounds' place, as before. Where they settle nothing changes: of the physics
-  // and physics-client tests' measured lines only those with h / R of 0.6 or more moved (a ball
+  // Newton's method (newtonFoot), and failing that the undamped rounds' place, as before. Where
+  // they settle nothing changes: of the physics and physics-client tests' measured lines only those with h / R of 0.6 or more moved (a ball
   // on a sphere mesh of its own radius, or on another ball's cube-sphere; docs/physics.md).
-  constexpr double kSettledM = 1e-10;
   constexpr int kDampedRounds = 40;
-  if (!(moved[kRounds - 1] > kSettledM && moved[kRounds - 1] > 0.5 * moved[kRounds - 2])) {
+  if (!(moved[kRounds - 1] > kFootSettledM && moved[kRounds - 1] > 0.5 * moved[kRounds - 2])) {
     // Settled. Where the foot lies on an edge or a vertex, rounding can leave the barycentric a
     // hair negative on every triangle there, and the walk ends "outside" as beyond a crease: the
     // ball was then met as past a crease for that step (32 steps of the lifted ball rolling over
     // the ridges on a flat mesh, ReliefMeshRidges.ALifted...; a 1 cm ball's centre over a 1 mm UV
     // sphere's pole). There the line along the normal meets the surface where the walk stands;
     // beyond a convex crease it meets the face's plane far off the edge the walk stopped at.
-    if (over || moved[kRounds - 1] > kSettledM) return over;
+    if (over || moved[kRounds - 1] > kFootSettledM) return over;
     const Eigen::Vector3d n = side * mesh::frameAt(mesh, triangle, barycentric, mesh::FrameMode::Interpolated).normal;
     const std::optional<Eigen::Vector3d> meets = meetsFacePlane(mesh, triangle, c, n);
-    return meets && (*meets + mesh.positions[mesh.triangles[triangle][0]] - place).norm() <= kSettledM;
+    return meets && (*meets + mesh.positions[mesh.triangles[triangle][0]] - place).norm() <= kFootSettledM;
   }
   // Where the first rounds already swing from one side of the curve to the other (a 1 cm ball on
   // a sphere of a quarter of a millimetre: h / R about 40), their growth reads about 1; h / R is
@@ -414,7 +417,7 @@ bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
     // Here the line along the normal meets the surface where it stands: the foot, whether or not
     // the last walk ended inside a triangle (at a pole's vertex rounding leaves every fan
     // triangle's barycentric a hair negative).
-    if (step <= kSettledM) {
+    if (step <= kFootSettledM) {
       settled = true;
       break;
     }

@@ -32,8 +32,7 @@ int unseenByBullet(const mesh::TexturedMesh& m) {
 // line; on the 1 cm sphere the pole's fan is, and it fell through along the line to the pole
 // (6.6 mm off after 0.6 s; docs/physics.md, "Small triangles").
 TEST(SmallTriangleSphere, APlainBallPressedOnASphereMeshOfSmallTrianglesRestsWhereItTouches) {
-  const std::vector<Eigen::Vector3d> lines = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 1, 1),
-                                              Eigen::Vector3d(1, -2, 0.5), Eigen::Vector3d(-0.3, 0.8, 1)};
+  const std::vector<Eigen::Vector3d>& lines = ball::kPressLines;
   for (const double sphere_radius : {0.01, 0.005, 0.002}) {
     const double touch = sphere_radius + ball::kRadius;
     // The pole line only on the 1 cm sphere: the others meet triangles Bullet sees.

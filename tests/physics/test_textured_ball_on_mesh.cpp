@@ -71,8 +71,7 @@ TEST(TexturedBallOnMesh, ARecessedBallLeavesASphereWhereItsRecessedRadiusSays) {
 TEST(TexturedBallOnMesh, PressedOnASmoothSphereMeshAlongAnyLineItRestsWhereItTouches) {
   const tex::TextureMap recess_map = ball::uniformRecess(0.5e-3);
   const FaceTexture recessed = ball::ballTexture(recess_map);
-  const std::vector<Eigen::Vector3d> lines = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 1, 1),
-                                              Eigen::Vector3d(1, -2, 0.5), Eigen::Vector3d(-0.3, 0.8, 1)};
+  const std::vector<Eigen::Vector3d>& lines = ball::kPressLines;
   for (const double sphere_radius : {0.02, 0.01, 0.005, 0.001, 0.00025}) {
     const double touch = sphere_radius + ball::kRadius - 0.5e-3;
     // On the 0.25 mm sphere the whole mesh lies within the ball's reach, and a step costs 0.9 ms:

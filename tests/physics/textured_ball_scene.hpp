@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/textured_ball.hpp"
@@ -60,6 +61,10 @@ inline FaceTexture ballTexture(const tex::TextureMap& map) {
 struct PressedRest {
   double distance_m = 0.0, off_line_m = 0.0;
 };
+// The lines through the origin a ball is pressed along: on the world's axes and off them.
+inline const std::vector<Eigen::Vector3d> kPressLines = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 0),
+                                                         Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(1, -2, 0.5),
+                                                         Eigen::Vector3d(-0.3, 0.8, 1)};
 inline PressedRest pressTowardsOrigin(PhysicsWorld& world, btRigidBody& ball, const Eigen::Vector3d& u, int steps = 600) {
   world.world().setGravity(btVector3(0, 0, 0));
   ball.setAngularFactor(btVector3(0, 0, 0));
