@@ -18,6 +18,8 @@ constexpr double kSameDirection = 1e-6, kSameOffset = 1e-7;
 // A neighbour this much nearer the object's centre (metres) is nearer (a smooth sphere mesh of a
 // millimetre's faces differ by micrometres there).
 constexpr double kNearer = 1e-9;
+// A face across a crease from the chart has a normal whose cosine to the chart's is below this.
+const double kCreaseCosine = std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
 
 struct CollectEdges : btTriangleCallback {
   const ContactMesh& contact_mesh;
@@ -25,6 +27,7 @@ struct CollectEdges : btTriangleCallback {
   const Eigen::Isometry3d& mesh_from_chart;
   Eigen::Vector2d inside;
   Eigen::Vector3d centre;
+  Eigen::Vector3d chart_normal;  // mesh frame, on the winding's side
   double side;
   double reach_radius;
   ChartBoundary& out;
@@ -33,7 +36,8 @@ struct CollectEdges : btTriangleCallback {
   std::size_t found_count = 0;
   CollectEdges(const ContactMesh& m, const Eigen::Isometry3d& c, const Eigen::Vector2d& f,
                const Eigen::Vector3d& o_centre, double s, double r, ChartBoundary& o)
-      : contact_mesh(m), mesh(*m.mesh), mesh_from_chart(c), inside(f), centre(o_centre), side(s), reach_radius(r), out(o) {}
+      : contact_mesh(m), mesh(*m.mesh), mesh_from_chart(c), inside(f), centre(o_centre),
+        chart_normal(s * c.linear().col(2)), side(s), reach_radius(r), out(o) {}
 
   // How far the triangle's closest point lies from the object's centre.
   double distanceOf(std::uint32_t index) const {
@@ -46,7 +50,7 @@ struct CollectEdges : btTriangleCallback {
   void gather(std::uint32_t index, const Eigen::Vector3d& n, double distance) {
     for (std::size_t k = 0; k < found_count; ++k) {
       BeyondSurface& s = found[k];
-      if (acrossCrease(mesh, index, s.normal)) continue;
+      if (acrossCrease(contact_mesh, index, s.normal)) continue;
       if (distance < s.distance_m) s.nearest_triangle = index, s.distance_m = distance;
       return;
     }
@@ -118,14 +122,17 @@ struct CollectEdges : btTriangleCallback {
 
   void processTriangle(btVector3* triangle, int, int index) override {
     if (index < 0 || std::size_t(index) >= mesh.triangles.size()) return;
-    const Eigen::Vector3d chart_normal = side * mesh_from_chart.linear().col(2);
-    if (!acrossCrease(mesh, std::uint32_t(index), chart_normal)) return;
+    if (!acrossCrease(contact_mesh, std::uint32_t(index), chart_normal)) return;
     // A face the object cannot reach neither holds it nor cuts its chart: the reach box's corners
     // hold faces of a tight curve far round from the foot (see chartBoundary).
     const double distance = distanceOf(std::uint32_t(index));
     if (distance > reach_radius) return;
-    const Eigen::Vector3d p0 = toEigen(triangle[0]), n = mesh::faceNormal(mesh, std::uint32_t(index));
+    const Eigen::Vector3d& n = contact_mesh.face_normals[std::size_t(index)];
     gather(std::uint32_t(index), n, distance);
+    // Full: no further edge is kept (a sphere mesh smaller than the object has every face within
+    // its reach, and each face its own plane).
+    if (out.count == ChartBoundary::kMaxEdges) return;
+    const Eigen::Vector3d p0 = toEigen(triangle[0]);
     // The face's plane n . x = d met by the chart's plane z = 0: x = R p + t gives the line
     // (R^T n)_xy . p = d - n . t.
     const Eigen::Vector3d along = mesh_from_chart.linear().transpose() * n;
@@ -164,8 +171,8 @@ bool ChartBoundary::nearerAcross(const Eigen::Vector3d& q, double gap) const {
   return false;
 }
 
-bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& chart_normal) {
-  return mesh::faceNormal(mesh, triangle).dot(chart_normal) < std::cos(kCreaseFromChartDeg * std::numbers::pi / 180.0);
+bool acrossCrease(const ContactMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& chart_normal) {
+  return mesh.face_normals[triangle].dot(chart_normal) < kCreaseCosine;
 }
 
 ChartBoundary chartBoundary(const btConcaveShape& mesh_shape, const ContactMesh& mesh,

@@ -75,7 +75,7 @@ struct ChartBoundary {
 
 // Whether the mesh's `triangle` lies across a crease from a chart whose normal is `chart_normal`
 // (mesh frame).
-bool acrossCrease(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& chart_normal);
+bool acrossCrease(const ContactMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& chart_normal);
 
 // The edges of the chart `mesh_from_chart` cut by the faces across a crease among the triangles of
 // `mesh` (the one `mesh_shape` was built from) that overlap `reach` (mesh frame). `inside` (chart frame) is a point of the chart's own

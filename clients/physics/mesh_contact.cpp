@@ -216,6 +216,8 @@ ContactMesh::ContactMesh(const mesh::TexturedMesh& m)
   }
   for (std::size_t v = 0; v < metres_per_uv.size(); ++v)
     metres_per_uv[v] = weight[v] > 0.0 ? Eigen::Vector2d(metres_per_uv[v] / weight[v]) : Eigen::Vector2d(1.0, 1.0);
+  face_normals.reserve(m.triangles.size());
+  for (std::uint32_t t = 0; t < m.triangles.size(); ++t) face_normals.push_back(mesh::faceNormal(m, t));
   std::unordered_map<mesh::PositionBits, int, mesh::PositionHash> fan;
   for (const mesh::Triangle& t : m.triangles)
     for (std::uint32_t v : t) max_hops = std::max(max_hops, 16 + ++fan[mesh::bitsOf(m.positions[v])]);

@@ -108,6 +108,9 @@ struct ContactMesh {
   explicit ContactMesh(const mesh::TexturedMesh& m);
   const mesh::TexturedMesh* mesh;
   std::vector<mesh::Triangle> neighbours;
+  // Each triangle's unit normal (mesh::faceNormal), read for every face within an object's reach
+  // each step (chartBoundary: all 16,128 faces of a sphere mesh smaller than the ball on it).
+  std::vector<Eigen::Vector3d> face_normals;
   // Metres per uv unit along u and v at each vertex: its triangles' (area-weighted), so that,
   // interpolated, the texture's scale does not jump at a triangle's edge (metresPerUvAt).
   std::vector<Eigen::Vector2d> metres_per_uv;

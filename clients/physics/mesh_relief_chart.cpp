@@ -48,7 +48,7 @@ GroundBend fitBend(const ContactMesh& cm, const Eigen::Vector3d& foot, const Eig
     std::uint32_t t = triangle;
     Eigen::Vector3d b(1.0 / 3, 1.0 / 3, 1.0 / 3);
     smoothFoot(cm, p, 1.0, t, b);
-    if (acrossCrease(*cm.mesh, t, side * axes.col(2))) continue;
+    if (acrossCrease(cm, t, side * axes.col(2))) continue;
     const Eigen::Vector3d d = mesh::frameAt(*cm.mesh, t, b, mesh::FrameMode::InterpolatedPhong).point - foot;
     const double x = d.dot(axes.col(0)), y = d.dot(axes.col(1)), h = d.dot(axes.col(2));
     const Eigen::Vector3d row(0.5 * x * x, x * y, 0.5 * y * y);

@@ -74,8 +74,8 @@ TEST(TexturedBallOnMesh, PressedOnASmoothSphereMeshAlongAnyLineItRestsWhereItTou
   const std::vector<Eigen::Vector3d>& lines = ball::kPressLines;
   for (const double sphere_radius : {0.02, 0.01, 0.005, 0.001, 0.00025}) {
     const double touch = sphere_radius + ball::kRadius - 0.5e-3;
-    // On the 0.25 mm sphere the whole mesh lies within the ball's reach, and a step costs 0.9 ms:
-    // the line it was thrown along only.
+    // On the 0.25 mm sphere the whole mesh lies within the ball's reach, and a step costs
+    // 0.3-0.5 ms: the line it was thrown along only.
     for (const Eigen::Vector3d& line : sphere_radius < 0.001 ? std::vector<Eigen::Vector3d>{lines.back()} : lines) {
       const Eigen::Vector3d u = line.normalized();
       mesh_rolling::SphereScene scene(128, true, sphere_radius);
