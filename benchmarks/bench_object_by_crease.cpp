@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "base/error.hpp"
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/bench_stamp.hpp"
@@ -59,16 +58,8 @@ std::string placeName(const Row& r) {
 }
 
 int run(int argc, char** argv) {
-  std::string json, csv, md;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
-    const std::string v = argv[++i];
-    if (a == "--json") json = v;
-    else if (a == "--csv") csv = v;
-    else if (a == "--md") md = v;
-    else throw UsageError("unknown option " + a + " (see --help)");
-  }
+  const bench::ResultFiles files = bench::resultFilesOnly(argc, argv);
+  const std::string &json = files.json, &csv = files.csv, &md = files.md;
   std::vector<Row> rows;
   for (bool grooved : {false, true}) {
     for (int g = 0; g < 3; ++g) {

@@ -84,6 +84,9 @@
 #              or object_by_crease (issue 29: a plain and a grooved block by a slab mesh's edge,
 #              grooved or untextured, where it rests and how it tips over the edge, with the cost
 #              of a step; seconds; its table goes to docs/physics.md)
+#              or ball_on_small_mesh (issue 29: a plain and a recessed 1 cm ball pressed on sphere
+#              meshes of 20 to 0.25 mm and a 1 mm rod mesh, where it rests against its touch, with
+#              the cost of a step; about 25 s; its table goes to docs/physics.md)
 #              or report (no measuring: docs/report.md and docs/report/*.png, every modality's speed
 #              against error, from the results already in docs/results/; seconds. To measure
 #              everything first: benchmarks/run.sh BUILD, then BUILD audio, then BUILD report)
@@ -427,6 +430,12 @@ run_object_by_crease() {
   bench_with_table bench_object_by_crease "$ROOT/docs/physics.md"
 }
 
+run_ball_on_small_mesh() {
+  need "$BIN/bench_ball_on_small_mesh" || return 1
+  say "part ball_on_small_mesh: a ball pressed on meshes smaller than itself (about 25 s)"
+  bench_with_table bench_ball_on_small_mesh "$ROOT/docs/physics.md"
+}
+
 run_block_by_pole() {
   need "$BIN/bench_block_by_pole" || return 1
   say "part block_by_pole: a block around the squeezed pole of a normal-mapped bowl, read five ways (about 20 s)"
@@ -463,14 +472,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | block_by_pole | textured_pair | capsule_run | pen_on_objects | textured_ball | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | block_by_pole | textured_pair | capsule_run | pen_on_objects | textured_ball | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | ball_on_small_mesh | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing block_by_pole textured_pair capsule_run pen_on_objects textured_ball rolling_ridges rod_in_groove rocking_on_curve object_by_crease report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing block_by_pole textured_pair capsule_run pen_on_objects textured_ball rolling_ridges rod_in_groove rocking_on_curve object_by_crease ball_on_small_mesh report)"
       exit 2
       ;;
   esac
