@@ -280,13 +280,6 @@ bool walkAlongLine(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, co
 // smoothFoot's damped walk and newtonFoot alike.
 constexpr double kFootSettledM = 1e-10;
 
-// The interpolated normal (unit, not turned to a side) at barycentric b of `triangle`, b taken as
-// given (a little outside the triangle too: the normals' linear field runs on).
-Eigen::Vector3d interpolatedNormalAt(const mesh::TexturedMesh& mesh, std::uint32_t triangle, const Eigen::Vector3d& b) {
-  const mesh::Triangle& t = mesh.triangles[triangle];
-  return (b[0] * mesh.normals[t[0]] + b[1] * mesh.normals[t[1]] + b[2] * mesh.normals[t[2]]).normalized();
-}
-
 // smoothFoot's last resort, where the damped walk settles nowhere: a surface curved unlike in two
 // directions, a 1 mm rod under a 1 cm ball (h / R 10 round it, 0 along it), which one part alpha
 // cannot settle in both (it went 0.875 of the way a round along the rod, 40 rounds short).
@@ -315,7 +308,9 @@ bool newtonFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
       return Eigen::Vector2d((m(1, 1) * r[0] - m(0, 1) * r[1]) / det, (m(0, 0) * r[1] - m(1, 0) * r[0]) / det);
     };
     const auto g = [&](const Eigen::Vector2d& l) -> std::optional<Eigen::Vector2d> {
-      const Eigen::Vector3d n = side * interpolatedNormalAt(mesh, t, Eigen::Vector3d(1.0 - l[0] - l[1], l[0], l[1]));
+      // frameAt takes b as given, a little outside the triangle too: the normals' linear field runs on.
+      const Eigen::Vector3d n =
+          side * mesh::frameAt(mesh, t, Eigen::Vector3d(1.0 - l[0] - l[1], l[0], l[1]), mesh::FrameMode::Interpolated).normal;
       const std::optional<Eigen::Vector3d> meets = meetsFacePlane(mesh, t, c, n);
       if (!meets) return std::nullopt;
       const Eigen::Vector3d move = *meets - (l[0] * e1 + l[1] * e2);
@@ -377,8 +372,9 @@ bool smoothFoot(const ContactMesh& contact_mesh, const Eigen::Vector3d& c, doubl
   // its fixed point at alpha = 1 / (1 + h / R), h / R read from the first rounds' growth; alpha is
   // halved whenever a round would move farther than the one before. If that settles nowhere,
   // Newton's method (newtonFoot), and failing that the undamped rounds' place, as before. Where
-  // they settle nothing changes: of the physics and physics-client tests' measured lines only those with h / R of 0.6 or more moved (a ball
-  // on a sphere mesh of its own radius, or on another ball's cube-sphere; docs/physics.md).
+  // they settle nothing changes: of the physics and physics-client tests' measured lines only
+  // those with h / R of 0.6 or more moved (a ball on a sphere mesh of its own radius, or on
+  // another ball's cube-sphere; docs/physics.md).
   constexpr int kDampedRounds = 40;
   if (!(moved[kRounds - 1] > kFootSettledM && moved[kRounds - 1] > 0.5 * moved[kRounds - 2])) {
     // Settled. Where the foot lies on an edge or a vertex, rounding can leave the barycentric a
