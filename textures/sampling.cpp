@@ -19,11 +19,7 @@ inline int resolveNear(long long k, int n, Address address) {
   return int(k < 0 ? k + n : (k >= n ? k - n : k));
 }
 
-// The four texels round uv and their weights (bilinear; texel centres at half-integers).
-struct Bilinear {
-  int i0, i1, j0, j1;
-  float w00, w10, w01, w11;
-};
+using Bilinear = SamplePlace::Bilinear;
 Bilinear bilinearAt(const TextureMap& map, TexCoord uv, Address address) {
   const double s = texelS(map, reduce(uv.u, address));
   const double t = texelT(map, reduce(uv.v, address));
@@ -36,6 +32,14 @@ Bilinear bilinearAt(const TextureMap& map, TexCoord uv, Address address) {
 float depthAt(const TextureMap& map, const Bilinear& b) {
   return b.w00 * map.depth(b.i0, b.j0) + b.w10 * map.depth(b.i1, b.j0) + b.w01 * map.depth(b.i0, b.j1) +
          b.w11 * map.depth(b.i1, b.j1);
+}
+Eigen::Vector3f normalAt(const TextureMap& map, const Bilinear& b) {
+  const Eigen::Vector3f n = b.w00 * map.normal(b.i0, b.j0) + b.w10 * map.normal(b.i1, b.j0) +
+                            b.w01 * map.normal(b.i0, b.j1) + b.w11 * map.normal(b.i1, b.j1);
+  const float len = n.norm();
+  // Four stored normals all have n.z > 0, so their convex combination cannot vanish; the guard
+  // only protects against a future storage change.
+  return len > 1e-12f ? Eigen::Vector3f(n / len) : Eigen::Vector3f(0.0f, 0.0f, 1.0f);
 }
 }  // namespace
 
@@ -51,6 +55,33 @@ TexelIndex texelOf(const TextureMap& map, TexCoord uv, Address address) {
   return {resolveIndex(i, map.width(), address), resolveIndex(j, map.height(), address)};
 }
 
+SamplePlace::SamplePlace(const TextureMap& map, TexCoord uv, const SampleOptions& options) : map_(&map) {
+  if (!std::isfinite(uv.u) || !std::isfinite(uv.v)) return;
+  finite_ = true;
+  if (options.filter == Filter::Nearest) {
+    nearest_ = true;
+    const TexelIndex t = texelOf(map, uv, options.address);
+    texels_.i0 = t.i, texels_.j0 = t.j;
+    return;
+  }
+  texels_ = bilinearAt(map, uv, options.address);
+}
+
+float SamplePlace::depth() const {
+  if (!finite_) return 0.0f;
+  if (nearest_) return map_->depth(texels_.i0, texels_.j0);
+  return map_->isRelief() ? depthAt(*map_, texels_) : 0.0f;
+}
+
+Eigen::Vector3f SamplePlace::normal() const {
+  if (!finite_) return {0.0f, 0.0f, 1.0f};
+  if (nearest_) return map_->normal(texels_.i0, texels_.j0);
+  return normalAt(*map_, texels_);
+}
+
+// sample() and sampleDepth() read as SamplePlace does, each in one go (no SamplePlace stored and
+// read back): a ball with a bump map is read for its depth alone at thousands of texels a step,
+// and through a SamplePlace its collisions took 2.5 % more instructions (callgrind, 2026-12-07).
 Sample sample(const TextureMap& map, TexCoord uv, const SampleOptions& options) {
   Sample out;
   if (!std::isfinite(uv.u) || !std::isfinite(uv.v)) return out;
@@ -61,12 +92,7 @@ Sample sample(const TextureMap& map, TexCoord uv, const SampleOptions& options) 
     return out;
   }
   const Bilinear b = bilinearAt(map, uv, options.address);
-  const Eigen::Vector3f n = b.w00 * map.normal(b.i0, b.j0) + b.w10 * map.normal(b.i1, b.j0) +
-                            b.w01 * map.normal(b.i0, b.j1) + b.w11 * map.normal(b.i1, b.j1);
-  const float len = n.norm();
-  // Four stored normals all have n.z > 0, so their convex combination cannot vanish; the guard
-  // only protects against a future storage change.
-  out.normal = len > 1e-12f ? Eigen::Vector3f(n / len) : Eigen::Vector3f(0.0f, 0.0f, 1.0f);
+  out.normal = normalAt(map, b);
   if (map.isRelief()) out.depth = depthAt(map, b);
   return out;
 }

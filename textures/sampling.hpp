@@ -55,6 +55,28 @@ TexCoord texelCentre(const TextureMap& map, TexelIndex t);
 // The texel containing (u, v), after wrap/clamp.
 TexelIndex texelOf(const TextureMap& map, TexCoord uv, Address address);
 
+// A sample read in two parts: where it lies first (its texels and their weights), then its depth,
+// and its normal only where it is wanted, each as sample() reads it, to the bit. The physics reads a
+// textured object's depth at every texel under it and its normal only where that texel is a
+// contact candidate (a grooved block: 4,200 depths and 1,600 normals a step).
+class SamplePlace {
+ public:
+  // The four texels round a place and their weights (bilinear; texel centres at half-integers).
+  struct Bilinear {
+    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+    float w00 = 0, w10 = 0, w01 = 0, w11 = 0;
+  };
+  SamplePlace() = default;  // the flat plane's sample (as a non-finite uv's)
+  SamplePlace(const TextureMap& map, TexCoord uv, const SampleOptions& options);
+  float depth() const;
+  Eigen::Vector3f normal() const;
+
+ private:
+  const TextureMap* map_ = nullptr;
+  bool finite_ = false, nearest_ = false;
+  Bilinear texels_;  // nearest: (i0, j0) alone
+};
+
 Sample sample(const TextureMap& map, TexCoord uv, const SampleOptions& options);
 inline Eigen::Vector3f sampleNormal(const TextureMap& map, TexCoord uv, const SampleOptions& options) {
   return sample(map, uv, options).normal;

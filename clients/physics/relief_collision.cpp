@@ -10,6 +10,7 @@
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <iterator>
 #include <limits>
 #include <numbers>
@@ -282,11 +283,14 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
   // Reused between steps so a resting box costs no allocation per step.
   thread_local std::vector<ReliefCandidate> candidates, group;
   thread_local std::vector<std::size_t> group_index, taken;
+  thread_local std::vector<std::uint8_t> group_of;  // each candidate's normal group, read once
   candidates.clear();
   taken.clear();
   const RasterStats raster = rasterizeRelief(surface, underside, threshold, candidates, &faces, bend.flat() ? nullptr : &bend,
                                               true, boundary);
   dropPastBoundary(boundary, candidates);
+  group_of.resize(candidates.size());
+  for (std::size_t k = 0; k < candidates.size(); ++k) group_of[k] = std::uint8_t(normalGroup(candidates[k].n_local));
   const TexturedObjectSurface box_surface(underside, faces);
   // Ground flat under the whole footprint: no crease within reach, and a bend that is rounding (a
   // flat face's fit rises 1e-15 /m; a picometre over the box is nothing a relief stores).
@@ -300,7 +304,7 @@ void ReliefCollisionAlgorithm::texturedBoxCollision(const btCollisionObjectWrapp
     group.clear();
     group_index.clear();
     for (std::size_t k = 0; k < candidates.size(); ++k)
-      if (normalGroup(candidates[k].n_local) == g) group.push_back(candidates[k]), group_index.push_back(k);
+      if (group_of[k] == g) group.push_back(candidates[k]), group_index.push_back(k);
     std::array<std::size_t, kMaxReliefContacts> picked{};
     // Level contacts on flat ground within the chart: the lowest point of each quarter of the
     // footprint (contact_selection.hpp), as a plain box's.

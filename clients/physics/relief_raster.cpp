@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "clients/physics/chart_boundary.hpp"
+#include "clients/physics/textured_box_rows.hpp"
 
 namespace thx::phys {
 
@@ -95,9 +96,15 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
   return f;
 }
 
-RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
-                            std::vector<ReliefCandidate>& out, const FaceTexture* object_texture, const GroundBend* bend,
-                            bool normals, const ChartBoundary* boundary, double texture_within_m) {
+namespace {
+// rasterizeRelief, compiled once with a textured box's surface read row by row (kBoxRows:
+// textured_box_rows.hpp) and once without, so that the loop for every other object is the one
+// it was (with the box's reader in the one loop, a ball with a bump map on the plain plane read
+// 318-380 us a step against 285-373 in alternated runs: docs/physics.md, "What it costs").
+template <bool kBoxRows>
+RasterStats rasterize(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
+                      std::vector<ReliefCandidate>& out, const FaceTexture* object_texture, const GroundBend* bend,
+                      bool normals, const ChartBoundary* boundary, double texture_within_m) {
   RasterStats stats;
   // Bent ground may rise above the plane under the object: the footprint reaches as high.
   double reach = 0.0;
@@ -132,6 +139,10 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
                         (shape.kind == Underside::Kind::Box || shape.kind == Underside::Kind::Sphere);
   std::optional<TexturedObjectSurface> object_surface;
   if (textured) object_surface.emplace(shape, *object_texture);
+  // A textured box's surface read row by row (textured_box_rows.hpp).
+  std::optional<TexturedBoxRows> box_rows;
+  if constexpr (kBoxRows) box_rows.emplace(shape, *object_texture);
+  TexturedBoxRows::Point box_point;
   // A ball's touching disc, as footprintTexels bounds it (its rows' texels beyond it cannot reach
   // the relief); the chart's edges.
   const Eigen::Vector3d centre = shape.plane_from_object.translation();
@@ -144,6 +155,7 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
   for (long long j = j0; j <= j1; j += stats.stride_j) {
     const double y = first.y() - double(j - j0) * texel.y();
     const int rj = tex::resolveIndex(j, map.height(), address);
+    if constexpr (kBoxRows) box_rows->startRow(y);
     long long row_i0 = i0, row_i1 = i1;
     RowSpan span;
     if (clipped) {
@@ -172,8 +184,14 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
       if (edges && (span.test_every_texel || !(x >= surely_from && x <= surely_to)) &&
           edges->past(Eigen::Vector3d(x, y, 0.0)))
         continue;
-      const std::optional<double> z = sphere ? sphereLowestZ(centre, shape.radius, x, y) : lowestZ(shape, x, y);
-      if (!z) continue;
+      std::optional<double> z;
+      if constexpr (kBoxRows) {
+        if (!box_rows->at(x, box_point)) continue;
+        z = box_point.lowest_z;
+      } else {
+        z = sphere ? sphereLowestZ(centre, shape.radius, x, y) : lowestZ(shape, x, y);
+        if (!z) continue;
+      }
       const int ri = wrap ? wrapped_i : tex::resolveIndex(i, width, address);
       const double height = (relief ? -double(map.depth(ri, rj)) : 0.0) + (bend ? bend->height(x, y) : 0.0);
       auto ground = [&](const Eigen::Vector3d& n) { return bend ? bend->tilt(n, x, y) : n; };
@@ -187,22 +205,35 @@ RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside
       // An object's relief lies inside its smooth surface: where that is already beyond the
       // threshold, so is the relief, and its texture need not be read (most of a ball's footprint).
       if (*z - height >= threshold_m || *z - height > read_within) continue;
+      double object_z = 0.0;
+      if constexpr (kBoxRows) object_z = box_point.z;
+      else object_z = object_surface->zOver(x, y, *z);
+      const double depth = object_z - height;
+      if (depth >= threshold_m) continue;
       if (!normals) {
-        const double depth = object_surface->zOver(x, y, *z) - height;
-        if (depth < threshold_m) out.push_back({Eigen::Vector3d(x, y, height), kNoNormal, depth, i, j});
+        out.push_back({Eigen::Vector3d(x, y, height), kNoNormal, depth, i, j});
         continue;
       }
       // The depth first: the object's normal is read only where the texel is a candidate (a
       // grooved block's groove floors, most of its face, lie beyond the threshold).
-      if (object_surface->zOver(x, y, *z) - height >= threshold_m) continue;
-      const ObjectSurfacePoint object = object_surface->over(x, y, *z);
       Eigen::Vector3d n = ground(surface.texelNormal(i, j, ri, rj));
-      if (object.n_up) n = (n + *object.n_up).normalized();
-      const double depth = object.z - height;
-      if (depth < threshold_m) out.push_back({Eigen::Vector3d(x, y, height), n, depth, i, j});
+      std::optional<Eigen::Vector3d> up;
+      if constexpr (kBoxRows) up = box_rows->nUp(box_point);
+      else up = object_surface->over(x, y, *z).n_up;
+      if (up) n = (n + *up).normalized();
+      out.push_back({Eigen::Vector3d(x, y, height), n, depth, i, j});
     }
   }
   return stats;
+}
+}  // namespace
+
+RasterStats rasterizeRelief(const tex::TexturedSurface& surface, const Underside& shape, double threshold_m,
+                            std::vector<ReliefCandidate>& out, const FaceTexture* object_texture, const GroundBend* bend,
+                            bool normals, const ChartBoundary* boundary, double texture_within_m) {
+  if (object_texture && shape.kind == Underside::Kind::Box)
+    return rasterize<true>(surface, shape, threshold_m, out, object_texture, bend, normals, boundary, texture_within_m);
+  return rasterize<false>(surface, shape, threshold_m, out, object_texture, bend, normals, boundary, texture_within_m);
 }
 
 void withNormals(const tex::TexturedSurface& surface, const GroundBend* bend, const TexturedObjectSurface* object,

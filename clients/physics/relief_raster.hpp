@@ -52,7 +52,8 @@ FootprintTexels footprintTexels(const tex::TexturedSurface& surface, const Under
 // bump map reads thousands of texels under it and keeps at most four: on 39 um texels the relief's
 // normals took a third of the ridges test's run, by perf). With it true, every candidate carries the relief's
 // normal, and a textured object's is read only at the texels that are candidates, their depth read
-// first (TexturedObjectSurface::zOver; a grooved block's groove floors lie beyond the threshold).
+// first (TexturedObjectSurface::zOver, a box's row by row: textured_box_rows.hpp; a grooved block's
+// groove floors lie beyond the threshold).
 // `boundary` (a mesh's chart, chart_boundary.hpp): the texels past its edges are not visited; the
 // candidates are those that ChartBoundary::past would keep, to the bit (a row's texels are
 // visited only between where its edges cut it, a texel wider on either side, and each texel

@@ -38,25 +38,35 @@ tex::TexCoord faceUv(const FaceTexture& texture, const FacePoint& f, const Eigen
 }
 }  // namespace
 
+FaceSample faceSampleAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
+                        const Eigen::Vector3d& toward) {
+  const FacePoint f = faceOf(half, p, toward);
+  FaceSample s{f, tex::SamplePlace(*texture.map, faceUv(texture, f, p), texture.sampling)};
+  s.face.recess_m = double(s.place.depth());
+  return s;
+}
+
+Eigen::Vector3d faceNormal(const FaceSample& sample) {
+  const FacePoint& f = sample.face;
+  const int a = f.axis, b = (a + 1) % 3, c = (a + 2) % 3;
+  const Eigen::Vector3f m = sample.place.normal();
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  n[b] = double(m.x());
+  n[c] = double(m.y());
+  n[a] = f.sign * double(m.z());
+  return n.normalized();
+}
+
 FacePoint faceRecessAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
                        const Eigen::Vector3d& toward) {
-  FacePoint f = faceOf(half, p, toward);
-  f.recess_m = double(tex::sampleDepth(*texture.map, faceUv(texture, f, p), texture.sampling));
-  return f;
+  return faceSampleAt(texture, half, p, toward).face;
 }
 
 FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
                         const Eigen::Vector3d& toward) {
-  FacePoint f = faceOf(half, p, toward);
-  const int a = f.axis, b = (a + 1) % 3, c = (a + 2) % 3;
-  const tex::Sample s = tex::sample(*texture.map, faceUv(texture, f, p), texture.sampling);
-  f.recess_m = double(s.depth);
-  Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  n[b] = double(s.normal.x());
-  n[c] = double(s.normal.y());
-  n[a] = f.sign * double(s.normal.z());
-  f.normal_object = n.normalized();
-  return f;
+  FaceSample s = faceSampleAt(texture, half, p, toward);
+  s.face.normal_object = faceNormal(s);
+  return s.face;
 }
 
 namespace {

@@ -73,6 +73,17 @@ FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half_
 FacePoint faceRecessAt(const FaceTexture& texture, const Eigen::Vector3d& half_extents, const Eigen::Vector3d& p_object,
                        const Eigen::Vector3d& toward = Eigen::Vector3d::Zero());
 
+// A point's face and where its texture lies there, read in two parts as tex::SamplePlace reads
+// them: `face` carries the recess (its normal_object left at its default), faceNormal the normal,
+// each as faceTextureAt reads it to the bit.
+struct FaceSample {
+  FacePoint face;
+  tex::SamplePlace place;
+};
+FaceSample faceSampleAt(const FaceTexture& texture, const Eigen::Vector3d& half_extents, const Eigen::Vector3d& p_object,
+                        const Eigen::Vector3d& toward = Eigen::Vector3d::Zero());
+Eigen::Vector3d faceNormal(const FaceSample& sample);
+
 // Attaches `texture` (which must outlive the shape) to a btBoxShape. (Subclassing btBoxShape
 // would emit Bullet's inline btBoxShape::getPlane here, which reads an uninitialised plane for an
 // out-of-range index and fails -Werror=maybe-uninitialized.)

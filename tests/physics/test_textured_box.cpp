@@ -10,6 +10,7 @@
 #include <random>
 
 #include "clients/physics/textured_box.hpp"
+#include "clients/physics/textured_box_rows.hpp"
 #include "clients/physics/textured_object_surface.hpp"
 #include "tests/physics/grooved_block_scene.hpp"
 
@@ -149,6 +150,59 @@ TEST(TexturedBox, ItsDepthAloneIsTheDepthItsFullReadGives) {
     ++compared;
   }
   EXPECT_GT(compared, 5000);  // the box under enough of the points
+}
+
+// The raster reads a textured box row by row (textured_box_rows.hpp): its lowest point and its
+// surface over each texel as lowestZ and TexturedObjectSurface read them, to rounding (the slabs'
+// sines taken as reciprocals), and the same face; missing the box where lowestZ does. Poses at
+// random and upright (axes parallel to the vertical's slabs, which bound nothing).
+TEST(TexturedBox, ItsRowReaderGivesWhatItsPointReadsGive) {
+  const tex::TextureMap map = heightMap(128, kExtent, vGrooves);
+  FaceTexture faces;
+  faces.map = &map;
+  faces.tile_m = kExtent;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int hits = 0, misses = 0, candidates_like = 0;
+  for (int pose_k = 0; pose_k < 60; ++pose_k) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    if (pose_k % 4 != 0)
+      pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized()).toRotationMatrix();
+    else  // upright, turned about the vertical
+      pose.linear() = Eigen::AngleAxisd(3.0 * unit(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    pose.translation() = Eigen::Vector3d(0.003 * unit(rng), 0.003 * unit(rng), 0.02);
+    const Underside box = Underside::box(pose, kHalf);
+    const TexturedObjectSurface surface(box, faces);
+    TexturedBoxRows rows(box, faces);
+    for (int row = 0; row < 20; ++row) {
+      const double y = 0.02 * unit(rng);
+      rows.startRow(y);
+      for (int k = 0; k < 40; ++k) {
+        const double x = 0.02 * unit(rng);
+        TexturedBoxRows::Point point;
+        const bool hit = rows.at(x, point);
+        const std::optional<double> z = lowestZ(box, x, y);
+        ASSERT_EQ(hit, z.has_value()) << pose_k << " " << x << " " << y;
+        if (!hit) {
+          ++misses;
+          continue;
+        }
+        ++hits;
+        ASSERT_NEAR(point.lowest_z, *z, 1e-15);
+        ASSERT_NEAR(point.z, surface.zOver(x, y, *z), 1e-12);
+        const ObjectSurfacePoint over = surface.over(x, y, *z);
+        const std::optional<Eigen::Vector3d> up = rows.nUp(point);
+        ASSERT_EQ(up.has_value(), over.n_up.has_value());
+        if (up) {
+          ASSERT_LT((*up - *over.n_up).norm(), 1e-9);
+          ++candidates_like;
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, 5000);
+  EXPECT_GT(misses, 5000);
+  EXPECT_GT(candidates_like, 2000);  // normals compared on faces not steep
 }
 
 }  // namespace

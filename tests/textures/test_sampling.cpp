@@ -142,6 +142,34 @@ TEST(Sampling, DepthAloneIsTheFullSamplesDepthToTheBit) {
   EXPECT_EQ(sampleDepth(relief, {nan, 0.5}, {}), 0.0f);
 }
 
+// A SamplePlace reads its depth and normal in two parts (the physics reads a textured box's
+// normal only at its candidates), each as sample() reads it.
+TEST(Sampling, APlaceReadsTheSamplesDepthAndNormalToTheBit) {
+  TextureMap relief = linearDepthMap(9, 6);
+  for (int j = 0; j < relief.height(); ++j)
+    for (int i = 0; i < relief.width(); ++i)
+      relief.setNormal(i, j, Eigen::Vector3f(0.05f * float(i) - 0.2f, 0.04f * float(j) - 0.3f, 1.0f));
+  const TextureMap normals = distinctNormalMap(7, 5);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uv(-1.5, 2.5);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<TexCoord> at = {{nan, 0.5}, {0.5, std::numeric_limits<double>::infinity()}, {0.0, 0.0}, {1.0, 1.0}};
+  for (int k = 0; k < 2000; ++k) at.push_back({uv(rng), uv(rng)});
+  for (const Filter filter : {Filter::Nearest, Filter::Bilinear})
+    for (const Address address : {Address::Wrap, Address::Clamp})
+      for (const TextureMap* map : {static_cast<const TextureMap*>(&relief), &normals})
+        for (const TexCoord c : at) {
+          const SampleOptions options{filter, address};
+          const SamplePlace place(*map, c, options);
+          const Sample whole = sample(*map, c, options);
+          EXPECT_EQ(place.depth(), whole.depth) << c.u << " " << c.v;
+          EXPECT_EQ(place.normal(), whole.normal) << c.u << " " << c.v;
+        }
+  // A place made without a map reads as the flat plane, as a non-finite uv does.
+  EXPECT_EQ(SamplePlace().depth(), 0.0f);
+  EXPECT_EQ(SamplePlace().normal(), Eigen::Vector3f(0.0f, 0.0f, 1.0f));
+}
+
 // A bilinear sample reads the four texels resolveIndex names round the reduced coordinate, with the
 // weights of its fractions, to the bit: the sampler resolves them without a division
 // (sampling.cpp), which must agree with resolveIndex on every index a reduced coordinate reaches,
