@@ -141,7 +141,7 @@ RasterStats rasterize(const tex::TexturedSurface& surface, const Underside& shap
   if (textured) object_surface.emplace(shape, *object_texture);
   // A textured box's surface read row by row (textured_box_rows.hpp).
   std::optional<TexturedBoxRows> box_rows;
-  if constexpr (kBoxRows) box_rows.emplace(shape, *object_texture);
+  if constexpr (kBoxRows) box_rows.emplace(shape, *object_surface);
   TexturedBoxRows::Point box_point;
   // A ball's touching disc, as footprintTexels bounds it (its rows' texels beyond it cannot reach
   // the relief); the chart's edges.
@@ -206,7 +206,7 @@ RasterStats rasterize(const tex::TexturedSurface& surface, const Underside& shap
       // threshold, so is the relief, and its texture need not be read (most of a ball's footprint).
       if (*z - height >= threshold_m || *z - height > read_within) continue;
       double object_z = 0.0;
-      if constexpr (kBoxRows) object_z = box_point.z;
+      if constexpr (kBoxRows) object_z = box_point.surface.z;
       else object_z = object_surface->zOver(x, y, *z);
       const double depth = object_z - height;
       if (depth >= threshold_m) continue;

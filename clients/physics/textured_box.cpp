@@ -57,11 +57,6 @@ Eigen::Vector3d faceNormal(const FaceSample& sample) {
   return n.normalized();
 }
 
-FacePoint faceRecessAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
-                       const Eigen::Vector3d& toward) {
-  return faceSampleAt(texture, half, p, toward).face;
-}
-
 FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half, const Eigen::Vector3d& p,
                         const Eigen::Vector3d& toward) {
   FaceSample s = faceSampleAt(texture, half, p, toward);

@@ -68,14 +68,10 @@ inline constexpr double kSteepestTexturedFaceCos = 0.2;  // 78° from the plane
 // and threw the block up.)
 FacePoint faceTextureAt(const FaceTexture& texture, const Eigen::Vector3d& half_extents, const Eigen::Vector3d& p_object,
                         const Eigen::Vector3d& toward = Eigen::Vector3d::Zero());
-// Its face and recess alone (normal_object left at its default), as faceTextureAt reads them to the
-// bit: the raster reads a box's depth at every texel and its normal only where it is a candidate.
-FacePoint faceRecessAt(const FaceTexture& texture, const Eigen::Vector3d& half_extents, const Eigen::Vector3d& p_object,
-                       const Eigen::Vector3d& toward = Eigen::Vector3d::Zero());
-
 // A point's face and where its texture lies there, read in two parts as tex::SamplePlace reads
 // them: `face` carries the recess (its normal_object left at its default), faceNormal the normal,
-// each as faceTextureAt reads it to the bit.
+// each as faceTextureAt reads it to the bit. The raster reads a box's depth at every texel and its
+// normal only where it is a candidate.
 struct FaceSample {
   FacePoint face;
   tex::SamplePlace place;

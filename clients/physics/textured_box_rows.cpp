@@ -6,8 +6,8 @@
 
 namespace thx::phys {
 
-TexturedBoxRows::TexturedBoxRows(const Underside& box, const FaceTexture& texture)
-    : box_(box), texture_(texture), centre_(box.plane_from_object.translation()) {
+TexturedBoxRows::TexturedBoxRows(const Underside& box, const TexturedObjectSurface& surface)
+    : surface_(surface), centre_(box.plane_from_object.translation()) {
   const Eigen::Matrix3d& r = box.plane_from_object.linear();
   for (int k = 0; k < 3; ++k) {
     axes_[std::size_t(k)] = r.col(k);
@@ -15,7 +15,6 @@ TexturedBoxRows::TexturedBoxRows(const Underside& box, const FaceTexture& textur
     parallel_[std::size_t(k)] = std::fabs(r(2, k)) < kParallelSine;
     inv_sine_[std::size_t(k)] = parallel_[std::size_t(k)] ? 0.0 : 1.0 / r(2, k);
   }
-  toward_ = -r.row(2).transpose();
 }
 
 void TexturedBoxRows::startRow(double y) {
@@ -43,17 +42,8 @@ bool TexturedBoxRows::at(double x, Point& out) const {
   // The point's object coordinates: its slab coordinates at that height.
   Eigen::Vector3d p;
   for (std::size_t k = 0; k < 3; ++k) p[Eigen::Index(k)] = s[k] + lo * axes_[k].z();
-  out.sample = faceSampleAt(texture_, box_.half_extents, p, toward_);
-  const FacePoint& f = out.sample.face;
-  const double down = -f.sign * axes_[std::size_t(f.axis)].z();
-  out.steep = down <= kSteepestTexturedFaceCos;
-  out.z = out.steep ? lo : lo + f.recess_m / down;
+  out.surface = surface_.boxAt(p, lo);
   return true;
-}
-
-std::optional<Eigen::Vector3d> TexturedBoxRows::nUp(const Point& p) const {
-  if (p.steep) return std::nullopt;
-  return Eigen::Vector3d(-(box_.plane_from_object.linear() * faceNormal(p.sample)));
 }
 
 }  // namespace thx::phys

@@ -12,18 +12,28 @@ TexturedObjectSurface::TexturedObjectSurface(const Underside& object, const Face
 
 ObjectSurfacePoint TexturedObjectSurface::over(double x, double y, double lowest_z) const {
   const Eigen::Vector3d p = object_from_plane_ * Eigen::Vector3d(x, y, lowest_z);
-  const Eigen::Matrix3d& to_plane = object_.plane_from_object.linear();
-  double down = 0.0;  // the smooth surface's outward normal against the plane's -z
-  FacePoint relief;
-  if (object_.kind == Underside::Kind::Sphere) {
-    relief = ballTextureAt(texture_, object_.radius, p);
-    down = p.normalized().dot(down_object_);
-  } else {
-    relief = faceTextureAt(texture_, object_.half_extents, p, down_object_);
-    down = faceDown(relief);
+  if (object_.kind != Underside::Kind::Sphere) {
+    const BoxPoint box = boxAt(p, lowest_z);
+    return {box.z, boxNormalUp(box)};
   }
+  const FacePoint relief = ballTextureAt(texture_, object_.radius, p);
+  // The smooth surface's outward normal against the plane's -z.
+  const double down = p.normalized().dot(down_object_);
   if (down <= kSteepestTexturedFaceCos) return {lowest_z, std::nullopt};
-  return {lowest_z + relief.recess_m / down, Eigen::Vector3d(-(to_plane * relief.normal_object))};
+  return {lowest_z + relief.recess_m / down, Eigen::Vector3d(-(object_.plane_from_object.linear() * relief.normal_object))};
+}
+
+TexturedObjectSurface::BoxPoint TexturedObjectSurface::boxAt(const Eigen::Vector3d& p, double lowest_z) const {
+  BoxPoint b{lowest_z, false, faceSampleAt(texture_, object_.half_extents, p, down_object_)};
+  const double down = faceDown(b.sample.face);
+  b.steep = down <= kSteepestTexturedFaceCos;
+  if (!b.steep) b.z = lowest_z + b.sample.face.recess_m / down;
+  return b;
+}
+
+std::optional<Eigen::Vector3d> TexturedObjectSurface::boxNormalUp(const BoxPoint& p) const {
+  if (p.steep) return std::nullopt;
+  return Eigen::Vector3d(-(object_.plane_from_object.linear() * faceNormal(p.sample)));
 }
 
 double TexturedObjectSurface::faceDown(const FacePoint& face) const {
@@ -31,12 +41,7 @@ double TexturedObjectSurface::faceDown(const FacePoint& face) const {
 }
 
 double TexturedObjectSurface::zOver(double x, double y, double lowest_z) const {
-  if (object_.kind != Underside::Kind::Sphere) {
-    const Eigen::Vector3d p = object_from_plane_ * Eigen::Vector3d(x, y, lowest_z);
-    const FacePoint relief = faceRecessAt(texture_, object_.half_extents, p, down_object_);
-    const double down = faceDown(relief);
-    return down <= kSteepestTexturedFaceCos ? lowest_z : lowest_z + relief.recess_m / down;
-  }
+  if (object_.kind != Underside::Kind::Sphere) return boxAt(object_from_plane_ * Eigen::Vector3d(x, y, lowest_z), lowest_z).z;
   const Eigen::Vector3d w = (object_from_plane_ * Eigen::Vector3d(x, y, lowest_z)).normalized();
   const double down = w.dot(down_object_);
   if (down <= kSteepestTexturedFaceCos) return lowest_z;

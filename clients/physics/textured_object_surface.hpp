@@ -33,6 +33,19 @@ class TexturedObjectSurface {
   // Over (x, y); nullopt where the vertical line misses the object.
   std::optional<ObjectSurfacePoint> at(double x, double y) const;
 
+  // A box's surface where the vertical line enters it at p_object (object frame) at height
+  // lowest_z, read in two parts: its z, and its relief's normal (boxNormalUp) only where wanted.
+  // over() and zOver() read a box through it, and so does the raster's row reader
+  // (textured_box_rows.hpp), which knows p_object without the pose applied again.
+  struct BoxPoint {
+    double z = 0.0;
+    bool steep = false;  // a face beyond kSteepestTexturedFaceCos: its z is lowest_z, no normal
+    FaceSample sample;
+  };
+  BoxPoint boxAt(const Eigen::Vector3d& p_object, double lowest_z) const;
+  // As over() gives it: unit, turned to the plane's +z side; absent on a steep face.
+  std::optional<Eigen::Vector3d> boxNormalUp(const BoxPoint& p) const;
+
  private:
   // A box's face's outward normal against the plane's -z.
   double faceDown(const FacePoint& face) const;

@@ -115,7 +115,7 @@ TEST(TexturedBox, TheFaceTextureIsReadOnTheFaceAPointLiesOn) {
   EXPECT_EQ(f.axis, 2);
 }
 
-// The depth alone, as the raster reads it at every texel (faceRecessAt, and the box's zOver): the
+// The depth alone, as the raster reads it at every texel (faceSampleAt, and the box's zOver): the
 // face and the recess faceTextureAt gives and the height over() gives, to the bit, on every face,
 // its edges and corners, and from every direction of the plane's downward.
 TEST(TexturedBox, ItsDepthAloneIsTheDepthItsFullReadGives) {
@@ -132,7 +132,7 @@ TEST(TexturedBox, ItsDepthAloneIsTheDepthItsFullReadGives) {
     const int snap = int(rng() % 3) + 1;
     for (int a = 0; a < snap; ++a) p[(k + a) % 3] = (unit(rng) < 0.0 ? -1.0 : 1.0) * kHalf[(k + a) % 3];
     const Eigen::Vector3d toward = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
-    const FacePoint full = faceTextureAt(faces, kHalf, p, toward), alone = faceRecessAt(faces, kHalf, p, toward);
+    const FacePoint full = faceTextureAt(faces, kHalf, p, toward), alone = faceSampleAt(faces, kHalf, p, toward).face;
     ASSERT_EQ(full.axis, alone.axis) << k;
     ASSERT_EQ(full.sign, alone.sign) << k;
     ASSERT_EQ(full.recess_m, alone.recess_m) << k;
@@ -173,7 +173,7 @@ TEST(TexturedBox, ItsRowReaderGivesWhatItsPointReadsGive) {
     pose.translation() = Eigen::Vector3d(0.003 * unit(rng), 0.003 * unit(rng), 0.02);
     const Underside box = Underside::box(pose, kHalf);
     const TexturedObjectSurface surface(box, faces);
-    TexturedBoxRows rows(box, faces);
+    TexturedBoxRows rows(box, surface);
     for (int row = 0; row < 20; ++row) {
       const double y = 0.02 * unit(rng);
       rows.startRow(y);
@@ -189,7 +189,7 @@ TEST(TexturedBox, ItsRowReaderGivesWhatItsPointReadsGive) {
         }
         ++hits;
         ASSERT_NEAR(point.lowest_z, *z, 1e-15);
-        ASSERT_NEAR(point.z, surface.zOver(x, y, *z), 1e-12);
+        ASSERT_NEAR(point.surface.z, surface.zOver(x, y, *z), 1e-12);
         const ObjectSurfacePoint over = surface.over(x, y, *z);
         const std::optional<Eigen::Vector3d> up = rows.nUp(point);
         ASSERT_EQ(up.has_value(), over.n_up.has_value());
