@@ -101,11 +101,12 @@ std::size_t selectReliefContacts(std::span<const ReliefCandidate> cand,
 }
 
 std::size_t selectShallowestBasins(std::span<const ReliefCandidate> cand, long long stride_i, long long stride_j,
-                                   std::array<std::size_t, kMaxReliefContacts>& chosen) {
+                                   std::span<std::size_t> chosen) {
   if (cand.empty()) return 0;
+  const std::size_t room = chosen.size();
   const CandidateGrid grid(cand, stride_i, stride_j);
   std::size_t count = 0;
-  // Keeps the kMaxReliefContacts deepest basins, in order (insertion into a short sorted list).
+  // Keeps as many of the deepest basins as `chosen` holds, in order (insertion into a short sorted list).
   for (std::size_t k = 0; k < cand.size(); ++k) {
     const long long gi = grid.gi(cand[k]), gj = grid.gj(cand[k]);
     bool basin = true;
@@ -119,10 +120,10 @@ std::size_t selectShallowestBasins(std::span<const ReliefCandidate> cand, long l
           basin = false;
       }
     if (!basin) continue;
-    std::size_t at = count < kMaxReliefContacts ? count++ : kMaxReliefContacts;
-    if (at == kMaxReliefContacts) {
-      if (!(cand[k].depth < cand[chosen[kMaxReliefContacts - 1]].depth)) continue;
-      at = kMaxReliefContacts - 1;
+    std::size_t at = count < room ? count++ : room;
+    if (at == room) {
+      if (!(cand[k].depth < cand[chosen[room - 1]].depth)) continue;
+      at = room - 1;
     }
     while (at > 0 && cand[k].depth < cand[chosen[at - 1]].depth) chosen[at] = chosen[at - 1], --at;
     chosen[at] = k;

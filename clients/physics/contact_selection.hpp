@@ -28,12 +28,12 @@ std::size_t selectReliefContacts(std::span<const ReliefCandidate> candidates,
 
 // The basins of the pair's depth closest to closing: the candidates no deeper than any of their
 // eight neighbours on the candidate grid (texels stride_i apart along i, stride_j along j; a
-// missing neighbour is open), the deepest first, then the next shallowest, up to four. For a ball
-// with a bump map, whose supports are bump tips: the spread rule's points, walked to their basins,
-// stood 40-280 µm open at the footprint's edge while the next tip to touch, nearer the centre,
-// was left out until it had entered 9 µm deep (docs/physics.md, Known gaps).
+// missing neighbour is open), the deepest first, then the next shallowest, as many as `chosen`
+// holds. For a ball with a bump map, whose supports are bump tips: the spread rule's points, walked
+// to their basins, stood 40-280 µm open at the footprint's edge while the next tip to touch,
+// nearer the centre, was left out until it had entered 9 µm deep (docs/physics.md, Known gaps).
 std::size_t selectShallowestBasins(std::span<const ReliefCandidate> candidates, long long stride_i, long long stride_j,
-                                   std::array<std::size_t, kMaxReliefContacts>& chosen);
+                                   std::span<std::size_t> chosen);
 
 // A rod lying on the relief (a capsule, or a cylinder on its side, its axis within 60 degrees of
 // the plane: `axis_xy` the axis's direction in the plane, of length cos(its tilt), `centre_xy` its

@@ -10,6 +10,7 @@
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cstdint>
 #include <iterator>
 #include <limits>
@@ -172,22 +173,32 @@ enum class KeptPoints { AsBullet, RoomForChosen };
 // Adds the chosen contacts (deepest first) to the result's manifold (relief_collision.hpp's
 // convention). `object_relief`: a ball with a bump map, whose point of contact is on its recessed
 // surface above the texel (where the pair's depth was measured), not where its smooth sphere
-// faces -n.
+// faces -n. `more_manifolds` (a ball's basins, textured_ball_basins.hpp) take the points the
+// result's own cannot hold: four at most, no two within the breaking threshold (below).
 void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside& underside,
                        const tex::TexturedSurface& surface, const GroundBend& bend,
                        const Eigen::Isometry3d& world_from_plane, bool conforming, double threshold,
                        btManifoldResult* result, const BodyMotion* ball = nullptr, bool object_relief = false,
-                       KeptPoints kept = KeptPoints::AsBullet) {
+                       KeptPoints kept = KeptPoints::AsBullet,
+                       std::span<btPersistentManifold* const> more_manifolds = {}) {
+  constexpr std::size_t kMost = kMaxBallBasins, kMostManifolds = kMaxBallBasins / kMaxReliefContacts;
+  const std::size_t manifolds = 1 + more_manifolds.size();
+  assert(manifolds <= kMostManifolds && chosen.size() <= kMost);
+  assert(kept == KeptPoints::AsBullet || manifolds == 1);
   // btManifoldResult::addContactPoint REPLACES a cached point whose point on the object lies
   // within the breaking threshold of the new one. The chosen points come deepest first, so a
-  // later point that close is skipped instead: the deeper one must win. (For a sphere every
-  // point with the same normal maps to the same q = c - r n, see contactOnObject.)
-  std::array<Eigen::Vector3d, kMaxReliefContacts> added;
+  // later point that close to one in a manifold goes to the next manifold, or is skipped where
+  // every manifold has one: the deeper one must win. (For a sphere every point with the same
+  // normal maps to the same q = c - r n, see contactOnObject.)
+  std::array<Eigen::Vector3d, kMost> added;
+  std::array<std::size_t, kMost> added_to{};
   std::size_t added_count = 0;
   // The points Bullet will take (it drops those beyond the breaking threshold,
   // btManifoldResult::addContactPoint), added once all are known (manifold_room.hpp).
-  std::array<btVector3, kMaxReliefContacts> on_reliefs, normals, on_objects;
-  std::array<btScalar, kMaxReliefContacts> gaps;
+  std::array<btVector3, kMost> on_reliefs, normals, on_objects;
+  std::array<btScalar, kMost> gaps;
+  std::array<std::size_t, kMost> taken_to{};
+  std::array<std::size_t, kMostManifolds> filled{};
   std::size_t taken = 0;
   for (const ReliefCandidate& c : chosen) {
     const Eigen::Vector3d n_world = world_from_plane.linear() * c.n_local;
@@ -209,20 +220,31 @@ void addReliefContacts(std::span<const ReliefCandidate> chosen, const Underside&
     // A ball's further point still open while it moves onto it: an impact still to come, which
     // Bullet would take early (speculative_contacts.hpp).
     if (ball && &c != &chosen.front() && !keepFurtherContact(distance, approachSpeed(*ball, on_object, n_world))) continue;
-    bool duplicate = false;
-    for (std::size_t a = 0; a < added_count; ++a)
-      duplicate = duplicate || (added[a] - on_object).squaredNorm() < threshold * threshold;
-    if (duplicate) continue;
-    added[added_count++] = on_object;
+    auto nearOneIn = [&](std::size_t m) {
+      for (std::size_t a = 0; a < added_count; ++a)
+        if (added_to[a] == m && (added[a] - on_object).squaredNorm() < threshold * threshold) return true;
+      return false;
+    };
+    std::size_t to = 0;
+    while (to < manifolds && (filled[to] == kMaxReliefContacts || nearOneIn(to))) ++to;
+    if (to == manifolds) continue;
+    added[added_count] = on_object, added_to[added_count++] = to;
     if (static_cast<btScalar>(distance) > static_cast<btScalar>(threshold)) continue;
     const Eigen::Vector3d on_relief = on_object - distance * n_world;
     on_reliefs[taken] = toBt(on_relief), normals[taken] = toBt(n_world), gaps[taken] = static_cast<btScalar>(distance);
     on_objects[taken] = on_reliefs[taken] + normals[taken] * gaps[taken];  // as Bullet finds it again
-    ++taken;
+    taken_to[taken++] = to, ++filled[to];
   }
   if (kept == KeptPoints::RoomForChosen)
     makeRoomFor(*result->getPersistentManifold(), std::span(on_objects.data(), taken));
-  for (std::size_t k = 0; k < taken; ++k) result->addContactPoint(normals[k], on_reliefs[k], gaps[k]);
+  btPersistentManifold* own = result->getPersistentManifold();
+  for (std::size_t m = 0; m < manifolds; ++m) {
+    if (filled[m] == 0) continue;
+    result->setPersistentManifold(m == 0 ? own : more_manifolds[m - 1]);
+    for (std::size_t k = 0; k < taken; ++k)
+      if (taken_to[k] == m) result->addContactPoint(normals[k], on_reliefs[k], gaps[k]);
+  }
+  result->setPersistentManifold(own);
 }
 
 // Which group of a textured box's contacts a normal (plane frame) falls in: 0 within 6° of the
@@ -246,10 +268,13 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 // On a mesh's chart (`bend` its smooth surface's, `boundary` where it stops) as on the plane.
 // `settle_points`: every point refined until it settles (refineDeepest), for a smooth chart
 // sampled coarser than the ball's texels (by a pole of the uv, mesh_relief_chart.hpp).
+// `closing_within_m`: the gap below which basins past the fourth are kept (findBallBasins);
+// `more_manifolds` (cleared): where the points the result's own cannot hold go.
 void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const ChartBoundary* boundary,
                            const Underside& underside, const FaceTexture& texture, double threshold,
                            const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion, BallBasinHint& hint,
-                           btManifoldResult* result, bool settle_points = false) {
+                           double closing_within_m, btManifoldResult* result,
+                           std::span<btPersistentManifold* const> more_manifolds, bool settle_points = false) {
   thread_local std::vector<ReliefCandidate> candidates;
   candidates.clear();
   const GroundBend* bent = bend.flat() ? nullptr : &bend;
@@ -257,9 +282,10 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   // for its depth under the texels, only as far out as they can lie: textured_ball_basins.hpp),
   // each refined to its bottom between the texels: a bumpy ball's supports are its bump tips, and
   // the next tip to touch must be among them before it touches. Its normal is read at the points kept.
-  const BallBasins basins = findBallBasins(surface, underside, texture, threshold, bent, boundary, hint, candidates);
+  const BallBasins basins =
+      findBallBasins(surface, underside, texture, threshold, closing_within_m, bent, boundary, hint, candidates);
   const std::size_t n = basins.count;
-  std::array<ReliefCandidate, kMaxReliefContacts> chosen{};
+  std::array<ReliefCandidate, kMaxBallBasins> chosen{};
   const TexturedObjectSurface ball(underside, texture);
   for (std::size_t k = 0; k < n; ++k) {
     ReliefCandidate c = candidates[basins.picked[k]];
@@ -268,8 +294,8 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   }
   smootherSurfaceNormals(surface, bent, ball, std::span(chosen.data(), n));
   flatterReliefNormals(surface, bent, ball, std::span(chosen.data(), n));
-  addReliefContacts(std::span(chosen.data(), n), underside, surface, bend, world_from_plane, false, threshold,
-                    result, &motion, true);
+  addReliefContacts(std::span(chosen.data(), n), underside, surface, bend, world_from_plane, false, threshold, result,
+                    &motion, true, KeptPoints::AsBullet, more_manifolds);
 }
 
 }  // namespace
@@ -344,6 +370,16 @@ btPersistentManifold* ReliefCollisionAlgorithm::groupManifold(int chart, std::si
   btPersistentManifold*& m = chart == kUnder ? groups_[g - 1] : surfaces_->slots[std::size_t(chart)].groups[g];
   if (!m) m = m_dispatcher->getNewManifold(object, relief);
   return m;
+}
+
+std::array<btPersistentManifold*, ReliefCollisionAlgorithm::kBallMoreManifolds>
+ReliefCollisionAlgorithm::ballManifolds(int chart, const btCollisionObject* object, const btCollisionObject* relief) {
+  std::array<btPersistentManifold*, kBallMoreManifolds> more{};
+  for (std::size_t g = 0; g < more.size(); ++g) {
+    more[g] = groupManifold(chart, g + 1, object, relief);
+    more[g]->clearManifold();
+  }
+  return more;
 }
 
 void ReliefCollisionAlgorithm::clearGroupManifolds() {
@@ -439,7 +475,9 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
     manifold->clearManifold();
     BallBasinHint& hint = slot == kUnder ? ball_hint_ : surfaces_->slots[std::size_t(slot)].ball_hint;
     texturedBallCollision(chart.surface, chart.bend, &boundary, *underside, *ball, threshold, world_from_chart,
-                          motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()), hint, result,
+                          motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()), hint,
+                          closableGap(step_s_), result,
+                          ballManifolds(slot, object.getCollisionObject(), mesh.getCollisionObject()),
                           chart.least_cell_m > 0.0);
   } else if (faces) {
     texturedBoxCollision(object, mesh, chart.surface, chart.bend, *underside, *faces, &boundary, threshold,
@@ -537,8 +575,9 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
 }
 
 void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
-                                                const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
+                                                const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                                                 btManifoldResult* result) {
+  step_s_ = double(info.m_timeStep);
   const btCollisionObjectWrapper* object = swapped_ ? body1 : body0;
   const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
   const btCollisionShape& ground = *relief->getCollisionShape();
@@ -583,7 +622,8 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   if (const FaceTexture* ball = ballTextureOf(*object->getCollisionShape())) {
     clearGroupManifolds();
     texturedBallCollision(plane.surface(), GroundBend{}, nullptr, *underside, *ball, threshold, world_from_plane,
-                          motionOf(*object->getCollisionObject()), ball_hint_, result);
+                          motionOf(*object->getCollisionObject()), ball_hint_, closableGap(step_s_), result,
+                          ballManifolds(kUnder, object->getCollisionObject(), relief->getCollisionObject()));
     return;
   }
   // A box with a relief on its faces (textured_box.hpp): its own rule, one manifold per group of
@@ -629,7 +669,8 @@ void ReliefCollisionAlgorithm::plainPlaneCollision(const btCollisionObjectWrappe
   manifold->clearManifold();
   clearGroupManifolds();
   texturedBallCollision(chart.surface, chart.bend, nullptr, *underside, *ballTextureOf(shape), threshold,
-                        world_from_chart, motionOf(*object.getCollisionObject()), ball_hint_, result);
+                        world_from_chart, motionOf(*object.getCollisionObject()), ball_hint_, closableGap(step_s_),
+                        result, ballManifolds(kUnder, object.getCollisionObject(), plane.getCollisionObject()));
 }
 
 void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& surface, const GroundBend& bend,

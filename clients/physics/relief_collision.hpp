@@ -86,6 +86,12 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
                             const Eigen::Isometry3d& world_from_plane, int chart, btManifoldResult* result);
   btPersistentManifold* groupManifold(int chart, std::size_t g, const btCollisionObject* object,
                                       const btCollisionObject* relief);
+  // A ball with a bump map keeps up to kMaxBallBasins points, four to a manifold: its own and the
+  // chart's group manifolds from 1 on, returned cleared.
+  static constexpr std::size_t kBallMoreManifolds = kMaxBallBasins / kMaxReliefContacts - 1;
+  static_assert(kMaxBallBasins % kMaxReliefContacts == 0 && kBallMoreManifolds < kNormalGroups);
+  std::array<btPersistentManifold*, kBallMoreManifolds> ballManifolds(int chart, const btCollisionObject* object,
+                                                                      const btCollisionObject* relief);
   void clearGroupManifolds();
   // An untextured object (the plane's general rule: raster, selection, basins, refinement), on the
   // relief plane or on a mesh's chart standing on its bend; `level_runs` (the plane's) lets a box's
@@ -148,6 +154,9 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   std::unique_ptr<SurfaceSlots> surfaces_;
   // A ball with a bump map on the plane or the chart under it: how far out its basins lay last step.
   BallBasinHint ball_hint_;
+  // The world's step, from the dispatch (0 outside a step): how wide a gap a ball's further basins
+  // can close (closableGap).
+  double step_s_ = 0.0;
   // Against a box or a ball with a bump map (box_ground.hpp): its surface as a mesh, the world's
   // (shared_ground_) or made on first need.
   const ObjectGround* shared_ground_ = nullptr;

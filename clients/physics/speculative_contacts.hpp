@@ -35,4 +35,10 @@ double approachSpeed(const BodyMotion& motion, const Eigen::Vector3d& on_object,
 // Whether a further contact (not the deepest) with signed gap `distance` stays in the manifold.
 bool keepFurtherContact(double distance, double approach_speed);
 
+// The widest gap a further contact kept by keepFurtherContact can close within a step of `step_s`
+// (0: not known, nothing open closes), twice over for the point's refinement within its texel
+// (a few µm). A point open wider takes no impulse in that step: it costs the solver and does
+// nothing.
+inline double closableGap(double step_s) { return 2.0 * kSpeculativeApproachSpeed * step_s; }
+
 }  // namespace thx::phys

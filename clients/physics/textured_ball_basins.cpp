@@ -6,26 +6,31 @@
 namespace thx::phys {
 
 BallBasins findBallBasins(const tex::TexturedSurface& surface, const Underside& ball, const FaceTexture& texture,
-                          double threshold_m, const GroundBend* bend, const ChartBoundary* boundary, BallBasinHint& hint,
-                          std::vector<ReliefCandidate>& candidates) {
+                          double threshold_m, double closing_within_m, const GroundBend* bend,
+                          const ChartBoundary* boundary, BallBasinHint& hint, std::vector<ReliefCandidate>& candidates) {
   const Eigen::Vector3d centre = ball.plane_from_object.translation();
   // Where the basins' depths are measured from; a guess, not a bound (the check below is what
   // makes the result exact).
   const double lowest = centre.z() - ball.radius - (bend ? bend->height(centre.x(), centre.y()) : 0.0);
   BallBasins b;
+  std::size_t found = 0;
   auto read = [&](double within) {
     candidates.clear();
     b.raster = rasterizeRelief(surface, ball, threshold_m, candidates, &texture, bend, false, boundary, within);
     ++b.passes;
     dropPastBoundary(boundary, candidates);
-    b.count = selectShallowestBasins(candidates, b.raster.stride_i, b.raster.stride_j, b.picked);
+    found = selectShallowestBasins(candidates, b.raster.stride_i, b.raster.stride_j, b.picked);
+    b.count = std::min(found, kMaxReliefContacts);
+    while (b.count < found && candidates[b.picked[b.count]].depth < closing_within_m) ++b.count;
   };
   auto fourthDepth = [&] { return candidates[b.picked[kMaxReliefContacts - 1]].depth; };
   if (std::isfinite(hint.reach_m)) {
-    const double bound = lowest + kBallBasinReachGrowth * std::max(0.0, hint.reach_m) + kBallBasinReachMargin * threshold_m;
+    const double bound = std::max(lowest + kBallBasinReachGrowth * std::max(0.0, hint.reach_m) +
+                                      kBallBasinReachMargin * threshold_m,
+                                  closing_within_m);
     if (bound < threshold_m) {
       read(bound);
-      if (b.count == kMaxReliefContacts && fourthDepth() < bound) {
+      if (found >= kMaxReliefContacts && fourthDepth() < bound) {
         hint.reach_m = fourthDepth() - lowest;
         return b;
       }
@@ -33,7 +38,7 @@ BallBasins findBallBasins(const tex::TexturedSurface& surface, const Underside& 
   }
   read(threshold_m);
   b.whole_disc = true;
-  hint.reach_m = b.count == kMaxReliefContacts ? fourthDepth() - lowest : std::numeric_limits<double>::quiet_NaN();
+  hint.reach_m = found >= kMaxReliefContacts ? fourthDepth() - lowest : std::numeric_limits<double>::quiet_NaN();
   return b;
 }
 

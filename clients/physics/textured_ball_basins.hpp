@@ -8,9 +8,10 @@
 //
 // The texture is read first only where the smooth sphere lies within a bound of the relief
 // (rasterizeRelief's `texture_within_m`): as far above the ball's lowest point as its fourth basin
-// lay at the last step, and a little more. A relief only recesses the sphere, so every texel left
-// out lies deeper than the bound. When four basins are found and the fourth lies above the bound,
-// those are the basins the whole disc gives, to the bit: every texel left out lies deeper than
+// lay at the last step, and a little more, and no less than the gap kept past the fourth. A relief
+// only recesses the sphere, so every texel left out lies deeper than the bound. When four basins
+// are found and the fourth lies above the bound, those are the basins the whole disc gives, to
+// the bit, and so are the further ones below the bound: every texel left out lies deeper than
 // each of them, so it neither is chosen before them nor, as a neighbour, unmakes one (a missing
 // neighbour and a deeper one count alike), and the texels read are read as the whole disc reads
 // them, in the same order. Otherwise the whole disc is read. What the last step left only decides
@@ -47,19 +48,27 @@ struct BallBasinHint {
 // rolling bumpy ball's the same.
 inline constexpr double kBallBasinReachGrowth = 1.1, kBallBasinReachMargin = 1.0 / 128.0;
 
+// How many basins a ball keeps as contacts: the four closest to closing, and after them those
+// that can close within the step (`closing_within_m`, closableGap), up to kMaxBallBasins. Four
+// alone left a dimpled ball rocking on a flat relief in a quarter to a half of its starts, on rims
+// of its dimples that were not yet contacts when they closed (docs/physics.md, "A ball with a
+// bump map"); no more than twelve lay within the threshold there at 0.31 mm texels.
+inline constexpr std::size_t kMaxBallBasins = 12;
+
 struct BallBasins {
-  std::size_t count = 0;                                // basins chosen, at most kMaxReliefContacts
-  std::array<std::size_t, kMaxReliefContacts> picked{};  // into the candidates, deepest first
-  RasterStats raster;                                   // the last read's
-  bool whole_disc = false;                              // the last read was the whole disc's
-  int passes = 0;                                       // reads: 1, or 2 where the bound fell short
+  std::size_t count = 0;                             // basins chosen, at most kMaxBallBasins
+  std::array<std::size_t, kMaxBallBasins> picked{};  // into the candidates, deepest first
+  RasterStats raster;                                // the last read's
+  bool whole_disc = false;                           // the last read was the whole disc's
+  int passes = 0;                                    // reads: 1, or 2 where the bound fell short
 };
 
 // `candidates` is cleared and left holding the last read's candidates (past `boundary` dropped),
-// which `picked` indexes. The rest as rasterizeRelief, without normals (`normals` false:
-// withNormals reads them for the basins kept). `hint` is read and updated for the next step.
+// which `picked` indexes. `closing_within_m`: the depth (gap) below which basins past the fourth
+// are kept. The rest as rasterizeRelief, without normals (`normals` false: withNormals reads them
+// for the basins kept). `hint` is read and updated for the next step.
 BallBasins findBallBasins(const tex::TexturedSurface& surface, const Underside& ball, const FaceTexture& texture,
-                          double threshold_m, const GroundBend* bend, const ChartBoundary* boundary, BallBasinHint& hint,
-                          std::vector<ReliefCandidate>& candidates);
+                          double threshold_m, double closing_within_m, const GroundBend* bend,
+                          const ChartBoundary* boundary, BallBasinHint& hint, std::vector<ReliefCandidate>& candidates);
 
 }  // namespace thx::phys

@@ -222,7 +222,9 @@ TEST(ContactSelection, ARodSteeperThanSixtyDegreesTakesTheGeneralRule) {
 // The basins closest to closing (selectShallowestBasins): on a grid of candidates whose depth has
 // five local minima (one of them a flat pair of equal texels) and a slope, the four shallowest
 // minima, the deepest first; the fifth, deeper-open one is left out, and the flat pair counts once.
-TEST(ShallowestBasins, TheFourBasinsClosestToClosingDeepestFirst) {
+// With room for more (a ball keeps up to twelve), all five, and the floor's lowest corner (its
+// missing neighbours open), and no other texel of the slope.
+TEST(ShallowestBasins, TheBasinsClosestToClosingDeepestFirstAsManyAsThereIsRoomFor) {
   std::vector<ReliefCandidate> c;
   // depth(i, j): a tilted floor (every texel on it has a lower neighbour) with dips carved in.
   auto depth = [](long long i, long long j) {
@@ -247,6 +249,13 @@ TEST(ShallowestBasins, TheFourBasinsClosestToClosingDeepestFirst) {
   EXPECT_EQ(ij(1), std::make_pair(2LL, 7LL));  // the flat pair's first texel, once
   EXPECT_EQ(ij(2), std::make_pair(7LL, 2LL));
   EXPECT_EQ(ij(3), std::make_pair(8LL, 8LL));
+  std::array<std::size_t, 12> roomy{};
+  roomy.fill(c.size());
+  ASSERT_EQ(selectShallowestBasins(c, 1, 1, roomy), 6u);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(roomy[k], chosen[k]) << k;
+  EXPECT_EQ(std::make_pair(c[roomy[4]].i, c[roomy[4]].j), std::make_pair(5LL, 5LL));
+  EXPECT_EQ(std::make_pair(c[roomy[5]].i, c[roomy[5]].j), std::make_pair(0LL, 0LL));  // the floor's low corner
+  for (std::size_t k = 6; k < roomy.size(); ++k) EXPECT_EQ(roomy[k], c.size()) << "slot " << k << " written";
   // On a strided grid (every second texel) the same basins are found among the texels read.
   std::vector<ReliefCandidate> strided;
   for (const ReliefCandidate& k : c)
