@@ -50,9 +50,10 @@ inline constexpr double kBallBasinReachGrowth = 1.1, kBallBasinReachMargin = 1.0
 
 // How many basins a ball keeps as contacts: the four closest to closing, and after them those
 // that can close within the step (`closing_within_m`, closableGap), up to kMaxBallBasins. Four
-// alone left a dimpled ball rocking on a flat relief in a quarter to a half of its starts, on rims
-// of its dimples that were not yet contacts when they closed (docs/physics.md, "A ball with a
-// bump map"); no more than twelve lay within the threshold there at 0.31 mm texels.
+// alone left a dimpled ball rocking on a flat relief from a third to two fifths of 36 starts, on
+// rims of its dimples that were not yet contacts when they closed; with these, from a tenth to a
+// quarter (docs/physics.md, "Known gaps"). No more than twelve lay within the threshold there at
+// 0.31 mm texels.
 inline constexpr std::size_t kMaxBallBasins = 12;
 
 struct BallBasins {
