@@ -476,7 +476,7 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
     BallBasinHint& hint = slot == kUnder ? ball_hint_ : surfaces_->slots[std::size_t(slot)].ball_hint;
     texturedBallCollision(chart.surface, chart.bend, &boundary, *underside, *ball, threshold, world_from_chart,
                           motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()), hint,
-                          closableGap(step_s_), result,
+                          closable_gap_m_, result,
                           ballManifolds(slot, object.getCollisionObject(), mesh.getCollisionObject()),
                           chart.least_cell_m > 0.0);
   } else if (faces) {
@@ -577,7 +577,7 @@ void ReliefCollisionAlgorithm::meshCollision(const btCollisionObjectWrapper& obj
 void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                                 const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                                                 btManifoldResult* result) {
-  step_s_ = double(info.m_timeStep);
+  closable_gap_m_ = closableGap(double(info.m_timeStep));
   const btCollisionObjectWrapper* object = swapped_ ? body1 : body0;
   const btCollisionObjectWrapper* relief = swapped_ ? body0 : body1;
   const btCollisionShape& ground = *relief->getCollisionShape();
@@ -622,7 +622,7 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   if (const FaceTexture* ball = ballTextureOf(*object->getCollisionShape())) {
     clearGroupManifolds();
     texturedBallCollision(plane.surface(), GroundBend{}, nullptr, *underside, *ball, threshold, world_from_plane,
-                          motionOf(*object->getCollisionObject()), ball_hint_, closableGap(step_s_), result,
+                          motionOf(*object->getCollisionObject()), ball_hint_, closable_gap_m_, result,
                           ballManifolds(kUnder, object->getCollisionObject(), relief->getCollisionObject()));
     return;
   }
@@ -669,7 +669,7 @@ void ReliefCollisionAlgorithm::plainPlaneCollision(const btCollisionObjectWrappe
   manifold->clearManifold();
   clearGroupManifolds();
   texturedBallCollision(chart.surface, chart.bend, nullptr, *underside, *ballTextureOf(shape), threshold,
-                        world_from_chart, motionOf(*object.getCollisionObject()), ball_hint_, closableGap(step_s_),
+                        world_from_chart, motionOf(*object.getCollisionObject()), ball_hint_, closable_gap_m_,
                         result, ballManifolds(kUnder, object.getCollisionObject(), plane.getCollisionObject()));
 }
 

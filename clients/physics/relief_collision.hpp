@@ -154,9 +154,9 @@ class ReliefCollisionAlgorithm : public ManifoldAlgorithm {
   std::unique_ptr<SurfaceSlots> surfaces_;
   // A ball with a bump map on the plane or the chart under it: how far out its basins lay last step.
   BallBasinHint ball_hint_;
-  // The world's step, from the dispatch (0 outside a step): how wide a gap a ball's further basins
-  // can close (closableGap).
-  double step_s_ = 0.0;
+  // How wide a gap a ball's further basins can close within the dispatch's step (closableGap; 0
+  // outside a step).
+  double closable_gap_m_ = 0.0;
   // Against a box or a ball with a bump map (box_ground.hpp): its surface as a mesh, the world's
   // (shared_ground_) or made on first need.
   const ObjectGround* shared_ground_ = nullptr;
