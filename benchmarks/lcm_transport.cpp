@@ -39,10 +39,24 @@ class Counter {
 
 }  // namespace
 
+constexpr const char* kUsage =
+    "usage: lcm_transport flood|listen [options]\n"
+    "What an LCM udpm process pays for traffic it did not subscribe to (issue 17; benchmarks/transport.sh).\n"
+    "  flood  --url URL --channel C --rate HZ --bytes B --seconds S\n"
+    "         publish B-byte messages on C at HZ (in bursts once per millisecond) for S seconds\n"
+    "  listen --url URL (--channel C | --none) --seconds S\n"
+    "         subscribe to exactly C (or to nothing, LCM opened) and handle traffic for S seconds;\n"
+    "         prints one JSON line: messages handled, CPU seconds (user, system), wall seconds\n"
+    "Defaults: --url udpm://239.255.76.67:7860?ttl=0 --rate 1000 --bytes 200 --seconds 10\n";
+
 int main(int argc, char** argv) {
   Args a;
-  if (argc < 2) return std::fputs("usage: lcm_transport flood|listen [options] (see the source)\n", stderr), 2;
+  if (argc >= 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0))
+    return std::fputs(kUsage, stdout), 0;
+  if (argc < 2) return std::fputs(kUsage, stderr), 2;
   a.mode = argv[1];
+  if (a.mode != "flood" && a.mode != "listen")
+    return std::fprintf(stderr, "lcm_transport: unknown mode '%s': expected flood or listen\n%s", a.mode.c_str(), kUsage), 2;
   for (int i = 2; i < argc; ++i) {
     const std::string k = argv[i];
     auto v = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
@@ -72,7 +86,6 @@ int main(int argc, char** argv) {
     std::printf("{\"mode\": \"flood\", \"sent\": %ld, \"seconds\": %.3f}\n", sent, now() - t0);
     return 0;
   }
-  if (a.mode != "listen") return std::fputs("lcm_transport: mode flood or listen\n", stderr), 2;
   Counter c;
   if (!a.none) lcm.subscribe(a.channel, &Counter::on, &c);
   rusage r0{}, r1{};
