@@ -1,11 +1,6 @@
 // lcm_transport: what an LCM udpm process pays for traffic it did not subscribe to (issue 17).
-// Not part of the product: a measuring tool for benchmarks/transport.sh.
-//
-//   lcm_transport flood  --url URL --channel C --rate HZ --bytes B --seconds S
-//       publishes B-byte messages on C at HZ (in bursts once per millisecond) for S seconds
-//   lcm_transport listen --url URL (--channel C | --none) --seconds S
-//       subscribes to exactly C (or to nothing, having opened LCM) and handles traffic for S
-//       seconds; prints one JSON line: messages handled, CPU seconds (user, system), wall seconds
+// Not part of the product: a measuring tool for benchmarks/transport.sh. Its modes and options:
+// kUsage below (`lcm_transport --help`).
 #include <sys/resource.h>
 #include <time.h>
 
