@@ -14,6 +14,10 @@ namespace thx::phys {
 struct GroundBend {
   double xx = 0.0, xy = 0.0, yy = 0.0;  // 1/m: curvatures along x, y and the twist
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // where the plane touches the ground
+  // Whether the form was fitted to the ground around (mesh_relief_chart.cpp): not where too few
+  // points were left to fit (on a sphere mesh smaller than the object's reach), where the ground
+  // is curved though the form reads flat. A plane's is known.
+  bool known = true;
 
   double height(double x, double y) const {
     x -= centre.x(), y -= centre.y();

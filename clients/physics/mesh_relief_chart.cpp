@@ -57,7 +57,10 @@ GroundBend fitBend(const ContactMesh& cm, const Eigen::Vector3d& foot, const Eig
     ++used;
   }
   GroundBend bend;
-  if (used < 4) return bend;
+  if (used < 4) {
+    bend.known = false;
+    return bend;
+  }
   const Eigen::Vector3d q = ata.ldlt().solve(atb);
   if (q.allFinite()) bend.xx = q[0], bend.xy = q[1], bend.yy = q[2];
   return bend;

@@ -207,12 +207,16 @@ btRigidBody& PhysicsWorld::addTexturedBox(const Eigen::Vector3d& half_extents_m,
 
 btRigidBody& PhysicsWorld::addTexturedSphere(double radius_m, double mass_kg, const Eigen::Isometry3d& pose,
                                              const BodyMaterial& material, const FaceTexture& texture) {
-  face_textures_.push_back(std::make_unique<FaceTexture>(texture));
+  ball_textures_.push_back(std::make_unique<GriddedBallTexture>());
+  GriddedBallTexture& gridded = *ball_textures_.back();
+  static_cast<FaceTexture&>(gridded) = texture;
+  ball_grids_.push_back(BallTexelGrid::build(gridded, radius_m));
+  gridded.grid = ball_grids_.back().get();
   auto shape = std::make_unique<btSphereShape>(narrow(radius_m));
-  attachBallTexture(*shape, *face_textures_.back());
+  attachBallTexture(*shape, gridded);
   // A plain ball or a capsule meets its surface as a relief mesh's (ball_on_object_faces.hpp), and
   // another ball with a bump map or a cylinder on its chart (box_ground.hpp).
-  box_ground_funcs_->faces.addBall(*shape, radius_m, *face_textures_.back());
+  box_ground_funcs_->faces.addBall(*shape, radius_m, gridded);
   return addBody(std::move(shape), mass_kg, pose, material);
 }
 

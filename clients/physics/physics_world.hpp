@@ -16,6 +16,7 @@
 #include <memory>
 #include <vector>
 
+#include "clients/physics/ball_texel_grid.hpp"
 #include "clients/physics/box_ground.hpp"
 #include "clients/physics/bullet_triangles.hpp"
 #include "clients/physics/mesh_relief_chart.hpp"
@@ -149,7 +150,9 @@ class PhysicsWorld {
   std::unique_ptr<TexturedWorld> world_;
   // The meshes' triangles (declared before shapes_: the shapes that read them go first).
   std::vector<std::unique_ptr<BulletTriangles>> triangle_arrays_;
-  std::vector<std::unique_ptr<FaceTexture>> face_textures_;  // the textured boxes' and balls' (their shapes point here)
+  std::vector<std::unique_ptr<FaceTexture>> face_textures_;  // the textured boxes' (their shapes point here)
+  std::vector<std::unique_ptr<const BallTexelGrid>> ball_grids_;      // the textured balls' texel grids
+  std::vector<std::unique_ptr<GriddedBallTexture>> ball_textures_;    // and their textures (their shapes point here)
   std::vector<std::unique_ptr<MeshRelief>> mesh_reliefs_;    // the relief meshes' (their shapes point here)
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;

@@ -17,6 +17,7 @@
 #include <numbers>
 #include <vector>
 
+#include "clients/physics/ball_on_flat_ground.hpp"
 #include "clients/physics/box_relief_contacts.hpp"
 #include "clients/physics/bullet_convert.hpp"
 #include "clients/physics/conforming_contact.hpp"
@@ -270,14 +271,30 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 // sampled coarser than the ball's texels (by a pole of the uv, mesh_relief_chart.hpp).
 // `closing_within_m`: the gap below which basins past the fourth are kept (findBallBasins);
 // `more_manifolds` (cleared): where the points the result's own cannot hold go.
+// On flat ground (a plain plane's or a plain box face's smooth chart, a relief of one level under
+// the ball) and with its texel grid (`grid`, PhysicsWorld::addTexturedSphere), the ball's own
+// lowest points instead (ball_on_flat_ground.hpp).
 void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const ChartBoundary* boundary,
-                           const Underside& underside, const FaceTexture& texture, double threshold,
-                           const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion, BallBasinHint& hint,
-                           double closing_within_m, btManifoldResult* result,
+                           const Underside& underside, const FaceTexture& texture, const BallTexelGrid* grid,
+                           double threshold, const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
+                           BallBasinHint& hint, double closing_within_m, btManifoldResult* result,
                            std::span<btPersistentManifold* const> more_manifolds, bool settle_points = false) {
+  const GroundBend* bent = bend.flat() ? nullptr : &bend;
+  std::array<ReliefCandidate, kMaxBallBasins> chosen{};
+  // On flat ground, the ball's own lowest points (ball_on_flat_ground.hpp). A flat face's fit
+  // is rounding (1e-15 /m on a box's face), as for a textured box; a form not fitted says nothing.
+  const double reach = (underside.plane_from_object.translation().head<2>() - bend.centre).norm() + underside.radius;
+  if (grid && bend.known && bend.flatWithin(reach, 1e-12) && !(boundary && boundary->count > 0)) {
+    if (const std::optional<double> ground_z = flatGroundHeight(surface, underside, threshold)) {
+      const std::size_t n =
+          ballOnFlatGround(*grid, surface, underside, *ground_z, threshold, closing_within_m, hint, chosen);
+      addReliefContacts(std::span(chosen.data(), n), underside, surface, bend, world_from_plane, false, threshold, result,
+                        &motion, true, KeptPoints::AsBullet, more_manifolds);
+      return;
+    }
+  }
   thread_local std::vector<ReliefCandidate> candidates;
   candidates.clear();
-  const GroundBend* bent = bend.flat() ? nullptr : &bend;
   // The basins closest to closing, deepest first (selectShallowestBasins; the ball's texture read
   // for its depth under the texels, only as far out as they can lie: textured_ball_basins.hpp),
   // each refined to its bottom between the texels: a bumpy ball's supports are its bump tips, and
@@ -285,7 +302,6 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   const BallBasins basins =
       findBallBasins(surface, underside, texture, threshold, closing_within_m, bent, boundary, hint, candidates);
   const std::size_t n = basins.count;
-  std::array<ReliefCandidate, kMaxBallBasins> chosen{};
   const TexturedObjectSurface ball(underside, texture);
   for (std::size_t k = 0; k < n; ++k) {
     ReliefCandidate c = candidates[basins.picked[k]];
@@ -474,7 +490,8 @@ ChartBoundary ReliefCollisionAlgorithm::chartCollision(const btCollisionObjectWr
     result->setPersistentManifold(manifold);
     manifold->clearManifold();
     BallBasinHint& hint = slot == kUnder ? ball_hint_ : surfaces_->slots[std::size_t(slot)].ball_hint;
-    texturedBallCollision(chart.surface, chart.bend, &boundary, *underside, *ball, threshold, world_from_chart,
+    texturedBallCollision(chart.surface, chart.bend, &boundary, *underside, *ball,
+                          ballTexelGridOf(*object.getCollisionShape()), threshold, world_from_chart,
                           motionAgainst(*object.getCollisionObject(), *mesh.getCollisionObject()), hint,
                           closable_gap_m_, result,
                           ballManifolds(slot, object.getCollisionObject(), mesh.getCollisionObject()),
@@ -621,7 +638,8 @@ void ReliefCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* 
   const double threshold = double(manifold->getContactBreakingThreshold());
   if (const FaceTexture* ball = ballTextureOf(*object->getCollisionShape())) {
     clearGroupManifolds();
-    texturedBallCollision(plane.surface(), GroundBend{}, nullptr, *underside, *ball, threshold, world_from_plane,
+    texturedBallCollision(plane.surface(), GroundBend{}, nullptr, *underside, *ball,
+                          ballTexelGridOf(*object->getCollisionShape()), threshold, world_from_plane,
                           motionOf(*object->getCollisionObject()), ball_hint_, closable_gap_m_, result,
                           ballManifolds(kUnder, object->getCollisionObject(), relief->getCollisionObject()));
     return;
@@ -668,8 +686,8 @@ void ReliefCollisionAlgorithm::plainPlaneCollision(const btCollisionObjectWrappe
   // A ball with a bump map (the create function takes no other shape): its points afresh each step.
   manifold->clearManifold();
   clearGroupManifolds();
-  texturedBallCollision(chart.surface, chart.bend, nullptr, *underside, *ballTextureOf(shape), threshold,
-                        world_from_chart, motionOf(*object.getCollisionObject()), ball_hint_, closable_gap_m_,
+  texturedBallCollision(chart.surface, chart.bend, nullptr, *underside, *ballTextureOf(shape), ballTexelGridOf(shape),
+                        threshold, world_from_chart, motionOf(*object.getCollisionObject()), ball_hint_, closable_gap_m_,
                         result, ballManifolds(kUnder, object.getCollisionObject(), plane.getCollisionObject()));
 }
 

@@ -37,10 +37,24 @@ double ballRecessAtUnit(const FaceTexture& texture, double radius_m, const Eigen
 namespace {
 // Marks a shape whose user pointer is a FaceTexture laid on a ball ("TBAL").
 constexpr int kBallTextureTag = 0x5442414c;
+// Marks (in its second user index) such a shape whose FaceTexture is a GriddedBallTexture ("TBGR").
+constexpr int kBallGridTag = 0x54424752;
 }  // namespace
 
 void attachBallTexture(btCollisionShape& sphere, const FaceTexture& texture) {
   attachObjectTexture(sphere, texture, kBallTextureTag);
+  sphere.setUserIndex2(-1);
+}
+
+void attachBallTexture(btCollisionShape& sphere, const GriddedBallTexture& texture) {
+  attachObjectTexture(sphere, texture, kBallTextureTag);
+  sphere.setUserIndex2(kBallGridTag);
+}
+
+const BallTexelGrid* ballTexelGridOf(const btCollisionShape& shape) {
+  const FaceTexture* texture = ballTextureOf(shape);
+  if (!texture || shape.getUserIndex2() != kBallGridTag) return nullptr;
+  return static_cast<const GriddedBallTexture*>(texture)->grid;
 }
 
 const FaceTexture* ballTextureOf(const btCollisionShape& shape) {

@@ -41,8 +41,19 @@ double ballRecessAtUnit(const FaceTexture& texture, double radius_m, const Eigen
 // Attaches `texture` (which must outlive the shape) to a btSphereShape.
 void attachBallTexture(btCollisionShape& sphere, const FaceTexture& texture);
 
+class BallTexelGrid;
+// A ball's texture with the grid of its texel centres (ball_texel_grid.hpp), by which it meets
+// flat ground (ball_on_flat_ground.hpp); PhysicsWorld::addTexturedSphere lays it so. Without a
+// grid (null, or a ball attached a plain FaceTexture) it meets flat ground as any other.
+struct GriddedBallTexture : FaceTexture {
+  const BallTexelGrid* grid = nullptr;  // must outlive the shape
+};
+void attachBallTexture(btCollisionShape& sphere, const GriddedBallTexture& texture);
+
 // The texture attached to a sphere shape; nullptr for any other shape or a plain ball.
 const FaceTexture* ballTextureOf(const btCollisionShape& shape);
+// The grid of that texture's texel centres; nullptr where it has none.
+const BallTexelGrid* ballTexelGridOf(const btCollisionShape& shape);
 
 // Whether the shape carries an object texture: a textured box's faces or a ball's bump map.
 bool hasObjectTexture(const btCollisionShape& shape);

@@ -25,9 +25,7 @@ BallBasins findBallBasins(const tex::TexturedSurface& surface, const Underside& 
   };
   auto fourthDepth = [&] { return candidates[b.picked[kMaxReliefContacts - 1]].depth; };
   if (std::isfinite(hint.reach_m)) {
-    const double bound = std::max(lowest + kBallBasinReachGrowth * std::max(0.0, hint.reach_m) +
-                                      kBallBasinReachMargin * threshold_m,
-                                  closing_within_m);
+    const double bound = firstReadBound(hint, lowest, threshold_m, closing_within_m);
     if (bound < threshold_m) {
       read(bound);
       if (found >= kMaxReliefContacts && fourthDepth() < bound) {

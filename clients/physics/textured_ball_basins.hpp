@@ -16,6 +16,7 @@
 // neighbour and a deeper one count alike), and the texels read are read as the whole disc reads
 // them, in the same order. Otherwise the whole disc is read. What the last step left only decides
 // how much is read, never what is found.
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <limits>
@@ -47,6 +48,13 @@ struct BallBasinHint {
 // (the bound 0.20 against 0.14 mm above its lowest point in a dimple, its rim 0.13 mm up), a
 // rolling bumpy ball's the same.
 inline constexpr double kBallBasinReachGrowth = 1.1, kBallBasinReachMargin = 1.0 / 128.0;
+// That bound, for a ball whose lowest point stands `lowest_gap` above the ground (meaningful where
+// the hint's reach is finite): no less than `closing_within_m`, the gap basins past the fourth are
+// kept within.
+inline double firstReadBound(const BallBasinHint& hint, double lowest_gap, double threshold_m, double closing_within_m) {
+  return std::max(lowest_gap + kBallBasinReachGrowth * std::max(0.0, hint.reach_m) + kBallBasinReachMargin * threshold_m,
+                  closing_within_m);
+}
 
 // How many basins a ball keeps as contacts: the four closest to closing, and after them those
 // that can close within the step (`closing_within_m`, closableGap), up to kMaxBallBasins. Four

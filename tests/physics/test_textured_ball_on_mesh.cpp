@@ -96,8 +96,9 @@ TEST(TexturedBallOnMesh, ABumpyBallRestsOnAFlatReliefMeshAsOnTheReliefPlane) {
   const tex::TextureMap flat = flatRelief(256);
   const ball::Settled on_mesh = settleOnSlab(flat, 2.5);
   const ball::Settled on_plane = ball::settleBumpyBall(flat, 2.5);
-  // Measured: 4 nm apart, both asleep from 2 s (the mesh's chart is the plane's texels, laid on
-  // its face).
+  // Measured: at one height to the bit, both at rest: on either flat relief it meets the ground by
+  // its own lowest points (ball_on_flat_ground.hpp; 4 nm apart when each read its ground's texels,
+  // the mesh's chart being the plane's texels laid on its face).
   EXPECT_NEAR(on_mesh.height, on_plane.height, 1e-7) << on_mesh.centre.transpose() << " against " << on_plane.centre.transpose();
   EXPECT_LT(on_mesh.fastest, 1e-4);
 }

@@ -1,0 +1,50 @@
+#pragma once
+// A ball with a bump map on flat ground: its contacts at the lowest points of its own surface.
+//
+// On flat ground (a plain plane's or a plain box face's smooth chart, or a relief whose depth is
+// one level under the ball) the pair's depth is the height of the ball's own recessed surface, so
+// its basins are the ball's lowest points, and they move with the ball. They are found on the
+// ball's texel centres (ball_texel_grid.hpp): the basins of the depth on each cube face's grid
+// (no deeper than any of their eight neighbours), chosen as findBallBasins chooses (the four
+// closest to closing, then those that can close within the step, up to kMaxBallBasins), each
+// refined between the texels by a pattern search in the ball's own texture coordinates, within a
+// texel of its centre, to 1/1024 texel. The normal is the ground's.
+//
+// The texture is read first only where the smooth sphere lies within a bound of the ground, from
+// the last step's fourth basin (BallBasinHint, as findBallBasins): the recess only lowers the
+// surface into the ball, so a texel outside the bound lies above it, and when four basins are
+// found under it those are the basins the whole disc within the threshold gives. Otherwise the
+// whole disc is read.
+//
+// Sampled at the ground's points instead (findBallBasins, for any ground), a dimple's rim, a sharp
+// crest, was read wherever a ground sample fell near it: a dimpled ball let down on a plain plane
+// from 36 starts stayed awake in 8, rocking in a dimple at 0.7 mm/s with the rest detector on
+// (docs/physics.md, "A ball with a bump map on flat ground").
+#include <array>
+#include <cstddef>
+#include <optional>
+
+#include "clients/physics/ball_texel_grid.hpp"
+#include "clients/physics/contact_selection.hpp"
+#include "clients/physics/textured_ball_basins.hpp"
+#include "clients/physics/underside.hpp"
+#include "textures/textured_surface.hpp"
+
+namespace thx::phys {
+
+// The ground's height under the ball (plane frame) where it is flat there, for a chart or plane
+// with no bend and no edge within reach (the caller knows that): a smooth chart (height 0), or a
+// relief whose depth codes are all one over the texels under the ball's touching disc (the part
+// of its sphere within `threshold_m` of the ground) and one texel round them. nullopt otherwise,
+// and where the ball lies farther than the threshold above the ground.
+std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m);
+
+// The ball's contacts on flat ground at `ground_z`, deepest first, into `out`; how many. Each
+// candidate's p_surface is the ground's point under the ball's point, its depth the gap there
+// (negative: into the ground), its normal the ground's (the relief's, sampled there; +z on a
+// smooth chart), its texel the ground's. `hint` as findBallBasins reads and updates it.
+std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurface& surface,
+                             const Underside& ball, double ground_z, double threshold_m, double closing_within_m,
+                             BallBasinHint& hint, std::array<ReliefCandidate, kMaxBallBasins>& out);
+
+}  // namespace thx::phys
