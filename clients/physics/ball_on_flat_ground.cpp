@@ -79,18 +79,22 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
   // A texel's gap to the ground: its point c + R w (r - recess), measured along z.
   auto gapOf = [&](const Eigen::Vector3d& w, double recess) { return c.z() - down.dot(w) * (r - recess) - ground_z; };
 
-  // Per face, the gaps of the texels read this step (the rest +inf: open, as a deeper one).
+  // Per face, the gaps of the texels read (the rest +inf: open, as a deeper one); every entry is
+  // +inf again when the call returns, whichever ball's grid the next call reads.
   thread_local std::array<std::vector<double>, 6> gaps;
   thread_local std::vector<Texel> read, basins;
   const std::size_t face_texels = std::size_t(grid.columns()) * std::size_t(grid.rows());
   for (std::vector<double>& g : gaps)
-    if (g.size() != face_texels) g.assign(face_texels, std::numeric_limits<double>::infinity());
+    if (g.size() < face_texels) g.assign(face_texels, std::numeric_limits<double>::infinity());
+  auto forgetRead = [&] {
+    for (const Texel& t : read) gaps[std::size_t(t.face)][grid.at(t.k, t.l)] = std::numeric_limits<double>::infinity();
+    read.clear();
+  };
   std::size_t found = 0;
 
   // Reads every texel whose smooth sphere lies within `bound` of the ground, and finds the basins.
   auto readWithin = [&](double bound) {
-    for (const Texel& t : read) gaps[std::size_t(t.face)][grid.at(t.k, t.l)] = std::numeric_limits<double>::infinity();
-    read.clear();
+    forgetRead();
     basins.clear();
     // lowest_gap + r (1 - cos(angle from down)) <= bound.
     const double cos_cap = 1.0 - (bound - lowest_gap) / r;
@@ -164,6 +168,7 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
   }
   if (!exact) readWithin(threshold_m);
   hint.reach_m = found >= kMaxReliefContacts ? fourthGap() - lowest_gap : std::numeric_limits<double>::quiet_NaN();
+  forgetRead();
 
   // Each basin kept refined to its bottom between the texels, in the ball's texture coordinates.
   const double same_basin = kSameBasinTexels * std::min(grid.texelU(), grid.texelV()) / r;  // as a chord of the unit sphere

@@ -114,6 +114,24 @@ TEST(BallOnFlatGround, TheGridReadsTheTextureAsTheContactsDo) {
   EXPECT_LT(worst, 1e-12);
 }
 
+TEST(BallOnFlatGround, BallsWithGridsOfDifferentSizesEachMeetTheFloor) {
+  // The search keeps one scratch per thread for every ball (its texels' gaps, all open again when a
+  // call returns): a 256-texel ball and a 64-texel ball on one floor each rest as they do alone.
+  const tex::TextureMap dimples = tb::dimpleMap();
+  const tex::TextureMap recess = tb::uniformRecess(5e-4);
+  PhysicsWorld world;
+  world.addPlainPlane(at(0.0, 0.0, 0.0), {1.0, 0.0, 0.0});
+  btRigidBody& dimpled =
+      world.addTexturedSphere(tb::kRadius, tb::kMass, at(-0.03, 0.0, tb::kRadius + 1e-4), {0.5, 0.0, 0.0}, tb::ballTexture(dimples));
+  btRigidBody& recessed =
+      world.addTexturedSphere(tb::kRadius, tb::kMass, at(0.03, 0.0, tb::kRadius), {0.5, 0.0, 0.0}, tb::ballTexture(recess));
+  for (int k = 0; k < 400; ++k) world.step(tb::kDt);
+  EXPECT_NEAR(positionOf(recessed).z(), tb::kRadius - 5e-4, 2e-6);
+  // On its smooth part or on a dimple's rim: never lower than its dimples' depth allows.
+  EXPECT_LE(positionOf(dimpled).z(), tb::kRadius + 1e-6);
+  EXPECT_GT(positionOf(dimpled).z(), tb::kRadius - tb::kDimpleDepth);
+}
+
 // The shipped dimpled ball let down 0.2 mm over flat ground at `start` turned by `turn`, no
 // rolling friction, for `seconds` (with the rest detector: until it sleeps): how far its centre
 // strays and how fast it moves over its last second, and whether it sleeps.
