@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "clients/physics/mesh_relief_chart.hpp"
-#include "clients/physics/textured_ball.hpp"
 #include "textures/sampling.hpp"
 
 namespace thx::phys {

@@ -8,8 +8,8 @@
 // A face's texel (k, l) has its centre at u = (k + k_first + 1/2) texel_u, v = (l + l_first + 1/2)
 // texel_v (metres of arc from the face's centre, ballChartUvAtUnit's uv_m): its direction has the
 // tangents of u / r and v / r along the face's two other axes, which are kept per column and row,
-// and its recess is the map's texel there (the same on every face: each lays the texture alike),
-// so the grid holds no more than a column's and a row's worth.
+// and its recess is the map's texel there, kept per texel of one face (the same on every face:
+// each lays the texture alike).
 //
 // Why the ball's own texels: on flat ground the pair's depth is the ball's own surface height, so
 // its basins are the ball's lowest points, which move with the ball. Sampled at the ground's
