@@ -39,14 +39,20 @@ struct Texel {
 
 }  // namespace
 
-std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m) {
+std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
+                                       const GroundBend* bend) {
   const Eigen::Vector3d c = ball.plane_from_object.translation();
   if (isSmoothChart(surface)) return 0.0;  // it stores no depth
   if (!surface.usesRelief()) return std::nullopt;
   const tex::TextureMap& map = surface.map();
-  // A relief lies at or under its plane (height <= 0): the disc within the threshold of the plane
-  // holds the disc within it of the relief, wherever that lies.
-  const double rho = touchingRadius(ball.radius, c.z() - ball.radius, threshold_m);
+  // A relief lies at or under its plane (height <= 0), and the bend raises it no higher than it
+  // rises under the ball: the disc within the threshold and that rise of the plane holds the disc
+  // within the threshold of the relief, wherever that lies.
+  const double rise =
+      bend ? bend->highestOver(Eigen::AlignedBox2d(c.head<2>() - Eigen::Vector2d::Constant(ball.radius),
+                                                   c.head<2>() + Eigen::Vector2d::Constant(ball.radius)))
+           : 0.0;
+  const double rho = touchingRadius(ball.radius, c.z() - ball.radius, threshold_m + rise);
   if (!(rho > 0.0)) return std::nullopt;
   long long i0 = std::numeric_limits<long long>::max(), j0 = i0, i1 = std::numeric_limits<long long>::min(), j1 = i1;
   for (const double sx : {-rho, rho})
@@ -68,15 +74,41 @@ std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, cons
 }
 
 std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurface& surface,
-                             const Underside& ball, double ground_z, double threshold_m, double closing_within_m,
-                             BallBasinHint& hint, std::array<ReliefCandidate, kMaxBallBasins>& out) {
+                             const Underside& ball, double ground_z, const GroundBend* bend, double threshold_m,
+                             double closing_within_m, BallBasinHint& hint,
+                             std::array<ReliefCandidate, kMaxBallBasins>& out) {
   const double r = ball.radius;
   const Eigen::Matrix3d rot = ball.plane_from_object.linear();
   const Eigen::Vector3d c = ball.plane_from_object.translation();
   const Eigen::Vector3d down = -rot.row(2).transpose();  // the plane's -z in the object frame
-  const double lowest_gap = c.z() - r - ground_z;
-  // A texel's gap to the ground: its point c + R w (r - recess), measured along z.
-  auto gapOf = [&](const Eigen::Vector3d& w, double recess) { return c.z() - down.dot(w) * (r - recess) - ground_z; };
+  auto groundUnder = [&](double x, double y) { return bend ? ground_z + bend->height(x, y) : ground_z; };
+  // A texel's gap to the ground: its point p = c + R w (r - recess), measured along z to the
+  // ground under p (on flat ground the same for every p, so only p's height counts).
+  auto gapOf = [&](const Eigen::Vector3d& w, double recess) {
+    if (!bend) return c.z() - down.dot(w) * (r - recess) - ground_z;
+    const Eigen::Vector3d p = c + rot * (w * (r - recess));
+    return p.z() - groundUnder(p.x(), p.y());
+  };
+  // Where the ground is bent: its upward normal under the centre, n = (-slope, 1) / L, and the
+  // most it curves upward (the larger eigenvalue of its curvatures, no less than 0).
+  Eigen::Vector3d n_under = Eigen::Vector3d::UnitZ();
+  double slope_length = 1.0, curving_up = 0.0, centre_gap = c.z() - ground_z;
+  if (bend) {
+    const Eigen::Vector2d s = bend->slope(c.x(), c.y());
+    n_under = Eigen::Vector3d(-s.x(), -s.y(), 1.0);
+    slope_length = n_under.norm();
+    n_under /= slope_length;
+    const double mean = 0.5 * (bend->xx + bend->yy), half = 0.5 * (bend->xx - bend->yy);
+    curving_up = std::max(0.0, mean + std::sqrt(half * half + bend->xy * bend->xy));
+    centre_gap = c.z() - groundUnder(c.x(), c.y());
+  }
+  // The smooth sphere's gap straight down the ground's normal: on flat ground its lowest point's.
+  const double lowest_gap = bend ? [&] {
+    const Eigen::Vector3d p = c - r * n_under;
+    return p.z() - groundUnder(p.x(), p.y());
+  }()
+                                 : c.z() - r - ground_z;
+  const Eigen::Vector3d n_object = rot.transpose() * n_under;  // that normal in the object frame
 
   // Per face, the gaps of the texels read (the rest +inf: open, as a deeper one); every entry is
   // +inf again when the call returns, whichever ball's grid the next call reads.
@@ -91,10 +123,9 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
   };
   std::size_t found = 0;
 
-  // Reads every texel whose smooth sphere lies within `bound` of the ground, and finds the basins.
-  auto readWithin = [&](double bound) {
-    forgetRead();
-    basins.clear();
+  // Reads every texel whose smooth sphere lies within `bound` of flat ground (a cap round the
+  // plane's -z).
+  auto readFlatWithin = [&](double bound) {
     // lowest_gap + r (1 - cos(angle from down)) <= bound.
     const double cos_cap = 1.0 - (bound - lowest_gap) / r;
     if (cos_cap > 1.0) return;
@@ -122,6 +153,47 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
         }
       }
     }
+  };
+  // Reads every texel whose point lies within `bound` of bent ground. A block is skipped where
+  // even the smooth sphere lies farther above the ground over all of it: the ground's height
+  // h(c + r w) is quadratic, so the smooth sphere's gap at direction w (plane frame) is the
+  // centre's gap + r L (w . n) - r^2 (w_xy^T H w_xy) / 2, no less than the centre's gap +
+  // r L min(w . n, 0) - r^2 curving_up |w_xy|^2 / 2, and a recessed point, nearer the centre, lies
+  // no nearer the ground on the ball's side that faces it.
+  auto readBentWithin = [&](double bound) {
+    for (int f = 0; f < 6; ++f) {
+      std::vector<double>& g = gaps[std::size_t(f)];
+      const int a = f / 2;
+      // The face's axes in the plane frame: a texel's point is c + (r - recess) (A + tanU B + tanV D) / len.
+      const Eigen::Vector3d A = (f % 2 ? -1.0 : 1.0) * rot.col(a), B = rot.col((a + 1) % 3), D = rot.col((a + 2) % 3);
+      for (const BallTexelGrid::Block& b : grid.blocks(f)) {
+        const double cos_n = b.centre.dot(n_object), sin_n = std::sqrt(std::max(0.0, 1.0 - cos_n * cos_n));
+        // The least w . n over the block: cos(angle + spread), -1 past pi.
+        const double least_dot = cos_n <= -b.cos_spread ? -1.0 : cos_n * b.cos_spread - sin_n * b.sin_spread;
+        // The most |w_xy|^2 over the block: sin^2 of its angle from -z plus the spread (1 past pi / 2).
+        const double cos_z = b.centre.dot(down), sin_z = std::sqrt(std::max(0.0, 1.0 - cos_z * cos_z));
+        const double most_sin = cos_z <= b.sin_spread ? 1.0 : sin_z * b.cos_spread + cos_z * b.sin_spread;
+        const double least_gap = centre_gap + r * slope_length * std::min(least_dot, 0.0) -
+                                 0.5 * r * r * curving_up * most_sin * most_sin;
+        if (least_gap > bound) continue;
+        for (int l = b.l0; l < b.l1; ++l) {
+          const double tv = grid.tanV(l), row_length2 = 1.0 + tv * tv;
+          const Eigen::Vector3d row = A + tv * D;
+          for (int k = b.k0; k < b.k1; ++k) {
+            const double tu = grid.tanU(k);
+            const std::size_t at = grid.at(k, l);
+            const Eigen::Vector3d p = c + ((r - grid.recess(at)) / std::sqrt(row_length2 + tu * tu)) * (row + tu * B);
+            const double gap = p.z() - groundUnder(p.x(), p.y());
+            if (gap > bound) continue;
+            g[at] = gap;
+            read.push_back({f, k, l, gap});
+          }
+        }
+      }
+    }
+  };
+  // The texels read that are no deeper than any of their eight neighbours, deepest first.
+  auto findBasins = [&] {
     for (const Texel& t : read) {
       const std::vector<double>& g = gaps[std::size_t(t.face)];
       bool basin = true, by_edge = false;
@@ -154,6 +226,13 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
     // is the same for the same pose.
     std::stable_sort(basins.begin(), basins.end(), [](const Texel& a, const Texel& b) { return a.depth < b.depth; });
     found = basins.size();
+  };
+  auto readWithin = [&](double bound) {
+    forgetRead();
+    basins.clear();
+    if (bend) readBentWithin(bound);
+    else readFlatWithin(bound);
+    findBasins();
   };
   auto fourthGap = [&] { return basins[kMaxReliefContacts - 1].depth; };
 
@@ -201,8 +280,8 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
     const Eigen::Vector3d p = c + rot * (best_w * (r - best_recess));
     ReliefCandidate& o = out[kept++];
     const tex::SurfacePoint s = surface.at(p.x(), p.y());
-    o.p_surface = Eigen::Vector3d(p.x(), p.y(), ground_z);
-    o.n_local = s.n_local;
+    o.p_surface = Eigen::Vector3d(p.x(), p.y(), groundUnder(p.x(), p.y()));
+    o.n_local = bend ? bend->tilt(s.n_local, p.x(), p.y()) : s.n_local;
     o.depth = best;
     surface.texelContaining(p.x(), p.y(), o.i, o.j);
   }

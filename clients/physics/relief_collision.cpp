@@ -272,8 +272,9 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 // `closing_within_m`: the gap below which basins past the fourth are kept (findBallBasins);
 // `more_manifolds` (cleared): where the points the result's own cannot hold go.
 // On flat ground (a plain plane's or a plain box face's smooth chart, a relief of one level under
-// the ball) and with its texel grid (`grid`, PhysicsWorld::addTexturedSphere), the ball's own
-// lowest points instead (ball_on_flat_ground.hpp).
+// the ball), or a mesh chart's smoothly bent one (its bend known, no chart edge in reach), and
+// with its texel grid (`grid`, PhysicsWorld::addTexturedSphere), the ball's own lowest points
+// instead (ball_on_flat_ground.hpp).
 void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const ChartBoundary* boundary,
                            const Underside& underside, const FaceTexture& texture, const BallTexelGrid* grid,
                            double threshold, const Eigen::Isometry3d& world_from_plane, const BodyMotion& motion,
@@ -281,13 +282,15 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
                            std::span<btPersistentManifold* const> more_manifolds, bool settle_points = false) {
   const GroundBend* bent = bend.flat() ? nullptr : &bend;
   std::array<ReliefCandidate, kMaxBallBasins> chosen{};
-  // On flat ground, the ball's own lowest points (ball_on_flat_ground.hpp). A flat face's fit
-  // is rounding (1e-15 /m on a box's face), as for a textured box; a form not fitted says nothing.
+  // On flat or smoothly bent ground, the ball's own lowest points (ball_on_flat_ground.hpp). A
+  // flat face's fit is rounding (1e-15 /m on a box's face), as for a textured box, and is read as
+  // flat; a form not fitted says nothing.
   const double reach = (underside.plane_from_object.translation().head<2>() - bend.centre).norm() + underside.radius;
-  if (grid && bend.known && bend.flatWithin(reach, 1e-12) && !(boundary && boundary->count > 0)) {
-    if (const std::optional<double> ground_z = flatGroundHeight(surface, underside, threshold)) {
-      const std::size_t n =
-          ballOnFlatGround(*grid, surface, underside, *ground_z, threshold, closing_within_m, hint, chosen);
+  const GroundBend* bent_in_reach = bend.flatWithin(reach, 1e-12) ? nullptr : &bend;
+  if (grid && bend.known && !(boundary && boundary->count > 0)) {
+    if (const std::optional<double> ground_z = flatGroundHeight(surface, underside, threshold, bent_in_reach)) {
+      const std::size_t n = ballOnFlatGround(*grid, surface, underside, *ground_z, bent_in_reach, threshold,
+                                             closing_within_m, hint, chosen);
       addReliefContacts(std::span(chosen.data(), n), underside, surface, bend, world_from_plane, false, threshold, result,
                         &motion, true, KeptPoints::AsBullet, more_manifolds);
       return;
