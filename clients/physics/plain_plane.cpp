@@ -38,6 +38,10 @@ double plainPlaneTexels(const btCollisionShape& object) {
   return side * side;
 }
 
+double plainPlaneTexelBudget(const btCollisionShape& object) {
+  return ballTexelGridOf(object) ? kGriddedBallPlainPlaneTexelBudget : kPlainPlaneTexelBudget;
+}
+
 void markPlainPlane(btCollisionShape& plane) { plane.setUserIndex(kPlainPlaneTag); }
 
 bool isPlainPlane(const btCollisionShape& shape) {
@@ -51,7 +55,7 @@ btCollisionAlgorithm* PlainPlaneCreateFunc::CreateCollisionAlgorithm(btCollision
   const btCollisionObjectWrapper* plane = m_swapped ? body0 : body1;
   const btCollisionShape& shape = *object->getCollisionShape();
   if (hasObjectTexture(shape) && isPlainPlane(*plane->getCollisionShape()) &&
-      plainPlaneTexels(shape) <= kPlainPlaneTexelBudget)
+      plainPlaneTexels(shape) <= plainPlaneTexelBudget(shape))
     return ManifoldAlgorithm::create<ReliefCollisionAlgorithm>(ci, body0, body1, bool(m_swapped));
   return otherwise->CreateCollisionAlgorithm(ci, body0, body1);
 }

@@ -13,6 +13,14 @@
 // more than kPlainPlaneTexelBudget of its texels (a box's two longer sides; a ball's cap within
 // its contact breaking threshold of the plane) meets a plain plane as its coarse shape: the
 // 20 x 20 cm slab of the tests, 410,000 texels (512 x 512 samples), cost 12.8 ms a step read so.
+// A ball with its texel grid (GriddedBallTexture, as PhysicsWorld::addTexturedSphere lays it)
+// meets a plain plane on its own texels instead (ball_on_flat_ground.hpp), and is held to
+// kGriddedBallPlainPlaneTexelBudget of the same count, eight times the raster's: the 1 cm dimpled
+// ball rolling on the plane at 0.1 m/s cost 110-120 us a step at 256 texels a face (7,361 by that
+// count) against 644-659 us read by the raster, and 185, 254, 514 and 841 us at 384, 512, 768 and
+// 1024 texels a face (16,562 to 117,772), where at 384 and more it had met the plane as a smooth
+// sphere; the raster at its own budget, at its 88 ns a texel, about 1.4 ms (docs/physics.md, "A
+// textured object on a plain plane").
 #include <BulletCollision/CollisionDispatch/btCollisionConfiguration.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
@@ -23,10 +31,14 @@
 namespace thx::phys {
 
 inline constexpr double kPlainPlaneTexelBudget = 16384.0;
+inline constexpr double kGriddedBallPlainPlaneTexelBudget = 131072.0;
 
 // How many of its own texels a textured object's underside holds on a plain plane (above); 0 for
 // an object without a texture.
 double plainPlaneTexels(const btCollisionShape& object);
+// The most of them it may hold and still meet a plain plane by its texture: the gridded ball's
+// budget for a ball with a texel grid, the raster's for the rest.
+double plainPlaneTexelBudget(const btCollisionShape& object);
 
 // Marks a btStaticPlaneShape as a plain plane that textured objects meet by their texture.
 void markPlainPlane(btCollisionShape& plane);
@@ -34,7 +46,7 @@ void markPlainPlane(btCollisionShape& plane);
 bool isPlainPlane(const btCollisionShape& shape);
 
 // The create function for a box or a sphere against a static plane: the relief algorithm
-// (relief_collision.hpp) where the object carries a texture within the budget and the plane is a
+// (relief_collision.hpp) where the object carries a texture within its budget and the plane is a
 // marked plain plane, `otherwise` (the configuration's convex-plane algorithm) for the rest.
 struct PlainPlaneCreateFunc : btCollisionAlgorithmCreateFunc {
   PlainPlaneCreateFunc(btCollisionAlgorithmCreateFunc* otherwise_func, bool plane_first)

@@ -13,6 +13,7 @@
 #include <cstdio>
 
 #include "clients/physics/plain_plane.hpp"
+#include "clients/physics/textured_ball.hpp"
 #include "tests/physics/grooved_block_scene.hpp"
 #include "tests/physics/textured_ball_scene.hpp"
 
@@ -183,6 +184,35 @@ TEST(TexturedObjectsOnAPlainPlane, AnObjectHoldingMoreTexelsThanTheBudgetMeetsIt
                                            {1.0, 0.0, 0.0}, faces);
   for (int k = 0; k < 200; ++k) world.step(gb::kDt);
   EXPECT_NEAR(positionOf(body).z(), gb::kSlabHalf.z(), 1e-6);
+}
+
+TEST(TexturedObjectsOnAPlainPlane, ABallWithItsTexelGridMeetsItByItsTextureBeyondTheRastersBudget) {
+  // The dimpled ball with its map at 512 texels a face holds some 29,000 texels by the raster's
+  // count, over its budget: laid by addTexturedSphere (its texel grid) it meets the plane on its
+  // own texels and rests in a dimple as the 256-texel ball does (measured 127.0 and 127.5 µm
+  // into its radius); attached by hand without a grid it would meet the plane as a smooth sphere
+  // (until 2026-12-07, evening, every ball did at 384 texels a face and more).
+  const tex::TextureMap fine = heightMap(512, tb::kTile, tb::dimples);
+  const tex::TextureMap coarse = tb::dimpleMap();
+  const FaceTexture fine_texture = tb::ballTexture(fine);
+  btSphereShape by_hand{btScalar(tb::kRadius)};
+  attachBallTexture(by_hand, fine_texture);
+  EXPECT_GT(plainPlaneTexels(by_hand), kPlainPlaneTexelBudget);
+  EXPECT_EQ(plainPlaneTexelBudget(by_hand), kPlainPlaneTexelBudget);
+  PhysicsWorld world;
+  world.addPlainPlane(at(0.0, 0.0, 0.0), {0.5, 0.0, 0.0});
+  btRigidBody& fine_ball =
+      world.addTexturedSphere(tb::kRadius, tb::kMass, at(-0.03, 0.0, tb::kRadius + 1e-4), {0.5, 0.0, 0.0}, fine_texture);
+  btRigidBody& coarse_ball =
+      world.addTexturedSphere(tb::kRadius, tb::kMass, at(0.03, 0.0, tb::kRadius + 1e-4), {0.5, 0.0, 0.0}, tb::ballTexture(coarse));
+  EXPECT_EQ(plainPlaneTexelBudget(*fine_ball.getCollisionShape()), kGriddedBallPlainPlaneTexelBudget);
+  EXPECT_LT(plainPlaneTexels(*fine_ball.getCollisionShape()), kGriddedBallPlainPlaneTexelBudget);
+  for (int k = 0; k < 300; ++k) world.step(tb::kDt);
+  const double fine_z = positionOf(fine_ball).z(), coarse_z = positionOf(coarse_ball).z();
+  std::printf("[measured] dimpled ball on a plain plane, 512 and 256 texels a face: %.2f and %.2f um into its radius\n",
+              (tb::kRadius - fine_z) * 1e6, (tb::kRadius - coarse_z) * 1e6);
+  EXPECT_LT(fine_z, tb::kRadius - 100e-6);
+  EXPECT_NEAR(fine_z, coarse_z, 2e-6);
 }
 
 TEST(TexturedObjectsOnAPlainPlane, APlainBallAndAPlainBoxKeepBulletsPoints) {
