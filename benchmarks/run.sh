@@ -70,6 +70,10 @@
 #              cost of a step beside a plain ball; on UV spheres of 64, 128 and 256 segments, a
 #              recessed ball's swing in a bowl and where it leaves a sphere's top; about a minute;
 #              its tables go to docs/physics.md)
+#              or ball_own_texels (issue 29: the dimpled ball let down in a smooth bowl from 24
+#              starts, at rest or not; on a plain plane at 256 to 1024 texels a face, how deep it
+#              rests and what a step costs rolling; about a minute and a half; its table goes to
+#              docs/physics.md)
 #              or rolling_ridges (issue 29: a ball rolling across sine ridges on the relief plane and on
 #              a relief mesh, lifted and steered, against the rolling-impact law, with the cost of a
 #              step; about half a minute; its table goes to docs/physics.md)
@@ -412,6 +416,12 @@ run_textured_ball() {
   bench_with_table bench_textured_ball "$ROOT/docs/physics.md"
 }
 
+run_ball_own_texels() {
+  need "$BIN/bench_ball_own_texels" || return 1
+  say "part ball_own_texels: a ball with a bump map on featureless ground, on its own texels (about a minute and a half)"
+  bench_with_table bench_ball_own_texels "$ROOT/docs/physics.md"
+}
+
 run_rolling_ridges() {
   need "$BIN/bench_rolling_ridges" || return 1
   say "part rolling_ridges: a ball across sine ridges, plane and mesh against the rolling-impact law (about half a minute)"
@@ -472,14 +482,14 @@ run_report() {
 
 for part in "${PARTS[@]}"; do
   case "$part" in
-    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | block_by_pole | textured_pair | capsule_run | pen_on_objects | textured_ball | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | ball_on_small_mesh | report)
+    render | force_error | memory | latency | clients | clients_lan | physics | visual | visual_servo | audio | audio-live | load | rates | devices | capsule | table1 | mesh_force | physics_mesh | lifted_swing | block_by_pole | textured_pair | capsule_run | pen_on_objects | textured_ball | ball_own_texels | rolling_ridges | rod_in_groove | rocking_on_curve | object_by_crease | ball_on_small_mesh | report)
       if ! "run_${part//-/_}"; then
         say "part '$part' FAILED (logs in $WORK)"
         failed+=("$part")
       fi
       ;;
     *)
-      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing block_by_pole textured_pair capsule_run pen_on_objects textured_ball rolling_ridges rod_in_groove rocking_on_curve object_by_crease ball_on_small_mesh report)"
+      say "unknown part '$part' (expected: render force_error memory latency clients clients_lan physics visual visual_servo audio audio-live load rates devices capsule table1 mesh_force physics_mesh lifted_swing block_by_pole textured_pair capsule_run pen_on_objects textured_ball ball_own_texels rolling_ridges rod_in_groove rocking_on_curve object_by_crease ball_on_small_mesh report)"
       exit 2
       ;;
   esac

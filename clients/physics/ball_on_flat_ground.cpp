@@ -158,8 +158,8 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
   // even the smooth sphere lies farther above the ground over all of it: the ground's height
   // h(c + r w) is quadratic, so the smooth sphere's gap at direction w (plane frame) is the
   // centre's gap + r L (w . n) - r^2 (w_xy^T H w_xy) / 2, no less than the centre's gap +
-  // r L min(w . n, 0) - r^2 curving_up |w_xy|^2 / 2, and a recessed point, nearer the centre, lies
-  // no nearer the ground on the ball's side that faces it.
+  // r L min(w . n, 0) - r^2 curving_up |w_xy|^2 / 2; a recessed point's gap (r - recess for r) is
+  // no less than that bound either, as curving_up >= 0.
   auto readBentWithin = [&](double bound) {
     for (int f = 0; f < 6; ++f) {
       std::vector<double>& g = gaps[std::size_t(f)];

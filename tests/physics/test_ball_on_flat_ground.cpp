@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <random>
 
 #include "clients/physics/ball_on_flat_ground.hpp"
 #include "clients/physics/mesh_relief_chart.hpp"
@@ -18,16 +17,7 @@ namespace {
 
 namespace tb = textured_ball;
 
-// A turn of the ball drawn from `seed`: any orientation, so its lowest point lies anywhere on its
-// cube faces, by their edges and corners too.
-Eigen::Matrix3d anyTurn(unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> angle(-3.0, 3.0);
-  return (Eigen::AngleAxisd(angle(random), Eigen::Vector3d::UnitX()) *
-          Eigen::AngleAxisd(angle(random), Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(angle(random), Eigen::Vector3d::UnitZ()))
-      .toRotationMatrix();
-}
+using tb::anyTurn;
 
 // The contacts of a ball of `texture` at `pose` (plane frame) on flat ground at height 0.
 std::size_t contactsAt(const BallTexelGrid& grid, const tex::TexturedSurface& ground,

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "clients/physics/bullet_convert.hpp"
@@ -47,6 +48,18 @@ inline double dimples(double x, double y) {
   return r2 < kDimpleRim * kDimpleRim ? -(std::sqrt(cap * cap - r2) - (cap - kDimpleDepth)) : 0.0;
 }
 inline tex::TextureMap dimpleMap() { return heightMap(kBallTexels, kTile, dimples); }
+
+// A turn of the ball drawn from `seed` (std::mt19937, three angles in [-3, 3] rad about x, y and
+// z): any orientation, so its lowest point lies anywhere on its cube faces, by their edges and
+// corners too.
+inline Eigen::Matrix3d anyTurn(unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0);
+  return (Eigen::AngleAxisd(angle(random), Eigen::Vector3d::UnitX()) *
+          Eigen::AngleAxisd(angle(random), Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(angle(random), Eigen::Vector3d::UnitZ()))
+      .toRotationMatrix();
+}
 
 inline FaceTexture ballTexture(const tex::TextureMap& map) {
   FaceTexture t;
