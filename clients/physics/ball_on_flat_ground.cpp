@@ -39,11 +39,18 @@ struct Texel {
 
 }  // namespace
 
-std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
-                                       const GroundBend* bend) {
+namespace {
+
+// The least and the most depth code of the relief over the texels under the ball's touching disc
+// (the part of its sphere within `threshold_m` of the ground) and one texel round them, and one of
+// those texels (resolved); false where there is no disc or it holds too many texels.
+struct CodeRange {
+  std::uint16_t lo = 0, hi = 0;
+  int ri = 0, rj = 0;
+};
+std::optional<CodeRange> depthCodesUnder(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
+                                         const GroundBend* bend) {
   const Eigen::Vector3d c = ball.plane_from_object.translation();
-  if (isSmoothChart(surface)) return 0.0;  // it stores no depth
-  if (!surface.usesRelief()) return std::nullopt;
   const tex::TextureMap& map = surface.map();
   // A relief lies at or under its plane (height <= 0), and the bend raises it no higher than it
   // rises under the ball: the disc within the threshold and that rise of the plane holds the disc
@@ -63,25 +70,54 @@ std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, cons
     }
   if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMostFlatnessTexels) return std::nullopt;
   const tex::Address address = surface.sampling().address;
-  const int ri0 = tex::resolveIndex(i0, map.width(), address), rj0 = tex::resolveIndex(j0, map.height(), address);
-  const std::uint16_t level = map.depthCode(ri0, rj0);
+  CodeRange range;
+  range.ri = tex::resolveIndex(i0, map.width(), address), range.rj = tex::resolveIndex(j0, map.height(), address);
+  range.lo = range.hi = map.depthCode(range.ri, range.rj);
   for (long long j = j0; j <= j1; ++j) {
     const int rj = tex::resolveIndex(j, map.height(), address);
-    for (long long i = i0; i <= i1; ++i)
-      if (map.depthCode(tex::resolveIndex(i, map.width(), address), rj) != level) return std::nullopt;
+    for (long long i = i0; i <= i1; ++i) {
+      const std::uint16_t code = map.depthCode(tex::resolveIndex(i, map.width(), address), rj);
+      range.lo = std::min(range.lo, code), range.hi = std::max(range.hi, code);
+    }
   }
-  return -double(map.depth(ri0, rj0));
+  return range;
+}
+
+}  // namespace
+
+std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
+                                       const GroundBend* bend) {
+  if (isSmoothChart(surface)) return 0.0;  // it stores no depth
+  if (!surface.usesRelief()) return std::nullopt;
+  const std::optional<CodeRange> range = depthCodesUnder(surface, ball, threshold_m, bend);
+  if (!range || range->lo != range->hi) return std::nullopt;
+  return -double(surface.map().depth(range->ri, range->rj));
+}
+
+bool reliefNearlyLevel(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
+                       const GroundBend* bend) {
+  if (isSmoothChart(surface) || !surface.usesRelief()) return false;
+  const std::optional<CodeRange> range = depthCodesUnder(surface, ball, threshold_m, bend);
+  return range && double(range->hi - range->lo) * surface.map().depthStep() <= kNearlyLevelRelief;
 }
 
 std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurface& surface,
                              const Underside& ball, double ground_z, const GroundBend* bend, double threshold_m,
                              double closing_within_m, BallBasinHint& hint,
-                             std::array<ReliefCandidate, kMaxBallBasins>& out) {
+                             std::array<ReliefCandidate, kMaxBallBasins>& out, bool read_relief) {
   const double r = ball.radius;
   const Eigen::Matrix3d rot = ball.plane_from_object.linear();
   const Eigen::Vector3d c = ball.plane_from_object.translation();
   const Eigen::Vector3d down = -rot.row(2).transpose();  // the plane's -z in the object frame
-  auto groundUnder = [&](double x, double y) { return bend ? ground_z + bend->height(x, y) : ground_z; };
+  // A nearly level relief is read under each point (its bilinear height, as the contacts read
+  // it), on the bent ground's path, which measures every point's gap to the ground under it.
+  static const GroundBend kUnbent{};
+  if (read_relief && !bend) bend = &kUnbent;
+  auto groundUnder = [&](double x, double y) {
+    const double level = bend ? ground_z + bend->height(x, y) : ground_z;
+    if (!read_relief) return level;
+    return level - double(tex::sampleDepth(surface.map(), surface.mapping().uvOfLocal({x, y}), surface.sampling()));
+  };
   // A texel's gap to the ground: its point p = c + R w (r - recess), measured along z to the
   // ground under p (on flat ground the same for every p, so only p's height counts).
   auto gapOf = [&](const Eigen::Vector3d& w, double recess) {

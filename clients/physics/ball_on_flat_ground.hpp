@@ -6,7 +6,8 @@
 // its basins are the ball's lowest points, and they move with the ball. The same holds on a
 // mesh's chart whose smooth surface bends under the ball (GroundBend: a bowl's or a sphere's),
 // smooth or with a relief of one level laid on it: the ground has no features of its own there,
-// and each point's gap is measured to the bent ground under it. They are found on the
+// and each point's gap is measured to the bent ground under it. A relief level to within a
+// micrometre under the ball (reliefNearlyLevel) is read the same way, its height under each point. They are found on the
 // ball's texel centres (ball_texel_grid.hpp): the basins of the depth on each cube face's grid
 // (no deeper than any of their eight neighbours), chosen as findBallBasins chooses (the four
 // closest to closing, then those that can close within the step, up to kMaxBallBasins), each
@@ -52,16 +53,29 @@ namespace thx::phys {
 std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
                                        const GroundBend* bend = nullptr);
 
+// Whether a relief's depth over the same texels varies by no more than kNearlyLevelRelief (its
+// codes not all one: a nominally flat map's quantisation, a sine a tenth of a micrometre high).
+// The ball meets it on its own texels too, the relief's bilinear height read under each point
+// (ballOnFlatGround's `read_relief`). Where the relief has features of its own (a bumpy plane's
+// 0.4 mm bumps) that reading was worse than the ground's samples (docs/physics.md, "A ball with a
+// bump map on flat ground", "Not done"), so the tolerance is kept tight: a micrometre (the case
+// measured with it, a sine 0.1 um high, varies by up to 0.2 um).
+inline constexpr double kNearlyLevelRelief = 1e-6;
+bool reliefNearlyLevel(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
+                       const GroundBend* bend = nullptr);
+
 // The ball's contacts on flat ground at `ground_z`, deepest first, into `out`; how many. Each
 // candidate's p_surface is the ground's point under the ball's point, its depth the gap there
 // (negative: into the ground), its normal the ground's (the relief's, sampled there; +z on a
 // smooth chart), its texel the ground's. `hint` as findBallBasins reads and updates it.
+// With `read_relief` (a nearly level relief, reliefNearlyLevel) the ground under a point is the
+// relief's bilinear height there (`ground_z` then 0), raised by the bend where there is one.
 // On bent ground (`bend` non-null: a mesh chart's smooth surface, GroundBend), the ground under a
 // point lies at ground_z plus the bend's height there, each gap is measured to it and each normal
 // is tilted by its slope. nullptr: flat.
 std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurface& surface,
                              const Underside& ball, double ground_z, const GroundBend* bend, double threshold_m,
                              double closing_within_m, BallBasinHint& hint,
-                             std::array<ReliefCandidate, kMaxBallBasins>& out);
+                             std::array<ReliefCandidate, kMaxBallBasins>& out, bool read_relief = false);
 
 }  // namespace thx::phys

@@ -272,7 +272,8 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 // `closing_within_m`: the gap below which basins past the fourth are kept (findBallBasins);
 // `more_manifolds` (cleared): where the points the result's own cannot hold go.
 // On flat ground (a plain plane's or a plain box face's smooth chart, a relief of one level under
-// the ball), or a mesh chart's smoothly bent one (its bend known, no chart edge in reach), and
+// the ball; or level to within kNearlyLevelRelief, read under each point), or a mesh chart's
+// smoothly bent one (its bend known, no chart edge in reach), and
 // with its texel grid (`grid`, PhysicsWorld::addTexturedSphere), the ball's own lowest points
 // instead (ball_on_flat_ground.hpp).
 void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend& bend, const ChartBoundary* boundary,
@@ -288,9 +289,11 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   const double reach = (underside.plane_from_object.translation().head<2>() - bend.centre).norm() + underside.radius;
   const GroundBend* bent_in_reach = bend.flatWithin(reach, 1e-12) ? nullptr : &bend;
   if (grid && bend.known && !(boundary && boundary->count > 0)) {
-    if (const std::optional<double> ground_z = flatGroundHeight(surface, underside, threshold, bent_in_reach)) {
-      const std::size_t n = ballOnFlatGround(*grid, surface, underside, *ground_z, bent_in_reach, threshold,
-                                             closing_within_m, hint, chosen);
+    const std::optional<double> ground_z = flatGroundHeight(surface, underside, threshold, bent_in_reach);
+    const bool nearly_level = !ground_z && reliefNearlyLevel(surface, underside, threshold, bent_in_reach);
+    if (ground_z || nearly_level) {
+      const std::size_t n = ballOnFlatGround(*grid, surface, underside, ground_z.value_or(0.0), bent_in_reach, threshold,
+                                             closing_within_m, hint, chosen, nearly_level);
       addReliefContacts(std::span(chosen.data(), n), underside, surface, bend, world_from_plane, false, threshold, result,
                         &motion, true, KeptPoints::AsBullet, more_manifolds);
       return;

@@ -119,6 +119,54 @@ TEST(BallOnFlatGround, OnBentGroundARecessedBallTouchesWhereItsSphereMeetsTheBen
   EXPECT_LT(worst_normal, 1e-12);
 }
 
+TEST(BallOnFlatGround, OnAReliefLevelToAMicrometreItsHeightIsReadUnderEachPoint) {
+  // A ramp 0.8 um deep across 4 cm (a slope of 2e-5): its depth codes differ under the ball, by
+  // far less than a micrometre, and the ball, turned 20 ways, has one contact at the gap of its
+  // recessed sphere to the ramp's plane. A ramp 80 times as steep is not nearly level.
+  auto ramp = [](double deepest) {
+    tex::TextureMap map(64, 64, tex::Representation::Relief, deepest);
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i) map.setDepth(i, j, deepest * double(i) / 63.0);
+    return map;
+  };
+  const tex::TextureMap gentle = ramp(0.8e-6), steep = ramp(64e-6);
+  const SurfaceHolder gentle_plane = holdSurface(gentle, 0.04, true), steep_plane = holdSurface(steep, 0.04, true);
+  const tex::TextureMap recess = tb::uniformRecess(5e-4);
+  const FaceTexture texture = tb::ballTexture(recess);
+  const std::unique_ptr<const BallTexelGrid> grid = BallTexelGrid::build(texture, tb::kRadius);
+  ASSERT_TRUE(grid);
+  const double rho = tb::kRadius - grid->recess(0, 0);
+  const tex::TexturedSurface& ground = gentle_plane.surface;
+  const Eigen::Vector2d c(0.001, -0.002);
+  // The ramp's plane as the contacts read it (bilinear: exactly linear away from the map's wrap).
+  const double h = ground.at(c.x(), c.y()).height_m, step = 1e-3;
+  const Eigen::Vector2d slope((ground.at(c.x() + step, c.y()).height_m - h) / step,
+                              (ground.at(c.x(), c.y() + step).height_m - h) / step);
+  ASSERT_GT(slope.norm(), 1e-5);
+  const double z = h + rho + 3e-6;
+  const double expected_gap = z - h - rho * std::sqrt(1.0 + slope.squaredNorm());
+  const Underside level_ball = Underside::sphere(at(c.x(), c.y(), z), tb::kRadius);
+  EXPECT_FALSE(flatGroundHeight(ground, level_ball, 2e-4));
+  EXPECT_TRUE(reliefNearlyLevel(ground, level_ball, 2e-4));
+  EXPECT_FALSE(reliefNearlyLevel(steep_plane.surface, level_ball, 2e-4));
+  double worst = 0.0;
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    Eigen::Isometry3d pose = at(c.x(), c.y(), z);
+    pose.linear() = anyTurn(seed);
+    BallBasinHint hint;
+    std::array<ReliefCandidate, kMaxBallBasins> found{};
+    const std::size_t n = ballOnFlatGround(*grid, ground, Underside::sphere(pose, tb::kRadius), 0.0, nullptr, 2e-4, 1e-5,
+                                           hint, found, true);
+    ASSERT_EQ(n, 1u) << "turn " << seed;
+    worst = std::max(worst, std::fabs(found[0].depth - expected_gap));
+    const Eigen::Vector3d p = found[0].p_surface;
+    EXPECT_NEAR(p.z(), ground.at(p.x(), p.y()).height_m, 1e-15);
+  }
+  std::printf("[measured] recessed ball over a ramp of slope %.2g, 20 turns: within %.2g m of its gap\n", slope.norm(),
+              worst);
+  EXPECT_LT(worst, 1e-9);
+}
+
 TEST(BallOnFlatGround, TheGroundIsFlatWhereItsReliefIsOneLevelUnderTheBall) {
   const Eigen::Isometry3d pose = at(0.0, 0.0, tb::kRadius + 1e-5);
   const Underside ball = Underside::sphere(pose, tb::kRadius);
