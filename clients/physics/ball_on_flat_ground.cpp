@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "clients/physics/mesh_relief_chart.hpp"
@@ -37,19 +38,16 @@ struct Texel {
   double depth = 0.0;
 };
 
-}  // namespace
-
-namespace {
-
 // The least and the most depth code of the relief over the texels under the ball's touching disc
 // (the part of its sphere within `threshold_m` of the ground) and one texel round them, and one of
-// those texels (resolved); false where there is no disc or it holds too many texels.
+// those texels (resolved); nullopt where there is no disc, it holds too many texels, or its codes
+// spread by more than `most_spread` (the read stops there: a textured relief is seen at once).
 struct CodeRange {
   std::uint16_t lo = 0, hi = 0;
   int ri = 0, rj = 0;
 };
 std::optional<CodeRange> depthCodesUnder(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
-                                         const GroundBend* bend) {
+                                         const GroundBend* bend, double most_spread) {
   const Eigen::Vector3d c = ball.plane_from_object.translation();
   const tex::TextureMap& map = surface.map();
   // A relief lies at or under its plane (height <= 0), and the bend raises it no higher than it
@@ -78,6 +76,7 @@ std::optional<CodeRange> depthCodesUnder(const tex::TexturedSurface& surface, co
     for (long long i = i0; i <= i1; ++i) {
       const std::uint16_t code = map.depthCode(tex::resolveIndex(i, map.width(), address), rj);
       range.lo = std::min(range.lo, code), range.hi = std::max(range.hi, code);
+      if (double(range.hi - range.lo) > most_spread) return std::nullopt;
     }
   }
   return range;
@@ -85,20 +84,29 @@ std::optional<CodeRange> depthCodesUnder(const tex::TexturedSurface& surface, co
 
 }  // namespace
 
+std::optional<FlatGround> flatGround(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
+                                     const GroundBend* bend) {
+  if (isSmoothChart(surface)) return FlatGround{};  // it stores no depth
+  if (!surface.usesRelief()) return std::nullopt;
+  const double step = surface.map().depthStep();
+  const double most_spread = step > 0.0 ? std::floor(kNearlyLevelRelief / step) : 0.0;
+  const std::optional<CodeRange> range = depthCodesUnder(surface, ball, threshold_m, bend, most_spread);
+  if (!range) return std::nullopt;
+  if (range->lo != range->hi) return FlatGround{0.0, true};
+  return FlatGround{-double(surface.map().depth(range->ri, range->rj)), false};
+}
+
 std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
                                        const GroundBend* bend) {
-  if (isSmoothChart(surface)) return 0.0;  // it stores no depth
-  if (!surface.usesRelief()) return std::nullopt;
-  const std::optional<CodeRange> range = depthCodesUnder(surface, ball, threshold_m, bend);
-  if (!range || range->lo != range->hi) return std::nullopt;
-  return -double(surface.map().depth(range->ri, range->rj));
+  const std::optional<FlatGround> ground = flatGround(surface, ball, threshold_m, bend);
+  if (!ground || ground->read_relief) return std::nullopt;
+  return ground->height_m;
 }
 
 bool reliefNearlyLevel(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
                        const GroundBend* bend) {
-  if (isSmoothChart(surface) || !surface.usesRelief()) return false;
-  const std::optional<CodeRange> range = depthCodesUnder(surface, ball, threshold_m, bend);
-  return range && double(range->hi - range->lo) * surface.map().depthStep() <= kNearlyLevelRelief;
+  const std::optional<FlatGround> ground = flatGround(surface, ball, threshold_m, bend);
+  return ground && ground->read_relief;
 }
 
 std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurface& surface,
@@ -136,7 +144,9 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
     n_under /= slope_length;
     const double mean = 0.5 * (bend->xx + bend->yy), half = 0.5 * (bend->xx - bend->yy);
     curving_up = std::max(0.0, mean + std::sqrt(half * half + bend->xy * bend->xy));
-    centre_gap = c.z() - groundUnder(c.x(), c.y());
+    // The level and the bend alone: a relief read under each point only lowers the ground, so
+    // the bound below holds for it too.
+    centre_gap = c.z() - ground_z - bend->height(c.x(), c.y());
   }
   // The smooth sphere's gap straight down the ground's normal: on flat ground its lowest point's.
   const double lowest_gap = bend ? [&] {

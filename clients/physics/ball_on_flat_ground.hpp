@@ -53,8 +53,8 @@ namespace thx::phys {
 std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
                                        const GroundBend* bend = nullptr);
 
-// Whether a relief's depth over the same texels varies by no more than kNearlyLevelRelief (its
-// codes not all one: a nominally flat map's quantisation, a sine a tenth of a micrometre high).
+// Whether a relief's depth over the same texels varies by no more than kNearlyLevelRelief, its
+// codes not all one (a nominally flat map's quantisation, a sine a tenth of a micrometre high).
 // The ball meets it on its own texels too, the relief's bilinear height read under each point
 // (ballOnFlatGround's `read_relief`). Where the relief has features of its own (a bumpy plane's
 // 0.4 mm bumps) that reading was worse than the ground's samples (docs/physics.md, "A ball with a
@@ -63,6 +63,17 @@ std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, cons
 inline constexpr double kNearlyLevelRelief = 1e-6;
 bool reliefNearlyLevel(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
                        const GroundBend* bend = nullptr);
+
+// Both questions in one read of the relief's depth codes, which stops as soon as they spread by
+// more than kNearlyLevelRelief: the ground's height where it is flat (`read_relief` false), or a
+// nearly level relief to be read under each point (`read_relief` true, `height_m` 0); nullopt
+// where it is neither (flatGroundHeight and reliefNearlyLevel ask it).
+struct FlatGround {
+  double height_m = 0.0;
+  bool read_relief = false;
+};
+std::optional<FlatGround> flatGround(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
+                                     const GroundBend* bend = nullptr);
 
 // The ball's contacts on flat ground at `ground_z`, deepest first, into `out`; how many. Each
 // candidate's p_surface is the ground's point under the ball's point, its depth the gap there

@@ -289,11 +289,9 @@ void texturedBallCollision(const tex::TexturedSurface& surface, const GroundBend
   const double reach = (underside.plane_from_object.translation().head<2>() - bend.centre).norm() + underside.radius;
   const GroundBend* bent_in_reach = bend.flatWithin(reach, 1e-12) ? nullptr : &bend;
   if (grid && bend.known && !(boundary && boundary->count > 0)) {
-    const std::optional<double> ground_z = flatGroundHeight(surface, underside, threshold, bent_in_reach);
-    const bool nearly_level = !ground_z && reliefNearlyLevel(surface, underside, threshold, bent_in_reach);
-    if (ground_z || nearly_level) {
-      const std::size_t n = ballOnFlatGround(*grid, surface, underside, ground_z.value_or(0.0), bent_in_reach, threshold,
-                                             closing_within_m, hint, chosen, nearly_level);
+    if (const std::optional<FlatGround> ground = flatGround(surface, underside, threshold, bent_in_reach)) {
+      const std::size_t n = ballOnFlatGround(*grid, surface, underside, ground->height_m, bent_in_reach, threshold,
+                                             closing_within_m, hint, chosen, ground->read_relief);
       addReliefContacts(std::span(chosen.data(), n), underside, surface, bend, world_from_plane, false, threshold, result,
                         &motion, true, KeptPoints::AsBullet, more_manifolds);
       return;
