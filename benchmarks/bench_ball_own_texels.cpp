@@ -1,7 +1,9 @@
 // A ball with a bump map on ground with no features of its own, met on the ball's own texels
 // (issue 29; clients/physics/ball_on_flat_ground.hpp; docs/physics.md "A ball with a bump map on
 // flat ground"): the shipped dimpled ball let down at the bottom of a smooth bowl (a mesh's bent
-// chart) from starts turned at random, whether it comes to rest and how still it lies; and the
+// chart) from starts turned at random, whether it comes to rest and how still it lies; the same
+// in a smooth relief dish (a relief plane's paraboloid, met on the ball's own texels since its
+// depth bends by less than kSmoothReliefBend a texel); and the
 // same ball with its map at 256 to 1024 texels a face on a plain plane (its own texel budget,
 // clients/physics/plain_plane.hpp): how deep it rests and what a step costs rolling.
 // Measures only; nothing asserted (tests/physics/test_ball_on_flat_ground.cpp and
@@ -12,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -32,7 +35,7 @@ using namespace thx::phys;
 using namespace thx::phys::test;
 namespace tb = thx::phys::test::textured_ball;
 
-constexpr const char* kHelp = R"(usage: bench_ball_own_texels [--starts N] [--texels N,N,...] [--json F] [--csv F] [--md F]
+constexpr const char* kHelp = R"(usage: bench_ball_own_texels [--starts N] [--dish-starts N] [--texels N,N,...] [--json F] [--csv F] [--md F]
 
 The tests' 1 cm, 30 g dimpled ball (dimples 3.9 mm apart, 0.25 mm deep, 256 texels a face of the
 cube laid on it), no rolling friction, 1 ms steps:
@@ -41,40 +44,45 @@ cube laid on it), no rolling friction, 1 ms steps:
           seeds 101 to 100 + N): with the rest detector, how many sleep within 3 s and within
           8 s; without it, over seconds 5-8, the fastest it moves (the largest and the median of
           the starts) and the mean wall-clock time of a step
+  dish    let down 0.2 mm over a relief plane's paraboloid dish (curvature 10 /m, 256 texels over
+          4 cm) within 1 mm of its centre (std::mt19937 seeded 1000 + n, turned by the bowl's
+          turn n): with the rest detector, how many sleep within 8 s; without it, over seconds
+          5-8, how many rock in place (faster than 0.5 mm/s, the centre within 50 um over the
+          eighth second), how many swing (the centre farther: rolling on the land between the
+          dimples, as a ball without rolling friction may), how fast the others move at most,
+          and the mean wall-clock time of a step
   plane   the same dimples at N texels a face on a plain plane: the texels its cap holds by the
           raster's count (plainPlaneTexels) and the budget it is held to, how far into its radius
           it rests after 0.3 s, and the mean time of a step rolling at 0.1 m/s for 1 s, with its
           speed at the end (the dimples brake it; a smooth sphere keeps 0.1 m/s)
   --starts N      bowl starts (default 24)
+  --dish-starts N dish starts (default 24)
   --texels LIST   plane: texels a face (default 256,384,512,768,1024)
   --json/--csv/--md F   results
 )";
 
 constexpr double kBowlRadius = 0.05;
 
-struct BowlStart {
-  double asleep_at_s = -1.0;  // with the rest detector; -1: awake after 8 s
-  double fastest_late = 0.0;  // without it, seconds 5-8 (m/s)
-  double us_per_step = 0.0;   // without it
+// The dimpled ball let down where `addGround` puts its ground, at `pose`, 8 s twice: with the rest
+// detector, when it sleeps (-1: awake after 8 s); without it, the fastest it moves over seconds
+// 5-8, how far its centre strays over the eighth and the mean wall-clock time of a step.
+struct LetDown {
+  double asleep_at_s = -1.0;
+  double fastest_late = 0.0;  // m/s
+  double strayed = 0.0;       // m
+  double us_per_step = 0.0;
 };
-
-BowlStart letDownInBowl(const tex::TextureMap& dimples, unsigned seed) {
-  const mesh::GeneratedMesh bowl = mesh::sphere(kBowlRadius, 128, 64, mesh_rolling::kTileM);
-  const FaceTexture texture = tb::ballTexture(dimples);
-  BowlStart result;
+template <class AddGround>
+LetDown letDown(const AddGround& addGround, const FaceTexture& texture, const Eigen::Isometry3d& pose) {
+  LetDown result;
   for (const bool rest : {true, false}) {
     WorldOptions options;
     options.rest.enabled = rest;
     PhysicsWorld world(options);
-    MeshContactOptions smooth;
-    smooth.smooth = true;
-    Eigen::Isometry3d turned = Eigen::Isometry3d::Identity();
-    turned.linear() = mesh_rolling::bottomOnTheEquator(kBowlRadius);
-    world.addTexturedMesh(bowl.mesh, turned, {0.5, 0.0, 0.0}, smooth);
-    Eigen::Isometry3d pose = at(0.0, 0.0, -kBowlRadius + tb::kRadius + 2e-4);
-    pose.linear() = tb::anyTurn(100 + seed);
+    addGround(world);
     btRigidBody& ball = world.addTexturedSphere(tb::kRadius, tb::kMass, pose, {0.5, 0.0, 0.0, 0.0}, texture);
     const int steps = 8000;
+    Eigen::Vector3d settled = Eigen::Vector3d::Zero();
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < steps; ++k) {
       world.step(tb::kDt);
@@ -82,12 +90,65 @@ BowlStart letDownInBowl(const tex::TextureMap& dimples, unsigned seed) {
         result.asleep_at_s = (k + 1) * tb::kDt;
         break;
       }
-      if (!rest && k >= 4000) result.fastest_late = std::max(result.fastest_late, velocityOf(ball).norm());
+      if (rest) continue;
+      if (k >= 4000) result.fastest_late = std::max(result.fastest_late, velocityOf(ball).norm());
+      if (k == steps - 1001) settled = positionOf(ball);
+      if (k >= steps - 1000) result.strayed = std::max(result.strayed, (positionOf(ball) - settled).norm());
     }
     if (!rest)
       result.us_per_step = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / steps;
   }
   return result;
+}
+
+LetDown letDownInBowl(const mesh::GeneratedMesh& bowl, const FaceTexture& texture, unsigned seed) {
+  Eigen::Isometry3d pose = at(0.0, 0.0, -kBowlRadius + tb::kRadius + 2e-4);
+  pose.linear() = tb::anyTurn(100 + seed);
+  return letDown(
+      [&](PhysicsWorld& world) {
+        MeshContactOptions smooth;
+        smooth.smooth = true;
+        Eigen::Isometry3d turned = Eigen::Isometry3d::Identity();
+        turned.linear() = mesh_rolling::bottomOnTheEquator(kBowlRadius);
+        world.addTexturedMesh(bowl.mesh, turned, {0.5, 0.0, 0.0}, smooth);
+      },
+      texture, pose);
+}
+
+constexpr double kDishCurvature = 10.0, kDishExtent = 0.04, kDishTop = 0.5 * kDishCurvature * 2.0 * 0.02 * 0.02;
+double dishHeight(double x, double y) { return 0.5 * kDishCurvature * (x * x + y * y) - kDishTop; }
+// Rocking in place against swinging: how far the centre moves over the eighth second.
+constexpr double kSwingStray = 50e-6, kRockingSpeed = 0.5e-3;
+
+LetDown letDownInDish(const tex::TexturedSurface& dish, const FaceTexture& texture, unsigned seed) {
+  std::mt19937 random(1000 + seed);
+  std::uniform_real_distribution<double> within(-0.001, 0.001);
+  const double x = within(random), y = within(random);
+  Eigen::Isometry3d pose = at(x, y, dishHeight(x, y) + tb::kRadius + 2e-4);
+  pose.linear() = tb::anyTurn(100 + seed);
+  return letDown([&](PhysicsWorld& world) { world.addReliefPlane(dish, {0.5, 0.0, 0.0}); }, texture, pose);
+}
+
+struct DishSummary {
+  int starts = 0, asleep = 0, rocking = 0, swinging = 0;
+  double fastest_rocking = 0.0, fastest_still = 0.0, us = 0.0;
+};
+DishSummary summarise(const std::vector<LetDown>& dish) {
+  DishSummary d;
+  d.starts = int(dish.size());
+  for (const LetDown& s : dish) {
+    d.asleep += s.asleep_at_s >= 0.0;
+    d.us += s.us_per_step / double(dish.size());
+    if (s.strayed > kSwingStray) {
+      ++d.swinging;
+    } else if (s.fastest_late > kRockingSpeed) {
+      ++d.rocking;
+      d.fastest_rocking = std::max(d.fastest_rocking, s.fastest_late);
+    } else {
+      d.fastest_still = std::max(d.fastest_still, s.fastest_late);
+    }
+  }
+  return d;
 }
 
 struct PlaneRow {
@@ -127,7 +188,7 @@ double median(std::vector<double> v) {
 }
 
 int run(int argc, char** argv) {
-  int starts = 24;
+  int starts = 24, dish_starts = 24;
   std::vector<int> texels{256, 384, 512, 768, 1024};
   std::string json, csv, md;
   for (int i = 1; i < argc; ++i) {
@@ -135,6 +196,7 @@ int run(int argc, char** argv) {
     if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
     const std::string v = argv[++i];
     if (a == "--starts") starts = int(cli::parseInteger(a, v, 1, 1000));
+    else if (a == "--dish-starts") dish_starts = int(cli::parseInteger(a, v, 1, 1000));
     else if (a == "--texels") texels = cli::parseIntegerList(a, v, 16, 2048);
     else if (a == "--json") json = v;
     else if (a == "--csv") csv = v;
@@ -142,22 +204,32 @@ int run(int argc, char** argv) {
     else throw UsageError("unknown option " + a + " (see --help)");
   }
   const tex::TextureMap dimples = tb::dimpleMap();
-  std::vector<BowlStart> bowl;
+  const FaceTexture dimpled = tb::ballTexture(dimples);
+  const mesh::GeneratedMesh bowl_mesh = mesh::sphere(kBowlRadius, 128, 64, mesh_rolling::kTileM);
+  std::vector<LetDown> bowl;
   for (int s = 1; s <= starts; ++s) {
     std::fprintf(stderr, "\rbench_ball_own_texels: bowl, start %d of %d ...", s, starts);
-    bowl.push_back(letDownInBowl(dimples, unsigned(s)));
+    bowl.push_back(letDownInBowl(bowl_mesh, dimpled, unsigned(s)));
   }
   std::fprintf(stderr, "\n");
   int asleep_3 = 0, asleep_8 = 0;
   double fastest = 0.0, us = 0.0;
   std::vector<double> late;
-  for (const BowlStart& b : bowl) {
+  for (const LetDown& b : bowl) {
     asleep_3 += b.asleep_at_s >= 0.0 && b.asleep_at_s <= 3.0;
     asleep_8 += b.asleep_at_s >= 0.0;
     fastest = std::max(fastest, b.fastest_late);
     late.push_back(b.fastest_late);
     us += b.us_per_step / double(bowl.size());
   }
+  const SurfaceHolder dish_plane = holdSurface(heightMap(256, kDishExtent, dishHeight), kDishExtent, true);
+  std::vector<LetDown> dish;
+  for (int s = 1; s <= dish_starts; ++s) {
+    std::fprintf(stderr, "\rbench_ball_own_texels: dish, start %d of %d ...", s, dish_starts);
+    dish.push_back(letDownInDish(dish_plane.surface, dimpled, unsigned(s)));
+  }
+  std::fprintf(stderr, "\n");
+  const DishSummary d = summarise(dish);
   std::vector<PlaneRow> plane;
   for (int n : texels) {
     std::fprintf(stderr, "bench_ball_own_texels: plain plane, %d texels a face ...\n", n);
@@ -169,6 +241,10 @@ int run(int argc, char** argv) {
     std::string c = "start,asleep_at_s,fastest_late_mm_s,us_per_step\n";
     for (std::size_t k = 0; k < bowl.size(); ++k)
       c += bench::fmt("%zu,%.3f,%.4f,%.1f\n", k + 1, bowl[k].asleep_at_s, bowl[k].fastest_late * 1e3, bowl[k].us_per_step);
+    c += "\ndish_start,asleep_at_s,fastest_late_mm_s,strayed_um,us_per_step\n";
+    for (std::size_t k = 0; k < dish.size(); ++k)
+      c += bench::fmt("%zu,%.3f,%.4f,%.2f,%.1f\n", k + 1, dish[k].asleep_at_s, dish[k].fastest_late * 1e3,
+                      dish[k].strayed * 1e6, dish[k].us_per_step);
     c += "\ntexels,raster_count,budget,rest_depth_um,us_per_step_rolling,speed_after_m_s\n";
     for (const PlaneRow& r : plane)
       c += bench::fmt("%d,%.0f,%.0f,%.2f,%.1f,%.4f\n", r.texels, r.raster_count, r.budget, r.rest_depth * 1e6,
@@ -178,8 +254,11 @@ int run(int argc, char** argv) {
   if (!json.empty()) {
     std::string j = bench::fmt("{\"stamp\": \"%s\", \"bowl\": {\"starts\": %d, \"asleep_within_3_s\": %d, "
                                "\"asleep_within_8_s\": %d, \"fastest_late_mm_s\": %.4f, \"median_late_mm_s\": %.4f, "
-                               "\"us_per_step\": %.1f}, \"plane\": [",
+                               "\"us_per_step\": %.1f}, ",
                                stamp.c_str(), starts, asleep_3, asleep_8, fastest * 1e3, median(late) * 1e3, us);
+    j += bench::fmt("\"dish\": {\"starts\": %d, \"asleep_within_8_s\": %d, \"rocking\": %d, \"swinging\": %d, "
+                    "\"fastest_rocking_mm_s\": %.4f, \"fastest_still_mm_s\": %.4f, \"us_per_step\": %.1f}, \"plane\": [",
+                    d.starts, d.asleep, d.rocking, d.swinging, d.fastest_rocking * 1e3, d.fastest_still * 1e3, d.us);
     for (std::size_t k = 0; k < plane.size(); ++k) {
       const PlaneRow& r = plane[k];
       j += bench::fmt("%s{\"texels\": %d, \"raster_count\": %.0f, \"budget\": %.0f, \"rest_depth_um\": %.2f, "
@@ -193,6 +272,12 @@ int run(int argc, char** argv) {
     t += bench::fmt("In the smooth bowl, %d starts: with the rest detector asleep within 3 s: **%d**, within 8 s: %d; "
                     "without it, fastest over seconds 5–8: %.3f mm/s at most, %.3f the median; a step %.0f µs.\n\n",
                     starts, asleep_3, asleep_8, fastest * 1e3, median(late) * 1e3, us);
+    t += bench::fmt("In the relief dish, %d starts: with the rest detector asleep within 8 s: **%d**; without it, over "
+                    "seconds 5–8, rocking in place: **%d**%s, swinging on the land: %d, the others at up to %.3f mm/s; "
+                    "a step %.0f µs.\n\n",
+                    d.starts, d.asleep, d.rocking,
+                    d.rocking ? bench::fmt(" (up to %.2f mm/s)", d.fastest_rocking * 1e3).c_str() : "", d.swinging,
+                    d.fastest_still * 1e3, d.us);
     t += "| texels a face | by the raster's count | budget | rests into its radius | rolling: a step | speed after 1 s |\n"
          "|---:|---:|---:|---:|---:|---:|\n";
     for (const PlaneRow& r : plane)
@@ -203,6 +288,9 @@ int run(int argc, char** argv) {
   std::printf("bowl: %d starts, asleep within 3 s %d, within 8 s %d; awake, fastest in seconds 5-8 %.3f mm/s (median "
               "%.3f); %.0f us per step\n",
               starts, asleep_3, asleep_8, fastest * 1e3, median(late) * 1e3, us);
+  std::printf("dish: %d starts, asleep within 8 s %d; awake, rocking in place %d (up to %.3f mm/s), swinging %d, the "
+              "others up to %.3f mm/s; %.0f us per step\n",
+              d.starts, d.asleep, d.rocking, d.fastest_rocking * 1e3, d.swinging, d.fastest_still * 1e3, d.us);
   for (const PlaneRow& r : plane)
     std::printf("plain plane, %4d texels a face: %.0f texels (budget %.0f), rests %.1f um in, %.0f us per step rolling, "
                 "%.4f m/s after 1 s\n",

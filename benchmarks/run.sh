@@ -70,10 +70,10 @@
 #              cost of a step beside a plain ball; on UV spheres of 64, 128 and 256 segments, a
 #              recessed ball's swing in a bowl and where it leaves a sphere's top; about a minute;
 #              its tables go to docs/physics.md)
-#              or ball_own_texels (issue 29: the dimpled ball let down in a smooth bowl from 24
-#              starts, at rest or not; on a plain plane at 256 to 1024 texels a face, how deep it
-#              rests and what a step costs rolling; about a minute and a half; its table goes to
-#              docs/physics.md)
+#              or ball_own_texels (issue 29: the dimpled ball let down in a smooth bowl and in a
+#              smooth relief dish from 24 starts each, at rest, rocking or swinging; on a plain plane
+#              at 256 to 1024 texels a face, how deep it rests and what a step costs rolling; about
+#              four minutes; its table goes to docs/physics.md)
 #              or rolling_ridges (issue 29: a ball rolling across sine ridges on the relief plane and on
 #              a relief mesh, lifted and steered, against the rolling-impact law, with the cost of a
 #              step; about half a minute; its table goes to docs/physics.md)
@@ -418,7 +418,7 @@ run_textured_ball() {
 
 run_ball_own_texels() {
   need "$BIN/bench_ball_own_texels" || return 1
-  say "part ball_own_texels: a ball with a bump map on featureless ground, on its own texels (about a minute and a half)"
+  say "part ball_own_texels: a ball with a bump map on featureless or smooth ground, on its own texels (about four minutes)"
   bench_with_table bench_ball_own_texels "$ROOT/docs/physics.md"
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -16,6 +18,9 @@ namespace {
 
 // A relief's flatness is read over at most this many texels (a larger disc: not flat ground here).
 constexpr long long kMostFlatnessTexels = 1 << 16;
+// A block's points are measured from the relief's top under them where they span no more than
+// this many of its texels (more: from its top under the whole disc).
+constexpr long long kMostBlockTexels = 1 << 10;
 // The refinement's first step and its last, in texels of the ball's texture.
 constexpr double kRefineFirstStep = 0.5, kRefineLastStep = 1.0 / BallTexelGrid::kOffsetSteps;
 // Two refined points nearer than this (in texels, along the ball's surface) are one basin's,
@@ -38,16 +43,17 @@ struct Texel {
   double depth = 0.0;
 };
 
-// The least and the most depth code of the relief over the texels under the ball's touching disc
-// (the part of its sphere within `threshold_m` of the ground) and one texel round them, and one of
-// those texels (resolved); nullopt where there is no disc, it holds too many texels, or its codes
-// spread by more than `most_spread` (the read stops there: a textured relief is seen at once).
+// The relief's depth codes over the texels under the ball's touching disc (the part of its sphere
+// within `threshold_m` of the ground) and one texel round them: the least (the highest ground) and
+// the most, with a texel holding the least (resolved); nullopt where there is no disc, it holds too
+// many texels, or the depth bends by more than `most_bend` codes from one texel to the next along
+// a row or a column (its second difference there; the read stops at once on a textured relief).
 struct CodeRange {
   std::uint16_t lo = 0, hi = 0;
   int ri = 0, rj = 0;
 };
 std::optional<CodeRange> depthCodesUnder(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
-                                         const GroundBend* bend, double most_spread) {
+                                         const GroundBend* bend, double most_bend) {
   const Eigen::Vector3d c = ball.plane_from_object.translation();
   const tex::TextureMap& map = surface.map();
   // A relief lies at or under its plane (height <= 0), and the bend raises it no higher than it
@@ -68,15 +74,30 @@ std::optional<CodeRange> depthCodesUnder(const tex::TexturedSurface& surface, co
     }
   if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMostFlatnessTexels) return std::nullopt;
   const tex::Address address = surface.sampling().address;
+  const std::size_t width = std::size_t(i1 - i0 + 1);
+  // The last three rows read, to take second differences down the columns.
+  thread_local std::vector<int> rows;
+  rows.resize(3 * width);
+  const int most = int(std::min(most_bend, 65535.0));
+  auto bends = [most](int before, int at, int after) { return std::abs(before - 2 * at + after) > most; };
   CodeRange range;
-  range.ri = tex::resolveIndex(i0, map.width(), address), range.rj = tex::resolveIndex(j0, map.height(), address);
-  range.lo = range.hi = map.depthCode(range.ri, range.rj);
+  range.lo = 65535, range.hi = 0;
   for (long long j = j0; j <= j1; ++j) {
     const int rj = tex::resolveIndex(j, map.height(), address);
-    for (long long i = i0; i <= i1; ++i) {
-      const std::uint16_t code = map.depthCode(tex::resolveIndex(i, map.width(), address), rj);
-      range.lo = std::min(range.lo, code), range.hi = std::max(range.hi, code);
-      if (double(range.hi - range.lo) > most_spread) return std::nullopt;
+    int* row = rows.data() + std::size_t(j - j0) % 3 * width;
+    for (std::size_t x = 0; x < width; ++x) {
+      const int ri = tex::resolveIndex(i0 + (long long)x, map.width(), address);
+      const std::uint16_t code = map.depthCode(ri, rj);
+      row[x] = code;
+      if (code < range.lo) range.lo = code, range.ri = ri, range.rj = rj;
+      range.hi = std::max(range.hi, code);
+      if (x >= 2 && bends(row[x - 2], row[x - 1], row[x])) return std::nullopt;
+    }
+    if (j - j0 >= 2) {
+      const int* above = rows.data() + std::size_t(j - j0 - 1) % 3 * width;
+      const int* above2 = rows.data() + std::size_t(j - j0 - 2) % 3 * width;
+      for (std::size_t x = 0; x < width; ++x)
+        if (bends(above2[x], above[x], row[x])) return std::nullopt;
     }
   }
   return range;
@@ -89,11 +110,11 @@ std::optional<FlatGround> flatGround(const tex::TexturedSurface& surface, const 
   if (isSmoothChart(surface)) return FlatGround{};  // it stores no depth
   if (!surface.usesRelief()) return std::nullopt;
   const double step = surface.map().depthStep();
-  const double most_spread = step > 0.0 ? std::floor(kNearlyLevelRelief / step) : 0.0;
-  const std::optional<CodeRange> range = depthCodesUnder(surface, ball, threshold_m, bend, most_spread);
+  const double most_bend = step > 0.0 ? std::floor(kSmoothReliefBend / step) : 0.0;
+  const std::optional<CodeRange> range = depthCodesUnder(surface, ball, threshold_m, bend, most_bend);
   if (!range) return std::nullopt;
-  if (range->lo != range->hi) return FlatGround{0.0, true};
-  return FlatGround{-double(surface.map().depth(range->ri, range->rj)), false};
+  const double top = -double(surface.map().depth(range->ri, range->rj));
+  return FlatGround{top, range->lo != range->hi};
 }
 
 std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
@@ -103,8 +124,8 @@ std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, cons
   return ground->height_m;
 }
 
-bool reliefNearlyLevel(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
-                       const GroundBend* bend) {
+bool reliefSmooth(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
+                  const GroundBend* bend) {
   const std::optional<FlatGround> ground = flatGround(surface, ball, threshold_m, bend);
   return ground && ground->read_relief;
 }
@@ -117,14 +138,15 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
   const Eigen::Matrix3d rot = ball.plane_from_object.linear();
   const Eigen::Vector3d c = ball.plane_from_object.translation();
   const Eigen::Vector3d down = -rot.row(2).transpose();  // the plane's -z in the object frame
-  // A nearly level relief is read under each point (its bilinear height, as the contacts read
-  // it), on the bent ground's path, which measures every point's gap to the ground under it.
+  // A smooth relief is read under each point (its bilinear height, as the contacts read it), on
+  // the bent ground's path, which measures every point's gap to the ground under it; `ground_z`
+  // is then its top under the ball, which bounds it there.
   static const GroundBend kUnbent{};
   if (read_relief && !bend) bend = &kUnbent;
   auto groundUnder = [&](double x, double y) {
-    const double level = bend ? ground_z + bend->height(x, y) : ground_z;
-    if (!read_relief) return level;
-    return level - double(tex::sampleDepth(surface.map(), surface.mapping().uvOfLocal({x, y}), surface.sampling()));
+    const double bent = bend ? bend->height(x, y) : 0.0;
+    if (!read_relief) return ground_z + bent;
+    return bent - double(tex::sampleDepth(surface.map(), surface.mapping().uvOfLocal({x, y}), surface.sampling()));
   };
   // A texel's gap to the ground: its point p = c + R w (r - recess), measured along z to the
   // ground under p (on flat ground the same for every p, so only p's height counts).
@@ -144,8 +166,8 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
     n_under /= slope_length;
     const double mean = 0.5 * (bend->xx + bend->yy), half = 0.5 * (bend->xx - bend->yy);
     curving_up = std::max(0.0, mean + std::sqrt(half * half + bend->xy * bend->xy));
-    // The level and the bend alone: a relief read under each point only lowers the ground, so
-    // the bound below holds for it too.
+    // The level and the bend alone: a relief read under each point lies no higher than its top
+    // under the ball, so the bound below holds for it too.
     centre_gap = c.z() - ground_z - bend->height(c.x(), c.y());
   }
   // The smooth sphere's gap straight down the ground's normal: on flat ground its lowest point's.
@@ -200,6 +222,37 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
       }
     }
   };
+  // The highest a relief read under each point lies under a block's points (ground_z where they
+  // span too many of its texels): the relief's top over the texels round the box that holds them.
+  // A point is c + s (rot w) with s within r - deepestRecess and r and w within the block's
+  // spread (as a chord) of its middle direction.
+  const tex::TextureMap& map = surface.map();
+  const tex::Address address = surface.sampling().address;
+  auto reliefTopUnder = [&](const BallTexelGrid::Block& b) {
+    const Eigen::Vector3d middle = rot * b.centre;
+    const double near = r - grid.deepestRecess();
+    Eigen::Vector2d lo, hi;
+    for (int a = 0; a < 2; ++a) {
+      const double least = middle[a] - b.spread, most = middle[a] + b.spread;
+      lo[a] = c[a] + std::min(near * least, r * least), hi[a] = c[a] + std::max(near * most, r * most);
+    }
+    long long ia = 0, ja = 0, ib = 0, jb = 0;
+    surface.texelContaining(lo.x(), lo.y(), ia, ja);
+    surface.texelContaining(hi.x(), hi.y(), ib, jb);
+    const long long i0 = std::min(ia, ib) - 1, i1 = std::max(ia, ib) + 1, j0 = std::min(ja, jb) - 1,
+                    j1 = std::max(ja, jb) + 1;
+    if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMostBlockTexels) return ground_z;
+    std::uint16_t least = 65535;
+    int li = 0, lj = 0;
+    for (long long j = j0; j <= j1; ++j) {
+      const int rj = tex::resolveIndex(j, map.height(), address);
+      for (long long i = i0; i <= i1; ++i) {
+        const int ri = tex::resolveIndex(i, map.width(), address);
+        if (const std::uint16_t code = map.depthCode(ri, rj); code < least) least = code, li = ri, lj = rj;
+      }
+    }
+    return -double(map.depth(li, lj));
+  };
   // Reads every texel whose point lies within `bound` of bent ground. A block is skipped where
   // even the smooth sphere lies farther above the ground over all of it: the ground's height
   // h(c + r w) is quadratic, so the smooth sphere's gap at direction w (plane frame) is the
@@ -219,9 +272,14 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
         // The most |w_xy|^2 over the block: sin^2 of its angle from -z plus the spread (1 past pi / 2).
         const double cos_z = b.centre.dot(down), sin_z = std::sqrt(std::max(0.0, 1.0 - cos_z * cos_z));
         const double most_sin = cos_z <= b.sin_spread ? 1.0 : sin_z * b.cos_spread + cos_z * b.sin_spread;
-        const double least_gap = centre_gap + r * slope_length * std::min(least_dot, 0.0) -
-                                 0.5 * r * r * curving_up * most_sin * most_sin;
-        if (least_gap > bound) continue;
+        const double least_rise = r * slope_length * std::min(least_dot, 0.0) - 0.5 * r * r * curving_up * most_sin * most_sin;
+        if (centre_gap + least_rise > bound) continue;
+        // A relief read under each point lies no higher than its top under the block's points
+        // (reliefTopUnder): on a dish or a slope its top under the whole disc lies tens of
+        // micrometres above the ground under the ball, so the block, and then each point, is
+        // measured from the block's top before the relief is read under it.
+        const double top = read_relief ? reliefTopUnder(b) : ground_z;
+        if (read_relief && c.z() - top - bend->height(c.x(), c.y()) + least_rise > bound) continue;
         for (int l = b.l0; l < b.l1; ++l) {
           const double tv = grid.tanV(l), row_length2 = 1.0 + tv * tv;
           const Eigen::Vector3d row = A + tv * D;
@@ -229,7 +287,9 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
             const double tu = grid.tanU(k);
             const std::size_t at = grid.at(k, l);
             const Eigen::Vector3d p = c + ((r - grid.recess(at)) / std::sqrt(row_length2 + tu * tu)) * (row + tu * B);
-            const double gap = p.z() - groundUnder(p.x(), p.y());
+            const double bent = bend->height(p.x(), p.y());
+            if (read_relief && p.z() - top - bent > bound) continue;
+            const double gap = read_relief ? p.z() - groundUnder(p.x(), p.y()) : p.z() - (ground_z + bent);
             if (gap > bound) continue;
             g[at] = gap;
             read.push_back({f, k, l, gap});

@@ -6,8 +6,8 @@
 // its basins are the ball's lowest points, and they move with the ball. The same holds on a
 // mesh's chart whose smooth surface bends under the ball (GroundBend: a bowl's or a sphere's),
 // smooth or with a relief of one level laid on it: the ground has no features of its own there,
-// and each point's gap is measured to the bent ground under it. A relief level to within a
-// micrometre under the ball (reliefNearlyLevel) is read the same way, its height under each point. They are found on the
+// and each point's gap is measured to the bent ground under it. A smooth relief under the ball
+// (reliefSmooth: a dish, a long wave) is read the same way, its height under each point. They are found on the
 // ball's texel centres (ball_texel_grid.hpp): the basins of the depth on each cube face's grid
 // (no deeper than any of their eight neighbours), chosen as findBallBasins chooses (the four
 // closest to closing, then those that can close within the step, up to kMaxBallBasins), each
@@ -53,21 +53,25 @@ namespace thx::phys {
 std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
                                        const GroundBend* bend = nullptr);
 
-// Whether a relief's depth over the same texels varies by no more than kNearlyLevelRelief, its
-// codes not all one (a nominally flat map's quantisation, a sine a tenth of a micrometre high).
-// The ball meets it on its own texels too, the relief's bilinear height read under each point
-// (ballOnFlatGround's `read_relief`). Where the relief has features of its own (a bumpy plane's
-// 0.4 mm bumps) that reading was worse than the ground's samples (docs/physics.md, "A ball with a
-// bump map on flat ground", "Not done"), so the tolerance is kept tight: a micrometre (the case
-// measured with it, a sine 0.1 um high, varies by up to 0.2 um).
-inline constexpr double kNearlyLevelRelief = 1e-6;
-bool reliefNearlyLevel(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
-                       const GroundBend* bend = nullptr);
+// Whether a relief is smooth over the same texels, its codes not all one: its depth bends by no
+// more than kSmoothReliefBend from one texel to the next along a row or a column (the second
+// difference of its depth there). Then its bilinear height lies within an eighth of that of a
+// smooth surface through its texels, and the ball meets it on its own texels too, that height
+// read under each point (ballOnFlatGround's `read_relief`): a dish or a long wave, a nominally
+// flat map's quantisation, a slope of any steepness. Where the relief has features of its own (a
+// bumpy plane's 0.4 mm bumps) that reading was worse than the ground's samples (docs/physics.md,
+// "A ball with a bump map on flat ground", "Not done"), so the tolerance is kept tight: a
+// micrometre (the first such reading asked for a relief level to within a micrometre, which
+// bends by up to two). On a 10 cm dish of 0.16 mm texels the ball no longer rocks in place at up
+// to 12 mm/s from 12 of 60 starts (docs/physics.md, "Smooth reliefs").
+inline constexpr double kSmoothReliefBend = 1e-6;
+bool reliefSmooth(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
+                  const GroundBend* bend = nullptr);
 
-// Both questions in one read of the relief's depth codes, which stops as soon as they spread by
-// more than kNearlyLevelRelief: the ground's height where it is flat (`read_relief` false), or a
-// nearly level relief to be read under each point (`read_relief` true, `height_m` 0); nullopt
-// where it is neither (flatGroundHeight and reliefNearlyLevel ask it).
+// Both questions in one read of the relief's depth codes, which stops as soon as its depth bends
+// by more than kSmoothReliefBend: the ground's height where it is flat (`read_relief` false), or
+// a smooth relief to be read under each point (`read_relief` true, `height_m` its top over those
+// texels); nullopt where it is neither (flatGroundHeight and reliefSmooth ask it).
 struct FlatGround {
   double height_m = 0.0;
   bool read_relief = false;
@@ -79,8 +83,9 @@ std::optional<FlatGround> flatGround(const tex::TexturedSurface& surface, const 
 // candidate's p_surface is the ground's point under the ball's point, its depth the gap there
 // (negative: into the ground), its normal the ground's (the relief's, sampled there; +z on a
 // smooth chart), its texel the ground's. `hint` as findBallBasins reads and updates it.
-// With `read_relief` (a nearly level relief, reliefNearlyLevel) the ground under a point is the
-// relief's bilinear height there (`ground_z` then 0), raised by the bend where there is one.
+// With `read_relief` (a smooth relief, reliefSmooth) the ground under a point is the relief's
+// bilinear height there, raised by the bend where there is one (`ground_z` then the relief's top
+// under the ball, flatGround's height_m, which bounds the blocks read).
 // On bent ground (`bend` non-null: a mesh chart's smooth surface, GroundBend), the ground under a
 // point lies at ground_z plus the bend's height there, each gap is measured to it and each normal
 // is tilted by its slope. nullptr: flat.

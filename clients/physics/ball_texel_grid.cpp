@@ -83,6 +83,7 @@ std::unique_ptr<const BallTexelGrid> BallTexelGrid::build(const FaceTexture& tex
   if (map.isRelief())
     for (std::size_t l = 0; l < map_j.size(); ++l)
       for (std::size_t k = 0; k < map_i.size(); ++k) g->recess_[g->at(int(k), int(l))] = map.depth(map_i[k], map_j[l]);
+  for (const float recess : g->recess_) g->deepest_recess_m_ = std::max(g->deepest_recess_m_, double(recess));
   for (int f = 0; f < 6; ++f)
     for (int l0 = 0; l0 < g->rows(); l0 += kBlock)
       for (int k0 = 0; k0 < g->columns(); k0 += kBlock) {

@@ -44,6 +44,9 @@ class BallTexelGrid {
   // The recess at texel (k, l)'s centre (any face), and by its index at().
   double recess(int k, int l) const { return double(recess_[at(k, l)]); }
   double recess(std::size_t texel) const { return double(recess_[texel]); }
+  // The deepest recess of any texel centre: every texel's point lies within r - deepest and r of
+  // the centre.
+  double deepestRecess() const { return deepest_recess_m_; }
   // The tangents of a column's and a row's angle: a texel's direction is (+-1, tanU, tanV) along
   // the face's axes (a, a + 1, a + 2), divided by its length.
   double tanU(int k) const { return tan_u_[std::size_t(k)]; }
@@ -92,7 +95,7 @@ class BallTexelGrid {
   }
 
   FaceTexture texture_;  // its map must outlive the grid
-  double radius_m_ = 0.0, texel_u_m_ = 0.0, texel_v_m_ = 0.0, half_arc_m_ = 0.0;
+  double radius_m_ = 0.0, texel_u_m_ = 0.0, texel_v_m_ = 0.0, half_arc_m_ = 0.0, deepest_recess_m_ = 0.0;
   std::vector<double> tan_offset_u_, tan_offset_v_;  // tan(i texel / kOffsetSteps / r), i in [-kOffsetSteps, kOffsetSteps]
   int k_first_ = 0, l_first_ = 0;
   std::vector<double> tan_u_, tan_v_;  // per column and row

@@ -272,7 +272,7 @@ std::size_t normalGroup(const Eigen::Vector3d& n) {
 // `closing_within_m`: the gap below which basins past the fourth are kept (findBallBasins);
 // `more_manifolds` (cleared): where the points the result's own cannot hold go.
 // On flat ground (a plain plane's or a plain box face's smooth chart, a relief of one level under
-// the ball; or level to within kNearlyLevelRelief, read under each point), or a mesh chart's
+// the ball; or smooth there, kSmoothReliefBend, read under each point), or a mesh chart's
 // smoothly bent one (its bend known, no chart edge in reach), and
 // with its texel grid (`grid`, PhysicsWorld::addTexturedSphere), the ball's own lowest points
 // instead (ball_on_flat_ground.hpp).

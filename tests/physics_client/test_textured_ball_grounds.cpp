@@ -66,11 +66,11 @@ TEST(TexturedBallGrounds, ADimpledBallWithRollingFrictionComesToRestOnACoarseFla
 }
 
 // That relief's sine is 0.1 um high: its depth codes differ under the ball by a fifth of a
-// micrometre, so the ball meets it on its own texels, the relief's height read under each
-// (clients/physics/ball_on_flat_ground.hpp, reliefNearlyLevel). From this start, read at the
+// micrometre, and it bends by far less, so the ball meets it on its own texels, the relief's height read under each
+// (clients/physics/ball_on_flat_ground.hpp, reliefSmooth). From this start, read at the
 // relief's texels, it dropped into a dimple in its fourth second and rocked on the dimple's rim
 // at 5.2-5.4 mm/s through its eighth (2026-12-07); now it is asleep by its sixth.
-TEST(TexturedBallGrounds, OnAReliefLevelToAMicrometreTheDimpledBallComesToRestWithoutRollingFriction) {
+TEST(TexturedBallGrounds, OnASmoothSineTheDimpledBallComesToRestWithoutRollingFriction) {
   const double fastest = dimpledBallOnAFlatRelief(0.0, "0.0005, -0.0003", 7);
   std::printf("[measured] dimpled ball from (0.5, -0.3) mm on the 0.1 um sine, no rolling friction: %.3f mm/s in its "
               "seventh second\n",
