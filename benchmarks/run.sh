@@ -73,7 +73,7 @@
 #              or ball_own_texels (issue 29: the dimpled ball let down in a smooth bowl and in a
 #              smooth relief dish from 24 starts each, at rest, rocking or swinging; on a plain plane
 #              at 256 to 1024 texels a face, how deep it rests and what a step costs rolling; about
-#              four minutes; its table goes to docs/physics.md)
+#              two and a half minutes; its table goes to docs/physics.md)
 #              or rolling_ridges (issue 29: a ball rolling across sine ridges on the relief plane and on
 #              a relief mesh, lifted and steered, against the rolling-impact law, with the cost of a
 #              step; about half a minute; its table goes to docs/physics.md)
@@ -418,7 +418,7 @@ run_textured_ball() {
 
 run_ball_own_texels() {
   need "$BIN/bench_ball_own_texels" || return 1
-  say "part ball_own_texels: a ball with a bump map on featureless or smooth ground, on its own texels (about four minutes)"
+  say "part ball_own_texels: a ball with a bump map on featureless or smooth ground, on its own texels (about two and a half minutes)"
   bench_with_table bench_ball_own_texels "$ROOT/docs/physics.md"
 }
 
