@@ -62,8 +62,8 @@ std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, cons
 // bumpy plane's 0.4 mm bumps) that reading was worse than the ground's samples (docs/physics.md,
 // "A ball with a bump map on flat ground", "Not done"), so the tolerance is kept tight: a
 // micrometre (the first such reading asked for a relief level to within a micrometre, which
-// bends by up to two). On a 10 cm dish of 0.16 mm texels the ball no longer rocks in place at up
-// to 12 mm/s from 12 of 60 starts (docs/physics.md, "Smooth reliefs").
+// bends by up to two). On a 10 cm dish of 0.16 mm texels the ball no longer rocks in place, as
+// it did at up to 3.9 mm/s from 10 of 60 starts (docs/physics.md, "Smooth reliefs").
 inline constexpr double kSmoothReliefBend = 1e-6;
 bool reliefSmooth(const tex::TexturedSurface& surface, const Underside& ball, double threshold_m,
                   const GroundBend* bend = nullptr);

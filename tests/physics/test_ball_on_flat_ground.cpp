@@ -347,7 +347,7 @@ TEST(BallOnFlatGround, ADimpledBallLetDownInASmoothReliefDishRestsOrSwingsButDoe
   // Starts (drawn as a harness drew them: within 1 mm of the dish's centre, std::mt19937 seeded
   // 1000 + n, turned by anyTurn(100 + n)) in which the relief's samples left the ball rocking in
   // place, the rest detector off: at 1.15-1.45 mm/s in its fourth second, its centre within 2.4 um,
-  // and so through its eighth (12 of 60 starts so, 2026-12-07; docs/physics.md, "Smooth
+  // and so through its eighth (10 of 60 starts so, 2026-12-07; docs/physics.md, "Smooth
   // reliefs"). The dish is smooth (reliefSmooth), so it is read under the ball's own texels. A
   // start either comes to rest (with the rest detector it sleeps within 3 s, and kept awake it
   // strays under 3 um in its fourth second, slower than 0.5 mm/s), or swings on the land between
