@@ -14,7 +14,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -120,18 +119,14 @@ LetDown letDownInBowl(const mesh::GeneratedMesh& bowl, const FaceTexture& textur
       texture, pose);
 }
 
-constexpr double kDishCurvature = 10.0, kDishExtent = 0.04, kDishTop = 0.5 * kDishCurvature * 2.0 * 0.02 * 0.02;
-double dishHeight(double x, double y) { return 0.5 * kDishCurvature * (x * x + y * y) - kDishTop; }
 // Over the eighth second: rocking in place (faster than this, the centre within the stray) against
 // swinging (the centre farther) and lying still. A ball still settling late in the sixth second is
 // neither: measured over seconds 5-8, one such start on the grooves read as rocking.
 constexpr double kSwingStray = 50e-6, kRockingSpeed = 0.5e-3;
 
 LetDown letDownInDish(const tex::TexturedSurface& dish, const FaceTexture& texture, unsigned seed) {
-  std::mt19937 random(1000 + seed);
-  std::uniform_real_distribution<double> within(-0.001, 0.001);
-  const double x = within(random), y = within(random);
-  Eigen::Isometry3d pose = at(x, y, dishHeight(x, y) + tb::kRadius + 2e-4);
+  const Eigen::Vector2d start = tb::dishStart(seed);
+  Eigen::Isometry3d pose = at(start.x(), start.y(), tb::dishHeight(start.x(), start.y()) + tb::kRadius + 2e-4);
   pose.linear() = tb::anyTurn(100 + seed);
   return letDown([&](PhysicsWorld& world) { world.addReliefPlane(dish, {0.5, 0.0, 0.0}); }, texture, pose);
 }
@@ -229,7 +224,7 @@ int run(int argc, char** argv) {
     late.push_back(b.fastest_late);
     us += b.us_per_step / double(bowl.size());
   }
-  const SurfaceHolder dish_plane = holdSurface(heightMap(256, kDishExtent, dishHeight), kDishExtent, true);
+  const SurfaceHolder dish_plane = holdSurface(tb::dishMap(), tb::kDishExtent, true);
   std::vector<LetDown> dish;
   for (int s = 1; s <= dish_starts; ++s) {
     std::fprintf(stderr, "\rbench_ball_own_texels: dish, start %d of %d ...", s, dish_starts);

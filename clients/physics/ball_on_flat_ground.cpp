@@ -43,6 +43,20 @@ struct Texel {
   double depth = 0.0;
 };
 
+// The texels (unresolved indices) holding the plane's box [lo, hi] and one round them, which a
+// bilinear reading anywhere in the box may touch. A plane mapping takes i from x alone and j from
+// y alone, so two corners bound them.
+struct TexelSpan {
+  long long i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  long long count() const { return (i1 - i0 + 1) * (j1 - j0 + 1); }
+};
+TexelSpan texelsRound(const tex::TexturedSurface& surface, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  long long ia = 0, ja = 0, ib = 0, jb = 0;
+  surface.texelContaining(lo.x(), lo.y(), ia, ja);
+  surface.texelContaining(hi.x(), hi.y(), ib, jb);
+  return {std::min(ia, ib) - 1, std::max(ia, ib) + 1, std::min(ja, jb) - 1, std::max(ja, jb) + 1};
+}
+
 // The relief's depth codes over the texels under the ball's touching disc (the part of its sphere
 // within `threshold_m` of the ground) and one texel round them: the least (the highest ground) and
 // the most, with a texel holding the least (resolved); nullopt where there is no disc, it holds too
@@ -65,14 +79,10 @@ std::optional<CodeRange> depthCodesUnder(const tex::TexturedSurface& surface, co
            : 0.0;
   const double rho = touchingRadius(ball.radius, c.z() - ball.radius, threshold_m + rise);
   if (!(rho > 0.0)) return std::nullopt;
-  long long i0 = std::numeric_limits<long long>::max(), j0 = i0, i1 = std::numeric_limits<long long>::min(), j1 = i1;
-  for (const double sx : {-rho, rho})
-    for (const double sy : {-rho, rho}) {
-      long long i = 0, j = 0;
-      surface.texelContaining(c.x() + sx, c.y() + sy, i, j);
-      i0 = std::min(i0, i - 1), i1 = std::max(i1, i + 1), j0 = std::min(j0, j - 1), j1 = std::max(j1, j + 1);
-    }
-  if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMostFlatnessTexels) return std::nullopt;
+  const TexelSpan span = texelsRound(surface, c.head<2>() - Eigen::Vector2d::Constant(rho),
+                                     c.head<2>() + Eigen::Vector2d::Constant(rho));
+  if (span.count() > kMostFlatnessTexels) return std::nullopt;
+  const long long i0 = span.i0, i1 = span.i1, j0 = span.j0, j1 = span.j1;
   const tex::Address address = surface.sampling().address;
   const std::size_t width = std::size_t(i1 - i0 + 1);
   // The last three rows read, to take second differences down the columns.
@@ -236,17 +246,13 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
       const double least = middle[a] - b.spread, most = middle[a] + b.spread;
       lo[a] = c[a] + std::min(near * least, r * least), hi[a] = c[a] + std::max(near * most, r * most);
     }
-    long long ia = 0, ja = 0, ib = 0, jb = 0;
-    surface.texelContaining(lo.x(), lo.y(), ia, ja);
-    surface.texelContaining(hi.x(), hi.y(), ib, jb);
-    const long long i0 = std::min(ia, ib) - 1, i1 = std::max(ia, ib) + 1, j0 = std::min(ja, jb) - 1,
-                    j1 = std::max(ja, jb) + 1;
-    if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMostBlockTexels) return ground_z;
+    const TexelSpan span = texelsRound(surface, lo, hi);
+    if (span.count() > kMostBlockTexels) return ground_z;
     std::uint16_t least = 65535;
     int li = 0, lj = 0;
-    for (long long j = j0; j <= j1; ++j) {
+    for (long long j = span.j0; j <= span.j1; ++j) {
       const int rj = tex::resolveIndex(j, map.height(), address);
-      for (long long i = i0; i <= i1; ++i) {
+      for (long long i = span.i0; i <= span.i1; ++i) {
         const int ri = tex::resolveIndex(i, map.width(), address);
         if (const std::uint16_t code = map.depthCode(ri, rj); code < least) least = code, li = ri, lj = rj;
       }
@@ -260,6 +266,7 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
   // r L min(w . n, 0) - r^2 curving_up |w_xy|^2 / 2; a recessed point's gap (r - recess for r) is
   // no less than that bound either, as curving_up >= 0.
   auto readBentWithin = [&](double bound) {
+    const double centre_bent = bend->height(c.x(), c.y());
     for (int f = 0; f < 6; ++f) {
       std::vector<double>& g = gaps[std::size_t(f)];
       const int a = f / 2;
@@ -279,7 +286,7 @@ std::size_t ballOnFlatGround(const BallTexelGrid& grid, const tex::TexturedSurfa
         // micrometres above the ground under the ball, so the block, and then each point, is
         // measured from the block's top before the relief is read under it.
         const double top = read_relief ? reliefTopUnder(b) : ground_z;
-        if (read_relief && c.z() - top - bend->height(c.x(), c.y()) + least_rise > bound) continue;
+        if (read_relief && c.z() - top - centre_bent + least_rise > bound) continue;
         for (int l = b.l0; l < b.l1; ++l) {
           const double tv = grid.tanV(l), row_length2 = 1.0 + tv * tv;
           const Eigen::Vector3d row = A + tv * D;

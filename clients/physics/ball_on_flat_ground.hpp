@@ -58,9 +58,10 @@ std::optional<double> flatGroundHeight(const tex::TexturedSurface& surface, cons
 // difference of its depth there). Then its bilinear height lies within an eighth of that of a
 // smooth surface through its texels, and the ball meets it on its own texels too, that height
 // read under each point (ballOnFlatGround's `read_relief`): a dish or a long wave, a nominally
-// flat map's quantisation, a slope of any steepness. Where the relief has features of its own (a
-// bumpy plane's 0.4 mm bumps) that reading was worse than the ground's samples (docs/physics.md,
-// "A ball with a bump map on flat ground", "Not done"), so the tolerance is kept tight: a
+// flat map's quantisation, a uniform slope (a ramp of slope 0.1 tested). Where the relief has
+// features of its own (a bumpy plane's 0.4 mm bumps) that reading was worse than the ground's
+// samples (docs/physics.md, "A ball with a bump map on flat ground", "Not done"), so the
+// tolerance is kept tight: a
 // micrometre (the first such reading asked for a relief level to within a micrometre, which
 // bends by up to two). On a 10 cm dish of 0.16 mm texels the ball no longer rocks in place, as
 // it did at up to 3.9 mm/s from 10 of 60 starts (docs/physics.md, "Smooth reliefs").

@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <string>
 
 #include "clients/physics/ball_on_flat_ground.hpp"
@@ -250,13 +249,9 @@ enum class Floor { PlainPlane, FlatRelief, SmoothBowl, ReliefDish };
 // The smooth bowl: the inside of a UV sphere of this radius, its bottom turned onto the equator,
 // the ball let down at the bottom.
 constexpr double kBowlRadius = 0.05;
-// The relief dish: a paraboloid of this curvature (a sphere's of 10 cm radius) as a relief plane's
-// depth, 256 texels over 4 cm (0.16 mm); its depth bends by 0.24 um from texel to texel, and by
-// up to 6 of its 0.06 um codes.
-constexpr double kDishCurvature = 10.0, kDishTop = 0.5 * kDishCurvature * 2.0 * 0.02 * 0.02;
-double dishHeight(double x, double y) { return 0.5 * kDishCurvature * (x * x + y * y) - kDishTop; }
+// The relief dish (tb::dishMap), built once.
 const tex::TextureMap& dishMap() {
-  static const tex::TextureMap map = heightMap(256, 0.04, dishHeight);
+  static const tex::TextureMap map = tb::dishMap();
   return map;
 }
 LetDown letDown(Floor floor, const Eigen::Vector2d& start, const Eigen::Matrix3d& turn, bool rest_detector, int seconds) {
@@ -276,7 +271,7 @@ LetDown letDown(Floor floor, const Eigen::Vector2d& start, const Eigen::Matrix3d
     floor_z = -kBowlRadius;
   } else if (floor == Floor::FlatRelief || floor == Floor::ReliefDish) {
     world.addReliefPlane(plane.surface, {0.5, 0.0, 0.0});
-    if (floor == Floor::ReliefDish) floor_z = dishHeight(start.x(), start.y());
+    if (floor == Floor::ReliefDish) floor_z = tb::dishHeight(start.x(), start.y());
   } else {
     world.addPlainPlane(at(0.0, 0.0, 0.0), {0.5, 0.0, 0.0});
   }
@@ -344,8 +339,7 @@ TEST(BallOnFlatGround, ADimpledBallLetDownInASmoothBowlComesToRestWithoutRolling
 }
 
 TEST(BallOnFlatGround, ADimpledBallLetDownInASmoothReliefDishRestsOrSwingsButDoesNotRockInPlace) {
-  // Starts (drawn as a harness drew them: within 1 mm of the dish's centre, std::mt19937 seeded
-  // 1000 + n, turned by anyTurn(100 + n)) in which the relief's samples left the ball rocking in
+  // Starts (tb::dishStart, as a harness drew them) in which the relief's samples left the ball rocking in
   // place, the rest detector off: at 1.15-1.45 mm/s in its fourth second, its centre within 2.4 um,
   // and so through its eighth (10 of 60 starts so, 2026-12-07; docs/physics.md, "Smooth
   // reliefs"). The dish is smooth (reliefSmooth), so it is read under the ball's own texels. A
@@ -356,12 +350,10 @@ TEST(BallOnFlatGround, ADimpledBallLetDownInASmoothReliefDishRestsOrSwingsButDoe
   // comes to rest in the optimised tree and swings in the sanitizer tree. At least two rest.
   int resting_starts = 0;
   for (const unsigned n : {5u, 21u, 30u}) {
-    std::mt19937 random(1000 + n);
-    std::uniform_real_distribution<double> within(-0.001, 0.001);
-    const double x = within(random), y = within(random);
-    const LetDown awake = letDown(Floor::ReliefDish, {x, y}, anyTurn(100 + n), false, 4);
+    const Eigen::Vector2d start = tb::dishStart(n);
+    const LetDown awake = letDown(Floor::ReliefDish, start, anyTurn(100 + n), false, 4);
     const bool swinging = awake.strayed_m > 50e-6;
-    const LetDown resting = letDown(Floor::ReliefDish, {x, y}, anyTurn(100 + n), true, 3);
+    const LetDown resting = letDown(Floor::ReliefDish, start, anyTurn(100 + n), true, 3);
     std::printf("[measured] dimpled ball in a smooth relief dish, start %u: %s with the rest detector; kept awake, in "
                 "its fourth second it strays %.3f um at up to %.3f mm/s%s\n",
                 n, resting.asleep ? "asleep" : "awake", awake.strayed_m * 1e6, awake.fastest * 1e3,

@@ -61,6 +61,22 @@ inline Eigen::Matrix3d anyTurn(unsigned seed) {
       .toRotationMatrix();
 }
 
+// A relief dish (docs/physics.md, "Smooth reliefs"): a paraboloid of curvature 10 /m (a sphere's
+// of 10 cm radius) as a relief plane's depth, 256 texels over 4 cm (0.16 mm; its depth bends by
+// 0.24 um from texel to texel, and by up to 6 of its 0.06 um codes), its centre kDishTop under
+// the plane. The dimpled ball is let down in it at dishStart(n): within 1 mm of its centre
+// (std::mt19937 seeded 1000 + n), turned by anyTurn(100 + n).
+inline constexpr double kDishCurvature = 10.0, kDishExtent = 0.04;
+inline constexpr double kDishTop = 0.5 * kDishCurvature * 2.0 * (kDishExtent / 2.0) * (kDishExtent / 2.0);
+inline double dishHeight(double x, double y) { return 0.5 * kDishCurvature * (x * x + y * y) - kDishTop; }
+inline tex::TextureMap dishMap() { return heightMap(256, kDishExtent, dishHeight); }
+inline Eigen::Vector2d dishStart(unsigned n) {
+  std::mt19937 random(1000 + n);
+  std::uniform_real_distribution<double> within(-0.001, 0.001);
+  const double x = within(random), y = within(random);
+  return {x, y};
+}
+
 inline FaceTexture ballTexture(const tex::TextureMap& map) {
   FaceTexture t;
   t.map = &map;
