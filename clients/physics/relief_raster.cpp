@@ -332,4 +332,59 @@ ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Undersi
   return r;
 }
 
+std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& ball,
+                                                          const GroundBend* bend, double threshold_m) {
+  constexpr double kOpen = std::numeric_limits<double>::infinity();  // no sphere over the point
+  // Spans from a texel down to a hundred-thousandth of one (20 nm on 2 mm texels); a span is
+  // halved once no move along either axis brings the two closer, so the search always ends.
+  constexpr double kSmallestSpan = 1e-5;
+  constexpr int kMostRounds = 64;
+  auto raised = [&](double x, double y) { return bend ? bend->height(x, y) : 0.0; };
+  auto depthAt = [&](const Eigen::Vector2d& q) {
+    const std::optional<double> z = lowestZ(ball, q.x(), q.y());
+    return z ? *z - surface.at(q.x(), q.y()).height_m - raised(q.x(), q.y()) : kOpen;
+  };
+  // The relief lies at or under its plane, raised by no more than the bend rises under the ball:
+  // a ball higher than that over it by the threshold touches nothing (a ball in the air above the
+  // plane, every step).
+  const Eigen::Vector3d centre = ball.plane_from_object.translation();
+  const Eigen::Vector2d reach = Eigen::Vector2d::Constant(ball.radius);
+  const double rise = bend ? bend->highestOver(Eigen::AlignedBox2d(centre.head<2>() - reach, centre.head<2>() + reach)) : 0.0;
+  if (centre.z() - ball.radius - rise > threshold_m) return std::nullopt;
+  const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map()).cwiseAbs();
+  Eigen::Vector2d at = centre.head<2>();
+  double depth = depthAt(at);
+  double span = 1.0;  // in texels
+  for (int round = 0; round < kMostRounds && span >= kSmallestSpan; ++round) {
+    bool moved = false;
+    for (int axis = 0; axis < 2; ++axis) {
+      Eigen::Vector2d step = Eigen::Vector2d::Zero();
+      step[axis] = span * texel[axis];
+      const double before = depthAt(at - step), after = depthAt(at + step);
+      // The parabola's vertex through the three, no farther than the span; towards the closer
+      // side where they do not curve up (an open side counts as farthest).
+      const double curvature = before + after - 2.0 * depth;
+      double t = 0.0;
+      if (std::isfinite(curvature) && curvature > 0.0) {
+        t = std::clamp(0.5 * (before - after) / curvature, -1.0, 1.0);
+      } else if (before < depth || after < depth) {
+        t = before < after ? -1.0 : 1.0;
+      }
+      if (t == 0.0) continue;
+      const Eigen::Vector2d next = at + t * step;
+      const double there = depthAt(next);
+      if (there < depth) at = next, depth = there, moved = true;
+    }
+    if (!moved) span *= 0.5;
+  }
+  if (!(depth <= threshold_m)) return std::nullopt;
+  const tex::SurfacePoint s = surface.at(at.x(), at.y());
+  ReliefCandidate r;
+  r.p_surface = Eigen::Vector3d(at.x(), at.y(), s.height_m + raised(at.x(), at.y()));
+  r.n_local = bend ? bend->tilt(s.n_local, at.x(), at.y()) : s.n_local;
+  r.depth = depth;
+  surface.texelContaining(at.x(), at.y(), r.i, r.j);
+  return r;
+}
+
 }  // namespace thx::phys

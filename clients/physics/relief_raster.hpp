@@ -5,6 +5,7 @@
 // height there). Texels where d < threshold become contact candidates.
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "clients/physics/contact_selection.hpp"
@@ -93,5 +94,16 @@ inline bool hasNormal(const ReliefCandidate& c) { return !std::isnan(c.n_local.x
 ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Underside& shape, const ReliefCandidate& c,
                               const GroundBend* bend = nullptr, const FaceTexture* object_texture = nullptr,
                               bool settle_everywhere = false);
+
+// A plain ball over a relief none of whose texel centres lies within the threshold of its sphere:
+// on texels coarse against the ball it still touches the relief between them (a 5 mm ball whose
+// lowest point lies between four 1.95 mm texels' centres stands 0.19 mm over them while it touches
+// the flat relief; with no contact it fell in and rattled there, docs/physics.md "Relief texels
+// coarse against a ball"). The point of the relief (bilinear, raised by `bend`) nearest the
+// sphere along the plane's normal, found from under the ball's centre by parabolas along each
+// axis, every move one that brings the two closer, through points ever closer; nullopt where that
+// point lies farther than `threshold_m`. Its texel is the one it lies in; its normal the relief's.
+std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& ball,
+                                                          const GroundBend* bend, double threshold_m);
 
 }  // namespace thx::phys

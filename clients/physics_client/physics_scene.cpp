@@ -196,15 +196,11 @@ std::string coarseReliefWarning(const std::string& ball, double radius_m, const 
   if (!(texel > enough)) return {};
   char text[640];
   std::snprintf(text, sizeof text,
-                "ball '%s' (radius %.2f mm) on relief texels of %.2f mm: the relief's contacts stand at texel centres, so "
-                "a ball can sink between them and jitter there where a texel is over %.2f of its radius (measured from "
-                "0.39)%s; texels of %.2f mm or less would do (%d x %d over the %.3f x %.3f m surface)",
-                ball.c_str(), 1e3 * radius_m, 1e3 * texel, kCoarseTexelPerRadius,
-                texel * std::sqrt(0.5) >= radius_m ? ", and here it can fall between them where no centre lies within its "
-                                                     "radius and be thrown out"
-                                                   : "",
-                1e3 * enough, int(std::ceil(surface_m.x() / enough)), int(std::ceil(surface_m.y() / enough)), surface_m.x(),
-                surface_m.y());
+                "ball '%s' (radius %.2f mm) on relief texels of %.2f mm: where the relief has features at its texels, "
+                "a ball's contacts stand at texel centres, and it can jitter there where a texel is over %.2f of its "
+                "radius; texels of %.2f mm or less would do (%d x %d over the %.3f x %.3f m surface)",
+                ball.c_str(), 1e3 * radius_m, 1e3 * texel, kCoarseTexelPerRadius, 1e3 * enough,
+                int(std::ceil(surface_m.x() / enough)), int(std::ceil(surface_m.y() / enough)), surface_m.x(), surface_m.y());
   return text;
 }
 

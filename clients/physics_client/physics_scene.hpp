@@ -140,10 +140,10 @@ struct PenForce {
 // A scene material as the physics world's (friction, restitution, rolling and spinning friction).
 phys::BodyMaterial materialOf(const scene::Material& m);
 
-// A ball of `radius_m` on a relief plane read texel by texel (the relief's contacts stand at texel
-// centres) can sink between the centres and jitter there where the texels are coarse against it
-// (measured at rest up to 0.2 of its radius, jittering from 0.39), and fall between them where no
-// centre lies within its radius (docs/physics.md, Known gaps).
+// A ball of `radius_m` on a relief plane whose texels are coarse against it: where the relief has
+// features at its texels the ball's contacts stand at texel centres (refined by a parabola through
+// their neighbours), and it can jitter there (docs/physics.md, Known gaps). On a relief flat or
+// smooth there it meets the relief between the centres since 2026-12-07 (deepestBetweenTexelCentres).
 // The warning names the ball and the texel count that would do, or is empty where a texel is at
 // most kCoarseTexelPerRadius of the radius.
 inline constexpr double kCoarseTexelPerRadius = 0.25;
