@@ -142,8 +142,8 @@ phys::BodyMaterial materialOf(const scene::Material& m);
 
 // A ball of `radius_m` on a relief plane whose texels are coarse against it: where the relief has
 // features at its texels the ball's contacts stand at texel centres (refined by a parabola through
-// their neighbours), and it can jitter there (docs/physics.md, Known gaps). On a relief flat or
-// smooth there it meets the relief between the centres since 2026-12-07 (deepestBetweenTexelCentres).
+// their neighbours), and it can jitter there (docs/physics.md, Known gaps). On a flat relief or a
+// uniform slope it meets the relief between the centres since 2026-12-07 (deepestBetweenTexelCentres).
 // The warning names the ball and the texel count that would do, or is empty where a texel is at
 // most kCoarseTexelPerRadius of the radius.
 inline constexpr double kCoarseTexelPerRadius = 0.25;
