@@ -793,14 +793,16 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
       if (!hasNormal(chosen.contacts[k])) withNormals(surface, bent, nullptr, chosen.contacts[k]);
     }
     chosen.count = n;
-    // A plain ball none of whose texel centres is within the threshold may still touch the relief
-    // between them (texels coarse against it, relief_raster.hpp).
-    if (n == 0 && underside.kind == Underside::Kind::Sphere && !bounded) {
-      if (const std::optional<ReliefCandidate> under = deepestBetweenTexelCentres(surface, underside, bent, threshold)) {
-        chosen.contacts[0] = *under;
-        chosen.count = 1;
-      }
+  }
+  // A ball or a box none of whose texel centres is within the threshold may still touch the
+  // relief between them (texels coarse against it, relief_raster.hpp).
+  if (chosen.count == 0 && !bounded && underside.kind == Underside::Kind::Sphere) {
+    if (const std::optional<ReliefCandidate> under = deepestBetweenTexelCentres(surface, underside, bent, threshold)) {
+      chosen.contacts[0] = *under;
+      chosen.count = 1;
     }
+  } else if (chosen.count == 0 && !bounded && underside.kind == Underside::Kind::Box) {
+    chosen.count = boxCornersBetweenTexelCentres(surface, underside, bent, threshold, chosen.contacts);
   }
 
   // A box's face resting on a crease of the relief takes the face's normal (crease_contact.hpp);

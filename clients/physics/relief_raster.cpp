@@ -387,4 +387,34 @@ std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSur
   return r;
 }
 
+std::size_t boxCornersBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& box, const GroundBend* bend,
+                                          double threshold_m, std::array<ReliefCandidate, kMaxReliefContacts>& out) {
+  std::array<Eigen::Vector3d, 8> corners;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d sign(k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0);
+    corners[std::size_t(k)] = box.plane_from_object * sign.cwiseProduct(box.half_extents);
+  }
+  std::sort(corners.begin(), corners.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.z() < b.z(); });
+  // As for a ball: a box higher over the plane than the bend rises under it, by the threshold,
+  // touches nothing.
+  Eigen::AlignedBox2d footprint;
+  for (const Eigen::Vector3d& c : corners) footprint.extend(c.head<2>());
+  if (corners[0].z() - (bend ? bend->highestOver(footprint) : 0.0) > threshold_m) return 0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < 4 && count < out.size(); ++k) {
+    const Eigen::Vector3d& c = corners[k];
+    const tex::SurfacePoint s = surface.at(c.x(), c.y());
+    const double height = s.height_m + (bend ? bend->height(c.x(), c.y()) : 0.0);
+    const double depth = c.z() - height;
+    if (!(depth <= threshold_m)) continue;
+    ReliefCandidate& r = out[count++];
+    r = ReliefCandidate{};
+    r.p_surface = Eigen::Vector3d(c.x(), c.y(), height);
+    r.n_local = bend ? bend->tilt(s.n_local, c.x(), c.y()) : s.n_local;
+    r.depth = depth;
+    surface.texelContaining(c.x(), c.y(), r.i, r.j);
+  }
+  return count;
+}
+
 }  // namespace thx::phys

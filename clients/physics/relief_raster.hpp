@@ -3,6 +3,7 @@
 // (docs/design.md §4 rule 8): for every texel centre under the object's plane-frame bounding box,
 // the directional penetration depth along the plane normal, d = (object's lowest z there) - (relief
 // height there). Texels where d < threshold become contact candidates.
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -105,5 +106,13 @@ ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Undersi
 // point lies farther than `threshold_m`. Its texel is the one it lies in; its normal the relief's.
 std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& ball,
                                                           const GroundBend* bend, double threshold_m);
+
+// A box over a relief none of whose texel centres lies within the threshold under it (a box
+// smaller than the texels: an 8 mm box whose footprint held no centre of 12.5 mm texels had no
+// contact and fell through the relief): its four lowest corners, each a contact where it lies
+// within `threshold_m` of the relief (bilinear, raised by `bend`) straight under it, its normal
+// the relief's there. Returns how many, at most four, into `out`.
+std::size_t boxCornersBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& box, const GroundBend* bend,
+                                          double threshold_m, std::array<ReliefCandidate, kMaxReliefContacts>& out);
 
 }  // namespace thx::phys

@@ -1,8 +1,9 @@
-// A plain ball on relief texels coarse against it (docs/physics.md, "Relief texels coarse against a
-// ball"): where no texel centre lies within the threshold of its sphere it still meets the relief
-// between them (deepestBetweenTexelCentres, relief_raster.hpp), at rest and rolling. Before, a 5 mm
-// ball set between four centres of 1.95 mm texels sank 25 um and rattled at 4.9 mm/s, and where no
-// centre lay within its radius (7.81 mm texels) it fell in and was thrown out.
+// A plain ball or a box on relief texels coarse against it (docs/physics.md, "Relief texels coarse
+// against a ball"): where no texel centre lies within the threshold under it, it still meets the
+// relief between them (deepestBetweenTexelCentres and boxCornersBetweenTexelCentres,
+// relief_raster.hpp), at rest and rolling. Before, a 5 mm ball set between four centres of
+// 1.95 mm texels sank 25 um and rattled at 4.9 mm/s, where no centre lay within its radius
+// (7.81 mm texels) it fell in and was thrown out, and a box smaller than the texels fell through.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -97,6 +98,30 @@ TEST(CoarseReliefTexels, ABallRollsDownACoarseRampAsDownAFineOne) {
     }
     EXPECT_NEAR((velocityOf(ball).x() - v1) / 0.2, expected, 0.01 * expected);
     EXPECT_LT(farthest_off, 2e-5);  // on the ramp along its normal
+  }
+}
+
+TEST(CoarseReliefTexels, ABoxWithNoTexelCentreUnderItRestsOnTheFlatRelief) {
+  // An 8 mm box on texels of 12.5 and 25 mm, its footprint between the centres (before: no contact,
+  // it fell through the relief) or over one (one contact under its middle, as before).
+  const double h = 0.004;
+  for (const int texels : {40, 20}) {
+    const double d = kExtent / texels;
+    const SurfaceHolder plane = holdSurface(flatRelief(texels), kExtent, true);
+    for (const double o : {0.9, 0.5}) {
+      SCOPED_TRACE(::testing::Message() << d * 1e3 << " mm texels, at " << o << " of a texel");
+      PhysicsWorld world = awakeWorld();
+      world.addReliefPlane(plane.surface, kPlane);
+      const double x = (100 + o) * d - 0.5 * kExtent;
+      btRigidBody& box = world.addBox({h, h, h}, 0.005, at(x, x, h + 1e-4), {0.5, 0.0, 0.0});
+      double fastest = 0.0;
+      for (int k = 0; k < 2000; ++k) {
+        world.step(kDt);
+        if (k >= 1000) fastest = std::max(fastest, velocityOf(box).norm());
+      }
+      EXPECT_NEAR(positionOf(box).z(), h, 1e-7);
+      EXPECT_LT(fastest, 2e-5);
+    }
   }
 }
 
