@@ -387,6 +387,17 @@ std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSur
   return r;
 }
 
+bool boxUnderTwoTexelsAcross(const tex::TexturedSurface& surface, const Underside& box) {
+  Eigen::AlignedBox2d footprint;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d sign(k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0);
+    footprint.extend((box.plane_from_object * sign.cwiseProduct(box.half_extents)).head<2>());
+  }
+  const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map()).cwiseAbs();
+  const Eigen::Vector2d across = footprint.sizes();
+  return across.x() < 2.0 * texel.x() || across.y() < 2.0 * texel.y();
+}
+
 std::size_t boxCornersBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& box, const GroundBend* bend,
                                           double threshold_m, std::array<ReliefCandidate, kMaxReliefContacts>& out) {
   std::array<Eigen::Vector3d, 8> corners;

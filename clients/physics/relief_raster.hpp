@@ -114,5 +114,8 @@ std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSur
 // the relief's there. Returns how many, at most four, into `out`.
 std::size_t boxCornersBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& box, const GroundBend* bend,
                                           double threshold_m, std::array<ReliefCandidate, kMaxReliefContacts>& out);
+// Whether the box's footprint (its corners' extent in the plane) is less than two texels across
+// along either of the map's axes: too few texel centres under it to stand on.
+bool boxUnderTwoTexelsAcross(const tex::TexturedSurface& surface, const Underside& box);
 
 }  // namespace thx::phys

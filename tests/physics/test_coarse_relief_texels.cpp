@@ -3,7 +3,8 @@
 // relief between them (deepestBetweenTexelCentres and boxCornersBetweenTexelCentres,
 // relief_raster.hpp), at rest and rolling. Before, a 5 mm ball set between four centres of
 // 1.95 mm texels sank 25 um and rattled at 4.9 mm/s, where no centre lay within its radius
-// (7.81 mm texels) it fell in and was thrown out, and a box smaller than the texels fell through.
+// (7.81 mm texels) it fell in and was thrown out, and a box smaller than the texels fell through
+// or stood on one centre by its corner.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -101,11 +102,12 @@ TEST(CoarseReliefTexels, ABallRollsDownACoarseRampAsDownAFineOne) {
   }
 }
 
-TEST(CoarseReliefTexels, ABoxWithNoTexelCentreUnderItRestsOnTheFlatRelief) {
-  // An 8 mm box on texels of 12.5 and 25 mm, its footprint between the centres (before: no contact,
-  // it fell through the relief) or over one (one contact under its middle, as before).
+TEST(CoarseReliefTexels, ABoxLessThanTwoTexelsAcrossRestsOnTheFlatRelief) {
+  // An 8 mm box on texels of 7.81, 12.5 and 25 mm, its footprint between the centres (before: no
+  // contact, it fell through the relief), over one by its corner (before: 2.7 mm low) or over one
+  // under its middle.
   const double h = 0.004;
-  for (const int texels : {40, 20}) {
+  for (const int texels : {64, 40, 20}) {
     const double d = kExtent / texels;
     const SurfaceHolder plane = holdSurface(flatRelief(texels), kExtent, true);
     for (const double o : {0.9, 0.5}) {
