@@ -803,27 +803,10 @@ void ReliefCollisionAlgorithm::plainObjectCollision(const tex::TexturedSurface& 
     }
   } else if (!bounded && underside.kind == Underside::Kind::Box &&
              (chosen.count == 0 || (!isSmoothChart(surface) && boxUnderTwoTexelsAcross(surface, underside)))) {
-    // A box less than two texels across holds too few centres to stand on (one centre by a corner
-    // left an 8 mm box 2.7 mm low on 7.81 mm texels): it stands on its corners, and on a centre's
-    // contact only where that lies deeper than every corner (a bump under the box).
-    constexpr double kDeeperThanCorners = 1e-6;
-    std::array<ReliefCandidate, kMaxReliefContacts> corners{};
-    std::size_t n = boxCornersBetweenTexelCentres(surface, underside, bent, threshold, corners);
-    double deepest_corner = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < n; ++k) deepest_corner = std::min(deepest_corner, corners[k].depth);
-    for (std::size_t k = 0; k < chosen.count; ++k) {
-      const ReliefCandidate& c = chosen.contacts[k];
-      if (!(c.depth < deepest_corner - kDeeperThanCorners)) continue;
-      if (n < corners.size()) {
-        corners[n++] = c;
-      } else {  // in place of the shallowest corner
-        std::size_t shallowest = 0;
-        for (std::size_t m = 1; m < n; ++m) shallowest = corners[m].depth > corners[shallowest].depth ? m : shallowest;
-        corners[shallowest] = c;
-      }
-    }
-    chosen.contacts = corners;
-    chosen.count = n;
+    // Too few centres under the box to stand on: its corners (relief_raster.hpp).
+    const std::array<ReliefCandidate, kMaxReliefContacts> centres = chosen.contacts;
+    chosen.count = boxCornerContacts(surface, underside, bent, threshold, std::span(centres.data(), chosen.count),
+                                     chosen.contacts);
   }
 
   // A box's face resting on a crease of the relief takes the face's normal (crease_contact.hpp);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include "clients/physics/chart_boundary.hpp"
 #include "clients/physics/textured_box_rows.hpp"
@@ -332,6 +333,22 @@ ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Undersi
   return r;
 }
 
+namespace {
+// The relief's point under (x, y) (bilinear, raised by `bend`) as a contact candidate for an
+// object whose underside there lies at `object_z`: its texel, its normal, the gap between the two.
+ReliefCandidate candidateUnder(const tex::TexturedSurface& surface, const GroundBend* bend, double x, double y,
+                               double object_z) {
+  const tex::SurfacePoint s = surface.at(x, y);
+  const double raise = bend ? bend->height(x, y) : 0.0;
+  ReliefCandidate r;
+  r.p_surface = Eigen::Vector3d(x, y, s.height_m + raise);
+  r.n_local = bend ? bend->tilt(s.n_local, x, y) : s.n_local;
+  r.depth = object_z - s.height_m - raise;
+  surface.texelContaining(x, y, r.i, r.j);
+  return r;
+}
+}  // namespace
+
 std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& ball,
                                                           const GroundBend* bend, double threshold_m) {
   constexpr double kOpen = std::numeric_limits<double>::infinity();  // no sphere over the point
@@ -339,20 +356,18 @@ std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSur
   // halved once no move along either axis brings the two closer, so the search always ends.
   constexpr double kSmallestSpan = 1e-5;
   constexpr int kMostRounds = 64;
-  auto raised = [&](double x, double y) { return bend ? bend->height(x, y) : 0.0; };
   auto depthAt = [&](const Eigen::Vector2d& q) {
     const std::optional<double> z = lowestZ(ball, q.x(), q.y());
-    return z ? *z - surface.at(q.x(), q.y()).height_m - raised(q.x(), q.y()) : kOpen;
+    return z ? *z - surface.at(q.x(), q.y()).height_m - (bend ? bend->height(q.x(), q.y()) : 0.0) : kOpen;
   };
   // The relief lies at or under its plane, raised by no more than the bend rises under the ball:
   // a ball higher than that over it by the threshold touches nothing (a ball in the air above the
   // plane, every step).
-  const Eigen::Vector3d centre = ball.plane_from_object.translation();
-  const Eigen::Vector2d reach = Eigen::Vector2d::Constant(ball.radius);
-  const double rise = bend ? bend->highestOver(Eigen::AlignedBox2d(centre.head<2>() - reach, centre.head<2>() + reach)) : 0.0;
-  if (centre.z() - ball.radius - rise > threshold_m) return std::nullopt;
+  const Eigen::AlignedBox3d bounds = planeBounds(ball);
+  const Eigen::AlignedBox2d footprint(bounds.min().head<2>(), bounds.max().head<2>());
+  if (bounds.min().z() - (bend ? bend->highestOver(footprint) : 0.0) > threshold_m) return std::nullopt;
   const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map()).cwiseAbs();
-  Eigen::Vector2d at = centre.head<2>();
+  Eigen::Vector2d at = ball.plane_from_object.translation().head<2>();
   double depth = depthAt(at);
   double span = 1.0;  // in texels
   for (int round = 0; round < kMostRounds && span >= kSmallestSpan; ++round) {
@@ -378,54 +393,51 @@ std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSur
     if (!moved) span *= 0.5;
   }
   if (!(depth <= threshold_m)) return std::nullopt;
-  const tex::SurfacePoint s = surface.at(at.x(), at.y());
-  ReliefCandidate r;
-  r.p_surface = Eigen::Vector3d(at.x(), at.y(), s.height_m + raised(at.x(), at.y()));
-  r.n_local = bend ? bend->tilt(s.n_local, at.x(), at.y()) : s.n_local;
-  r.depth = depth;
-  surface.texelContaining(at.x(), at.y(), r.i, r.j);
-  return r;
+  return candidateUnder(surface, bend, at.x(), at.y(), *lowestZ(ball, at.x(), at.y()));
 }
 
 bool boxUnderTwoTexelsAcross(const tex::TexturedSurface& surface, const Underside& box) {
-  Eigen::AlignedBox2d footprint;
-  for (int k = 0; k < 8; ++k) {
-    const Eigen::Vector3d sign(k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0);
-    footprint.extend((box.plane_from_object * sign.cwiseProduct(box.half_extents)).head<2>());
-  }
+  const Eigen::Vector3d across = planeBounds(box).sizes();
   const Eigen::Vector2d texel = surface.mapping().texelSize(surface.map()).cwiseAbs();
-  const Eigen::Vector2d across = footprint.sizes();
   return across.x() < 2.0 * texel.x() || across.y() < 2.0 * texel.y();
 }
 
-std::size_t boxCornersBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& box, const GroundBend* bend,
-                                          double threshold_m, std::array<ReliefCandidate, kMaxReliefContacts>& out) {
+std::size_t boxCornerContacts(const tex::TexturedSurface& surface, const Underside& box, const GroundBend* bend,
+                              double threshold_m, std::span<const ReliefCandidate> centres,
+                              std::array<ReliefCandidate, kMaxReliefContacts>& out) {
+  // As for a ball: a box higher over the plane than the bend rises under it, by the threshold,
+  // touches nothing.
+  const Eigen::AlignedBox3d bounds = planeBounds(box);
+  const Eigen::AlignedBox2d footprint(bounds.min().head<2>(), bounds.max().head<2>());
+  if (bounds.min().z() - (bend ? bend->highestOver(footprint) : 0.0) > threshold_m) return 0;
   std::array<Eigen::Vector3d, 8> corners;
   for (int k = 0; k < 8; ++k) {
     const Eigen::Vector3d sign(k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0);
     corners[std::size_t(k)] = box.plane_from_object * sign.cwiseProduct(box.half_extents);
   }
   std::sort(corners.begin(), corners.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.z() < b.z(); });
-  // As for a ball: a box higher over the plane than the bend rises under it, by the threshold,
-  // touches nothing.
-  Eigen::AlignedBox2d footprint;
-  for (const Eigen::Vector3d& c : corners) footprint.extend(c.head<2>());
-  if (corners[0].z() - (bend ? bend->highestOver(footprint) : 0.0) > threshold_m) return 0;
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < 4 && count < out.size(); ++k) {
-    const Eigen::Vector3d& c = corners[k];
-    const tex::SurfacePoint s = surface.at(c.x(), c.y());
-    const double height = s.height_m + (bend ? bend->height(c.x(), c.y()) : 0.0);
-    const double depth = c.z() - height;
-    if (!(depth <= threshold_m)) continue;
-    ReliefCandidate& r = out[count++];
-    r = ReliefCandidate{};
-    r.p_surface = Eigen::Vector3d(c.x(), c.y(), height);
-    r.n_local = bend ? bend->tilt(s.n_local, c.x(), c.y()) : s.n_local;
-    r.depth = depth;
-    surface.texelContaining(c.x(), c.y(), r.i, r.j);
+  std::size_t n = 0;
+  double deepest_corner = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < 4; ++k) {
+    const ReliefCandidate r = candidateUnder(surface, bend, corners[k].x(), corners[k].y(), corners[k].z());
+    if (!(r.depth <= threshold_m)) continue;
+    out[n++] = r;
+    deepest_corner = std::min(deepest_corner, r.depth);
   }
-  return count;
+  // A centre's contact where it lies deeper than every corner (a bump under the box), in place of
+  // the shallowest corner once all four are kept.
+  constexpr double kDeeperThanCorners = 1e-6;
+  for (const ReliefCandidate& c : centres) {
+    if (!(c.depth < deepest_corner - kDeeperThanCorners)) continue;
+    if (n < out.size()) {
+      out[n++] = c;
+      continue;
+    }
+    std::size_t shallowest = 0;
+    for (std::size_t m = 1; m < n; ++m) shallowest = out[m].depth > out[shallowest].depth ? m : shallowest;
+    out[shallowest] = c;
+  }
+  return n;
 }
 
 }  // namespace thx::phys

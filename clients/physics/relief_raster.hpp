@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "clients/physics/contact_selection.hpp"
@@ -107,15 +108,19 @@ ReliefCandidate refineDeepest(const tex::TexturedSurface& surface, const Undersi
 std::optional<ReliefCandidate> deepestBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& ball,
                                                           const GroundBend* bend, double threshold_m);
 
-// A box over a relief none of whose texel centres lies within the threshold under it (a box
-// smaller than the texels: an 8 mm box whose footprint held no centre of 12.5 mm texels had no
-// contact and fell through the relief): its four lowest corners, each a contact where it lies
-// within `threshold_m` of the relief (bilinear, raised by `bend`) straight under it, its normal
-// the relief's there. Returns how many, at most four, into `out`.
-std::size_t boxCornersBetweenTexelCentres(const tex::TexturedSurface& surface, const Underside& box, const GroundBend* bend,
-                                          double threshold_m, std::array<ReliefCandidate, kMaxReliefContacts>& out);
-// Whether the box's footprint (its corners' extent in the plane) is less than two texels across
-// along either of the map's axes: too few texel centres under it to stand on.
+// A box over a relief none of whose texel centres lies within the threshold under it, or too few
+// to stand on (boxUnderTwoTexelsAcross; one centre by a corner left an 8 mm box 2.7 mm low on
+// 7.81 mm texels, and an 8 mm box whose footprint held no centre of 12.5 mm texels had no contact
+// and fell through the relief): its four lowest corners, each a contact where it lies within
+// `threshold_m` of the relief (bilinear, raised by `bend`) straight under it, its normal the
+// relief's there; and of the texel centres' contacts `centres`, those more than 1 um deeper than
+// every corner (a bump under the box), each in place of the shallowest corner once four are kept.
+// Returns how many, at most four, into `out`.
+std::size_t boxCornerContacts(const tex::TexturedSurface& surface, const Underside& box, const GroundBend* bend,
+                              double threshold_m, std::span<const ReliefCandidate> centres,
+                              std::array<ReliefCandidate, kMaxReliefContacts>& out);
+// Whether the box's footprint (its extent in the plane) is less than two texels across along
+// either of the map's axes: too few texel centres under it to stand on.
 bool boxUnderTwoTexelsAcross(const tex::TexturedSurface& surface, const Underside& box);
 
 }  // namespace thx::phys

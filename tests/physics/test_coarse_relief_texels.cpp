@@ -1,6 +1,6 @@
 // A plain ball or a box on relief texels coarse against it (docs/physics.md, "Relief texels coarse
 // against a ball"): where no texel centre lies within the threshold under it, it still meets the
-// relief between them (deepestBetweenTexelCentres and boxCornersBetweenTexelCentres,
+// relief between them (deepestBetweenTexelCentres and boxCornerContacts,
 // relief_raster.hpp), at rest and rolling. Before, a 5 mm ball set between four centres of
 // 1.95 mm texels sank 25 um and rattled at 4.9 mm/s, where no centre lay within its radius
 // (7.81 mm texels) it fell in and was thrown out, and a box smaller than the texels fell through
