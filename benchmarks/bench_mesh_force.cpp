@@ -19,6 +19,7 @@
 #include "benchmarks/bench_stamp.hpp"
 #include "benchmarks/exact_curved_surfaces.hpp"
 #include "server/textured_mesh_renderer.hpp"
+#include "textures/texel_slope_steps.hpp"
 #include "tools/report/plot.hpp"
 
 namespace {
@@ -27,7 +28,8 @@ using namespace thx;
 using Clock = std::chrono::steady_clock;
 
 constexpr const char* kHelp = R"(usage: bench_mesh_force [--triangles N,N,...] [--cost-triangles N,N,...] [--texels N]
-                        [--probes N] [--cost-ticks N] [--quick] [--json F] [--csv F] [--md F] [--png F]
+                        [--probes N] [--cost-ticks N] [--quick] [--no-slope-steps]
+                        [--json F] [--csv F] [--md F] [--png F]
 
 Force error of the textured mesh renderer (server/textured_mesh_renderer.hpp) against the exact
 contact force of a displaced sphere and cylinder (benchmarks/exact_curved_surfaces.hpp: sine
@@ -46,6 +48,8 @@ force is written (p99 of it, and of the two together).
   --probes N             probes per depth (0.25, 0.5, 1, 2 mm; default 1000)
   --cost-ticks N         ticks timed per tessellation (default 100000)
   --quick                a short run (2 tessellations, 40 probes per depth, 5000 ticks)
+  --no-slope-steps       no slope steps for the maps (textures/texel_slope_steps.hpp): the renderer
+                         reads every texel's neighbourhood, as before they were built (same forces)
   --json/--csv/--md/--png F   results
 )";
 
@@ -92,12 +96,14 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
-ErrorRow measureError(const bench::CurvedSurface& s, const tex::TextureMap& map, const Tessellation& t, const ModeInfo& m,
+ErrorRow measureError(const bench::CurvedSurface& s, const tex::TextureMap& map, const tex::TexelSlopeSteps* slope_steps,
+                      const Tessellation& t, const ModeInfo& m,
                       const std::vector<Eigen::Vector2d>& xy, const std::vector<Eigen::Vector3d>& probes,
                       const std::vector<Eigen::Vector3d>& f_exact) {
   srv::RendererConfig rc;
   rc.stiffness_n_per_m = kK;
-  srv::TexturedMeshRenderer r(t.generated.mesh, *t.bvh, {&map, {tex::Filter::Bilinear, tex::Address::Wrap}, true},
+  const srv::MeshTexture texture{&map, {tex::Filter::Bilinear, tex::Address::Wrap}, true, Eigen::Vector2d::Zero(), slope_steps};
+  srv::TexturedMeshRenderer r(t.generated.mesh, *t.bvh, texture,
                               Eigen::Isometry3d::Identity(), rc, m.mode);
   ErrorRow row{s.name(), m.id, t.triangles()};
   double sum_e2 = 0, sum_f2 = 0;
@@ -180,11 +186,13 @@ double percentile(std::vector<double>& v, double q) {
   return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
 }
 
-StrokeTimes timeStroke(const bench::CurvedSurface& s, const tex::TextureMap& map, const Tessellation& t, int ticks,
+StrokeTimes timeStroke(const bench::CurvedSurface& s, const tex::TextureMap& map, const tex::TexelSlopeSteps* steps,
+                       const Tessellation& t, int ticks,
                        bool local_set) {
   srv::RendererConfig rc;
   rc.stiffness_n_per_m = kK;
-  srv::TexturedMeshRenderer r(t.generated.mesh, *t.bvh, {&map, {tex::Filter::Bilinear, tex::Address::Wrap}, true},
+  const srv::MeshTexture texture{&map, {tex::Filter::Bilinear, tex::Address::Wrap}, true, Eigen::Vector2d::Zero(), steps};
+  srv::TexturedMeshRenderer r(t.generated.mesh, *t.bvh, texture,
                               Eigen::Isometry3d::Identity(), rc);
   r.useLocalSet(local_set);
   auto path = [&](int k) -> Eigen::Vector3d {
@@ -220,12 +228,13 @@ StrokeTimes timeStroke(const bench::CurvedSurface& s, const tex::TextureMap& map
   return times;
 }
 
-CostRow measureCost(const bench::CurvedSurface& s, const tex::TextureMap& map, int triangles, int ticks) {
+CostRow measureCost(const bench::CurvedSurface& s, const tex::TextureMap& map, const tex::TexelSlopeSteps* steps,
+                    int triangles, int ticks) {
   const Tessellation t(s, triangles);
   // The hierarchy alone first, then the default (the local set): the same mesh, already in
   // memory for both.
-  const StrokeTimes hierarchy = timeStroke(s, map, t, ticks, false);
-  const StrokeTimes local = timeStroke(s, map, t, ticks, true);
+  const StrokeTimes hierarchy = timeStroke(s, map, steps, t, ticks, false);
+  const StrokeTimes local = timeStroke(s, map, steps, t, ticks, true);
   CostRow row;
   row.triangles = t.triangles();
   row.bytes = t.bytes();
@@ -244,6 +253,7 @@ CostRow measureCost(const bench::CurvedSurface& s, const tex::TextureMap& map, i
 int run(int argc, char** argv) {
   std::vector<int> triangle_counts{500, 2000, 5000, 20000, 80000}, cost_counts{1000, 5000, 20000, 100000, 500000};
   int texels = 1024, probes_per_depth = 1000, cost_ticks = 100000;
+  bool slope_steps = true;
   std::string json, csv, md, png;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -252,6 +262,10 @@ int run(int argc, char** argv) {
       cost_counts = {5000, 100000};
       probes_per_depth = 40;
       cost_ticks = 5000;
+      continue;
+    }
+    if (a == "--no-slope-steps") {
+      slope_steps = false;
       continue;
     }
     if (i + 1 >= argc) throw UsageError(a + " needs a value (see --help)");
@@ -278,6 +292,10 @@ int run(int argc, char** argv) {
     const int w = texels, h = int(std::lround(texels * ext.y() / ext.x()));
     std::fprintf(stderr, "bench_mesh_force: %s: baking %dx%d", s->name().c_str(), w, h);
     const tex::TextureMap map = s->bake(w, h);
+    // As hapticd builds them with the scene's surface (scenes/scene_surface.hpp); off, the renderer
+    // reads every texel's neighbourhood (the same forces, more work).
+    const tex::TexelSlopeSteps built_steps(map);
+    const tex::TexelSlopeSteps* steps = slope_steps ? &built_steps : nullptr;
     // Probes: (X, Y) uniform in the surface's probe range, each at the four depths under the
     // displaced surface along the smooth normal.
     std::mt19937_64 rng(shape == "sphere" ? 11u : (field == "sine" ? 23u : 37u));
@@ -314,7 +332,7 @@ int run(int argc, char** argv) {
     for (int n : triangle_counts) {
       const Tessellation t(*s, n);
       std::fprintf(stderr, ", %zu", t.triangles());
-      for (const ModeInfo& m : kModes) errors.push_back(measureError(*s, map, t, m, xy, probes, f_exact));
+      for (const ModeInfo& m : kModes) errors.push_back(measureError(*s, map, steps, t, m, xy, probes, f_exact));
       if (shape == "sphere") {
         for (const ModeInfo& m : kModes) edges.push_back(measureEdges(*s, t, m));
       }
@@ -322,7 +340,7 @@ int run(int argc, char** argv) {
     if (shape == "sphere") {
       for (int n : cost_counts) {
         std::fprintf(stderr, ", cost %d", n);
-        costs.push_back(measureCost(*s, map, n, cost_ticks));
+        costs.push_back(measureCost(*s, map, steps, n, cost_ticks));
       }
     }
     std::fprintf(stderr, "\n");

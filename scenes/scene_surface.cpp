@@ -18,7 +18,9 @@ SceneSurface buildSceneSurface(const Scene& scene, const SurfaceTextureOptions& 
   s.scene_name = sceneName(scene);
   // buildSurfaceTexture has already dropped the depth of a relief the scene reads as a normal map.
   s.map = std::make_unique<const tex::TextureMap>(buildSurfaceTexture(scene, options));
+  s.slope_steps = std::make_unique<const tex::TexelSlopeSteps>(*s.map);
   s.surface = placeOnScenePlane(scene, *s.map);
+  s.surface.setSlopeSteps(s.slope_steps.get());
   s.fingerprint = tex::textureFingerprint(s.surface);
   return s;
 }

@@ -24,6 +24,9 @@ std::string sceneName(const Scene& scene);
 struct SceneSurface {
   std::string scene_name;                    // sceneName(scene)
   std::unique_ptr<const tex::TextureMap> map;  // owned here; `surface` points at it (moves keep it valid)
+  // The map's slope steps, owned here and set on `surface`: the servo's renderers skip reading a
+  // texel's neighbours where these show no crease can be there (server/proxy_renderer.hpp).
+  std::unique_ptr<const tex::TexelSlopeSteps> slope_steps;
   tex::TexturedSurface surface;              // the map on the scene's plane and sampling
   std::uint64_t fingerprint = 0;             // tex::textureFingerprint(surface)
 };

@@ -24,6 +24,7 @@ std::unique_ptr<TexturedMeshRenderer> buildMeshRenderer(const MeshGeometry& geom
   texture.sampling = surface.sampling();
   texture.use_relief = surface.usesRelief();
   texture.normals_made_for_m = surface.mapping().size_m;  // the scene's tile (surface.size)
+  texture.slope_steps = surface.slopeSteps();
   return std::make_unique<TexturedMeshRenderer>(geometry.scene_mesh.mesh, geometry.bvh, texture,
                                                 geometry.scene_mesh.mesh_to_world, config);
 }

@@ -23,6 +23,15 @@ void ProxyRenderer::retarget(const tex::TexturedSurface& surface, const Renderer
 
 void ProxyRenderer::derive() {
   crease_cos_ = std::cos(config_.crease_angle_deg * kDegToRad);
+  // Neighbours whose normals turn by at most asin(half the crease angle's sine) are all Smooth
+  // with a wide margin over rounding. Off for a crease angle under 1 degree (there even equal
+  // normals, normalised, may read as a crease) or over 90 (the sine turns back).
+  const double crease = config_.crease_angle_deg;
+  smooth_sine_ = crease >= 1.0 && crease <= 90.0 ? 0.5 * std::sin(crease * kDegToRad) : 0.0;
+  deriveFromSurface();
+}
+
+void ProxyRenderer::deriveFromSurface() {
   // Texel centres of two walls meeting at a crease sit about a texel * sin(angle) inside each
   // other's half-spaces; a thousandth of a texel separates that from coplanar rounding.
   concave_tolerance_m_ = 1e-3 * surface_->texelSize();
@@ -55,7 +64,7 @@ void ProxyRenderer::moveFrame(const Eigen::Isometry3d& old_to_new) {
   movePlanes(held_plane_);
   e_rendered_prev_ = r * e_rendered_prev_;
   recovery_offset_ = r * recovery_offset_;
-  derive();
+  deriveFromSurface();  // the chart's scale moved with it; the configuration did not
 }
 
 ProxyRenderer::LocalPlanes ProxyRenderer::singlePlaneAt(const tex::SurfacePoint& s, double x, double y) const {
@@ -85,6 +94,10 @@ ProxyRenderer::LocalPlanes ProxyRenderer::planesAround(double x, double y) const
   static constexpr int kNeighbours[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   long long i = 0, j = 0;
   surface_->texelContaining(x, y, i, j);
+  // Every neighbour within the crease angle (the map's slope steps tell without reading them):
+  // no crease and no ridge, so the one interpolated plane below, as the reading would end.
+  if (smooth_sine_ > 0.0 && surface_->neighboursTurnWithin(i, j, smooth_sine_))
+    return singlePlaneAt(surface_->at(x, y), x, y);
   tex::TexelPoint c = surface_->texelPoint(i, j);
   Halfspace hc{c.n_local, c.n_local.dot(c.q_local)};
   std::array<tex::TexelPoint, 4> nbs;

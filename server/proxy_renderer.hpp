@@ -20,6 +20,9 @@
 //    plane of the side it lies on: the lower of the two texel planes at its (x, y), so the ridge
 //    sits where the planes intersect, to a fraction of a texel, instead of being blended over a
 //    texel by the interpolated normal (`RendererConfig::sided_ridges`, issue 12).
+//    Where the surface's slope steps (textures/texel_slope_steps.hpp) show every neighbour within
+//    the crease angle, the neighbours are not read: the interpolated plane is what reading them
+//    would give, to the bit.
 // Both: the recovery rule. If this tick's penetration differs by more than a threshold from what
 // last tick's planes give for this tick's tip (a plane changed under the pen; the tip's own
 // motion never counts), the previous penetration is kept and the rendered penetration moves to
@@ -138,12 +141,14 @@ class ProxyRenderer {
   bool mergeConcave(LocalPlanes& into, const LocalPlanes& from) const;
   bool concavePair(const Halfspace& a, const Eigen::Vector3d& qa, const Halfspace& b, const Eigen::Vector3d& qb) const;
   Eigen::Vector3d applyRecovery(const Eigen::Vector3d& tip, const Eigen::Vector3d& e_target, bool& recovering);
-  void derive();  // crease_cos_, concave_tolerance_m_ from the surface and the configuration
+  void derive();  // crease_cos_, smooth_sine_ from the configuration, then deriveFromSurface()
+  void deriveFromSurface();  // concave_tolerance_m_ from the surface's texel size
 
   const tex::TexturedSurface* surface_;
   RendererConfig config_;
   double crease_cos_ = 1.0;
   double concave_tolerance_m_ = 0.0;
+  double smooth_sine_ = 0.0;  // neighboursTurnWithin's bound: 0 never skips reading the neighbours
 
   bool in_contact_ = false;
   Eigen::Vector3d proxy_local_ = Eigen::Vector3d::Zero();

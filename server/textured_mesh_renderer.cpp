@@ -48,6 +48,7 @@ TexturedMeshRenderer::TexturedMeshRenderer(const mesh::TexturedMesh& mesh, const
   // Only a textured mesh renders on a chart; an untextured one has its smooth planes.
   if (texture.map) {
     chart_ = tex::TexturedSurface(*texture.map, tex::PlaneMapping{}, texture.sampling, texture.use_relief);
+    chart_.setSlopeSteps(texture.slope_steps);
     chart_renderer_.emplace(chart_, config);
   }
 }
@@ -200,6 +201,7 @@ RenderOutput TexturedMeshRenderer::renderOnChart(const MeshContact& at, const Ei
   const Eigen::Isometry3d old_chart = chart_.mapping().plane_to_world;
   chart_ = tex::TexturedSurface(*texture_.map, m, texture_.sampling, texture_.use_relief);
   chart_.setNormalsMadeFor(texture_.normals_made_for_m);
+  chart_.setSlopeSteps(texture_.slope_steps);
   if (chart_valid_) {
     chart_renderer_->moveFrame(m.plane_to_world.inverse() * old_chart);
   } else {

@@ -64,6 +64,10 @@ struct MeshTexture {
   // where the mesh's uv lays the texture at another local scale, its normals are turned to match
   // the depth as laid there (TexturedSurface::setNormalsMadeFor). Zero: taken as they are.
   Eigen::Vector2d normals_made_for_m = Eigen::Vector2d::Zero();
+  // The map's slope steps (textures/texel_slope_steps.hpp), outliving the renderer: where they show
+  // a texel's neighbours within the crease angle, the chart's renderer does not read them. nullptr:
+  // it always reads them (the same forces, more work).
+  const tex::TexelSlopeSteps* slope_steps = nullptr;
 };
 
 // Where the last tick's anchor was (for the contact messages).

@@ -13,6 +13,7 @@
 
 #include "textures/plane_mapping.hpp"
 #include "textures/sampling.hpp"
+#include "textures/texel_slope_steps.hpp"
 #include "textures/texture_map.hpp"
 
 namespace thx::tex {
@@ -111,6 +112,29 @@ class TexturedSurface {
     if (rescaled_) slope_scale_ = made_for_m.cwiseQuotient(mapping_.size_m);
   }
 
+  // The map's slope steps (texel_slope_steps.hpp), built for this surface's map and outliving the
+  // surface; nullptr (the default) when none were built.
+  void setSlopeSteps(const TexelSlopeSteps* steps) {
+    steps_ = steps && map_ && steps->width() == map_->width() && steps->height() == map_->height() ? steps : nullptr;
+  }
+  const TexelSlopeSteps* slopeSteps() const { return steps_; }
+  // True when every 4-neighbour of texel (i, j) (unwrapped) has a normal, as texelNormal() reads
+  // it, within asin(max_sine) of texel (i, j)'s: the slope step bound times this surface's largest
+  // slope scale is at most max_sine. False when it cannot be told (no steps built; a clamped map's
+  // border texels, whose neighbours are read flat or repeated rather than across the edge).
+  bool neighboursTurnWithin(long long i, long long j, double max_sine) const {
+    if (!steps_) return false;
+    int ri = 0, rj = 0;
+    if (sampling_.address == Address::Clamp) {
+      if (i < 1 || j < 1 || i > map_->width() - 2 || j > map_->height() - 2) return false;
+      ri = int(i), rj = int(j);
+    } else {
+      ri = resolveIndex(i, map_->width(), Address::Wrap), rj = resolveIndex(j, map_->height(), Address::Wrap);
+    }
+    const double scale = rescaled_ ? slope_scale_.maxCoeff() : 1.0;
+    return steps_->bound(ri, rj) * scale <= max_sine;
+  }
+
   Eigen::Vector3d toLocal(const Eigen::Vector3d& p_world) const { return world_to_plane_ * p_world; }
   Eigen::Vector3d toWorld(const Eigen::Vector3d& p_local) const { return mapping_.plane_to_world * p_local; }
   Eigen::Vector3d directionToWorld(const Eigen::Vector3d& d_local) const { return mapping_.plane_to_world.linear() * d_local; }
@@ -140,6 +164,7 @@ class TexturedSurface {
   bool use_relief_ = false;
   bool rescaled_ = false;
   Eigen::Vector2d slope_scale_{1.0, 1.0};
+  const TexelSlopeSteps* steps_ = nullptr;
 };
 
 }  // namespace thx::tex

@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "server/proxy_renderer.hpp"
-#include "textures/generators.hpp"
+#include "tests/support/generated_texture.hpp"
 #include "tests/support/sanitized_build.hpp"
 
 namespace test_proxy_renderer {
@@ -21,12 +21,7 @@ namespace {
 constexpr double kExtent = 0.2;
 
 tex::TextureMap generated(const std::string& kind, std::map<std::string, double> params, int size = 512) {
-  tex::GenerateRequest r;
-  r.kind = kind;
-  r.size = size;
-  r.params = std::move(params);
-  r.params["extent"] = kExtent;
-  return tex::generate(r);
+  return test::generatedTexture(kind, std::move(params), size, kExtent);
 }
 
 tex::PlaneMapping mapping() {
