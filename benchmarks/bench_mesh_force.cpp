@@ -397,9 +397,9 @@ int run(int argc, char** argv) {
     bench::writeTextFile(json, j);
   }
   if (!md.empty()) {
-    std::string t = bench::fmt("Measured %s. Stiffness %g N/m, relief maps of %d texels around (0.195 mm texels at 1024), bilinear. "
-                               "Checks of the truth: %s\n\n",
-                               stamp.c_str(), kK, texels, checks.c_str());
+    std::string t = bench::fmt("Measured %s. Stiffness %g N/m, relief maps of %d texels around (0.195 mm texels at 1024), bilinear, "
+                               "slope steps %s. Checks of the truth: %s\n\n",
+                               stamp.c_str(), kK, texels, slope_steps ? "on" : "off (--no-slope-steps)", checks.c_str());
     t += "Errors relative to the RMS exact force (RMS), or each probe's own (median, max, and the probes above 20 %).\n\n";
     t += "| surface | triangles | frame | RMS error | median | max | probes > 20 % | no contact | ns/tick |\n"
          "|---|---:|---|---:|---:|---:|---:|---:|---:|\n";
