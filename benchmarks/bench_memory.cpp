@@ -24,6 +24,7 @@
 #include "benchmarks/bench_help.hpp"
 #include "benchmarks/bench_rig.hpp"
 #include "benchmarks/proc_tools.hpp"
+#include "server/flight_recorder.hpp"
 #include "server/tick_record.hpp"
 
 namespace {
@@ -102,7 +103,7 @@ Breakdown classify(const std::vector<bench::Mapping>& maps, const std::string& b
   };
   b.texture = take(texture_bytes);
   b.ring = take(kRingSlots * std::int64_t(sizeof(srv::TickRecord)));
-  b.flight = take(2 * kFlightTicks * std::int64_t(sizeof(srv::TickRecord)));
+  b.flight = take(2 * kFlightTicks * std::int64_t(sizeof(srv::FlightRecorder::FlightRecord)));
   b.other_anon = pool;  // malloc'd scene/LCM/GLib/yaml data, malloc's free space, small mappings
   b.heap = 0;
   return b;
@@ -237,6 +238,7 @@ benchmarks/run.sh BUILD_DIR memory runs it as the docs show.
     for (const Variant& v : variants) out.push_back(runOne(hapticd, v, workdir));
 
     const std::int64_t tick_record = std::int64_t(sizeof(srv::TickRecord));
+    const std::int64_t flight_record = std::int64_t(sizeof(srv::FlightRecorder::FlightRecord));
     std::string csv =
         "variant,flags,memory_locked,rss_bytes,locked_bytes,texture_bytes,rt_rss_bytes,rt_vm_hwm_bytes,rt_threads,smaps_rss,"
         "smaps_locked,"
@@ -258,8 +260,9 @@ benchmarks/run.sh BUILD_DIR memory runs it as the docs show.
 
     std::string js = "{\n  \"benchmark\": \"hapticd resident and locked memory\",\n";
     js += "  \"machine\": \"" + bench::machineDescription() + "\",\n  \"date\": \"" + bench::isoTimeNow() + "\",\n";
-    js += bench::fmt("  \"tick_record_bytes\": %lld,\n  \"goal_rss_bytes\": 16000000,\n  \"runs\": [\n",
-                     (long long)tick_record);
+    js += bench::fmt("  \"tick_record_bytes\": %lld,\n  \"flight_record_bytes\": %lld,\n  \"goal_rss_bytes\": 16000000,\n"
+                     "  \"runs\": [\n",
+                     (long long)tick_record, (long long)flight_record);
     for (std::size_t i = 0; i < out.size(); ++i) {
       const Outcome& o = out[i];
       const Breakdown& b = o.b;
@@ -318,10 +321,10 @@ benchmarks/run.sh BUILD_DIR memory runs it as the docs show.
       for (std::size_t i = 0; i < libs.size() && i < 8; ++i) {
         md += bench::fmt("%s%s %s MB", i ? ", " : "", libs[i].second.c_str(), mb(libs[i].first).c_str());
       }
-      md += bench::fmt(" (%zu files). TickRecord is %lld bytes: ring 1024 × = %s MB, flight recorder 2 × 1000 × = %s "
-                       "MB.\n",
+      md += bench::fmt(" (%zu files). TickRecord is %lld bytes: ring 1024 × = %s MB; the flight recorder keeps %lld "
+                       "bytes of each tick: 2 × 1000 × = %s MB.\n",
                        libs.size(), (long long)tick_record, mb(kRingSlots * tick_record).c_str(),
-                       mb(2 * kFlightTicks * tick_record).c_str());
+                       (long long)flight_record, mb(2 * kFlightTicks * flight_record).c_str());
       bench::writeTextFile(md_path, md);
     }
   } catch (const std::exception& e) {

@@ -4,7 +4,7 @@
 
 #include "meshes/builtin_shapes.hpp"
 #include "meshes/mesh_check.hpp"
-#include "meshes/mesh_import.hpp"
+#include "meshes/mesh_import_on_demand.hpp"
 #include "scenes/scene_frames.hpp"
 
 namespace thx::scene {
@@ -44,7 +44,7 @@ SceneMesh buildSceneMesh(const Scene& scene) {
       options.projection = toImport(source.projection);
       options.tile_m = scene.surface.size_m.x();
       options.limits = limits;
-      out.mesh = mesh::importMesh(source.file, options);
+      out.mesh = mesh::importMeshOnDemand(source.file, options);
       out.tile_m = scene.surface.size_m;
     }
   } catch (const SceneError&) {

@@ -2,18 +2,43 @@
 
 #include "base/error.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
 namespace thx::srv {
 
 FlightRecorder::FlightRecorder(std::size_t capacity) : capacity_(capacity < 1 ? 1 : capacity) {
-  for (Buffer& b : buffers_) b.records = std::make_unique<TickRecord[]>(capacity_);
+  for (Buffer& b : buffers_) b.records = std::make_unique<FlightRecord[]>(capacity_);
+}
+
+FlightRecorder::FlightRecord FlightRecorder::slim(const TickRecord& r) {
+  FlightRecord s;
+  s.tick = r.tick;
+  s.wake_latency_ns = r.wake_latency_ns;
+  s.compute_ns = r.compute_ns;
+  s.missed = r.missed;
+  s.valid = r.valid;
+  s.in_contact = r.in_contact;
+  s.recovering = r.recovering;
+  s.num_planes = r.num_planes;
+  std::copy_n(r.p_world, 3, s.p_world);
+  std::copy_n(r.v_world, 3, s.v_world);
+  s.depth_m = r.depth_m;
+  std::copy_n(r.f_render, 3, s.f_render);
+  std::copy_n(r.f_client, 3, s.f_client);
+  std::copy_n(r.f_passive, 3, s.f_passive);
+  std::copy_n(r.f_out, 3, s.f_out);
+  s.pc_energy_j = r.pc_energy_j;
+  s.pc_damping_ns_per_m = r.pc_damping_ns_per_m;
+  s.safety_flags = r.safety_flags;
+  s.faults = r.faults;
+  return s;
 }
 
 void FlightRecorder::record(const TickRecord& r) {
   Buffer& b = buffers_[active_];
-  b.records[b.next] = r;
+  b.records[b.next] = slim(r);
   b.next = (b.next + 1) % capacity_;
   if (b.filled < capacity_) ++b.filled;
 }
@@ -70,7 +95,7 @@ std::string FlightRecorder::dumpPending(const std::string& directory, const std:
                "f_passive_z,f_out_x,f_out_y,f_out_z,pc_energy_j,pc_damping,safety_flags,faults\n");
   const std::size_t start = b.filled < capacity_ ? 0 : b.next;
   for (std::size_t k = 0; k < b.filled; ++k) {
-    const TickRecord& r = b.records[(start + k) % capacity_];
+    const FlightRecord& r = b.records[(start + k) % capacity_];
     std::fprintf(f,
                  "%lld,%d,%.3f,%.3f,%d,%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,"
                  "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%u,%u\n",

@@ -2,7 +2,9 @@
 // Flight recorder: the last second of ticks, kept by the servo at no cost, dumped to a file by
 // another thread when something goes wrong (docs/design.md §4 rule 2; libfranka keeps 50 records).
 //
-// Two preallocated buffers. The servo writes into the active one (a copy per tick). On a fault
+// Two preallocated buffers. The servo writes into the active one (a copy per tick of the fields
+// the dump writes: FlightRecord, a quarter of a TickRecord, so the two buffers stay small enough
+// for hapticd's memory goal, docs/benchmarks.md). On a fault
 // it swaps in the spare buffer in O(1) and marks the full one frozen with the fault's reason;
 // a non-real-time thread later writes the frozen buffer out (dumpPending) and frees it. A fault
 // that arrives while a dump is still pending is counted but not frozen (the first one explains
@@ -19,6 +21,29 @@ namespace thx::srv {
 
 class FlightRecorder {
  public:
+  // What dumpPending writes of a tick, at the TickRecord's own precision.
+  struct FlightRecord {
+    std::int64_t tick = 0;
+    std::int64_t wake_latency_ns = 0;
+    std::int64_t compute_ns = 0;
+    std::int32_t missed = 0;
+    bool valid = true;
+    bool in_contact = false;
+    bool recovering = false;
+    std::int8_t num_planes = 0;
+    double p_world[3] = {};
+    double v_world[3] = {};
+    double depth_m = 0.0;
+    double f_render[3] = {};
+    double f_client[3] = {};
+    double f_passive[3] = {};
+    double f_out[3] = {};
+    double pc_energy_j = 0.0;
+    double pc_damping_ns_per_m = 0.0;
+    std::uint32_t safety_flags = 0;
+    std::uint32_t faults = 0;
+  };
+
   explicit FlightRecorder(std::size_t capacity = 1000);
 
   // Servo thread (real-time safe).
@@ -39,8 +64,10 @@ class FlightRecorder {
   std::uint64_t faultsNotFrozen() const { return not_frozen_.load(std::memory_order_relaxed); }
 
  private:
+  static FlightRecord slim(const TickRecord& r);
+
   struct Buffer {
-    std::unique_ptr<TickRecord[]> records;
+    std::unique_ptr<FlightRecord[]> records;
     std::size_t next = 0;    // where the next record goes
     std::size_t filled = 0;  // how many are valid
   };

@@ -5,7 +5,8 @@
 # (docs/build.md, "Product precompiled header"). GCC stores in the header some options that the
 # code compiled with it then follows, not its own command line: the optimisation level, the aliasing
 # rule (-fno-strict-aliasing, which every user of the LCM messages needs), and -pthread's
-# _REENTRANT. So each combination in use gets its own header, and -Winvalid-pch (an error with
+# _REENTRANT, and position-independent code (-fPIC against the executables' -fPIE: the libraries
+# the mesh import module holds, meshes/CMakeLists.txt). So each combination in use gets its own header, and -Winvalid-pch (an error with
 # THX_WERROR) stops the build where a target's flags and its header's differ, instead of g++ parsing
 # silently, or compiling with the header's rule.
 # A source file with options of its own (resonator_kernel.cpp: -O3 -ffp-contract=off) is compiled
@@ -49,12 +50,20 @@ function(thx_pch_reaches t marker out)
   set(${out} ${found} PARENT_SCOPE)
 endfunction()
 
-# The header target for one combination, made on first use: thx_pch_<opt>_<kind>.
-function(thx_pch_target opt kind out)
+# The header target for one combination, made on first use: thx_pch_<opt>_<kind>, with _pic for
+# position-independent code.
+function(thx_pch_target opt kind pic out)
   set(name thx_pch_${opt}_${kind})
+  if(pic)
+    string(APPEND name _pic)
+  endif()
   if(NOT TARGET ${name})
     add_library(${name} OBJECT ${PROJECT_SOURCE_DIR}/base/pch/pch_owner.cpp)
     target_link_libraries(${name} PRIVATE Eigen3::Eigen)
+    if(pic)
+      set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+      target_compile_options(${name} PRIVATE -fno-semantic-interposition)
+    endif()
     if(opt STREQUAL "O1")
       target_compile_options(${name} PRIVATE -O1)
     endif()
@@ -89,7 +98,8 @@ foreach(t ${thx_product_targets})
   if(THX_SANITIZE AND t IN_LIST THX_O1_UNDER_SANITIZERS)
     set(opt O1)
   endif()
-  thx_pch_target(${opt} ${kind} pch)
+  get_target_property(pic ${t} POSITION_INDEPENDENT_CODE)
+  thx_pch_target(${opt} ${kind} "${pic}" pch)
   target_precompile_headers(${t} REUSE_FROM ${pch})
   get_target_property(target_dir ${t} SOURCE_DIR)
   foreach(source ${sources})
