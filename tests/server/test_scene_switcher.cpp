@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -71,6 +73,10 @@ struct ScenesFolder {
     write("big_bowl", "version: 1\nname: big bowl\nsurface:\n  size: [0.04, 0.04]\n" + bowl_texture +
                           "  pose: {position: [0, 0, -0.04]}\n  mesh: {generator: bowl, size: 0.05, max_triangles: 1000}\n"
                           "device:\n" + kDesktop);
+    // A mesh file (line 7: the mesh), read through the mesh import module.
+    write("cube_file", "version: 1\nname: cube file\nsurface:\n  size: [0.04, 0.04]\n" + bowl_texture +
+                           "  pose: {position: [0, 0, -0.04]}\n  mesh: {file: " + std::string(THX_TEST_DATA_DIR) +
+                           "/meshes/cube.obj, unit: 0.02, projection: planar, closed: true}\ndevice:\n" + kDesktop);
   }
   ~ScenesFolder() {
     std::error_code ec;
@@ -81,6 +87,30 @@ struct ScenesFolder {
   }
   std::string path(const std::string& name) const { return (dir / (name + ".yaml")).string(); }
   fs::path dir;
+};
+
+bool meshImportModuleIsMapped() {
+  std::ifstream maps("/proc/self/maps");
+  const std::string text((std::istreambuf_iterator<char>(maps)), std::istreambuf_iterator<char>());
+  return text.find("libthx_mesh_import_module.so") != std::string::npos;
+}
+
+// Sets an environment variable for one scope and puts back what was there.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+    setenv(name, value, 1);
+  }
+  ~ScopedEnv() {
+    if (had_) setenv(name_, old_.c_str(), 1);
+    else unsetenv(name_);
+  }
+
+ private:
+  const char* name_;
+  std::string old_;
+  bool had_ = false;
 };
 
 void hover(std::int64_t, dev::DeviceState& s) {
@@ -302,6 +332,47 @@ TEST(SceneSwitcher, AMeshSceneIsBuiltOffTheServoThreadAndRenderedFromTheSwapOn) 
   ASSERT_TRUE(back.has_value());
   EXPECT_TRUE(back->accepted) << back->reason;
   EXPECT_EQ(server.rig.servo().meshRenderer(), nullptr);
+  EXPECT_EQ(server.servo_allocations, 0);
+  EXPECT_EQ(server.servo_frees, 0);
+}
+
+// Mesh files are read through a module the loader opens at the first one (meshes/
+// mesh_import_on_demand.hpp). One that cannot be opened refuses the scene, naming the scene's line
+// and the module, and the old scene keeps running. (Before the test below, which opens the module:
+// once open, it stays, and ctest runs each test in a process of its own anyway.)
+TEST(SceneSwitcher, AMeshImportModuleThatCannotBeOpenedRefusesTheSceneAndTheOldKeepsRunning) {
+  if (meshImportModuleIsMapped()) GTEST_SKIP() << "the module is already open in this process (run this test alone)";
+  ScopedEnv elsewhere("THX_MESH_IMPORT_MODULE", "/nonexistent/libthx_mesh_import_module.so");
+  ScenesFolder folder;
+  SwitchingServer server(folder);
+  const tex::TexturedSurface* before = &server.rig.renderer().surface();
+  ASSERT_FALSE(server.send("cube_file").has_value());
+  const std::optional<Reply> reply = server.tickUntilAnswered();
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_FALSE(reply->accepted);
+  EXPECT_NE(reply->reason.find("cube_file.yaml:7:"), std::string::npos) << reply->reason;
+  EXPECT_NE(reply->reason.find("mesh import module /nonexistent/libthx_mesh_import_module.so: cannot open"),
+            std::string::npos)
+      << reply->reason;
+  server.ticks(300);
+  EXPECT_EQ(server.last.scene_swaps, 0u);
+  EXPECT_EQ(server.rig.servo().meshRenderer(), nullptr);
+  EXPECT_EQ(&server.rig.renderer().surface(), before);
+}
+
+// The module is opened on the loader's thread while the servo runs, and the servo renders the
+// file's mesh from the swap on without allocating or freeing.
+TEST(SceneSwitcher, AMeshFileSceneOpensTheImportModuleOffTheServoThread) {
+  ScenesFolder folder;
+  SwitchingServer server(folder);
+  server.ticks(10);
+  ASSERT_FALSE(server.send("cube_file").has_value());
+  const std::optional<Reply> reply = server.tickUntilAnswered();
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_TRUE(reply->accepted) << reply->reason;
+  EXPECT_TRUE(meshImportModuleIsMapped());
+  EXPECT_EQ(server.last.scene_swaps, 1u);
+  ASSERT_NE(server.rig.servo().meshRenderer(), nullptr);
   EXPECT_EQ(server.servo_allocations, 0);
   EXPECT_EQ(server.servo_frees, 0);
 }
