@@ -28,8 +28,6 @@ class MeshImportModule {
   // naming the module when it was built from other headers than this program.
   TexturedMesh import(const std::string& path, const ImportOptions& options = {}) const;
 
-  const std::string& path() const { return module_path_; }
-
  private:
   std::string module_path_;
   void* entry_ = nullptr;

@@ -3,14 +3,12 @@
 // message, and a module that cannot be used is a clear error naming it.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "base/error.hpp"
 #include "meshes/mesh_import.hpp"
 #include "meshes/mesh_import_on_demand.hpp"
+#include "tests/support/process_environment.hpp"
 
 namespace test_mesh_import_on_demand {
 
@@ -32,30 +30,6 @@ std::string verdict(Import import) {
   }
 }
 
-bool moduleIsMapped() {
-  std::ifstream maps("/proc/self/maps");
-  const std::string text((std::istreambuf_iterator<char>(maps)), std::istreambuf_iterator<char>());
-  return text.find("libthx_mesh_import_module.so") != std::string::npos;
-}
-
-// Sets an environment variable for one scope and puts back what was there.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
-    setenv(name, value, 1);
-  }
-  ~ScopedEnv() {
-    if (had_) setenv(name_, old_.c_str(), 1);
-    else unsetenv(name_);
-  }
-
- private:
-  const char* name_;
-  std::string old_;
-  bool had_ = false;
-};
-
 }  // namespace
 
 TEST(MeshImportOnDemand, ReadsTheMeshImportMeshReads) {
@@ -64,7 +38,8 @@ TEST(MeshImportOnDemand, ReadsTheMeshImportMeshReads) {
   options.projection = UvProjection::Cylindrical;
   const TexturedMesh direct = importMesh(kDir + "cube.obj", options);
   const TexturedMesh loaded = importMeshOnDemand(kDir + "cube.obj", options);
-  EXPECT_TRUE(moduleIsMapped());  // read there, not by this executable's own importMesh
+  // Read there, not by this executable's own importMesh.
+  EXPECT_TRUE(test::isMapped("libthx_mesh_import_module.so"));
   EXPECT_EQ(loaded.source, direct.source);
   ASSERT_EQ(loaded.positions.size(), direct.positions.size());
   ASSERT_EQ(loaded.triangles.size(), direct.triangles.size());
@@ -91,11 +66,11 @@ TEST(MeshImportOnDemand, RefusalsKeepTheirKindAndMessage) {
 
 TEST(MeshImportOnDemand, TheModulesPathComesFromTheEnvironmentWhenSet) {
   const std::string built = [] {
-    ScopedEnv empty("THX_MESH_IMPORT_MODULE", "");  // empty counts as unset
+    test::ScopedEnv empty("THX_MESH_IMPORT_MODULE", "");  // empty counts as unset
     return meshImportModulePath();
   }();
   EXPECT_NE(built.find("libthx_mesh_import_module.so"), std::string::npos) << built;
-  ScopedEnv other("THX_MESH_IMPORT_MODULE", "/elsewhere/module.so");
+  test::ScopedEnv other("THX_MESH_IMPORT_MODULE", "/elsewhere/module.so");
   EXPECT_EQ(meshImportModulePath(), "/elsewhere/module.so");
 }
 

@@ -7,10 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -23,6 +21,7 @@
 #include "server/servo_rig.hpp"
 #include "tests/server/fake_device.hpp"
 #include "tests/support/allocation_counter.hpp"
+#include "tests/support/process_environment.hpp"
 
 namespace test_scene_switcher {
 
@@ -87,30 +86,6 @@ struct ScenesFolder {
   }
   std::string path(const std::string& name) const { return (dir / (name + ".yaml")).string(); }
   fs::path dir;
-};
-
-bool meshImportModuleIsMapped() {
-  std::ifstream maps("/proc/self/maps");
-  const std::string text((std::istreambuf_iterator<char>(maps)), std::istreambuf_iterator<char>());
-  return text.find("libthx_mesh_import_module.so") != std::string::npos;
-}
-
-// Sets an environment variable for one scope and puts back what was there.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
-    setenv(name, value, 1);
-  }
-  ~ScopedEnv() {
-    if (had_) setenv(name_, old_.c_str(), 1);
-    else unsetenv(name_);
-  }
-
- private:
-  const char* name_;
-  std::string old_;
-  bool had_ = false;
 };
 
 void hover(std::int64_t, dev::DeviceState& s) {
@@ -341,8 +316,10 @@ TEST(SceneSwitcher, AMeshSceneIsBuiltOffTheServoThreadAndRenderedFromTheSwapOn) 
 // and the module, and the old scene keeps running. (Before the test below, which opens the module:
 // once open, it stays, and ctest runs each test in a process of its own anyway.)
 TEST(SceneSwitcher, AMeshImportModuleThatCannotBeOpenedRefusesTheSceneAndTheOldKeepsRunning) {
-  if (meshImportModuleIsMapped()) GTEST_SKIP() << "the module is already open in this process (run this test alone)";
-  ScopedEnv elsewhere("THX_MESH_IMPORT_MODULE", "/nonexistent/libthx_mesh_import_module.so");
+  if (test::isMapped("libthx_mesh_import_module.so")) {
+    GTEST_SKIP() << "the module is already open in this process (run this test alone)";
+  }
+  test::ScopedEnv elsewhere("THX_MESH_IMPORT_MODULE", "/nonexistent/libthx_mesh_import_module.so");
   ScenesFolder folder;
   SwitchingServer server(folder);
   const tex::TexturedSurface* before = &server.rig.renderer().surface();
@@ -370,7 +347,7 @@ TEST(SceneSwitcher, AMeshFileSceneOpensTheImportModuleOffTheServoThread) {
   const std::optional<Reply> reply = server.tickUntilAnswered();
   ASSERT_TRUE(reply.has_value());
   EXPECT_TRUE(reply->accepted) << reply->reason;
-  EXPECT_TRUE(meshImportModuleIsMapped());
+  EXPECT_TRUE(test::isMapped("libthx_mesh_import_module.so"));
   EXPECT_EQ(server.last.scene_swaps, 1u);
   ASSERT_NE(server.rig.servo().meshRenderer(), nullptr);
   EXPECT_EQ(server.servo_allocations, 0);
