@@ -70,14 +70,12 @@ const ModeInfo kModes[] = {{mesh::FrameMode::PerTriangle, "per-triangle"},
 // A tessellated surface with its hierarchy, ready for renderers.
 struct Tessellation {
   mesh::GeneratedMesh generated;
-  srv::TriangleMesh geometry;
   std::unique_ptr<srv::TriangleBvh> bvh;
   double build_ms = 0.0;
   Tessellation(const bench::CurvedSurface& s, int triangles) {
     const auto t0 = Clock::now();
     generated = s.tessellate(triangles);
-    geometry = srv::geometryOf(generated.mesh);
-    bvh = std::make_unique<srv::TriangleBvh>(geometry);
+    bvh = std::make_unique<srv::TriangleBvh>(generated.mesh.positions, generated.mesh.triangles);
     build_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   }
   std::size_t triangles() const { return generated.mesh.triangles.size(); }

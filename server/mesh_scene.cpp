@@ -5,7 +5,7 @@
 namespace thx::srv {
 
 MeshGeometry::MeshGeometry(scene::SceneMesh built)
-    : scene_mesh(std::move(built)), triangles(geometryOf(scene_mesh.mesh)), bvh(triangles) {}
+    : scene_mesh(std::move(built)), bvh(scene_mesh.mesh.positions, scene_mesh.mesh.triangles) {}
 
 std::shared_ptr<const MeshGeometry> buildMeshGeometry(const scene::Scene& scene) {
   return std::make_shared<const MeshGeometry>(scene::buildSceneMesh(scene));

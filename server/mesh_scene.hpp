@@ -16,15 +16,15 @@
 
 namespace thx::srv {
 
-// Immovable (the hierarchy points at `triangles`): held by a shared_ptr, built by buildMeshGeometry.
+// Immovable (the hierarchy points at the mesh's arrays): held by a shared_ptr, built by
+// buildMeshGeometry.
 struct MeshGeometry {
   explicit MeshGeometry(scene::SceneMesh built);
   MeshGeometry(const MeshGeometry&) = delete;
   MeshGeometry& operator=(const MeshGeometry&) = delete;
 
   scene::SceneMesh scene_mesh;  // the mesh in its frame, its pose, its texture tile
-  TriangleMesh triangles;       // the flat triangles (geometryOf)
-  TriangleBvh bvh;              // over `triangles`
+  TriangleBvh bvh;              // over the mesh's positions and triangles
 };
 
 // Throws scene::SceneError (surface.mesh) for the mesh's errors, thx::Error for the hierarchy's.

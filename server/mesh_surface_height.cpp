@@ -17,7 +17,7 @@ MeshSurfaceHeight::MeshSurfaceHeight(const TriangleBvh& bvh, const Eigen::Isomet
   script_to_mesh_ = mesh_to_script.inverse(Eigen::Isometry);
   top_m_ = -std::numeric_limits<double>::infinity();
   bottom_m_ = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& v : bvh.mesh().vertices) {  // the hierarchy's mesh has at least one triangle
+  for (const Eigen::Vector3d& v : bvh.vertices()) {  // the hierarchy's mesh has at least one triangle
     const double z = (mesh_to_script * v).z();
     top_m_ = std::max(top_m_, z);
     bottom_m_ = std::min(bottom_m_, z);

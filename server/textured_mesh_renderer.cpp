@@ -25,13 +25,6 @@ double phongBulge(const mesh::TexturedMesh& mesh) {
 
 }  // namespace
 
-TriangleMesh geometryOf(const mesh::TexturedMesh& mesh) {
-  TriangleMesh g;
-  g.vertices = mesh.positions;
-  g.triangles = mesh.triangles;
-  return g;
-}
-
 TexturedMeshRenderer::TexturedMeshRenderer(const mesh::TexturedMesh& mesh, const TriangleBvh& bvh,
                                            const MeshTexture& texture, const Eigen::Isometry3d& mesh_to_world,
                                            const RendererConfig& config, mesh::FrameMode frames)

@@ -53,9 +53,6 @@
 
 namespace thx::srv {
 
-// The flat triangles of a textured mesh, for its hierarchy (allocates).
-TriangleMesh geometryOf(const mesh::TexturedMesh& mesh);
-
 struct MeshTexture {
   const tex::TextureMap* map = nullptr;  // nullptr: the smooth (shaded) surface, no texture
   tex::SampleOptions sampling;
@@ -80,7 +77,8 @@ struct MeshContact {
 
 class TexturedMeshRenderer {
  public:
-  // `bvh` must be built over geometryOf(mesh). `config` as for the plane renderer (stiffness,
+  // `bvh` must be built over mesh.positions and mesh.triangles (the renderer reads the corners
+  // there, where the sweeps do). `config` as for the plane renderer (stiffness,
   // damping, crease handling and its angle, sided ridges, recovery; not the paper's loop).
   TexturedMeshRenderer(const mesh::TexturedMesh& mesh, const TriangleBvh& bvh, const MeshTexture& texture,
                        const Eigen::Isometry3d& mesh_to_world, const RendererConfig& config,

@@ -25,23 +25,27 @@ constexpr double kBoxPadAbs = 1e-12;  // metres
 thx::Error meshError(const std::string& what) { return thx::Error(thx::Error::Kind::Config, "TriangleBvh: " + what); }
 }  // namespace
 
-TriangleBvh::TriangleBvh(const TriangleMesh& mesh, int leaf_size) : mesh_(&mesh), leaf_size_(std::max(1, leaf_size)) {
-  const std::size_t n = mesh.triangles.size();
+TriangleBvh::TriangleBvh(const TriangleMesh& mesh, int leaf_size) : TriangleBvh(mesh.vertices, mesh.triangles, leaf_size) {}
+
+TriangleBvh::TriangleBvh(const std::vector<Eigen::Vector3d>& vertices,
+                         const std::vector<std::array<std::uint32_t, 3>>& triangles, int leaf_size)
+    : vertices_(&vertices), triangles_(&triangles), leaf_size_(std::max(1, leaf_size)) {
+  const std::size_t n = triangles.size();
   if (n == 0) throw meshError("the mesh has no triangles");
   if (n >= std::numeric_limits<std::uint32_t>::max() / 2) throw meshError("too many triangles");
   planes_.resize(n);
   std::vector<Eigen::Vector3d> centroids(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& tri = mesh.triangles[i];
+    const auto& tri = triangles[i];
     for (std::uint32_t v : tri) {
-      if (v >= mesh.vertices.size()) {
+      if (v >= vertices.size()) {
         throw meshError("triangle " + std::to_string(i) + " uses vertex " + std::to_string(v) + " of " +
-                        std::to_string(mesh.vertices.size()));
+                        std::to_string(vertices.size()));
       }
     }
-    const Eigen::Vector3d& p0 = mesh.vertices[tri[0]];
-    const Eigen::Vector3d& p1 = mesh.vertices[tri[1]];
-    const Eigen::Vector3d& p2 = mesh.vertices[tri[2]];
+    const Eigen::Vector3d& p0 = vertices[tri[0]];
+    const Eigen::Vector3d& p1 = vertices[tri[1]];
+    const Eigen::Vector3d& p2 = vertices[tri[2]];
     const Eigen::Vector3d cross = (p1 - p0).cross(p2 - p0);
     const double len = cross.norm();
     const double scale = std::max({(p1 - p0).squaredNorm(), (p2 - p0).squaredNorm(), (p2 - p1).squaredNorm()});
@@ -67,9 +71,9 @@ std::uint32_t TriangleBvh::build(std::vector<Eigen::Vector3d>& centroids, std::u
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo, c_lo = lo, c_hi = hi;
   for (std::uint32_t k = begin; k < end; ++k) {
-    for (std::uint32_t v : mesh_->triangles[order_[k]]) {
-      lo = lo.cwiseMin(mesh_->vertices[v]);
-      hi = hi.cwiseMax(mesh_->vertices[v]);
+    for (std::uint32_t v : (*triangles_)[order_[k]]) {
+      lo = lo.cwiseMin((*vertices_)[v]);
+      hi = hi.cwiseMax((*vertices_)[v]);
     }
     c_lo = c_lo.cwiseMin(centroids[order_[k]]);
     c_hi = c_hi.cwiseMax(centroids[order_[k]]);
@@ -131,9 +135,9 @@ bool TriangleBvh::entersTriangleBy(std::uint32_t triangle, const Eigen::Vector3d
   if (!(sa >= 0.0 && sb < 0.0)) return false;  // not entering through the front
   const double s = sa / (sa - sb);
   if (s > t_max) return false;
-  const auto& tri = mesh_->triangles[triangle];
-  const Eigen::Vector3d& p0 = mesh_->vertices[tri[0]];
-  const Eigen::Vector3d e1 = mesh_->vertices[tri[1]] - p0, e2 = mesh_->vertices[tri[2]] - p0;
+  const auto& tri = (*triangles_)[triangle];
+  const Eigen::Vector3d& p0 = (*vertices_)[tri[0]];
+  const Eigen::Vector3d e1 = (*vertices_)[tri[1]] - p0, e2 = (*vertices_)[tri[2]] - p0;
   const Eigen::Vector3d w = a + s * (b - a) - p0;
   const Eigen::Vector3d n = e1.cross(e2);
   const double inv_area2 = 1.0 / n.squaredNorm();
@@ -235,10 +239,10 @@ TriangleBvh::Nearest TriangleBvh::nearest(const Eigen::Vector3d& p, double max_d
     if (node.count > 0) {
       for (std::uint32_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
         const std::uint32_t tri = order_[k];
-        const auto& t = mesh_->triangles[tri];
-        const Eigen::Vector3d& a = mesh_->vertices[t[0]];
-        const Eigen::Vector3d& b = mesh_->vertices[t[1]];
-        const Eigen::Vector3d& c = mesh_->vertices[t[2]];
+        const auto& t = (*triangles_)[tri];
+        const Eigen::Vector3d& a = (*vertices_)[t[0]];
+        const Eigen::Vector3d& b = (*vertices_)[t[1]];
+        const Eigen::Vector3d& c = (*vertices_)[t[2]];
         const Eigen::Vector3d bc = mesh::closestBarycentric(a, b, c, p);
         const double d2 = (bc.x() * a + bc.y() * b + bc.z() * c - p).squaredNorm();
         if (d2 < best_d2 || (d2 == best_d2 && (!best.found || tri < best.triangle))) {

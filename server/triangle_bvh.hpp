@@ -62,7 +62,7 @@ class TriangleBvh {
   struct Hit {
     bool hit = false;
     double t = 0.0;                  // along a -> b, in [0, 1]
-    std::uint32_t triangle = 0;      // index into mesh().triangles
+    std::uint32_t triangle = 0;      // index into triangles()
     Eigen::Vector3d point = Eigen::Vector3d::Zero();
   };
 
@@ -70,6 +70,12 @@ class TriangleBvh {
   // thx::Error (Config) on an empty mesh, a vertex index out of range or a degenerate
   // (zero-area) triangle.
   explicit TriangleBvh(const TriangleMesh& mesh, int leaf_size = 4);
+  // Over the two arrays of a mesh held elsewhere (a textured mesh's positions and triangles), so
+  // that the sweeps and the renderer read one copy of the corners (docs/meshes.md). Both must
+  // outlive the hierarchy.
+  TriangleBvh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles,
+              int leaf_size = 4);
+  TriangleBvh(TriangleMesh&&, int = 4) = delete;  // the hierarchy keeps pointers into its mesh
 
   // What a sweep keeps while it looks: the least entry parameter so far and its triangle.
   struct Best {
@@ -148,10 +154,11 @@ class TriangleBvh {
 
   // The triangle's plane: unit outward normal n and d = n . (any vertex).
   const Halfspace& plane(std::uint32_t triangle) const { return planes_[triangle]; }
-  const TriangleMesh& mesh() const { return *mesh_; }
+  const std::vector<Eigen::Vector3d>& vertices() const { return *vertices_; }
+  const std::vector<std::array<std::uint32_t, 3>>& triangles() const { return *triangles_; }
   std::size_t nodeCount() const { return nodes_.size(); }
   int depth() const { return depth_; }
-  // Bytes of the hierarchy itself (nodes, leaf order, planes), beside mesh().bytes().
+  // Bytes of the hierarchy itself (nodes, leaf order, planes), beside its mesh's.
   std::size_t bytes() const;
 
  private:
@@ -162,7 +169,8 @@ class TriangleBvh {
   };
   std::uint32_t build(std::vector<Eigen::Vector3d>& centroids, std::uint32_t begin, std::uint32_t end, int depth);
 
-  const TriangleMesh* mesh_;
+  const std::vector<Eigen::Vector3d>* vertices_;
+  const std::vector<std::array<std::uint32_t, 3>>* triangles_;
   int leaf_size_;
   int depth_ = 0;
   std::vector<Node> nodes_;

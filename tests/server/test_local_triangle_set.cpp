@@ -21,12 +21,10 @@ namespace {
 
 struct Sphere {
   mesh::GeneratedMesh generated;
-  srv::TriangleMesh geometry;
   std::unique_ptr<TriangleBvh> bvh;
   Sphere(int segments, int rings)
       : generated(mesh::sphere(0.03, segments, rings, 0.01)),
-        geometry(srv::geometryOf(generated.mesh)),
-        bvh(std::make_unique<TriangleBvh>(geometry)) {}
+        bvh(std::make_unique<TriangleBvh>(generated.mesh.positions, generated.mesh.triangles)) {}
 };
 
 // Gathers a region around p (as the renderer's ticks would, the proxy standing there).

@@ -229,8 +229,7 @@ TEST(MeshGodObject, NoAllocationPerTick) {
 TEST(TexturedMeshRenderer, NoAllocationPerTick) {
   // The textured renderer on a relief-mapped sphere: strokes across edges, seams and the pole.
   const mesh::GeneratedMesh g = mesh::sphere(0.03, 24, 12, 0.01);
-  const srv::TriangleMesh geometry = srv::geometryOf(g.mesh);
-  const srv::TriangleBvh bvh(geometry);
+  const srv::TriangleBvh bvh(g.mesh.positions, g.mesh.triangles);
   tex::TextureMap map(16, 16, tex::Representation::Relief, 2e-4);
   for (int j = 0; j < 16; ++j) {
     for (int i = 0; i < 16; ++i) {

@@ -26,10 +26,10 @@ using srv::MeshSurfaceHeight;
 
 namespace {
 
-// A generated mesh's geometry and hierarchy (the hierarchy points at the geometry: built in place).
+// A generated mesh and its hierarchy (the hierarchy points at the mesh's arrays: built in place).
 struct Shape {
-  explicit Shape(const mesh::TexturedMesh& m) : geometry(srv::geometryOf(m)), bvh(geometry) {}
-  srv::TriangleMesh geometry;
+  explicit Shape(const mesh::TexturedMesh& m) : mesh(m), bvh(mesh.positions, mesh.triangles) {}
+  mesh::TexturedMesh mesh;
   srv::TriangleBvh bvh;
 };
 

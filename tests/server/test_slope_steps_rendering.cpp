@@ -119,8 +119,7 @@ TEST(SlopeStepsRendering, ATexturedSphereRendersTheSameForcesWithAndWithoutTheSt
   const tex::TextureMap map = generated("vvalley", {{"angle_deg", 45.0}, {"period", 0.004}}, 512);
   const tex::TexelSlopeSteps steps(map);
   const mesh::TexturedMesh sphere = mesh::sphere(0.03, 48, 24, kExtent).mesh;
-  const srv::TriangleMesh geometry = srv::geometryOf(sphere);
-  const srv::TriangleBvh bvh(geometry);
+  const srv::TriangleBvh bvh(sphere.positions, sphere.triangles);
   srv::MeshTexture without{&map, {tex::Filter::Bilinear, tex::Address::Wrap}, true};
   srv::MeshTexture with = without;
   with.slope_steps = &steps;

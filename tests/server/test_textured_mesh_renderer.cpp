@@ -27,12 +27,11 @@ srv::RendererConfig config() {
 // A mesh with its hierarchy and a renderer on it (the pieces must outlive the renderer).
 struct Rig {
   mesh::TexturedMesh mesh;
-  srv::TriangleMesh geometry;
   std::unique_ptr<srv::TriangleBvh> bvh;
   std::unique_ptr<srv::TexturedMeshRenderer> renderer;
   Rig(mesh::TexturedMesh m, const srv::MeshTexture& texture, mesh::FrameMode frames = mesh::FrameMode::InterpolatedPhong,
       const Eigen::Isometry3d& place = Eigen::Isometry3d::Identity())
-      : mesh(std::move(m)), geometry(srv::geometryOf(mesh)), bvh(std::make_unique<srv::TriangleBvh>(geometry)) {
+      : mesh(std::move(m)), bvh(std::make_unique<srv::TriangleBvh>(mesh.positions, mesh.triangles)) {
     renderer = std::make_unique<srv::TexturedMeshRenderer>(mesh, *bvh, texture, place, config(), frames);
   }
 };

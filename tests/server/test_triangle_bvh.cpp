@@ -24,7 +24,7 @@ namespace {
 TriangleBvh::Hit bruteForce(const TriangleBvh& bvh, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   TriangleBvh::Hit best;
   double best_t = std::numeric_limits<double>::infinity();
-  for (std::uint32_t i = 0; i < bvh.mesh().triangles.size(); ++i) {
+  for (std::uint32_t i = 0; i < bvh.triangles().size(); ++i) {
     double t = 0;
     if (bvh.entersTriangle(i, a, b, t) && t < best_t) {
       best_t = t;
