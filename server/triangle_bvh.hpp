@@ -75,7 +75,10 @@ class TriangleBvh {
   // outlive the hierarchy.
   TriangleBvh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles,
               int leaf_size = 4);
-  TriangleBvh(TriangleMesh&&, int = 4) = delete;  // the hierarchy keeps pointers into its mesh
+  // The hierarchy keeps pointers to its mesh's arrays: a temporary's would dangle.
+  TriangleBvh(TriangleMesh&&, int = 4) = delete;
+  TriangleBvh(std::vector<Eigen::Vector3d>&&, const std::vector<std::array<std::uint32_t, 3>>&, int = 4) = delete;
+  TriangleBvh(const std::vector<Eigen::Vector3d>&, std::vector<std::array<std::uint32_t, 3>>&&, int = 4) = delete;
 
   // What a sweep keeps while it looks: the least entry parameter so far and its triangle.
   struct Best {

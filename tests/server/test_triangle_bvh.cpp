@@ -5,8 +5,11 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <type_traits>
+#include <vector>
 
 #include "base/error.hpp"
+#include "meshes/mesh_generators.hpp"
 #include "meshes/textured_mesh.hpp"
 #include "server/triangle_bvh.hpp"
 #include "server/triangle_mesh.hpp"
@@ -66,6 +69,38 @@ TEST(TriangleBvh, EqualsBruteForceOnRandomSegments) {
     expectSame(bvh, a, a + 0.02 * (b - a), hits);
   }
   EXPECT_GT(hits, 300);  // the sample exercises hits, not only misses
+}
+
+// A textured mesh's hierarchy is built over the mesh's own positions and triangles (no copy: the
+// sweeps and the renderer read the same corners), and answers as one over a copy of them does.
+// A temporary's arrays would dangle, so building from one does not compile.
+static_assert(!std::is_constructible_v<TriangleBvh, srv::TriangleMesh&&>);
+static_assert(!std::is_constructible_v<TriangleBvh, std::vector<Eigen::Vector3d>&&,
+                                       const std::vector<std::array<std::uint32_t, 3>>&>);
+static_assert(!std::is_constructible_v<TriangleBvh, const std::vector<Eigen::Vector3d>&,
+                                       std::vector<std::array<std::uint32_t, 3>>&&>);
+TEST(TriangleBvh, BuiltOverATexturedMeshItReadsTheMeshsOwnArrays) {
+  const mesh::TexturedMesh sphere = mesh::sphere(0.03, 24, 12, 0.01).mesh;
+  const TriangleBvh bvh(sphere.positions, sphere.triangles);
+  EXPECT_EQ(&bvh.vertices(), &sphere.positions);
+  EXPECT_EQ(&bvh.triangles(), &sphere.triangles);
+  srv::TriangleMesh copy;
+  copy.vertices = sphere.positions;
+  copy.triangles = sphere.triangles;
+  const TriangleBvh over_copy(copy);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> c(-0.035, 0.035);
+  int hits = 0;
+  for (int i = 0; i < 500; ++i) {
+    const Eigen::Vector3d a(c(rng), c(rng), c(rng)), b(c(rng), c(rng), c(rng));
+    const TriangleBvh::Hit x = bvh.firstEntry(a, b), y = over_copy.firstEntry(a, b);
+    ASSERT_EQ(x.hit, y.hit) << i;
+    if (!x.hit) continue;
+    ++hits;
+    EXPECT_EQ(x.triangle, y.triangle) << i;
+    EXPECT_EQ(x.t, y.t) << i;
+  }
+  EXPECT_GT(hits, 100);  // segments through a 3 cm sphere from a 7 cm box: many enter it
 }
 
 TEST(TriangleBvh, NearestEqualsBruteForce) {
