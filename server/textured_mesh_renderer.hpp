@@ -78,8 +78,8 @@ struct MeshContact {
 class TexturedMeshRenderer {
  public:
   // `bvh` must be built over mesh.positions and mesh.triangles (the renderer reads the corners
-  // there, where the sweeps do). `config` as for the plane renderer (stiffness,
-  // damping, crease handling and its angle, sided ridges, recovery; not the paper's loop).
+  // there, where the sweeps do). `config` as for the plane renderer (stiffness, damping, crease
+  // handling and its angle, sided ridges, recovery; not the paper's loop).
   TexturedMeshRenderer(const mesh::TexturedMesh& mesh, const TriangleBvh& bvh, const MeshTexture& texture,
                        const Eigen::Isometry3d& mesh_to_world, const RendererConfig& config,
                        mesh::FrameMode frames = mesh::FrameMode::InterpolatedPhong);
