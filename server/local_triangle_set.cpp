@@ -39,8 +39,7 @@ TriangleBvh::Hit LocalTriangleSet::firstEntry(const Eigen::Vector3d& a, const Ei
     double t_enter = 0.0;
     if (!slabEntry(region.leaf_lo[std::size_t(i)], region.leaf_hi[std::size_t(i)], seg, std::min(1.0, best.t), t_enter))
       return;
-    if (bvh_->enterLeaf(region.first[std::size_t(i)], region.count[std::size_t(i)], a, b, skip, n_skip, best))
-      hint_leaf_ = i;
+    if (enterLeaf(region, i, a, b, skip, n_skip, best)) hint_leaf_ = i;
   };
   // The leaf of the last answer first: the proxy re-enters the face it stands on, and once that
   // entry is known every box and plane farther along is passed over. The order changes which
@@ -52,12 +51,26 @@ TriangleBvh::Hit LocalTriangleSet::firstEntry(const Eigen::Vector3d& a, const Ei
   return TriangleBvh::hitOf(best, a, b);
 }
 
+bool LocalTriangleSet::enterLeaf(const Region& region, int leaf, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                 const std::uint32_t* skip, int n_skip, TriangleBvh::Best& best) {
+  bool changed = false;
+  const std::uint32_t first = region.first[std::size_t(leaf)], end = first + region.count[std::size_t(leaf)];
+  for (std::uint32_t k = first; k < end; ++k) {
+    const EntryTriangle& tri = region.triangles[k];
+    double t = 0.0;
+    if (TriangleBvh::skipped(skip, n_skip, tri.index) || !entersTriangle(tri, a, b, best.t, t)) continue;
+    changed = TriangleBvh::keepIfFirst(best, t, tri.index) || changed;
+  }
+  return changed;
+}
+
 void LocalTriangleSet::startGathering(const Eigen::Vector3d& centre) {
   Region& next = gathered();
   next.centre = centre;
   next.lo = centre - Eigen::Vector3d::Constant(half_side_);
   next.hi = centre + Eigen::Vector3d::Constant(half_side_);
   next.leaves = 0;
+  next.triangle_count = 0;
   next.complete = false;
   overflowed_ = false;
   bvh_->startWalk(walk_, next.lo, next.hi);
@@ -86,15 +99,21 @@ void LocalTriangleSet::advance(const Eigen::Vector3d& proxy) {
   const bool done = bvh_->stepWalk(walk_, kNodesPerTick,
                                    [&](std::uint32_t first, std::uint32_t count, const std::array<double, 3>& lo,
                                        const std::array<double, 3>& hi) {
-                                     if (next.leaves == kMaxLeaves) {
+                                     if (next.leaves == kMaxLeaves ||
+                                         next.triangle_count + int(count) > kMaxTriangles) {
                                        overflowed_ = true;
                                        return;
                                      }
                                      const auto i = std::size_t(next.leaves++);
                                      next.leaf_lo[i] = lo;
                                      next.leaf_hi[i] = hi;
-                                     next.first[i] = first;
+                                     next.first[i] = std::uint32_t(next.triangle_count);
                                      next.count[i] = count;
+                                     // Copied now, ahead of the pen and after a tick's force:
+                                     // the sweeps then read them from here, not from the mesh.
+                                     for (std::uint32_t k = first; k < first + count; ++k)
+                                       next.triangles[std::size_t(next.triangle_count++)] =
+                                           bvh_->entryTriangle(bvh_->leafTriangle(k));
                                    });
   if (!done && !overflowed_) return;
   gathering_ = false;

@@ -3,6 +3,9 @@
 // (mesh_god_object.hpp) test a few dozen boxes instead of descending a deep hierarchy: at
 // 500,000 triangles two root-to-leaf descents per tick were the largest part of a tick, and
 // what a descent touched that the last tick's had not was most of its tail (docs/meshes.md).
+// The region keeps its leaves' triangles too, as the entry test reads them (EntryTriangle),
+// copied while it is gathered: a sweep then reads a few kilobytes written ahead of the pen, not
+// planes and corners spread over the mesh's arrays.
 //
 // Exact: the set holds every leaf whose box meets a region box R; a segment inside R can only
 // enter triangles of those leaves (a triangle's entry point lies inside its leaf's padded box), so
@@ -29,6 +32,9 @@ namespace thx::srv {
 class LocalTriangleSet {
  public:
   static constexpr int kMaxLeaves = 48;
+  // The triangles a region keeps (four per leaf at the hierarchy's default leaf size): a region
+  // with more has overflowed, as one with more leaves has.
+  static constexpr int kMaxTriangles = 4 * kMaxLeaves;
   static constexpr int kNodesPerTick = 32;
 
   explicit LocalTriangleSet(const TriangleBvh& bvh);
@@ -56,8 +62,14 @@ class LocalTriangleSet {
     int leaves = 0;
     bool complete = false;
     std::array<std::array<double, 3>, kMaxLeaves> leaf_lo{}, leaf_hi{};
-    std::array<std::uint32_t, kMaxLeaves> first{}, count{};
+    std::array<std::uint32_t, kMaxLeaves> first{}, count{};  // each leaf's slots in `triangles`
+    int triangle_count = 0;
+    std::array<EntryTriangle, kMaxTriangles> triangles{};
   };
+  // A leaf's triangles tested as TriangleBvh::enterLeaf tests them (the same test and tie rule),
+  // read from the region's own records.
+  static bool enterLeaf(const Region& region, int leaf, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                        const std::uint32_t* skip, int n_skip, TriangleBvh::Best& best);
   bool covers(const Region& r, const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
   void startGathering(const Eigen::Vector3d& centre);
   // Two regions, the one answering and the one being gathered; swapping is flipping the index

@@ -15,7 +15,6 @@
 namespace thx::srv {
 
 namespace {
-constexpr double kBarycentricTol = 1e-9;  // relative: a hit on a shared edge belongs to both sides
 // Boxes grow by this fraction of their extent (plus an absolute floor) so that a point the
 // barycentric tolerance accepts is never outside its leaf's box.
 constexpr double kBoxPadRel = 1e-6;
@@ -130,38 +129,24 @@ double TriangleBvh::typicalLeafExtent() const {
 
 bool TriangleBvh::entersTriangleBy(std::uint32_t triangle, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                    double t_max, double& t) const {
-  const Halfspace& h = planes_[triangle];
-  const double sa = h.n.dot(a) - h.d, sb = h.n.dot(b) - h.d;
-  if (!(sa >= 0.0 && sb < 0.0)) return false;  // not entering through the front
-  const double s = sa / (sa - sb);
-  if (s > t_max) return false;
+  double s = 0.0;
+  if (!crossesFront(planes_[triangle], a, b, t_max, s)) return false;  // the corners only past the plane's test
   const auto& tri = (*triangles_)[triangle];
   const Eigen::Vector3d& p0 = (*vertices_)[tri[0]];
   const Eigen::Vector3d e1 = (*vertices_)[tri[1]] - p0, e2 = (*vertices_)[tri[2]] - p0;
-  const Eigen::Vector3d w = a + s * (b - a) - p0;
   const Eigen::Vector3d n = e1.cross(e2);
-  const double inv_area2 = 1.0 / n.squaredNorm();
-  const double l1 = w.cross(e2).dot(n) * inv_area2;  // weight of vertex 1
-  const double l2 = e1.cross(w).dot(n) * inv_area2;  // weight of vertex 2
-  if (l1 < -kBarycentricTol || l2 < -kBarycentricTol || l1 + l2 > 1.0 + kBarycentricTol) return false;
+  if (!insideAt(a, b, s, p0, e1, e2, n, 1.0 / n.squaredNorm())) return false;
   t = s;
   return true;
 }
-
 bool TriangleBvh::enterLeaf(std::uint32_t first, std::uint32_t count, const Eigen::Vector3d& a,
                             const Eigen::Vector3d& b, const std::uint32_t* skip, int n_skip, Best& best) const {
   bool changed = false;
   for (std::uint32_t k = first; k < first + count; ++k) {
     const std::uint32_t tri = order_[k];
-    bool skipped = false;
-    for (int s = 0; s < n_skip; ++s) skipped = skipped || skip[s] == tri;
     double t = 0.0;
-    if (skipped || !entersTriangleBy(tri, a, b, best.t, t)) continue;
-    if (t < best.t || (t == best.t && tri < best.triangle)) {
-      best.t = t;
-      best.triangle = tri;
-      changed = true;
-    }
+    if (skipped(skip, n_skip, tri) || !entersTriangleBy(tri, a, b, best.t, t)) continue;
+    changed = keepIfFirst(best, t, tri) || changed;
   }
   return changed;
 }

@@ -10,6 +10,7 @@
 // 1e-9, so a segment through a shared edge or vertex finds a triangle on at least one side (no
 // crack between neighbours); ties in t go to the lower triangle index, so the answer is unique.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -30,6 +31,45 @@ struct SweepSegment {
   std::array<bool, 3> parallel{};
 };
 SweepSegment sweepSegment(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+// A triangle as a sweep's entry test reads it: its plane, a corner p0, the edges from it
+// e1 = p1 - p0 and e2 = p2 - p0, their cross product n and 1 / |n|^2. The hierarchy works them out
+// from the mesh at each test; the local set (local_triangle_set.hpp) keeps them for the triangles
+// around the pen, where the sweeps read them from a few kilobytes gathered ahead of the pen.
+struct EntryTriangle {
+  Halfspace plane;
+  Eigen::Vector3d p0 = Eigen::Vector3d::Zero(), e1 = Eigen::Vector3d::Zero(), e2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  double inv_area2 = 0.0;
+  std::uint32_t index = 0;  // in the mesh
+};
+// The entry test in two halves, shared by every sweep so that all answer alike to the bit:
+// where a -> b crosses the plane from its front (s, within t_max) ...
+inline bool crossesFront(const Halfspace& h, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_max,
+                         double& s) {
+  const double sa = h.n.dot(a) - h.d, sb = h.n.dot(b) - h.d;
+  if (!(sa >= 0.0 && sb < 0.0)) return false;  // not entering through the front
+  s = sa / (sa - sb);
+  return !(s > t_max);
+}
+// ... and whether that point lies in the triangle, barycentric coordinates within a relative
+// kBarycentricTol (a hit on a shared edge belongs to both sides).
+inline constexpr double kBarycentricTol = 1e-9;
+inline bool insideAt(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double s, const Eigen::Vector3d& p0,
+                     const Eigen::Vector3d& e1, const Eigen::Vector3d& e2, const Eigen::Vector3d& n, double inv_area2) {
+  const Eigen::Vector3d w = a + s * (b - a) - p0;
+  const double l1 = w.cross(e2).dot(n) * inv_area2;  // weight of vertex 1
+  const double l2 = e1.cross(w).dot(n) * inv_area2;  // weight of vertex 2
+  return !(l1 < -kBarycentricTol || l2 < -kBarycentricTol || l1 + l2 > 1.0 + kBarycentricTol);
+}
+inline bool entersTriangle(const EntryTriangle& tri, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_max,
+                           double& t) {
+  double s = 0.0;
+  if (!crossesFront(tri.plane, a, b, t_max, s) || !insideAt(a, b, s, tri.p0, tri.e1, tri.e2, tri.n, tri.inv_area2))
+    return false;
+  t = s;
+  return true;
+}
+
 // Entry parameter of a + t (b - a) into the box [lo, hi] within [0, t_max]; false if it misses.
 inline bool slabEntry(const std::array<double, 3>& lo_box, const std::array<double, 3>& hi_box, const SweepSegment& s,
                       double t_max, double& t_enter) {
@@ -85,6 +125,19 @@ class TriangleBvh {
     double t = std::numeric_limits<double>::infinity();
     std::uint32_t triangle = 0;
   };
+  // The rules every sweep keeps its answer by, so that all answer alike: a triangle in `skip` is
+  // passed over; an entry at t is kept if it is the least so far, ties to the lower triangle.
+  static bool skipped(const std::uint32_t* skip, int n_skip, std::uint32_t triangle) {
+    bool found = false;
+    for (int s = 0; s < n_skip; ++s) found = found || skip[s] == triangle;
+    return found;
+  }
+  static bool keepIfFirst(Best& best, double t, std::uint32_t triangle) {
+    if (!(t < best.t || (t == best.t && triangle < best.triangle))) return false;
+    best.t = t;
+    best.triangle = triangle;
+    return true;
+  }
   // The triangles of one leaf (slots first .. first + count - 1) tested against a -> b, skipping
   // the `n_skip` triangles in `skip`: `best` keeps the least entry, ties to the lower triangle;
   // true if this leaf changed it. The hierarchy's sweep and the local set's (local_triangle_set.hpp)
@@ -155,6 +208,21 @@ class TriangleBvh {
   bool entersTriangleBy(std::uint32_t triangle, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_max,
                         double& t) const;
 
+  // The triangle as the entry test reads it (EntryTriangle).
+  EntryTriangle entryTriangle(std::uint32_t triangle) const {
+    EntryTriangle e;
+    e.plane = planes_[triangle];
+    const auto& tri = (*triangles_)[triangle];
+    e.p0 = (*vertices_)[tri[0]];
+    e.e1 = (*vertices_)[tri[1]] - e.p0;
+    e.e2 = (*vertices_)[tri[2]] - e.p0;
+    e.n = e.e1.cross(e.e2);
+    e.inv_area2 = 1.0 / e.n.squaredNorm();
+    e.index = triangle;
+    return e;
+  }
+  // The triangle in a leaf's slot (enterLeaf's first .. first + count - 1).
+  std::uint32_t leafTriangle(std::uint32_t slot) const { return order_[slot]; }
   // The triangle's plane: unit outward normal n and d = n . (any vertex).
   const Halfspace& plane(std::uint32_t triangle) const { return planes_[triangle]; }
   const std::vector<Eigen::Vector3d>& vertices() const { return *vertices_; }
