@@ -38,9 +38,10 @@ bumps, V-grooves; relief maps baked in tangent space), by triangle count and fra
 Each probe is pressed from outside along the smooth normal in 20 um steps and held 15 ticks; the
 error is |F - k (q - p)| at 600 N/m, relative to the RMS exact force. Then the largest turn of the
 force between ticks on a stroke across the edges of an untextured sphere, and the servo's render
-cost per tick (p50, p99, max) on a textured sphere stroked in contact, by triangle count: render()
-from the reading to the force, and apart from it prepareNextTick(), which the servo runs once the
-force is written (p99 of it, and of the two together).
+cost per tick (p50, p99, max) on a textured sphere stroked in contact, by triangle count:
+renderForce() from the reading to the force, and apart from it describeContact() and
+prepareNextTick(), which the servo runs once the force is written (p99 of them, and of the whole
+tick).
 
   --triangles LIST       tessellations for the error (default 500,2000,5000,20000,80000)
   --cost-triangles LIST  tessellations for the cost (default 1000,5000,20000,100000,500000)
@@ -167,14 +168,15 @@ EdgeRow measureEdges(const bench::CurvedSurface& s, const Tessellation& t, const
 struct CostRow {
   std::size_t triangles = 0, bytes = 0;
   double build_ms = 0, p50_us = 0, p99_us = 0, max_us = 0, contact_share = 0;
-  // The work done after the force for the ticks after it (prepareNextTick), and the whole tick's.
+  // The work done after the force (describeContact: where the contact is; prepareNextTick: for
+  // the ticks after it), and the whole tick's.
   double after_p99_us = 0, tick_p99_us = 0;
   // The same stroke with every sweep asked of the hierarchy (TexturedMeshRenderer::useLocalSet).
   double hierarchy_p50_us = 0, hierarchy_p99_us = 0;
 };
 
 // The textured sphere stroked in contact, 1 mm under the smooth surface at 50 mm/s along a
-// wavy path round the equator; every render() timed.
+// wavy path round the equator; every tick timed, from the reading to the force and after it.
 struct StrokeTimes {
   double p50_us = 0, p99_us = 0, max_us = 0, contact_share = 0, after_p99_us = 0, tick_p99_us = 0;
 };
@@ -200,15 +202,17 @@ StrokeTimes timeStroke(const bench::CurvedSurface& s, const tex::TextureMap& map
   r.reset();
   const Eigen::Vector3d n0 = s.normal(0, M_PI / 2 * s.radius());
   for (int k = 0; k <= 60; ++k) r.render(path(0) + n0 * (1.6e-3 * (60 - k) / 60), Eigen::Vector3d::Zero());
-  // As the servo does: render() from the reading to the force, then prepareNextTick() once the
-  // force is out; each timed apart, and the two together as the tick's whole work.
+  // As the servo does: renderForce() from the reading to the force, then describeContact() and
+  // prepareNextTick() once the force is out; each half timed apart, and the two together as the
+  // tick's whole work.
   std::vector<double> us(static_cast<std::size_t>(ticks)), after_us(us.size()), tick_us(us.size());
   int contact = 0;
   for (int k = 0; k < ticks; ++k) {
     const Eigen::Vector3d tip = path(k);
     const auto t0 = Clock::now();
-    const srv::RenderOutput out = r.render(tip, Eigen::Vector3d::Zero());
+    srv::RenderOutput out = r.renderForce(tip, Eigen::Vector3d::Zero());
     const auto t1 = Clock::now();
+    r.describeContact(out);
     r.prepareNextTick();
     const auto t2 = Clock::now();
     us[std::size_t(k)] = std::chrono::duration<double, std::micro>(t1 - t0).count();
@@ -412,9 +416,9 @@ int run(int argc, char** argv) {
     for (const EdgeRow& r : edges) {
       t += bench::fmt("| %zu | %s | %.3f° | %.3f° |\n", r.triangles, r.mode.c_str(), r.largest_step_deg, r.natural_step_deg);
     }
-    t += "\n**Render cost** (textured sphere, interpolated + Phong, stroked 1 mm deep at 50 mm/s; every `render()` timed, "
-         "from the reading to the force; after it, as in the servo once the force is written, `prepareNextTick()` timed "
-         "apart, and the two together as the tick's whole work; the sweeps from the leaves around the pen, the default, "
+    t += "\n**Render cost** (textured sphere, interpolated + Phong, stroked 1 mm deep at 50 mm/s; every `renderForce()` timed, "
+         "from the reading to the force; after it, as in the servo once the force is written, `describeContact()` and "
+         "`prepareNextTick()` timed apart, and the two halves together as the tick's whole work; the sweeps from the leaves around the pen, the default, "
          "and from the hierarchy every time, the same stroke just before):\n\n";
     t += "| triangles | mesh + BVH | build | p50 | p99 | max | in contact | after the force: p99 | whole tick: p99 | "
          "hierarchy only: p50 | p99 |\n"

@@ -229,11 +229,23 @@ Eigen::Vector3d ProxyRenderer::applyRecovery(const Eigen::Vector3d& t, const Eig
 }
 
 RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world) {
-  RenderOutput out;
-  const Eigen::Vector3d t = surface_->toLocal(tip_world);
-  const Eigen::Vector3d v = surface_->directionToLocal(v_world);
-  const tex::SurfacePoint at_tip = surface_->at(t.x(), t.y());
+  RenderOutput out = renderForce(tip_world, v_world);
+  describeContact(out);
+  return out;
+}
 
+const tex::SurfacePoint& ProxyRenderer::tipPoint() {
+  if (!have_at_tip_) {
+    at_tip_ = surface_->at(tip_local_.x(), tip_local_.y());
+    have_at_tip_ = true;
+  }
+  return at_tip_;
+}
+
+void ProxyRenderer::describeContact(RenderOutput& out) {
+  const Eigen::Vector3d& t = tip_local_;
+  const Eigen::Vector3d& v = v_local_;
+  const tex::SurfacePoint& at_tip = tipPoint();
   out.p_proj_world = surface_->toWorld(Eigen::Vector3d(t.x(), t.y(), 0.0));
   out.uv = at_tip.uv;
   out.texel = tex::texelOf(surface_->map(), at_tip.uv, surface_->sampling().address);
@@ -243,6 +255,15 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
   out.n_sampled_world = surface_->directionToWorld(at_tip.n_local);
   out.relief_depth_m = -at_tip.height_m;
   out.v_tangent_world = surface_->directionToWorld(Eigen::Vector3d(v.x(), v.y(), 0.0));
+}
+
+RenderOutput ProxyRenderer::renderForce(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world) {
+  RenderOutput out;
+  tip_local_ = surface_->toLocal(tip_world);
+  v_local_ = surface_->directionToLocal(v_world);
+  have_at_tip_ = false;
+  const Eigen::Vector3d& t = tip_local_;
+  const Eigen::Vector3d& v = v_local_;
 
   LocalPlanes planes;
   Eigen::Vector3d proxy = t;
@@ -253,7 +274,7 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
     // The paper's loop: a new plane through the surface point under the tip once per frame,
     // whether or not the tip touches; in between, the tip meets that plane wherever it goes.
     if (held_ticks_left_ <= 0) {
-      held_plane_ = singlePlaneAt(at_tip, t.x(), t.y());
+      held_plane_ = singlePlaneAt(tipPoint(), t.x(), t.y());
       held_ticks_left_ = config_.plane_hold_ticks;
     }
     --held_ticks_left_;
@@ -265,8 +286,8 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
       out.active_mask = 1;
     }
   } else if (!config_.crease_handling) {
-    if (t.z() < at_tip.height_m) {
-      planes = singlePlaneAt(at_tip, t.x(), t.y());
+    if (t.z() < tipPoint().height_m) {
+      planes = singlePlaneAt(tipPoint(), t.x(), t.y());
       const double penetration = planes.h[0].d - planes.h[0].n.dot(t);
       proxy = t + penetration * planes.h[0].n;
       contact = true;
@@ -278,7 +299,7 @@ RenderOutput ProxyRenderer::render(const Eigen::Vector3d& tip_world, const Eigen
     // projection below tells whether the tip is below them. planesAround only hops to planes
     // lower at (x, y) than the plane of the texel under the tip, so a tip above that one plane
     // (one texel read) is above the surface there, and the plane set is not built for it.
-    bool entering = !in_contact_ && t.z() < at_tip.height_m;
+    bool entering = !in_contact_ && t.z() < tipPoint().height_m;
     bool have_planes = false;
     if (!in_contact_ && !entering && config_.sided_ridges && surface_->usesRelief()) {
       long long i = 0, j = 0;

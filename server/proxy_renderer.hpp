@@ -96,6 +96,15 @@ class ProxyRenderer {
   ProxyRenderer(const tex::TexturedSurface& surface, const RendererConfig& config);
 
   RenderOutput render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world);
+  // render() in two halves, for a caller that writes the force in between (server/servo.cpp), so
+  // that between a reading and its force is only what the force needs. renderForce() fills the
+  // force and what the device and the servo act on: in_contact, recovering, proxy_held,
+  // force_world, proxy_world, depth_m, planes, num_planes, active_mask, f_normal_n.
+  // describeContact() then fills, for the same tick, where the tip is on the surface: p_proj_world,
+  // uv, texel, the frame (n_geom, tangent, bitangent), n_sampled_world and relief_depth_m at
+  // p_proj, v_tangent_world. render() is the two together, the same output to the bit.
+  RenderOutput renderForce(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world);
+  void describeContact(RenderOutput& out);
   void reset();  // forget the proxy and any recovery (e.g. after a device fault)
   // Another surface and configuration from the next render() on (a scene switch; the servo does
   // it at a tick boundary with the force ramped to zero), then reset(). Real-time safe; the
@@ -149,6 +158,14 @@ class ProxyRenderer {
   double crease_cos_ = 1.0;
   double concave_tolerance_m_ = 0.0;
   double smooth_sine_ = 0.0;  // neighboursTurnWithin's bound: 0 never skips reading the neighbours
+
+  // The last renderForce()'s tip and velocity (plane-local), and the surface point under the tip
+  // if the force needed it (entering contact, the single-plane modes): describeContact() reads it
+  // there rather than sampling the map again.
+  Eigen::Vector3d tip_local_ = Eigen::Vector3d::Zero(), v_local_ = Eigen::Vector3d::Zero();
+  bool have_at_tip_ = false;
+  tex::SurfacePoint at_tip_;
+  const tex::SurfacePoint& tipPoint();  // at_tip_, sampled on first use in a tick
 
   bool in_contact_ = false;
   Eigen::Vector3d proxy_local_ = Eigen::Vector3d::Zero();

@@ -81,30 +81,18 @@ const TickRecord& Servo::step(const dev::DeviceState& state) {
       r.tool_contacts = tool.contacts;
       r.tool_penetration_m = tool.penetration_m;
     } else {
-      out = mesh_ ? mesh_->render(state.p_world, state.v_world) : renderer_.render(state.p_world, state.v_world);
+      // The force's half now; where the contact is after the force is written (below).
+      out = mesh_ ? mesh_->renderForce(state.p_world, state.v_world) : renderer_.renderForce(state.p_world, state.v_world);
     }
     f_render = out.force_world;
     r.in_contact = out.in_contact;
     r.recovering = out.recovering;
     r.num_planes = std::int8_t(out.num_planes);
     r.active_mask = out.active_mask;
-    r.texel_i = out.texel.i;
-    r.texel_j = out.texel.j;
-    r.uv[0] = out.uv.u;
-    r.uv[1] = out.uv.v;
     put(r.proxy_world, out.proxy_world);
     r.proxy_held = out.proxy_held;
-    put(r.p_proj_world, out.p_proj_world);
-    put(r.n_geom_world, out.n_geom_world);
-    put(r.n_sampled_world, out.n_sampled_world);
     r.depth_m = out.depth_m;
-    r.relief_depth_m = out.relief_depth_m;
     r.f_normal_n = out.f_normal_n;
-    put(r.v_tangent_world, out.v_tangent_world);
-    r.triangle = out.triangle;
-    put(r.barycentric, out.barycentric);
-    put(r.tangent_world, out.tangent_world);
-    put(r.bitangent_world, out.bitangent_world);
     for (int i = 0; i < out.num_planes; ++i) {
       put(r.plane_n_world[i], out.planes[std::size_t(i)].n_world);
       r.plane_d_m[i] = out.planes[std::size_t(i)].d_m;
@@ -200,8 +188,29 @@ const TickRecord& Servo::step(const dev::DeviceState& state) {
     command.forces_enabled = f_out.squaredNorm() > 0.0 || tau_out.squaredNorm() > 0.0;
   }
   device_.write(command);
-  // What the mesh renderer does for the next tick, not for this force: after the write, so that
-  // it is not between the reading and the force (still inside compute_ns, the tick's whole work).
+  // What the renderer does not need for this force, after the write, so that it is not between
+  // the reading and the force (still inside compute_ns, the tick's whole work): where the contact
+  // is, and what the mesh renderer does for the next tick.
+  if (r.valid) {
+    if (mesh_ && !tool_) {
+      mesh_->describeContact(out);
+    } else if (!tool_) {
+      renderer_.describeContact(out);
+    }
+    r.texel_i = out.texel.i;
+    r.texel_j = out.texel.j;
+    r.uv[0] = out.uv.u;
+    r.uv[1] = out.uv.v;
+    put(r.p_proj_world, out.p_proj_world);
+    put(r.n_geom_world, out.n_geom_world);
+    put(r.n_sampled_world, out.n_sampled_world);
+    r.relief_depth_m = out.relief_depth_m;
+    put(r.v_tangent_world, out.v_tangent_world);
+    r.triangle = out.triangle;
+    put(r.barycentric, out.barycentric);
+    put(r.tangent_world, out.tangent_world);
+    put(r.bitangent_world, out.bitangent_world);
+  }
   if (mesh_ && !tool_) mesh_->prepareNextTick();
 
   put(r.f_render, f_render);

@@ -196,17 +196,12 @@ RenderOutput TexturedMeshRenderer::renderOnChart(const MeshContact& at, const Ei
   chart_.setNormalsMadeFor(texture_.normals_made_for_m);
   chart_.setSlopeSteps(texture_.slope_steps);
   if (chart_valid_) {
-    chart_renderer_->moveFrame(m.plane_to_world.inverse() * old_chart);
+    chart_renderer_->moveFrame(chart_.worldToPlane() * old_chart);  // the inverse the chart has made
   } else {
     chart_renderer_->retarget(chart_, config_);
   }
   chart_valid_ = true;
-  RenderOutput out = chart_renderer_->render(tip, v);
-  // The plane renderer reports where the tip projects onto its chart; the anchor's point, uv and
-  // face say where on the mesh that is.
-  out.p_proj_world = at.frame.point;
-  fillPlace(out, at);
-  return out;
+  return chart_renderer_->renderForce(tip, v);
 }
 
 RenderOutput TexturedMeshRenderer::renderPlanes(const std::uint32_t* held, int count, const Eigen::Vector3d& from,
@@ -252,6 +247,31 @@ RenderOutput TexturedMeshRenderer::renderPlanes(const std::uint32_t* held, int c
 }
 
 RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world) {
+  RenderOutput out = renderForce(tip_world, v_world);
+  describeContact(out);
+  return out;
+}
+
+void TexturedMeshRenderer::describeContact(RenderOutput& out) {
+  if (last_path_ == Path::NonFinite) return;  // renderForce() said all there is
+  if (last_path_ == Path::Chart) {
+    chart_renderer_->describeContact(out);
+    // The plane renderer reports where the tip projects onto its chart; the anchor's point, uv and
+    // face say where on the mesh that is.
+    out.p_proj_world = contact_.frame.point;
+    fillPlace(out, contact_);
+  }
+  // The mesh's frame to the world's (renderForce() has turned the force's fields).
+  const Eigen::Matrix3d r = mesh_to_world_.linear();
+  out.p_proj_world = mesh_to_world_ * out.p_proj_world;
+  out.n_geom_world = r * out.n_geom_world;
+  out.tangent_world = r * out.tangent_world;
+  out.bitangent_world = r * out.bitangent_world;
+  out.n_sampled_world = r * out.n_sampled_world;
+  out.v_tangent_world = r * out.v_tangent_world;
+}
+
+RenderOutput TexturedMeshRenderer::renderForce(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world) {
   prepareNextTick();  // unless the caller has, since the last tick
   const Eigen::Vector3d tip = world_to_mesh_ * tip_world;
   const Eigen::Vector3d v = world_to_mesh_.linear() * v_world;
@@ -269,6 +289,7 @@ RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, cons
     // Nothing sensible to render from a non-finite tip; the safety stage handles the fault.
     out.proxy_world = mesh_to_world_ * proxy_;
     out.p_proj_world = tip_world;
+    last_path_ = Path::NonFinite;
     return out;
   }
   if (!have_proxy_) {
@@ -299,11 +320,13 @@ RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, cons
   if (count > 1 && smoothlyJoined(held.data(), count)) count = 1;
 
   const Eigen::Vector3d from = have_texture_proxy_ ? texture_proxy_ : tip;
+  last_path_ = Path::Planes;  // or none held: what is said of the contact is said here, in the mesh's frame
   if (count == 0) {
     chart_valid_ = false;
   } else if (count == 1 && texture_.map) {
     contact_ = anchor(held[0], chart_valid_ ? &previous : nullptr, proxy_, from);
     out = renderOnChart(contact_, tip, v);
+    last_path_ = Path::Chart;
   } else {
     chart_valid_ = false;
     out = renderPlanes(held.data(), count, from, tip, v);
@@ -311,16 +334,10 @@ RenderOutput TexturedMeshRenderer::render(const Eigen::Vector3d& tip_world, cons
   have_texture_proxy_ = out.proxy_held;
   texture_proxy_ = out.proxy_world;
 
-  // The mesh's frame to the world's.
+  // The force's fields from the mesh's frame to the world's (describeContact() turns the others).
   const Eigen::Matrix3d r = mesh_to_world_.linear();
   out.force_world = r * out.force_world;
   out.proxy_world = mesh_to_world_ * out.proxy_world;
-  out.p_proj_world = mesh_to_world_ * out.p_proj_world;
-  out.n_geom_world = r * out.n_geom_world;
-  out.tangent_world = r * out.tangent_world;
-  out.bitangent_world = r * out.bitangent_world;
-  out.n_sampled_world = r * out.n_sampled_world;
-  out.v_tangent_world = r * out.v_tangent_world;
   for (int i = 0; i < out.num_planes; ++i) {
     dev::PlaneProxy& pp = out.planes[std::size_t(i)];
     pp.n_world = r * pp.n_world;

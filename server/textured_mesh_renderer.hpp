@@ -87,6 +87,12 @@ class TexturedMeshRenderer {
   TexturedMeshRenderer& operator=(const TexturedMeshRenderer&) = delete;
 
   RenderOutput render(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world);
+  // render() in two halves, as ProxyRenderer's (proxy_renderer.hpp): renderForce() fills the
+  // force and what the device and the servo act on; describeContact() then fills where on the
+  // mesh the contact is (the plane renderer's description on the chart, the triangle, barycentric
+  // coordinates and smooth frame at the anchor). The servo writes the force in between.
+  RenderOutput renderForce(const Eigen::Vector3d& tip_world, const Eigen::Vector3d& v_world);
+  void describeContact(RenderOutput& out);
   // The work a tick does for the ticks after it, not for its own force: moving the gathering of
   // the next region on (local_triangle_set.hpp) and asking the memory for the faces round the
   // anchor's, where the next anchor walks. The servo calls it after the force is written, in the
@@ -135,6 +141,7 @@ class TexturedMeshRenderer {
   Eigen::Vector2d localScale(const MeshContact& at) const;
   // The chart at an anchor: the tangent plane with the texture at the face's local scale.
   tex::PlaneMapping chartAt(const MeshContact& at) const;
+  // The chart at `at` made the plane renderer's surface, and its force there.
   RenderOutput renderOnChart(const MeshContact& at, const Eigen::Vector3d& tip, const Eigen::Vector3d& v);
   RenderOutput renderPlanes(const std::uint32_t* held, int count, const Eigen::Vector3d& from, const Eigen::Vector3d& tip,
                             const Eigen::Vector3d& v);
@@ -163,7 +170,12 @@ class TexturedMeshRenderer {
   int last_sweeps_ = 0;
   LocalTriangleSet local_;
   bool use_local_ = true;
-  bool next_tick_pending_ = false;  // render() ran since the last prepareNextTick()
+  bool next_tick_pending_ = false;  // renderForce() ran since the last prepareNextTick()
+  // How the last renderForce() went, for describeContact(): the chart's renderer describes the
+  // contact (Chart); renderPlanes() or no held face has described it already, in the mesh's frame
+  // (Planes); a non-finite tip, in the world's (NonFinite).
+  enum class Path { Chart, Planes, NonFinite };
+  Path last_path_ = Path::NonFinite;
 };
 
 }  // namespace thx::srv

@@ -136,6 +136,7 @@ class TexturedSurface {
   }
 
   Eigen::Vector3d toLocal(const Eigen::Vector3d& p_world) const { return world_to_plane_ * p_world; }
+  const Eigen::Isometry3d& worldToPlane() const { return world_to_plane_; }  // mapping().plane_to_world.inverse()
   Eigen::Vector3d toWorld(const Eigen::Vector3d& p_local) const { return mapping_.plane_to_world * p_local; }
   Eigen::Vector3d directionToWorld(const Eigen::Vector3d& d_local) const { return mapping_.plane_to_world.linear() * d_local; }
   Eigen::Vector3d directionToLocal(const Eigen::Vector3d& d_world) const { return world_to_plane_.linear() * d_world; }

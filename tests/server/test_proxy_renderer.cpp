@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 #include <numbers>
 
 #include "server/proxy_renderer.hpp"
 #include "tests/support/generated_texture.hpp"
+#include "tests/support/same_render_output.hpp"
 #include "tests/support/sanitized_build.hpp"
 
 namespace test_proxy_renderer {
@@ -368,6 +371,45 @@ TEST(ProxyRenderer, ACoarselySampledSmoothBumpIsNotARidge) {
     const srv::RenderOutput a = press(sided, {x, y, z}), b = press(blend, {x, y, z});
     EXPECT_EQ(a.in_contact, b.in_contact) << k;
     EXPECT_EQ(a.force_world, b.force_world) << k;
+  }
+}
+
+// The servo renders in two halves, the force before it is written and where the contact is after
+// (server/servo.cpp): together they say what render() says, to the bit, in every mode, on a plane
+// placed off the world's axes, through entering, sliding over a relief's creases, leaving, and a
+// non-finite tip; the first half alone already holds the force's fields; and the description is
+// in the world's frame (against the same plane at the origin).
+TEST(ProxyRenderer, RendersInTwoHalvesWhatRenderDoes) {
+  const tex::TextureMap map = generated("vvalley", {{"angle_deg", 60.0}, {"period", 0.004}});
+  tex::PlaneMapping placed = mapping();
+  placed.plane_to_world.translate(Eigen::Vector3d(0.01, -0.02, 0.03));
+  placed.plane_to_world.rotate(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized()));
+  const tex::TexturedSurface surface(map, placed, {}, true);
+  RendererConfig paper = config(false);
+  paper.plane_hold_ticks = 4;
+  const tex::TexturedSurface at_origin(map, mapping(), {}, true);
+  for (const RendererConfig& c : {config(true, 10), config(false, 10), paper}) {
+    ProxyRenderer whole(surface, c), halves(surface, c), local(at_origin, c);
+    int contact = 0;
+    for (int k = 0; k < 1200; ++k) {
+      const double x = 1e-5 * k, depth = k % 400 < 300 ? 0.004 : -0.001;  // out of contact 100 ticks in 400
+      Eigen::Vector3d local_tip(x, 0.3 * x, -depth);
+      const Eigen::Vector3d local_v(0.01, 0.003, -0.002);
+      if (k == 650) local_tip.x() = std::numeric_limits<double>::quiet_NaN();
+      const Eigen::Vector3d tip = placed.plane_to_world * local_tip;
+      const Eigen::Vector3d v = placed.plane_to_world.linear() * local_v;
+      const srv::RenderOutput a = whole.render(tip, v);
+      srv::RenderOutput b = halves.renderForce(tip, v);
+      const std::string where = "hold " + std::to_string(c.plane_hold_ticks) + ", crease " +
+                                std::to_string(c.crease_handling) + ", tick " + std::to_string(k);
+      test::expectSameForce(a, b, where);
+      halves.describeContact(b);
+      test::expectSameOutput(a, b, where);
+      const srv::RenderOutput l = local.render(local_tip, local_v);
+      if (k != 650 && l.in_contact == b.in_contact) test::expectDescribedAt(placed.plane_to_world, l, b, 1e-9, where);
+      contact += a.in_contact ? 1 : 0;
+    }
+    EXPECT_GT(contact, 500);
   }
 }
 

@@ -2,6 +2,7 @@
 // readings, client forces, the safety stage as the last word, shutdown, flight records.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -31,6 +32,39 @@ TEST(Servo, PressIntoAValleyEngagesAndRendersUpward) {
   EXPECT_LT(std::fabs(f.x()), 0.05);
   EXPECT_EQ(rig.servo().counters().faults, 0u);
   EXPECT_GT(rig.servo().counters().contact_ticks, 1000u);
+}
+
+// The servo writes the force before it asks the renderer where the contact is
+// (ProxyRenderer::describeContact, after the write): its record still says of every tick what
+// render() says, on a stroke that presses into the valleys and slides across their walls.
+TEST(Servo, TheRecordSaysWhereTheContactIsAsRenderDoes) {
+  ServoRig rig([](std::int64_t tick, dev::DeviceState& s) {
+    press(std::min<std::int64_t>(tick, 300), s);
+    if (tick > 300) s.p_world.x() += 2e-5 * double(tick - 300);  // 20 mm/s across the valleys
+    s.v_world = Eigen::Vector3d(tick > 300 ? 0.02 : 0.0, 0.001, 0.0);
+  });
+  srv::ProxyRenderer alone(*rig.texture.surface, rig.config().renderer);
+  const auto vec = [](const double (&a)[3]) { return Eigen::Vector3d(a[0], a[1], a[2]); };
+  int contact = 0;
+  for (int k = 0; k < 700; ++k) {
+    const srv::TickRecord& r = rig.tickAndDrain();
+    const srv::RenderOutput o = alone.render(vec(r.p_world), vec(r.v_world));
+    ASSERT_EQ(vec(r.f_render), o.force_world) << k;
+    EXPECT_EQ(r.texel_i, o.texel.i) << k;
+    EXPECT_EQ(r.texel_j, o.texel.j) << k;
+    EXPECT_EQ(r.uv[0], o.uv.u) << k;
+    EXPECT_EQ(r.uv[1], o.uv.v) << k;
+    EXPECT_EQ(vec(r.p_proj_world), o.p_proj_world) << k;
+    EXPECT_EQ(vec(r.n_geom_world), o.n_geom_world) << k;
+    EXPECT_EQ(vec(r.n_sampled_world), o.n_sampled_world) << k;
+    EXPECT_EQ(r.relief_depth_m, o.relief_depth_m) << k;
+    EXPECT_EQ(vec(r.v_tangent_world), o.v_tangent_world) << k;
+    EXPECT_EQ(vec(r.tangent_world), o.tangent_world) << k;
+    EXPECT_EQ(vec(r.bitangent_world), o.bitangent_world) << k;
+    EXPECT_EQ(r.triangle, o.triangle) << k;
+    contact += r.in_contact ? 1 : 0;
+  }
+  EXPECT_GT(contact, 400);
 }
 
 TEST(Servo, LongGapDisengagesAndFreezesAFlightRecord) {

@@ -6,10 +6,13 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "meshes/mesh_generators.hpp"
 #include "textures/generators.hpp"
 #include "server/textured_mesh_renderer.hpp"
+#include "tests/support/same_render_output.hpp"
 
 namespace test_textured_mesh_renderer {
 
@@ -304,6 +307,64 @@ TEST(TexturedMeshRenderer, ATextureSqueezedByTheUvIsFeltAtTheSlopeItIsLaidAt) {
   EXPECT_NEAR(std::fabs(a.n_sampled_world.x() / a.n_sampled_world.z()), slope, 1e-4);
   EXPECT_NEAR(std::fabs(b.n_sampled_world.x() / b.n_sampled_world.z()), 2 * slope, 2e-4);
   EXPECT_NEAR(b.n_sampled_world.y(), 0.0, 1e-9);
+}
+
+// As the plane renderer's (test_proxy_renderer.cpp): renderForce() then describeContact() say
+// what render() says, to the bit, on a relief-textured sphere placed in the world (the chart:
+// entering, a wavy stroke over the bricks, leaving, a non-finite tip) and in a room's inside
+// corner (several textured planes); renderForce()'s fields are final before describeContact(); and
+// the description is in the world's frame (against the same sphere at the origin).
+TEST(TexturedMeshRenderer, RendersInTwoHalvesWhatRenderDoes) {
+  tex::GenerateRequest request;
+  request.kind = "bricks";
+  request.size = 128;
+  const tex::TextureMap map = tex::generate(request);
+  const srv::MeshTexture texture{&map, {tex::Filter::Bilinear, tex::Address::Wrap}, map.isRelief()};
+  Eigen::Isometry3d place = Eigen::Isometry3d::Identity();
+  place.translate(Eigen::Vector3d(0.1, -0.2, 0.05));
+  place.rotate(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  const double radius = 0.03;
+  Rig whole(mesh::sphere(radius, 96, 48, 0.01).mesh, texture, mesh::FrameMode::InterpolatedPhong, place);
+  Rig halves(mesh::sphere(radius, 96, 48, 0.01).mesh, texture, mesh::FrameMode::InterpolatedPhong, place);
+  Rig at_origin(mesh::sphere(radius, 96, 48, 0.01).mesh, texture);
+  int contact = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const double a = 5e-5 * k / radius, b = 0.3 * std::sin(a * 3.0);
+    const double depth = k % 1000 < 800 ? 1e-3 : -2e-3;  // out of contact 200 ticks in 1000
+    const Eigen::Vector3d n(std::cos(a) * std::cos(b), std::sin(a) * std::cos(b), std::sin(b));
+    Eigen::Vector3d local_tip = n * (radius - depth);
+    const Eigen::Vector3d local_v = Eigen::Vector3d(-std::sin(a), std::cos(a), 0.0) * 0.05;
+    if (k == 1500) local_tip.y() = std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d tip = place * local_tip;
+    const Eigen::Vector3d v = place.linear() * local_v;
+    const std::string where = "sphere, tick " + std::to_string(k);
+    const srv::RenderOutput x = whole.renderer->render(tip, v);
+    srv::RenderOutput y = halves.renderer->renderForce(tip, v);
+    test::expectSameForce(x, y, where);
+    halves.renderer->describeContact(y);
+    halves.renderer->prepareNextTick();  // the servo's order
+    test::expectSameOutput(x, y, where);
+    const srv::RenderOutput z = at_origin.renderer->render(local_tip, local_v);
+    if (k != 1500 && z.in_contact == y.in_contact) test::expectDescribedAt(place, z, y, 1e-9, where);
+    contact += x.in_contact ? 1 : 0;
+  }
+  EXPECT_GT(contact, 1200);
+
+  // The room's inside corner: three faces held, each its own textured plane.
+  const tex::TextureMap flat = uniformMap(Eigen::Vector3f(0.1f, 0.05f, 1.0f).normalized());
+  Rig room_whole(mesh::box({0.04, 0.04, 0.04}, 0.01, 0.01, true).mesh, {&flat, {}, false});
+  Rig room_halves(mesh::box({0.04, 0.04, 0.04}, 0.01, 0.01, true).mesh, {&flat, {}, false});
+  int three = 0;
+  const Eigen::Vector3d from(0.015, 0.015, 0.015), to(0.0205, 0.021, 0.0215);
+  for (int k = 0; k <= 400; ++k) {
+    const Eigen::Vector3d tip = from + (to - from) * (double(k) / 400);
+    const srv::RenderOutput a = room_whole.renderer->render(tip, Eigen::Vector3d::Zero());
+    srv::RenderOutput b = room_halves.renderer->renderForce(tip, Eigen::Vector3d::Zero());
+    room_halves.renderer->describeContact(b);
+    test::expectSameOutput(a, b, "corner, tick " + std::to_string(k));
+    three += a.num_planes == 3 ? 1 : 0;
+  }
+  EXPECT_GT(three, 0) << "the stroke reaches the corner";
 }
 
 }  // namespace test_textured_mesh_renderer
