@@ -130,12 +130,8 @@ double TriangleBvh::typicalLeafExtent() const {
 bool TriangleBvh::entersTriangleBy(std::uint32_t triangle, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                    double t_max, double& t) const {
   double s = 0.0;
-  if (!crossesFront(planes_[triangle], a, b, t_max, s)) return false;  // the corners only past the plane's test
-  const auto& tri = (*triangles_)[triangle];
-  const Eigen::Vector3d& p0 = (*vertices_)[tri[0]];
-  const Eigen::Vector3d e1 = (*vertices_)[tri[1]] - p0, e2 = (*vertices_)[tri[2]] - p0;
-  const Eigen::Vector3d n = e1.cross(e2);
-  if (!insideAt(a, b, s, p0, e1, e2, n, 1.0 / n.squaredNorm())) return false;
+  // The corners are read only past the plane's test.
+  if (!crossesFront(planes_[triangle], a, b, t_max, s) || !insideAt(entryCorners(triangle), a, b, s)) return false;
   t = s;
   return true;
 }

@@ -35,11 +35,14 @@ SweepSegment sweepSegment(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 // e1 = p1 - p0 and e2 = p2 - p0, their cross product n and 1 / |n|^2. The hierarchy works them out
 // from the mesh at each test; the local set (local_triangle_set.hpp) keeps them for the triangles
 // around the pen, where the sweeps read them from a few kilobytes gathered ahead of the pen.
-struct EntryTriangle {
-  Halfspace plane;
+struct EntryCorners {
   Eigen::Vector3d p0 = Eigen::Vector3d::Zero(), e1 = Eigen::Vector3d::Zero(), e2 = Eigen::Vector3d::Zero();
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
   double inv_area2 = 0.0;
+};
+struct EntryTriangle {
+  Halfspace plane;
+  EntryCorners corners;
   std::uint32_t index = 0;  // in the mesh
 };
 // The entry test in two halves, shared by every sweep so that all answer alike to the bit:
@@ -54,18 +57,16 @@ inline bool crossesFront(const Halfspace& h, const Eigen::Vector3d& a, const Eig
 // ... and whether that point lies in the triangle, barycentric coordinates within a relative
 // kBarycentricTol (a hit on a shared edge belongs to both sides).
 inline constexpr double kBarycentricTol = 1e-9;
-inline bool insideAt(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double s, const Eigen::Vector3d& p0,
-                     const Eigen::Vector3d& e1, const Eigen::Vector3d& e2, const Eigen::Vector3d& n, double inv_area2) {
-  const Eigen::Vector3d w = a + s * (b - a) - p0;
-  const double l1 = w.cross(e2).dot(n) * inv_area2;  // weight of vertex 1
-  const double l2 = e1.cross(w).dot(n) * inv_area2;  // weight of vertex 2
+inline bool insideAt(const EntryCorners& c, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double s) {
+  const Eigen::Vector3d w = a + s * (b - a) - c.p0;
+  const double l1 = w.cross(c.e2).dot(c.n) * c.inv_area2;  // weight of vertex 1
+  const double l2 = c.e1.cross(w).dot(c.n) * c.inv_area2;  // weight of vertex 2
   return !(l1 < -kBarycentricTol || l2 < -kBarycentricTol || l1 + l2 > 1.0 + kBarycentricTol);
 }
 inline bool entersTriangle(const EntryTriangle& tri, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_max,
                            double& t) {
   double s = 0.0;
-  if (!crossesFront(tri.plane, a, b, t_max, s) || !insideAt(a, b, s, tri.p0, tri.e1, tri.e2, tri.n, tri.inv_area2))
-    return false;
+  if (!crossesFront(tri.plane, a, b, t_max, s) || !insideAt(tri.corners, a, b, s)) return false;
   t = s;
   return true;
 }
@@ -208,19 +209,18 @@ class TriangleBvh {
   bool entersTriangleBy(std::uint32_t triangle, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_max,
                         double& t) const;
 
-  // The triangle as the entry test reads it (EntryTriangle).
-  EntryTriangle entryTriangle(std::uint32_t triangle) const {
-    EntryTriangle e;
-    e.plane = planes_[triangle];
+  // The triangle as the entry test reads it (EntryTriangle), and its corners' part alone.
+  EntryCorners entryCorners(std::uint32_t triangle) const {
+    EntryCorners c;
     const auto& tri = (*triangles_)[triangle];
-    e.p0 = (*vertices_)[tri[0]];
-    e.e1 = (*vertices_)[tri[1]] - e.p0;
-    e.e2 = (*vertices_)[tri[2]] - e.p0;
-    e.n = e.e1.cross(e.e2);
-    e.inv_area2 = 1.0 / e.n.squaredNorm();
-    e.index = triangle;
-    return e;
+    c.p0 = (*vertices_)[tri[0]];
+    c.e1 = (*vertices_)[tri[1]] - c.p0;
+    c.e2 = (*vertices_)[tri[2]] - c.p0;
+    c.n = c.e1.cross(c.e2);
+    c.inv_area2 = 1.0 / c.n.squaredNorm();
+    return c;
   }
+  EntryTriangle entryTriangle(std::uint32_t triangle) const { return {planes_[triangle], entryCorners(triangle), triangle}; }
   // The triangle in a leaf's slot (enterLeaf's first .. first + count - 1).
   std::uint32_t leafTriangle(std::uint32_t slot) const { return order_[slot]; }
   // The triangle's plane: unit outward normal n and d = n . (any vertex).
